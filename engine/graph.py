@@ -1,0 +1,380 @@
+"""The graph: nodes, wires and groups, with validated edits and change events.
+
+Every edit goes through a method here. Edits that change what a node computes
+*expire* that node and everything downstream of it, so the solver re-solves only
+those. Listeners (a GUI, an undo stack) receive a :class:`GraphEvent` per edit.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from engine.datatree import MODIFIERS
+from engine.node import Message, Node
+from engine.types import can_cast
+
+
+class GraphError(ValueError):
+    """An edit that would make the graph invalid (the message says why)."""
+
+
+@dataclass(frozen=True)
+class Wire:
+    """A connection from an output port to an input port (``raw``: its object in the file)."""
+
+    source: str
+    source_port: str
+    target: str
+    target_port: str
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
+
+    def __str__(self) -> str:
+        return f"{self.source}.{self.source_port} → {self.target}.{self.target_port}"
+
+
+@dataclass
+class InputState:
+    """What an input keeps besides its wires: a persistent value and modifiers.
+
+    ``value`` is JSON data (see :func:`engine.types.encode_value`) or ``None`` when unset.
+    """
+
+    value: Any = None
+    has_value: bool = False
+    modifiers: list[str] = field(default_factory=list)
+    raw: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class NodeRecord:
+    """One node in a graph: its behaviour object plus what the document keeps about it.
+
+    ``raw`` is the node's object as read from a file (empty for new nodes): fields the
+    app does not know are written back from it unchanged.
+    """
+
+    id: str
+    node: Node
+    type_id: str
+    label: str = ""
+    position: tuple[float, float] = (0.0, 0.0)
+    inputs: dict[str, InputState] = field(default_factory=dict)
+    preview: bool = True
+    enabled: bool = True
+    raw: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def title(self) -> str:
+        return self.label or self.node.name()
+
+    def input_state(self, port: str) -> InputState:
+        return self.inputs.setdefault(port, InputState())
+
+
+@dataclass
+class Group:
+    """A coloured, titled box around some nodes (layout only; it never affects solving)."""
+
+    id: str
+    title: str = ""
+    colour: str = "#d8e4f0"
+    nodes: list[str] = field(default_factory=list)
+    raw: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class GraphEvent:
+    """A change to a graph: ``kind`` names it, ``data`` holds what a listener needs."""
+
+    kind: str
+    node_id: str | None = None
+    data: dict[str, Any] = field(default_factory=dict)
+
+
+Listener = Callable[[GraphEvent], None]
+
+
+class Graph:
+    """Nodes by id, wires between their ports, groups, and the set of expired nodes."""
+
+    def __init__(self) -> None:
+        self.nodes: dict[str, NodeRecord] = {}
+        self.wires: list[Wire] = []
+        self.groups: list[Group] = []
+        self.units: str = "m"
+        self.meta: dict[str, Any] = {}
+        self.raw: dict[str, Any] = {}
+        self.expired: set[str] = set()
+        self._listeners: list[Listener] = []
+        self._order: list[str] | None = None
+        self._targets_cache: dict[str, list[str]] | None = None
+
+    # -- events ---------------------------------------------------------------------
+    def subscribe(self, listener: Listener) -> Callable[[], None]:
+        """Call ``listener`` on every edit; returns a function that unsubscribes."""
+        self._listeners.append(listener)
+        return lambda: self._listeners.remove(listener)
+
+    def _emit(self, kind: str, node_id: str | None = None, **data: Any) -> None:
+        event = GraphEvent(kind, node_id, data)
+        for listener in list(self._listeners):
+            listener(event)
+
+    # -- nodes ----------------------------------------------------------------------
+    def new_id(self, base: str) -> str:
+        """A fresh id from ``base`` (``slider``, ``slider2``, ``slider3`` ...)."""
+        stem = "".join(c for c in base.lower() if c.isalnum() or c in "_-") or "node"
+        if stem not in self.nodes:
+            return stem
+        n = 2
+        while f"{stem}{n}" in self.nodes:
+            n += 1
+        return f"{stem}{n}"
+
+    def add_node(
+        self,
+        node: Node,
+        node_id: str | None = None,
+        *,
+        label: str = "",
+        position: tuple[float, float] = (0.0, 0.0),
+        type_id: str | None = None,
+    ) -> NodeRecord:
+        """Add ``node`` under ``node_id`` (made up from its name when not given)."""
+        node_id = node_id or self.new_id(node.name())
+        if node_id in self.nodes:
+            raise GraphError(f"there is already a node with id {node_id!r}")
+        record = NodeRecord(node_id, node, type_id or node.type_id, label, tuple(position))
+        return self.add_record(record)
+
+    def add_record(self, record: NodeRecord) -> NodeRecord:
+        if record.id in self.nodes:
+            raise GraphError(f"there is already a node with id {record.id!r}")
+        self.nodes[record.id] = record
+        self._order = self._targets_cache = None
+        self.expired.add(record.id)
+        self._emit("node_added", record.id)
+        return record
+
+    def remove_node(self, node_id: str) -> NodeRecord:
+        """Remove a node and every wire touching it."""
+        record = self._record(node_id)
+        for wire in [w for w in self.wires if node_id in (w.source, w.target)]:
+            self.disconnect(wire)
+        self.expire(node_id)
+        del self.nodes[node_id]
+        self.expired.discard(node_id)
+        for group in self.groups:
+            if node_id in group.nodes:
+                group.nodes.remove(node_id)
+        self._order = self._targets_cache = None
+        self._emit("node_removed", node_id, record=record)
+        return record
+
+    def _record(self, node_id: str) -> NodeRecord:
+        try:
+            return self.nodes[node_id]
+        except KeyError:
+            raise GraphError(f"there is no node with id {node_id!r}") from None
+
+    # -- wires ----------------------------------------------------------------------
+    def connect(self, source: str, source_port: str, target: str, target_port: str) -> Wire:
+        """Wire an output to an input, after checking types, cycles and wire counts."""
+        return self.connect_wire(Wire(source, source_port, target, target_port))
+
+    def connect_wire(self, wire: Wire) -> Wire:
+        """Add ``wire`` (see :meth:`connect`)."""
+        self.check_wire(wire)
+        self.wires.append(wire)
+        self._order = self._targets_cache = None
+        self.expire(wire.target)
+        self._emit("wire_added", wire.target, wire=wire)
+        return wire
+
+    def check_wire(self, wire: Wire) -> None:
+        """Raise :class:`GraphError` saying why ``wire`` cannot be added."""
+        src, dst = self._record(wire.source), self._record(wire.target)
+        out_port = src.node.output_port(wire.source_port)
+        in_port = dst.node.input_port(wire.target_port)
+        if out_port is None and not is_placeholder(src.node):
+            raise GraphError(f"{src.title} has no output called {wire.source_port!r}")
+        if in_port is None and not is_placeholder(dst.node):
+            raise GraphError(f"{dst.title} has no input called {wire.target_port!r}")
+        if wire in self.wires:
+            raise GraphError(f"{wire} is already connected")
+        if out_port and in_port and not can_cast(out_port.type, in_port.type):
+            raise GraphError(
+                f"{src.title}.{out_port.name} gives {out_port.type.name}, "
+                f"which {dst.title}.{in_port.name} ({in_port.type.name}) cannot take"
+            )
+        if in_port and not in_port.accepts_several_wires and self.wires_into(wire.target, wire.target_port):
+            raise GraphError(
+                f"{dst.title}.{in_port.name} takes one wire; disconnect the other first "
+                "(or hold Shift to add to a list input)"
+            )
+        if wire.source == wire.target or wire.target in self.upstream(wire.source):
+            raise GraphError(f"{wire} would make a loop: {dst.title} already feeds {src.title}")
+
+    def disconnect(self, wire: Wire) -> None:
+        if wire not in self.wires:
+            raise GraphError(f"{wire} is not connected")
+        self.wires.remove(wire)
+        self._order = self._targets_cache = None
+        if wire.target in self.nodes:
+            self.expire(wire.target)
+        self._emit("wire_removed", wire.target, wire=wire)
+
+    def wires_into(self, node_id: str, port: str | None = None) -> list[Wire]:
+        return [w for w in self.wires if w.target == node_id and (port is None or w.target_port == port)]
+
+    def wires_from(self, node_id: str) -> list[Wire]:
+        return [w for w in self.wires if w.source == node_id]
+
+    # -- node state -------------------------------------------------------------------
+    def set_setting(self, node_id: str, name: str, value: Any) -> None:
+        record = self._record(node_id)
+        old = record.node.settings.get(name)
+        record.node.settings[name] = value
+        self.expire(node_id)
+        self._emit("setting_changed", node_id, name=name, old=old, new=value)
+
+    def set_input_value(self, node_id: str, port: str, value: Any, present: bool = True) -> None:
+        """Set (or with ``present=False`` clear) an input's persistent JSON value."""
+        record = self._record(node_id)
+        state = record.input_state(port)
+        old = (state.has_value, copy.deepcopy(state.value))
+        state.value, state.has_value = (value, True) if present else (None, False)
+        self.expire(node_id)
+        self._emit("input_changed", node_id, port=port, old=old, new=(present, value))
+
+    def set_modifiers(self, node_id: str, port: str, modifiers: Iterable[str]) -> None:
+        modifiers = list(modifiers)
+        unknown = [m for m in modifiers if m not in MODIFIERS]
+        if unknown:
+            raise GraphError(f"unknown input modifier {unknown[0]!r} (use {', '.join(MODIFIERS)})")
+        state = self._record(node_id).input_state(port)
+        old, state.modifiers = state.modifiers, modifiers
+        self.expire(node_id)
+        self._emit("modifiers_changed", node_id, port=port, old=old, new=modifiers)
+
+    def set_enabled(self, node_id: str, enabled: bool) -> None:
+        record = self._record(node_id)
+        record.enabled = enabled
+        self.expire(node_id)
+        self._emit("enabled_changed", node_id, enabled=enabled)
+
+    def set_preview(self, node_id: str, preview: bool) -> None:
+        self._record(node_id).preview = preview
+        self._emit("preview_changed", node_id, preview=preview)
+
+    def move_node(self, node_id: str, position: tuple[float, float]) -> None:
+        record = self._record(node_id)
+        old, record.position = record.position, (float(position[0]), float(position[1]))
+        self._emit("node_moved", node_id, old=old, new=record.position)
+
+    def set_label(self, node_id: str, label: str) -> None:
+        record = self._record(node_id)
+        old, record.label = record.label, label
+        self._emit("label_changed", node_id, old=old, new=label)
+
+    # -- groups ---------------------------------------------------------------------
+    def add_group(self, group: Group) -> Group:
+        if any(g.id == group.id for g in self.groups):
+            raise GraphError(f"there is already a group with id {group.id!r}")
+        self.groups.append(group)
+        self._emit("group_added", data_group=group.id)
+        return group
+
+    def remove_group(self, group_id: str) -> Group:
+        group = next((g for g in self.groups if g.id == group_id), None)
+        if group is None:
+            raise GraphError(f"there is no group with id {group_id!r}")
+        self.groups.remove(group)
+        self._emit("group_removed", data_group=group_id)
+        return group
+
+    # -- topology -------------------------------------------------------------------
+    def expire(self, node_id: str) -> None:
+        """Mark ``node_id`` and everything downstream of it for re-solving."""
+        targets = self._targets()
+        stack = [node_id]
+        expired = self.expired
+        expired.add(node_id)
+        while stack:
+            for target in targets.get(stack.pop(), ()):
+                if target not in expired:
+                    expired.add(target)
+                    stack.append(target)
+
+    def _targets(self) -> dict[str, list[str]]:
+        """Downstream neighbours of every node (cached until the wiring changes)."""
+        if self._targets_cache is None:
+            targets: dict[str, list[str]] = {}
+            for w in self.wires:
+                targets.setdefault(w.source, []).append(w.target)
+            self._targets_cache = targets
+        return self._targets_cache
+
+    def expire_all(self) -> None:
+        self.expired.update(self.nodes)
+
+    def upstream(self, node_id: str) -> set[str]:
+        """Every node whose output reaches ``node_id`` (not including it)."""
+        feeds: dict[str, list[str]] = {}
+        for w in self.wires:
+            feeds.setdefault(w.target, []).append(w.source)
+        seen: set[str] = set()
+        stack = list(feeds.get(node_id, ()))
+        while stack:
+            current = stack.pop()
+            if current not in seen:
+                seen.add(current)
+                stack.extend(feeds.get(current, ()))
+        return seen
+
+    def order(self) -> list[str]:
+        """Node ids in a topological order (sources first; ties in insertion order)."""
+        if self._order is None:
+            indegree = dict.fromkeys(self.nodes, 0)
+            targets: dict[str, list[str]] = {}
+            for w in self.wires:
+                indegree[w.target] += 1
+                targets.setdefault(w.source, []).append(w.target)
+            ready = [n for n, d in indegree.items() if d == 0]
+            order: list[str] = []
+            while ready:
+                current = ready.pop()
+                order.append(current)
+                for t in targets.get(current, ()):
+                    indegree[t] -= 1
+                    if indegree[t] == 0:
+                        ready.append(t)
+            if len(order) != len(self.nodes):
+                stuck = sorted(n for n, d in indegree.items() if d > 0)
+                raise GraphError(f"the wires form a loop through {', '.join(stuck[:5])}")
+            self._order = order
+        return self._order
+
+    def messages_of(self, node_id: str) -> list[Message]:
+        return list(self._record(node_id).node.messages)
+
+
+class PlaceholderNode(Node):
+    """Stands in for a node type that is not installed: keeps its data, solves nothing."""
+
+    def __init__(self, type_id: str, settings: dict[str, Any] | None = None) -> None:
+        super().__init__(settings)
+        self.missing_type = type_id
+
+    def name(self) -> str:  # type: ignore[override]
+        return self.missing_type.split(".", 1)[-1]
+
+    def solve(self, *args: Any) -> Any:
+        return None
+
+
+def is_placeholder(node: Node) -> bool:
+    return isinstance(node, PlaceholderNode)

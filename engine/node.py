@@ -1,0 +1,240 @@
+"""The node base class: ports declared once, one ``solve`` method, messages.
+
+A node type is one class::
+
+    class Add(Node):
+        \"\"\"Add two numbers.\"\"\"
+
+        type_id = "maths.Add"
+        inputs = (In("A", NUMBER, "A", "First number.", default=0.0),
+                  In("B", NUMBER, "B", "Second number.", default=0.0))
+        outputs = (Out("Result", NUMBER, "R", "A + B."),)
+
+        def solve(self, a: float, b: float) -> float:
+            return a + b
+
+``solve`` receives one argument per input, in order, shaped by the input's access
+(an item, a list, or a whole :class:`~engine.datatree.DataTree`), and returns one value
+per output (a tuple when there are several). It never touches the graph or a GUI. To
+stop with a message it raises :class:`NodeError` or :class:`NodeWarning`; to say
+something and go on it calls :meth:`Node.remark` or :meth:`Node.warn`.
+"""
+
+from __future__ import annotations
+
+import enum
+import threading
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from engine.types import ValueType
+
+
+class Access(enum.Enum):
+    """How much of an input tree one call of ``solve`` sees."""
+
+    ITEM = "item"
+    LIST = "list"
+    TREE = "tree"
+
+
+ITEM, LIST, TREE = Access.ITEM, Access.LIST, Access.TREE
+
+
+class Level(enum.IntEnum):
+    """Message levels, in increasing severity."""
+
+    REMARK = 0
+    WARNING = 1
+    ERROR = 2
+
+
+class NodeError(Exception):
+    """Raised by ``solve`` to put the node in error with this message (no traceback)."""
+
+
+class NodeWarning(Exception):
+    """Raised by ``solve`` to skip this call and put the node in warning with this message."""
+
+
+class Cancelled(Exception):
+    """The solve was cancelled (raised by :meth:`CancelToken.check`)."""
+
+
+class CancelToken:
+    """Shared between a front-end and a running solve; long nodes call :meth:`check`."""
+
+    def __init__(self) -> None:
+        self._event = threading.Event()
+
+    def cancel(self) -> None:
+        self._event.set()
+
+    @property
+    def cancelled(self) -> bool:
+        return self._event.is_set()
+
+    def check(self) -> None:
+        """Raise :class:`Cancelled` if the solve has been cancelled."""
+        if self._event.is_set():
+            raise Cancelled
+
+
+_NO_DEFAULT = object()
+
+
+@dataclass(frozen=True)
+class In:
+    """An input port.
+
+    ``default`` is used when nothing is wired and no value is set; an input with no
+    default and not ``optional`` must receive data. ``multiple`` lets an item-access
+    input take several wires (list and tree inputs always may).
+    """
+
+    name: str
+    type: ValueType
+    nickname: str = ""
+    description: str = ""
+    default: Any = _NO_DEFAULT
+    access: Access = ITEM
+    optional: bool = False
+    multiple: bool = False
+
+    @property
+    def has_default(self) -> bool:
+        return self.default is not _NO_DEFAULT
+
+    @property
+    def accepts_several_wires(self) -> bool:
+        return self.multiple or self.access is not ITEM
+
+
+@dataclass(frozen=True)
+class Out:
+    """An output port. ``access=LIST`` means each call returns a list of values."""
+
+    name: str
+    type: ValueType
+    nickname: str = ""
+    description: str = ""
+    access: Access = ITEM
+
+
+@dataclass(frozen=True)
+class Setting:
+    """A value a node keeps in the file's ``settings`` (a slider's value, an expression).
+
+    ``kind`` is the JSON kind: ``float``, ``int``, ``bool``, ``str`` or ``list``.
+    """
+
+    name: str
+    kind: type
+    default: Any
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Message:
+    level: Level
+    text: str
+
+    def to_json(self) -> dict[str, str]:
+        return {"level": self.level.name.lower(), "text": self.text}
+
+
+class Node:
+    """Base class of every node type. Subclasses set the class attributes and ``solve``."""
+
+    type_id: ClassVar[str] = ""
+    inputs: ClassVar[tuple[In, ...]] = ()
+    outputs: ClassVar[tuple[Out, ...]] = ()
+    settings_spec: ClassVar[tuple[Setting, ...]] = ()
+    icon: ClassVar[str] = ""
+
+    def __init__(self, settings: dict[str, Any] | None = None) -> None:
+        self.settings: dict[str, Any] = {s.name: s.default for s in self.settings_spec}
+        if settings:
+            self.settings.update(settings)
+        self.messages: list[Message] = []
+        self.token: CancelToken = CancelToken()
+
+    # -- ports (instances may vary them with their settings, like Expression) -------------
+    def input_ports(self) -> tuple[In, ...]:
+        return self.inputs
+
+    def output_ports(self) -> tuple[Out, ...]:
+        return self.outputs
+
+    def input_port(self, name: str) -> In | None:
+        return next((p for p in self.input_ports() if p.name == name), None)
+
+    def output_port(self, name: str) -> Out | None:
+        return next((p for p in self.output_ports() if p.name == name), None)
+
+    # -- behaviour --------------------------------------------------------------------
+    def solve(self, *args: Any) -> Any:
+        raise NotImplementedError(f"{type(self).__name__} does not define solve()")
+
+    def before_solve(self) -> None:
+        """Called once before the iterations of a solve (reset per-solve state here)."""
+
+    def after_solve(self) -> None:
+        """Called once after all iterations (summarise per-solve messages here)."""
+
+    # -- messages -----------------------------------------------------------------------
+    def remark(self, text: str) -> None:
+        self._say(Level.REMARK, text)
+
+    def warn(self, text: str) -> None:
+        self._say(Level.WARNING, text)
+
+    def _say(self, level: Level, text: str) -> None:
+        message = Message(level, text)
+        if message not in self.messages:
+            self.messages.append(message)
+
+    def check_cancelled(self) -> None:
+        """Long-running nodes call this inside their loops so a solve can be stopped."""
+        self.token.check()
+
+    # -- catalogue ---------------------------------------------------------------------
+    @classmethod
+    def palette(cls) -> str:
+        return cls.type_id.split(".", 1)[0]
+
+    @classmethod
+    def name(cls) -> str:
+        return cls.type_id.split(".", 1)[-1]
+
+    @classmethod
+    def help(cls) -> str:
+        return (cls.__doc__ or "").strip()
+
+    @classmethod
+    def catalogue_entry(cls) -> dict[str, Any]:
+        """A JSON description of this node type, for ``torsal nodes --json``."""
+        def port(p: In | Out) -> dict[str, Any]:
+            entry = {
+                "name": p.name,
+                "nickname": p.nickname,
+                "type": p.type.name,
+                "access": p.access.value,
+                "description": p.description,
+            }
+            if isinstance(p, In):
+                entry["optional"] = p.optional or p.has_default
+            return entry
+
+        return {
+            "type": cls.type_id,
+            "palette": cls.palette(),
+            "name": cls.name(),
+            "help": cls.help(),
+            "inputs": [port(p) for p in cls.inputs],
+            "outputs": [port(p) for p in cls.outputs],
+            "settings": [
+                {"name": s.name, "default": s.default, "description": s.description}
+                for s in cls.settings_spec
+            ],
+        }

@@ -1,0 +1,83 @@
+"""The node registry: node types by ``type`` id, from ``nodes`` and from plug-ins.
+
+Plug-ins publish node classes through the ``torsal.nodes`` entry-point group; an entry
+point may name a module (every :class:`Node` subclass with a ``type_id`` in it is
+registered), a single class, or a callable returning classes.
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Iterable
+from importlib.metadata import entry_points
+from types import ModuleType
+from typing import Any
+
+from engine.node import Node
+
+ENTRY_POINT_GROUP = "torsal.nodes"
+
+
+class Registry:
+    """Node classes by ``type_id`` (``<palette>.<NodeName>``)."""
+
+    def __init__(self) -> None:
+        self._types: dict[str, type[Node]] = {}
+        self.problems: list[str] = []
+
+    def register(self, cls: type[Node]) -> type[Node]:
+        type_id = cls.type_id
+        palette, _, name = type_id.partition(".")
+        if not (palette and name and palette.isidentifier() and name.isidentifier()):
+            raise ValueError(f"{cls.__name__}.type_id must be '<palette>.<NodeName>', not {type_id!r}")
+        self._types[type_id] = cls
+        return cls
+
+    def register_module(self, module: ModuleType) -> None:
+        for cls in classes_in(module):
+            self.register(cls)
+
+    def get(self, type_id: str) -> type[Node] | None:
+        return self._types.get(type_id)
+
+    def create(self, type_id: str, settings: dict[str, Any] | None = None) -> Node:
+        cls = self._types.get(type_id)
+        if cls is None:
+            raise KeyError(f"no node type {type_id!r} is installed")
+        return cls(settings)
+
+    def __contains__(self, type_id: object) -> bool:
+        return type_id in self._types
+
+    def __iter__(self) -> Iterable[type[Node]]:
+        return iter(sorted(self._types.values(), key=lambda c: c.type_id))
+
+    def __len__(self) -> int:
+        return len(self._types)
+
+    def load_entry_points(self) -> None:
+        """Register third-party node types; a broken plug-in is reported, not fatal."""
+        for entry in entry_points(group=ENTRY_POINT_GROUP):
+            try:
+                loaded = entry.load()
+                if isinstance(loaded, ModuleType):
+                    self.register_module(loaded)
+                elif inspect.isclass(loaded) and issubclass(loaded, Node):
+                    self.register(loaded)
+                elif callable(loaded):
+                    for cls in loaded():
+                        self.register(cls)
+            except Exception as exc:  # a plug-in's bug must not stop Torsal starting
+                self.problems.append(f"plug-in {entry.name!r} could not be loaded: {exc}")
+
+
+def classes_in(module: ModuleType) -> list[type[Node]]:
+    """Node subclasses defined in ``module`` that carry a ``type_id``."""
+    return [
+        obj
+        for obj in vars(module).values()
+        if inspect.isclass(obj)
+        and issubclass(obj, Node)
+        and obj.type_id
+        and obj.__module__ == module.__name__
+    ]

@@ -1,0 +1,358 @@
+"""The incremental solver: solve expired nodes in topological order from cached results.
+
+Each node's inputs are gathered from its wires' cached output trees (or from its
+persistent values and defaults), modified, cast to the port types and *matched* the
+Grasshopper way (see ``shared/spec/data-trees.md``); ``solve`` is then called once per
+match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or ``missing`` with its
+messages and solve time. An exception in one node never stops the others.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from itertools import repeat
+from typing import Any
+
+from engine.datatree import DataTree, Path, apply_modifiers, format_path
+from engine.graph import Graph, NodeRecord, is_placeholder
+from engine.node import (
+    ITEM,
+    LIST,
+    TREE,
+    Cancelled,
+    CancelToken,
+    In,
+    Level,
+    Message,
+    Node,
+    NodeError,
+    NodeWarning,
+)
+from engine.types import CastError, cast, decode_value
+
+OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
+
+Progress = Callable[[int, int, str], None]
+
+
+@dataclass
+class NodeResult:
+    """What one node produced in its last solve."""
+
+    state: str = OK
+    messages: list[Message] = field(default_factory=list)
+    seconds: float = 0.0
+    outputs: dict[str, DataTree] = field(default_factory=dict)
+
+    def output(self, port: str) -> DataTree:
+        return self.outputs.get(port) or DataTree()
+
+
+@dataclass
+class SolveReport:
+    """The outcome of one call of :meth:`Solver.solve`."""
+
+    solved: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+    cancelled: bool = False
+
+    def count(self, results: dict[str, NodeResult], state: str) -> int:
+        return sum(1 for r in results.values() if r.state == state)
+
+
+class Solver:
+    """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
+
+    def __init__(self, graph: Graph) -> None:
+        self.graph = graph
+        self.results: dict[str, NodeResult] = {}
+
+    def result(self, node_id: str) -> NodeResult:
+        return self.results.get(node_id) or NodeResult()
+
+    def solve(self, token: CancelToken | None = None, progress: Progress | None = None) -> SolveReport:
+        """Solve every expired node; cancelled solves leave the rest expired."""
+        graph = self.graph
+        token = token or CancelToken()
+        report = SolveReport()
+        start = time.perf_counter()
+        for stale in set(self.results) - set(graph.nodes):
+            del self.results[stale]
+        pending = [n for n in graph.order() if n in graph.expired]
+        try:
+            for index, node_id in enumerate(pending):
+                token.check()
+                if progress is not None:
+                    progress(index, len(pending), node_id)
+                self.results[node_id] = self._solve_node(graph.nodes[node_id], token)
+                graph.expired.discard(node_id)
+                report.solved.append(node_id)
+        except Cancelled:
+            report.cancelled = True
+        report.seconds = time.perf_counter() - start
+        return report
+
+    # -- one node -------------------------------------------------------------------
+    def _solve_node(self, record: NodeRecord, token: CancelToken) -> NodeResult:
+        node = record.node
+        node.messages = []
+        node.token = token
+        started = time.perf_counter()
+        outputs = {p.name: DataTree() for p in node.output_ports()}
+        if is_placeholder(node):
+            text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
+            return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, outputs)
+        if not record.enabled:
+            return NodeResult(DISABLED, [], 0.0, outputs)
+        try:
+            trees = self._gather(record)
+            node.before_solve()
+            outputs = run_node(node, trees)
+            node.after_solve()
+        except Cancelled:
+            raise
+        except NodeError as exc:
+            node.messages.append(Message(Level.ERROR, str(exc)))
+        except NodeWarning as exc:
+            node.messages.append(Message(Level.WARNING, str(exc)))
+        except Exception as exc:  # a bug in a node must not stop the rest of the graph
+            node.messages.append(Message(Level.ERROR, _describe_exception(exc)))
+        seconds = time.perf_counter() - started
+        worst = max((m.level for m in node.messages), default=Level.REMARK)
+        state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
+        if state == ERROR:
+            outputs = {p.name: DataTree() for p in node.output_ports()}
+        return NodeResult(state, list(node.messages), seconds, outputs)
+
+    def _gather(self, record: NodeRecord) -> list[DataTree]:
+        """The modified, cast input trees of ``record``, one per input port."""
+        trees = []
+        wires = self.graph.wires_into(record.id)
+        for port in record.node.input_ports():
+            state = record.inputs.get(port.name)
+            feeding = [w for w in wires if w.target_port == port.name]
+            if feeding:
+                tree = merge_trees(
+                    [self.result(w.source).output(w.source_port) for w in feeding]
+                )
+            elif state is not None and state.has_value:
+                try:
+                    tree = DataTree.from_value(decode_value(state.value))
+                except CastError as exc:
+                    raise NodeError(f"input {port.name}: {exc}") from None
+            elif port.has_default and port.default is not None:
+                tree = DataTree.from_value(port.default)
+            else:
+                tree = DataTree()
+            if state is not None and state.modifiers:
+                tree = apply_modifiers(tree, state.modifiers)
+            trees.append(cast_tree(tree, port))
+        return trees
+
+
+def _describe_exception(exc: Exception) -> str:
+    frame = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    where = f" (in {frame.name}, line {frame.lineno})" if frame else ""
+    return f"{type(exc).__name__}: {exc}{where}"
+
+
+def merge_trees(trees: list[DataTree]) -> DataTree:
+    """Several wires into one input: branches with the same path are concatenated."""
+    if len(trees) == 1:
+        return trees[0]
+    merged = DataTree()
+    for tree in trees:
+        for path, branch in tree.items():
+            merged.extend(path, branch)
+    return DataTree(dict(merged.items()))
+
+
+def cast_tree(tree: DataTree, port: In) -> DataTree:
+    """Cast every item of ``tree`` to ``port``'s type (items already right are kept)."""
+    classes = port.type.classes
+    needs_cast = False
+    for branch in tree.branches:
+        for item in branch:
+            if type(item) not in classes:
+                needs_cast = True
+                break
+        if needs_cast:
+            break
+    if not needs_cast:
+        return tree
+
+    def convert(item: Any) -> Any:
+        if item is None:
+            return None
+        try:
+            return cast(item, port.type)
+        except CastError as exc:
+            raise NodeError(f"input {port.name}: {exc}") from None
+
+    return tree.map(convert)
+
+
+# --------------------------------------------------------------------------- matching
+
+def run_node(node: Node, trees: list[DataTree]) -> dict[str, DataTree]:
+    """Match ``trees`` to ``node``'s inputs, call ``solve`` per match, collect output trees."""
+    in_ports = node.input_ports()
+    out_ports = node.output_ports()
+    outputs = {p.name: DataTree() for p in out_ports}
+
+    for port, tree in zip(in_ports, trees, strict=True):
+        if tree.is_empty() and not (port.optional or port.has_default):
+            node.warn(f"Input {port.name} collected no data")
+            return outputs
+
+    matched = [(p, t) for p, t in zip(in_ports, trees, strict=True) if p.access is not TREE]
+    if not matched:  # no inputs, or only tree inputs: one call
+        _store(node, out_ports, outputs, (0,), [_call(node, trees)], iterated=False)
+        return outputs
+
+    _remark_uneven(node, matched)
+    branch_lists = [t.branches or [[]] for _, t in matched]
+    path_lists = [t.paths or [(0,)] for _, t in matched]
+    branch_count = max(len(b) for b in branch_lists)
+    master = next(i for i, b in enumerate(branch_lists) if len(b) == branch_count)
+    item_slots = [i for i, (p, _) in enumerate(matched) if p.access is ITEM]
+    iterated = bool(item_slots)
+    # arguments in port order: tree inputs fixed, the others filled per call
+    template = [t if p.access is TREE else None for p, t in zip(in_ports, trees, strict=True)]
+    slot_of_port = [i for i, p in enumerate(in_ports) if p.access is not TREE]
+    no_tree_inputs = len(slot_of_port) == len(in_ports)
+
+    for b in range(branch_count):
+        node.check_cancelled()
+        branches = [bl[min(b, len(bl) - 1)] for bl in branch_lists]
+        path = path_lists[master][b]
+        if not iterated:
+            args = list(template)
+            for slot, port_index in enumerate(slot_of_port):
+                args[port_index] = branches[slot]
+            _store(node, out_ports, outputs, path, [_call(node, args)], iterated=False)
+            continue
+        lengths = [len(branches[i]) for i in item_slots]
+        if min(lengths) == 0:
+            continue
+        calls = max(lengths)
+        columns: list[Any] = []
+        for slot, port_index in enumerate(slot_of_port):
+            branch = branches[slot]
+            if matched[slot][0].access is LIST:
+                columns.append((port_index, repeat(branch, calls)))
+            elif len(branch) == calls:
+                columns.append((port_index, branch))
+            else:
+                columns.append((port_index, branch + [branch[-1]] * (calls - len(branch))))
+        if no_tree_inputs:
+            arg_rows = zip(*(c[1] for c in columns), strict=False)
+        else:
+            arg_rows = (_fill(template, columns, row) for row in zip(*(c[1] for c in columns), strict=False))
+        results = _call_rows(node, arg_rows)
+        _store(node, out_ports, outputs, path, results, iterated=True)
+    return outputs
+
+
+def _fill(template: list[Any], columns: list[Any], row: tuple[Any, ...]) -> list[Any]:
+    args = list(template)
+    for (port_index, _), value in zip(columns, row, strict=True):
+        args[port_index] = value
+    return args
+
+
+def _call(node: Node, args: list[Any]) -> Any:
+    try:
+        return node.solve(*args)
+    except NodeWarning as exc:
+        node.warn(str(exc))
+        return None
+
+
+def _call_rows(node: Node, rows: Any) -> list[Any]:
+    """Call ``solve`` per argument row; the hot loop of item access."""
+    solve = node.solve
+    token = node.token
+    results: list[Any] = []
+    append = results.append
+    count = 0
+    for row in rows:
+        try:
+            append(solve(*row))
+        except NodeWarning as exc:
+            node.warn(str(exc))
+            append(None)
+        count += 1
+        if not count & 4095:
+            token.check()
+    return results
+
+
+def _store(
+    node: Node,
+    out_ports: tuple[Any, ...],
+    outputs: dict[str, DataTree],
+    path: Path,
+    results: list[Any],
+    iterated: bool,
+) -> None:
+    """Place one branch iteration's results in the output trees."""
+    if len(out_ports) == 1:
+        columns = [results]
+    else:
+        columns = [[] for _ in out_ports]
+        for result in results:
+            values = result if result is not None else (None,) * len(out_ports)
+            if not isinstance(values, tuple) or len(values) != len(out_ports):
+                raise NodeError(f"{type(node).__name__}.solve must return {len(out_ports)} values")
+            for column, value in zip(columns, values, strict=True):
+                column.append(value)
+    for port, column in zip(out_ports, columns, strict=True):
+        tree = outputs[port.name]
+        if port.access is ITEM:
+            tree.extend(path, column)
+        elif port.access is LIST:
+            if iterated:
+                for i, values in enumerate(column):
+                    tree.extend((*path, i), [] if values is None else values)
+            else:
+                for values in column:
+                    tree.extend(path, [] if values is None else values)
+        else:  # TREE: the node built its own tree
+            for value in column:
+                if isinstance(value, DataTree):
+                    for sub_path, branch in value.items():
+                        tree.extend(sub_path, branch)
+
+
+def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
+    """Say in plain words when trees match unevenly (a branch or item gets reused)."""
+    counts = [(p.name, t.branch_count) for p, t in matched if not t.is_empty()]
+    if len(counts) < 2:
+        return
+    most = max(c for _, c in counts)
+    for name, count in counts:
+        if 1 < count < most:
+            other = next(n for n, c in counts if c == most)
+            node.remark(
+                f"{other} has {most} branches, {name} has {count}: "
+                f"{name}'s last branch is reused"
+            )
+    items = [(p.name, t) for p, t in matched if p.access is ITEM and not t.is_empty()]
+    if len(items) < 2:
+        return
+    for path_index in range(max(t.branch_count for _, t in items)):
+        lengths = [(n, len(t.branches[min(path_index, t.branch_count - 1)])) for n, t in items]
+        longest = max(length for _, length in lengths)
+        for name, length in lengths:
+            if 1 < length < longest:
+                other = next(n for n, length2 in lengths if length2 == longest)
+                path = items[0][1].paths[min(path_index, items[0][1].branch_count - 1)]
+                node.remark(
+                    f"{other} has {longest} items, {name} has {length} in branch "
+                    f"{format_path(path)}: {name}'s last item is reused"
+                )
+                return

@@ -1,0 +1,313 @@
+"""Value types, the casts between them, and their JSON encoding.
+
+A :class:`ValueType` names what flows on a wire (Number, Point, Curve ...). The engine
+registers the plain types here; ``nodes`` registers geometry types (Curve, Surface,
+Mesh ...) with :func:`register_type` and :func:`register_cast`. A failed cast raises
+:class:`CastError` with a sentence a designer can act on.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from engine.values import Domain, Plane, Point, Triple, Vector
+
+
+class CastError(ValueError):
+    """A value could not be turned into the type a port needs."""
+
+
+Encoder = Callable[[Any], Any]
+Decoder = Callable[[dict], Any]
+
+
+@dataclass(eq=False)
+class ValueType:
+    """A kind of value: its name, the Python class(es) that hold it and how it is written.
+
+    ``encode`` turns a value into JSON data that ``decode`` reads back (for persistent
+    input values); ``summarize`` describes a value in ``torsal run --json`` results and
+    defaults to ``encode``.
+    """
+
+    name: str
+    classes: tuple[type, ...]
+    description: str = ""
+    encode: Encoder | None = None
+    decode: Decoder | None = None
+    summarize: Encoder | None = None
+    casts: dict[str, Callable[[Any], Any]] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return f"<type {self.name}>"
+
+    def accepts(self, value: Any) -> bool:
+        return isinstance(value, self.classes)
+
+
+_TYPES: dict[str, ValueType] = {}
+
+
+def register_type(value_type: ValueType) -> ValueType:
+    """Add ``value_type`` to the registry (replacing one of the same name)."""
+    _TYPES[value_type.name] = value_type
+    return value_type
+
+
+def get_type(name: str) -> ValueType:
+    try:
+        return _TYPES[name]
+    except KeyError:
+        raise KeyError(f"unknown value type {name!r}") from None
+
+
+def all_types() -> dict[str, ValueType]:
+    return dict(_TYPES)
+
+
+def register_cast(source: ValueType, target: ValueType, cast: Callable[[Any], Any]) -> None:
+    """Let values of ``source`` flow into ports of ``target`` through ``cast``."""
+    target.casts[source.name] = cast
+
+
+def type_of(value: Any) -> ValueType | None:
+    """The most specific registered type whose classes hold ``value``."""
+    best: ValueType | None = None
+    for value_type in _TYPES.values():
+        if value_type is GENERIC or not value_type.accepts(value):
+            continue
+        # Prefer the type whose class is deepest in the MRO (Vector over Point).
+        if best is None or _depth(value_type, value) < _depth(best, value):
+            best = value_type
+    return best
+
+
+def _depth(value_type: ValueType, value: Any) -> int:
+    mro = type(value).__mro__
+    return min(mro.index(c) for c in value_type.classes if c in mro)
+
+
+def can_cast(source: ValueType, target: ValueType) -> bool:
+    """Whether a wire may run from a ``source`` output into a ``target`` input."""
+    return (
+        source is target
+        or target is GENERIC
+        or source is GENERIC
+        or source.name in target.casts
+        or (source.classes and all(issubclass(c, target.classes) for c in source.classes))
+    )
+
+
+def cast(value: Any, target: ValueType) -> Any:
+    """Convert ``value`` for a port of type ``target`` or raise :class:`CastError`."""
+    if target is GENERIC or type(value) in target.classes:
+        return value
+    if isinstance(value, target.classes) and not (isinstance(value, bool) and target is not BOOLEAN):
+        return value
+    source = type_of(value)
+    if source is not None:
+        converter = target.casts.get(source.name)
+        if converter is not None:
+            try:
+                return converter(value)
+            except CastError:
+                raise
+            except (TypeError, ValueError, OverflowError) as exc:
+                raise CastError(f"could not convert {describe(value)} to {target.name}: {exc}") from None
+    raise CastError(f"{describe(value)} cannot be used as {target.name}")
+
+
+def describe(value: Any) -> str:
+    """A short human description of a value for messages: ``Text 'abc'``, ``Number 2.5``."""
+    value_type = type_of(value)
+    name = value_type.name if value_type else type(value).__name__
+    text = repr(value)
+    if len(text) > 40:
+        text = text[:37] + "..."
+    return f"{name} {text}"
+
+
+# --------------------------------------------------------------------------- JSON codecs
+
+def _xyz(kind: str) -> Encoder:
+    return lambda v: {"type": kind, "xyz": [_num(c) for c in v]}
+
+
+def _num(x: float) -> float | int:
+    """Write integral floats as they are; JSON has no inf/nan, so those become text."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return str(x)
+    return x
+
+
+def encode_value(value: Any) -> Any:
+    """Encode one value (or a list of values) as JSON data, for files and results."""
+    if isinstance(value, list | tuple) and not isinstance(value, Triple | Domain | Plane):
+        return [encode_value(v) for v in value]
+    value_type = type_of(value)
+    if value_type is not None and value_type.encode is not None:
+        return value_type.encode(value)
+    if value is None or isinstance(value, bool | int | str):
+        return value
+    if isinstance(value, float):
+        return _num(value)
+    raise CastError(f"{describe(value)} cannot be written to a file")
+
+
+def summarize_value(value: Any) -> Any:
+    """Describe a value in ``torsal run --json`` output (geometry as key figures)."""
+    value_type = type_of(value)
+    if value_type is not None and value_type.summarize is not None:
+        return value_type.summarize(value)
+    try:
+        return encode_value(value)
+    except CastError:
+        return {"type": value_type.name if value_type else type(value).__name__}
+
+
+def decode_value(data: Any) -> Any:
+    """Read JSON data written by :func:`encode_value` back into values."""
+    if isinstance(data, list):
+        return [decode_value(d) for d in data]
+    if isinstance(data, dict):
+        kind = data.get("type")
+        if not isinstance(kind, str) or kind not in _TYPES or _TYPES[kind].decode is None:
+            raise CastError(f"unknown value {{'type': {kind!r}}}")
+        try:
+            return _TYPES[kind].decode(data)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise CastError(f"malformed {kind} value: {exc}") from None
+    if data is None or isinstance(data, bool | int | float | str):
+        return data
+    raise CastError(f"cannot read value {data!r}")
+
+
+def _read_xyz(cls: type) -> Decoder:
+    def decode(data: dict) -> Any:
+        xyz = data["xyz"]
+        if not isinstance(xyz, list) or len(xyz) != 3:
+            raise ValueError("'xyz' must be a list of three numbers")
+        return cls(*(_finite(c) for c in xyz))
+
+    return decode
+
+
+def _finite(x: Any) -> float:
+    if isinstance(x, bool) or not isinstance(x, int | float):
+        raise ValueError(f"{x!r} is not a number")
+    value = float(x)
+    if not math.isfinite(value):
+        raise ValueError(f"{x!r} is not a finite number")
+    return value
+
+
+# --------------------------------------------------------------------------- built-in types
+
+def _text_to_number(text: str) -> float:
+    try:
+        return float(text.strip())
+    except ValueError:
+        raise CastError(f"could not read Text {text!r} as a Number") from None
+
+
+def _to_integer(x: float) -> int:
+    if not math.isfinite(x):
+        raise CastError(f"Number {x!r} cannot be used as an Integer")
+    return round(x)
+
+
+def _text_to_bool(text: str) -> bool:
+    word = text.strip().lower()
+    if word in ("true", "yes", "1", "on"):
+        return True
+    if word in ("false", "no", "0", "off"):
+        return False
+    raise CastError(f"could not read Text {text!r} as a Boolean (use true or false)")
+
+
+def _text_to_point(cls: type) -> Callable[[str], Any]:
+    def convert(text: str) -> Any:
+        parts = text.strip().strip("{}()[]").replace(";", ",").split(",")
+        try:
+            return cls(*(float(p) for p in parts)) if len(parts) == 3 else _bad()
+        except ValueError:
+            raise CastError(f"could not read Text {text!r} as {cls.__name__} (write x, y, z)") from None
+
+    def _bad() -> Any:
+        raise ValueError
+
+    return convert
+
+
+def _plane_encode(p: Plane) -> dict:
+    return {
+        "type": "Plane",
+        "origin": [_num(c) for c in p.origin],
+        "x": [_num(c) for c in p.x],
+        "y": [_num(c) for c in p.y],
+    }
+
+
+def _plane_decode(d: dict) -> Plane:
+    def three(key: str) -> list[float]:
+        v = d[key]
+        if not isinstance(v, list) or len(v) != 3:
+            raise ValueError(f"'{key}' must be a list of three numbers")
+        return [_finite(c) for c in v]
+
+    return Plane(Point(*three("origin")), Vector(*three("x")), Vector(*three("y")))
+
+
+GENERIC = register_type(ValueType("Generic", (object,), "Any value."))
+NUMBER = register_type(ValueType("Number", (float,), "A real number."))
+INTEGER = register_type(ValueType("Integer", (int,), "A whole number."))
+BOOLEAN = register_type(ValueType("Boolean", (bool,), "True or false."))
+TEXT = register_type(ValueType("Text", (str,), "A piece of text."))
+POINT = register_type(
+    ValueType("Point", (Point,), "A location.", _xyz("Point"), _read_xyz(Point))
+)
+VECTOR = register_type(
+    ValueType("Vector", (Vector,), "A direction.", _xyz("Vector"), _read_xyz(Vector))
+)
+DOMAIN = register_type(
+    ValueType(
+        "Domain",
+        (Domain,),
+        "An interval of numbers.",
+        lambda d: {"type": "Domain", "min": _num(d.min), "max": _num(d.max)},
+        lambda d: Domain(_finite(d["min"]), _finite(d["max"])),
+    )
+)
+PLANE = register_type(ValueType("Plane", (Plane,), "An oriented plane.", _plane_encode, _plane_decode))
+
+# bool is a subclass of int in Python; keep Booleans out of Integer/Number ports' fast path
+INTEGER.classes = (int,)
+register_cast(INTEGER, NUMBER, float)
+register_cast(BOOLEAN, NUMBER, float)
+register_cast(TEXT, NUMBER, _text_to_number)
+register_cast(NUMBER, INTEGER, _to_integer)
+register_cast(BOOLEAN, INTEGER, int)
+register_cast(TEXT, INTEGER, lambda t: _to_integer(_text_to_number(t)))
+register_cast(NUMBER, BOOLEAN, bool)
+register_cast(INTEGER, BOOLEAN, bool)
+register_cast(TEXT, BOOLEAN, _text_to_bool)
+for _t in (NUMBER, INTEGER, BOOLEAN, POINT, VECTOR, DOMAIN, PLANE):
+    register_cast(_t, TEXT, lambda v: _format(v))
+register_cast(VECTOR, POINT, lambda v: Point(*v))
+register_cast(POINT, VECTOR, lambda p: Vector(*p))
+register_cast(TEXT, POINT, _text_to_point(Point))
+register_cast(TEXT, VECTOR, _text_to_point(Vector))
+register_cast(NUMBER, DOMAIN, lambda x: Domain(0.0, float(x)))
+register_cast(INTEGER, DOMAIN, lambda x: Domain(0.0, float(x)))
+register_cast(POINT, PLANE, lambda p: Plane(p, Vector(1, 0, 0), Vector(0, 1, 0)))
+
+
+def _format(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, Triple):
+        return "{" + ", ".join(f"{c:g}" for c in value) + "}"
+    return str(value)

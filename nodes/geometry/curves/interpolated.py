@@ -1,0 +1,99 @@
+"""Interpolating splines: a smooth curve that passes exactly through given points."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.interpolate import make_interp_spline
+
+from ..vectors import as_points, normalise
+from .nurbs import NurbsCurve
+
+
+def chord_length_parameters(points: ArrayLike) -> np.ndarray:
+    """Parameters in [0, 1] proportional to the cumulative distance between points."""
+    p = as_points(points)
+    chords = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    cumulative = np.concatenate([[0.0], np.cumsum(chords)])
+    return cumulative / cumulative[-1]
+
+
+class InterpolatedCurve(NurbsCurve):
+    """A cubic spline through ``points`` with chord-length parameterisation.
+
+    Point ``i`` sits at ``t = (chord length up to i) / (total chord length)``; those
+    parameters are kept in :attr:`parameters`. The spline is solved by scipy's
+    ``make_interp_spline`` and stored as a (non-rational) :class:`NurbsCurve`.
+
+    Args:
+        points: at least 2 points (3 when closed); consecutive points must differ.
+        closed: join the last point back to the first with a periodic spline, smooth
+            (C²) across the seam. A last point equal to the first is dropped first.
+        start_tangent, end_tangent: optional end directions (open curves only). Only
+            the direction counts: the derivative there is scaled to the chord length.
+            Without them the ends are "not-a-knot"; with one, the other end is natural.
+        degree: 3 by default; 1 gives the polyline through the points.
+
+    With fewer than ``degree + 1`` open points the degree drops (two points give the
+    straight line, three a parabola).
+
+    >>> curve = InterpolatedCurve([[0, 0], [1, 1], [2, 0], [3, 1]])
+    >>> bool(np.allclose(curve.point_at(curve.parameters), curve.points))
+    True
+    """
+
+    def __init__(
+        self,
+        points: ArrayLike,
+        closed: bool = False,
+        start_tangent: ArrayLike | None = None,
+        end_tangent: ArrayLike | None = None,
+        degree: int = 3,
+    ) -> None:
+        p = as_points(points)
+        if not np.all(np.isfinite(p)):
+            raise ValueError("An interpolation point has a non-finite coordinate.")
+        if int(degree) != degree or degree < 1:
+            raise ValueError(f"The degree must be a whole number >= 1; got {degree}.")
+        degree = int(degree)
+        if closed:
+            if start_tangent is not None or end_tangent is not None:
+                raise ValueError("A closed interpolating curve has no ends to give tangents to.")
+            if len(p) > 1 and np.array_equal(p[0], p[-1]):
+                p = p[:-1]
+            if len(p) < 3:
+                raise ValueError(f"A closed interpolating curve needs 3 points; got {len(p)}.")
+            p = np.concatenate([p, p[:1]])
+        elif len(p) < 2:
+            raise ValueError(f"An interpolating curve needs at least 2 points; got {len(p)}.")
+        if np.any(np.all(np.diff(p, axis=0) == 0, axis=1)):
+            raise ValueError(
+                "Two consecutive points coincide; the curve cannot pass through one point "
+                "twice in a row."
+            )
+        u = chord_length_parameters(p)
+        total_chord = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
+
+        if closed:
+            k = degree
+            spline = make_interp_spline(u, p, k=k, bc_type="periodic")
+        elif start_tangent is not None or end_tangent is not None:
+            # dC/dt at an end: the given direction, with length equal to the chord length
+            # (the speed of a chord-length parameterisation there).
+            def end(tangent: ArrayLike | None, which: str) -> list[tuple[int, np.ndarray]]:
+                if tangent is None:
+                    return [(2, np.zeros(3))]
+                return [(1, total_chord * normalise(tangent, f"{which} tangent"))]
+
+            k = 3
+            spline = make_interp_spline(
+                u, p, k=k, bc_type=(end(start_tangent, "start"), end(end_tangent, "end"))
+            )
+        else:
+            k = min(degree, len(p) - 1)
+            spline = make_interp_spline(u, p, k=k)
+        self.points = p
+        self.parameters = u
+        self.points.setflags(write=False)
+        self.parameters.setflags(write=False)
+        self._setup(np.asarray(spline.c, float), None, np.asarray(spline.t, float), k, closed)

@@ -1,0 +1,219 @@
+"""NURBS curves of any degree: rational weights, clamped, unclamped or periodic knots.
+
+Evaluation is scipy's :class:`~scipy.interpolate.BSpline` run on homogeneous coordinates
+``(w·P, w)``; scipy has no rational B-splines, so the projection back to 3D and the
+derivatives of the quotient (the generalised quotient rule) are written here.
+"""
+
+from __future__ import annotations
+
+from math import comb
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.interpolate import BSpline
+
+from ..curve_base import Curve, FloatArray
+from ..vectors import as_points
+from .knots import check_knots, clamped_uniform_knots, periodic_knots
+
+
+class NurbsCurve(Curve):
+    """A non-uniform rational B-spline curve, reparameterised to t in [0, 1].
+
+    Args:
+        control_points: ``(n, 3)`` (or ``(n, 2)``) control points.
+        degree: polynomial degree, at least 1; needs ``n >= degree + 1`` points.
+        knots: ``None`` for a clamped knot vector with uniform interior knots; otherwise
+            the full ``n + degree + 1`` knots (or the ``n + degree - 1`` of Rhino's
+            convention). With ``periodic=True``, the ``n + 1`` breakpoints of one period.
+        weights: ``n`` positive weights; ``None`` for a polynomial (non-rational) curve.
+        periodic: close the curve smoothly: the first ``degree`` control points (and
+            weights) are repeated after the last, knots are extended periodically, and
+            the curve is C^(degree-1) across its seam.
+
+    The original knot domain ``[knots[degree], knots[n]]`` is kept in :attr:`domain`;
+    ``t = 0`` and ``t = 1`` map to its ends and derivatives are scaled by the chain rule.
+    For a periodic curve :attr:`control_points`, :attr:`weights` and :attr:`knots` are
+    the full (wrapped) arrays that evaluation uses.
+
+    >>> square = NurbsCurve([[0, 0], [1, 0], [1, 1], [0, 1]], degree=1, periodic=True)
+    >>> square.point_at(0.5).tolist()
+    [1.0, 1.0, 0.0]
+    """
+
+    def __init__(
+        self,
+        control_points: ArrayLike,
+        degree: int = 3,
+        knots: ArrayLike | None = None,
+        weights: ArrayLike | None = None,
+        periodic: bool = False,
+    ) -> None:
+        points = as_points(control_points)
+        count = len(points)
+        if int(degree) != degree or degree < 1:
+            raise ValueError(f"A NURBS curve's degree must be a whole number >= 1; got {degree}.")
+        degree = int(degree)
+        if count < degree + 1:
+            raise ValueError(
+                f"A degree-{degree} curve needs at least {degree + 1} control points; "
+                f"got {count}."
+            )
+        if not np.all(np.isfinite(points)):
+            raise ValueError("A control point has a non-finite coordinate.")
+        w = None if weights is None else np.asarray(weights, dtype=float).reshape(-1)
+        if w is not None:
+            if len(w) != count:
+                raise ValueError(f"Expected {count} weights, one per control point; got {len(w)}.")
+            if not np.all(np.isfinite(w) & (w > 0)):
+                raise ValueError("Every weight must be a positive finite number.")
+        if periodic:
+            breaks = np.arange(count + 1.0) if knots is None else np.asarray(knots, float)
+            if breaks.shape != (count + 1,) or np.any(np.diff(breaks) <= 0):
+                raise ValueError(
+                    f"A periodic curve with {count} control points needs {count + 1} strictly "
+                    "increasing breakpoints."
+                )
+            full_knots = periodic_knots(breaks, degree)
+            points = np.concatenate([points, points[:degree]])
+            if w is not None:
+                w = np.concatenate([w, w[:degree]])
+        elif knots is None:
+            full_knots = clamped_uniform_knots(count, degree)
+        else:
+            full_knots = check_knots(knots, count, degree)
+        self._setup(points, w, full_knots, degree, periodic)
+
+    def _setup(
+        self,
+        points: FloatArray,
+        weights: FloatArray | None,
+        knots: FloatArray,
+        degree: int,
+        periodic: bool,
+    ) -> None:
+        """Store full (already wrapped) arrays and build the homogeneous spline."""
+        if weights is not None and np.ptp(weights) == 0:
+            weights = None  # equal weights cancel: a polynomial curve
+        self.degree: int = degree
+        self.knots: FloatArray = knots
+        self.control_points: FloatArray = points
+        self.weights: FloatArray = np.ones(len(points)) if weights is None else weights
+        self.is_rational: bool = weights is not None
+        self.periodic: bool = periodic
+        count = len(points)
+        self.domain = (float(knots[degree]), float(knots[count]))
+        coefficients = points if weights is None else np.column_stack(
+            [points * weights[:, None], weights]
+        )
+        # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve.
+        self._spline = BSpline(
+            knots, coefficients, degree, extrapolate="periodic" if periodic else True
+        )
+        for array in (self.knots, self.control_points, self.weights):
+            array.setflags(write=False)
+        span = np.ptp(points, axis=0).max()
+        self.closed = periodic or bool(
+            np.linalg.norm(self.point_at(0.0) - self.point_at(1.0)) <= 1e-12 * max(span, 1.0)
+        )
+
+    @classmethod
+    def from_arrays(
+        cls,
+        control_points: ArrayLike,
+        knots: ArrayLike,
+        degree: int,
+        weights: ArrayLike | None = None,
+        periodic: bool = False,
+    ) -> NurbsCurve:
+        """A curve from full arrays as produced by another curve (no wrapping, light checks).
+
+        ``periodic`` only marks the curve as periodic (smooth seam, wrapped evaluation);
+        the caller guarantees the arrays already are.
+        """
+        curve = cls.__new__(cls)
+        points = as_points(control_points)
+        full = check_knots(knots, len(points), degree)
+        w = None if weights is None else np.asarray(weights, dtype=float).reshape(-1)
+        NurbsCurve._setup(curve, points, w, full, int(degree), periodic)
+        return curve
+
+    # -- evaluation -------------------------------------------------------------------
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        """Points and derivatives with respect to t, by the rational quotient rule.
+
+        With ``A(u) = Σ wᵢPᵢNᵢ(u)`` and ``w(u) = Σ wᵢNᵢ(u)`` the curve is ``C = A / w`` and
+        ``C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σᵢ₌₁ᵏ C(k,i) w⁽ⁱ⁾ C⁽ᵏ⁻ⁱ⁾) / w``. Each order then gains a factor
+        ``(b − a)`` for the map ``u = a + (b − a)·t``.
+        """
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        a, b = self.domain
+        u = a + (b - a) * t
+        scale = b - a
+        if not self.is_rational:
+            return [
+                self._spline(u, nu=k) * scale**k if k <= self.degree else np.zeros((len(u), 3))
+                for k in range(order + 1)
+            ]
+        homogeneous = [
+            self._spline(u, nu=k) if k <= self.degree else np.zeros((len(u), 4))
+            for k in range(order + 1)
+        ]
+        w = [h[:, 3:] for h in homogeneous]
+        result: list[FloatArray] = []
+        for k in range(order + 1):
+            numerator = homogeneous[k][:, :3].copy()
+            for i in range(1, k + 1):
+                numerator -= comb(k, i) * w[i] * result[k - i]
+            result.append(numerator / w[0])
+        return [c * scale**k for k, c in enumerate(result)]
+
+    def _breakpoints(self) -> FloatArray:
+        a, b = self.domain
+        inside = self.knots[(self.knots > a) & (self.knots < b)]
+        return np.concatenate([[0.0], (np.unique(inside) - a) / (b - a), [1.0]])
+
+    # -- exact operations ---------------------------------------------------------------
+
+    def reversed(self) -> NurbsCurve:
+        """The same curve traversed backwards, exactly: knots mirrored, points reversed."""
+        a, b = self.domain
+        return NurbsCurve.from_arrays(
+            self.control_points[::-1],
+            (a + b) - self.knots[::-1],
+            self.degree,
+            self.weights[::-1] if self.is_rational else None,
+            self.periodic,
+        )
+
+    def transformed(self, matrix: ArrayLike) -> NurbsCurve:
+        """The curve under a 4×4 transform, exactly, including perspective transforms.
+
+        NURBS are projectively invariant: transforming the homogeneous control points
+        ``(w·x, w·y, w·z, w)`` transforms the curve, and the new weights are the last
+        coordinate. They must stay positive (the curve must not cross the vanishing plane).
+        """
+        m = np.asarray(matrix, dtype=float)
+        if m.shape != (4, 4):
+            raise ValueError(f"Expected a 4×4 transform matrix, got shape {m.shape}.")
+        homogeneous = np.column_stack([self.control_points, np.ones(len(self.control_points))])
+        image = (homogeneous * self.weights[:, None]) @ m.T
+        weights = image[:, 3]
+        if np.any(weights <= 0):
+            raise ValueError("The transform sends part of the curve to infinity.")
+        return NurbsCurve.from_arrays(
+            image[:, :3] / weights[:, None], self.knots, self.degree, weights, self.periodic
+        )
+
+    def to_nurbs(self) -> NurbsCurve:
+        """This curve (it already is a NURBS curve)."""
+        return self
+
+    def __repr__(self) -> str:
+        kind = "periodic" if self.periodic else "rational" if self.is_rational else "polynomial"
+        return (
+            f"{type(self).__name__}(degree={self.degree}, "
+            f"control_points={len(self.control_points)}, {kind})"
+        )
