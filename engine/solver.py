@@ -278,14 +278,12 @@ def _call_rows(node: Node, rows: Any) -> list[Any]:
     token = node.token
     results: list[Any] = []
     append = results.append
-    count = 0
-    for row in rows:
+    for count, row in enumerate(rows, 1):
         try:
             append(solve(*row))
         except NodeWarning as exc:
             node.warn(str(exc))
             append(None)
-        count += 1
         if not count & 4095:
             token.check()
     return results

@@ -153,7 +153,9 @@ def encode_value(value: Any) -> Any:
     if value is None or isinstance(value, bool | int | str):
         return value
     if isinstance(value, float):
-        return _num(value)
+        return _num(float(value))
+    if callable(getattr(value, "tolist", None)):  # numpy scalars and arrays, duck-typed
+        return encode_value(value.tolist())
     raise CastError(f"{describe(value)} cannot be written to a file")
 
 

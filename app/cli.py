@@ -1,0 +1,166 @@
+"""The ``torsal`` command: solve graphs headless, check them, list nodes, open the app.
+
+    torsal run FILE.graph [--set ID=VALUE ...] [--json] [--out DIR] [--export ID.PORT=PATH ...]
+    torsal check FILE.graph
+    torsal nodes [--json]
+    torsal gui [FILE.graph]
+
+Exit codes: 0 every node ok or in warning; 1 at least one node in error; 2 the file or
+the command line could not be used (the reason on stderr, never a traceback).
+Only ``gui`` imports Qt or VTK.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+from app.headless import UsageError
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "resources" / "examples" / "first-steps.graph"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 2
+    try:
+        return args.handler(args)
+    except UsageError as exc:
+        print(f"torsal: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("torsal: interrupted", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="torsal",
+        description="Design with developable surfaces: solve node graphs headless or open the app.",
+    )
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    run = commands.add_parser("run", help="solve a .graph file and report its results")
+    run.add_argument("file", type=Path, help="the .graph file")
+    run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
+                     help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48)")
+    run.add_argument("--json", action="store_true", help="print the results as one JSON object")
+    run.add_argument("--out", type=Path, metavar="DIR", help="also write results.json into DIR")
+    run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
+                     help="write one output's data tree to PATH (.json or .csv)")
+    run.set_defaults(handler=_run)
+
+    check = commands.add_parser("check", help="parse and validate a .graph file without solving")
+    check.add_argument("file", type=Path)
+    check.set_defaults(handler=_check)
+
+    nodes = commands.add_parser("nodes", help="list the node catalogue")
+    nodes.add_argument("--json", action="store_true", help="types, ports and help as JSON")
+    nodes.set_defaults(handler=_nodes)
+
+    gui = commands.add_parser("gui", help="open the desktop app")
+    gui.add_argument("file", type=Path, nargs="?", help="a .graph file to open")
+    gui.set_defaults(handler=_gui)
+    return parser
+
+
+def _run(args: argparse.Namespace) -> int:
+    from app.exports import ExportError, export_tree
+    from app.headless import run_file, summary
+
+    run = run_file(args.file, args.set)
+    for request in args.export:
+        target, sep, destination = request.partition("=")
+        node_id, dot, port = target.partition(".")
+        if not (sep and dot and destination):
+            raise UsageError(f"--export wants ID.PORT=PATH, not {request!r}")
+        if node_id not in run.graph.nodes:
+            raise UsageError(f"--export {request}: there is no node with id {node_id!r}")
+        result = run.solver.result(node_id)
+        if port not in result.outputs:
+            raise UsageError(f"--export {request}: {node_id!r} has no output {port!r}")
+        try:
+            export_tree(result.outputs[port], Path(destination))
+        except (ExportError, OSError) as exc:
+            raise UsageError(f"--export {request}: {exc}") from None
+    data = run.to_json()
+    if args.out:
+        try:
+            args.out.mkdir(parents=True, exist_ok=True)
+            (args.out / "results.json").write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
+        except OSError as exc:
+            raise UsageError(f"--out {args.out}: {exc}") from None
+    if args.json:
+        print(json.dumps(data, indent=2))
+    else:
+        print(summary(run))
+    return run.exit_code
+
+
+def _check(args: argparse.Namespace) -> int:
+    from app.headless import open_graph
+    from engine.graphfile import GraphFileError
+    from engine.solver import MISSING
+
+    try:
+        graph, registry = open_graph(args.file)
+    except GraphFileError as exc:
+        raise UsageError(f"{args.file}: {exc}") from None
+    missing = sorted({r.type_id for r in graph.nodes.values() if r.type_id not in registry})
+    print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
+          f"{len(graph.groups)} groups")
+    if missing:
+        print(f"torsal: {MISSING} node types (kept as placeholders): {', '.join(missing)}", file=sys.stderr)
+    return 0
+
+
+def _nodes(args: argparse.Namespace) -> int:
+    from nodes.catalogue import default_registry
+
+    registry = default_registry()
+    for problem in registry.problems:
+        print(f"torsal: {problem}", file=sys.stderr)
+    if args.json:
+        print(json.dumps([cls.catalogue_entry() for cls in registry], indent=2))
+        return 0
+    for cls in registry:
+        summary_line = cls.help().splitlines()[0] if cls.help() else ""
+        print(f"{cls.type_id:40s} {summary_line}")
+    return 0
+
+
+def has_display() -> bool:
+    if sys.platform.startswith("linux"):
+        return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+    return True
+
+
+def _gui(args: argparse.Namespace) -> int:
+    from app.headless import run_file, summary
+
+    file = args.file or EXAMPLE
+    if not has_display():
+        print(f"No display found (DISPLAY is not set): solving {file} headless instead.")
+        run = run_file(file)
+        print(summary(run))
+        return run.exit_code
+    try:
+        from app.gui.main import launch
+    except ImportError as exc:
+        print(f"The desktop app cannot start here ({exc}); solving {file} headless instead.")
+        run = run_file(file)
+        print(summary(run))
+        return run.exit_code
+    return launch(file)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,25 @@
+"""The node library's table of contents: which modules hold node classes.
+
+``default_registry()`` registers every node class in these modules (each class with a
+``type_id``) plus any installed plug-ins from the ``torsal.nodes`` entry-point group.
+Modules are imported on demand, so a headless run pays only for what it loads.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from engine.registry import Registry
+
+MODULES: tuple[str, ...] = (
+)
+
+
+def default_registry(plugins: bool = True) -> Registry:
+    """Torsal's own node types plus installed plug-ins."""
+    registry = Registry()
+    for module_name in MODULES:
+        registry.register_module(importlib.import_module(module_name))
+    if plugins:
+        registry.load_entry_points()
+    return registry

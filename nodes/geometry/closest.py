@@ -1,0 +1,82 @@
+"""Closest points on a curve, for many query points at once.
+
+Coarse stage: sample the curve densely (per smooth span) and find each query's nearest
+sample. Fine stage: in the two sample intervals beside it, solve ``g(t) = (C(t) − P)·C'(t)
+= 0`` (the foot of the perpendicular) by Newton's method, with ``g' = |C'|² + (C − P)·C''``,
+safeguarded by the interval as a bracket; an interval whose ends do not bracket a
+minimum contributes its nearer end. The nearer of the two answers wins.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .roots import safeguarded_newton
+
+if TYPE_CHECKING:
+    from .curve_base import Curve, FloatArray
+
+
+def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> FloatArray:
+    """Parameters spread over every smooth span of the curve, at least ``minimum`` of them."""
+    breaks = curve._breakpoints()
+    spans = len(breaks) - 1
+    count = max(per_span, -(-minimum // spans))
+    inner = breaks[:-1, None] + np.linspace(0, 1, count, endpoint=False)[None, :] * np.diff(
+        breaks
+    )[:, None]
+    return np.concatenate([inner.reshape(-1), [1.0]])
+
+
+def nearest_sample(samples: FloatArray, points: FloatArray) -> np.ndarray:
+    """Index of the nearest sample to each point (brute force in memory-bounded chunks)."""
+    result = np.empty(len(points), dtype=np.int64)
+    chunk = max(1, 4_000_000 // len(samples))
+    norms = np.einsum("ij,ij->i", samples, samples)
+    for start in range(0, len(points), chunk):  # chunks bound memory; each is vectorised
+        q = points[start : start + chunk]
+        result[start : start + chunk] = np.argmin(norms[None, :] - 2.0 * q @ samples.T, axis=1)
+    return result
+
+
+def closest_parameters(curve: Curve, points: FloatArray) -> FloatArray:
+    """Parameter of the closest point on ``curve`` to each of ``points`` ``(m, 3)``."""
+    ts = sample_parameters(curve)
+    j = nearest_sample(curve.point_at(ts), points)
+    last = len(ts) - 2  # index of the last sample interval
+    # interval k is [ts[k], ts[k+1]]; on a closed curve the seam's neighbours wrap around
+    left = np.where(j > 0, j - 1, last if curve.closed else 0)
+    right = np.where(j <= last, j, 0 if curve.closed else last)
+    interval = np.concatenate([left, right])
+    query = np.concatenate([points, points])
+    low, high = ts[interval], ts[interval + 1]
+
+    def gradient(t: FloatArray, index: np.ndarray) -> tuple[FloatArray, FloatArray]:
+        c, d1, d2 = curve.derivatives(t, 2)
+        offset = c - query[index]
+        return np.einsum("ij,ij->i", offset, d1), (
+            np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", offset, d2)
+        )
+
+    everyone = np.arange(len(interval))
+    g_low = gradient(low, everyone)[0]
+    g_high = gradient(high, everyone)[0]
+    inside = (g_low < 0) & (g_high > 0)
+    t = np.where(
+        np.sum((curve.point_at(low) - query) ** 2, 1) <= np.sum((curve.point_at(high) - query) ** 2, 1),
+        low,
+        high,
+    )
+    if inside.any():
+        k = np.nonzero(inside)[0]
+        t[k] = safeguarded_newton(
+            lambda x, index: gradient(x, k[index]),
+            low[k],
+            high[k],
+            0.5 * (low[k] + high[k]),
+        )
+    distance = np.sum((curve.point_at(t) - query) ** 2, axis=1)
+    m = len(points)
+    return np.where(distance[:m] <= distance[m:], t[:m], t[m:])

@@ -1,0 +1,481 @@
+"""The contract every kernel surface fulfils: parameters (u, v) in [0, 1]², vectorised.
+
+A subclass implements :meth:`Surface.derivatives` (S and its partial derivatives up to
+order 2 with respect to the *normalised* parameters); everything else — normals,
+fundamental forms, curvature, isocurves, edges, area, closest point, rulings,
+meshing, bounding box — is derived here, generically, from those derivatives.
+
+Edge numbering (used by :meth:`Surface.edges`, SurfaceCoupling and the viewport)
+runs counter-clockwise around the parameter square, each edge starting where the
+previous one ends::
+
+        v
+        1 ┌───── 2 ◄────┐
+          │              │
+          3              1
+          ▼              ▲
+        0 └───── 0 ─────►┘
+          0              1  u
+
+    edge 0: v = 0, u from 0 to 1
+    edge 1: u = 1, v from 0 to 1
+    edge 2: v = 1, u from 1 to 0
+    edge 3: u = 0, v from 1 to 0
+
+Curvature signs follow :mod:`nodes.geometry.curvature` (normal ``Su × Sv``).
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import trimesh
+from numpy.typing import ArrayLike, NDArray
+from scipy import optimize
+from scipy.spatial import cKDTree
+
+from .area import integrate_unit_square
+from .curvature import (
+    FundamentalForms,
+    SurfaceCurvature,
+    fundamental_forms,
+    principal_curvatures,
+    unit_normal,
+)
+from .curve_base import Curve
+
+FloatArray = NDArray[np.float64]
+
+#: A point is *degenerate* (pole, apex, collapsed edge) when |Su × Sv| is below this
+#: fraction of (|Su|² + |Sv|²); normals and curvature there are taken a tiny step
+#: (:data:`DEGENERATE_NUDGE`) towards the middle of the parameter square.
+DEGENERATE_RATIO = 1e-10
+DEGENERATE_NUDGE = 1e-6
+
+
+def broadcast_uv(u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Broadcast u and v against each other and flatten them to equal-length 1-D arrays."""
+    uu, vv = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+    return np.ascontiguousarray(uu.ravel()), np.ascontiguousarray(vv.ravel())
+
+
+def uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
+    """Flattened parameters of an ``nu × nv`` grid on [0, 1]², u-major.
+
+    Point ``(i, j)`` (u_i, v_j) is at flat index ``i * nv + j``.
+    """
+    uu, vv = np.meshgrid(np.linspace(0.0, 1.0, nu), np.linspace(0.0, 1.0, nv), indexing="ij")
+    return uu.ravel(), vv.ravel()
+
+
+def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    return np.einsum("ij,ij->i", a, b)
+
+
+@dataclass(frozen=True)
+class ClosestPoint:
+    """Result of :meth:`Surface.closest_point` for m query points."""
+
+    parameters: FloatArray  #: (m, 2) the (u, v) of the closest points
+    points: FloatArray  #: (m, 3) the closest points on the surface
+    distances: FloatArray  #: (m,) distances from the query points
+
+
+class Surface(ABC):
+    """A 3D surface parameterised on (u, v) in [0, 1]².
+
+    Subclasses set ``closed_u``/``closed_v`` when the surface joins itself across
+    u = 0 ≡ 1 (resp. v) — closest-point searches then wrap instead of clamping.
+    """
+
+    closed_u: bool = False
+    closed_v: bool = False
+
+    # ------------------------------------------------------------------ contract
+
+    @abstractmethod
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
+        """Return S and its partial derivatives at (u, v), each an ``(n, 3)`` array.
+
+        ``order=0``: ``[S]``; ``order=1``: ``[S, Su, Sv]``; ``order=2``:
+        ``[S, Su, Sv, Suu, Suv, Svv]``. ``u`` and ``v`` are scalars or arrays,
+        broadcast against each other (see :func:`broadcast_uv`); derivatives are
+        with respect to the normalised parameters.
+        """
+
+    @staticmethod
+    def _check_order(order: int) -> None:
+        if order not in (0, 1, 2):
+            raise ValueError(f"surface derivatives are available to order 2, not {order}")
+
+    # ------------------------------------------------------------------ evaluation
+
+    def point_at(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
+        """Points S(u, v): ``(n, 3)``, or ``(3,)`` when u and v are both scalars."""
+        scalar = np.ndim(u) == 0 and np.ndim(v) == 0
+        points = self.derivatives(u, v, 0)[0]
+        return points[0] if scalar else points
+
+    def _regular_derivatives(
+        self, u: ArrayLike, v: ArrayLike, order: int
+    ) -> tuple[list[FloatArray], FloatArray, FloatArray]:
+        """Derivatives, re-taken a tiny step inwards at degenerate points (poles).
+
+        Returns the derivatives and the (possibly nudged) parameters used.
+        """
+        uu, vv = broadcast_uv(u, v)
+        ders = self.derivatives(uu, vv, order)
+        su, sv = ders[1], ders[2]
+        cross = np.linalg.norm(np.cross(su, sv), axis=1)
+        scale = _dot(su, su) + _dot(sv, sv)
+        bad = ~(cross > DEGENERATE_RATIO * scale)
+        if bad.any():
+            uu, vv = uu.copy(), vv.copy()
+            uu[bad] += np.where(uu[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            vv[bad] += np.where(vv[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            fixed = self.derivatives(uu[bad], vv[bad], order)
+            for full, part in zip(ders[1:], fixed[1:], strict=True):
+                full[bad] = part
+        return ders, uu, vv
+
+    def normal_at(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
+        """Unit normals ``Su × Sv / |Su × Sv|`` at (u, v), ``(n, 3)``.
+
+        At degenerate points (a sphere's poles, a cone's apex) the normal is the
+        limit taken from a point 1e-6 inside the parameter square.
+        """
+        ders, _, _ = self._regular_derivatives(u, v, 1)
+        return unit_normal(ders[1], ders[2])
+
+    def frame_at(self, u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, ...]:
+        """Orthonormal frames ``(origin, x, y, z)``, each ``(n, 3)``.
+
+        x is the unit u-tangent, z the unit normal and y = z × x.
+        """
+        ders, _, _ = self._regular_derivatives(u, v, 1)
+        z = unit_normal(ders[1], ders[2])
+        x = ders[1] / np.linalg.norm(ders[1], axis=1, keepdims=True)
+        return ders[0], x, np.cross(z, x), z
+
+    def fundamental_forms(self, u: ArrayLike, v: ArrayLike) -> FundamentalForms:
+        """First and second fundamental forms (E, F, G, L, M, N) and the unit normal."""
+        ders, _, _ = self._regular_derivatives(u, v, 2)
+        return fundamental_forms(*ders[1:])
+
+    def curvature(self, u: ArrayLike, v: ArrayLike) -> SurfaceCurvature:
+        """Principal curvatures k1 >= k2, principal directions (3D unit vectors),
+        Gaussian and mean curvature and the normal at (u, v), from exact derivatives.
+
+        At umbilics the directions are still an orthonormal tangent pair (the unit
+        u-tangent and its perpendicular).
+        """
+        ders, _, _ = self._regular_derivatives(u, v, 2)
+        return principal_curvatures(*ders[1:])
+
+    def gaussian_curvature(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
+        """Gaussian curvature K = k1·k2 = (LN − M²)/(EG − F²), ``(n,)``."""
+        return self.curvature(u, v).gaussian
+
+    def mean_curvature(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
+        """Mean curvature H = (k1 + k2)/2 (sign: see :mod:`curvature`), ``(n,)``."""
+        return self.curvature(u, v).mean
+
+    # ------------------------------------------------------------------ curves
+
+    def isocurve(self, direction: str | int, param: float) -> IsoCurve:
+        """The curve of constant parameter that runs along ``direction``.
+
+        ``direction="u"`` (or 0): t ↦ S(t, param), the curve along u at v = param;
+        ``direction="v"`` (or 1): t ↦ S(param, t), the curve along v at u = param.
+        """
+        return IsoCurve(self, direction, param)
+
+    def edges(self) -> list[IsoCurve]:
+        """The four boundary curves, numbered and oriented as in the module docstring:
+        0: v=0 (u 0→1), 1: u=1 (v 0→1), 2: v=1 (u 1→0), 3: u=0 (v 1→0)."""
+        return [
+            IsoCurve(self, "u", 0.0),
+            IsoCurve(self, "v", 1.0),
+            IsoCurve(self, "u", 1.0, reverse=True),
+            IsoCurve(self, "v", 0.0, reverse=True),
+        ]
+
+    # ------------------------------------------------------------------ integrals
+
+    def area(self, rtol: float = 1e-11) -> float:
+        """Surface area ∫∫ |Su × Sv| du dv by adaptive Gauss–Legendre cubature."""
+        def element(u: FloatArray, v: FloatArray) -> FloatArray:
+            _, su, sv = self.derivatives(u, v, 1)
+            return np.linalg.norm(np.cross(su, sv), axis=1)
+
+        return float(integrate_unit_square(element, rtol=rtol)[0])
+
+    def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
+        """Area and area centroid ∫∫ S |Su × Sv| / area, by the same cubature."""
+        def integrand(u: FloatArray, v: FloatArray) -> FloatArray:
+            s, su, sv = self.derivatives(u, v, 1)
+            w = np.linalg.norm(np.cross(su, sv), axis=1)
+            return np.column_stack([w, s * w[:, None]])
+
+        result = integrate_unit_square(integrand, rtol=rtol)
+        return float(result[0]), result[1:] / result[0]
+
+    # ------------------------------------------------------------------ queries
+
+    def closest_point(
+        self,
+        points: ArrayLike,
+        seeds: int = 24,
+        candidates: int = 3,
+        tolerance: float = 1e-13,
+        max_iterations: int = 60,
+    ) -> ClosestPoint:
+        """Closest points on the surface to ``points`` (``(m, 3)`` or ``(3,)``).
+
+        Each query starts from its ``candidates`` nearest samples of a
+        ``(seeds+1)²`` grid and runs a safeguarded Newton iteration on
+        f(u, v) = ½|S(u, v) − P|², all queries at once: the exact Hessian when it
+        is positive definite, else the Gauss–Newton one; a backtracking line search
+        that never lets the distance grow; coordinates pinned at the boundary
+        (an active set) when the minimum lies on an edge, and wrapped across a seam
+        of a closed direction. Iteration stops when the parameter step is below
+        ``tolerance``; the best candidate wins.
+        """
+        query = np.atleast_2d(np.asarray(points, dtype=float))
+        gu, gv = uv_grid(seeds + 1, seeds + 1)
+        samples = self.derivatives(gu, gv, 0)[0]
+        k = min(candidates, len(gu))
+        _, idx = cKDTree(samples).query(query, k=k)
+        idx = np.asarray(idx).reshape(len(query), k)
+        rep = np.repeat(query, k, axis=0)
+        u, v = self._newton_closest(rep, gu[idx.ravel()], gv[idx.ravel()], tolerance,
+                                    max_iterations)
+        found = self.derivatives(u, v, 0)[0]
+        dist = np.linalg.norm(found - rep, axis=1).reshape(len(query), k)
+        best = np.argmin(dist, axis=1)
+        pick = np.arange(len(query)) * k + best
+        return ClosestPoint(
+            parameters=np.column_stack([u[pick], v[pick]]),
+            points=found[pick],
+            distances=dist[np.arange(len(query)), best],
+        )
+
+    def _project(self, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        u = np.mod(u, 1.0) if self.closed_u else np.clip(u, 0.0, 1.0)
+        v = np.mod(v, 1.0) if self.closed_v else np.clip(v, 0.0, 1.0)
+        return u, v
+
+    def _newton_closest(
+        self, query: FloatArray, u: FloatArray, v: FloatArray, tolerance: float, max_iter: int
+    ) -> tuple[FloatArray, FloatArray]:
+        u, v = u.copy(), v.copy()
+        active = np.arange(len(u))
+        for _ in range(max_iter):
+            if active.size == 0:
+                break
+            ua, va, pa = u[active], v[active], query[active]
+            s, su, sv, suu, suv, svv = self.derivatives(ua, va, 2)
+            d = s - pa
+            g_u, g_v = _dot(d, su), _dot(d, sv)
+            e, f, g = _dot(su, su), _dot(su, sv), _dot(sv, sv)
+            h_uu, h_uv, h_vv = e + _dot(d, suu), f + _dot(d, suv), g + _dot(d, svv)
+            det = h_uu * h_vv - h_uv * h_uv
+            indefinite = (h_uu <= 0) | (det <= 1e-14 * (e * g + 1e-300))
+            # Gauss–Newton (first fundamental form), lightly damped, where indefinite.
+            damp = 1e-12 * (e + g)
+            h_uu = np.where(indefinite, e + damp, h_uu)
+            h_vv = np.where(indefinite, g + damp, h_vv)
+            h_uv = np.where(indefinite, f, h_uv)
+            det = h_uu * h_vv - h_uv * h_uv
+            with np.errstate(divide="ignore", invalid="ignore"):
+                du = -(h_vv * g_u - h_uv * g_v) / det
+                dv = -(h_uu * g_v - h_uv * g_u) / det
+                # Active set: a coordinate on its bound whose descent leaves the square.
+                pin_u = ((ua <= 0) & (g_u > 0)) | ((ua >= 1) & (g_u < 0))
+                pin_v = ((va <= 0) & (g_v > 0)) | ((va >= 1) & (g_v < 0))
+                pin_u &= not self.closed_u
+                pin_v &= not self.closed_v
+                only_u = pin_u & ~pin_v
+                only_v = pin_v & ~pin_u
+                du = np.where(pin_u, 0.0, np.where(only_v, -g_u / h_uu, du))
+                dv = np.where(pin_v, 0.0, np.where(only_u, -g_v / h_vv, dv))
+            du = np.nan_to_num(du)
+            dv = np.nan_to_num(dv)
+            f0 = 0.5 * _dot(d, d)
+            step = np.ones_like(ua)
+            new_u, new_v = self._project(ua + du, va + dv)
+            pending = np.arange(len(ua))
+            for _ in range(40):  # backtracking: never let the distance grow
+                pts = self.derivatives(new_u[pending], new_v[pending], 0)[0]
+                dd = pts - pa[pending]
+                fn = 0.5 * _dot(dd, dd)
+                worse = fn > f0[pending] * (1.0 + 1e-14) + 1e-300
+                pending = pending[worse]
+                if pending.size == 0:
+                    break
+                step[pending] *= 0.5
+                new_u[pending], new_v[pending] = self._project(
+                    ua[pending] + step[pending] * du[pending],
+                    va[pending] + step[pending] * dv[pending],
+                )
+            new_u[pending], new_v[pending] = ua[pending], va[pending]  # no descent: stay
+            moved = np.maximum(np.abs(new_u - ua), np.abs(new_v - va))
+            if self.closed_u:
+                moved = np.minimum(moved, np.abs(1.0 - np.abs(new_u - ua)))
+            u[active], v[active] = new_u, new_v
+            active = active[moved > tolerance]
+        return u, v
+
+    def bounding_box(self, samples: int = 32) -> FloatArray:
+        """Axis-aligned bounding box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``.
+
+        Each of the six extremes starts at the best sample of a grid and is then
+        polished with a bounded quasi-Newton search (scipy's L-BFGS-B), so the box is
+        tight to ~1e-10, not just to the sampling.
+        """
+        gu, gv = uv_grid(samples + 1, samples + 1)
+        pts = self.derivatives(gu, gv, 0)[0]
+        box = np.array([pts.min(axis=0), pts.max(axis=0)])
+        for axis in range(3):
+            for row, sign in ((0, 1.0), (1, -1.0)):
+                start = int(np.argmin(sign * pts[:, axis]))
+
+                def objective(x: FloatArray, axis: int = axis, sign: float = sign):
+                    s, su, sv = self.derivatives(x[0], x[1], 1)
+                    return sign * s[0, axis], sign * np.array([su[0, axis], sv[0, axis]])
+
+                res = optimize.minimize(
+                    objective, np.array([gu[start], gv[start]]), jac=True,
+                    method="L-BFGS-B", bounds=[(0.0, 1.0), (0.0, 1.0)],
+                    options={"ftol": 1e-15, "gtol": 1e-12},
+                )
+                value = sign * float(res.fun)
+                box[row, axis] = min(box[row, axis], value) if row == 0 else max(
+                    box[row, axis], value
+                )
+        return box
+
+    # ------------------------------------------------------------------ rulings
+
+    @cached_property
+    def ruling_direction(self) -> str | None:
+        """``"v"`` if every v-isocurve (u constant) is a straight segment, else ``"u"``
+        if every u-isocurve is, else ``None``. Checked on a 9 × 9 sample to 1e-9 of
+        the surface's size; subclasses that know (RuledSurface) override it."""
+        t = np.array([0.0, 0.11, 0.23, 0.37, 0.5, 0.61, 0.74, 0.88, 1.0])
+        uu, vv = np.meshgrid(t, t, indexing="ij")
+        pts = self.derivatives(uu.ravel(), vv.ravel(), 0)[0].reshape(9, 9, 3)
+        size = float(np.linalg.norm(pts.max(axis=(0, 1)) - pts.min(axis=(0, 1))))
+        if size == 0.0:
+            return None
+
+        def straight(lines: FloatArray) -> bool:  # lines: (rows, samples, 3)
+            a, b = lines[:, :1], lines[:, -1:]
+            axis = b - a
+            length = np.linalg.norm(axis, axis=2, keepdims=True)
+            unit = np.divide(axis, length, out=np.zeros_like(axis), where=length > 0)
+            rel = lines - a
+            off = rel - np.sum(rel * unit, axis=2, keepdims=True) * unit
+            return bool(np.max(np.linalg.norm(off, axis=2)) <= 1e-9 * size)
+
+        if straight(pts):
+            return "v"
+        if straight(pts.transpose(1, 0, 2)):
+            return "u"
+        return None
+
+    @property
+    def is_ruled(self) -> bool:
+        """True when one family of isocurves is straight (see :attr:`ruling_direction`)."""
+        return self.ruling_direction is not None
+
+    def rulings(self, count: int) -> FloatArray:
+        """``count`` rulings, evenly spaced in the other parameter, as a
+        ``(count, 2, 3)`` array of [start, end] points.
+
+        Raises ValueError for a surface without straight rulings.
+        """
+        direction = self.ruling_direction
+        if direction is None:
+            raise ValueError("surface has no straight rulings")
+        t = np.linspace(0.0, 1.0, count)
+        zeros, ones = np.zeros(count), np.ones(count)
+        if direction == "v":
+            start, end = self.point_at(t, zeros), self.point_at(t, ones)
+        else:
+            start, end = self.point_at(zeros, t), self.point_at(ones, t)
+        return np.stack([start, end], axis=1)
+
+    # ------------------------------------------------------------------ meshing
+
+    def to_mesh(self, nu: int = 33, nv: int = 33) -> trimesh.Trimesh:
+        """A triangle mesh on an ``nu × nv`` vertex grid of (u, v).
+
+        Vertex ``i * nv + j`` is S(u_i, v_j) (see :func:`uv_grid`), so per-point
+        values computed on the same grid colour it directly. Seams of closed
+        surfaces are not welded (the grid stays intact); triangles are oriented
+        with the surface normal, which is stored as the vertex normals.
+        """
+        if nu < 2 or nv < 2:
+            raise ValueError("to_mesh needs at least 2 × 2 vertices")
+        gu, gv = uv_grid(nu, nv)
+        vertices = self.derivatives(gu, gv, 0)[0]
+        normals = self.normal_at(gu, gv)
+        i, j = np.meshgrid(np.arange(nu - 1), np.arange(nv - 1), indexing="ij")
+        a = (i * nv + j).ravel()
+        b, c, d = a + nv, a + nv + 1, a + 1  # (i+1, j), (i+1, j+1), (i, j+1)
+        faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+        return trimesh.Trimesh(vertices, faces, vertex_normals=normals, process=False)
+
+
+class IsoCurve(Curve):
+    """A parameter line of a surface, as a :class:`Curve` on t in [0, 1].
+
+    ``direction="u"``: C(t) = S(t, param); ``direction="v"``: C(t) = S(param, t);
+    ``reverse=True`` runs it from t = 1 to 0. Derivatives up to order 2 are the
+    surface's exact ones; order 3 (for torsion) uses Richardson-extrapolated
+    central differences of the second derivative (~1e-8 relative).
+    """
+
+    def __init__(
+        self, surface: Surface, direction: str | int, param: float, reverse: bool = False
+    ) -> None:
+        key = {"u": "u", "v": "v", 0: "u", 1: "v"}.get(direction)  # type: ignore[call-overload]
+        if key is None:
+            raise ValueError(f"isocurve direction must be 'u' or 'v', not {direction!r}")
+        self.surface = surface
+        self.direction = key
+        self.param = float(param)
+        self.reverse = reverse
+        self.closed = surface.closed_u if key == "u" else surface.closed_v
+
+    def __repr__(self) -> str:
+        return f"IsoCurve({self.direction}, {self.param:g}, reverse={self.reverse})"
+
+    def _eval(self, t: FloatArray, order: int) -> list[FloatArray]:
+        s = 1.0 - t if self.reverse else t
+        c = np.full_like(s, self.param)
+        if self.direction == "u":
+            ders = self.surface.derivatives(s, c, order)
+            picked = [ders[0], ders[1], ders[3]] if order == 2 else ders[:2]
+        else:
+            ders = self.surface.derivatives(c, s, order)
+            picked = [ders[0], ders[2], ders[5]] if order == 2 else [ders[0], ders[2]]
+        picked = picked[: order + 1]
+        if self.reverse and order >= 1:
+            picked[1] = -picked[1]
+        return picked
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        if order < 0 or order > 3:
+            raise ValueError("isocurve derivatives are available to order 3")
+        ders = self._eval(t, min(order, 2))
+        if order == 3:
+            h = 1e-3
+            d2 = [self._eval(t + k * h, 2)[2] for k in (-2, -1, 1, 2)]
+            ders.append((d2[0] - 8.0 * d2[1] + 8.0 * d2[2] - d2[3]) / (12.0 * h))
+        return ders
