@@ -111,6 +111,7 @@ class Graph:
         self._listeners: list[Listener] = []
         self._order: list[str] | None = None
         self._targets_cache: dict[str, list[str]] | None = None
+        self._into_cache: dict[str, list[Wire]] | None = None
 
     # -- events ---------------------------------------------------------------------
     def subscribe(self, listener: Listener) -> Callable[[], None]:
@@ -154,7 +155,7 @@ class Graph:
         if record.id in self.nodes:
             raise GraphError(f"there is already a node with id {record.id!r}")
         self.nodes[record.id] = record
-        self._order = self._targets_cache = None
+        self._order = self._targets_cache = self._into_cache = None
         self.expired.add(record.id)
         self._emit("node_added", record.id)
         return record
@@ -170,7 +171,7 @@ class Graph:
         for group in self.groups:
             if node_id in group.nodes:
                 group.nodes.remove(node_id)
-        self._order = self._targets_cache = None
+        self._order = self._targets_cache = self._into_cache = None
         self._emit("node_removed", node_id, record=record)
         return record
 
@@ -189,7 +190,7 @@ class Graph:
         """Add ``wire`` (see :meth:`connect`)."""
         self.check_wire(wire)
         self.wires.append(wire)
-        self._order = self._targets_cache = None
+        self._order = self._targets_cache = self._into_cache = None
         self.expire(wire.target)
         self._emit("wire_added", wire.target, wire=wire)
         return wire
@@ -222,13 +223,20 @@ class Graph:
         if wire not in self.wires:
             raise GraphError(f"{wire} is not connected")
         self.wires.remove(wire)
-        self._order = self._targets_cache = None
+        self._order = self._targets_cache = self._into_cache = None
         if wire.target in self.nodes:
             self.expire(wire.target)
         self._emit("wire_removed", wire.target, wire=wire)
 
     def wires_into(self, node_id: str, port: str | None = None) -> list[Wire]:
-        return [w for w in self.wires if w.target == node_id and (port is None or w.target_port == port)]
+        """Wires into ``node_id`` (into one of its ports when ``port`` is given), in wire order."""
+        if self._into_cache is None:
+            into: dict[str, list[Wire]] = {}
+            for w in self.wires:
+                into.setdefault(w.target, []).append(w)
+            self._into_cache = into
+        wires = self._into_cache.get(node_id, [])
+        return list(wires) if port is None else [w for w in wires if w.target_port == port]
 
     def wires_from(self, node_id: str) -> list[Wire]:
         return [w for w in self.wires if w.source == node_id]

@@ -101,16 +101,16 @@ class Solver:
         node.messages = []
         node.token = token
         started = time.perf_counter()
-        outputs = {p.name: DataTree() for p in node.output_ports()}
         if is_placeholder(node):
             text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
-            return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, outputs)
+            return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
-            return NodeResult(DISABLED, [], 0.0, outputs)
+            return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
+        outputs: dict[str, DataTree] = {}
         try:
-            trees = self._gather(record)
+            trees, wired = self._gather(record)
             node.before_solve()
-            outputs = run_node(node, trees)
+            outputs = run_node(node, trees, wired)
             node.after_solve()
         except Cancelled:
             raise
@@ -121,19 +121,22 @@ class Solver:
         except Exception as exc:  # a bug in a node must not stop the rest of the graph
             node.messages.append(Message(Level.ERROR, _describe_exception(exc)))
         seconds = time.perf_counter() - started
-        worst = max((m.level for m in node.messages), default=Level.REMARK)
-        state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
-        if state == ERROR:
-            outputs = {p.name: DataTree() for p in node.output_ports()}
-        return NodeResult(state, list(node.messages), seconds, outputs)
+        state = OK
+        if node.messages:
+            worst = max(m.level for m in node.messages)
+            state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
+        if state == ERROR or not outputs:
+            outputs = _empty_outputs(node)
+        return NodeResult(state, node.messages, seconds, outputs)
 
-    def _gather(self, record: NodeRecord) -> list[DataTree]:
-        """The modified, cast input trees of ``record``, one per input port."""
-        trees = []
+    def _gather(self, record: NodeRecord) -> tuple[list[DataTree], list[bool]]:
+        """The modified, cast input trees of ``record``, one per input port, and which are wired."""
+        trees, wired = [], []
         wires = self.graph.wires_into(record.id)
         for port in record.node.input_ports():
             state = record.inputs.get(port.name)
             feeding = [w for w in wires if w.target_port == port.name]
+            wired.append(bool(feeding))
             if feeding:
                 tree = merge_trees(
                     [self.result(w.source).output(w.source_port) for w in feeding]
@@ -150,7 +153,11 @@ class Solver:
             if state is not None and state.modifiers:
                 tree = apply_modifiers(tree, state.modifiers)
             trees.append(cast_tree(tree, port))
-        return trees
+        return trees, wired
+
+
+def _empty_outputs(node: Node) -> dict[str, DataTree]:
+    return {p.name: DataTree() for p in node.output_ports()}
 
 
 def _describe_exception(exc: Exception) -> str:
@@ -197,23 +204,41 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
 
 # --------------------------------------------------------------------------- matching
 
-def run_node(node: Node, trees: list[DataTree]) -> dict[str, DataTree]:
-    """Match ``trees`` to ``node``'s inputs, call ``solve`` per match, collect output trees."""
+def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> dict[str, DataTree]:
+    """Match ``trees`` to ``node``'s inputs, call ``solve`` per match, collect output trees.
+
+    A required input with no data, or a wired input whose source produced nothing,
+    makes the node warn and produce nothing (Grasshopper's "collected no data").
+    """
     in_ports = node.input_ports()
     out_ports = node.output_ports()
     outputs = {p.name: DataTree() for p in out_ports}
+    wired = wired or [False] * len(in_ports)
 
-    for port, tree in zip(in_ports, trees, strict=True):
-        if tree.is_empty() and not (port.optional or port.has_default):
+    matched: list[tuple[In, DataTree]] = []
+    single = True  # every matched input is one branch {0} of one item: the common case
+    for port, tree, is_wired in zip(in_ports, trees, wired, strict=True):
+        if tree.is_empty() and (is_wired or not (port.optional or port.has_default)):
             node.warn(f"Input {port.name} collected no data")
             return outputs
+        if port.access is not TREE:
+            matched.append((port, tree))
+            if single and not (tree.paths == [(0,)] and len(tree.branches[0]) == 1):
+                single = False
+        else:
+            single = False
 
-    matched = [(p, t) for p, t in zip(in_ports, trees, strict=True) if p.access is not TREE]
     if not matched:  # no inputs, or only tree inputs: one call
         _store(node, out_ports, outputs, (0,), [_call(node, trees)], iterated=False)
         return outputs
+    if single:
+        args = [t.branches[0][0] if p.access is ITEM else t.branches[0] for p, t in matched]
+        iterated = any(p.access is ITEM for p, _ in matched)
+        _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=iterated)
+        return outputs
+    if len(matched) > 1:
+        _remark_uneven(node, matched)
 
-    _remark_uneven(node, matched)
     branch_lists = [t.branches or [[]] for _, t in matched]
     path_lists = [t.paths or [(0,)] for _, t in matched]
     branch_count = max(len(b) for b in branch_lists)

@@ -493,8 +493,8 @@ class _Compiler:
             if kw.arg is None:
                 raise ExpressionError(f"Unpacking with '**' is not allowed in {name}(...)")
             raise ExpressionError(
-                f"Values can't be named in a function call: write {spec.help}, "
-                f"not {name}({kw.arg}=...)"
+                f"Values can't be named in a function call: "
+                f"write {spec.help}, not {name}({kw.arg}=...)"
             )
         if any(isinstance(arg, ast.Starred) for arg in node.args):
             raise ExpressionError(f"Unpacking with '*' is not allowed in {name}(...)")

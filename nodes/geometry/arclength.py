@@ -46,8 +46,9 @@ class LengthTable:
     def __init__(self, curve: Curve, rel_tol: float = 1e-13, max_rounds: int = 60) -> None:
         self.curve = curve
         breaks = curve._breakpoints()
-        low = np.concatenate([np.linspace(a, b, 5)[:-1] for a, b in zip(breaks[:-1], breaks[1:])])
-        high = np.concatenate([np.linspace(a, b, 5)[1:] for a, b in zip(breaks[:-1], breaks[1:])])
+        # four starting intervals per smooth span
+        edges = breaks[:-1, None] + np.linspace(0.0, 1.0, 5)[None, :] * np.diff(breaks)[:, None]
+        low, high = edges[:, :-1].reshape(-1), edges[:, 1:].reshape(-1)
         done_low, done_high, done_length = [], [], []
         estimate = float(gauss_length(curve, low, high).sum())
         for round_ in range(max_rounds):
@@ -83,9 +84,7 @@ class LengthTable:
     def length_at(self, t: FloatArray) -> FloatArray:
         """Arc length from 0 to each ``t`` (in [0, 1])."""
         t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
-        i = np.clip(
-            np.searchsorted(self.parameters, t, side="right") - 1, 0, len(self.parameters) - 2
-        )
+        i = np.clip(np.searchsorted(self.parameters, t, side="right") - 1, 0, len(self.parameters) - 2)
         return self.lengths[i] + gauss_length(self.curve, self.parameters[i], t)
 
     def parameter_at(self, s: FloatArray, tol: float = 1e-15) -> FloatArray:

@@ -24,9 +24,7 @@ def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> F
     breaks = curve._breakpoints()
     spans = len(breaks) - 1
     count = max(per_span, -(-minimum // spans))
-    inner = breaks[:-1, None] + np.linspace(0, 1, count, endpoint=False)[None, :] * np.diff(
-        breaks
-    )[:, None]
+    inner = breaks[:-1, None] + np.linspace(0, 1, count, endpoint=False)[None, :] * np.diff(breaks)[:, None]
     return np.concatenate([inner.reshape(-1), [1.0]])
 
 

@@ -14,10 +14,11 @@ The principal curvatures are the eigenvalues of the shape operator written in an
 orthonormal tangent basis (e1 = Su/|Su|, e2 = n × e1), where it is a symmetric 2×2
 matrix [[a, b], [b, c]]. Its eigen-decomposition has a closed form,
 
-    k1,2 = (a + c)/2 ± hypot((a − c)/2, b),     θ1 = ½·atan2(b, (a − c)/2),
+    k1,2 = (a + c)/2 ± hypot((a − c)/2, b),
 
-which stays accurate and well defined at umbilics (where it returns e1 and e2 as
-the principal directions) instead of dividing by H² − K as the textbook formula does.
+with the k1 eigenvector read off the better-conditioned row of the matrix minus k1.
+This stays accurate and well defined at umbilics (where it returns e1 and e2 as the
+principal directions) instead of taking sqrt(H² − K) as the textbook formula does.
 """
 
 from __future__ import annotations
@@ -72,6 +73,11 @@ def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.einsum("ij,ij->i", a, b)
 
 
+#: A point is *degenerate* (pole, apex, collapsed edge) when |Su × Sv| is below this
+#: fraction of (|Su|² + |Sv|²); curvature there is NaN (Surface nudges it inwards).
+DEGENERATE_RATIO = 1e-10
+
+
 def unit_normal(su: FloatArray, sv: FloatArray) -> FloatArray:
     """``Su × Sv`` normalised; rows where it vanishes (degenerate points) are NaN."""
     cross = np.cross(su, sv)
@@ -101,23 +107,35 @@ def principal_curvatures(
 ) -> SurfaceCurvature:
     """Principal curvatures and directions, Gaussian and mean curvature.
 
-    Vectorised over rows; degenerate rows (``Su × Sv = 0``) come out as NaN.
+    Vectorised over rows, written component-wise (this is the hot path of curvature
+    analysis). Degenerate rows (see :data:`DEGENERATE_RATIO`) come out as NaN.
     """
-    normal = unit_normal(su, sv)
+    ux, uy, uz = su.T
+    vx, vy, vz = sv.T
+    e = ux * ux + uy * uy + uz * uz
+    f = ux * vx + uy * vy + uz * vz
+    g = vx * vx + vy * vy + vz * vz
+    # Su × Sv, whose length is W = sqrt(EG − F²).
+    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    w = np.sqrt(cx * cx + cy * cy + cz * cz)
+    degenerate = ~(w > DEGENERATE_RATIO * (e + g))
     with np.errstate(invalid="ignore", divide="ignore"):
-        len_u = np.linalg.norm(su, axis=1)
-        e1 = su / len_u[:, None]
-        e2 = np.cross(normal, e1)
-        # Su = a·e1,  Sv = b·e1 + c·e2  (c > 0 because e1 × e2 = n).
-        a = len_u
-        b = _dot(sv, e1)
-        c = _dot(sv, e2)
-        big_l, big_m, big_n = _dot(suu, normal), _dot(suv, normal), _dot(svv, normal)
-        # Shape operator in (e1, e2): J⁻ᵀ·II·J⁻¹ with J = [[a, b], [0, c]].
-        p, q, s = 1.0 / a, -b / (a * c), 1.0 / c
-        s11 = big_l * p * p
-        s12 = p * (big_l * q + big_m * s)
-        s22 = big_l * q * q + 2.0 * big_m * q * s + big_n * s * s
+        inv_w = np.where(degenerate, np.nan, 1.0 / w)
+        nx, ny, nz = cx * inv_w, cy * inv_w, cz * inv_w
+        big_l = suu[:, 0] * nx + suu[:, 1] * ny + suu[:, 2] * nz
+        big_m = suv[:, 0] * nx + suv[:, 1] * ny + suv[:, 2] * nz
+        big_n = svv[:, 0] * nx + svv[:, 1] * ny + svv[:, 2] * nz
+        # Shape operator in the orthonormal basis e1 = Su/|Su|, e2 = n × e1, where
+        # Su = a·e1 and Sv = (F/a)·e1 + (W/a)·e2 with a = |Su|:  J⁻ᵀ·II·J⁻¹.
+        inv_e = 1.0 / e
+        s11 = big_l * inv_e
+        s12 = (big_m * e - big_l * f) * inv_e * inv_w
+        s22 = (big_l * f * f - 2.0 * big_m * f * e + big_n * e * e) * inv_e * inv_w * inv_w
+        inv_a = np.sqrt(inv_e)
+        e1 = su * inv_a[:, None]
+        # e2 = (Sv − (F/E)·Su)·a/W
+        e2 = (sv - (f * inv_e)[:, None] * su) * (inv_w / inv_a)[:, None]
+    normal = np.column_stack([nx, ny, nz])
     return _from_symmetric(s11, s12, s22, e1, e2, normal)
 
 
@@ -129,19 +147,26 @@ def _from_symmetric(
     e2: FloatArray,
     normal: FloatArray,
 ) -> SurfaceCurvature:
-    """Eigen-decompose the symmetric shape operator [[s11, s12], [s12, s22]]."""
+    """Eigen-decompose the symmetric shape operator [[s11, s12], [s12, s22]] given in
+    the orthonormal tangent basis (e1, e2)."""
     mean = 0.5 * (s11 + s22)
     half_diff = 0.5 * (s11 - s22)
-    radius = np.hypot(half_diff, s12)
-    theta = 0.5 * np.arctan2(s12, half_diff)  # direction of the larger eigenvalue
-    cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
-    d1 = cos * e1 + sin * e2
-    d2 = cos * e2 - sin * e1  # = n × d1
+    radius = np.sqrt(half_diff * half_diff + s12 * s12)
+    # Eigenvector of the larger eigenvalue, from whichever row of (S − k1·I) is
+    # better conditioned; at an umbilic both vanish and e1 is taken.
+    pos = half_diff >= 0.0
+    x = np.where(pos, half_diff + radius, s12)
+    y = np.where(pos, s12, radius - half_diff)
+    length = np.sqrt(x * x + y * y)
+    umbilic = ~(length > 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.where(umbilic, 1.0, x / length)[:, None]
+        sin = np.where(umbilic, 0.0, y / length)[:, None]
     return SurfaceCurvature(
         k1=mean + radius,
         k2=mean - radius,
-        direction1=d1,
-        direction2=d2,
+        direction1=cos * e1 + sin * e2,
+        direction2=cos * e2 - sin * e1,  # = n × d1
         gaussian=s11 * s22 - s12 * s12,
         mean=mean,
         normal=normal,

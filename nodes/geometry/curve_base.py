@@ -3,22 +3,63 @@
 A subclass implements :meth:`Curve.derivatives`; everything else (tangent, curvature,
 frames, length, division, closest point ...) is derived generically here or overridden
 where a closed form is faster or exact.
+
+Every method that takes ``t`` accepts a scalar or a 1-D array: an array gives arrays
+with one row per parameter, a scalar gives a single value or a ``(3,)`` vector.
 """
 
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from functools import cached_property
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+if TYPE_CHECKING:
+    from .arclength import LengthTable
+    from .curves.line import Polyline
+    from .vectors import Plane
+
 FloatArray = NDArray[np.float64]
 
 
+class ClosestPoints(NamedTuple):
+    """Result of :meth:`Curve.closest_point`, one row per query point."""
+
+    parameters: FloatArray  #: (n,) curve parameters t
+    points: FloatArray  #: (n, 3) closest points on the curve
+    distances: FloatArray  #: (n,) distances from the query points
+
+
+class Frames(NamedTuple):
+    """Frenet frames along a curve, one row per parameter (all ``(n, 3)``)."""
+
+    origins: FloatArray
+    tangents: FloatArray
+    normals: FloatArray  #: towards the centre of curvature
+    binormals: FloatArray  #: tangent × normal
+
+
+def _parameters(t: ArrayLike) -> tuple[FloatArray, bool]:
+    """``t`` as a 1-D float array, and whether it was a scalar."""
+    return np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1), np.ndim(t) == 0
+
+
+def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    return np.einsum("ij,ij->i", a, b)
+
+
 class Curve(ABC):
-    """A 3D curve parameterised on t in [0, 1]."""
+    """A 3D curve parameterised on t in [0, 1].
+
+    ``domain`` is the parameter interval the curve was defined on (knot domain, the
+    user's ``(a, b)``); ``t = (u − a) / (b − a)``, and derivatives are with respect to t.
+    """
 
     closed: bool = False
+    domain: tuple[float, float] = (0.0, 1.0)
 
     @abstractmethod
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
@@ -33,3 +74,221 @@ class Curve(ABC):
         scalar = np.ndim(t) == 0
         points = self.derivatives(np.atleast_1d(np.asarray(t, dtype=float)), 0)[0]
         return points[0] if scalar else points
+
+    # -- parameters ---------------------------------------------------------------------
+
+    def to_domain(self, t: ArrayLike) -> FloatArray:
+        """The original parameter u for normalised ``t``."""
+        a, b = self.domain
+        return a + (b - a) * np.asarray(t, dtype=float)
+
+    def from_domain(self, u: ArrayLike) -> FloatArray:
+        """The normalised t for an original parameter ``u``."""
+        a, b = self.domain
+        return (np.asarray(u, dtype=float) - a) / (b - a)
+
+    def _breakpoints(self) -> FloatArray:
+        """Increasing t values, 0 and 1 included, between which the curve is smooth.
+
+        Sampling-based operations put samples on every span; NURBS curves return their
+        distinct knots, polylines their vertices.
+        """
+        return np.array([0.0, 1.0])
+
+    @property
+    def start(self) -> FloatArray:
+        """The point at t = 0."""
+        return self.point_at(0.0)
+
+    @property
+    def end(self) -> FloatArray:
+        """The point at t = 1."""
+        return self.point_at(1.0)
+
+    # -- differential geometry ------------------------------------------------------------
+
+    def tangent_at(self, t: ArrayLike) -> FloatArray:
+        """Unit tangents. Where C' vanishes (a stationary point) the direction of C''
+        is used, its limit; where both vanish the tangent is the zero vector."""
+        from .vectors import unit
+
+        ts, scalar = _parameters(t)
+        _, d1, d2 = self.derivatives(ts, 2)
+        speed = np.linalg.norm(d1, axis=1)
+        scale = np.maximum(np.linalg.norm(d2, axis=1), 1e-300)
+        stationary = speed <= 1e-12 * scale
+        tangent = unit(np.where(stationary[:, None], d2, d1))
+        return tangent[0] if scalar else tangent
+
+    def curvature_vector_at(self, t: ArrayLike) -> FloatArray:
+        """Curvature vectors κN = (C'' − (C''·T)T) / |C'|², pointing to the centre of
+        curvature with length κ. Zero where the speed is zero."""
+        ts, scalar = _parameters(t)
+        _, d1, d2 = self.derivatives(ts, 2)
+        speed2 = _dot(d1, d1)
+        safe = np.where(speed2 > 0, speed2, 1.0)
+        normal_part = d2 - (_dot(d2, d1) / safe)[:, None] * d1
+        k = np.where(speed2[:, None] > 0, normal_part / safe[:, None], 0.0)
+        return k[0] if scalar else k
+
+    def curvature_at(self, t: ArrayLike) -> FloatArray:
+        """Curvature κ = |C' × C''| / |C'|³ (1 / radius of the osculating circle)."""
+        ts, scalar = _parameters(t)
+        _, d1, d2 = self.derivatives(ts, 2)
+        speed = np.linalg.norm(d1, axis=1)
+        safe = np.where(speed > 0, speed, 1.0)
+        kappa = np.where(speed > 0, np.linalg.norm(np.cross(d1, d2), axis=1) / safe**3, 0.0)
+        return kappa[0] if scalar else kappa
+
+    def torsion_at(self, t: ArrayLike) -> FloatArray:
+        """Torsion τ = (C' × C'')·C''' / |C' × C''|², 0 where the curvature vanishes."""
+        ts, scalar = _parameters(t)
+        _, d1, d2, d3 = self.derivatives(ts, 3)
+        b = np.cross(d1, d2)
+        bb = _dot(b, b)
+        # the torsion is undefined on straight stretches; report 0 rather than noise
+        straight = bb <= 1e-24 * _dot(d1, d1) ** 3
+        tau = np.where(straight, 0.0, _dot(b, d3) / np.where(straight, 1.0, bb))
+        return tau[0] if scalar else tau
+
+    def frames_at(self, t: ArrayLike) -> Frames:
+        """Frenet frames (origin, tangent T, normal N, binormal B = T × N) at ``t``.
+
+        Where the curvature vanishes N is undefined; there it is a fixed unit vector
+        perpendicular to T (:func:`~.vectors.perpendicular`), so the frame stays valid.
+        """
+        from .vectors import perpendicular, unit
+
+        ts, _ = _parameters(t)
+        origins = self.point_at(ts)
+        tangents = self.tangent_at(ts)
+        k = self.curvature_vector_at(ts)
+        kappa = np.linalg.norm(k, axis=1)
+        flat = kappa <= 1e-12 * np.maximum(kappa.max(initial=0.0), 1e-300)
+        normals = np.where(flat[:, None], perpendicular(tangents), unit(k))
+        return Frames(origins, tangents, normals, np.cross(tangents, normals))
+
+    def plane_at(self, t: float) -> Plane:
+        """The Frenet frame at one parameter as a :class:`~.vectors.Plane`
+        (x = tangent, y = normal, z = binormal)."""
+        from .vectors import Plane
+
+        frames = self.frames_at(np.array([float(t)]))
+        return Plane(frames.origins[0], frames.tangents[0], frames.normals[0], frames.binormals[0])
+
+    # -- length and division --------------------------------------------------------------
+
+    @cached_property
+    def _length_table(self) -> LengthTable:
+        from .arclength import LengthTable
+
+        return LengthTable(self)
+
+    @property
+    def length(self) -> float:
+        """Arc length, by adaptive Gauss–Legendre quadrature (relative error ~1e-13)."""
+        return self._length_table.total
+
+    def length_at(self, t: ArrayLike) -> FloatArray:
+        """Arc length from t = 0 to each ``t``."""
+        ts, scalar = _parameters(t)
+        s = self._length_table.length_at(ts)
+        return s[0] if scalar else s
+
+    def parameter_at_length(self, s: ArrayLike) -> FloatArray:
+        """Parameters where the arc length from the start equals ``s`` (clipped to the curve)."""
+        ss, scalar = _parameters(s)
+        t = self._length_table.parameter_at(ss)
+        return t[0] if scalar else t
+
+    def divide_by_count(self, count: int) -> FloatArray:
+        """Parameters dividing the curve into ``count`` pieces of equal arc length.
+
+        ``count + 1`` parameters from 0 to 1 on an open curve; ``count`` on a closed one
+        (the end would repeat the start).
+        """
+        if int(count) != count or count < 1:
+            raise ValueError(f"The number of pieces must be a whole number >= 1; got {count}.")
+        count = int(count)
+        t = self.parameter_at_length(np.linspace(0.0, self.length, count + 1))
+        t[0], t[-1] = 0.0, 1.0
+        return t[:-1] if self.closed else t
+
+    def divide_by_length(self, length: float) -> FloatArray:
+        """Parameters at arc lengths 0, L, 2L, ... along the curve.
+
+        The end is included only when the total length is a whole multiple of L (to
+        within 1e-9 relative); on a closed curve the start is not repeated.
+        """
+        if not (np.isfinite(length) and length > 0):
+            raise ValueError(f"The division length must be a positive number; got {length}.")
+        total = self.length
+        count = int(np.floor(total / length * (1 + 1e-9)))
+        targets = np.arange(count + 1) * length
+        t = self.parameter_at_length(np.minimum(targets, total))
+        if self.closed and len(t) > 1 and abs(targets[-1] - total) <= 1e-9 * total:
+            t = t[:-1]
+        return t
+
+    # -- closest point --------------------------------------------------------------------
+
+    def closest_point(self, points: ArrayLike) -> ClosestPoints:
+        """Closest points on the curve to each of ``points`` (``(n, 3)`` or one point).
+
+        Dense sampling locates each point's nearest stretch of curve, then Newton's
+        method on ``(C − P)·C' = 0``, safeguarded by a bracket, converges to rounding.
+        Always returns arrays (one row per query point).
+        """
+        from .closest import closest_parameters
+        from .vectors import as_points
+
+        p = as_points(points)
+        t = closest_parameters(self, p)
+        c = self.point_at(t)
+        return ClosestPoints(t, c, np.linalg.norm(p - c, axis=1))
+
+    # -- whole-curve operations --------------------------------------------------------------
+
+    def reversed(self) -> Curve:
+        """The same curve traversed from end to start: ``C_rev(t) = C(1 − t)``."""
+        from .curves.wrappers import ReversedCurve
+
+        return ReversedCurve(self)
+
+    def transformed(self, matrix: ArrayLike) -> Curve:
+        """The curve under an affine 4×4 transform (NURBS curves also take projective ones)."""
+        from .curves.wrappers import TransformedCurve
+
+        return TransformedCurve(self, matrix)
+
+    def bounding_box(self) -> FloatArray:
+        """Axis-aligned bounding box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``, tight.
+
+        Extremes are at the ends or where a coordinate of C' changes sign; those roots
+        are bracketed on a dense sampling and refined (scipy's vectorised solver).
+        """
+        from .closest import sample_parameters
+        from .roots import roots_in_samples
+
+        samples = sample_parameters(self, per_span=32, minimum=256)
+        candidates = [np.array([0.0, 1.0]), samples]
+        for axis in range(3):
+
+            def coordinate_speed(t: FloatArray, axis: int = axis) -> FloatArray:
+                return self.derivatives(np.ravel(t), 1)[1][:, axis].reshape(np.shape(t))
+
+            candidates.append(roots_in_samples(coordinate_speed, samples))
+        points = self.point_at(np.concatenate(candidates))
+        return np.stack([points.min(axis=0), points.max(axis=0)])
+
+    def tessellate(self, tolerance: float) -> FloatArray:
+        """Parameters of a polyline within ``tolerance`` (a distance) of the curve."""
+        from .tessellate import tessellation_parameters
+
+        return tessellation_parameters(self, tolerance)
+
+    def to_polyline(self, tolerance: float) -> Polyline:
+        """A :class:`~.curves.Polyline` within ``tolerance`` of the curve (adaptive)."""
+        from .curves.line import Polyline
+
+        return Polyline(self.point_at(self.tessellate(tolerance)))

@@ -11,6 +11,7 @@ error (falling as h⁸) meets rounding error (growing as ε/hᵏ).
 from __future__ import annotations
 
 from collections.abc import Callable
+from itertools import pairwise
 from math import factorial
 
 import numpy as np
@@ -41,9 +42,7 @@ def stencil_weights(offsets: FloatArray, order: int) -> FloatArray:
 def _shifted_weights(order: int) -> FloatArray:
     """Weights for the stencil shifted by s = -HALF_WIDTH..HALF_WIDTH, shape (2W+1, 2W+1)."""
     base = np.arange(-HALF_WIDTH, HALF_WIDTH + 1)
-    return np.stack(
-        [stencil_weights(base + s, order) for s in range(-HALF_WIDTH, HALF_WIDTH + 1)]
-    )
+    return np.stack([stencil_weights(base + s, order) for s in range(-HALF_WIDTH, HALF_WIDTH + 1)])
 
 
 def derivative(
@@ -74,5 +73,5 @@ def best_step(function: Callable[[FloatArray], FloatArray], order: int) -> float
     """
     probes = np.linspace(0.0, 1.0, 33)
     estimates = [derivative(function, probes, order, 2.0**-e) for e in STEP_EXPONENTS]
-    change = [np.abs(a - b).max() for a, b in zip(estimates[:-1], estimates[1:], strict=True)]
+    change = [np.abs(a - b).max() for a, b in pairwise(estimates)]
     return float(2.0 ** -STEP_EXPONENTS[int(np.argmin(change))])

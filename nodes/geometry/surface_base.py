@@ -39,6 +39,7 @@ from scipy.spatial import cKDTree
 
 from .area import integrate_unit_square
 from .curvature import (
+    DEGENERATE_RATIO,
     FundamentalForms,
     SurfaceCurvature,
     fundamental_forms,
@@ -49,10 +50,9 @@ from .curve_base import Curve
 
 FloatArray = NDArray[np.float64]
 
-#: A point is *degenerate* (pole, apex, collapsed edge) when |Su × Sv| is below this
-#: fraction of (|Su|² + |Sv|²); normals and curvature there are taken a tiny step
-#: (:data:`DEGENERATE_NUDGE`) towards the middle of the parameter square.
-DEGENERATE_RATIO = 1e-10
+#: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
+#: an apex, a collapsed edge) normals and curvature are taken this step (in
+#: parameter units) towards the middle of the parameter square.
 DEGENERATE_NUDGE = 1e-6
 
 
@@ -120,26 +120,26 @@ class Surface(ABC):
         return points[0] if scalar else points
 
     def _regular_derivatives(
-        self, u: ArrayLike, v: ArrayLike, order: int
-    ) -> tuple[list[FloatArray], FloatArray, FloatArray]:
+        self, u: ArrayLike, v: ArrayLike, order: int, bad: np.ndarray | None = None
+    ) -> list[FloatArray]:
         """Derivatives, re-taken a tiny step inwards at degenerate points (poles).
 
-        Returns the derivatives and the (possibly nudged) parameters used.
+        ``bad`` marks the degenerate rows when the caller already knows them;
+        otherwise they are found from |Su × Sv| (see ``DEGENERATE_RATIO``).
         """
         uu, vv = broadcast_uv(u, v)
         ders = self.derivatives(uu, vv, order)
-        su, sv = ders[1], ders[2]
-        cross = np.linalg.norm(np.cross(su, sv), axis=1)
-        scale = _dot(su, su) + _dot(sv, sv)
-        bad = ~(cross > DEGENERATE_RATIO * scale)
+        if bad is None:
+            su, sv = ders[1], ders[2]
+            cross = np.linalg.norm(np.cross(su, sv), axis=1)
+            bad = ~(cross > DEGENERATE_RATIO * (_dot(su, su) + _dot(sv, sv)))
         if bad.any():
-            uu, vv = uu.copy(), vv.copy()
-            uu[bad] += np.where(uu[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
-            vv[bad] += np.where(vv[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
-            fixed = self.derivatives(uu[bad], vv[bad], order)
+            nudged_u = uu[bad] + np.where(uu[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            nudged_v = vv[bad] + np.where(vv[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            fixed = self.derivatives(nudged_u, nudged_v, order)
             for full, part in zip(ders[1:], fixed[1:], strict=True):
                 full[bad] = part
-        return ders, uu, vv
+        return ders
 
     def normal_at(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
         """Unit normals ``Su × Sv / |Su × Sv|`` at (u, v), ``(n, 3)``.
@@ -147,7 +147,7 @@ class Surface(ABC):
         At degenerate points (a sphere's poles, a cone's apex) the normal is the
         limit taken from a point 1e-6 inside the parameter square.
         """
-        ders, _, _ = self._regular_derivatives(u, v, 1)
+        ders = self._regular_derivatives(u, v, 1)
         return unit_normal(ders[1], ders[2])
 
     def frame_at(self, u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, ...]:
@@ -155,14 +155,14 @@ class Surface(ABC):
 
         x is the unit u-tangent, z the unit normal and y = z × x.
         """
-        ders, _, _ = self._regular_derivatives(u, v, 1)
+        ders = self._regular_derivatives(u, v, 1)
         z = unit_normal(ders[1], ders[2])
         x = ders[1] / np.linalg.norm(ders[1], axis=1, keepdims=True)
         return ders[0], x, np.cross(z, x), z
 
     def fundamental_forms(self, u: ArrayLike, v: ArrayLike) -> FundamentalForms:
         """First and second fundamental forms (E, F, G, L, M, N) and the unit normal."""
-        ders, _, _ = self._regular_derivatives(u, v, 2)
+        ders = self._regular_derivatives(u, v, 2)
         return fundamental_forms(*ders[1:])
 
     def curvature(self, u: ArrayLike, v: ArrayLike) -> SurfaceCurvature:
@@ -172,8 +172,16 @@ class Surface(ABC):
         At umbilics the directions are still an orthonormal tangent pair (the unit
         u-tangent and its perpendicular).
         """
-        ders, _, _ = self._regular_derivatives(u, v, 2)
-        return principal_curvatures(*ders[1:])
+        uu, vv = broadcast_uv(u, v)
+        result = principal_curvatures(*self.derivatives(uu, vv, 2)[1:])
+        bad = np.isnan(result.k1)
+        if not bad.any():
+            return result
+        ders = self._regular_derivatives(uu[bad], vv[bad], 2, bad=np.ones(bad.sum(), bool))
+        fixed = principal_curvatures(*ders[1:])
+        for name in ("k1", "k2", "direction1", "direction2", "gaussian", "mean", "normal"):
+            getattr(result, name)[bad] = getattr(fixed, name)
+        return result
 
     def gaussian_curvature(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
         """Gaussian curvature K = k1·k2 = (LN − M²)/(EG − F²), ``(n,)``."""

@@ -42,9 +42,7 @@ def tessellation_parameters(
         probe = a[:, None] + quarters[None, :] * (b - a)[:, None]
         ends = curve.point_at(t)
         inner = curve.point_at(probe.reshape(-1)).reshape(len(a), 3, 3)
-        deviation = np.max(
-            [_distance_to_chords(inner[:, q], ends[:-1], ends[1:]) for q in range(3)], axis=0
-        )
+        deviation = np.max([_distance_to_chords(inner[:, q], ends[:-1], ends[1:]) for q in range(3)], axis=0)
         split = (deviation > tolerance) & (b - a > 1e-12)
         if not split.any():
             break

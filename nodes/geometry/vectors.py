@@ -224,9 +224,7 @@ class Plane:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Plane):
             return NotImplemented
-        return all(
-            np.array_equal(getattr(self, n), getattr(other, n)) for n in ("origin", "x", "y", "z")
-        )
+        return all(np.array_equal(getattr(self, n), getattr(other, n)) for n in ("origin", "x", "y", "z"))
 
     def __hash__(self) -> int:
         return hash(tuple(np.concatenate([self.origin, self.x, self.y, self.z]).tolist()))

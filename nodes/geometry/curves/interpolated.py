@@ -68,8 +68,7 @@ class InterpolatedCurve(NurbsCurve):
             raise ValueError(f"An interpolating curve needs at least 2 points; got {len(p)}.")
         if np.any(np.all(np.diff(p, axis=0) == 0, axis=1)):
             raise ValueError(
-                "Two consecutive points coincide; the curve cannot pass through one point "
-                "twice in a row."
+                "Two consecutive points coincide; the curve cannot pass through one point twice in a row."
             )
         u = chord_length_parameters(p)
         total_chord = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))

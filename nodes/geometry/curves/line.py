@@ -106,9 +106,7 @@ class Polyline(Curve):
         if total == 0:
             raise ValueError("A polyline needs at least two distinct points.")
         self.points: FloatArray = p
-        self.vertex_parameters: FloatArray = np.concatenate(
-            [[0.0], np.cumsum(segment_lengths) / total]
-        )
+        self.vertex_parameters: FloatArray = np.concatenate([[0.0], np.cumsum(segment_lengths) / total])
         self.vertex_parameters[-1] = 1.0
         self._length = float(total)
         self.closed = bool(np.array_equal(p[0], p[-1]))

@@ -57,8 +57,7 @@ class NurbsCurve(Curve):
         degree = int(degree)
         if count < degree + 1:
             raise ValueError(
-                f"A degree-{degree} curve needs at least {degree + 1} control points; "
-                f"got {count}."
+                f"A degree-{degree} curve needs at least {degree + 1} control points; got {count}."
             )
         if not np.all(np.isfinite(points)):
             raise ValueError("A control point has a non-finite coordinate.")
@@ -104,13 +103,9 @@ class NurbsCurve(Curve):
         self.periodic: bool = periodic
         count = len(points)
         self.domain = (float(knots[degree]), float(knots[count]))
-        coefficients = points if weights is None else np.column_stack(
-            [points * weights[:, None], weights]
-        )
+        coefficients = points if weights is None else np.column_stack([points * weights[:, None], weights])
         # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve.
-        self._spline = BSpline(
-            knots, coefficients, degree, extrapolate="periodic" if periodic else True
-        )
+        self._spline = BSpline(knots, coefficients, degree, extrapolate="periodic" if periodic else True)
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
         span = np.ptp(points, axis=0).max()
@@ -158,8 +153,7 @@ class NurbsCurve(Curve):
                 for k in range(order + 1)
             ]
         homogeneous = [
-            self._spline(u, nu=k) if k <= self.degree else np.zeros((len(u), 4))
-            for k in range(order + 1)
+            self._spline(u, nu=k) if k <= self.degree else np.zeros((len(u), 4)) for k in range(order + 1)
         ]
         w = [h[:, 3:] for h in homogeneous]
         result: list[FloatArray] = []
@@ -214,6 +208,5 @@ class NurbsCurve(Curve):
     def __repr__(self) -> str:
         kind = "periodic" if self.periodic else "rational" if self.is_rational else "polynomial"
         return (
-            f"{type(self).__name__}(degree={self.degree}, "
-            f"control_points={len(self.control_points)}, {kind})"
+            f"{type(self).__name__}(degree={self.degree}, control_points={len(self.control_points)}, {kind})"
         )

@@ -1,0 +1,60 @@
+# Torsal: `make run` opens the app on an example; `make test` runs the whole suite.
+# Both set everything up first: system packages (via apt-get, when root on Debian),
+# the virtualenv and the Python packages.
+
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+EXAMPLE ?= resources/examples/first-steps.graph
+
+# What Qt 6's xcb plugin, VTK's OpenGL and Xvfb need on a bare Debian 12.
+SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontconfig1 \
+	libdbus-1-3 libxkbcommon0 libxkbcommon-x11-0 libxcb-cursor0 libxcb-icccm4 libxcb-image0 \
+	libxcb-keysyms1 libxcb-randr0 libxcb-render-util0 libxcb-shape0 libxcb-xinerama0 \
+	libxcb-xkb1 libxcb-xfixes0 libxcb-sync1 libxcb-shm0 libxcb-render0 libxrender1 libxext6 \
+	libxi6 libsm6 libice6 libx11-xcb1
+
+.PHONY: run test bench lint system venv clean
+
+run: system $(STAMP)
+	$(BIN)/torsal gui $(EXAMPLE)
+
+test: system $(STAMP)
+	$(BIN)/ruff check .
+	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
+		$(BIN)/python -m pytest; \
+	else \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest; \
+	fi
+
+bench: system $(STAMP)
+	$(BIN)/python -m pytest tests/benchmarks -o python_files='bench_*.py' -o norecursedirs= -s -q
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+
+# System packages: installed only when missing, and only when we are root with apt-get.
+system:
+	@missing=""; for p in $(SYSTEM_PACKAGES); do \
+		dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -z "$$missing" ]; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "Installing system packages:$$missing"; \
+		DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	elif command -v dpkg >/dev/null; then \
+		echo "Note: missing system packages (GUI tests may be skipped):$$missing"; \
+		echo "      install them with: sudo apt-get install$$missing"; \
+	fi
+
+venv: $(STAMP)
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $(STAMP)
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

@@ -1,0 +1,1 @@
+"""Lists: pick, reorder, cull and restructure lists and data trees."""

@@ -1,0 +1,1 @@
+"""Maths: expressions, number sequences, domains and random numbers."""

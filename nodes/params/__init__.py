@@ -1,0 +1,1 @@
+"""Parameters: the values a designer sets by hand (sliders, toggles, panels, points)."""

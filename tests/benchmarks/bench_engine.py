@@ -1,0 +1,154 @@
+"""Engine overhead, measured side by side with direct calls in the same run (``make bench``).
+
+Ratios, not absolute times: these machines are shared and noisy, so each figure is the
+best of several repeats.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from engine.graph import Graph
+from engine.node import In, Node, Out, Setting
+from engine.solver import Solver
+from engine.types import GENERIC, NUMBER
+
+ROOT = Path(__file__).resolve().parents[2]
+REPEATS = 7
+
+
+def best_of(function: Callable[[], object], repeats: int = REPEATS) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+DATA = np.random.default_rng(0).random(60_000)
+
+
+def millisecond_of_numpy(seed: float) -> float:
+    """About 1 ms of real numpy work on this machine."""
+    return float(np.sort(DATA * seed).sum())
+
+
+class Work(Node):
+    type_id = "bench.Work"
+    inputs = (In("Seed", NUMBER, "S", "Scale.", default=1.0),)
+    outputs = (Out("Result", NUMBER, "R", "A sum."),)
+
+    def solve(self, seed: float) -> float:
+        return millisecond_of_numpy(seed)
+
+
+class Constant(Node):
+    type_id = "bench.Constant"
+    outputs = (Out("Value", NUMBER, "V", "A number."),)
+    settings_spec = (Setting("value", float, 1.0),)
+
+    def solve(self) -> float:
+        return self.settings["value"]
+
+
+class Increment(Node):
+    type_id = "bench.Increment"
+    inputs = (In("X", NUMBER, "X", "A number."),)
+    outputs = (Out("Result", NUMBER, "R", "X + 1."),)
+
+    def solve(self, x: float) -> float:
+        return x + 1.0
+
+
+class Identity(Node):
+    type_id = "bench.Identity"
+    inputs = (In("X", GENERIC, "X", "Anything."),)
+    outputs = (Out("Result", GENERIC, "R", "The same."),)
+
+    def solve(self, x: object) -> object:
+        return x
+
+
+def test_200_nodes_of_1ms_numpy_work_cost_at_most_5_percent_over_direct_calls():
+    graph = Graph()
+    for i in range(200):
+        graph.add_node(Work(), f"w{i}")
+        graph.set_input_value(f"w{i}", "Seed", 1.0 + i / 200)
+    solver = Solver(graph)
+
+    def through_graph() -> None:
+        graph.expire_all()
+        solver.solve()
+
+    def direct() -> None:
+        for i in range(200):
+            millisecond_of_numpy(1.0 + i / 200)
+
+    through_graph()
+    direct()
+    # interleave so both see the same machine load
+    graph_times, direct_times = [], []
+    for _ in range(REPEATS):
+        graph_times.append(best_of(through_graph, 1))
+        direct_times.append(best_of(direct, 1))
+    ratio = min(graph_times) / min(direct_times)
+    print(f"\n200 × 1 ms nodes: graph {min(graph_times)*1e3:.1f} ms, direct {min(direct_times)*1e3:.1f} ms, "
+          f"ratio {ratio:.3f}")
+    assert ratio <= 1.05
+
+
+def test_1000_node_chain_of_trivial_nodes_solves_in_under_30_ms():
+    graph = Graph()
+    graph.add_node(Constant(), "n0")
+    for i in range(1, 1000):
+        graph.add_node(Increment(), f"n{i}")
+        graph.connect(f"n{i - 1}", "Value" if i == 1 else "Result", f"n{i}", "X")
+    solver = Solver(graph)
+
+    def edit_first_and_solve() -> None:
+        graph.set_setting("n0", "value", 2.0)
+        solver.solve()
+
+    seconds = best_of(edit_first_and_solve)
+    print(f"\n1000-node chain: {seconds*1e3:.1f} ms ({seconds*1e6/1000:.1f} µs per node)")
+    assert solver.result("n999").outputs["Result"].first() == 1001.0
+    assert seconds < 0.030
+
+
+def test_item_access_over_100000_items_costs_under_5_us_per_call_more_than_a_loop():
+    items = [float(i) for i in range(100_000)]
+    graph = Graph()
+    graph.add_node(Identity(), "id")
+    graph.set_input_value("id", "X", items)
+    solver = Solver(graph)
+    node = graph.nodes["id"].node
+
+    def through_graph() -> None:
+        graph.expire("id")
+        solver.solve()
+
+    def plain_loop() -> list[object]:
+        return [node.solve(x) for x in items]
+
+    graph_seconds = best_of(through_graph, 5)
+    loop_seconds = best_of(plain_loop, 5)
+    per_call = (graph_seconds - loop_seconds) / len(items)
+    print(f"\nitem access, 100,000 calls: graph {graph_seconds*1e3:.1f} ms, loop {loop_seconds*1e3:.1f} ms, "
+          f"overhead {per_call*1e6:.2f} µs per call")
+    assert per_call < 5e-6
+
+
+def test_torsal_run_of_a_20_node_graph_cold_takes_under_a_second():
+    example = ROOT / "tests" / "fixtures" / "twenty-nodes.graph"
+    command = [str(Path(sys.executable).with_name("torsal")), "run", str(example), "--json"]
+    subprocess.run(command, check=True, capture_output=True)  # warm the disk cache only
+    seconds = best_of(lambda: subprocess.run(command, check=True, capture_output=True), 3)
+    print(f"\ntorsal run (20 nodes), cold process: {seconds:.3f} s")
+    assert seconds < 1.0

@@ -1,0 +1,311 @@
+"""The incremental solver: what solves when, states, exceptions, cancellation."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import pytest
+
+from engine.graph import Graph, GraphError
+from engine.node import LIST, CancelToken, In, Node, NodeError, Out, Setting
+from engine.solver import DISABLED, ERROR, OK, WARNING, Solver
+from engine.types import NUMBER
+
+
+class Constant(Node):
+    """A number kept in settings (a slider without the slider)."""
+
+    type_id = "test.Constant"
+    outputs = (Out("Value", NUMBER, "V", "The value."),)
+    settings_spec = (Setting("value", float, 1.0),)
+
+    def solve(self) -> float:
+        return float(self.settings["value"])
+
+
+class Add(Node):
+    type_id = "test.Add"
+    inputs = (In("A", NUMBER, "A", "First.", default=0.0), In("B", NUMBER, "B", "Second.", default=0.0))
+    outputs = (Out("Result", NUMBER, "R", "A + B."),)
+
+    def solve(self, a: float, b: float) -> float:
+        return a + b
+
+
+class Boom(Node):
+    type_id = "test.Boom"
+    inputs = (In("A", NUMBER, "A", "Anything."),)
+    outputs = (Out("Result", NUMBER, "R", "Never."),)
+
+    def solve(self, a: float) -> float:
+        raise ZeroDivisionError("the bridge fell down")
+
+
+class Refuse(Node):
+    type_id = "test.Refuse"
+    inputs = (In("A", NUMBER, "A", "Anything."),)
+    outputs = (Out("Result", NUMBER, "R", "Never."),)
+
+    def solve(self, a: float) -> float:
+        raise NodeError("Segments must be at least 1.")
+
+
+class Slow(Node):
+    """Spins until cancelled, checking the token the way long nodes must."""
+
+    type_id = "test.Slow"
+    inputs = (In("A", NUMBER, "A", "Anything.", default=0.0),)
+    outputs = (Out("Result", NUMBER, "R", "A."),)
+    started = threading.Event()
+
+    def solve(self, a: float) -> float:
+        Slow.started.set()
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            self.check_cancelled()
+            time.sleep(0.001)
+        return a
+
+
+class Total(Node):
+    type_id = "test.Total"
+    inputs = (In("Values", NUMBER, "V", "Numbers.", access=LIST),)
+    outputs = (Out("Sum", NUMBER, "S", "Their sum."),)
+
+    def solve(self, values: list[float]) -> float:
+        return sum(values)
+
+
+def chain(length: int) -> Graph:
+    """c0 → add1 → add2 → ... each add also has a persistent B."""
+    graph = Graph()
+    graph.add_node(Constant({"value": 1.0}), "n0")
+    for i in range(1, length):
+        graph.add_node(Add(), f"n{i}")
+        graph.connect(f"n{i - 1}", "Value" if i == 1 else "Result", f"n{i}", "A")
+        graph.set_input_value(f"n{i}", "B", 1.0)
+    return graph
+
+
+def test_chain_of_1000_solves_1_node_for_last_edit_and_1000_for_first():
+    graph = chain(1000)
+    solver = Solver(graph)
+    assert len(solver.solve().solved) == 1000
+    assert solver.result("n999").outputs["Result"].first() == 1000.0
+
+    graph.set_input_value("n999", "B", 2.0)
+    report = solver.solve()
+    assert report.solved == ["n999"]
+    assert solver.result("n999").outputs["Result"].first() == 1001.0
+
+    graph.set_setting("n0", "value", 5.0)
+    report = solver.solve()
+    assert len(report.solved) == 1000
+    assert solver.result("n999").outputs["Result"].first() == 1005.0
+
+
+def test_nothing_solves_when_nothing_changed():
+    graph = chain(10)
+    solver = Solver(graph)
+    solver.solve()
+    assert solver.solve().solved == []
+
+
+def test_diamond_solves_each_node_once_per_edit():
+    calls: list[str] = []
+
+    class Counting(Add):
+        type_id = "test.Counting"
+
+        def solve(self, a: float, b: float) -> float:
+            calls.append(self.settings["name"])
+            return a + b
+
+    graph = Graph()
+    graph.add_node(Constant({"value": 2.0}), "top")
+    for name in ("left", "right", "bottom"):
+        graph.add_node(Counting({"name": name}), name)
+    graph.connect("top", "Value", "left", "A")
+    graph.connect("top", "Value", "right", "A")
+    graph.connect("left", "Result", "bottom", "A")
+    graph.connect("right", "Result", "bottom", "B")
+    solver = Solver(graph)
+    solver.solve()
+    assert sorted(calls) == ["bottom", "left", "right"]
+    calls.clear()
+    graph.set_setting("top", "value", 3.0)
+    report = solver.solve()
+    assert sorted(calls) == ["bottom", "left", "right"]
+    assert report.solved.index("bottom") == 3
+    assert solver.result("bottom").outputs["Result"].first() == 6.0
+
+
+def test_exception_puts_node_in_error_with_its_message_and_siblings_still_solve():
+    graph = Graph()
+    graph.add_node(Constant(), "c")
+    graph.add_node(Boom(), "boom")
+    graph.add_node(Add(), "sibling")
+    graph.add_node(Add(), "after_boom")
+    graph.connect("c", "Value", "boom", "A")
+    graph.connect("c", "Value", "sibling", "A")
+    graph.connect("boom", "Result", "after_boom", "A")
+    solver = Solver(graph)
+    solver.solve()
+    boom = solver.result("boom")
+    assert boom.state == ERROR
+    assert "ZeroDivisionError: the bridge fell down" in boom.messages[0].text
+    assert solver.result("sibling").state == OK
+    assert solver.result("sibling").outputs["Result"].first() == 1.0
+    downstream = solver.result("after_boom")
+    assert downstream.state == WARNING  # wired, but its source gave nothing
+    assert downstream.messages[0].text == "Input A collected no data"
+    assert downstream.outputs["Result"].is_empty()
+
+
+def test_node_error_is_reported_without_a_traceback():
+    graph = Graph()
+    graph.add_node(Constant(), "c")
+    graph.add_node(Refuse(), "r")
+    graph.connect("c", "Value", "r", "A")
+    solver = Solver(graph)
+    solver.solve()
+    result = solver.result("r")
+    assert result.state == ERROR
+    assert [m.text for m in result.messages] == ["Segments must be at least 1."]
+
+
+def test_required_input_without_data_warns_and_produces_nothing():
+    graph = Graph()
+    graph.add_node(Refuse(), "r")
+    solver = Solver(graph)
+    solver.solve()
+    result = solver.result("r")
+    assert result.state == WARNING
+    assert result.messages[0].text == "Input A collected no data"
+    assert result.outputs["Result"].is_empty()
+
+
+def test_disabled_node_is_disabled_and_outputs_nothing():
+    graph = chain(3)
+    graph.set_enabled("n1", False)
+    solver = Solver(graph)
+    solver.solve()
+    assert solver.result("n1").state == DISABLED
+    assert solver.result("n1").outputs["Result"].is_empty()
+    assert solver.result("n2").state == WARNING
+
+
+def test_each_node_records_its_solve_time():
+    graph = chain(5)
+    solver = Solver(graph)
+    solver.solve()
+    assert all(solver.result(f"n{i}").seconds >= 0.0 for i in range(5))
+    assert solver.result("n4").seconds < 1.0
+
+
+def test_cancelling_stops_a_long_node_and_leaves_it_expired():
+    graph = Graph()
+    graph.add_node(Slow(), "slow")
+    graph.add_node(Add(), "after")
+    graph.connect("slow", "Result", "after", "A")
+    solver = Solver(graph)
+    token = CancelToken()
+    Slow.started.clear()
+    results = []
+    worker = threading.Thread(target=lambda: results.append(solver.solve(token)))
+    worker.start()
+    assert Slow.started.wait(5)
+    cancelled_at = time.monotonic()
+    token.cancel()
+    worker.join(5)
+    assert not worker.is_alive()
+    assert time.monotonic() - cancelled_at < 0.5
+    assert results[0].cancelled
+    assert "slow" in graph.expired and "after" in graph.expired
+
+
+def test_progress_is_reported_per_node():
+    graph = chain(4)
+    seen = []
+    Solver(graph).solve(progress=lambda i, n, node_id: seen.append((i, n, node_id)))
+    assert [s[:2] for s in seen] == [(0, 4), (1, 4), (2, 4), (3, 4)]
+    assert [s[2] for s in seen] == ["n0", "n1", "n2", "n3"]
+
+
+def test_several_wires_into_a_list_input_are_merged_in_wire_order():
+    graph = Graph()
+    for i, v in enumerate((1.0, 2.0, 4.0)):
+        graph.add_node(Constant({"value": v}), f"c{i}")
+    graph.add_node(Total(), "total")
+    for i in range(3):
+        graph.connect(f"c{i}", "Value", "total", "Values")
+    solver = Solver(graph)
+    solver.solve()
+    assert solver.result("total").outputs["Sum"].first() == 7.0
+
+
+def test_item_input_refuses_a_second_wire():
+    graph = Graph()
+    graph.add_node(Constant(), "a")
+    graph.add_node(Constant(), "b")
+    graph.add_node(Add(), "add")
+    graph.connect("a", "Value", "add", "A")
+    with pytest.raises(GraphError, match="takes one wire"):
+        graph.connect("b", "Value", "add", "A")
+
+
+def test_a_wire_that_closes_a_loop_is_refused():
+    graph = chain(3)
+    with pytest.raises(GraphError, match="loop"):
+        graph.connect("n2", "Result", "n1", "B")
+
+
+def test_a_wire_between_incompatible_types_is_refused():
+    from engine.types import POINT
+
+    class Where(Node):
+        type_id = "test.Where"
+        inputs = (In("At", POINT, "P", "A point."),)
+        outputs = ()
+
+    graph = Graph()
+    graph.add_node(Constant(), "c")
+    graph.add_node(Where(), "w")
+    with pytest.raises(GraphError, match="gives Number, which Where.At \\(Point\\) cannot take"):
+        graph.connect("c", "Value", "w", "At")
+
+
+def test_edits_are_reported_as_events():
+    graph = Graph()
+    events = []
+    graph.subscribe(events.append)
+    graph.add_node(Constant(), "c")
+    graph.add_node(Add(), "a")
+    wire = graph.connect("c", "Value", "a", "A")
+    graph.set_setting("c", "value", 3.0)
+    graph.move_node("a", (10, 20))
+    graph.disconnect(wire)
+    graph.remove_node("a")
+    assert [e.kind for e in events] == [
+        "node_added", "node_added", "wire_added", "setting_changed", "node_moved",
+        "wire_removed", "node_removed",
+    ]
+    assert events[3].data == {"name": "value", "old": 1.0, "new": 3.0}
+
+
+def test_moving_a_node_does_not_expire_it():
+    graph = chain(3)
+    solver = Solver(graph)
+    solver.solve()
+    graph.move_node("n1", (300.0, 40.0))
+    assert solver.solve().solved == []
+
+
+def test_removed_nodes_leave_no_result_behind():
+    graph = chain(3)
+    solver = Solver(graph)
+    solver.solve()
+    graph.remove_node("n2")
+    solver.solve()
+    assert "n2" not in solver.results
