@@ -12,6 +12,19 @@ import importlib
 from engine.registry import Registry
 
 MODULES: tuple[str, ...] = (
+    "nodes.params.sliders",
+    "nodes.params.panel",
+    "nodes.params.value_list",
+    "nodes.params.points",
+    "nodes.params.vectors",
+    "nodes.maths.expression",
+    "nodes.maths.sequences",
+    "nodes.maths.domains",
+    "nodes.maths.random_numbers",
+    "nodes.lists.items",
+    "nodes.lists.ordering",
+    "nodes.lists.culling",
+    "nodes.lists.trees",
 )
 
 

@@ -272,7 +272,7 @@ def test_a_wire_between_incompatible_types_is_refused():
     graph = Graph()
     graph.add_node(Constant(), "c")
     graph.add_node(Where(), "w")
-    with pytest.raises(GraphError, match="gives Number, which Where.At \\(Point\\) cannot take"):
+    with pytest.raises(GraphError, match=r"gives Number, which Where.At \(Point\) cannot take"):
         graph.connect("c", "Value", "w", "At")
 
 

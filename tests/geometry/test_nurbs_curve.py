@@ -253,7 +253,9 @@ def test_reversed_nurbs_traces_the_curve_backwards_exactly(seed, periodic):
     back = curve.reversed()
     t = np.linspace(0, 1, 41)
     assert np.allclose(back.point_at(t), curve.point_at(1 - t), atol=1e-12)
-    assert np.allclose(back.derivatives(t)[1], -curve.derivatives(1 - t)[1], atol=1e-9)
+    # derivatives are one-sided at knots (kinks of low degree), so compare inside spans
+    t = span_midpoints(curve)[0]
+    assert np.allclose(back.derivatives(1 - t)[1], -curve.derivatives(t)[1], atol=1e-9)
     assert back.closed == curve.closed
 
 

@@ -1,0 +1,99 @@
+"""Data-tree structure: flatten, graft, merge and partition branches."""
+
+from __future__ import annotations
+
+from itertools import cycle
+
+from engine.datatree import DataTree
+from engine.node import TREE, In, Node, NodeError, Out
+from engine.types import GENERIC, INTEGER
+
+
+class Flatten(Node):
+    """Put every item of a tree into one list, branch after branch in path order.
+
+    {0;0}: [a], {0;1}: [b, c] becomes {0}: [a, b, c].
+    """
+
+    type_id = "lists.Flatten"
+    inputs = (In("Tree", GENERIC, "T", "The tree to flatten.", access=TREE),)
+    outputs = (Out("Tree", GENERIC, "T", "All the items in the single branch {0}.", access=TREE),)
+
+    def solve(self, tree: DataTree) -> DataTree:
+        return tree.flattened()
+
+
+class Graft(Node):
+    """Put every item of a tree into a branch of its own.
+
+    {0}: [a, b] becomes {0;0}: [a], {0;1}: [b]; use it to make a node treat each
+    item separately, e.g. to pair every point with every number.
+    """
+
+    type_id = "lists.Graft"
+    inputs = (In("Tree", GENERIC, "T", "The tree to graft.", access=TREE),)
+    outputs = (Out("Tree", GENERIC, "T", "One branch per item, one path level deeper.",
+                   access=TREE),)
+
+    def solve(self, tree: DataTree) -> DataTree:
+        return tree.grafted()
+
+
+class Merge(Node):
+    """Join two data streams: branches with the same path are put end to end.
+
+    {0}: [1, 2] merged with {0}: [3] and {1}: [4] gives {0}: [1, 2, 3], {1}: [4].
+    Either input may be left empty.
+    """
+
+    type_id = "lists.Merge"
+    inputs = (
+        In("D1", GENERIC, "D1", "The first data; its items come first.", access=TREE,
+           optional=True),
+        In("D2", GENERIC, "D2", "The second data, added after D1's items.", access=TREE,
+           optional=True),
+    )
+    outputs = (Out("Result", GENERIC, "R", "D1 and D2 together, path by path.", access=TREE),)
+
+    def solve(self, first: DataTree, second: DataTree) -> DataTree:
+        merged: dict[tuple[int, ...], list] = {}
+        for tree in (first, second):
+            for path, branch in tree.items():
+                merged.setdefault(path, []).extend(branch)
+        return DataTree(merged)
+
+
+class Partition(Node):
+    """Cut each list into chunks of Size items; each chunk gets its own branch.
+
+    {0}: [a, b, c, d, e] with Size 2 gives {0;0}: [a, b], {0;1}: [c, d], {0;2}: [e].
+    Several sizes are used in turn ([1, 2] gives chunks of 1, 2, 1, 2 … items). Sizes
+    match the list's branches as usual: a tree of sizes gives each branch its own.
+    """
+
+    type_id = "lists.Partition"
+    inputs = (
+        In("List", GENERIC, "L", "The list to cut up.", access=TREE),
+        In("Size", INTEGER, "S", "How many items go in each chunk (1 or more).", access=TREE,
+           default=1),
+    )
+    outputs = (Out("Chunks", GENERIC, "C", "The chunks, one branch {p;i} each.", access=TREE),)
+
+    def solve(self, tree: DataTree, sizes: DataTree) -> DataTree:
+        size_branches = sizes.branches or [[1]]
+        for branch in size_branches:
+            for size in branch:
+                if size is None or size < 1:
+                    raise NodeError(f"Size must be at least 1, not {size}")
+        chunks = DataTree()
+        # Branches match as for list access: the list's b-th branch takes the sizes'
+        # b-th branch, or their last one when there are fewer.
+        for b, (path, items) in enumerate(tree.items()):
+            pattern = size_branches[min(b, len(size_branches) - 1)] or [1]
+            start = 0
+            for i, size in enumerate(cycle(pattern)):
+                if start >= len(items):
+                    break
+                chunks.extend((*path, i), items[start:start + size])
+                start += size
+        return chunks
