@@ -322,7 +322,12 @@ def _store(
     results: list[Any],
     iterated: bool,
 ) -> None:
-    """Place one branch iteration's results in the output trees."""
+    """Place one branch iteration's results in the output trees.
+
+    A list output of an item-iterated node puts each call's list in its own branch
+    ``{p;i}`` when the branch made several calls; a single call keeps the path ``{p}``
+    (as Grasshopper does when one curve is divided).
+    """
     if len(out_ports) == 1:
         columns = [results]
     else:
@@ -338,7 +343,7 @@ def _store(
         if port.access is ITEM:
             tree.extend(path, column)
         elif port.access is LIST:
-            if iterated:
+            if iterated and len(column) > 1:
                 for i, values in enumerate(column):
                     tree.extend((*path, i), [] if values is None else values)
             else:

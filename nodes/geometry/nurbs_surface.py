@@ -2,9 +2,10 @@
 
 Evaluation is vectorised over points with B-spline basis *matrices*: for each
 parameter the knot span and the p + 1 non-zero basis functions (and their
-derivatives) come from a Cox–de Boor recurrence run over all parameters at once;
-the (p + 1) × (q + 1) control points of each span are gathered and contracted with
-the two basis rows. Rational surfaces are evaluated in homogeneous coordinates and
+derivatives) come from per-span polynomial tables (:class:`SpanBasis`, built once by
+the Cox–de Boor recurrence); each point's (p + 1) × (q + 1) products of u- and
+v-basis values form one row of a sparse matrix whose product with the control net
+is the evaluation. Rational surfaces are evaluated in homogeneous coordinates and
 their derivatives recovered with the quotient rule. Work is done in chunks so that
 10⁶ points need a bounded amount of memory.
 
@@ -18,6 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse
 from scipy.interpolate import make_interp_spline
 
 from .curve_base import Curve
@@ -97,6 +99,74 @@ def basis_functions(
     return out
 
 
+class SpanBasis:
+    """Fast evaluation of the B-spline basis of one knot vector, for many parameters.
+
+    At construction the p + 1 basis functions that are non-zero on each knot span
+    are converted, once, to polynomials in the local coordinate
+    ξ = (x − t_i)/(t_{i+1} − t_i) (the same Cox–de Boor recurrence as
+    :func:`basis_functions`, run on polynomial coefficients). Evaluating then costs
+    a span search, ξ's powers and one small product per parameter, which is what
+    makes 10⁶ surface points take a fraction of a second.
+    """
+
+    def __init__(self, knots: FloatArray, degree: int, count: int) -> None:
+        p = degree
+        self.knots, self.degree = knots, p
+        self.breaks = np.unique(knots[p : count + 1])
+        spans = len(self.breaks) - 1
+        # Knot index i of each span: t_i = breaks[k] < t_{i+1}.
+        index = np.searchsorted(knots, self.breaks[:-1], side="right") - 1
+        self.index = np.clip(index, p, count - 1)
+        self.start = knots[self.index]
+        self.length = knots[self.index + 1] - self.start
+        poly = np.zeros((spans, 1, p + 1))
+        poly[:, 0, 0] = 1.0
+        for j in range(1, p + 1):
+            new = np.zeros((spans, j + 1, p + 1))
+            for k in range(j + 1):
+                r = self.index - j + k
+                if k >= 1:  # (x − t_r)/(t_{r+j} − t_r) · N_{r,j−1}
+                    inv = _safe_reciprocal(knots[r + j] - knots[r])
+                    c0, c1 = (self.start - knots[r]) * inv, self.length * inv
+                    prev = poly[:, k - 1, :]
+                    new[:, k, :] += c0[:, None] * prev
+                    new[:, k, 1:] += c1[:, None] * prev[:, :-1]
+                if k <= j - 1:  # (t_{r+j+1} − x)/(t_{r+j+1} − t_{r+1}) · N_{r+1,j−1}
+                    inv = _safe_reciprocal(knots[r + j + 1] - knots[r + 1])
+                    c0, c1 = (knots[r + j + 1] - self.start) * inv, -self.length * inv
+                    prev = poly[:, k, :]
+                    new[:, k, :] += c0[:, None] * prev
+                    new[:, k, 1:] += c1[:, None] * prev[:, :-1]
+            poly = new
+        coefficients = poly.transpose(0, 2, 1)  # (span, power, function)
+        # Coefficients of the first and second ξ-derivatives, for Horner evaluation.
+        a = np.arange(p + 1, dtype=float)[None, :, None]
+        first = (coefficients * a)[:, 1:]
+        second = (first * a[:, :-1])[:, 1:]
+        # Stored power-major, (power, span, function), so that gathers are contiguous.
+        self._tables = [np.ascontiguousarray(c.transpose(1, 0, 2)) for c in (coefficients, first, second)]
+        self._inner_breaks = self.breaks[1:-1]
+
+    def evaluate(self, x: FloatArray, order: int) -> tuple[IntArray, FloatArray]:
+        """First non-zero function index per x, and ``(order+1, n, p+1)`` values and
+        derivatives (with respect to x) of the p + 1 non-zero functions."""
+        k = np.searchsorted(self._inner_breaks, x, side="right")  # span number, clamped
+        length = np.take(self.length, k)
+        xi = ((x - np.take(self.start, k)) / length)[:, None]
+        out = np.zeros((order + 1, len(x), self.degree + 1))
+        for d in range(min(order, self.degree) + 1):
+            table = self._tables[d]
+            values = np.take(table[-1], k, axis=0)
+            for power in range(len(table) - 2, -1, -1):  # Horner in ξ
+                values *= xi
+                values += np.take(table[power], k, axis=0)
+            if d:
+                values /= (length**d)[:, None]
+            out[d] = values
+        return np.take(self.index, k) - self.degree, out
+
+
 def _validate_knots(knots: ArrayLike | None, count: int, degree: int, name: str) -> FloatArray:
     if degree < 1:
         raise ValueError(f"{name}: degree must be at least 1")
@@ -170,6 +240,8 @@ class NurbsSurface(Surface):
             if self.is_rational
             else points.copy()
         )
+        self._basis_u = SpanBasis(self.knots_u, self.degree_u, nu)
+        self._basis_v = SpanBasis(self.knots_v, self.degree_v, nv)
         self.closed_u, self.closed_v = self._detect_closed()
 
     def __repr__(self) -> str:
@@ -204,19 +276,25 @@ class NurbsSurface(Surface):
 
     def _evaluate(self, s: FloatArray, t: FloatArray, order: int) -> list[FloatArray]:
         p, q = self.degree_u, self.degree_v
-        nu, nv = self._net.shape[:2]
-        span_u = find_spans(self.knots_u, p, nu, s)
-        span_v = find_spans(self.knots_v, q, nv, t)
-        basis_u = basis_functions(self.knots_u, p, span_u, s, order)
-        basis_v = basis_functions(self.knots_v, q, span_v, t, order)
-        rows = span_u[:, None] - p + np.arange(p + 1)
-        cols = span_v[:, None] - q + np.arange(q + 1)
-        local = self._net[rows[:, :, None], cols[:, None, :]]  # (m, p+1, q+1, c)
-        # Contract over v first (one pass per v-derivative order), then over u.
-        along_v = [np.einsum("mb,mabc->mac", basis_v[b], local) for b in range(order + 1)]
+        nu, nv, dim = self._net.shape
+        first_u, basis_u = self._basis_u.evaluate(s, order)
+        first_v, basis_v = self._basis_v.evaluate(t, order)
+        m = len(s)
+        # Flat indices of the (p+1)(q+1) control points acting on each parameter.
+        index_type = np.int32 if nu * nv < 2**31 else np.int64
+        base = (first_u * nv + first_v).astype(index_type)
+        offsets = (np.arange(p + 1)[:, None] * nv + np.arange(q + 1)).ravel().astype(index_type)
+        flat = (base[:, None] + offsets).ravel()
+        width = (p + 1) * (q + 1)
+        indptr = np.arange(0, m * width + 1, width, dtype=index_type)
+        net = self._net.reshape(-1, dim)
 
         def mixed(a: int, b: int) -> FloatArray:
-            return np.einsum("ma,mac->mc", basis_u[a], along_v[b])
+            # Row i of this sparse matrix holds N_a(u_i)·M_b(v_i) for its 16 (say)
+            # control points; its product with the net is the evaluation.
+            weights = (basis_u[a][:, :, None] * basis_v[b][:, None, :]).ravel()
+            matrix = sparse.csr_matrix((weights, flat, indptr), shape=(m, nu * nv))
+            return np.asarray(matrix @ net)
 
         pairs = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)][: (1, 3, 6)[order]]
         homog = [mixed(a, b) for a, b in pairs]

@@ -71,7 +71,8 @@ class Expression(Node):
 
     def __init__(self, settings: dict[str, Any] | None = None) -> None:
         super().__init__(settings)
-        self.settings["variables"] = list(self.settings["variables"])  # not the shared default
+        if isinstance(self.settings["variables"], list):  # never share the mutable default
+            self.settings["variables"] = list(self.settings["variables"])
         self._not_finite = 0
 
     # -- ports follow the variables -----------------------------------------------------

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import pytest
-
 from engine.datatree import DataTree
 from engine.graph import Graph
 from engine.node import TREE, Node, Out
@@ -63,8 +61,3 @@ def out(result: NodeResult, port: str | None = None) -> dict[tuple[int, ...], li
 
 def texts(result: NodeResult) -> list[str]:
     return [m.text for m in result.messages]
-
-
-@pytest.fixture
-def solve_node():
-    return run

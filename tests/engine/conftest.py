@@ -1,0 +1,22 @@
+"""Fixtures for the engine tests: a registry of small test node types (see ``nodekit``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from engine.registry import Registry
+from tests.engine.nodekit import make_registry
+
+FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
+
+
+@pytest.fixture(scope="session")
+def registry() -> Registry:
+    return make_registry()
+
+
+@pytest.fixture(scope="session")
+def fixtures_dir() -> Path:
+    return FIXTURES
