@@ -248,6 +248,19 @@ class Graph:
         record.node.settings[name] = value
         self.expire(node_id)
         self._emit("setting_changed", node_id, name=name, old=old, new=value)
+        self._drop_wires_to_vanished_ports(record)
+
+    def _drop_wires_to_vanished_ports(self, record: NodeRecord) -> None:
+        """A setting may remove ports (an Expression variable renamed): unplug their wires."""
+        if is_placeholder(record.node):
+            return
+        inputs = {p.name for p in record.node.input_ports()}
+        outputs = {p.name for p in record.node.output_ports()}
+        for wire in list(self.wires):
+            if (wire.target == record.id and wire.target_port not in inputs) or (
+                wire.source == record.id and wire.source_port not in outputs
+            ):
+                self.disconnect(wire)
 
     def set_input_value(self, node_id: str, port: str, value: Any, present: bool = True) -> None:
         """Set (or with ``present=False`` clear) an input's persistent JSON value."""
@@ -293,7 +306,7 @@ class Graph:
         if any(g.id == group.id for g in self.groups):
             raise GraphError(f"there is already a group with id {group.id!r}")
         self.groups.append(group)
-        self._emit("group_added", data_group=group.id)
+        self._emit("group_added", group=group)
         return group
 
     def remove_group(self, group_id: str) -> Group:
@@ -301,7 +314,7 @@ class Graph:
         if group is None:
             raise GraphError(f"there is no group with id {group_id!r}")
         self.groups.remove(group)
-        self._emit("group_removed", data_group=group_id)
+        self._emit("group_removed", group=group)
         return group
 
     # -- topology -------------------------------------------------------------------

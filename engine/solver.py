@@ -31,7 +31,7 @@ from engine.node import (
     NodeError,
     NodeWarning,
 )
-from engine.types import CastError, cast, decode_value
+from engine.types import GENERIC, CastError, cast, decode_value
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
 
@@ -179,6 +179,8 @@ def merge_trees(trees: list[DataTree]) -> DataTree:
 
 def cast_tree(tree: DataTree, port: In) -> DataTree:
     """Cast every item of ``tree`` to ``port``'s type (items already right are kept)."""
+    if port.type is GENERIC:
+        return tree
     classes = port.type.classes
     needs_cast = False
     for branch in tree.branches:
@@ -207,8 +209,10 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
 def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> dict[str, DataTree]:
     """Match ``trees`` to ``node``'s inputs, call ``solve`` per match, collect output trees.
 
-    A required input with no data, or a wired input whose source produced nothing,
-    makes the node warn and produce nothing (Grasshopper's "collected no data").
+    A required input with no data, or a wired non-optional input whose source produced
+    nothing, makes the node warn and produce nothing (Grasshopper's "collected no
+    data"): a default never silently replaces an upstream failure. Optional inputs may
+    be empty.
     """
     in_ports = node.input_ports()
     out_ports = node.output_ports()
@@ -218,7 +222,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     matched: list[tuple[In, DataTree]] = []
     single = True  # every matched input is one branch {0} of one item: the common case
     for port, tree, is_wired in zip(in_ports, trees, wired, strict=True):
-        if tree.is_empty() and (is_wired or not (port.optional or port.has_default)):
+        if tree.is_empty() and not port.optional and (is_wired or not port.has_default):
             node.warn(f"Input {port.name} collected no data")
             return outputs
         if port.access is not TREE:
@@ -233,8 +237,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         return outputs
     if single:
         args = [t.branches[0][0] if p.access is ITEM else t.branches[0] for p, t in matched]
-        iterated = any(p.access is ITEM for p, _ in matched)
-        _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=iterated)
+        _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=False)
         return outputs
     if len(matched) > 1:
         _remark_uneven(node, matched)
@@ -249,6 +252,11 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     template = [t if p.access is TREE else None for p, t in zip(in_ports, trees, strict=True)]
     slot_of_port = [i for i, p in enumerate(in_ports) if p.access is not TREE]
     no_tree_inputs = len(slot_of_port) == len(in_ports)
+    # list outputs go to {p;i} when any branch makes several calls, so depths never mix
+    sub_branches = iterated and any(
+        max(len(bl[min(b, len(bl) - 1)]) for bl in (branch_lists[i] for i in item_slots)) > 1
+        for b in range(branch_count)
+    )
 
     for b in range(branch_count):
         node.check_cancelled()
@@ -278,7 +286,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         else:
             arg_rows = (_fill(template, columns, row) for row in zip(*(c[1] for c in columns), strict=False))
         results = _call_rows(node, arg_rows)
-        _store(node, out_ports, outputs, path, results, iterated=True)
+        _store(node, out_ports, outputs, path, results, iterated=sub_branches)
     return outputs
 
 
@@ -324,9 +332,10 @@ def _store(
 ) -> None:
     """Place one branch iteration's results in the output trees.
 
-    A list output of an item-iterated node puts each call's list in its own branch
-    ``{p;i}`` when the branch made several calls; a single call keeps the path ``{p}``
-    (as Grasshopper does when one curve is divided).
+    With ``iterated``, each call's list goes to its own branch ``{p;i}``; otherwise
+    lists are appended to ``{p}``. The caller sets ``iterated`` when some branch of
+    an item-access node makes several calls, so a single call (one curve divided)
+    keeps the path ``{p}`` as in Grasshopper, and depths never mix within a solve.
     """
     if len(out_ports) == 1:
         columns = [results]
@@ -343,7 +352,7 @@ def _store(
         if port.access is ITEM:
             tree.extend(path, column)
         elif port.access is LIST:
-            if iterated and len(column) > 1:
+            if iterated:
                 for i, values in enumerate(column):
                     tree.extend((*path, i), [] if values is None else values)
             else:

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import trimesh
 
-from engine.types import POINT, ValueType, register_cast, register_type
+from engine.types import ValueType, register_cast, register_type
 from engine.values import Point
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves.line import Line

@@ -160,12 +160,13 @@ class Curve(ABC):
         from .vectors import perpendicular, unit
 
         ts, _ = _parameters(t)
-        origins = self.point_at(ts)
+        origins, d1, d2 = self.derivatives(ts, 2)
         tangents = self.tangent_at(ts)
-        k = self.curvature_vector_at(ts)
-        kappa = np.linalg.norm(k, axis=1)
-        flat = kappa <= 1e-12 * np.maximum(kappa.max(initial=0.0), 1e-300)
-        normals = np.where(flat[:, None], perpendicular(tangents), unit(k))
+        # straight where C'' is parallel to C' (sine of their angle below 1e-12) or zero
+        cross = np.linalg.norm(np.cross(d1, d2), axis=1)
+        flat = cross <= 1e-12 * np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1)
+        flat |= cross == 0
+        normals = np.where(flat[:, None], perpendicular(tangents), unit(self.curvature_vector_at(ts)))
         return Frames(origins, tangents, normals, np.cross(tangents, normals))
 
     def plane_at(self, t: float) -> Plane:

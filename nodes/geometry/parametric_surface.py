@@ -5,7 +5,7 @@ derivatives are the analytic ones when derivative callables are supplied, otherw
 finite differences good enough for curvature analysis:
 
 * Richardson-extrapolated central differences (the 5-point stencils, error O(h⁴)):
-  first derivatives with step h₁ = 1e-3, second with h₂ = 2e-3 (in normalised
+  first derivatives with step h₁ = 3e-4, second with h₂ = 2e-3 (in normalised
   parameter units), the mixed derivative Suv by Richardson extrapolation of the
   4-corner formula at h₂ and 2h₂. Steps balance truncation (∝ h⁴) against rounding
   (∝ ε/h, ε/h²): derivatives are typically accurate to ~1e-11 (first) and ~1e-9
@@ -38,7 +38,7 @@ FloatArray = NDArray[np.float64]
 SurfaceFunction = Callable[[FloatArray, FloatArray], Any]
 DerivativeFunction = Callable[[FloatArray, FloatArray], Sequence[Any]]
 
-FIRST_STEP = 1e-3
+FIRST_STEP = 3e-4
 SECOND_STEP = 2e-3
 
 

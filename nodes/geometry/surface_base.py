@@ -236,8 +236,8 @@ class Surface(ABC):
     def closest_point(
         self,
         points: ArrayLike,
-        seeds: int = 24,
-        candidates: int = 3,
+        seeds: int = 32,
+        candidates: int = 4,
         tolerance: float = 1e-13,
         max_iterations: int = 60,
     ) -> ClosestPoint:
@@ -417,6 +417,10 @@ class Surface(ABC):
             start, end = self.point_at(zeros, t), self.point_at(ones, t)
         return np.stack([start, end], axis=1)
 
+    def transformed(self, matrix: ArrayLike) -> TransformedSurface:
+        """This surface moved by an affine 4 × 4 matrix (see :class:`TransformedSurface`)."""
+        return TransformedSurface(self, matrix)
+
     # ------------------------------------------------------------------ meshing
 
     def to_mesh(self, nu: int = 33, nv: int = 33) -> trimesh.Trimesh:
@@ -468,11 +472,10 @@ class IsoCurve(Curve):
         c = np.full_like(s, self.param)
         if self.direction == "u":
             ders = self.surface.derivatives(s, c, order)
-            picked = [ders[0], ders[1], ders[3]] if order == 2 else ders[:2]
+            picked = [ders[k] for k in (0, 1, 3)[: order + 1]]  # S, Su, Suu
         else:
             ders = self.surface.derivatives(c, s, order)
-            picked = [ders[0], ders[2], ders[5]] if order == 2 else [ders[0], ders[2]]
-        picked = picked[: order + 1]
+            picked = [ders[k] for k in (0, 2, 5)[: order + 1]]  # S, Sv, Svv
         if self.reverse and order >= 1:
             picked[1] = -picked[1]
         return picked
@@ -487,3 +490,28 @@ class IsoCurve(Curve):
             d2 = [self._eval(t + k * h, 2)[2] for k in (-2, -1, 1, 2)]
             ders.append((d2[0] - 8.0 * d2[1] + 8.0 * d2[2] - d2[3]) / (12.0 * h))
         return ders
+
+
+class TransformedSurface(Surface):
+    """A surface moved by an affine 4 × 4 matrix: S'(u, v) = R·S(u, v) + t.
+
+    Derivatives transform with R; a rotation/translation keeps curvature, a
+    uniform scale by s divides it by s. Projective matrices are rejected.
+    """
+
+    def __init__(self, surface: Surface, matrix: ArrayLike) -> None:
+        m = np.asarray(matrix, dtype=float)
+        if m.shape != (4, 4) or not np.allclose(m[3], [0.0, 0.0, 0.0, 1.0]):
+            raise ValueError("an affine 4 × 4 matrix with last row (0, 0, 0, 1) is needed")
+        self.surface = surface
+        self.matrix = m
+        self.closed_u, self.closed_v = surface.closed_u, surface.closed_v
+
+    def __repr__(self) -> str:
+        return f"TransformedSurface({self.surface!r})"
+
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
+        self._check_order(order)
+        linear, shift = self.matrix[:3, :3], self.matrix[:3, 3]
+        ders = self.surface.derivatives(u, v, order)
+        return [ders[0] @ linear.T + shift] + [d @ linear.T for d in ders[1:]]

@@ -309,3 +309,46 @@ def test_removed_nodes_leave_no_result_behind():
     graph.remove_node("n2")
     solver.solve()
     assert "n2" not in solver.results
+
+
+def test_a_setting_that_removes_a_port_unplugs_its_wires_so_the_file_still_opens():
+    from engine import graphfile
+    from nodes.catalogue import default_registry
+
+    registry = default_registry(plugins=False)
+    graph = Graph()
+    graph.add_node(registry.create("params.NumberSlider"), "s")
+    graph.add_node(registry.create("maths.Expression"), "e")
+    graph.connect("s", "Value", "e", "y")
+    events = []
+    graph.subscribe(events.append)
+    graph.set_setting("e", "variables", ["x"])
+    assert graph.wires == []
+    assert [e.kind for e in events] == ["setting_changed", "wire_removed"]
+    reopened = graphfile.loads(graphfile.dumps(graph), registry)
+    assert list(reopened.nodes) == ["s", "e"]
+
+
+def test_an_optional_input_wired_to_nothing_does_not_stop_the_node():
+    class Pair(Node):
+        type_id = "test.Pair"
+        inputs = (
+            In("A", NUMBER, "A", "Numbers.", access=LIST),
+            In("B", NUMBER, "B", "More numbers.", access=LIST, optional=True),
+        )
+        outputs = (Out("Count", NUMBER, "N", "How many in all."),)
+
+        def solve(self, a: list[float], b: list[float]) -> float:
+            return float(len(a) + len(b))
+
+    graph = Graph()
+    graph.add_node(Constant(), "c")
+    graph.add_node(Boom(), "boom")
+    graph.add_node(Pair(), "pair")
+    graph.connect("c", "Value", "boom", "A")
+    graph.connect("c", "Value", "pair", "A")
+    graph.connect("boom", "Result", "pair", "B")
+    solver = Solver(graph)
+    solver.solve()
+    assert solver.result("pair").state == OK
+    assert solver.result("pair").outputs["Count"].first() == 1.0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -95,11 +96,11 @@ def test_length_at_and_parameter_at_length_are_inverse_within_1e_12():
 def test_length_of_a_rational_curve_matches_scipy_quad_within_1e_12():
     from scipy.integrate import quad
 
+    def speed(t: float) -> float:
+        return float(np.linalg.norm(WIGGLE.derivatives(t)[1]))
+
     breaks = WIGGLE._breakpoints()
-    exact = sum(
-        quad(lambda t: np.linalg.norm(WIGGLE.derivatives(t)[1]), a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
-        for a, b in zip(breaks[:-1], breaks[1:], strict=True)
-    )
+    exact = sum(quad(speed, a, b, epsabs=0, epsrel=1e-13, limit=200)[0] for a, b in pairwise(breaks))
     assert abs(WIGGLE.length / exact - 1) < 1e-12
 
 

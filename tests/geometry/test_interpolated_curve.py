@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.curves import InterpolatedCurve, chord_length_parameters
+from nodes.geometry.curves import InterpolatedCurve, NurbsCurve, chord_length_parameters
 
 
 def random_points(seed: int, count: int) -> np.ndarray:
@@ -34,7 +34,9 @@ def test_parameters_are_normalised_cumulative_chord_lengths():
 
 def test_closed_spline_is_c2_across_its_seam():
     curve = InterpolatedCurve(random_points(7, 9), closed=True)
-    start, end = curve.derivatives(0.0, 2), curve.derivatives(1.0, 2)
+    # a non-periodic copy evaluates t = 1 from the left instead of wrapping it to t = 0
+    copy = NurbsCurve.from_arrays(curve.control_points, curve.knots, curve.degree)
+    start, end = copy.derivatives(0.0, 2), copy.derivatives(1.0, 2)
     for a, b in zip(start, end, strict=True):
         assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * np.abs(a).max())
     assert curve.periodic

@@ -30,7 +30,7 @@ vector3 = st.tuples(finite, finite, finite).map(np.array)
 
 
 def test_translation_moves_every_point_by_the_vector():
-    assert np.allclose(apply_transform(translation([1, 2, 3]), POINTS), POINTS + [1, 2, 3])
+    assert np.allclose(apply_transform(translation([1, 2, 3]), POINTS), POINTS + np.array([1, 2, 3]))
 
 
 def test_rotation_about_axis_through_centre_keeps_centre_and_turns_a_quarter():

@@ -167,3 +167,11 @@ def test_expression_round_trips_through_a_graph_file():
     loaded = graphfile.loads(text, registry)
     assert [p.name for p in loaded.nodes["e"].node.input_ports()] == ["a", "b"]
     assert graphfile.dumps(loaded) == text
+
+
+def test_empty_null_items_become_nan_and_are_counted_as_not_finite():
+    result = run(expression("x + 1", ["x"]), x=tree({(0,): [1.0, None, 3.0]}))
+    values = out(result)[(0,)]
+    assert values[0] == 2.0 and values[2] == 4.0
+    assert math.isnan(values[1])
+    assert texts(result) == ["1 result is not a finite number (division by zero?)"]

@@ -54,6 +54,17 @@ class Line(Curve):
         result.extend(np.zeros((len(t), 3)) for _ in range(order - 1))
         return result
 
+    def length_at(self, t: ArrayLike) -> FloatArray:
+        return np.asarray(t, dtype=float) * self.length
+
+    def parameter_at_length(self, s: ArrayLike) -> FloatArray:
+        length = self.length
+        return np.clip(np.asarray(s, dtype=float) / (length if length > 0 else 1.0), 0.0, 1.0)
+
+    def bounding_box(self) -> FloatArray:
+        ends = np.stack([self._start, self._end])
+        return np.stack([ends.min(axis=0), ends.max(axis=0)])
+
     def closest_point(self, points: ArrayLike) -> ClosestPoints:
         """Closest points on the segment, in closed form (projection clamped to [0, 1])."""
         p = as_points(points)
@@ -143,6 +154,15 @@ class Polyline(Curve):
 
     def _breakpoints(self) -> FloatArray:
         return np.unique(self.vertex_parameters)
+
+    def length_at(self, t: ArrayLike) -> FloatArray:
+        return np.clip(np.asarray(t, dtype=float), 0.0, 1.0) * self._length
+
+    def parameter_at_length(self, s: ArrayLike) -> FloatArray:
+        return np.clip(np.asarray(s, dtype=float) / self._length, 0.0, 1.0)
+
+    def bounding_box(self) -> FloatArray:
+        return np.stack([self.points.min(axis=0), self.points.max(axis=0)])
 
     def closest_point(self, points: ArrayLike) -> ClosestPoints:
         """Closest points, in closed form: every segment is tried, in memory-bounded chunks."""
