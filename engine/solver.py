@@ -221,10 +221,14 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
 
     matched: list[tuple[In, DataTree]] = []
     single = True  # every matched input is one branch {0} of one item: the common case
-    for port, tree, is_wired in zip(in_ports, trees, wired, strict=True):
-        if tree.is_empty() and not port.optional and (is_wired or not port.has_default):
-            node.warn(f"Input {port.name} collected no data")
-            return outputs
+    trees = list(trees)
+    for index, (port, tree, is_wired) in enumerate(zip(in_ports, trees, wired, strict=True)):
+        if tree.is_empty():
+            if not port.optional and (is_wired or not port.has_default):
+                node.warn(f"Input {port.name} collected no data")
+                return outputs
+            if port.access is ITEM:  # an empty optional item arrives as None
+                trees[index] = tree = DataTree({(0,): [None]})
         if port.access is not TREE:
             matched.append((port, tree))
             if single and not (tree.paths == [(0,)] and len(tree.branches[0]) == 1):

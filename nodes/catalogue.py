@@ -25,11 +25,20 @@ MODULES: tuple[str, ...] = (
     "nodes.lists.ordering",
     "nodes.lists.culling",
     "nodes.lists.trees",
+    "nodes.curves.primitives",
+    "nodes.curves.splines",
+    "nodes.curves.analysis",
+    "nodes.curves.offset",
+    "nodes.transform.euclidean",
+    "nodes.transform.arrays",
+    "nodes.display.preview",
+    "nodes.display.plot",
 )
 
 
 def default_registry(plugins: bool = True) -> Registry:
     """Torsal's own node types plus installed plug-ins."""
+    importlib.import_module("nodes.types")  # geometry value types, before any node uses them
     registry = Registry()
     for module_name in MODULES:
         registry.register_module(importlib.import_module(module_name))

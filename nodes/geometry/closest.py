@@ -1,6 +1,7 @@
 """Closest points on a curve, for many query points at once.
 
-Coarse stage: sample the curve densely (per smooth span) and find each query's nearest
+Coarse stage: sample the curve densely (per smooth span, and finer where it turns:
+:func:`search_parameters`, cached on the curve) and find each query's nearest
 sample. Fine stage: in the two sample intervals beside it, solve ``g(t) = (C(t) − P)·C'(t)
 = 0`` (the foot of the perpendicular) by Newton's method, with ``g' = |C'|² + (C − P)·C''``,
 safeguarded by the interval as a bracket; an interval whose ends do not bracket a
@@ -28,6 +29,23 @@ def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> F
     return np.concatenate([inner.reshape(-1), [1.0]])
 
 
+def search_parameters(curve: Curve) -> FloatArray:
+    """Samples dense enough to tell the curve's turns and folds apart.
+
+    At least 16 per smooth span and 128 in all, then subdivided until every chord is
+    within 1/1000 of the curve's size of the curve, so a curve with many turns in one
+    span (a long helix given by a function) still gets several samples per turn.
+    """
+    from .tessellate import tessellation_parameters
+
+    t = sample_parameters(curve)
+    points = curve.point_at(t)
+    size = float(np.linalg.norm(np.ptp(points, axis=0)))
+    if size == 0:
+        return t
+    return tessellation_parameters(curve, 1e-3 * size, initial=t, max_points=100_000)
+
+
 def nearest_sample(samples: FloatArray, points: FloatArray) -> np.ndarray:
     """Index of the nearest sample to each point (brute force in memory-bounded chunks)."""
     result = np.empty(len(points), dtype=np.int64)
@@ -41,7 +59,7 @@ def nearest_sample(samples: FloatArray, points: FloatArray) -> np.ndarray:
 
 def closest_parameters(curve: Curve, points: FloatArray) -> FloatArray:
     """Parameter of the closest point on ``curve`` to each of ``points`` ``(m, 3)``."""
-    ts = sample_parameters(curve)
+    ts = curve._search_parameters
     j = nearest_sample(curve.point_at(ts), points)
     last = len(ts) - 2  # index of the last sample interval
     # interval k is [ts[k], ts[k+1]]; on a closed curve the seam's neighbours wrap around

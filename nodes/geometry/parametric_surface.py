@@ -4,19 +4,22 @@
 derivatives are the analytic ones when derivative callables are supplied, otherwise
 finite differences good enough for curvature analysis:
 
-* Richardson-extrapolated central differences (the 5-point stencils, error O(h⁴)):
-  first derivatives with step h₁ = 3e-4, second with h₂ = 2e-3 (in normalised
-  parameter units), the mixed derivative Suv by Richardson extrapolation of the
-  4-corner formula at h₂ and 2h₂. Steps balance truncation (∝ h⁴) against rounding
-  (∝ ε/h, ε/h²): derivatives are typically accurate to ~1e-11 (first) and ~1e-9
-  (second) relative, and curvature to ~1e-8 relative even where a normalised
-  parameter sweeps several turns of a torus.
-* Central stencils reach 2h (≤ 0.004) outside [0, 1] at the boundary: the function
+* Richardson-extrapolated central differences: the 7-point central stencils,
+  equivalent to extrapolating the 3-point formulas over steps h, 2h and 3h (error
+  O(h⁶)); steps h₁ = 1e-3 for first and h₂ = 2e-3 for second derivatives (in
+  normalised parameter units); the mixed derivative Suv by the same extrapolation
+  of the 4-corner formula. The steps balance truncation (∝ h⁶) against rounding
+  (∝ ε/h, ε/h²): derivatives are typically accurate to ~1e-12 (first) and ~1e-10
+  (second) relative, curvature to ~1e-10 relative even where a normalised
+  parameter sweeps several turns of a torus, and ~1e-8 on sharply folded NURBS.
+  Rounding grows with the coordinates' magnitude: a surface of size 1 placed 1000
+  units from the origin loses three digits (curvature ~1e-8 relative).
+* Central stencils reach 3h (≤ 0.006) outside [0, 1] at the boundary: the function
   is evaluated slightly outside its domain, which is exact for analytic expressions.
   Where that gives a non-finite value (sqrt(u) at u = 0 …), or when
-  ``extrapolate=False``, one-sided stencils of order 5 are used instead (6 points
-  for first derivatives, 7 for second, their tensor product for Suv), which keeps
-  curvature accurate to ~1e-8 at the boundary as well.
+  ``extrapolate=False``, one-sided stencils are used instead (8 points for first
+  derivatives, 9 for second, their tensor product for Suv; error O(h⁷)), which
+  keeps curvature accurate to ~1e-9 at the boundary (~1e-7 for the far-off case).
 
 Factory functions build the usual primitives with analytic derivatives: :func:`sphere`,
 :func:`torus`, :func:`cylinder`, :func:`cone` (all with outward normals).
@@ -38,7 +41,7 @@ FloatArray = NDArray[np.float64]
 SurfaceFunction = Callable[[FloatArray, FloatArray], Any]
 DerivativeFunction = Callable[[FloatArray, FloatArray], Sequence[Any]]
 
-FIRST_STEP = 3e-4
+FIRST_STEP = 1e-3
 SECOND_STEP = 2e-3
 
 
@@ -47,8 +50,10 @@ def _fd_weights(offsets: Sequence[int], order: int) -> FloatArray:
     ``offsets`` (unit step), from the moment conditions Σ w_k o_k^m = m!·δ(m, order),
     solved in rational arithmetic so that the weights are consistent to the last bit."""
     n = len(offsets)
-    rows = [[Fraction(o) ** m for o in offsets] + [Fraction(factorial(order) if m == order else 0)]
-            for m in range(n)]
+    rows = [
+        [Fraction(o) ** m for o in offsets] + [Fraction(factorial(order) if m == order else 0)]
+        for m in range(n)
+    ]
     for col in range(n):  # Gauss–Jordan elimination, exact
         pivot = next(r for r in range(col, n) if rows[r][col] != 0)
         rows[col], rows[pivot] = rows[pivot], rows[col]
@@ -65,18 +70,30 @@ def _stencil(offsets: Sequence[int], order: int) -> tuple[FloatArray, FloatArray
     return np.array(offsets, dtype=float), _fd_weights(offsets, order)
 
 
+def _richardson_corners(levels: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Mixed-derivative stencil: the 4-corner formula
+    D(h) = [f(h,h) − f(h,−h) − f(−h,h) + f(−h,−h)]/(4h²), whose error is even in h,
+    Richardson-extrapolated over steps h, 2h, …, ``levels``·h (error O(h^(2·levels)))."""
+    k = np.arange(1, levels + 1, dtype=float)
+    moments = np.array([k ** (2 * m) for m in range(levels)])  # kill h², h⁴, …
+    coef = np.linalg.solve(moments, np.eye(levels)[0])
+    signs = [(1, 1, 1.0), (1, -1, -1.0), (-1, 1, -1.0), (-1, -1, 1.0)]
+    du = np.array([kk * a for kk in k for a, _, _ in signs])
+    dv = np.array([kk * b for kk in k for _, b, _ in signs])
+    w = np.array([c * g / (4 * kk * kk) for kk, c in zip(k, coef, strict=True) for _, _, g in signs])
+    return du, dv, w
+
+
 # Stencil kinds per direction: 0 central, 1 forward (one-sided, inwards from the
-# low boundary), 2 backward. Backward stencils mirror the forward ones.
-_FIRST = {0: _stencil([-2, -1, 1, 2], 1), 1: _stencil(list(range(6)), 1)}
-_SECOND = {0: _stencil([-2, -1, 0, 1, 2], 2), 1: _stencil(list(range(7)), 2)}
+# low boundary), 2 backward (mirrors forward). Central stencils are the 7-point
+# ones, i.e. Richardson extrapolation of the 3-point formulas over h, 2h, 3h: O(h⁶).
+# One-sided ones use 8 (first) and 9 (second derivative) points: O(h⁷).
+_FIRST = {0: _stencil([-3, -2, -1, 1, 2, 3], 1), 1: _stencil(list(range(8)), 1)}
+_SECOND = {0: _stencil([-3, -2, -1, 0, 1, 2, 3], 2), 1: _stencil(list(range(9)), 2)}
 _FIRST[2] = (-_FIRST[1][0], -_FIRST[1][1])
 _SECOND[2] = (-_SECOND[1][0], _SECOND[1][1])
-# Mixed central: Richardson on the 4-corner formula at h and 2h (8 points, O(h⁴)).
-_MIXED_CENTRAL = (
-    np.array([1, 1, -1, -1, 2, 2, -2, -2], dtype=float),
-    np.array([1, -1, 1, -1, 2, -2, 2, -2], dtype=float),
-    np.array([1, -1, -1, 1, -1 / 16, 1 / 16, 1 / 16, -1 / 16]) / 3.0,
-)
+_MIXED_CENTRAL = _richardson_corners(3)
+_FD_BLOCK = 4096
 
 
 def _mixed_stencil(ku: int, kv: int) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -206,6 +223,19 @@ class ParametricSurface(Surface):
     # ------------------------------------------------------------------ differences
 
     def _finite_differences(self, s: FloatArray, t: FloatArray, order: int) -> list[FloatArray]:
+        """All derivatives to ``order`` by differences, in blocks of points so that
+        the ~37 stencil evaluations per point never need more than a few MB."""
+        n = len(s)
+        if n <= _FD_BLOCK:
+            return self._finite_difference_block(s, t, order)
+        out = [np.empty((n, 3)) for _ in range(3 if order == 1 else 6)]
+        for lo in range(0, n, _FD_BLOCK):
+            rows = slice(lo, lo + _FD_BLOCK)
+            for full, part in zip(out, self._finite_difference_block(s[rows], t[rows], order), strict=True):
+                full[rows] = part
+        return out
+
+    def _finite_difference_block(self, s: FloatArray, t: FloatArray, order: int) -> list[FloatArray]:
         n = len(s)
         kind_u = np.zeros(n, dtype=np.int8)
         kind_v = np.zeros(n, dtype=np.int8)
@@ -223,7 +253,7 @@ class ParametricSurface(Surface):
 
     def _one_sided_kinds(self, s: FloatArray, t: FloatArray) -> tuple[np.ndarray, np.ndarray]:
         """Stencil kind per point: forward near 0, backward near 1, else central."""
-        reach = 2.0 * max(self.steps) * (1.0 + 1e-9)
+        reach = 3.0 * max(self.steps) * (1.0 + 1e-9)  # central stencils reach 3h
 
         def kinds(x: FloatArray) -> np.ndarray:
             k = np.zeros(len(x), dtype=np.int8)
@@ -242,7 +272,7 @@ class ParametricSurface(Surface):
         n = len(s)
         centre = self._call(s, t)
         out = [centre] + [np.zeros((n, 3)) for _ in range(2 if order == 1 else 5)]
-        # For each (kind_u, kind_v) group: (output slot, du, dv, weights, scale).
+        # Per (kind_u, kind_v) group of points: its (output slot, du, dv, weights) terms.
         plans: list[tuple[np.ndarray, list[tuple[int, FloatArray, FloatArray, FloatArray]]]] = []
         chunks_s: list[FloatArray] = []
         chunks_t: list[FloatArray] = []
@@ -288,6 +318,41 @@ class ParametricSurface(Surface):
 
 # --------------------------------------------------------------------------- primitives
 
+#: ``jet(u, v, order)`` → [S, Su, Sv, Suu, Suv, Svv][: 1, 3 or 6] in the original
+#: parameters; lets a primitive share its trigonometry between all derivatives.
+Jet = Callable[[FloatArray, FloatArray, int], list[FloatArray]]
+
+
+def _xyz(x: ArrayLike, y: ArrayLike, z: ArrayLike, n: int) -> FloatArray:
+    out = np.empty((n, 3))
+    out[:, 0], out[:, 1], out[:, 2] = x, y, z
+    return out
+
+
+class _JetSurface(ParametricSurface):
+    """A ParametricSurface whose value and derivatives come from one ``jet`` call."""
+
+    def __init__(
+        self,
+        jet: Jet,
+        u_domain: tuple[float, float],
+        v_domain: tuple[float, float],
+        closed_u: bool,
+        closed_v: bool,
+    ) -> None:
+        super().__init__(
+            lambda u, v: jet(u, v, 0)[0], u_domain, v_domain, closed_u=closed_u, closed_v=closed_v
+        )
+        self._jet = jet
+
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
+        self._check_order(order)
+        s, t = broadcast_uv(u, v)
+        ders = self._jet(self.u_domain[0] + s * self._span_u, self.v_domain[0] + t * self._span_v, order)
+        a, b = self._span_u, self._span_v
+        factors = (1.0, a, b, a * a, a * b, b * b)
+        return [d if f == 1.0 else d * f for d, f in zip(ders, factors, strict=False)]
+
 
 def _centred(center: ArrayLike) -> FloatArray:
     return np.asarray(center, dtype=float).reshape(3)
@@ -299,22 +364,21 @@ def sphere(radius: float = 1.0, center: ArrayLike = (0.0, 0.0, 0.0)) -> Parametr
     c = _centred(center)
     r = float(radius)
 
-    def f(u: FloatArray, v: FloatArray) -> FloatArray:
-        return c + r * np.column_stack([np.cos(u) * np.cos(v), np.sin(u) * np.cos(v), np.sin(v)])
+    def jet(u: FloatArray, v: FloatArray, order: int) -> list[FloatArray]:
+        n = len(u)
+        cu, su, cv, sv = np.cos(u), np.sin(u), r * np.cos(v), r * np.sin(v)
+        out = [_xyz(c[0] + cu * cv, c[1] + su * cv, c[2] + sv, n)]
+        if order >= 1:
+            out += [_xyz(-su * cv, cu * cv, 0.0, n), _xyz(-cu * sv, -su * sv, cv, n)]
+        if order == 2:
+            out += [
+                _xyz(-cu * cv, -su * cv, 0.0, n),
+                _xyz(su * sv, -cu * sv, 0.0, n),
+                _xyz(-cu * cv, -su * cv, -sv, n),
+            ]
+        return out
 
-    def d1(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        cu, su, cv, sv = np.cos(u), np.sin(u), np.cos(v), np.sin(v)
-        return (r * np.column_stack([-su * cv, cu * cv, 0 * u]),
-                r * np.column_stack([-cu * sv, -su * sv, cv]))
-
-    def d2(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        cu, su, cv, sv = np.cos(u), np.sin(u), np.cos(v), np.sin(v)
-        return (r * np.column_stack([-cu * cv, -su * cv, 0 * u]),
-                r * np.column_stack([su * sv, -cu * sv, 0 * u]),
-                r * np.column_stack([-cu * cv, -su * cv, -sv]))
-
-    return ParametricSurface(f, (0.0, 2 * np.pi), (-np.pi / 2, np.pi / 2), d1, d2,
-                             closed_u=True, closed_v=False)
+    return _JetSurface(jet, (0.0, 2 * np.pi), (-np.pi / 2, np.pi / 2), True, False)
 
 
 def torus(
@@ -329,25 +393,22 @@ def torus(
     c = _centred(center)
     big, small = float(major_radius), float(minor_radius)
 
-    def f(u: FloatArray, v: FloatArray) -> FloatArray:
-        ring = big + small * np.cos(v)
-        return c + np.column_stack([ring * np.cos(u), ring * np.sin(u), small * np.sin(v)])
+    def jet(u: FloatArray, v: FloatArray, order: int) -> list[FloatArray]:
+        n = len(u)
+        cu, su, cv, sv = np.cos(u), np.sin(u), small * np.cos(v), small * np.sin(v)
+        ring = big + cv
+        out = [_xyz(c[0] + ring * cu, c[1] + ring * su, c[2] + sv, n)]
+        if order >= 1:
+            out += [_xyz(-ring * su, ring * cu, 0.0, n), _xyz(-sv * cu, -sv * su, cv, n)]
+        if order == 2:
+            out += [
+                _xyz(-ring * cu, -ring * su, 0.0, n),
+                _xyz(sv * su, -sv * cu, 0.0, n),
+                _xyz(-cv * cu, -cv * su, -sv, n),
+            ]
+        return out
 
-    def d1(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        cu, su, cv, sv = np.cos(u), np.sin(u), np.cos(v), np.sin(v)
-        ring = big + small * cv
-        return (np.column_stack([-ring * su, ring * cu, 0 * u]),
-                small * np.column_stack([-sv * cu, -sv * su, cv]))
-
-    def d2(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        cu, su, cv, sv = np.cos(u), np.sin(u), np.cos(v), np.sin(v)
-        ring = big + small * cv
-        return (np.column_stack([-ring * cu, -ring * su, 0 * u]),
-                small * np.column_stack([sv * su, -sv * cu, 0 * u]),
-                small * np.column_stack([-cv * cu, -cv * su, -sv]))
-
-    return ParametricSurface(f, (0.0, 2 * np.pi), (0.0, 2 * np.pi), d1, d2,
-                             closed_u=True, closed_v=True)
+    return _JetSurface(jet, (0.0, 2 * np.pi), (0.0, 2 * np.pi), True, True)
 
 
 def cylinder(
@@ -358,43 +419,34 @@ def cylinder(
     c = _centred(center)
     r, h = float(radius), float(height)
 
-    def f(u: FloatArray, v: FloatArray) -> FloatArray:
-        return c + np.column_stack([r * np.cos(u), r * np.sin(u), h * v])
+    def jet(u: FloatArray, v: FloatArray, order: int) -> list[FloatArray]:
+        n = len(u)
+        cu, su = r * np.cos(u), r * np.sin(u)
+        out = [_xyz(c[0] + cu, c[1] + su, c[2] + h * v, n)]
+        if order >= 1:
+            out += [_xyz(-su, cu, 0.0, n), _xyz(0.0, 0.0, h, n)]
+        if order == 2:
+            out += [_xyz(-cu, -su, 0.0, n), np.zeros((n, 3)), np.zeros((n, 3))]
+        return out
 
-    def d1(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        return (np.column_stack([-r * np.sin(u), r * np.cos(u), 0 * u]),
-                np.column_stack([0 * u, 0 * u, h + 0 * u]))
-
-    def d2(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        zero = np.zeros((len(u), 3))
-        return np.column_stack([-r * np.cos(u), -r * np.sin(u), 0 * u]), zero, zero
-
-    return ParametricSurface(f, (0.0, 2 * np.pi), (0.0, 1.0), d1, d2,
-                             closed_u=True, closed_v=False)
+    return _JetSurface(jet, (0.0, 2 * np.pi), (0.0, 1.0), True, False)
 
 
-def cone(
-    radius: float = 1.0, height: float = 1.0, center: ArrayLike = (0.0, 0.0, 0.0)
-) -> ParametricSurface:
+def cone(radius: float = 1.0, height: float = 1.0, center: ArrayLike = (0.0, 0.0, 0.0)) -> ParametricSurface:
     """Cone around the z axis from the base circle (v = 0, at ``center``) to the apex
     ``height`` above it (v = 1); outward normal; analytic derivatives."""
     c = _centred(center)
     r, h = float(radius), float(height)
 
-    def f(u: FloatArray, v: FloatArray) -> FloatArray:
-        w = r * (1.0 - v)
-        return c + np.column_stack([w * np.cos(u), w * np.sin(u), h * v])
+    def jet(u: FloatArray, v: FloatArray, order: int) -> list[FloatArray]:
+        n = len(u)
+        cu, su = r * np.cos(u), r * np.sin(u)
+        w = 1.0 - v
+        out = [_xyz(c[0] + w * cu, c[1] + w * su, c[2] + h * v, n)]
+        if order >= 1:
+            out += [_xyz(-w * su, w * cu, 0.0, n), _xyz(-cu, -su, h, n)]
+        if order == 2:
+            out += [_xyz(-w * cu, -w * su, 0.0, n), _xyz(su, -cu, 0.0, n), np.zeros((n, 3))]
+        return out
 
-    def d1(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        w = r * (1.0 - v)
-        return (np.column_stack([-w * np.sin(u), w * np.cos(u), 0 * u]),
-                np.column_stack([-r * np.cos(u), -r * np.sin(u), h + 0 * u]))
-
-    def d2(u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        w = r * (1.0 - v)
-        return (np.column_stack([-w * np.cos(u), -w * np.sin(u), 0 * u]),
-                np.column_stack([r * np.sin(u), -r * np.cos(u), 0 * u]),
-                np.zeros((len(u), 3)))
-
-    return ParametricSurface(f, (0.0, 2 * np.pi), (0.0, 1.0), d1, d2,
-                             closed_u=True, closed_v=False)
+    return _JetSurface(jet, (0.0, 2 * np.pi), (0.0, 1.0), True, False)

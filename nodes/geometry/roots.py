@@ -49,10 +49,10 @@ def safeguarded_newton(
         with np.errstate(divide="ignore", invalid="ignore"):
             newton = xa - f / df
         ok = (df > 0) & (newton > lo) & (newton < hi) & np.isfinite(newton)
-        step_to = np.where(ok, newton, 0.5 * (lo + hi))
+        root = f == 0
+        step_to = np.where(root, xa, np.where(ok, newton, 0.5 * (lo + hi)))
         x[active] = step_to
-        done = (f == 0) | (np.abs(step_to - xa) <= xtol) | (hi - lo <= xtol)
-        x[active[f == 0]] = xa[f == 0]
+        done = root | (np.abs(step_to - xa) <= xtol) | (hi - lo <= xtol)
         active = active[~done]
     return x
 

@@ -13,11 +13,14 @@ Two constructions:
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import BSpline, make_interp_spline
 
 from .curve_base import Curve
+from .curves.line import Line
 from .surface_base import Surface, broadcast_uv
 
 FloatArray = NDArray[np.float64]
@@ -28,7 +31,7 @@ class SplineRail(Curve):
 
     Degree min(3, n − 1), not-a-knot ends, or periodic (``closed=True``, which needs
     the last point to repeat the first and at least 4 points). Evaluated with
-    scipy's BSpline, with exact first and second derivatives.
+    scipy's BSpline, with exact derivatives up to order 3.
     """
 
     def __init__(self, params: ArrayLike, points: ArrayLike, closed: bool = False) -> None:
@@ -45,21 +48,26 @@ class SplineRail(Curve):
         self.params, self.points = t, pts
         mode: bool | str = "periodic" if self.closed else True
         self._splines: list[BSpline] = [spline]
-        for _ in range(2):
+        for _ in range(3):
             k = self._splines[-1].k
             self._splines.append(
-                self._splines[-1].derivative() if k > 0 else BSpline(
-                    spline.t, np.zeros_like(spline.c), spline.k)
+                self._splines[-1].derivative()
+                if k > 0
+                else BSpline(spline.t, np.zeros_like(spline.c), spline.k)
             )
         for s in self._splines:
             s.extrapolate = mode
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
         t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        if order > 2:
-            raise ValueError("rail derivatives are available to order 2")
+        if order > 3:
+            raise ValueError("rail derivatives are available to order 3")
         out = [np.asarray(s(t), dtype=float) for s in self._splines[: order + 1]]
         return [o.reshape(len(t), 3) for o in out]
+
+    def _breakpoints(self) -> FloatArray:
+        knots = self._splines[0].t
+        return np.unique(np.clip(knots, 0.0, 1.0))
 
 
 class RuledSurface(Surface):
@@ -74,13 +82,9 @@ class RuledSurface(Surface):
         self.curve_b = curve_b
         self.ruling_parameters: FloatArray | None = None
         self.ruling_lines: FloatArray | None = None
-        ends = np.vstack(
-            [curve_a.point_at(np.array([0.0, 1.0])), curve_b.point_at(np.array([0.0, 1.0]))]
-        )
+        ends = np.vstack([curve_a.point_at(np.array([0.0, 1.0])), curve_b.point_at(np.array([0.0, 1.0]))])
         size = float(np.ptp(ends, axis=0).max()) or 1.0
-        self.closed_u = bool(
-            getattr(curve_a, "closed", False) and getattr(curve_b, "closed", False)
-        ) or bool(
+        self.closed_u = bool(getattr(curve_a, "closed", False) and getattr(curve_b, "closed", False)) or bool(
             np.abs(ends[0] - ends[1]).max() <= 1e-12 * size
             and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size
         )
@@ -92,15 +96,18 @@ class RuledSurface(Surface):
         return f"RuledSurface({self.curve_a!r}, {self.curve_b!r})"
 
     @classmethod
-    def from_rulings(cls, starts: ArrayLike, ends: ArrayLike | None = None) -> RuledSurface:
+    def from_rulings(cls, starts: ArrayLike | Sequence[Curve], ends: ArrayLike | None = None) -> RuledSurface:
         """The ruled surface whose rulings are exactly the given lines.
 
-        ``starts`` and ``ends`` are ``(n, 3)`` arrays of ruling end points (or pass a
-        single ``(n, 2, 3)`` array). Ruling i becomes the isocurve u = i/(n − 1),
+        ``starts`` and ``ends`` are ``(n, 3)`` arrays of ruling end points; or pass a
+        single ``(n, 2, 3)`` array, or a sequence of line curves (their ``start`` and
+        ``end`` points are used). Ruling i becomes the isocurve u = i/(n − 1),
         running from v = 0 at its start to v = 1 at its end. When the last ruling
         repeats the first (to 1e-12 of the size) the rails are closed periodic
         splines.
         """
+        if ends is None and isinstance(starts, Sequence) and starts and isinstance(starts[0], Curve):
+            starts = np.array([[line.start, line.end] for line in starts])  # type: ignore[union-attr]
         a = np.asarray(starts, dtype=float)
         if ends is None:
             if a.ndim != 3 or a.shape[1:] != (2, 3):
@@ -125,6 +132,17 @@ class RuledSurface(Surface):
         surface.ruling_lines = np.stack([a, b], axis=1)
         surface.closed_u = closed
         return surface
+
+    def ruling_curves(self, count: int | None = None) -> list[Line]:
+        """The rulings as :class:`Line` curves: with ``count=None`` the given ones
+        (for a surface made :meth:`from_rulings`), else ``count`` evenly spaced in u."""
+        if count is None:
+            if self.ruling_lines is None:
+                raise ValueError("this ruled surface was not made from rulings: give a count")
+            lines = self.ruling_lines
+        else:
+            lines = self.rulings(count)
+        return [Line(a, b) for a, b in lines]
 
     @property
     def ruling_direction(self) -> str:  # type: ignore[override]

@@ -39,9 +39,12 @@ from scipy.spatial import cKDTree
 
 from .area import integrate_unit_square
 from .curvature import (
+    BLOCK,
     DEGENERATE_RATIO,
     FundamentalForms,
     SurfaceCurvature,
+    assign_curvature,
+    empty_curvature,
     fundamental_forms,
     principal_curvatures,
     unit_normal,
@@ -173,14 +176,21 @@ class Surface(ABC):
         u-tangent and its perpendicular).
         """
         uu, vv = broadcast_uv(u, v)
+        if len(uu) <= BLOCK:
+            return self._curvature_block(uu, vv)
+        # Cache-sized blocks: derivatives and curvature of one block stay in cache.
+        result = empty_curvature(len(uu))
+        for lo in range(0, len(uu), BLOCK):
+            rows = slice(lo, lo + BLOCK)
+            assign_curvature(result, rows, self._curvature_block(uu[rows], vv[rows]))
+        return result
+
+    def _curvature_block(self, uu: FloatArray, vv: FloatArray) -> SurfaceCurvature:
         result = principal_curvatures(*self.derivatives(uu, vv, 2)[1:])
         bad = np.isnan(result.k1)
-        if not bad.any():
-            return result
-        ders = self._regular_derivatives(uu[bad], vv[bad], 2, bad=np.ones(bad.sum(), bool))
-        fixed = principal_curvatures(*ders[1:])
-        for name in ("k1", "k2", "direction1", "direction2", "gaussian", "mean", "normal"):
-            getattr(result, name)[bad] = getattr(fixed, name)
+        if bad.any():
+            ders = self._regular_derivatives(uu[bad], vv[bad], 2, bad=np.ones(bad.sum(), bool))
+            assign_curvature(result, bad, principal_curvatures(*ders[1:]))
         return result
 
     def gaussian_curvature(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
@@ -215,6 +225,7 @@ class Surface(ABC):
 
     def area(self, rtol: float = 1e-11) -> float:
         """Surface area ∫∫ |Su × Sv| du dv by adaptive Gauss–Legendre cubature."""
+
         def element(u: FloatArray, v: FloatArray) -> FloatArray:
             _, su, sv = self.derivatives(u, v, 1)
             return np.linalg.norm(np.cross(su, sv), axis=1)
@@ -223,6 +234,7 @@ class Surface(ABC):
 
     def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
         """Area and area centroid ∫∫ S |Su × Sv| / area, by the same cubature."""
+
         def integrand(u: FloatArray, v: FloatArray) -> FloatArray:
             s, su, sv = self.derivatives(u, v, 1)
             w = np.linalg.norm(np.cross(su, sv), axis=1)
@@ -259,8 +271,7 @@ class Surface(ABC):
         _, idx = cKDTree(samples).query(query, k=k)
         idx = np.asarray(idx).reshape(len(query), k)
         rep = np.repeat(query, k, axis=0)
-        u, v = self._newton_closest(rep, gu[idx.ravel()], gv[idx.ravel()], tolerance,
-                                    max_iterations)
+        u, v = self._newton_closest(rep, gu[idx.ravel()], gv[idx.ravel()], tolerance, max_iterations)
         found = self.derivatives(u, v, 0)[0]
         dist = np.linalg.norm(found - rep, axis=1).reshape(len(query), k)
         best = np.argmin(dist, axis=1)
@@ -330,9 +341,12 @@ class Surface(ABC):
                     va[pending] + step[pending] * dv[pending],
                 )
             new_u[pending], new_v[pending] = ua[pending], va[pending]  # no descent: stay
-            moved = np.maximum(np.abs(new_u - ua), np.abs(new_v - va))
-            if self.closed_u:
-                moved = np.minimum(moved, np.abs(1.0 - np.abs(new_u - ua)))
+            step_u, step_v = np.abs(new_u - ua), np.abs(new_v - va)
+            if self.closed_u:  # a step across the seam is short, not ~1
+                step_u = np.minimum(step_u, 1.0 - step_u)
+            if self.closed_v:
+                step_v = np.minimum(step_v, 1.0 - step_v)
+            moved = np.maximum(step_u, step_v)
             u[active], v[active] = new_u, new_v
             active = active[moved > tolerance]
         return u, v
@@ -356,14 +370,15 @@ class Surface(ABC):
                     return sign * s[0, axis], sign * np.array([su[0, axis], sv[0, axis]])
 
                 res = optimize.minimize(
-                    objective, np.array([gu[start], gv[start]]), jac=True,
-                    method="L-BFGS-B", bounds=[(0.0, 1.0), (0.0, 1.0)],
+                    objective,
+                    np.array([gu[start], gv[start]]),
+                    jac=True,
+                    method="L-BFGS-B",
+                    bounds=[(0.0, 1.0), (0.0, 1.0)],
                     options={"ftol": 1e-15, "gtol": 1e-12},
                 )
                 value = sign * float(res.fun)
-                box[row, axis] = min(box[row, axis], value) if row == 0 else max(
-                    box[row, axis], value
-                )
+                box[row, axis] = min(box[row, axis], value) if row == 0 else max(box[row, axis], value)
         return box
 
     # ------------------------------------------------------------------ rulings
@@ -452,9 +467,7 @@ class IsoCurve(Curve):
     central differences of the second derivative (~1e-8 relative).
     """
 
-    def __init__(
-        self, surface: Surface, direction: str | int, param: float, reverse: bool = False
-    ) -> None:
+    def __init__(self, surface: Surface, direction: str | int, param: float, reverse: bool = False) -> None:
         key = {"u": "u", "v": "v", 0: "u", 1: "v"}.get(direction)  # type: ignore[call-overload]
         if key is None:
             raise ValueError(f"isocurve direction must be 'u' or 'v', not {direction!r}")
@@ -479,6 +492,15 @@ class IsoCurve(Curve):
         if self.reverse and order >= 1:
             picked[1] = -picked[1]
         return picked
+
+    def _breakpoints(self) -> FloatArray:
+        """The surface's knots along the curve (NURBS), so that sampling-based curve
+        operations put samples on every span."""
+        knots = getattr(self.surface, "knots_u" if self.direction == "u" else "knots_v", None)
+        if knots is None:
+            return super()._breakpoints()
+        inside = np.unique(np.clip(np.asarray(knots, dtype=float), 0.0, 1.0))
+        return np.sort(1.0 - inside) if self.reverse else inside
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
         t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()

@@ -20,22 +20,30 @@ def _distance_to_chords(points: FloatArray, a: FloatArray, b: FloatArray) -> Flo
 
 
 def tessellation_parameters(
-    curve: Curve, tolerance: float, per_span: int = 4, max_points: int = 1_000_000
+    curve: Curve,
+    tolerance: float,
+    per_span: int = 4,
+    max_points: int = 1_000_000,
+    initial: FloatArray | None = None,
 ) -> FloatArray:
     """Increasing parameters whose polyline stays within ``tolerance`` of the curve.
 
-    Starts from ``per_span`` pieces per smooth span; each round measures the curve at
+    Starts from ``per_span`` pieces per smooth span (or from the increasing parameters
+    ``initial``, 0 and 1 included); each round measures the curve at
     the quarter, half and three-quarter points of every piece against its chord and
     halves the pieces that deviate by more than ``tolerance``. Features narrower than a
     quarter of a starting piece can be missed.
     """
     if not tolerance > 0:
         raise ValueError(f"The tolerance must be a positive length; got {tolerance}.")
-    breaks = curve._breakpoints()
-    fractions = np.linspace(0.0, 1.0, per_span + 1)[:-1]
-    t = np.concatenate(
-        [(breaks[:-1, None] + fractions[None, :] * np.diff(breaks)[:, None]).reshape(-1), [1.0]]
-    )
+    if initial is None:
+        breaks = curve._breakpoints()
+        fractions = np.linspace(0.0, 1.0, per_span + 1)[:-1]
+        t = np.concatenate(
+            [(breaks[:-1, None] + fractions[None, :] * np.diff(breaks)[:, None]).reshape(-1), [1.0]]
+        )
+    else:
+        t = np.asarray(initial, dtype=float)
     quarters = np.array([0.25, 0.5, 0.75])
     while len(t) < max_points:
         a, b = t[:-1], t[1:]

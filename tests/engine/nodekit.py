@@ -138,9 +138,7 @@ class Variables(Node):
     def __init__(self, settings: dict[str, Any] | None = None) -> None:
         super().__init__(settings)
         names = self.settings["variables"]
-        if not isinstance(names, list) or not all(
-            isinstance(n, str) and n.isidentifier() for n in names
-        ):
+        if not isinstance(names, list) or not all(isinstance(n, str) and n.isidentifier() for n in names):
             raise ValueError("variables must be a list of names")
         if len(set(names)) != len(names):
             raise ValueError("variable names must be unique")

@@ -41,6 +41,7 @@ def no_temporaries(directory: Path) -> list[str]:
 
 # --------------------------------------------------------------------------- round trip
 
+
 @pytest.mark.parametrize("path", ENGINE_FIXTURES, ids=lambda p: p.name)
 def test_every_engine_fixture_is_canonical_and_round_trips_byte_identically(path, registry):
     raw = path.read_bytes()
@@ -254,6 +255,7 @@ def test_basic_fixture_solves_as_expected(registry):
 
 # --------------------------------------------------------------------------- versions
 
+
 def newer_text(version: int = 2) -> str:
     data = json.loads(read("engine-basic.graph"))
     data["version"] = version
@@ -349,8 +351,14 @@ V1_TEXT = """{
 def graph_summary(graph: Graph) -> dict:
     return {
         "nodes": [
-            (r.id, r.type_id, r.position, r.label, r.node.settings,
-             {k: (s.value, s.has_value, s.modifiers) for k, s in r.inputs.items()})
+            (
+                r.id,
+                r.type_id,
+                r.position,
+                r.label,
+                r.node.settings,
+                {k: (s.value, s.has_value, s.modifiers) for k, s in r.inputs.items()},
+            )
             for r in graph.nodes.values()
         ],
         "wires": [str(w) for w in graph.wires],
@@ -414,6 +422,7 @@ def test_missing_version_is_refused(registry):
 
 # --------------------------------------------------------------------------- saving
 
+
 def test_write_graph_creates_a_new_file_without_a_backup(registry, tmp_path):
     graph = graphfile.loads(read("engine-basic.graph"), registry)
     path = tmp_path / "new.graph"
@@ -466,7 +475,6 @@ def test_a_failure_mid_save_leaves_the_original_untouched_and_no_temporary_files
 def test_an_interrupted_save_leaves_no_temporary_files(registry, tmp_path, monkeypatch):
     path = tmp_path / "design.graph"
     graph = graphfile.loads(read("engine-basic.graph"), registry)
-    real_replace = os.replace
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
@@ -476,7 +484,6 @@ def test_an_interrupted_save_leaves_no_temporary_files(registry, tmp_path, monke
         graphfile.write_graph(graph, path)
     assert not path.exists()
     assert no_temporaries(tmp_path) == []
-    assert os.replace is interrupted and real_replace is not interrupted
 
 
 def test_an_unsaveable_graph_does_not_touch_the_file(registry, tmp_path):
@@ -518,14 +525,12 @@ def test_read_graph_errors_are_graph_file_errors(registry, tmp_path):
 
 # --------------------------------------------------------------------------- load cost
 
+
 def chain_text(count: int) -> str:
     nodes = [{"id": f"n{i}", "type": "maths.Add", "position": [0.0, 0.0]} for i in range(count)]
-    wires = [
-        {"from": [f"n{i}", "Result"], "to": [f"n{i + 1}", "A"]} for i in range(count - 1)
-    ]
+    wires = [{"from": [f"n{i}", "Result"], "to": [f"n{i + 1}", "A"]} for i in range(count - 1)]
     return graphfile.encode(
-        {"format": "torsal.graph", "version": 1, "nodes": nodes, "wires": wires, "groups": [],
-         "meta": {}}
+        {"format": "torsal.graph", "version": 1, "nodes": nodes, "wires": wires, "groups": [], "meta": {}}
     )
 
 

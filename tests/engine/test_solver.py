@@ -352,3 +352,21 @@ def test_an_optional_input_wired_to_nothing_does_not_stop_the_node():
     solver.solve()
     assert solver.result("pair").state == OK
     assert solver.result("pair").outputs["Count"].first() == 1.0
+
+
+def test_an_optional_item_input_without_data_arrives_as_none():
+    class Maybe(Node):
+        type_id = "test.Maybe"
+        inputs = (In("A", NUMBER, "A", "A number."), In("B", NUMBER, "B", "Perhaps.", optional=True))
+        outputs = (Out("Result", NUMBER, "R", "A, or A + B."),)
+
+        def solve(self, a: float, b: float | None) -> float:
+            return a if b is None else a + b
+
+    graph = Graph()
+    graph.add_node(Constant({"value": 4.0}), "c")
+    graph.add_node(Maybe(), "m")
+    graph.connect("c", "Value", "m", "A")
+    solver = Solver(graph)
+    solver.solve()
+    assert solver.result("m").outputs["Result"].to_dict() == {"{0}": [4.0]}

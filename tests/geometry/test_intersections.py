@@ -147,3 +147,8 @@ def test_line_lying_in_the_plane_reports_points_along_it():
 def test_curve_missing_the_plane_has_no_intersections():
     hits = curve_plane_intersections(Circle(WORLD_XY, 1.0), Plane.from_normal([0, 0, 1], [0, 0, 1]))
     assert hits.parameters.shape == (0,) and hits.points.shape == (0, 3)
+
+
+def test_crossing_at_the_seam_of_a_closed_curve_is_reported_once():
+    hits = curve_plane_intersections(Circle(WORLD_XY, 2.0), Plane.from_normal([0, 0, 0], [0, 1, 0]))
+    assert hits.parameters == pytest.approx([0.0, 0.5], abs=1e-14)

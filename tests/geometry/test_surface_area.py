@@ -31,20 +31,21 @@ def test_torus_area_is_four_pi_squared_big_r_small_r(analytic):
         surface = torus(big, small)
     else:
         surface = ParametricSurface(
-            lambda u, v: ((big + small * np.cos(v)) * np.cos(u),
-                          (big + small * np.cos(v)) * np.sin(u), small * np.sin(v)),
-            (0.0, 2 * np.pi), (0.0, 2 * np.pi),
+            lambda u, v: (
+                (big + small * np.cos(v)) * np.cos(u),
+                (big + small * np.cos(v)) * np.sin(u),
+                small * np.sin(v),
+            ),
+            (0.0, 2 * np.pi),
+            (0.0, 2 * np.pi),
         )
     assert surface.area() == pytest.approx(4 * np.pi**2 * big * small, rel=1e-10)
 
 
-@pytest.mark.parametrize("u_domain, v_domain", [((0.0, 4 * np.pi), (0.0, 1.5)),
-                                                ((-3.7, 12.1), (-0.5, 2.0))])
+@pytest.mark.parametrize("u_domain, v_domain", [((0.0, 4 * np.pi), (0.0, 1.5)), ((-3.7, 12.1), (-0.5, 2.0))])
 def test_helicoid_area_matches_integral_of_sqrt_v2_plus_c2(u_domain, v_domain):
     pitch = 0.5
-    surface = ParametricSurface(
-        lambda u, v: (v * np.cos(u), v * np.sin(u), pitch * u), u_domain, v_domain
-    )
+    surface = ParametricSurface(lambda u, v: (v * np.cos(u), v * np.sin(u), pitch * u), u_domain, v_domain)
 
     def antiderivative(v):  # ∫ sqrt(v² + c²) dv
         return 0.5 * v * np.sqrt(v * v + pitch**2) + 0.5 * pitch**2 * np.arcsinh(v / pitch)
@@ -61,9 +62,9 @@ def test_cone_area_is_pi_r_times_slant_height():
 def test_hemisphere_centroid_is_half_the_radius_above_the_base():
     radius = 2.0
     surface = ParametricSurface(
-        lambda u, v: radius * np.column_stack(
-            [np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)]),
-        (0.0, 2 * np.pi), (0.0, np.pi / 2),
+        lambda u, v: radius * np.column_stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)]),
+        (0.0, 2 * np.pi),
+        (0.0, np.pi / 2),
     )
     area, centroid = surface.area_and_centroid()
     assert area == pytest.approx(2 * np.pi * radius**2, rel=1e-10)
@@ -83,8 +84,9 @@ def test_cubature_is_exact_for_polynomials_and_adapts_to_peaks():
     # compare with scipy's dblquad instead.
     from scipy import integrate
 
-    ref = integrate.dblquad(lambda v, u: 1.0 / ((u - 0.3) ** 2 + (v - 0.6) ** 2 + 1e-3),
-                            0, 1, 0, 1, epsabs=1e-13, epsrel=1e-13)[0]
+    ref = integrate.dblquad(
+        lambda v, u: 1.0 / ((u - 0.3) ** 2 + (v - 0.6) ** 2 + 1e-3), 0, 1, 0, 1, epsabs=1e-13, epsrel=1e-13
+    )[0]
     assert sharp == pytest.approx(ref, rel=1e-9)
 
 
@@ -98,4 +100,5 @@ def test_mesh_surface_area_is_the_sum_of_triangle_areas():
     surface = MeshSurface(box)
     assert surface.area() == pytest.approx(2 * (2 + 3 + 6), rel=1e-14)
     area, centroid = surface.area_and_centroid()
+    assert area == pytest.approx(22.0, rel=1e-14)
     np.testing.assert_allclose(centroid, 0.0, atol=1e-15)

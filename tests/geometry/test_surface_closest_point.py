@@ -32,9 +32,13 @@ def test_closest_point_on_sphere_is_radial_projection():
 def test_closest_point_on_expression_torus_is_tube_projection():
     big, small = 2.0, 0.6
     surface = ParametricSurface(
-        lambda u, v: ((big + small * np.cos(v)) * np.cos(u),
-                      (big + small * np.cos(v)) * np.sin(u), small * np.sin(v)),
-        (-3.7, -3.7 + 2 * np.pi), (1.0, 1.0 + 2 * np.pi),  # shifted, still closed
+        lambda u, v: (
+            (big + small * np.cos(v)) * np.cos(u),
+            (big + small * np.cos(v)) * np.sin(u),
+            small * np.sin(v),
+        ),
+        (-3.7, -3.7 + 2 * np.pi),
+        (1.0, 1.0 + 2 * np.pi),  # shifted, still closed
     )
     points = random_points(300, 2.0, seed=3)
     points = points[np.hypot(points[:, 0], points[:, 1]) > 0.1]
@@ -50,7 +54,7 @@ def test_closest_point_beyond_a_patch_edge_lands_on_the_edge():
     # Plane patch [0, 2] × [0, 1] at z = 0: the answer is the clamped projection.
     grid = np.array([[[0, 0, 0], [0, 1, 0]], [[2, 0, 0], [2, 1, 0]]], dtype=float)
     patch = NurbsSurface(grid, 1, 1)
-    points = random_points(400, 2.0, seed=11) + [1.0, 0.5, 0.0]
+    points = random_points(400, 2.0, seed=11) + np.array([1.0, 0.5, 0.0])
     exact = np.column_stack([np.clip(points[:, 0], 0, 2), np.clip(points[:, 1], 0, 1), 0 * points[:, 0]])
     result = patch.closest_point(points)
     np.testing.assert_allclose(result.points, exact, atol=TOL)
@@ -79,8 +83,7 @@ def test_closest_point_on_curved_nurbs_agrees_with_dense_brute_force_refined():
     _, su, sv = surface.derivatives(*result.parameters.T, 1)
     offset = points - result.points
     interior = np.all((result.parameters > 1e-9) & (result.parameters < 1 - 1e-9), axis=1)
-    tangency = np.abs(np.column_stack([np.einsum("ij,ij->i", offset, su),
-                                       np.einsum("ij,ij->i", offset, sv)]))
+    tangency = np.abs(np.column_stack([np.einsum("ij,ij->i", offset, su), np.einsum("ij,ij->i", offset, sv)]))
     assert np.all(tangency[interior] <= 1e-9 * np.linalg.norm(su[interior], axis=1)[:, None])
     gu, gv = np.meshgrid(np.linspace(0, 1, 301), np.linspace(0, 1, 301), indexing="ij")
     samples = surface.point_at(gu.ravel(), gv.ravel())
@@ -89,8 +92,10 @@ def test_closest_point_on_curved_nurbs_agrees_with_dense_brute_force_refined():
 
 
 def test_closest_point_on_ruled_surface_from_rulings_is_on_the_ruling_for_points_on_it():
-    rulings = np.array([[[0, 0, 0], [0, 0, 1]], [[1, 0, 0], [1, 0.3, 1]], [[2, 0.5, 0], [2, 1, 1]],
-                        [[3, 0, 0], [3, 0, 1]]], dtype=float)
+    rulings = np.array(
+        [[[0, 0, 0], [0, 0, 1]], [[1, 0, 0], [1, 0.3, 1]], [[2, 0.5, 0], [2, 1, 1]], [[3, 0, 0], [3, 0, 1]]],
+        dtype=float,
+    )
     surface = RuledSurface.from_rulings(rulings)
     t = np.linspace(0, 1, 7)[:, None]
     on_ruling = rulings[2, 0] + t * (rulings[2, 1] - rulings[2, 0])

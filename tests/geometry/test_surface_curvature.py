@@ -30,7 +30,9 @@ def assert_rel(actual, expected, scale, rtol=RTOL):
     actual, expected = np.asarray(actual), np.asarray(expected)
     bound = rtol * np.maximum(np.abs(expected), scale)
     err = np.abs(actual - expected)
-    assert np.all(err <= bound), f"worst relative error {np.max(err / np.maximum(np.abs(expected), scale)):.3g}"
+    assert np.all(err <= bound), (
+        f"worst relative error {np.max(err / np.maximum(np.abs(expected), scale)):.3g}"
+    )
 
 
 def user_params(surface, s, t):
@@ -118,13 +120,9 @@ def test_hyperbolic_paraboloid_gaussian_is_minus_one_over_w4(where, u_domain, v_
     [((0.0, 4 * np.pi), (-1.5, 1.5)), ((-3.7, 12.1), (0.2, 2.5))],
     ids=["natural", "reparameterised"],
 )
-def test_helicoid_is_minimal_with_gaussian_minus_c2_over_c2_plus_v2_squared(
-    where, u_domain, v_domain
-):
+def test_helicoid_is_minimal_with_gaussian_minus_c2_over_c2_plus_v2_squared(where, u_domain, v_domain):
     pitch = 0.5
-    surface = ParametricSurface(
-        lambda u, v: (v * np.cos(u), v * np.sin(u), pitch * u), u_domain, v_domain
-    )
+    surface = ParametricSurface(lambda u, v: (v * np.cos(u), v * np.sin(u), pitch * u), u_domain, v_domain)
     s, t = SAMPLES[where]
     _, v = user_params(surface, s, t)
     k = pitch / (pitch**2 + v**2)
@@ -158,9 +156,7 @@ def test_sphere_is_umbilic_with_curvature_one_over_radius(where, u_domain, v_dom
 
 def test_one_sided_stencils_keep_boundary_accuracy_when_extrapolation_is_off():
     big, small = 3.0, 1.1
-    surface = ParametricSurface(
-        torus_function(big, small), (-3.7, 12.1), (-2.0, 9.0), extrapolate=False
-    )
+    surface = ParametricSurface(torus_function(big, small), (-3.7, 12.1), (-2.0, 9.0), extrapolate=False)
     s, t = SAMPLES["boundary"]
     _, v = user_params(surface, s, t)
     k1, k2 = torus_exact(v, big, small)
@@ -192,8 +188,12 @@ def test_finite_difference_derivatives_match_analytic_ones():
     approx = numeric.derivatives(s, t, 2)
     scale = [1.0, 2 * np.pi * 2.7, 2 * np.pi * 2.7, 40 * 2.7, 40 * 2.7, 40 * 2.7]
     for name, e, a, sc, tol in zip(
-        ["S", "Su", "Sv", "Suu", "Suv", "Svv"], exact, approx, scale,
-        [1e-15, 1e-10, 1e-10, 1e-8, 1e-8, 1e-8], strict=True
+        ["S", "Su", "Sv", "Suu", "Suv", "Svv"],
+        exact,
+        approx,
+        scale,
+        [1e-15, 1e-10, 1e-10, 1e-8, 1e-8, 1e-8],
+        strict=True,
     ):
         assert np.abs(e - a).max() <= tol * sc, name
 
@@ -268,7 +268,9 @@ def test_principal_directions_form_a_right_handed_frame_with_the_normal():
     surface = ParametricSurface(lambda x, y: (x, y, x * y + 0.3 * x**3), (-1, 2), (-1, 1))
     curv = surface.curvature(S_INT, T_INT)
     frame = np.stack([curv.direction1, curv.direction2, curv.normal], axis=1)
-    np.testing.assert_allclose(frame @ frame.transpose(0, 2, 1), np.broadcast_to(np.eye(3), frame.shape), atol=1e-12)
+    np.testing.assert_allclose(
+        frame @ frame.transpose(0, 2, 1), np.broadcast_to(np.eye(3), frame.shape), atol=1e-12
+    )
     np.testing.assert_allclose(np.linalg.det(frame), 1.0, atol=1e-12)
 
 

@@ -1,0 +1,1 @@
+"""The node canvas: a QGraphicsView showing the engine's graph."""

@@ -1,0 +1,329 @@
+"""Widgets drawn inside nodes: number/integer sliders, toggle, value list, panel.
+
+They are painted by their :class:`NodeItem` (not QWidgets: hundreds of nodes stay
+cheap) and get the node's mouse events that fall in their rectangle. Every change
+is an edit through the scene's :class:`~app.gui.editor.Editor`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+from PySide6.QtCore import QPointF, QRectF, QSizeF, Qt
+from PySide6.QtGui import QColor, QCursor, QFontMetricsF, QPainter, QPen
+from PySide6.QtWidgets import QGraphicsSceneMouseEvent, QInputDialog, QMenu
+
+from app.gui import theme
+from app.gui.formatting import format_tree
+
+if TYPE_CHECKING:
+    from app.gui.canvas.node_item import NodeItem
+
+HANDLE_W = 9.0
+VALUE_W = 52.0
+
+
+class InlineWidget:
+    """Base: a rectangle inside a node that paints itself and may take mouse events."""
+
+    def __init__(self, item: NodeItem) -> None:
+        self.item = item
+
+    @property
+    def settings(self) -> dict[str, Any]:
+        return self.item.record.node.settings
+
+    @property
+    def editor(self):
+        return self.item.canvas().editor
+
+    def size(self) -> QSizeF:
+        raise NotImplementedError
+
+    def paint(self, painter: QPainter, rect: QRectF) -> None:
+        raise NotImplementedError
+
+    def press(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> bool:
+        return False
+
+    def move(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+        """Called while a press this widget took is dragged."""
+
+    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+        """Called when a press this widget took ends."""
+
+    def double_click(self, pos: QPointF, rect: QRectF) -> bool:
+        return False
+
+
+class SliderWidget(InlineWidget):
+    """A number or integer slider: drag the handle; double-click to edit min/max/step/value."""
+
+    def __init__(self, item: NodeItem, integer: bool) -> None:
+        super().__init__(item)
+        self.integer = integer
+        self.drag_value: float | None = None
+        self._drag_key: object = None
+
+    def size(self) -> QSizeF:
+        return QSizeF(170.0, 22.0)
+
+    # -- values ----------------------------------------------------------------------
+    def bounds(self) -> tuple[float, float]:
+        low, high = _number(self.settings.get("min"), 0.0), _number(self.settings.get("max"), 1.0)
+        return (low, high) if high > low else (low, low + 1.0)
+
+    def decimals(self) -> int:
+        if self.integer:
+            return 0
+        decimals = self.settings.get("decimals", 2)
+        return int(decimals) if isinstance(decimals, int | float) and not isinstance(decimals, bool) else 2
+
+    def value(self) -> float:
+        if self.drag_value is not None:
+            return self.drag_value
+        return _number(self.settings.get("value"), self.bounds()[0])
+
+    def text(self) -> str:
+        value = self.value()
+        return str(round(value)) if self.integer else f"{value:.{max(0, min(self.decimals(), 15))}f}"
+
+    def track(self, rect: QRectF) -> QRectF:
+        return QRectF(
+            rect.left() + HANDLE_W / 2, rect.top(), rect.width() - VALUE_W - HANDLE_W, rect.height()
+        )
+
+    def handle_x(self, rect: QRectF) -> float:
+        low, high = self.bounds()
+        track = self.track(rect)
+        fraction = min(1.0, max(0.0, (self.value() - low) / (high - low)))
+        return track.left() + fraction * track.width()
+
+    def value_at(self, x: float, rect: QRectF) -> float | int:
+        low, high = self.bounds()
+        track = self.track(rect)
+        fraction = min(1.0, max(0.0, (x - track.left()) / track.width()))
+        value = low + fraction * (high - low)
+        if self.integer:
+            return round(value)
+        return round(value, self.decimals())
+
+    # -- painting --------------------------------------------------------------------
+    def paint(self, painter: QPainter, rect: QRectF) -> None:
+        track = self.track(rect)
+        y = track.center().y()
+        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+        painter.setBrush(theme.WIDGET_TRACK)
+        painter.drawRoundedRect(QRectF(track.left() - HANDLE_W / 2, y - 3, track.width() + HANDLE_W, 6), 3, 3)
+        if self.integer:  # ticks for whole numbers, when they fit
+            low, high = self.bounds()
+            steps = int(high - low)
+            if 0 < steps <= 40:
+                painter.setPen(QPen(QColor("#8a8a8a"), 1.0))
+                for i in range(steps + 1):
+                    x = track.left() + track.width() * i / steps
+                    painter.drawLine(QPointF(x, y + 4), QPointF(x, y + 7))
+        x = self.handle_x(rect)
+        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+        painter.setBrush(theme.WIDGET_HANDLE if self.drag_value is None else theme.WIRE_DRAG)
+        painter.drawRoundedRect(QRectF(x - HANDLE_W / 2, rect.top() + 2, HANDLE_W, rect.height() - 4), 2, 2)
+        box = QRectF(rect.right() - VALUE_W + 4, rect.top() + 2, VALUE_W - 4, rect.height() - 4)
+        painter.setBrush(QColor("white"))
+        painter.drawRoundedRect(box, 3, 3)
+        painter.setPen(theme.NODE_TEXT)
+        painter.setFont(self.item.port_font)
+        painter.drawText(
+            box.adjusted(2, 0, -3, 0),
+            Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
+            self.text(),
+        )
+
+    # -- mouse -----------------------------------------------------------------------
+    def press(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> bool:
+        if event.button() != Qt.MouseButton.LeftButton:
+            return False
+        if abs(pos.x() - self.handle_x(rect)) > HANDLE_W or not self.track(rect).adjusted(
+            -6, 0, 6, 0
+        ).contains(pos):
+            return False
+        self._drag_key = self.editor.new_drag()
+        self.drag_value = self.value()
+        self.item.update()
+        return True
+
+    def move(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+        value = self.value_at(pos.x(), rect)
+        if value == self.drag_value:
+            return
+        self.drag_value = value
+        self.item.update()
+        self.editor.drag_setting(self.item.node_id, "value", value, self._drag_key)
+
+    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+        self.editor.end_drag()
+        self.drag_value = None
+        self.item.update()
+
+    def double_click(self, pos: QPointF, rect: QRectF) -> bool:
+        from app.gui.canvas.slider_dialog import edit_slider
+
+        values = edit_slider(self.item.record.title, dict(self.settings), self.integer)
+        if values:
+            self.editor.set_settings(self.item.node_id, values, text="Edit slider")
+        return True
+
+
+class ToggleWidget(InlineWidget):
+    """True/False: click to switch."""
+
+    def size(self) -> QSizeF:
+        return QSizeF(92.0, 22.0)
+
+    def paint(self, painter: QPainter, rect: QRectF) -> None:
+        on = self.settings.get("value") is True
+        switch = QRectF(rect.left() + 2, rect.center().y() - 8, 32, 16)
+        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+        painter.setBrush(QColor("#58a55c") if on else QColor("#e8e8e8"))
+        painter.drawRoundedRect(switch, 8, 8)
+        painter.setBrush(QColor("white"))
+        knob_x = switch.right() - 8 if on else switch.left() + 8
+        painter.drawEllipse(QPointF(knob_x, switch.center().y()), 6, 6)
+        painter.setPen(theme.NODE_TEXT)
+        painter.setFont(self.item.port_font)
+        painter.drawText(rect.adjusted(40, 0, 0, 0), Qt.AlignmentFlag.AlignVCenter, "True" if on else "False")
+
+    def press(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> bool:
+        if event.button() != Qt.MouseButton.LeftButton:
+            return False
+        self.editor.set_setting(self.item.node_id, "value", self.settings.get("value") is not True)
+        return True
+
+
+class ValueListWidget(InlineWidget):
+    """A drop-down of named values: click to choose."""
+
+    def names(self) -> list[str]:
+        items = self.settings.get("items")
+        if not isinstance(items, list):
+            return []
+        return [str(i.get("name", i.get("value", ""))) if isinstance(i, dict) else str(i) for i in items]
+
+    def size(self) -> QSizeF:
+        metrics = QFontMetricsF(self.item.port_font)
+        widest = max((metrics.horizontalAdvance(n) for n in self.names()), default=40.0)
+        return QSizeF(max(100.0, widest + 34.0), 22.0)
+
+    def paint(self, painter: QPainter, rect: QRectF) -> None:
+        names = self.names()
+        selected = self.settings.get("selected", 0)
+        text = names[selected] if isinstance(selected, int) and 0 <= selected < len(names) else "—"
+        box = rect.adjusted(1, 1, -1, -1)
+        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+        painter.setBrush(QColor("white"))
+        painter.drawRoundedRect(box, 3, 3)
+        painter.setPen(theme.NODE_TEXT)
+        painter.setFont(self.item.port_font)
+        painter.drawText(box.adjusted(6, 0, -18, 0), Qt.AlignmentFlag.AlignVCenter, text)
+        painter.drawText(
+            box.adjusted(0, 0, -5, 0), Qt.AlignmentFlag.AlignVCenter | Qt.AlignmentFlag.AlignRight, "▾"
+        )
+
+    def press(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> bool:
+        if event.button() != Qt.MouseButton.LeftButton:
+            return False
+        menu = QMenu()
+        selected = self.settings.get("selected", 0)
+        for index, name in enumerate(self.names()):
+            action = menu.addAction(name)
+            action.setCheckable(True)
+            action.setChecked(index == selected)
+            action.setData(index)
+        chosen = menu.exec(QCursor.pos())
+        if chosen is not None:
+            self.editor.set_setting(self.item.node_id, "selected", chosen.data())
+        return True
+
+
+class PanelWidget(InlineWidget):
+    """A yellow note: shows the data wired into it, or its own text; grows with content."""
+
+    MAX_LINES = 30
+    WIDTH = 190.0
+
+    def wired(self) -> bool:
+        scene = self.item.scene()
+        return scene is not None and bool(scene.doc.graph.wires_into(self.item.node_id))
+
+    def lines(self) -> list[str]:
+        if self.wired():
+            result = self.item.result
+            if result is None:
+                return ["…"]
+            tree = result.outputs.get("Output")
+            lines = format_tree(tree, self.MAX_LINES) if tree is not None else []
+            return lines or ["<empty>"]
+        text = self.settings.get("text")
+        lines = str(text).splitlines() if text else []
+        return lines or ["Double-click to type"]
+
+    def visible_lines(self) -> list[str]:
+        lines = self.lines()
+        if len(lines) > self.MAX_LINES:
+            lines = [*lines[: self.MAX_LINES - 1], f"… {len(lines) - self.MAX_LINES + 1} more lines"]
+        return lines
+
+    def size(self) -> QSizeF:
+        metrics = QFontMetricsF(self.item.mono_font)
+        count = max(2, len(self.visible_lines()))
+        return QSizeF(self.WIDTH, count * metrics.lineSpacing() + 8)
+
+    def paint(self, painter: QPainter, rect: QRectF) -> None:
+        painter.setPen(QPen(QColor("#b8a640"), 1.0))
+        painter.setBrush(theme.PANEL_PAPER)
+        painter.drawRect(rect)
+        painter.setFont(self.item.mono_font)
+        metrics = QFontMetricsF(self.item.mono_font)
+        y = rect.top() + 4
+        for line in self.visible_lines():
+            is_path = line.startswith("{")
+            painter.setPen(QColor("#6b5d00") if is_path else theme.PANEL_TEXT)
+            shown = metrics.elidedText(line, Qt.TextElideMode.ElideRight, rect.width() - 8)
+            painter.drawText(
+                QRectF(rect.left() + 4, y, rect.width() - 8, metrics.lineSpacing()),
+                Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter,
+                shown,
+            )
+            y += metrics.lineSpacing()
+
+    def double_click(self, pos: QPointF, rect: QRectF) -> bool:
+        if self.wired():
+            return False
+        text, ok = QInputDialog.getMultiLineText(
+            None, "Panel", "One item per line:", str(self.settings.get("text") or "")
+        )
+        if ok:
+            self.editor.set_setting(self.item.node_id, "text", text)
+        return True
+
+
+def widget_for(item: NodeItem) -> InlineWidget | None:
+    """The inline widget a node type shows, if any."""
+    type_id = item.record.type_id
+    if type_id == "params.NumberSlider":
+        return SliderWidget(item, integer=False)
+    if type_id == "params.IntegerSlider":
+        return SliderWidget(item, integer=True)
+    if type_id == "params.Toggle":
+        return ToggleWidget(item)
+    if type_id == "params.ValueList":
+        return ValueListWidget(item)
+    if type_id == "params.Panel":
+        return PanelWidget(item)
+    return None
+
+
+def _number(value: Any, fallback: float) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        return fallback
+    return float(value)

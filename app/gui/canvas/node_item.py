@@ -1,0 +1,325 @@
+"""A node on the canvas: title, named ports, state colour, inline widget, messages.
+
+The item draws one :class:`~engine.graph.NodeRecord`; it never edits it. Moving an
+item is visual until the mouse is released, when the scene turns it into one undo
+command.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtGui import QColor, QFontMetricsF, QPainter, QPainterPath, QPen
+from PySide6.QtWidgets import (
+    QGraphicsItem,
+    QGraphicsSceneHoverEvent,
+    QGraphicsSceneMouseEvent,
+    QStyleOptionGraphicsItem,
+    QWidget,
+)
+
+from app.gui import theme
+from app.gui.canvas.inline_widgets import InlineWidget, widget_for
+from app.gui.canvas.layout import TITLE_H, NodeLayout, compute_layout
+from app.gui.canvas.port_item import PortItem
+from app.gui.formatting import MODIFIER_MARKS, format_item
+from app.gui.icons import node_letters, paint_letter_tile, palette_colour
+from engine.graph import NodeRecord, is_placeholder
+from engine.solver import NodeResult
+
+if TYPE_CHECKING:
+    from app.gui.canvas.scene import CanvasScene
+
+RADIUS = 5.0
+
+
+class NodeItem(QGraphicsItem):
+    """The drawn form of one node record."""
+
+    title_font = theme.ui_font(8.5, bold=True)
+    port_font = theme.ui_font(8.0)
+    mono_font = theme.mono_font(8.0)
+
+    def __init__(self, record: NodeRecord) -> None:
+        super().__init__()
+        self.record = record
+        self.node_id = record.id
+        self.result: NodeResult | None = None
+        self.ports: dict[tuple[bool, str], PortItem] = {}
+        self.layout: NodeLayout | None = None
+        self.widget: InlineWidget | None = widget_for(self)
+        self._widget_grab = False
+        self.setFlags(
+            QGraphicsItem.GraphicsItemFlag.ItemIsMovable
+            | QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
+            | QGraphicsItem.GraphicsItemFlag.ItemSendsGeometryChanges
+        )
+        self.setAcceptHoverEvents(True)
+        self.setPos(QPointF(*record.position))
+        self.rebuild()
+
+    def canvas(self) -> CanvasScene:
+        return self.scene()
+
+    # -- structure -------------------------------------------------------------------
+    @property
+    def state(self) -> str:
+        if not self.record.enabled:
+            return "disabled"
+        return self.result.state if self.result is not None else "pending"
+
+    def port_names(self) -> tuple[list[tuple[str, str, str]], list[tuple[str, str]]]:
+        """``(name, label, type)`` of inputs and ``(name, type)`` of outputs.
+
+        A placeholder (node type not installed) shows the ports its wires and stored
+        inputs name, so its wires still have somewhere to end.
+        """
+        node = self.record.node
+        if is_placeholder(node):
+            scene = self.scene()
+            wires = scene.doc.graph.wires if scene is not None else []
+            ins = list(
+                dict.fromkeys(
+                    [*self.record.inputs, *(w.target_port for w in wires if w.target == self.node_id)]
+                )
+            )
+            outs = list(dict.fromkeys(w.source_port for w in wires if w.source == self.node_id))
+            return [(n, n, "?") for n in ins], [(n, "?") for n in outs]
+        if self.record.type_id == "params.Panel":  # a note: ports without labels, as in Grasshopper
+            return [(p.name, "", p.type.name) for p in node.input_ports()], [
+                (p.name, p.type.name) for p in node.output_ports()
+            ]
+        inputs = []
+        for port in node.input_ports():
+            state = self.record.inputs.get(port.name)
+            marks = "".join(
+                MODIFIER_MARKS[m] for m in (state.modifiers if state else []) if m in MODIFIER_MARKS
+            )
+            inputs.append((port.name, f"{port.name} {marks}".strip(), port.type.name))
+        return inputs, [(p.name, p.type.name) for p in node.output_ports()]
+
+    def rebuild(self) -> None:
+        """Recompute the layout and ports (after a change to settings, modifiers, label)."""
+        self.prepareGeometryChange()
+        inputs, outputs = self.port_names()
+        widget_size = self.widget.size() if self.widget is not None else None
+        self.layout = compute_layout(
+            self.record.title,
+            [(name, label) for name, label, _ in inputs],
+            [(name, "" if self.record.type_id == "params.Panel" else name) for name, _ in outputs],
+            QFontMetricsF(self.title_font),
+            QFontMetricsF(self.port_font),
+            widget_size,
+        )
+        wanted = {(True, name): type_name for name, _, type_name in inputs}
+        wanted.update({(False, name): type_name for name, type_name in outputs})
+        for key in [k for k in self.ports if k not in wanted]:
+            port = self.ports.pop(key)
+            port.setParentItem(None)
+            if port.scene() is not None:
+                port.scene().removeItem(port)
+        for key, type_name in wanted.items():
+            if key not in self.ports:
+                self.ports[key] = PortItem(self, key[1], key[0], type_name)
+        for slot in self.layout.inputs:
+            self.ports[(True, slot.name)].setPos(slot.centre)
+        for slot in self.layout.outputs:
+            self.ports[(False, slot.name)].setPos(slot.centre)
+        for (is_input, name), port in self.ports.items():
+            state = self.record.inputs.get(name) if is_input else None
+            port.has_value = bool(state and state.has_value)
+            port.setToolTip(self._port_tooltip(name, is_input))
+        self.setToolTip(self._tooltip())
+        self.update()
+
+    def input_port(self, name: str) -> PortItem | None:
+        return self.ports.get((True, name))
+
+    def output_port(self, name: str) -> PortItem | None:
+        return self.ports.get((False, name))
+
+    def set_result(self, result: NodeResult | None) -> None:
+        resize = self.widget is not None and self.record.type_id == "params.Panel"
+        self.result = result
+        if resize:
+            self.rebuild()
+        else:
+            self.setToolTip(self._tooltip())
+            self.update()
+
+    def size(self) -> tuple[float, float]:
+        return (self.layout.width, self.layout.height)
+
+    # -- tooltips --------------------------------------------------------------------
+    def _tooltip(self) -> str:
+        record = self.record
+        lines = [f"<b>{_escape(record.title)}</b> &nbsp;<i>{record.type_id}</i> &nbsp;[{record.id}]"]
+        if self.result is not None:
+            lines.append(f"{self.result.state}, {self.result.seconds * 1000:.1f} ms")
+            for message in self.result.messages:
+                level = message.level.name.lower()
+                colour = theme.MESSAGE_COLOURS.get(level, QColor("black")).name()
+                lines.append(f"<span style='color:{colour}'>{level}: {_escape(message.text)}</span>")
+        if not record.preview:
+            lines.append("<i>preview off</i>")
+        return "<br>".join(lines)
+
+    def _port_tooltip(self, name: str, is_input: bool) -> str:
+        node = self.record.node
+        port = node.input_port(name) if is_input else node.output_port(name)
+        if port is None:
+            return name
+        text = f"<b>{port.name}</b> ({port.nickname}) — {port.type.name}, {port.access.value} access"
+        if port.description:
+            text += f"<br>{_escape(port.description)}"
+        state = self.record.inputs.get(name) if is_input else None
+        if state is not None and state.has_value:
+            text += f"<br>value: {_escape(str(state.value))}"
+        if state is not None and state.modifiers:
+            text += f"<br>modifiers: {', '.join(state.modifiers)}"
+        if not is_input and self.result is not None and name in self.result.outputs:
+            tree = self.result.outputs[name]
+            text += f"<br>{tree.item_count} items in {tree.branch_count} branches"
+            first = tree.first()
+            if first is not None:
+                text += f"; first: {_escape(format_item(first))}"
+        return text
+
+    # -- painting --------------------------------------------------------------------
+    def boundingRect(self) -> QRectF:
+        return self.layout.rect.adjusted(-2, -8, 8, 2)
+
+    def shape(self) -> QPainterPath:
+        path = QPainterPath()
+        path.addRoundedRect(self.layout.rect, RADIUS, RADIUS)
+        return path
+
+    def body_colour(self) -> QColor:
+        if self.isSelected():
+            return theme.SELECTED_BODY
+        colour = theme.STATE_BODY.get(self.state, theme.NODE_BODY)
+        if not self.record.preview and self.state not in ("disabled",):
+            colour = colour.darker(118)
+        return colour
+
+    def paint(
+        self, painter: QPainter, option: QStyleOptionGraphicsItem, widget: QWidget | None = None
+    ) -> None:
+        layout = self.layout
+        rect = layout.rect
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        if self.state == "disabled":
+            painter.setOpacity(0.55)
+        body = self.body_colour()
+        outline = QPen(
+            theme.SELECTED_OUTLINE if self.isSelected() else theme.NODE_OUTLINE,
+            2.0 if self.isSelected() else 1.0,
+        )
+        if self.state == "missing":
+            outline.setStyle(Qt.PenStyle.DashLine)
+        painter.setPen(outline)
+        painter.setBrush(body)
+        painter.drawRoundedRect(rect, RADIUS, RADIUS)
+        # title bar
+        clip = QPainterPath()
+        clip.addRoundedRect(rect, RADIUS, RADIUS)
+        painter.save()
+        painter.setClipPath(clip)
+        painter.setPen(Qt.PenStyle.NoPen)
+        painter.setBrush(body.darker(118))
+        painter.drawRect(QRectF(0, 0, rect.width(), TITLE_H))
+        painter.restore()
+        painter.setPen(QPen(body.darker(150), 1.0))
+        painter.drawLine(QPointF(0.5, TITLE_H), QPointF(rect.width() - 0.5, TITLE_H))
+        painter.setFont(self.title_font)
+        painter.setPen(theme.NODE_TEXT)
+        title_rect = layout.title_rect.adjusted(6, 0, -6, 0)
+        title = QFontMetricsF(self.title_font).elidedText(
+            self.record.title, Qt.TextElideMode.ElideRight, title_rect.width()
+        )
+        painter.drawText(title_rect, Qt.AlignmentFlag.AlignCenter, title)
+        # ports
+        painter.setFont(self.port_font)
+        for slot in layout.inputs:
+            painter.drawText(slot.label_rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, slot.text)
+        for slot in layout.outputs:
+            painter.drawText(slot.label_rect, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, slot.text)
+        if layout.icon_rect is not None:
+            cls = type(self.record.node)
+            palette = self.record.type_id.partition(".")[0]
+            letters = node_letters(cls) if not is_placeholder(self.record.node) else "?"
+            paint_letter_tile(painter, layout.icon_rect, letters, palette_colour(palette))
+        if self.widget is not None and layout.widget_rect is not None:
+            self.widget.paint(painter, layout.widget_rect)
+        self._paint_badge(painter)
+
+    def _paint_badge(self, painter: QPainter) -> None:
+        """A balloon at the top-right corner when the node has something to say."""
+        if self.result is None or not self.result.messages:
+            return
+        worst = max(m.level for m in self.result.messages).name.lower()
+        colour = theme.MESSAGE_COLOURS.get(worst, QColor("#606060"))
+        centre = QPointF(self.layout.width - 1, -1)
+        painter.setOpacity(1.0)
+        painter.setPen(QPen(colour.darker(140), 1.0))
+        painter.setBrush(colour)
+        painter.drawEllipse(centre, 7, 7)
+        painter.setPen(QColor("white"))
+        painter.setFont(self.title_font)
+        painter.drawText(
+            QRectF(centre.x() - 7, centre.y() - 7, 14, 14),
+            Qt.AlignmentFlag.AlignCenter,
+            "!" if worst != "remark" else "i",
+        )
+
+    # -- events ----------------------------------------------------------------------
+    def itemChange(self, change: QGraphicsItem.GraphicsItemChange, value: Any) -> Any:
+        if change == QGraphicsItem.GraphicsItemChange.ItemPositionHasChanged and self.scene() is not None:
+            self.canvas().node_item_moved(self)
+        elif change == QGraphicsItem.GraphicsItemChange.ItemSelectedHasChanged:
+            self.update()
+        return super().itemChange(change, value)
+
+    def _in_widget(self, pos: QPointF) -> bool:
+        return (
+            self.widget is not None
+            and self.layout.widget_rect is not None
+            and self.layout.widget_rect.contains(pos)
+        )
+
+    def mousePressEvent(self, event: QGraphicsSceneMouseEvent) -> None:
+        if self._in_widget(event.pos()) and self.widget.press(event.pos(), self.layout.widget_rect, event):
+            self._widget_grab = True
+            event.accept()
+            return
+        super().mousePressEvent(event)
+
+    def mouseMoveEvent(self, event: QGraphicsSceneMouseEvent) -> None:
+        if self._widget_grab:
+            self.widget.move(event.pos(), self.layout.widget_rect, event)
+            return
+        super().mouseMoveEvent(event)
+
+    def mouseReleaseEvent(self, event: QGraphicsSceneMouseEvent) -> None:
+        if self._widget_grab:
+            self._widget_grab = False
+            self.widget.release(event.pos(), self.layout.widget_rect, event)
+            return
+        super().mouseReleaseEvent(event)
+
+    def mouseDoubleClickEvent(self, event: QGraphicsSceneMouseEvent) -> None:
+        if self._in_widget(event.pos()) and self.widget.double_click(event.pos(), self.layout.widget_rect):
+            return
+        if event.pos().y() <= TITLE_H:
+            self.canvas().rename_node(self.node_id)
+            return
+        super().mouseDoubleClickEvent(event)
+
+    def hoverEnterEvent(self, event: QGraphicsSceneHoverEvent) -> None:
+        self.setToolTip(self._tooltip())
+        super().hoverEnterEvent(event)
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

@@ -1,0 +1,239 @@
+"""The canvas scene: items kept in step with the engine graph's change events.
+
+The scene owns no data. It creates, updates and removes node, wire and group items
+when the :class:`~app.gui.document.Document` reports a change, and recolours them
+when solve results arrive.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject, QPointF, QRectF, Signal
+from PySide6.QtWidgets import QGraphicsScene, QInputDialog
+
+from app.gui.canvas.group_item import GroupItem
+from app.gui.canvas.node_item import NodeItem
+from app.gui.canvas.wire_item import WireItem
+from app.gui.document import Document
+from app.gui.editor import Editor
+from app.gui.solve_controller import SolveOutcome
+from engine.graph import GraphEvent, Wire
+from engine.node import LIST, TREE
+
+#: Events that change how a node is drawn (its ports, labels, widget).
+REDRAW_EVENTS = {
+    "setting_changed",
+    "input_changed",
+    "modifiers_changed",
+    "enabled_changed",
+    "preview_changed",
+    "label_changed",
+}
+
+
+class CanvasScene(QGraphicsScene):
+    """Node, wire and group items for the document's graph."""
+
+    help_requested = Signal(str)
+
+    def __init__(self, doc: Document, editor: Editor, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.editor = editor
+        self.nodes: dict[str, NodeItem] = {}
+        self.wires: dict[Wire, WireItem] = {}
+        self.groups: dict[str, GroupItem] = {}
+        self._syncing_move = False
+        self.setItemIndexMethod(QGraphicsScene.ItemIndexMethod.NoIndex)
+        doc.graph_replaced.connect(self.rebuild)
+        doc.graph_changed.connect(self.on_graph_event)
+        doc.groups_changed.connect(self.refresh_groups)
+        doc.results_changed.connect(self.apply_results)
+        self.selectionChanged.connect(self._highlight_wires)
+        self.rebuild()
+
+    # -- building --------------------------------------------------------------------
+    def rebuild(self) -> None:
+        self.clear()
+        self.nodes.clear()
+        self.wires.clear()
+        self.groups.clear()
+        graph = self.doc.graph
+        for record in graph.nodes.values():
+            self._add_node(record.id)
+        for wire in graph.wires:
+            self._add_wire(wire)
+        self.refresh_groups()
+        self.update_scene_rect()
+
+    def _add_node(self, node_id: str) -> NodeItem:
+        item = NodeItem(self.doc.graph.nodes[node_id])
+        self.addItem(item)
+        item.rebuild()
+        item.set_result(self.doc.result(node_id))
+        self.nodes[node_id] = item
+        return item
+
+    def _add_wire(self, wire: Wire) -> WireItem | None:
+        source, target = self.nodes.get(wire.source), self.nodes.get(wire.target)
+        if source is None or target is None:
+            return None
+        if source.output_port(wire.source_port) is None or target.input_port(wire.target_port) is None:
+            source.rebuild()  # a placeholder learns its ports from its wires
+            target.rebuild()
+        out_port, in_port = source.output_port(wire.source_port), target.input_port(wire.target_port)
+        if out_port is None or in_port is None:
+            return None
+        item = WireItem(wire, out_port, in_port)
+        item.set_kind(self._wire_kind(wire))
+        self.addItem(item)
+        self.wires[wire] = item
+        return item
+
+    def _remove_wire(self, wire: Wire) -> None:
+        item = self.wires.pop(wire, None)
+        if item is not None:
+            self.removeItem(item)
+
+    # -- engine events ---------------------------------------------------------------
+    def on_graph_event(self, event: GraphEvent) -> None:
+        kind, node_id = event.kind, event.node_id
+        if kind == "node_added":
+            self._add_node(node_id)
+        elif kind == "node_removed":
+            item = self.nodes.pop(node_id, None)
+            if item is not None:
+                self.removeItem(item)
+        elif kind == "wire_added":
+            self._add_wire(event.data["wire"])
+            self._refresh_node(event.data["wire"].target)
+        elif kind == "wire_removed":
+            self._remove_wire(event.data["wire"])
+            self._refresh_node(event.data["wire"].target)
+        elif kind == "node_moved":
+            item = self.nodes.get(node_id)
+            if item is not None and (item.pos().x(), item.pos().y()) != tuple(event.data["new"]):
+                self._syncing_move = True
+                item.setPos(QPointF(*event.data["new"]))
+                self._syncing_move = False
+                self.node_item_moved(item)
+        elif kind in REDRAW_EVENTS:
+            self._refresh_node(node_id)
+        elif kind in ("group_added", "group_removed"):
+            self.refresh_groups()
+        self.update_scene_rect()
+
+    def _refresh_node(self, node_id: str | None) -> None:
+        item = self.nodes.get(node_id) if node_id else None
+        if item is None:
+            return
+        item.rebuild()
+        self.node_item_moved(item)
+
+    def node_item_moved(self, item: NodeItem) -> None:
+        """Keep wires and group boxes attached while an item moves."""
+        for wire, wire_item in self.wires.items():
+            if item.node_id in (wire.source, wire.target):
+                wire_item.update_path()
+        for group in self.doc.graph.groups:
+            if item.node_id in group.nodes:
+                self._fit_group(group.id)
+
+    def refresh_groups(self) -> None:
+        present = {g.id for g in self.doc.graph.groups}
+        for group_id in [g for g in self.groups if g not in present]:
+            self.removeItem(self.groups.pop(group_id))
+        for group in self.doc.graph.groups:
+            if group.id not in self.groups:
+                item = GroupItem(group.id)
+                self.addItem(item)
+                self.groups[group.id] = item
+            self._fit_group(group.id)
+
+    def _fit_group(self, group_id: str) -> None:
+        group = next((g for g in self.doc.graph.groups if g.id == group_id), None)
+        item = self.groups.get(group_id)
+        if group is None or item is None:
+            return
+        rects = [self.nodes[n].sceneBoundingRect() for n in group.nodes if n in self.nodes]
+        item.set_content(group.title, group.colour, rects)
+
+    # -- results ---------------------------------------------------------------------
+    def apply_results(self, outcome: SolveOutcome) -> None:
+        for node_id, item in self.nodes.items():
+            item.set_result(self.doc.result(node_id))
+        for wire, item in self.wires.items():
+            item.set_kind(self._wire_kind(wire))
+        for group_id in self.groups:
+            self._fit_group(group_id)
+        self.update_scene_rect()
+
+    def _wire_kind(self, wire: Wire) -> str:
+        """``item``, ``list`` or ``tree``, from the data the wire carried last."""
+        result = self.doc.result(wire.source)
+        tree = result.outputs.get(wire.source_port) if result is not None else None
+        if tree is not None and not tree.is_empty():
+            if tree.branch_count > 1:
+                return "tree"
+            return "list" if tree.item_count > 1 else "item"
+        record = self.doc.graph.nodes.get(wire.source)
+        port = record.node.output_port(wire.source_port) if record else None
+        if port is not None and port.access is TREE:
+            return "tree"
+        if port is not None and port.access is LIST:
+            return "list"
+        return "item"
+
+    # -- selection and moves -----------------------------------------------------------
+    def selected_node_ids(self) -> list[str]:
+        return [i.node_id for i in self.selectedItems() if isinstance(i, NodeItem)]
+
+    def select_nodes(self, node_ids: list[str]) -> None:
+        self.clearSelection()
+        for node_id in node_ids:
+            if node_id in self.nodes:
+                self.nodes[node_id].setSelected(True)
+
+    def _highlight_wires(self) -> None:
+        selected = set(self.selected_node_ids())
+        for wire, item in self.wires.items():
+            item.set_highlighted(wire.source in selected or wire.target in selected)
+
+    def commit_moves(self) -> None:
+        """Turn items dragged to new places into one Move command."""
+        moved = {}
+        for node_id, item in self.nodes.items():
+            record = self.doc.graph.nodes.get(node_id)
+            if record is not None and (item.pos().x(), item.pos().y()) != tuple(record.position):
+                moved[node_id] = (item.pos().x(), item.pos().y())
+        if moved:
+            self.editor.move(moved)
+            for node_id in moved:  # positions are rounded to whole units
+                item = self.nodes[node_id]
+                item.setPos(QPointF(*self.doc.graph.nodes[node_id].position))
+
+    def sizes(self, node_ids: list[str]) -> dict[str, tuple[float, float]]:
+        return {n: self.nodes[n].size() for n in node_ids if n in self.nodes}
+
+    def rename_node(self, node_id: str) -> None:
+        record = self.doc.graph.nodes[node_id]
+        label, ok = QInputDialog.getText(
+            None,
+            "Rename",
+            f"Label of {record.node.name()} [{node_id}]:",
+            text=record.label or record.node.name(),
+        )
+        if ok:
+            self.editor.rename(node_id, "" if label == record.node.name() else label)
+
+    def items_rect(self) -> QRectF:
+        rect = QRectF()
+        for item in [*self.nodes.values(), *self.groups.values()]:
+            rect = rect.united(item.sceneBoundingRect())
+        return rect
+
+    def update_scene_rect(self) -> None:
+        """A generous scene rectangle so the canvas can always be panned past the nodes."""
+        rect = self.items_rect()
+        if rect.isNull():
+            rect = QRectF(0, 0, 800, 600)
+        self.setSceneRect(rect.adjusted(-4000, -4000, 4000, 4000))

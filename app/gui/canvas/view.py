@@ -1,0 +1,381 @@
+"""The canvas view: zoom about the cursor, pan, box select, drag wires, search, drop nodes.
+
+Mouse, as in Grasshopper: drag from a port to wire it (Shift adds to what feeds the
+input, Ctrl removes the wire); drop a wire on empty canvas to search for a node that
+takes it; double-click empty canvas to search; wheel zooms about the cursor; middle or
+right drag pans; left drag on empty canvas selects with a box; Alt-drag duplicates.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QMimeData, QPoint, QPointF, QRectF, Qt, Signal
+from PySide6.QtGui import (
+    QContextMenuEvent,
+    QDragEnterEvent,
+    QDragMoveEvent,
+    QDropEvent,
+    QKeyEvent,
+    QMouseEvent,
+    QPainter,
+    QPen,
+    QWheelEvent,
+)
+from PySide6.QtWidgets import QGraphicsView, QWidget
+
+from app.gui import theme
+from app.gui.canvas import context_menus
+from app.gui.canvas.group_item import GroupItem
+from app.gui.canvas.node_item import NodeItem
+from app.gui.canvas.port_item import PortItem
+from app.gui.canvas.scene import CanvasScene
+from app.gui.canvas.wire_item import DragWire
+from app.gui.fuzzy import Entry
+from app.gui.search_popup import SearchPopup
+from engine.types import can_cast, get_type
+
+NODE_MIME = "application/x-torsal-node-type"
+ZOOM_STEP = 1.15
+ZOOM_RANGE = (0.15, 4.0)
+PAN_THRESHOLD = 4
+
+
+class CanvasView(QGraphicsView):
+    """Shows a :class:`CanvasScene` and turns mouse gestures into edits."""
+
+    node_placed = Signal(str)
+    escape_pressed = Signal()
+
+    def __init__(self, scene: CanvasScene, popup: SearchPopup, parent: QWidget | None = None) -> None:
+        super().__init__(scene, parent)
+        self.canvas = scene
+        self.popup = popup
+        self.setRenderHints(QPainter.RenderHint.Antialiasing | QPainter.RenderHint.TextAntialiasing)
+        self.setViewportUpdateMode(QGraphicsView.ViewportUpdateMode.SmartViewportUpdate)
+        self.setTransformationAnchor(QGraphicsView.ViewportAnchor.AnchorUnderMouse)
+        self.setResizeAnchor(QGraphicsView.ViewportAnchor.AnchorViewCenter)
+        self.setDragMode(QGraphicsView.DragMode.RubberBandDrag)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setAcceptDrops(True)
+        self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
+        self._drag_wire: DragWire | None = None
+        self._pan_start: QPoint | None = None
+        self._panned = False
+        self._alt_drag: tuple[QPointF, dict[NodeItem, QPointF]] | None = None
+        self._pending_wire: PortItem | None = None
+        self._place_at = QPointF()
+        popup.chosen.connect(self._place_chosen)
+        popup.dismissed.connect(self._forget_pending_wire)
+
+    # -- helpers ---------------------------------------------------------------------
+    def zoom(self) -> float:
+        return self.transform().m11()
+
+    def zoom_by(self, factor: float, anchor: QPoint | None = None) -> None:
+        """Zoom by ``factor`` keeping the scene point under ``anchor`` (view coordinates) still."""
+        target = min(ZOOM_RANGE[1], max(ZOOM_RANGE[0], self.zoom() * factor))
+        factor = target / self.zoom()
+        if anchor is None:
+            self.scale(factor, factor)
+            return
+        before = self.mapToScene(anchor)
+        self.scale(factor, factor)
+        after = self.mapToScene(anchor)
+        delta = after - before
+        self.translate(delta.x(), delta.y())
+
+    def zoom_to_fit(self) -> None:
+        rect = self.canvas.items_rect()
+        if rect.isNull():
+            return
+        self.fitInView(rect.adjusted(-40, -40, 40, 40), Qt.AspectRatioMode.KeepAspectRatio)
+        if self.zoom() > 1.25:
+            self.resetTransform()
+            self.scale(1.25, 1.25)
+            self.centerOn(rect.center())
+
+    def _port_at(self, view_pos: QPoint) -> PortItem | None:
+        for item in self.items(view_pos):
+            if isinstance(item, PortItem):
+                return item
+        return None
+
+    def _node_at(self, view_pos: QPoint) -> NodeItem | None:
+        item = self.itemAt(view_pos)
+        while item is not None and not isinstance(item, NodeItem):
+            item = item.parentItem()
+        return item
+
+    # -- painting --------------------------------------------------------------------
+    def drawBackground(self, painter: QPainter, rect: QRectF) -> None:
+        painter.fillRect(rect, theme.CANVAS_BACKGROUND)
+        if self.zoom() < 0.35:
+            return
+        step = 20.0
+        left = int(rect.left() // step) * step
+        top = int(rect.top() // step) * step
+        for colour, spacing in ((theme.GRID_MINOR, step), (theme.GRID_MAJOR, step * 5)):
+            painter.setPen(QPen(colour, 0))
+            x = left - left % spacing
+            while x < rect.right():
+                painter.drawLine(QPointF(x, rect.top()), QPointF(x, rect.bottom()))
+                x += spacing
+            y = top - top % spacing
+            while y < rect.bottom():
+                painter.drawLine(QPointF(rect.left(), y), QPointF(rect.right(), y))
+                y += spacing
+
+    # -- mouse -----------------------------------------------------------------------
+    def wheelEvent(self, event: QWheelEvent) -> None:
+        steps = event.angleDelta().y() / 120.0
+        if steps:
+            self.zoom_by(ZOOM_STEP**steps, event.position().toPoint())
+        event.accept()
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        pos = event.position().toPoint()
+        under = self.itemAt(pos)
+        if event.button() == Qt.MouseButton.MiddleButton or (
+            event.button() == Qt.MouseButton.RightButton and (under is None or isinstance(under, GroupItem))
+        ):
+            self._pan_start = pos
+            self._panned = False
+            event.accept()
+            return
+        if event.button() == Qt.MouseButton.LeftButton:
+            port = self._port_at(pos)
+            if port is not None:
+                self._drag_wire = DragWire(port)
+                self.canvas.addItem(self._drag_wire)
+                self._drag_wire.follow(self.mapToScene(pos))
+                event.accept()
+                return
+            node = self._node_at(pos)
+            if node is not None and event.modifiers() & Qt.KeyboardModifier.AltModifier:
+                self._start_alt_drag(node, self.mapToScene(pos))
+                event.accept()
+                return
+        super().mousePressEvent(event)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        pos = event.position().toPoint()
+        if self._pan_start is not None:
+            delta = pos - self._pan_start
+            if self._panned or delta.manhattanLength() > PAN_THRESHOLD:
+                self._panned = True
+                self._pan_start = pos
+                scale = self.zoom()
+                self.translate(delta.x() / scale, delta.y() / scale)
+            event.accept()
+            return
+        if self._drag_wire is not None:
+            self._drag_wire.follow(self.mapToScene(pos))
+            event.accept()
+            return
+        if self._alt_drag is not None:
+            start, items = self._alt_drag
+            delta = self.mapToScene(pos) - start
+            for item, origin in items.items():
+                item.setPos(origin + delta)
+            event.accept()
+            return
+        super().mouseMoveEvent(event)
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        pos = event.position().toPoint()
+        if self._pan_start is not None and event.button() in (
+            Qt.MouseButton.MiddleButton,
+            Qt.MouseButton.RightButton,
+        ):
+            panned = self._panned
+            self._pan_start = None
+            if not panned and event.button() == Qt.MouseButton.RightButton:
+                self._context_menu(pos, event.globalPosition().toPoint())
+            event.accept()
+            return
+        if self._drag_wire is not None and event.button() == Qt.MouseButton.LeftButton:
+            self._finish_wire(pos, event.modifiers(), event.globalPosition().toPoint())
+            event.accept()
+            return
+        if self._alt_drag is not None and event.button() == Qt.MouseButton.LeftButton:
+            self._alt_drag = None
+            self.canvas.commit_moves()
+            self.canvas.doc.undo_stack.endMacro()
+            event.accept()
+            return
+        super().mouseReleaseEvent(event)
+        if event.button() == Qt.MouseButton.LeftButton:
+            self.canvas.commit_moves()
+
+    def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:
+        pos = event.position().toPoint()
+        item = self.itemAt(pos)
+        if (item is None or isinstance(item, GroupItem)) and event.button() == Qt.MouseButton.LeftButton:
+            self.open_search(self.mapToScene(pos), event.globalPosition().toPoint())
+            event.accept()
+            return
+        super().mouseDoubleClickEvent(event)
+
+    def contextMenuEvent(self, event: QContextMenuEvent) -> None:
+        # Right-button menus open on release (so right-drag can pan); keyboard menus here.
+        if event.reason() != QContextMenuEvent.Reason.Mouse:
+            self._context_menu(event.pos(), event.globalPos())
+        event.accept()
+
+    def _context_menu(self, pos: QPoint, global_pos: QPoint) -> None:
+        port = self._port_at(pos)
+        if port is not None:
+            menu = context_menus.port_menu(self.canvas, port)
+        else:
+            node = self._node_at(pos)
+            if node is not None:
+                if not node.isSelected():
+                    self.canvas.select_nodes([node.node_id])
+                menu = context_menus.node_menu(self.canvas, node)
+            else:
+                menu = context_menus.canvas_menu(self, self.mapToScene(pos))
+        if menu is not None:
+            menu.exec(global_pos)
+
+    def keyPressEvent(self, event: QKeyEvent) -> None:
+        if event.key() == Qt.Key.Key_Escape:
+            if self._drag_wire is not None:  # Esc first drops a wire being dragged
+                self.canvas.removeItem(self._drag_wire)
+                self._drag_wire = None
+            else:
+                self.escape_pressed.emit()
+            event.accept()
+            return
+        super().keyPressEvent(event)
+
+    # -- wires -----------------------------------------------------------------------
+    def _finish_wire(self, pos: QPoint, modifiers: Qt.KeyboardModifier, global_pos: QPoint) -> None:
+        drag, self._drag_wire = self._drag_wire, None
+        self.canvas.removeItem(drag)
+        start = drag.port
+        end = self._port_at(pos)
+        if end is None:
+            if self.itemAt(pos) is None or isinstance(self.itemAt(pos), GroupItem):
+                self._pending_wire = start
+                accept, note = self._type_filter(start)
+                self.open_search(self.mapToScene(pos), global_pos, accept, note)
+            return
+        if end.is_input == start.is_input or end.node_id == start.node_id:
+            return
+        out_port, in_port = (start, end) if start.is_output else (end, start)
+        mode = "replace"
+        if modifiers & Qt.KeyboardModifier.ShiftModifier:
+            mode = "add"
+        elif modifiers & Qt.KeyboardModifier.ControlModifier:
+            mode = "remove"
+        self.canvas.editor.connect(out_port.node_id, out_port.name, in_port.node_id, in_port.name, mode)
+
+    def _type_filter(self, port: PortItem) -> tuple[object, str]:
+        try:
+            value_type = get_type(port.type_name)
+        except KeyError:
+            return None, ""
+        if port.is_output:
+
+            def accept(entry: Entry) -> bool:
+                return any(can_cast(value_type, p.type) for p in entry.cls.inputs)
+
+            return accept, f"Nodes that take {value_type.name}"
+
+        def accept_source(entry: Entry) -> bool:
+            return any(can_cast(p.type, value_type) for p in entry.cls.outputs)
+
+        return accept_source, f"Nodes that give {value_type.name}"
+
+    def _forget_pending_wire(self) -> None:
+        self._pending_wire = None
+
+    # -- search and placing ------------------------------------------------------------
+    def open_search(
+        self, scene_pos: QPointF, global_pos: QPoint, accept: object = None, note: str = ""
+    ) -> None:
+        self._place_at = scene_pos
+        self.popup.open_at(global_pos, accept, note)
+
+    def _place_chosen(self, type_id: str) -> None:
+        pending, self._pending_wire = self._pending_wire, None
+        editor = self.canvas.editor
+        doc = self.canvas.doc
+        position = (self._place_at.x(), self._place_at.y())
+        if pending is None:
+            node_id = editor.add_node(type_id, position)
+        else:
+            doc.undo_stack.beginMacro("Add and connect")
+            if pending.is_output:
+                node_id = editor.add_node(type_id, position)
+            else:  # the new node feeds the input: put it to the left of the drop point
+                node_id = editor.add_node(type_id, (position[0] - 160, position[1]))
+            if node_id is not None:
+                self._connect_new(pending, node_id)
+            doc.undo_stack.endMacro()
+        if node_id is not None:
+            self.canvas.select_nodes([node_id])
+            self.node_placed.emit(node_id)
+
+    def _connect_new(self, port: PortItem, node_id: str) -> None:
+        """Wire a just-placed node to the port a wire was dragged from."""
+        graph = self.canvas.doc.graph
+        node = graph.nodes[node_id].node
+        other = graph.nodes[port.node_id].node
+        if port.is_output:
+            source = other.output_port(port.name)
+            candidates = [p for p in node.input_ports() if can_cast(source.type, p.type)]
+            candidates.sort(key=lambda p: p.type is not source.type)
+            if candidates:
+                self.canvas.editor.connect(port.node_id, port.name, node_id, candidates[0].name)
+        else:
+            target = other.input_port(port.name)
+            candidates = [p for p in node.output_ports() if can_cast(p.type, target.type)]
+            candidates.sort(key=lambda p: p.type is not target.type)
+            if candidates:
+                self.canvas.editor.connect(node_id, candidates[0].name, port.node_id, port.name)
+
+    # -- Alt-drag duplicates ---------------------------------------------------------
+    def _start_alt_drag(self, node: NodeItem, scene_pos: QPointF) -> None:
+        if not node.isSelected():
+            self.canvas.select_nodes([node.node_id])
+        ids = self.canvas.selected_node_ids()
+        self.canvas.doc.undo_stack.beginMacro("Duplicate")
+        new_ids = self.canvas.editor.duplicate(ids, offset=(0.0, 0.0))
+        self.canvas.select_nodes(new_ids)
+        items = {self.canvas.nodes[n]: self.canvas.nodes[n].pos() for n in new_ids}
+        self._alt_drag = (scene_pos, items)
+
+    # -- drops from the palette ------------------------------------------------------
+    def dragEnterEvent(self, event: QDragEnterEvent) -> None:
+        if event.mimeData().hasFormat(NODE_MIME):
+            event.acceptProposedAction()
+        else:
+            event.ignore()
+
+    def dragMoveEvent(self, event: QDragMoveEvent) -> None:
+        if event.mimeData().hasFormat(NODE_MIME):
+            event.acceptProposedAction()
+        else:
+            event.ignore()
+
+    def dropEvent(self, event: QDropEvent) -> None:
+        mime: QMimeData = event.mimeData()
+        if not mime.hasFormat(NODE_MIME):
+            event.ignore()
+            return
+        type_id = bytes(mime.data(NODE_MIME)).decode("utf-8")
+        scene_pos = self.mapToScene(event.position().toPoint())
+        node_id = self.canvas.editor.add_node(type_id, (scene_pos.x(), scene_pos.y()))
+        if node_id:
+            self.canvas.select_nodes([node_id])
+        event.acceptProposedAction()
+
+    def place_in_view(self, type_id: str) -> str | None:
+        """Add a node near the middle of what the view shows (a palette click)."""
+        centre = self.mapToScene(self.viewport().rect().center())
+        offset = 12 * (len(self.canvas.nodes) % 6)
+        node_id = self.canvas.editor.add_node(type_id, (centre.x() - 60 + offset, centre.y() - 30 + offset))
+        if node_id:
+            self.canvas.select_nodes([node_id])
+        return node_id

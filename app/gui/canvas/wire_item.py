@@ -1,0 +1,79 @@
+"""Wires: bezier curves from an output port to an input port.
+
+Drawn the way Grasshopper users read them: a thin line carries one item, a thick line
+a list, a dashed line a tree of several branches.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QPointF, Qt
+from PySide6.QtGui import QPainterPath, QPen
+from PySide6.QtWidgets import QGraphicsPathItem
+
+from app.gui import theme
+from engine.graph import Wire
+
+WIDTHS = {"item": 1.3, "list": 3.0, "tree": 2.2}
+
+
+def wire_path(start: QPointF, end: QPointF) -> QPainterPath:
+    """A horizontal-tangent cubic from ``start`` to ``end``."""
+    dx = max(40.0, abs(end.x() - start.x()) * 0.5)
+    path = QPainterPath(start)
+    path.cubicTo(QPointF(start.x() + dx, start.y()), QPointF(end.x() - dx, end.y()), end)
+    return path
+
+
+class WireItem(QGraphicsPathItem):
+    """One engine wire between two port items."""
+
+    def __init__(self, wire: Wire, source_port: object, target_port: object) -> None:
+        super().__init__()
+        self.wire = wire
+        self.source_port = source_port
+        self.target_port = target_port
+        self.kind = "item"
+        self.highlighted = False
+        self.setZValue(-1)
+        self.update_path()
+        self.update_pen()
+
+    def update_path(self) -> None:
+        self.setPath(wire_path(self.source_port.anchor(), self.target_port.anchor()))
+
+    def set_kind(self, kind: str) -> None:
+        if kind != self.kind:
+            self.kind = kind
+            self.update_pen()
+
+    def set_highlighted(self, on: bool) -> None:
+        if on != self.highlighted:
+            self.highlighted = on
+            self.update_pen()
+
+    def update_pen(self) -> None:
+        colour = theme.WIRE_SELECTED if self.highlighted else theme.WIRE
+        pen = QPen(colour, WIDTHS[self.kind])
+        pen.setCapStyle(Qt.PenCapStyle.RoundCap)
+        if self.kind == "tree":
+            pen.setStyle(Qt.PenStyle.DashLine)
+        self.setPen(pen)
+
+
+class DragWire(QGraphicsPathItem):
+    """The wire that follows the mouse while a connection is being dragged."""
+
+    def __init__(self, port: object) -> None:
+        super().__init__()
+        self.port = port
+        pen = QPen(theme.WIRE_DRAG, 2.0)
+        pen.setStyle(Qt.PenStyle.DashLine)
+        self.setPen(pen)
+        self.setZValue(10)
+
+    def follow(self, scene_pos: QPointF) -> None:
+        anchor = self.port.anchor()
+        if self.port.is_input:
+            self.setPath(wire_path(scene_pos, anchor))
+        else:
+            self.setPath(wire_path(anchor, scene_pos))

@@ -1,0 +1,134 @@
+"""The open document: one engine graph, its file, undo history, solver and results.
+
+:class:`Document` is the only place the GUI's graph lives. Widgets never edit the
+graph directly: they push undo commands (:mod:`app.gui.commands`), which edit through
+:meth:`Document.editing` so the worker thread is paused first. Engine change events
+are relayed as the Qt signal :attr:`Document.graph_changed`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from PySide6.QtCore import QObject, Signal
+from PySide6.QtGui import QUndoStack
+
+from app.gui.solve_controller import SolveController, SolveOutcome
+from engine.graph import Graph, GraphEvent
+from engine.graphfile import read_graph, write_graph
+from engine.registry import Registry
+from engine.solver import NodeResult, Solver
+
+
+class Document(QObject):
+    """A graph being edited, with its path, dirty state and latest solve results."""
+
+    graph_replaced = Signal()
+    graph_changed = Signal(object)  # engine.graph.GraphEvent
+    groups_changed = Signal()  # group edits the engine does not report (see graph_order)
+    results_changed = Signal(object)  # SolveOutcome
+    dirty_changed = Signal(bool)
+    path_changed = Signal(object)  # Path | None
+
+    def __init__(self, registry: Registry, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.registry = registry
+        self.undo_stack = QUndoStack(self)
+        self.undo_stack.cleanChanged.connect(lambda clean: self.dirty_changed.emit(not clean))
+        self.solves = SolveController(self)
+        self.solves.finished.connect(self._on_solved)
+        self.path: Path | None = None
+        self.results: dict[str, NodeResult] = {}
+        self.last_outcome: SolveOutcome | None = None
+        self.graph = Graph()
+        self.solver = Solver(self.graph)
+        self._unsubscribe = self.graph.subscribe(self._relay)
+        self.solves.set_solver(self.solver)
+
+    # -- documents -------------------------------------------------------------------
+    def replace(self, graph: Graph, path: Path | None, *, clean: bool = True) -> None:
+        """Show ``graph`` instead of the current one (undo history is cleared)."""
+        self.solves.pause()
+        self._unsubscribe()
+        self.graph = graph
+        self.solver = Solver(graph)
+        self.solves.set_solver(self.solver)
+        self._unsubscribe = graph.subscribe(self._relay)
+        self.results = {}
+        self.last_outcome = None
+        self.undo_stack.clear()
+        if clean:
+            self.undo_stack.setClean()
+        else:
+            self.undo_stack.resetClean()
+        self.dirty_changed.emit(self.dirty)
+        self.set_path(path)
+        self.graph_replaced.emit()
+        self.solves.request()
+
+    def new(self) -> None:
+        self.replace(Graph(), None)
+
+    def open(self, path: str | Path) -> None:
+        """Read ``path``; on :class:`~engine.graphfile.GraphFileError` nothing changes."""
+        path = Path(path)
+        graph = read_graph(path, self.registry)
+        self.replace(graph, path.resolve())
+
+    def save(self, path: str | Path | None = None) -> Path:
+        """Write the graph (atomically, keeping ``.bak``) to ``path`` or its own file."""
+        target = Path(path) if path is not None else self.path
+        if target is None:
+            raise ValueError("the document has no file yet: give a path")
+        write_graph(self.graph, target)
+        self.undo_stack.setClean()
+        self.set_path(target.resolve())
+        return target
+
+    def set_path(self, path: Path | None) -> None:
+        if path != self.path:
+            self.path = path
+        self.path_changed.emit(path)
+
+    @property
+    def dirty(self) -> bool:
+        return not self.undo_stack.isClean()
+
+    @property
+    def title(self) -> str:
+        return self.path.name if self.path else "Untitled"
+
+    # -- editing ---------------------------------------------------------------------
+    @contextmanager
+    def editing(self, affects_solve: bool = True) -> Iterator[Graph]:
+        """Edit the graph: pauses the worker first and asks for a solve afterwards."""
+        if affects_solve:
+            self.solves.pause()
+        try:
+            yield self.graph
+        finally:
+            if affects_solve:
+                self.solves.request()
+
+    def push(self, command: object) -> None:
+        """Run an undo command and keep it in the history."""
+        self.undo_stack.push(command)
+
+    # -- results ---------------------------------------------------------------------
+    def result(self, node_id: str) -> NodeResult | None:
+        return self.results.get(node_id)
+
+    def _on_solved(self, outcome: SolveOutcome) -> None:
+        self.results = {k: v for k, v in outcome.results.items() if k in self.graph.nodes}
+        self.last_outcome = outcome
+        self.results_changed.emit(outcome)
+
+    def _relay(self, event: GraphEvent) -> None:
+        self.graph_changed.emit(event)
+
+    def close(self) -> None:
+        """Stop the worker (the app is closing)."""
+        self.solves.auto = False
+        self.solves.pause()

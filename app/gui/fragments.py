@@ -1,0 +1,79 @@
+"""Copy and paste as ``.graph`` fragments: JSON text any Torsal window can read.
+
+A fragment is a small, complete graph file (same format, same validation) holding the
+copied nodes and the wires between them. Pasting reads it with the engine's file
+module (so a pasted fragment is only ever *parsed*), gives the nodes fresh ids and
+moves them by an offset.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from app.gui.graph_order import fresh_id
+from engine.graph import Graph, NodeRecord, Wire
+from engine.graphfile import FORMAT, VERSION, encode, loads, node_data, wire_data
+from engine.registry import Registry
+
+MIME_TYPE = "application/x-torsal-graph"
+
+
+def copy_fragment(graph: Graph, node_ids: list[str]) -> str:
+    """The text of a fragment holding ``node_ids`` and the wires among them."""
+    chosen = [n for n in graph.nodes if n in set(node_ids)]
+    inside = set(chosen)
+    data = {
+        "format": FORMAT,
+        "version": VERSION,
+        "nodes": [node_data(graph.nodes[n]) for n in chosen],
+        "wires": [wire_data(w) for w in graph.wires if w.source in inside and w.target in inside],
+        "groups": [],
+        "meta": {"fragment": True},
+    }
+    return encode(data)
+
+
+def looks_like_fragment(text: str) -> bool:
+    return '"torsal.graph"' in text[:4096]
+
+
+def paste_fragment(
+    text: str,
+    graph: Graph,
+    registry: Registry,
+    offset: tuple[float, float] = (20.0, 20.0),
+    anchor: tuple[float, float] | None = None,
+) -> tuple[list[NodeRecord], list[Wire]]:
+    """Records and wires to add to ``graph`` for the fragment ``text``.
+
+    Ids that clash are renamed (``slider`` → ``slider2``). With ``anchor`` the
+    fragment's top-left node goes there; otherwise every node moves by ``offset``.
+    Raises :class:`~engine.graphfile.GraphFileError` for text that is not a fragment.
+    """
+    fragment = loads(text, registry)
+    taken = set(graph.nodes)
+    renamed: dict[str, str] = {}
+    for node_id in fragment.nodes:
+        new_id = fresh_id(node_id, taken) if node_id in taken else node_id
+        taken.add(new_id)
+        renamed[node_id] = new_id
+    if anchor is not None and fragment.nodes:
+        left = min(r.position[0] for r in fragment.nodes.values())
+        top = min(r.position[1] for r in fragment.nodes.values())
+        offset = (anchor[0] - left, anchor[1] - top)
+    records = [
+        dataclasses.replace(
+            record,
+            id=renamed[record.id],
+            position=(
+                float(round(record.position[0] + offset[0])),
+                float(round(record.position[1] + offset[1])),
+            ),
+        )
+        for record in fragment.nodes.values()
+    ]
+    wires = [
+        Wire(renamed[w.source], w.source_port, renamed[w.target], w.target_port, raw=w.raw)
+        for w in fragment.wires
+    ]
+    return records, wires

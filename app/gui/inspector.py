@@ -1,0 +1,173 @@
+"""The inspector: the selected node's settings (editable), ports, current output data and help."""
+
+from __future__ import annotations
+
+import html
+import json
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import (
+    QLabel,
+    QTableWidget,
+    QTableWidgetItem,
+    QTabWidget,
+    QTextBrowser,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.gui.document import Document
+from app.gui.editor import Editor
+from app.gui.formatting import format_item
+from engine.datatree import format_path
+from engine.graph import is_placeholder
+
+MAX_ITEMS_SHOWN = 100
+
+
+class Inspector(QWidget):
+    """Everything about one node; settings are edited as JSON values (one undo step each)."""
+
+    def __init__(self, doc: Document, editor: Editor, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.editor = editor
+        self.node_id: str | None = None
+        self._filling = False
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(4, 4, 4, 4)
+        self.header = QLabel("Select a node to inspect it.")
+        self.header.setWordWrap(True)
+        self.header.setTextFormat(Qt.TextFormat.RichText)
+        layout.addWidget(self.header)
+        self.tabs = QTabWidget()
+        layout.addWidget(self.tabs, 1)
+        self.settings = QTableWidget(0, 2)
+        self.settings.setHorizontalHeaderLabels(["Setting", "Value (JSON)"])
+        self.settings.horizontalHeader().setStretchLastSection(True)
+        self.settings.verticalHeader().setVisible(False)
+        self.settings.itemChanged.connect(self._setting_edited)
+        self.ports = QTreeWidget()
+        self.ports.setHeaderLabels(["Port", "Type", "Access", "Source / data"])
+        self.ports.setColumnWidth(0, 110)
+        self.data = QTreeWidget()
+        self.data.setHeaderLabels(["Output data", "Value"])
+        self.data.setColumnWidth(0, 150)
+        self.help = QTextBrowser()
+        self.tabs.addTab(self.settings, "Settings")
+        self.tabs.addTab(self.ports, "Ports")
+        self.tabs.addTab(self.data, "Data")
+        self.tabs.addTab(self.help, "Help")
+        doc.graph_changed.connect(lambda event: self.refresh() if event.node_id == self.node_id else None)
+        doc.results_changed.connect(lambda _outcome: self.refresh())
+        doc.graph_replaced.connect(lambda: self.show_node(None))
+
+    def show_node(self, node_id: str | None) -> None:
+        self.node_id = node_id
+        self.refresh()
+
+    def refresh(self) -> None:
+        graph = self.doc.graph
+        if self.node_id not in graph.nodes:
+            self.node_id = None
+        self._filling = True
+        try:
+            self._fill(graph)
+        finally:
+            self._filling = False
+
+    def _fill(self, graph) -> None:
+        self.settings.setRowCount(0)
+        self.ports.clear()
+        self.data.clear()
+        if self.node_id is None:
+            self.header.setText("Select a node to inspect it.")
+            self.help.clear()
+            return
+        record = graph.nodes[self.node_id]
+        result = self.doc.result(self.node_id)
+        state = result.state if result else "not solved yet"
+        seconds = f", {result.seconds * 1000:.2f} ms" if result else ""
+        self.header.setText(
+            f"<b>{html.escape(record.title)}</b> [{record.id}]<br><i>{record.type_id}</i> — {state}{seconds}"
+        )
+        node = record.node
+        for name, value in node.settings.items():
+            row = self.settings.rowCount()
+            self.settings.insertRow(row)
+            key = QTableWidgetItem(name)
+            key.setFlags(key.flags() & ~Qt.ItemFlag.ItemIsEditable)
+            self.settings.setItem(row, 0, key)
+            self.settings.setItem(row, 1, QTableWidgetItem(json.dumps(value, ensure_ascii=False)))
+        wires = graph.wires_into(record.id)
+        for port in node.input_ports():
+            feeding = [w for w in wires if w.target_port == port.name]
+            inputs = record.inputs.get(port.name)
+            if feeding:
+                source = "from " + ", ".join(f"{w.source}.{w.source_port}" for w in feeding)
+            elif inputs is not None and inputs.has_value:
+                source = f"value {json.dumps(inputs.value)}"
+            elif port.has_default:
+                source = f"default {format_item(port.default)}"
+            else:
+                source = "optional" if port.optional else "needs data"
+            if inputs is not None and inputs.modifiers:
+                source += f"  [{', '.join(inputs.modifiers)}]"
+            item = QTreeWidgetItem([f"▸ {port.name}", port.type.name, port.access.value, source])
+            item.setToolTip(0, port.description)
+            self.ports.addTopLevelItem(item)
+        for port in node.output_ports():
+            tree = result.outputs.get(port.name) if result else None
+            summary = f"{tree.item_count} items, {tree.branch_count} branches" if tree is not None else "—"
+            item = QTreeWidgetItem([f"◂ {port.name}", port.type.name, port.access.value, summary])
+            item.setToolTip(0, port.description)
+            self.ports.addTopLevelItem(item)
+            if tree is not None:
+                self._add_tree(port.name, tree)
+        self.help.setHtml(self._help_html(type(node), is_placeholder(node), record.type_id))
+
+    def _add_tree(self, name: str, tree) -> None:
+        top = QTreeWidgetItem([name, f"{tree.item_count} items in {tree.branch_count} branches"])
+        self.data.addTopLevelItem(top)
+        shown = 0
+        for path, branch in tree.items():
+            branch_item = QTreeWidgetItem([format_path(path), f"{len(branch)} items"])
+            top.addChild(branch_item)
+            for index, value in enumerate(branch):
+                if shown >= MAX_ITEMS_SHOWN:
+                    break
+                branch_item.addChild(QTreeWidgetItem([str(index), format_item(value)]))
+                shown += 1
+        top.setExpanded(True)
+        if top.childCount() <= 4:
+            for i in range(top.childCount()):
+                top.child(i).setExpanded(True)
+
+    @staticmethod
+    def _help_html(cls: type, placeholder: bool, type_id: str) -> str:
+        if placeholder:
+            return f"<p>The node type <b>{type_id}</b> is not installed; its data is kept unchanged.</p>"
+        parts = [f"<h3>{cls.name()}</h3><p><i>{cls.type_id}</i></p>"]
+        parts += [f"<p>{html.escape(p)}</p>" for p in cls.help().split("\n\n")]
+        for title, ports in (("Inputs", cls.inputs), ("Outputs", cls.outputs)):
+            if ports:
+                rows = "".join(
+                    f"<li><b>{p.name}</b> ({p.nickname}, {p.type.name}, {p.access.value}): "
+                    f"{html.escape(p.description)}</li>"
+                    for p in ports
+                )
+                parts.append(f"<h4>{title}</h4><ul>{rows}</ul>")
+        return "".join(parts)
+
+    def _setting_edited(self, item: QTableWidgetItem) -> None:
+        if self._filling or item.column() != 1 or self.node_id is None:
+            return
+        name = self.settings.item(item.row(), 0).text()
+        text = item.text()
+        try:
+            value = json.loads(text)
+        except ValueError:
+            value = text
+        self.editor.set_setting(self.node_id, name, value)

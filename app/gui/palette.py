@@ -1,0 +1,102 @@
+"""The node palette: one tab per palette (Params, Maths, …), a letter icon per node type.
+
+Click an icon to place the node in the middle of the canvas, or drag it onto the
+canvas to place it where it is dropped.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QByteArray, QMimeData, QPoint, QSize, Qt, Signal
+from PySide6.QtGui import QDrag, QMouseEvent
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QToolButton, QWidget
+
+from app.gui.canvas.view import NODE_MIME
+from app.gui.icons import node_icon
+from engine.registry import Registry
+
+#: The tabs a Grasshopper user expects, in order; other palettes (plug-ins) follow.
+TABS = (
+    "params",
+    "maths",
+    "lists",
+    "curves",
+    "surfaces",
+    "transform",
+    "analysis",
+    "developable",
+    "patching",
+    "display",
+)
+ICON_SIZE = 30
+
+
+class NodeButton(QToolButton):
+    """A palette entry: click to place, drag to drop on the canvas."""
+
+    def __init__(self, cls: type, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.type_id = cls.type_id
+        self.setIcon(node_icon(cls, ICON_SIZE))
+        self.setIconSize(QSize(ICON_SIZE, ICON_SIZE))
+        self.setAutoRaise(True)
+        help_text = cls.help()
+        first = help_text.splitlines()[0] if help_text else ""
+        self.setToolTip(f"<b>{cls.name()}</b> <i>{cls.type_id}</i><br>{first}")
+        self.setObjectName(f"palette:{cls.type_id}")
+        self._press: QPoint | None = None
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        if event.button() == Qt.MouseButton.LeftButton:
+            self._press = event.position().toPoint()
+        super().mousePressEvent(event)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._press is not None and (event.position().toPoint() - self._press).manhattanLength() > 8:
+            self._press = None
+            self.setDown(False)
+            mime = QMimeData()
+            mime.setData(NODE_MIME, QByteArray(self.type_id.encode("utf-8")))
+            drag = QDrag(self)
+            drag.setMimeData(mime)
+            drag.setPixmap(self.icon().pixmap(ICON_SIZE, ICON_SIZE))
+            drag.exec(Qt.DropAction.CopyAction)
+            return
+        super().mouseMoveEvent(event)
+
+
+class Palette(QTabWidget):
+    """Tabs of node buttons; emits :attr:`place` with a type id when one is clicked."""
+
+    place = Signal(str)
+
+    def __init__(self, registry: Registry, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setDocumentMode(True)
+        by_palette: dict[str, list[type]] = {}
+        for cls in registry:
+            by_palette.setdefault(cls.palette(), []).append(cls)
+        names = list(TABS) + sorted(p for p in by_palette if p not in TABS)
+        for palette in names:
+            self.addTab(self._tab(by_palette.get(palette, [])), palette.capitalize())
+        self.setFixedHeight(ICON_SIZE + 46)
+
+    def _tab(self, classes: list[type]) -> QWidget:
+        strip = QWidget()
+        layout = QHBoxLayout(strip)
+        layout.setContentsMargins(4, 2, 4, 2)
+        layout.setSpacing(2)
+        for cls in classes:
+            button = NodeButton(cls)
+            button.clicked.connect(lambda _=False, t=cls.type_id: self.place.emit(t))
+            layout.addWidget(button)
+        if not classes:
+            note = QLabel("No nodes in this palette yet.")
+            note.setStyleSheet("color: #777;")
+            layout.addWidget(note)
+        layout.addStretch(1)
+        scroll = QScrollArea()
+        scroll.setWidget(strip)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QScrollArea.Shape.NoFrame)
+        scroll.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        return scroll

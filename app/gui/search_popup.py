@@ -1,0 +1,105 @@
+"""The search popup: type a few letters, press Enter, the node is placed.
+
+Opened by a double-click on empty canvas, or by dropping a wire on empty canvas (then
+only nodes that can take, or give, the wire's type are listed).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from PySide6.QtCore import QEvent, QObject, QPoint, QSize, Qt, Signal
+from PySide6.QtWidgets import QFrame, QLabel, QLineEdit, QListWidget, QListWidgetItem, QVBoxLayout, QWidget
+
+from app.gui.fuzzy import Entry, build_entries, search
+from app.gui.icons import node_icon
+from engine.registry import Registry
+
+
+class SearchPopup(QFrame):
+    """A frameless popup with a query line and the matching node types."""
+
+    chosen = Signal(str)  # type_id
+    dismissed = Signal()
+
+    def __init__(self, registry: Registry, parent: QWidget | None = None) -> None:
+        super().__init__(parent, Qt.WindowType.Popup)
+        self.setFrameShape(QFrame.Shape.StyledPanel)
+        self.setObjectName("searchPopup")
+        self.entries = build_entries(list(registry))
+        self.accept: Callable[[Entry], bool] | None = None
+        self._chose = False
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(4, 4, 4, 4)
+        layout.setSpacing(3)
+        self.query = QLineEdit()
+        self.query.setPlaceholderText("Search nodes by name, nickname or description…")
+        self.note = QLabel()
+        self.note.setStyleSheet("color: #555; font-size: 8pt;")
+        self.list = QListWidget()
+        self.list.setIconSize(QSize(20, 20))
+        self.list.setUniformItemSizes(True)
+        layout.addWidget(self.query)
+        layout.addWidget(self.note)
+        layout.addWidget(self.list)
+        self.resize(380, 320)
+        self.query.textChanged.connect(self.refresh)
+        self.query.installEventFilter(self)
+        self.list.itemActivated.connect(lambda _item: self.choose())
+
+    def open_at(
+        self, global_pos: QPoint, accept: Callable[[Entry], bool] | None = None, note: str = ""
+    ) -> None:
+        """Show at ``global_pos`` listing the entries ``accept`` lets through."""
+        self.accept = accept
+        self._chose = False
+        self.note.setText(note)
+        self.note.setVisible(bool(note))
+        self.query.clear()
+        self.refresh()
+        self.move(global_pos)
+        self.show()
+        self.raise_()
+        self.activateWindow()
+        self.query.setFocus()
+
+    def refresh(self) -> None:
+        self.list.clear()
+        for entry in search(self.entries, self.query.text(), self.accept):
+            first_line = entry.description.splitlines()[0] if entry.description else ""
+            item = QListWidgetItem(node_icon(entry.cls, 20), f"{entry.name}   ·  {entry.palette}")
+            item.setToolTip(first_line)
+            item.setData(Qt.ItemDataRole.UserRole, entry.type_id)
+            self.list.addItem(item)
+        if self.list.count():
+            self.list.setCurrentRow(0)
+
+    def choose(self) -> None:
+        item = self.list.currentItem()
+        if item is None:
+            return
+        self._chose = True
+        type_id = item.data(Qt.ItemDataRole.UserRole)
+        self.hide()
+        self.chosen.emit(type_id)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        if watched is self.query and event.type() == QEvent.Type.KeyPress:
+            key = event.key()
+            if key in (Qt.Key.Key_Return, Qt.Key.Key_Enter):
+                self.choose()
+                return True
+            if key in (Qt.Key.Key_Down, Qt.Key.Key_Up):
+                step = 1 if key == Qt.Key.Key_Down else -1
+                row = max(0, min(self.list.count() - 1, self.list.currentRow() + step))
+                self.list.setCurrentRow(row)
+                return True
+            if key == Qt.Key.Key_Escape:
+                self.hide()
+                return True
+        return super().eventFilter(watched, event)
+
+    def hideEvent(self, event: QEvent) -> None:
+        super().hideEvent(event)
+        if not self._chose:
+            self.dismissed.emit()

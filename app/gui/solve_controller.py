@@ -1,0 +1,168 @@
+"""Live solving on a worker thread, with the graph kept single-writer.
+
+The GUI thread is the only writer of the graph. Before an edit that changes what is
+solved, :meth:`SolveController.pause` cancels the running solve through its
+:class:`~engine.node.CancelToken` and waits for the worker to stop; the edit is then
+applied and :meth:`SolveController.request` starts a new solve on the next turn of
+the event loop (so several edits made in one turn give one solve). The worker reads
+the graph and writes only the solver's results; those reach the GUI as a snapshot in
+:attr:`SolveController.finished`. Layout edits (moving a node, renaming, groups,
+preview) touch fields the solver never reads and do not interrupt a solve.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from dataclasses import dataclass, field
+
+from PySide6.QtCore import QObject, QTimer, Signal
+
+from engine.node import CancelToken
+from engine.solver import NodeResult, Solver, SolveReport
+
+PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
+
+
+@dataclass
+class SolveOutcome:
+    """What one solve produced: its report and a snapshot of every node's result."""
+
+    generation: int
+    report: SolveReport
+    results: dict[str, NodeResult] = field(default_factory=dict)
+    error: str = ""
+
+    @property
+    def cancelled(self) -> bool:
+        return self.report.cancelled
+
+    def count(self, state: str) -> int:
+        return sum(1 for r in self.results.values() if r.state == state)
+
+
+class SolveController(QObject):
+    """Starts, cancels and reports solves of one :class:`Solver` on a worker thread."""
+
+    started = Signal()
+    progress = Signal(int, int, str)
+    finished = Signal(object)  # SolveOutcome
+    _worker_done = Signal(object)
+    _worker_progress = Signal(int, int, str)
+
+    def __init__(self, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self._solver: Solver | None = None
+        self._thread: threading.Thread | None = None
+        self._token: CancelToken | None = None
+        self._generation = 0
+        self._started_at = 0.0
+        self.auto = True
+        self._request = QTimer(self)
+        self._request.setSingleShot(True)
+        self._request.setInterval(0)
+        self._request.timeout.connect(self._start)
+        self._worker_done.connect(self._on_worker_done)
+        self._worker_progress.connect(self.progress)
+
+    # -- state -----------------------------------------------------------------------
+    def set_solver(self, solver: Solver) -> None:
+        """Solve ``solver`` from now on (a new document); a running solve is stopped."""
+        self.pause()
+        self._solver = solver
+
+    def busy(self) -> bool:
+        """Whether a worker is solving right now."""
+        return self._thread is not None and self._thread.is_alive()
+
+    def idle(self) -> bool:
+        """No solve running, none requested and no outcome still on its way to the GUI."""
+        return self._thread is None and not self._request.isActive()
+
+    def running_for(self) -> float:
+        """Seconds the current solve has been running (0 when idle)."""
+        return time.perf_counter() - self._started_at if self.busy() else 0.0
+
+    # -- control ---------------------------------------------------------------------
+    def request(self) -> None:
+        """Solve soon: on the next event-loop turn, once, however many edits came before."""
+        if self.auto:
+            self._request.start()
+
+    def solve_now(self) -> None:
+        self._request.stop()
+        self._start()
+
+    def pause(self) -> None:
+        """Stop the running solve and wait for the worker, so the graph may be edited.
+
+        The stopped solve's outcome is dropped; nodes it did not reach stay expired and
+        are solved by the next solve.
+        """
+        thread = self._thread
+        if thread is None:
+            return
+        if thread.is_alive() and self._token is not None:
+            self._generation += 1  # the outcome in flight is now stale
+            self._token.cancel()
+        thread.join()
+        self._thread = None
+
+    def cancel(self) -> bool:
+        """Stop the running solve without waiting (Esc); its partial results are reported."""
+        self._request.stop()
+        if self.busy() and self._token is not None:
+            self._token.cancel()
+            return True
+        return False
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Block until the worker stops (tests and shutdown); True if it did."""
+        thread = self._thread
+        if thread is not None:
+            thread.join(timeout)
+            return not thread.is_alive()
+        return True
+
+    # -- worker ----------------------------------------------------------------------
+    def _start(self) -> None:
+        if self._solver is None:
+            return
+        self.pause()
+        self._generation += 1
+        self._token = CancelToken()
+        self._started_at = time.perf_counter()
+        self._thread = threading.Thread(
+            target=self._run,
+            args=(self._solver, self._token, self._generation),
+            name="torsal-solver",
+            daemon=True,
+        )
+        self._thread.start()
+        self.started.emit()
+
+    def _run(self, solver: Solver, token: CancelToken, generation: int) -> None:
+        last = [0.0]
+
+        def progress(index: int, total: int, node_id: str) -> None:
+            now = time.perf_counter()
+            if now - last[0] >= PROGRESS_INTERVAL:
+                last[0] = now
+                self._worker_progress.emit(index, total, node_id)
+
+        error = ""
+        try:
+            report = solver.solve(token, progress)
+        except Exception as exc:  # a graph the engine cannot order: report, never crash the app
+            report = SolveReport(cancelled=True)
+            error = f"{type(exc).__name__}: {exc}"
+        outcome = SolveOutcome(generation, report, dict(solver.results), error)
+        self._worker_done.emit(outcome)
+
+    def _on_worker_done(self, outcome: SolveOutcome) -> None:
+        if outcome.generation != self._generation:
+            return  # stopped by an edit: a newer solve follows
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+        self.finished.emit(outcome)

@@ -1,0 +1,66 @@
+"""The status bar: last solve time, warning and error counts, a progress bar for long solves."""
+
+from __future__ import annotations
+
+import time
+
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QLabel, QProgressBar, QStatusBar, QWidget
+
+from app.gui.solve_controller import SolveOutcome
+
+PROGRESS_AFTER_MS = 500
+
+
+class SolveStatus(QStatusBar):
+    """Shows how the last solve went; a progress bar appears when a solve takes > 0.5 s."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.solve_label = QLabel("Not solved yet")
+        self.counts_label = QLabel("")
+        self.progress = QProgressBar()
+        self.progress.setMaximumWidth(220)
+        self.progress.setTextVisible(True)
+        self.progress.setFormat("Solving %v/%m — Esc cancels")
+        self.progress.hide()
+        self.addPermanentWidget(self.progress)
+        self.addPermanentWidget(self.solve_label)
+        self.addPermanentWidget(self.counts_label)
+        self._started = 0.0
+        self._reveal = QTimer(self)
+        self._reveal.setSingleShot(True)
+        self._reveal.setInterval(PROGRESS_AFTER_MS)
+        self._reveal.timeout.connect(self._show_progress)
+
+    def solve_started(self) -> None:
+        self._started = time.perf_counter()
+        self.progress.setRange(0, 0)
+        self._reveal.start()
+
+    def _show_progress(self) -> None:
+        self.progress.show()
+        self.solve_label.setText("Solving…")
+
+    def solve_progress(self, index: int, total: int, node_id: str) -> None:
+        self.progress.setRange(0, max(1, total))
+        self.progress.setValue(index)
+
+    def solve_finished(self, outcome: SolveOutcome) -> None:
+        self._reveal.stop()
+        self.progress.hide()
+        report = outcome.report
+        ms = report.seconds * 1000
+        if outcome.error:
+            self.solve_label.setText(f"Solve failed: {outcome.error}")
+        elif report.cancelled:
+            self.solve_label.setText(f"Solve cancelled after {ms:.0f} ms ({len(report.solved)} nodes solved)")
+        else:
+            self.solve_label.setText(f"Solved {len(report.solved)} nodes in {ms:.1f} ms")
+        warnings, errors = outcome.count("warning"), outcome.count("error")
+        self.counts_label.setText(
+            f"⚠ {warnings} warning{'s' * (warnings != 1)}   ✖ {errors} error{'s' * (errors != 1)}"
+        )
+        self.counts_label.setStyleSheet(
+            "color: #c0281f;" if errors else ("color: #b06800;" if warnings else "")
+        )

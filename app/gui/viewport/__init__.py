@@ -1,0 +1,1 @@
+"""The 3D viewport: pyvista datasets from node outputs, actors per node, the dock widget."""

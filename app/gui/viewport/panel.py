@@ -1,0 +1,216 @@
+"""The viewport panel: a pyvistaqt ``QtInteractor`` with view buttons, fed by solve results.
+
+pyvista and VTK take a second or two to import, so the interactor is created after the
+main window is first shown (:meth:`ViewportPanel.create_plotter`); until then a
+placeholder stands in its place.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtGui import QAction
+from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWidget
+
+from app.gui import theme
+from app.gui.document import Document
+from engine.graph import GraphEvent
+
+REPREVIEW_EVENTS = {"preview_changed", "enabled_changed", "node_removed"}
+
+
+class ViewportPanel(QWidget):
+    """The 3D preview of every node with preview on; the selected nodes are highlighted."""
+
+    frame_rendered = Signal()
+
+    def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.plotter: Any = None
+        self.preview: Any = None
+        self.frames = 0
+        self.render_seconds = 0.0
+        self._fit_pending = True
+        self._hint_shown = False
+        self._grid_bounds: tuple[float, ...] | None = None
+        self._selected: set[str] = set()
+        self._render_timer = QTimer(self)
+        self._render_timer.setSingleShot(True)
+        self._render_timer.setInterval(0)
+        self._render_timer.timeout.connect(self.render)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.setSpacing(0)
+        self.toolbar = QToolBar("Viewport")
+        self.toolbar.setIconSize(self.toolbar.iconSize() * 0.8)
+        outer.addWidget(self.toolbar)
+        self.stack = QStackedLayout()
+        outer.addLayout(self.stack, 1)
+        self.placeholder = QLabel("Starting the 3D viewport…")
+        self.placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.placeholder.setStyleSheet(f"background: {theme.VIEWPORT_BACKGROUND}; color: #666;")
+        self.stack.addWidget(self.placeholder)
+        self.actions_by_name: dict[str, QAction] = {}
+        for name, text, tip in (
+            ("extents", "Zoom extents", "Fit everything in view"),
+            ("top", "Top", "Look down the Z axis (parallel)"),
+            ("front", "Front", "Look along the Y axis (parallel)"),
+            ("right", "Right", "Look along the X axis (parallel)"),
+            ("perspective", "Perspective", "Isometric perspective view"),
+        ):
+            action = self.toolbar.addAction(text, lambda n=name: self.set_view(n))
+            action.setToolTip(tip)
+            self.actions_by_name[name] = action
+        self.toolbar.setEnabled(False)
+        doc.results_changed.connect(lambda _outcome: self.refresh())
+        doc.graph_changed.connect(self._on_graph_event)
+        doc.graph_replaced.connect(self._on_replaced)
+
+    # -- creation --------------------------------------------------------------------
+    def create_plotter(self) -> None:
+        """Import pyvista/pyvistaqt and make the interactor (once)."""
+        if self.plotter is not None:
+            return
+        import pyvista as pv
+        from pyvistaqt import QtInteractor
+
+        from app.gui.viewport.preview import Preview
+
+        pv.global_theme.allow_empty_mesh = True
+        plotter = QtInteractor(self, auto_update=False, multi_samples=0)
+        plotter.enable_anti_aliasing("fxaa")  # cheap post-process AA: software GL stays interactive
+        plotter.setAcceptDrops(False)  # a dropped .graph goes to the main window
+        if plotter.iren is not None:
+            plotter.iren.clear_key_event_callbacks()  # no 'q' closing the viewport
+        plotter.set_background(theme.VIEWPORT_BACKGROUND, top=theme.VIEWPORT_BACKGROUND_TOP)
+        plotter.add_axes(interactive=False)
+        self.plotter = plotter
+        self.preview = Preview(plotter)
+        self.stack.addWidget(plotter)
+        self.stack.setCurrentWidget(plotter)
+        self.toolbar.setEnabled(True)
+        self._update_grid()
+        self.refresh()
+
+    def close_plotter(self) -> None:
+        if self.plotter is not None:
+            self.plotter.close()
+            self.plotter = None
+
+    # -- updates ---------------------------------------------------------------------
+    def _on_graph_event(self, event: GraphEvent) -> None:
+        if event.kind in REPREVIEW_EVENTS:
+            self.refresh()
+
+    def _on_replaced(self) -> None:
+        self._fit_pending = True
+        self._grid_bounds = None
+        if self.preview is not None:
+            self.preview.clear()
+            self.refresh()
+
+    def refresh(self) -> None:
+        """Bring the actors up to date with the latest results; render on the next event-loop turn."""
+        if self.preview is None:
+            return
+        changed = self.preview.update(self.doc.graph, self.doc.results)
+        self.preview.set_selected(self._selected & set(self.preview.nodes))
+        has_geometry = bool(self.preview.actor_names())
+        if self._fit_pending and self.doc.results:  # a newly opened graph: show all of it
+            self.set_view("perspective", render=False)
+            self._fit_pending = False
+        self._update_hint(has_geometry)
+        if changed or not self.frames:
+            self.schedule_render()
+
+    def set_selected(self, node_ids: list[str]) -> None:
+        self._selected = set(node_ids)
+        if self.preview is not None:
+            self.preview.set_selected(self._selected & set(self.preview.nodes))
+            self.schedule_render()
+
+    def schedule_render(self) -> None:
+        """Render once on the next event-loop turn, however many updates come before it."""
+        if self.plotter is not None:
+            self._render_timer.start()
+
+    def render(self) -> None:
+        """Render now (also counts frames, for the slider-drag rate measurement)."""
+        if self.plotter is None:
+            return
+        self._render_timer.stop()
+        started = time.perf_counter()
+        self.plotter.render()
+        self.render_seconds = time.perf_counter() - started
+        self.frames += 1
+        self.frame_rendered.emit()
+
+    def _update_hint(self, has_geometry: bool) -> None:
+        if has_geometry == (not self._hint_shown):
+            return
+        if has_geometry:
+            self.plotter.remove_actor("decor:hint", render=False)
+        else:
+            self.plotter.add_text(
+                "Nothing to preview: no node with preview on makes geometry",
+                position="lower_left", font_size=8, color="#777777", name="decor:hint",
+            )
+        self._hint_shown = not has_geometry
+
+    def _update_grid(self) -> None:
+        """A ground grid around what is shown (rebuilt only when the extent changes much)."""
+        from app.gui.viewport.preview import ground_grid
+
+        bounds = self.preview.bounds() if self.preview is not None else None
+        key = None if bounds is None else tuple(round(float(v), 1) for v in bounds.ravel())
+        if key == self._grid_bounds and self.plotter.renderer.actors.get("decor:grid") is not None:
+            return
+        self._grid_bounds = key
+        self.plotter.add_mesh(
+            ground_grid(bounds), name="decor:grid", color=theme.VIEWPORT_GRID, line_width=1,
+            pickable=False, reset_camera=False, render=False,
+        )
+
+    # -- views -----------------------------------------------------------------------
+    def set_view(self, name: str, render: bool = True) -> None:
+        """``extents``, ``top``, ``front``, ``right`` or ``perspective``."""
+        if self.plotter is None:
+            return
+        renderer = self.plotter.renderer  # the renderer's methods do not render by themselves
+        self._update_grid()
+        if name in ("top", "front", "right"):
+            renderer.enable_parallel_projection()
+            {"top": renderer.view_xy, "front": renderer.view_xz, "right": renderer.view_yz}[name](render=False)
+        elif name == "perspective":
+            renderer.disable_parallel_projection()
+            renderer.view_isometric(render=False)
+        self.zoom_extents()
+        if render:
+            self.schedule_render()
+
+    def zoom_extents(self) -> None:
+        bounds = self.preview.bounds() if self.preview is not None else None
+        if bounds is None:
+            self.plotter.renderer.reset_camera(render=False)
+            return
+        (x0, y0, z0), (x1, y1, z1) = bounds
+        self.plotter.renderer.reset_camera(render=False, bounds=(x0, x1, y0, y1, z0, z1))
+
+    def screenshot(self, path: str | Path) -> Path:
+        """Save what the viewport shows as a PNG."""
+        path = Path(path)
+        self.render()
+        self.plotter.screenshot(str(path))
+        return path
+
+    def preview_actor_count(self) -> int:
+        """How many preview actors are in the renderer (grid, axes and hints excluded)."""
+        if self.plotter is None:
+            return 0
+        from app.gui.viewport.preview import PREFIX
+
+        return sum(1 for name in self.plotter.renderer.actors if str(name).startswith(PREFIX))

@@ -1,0 +1,199 @@
+"""Actors in the viewport, kept per node and rebuilt only for nodes whose results changed."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pyvista as pv
+
+from app.gui import theme
+from app.gui.viewport.datasets import Piece, collect, pieces
+from engine.graph import Graph
+from engine.solver import NodeResult
+
+PREFIX = "preview:"
+#: Node types whose outputs repeat another node's data and are never previewed.
+NOT_PREVIEWED = {"params.Panel"}
+
+STYLE = {
+    "surfaces": {"color": theme.PREVIEW_SURFACE, "smooth_shading": True, "specular": 0.2, "opacity": 0.92},
+    "rulings": {"color": theme.PREVIEW_RULING, "line_width": 1.0},
+    "curves": {"color": theme.PREVIEW_CURVE, "line_width": 2.0},
+    "points": {"color": theme.PREVIEW_POINT, "point_size": 9.0, "render_points_as_spheres": True},
+    "vectors": {"color": theme.PREVIEW_VECTOR},
+    "scalars": {"smooth_shading": True},
+}
+
+
+@dataclass
+class NodeActors:
+    """What one node shows: the result it was built from, and its actors."""
+
+    result: NodeResult | None
+    names: list[str] = field(default_factory=list)
+    bars: list[str] = field(default_factory=list)
+    kinds: dict[str, str] = field(default_factory=dict)
+
+
+class Preview:
+    """Keeps the plotter's preview actors in step with the graph's results."""
+
+    def __init__(self, plotter: Any) -> None:
+        self.plotter = plotter
+        self.nodes: dict[str, NodeActors] = {}
+        self.selected: set[str] = set()
+        self.problems: dict[str, list[str]] = {}
+
+    def update(self, graph: Graph, results: dict[str, NodeResult]) -> bool:
+        """Rebuild the actors of nodes whose result or preview changed; True if any did."""
+        changed = False
+        wanted = {
+            node_id
+            for node_id, record in graph.nodes.items()
+            if record.preview
+            and record.enabled
+            and record.type_id not in NOT_PREVIEWED
+            and node_id in results
+        }
+        for node_id in [n for n in self.nodes if n not in wanted]:
+            self._remove(node_id)
+            changed = True
+        for node_id in wanted:
+            result = results[node_id]
+            shown = self.nodes.get(node_id)
+            if shown is not None and shown.result is result:
+                continue
+            self._remove(node_id)
+            self._add(node_id, result)
+            changed = True
+        return changed
+
+    def _add(self, node_id: str, result: NodeResult) -> None:
+        values = [v for tree in result.outputs.values() for v in tree.all_items()]
+        found = collect(values)
+        entry = NodeActors(result)
+        if found.problems:
+            self.problems[node_id] = found.problems
+        else:
+            self.problems.pop(node_id, None)
+        for index, piece in enumerate(pieces(found)):
+            name = f"{PREFIX}{node_id}:{piece.kind}:{index}"
+            self._add_piece(name, piece, node_id, entry)
+        self.nodes[node_id] = entry
+        if node_id in self.selected:
+            self._style(node_id, True)
+
+    def _add_piece(self, name: str, piece: Piece, node_id: str, entry: NodeActors) -> None:
+        style = dict(STYLE[piece.kind])
+        if piece.kind == "scalars":
+            title = f"{piece.scalars} — {node_id}"
+            self.plotter.add_mesh(
+                piece.dataset,
+                name=name,
+                scalars=piece.scalars,
+                rgb=piece.rgb,
+                clim=piece.clim,
+                cmap=piece.cmap or "viridis",
+                show_scalar_bar=False,
+                reset_camera=False,
+                render=False,
+                **style,
+            )
+            if not piece.rgb:
+                actor = self.plotter.renderer.actors[name]
+                self.plotter.add_scalar_bar(
+                    title=title,
+                    mapper=actor.mapper,
+                    vertical=True,
+                    n_labels=5,
+                    fmt="%.3g",
+                    title_font_size=12,
+                    label_font_size=10,
+                    position_x=0.86,
+                    position_y=0.1 + 0.2 * len(self.plotter.scalar_bars),
+                )
+                entry.bars.append(title)
+        else:
+            self.plotter.add_mesh(piece.dataset, name=name, reset_camera=False, render=False, **style)
+        entry.names.append(name)
+        entry.kinds[name] = piece.kind
+
+    def _remove(self, node_id: str) -> None:
+        entry = self.nodes.pop(node_id, None)
+        if entry is None:
+            return
+        for name in entry.names:
+            self.plotter.remove_actor(name, reset_camera=False, render=False)
+        for title in entry.bars:
+            if title in self.plotter.scalar_bars:
+                self.plotter.remove_scalar_bar(title, render=False)
+
+    def clear(self) -> None:
+        for node_id in list(self.nodes):
+            self._remove(node_id)
+
+    # -- selection -------------------------------------------------------------------
+    def set_selected(self, node_ids: set[str]) -> None:
+        for node_id in self.selected - node_ids:
+            self._style(node_id, False)
+        for node_id in node_ids - self.selected:
+            self._style(node_id, True)
+        self.selected = set(node_ids)
+
+    def _style(self, node_id: str, selected: bool) -> None:
+        entry = self.nodes.get(node_id)
+        if entry is None:
+            return
+        for name in entry.names:
+            actor = self.plotter.renderer.actors.get(name)
+            if actor is None:
+                continue
+            kind = entry.kinds[name]
+            prop = actor.prop
+            if kind == "scalars":
+                prop.show_edges = selected
+                prop.edge_color = theme.PREVIEW_SELECTED
+            else:
+                prop.color = theme.PREVIEW_SELECTED if selected else STYLE[kind]["color"]
+
+    # -- queries ---------------------------------------------------------------------
+    def actor_names(self) -> list[str]:
+        return [n for entry in self.nodes.values() for n in entry.names]
+
+    def bounds(self) -> np.ndarray | None:
+        """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of every preview actor, or None."""
+        boxes = []
+        for name in self.actor_names():
+            actor = self.plotter.renderer.actors.get(name)
+            if actor is not None and actor.GetVisibility():
+                b = actor.GetBounds()
+                if np.all(np.isfinite(b)) and b[0] <= b[1]:
+                    boxes.append(b)
+        if not boxes:
+            return None
+        boxes = np.asarray(boxes)
+        return np.array([boxes[:, [0, 2, 4]].min(axis=0), boxes[:, [1, 3, 5]].max(axis=0)])
+
+
+def ground_grid(bounds: np.ndarray | None) -> pv.PolyData:
+    """A square grid on z = 0 around ``bounds``, with a round spacing."""
+    if bounds is None:
+        centre, extent = np.zeros(2), 10.0
+    else:
+        centre = (bounds[0][:2] + bounds[1][:2]) / 2
+        extent = float(max(np.ptp(bounds[:, 0]), np.ptp(bounds[:, 1]), 1e-9)) * 1.4
+    spacing = 10 ** np.floor(np.log10(extent / 4)) if extent > 0 else 1.0
+    half = np.ceil(extent / 2 / spacing) * spacing
+    cx, cy = np.round(centre / spacing) * spacing
+    ticks = np.arange(-half, half + spacing / 2, spacing)
+    lines = []
+    for t in ticks:
+        lines.append([[cx + t, cy - half, 0], [cx + t, cy + half, 0]])
+        lines.append([[cx - half, cy + t, 0], [cx + half, cy + t, 0]])
+    points = np.asarray(lines, dtype=float).reshape(-1, 3)
+    cells = np.column_stack(
+        [np.full(len(lines), 2), np.arange(0, len(points), 2), np.arange(1, len(points), 2)]
+    )
+    return pv.PolyData(points, lines=cells.ravel())

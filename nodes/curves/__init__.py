@@ -1,0 +1,1 @@
+"""Curves: lines, polylines, splines, circles and arcs; dividing, evaluating and offsetting them."""

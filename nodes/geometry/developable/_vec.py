@@ -1,0 +1,44 @@
+"""Lean row-wise vector operations on ``(..., 3)`` arrays.
+
+``np.cross`` spends most of its time on axis bookkeeping for arrays this small, and the
+solver calls these a few hundred times per solve; written out they are two to three
+times faster.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..curve_base import FloatArray
+
+
+def cross(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Row-wise cross product (broadcasting)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Row-wise dot product (broadcasting)."""
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+
+
+def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
+    """Row-wise determinant det[r, u, v] = r · (u × v) (broadcasting)."""
+    return (
+        r[..., 0] * (u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1])
+        + r[..., 1] * (u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2])
+        + r[..., 2] * (u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0])
+    )
+
+
+def norm(a: FloatArray) -> FloatArray:
+    """Row-wise Euclidean length."""
+    return np.sqrt(dot(a, a))
+
+
+def unit(a: FloatArray) -> FloatArray:
+    """Row-wise unit vectors; zero rows stay zero."""
+    length = norm(a)[..., None]
+    return a / np.where(length > 0, length, 1.0)

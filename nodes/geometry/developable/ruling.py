@@ -1,0 +1,691 @@
+"""The developable strip between two space curves: solving for its rulings.
+
+Geometry
+--------
+A developable surface has one tangent plane along each ruling. If the strip is bounded
+by curves A(s) and B(t) and a ruling joins A(s) to B(t), both curves are tangent to the
+surface at the ruling's ends, so the ruling R = B(t) − A(s) and the two tangents A'(s),
+B'(t) lie in one plane (the ruling is *torsal*)::
+
+    f_s(t) = det[B(t) − A(s), A'(s), B'(t)] = 0.
+
+For each station s on A this is one equation in t. Its roots are the candidate
+partners. A root is kept only if its normals are *consistently oriented* (see
+:mod:`.warp`: with both curves running the same way and rulings that do not cross, the
+sheet's normals N1 = R × A' and N2 = R × B' point to the same side, so the signed warp
+is ~0, not ~π), and one root per station is chosen so that t never decreases.
+
+The determinant also vanishes wherever A'(s) ∥ B'(t), whatever the ruling. When the
+tangents point the *same* way that root is a genuine torsal ruling (two curves in
+parallel planes are joined exactly there); when they point *opposite* ways the normals
+are opposite and the orientation test rejects it — it belongs to a sheet folded through
+itself (for two coaxial circles, the double cone through their common centre instead of
+the frustum between them).
+
+Algorithm (all stations at once)
+--------------------------------
+1. Stations: ``Segments + 1`` parameters on A, evenly spaced in arc length
+   (:mod:`.stations`).
+2. Coarse sampling: B is sampled on every smooth span, with both one-sided values at its
+   corners, and the whole ``stations × samples`` determinant matrix is one thin matrix
+   product (see :func:`_brackets`).
+3. Brackets: sign changes along each row. *Flat runs*, where the determinant is zero on
+   consecutive samples (A and B coplanar there, e.g. two straight pieces in one plane),
+   contribute their two ends instead; a sign change across a corner of B is a root at the
+   corner (the rulings fan through it: a cone).
+4. Refinement: every bracket is refined to machine precision by one vectorised Newton
+   iteration inside the brackets (:mod:`.brackets`), using f_t = det[R, A', B''].
+5. Selection: the monotone dynamic programme of :mod:`.selection` follows one branch of
+   roots, predicting each step from the branch slope dt/ds = −f_s/f_t, with
+   f_s = det[R, A'', B'].
+6. Planar pieces: where the chosen partners lie in a flat run the strip is planar and
+   any pairing is developable; it is drawn as two triangles (a fan of rulings through a
+   point of B, then a fan through a point of A), split along the shorter diagonal. Fans
+   through a point of A also arise where B is straight and A curved (the ZVE roof: a
+   triangle leaning on a straight edge) or at a corner of A: there t jumps between two
+   neighbouring stations, the fan's apex s* is found by solving f for s, and rulings
+   are added through A(s*) at about the station spacing.
+7. Stations with no consistently oriented root get the least-warped partner between
+   their neighbours if its warp is within ``warp_tolerance``; otherwise the partner is
+   interpolated in arc length (the plain loft) and the ruling is flagged invalid, never
+   hidden, with a message saying what to change.
+"""
+
+from __future__ import annotations
+
+from bisect import bisect_right
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..closest import sample_parameters
+from ..curve_base import Curve, FloatArray
+from ..curves import Line, NurbsCurve, Polyline
+from ._vec import cross, det, dot, norm, unit
+from .brackets import refine_roots
+from .selection import monotone_path
+from .stations import LengthMap, Spacing, station_parameters
+from .warp import in_plane_tangent, warp_angles
+
+BoolArray = NDArray[np.bool_]
+IntArray = NDArray[np.int64]
+
+#: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
+FLAT = 1e-10
+#: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
+CORNER_ANGLE = 1e-7
+#: Parameter offset for one-sided evaluation beside a corner.
+SIDE = 1e-11
+#: Most candidates kept per station for the selection.
+MAX_CANDIDATES = 8
+
+ROOT, CORNER, FLAT_END = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class RulingResult:
+    """The rulings of a developable strip between curves A and B, in order along the strip.
+
+    Rulings run from ``A(s)`` to ``B(t)``. There is one per station on A (``Segments + 1``
+    of them, marked in ``stations``) plus the rulings of any fan through a single point of
+    A (a planar triangle), which repeat that point's s; so ``len(s) >= Segments + 1``.
+    Both ``s`` and ``t`` never decrease: rulings do not cross.
+    """
+
+    s: FloatArray  #: parameters on curve A, in [0, 1]
+    t: FloatArray  #: partner parameters on curve B, in [0, 1]
+    starts: FloatArray  #: (n, 3) points A(s)
+    ends: FloatArray  #: (n, 3) points B(t)
+    warp: FloatArray  #: warp angle per ruling, rad, in [0, π/2]
+    signed_warp: FloatArray  #: angle from N1 to N2 about the ruling, rad, in (−π, π]
+    valid: BoolArray  #: torsal within the tolerance, with consistently oriented normals
+    message: str | None  #: what went wrong and what to try, or None
+    stations: BoolArray  #: True for the Segments + 1 station rulings, False for added fan rulings
+
+    @property
+    def max_warp(self) -> float:
+        """Largest warp angle, rad."""
+        return float(self.warp.max(initial=0.0))
+
+
+# -- sampling B ----------------------------------------------------------------------------
+
+
+def corners(curve: Curve) -> FloatArray:
+    """Interior parameters where the curve's unit tangent jumps (polyline vertices, kinks)."""
+    b = curve._breakpoints()[1:-1]
+    if len(b) == 0:
+        return b
+    d1 = curve.derivatives(np.concatenate([b - SIDE, b + SIDE]), 1)[1]
+    left, right = unit(d1[: len(b)]), unit(d1[len(b) :])
+    jump = np.arctan2(norm(cross(left, right)), dot(left, right))
+    return b[jump > CORNER_ANGLE]
+
+
+def _is_linear(curve: Curve) -> bool:
+    return isinstance(curve, Line | Polyline) or (
+        isinstance(curve, NurbsCurve) and curve.degree == 1 and not curve.is_rational
+    )
+
+
+@dataclass
+class _Grid:
+    """Samples of curve B: nominal parameters, where they are evaluated (a corner's first
+    copy just before it), and the points and tangents there."""
+
+    t: FloatArray
+    at: FloatArray
+    pair: BoolArray  #: (m−1,) samples j and j+1 are the two sides of one corner
+    points: FloatArray
+    tangents: FloatArray
+
+
+def _sample_grid(curve: Curve, minimum: int, kinks: FloatArray) -> _Grid:
+    # a straight span needs only its ends: f is linear in t there
+    t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
+    at = t.copy()
+    if len(kinks):
+        index = np.searchsorted(t, kinks)
+        t = np.insert(t, index, kinks)
+        at = np.insert(at, index, kinks - SIDE)
+    points, tangents = curve.derivatives(at, 1)
+    return _Grid(t, at, np.diff(t) == 0, points, tangents)
+
+
+# -- brackets and candidates -----------------------------------------------------------------
+
+
+@dataclass
+class _Brackets:
+    """Where the determinant of station ``rows`` changes sign between samples ``cols`` and
+    ``cols + 1`` (with its values there), and the samples where it is zero."""
+
+    rows: IntArray
+    cols: IntArray
+    f_low: FloatArray
+    f_high: FloatArray
+    zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
+
+
+def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) -> _Brackets:
+    """Sign changes of det[B_j − A_i, Â'_i, B̂'_j] (unit tangents) over all station–sample pairs.
+
+    By the cyclic symmetry of the triple product,
+    ``det[B − A, Â', B̂'] = Â'·(B̂' × B) − (A × Â')·B̂'``, so the whole matrix is one
+    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
+    small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
+    thread (threads cost more than they save on a product this thin, and stall when the
+    machine is busy) and lets every block reuse the memory of the last.
+    """
+    centre = 0.5 * (a0.mean(axis=0) + b0.mean(axis=0))
+    a = a0 - centre
+    b = b0 - centre
+    ua, ub = unit(a1), unit(b1)
+    left = np.hstack([ua, -cross(a, ua)])
+    right = np.ascontiguousarray(np.hstack([cross(ub, b), ub]).T)
+    n, m = len(a0), len(b0)
+    size = float(norm(np.ptp(np.concatenate([a0, b0]), axis=0)))
+    block = max(1, 40_000 // m)
+    found: list[tuple[IntArray, FloatArray, FloatArray]] = []
+    zeros: list[IntArray] = []
+    for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
+        f = left[first : first + block] @ right
+        change = np.signbit(f[:, :-1]) != np.signbit(f[:, 1:])
+        maybe = np.flatnonzero(np.abs(f) <= FLAT * size)
+        if len(maybe):  # rare: test the candidates against their own ruling length
+            r, c = np.divmod(maybe, m)
+            exact = maybe[np.abs(f.flat[maybe]) <= FLAT * norm(b0[c] - a0[r + first])]
+            if len(exact):
+                sign = np.sign(f)
+                sign.flat[exact] = 0.0
+                change = sign[:, :-1] * sign[:, 1:] < 0
+                zeros.append(exact + first * m)
+        index = np.flatnonzero(change)
+        r, c = np.divmod(index, m - 1)
+        found.append((index + first * (m - 1), f[r, c], f[r, c + 1]))
+    rows, cols = np.divmod(np.concatenate([x[0] for x in found]), m - 1)
+    return _Brackets(
+        rows,
+        cols,
+        np.concatenate([x[1] for x in found]),
+        np.concatenate([x[2] for x in found]),
+        np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64),
+    )
+
+
+def _rounding_scale(a0: FloatArray, b0: FloatArray, a1: FloatArray, b1: FloatArray) -> FloatArray:
+    """Size of the rounding error of det[B − A, A', B']: positions are rounded relative to
+    their own magnitude, not to the ruling's length."""
+    return (norm(a0) + norm(b0)) * norm(a1) * norm(b1)
+
+
+def _oriented(r: FloatArray, ta: FloatArray, tb: FloatArray) -> BoolArray:
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes)."""
+    n1 = cross(r, unit(ta))
+    n2 = cross(r, unit(tb))
+    return dot(n1, n2) >= -1e-9 * norm(n1) * norm(n2)
+
+
+@dataclass
+class _Candidates:
+    """Candidate partners, one entry each, sorted by station then t."""
+
+    row: IntArray
+    t: FloatArray
+    kind: IntArray
+    slope: FloatArray  #: dt/ds of the branch (0 at corners and flat ends)
+    low: FloatArray  #: flat run extent (NaN for roots and corners)
+    high: FloatArray
+    points: FloatArray  #: (k, 3) B(t)
+    tangents: FloatArray  #: (k, 3) tangent of B there (the in-plane one at a corner)
+    oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
+
+    def subset(self, keep: BoolArray | IntArray) -> _Candidates:
+        return _Candidates(*(getattr(self, name)[keep] for name in self.__dataclass_fields__))
+
+
+def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray) -> _Candidates:
+    """All candidate partners of all stations: refined roots, corner roots, flat-run ends."""
+    m = len(grid.t)
+    found = _brackets(a0, a1, grid.points, grid.tangents)
+    at_corner = grid.pair[found.cols]
+    corner_rows, corner_cols = found.rows[at_corner], found.cols[at_corner]
+    rows, cols = found.rows[~at_corner], found.cols[~at_corner]
+    f_low, f_high = found.f_low[~at_corner], found.f_high[~at_corner]
+
+    # runs of zero samples along a row: a run of positive extent is flat (its two ends are
+    # candidates), a single zero sample is a root
+    z = found.zeros
+    run_start = np.ones(len(z), dtype=bool)
+    run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
+    run_end = np.ones(len(z), dtype=bool)
+    run_end[:-1] = run_start[1:]
+    run_rows, run_first = np.divmod(z[run_start], m)
+    run_last = z[run_end] % m
+    flat = grid.t[run_last] > grid.t[run_first]
+    point_rows, point_cols = run_rows[~flat], run_first[~flat]
+
+    # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback
+    def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        b0, b1, b2 = curve_b.derivatives(x, 2)
+        i = rows[index]
+        r = b0 - a0[i]
+        return det(r, a1[i], b1), det(r, a1[i], b2), _rounding_scale(a0[i], b0, a1[i], b1)
+
+    low, high = grid.at[cols], grid.at[cols + 1]
+    start = low - f_low * (high - low) / (f_high - f_low)  # regula falsi
+    refined = refine_roots(coplanarity, low, high, f_low, start) if len(rows) else np.empty(0)
+
+    # smooth roots (refined, or exactly on a sample): the slope of their branch
+    root_rows = np.concatenate([rows, point_rows])
+    root_t = np.concatenate([refined, grid.t[point_cols]])
+    b0, b1, b2 = curve_b.derivatives(root_t, 2)
+    r = b0 - a0[root_rows]
+    f_t = det(r, a1[root_rows], b2)
+    f_s = det(r, a2[root_rows], b1)
+    slope = np.clip(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6, 1e6)
+    residual = np.abs(det(r, unit(a1[root_rows]), unit(b1))) / np.maximum(norm(r), 1e-300)
+    root_kind = np.where(residual > 1e-7, CORNER, ROOT)  # converged onto an unflagged jump
+    slope = np.where(root_kind == ROOT, slope, 0.0)
+
+    # roots at corners of B: the tangent plane turns about the corner (a cone through it)
+    corner_points = grid.points[corner_cols + 1]
+    corner_tangents = in_plane_tangent(
+        corner_points - a0[corner_rows],
+        a1[corner_rows],
+        grid.tangents[corner_cols],
+        grid.tangents[corner_cols + 1],
+    )
+
+    # the two ends of every flat run
+    flat_rows = np.repeat(run_rows[flat], 2)
+    flat_cols = np.column_stack([run_first[flat], run_last[flat]]).reshape(-1)
+
+    row = np.concatenate([root_rows, corner_rows, flat_rows])
+    nan = np.full(len(root_rows) + len(corner_rows), np.nan)
+    points = np.concatenate([b0, corner_points, grid.points[flat_cols]])
+    tangents = np.concatenate([b1, corner_tangents, grid.tangents[flat_cols]])
+    candidates = _Candidates(
+        row,
+        np.concatenate([root_t, grid.t[corner_cols], grid.t[flat_cols]]),
+        np.concatenate([root_kind, np.full(len(corner_rows), CORNER), np.full(len(flat_rows), FLAT_END)]),
+        np.concatenate([slope, np.zeros(len(corner_rows) + len(flat_rows))]),
+        np.concatenate([nan, np.repeat(grid.t[run_first[flat]], 2)]),
+        np.concatenate([nan, np.repeat(grid.t[run_last[flat]], 2)]),
+        points,
+        tangents,
+        _oriented(points - a0[row], a1[row], tangents),
+    )
+    return candidates.subset(np.lexsort((candidates.t, candidates.row)))
+
+
+def _pad(c: _Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
+    """Candidates as ``(n, K)`` arrays (NaN padded) and the index of each cell's candidate."""
+    # drop duplicates (a flat end that is also a root) and keep at most MAX_CANDIDATES
+    first = np.ones(len(c.row), dtype=bool)
+    first[1:] = (c.row[1:] != c.row[:-1]) | (c.t[1:] - c.t[:-1] > 1e-13)
+    keep = np.flatnonzero(first)
+    rows = c.row[keep]
+    column = np.arange(len(rows)) - np.searchsorted(rows, rows, side="left")
+    fits = column < MAX_CANDIDATES
+    keep, rows, column = keep[fits], rows[fits], column[fits]
+    k = max(int(column.max(initial=-1)) + 1, 1)
+    t = np.full((n, k), np.nan)
+    slope = np.full((n, k), np.nan)
+    index = np.full((n, k), -1, dtype=np.int64)
+    t[rows, column] = c.t[keep]
+    slope[rows, column] = c.slope[keep]
+    index[rows, column] = keep
+    return t, slope, index
+
+
+def _longest_monotone(t: FloatArray) -> BoolArray:
+    """Mask of a longest non-decreasing subsequence (patience sorting)."""
+    tails: list[float] = []
+    tail_index: list[int] = []
+    parent = np.full(len(t), -1, dtype=np.int64)
+    for i, x in enumerate(t.tolist()):  # fallback only: when the selection had to step back
+        j = bisect_right(tails, x)
+        if j == len(tails):
+            tails.append(x)
+            tail_index.append(i)
+        else:
+            tails[j] = x
+            tail_index[j] = i
+        parent[i] = tail_index[j - 1] if j > 0 else -1
+    keep = np.zeros(len(t), dtype=bool)
+    i = tail_index[-1] if tail_index else -1
+    while i >= 0:
+        keep[i] = True
+        i = parent[i]
+    return keep
+
+
+def _neighbours(chosen: BoolArray) -> tuple[IntArray, IntArray]:
+    """Index of the nearest chosen station before and after each station (−1 / n if none)."""
+    n = len(chosen)
+    index = np.arange(n)
+    before = np.concatenate([[-1], np.maximum.accumulate(np.where(chosen, index, -1))[:-1]])
+    after = np.concatenate([np.minimum.accumulate(np.where(chosen, index, n)[::-1])[::-1][1:], [n]])
+    return before, after
+
+
+# -- the solve ---------------------------------------------------------------------------------
+
+
+class _Strip:
+    """One solve of :func:`ruling_developable`: the state its steps share."""
+
+    def __init__(
+        self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
+    ) -> None:
+        self.curve_a, self.curve_b = curve_a, curve_b
+        self.segments, self.tolerance = segments, tolerance
+        self.map_a = LengthMap(curve_a)
+        if not self.map_a.total > 0:
+            raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
+        self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
+        self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
+        self.kinks_a = corners(curve_a)
+        self.kinks_b = corners(curve_b)
+        self.grid = _sample_grid(curve_b, samples, self.kinks_b)
+        if not np.any(norm(np.diff(self.grid.points, axis=0)) > 0):
+            raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
+        self._map_b: LengthMap | None = None
+
+    @property
+    def map_b(self) -> LengthMap:
+        if self._map_b is None:
+            self._map_b = LengthMap(self.curve_b)
+        return self._map_b
+
+    # -- steps 2–5: candidates and the monotone choice ---------------------------------------
+
+    def choose(self) -> tuple[IntArray, _Candidates, BoolArray]:
+        """The chosen candidate per station (−1 where none), the oriented candidates, and
+        per station whether a root with flipped normals was seen."""
+        n = len(self.s)
+        found = _find_candidates(self.curve_b, self.grid, self.a0, self.a1, self.a2)
+        flipped = np.zeros(n, dtype=bool)
+        flipped[found.row[~found.oriented]] = True
+        good = found.subset(found.oriented)
+        t_pad, slope_pad, index_pad = _pad(good, n)
+        chosen = np.full(n, -1, dtype=np.int64)
+        rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
+        if len(rows):
+            pick = monotone_path(t_pad[rows], slope_pad[rows], np.diff(self.s[rows]))
+            chosen[rows] = index_pad[rows, pick]
+            t = good.t[chosen[rows]]
+            if np.any(np.diff(t) < -1e-12):  # the selection had to step back: keep a monotone subset
+                chosen[rows[~_longest_monotone(t)]] = -1
+        return chosen, good, flipped
+
+    # -- step 6: planar pieces ------------------------------------------------------------------
+
+    def flat_fans(self, t: FloatArray, chosen: IntArray, good: _Candidates) -> tuple[list, BoolArray]:
+        """Two triangles for every run of stations inside one planar piece.
+
+        Rewrites ``t`` there and returns the fans ``(s*, t_low, t_high)`` through a point
+        of A, and a mask of the stations of planar pieces.
+        """
+        n = len(t)
+        has = chosen >= 0
+        is_flat = np.zeros(n, dtype=bool)
+        is_flat[has] = good.kind[chosen[has]] == FLAT_END
+        fans: list[tuple[float, float, float]] = []
+        if not is_flat.any():
+            return fans, is_flat
+        low = np.where(is_flat, good.low[chosen], np.nan)
+        high = np.where(is_flat, good.high[chosen], np.nan)
+        # consecutive flat stations whose flat intervals overlap form one planar piece
+        joins = is_flat[1:] & is_flat[:-1] & (low[1:] <= high[:-1]) & (low[:-1] <= high[1:])
+        begins = np.flatnonzero(is_flat & ~np.concatenate([[False], joins]))
+        finishes = np.flatnonzero(is_flat & ~np.concatenate([joins, [False]]))
+        for i0, i1 in zip(begins, finishes, strict=True):  # one pass per planar piece (few)
+            t_in = low[i0] if i0 == 0 or np.isnan(t[i0 - 1]) else max(low[i0], t[i0 - 1])
+            t_out = high[i1] if i1 == n - 1 or np.isnan(t[i1 + 1]) else min(high[i1], t[i1 + 1])
+            t_out = max(t_out, t_in)
+            b_in, b_out = self.curve_b.point_at(np.array([t_in, t_out]))
+            # the shorter diagonal: a fan through B(t_in) then one through A(s_i1), or a fan
+            # through A(s_i0) then one through B(t_out)
+            if norm(self.a0[i1] - b_in) <= norm(self.a0[i0] - b_out):
+                t[i0 : i1 + 1] = t_in
+                fans.append((float(self.s[i1]), float(t_in), float(t_out)))
+            else:
+                t[i0 : i1 + 1] = t_out
+                fans.append((float(self.s[i0]), float(t_in), float(t_out)))
+        return fans, is_flat
+
+    # -- step 7: stations without a torsal partner ------------------------------------------------
+
+    def fill(self, t: FloatArray) -> None:
+        """Give every station without a partner the least-warped one between its neighbours
+        (if within the tolerance) or else the arc-length interpolation between them."""
+        missing = np.flatnonzero(np.isnan(t))
+        if len(missing) == 0:
+            return
+        n = len(t)
+        before, after = _neighbours(~np.isnan(t))
+        before, after = before[missing], after[missing]
+        lo = np.where(before >= 0, t[np.maximum(before, 0)], 0.0)
+        hi = np.where(after < n, t[np.minimum(after, n - 1)], 1.0)
+        # the least |signed warp| among B's samples inside each station's window
+        grid = self.grid
+        r = grid.points[None, :, :] - self.a0[missing, None, :]
+        n1 = cross(r, unit(self.a1[missing])[:, None, :])
+        n2 = cross(r, unit(grid.tangents)[None, :, :])
+        angle = np.arctan2(norm(cross(n1, n2)), dot(n1, n2))
+        inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
+        angle = np.where(inside, angle, np.inf)
+        best = np.argmin(angle, axis=1)
+        near = angle[np.arange(len(missing)), best] <= self.tolerance
+        # otherwise interpolate in arc length between the neighbours: the plain loft
+        length_a = self.map_a.length_at(self.s)
+        a_lo = np.where(before >= 0, length_a[np.maximum(before, 0)], 0.0)
+        a_hi = np.where(after < n, length_a[np.minimum(after, n - 1)], self.map_a.total)
+        span = a_hi - a_lo
+        fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
+        b_lo, b_hi = self.map_b.length_at(lo), self.map_b.length_at(hi)
+        loft = np.clip(self.map_b.parameter_at(b_lo + fraction * (b_hi - b_lo)), lo, hi)
+        t[missing] = np.where(near, grid.t[best], loft)
+        t[:] = np.maximum.accumulate(t)
+
+    # -- step 6 (continued): fans through a point of A ---------------------------------------------
+
+    def a_fans(self, t: FloatArray, slope: FloatArray, regular: BoolArray) -> list[tuple[float, float, float]]:
+        """Fans through single points of A, found where t jumps between two stations.
+
+        Along one branch t steps by about Δs·(mean slope); a much larger step means the
+        strip's path in the (s, t) square runs vertically in between: a fan of rulings
+        from one point A(s*) to a stretch of B (a triangle on a straight piece of B, or a
+        cone at a corner of A). s* solves f(s, t_mid) = 0 for s, or is the corner of A.
+        """
+        s = self.s
+        dt = np.diff(t)
+        predicted = 0.5 * np.diff(s) * (slope[:-1] + slope[1:])
+        jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
+        pairs = np.flatnonzero(jump)
+        if len(pairs) == 0:
+            return []
+        t_mid = 0.5 * (t[pairs] + t[pairs + 1])
+        bm0, bm1 = self.curve_b.derivatives(t_mid, 1)
+        f_left = det(bm0 - self.a0[pairs], self.a1[pairs], bm1)
+        f_right = det(bm0 - self.a0[pairs + 1], self.a1[pairs + 1], bm1)
+        apex = np.full(len(pairs), np.nan)
+        which = np.flatnonzero(f_left * f_right < 0)
+        if len(which):
+
+            def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+                c0, c1, c2 = self.curve_a.derivatives(x, 2)
+                k = which[index]
+                r = bm0[k] - c0
+                # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes)
+                return det(r, c1, bm1[k]), det(r, c2, bm1[k]), _rounding_scale(c0, bm0[k], c1, bm1[k])
+
+            low, high = s[pairs[which]], s[pairs[which] + 1]
+            apex[which] = refine_roots(coplanarity, low, high, f_left[which])
+        fans = []
+        for k, i in enumerate(pairs):  # one pass per possible fan (rare)
+            s_star = float(apex[k])
+            if np.isnan(s_star):
+                inside = self.kinks_a[(self.kinks_a >= s[i]) & (self.kinks_a <= s[i + 1])]
+                if len(inside) == 0:
+                    continue
+                s_star = float(inside[0])
+            extent = self._fan_extent(s_star, float(t[i]), float(t[i + 1]))
+            if extent is not None:
+                fans.append((s_star, *extent))
+        return fans
+
+    def _fan_extent(self, s_star: float, t0: float, t1: float) -> tuple[float, float] | None:
+        """The stretch of B inside [t0, t1] over which rulings from A(s*) are torsal."""
+        c0 = self.curve_a.point_at(s_star)
+        sides = self.curve_a.derivatives(np.clip([s_star - SIDE, s_star + SIDE], 0.0, 1.0), 1)[1]
+        window = (self.grid.t >= t0) & (self.grid.t <= t1)
+        ts = np.unique(np.concatenate([[t0, t1], self.grid.t[window]]))
+        b0, b1 = self.curve_b.derivatives(ts, 1)
+        r = b0 - c0
+        scale = norm(r) * norm(b1)
+        scale = np.where(scale > 0, scale, 1.0)
+        g_left = det(r, unit(sides[0]), b1) / scale
+        g_right = det(r, unit(sides[1]), b1) / scale
+        # torsal: flat (B straight there), or between the two one-sided tangents of a corner
+        torsal = (np.abs(g_left) <= 1e-9) | (np.abs(g_right) <= 1e-9) | (g_left * g_right < 0)
+        if torsal.sum() < 2:
+            return None
+        first = int(np.argmax(torsal))
+        last = len(ts) - 1 - int(np.argmax(torsal[::-1]))
+        if not torsal[first : last + 1].all() or ts[last] <= ts[first]:
+            return None
+        return float(ts[first]), float(ts[last])
+
+    def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
+        """Parameters on B for a fan's rulings, at about the station spacing along A."""
+        spacing = self.map_a.total / self.segments
+        lb = self.map_b.length_at(np.array([t_low, t_high]))
+        count = max(2, int(np.ceil((lb[1] - lb[0]) / spacing - 1e-9)) + 1)
+        t = self.map_b.parameter_at(np.linspace(lb[0], lb[1], count))
+        t[0], t[-1] = t_low, t_high
+        return np.maximum.accumulate(t)
+
+
+def ruling_developable(
+    curve_a: Curve,
+    curve_b: Curve,
+    segments: int,
+    warp_tolerance: float = 0.01,
+    *,
+    spacing: Spacing = "length",
+    samples: int = 192,
+) -> RulingResult:
+    """The developable strip between two curves, as rulings from A to B.
+
+    Args:
+        curve_a: the base curve; ``segments + 1`` stations are placed along it.
+        curve_b: the partner curve. Both should run the same way (from the same end of
+            the strip); otherwise every ruling comes out invalid and the message says to
+            reverse B.
+        segments: number of rulings minus one (at least 1).
+        warp_tolerance: largest warp angle (rad) a ruling may have and count as valid,
+            e.g. 0.01; for a sheet allowed a warp factor of k rad/m over rulings about
+            L long, k·L.
+        spacing: ``"length"`` (default) spaces the stations evenly in arc length along A,
+            ``"parameter"`` evenly in its parameter.
+        samples: how many samples of B bracket the roots (at least this many and two per
+            smooth span of B; more separates roots that lie closer together).
+
+    Returns:
+        A :class:`RulingResult`. On curves cut from a developable the rulings are the true
+        ones to rounding (partner error ~1e-14, warp ~1e-14 rad).
+
+    See the module docstring for the geometry and the algorithm. Two coplanar segments
+    bound a planar quad, drawn as two triangles (fans through B(0) and then A(1)):
+
+    >>> from nodes.geometry.curves import Line
+    >>> r = ruling_developable(Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [3, 2, 0]), 2)
+    >>> r.s.tolist(), r.t.round(3).tolist(), r.message
+    ([0.0, 0.5, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.5, 1.0], None)
+    """
+    if int(segments) != segments or segments < 1:
+        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
+    tolerance = float(warp_tolerance)
+    if not (np.isfinite(tolerance) and tolerance >= 0):
+        raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
+    strip = _Strip(curve_a, curve_b, int(segments), tolerance, spacing, max(int(samples), 8))
+    n = len(strip.s)
+
+    chosen, good, flipped = strip.choose()
+    has = chosen >= 0
+    t = np.where(has, good.t[np.maximum(chosen, 0)], np.nan)
+    slope = np.where(has, good.slope[np.maximum(chosen, 0)], 0.0)
+    fans, planar = strip.flat_fans(t, chosen, good)
+    regular = has & ~planar
+    strip.fill(t)
+    fans += strip.a_fans(t, slope, regular)
+
+    # station rulings, then every fan's rulings; ordered along the strip
+    s_parts, t_parts = [strip.s], [t]
+    for s_star, t_low, t_high in fans:
+        ts = strip.fan_parameters(t_low, t_high)
+        s_parts.append(np.full(len(ts), s_star))
+        t_parts.append(ts)
+    s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
+    station = np.arange(len(s_all)) < n
+    order = np.lexsort((~station, t_all, s_all))
+    repeat = np.zeros(len(order), dtype=bool)
+    repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
+    order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
+
+    # geometry: stations reuse A's values, and B's where the chosen root still stands
+    s_out, t_out = s_all[order], t_all[order]
+    source = np.where(order < n, order, -1)
+    starts = np.empty((len(order), 3))
+    ta = np.empty((len(order), 3))
+    ends = np.empty((len(order), 3))
+    tb = np.empty((len(order), 3))
+    from_station = source >= 0
+    starts[from_station], ta[from_station] = strip.a0[source[from_station]], strip.a1[source[from_station]]
+    if not from_station.all():
+        starts[~from_station], ta[~from_station] = curve_a.derivatives(s_out[~from_station], 1)
+    kept = np.zeros(len(order), dtype=bool)
+    kept[from_station] = regular[source[from_station]]
+    kept[from_station] &= good.t[np.maximum(chosen[source[from_station]], 0)] == t_out[from_station]
+    cand = chosen[np.where(kept, source, 0)][kept]
+    ends[kept], tb[kept] = good.points[cand], good.tangents[cand]
+    if not kept.all():
+        ends[~kept], tb[~kept] = curve_b.derivatives(t_out[~kept], 1)
+    ruling = ends - starts
+    # at a corner the tangent may be any blend of the two one-sided ones: take the in-plane one
+    at_b = ~kept & np.isin(t_out, strip.kinks_b) if len(strip.kinks_b) else np.zeros(len(order), bool)
+    if at_b.any():
+        left = curve_b.derivatives(t_out[at_b] - SIDE, 1)[1]
+        tb[at_b] = in_plane_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
+    if len(strip.kinks_a):
+        at_a = np.min(np.abs(s_out[:, None] - strip.kinks_a[None, :]), axis=1) <= 1e-12
+        if at_a.any():
+            sides = curve_a.derivatives(np.clip(np.concatenate([s_out[at_a] - SIDE, s_out[at_a] + SIDE]), 0, 1), 1)[1]
+            ta[at_a] = in_plane_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
+    warp = warp_angles(starts, ends, ta, tb)
+    signed = warp_angles(starts, ends, ta, tb, signed=True)
+    valid = (warp <= tolerance) & (np.abs(signed) <= 0.5 * np.pi)
+    return RulingResult(
+        s_out, t_out, starts, ends, warp, signed, valid, _message(valid, source, flipped & ~has, tolerance, n), from_station
+    )
+
+
+def _message(valid: BoolArray, source: IntArray, flipped: BoolArray, tolerance: float, n: int) -> str | None:
+    """What went wrong, with a count, and what to try; None when every station is valid."""
+    bad = source[(source >= 0) & ~valid]
+    if len(bad) == 0:
+        return None
+    message = f"no ruling within {tolerance:g} rad for {len(bad)} of {n} stations: try swapping curves A and B"
+    reversed_count = int(flipped[bad].sum())
+    if reversed_count:
+        return message + (
+            f", or reversing curve B ({reversed_count} of them have a torsal ruling whose normals"
+            " flip, as if B ran the other way)"
+        )
+    if len(bad) == n:
+        return message + ", or changing them: these curves bound no developable strip"
+    return message

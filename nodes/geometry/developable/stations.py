@@ -1,0 +1,116 @@
+"""Where rulings start: stations spaced evenly along a curve, and a fast arc-length map.
+
+The developable nodes place their ``Segments + 1`` rulings at stations spaced evenly in
+arc length along the base curve, as Grasshopper's *Divide Curve* does (the thesis
+divides the curve that way); ``spacing="parameter"`` spaces them evenly in t instead.
+
+Stations only need to be evenly spaced to the eye, so the arc length here is a light
+table: 8-point Gauss–Legendre on a fixed partition of every smooth span, read back by
+cubic Hermite interpolation (the speed |C'| is the exact slope of the length at each
+node) and inverted by one Newton step from a linear guess. Spacing is even to about
+1e-8 of the total length — ample for placing rulings, and several times cheaper than
+the curve's own 1e-13 :class:`~..arclength.LengthTable`, which matters when a slider
+rebuilds the curve on every solve.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.special import roots_legendre
+
+if TYPE_CHECKING:
+    from ..curve_base import Curve, FloatArray
+
+Spacing = Literal["length", "parameter"]
+
+_NODES, _WEIGHTS = roots_legendre(8)
+
+
+class LengthMap:
+    """Arc length along a curve as a function of t, and its inverse (vectorised).
+
+    ``intervals`` pieces are spread over the curve's smooth spans (at least eight each);
+    each piece is integrated with the 8-point Gauss–Legendre rule.
+    """
+
+    def __init__(self, curve: Curve, intervals: int = 128) -> None:
+        self.curve = curve
+        breaks = curve._breakpoints()
+        spans = len(breaks) - 1
+        per_span = max(8, -(-intervals // spans))
+        edges = breaks[:-1, None] + np.linspace(0.0, 1.0, per_span + 1)[None, :-1] * np.diff(breaks)[:, None]
+        nodes = np.append(edges.reshape(-1), 1.0)
+        low, high = nodes[:-1], nodes[1:]
+        half = 0.5 * (high - low)
+        x = (0.5 * (high + low))[:, None] + half[:, None] * _NODES[None, :]
+        # the speed at both ends of every piece, one-sided (it may jump at a knot)
+        ends = np.concatenate([low, high - 1e-12 * (high - low)])
+        d1 = curve.derivatives(np.concatenate([x.reshape(-1), ends]), 1)[1]
+        speeds = np.sqrt(np.einsum("ij,ij->i", d1, d1))
+        pieces = half * (speeds[: x.size].reshape(x.shape) @ _WEIGHTS)
+        self.nodes: FloatArray = nodes
+        self.lengths: FloatArray = np.concatenate([[0.0], np.cumsum(pieces)])
+        #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
+        self.start_speeds, self.end_speeds = np.split(speeds[x.size :], 2)
+        #: Total arc length of the curve.
+        self.total: float = float(self.lengths[-1])
+
+    def _hermite(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """ℓ(t) and dℓ/dt from the cubic Hermite piece through the two nearest nodes."""
+        x = self.nodes
+        k = np.clip(np.searchsorted(x, t, side="right") - 1, 0, len(x) - 2)
+        h = x[k + 1] - x[k]
+        u = (t - x[k]) / h
+        l0, l1 = self.lengths[k], self.lengths[k + 1]
+        d0, d1 = self.start_speeds[k] * h, self.end_speeds[k] * h
+        u2 = u * u
+        value = (
+            l0 * (2 * u2 * u - 3 * u2 + 1)
+            + d0 * (u2 * u - 2 * u2 + u)
+            + l1 * (-2 * u2 * u + 3 * u2)
+            + d1 * (u2 * u - u2)
+        )
+        slope = (
+            l0 * (6 * u2 - 6 * u) + d0 * (3 * u2 - 4 * u + 1) + l1 * (6 * u - 6 * u2) + d1 * (3 * u2 - 2 * u)
+        ) / h
+        return value, slope
+
+    def length_at(self, t: ArrayLike) -> FloatArray:
+        """Arc length from t = 0 to each ``t``."""
+        return self._hermite(np.clip(np.asarray(t, dtype=float), 0.0, 1.0))[0]
+
+    def parameter_at(self, length: ArrayLike) -> FloatArray:
+        """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
+        target = np.clip(np.asarray(length, dtype=float), 0.0, self.total)
+        t = np.interp(target, self.lengths, self.nodes)
+        # two Newton steps on ℓ(t) − target from the piecewise-linear guess
+        for _ in range(2):
+            value, slope = self._hermite(t)
+            moving = slope > 1e-12 * max(self.total, 1e-300)
+            t = np.clip(t - np.where(moving, (value - target) / np.where(moving, slope, 1.0), 0.0), 0.0, 1.0)
+        return t
+
+
+def station_parameters(
+    curve: Curve, count: int, spacing: Spacing = "length", length_map: LengthMap | None = None
+) -> FloatArray:
+    """``count`` parameters from t = 0 to t = 1, evenly spaced in arc length or in t.
+
+    The ends are exactly 0 and 1 (a closed curve gets both: its first and last ruling
+    coincide, which closes a loft).
+    """
+    if count < 2:
+        raise ValueError(f"At least 2 stations are needed; got {count}.")
+    if spacing == "parameter":
+        return np.linspace(0.0, 1.0, count)
+    if spacing != "length":
+        raise ValueError(f"Station spacing must be 'length' or 'parameter'; got {spacing!r}.")
+    lengths = length_map or LengthMap(curve)
+    if lengths.total <= 0.0:
+        raise ValueError("The curve has zero length, so rulings cannot be spaced along it.")
+    t = lengths.parameter_at(np.linspace(0.0, lengths.total, count))
+    t[0], t[-1] = 0.0, 1.0
+    return np.maximum.accumulate(t)

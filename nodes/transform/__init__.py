@@ -1,0 +1,1 @@
+"""Transform: move, rotate, scale, mirror, orient and array any geometry."""

@@ -1,0 +1,217 @@
+"""Curve pairs cut from known developables, with the true ruling partner of every point.
+
+Each pair is built from a surface S(u, w) whose rulings are the lines u = const: curve A
+is S(u_A(s), w_A(s)) and curve B is S(u_B(τ), w_B(τ)) with τ a *warped* function of B's
+own parameter t, so B is re-parameterised non-uniformly. The true ruling through A(s)
+is the line u = u_A(s); its partner on B is the t where u_B(τ(t)) = u_A(s), known in
+closed form. All derivatives are analytic, so the errors measured are the solver's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from nodes.geometry.curves import NurbsCurve, ParametricCurve
+
+Array = np.ndarray
+
+#: τ(t) = (e^{kt} − 1)/(e^k − 1): a smooth, strongly non-uniform re-parameterisation.
+WARP_K = 1.5
+
+
+def warp(t: Array) -> tuple[Array, Array, Array]:
+    """τ, dτ/dt, d²τ/dt² of the warped parameter."""
+    e = math.expm1(WARP_K)
+    g = np.exp(WARP_K * t)
+    return (g - 1.0) / e, WARP_K * g / e, WARP_K**2 * g / e
+
+
+def unwarp(tau: Array) -> Array:
+    """t with τ(t) = tau."""
+    return np.log1p(tau * math.expm1(WARP_K)) / WARP_K
+
+
+@dataclass
+class Pair:
+    """Two curves on one developable and the true partner map s → t."""
+
+    a: ParametricCurve
+    b: ParametricCurve
+    partner: Callable[[Array], Array]  #: true t on B for s on A
+    size: float  #: bounding-box diagonal of the pair
+
+
+def _curve(surface, u_of, w_of, warped: bool) -> ParametricCurve:
+    """The curve x ↦ S(u(τ), w(τ)) with τ = x (or warp(x)), and its first two derivatives.
+
+    ``surface(u, w)`` returns (S, S_u, S_w, S_uu, S_uw, S_ww); ``u_of``/``w_of`` return
+    (value, first, second derivative) in τ.
+    """
+
+    def parts(x):
+        if warped:
+            tau, dtau, ddtau = warp(x)
+        else:
+            tau, dtau, ddtau = x, np.ones_like(x), np.zeros_like(x)
+        u, du, ddu = u_of(tau)
+        w, dw, ddw = w_of(tau)
+        p, su, sw, suu, suw, sww = surface(u, w)
+        # chain rule in τ, then in x
+        d1_tau = su * du[:, None] + sw * dw[:, None]
+        d2_tau = (
+            suu * (du**2)[:, None]
+            + 2 * suw * (du * dw)[:, None]
+            + sww * (dw**2)[:, None]
+            + su * ddu[:, None]
+            + sw * ddw[:, None]
+        )
+        d1 = d1_tau * dtau[:, None]
+        d2 = d2_tau * (dtau**2)[:, None] + d1_tau * ddtau[:, None]
+        return p, d1, d2
+
+    return ParametricCurve(
+        lambda x: parts(np.asarray(x, float))[0],
+        (0.0, 1.0),
+        derivatives=(lambda x: parts(np.asarray(x, float))[1], lambda x: parts(np.asarray(x, float))[2]),
+    )
+
+
+def _size(a: ParametricCurve, b: ParametricCurve) -> float:
+    x = np.linspace(0, 1, 200)
+    p = np.concatenate([a.point_at(x), b.point_at(x)])
+    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+
+
+def _lin(a: float, b: float):
+    return lambda x: (a + (b - a) * x, np.full_like(x, b - a), np.zeros_like(x))
+
+
+def _wave(base: float, amp: float, freq: float, phase: float = 0.0):
+    return lambda x: (
+        base + amp * np.sin(freq * x + phase),
+        amp * freq * np.cos(freq * x + phase),
+        -amp * freq**2 * np.sin(freq * x + phase),
+    )
+
+
+# -- cone: apex at the origin, axis z, half-angle α; S(u, w) = w·(sin α cos u, sin α sin u, cos α)
+
+CONE_ALPHA = 0.5
+
+
+def cone_surface(u, w):
+    sa, ca = math.sin(CONE_ALPHA), math.cos(CONE_ALPHA)
+    e = np.column_stack([sa * np.cos(u), sa * np.sin(u), np.full_like(u, ca)])
+    eu = np.column_stack([-sa * np.sin(u), sa * np.cos(u), np.zeros_like(u)])
+    euu = np.column_stack([-sa * np.cos(u), -sa * np.sin(u), np.zeros_like(u)])
+    z = np.zeros_like(e)
+    return w[:, None] * e, w[:, None] * eu, e, w[:, None] * euu, eu, z
+
+
+def cone_pair() -> Pair:
+    """Two wavy, non-planar curves on a cone over 2.5 rad of its generators."""
+    span = 2.5
+    a = _curve(cone_surface, _lin(0.0, span), _wave(2.0, 0.3, 7.0), warped=False)
+    b = _curve(cone_surface, _lin(0.0, span), _wave(4.0, 0.5, 5.0, 1.0), warped=True)
+    return Pair(a, b, lambda s: unwarp(np.asarray(s, float)), _size(a, b))
+
+
+# -- cylinder: S(u, w) = (R cos u, R sin u, w)
+
+CYL_R = 3.0
+
+
+def cylinder_surface(u, w):
+    p = np.column_stack([CYL_R * np.cos(u), CYL_R * np.sin(u), w])
+    pu = np.column_stack([-CYL_R * np.sin(u), CYL_R * np.cos(u), np.zeros_like(u)])
+    pw = np.column_stack([np.zeros_like(u), np.zeros_like(u), np.ones_like(u)])
+    puu = np.column_stack([-CYL_R * np.cos(u), -CYL_R * np.sin(u), np.zeros_like(u)])
+    z = np.zeros_like(p)
+    return p, pu, pw, puu, z, z
+
+
+def cylinder_pair() -> Pair:
+    """A low wavy curve and a high wavy curve on a cylinder, over 3 rad."""
+    span = 3.0
+    a = _curve(cylinder_surface, _lin(0.0, span), _wave(0.0, 0.4, 4.0), warped=False)
+    b = _curve(cylinder_surface, _lin(0.0, span), _wave(2.5, 0.3, 3.0, 0.5), warped=True)
+    return Pair(a, b, lambda s: unwarp(np.asarray(s, float)), _size(a, b))
+
+
+# -- tangent developable of the helix H(u) = (R cos u, R sin u, h u): S(u, w) = H(u) + w·T(u)
+
+HELIX_R, HELIX_H = 2.0, 0.8
+
+
+def helix_developable_surface(u, w):
+    c = math.hypot(HELIX_R, HELIX_H)
+    h = np.column_stack([HELIX_R * np.cos(u), HELIX_R * np.sin(u), HELIX_H * u])
+    h1 = np.column_stack([-HELIX_R * np.sin(u), HELIX_R * np.cos(u), np.full_like(u, HELIX_H)])
+    h2 = np.column_stack([-HELIX_R * np.cos(u), -HELIX_R * np.sin(u), np.zeros_like(u)])
+    h3 = np.column_stack([HELIX_R * np.sin(u), -HELIX_R * np.cos(u), np.zeros_like(u)])
+    t, t1, t2 = h1 / c, h2 / c, h3 / c
+    z = np.zeros_like(h)
+    wc = w[:, None]
+    return h + wc * t, h1 + wc * t1, t, h2 + wc * t2, t1, z
+
+
+def helix_developable_pair() -> Pair:
+    """Two curves on one sheet of the helix's tangent developable, over 3 rad."""
+    span = 3.0
+    a = _curve(helix_developable_surface, _lin(0.0, span), _wave(0.6, 0.15, 5.0), warped=False)
+    b = _curve(helix_developable_surface, _lin(0.0, span), _wave(2.5, 0.4, 4.0, 0.3), warped=True)
+    return Pair(a, b, lambda s: unwarp(np.asarray(s, float)), _size(a, b))
+
+
+PAIRS = {"cone": cone_pair, "cylinder": cylinder_pair, "helix_developable": helix_developable_pair}
+
+
+# -- NURBS curves exactly on a cone: re-weighted rational arcs ------------------------------
+#
+# A rational curve is X(t)/w(t) in homogeneous coordinates. Keeping X (the weighted control
+# points) and changing only the weights moves every point along its ray from the origin,
+# so a circular arc on a cone with apex at the origin stays on that cone, but becomes a
+# wavy, non-planar curve whose parameter runs non-uniformly in angle.
+
+
+def _arc_nurbs(radius: float, height: float, sweep: float, spans: int, reweight: Array) -> NurbsCurve:
+    half = sweep / spans / 2
+    k = np.arange(2 * spans + 1)
+    angles = half * k
+    distance = np.where(k % 2 == 1, radius / math.cos(half), radius)
+    points = np.column_stack([distance * np.cos(angles), distance * np.sin(angles), np.full(len(k), height)])
+    weights = np.where(k % 2 == 1, math.cos(half), 1.0)
+    knots = np.concatenate([[0.0] * 3, np.repeat(np.arange(1, spans) / spans, 2), [1.0] * 3])
+    new_weights = weights * reweight
+    return NurbsCurve(points * (weights / new_weights)[:, None], degree=2, knots=knots, weights=new_weights)
+
+
+def _angle(curve: NurbsCurve, t: Array) -> Array:
+    p = curve.point_at(t)
+    return np.arctan2(p[:, 1], p[:, 0])
+
+
+def nurbs_cone_pair(sweep: float = 2.4) -> Pair:
+    """Rational quadratic curves on the cone of half-angle CONE_ALPHA (apex at the origin):
+    A from 4 arc spans, B from 7, both re-weighted; partners share their angle."""
+    tan = math.tan(CONE_ALPHA)
+    a = _arc_nurbs(1.0 * tan, 1.0, sweep, 4, 1.0 + 0.25 * np.sin(1.7 * np.arange(9)))
+    b = _arc_nurbs(2.2 * tan, 2.2, sweep, 7, 1.0 + 0.3 * np.cos(1.3 * np.arange(15)))
+
+    def partner(s: Array) -> Array:
+        target = _angle(a, np.atleast_1d(np.asarray(s, float)))
+        low, high = np.zeros_like(target), np.ones_like(target)
+        for _ in range(60):  # bisection on the (increasing) angle of B
+            mid = 0.5 * (low + high)
+            below = _angle(b, mid) < target
+            low, high = np.where(below, mid, low), np.where(below, high, mid)
+        return 0.5 * (low + high)
+
+    return Pair(a, b, partner, _size(a, b))
+
+
+PAIRS["nurbs_cone"] = nurbs_cone_pair

@@ -1,0 +1,151 @@
+"""Fixtures and helpers for the GUI tests (imported by conftest when Qt is available)."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import pytest
+from PySide6.QtCore import QPoint, QPointF, Qt
+from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QApplication, QMessageBox
+
+from app.gui.main_window import MainWindow
+from engine.registry import Registry
+from tests.gui.showcase_nodes import showcase_registry
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+EXAMPLES = ROOT / "resources" / "examples"
+FIXTURES = HERE / "fixtures"
+SCREENSHOTS = HERE / "screenshots"
+SOLVE_TIMEOUT_MS = 20000
+
+
+@dataclass
+class Dialogs:
+    """Records every QMessageBox shown; answers questions with :attr:`answer`."""
+
+    calls: list[tuple[str, str, str]] = field(default_factory=list)
+    answer: QMessageBox.StandardButton = QMessageBox.StandardButton.Discard
+
+    def kinds(self) -> list[str]:
+        return [c[0] for c in self.calls]
+
+
+@pytest.fixture(autouse=True)
+def dialogs(monkeypatch: pytest.MonkeyPatch) -> Dialogs:
+    """No test may block on a dialog: message boxes are recorded instead of shown."""
+    record = Dialogs()
+
+    def fake(kind: str) -> Any:
+        def show(parent: Any, title: str, text: str, *args: Any, **kwargs: Any) -> Any:
+            record.calls.append((kind, title, text))
+            return record.answer if kind == "question" else QMessageBox.StandardButton.Ok
+
+        return staticmethod(show)
+
+    for kind in ("critical", "warning", "information", "question"):
+        monkeypatch.setattr(QMessageBox, kind, fake(kind))
+    monkeypatch.setattr(
+        QMessageBox, "about", staticmethod(lambda *a, **k: record.calls.append(("about", "", "")))
+    )
+    return record
+
+
+@pytest.fixture(scope="session")
+def registry() -> Registry:
+    return showcase_registry()
+
+
+@pytest.fixture
+def config_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    folder = tmp_path / "config"
+    folder.mkdir()
+    monkeypatch.setenv("TORSAL_CONFIG_DIR", str(folder))
+    return folder
+
+
+def make_window(qtbot: Any, registry: Registry, folder: Path) -> MainWindow:
+    window = MainWindow(registry=registry, settings_folder=folder)
+    qtbot.addWidget(window)
+    window.resize(1500, 920)
+    window.show()
+    qtbot.waitExposed(window)
+    window.start(None, offer_recovery=False)
+    return window
+
+
+def close_window(window: MainWindow) -> None:
+    window.doc.undo_stack.setClean()
+    window.close()
+    QApplication.processEvents()
+
+
+@pytest.fixture
+def window(qtbot: Any, registry: Registry, config_folder: Path) -> Iterator[MainWindow]:
+    """A shown main window with its real QtInteractor, on an empty document."""
+    win = make_window(qtbot, registry, config_folder)
+    wait_solved(qtbot, win)
+    yield win
+    close_window(win)
+
+
+def wait_solved(qtbot: Any, window: MainWindow, timeout: int = SOLVE_TIMEOUT_MS) -> None:
+    """Wait until every requested solve has finished and its results reached the GUI."""
+    qtbot.waitUntil(window.doc.solves.idle, timeout=timeout)
+    QApplication.processEvents()
+
+
+def copy_fixture(source: Path, folder: Path) -> Path:
+    target = folder / source.name
+    shutil.copyfile(source, target)
+    return target
+
+
+# -- mouse helpers ------------------------------------------------------------------
+def view_point(window: MainWindow, scene_pos: QPointF) -> QPoint:
+    return window.view.mapFromScene(scene_pos)
+
+
+def port_point(window: MainWindow, node_id: str, port: str, is_input: bool) -> QPoint:
+    item = window.scene.nodes[node_id]
+    port_item = item.input_port(port) if is_input else item.output_port(port)
+    assert port_item is not None, f"{node_id} has no {'input' if is_input else 'output'} {port}"
+    return view_point(window, port_item.scenePos())
+
+
+def drag(
+    window: MainWindow,
+    start: QPoint,
+    end: QPoint,
+    steps: int = 8,
+    modifiers: Qt.KeyboardModifier = Qt.KeyboardModifier.NoModifier,
+) -> None:
+    """Press at ``start``, move to ``end`` in ``steps``, release — on the canvas viewport."""
+    viewport = window.view.viewport()
+    QTest.mousePress(viewport, Qt.MouseButton.LeftButton, modifiers, start)
+    for i in range(1, steps + 1):
+        point = start + (end - start) * (i / steps)
+        QTest.mouseMove(viewport, point)
+    QTest.mouseRelease(viewport, Qt.MouseButton.LeftButton, modifiers, end)
+
+
+def place_by_search(qtbot: Any, window: MainWindow, query: str, scene_pos: QPointF) -> str:
+    """Double-click empty canvas at ``scene_pos``, type ``query``, press Enter; the new node's id."""
+    before = set(window.doc.graph.nodes)
+    QTest.mouseDClick(
+        window.view.viewport(),
+        Qt.MouseButton.LeftButton,
+        Qt.KeyboardModifier.NoModifier,
+        view_point(window, scene_pos),
+    )
+    qtbot.waitUntil(window.popup.isVisible, timeout=3000)
+    QTest.keyClicks(window.popup.query, query)
+    QTest.keyClick(window.popup.query, Qt.Key.Key_Return)
+    qtbot.waitUntil(lambda: bool(set(window.doc.graph.nodes) - before), timeout=3000)
+    (node_id,) = set(window.doc.graph.nodes) - before
+    return node_id
