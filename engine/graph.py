@@ -68,7 +68,9 @@ class NodeRecord:
 
     @property
     def title(self) -> str:
-        return self.label or self.node.name()
+        """The label, or the node type's name; shortened for messages and the canvas."""
+        text = self.label or self.node.name()
+        return text if len(text) <= 60 else text[:59] + "…"
 
     def input_state(self, port: str) -> InputState:
         return self.inputs.setdefault(port, InputState())
@@ -112,6 +114,7 @@ class Graph:
         self._order: list[str] | None = None
         self._targets_cache: dict[str, list[str]] | None = None
         self._into_cache: dict[str, list[Wire]] | None = None
+        self._wire_set: set[Wire] = set()
 
     # -- events ---------------------------------------------------------------------
     def subscribe(self, listener: Listener) -> Callable[[], None]:
@@ -186,16 +189,25 @@ class Graph:
         """Wire an output to an input, after checking types, cycles and wire counts."""
         return self.connect_wire(Wire(source, source_port, target, target_port))
 
-    def connect_wire(self, wire: Wire) -> Wire:
-        """Add ``wire`` (see :meth:`connect`)."""
-        self.check_wire(wire)
+    def connect_wire(self, wire: Wire, check_loops: bool = True) -> Wire:
+        """Add ``wire`` (see :meth:`connect`).
+
+        ``check_loops=False`` is for loading many wires at once: the caller then finds
+        loops with one :meth:`order` call instead of a search per wire.
+        """
+        self.check_wire(wire, check_loops)
         self.wires.append(wire)
-        self._order = self._targets_cache = self._into_cache = None
+        self._wire_set.add(wire)
+        self._order = None
+        if self._targets_cache is not None:
+            self._targets_cache.setdefault(wire.source, []).append(wire.target)
+        if self._into_cache is not None:
+            self._into_cache.setdefault(wire.target, []).append(wire)
         self.expire(wire.target)
         self._emit("wire_added", wire.target, wire=wire)
         return wire
 
-    def check_wire(self, wire: Wire) -> None:
+    def check_wire(self, wire: Wire, check_loops: bool = True) -> None:
         """Raise :class:`GraphError` saying why ``wire`` cannot be added."""
         src, dst = self._record(wire.source), self._record(wire.target)
         out_port = src.node.output_port(wire.source_port)
@@ -204,7 +216,7 @@ class Graph:
             raise GraphError(f"{src.title} has no output called {wire.source_port!r}")
         if in_port is None and not is_placeholder(dst.node):
             raise GraphError(f"{dst.title} has no input called {wire.target_port!r}")
-        if wire in self.wires:
+        if wire in self._wire_set:
             raise GraphError(f"{wire} is already connected")
         if out_port and in_port and not can_cast(out_port.type, in_port.type):
             raise GraphError(
@@ -216,13 +228,14 @@ class Graph:
                 f"{dst.title}.{in_port.name} takes one wire; disconnect the other first "
                 "(or hold Shift to add to a list input)"
             )
-        if wire.source == wire.target or wire.target in self.upstream(wire.source):
-            raise GraphError(f"{wire} would make a loop: {dst.title} already feeds {src.title}")
+        if wire.source == wire.target or (check_loops and wire.target in self.upstream(wire.source)):
+            raise GraphError(f"{wire} would make a loop: {wire.target} already feeds {wire.source}")
 
     def disconnect(self, wire: Wire) -> None:
-        if wire not in self.wires:
+        if wire not in self._wire_set:
             raise GraphError(f"{wire} is not connected")
         self.wires.remove(wire)
+        self._wire_set.discard(wire)
         self._order = self._targets_cache = self._into_cache = None
         if wire.target in self.nodes:
             self.expire(wire.target)

@@ -32,6 +32,7 @@ from engine.registry import Registry
 FORMAT = "torsal.graph"
 VERSION = 1
 MAX_FILE_BYTES = 64 * 1024 * 1024
+MAX_DEPTH = 64
 
 Coordinate = Annotated[float, msgspec.Meta(ge=-1e15, le=1e15)]
 Identifier = Annotated[str, msgspec.Meta(min_length=1, max_length=200)]
@@ -92,11 +93,15 @@ def _migrate_0_to_1(data: dict[str, Any]) -> dict[str, Any]:
     "b.In"}`` and positions as ``"x"``/``"y"`` fields; version 1 uses ``from``/``to`` pairs
     and a ``position`` list."""
     data = copy.deepcopy(data)
-    for node in data.get("nodes", []):
+    nodes, wires_in = data.get("nodes"), data.get("wires", [])
+    for node in nodes if isinstance(nodes, list) else []:
         if isinstance(node, dict) and ("x" in node or "y" in node):
             node["position"] = [node.pop("x", 0.0), node.pop("y", 0.0)]
+    if not isinstance(wires_in, list):
+        data["version"] = 1
+        return data  # the schema check reports the malformed wires
     wires = []
-    for wire in data.get("wires", []):
+    for wire in wires_in:
         if isinstance(wire, dict) and "source" in wire and "target" in wire:
             source, target = str(wire.pop("source")), str(wire.pop("target"))
             wire["from"] = source.rsplit(".", 1) if "." in source else [source, ""]
@@ -160,17 +165,41 @@ def parse(content: bytes | str) -> dict[str, Any]:
     """Decode JSON and check it claims to be a Torsal graph."""
     if isinstance(content, str):
         content = content.encode("utf-8", "surrogatepass")
+    content = content.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte-order mark some editors add
     try:
         data = msgspec.json.decode(content)
+    except msgspec.ValidationError as exc:  # a subclass of DecodeError: catch it first
+        raise GraphFileError(f"the file holds a number Torsal cannot read ({exc})") from None
     except msgspec.DecodeError as exc:
         raise GraphFileError(f"the file is not valid JSON ({exc})") from None
-    except msgspec.ValidationError as exc:
-        raise GraphFileError(f"the file holds a number Torsal cannot read ({exc})") from None
+    except UnicodeError:
+        raise GraphFileError("the file is not UTF-8 text") from None
     except RecursionError:
         raise GraphFileError("the file is nested too deeply to be a graph") from None
+    if nesting_depth(data) > MAX_DEPTH:
+        raise GraphFileError(f"the file is nested more than {MAX_DEPTH} levels deep; a graph never is")
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise GraphFileError("this is not a Torsal graph file (it lacks \"format\": \"torsal.graph\")")
     return data
+
+
+def nesting_depth(data: Any) -> int:
+    """How deeply lists and objects nest in ``data`` (counted with a loop, not recursion)."""
+    deepest = 0
+    stack = [(data, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, dict):
+            children = value.values()
+        elif isinstance(value, list):
+            children = value
+        else:
+            continue
+        deepest = max(deepest, depth)
+        if deepest > MAX_DEPTH:
+            break
+        stack.extend((child, depth + 1) for child in children)
+    return deepest
 
 
 def _build(data: dict[str, Any], registry: Registry) -> Graph:
@@ -187,7 +216,8 @@ def _build(data: dict[str, Any], registry: Registry) -> Graph:
             if source not in graph.nodes or target not in graph.nodes:
                 missing = source if source not in graph.nodes else target
                 raise GraphFileError(f"wire {wire} refers to a node {missing!r} that is not in the file")
-            graph.connect_wire(wire)
+            graph.connect_wire(wire, check_loops=False)
+        graph.order()  # one topological sort finds any loop among the wires
     except GraphError as exc:
         raise GraphFileError(f"the graph in the file is not valid: {exc}") from None
     for raw in data.get("groups", []):
@@ -358,12 +388,23 @@ def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
             stream.write(text)
             stream.flush()
             os.fsync(stream.fileno())
+        os.chmod(temporary, _mode_for(path))
         if path.exists():
             shutil.copy2(path, path.with_name(path.name + ".bak"))
         os.replace(temporary, path)
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def _mode_for(path: Path) -> int:
+    """Keep the replaced file's permissions; a new file gets the usual 0666 less the umask."""
+    try:
+        return path.stat().st_mode & 0o7777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
 
 
 def _refuse_if_newer(path: Path) -> None:

@@ -12,6 +12,7 @@ preview) touch fields the solver never reads and do not interrupt a solve.
 
 from __future__ import annotations
 
+import sys
 import threading
 import time
 from dataclasses import dataclass, field
@@ -22,6 +23,10 @@ from engine.node import CancelToken
 from engine.solver import NodeResult, Solver, SolveReport
 
 PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
+#: How long a Python thread may hold the GIL before handing it over (CPython's default is
+#: 5 ms). Every Qt callback on the GUI thread needs the GIL; with a node computing in pure
+#: Python on the worker, 1 ms keeps the GUI's event loop answering within a few ms.
+GIL_SWITCH_INTERVAL = 0.00005
 
 
 @dataclass
@@ -52,6 +57,7 @@ class SolveController(QObject):
 
     def __init__(self, parent: QObject | None = None) -> None:
         super().__init__(parent)
+        sys.setswitchinterval(min(sys.getswitchinterval(), GIL_SWITCH_INTERVAL))
         self._solver: Solver | None = None
         self._thread: threading.Thread | None = None
         self._token: CancelToken | None = None

@@ -35,7 +35,8 @@ class SolveStatus(QStatusBar):
 
     def solve_started(self) -> None:
         self._started = time.perf_counter()
-        self.progress.setRange(0, 0)
+        self.progress.setRange(0, 1)  # not the animated busy mode: it repaints all the time
+        self.progress.setValue(0)
         self._reveal.start()
 
     def _show_progress(self) -> None:

@@ -171,8 +171,8 @@ def curve_of_regression(starts: ArrayLike, ends: ArrayLike, deviation: float) ->
     spread = np.linalg.norm(points[good] - points[good].mean(axis=0), axis=1).max()
     if good.all() and spread <= APEX_TOLERANCE * size:
         apex = points.mean(axis=0)
-        where = ", ".join(f"{x:.6g}" for x in apex)
-        return result("apex", f"a cone: every ruling passes through its apex ({where}); "
+        text = ", ".join(f"{x:.6g}" for x in apex)
+        return result("apex", f"a cone: every ruling passes through its apex ({text}); "
                       "a cone has an apex, not a curve of regression", apex=apex)
     if not valid.any():
         worst = float(np.nanmax(gaps)) if np.isfinite(gaps).any() else 0.0
@@ -182,7 +182,7 @@ def curve_of_regression(starts: ArrayLike, ends: ArrayLike, deviation: float) ->
     # runs of valid segments → polylines (a loop over runs, not points)
     edges = np.diff(np.r_[0, valid.astype(np.int8), 0])
     run_starts, run_ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    curves = [points[s:e + 1] for s, e in zip(run_starts, run_ends, strict=True)]
+    curves = [points[i:j + 1] for i, j in zip(run_starts, run_ends, strict=True)]
     bad = int((~valid).sum())
     message = "curve of regression" if bad == 0 else (
         f"curve of regression in {len(curves)} pieces: {bad} of {len(valid)} segments turn "

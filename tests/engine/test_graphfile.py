@@ -498,11 +498,6 @@ def test_an_unsaveable_graph_does_not_touch_the_file(registry, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["design.graph"]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: write_graph saves through tempfile.mkstemp, so every saved .graph "
-    "becomes mode 0600 (the original file's mode and the umask are ignored)",
-)
 def test_saving_keeps_the_files_permissions(registry, tmp_path):
     path = tmp_path / "shared.graph"
     path.write_text(read("engine-spec-example.graph"), encoding="utf-8")
@@ -543,12 +538,6 @@ def test_a_500_node_chain_loads_and_round_trips(registry):
 
 
 @pytest.mark.timeout(60)
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: loading is quadratic in the number of wires (Graph.check_wire rebuilds "
-    "the whole upstream set per wire): a 2000-node chain (150 KB) takes ~2.5 s, 8000 nodes "
-    "(620 KB) ~60 s, so a large file effectively hangs the loader",
-)
 def test_loading_scales_linearly_with_the_number_of_wires(registry):
     text = chain_text(2000)
     started = time.perf_counter()

@@ -10,9 +10,8 @@ and from hypothesis strategies (arbitrary JSON, plausible graphs with wrong type
 in, byte edits, canonical graphs that must round-trip exactly). The last test checks
 that all of them together ran at least 10,000 cases.
 
-Known engine bugs are recognised narrowly by :func:`known_bug` (each is pinned by a
-strict xfail test at the end of this module) so the rest of the corpus keeps guarding
-against new failures; delete an entry from ``KNOWN_BUGS`` once the engine is fixed.
+The bugs this corpus once found (non-UTF-8 text, nesting deep enough to overflow the
+stack, malformed version-0 files) are guarded by named tests at the end of this module.
 """
 
 from __future__ import annotations
@@ -25,7 +24,6 @@ from collections import Counter
 from pathlib import Path
 from typing import Any, ClassVar
 
-import msgspec
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -78,14 +76,6 @@ FUZZ_TESTS = {
 
 # --------------------------------------------------------------------------- harness
 
-KNOWN_BUGS = {
-    # invalid UTF-8 inside a JSON string escapes parse() as UnicodeDecodeError
-    "known-bug:non-utf8",
-    # nesting msgspec accepts (< ~1000 levels) overflows copy.deepcopy / encode's recursion
-    "known-bug:deep-nesting",
-    # _migrate_0_to_1 iterates "nodes"/"wires" without checking they are lists
-    "known-bug:v0-shape",
-}
 
 
 def as_bytes(content: bytes | str) -> bytes:
@@ -114,39 +104,6 @@ def nesting_depth(content: bytes | str) -> int:
     return deepest
 
 
-def is_utf8(content: bytes | str) -> bool:
-    try:
-        as_bytes(content).decode("utf-8")
-    except UnicodeDecodeError:
-        return False
-    return True
-
-
-def v0_with_unlisted_parts(content: bytes | str) -> bool:
-    try:
-        data = msgspec.json.decode(as_bytes(content))
-    except Exception:
-        return False
-    return (
-        isinstance(data, dict)
-        and data.get("version") == 0
-        and not isinstance(data.get("version"), bool)
-        and any(key in data and not isinstance(data[key], list | dict | str) for key in ("nodes", "wires"))
-    )
-
-
-def known_bug(content: bytes | str, exc: BaseException) -> str | None:
-    if isinstance(exc, UnicodeDecodeError) and not is_utf8(content):
-        label = "known-bug:non-utf8"
-    elif isinstance(exc, RecursionError) and nesting_depth(content) > 64:
-        label = "known-bug:deep-nesting"
-    elif isinstance(exc, TypeError) and v0_with_unlisted_parts(content):
-        label = "known-bug:v0-shape"
-    else:
-        return None
-    return label if label in KNOWN_BUGS else None
-
-
 def preview(content: bytes | str) -> str:
     data = as_bytes(content)
     return repr(data[:300]) + (f" ... ({len(data)} bytes)" if len(data) > 300 else "")
@@ -159,7 +116,7 @@ def unexpected(stage: str, content: bytes | str, exc: BaseException) -> Assertio
 
 
 def outcome_of(content: bytes | str) -> str:
-    """``refused``, ``newer``, ``loaded`` or a known-bug label; anything else fails."""
+    """``refused``, ``newer`` or ``loaded``; anything else fails."""
     try:
         graph = graphfile.loads(content, REGISTRY)
     except NewerVersionError as exc:
@@ -169,18 +126,12 @@ def outcome_of(content: bytes | str) -> str:
         assert str(exc).strip(), f"empty GraphFileError message for {preview(content)}"
         return "refused"
     except Exception as exc:
-        bug = known_bug(content, exc)
-        if bug is None:
-            raise unexpected("loads", content, exc) from exc
-        return bug
+        raise unexpected("loads", content, exc) from exc
     try:
         report = Solver(graph).solve()
         text = graphfile.dumps(graph)
     except Exception as exc:
-        bug = known_bug(content, exc)
-        if bug is None:
-            raise unexpected("solve/dumps after a successful load", content, exc) from exc
-        return bug
+        raise unexpected("solve/dumps after a successful load", content, exc) from exc
     assert not report.cancelled
     assert set(report.solved) == set(graph.nodes)
     try:
@@ -705,7 +656,7 @@ SPECIAL_FILES: dict[str, tuple[bytes | str | dict, set[str]]] = {
     ),
     "0xff outside strings": (b'{"format": "torsal.graph", "version": 1, \xff "nodes": []}', REFUSED),
     "UTF-16 file": ('{"format": "torsal.graph", "version": 1, "nodes": []}'.encode("utf-16"), REFUSED),
-    "UTF-8 byte order mark": (b'\xef\xbb\xbf{"format": "torsal.graph", "version": 1, "nodes": []}', REFUSED),
+    "UTF-8 byte order mark": (b'\xef\xbb\xbf{"format": "torsal.graph", "version": 1, "nodes": []}', LOADED),
     "lone surrogate escape": (
         b'{"format": "torsal.graph", "version": 1, "nodes": [], "meta": {"a": "\\ud800"}}',
         REFUSED,
@@ -730,7 +681,7 @@ def test_special_hostile_files(name):
         content = json.dumps(content).encode("utf-8")
     with timed("special_files"):
         outcome = run_case("special_files", content)
-    assert outcome in expected or outcome in KNOWN_BUGS, f"{name}: {outcome}, expected {expected}"
+    assert outcome in expected, f"{name}: {outcome}, expected {expected}"
 
 
 def test_cycle_and_dangling_wire_messages_say_what_is_wrong():
@@ -1107,15 +1058,9 @@ def test_at_least_10000_files_were_checked():
     assert everything["refused"] >= 1000
 
 
-# --------------------------------------------------------------------------- known bugs
+# --------------------------------------------------------------------------- once bugs, now guarded
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=UnicodeDecodeError,
-    reason="engine bug: invalid UTF-8 inside a JSON string escapes graphfile.parse() as "
-    "UnicodeDecodeError (msgspec raises it; parse() only catches DecodeError/RecursionError)",
-)
 @pytest.mark.parametrize(
     "content",
     [
@@ -1124,19 +1069,13 @@ def test_at_least_10000_files_were_checked():
     ],
     ids=["latin-1-bytes", "str-with-lone-surrogate"],
 )
-def test_known_bug_invalid_utf8_is_a_graph_file_error(content):
+def test_invalid_utf8_is_a_graph_file_error(content):
     with pytest.raises(GraphFileError):
         graphfile.loads(content, REGISTRY)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=RecursionError,
-    reason="engine bug: nesting that msgspec accepts (up to ~1000 levels) overflows the stack in "
-    "copy.deepcopy during loads (>~450 levels) and in encode's _format during dumps (>~350)",
-)
 @pytest.mark.parametrize("levels", [400, 600, 900])
-def test_known_bug_deep_but_decodable_nesting_is_a_graph_file_error(levels):
+def test_deep_but_decodable_nesting_is_a_graph_file_error(levels):
     text = (
         '{"format": "torsal.graph", "version": 1, "nodes": [{"id": "a", "type": "plugin.X", '
         '"settings": {"v": ' + deep_array(levels) + "}}]}"
@@ -1148,14 +1087,8 @@ def test_known_bug_deep_but_decodable_nesting_is_a_graph_file_error(levels):
     graphfile.dumps(graph)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=TypeError,
-    reason="engine bug: _migrate_0_to_1 iterates data['nodes'] / data['wires'] without checking "
-    'their type, so a version-0 file with "nodes": null raises TypeError',
-)
 @pytest.mark.parametrize("field,value", [("nodes", None), ("nodes", 3), ("wires", 5), ("wires", None)])
-def test_known_bug_version_0_file_with_non_list_parts_is_a_graph_file_error(field, value):
+def test_version_0_file_with_non_list_parts_is_a_graph_file_error(field, value):
     data = {"format": "torsal.graph", "version": 0, "nodes": []}
     data[field] = value
     with pytest.raises(GraphFileError):

@@ -51,7 +51,6 @@ class LoopWatch:
 
     def stop(self) -> float:
         self.timer.stop()
-        print("top gaps", sorted(self.gaps[1:])[-6:], "count", len(self.gaps), [i for i, g in enumerate(self.gaps) if g > 40])
         return max(self.gaps[1:])
 
 

@@ -116,3 +116,30 @@ def test_closest_points_of_two_crossing_lines_are_their_intersection():
     directions = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
     s, t, parallel = closest_points_of_lines(starts, directions)
     assert s[0] == pytest.approx(1.0) and t[0] == pytest.approx(1.0) and not parallel[0]
+
+
+# ----------------------------------------------------------------------------- with the kernel
+
+
+def test_regression_of_the_kernels_tangent_developable_reproduces_its_curve():
+    from nodes.geometry.curves import ParametricCurve
+    from nodes.geometry.developable import tangent_developable_rulings
+
+    curve = ParametricCurve(helix, (0.0, 2.0 * np.pi))
+    rulings = tangent_developable_rulings(curve, 200, length=3.0, cutting_length=0.2)
+    reg = curve_of_regression(rulings.starts, rulings.ends, deviation=0.01)
+    assert reg.kind == "curve" and reg.valid.all()
+    assert distance_to_helix(reg.points, 2.0 * np.pi).max() < 1e-3
+
+
+def test_the_kernels_cone_unrolls_and_gives_its_apex():
+    from nodes.geometry.curves import ParametricCurve
+    from nodes.geometry.developable import cone_rulings
+    from nodes.geometry.unroll import unroll_rulings
+
+    apex = np.array([0.0, 0.0, math.sqrt(3.0)])
+    base = ParametricCurve(lambda u: np.column_stack([np.cos(u), np.sin(u), 0 * u]), (0.0, np.pi))
+    rulings = cone_rulings(base, apex, 10.0, 100)  # clamped at the apex: slant length 2
+    assert np.linalg.norm(curve_of_regression(rulings.starts, rulings.ends, 0.01).apex - apex) < 1e-9
+    dev = unroll_rulings(rulings.starts, rulings.ends, area_3d=math.pi * 1.0 * 2.0 / 2.0)
+    assert dev.max_edge_length_error < 1e-12 and abs(dev.area_error) < 1e-4

@@ -56,6 +56,9 @@ class NodeItem(QGraphicsItem):
             | QGraphicsItem.GraphicsItemFlag.ItemSendsGeometryChanges
         )
         self.setAcceptHoverEvents(True)
+        # Painted once into a pixmap and reused: repaints (scrolling, a wire moving over it)
+        # cost no Python, which keeps the GUI quick while the solver holds the GIL.
+        self.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         self.setPos(QPointF(*record.position))
         self.rebuild()
 

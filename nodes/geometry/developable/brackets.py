@@ -39,7 +39,7 @@ def refine_roots(
     is ``f(low)`` (only its sign is used). Converges quadratically at simple roots and by
     bisection onto jumps (a root of a discontinuous ``f`` is the jump).
     """
-    low = np.array(low, dtype=float)
+    low = np.array(low, dtype=float)  # copies: the brackets shrink in place
     high = np.array(high, dtype=float)
     low_sign = np.sign(np.asarray(f_low, dtype=float))
     x = 0.5 * (low + high) if start is None else np.clip(np.array(start, dtype=float), low, high)

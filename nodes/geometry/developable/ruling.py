@@ -112,15 +112,19 @@ class RulingResult:
 # -- sampling B ----------------------------------------------------------------------------
 
 
+def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
+    """Whether the unit tangent turns by more than CORNER_ANGLE from ``left`` to ``right``."""
+    left, right = unit(left), unit(right)
+    return np.arctan2(norm(cross(left, right)), dot(left, right)) > CORNER_ANGLE
+
+
 def corners(curve: Curve) -> FloatArray:
     """Interior parameters where the curve's unit tangent jumps (polyline vertices, kinks)."""
     b = curve._breakpoints()[1:-1]
     if len(b) == 0:
         return b
     d1 = curve.derivatives(np.concatenate([b - SIDE, b + SIDE]), 1)[1]
-    left, right = unit(d1[: len(b)]), unit(d1[len(b) :])
-    jump = np.arctan2(norm(cross(left, right)), dot(left, right))
-    return b[jump > CORNER_ANGLE]
+    return b[_jumps(d1[: len(b)], d1[len(b) :])]
 
 
 def _is_linear(curve: Curve) -> bool:
@@ -139,18 +143,30 @@ class _Grid:
     pair: BoolArray  #: (m−1,) samples j and j+1 are the two sides of one corner
     points: FloatArray
     tangents: FloatArray
+    second: FloatArray  #: B'' there
 
 
-def _sample_grid(curve: Curve, minimum: int, kinks: FloatArray) -> _Grid:
-    # a straight span needs only its ends: f is linear in t there
+def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
+    """Samples of B (a straight span needs only its ends: f is linear in t there) and its
+    corners, found and sampled on both sides in the same evaluation."""
     t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
-    at = t.copy()
-    if len(kinks):
-        index = np.searchsorted(t, kinks)
-        t = np.insert(t, index, kinks)
-        at = np.insert(at, index, kinks - SIDE)
-    points, tangents = curve.derivatives(at, 1)
-    return _Grid(t, at, np.diff(t) == 0, points, tangents)
+    breaks = curve._breakpoints()[1:-1]
+    points, tangents, second = curve.derivatives(np.concatenate([t, breaks - SIDE]), 2)
+    m = len(t)
+    # samples include every breakpoint; compare each with its left neighbour's tangent
+    at_break = np.searchsorted(t, breaks)
+    kink = _jumps(tangents[m:], tangents[at_break])
+    kinks = breaks[kink]
+    if not len(kinks):
+        grid = _Grid(t, t, np.zeros(m - 1, dtype=bool), points[:m], tangents[:m], second[:m])
+        return grid, kinks
+    index = at_break[kink]
+    left = m + np.flatnonzero(kink)
+    # insert the left copy of each corner just before its right copy
+    order = np.insert(np.arange(m), index, left)
+    t_all = np.insert(t, index, kinks)
+    at = np.insert(t, index, kinks - SIDE)
+    return _Grid(t_all, at, np.diff(t_all) == 0, points[order], tangents[order], second[order]), kinks
 
 
 # -- brackets and candidates -----------------------------------------------------------------
@@ -214,6 +230,29 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
     )
 
 
+def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, cols: IntArray) -> FloatArray:
+    """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
+    matches f and f_t = det[R, A', B''] at both ends of the bracket (two Newton steps on
+    that cubic, from the secant's root), so that one Newton step on f reaches rounding."""
+    i, j = rows, cols
+    values = []
+    for c in (j, j + 1):
+        r = grid.points[c] - a0[i]
+        values += [det(r, a1[i], grid.tangents[c]), det(r, a1[i], grid.second[c])]
+    f0, d0, f1, d1 = values
+    x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
+    d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
+    u = np.clip(f0 / (f0 - f1), 0.0, 1.0)
+    for _ in range(2):
+        u2 = u * u
+        p = f0 * (2 * u2 * u - 3 * u2 + 1) + d0 * (u2 * u - 2 * u2 + u) + f1 * (3 * u2 - 2 * u2 * u) + d1 * (u2 * u - u2)
+        dp = (f1 - f0) * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = p / dp
+        u = np.where(np.isfinite(step), np.clip(u - step, 0.0, 1.0), u)
+    return x0 + u * h
+
+
 def _rounding_scale(a0: FloatArray, b0: FloatArray, a1: FloatArray, b1: FloatArray) -> FloatArray:
     """Size of the rounding error of det[B − A, A', B']: positions are rounded relative to
     their own magnitude, not to the ruling's length."""
@@ -242,52 +281,72 @@ class _Candidates:
     oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
 
     def subset(self, keep: BoolArray | IntArray) -> _Candidates:
-        return _Candidates(*(getattr(self, name)[keep] for name in self.__dataclass_fields__))
+        return _Candidates(*(getattr(self, name)[keep] for name in _FIELDS))
+
+
+_FIELDS = tuple(_Candidates.__dataclass_fields__)
 
 
 def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray) -> _Candidates:
     """All candidate partners of all stations: refined roots, corner roots, flat-run ends."""
     m = len(grid.t)
     found = _brackets(a0, a1, grid.points, grid.tangents)
-    at_corner = grid.pair[found.cols]
-    corner_rows, corner_cols = found.rows[at_corner], found.cols[at_corner]
-    rows, cols = found.rows[~at_corner], found.cols[~at_corner]
-    f_low, f_high = found.f_low[~at_corner], found.f_high[~at_corner]
-
-    # runs of zero samples along a row: a run of positive extent is flat (its two ends are
-    # candidates), a single zero sample is a root
-    z = found.zeros
-    run_start = np.ones(len(z), dtype=bool)
-    run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
-    run_end = np.ones(len(z), dtype=bool)
-    run_end[:-1] = run_start[1:]
-    run_rows, run_first = np.divmod(z[run_start], m)
-    run_last = z[run_end] % m
+    rows, cols, f_low = found.rows, found.cols, found.f_low
+    corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
+    if grid.pair.any():
+        at_corner = grid.pair[cols]
+        corner_rows, corner_cols = rows[at_corner], cols[at_corner]
+        rows, cols, f_low = rows[~at_corner], cols[~at_corner], f_low[~at_corner]
+    if len(found.zeros):
+        # runs of zero samples along a row: a run of positive extent is flat (its two ends
+        # are candidates), a single zero sample is a root
+        z = found.zeros
+        run_start = np.ones(len(z), dtype=bool)
+        run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
+        run_end = np.ones(len(z), dtype=bool)
+        run_end[:-1] = run_start[1:]
+        run_rows, run_first = np.divmod(z[run_start], m)
+        run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first]
     point_rows, point_cols = run_rows[~flat], run_first[~flat]
 
-    # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback
+    # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
+    # each bracket's last evaluation (at its root, to rounding) is kept for what follows
+    root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
+    k = len(rows)
+    root_t = np.concatenate([np.empty(k), grid.t[point_cols]])
+    b0, b1, b2 = np.empty((3, len(root_rows), 3))
+
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        b0, b1, b2 = curve_b.derivatives(x, 2)
+        c0, c1, c2 = curve_b.derivatives(x, 2)
+        root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
         i = rows[index]
-        r = b0 - a0[i]
-        return det(r, a1[i], b1), det(r, a1[i], b2), _rounding_scale(a0[i], b0, a1[i], b1)
+        r = c0 - a0[i]
+        return det(r, a1[i], c1), det(r, a1[i], c2), _rounding_scale(a0[i], c0, a1[i], c1)
 
-    low, high = grid.at[cols], grid.at[cols + 1]
-    start = low - f_low * (high - low) / (f_high - f_low)  # regula falsi
-    refined = refine_roots(coplanarity, low, high, f_low, start) if len(rows) else np.empty(0)
+    if k:
+        low, high = grid.at[cols], grid.at[cols + 1]
+        refine_roots(coplanarity, low, high, f_low, _cubic_start(grid, a0, a1, rows, cols))
+    if len(point_rows):
+        b0[k:], b1[k:], b2[k:] = curve_b.derivatives(root_t[k:], 2)
 
-    # smooth roots (refined, or exactly on a sample): the slope of their branch
-    root_rows = np.concatenate([rows, point_rows])
-    root_t = np.concatenate([refined, grid.t[point_cols]])
-    b0, b1, b2 = curve_b.derivatives(root_t, 2)
+    # the slope dt/ds = −f_s/f_t of each smooth root's branch
     r = b0 - a0[root_rows]
     f_t = det(r, a1[root_rows], b2)
     f_s = det(r, a2[root_rows], b1)
     slope = np.clip(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6, 1e6)
     residual = np.abs(det(r, unit(a1[root_rows]), unit(b1))) / np.maximum(norm(r), 1e-300)
-    root_kind = np.where(residual > 1e-7, CORNER, ROOT)  # converged onto an unflagged jump
-    slope = np.where(root_kind == ROOT, slope, 0.0)
+    jumped = residual > 1e-7  # converged onto a jump of B' that is not a flagged corner
+    kind = np.where(jumped, CORNER, ROOT)
+    slope[jumped] = 0.0
+    nan = np.full(len(root_rows), np.nan)
+    candidates = _Candidates(
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1)
+    )
+    if len(corner_rows) == 0 and not flat.any():
+        if len(point_rows) == 0:
+            return candidates  # already in station order, t increasing
+        return candidates.subset(np.lexsort((candidates.t, candidates.row)))
 
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
     corner_points = grid.points[corner_cols + 1]
@@ -297,27 +356,28 @@ def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray
         grid.tangents[corner_cols],
         grid.tangents[corner_cols + 1],
     )
-
     # the two ends of every flat run
     flat_rows = np.repeat(run_rows[flat], 2)
     flat_cols = np.column_stack([run_first[flat], run_last[flat]]).reshape(-1)
-
-    row = np.concatenate([root_rows, corner_rows, flat_rows])
-    nan = np.full(len(root_rows) + len(corner_rows), np.nan)
-    points = np.concatenate([b0, corner_points, grid.points[flat_cols]])
-    tangents = np.concatenate([b1, corner_tangents, grid.tangents[flat_cols]])
-    candidates = _Candidates(
-        row,
-        np.concatenate([root_t, grid.t[corner_cols], grid.t[flat_cols]]),
-        np.concatenate([root_kind, np.full(len(corner_rows), CORNER), np.full(len(flat_rows), FLAT_END)]),
-        np.concatenate([slope, np.zeros(len(corner_rows) + len(flat_rows))]),
-        np.concatenate([nan, np.repeat(grid.t[run_first[flat]], 2)]),
-        np.concatenate([nan, np.repeat(grid.t[run_last[flat]], 2)]),
-        points,
-        tangents,
-        _oriented(points - a0[row], a1[row], tangents),
+    extra_rows = np.concatenate([corner_rows, flat_rows])
+    extra_points = np.concatenate([corner_points, grid.points[flat_cols]])
+    extra_tangents = np.concatenate([corner_tangents, grid.tangents[flat_cols]])
+    corner_nan = np.full(len(corner_rows), np.nan)
+    extra = _Candidates(
+        extra_rows,
+        np.concatenate([grid.t[corner_cols], grid.t[flat_cols]]),
+        np.concatenate([np.full(len(corner_rows), CORNER), np.full(len(flat_rows), FLAT_END)]),
+        np.zeros(len(extra_rows)),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_first[flat]], 2)]),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
+        extra_points,
+        extra_tangents,
+        _oriented(extra_points - a0[extra_rows], a1[extra_rows], extra_tangents),
     )
-    return candidates.subset(np.lexsort((candidates.t, candidates.row)))
+    both = _Candidates(
+        *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
+    )
+    return both.subset(np.lexsort((both.t, both.row)))
 
 
 def _pad(c: _Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
@@ -386,10 +446,12 @@ class _Strip:
         if not self.map_a.total > 0:
             raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
         self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
-        self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
-        self.kinks_a = corners(curve_a)
-        self.kinks_b = corners(curve_b)
-        self.grid = _sample_grid(curve_b, samples, self.kinks_b)
+        n = len(self.s)
+        breaks = curve_a._breakpoints()[1:-1]
+        a0, a1, a2 = curve_a.derivatives(np.concatenate([self.s, breaks - SIDE, breaks + SIDE]), 2)
+        self.a0, self.a1, self.a2 = a0[:n], a1[:n], a2[:n]
+        self.kinks_a = breaks[_jumps(a1[n : n + len(breaks)], a1[n + len(breaks) :])]
+        self.grid, self.kinks_b = _sample_grid(curve_b, samples)
         if not np.any(norm(np.diff(self.grid.points, axis=0)) > 0):
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
         self._map_b: LengthMap | None = None
@@ -409,7 +471,7 @@ class _Strip:
         found = _find_candidates(self.curve_b, self.grid, self.a0, self.a1, self.a2)
         flipped = np.zeros(n, dtype=bool)
         flipped[found.row[~found.oriented]] = True
-        good = found.subset(found.oriented)
+        good = found if found.oriented.all() else found.subset(found.oriented)
         t_pad, slope_pad, index_pad = _pad(good, n)
         chosen = np.full(n, -1, dtype=np.int64)
         rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))

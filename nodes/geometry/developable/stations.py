@@ -36,7 +36,7 @@ class LengthMap:
     each piece is integrated with the 8-point Gauss–Legendre rule.
     """
 
-    def __init__(self, curve: Curve, intervals: int = 128) -> None:
+    def __init__(self, curve: Curve, intervals: int = 64) -> None:
         self.curve = curve
         breaks = curve._breakpoints()
         spans = len(breaks) - 1
