@@ -7,8 +7,9 @@ registered), a single class, or a callable returning classes.
 
 from __future__ import annotations
 
+import importlib
 import inspect
-from collections.abc import Iterable
+from collections.abc import Iterator
 from importlib.metadata import entry_points
 from types import ModuleType
 from typing import Any
@@ -23,7 +24,22 @@ class Registry:
 
     def __init__(self) -> None:
         self._types: dict[str, type[Node]] = {}
+        self._lazy: dict[str, list[str]] = {}  # palette → modules not imported yet
         self.problems: list[str] = []
+
+    def register_lazy(self, palette: str, module_name: str) -> None:
+        """Promise that ``module_name`` holds node types of ``palette``; it is imported the
+        first time a type of that palette is asked for (or the catalogue is listed)."""
+        self._lazy.setdefault(palette, []).append(module_name)
+
+    def _load_palette(self, palette: str) -> None:
+        for module_name in self._lazy.pop(palette, []):
+            self.register_module(importlib.import_module(module_name))
+
+    def load_all(self) -> None:
+        """Import every promised module (for listing the whole catalogue)."""
+        for palette in list(self._lazy):
+            self._load_palette(palette)
 
     def register(self, cls: type[Node]) -> type[Node]:
         type_id = cls.type_id
@@ -38,21 +54,25 @@ class Registry:
             self.register(cls)
 
     def get(self, type_id: str) -> type[Node] | None:
+        if type_id not in self._types and isinstance(type_id, str):
+            self._load_palette(type_id.partition(".")[0])
         return self._types.get(type_id)
 
     def create(self, type_id: str, settings: dict[str, Any] | None = None) -> Node:
-        cls = self._types.get(type_id)
+        cls = self.get(type_id)
         if cls is None:
             raise KeyError(f"no node type {type_id!r} is installed")
         return cls(settings)
 
     def __contains__(self, type_id: object) -> bool:
-        return type_id in self._types
+        return isinstance(type_id, str) and self.get(type_id) is not None
 
-    def __iter__(self) -> Iterable[type[Node]]:
+    def __iter__(self) -> Iterator[type[Node]]:
+        self.load_all()
         return iter(sorted(self._types.values(), key=lambda c: c.type_id))
 
     def __len__(self) -> int:
+        self.load_all()
         return len(self._types)
 
     def load_entry_points(self) -> None:

@@ -2,12 +2,11 @@
 
 ``default_registry()`` registers every node class in these modules (each class with a
 ``type_id``) plus any installed plug-ins from the ``torsal.nodes`` entry-point group.
-Modules are imported on demand, so a headless run pays only for what it loads.
+A module ``nodes.<palette>.<name>`` holds only ``<palette>.*`` node types (a test checks
+it), which lets palettes be imported on demand.
 """
 
 from __future__ import annotations
-
-import importlib
 
 from engine.registry import Registry
 
@@ -29,6 +28,10 @@ MODULES: tuple[str, ...] = (
     "nodes.curves.splines",
     "nodes.curves.analysis",
     "nodes.curves.offset",
+    "nodes.surfaces.freeform",
+    "nodes.surfaces.primitives",
+    "nodes.surfaces.analysis",
+    "nodes.surfaces.mesh",
     "nodes.transform.euclidean",
     "nodes.transform.arrays",
     "nodes.display.preview",
@@ -37,11 +40,15 @@ MODULES: tuple[str, ...] = (
 
 
 def default_registry(plugins: bool = True) -> Registry:
-    """Torsal's own node types plus installed plug-ins."""
-    importlib.import_module("nodes.types")  # geometry value types, before any node uses them
+    """Torsal's own node types plus installed plug-ins.
+
+    Palettes load lazily: a module ``nodes.<palette>.<name>`` is imported the first time
+    a ``<palette>.*`` type is asked for, so ``torsal run`` on a graph of sliders and
+    expressions never pays for the geometry libraries.
+    """
     registry = Registry()
     for module_name in MODULES:
-        registry.register_module(importlib.import_module(module_name))
+        registry.register_lazy(module_name.split(".")[1], module_name)
     if plugins:
         registry.load_entry_points()
     return registry

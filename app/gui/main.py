@@ -16,10 +16,10 @@ def launch(path: str | Path | None = None) -> int:
     ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, when the window was first shown and when
     the 3D viewport was ready (wall-clock ``time.time()`` values, for start-up benchmarks).
     """
-    from PySide6.QtCore import QTimer
     from PySide6.QtWidgets import QApplication
 
     from app.gui.main_window import MainWindow
+    from app.gui.qt_compat import defer
 
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Torsal")
@@ -44,5 +44,5 @@ def launch(path: str | Path | None = None) -> int:
         if report:
             print(f"torsal-startup viewport-ready {time.time():.4f}", file=sys.stderr, flush=True)
 
-    QTimer.singleShot(0, started)
+    defer(window, started)
     return app.exec()

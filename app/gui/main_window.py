@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QMimeData, QPoint, Qt, QTimer
+from PySide6.QtCore import QMimeData, QPoint, Qt
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -44,6 +44,7 @@ from app.gui.inspector import Inspector
 from app.gui.message_log import MessageLog
 from app.gui.palette import Palette
 from app.gui.profiler import Profiler
+from app.gui.qt_compat import defer
 from app.gui.search_popup import SearchPopup
 from app.gui.solve_controller import SolveOutcome
 from app.gui.status import SolveStatus
@@ -218,7 +219,7 @@ class MainWindow(QMainWindow):
         self.settings.add_recent(path)
         self.report(f"Opened {path}")
         self.view.resetTransform()
-        QTimer.singleShot(0, self.view.zoom_to_fit)
+        defer(self, self.view.zoom_to_fit)
         return True
 
     def save(self) -> bool:
@@ -258,7 +259,7 @@ class MainWindow(QMainWindow):
         files = [url.toLocalFile() for url in event.mimeData().urls() if url.toLocalFile().endswith(".graph")]
         if files:
             event.acceptProposedAction()
-            QTimer.singleShot(0, lambda: self.open_file(Path(files[0])))
+            defer(self, lambda: self.open_file(Path(files[0])))
 
     def closeEvent(self, event: QCloseEvent) -> None:
         if not self.maybe_save():

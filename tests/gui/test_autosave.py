@@ -55,7 +55,7 @@ def test_a_killed_apps_autosave_is_offered_at_next_start_and_restores_the_graph(
     dialogs.answer = QMessageBox.StandardButton.Yes
     window = start_window(qtbot, registry, config_folder)
     try:
-        kind, title, text = dialogs.calls[0]
+        kind, _title, text = dialogs.calls[0]
         assert kind == "question" and "first-steps.graph" in text and "Restore" in text
         graph = window.doc.graph
         assert graph.nodes["width"].position == (111.0, 222.0)

@@ -44,7 +44,7 @@ def test_a_file_that_cannot_be_opened_gives_the_reason_and_leaves_the_document_u
     bad, reason = make_file(tmp_path)
     content = bad.read_bytes()
     assert not window.open_file(bad, ask=False)
-    kind, title, text = dialogs.calls[-1]
+    kind, _title, text = dialogs.calls[-1]
     assert kind == "critical" and bad.name in text and reason in text
     assert window.doc.graph is graph and dumps(graph) == before
     assert window.doc.path == path.resolve() and window.doc.dirty

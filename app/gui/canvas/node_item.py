@@ -245,9 +245,13 @@ class NodeItem(QGraphicsItem):
         # ports
         painter.setFont(self.port_font)
         for slot in layout.inputs:
-            painter.drawText(slot.label_rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, slot.text)
+            painter.drawText(
+                slot.label_rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, slot.text
+            )
         for slot in layout.outputs:
-            painter.drawText(slot.label_rect, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, slot.text)
+            painter.drawText(
+                slot.label_rect, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, slot.text
+            )
         if layout.icon_rect is not None:
             cls = type(self.record.node)
             palette = self.record.type_id.partition(".")[0]

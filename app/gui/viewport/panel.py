@@ -157,7 +157,10 @@ class ViewportPanel(QWidget):
         else:
             self.plotter.add_text(
                 "Nothing to preview: no node with preview on makes geometry",
-                position="lower_left", font_size=8, color="#777777", name="decor:hint",
+                position="lower_left",
+                font_size=8,
+                color="#777777",
+                name="decor:hint",
             )
         self._hint_shown = not has_geometry
 
@@ -171,8 +174,13 @@ class ViewportPanel(QWidget):
             return
         self._grid_bounds = key
         self.plotter.add_mesh(
-            ground_grid(bounds), name="decor:grid", color=theme.VIEWPORT_GRID, line_width=1,
-            pickable=False, reset_camera=False, render=False,
+            ground_grid(bounds),
+            name="decor:grid",
+            color=theme.VIEWPORT_GRID,
+            line_width=1,
+            pickable=False,
+            reset_camera=False,
+            render=False,
         )
 
     # -- views -----------------------------------------------------------------------
@@ -184,7 +192,9 @@ class ViewportPanel(QWidget):
         self._update_grid()
         if name in ("top", "front", "right"):
             renderer.enable_parallel_projection()
-            {"top": renderer.view_xy, "front": renderer.view_xz, "right": renderer.view_yz}[name](render=False)
+            {"top": renderer.view_xy, "front": renderer.view_xz, "right": renderer.view_yz}[name](
+                render=False
+            )
         elif name == "perspective":
             renderer.disable_parallel_projection()
             renderer.view_isometric(render=False)

@@ -66,7 +66,7 @@ from ._vec import cross, det, dot, norm, unit
 from .brackets import refine_roots
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
-from .warp import in_plane_tangent, warp_angles
+from .warp import in_plane_tangent
 
 BoolArray = NDArray[np.bool_]
 IntArray = NDArray[np.int64]
@@ -207,7 +207,8 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
         f = left[first : first + block] @ right
-        change = np.signbit(f[:, :-1]) != np.signbit(f[:, 1:])
+        negative = np.signbit(f)
+        change = negative[:, :-1] != negative[:, 1:]
         maybe = np.flatnonzero(np.abs(f) <= FLAT * size)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
@@ -233,7 +234,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
 def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, cols: IntArray) -> FloatArray:
     """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
     matches f and f_t = det[R, A', B''] at both ends of the bracket (two Newton steps on
-    that cubic, from the secant's root), so that one Newton step on f reaches rounding."""
+    that cubic from the secant's root), so that one Newton step on f reaches rounding."""
     i, j = rows, cols
     values = []
     for c in (j, j + 1):
@@ -245,7 +246,8 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     u = np.clip(f0 / (f0 - f1), 0.0, 1.0)
     for _ in range(2):
         u2 = u * u
-        p = f0 * (2 * u2 * u - 3 * u2 + 1) + d0 * (u2 * u - 2 * u2 + u) + f1 * (3 * u2 - 2 * u2 * u) + d1 * (u2 * u - u2)
+        p = f0 * (2 * u2 * u - 3 * u2 + 1) + d0 * (u2 * u - 2 * u2 + u) + f1 * (3 * u2 - 2 * u2 * u)
+        p += d1 * (u2 * u - u2)
         dp = (f1 - f0) * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = p / dp
@@ -253,17 +255,21 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     return x0 + u * h
 
 
-def _rounding_scale(a0: FloatArray, b0: FloatArray, a1: FloatArray, b1: FloatArray) -> FloatArray:
-    """Size of the rounding error of det[B − A, A', B']: positions are rounded relative to
-    their own magnitude, not to the ruling's length."""
-    return (norm(a0) + norm(b0)) * norm(a1) * norm(b1)
+def _rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1: FloatArray) -> FloatArray:
+    """Size of the rounding error of det[B − A, A', B'] from |A|, B, |A'|, B': positions are
+    rounded relative to their own magnitude, not to the ruling's length."""
+    return (size_a + norm(b0)) * speed_a * norm(b1)
 
 
 def _oriented(r: FloatArray, ta: FloatArray, tb: FloatArray) -> BoolArray:
-    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes)."""
-    n1 = cross(r, unit(ta))
-    n2 = cross(r, unit(tb))
-    return dot(n1, n2) >= -1e-9 * norm(n1) * norm(n2)
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes).
+
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
+    """
+    rr, ra, rb = dot(r, r), dot(r, ta), dot(r, tb)
+    n1n1 = np.maximum(rr * dot(ta, ta) - ra * ra, 0.0)
+    n2n2 = np.maximum(rr * dot(tb, tb) - rb * rb, 0.0)
+    return rr * dot(ta, tb) - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
 
 
 @dataclass
@@ -316,13 +322,14 @@ def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray
     k = len(rows)
     root_t = np.concatenate([np.empty(k), grid.t[point_cols]])
     b0, b1, b2 = np.empty((3, len(root_rows), 3))
+    size_a, speed_a = norm(a0), norm(a1)
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
         root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
         i = rows[index]
         r = c0 - a0[i]
-        return det(r, a1[i], c1), det(r, a1[i], c2), _rounding_scale(a0[i], c0, a1[i], c1)
+        return det(r, a1[i], c1), det(r, a1[i], c2), _rounding_scale(size_a[i], c0, speed_a[i], c1)
 
     if k:
         low, high = grid.at[cols], grid.at[cols + 1]
@@ -335,8 +342,9 @@ def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray
     f_t = det(r, a1[root_rows], b2)
     f_s = det(r, a2[root_rows], b1)
     slope = np.clip(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6, 1e6)
-    residual = np.abs(det(r, unit(a1[root_rows]), unit(b1))) / np.maximum(norm(r), 1e-300)
-    jumped = residual > 1e-7  # converged onto a jump of B' that is not a flagged corner
+    scale = norm(r) * speed_a[root_rows] * norm(b1)
+    # converged onto a jump of B' that is not a flagged corner: f is far from zero there
+    jumped = np.abs(det(r, a1[root_rows], b1)) > 1e-7 * scale
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
@@ -583,7 +591,7 @@ class _Strip:
                 k = which[index]
                 r = bm0[k] - c0
                 # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes)
-                return det(r, c1, bm1[k]), det(r, c2, bm1[k]), _rounding_scale(c0, bm0[k], c1, bm1[k])
+                return det(r, c1, bm1[k]), det(r, c2, bm1[k]), _rounding_scale(norm(c0), bm0[k], norm(c1), bm1[k])
 
             low, high = s[pairs[which]], s[pairs[which] + 1]
             apex[which] = refine_roots(coplanarity, low, high, f_left[which])
@@ -606,14 +614,19 @@ class _Strip:
         sides = self.curve_a.derivatives(np.clip([s_star - SIDE, s_star + SIDE], 0.0, 1.0), 1)[1]
         window = (self.grid.t >= t0) & (self.grid.t <= t1)
         ts = np.unique(np.concatenate([[t0, t1], self.grid.t[window]]))
-        b0, b1 = self.curve_b.derivatives(ts, 1)
+        # at a corner of B the stretch may end with the tangent from either side
+        at_kink = np.isin(ts, self.kinks_b)
+        b0, b1 = self.curve_b.derivatives(np.concatenate([ts, ts[at_kink] - SIDE]), 1)
         r = b0 - c0
+        r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
         scale = norm(r) * norm(b1)
         scale = np.where(scale > 0, scale, 1.0)
         g_left = det(r, unit(sides[0]), b1) / scale
         g_right = det(r, unit(sides[1]), b1) / scale
         # torsal: flat (B straight there), or between the two one-sided tangents of a corner
-        torsal = (np.abs(g_left) <= 1e-9) | (np.abs(g_right) <= 1e-9) | (g_left * g_right < 0)
+        torsal_all = (np.abs(g_left) <= 1e-9) | (np.abs(g_right) <= 1e-9) | (g_left * g_right < 0)
+        torsal = torsal_all[: len(ts)]
+        torsal[at_kink] |= torsal_all[len(ts) :]
         if torsal.sum() < 2:
             return None
         first = int(np.argmax(torsal))
@@ -639,7 +652,7 @@ def ruling_developable(
     warp_tolerance: float = 0.01,
     *,
     spacing: Spacing = "length",
-    samples: int = 192,
+    samples: int = 128,
 ) -> RulingResult:
     """The developable strip between two curves, as rulings from A to B.
 
@@ -679,25 +692,28 @@ def ruling_developable(
 
     chosen, good, flipped = strip.choose()
     has = chosen >= 0
-    t = np.where(has, good.t[np.maximum(chosen, 0)], np.nan)
-    slope = np.where(has, good.slope[np.maximum(chosen, 0)], 0.0)
+    t = np.full(n, np.nan)
+    slope = np.zeros(n)
+    t[has], slope[has] = good.t[chosen[has]], good.slope[chosen[has]]
     fans, planar = strip.flat_fans(t, chosen, good)
     regular = has & ~planar
     strip.fill(t)
     fans += strip.a_fans(t, slope, regular)
 
     # station rulings, then every fan's rulings; ordered along the strip
-    s_parts, t_parts = [strip.s], [t]
-    for s_star, t_low, t_high in fans:
-        ts = strip.fan_parameters(t_low, t_high)
-        s_parts.append(np.full(len(ts), s_star))
-        t_parts.append(ts)
-    s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
-    station = np.arange(len(s_all)) < n
-    order = np.lexsort((~station, t_all, s_all))
-    repeat = np.zeros(len(order), dtype=bool)
-    repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
-    order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
+    s_all, t_all, order = strip.s, t, np.arange(n)
+    if fans:
+        s_parts, t_parts = [strip.s], [t]
+        for s_star, t_low, t_high in fans:
+            ts = strip.fan_parameters(t_low, t_high)
+            s_parts.append(np.full(len(ts), s_star))
+            t_parts.append(ts)
+        s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
+        station = np.arange(len(s_all)) < n
+        order = np.lexsort((~station, t_all, s_all))
+        repeat = np.zeros(len(order), dtype=bool)
+        repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
+        order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
 
     # geometry: stations reuse A's values, and B's where the chosen root still stands
     s_out, t_out = s_all[order], t_all[order]
@@ -712,8 +728,8 @@ def ruling_developable(
         starts[~from_station], ta[~from_station] = curve_a.derivatives(s_out[~from_station], 1)
     kept = np.zeros(len(order), dtype=bool)
     kept[from_station] = regular[source[from_station]]
-    kept[from_station] &= good.t[np.maximum(chosen[source[from_station]], 0)] == t_out[from_station]
-    cand = chosen[np.where(kept, source, 0)][kept]
+    kept[kept] = good.t[chosen[source[kept]]] == t_out[kept]
+    cand = chosen[source[kept]]
     ends[kept], tb[kept] = good.points[cand], good.tangents[cand]
     if not kept.all():
         ends[~kept], tb[~kept] = curve_b.derivatives(t_out[~kept], 1)
@@ -728,12 +744,20 @@ def ruling_developable(
         if at_a.any():
             sides = curve_a.derivatives(np.clip(np.concatenate([s_out[at_a] - SIDE, s_out[at_a] + SIDE]), 0, 1), 1)[1]
             ta[at_a] = in_plane_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
-    warp = warp_angles(starts, ends, ta, tb)
-    signed = warp_angles(starts, ends, ta, tb, signed=True)
+    warp, signed = _warps(ruling, ta, tb)
     valid = (warp <= tolerance) & (np.abs(signed) <= 0.5 * np.pi)
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, _message(valid, source, flipped & ~has, tolerance, n), from_station
     )
+
+
+def _warps(ruling: FloatArray, ta: FloatArray, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Unsigned and signed warp angles at once (as :func:`.warp.warp_angles`)."""
+    n1 = cross(ruling, unit(ta))
+    n2 = cross(ruling, unit(tb))
+    normal_cross, normal_dot = cross(n1, n2), dot(n1, n2)
+    unsigned = np.arctan2(norm(normal_cross), np.abs(normal_dot))
+    return unsigned, np.arctan2(dot(normal_cross, unit(ruling)), normal_dot)
 
 
 def _message(valid: BoolArray, source: IntArray, flipped: BoolArray, tolerance: float, n: int) -> str | None:

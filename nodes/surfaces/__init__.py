@@ -1,0 +1,1 @@
+"""Surfaces: lofts, ruled, NURBS, parametric and primitive surfaces; evaluating and measuring them."""
