@@ -176,9 +176,9 @@ def _loop_integrals(curve: Curve, origin: np.ndarray, order: int = 16) -> tuple[
     previous = None
     for level in range(12):
         pieces = 2**level
-        edges = np.concatenate([
-            np.linspace(a, b, pieces + 1)[:-1] for a, b in zip(breaks[:-1], breaks[1:], strict=True)
-        ] + [breaks[-1:]])
+        steps = np.arange(pieces) / pieces
+        spans = breaks[:-1, None] + np.diff(breaks)[:, None] * steps
+        edges = np.append(spans.ravel(), breaks[-1])
         low, high = edges[:-1], edges[1:]
         half = 0.5 * (high - low)[:, None]
         t = (0.5 * (low + high)[:, None] + half * nodes).ravel()

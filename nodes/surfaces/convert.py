@@ -15,7 +15,7 @@ from __future__ import annotations
 from typing import Any
 
 from engine.node import NodeWarning
-from engine.types import ValueType, describe, register_cast, register_type
+from engine.types import ValueType, register_cast, register_type
 from nodes.curves.convert import given, number, xyz
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
@@ -44,16 +44,8 @@ register_cast(MESH, MESH_SURFACE, MeshSurface)
 
 
 def surface(value: Any, name: str = "Surface") -> Surface:
-    """A parameterised surface, or a warning naming what arrived instead."""
-    given(name, value)
-    if isinstance(value, MeshSurface):
-        raise NodeWarning(
-            f"{name} is a mesh surface, which has no (u, v) parameters: use a NURBS, loft, ruled "
-            "or parametric surface"
-        )
-    if not isinstance(value, Surface):
-        raise NodeWarning(f"{name} {describe(value)} is not a surface")
-    return value
+    """A parameterised surface; the port's type has already refused anything else."""
+    return given(name, value)
 
 
 def uv(value: Any, name: str = "UV") -> tuple[float, float]:
