@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from engine.datatree import DataTree, format_path
-from engine.types import summarize_value, type_of
+from engine.types import type_of
 from engine.values import Domain, Plane, Triple
 
 MODIFIER_MARKS = {"graft": "↑", "flatten": "↓", "simplify": "~", "reverse": "⇅"}
@@ -33,17 +33,12 @@ def format_item(value: Any) -> str:
         return f"Plane at {format_item(value.origin)}"
     value_type = type_of(value)
     name = value_type.name if value_type else type(value).__name__
-    try:
-        summary = summarize_value(value)
-    except Exception:
-        summary = None
-    if isinstance(summary, dict):
-        for key in ("length", "area", "faces"):
-            if isinstance(summary.get(key), int | float):
-                number = summary[key]
-                shown = format_number(number) if isinstance(number, float) else str(number)
-                return f"{name} ({key} {shown})"
-    return name
+    if type(value).__name__ == "Trimesh":
+        return f"Mesh ({len(value.vertices)} vertices, {len(value.faces)} faces)"
+    kind = type(value).__name__
+    # Geometry is named, not measured: a length or an area can take milliseconds, and
+    # panels and tooltips are drawn on the GUI thread (the inspector shows the figures).
+    return name if kind == name else f"{name} ({kind})"
 
 
 def format_tree(tree: DataTree, max_lines: int = 200) -> list[str]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QMimeData, QPoint, Qt
+from PySide6.QtCore import QMimeData, QPoint, Qt, QTimer
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -121,6 +121,10 @@ class MainWindow(QMainWindow):
         self.view.escape_pressed.connect(self.cancel_solve)
         self.log.node_activated.connect(self.focus_node)
         self.profiler.node_activated.connect(self.focus_node)
+        self._tables_timer = QTimer(self)
+        self._tables_timer.setSingleShot(True)
+        self._tables_timer.setInterval(200)
+        self._tables_timer.timeout.connect(self._fill_tables)
         self.actions_by_name: dict[str, QAction] = build_menus(self)
         self._update_title()
         self._help_dialogs: list[QDialog] = []
@@ -134,8 +138,10 @@ class MainWindow(QMainWindow):
 
     # -- start-up --------------------------------------------------------------------
     def start(self, path: Path | None = None, offer_recovery: bool = True) -> None:
-        """After the window is shown: the 3D viewport, recovery of a crashed session, the file."""
+        """After the window is shown: the 3D viewport, the palette, recovery of a crashed
+        session, the file."""
         self.viewport.create_plotter()
+        self.palette.populate()
         if offer_recovery and self.offer_recovery():
             return
         if path is not None:
@@ -288,10 +294,18 @@ class MainWindow(QMainWindow):
 
     def _solved(self, outcome: SolveOutcome) -> None:
         self.status.solve_finished(outcome)
-        self.log.show_solve(outcome, self.doc.graph)
-        self.profiler.show_solve(outcome, self.doc.graph)
         if outcome.error:
             self.report(outcome.error, "error")
+        # The message log and profiler are tables: refilled at most ~5 times a second, so a
+        # slider drag's stream of solves is not slowed by them.
+        if not self._tables_timer.isActive():
+            self._tables_timer.start()
+
+    def _fill_tables(self) -> None:
+        outcome = self.doc.last_outcome
+        if outcome is not None:
+            self.log.show_solve(outcome, self.doc.graph)
+            self.profiler.show_solve(outcome, self.doc.graph)
 
     def _selection_changed(self) -> None:
         ids = self.scene.selected_node_ids()

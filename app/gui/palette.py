@@ -71,14 +71,33 @@ class Palette(QTabWidget):
 
     def __init__(self, registry: Registry, parent: QWidget | None = None) -> None:
         super().__init__(parent)
+        self.registry = registry
+        self.populated = False
         self.setDocumentMode(True)
-        by_palette: dict[str, list[type]] = {}
-        for cls in registry:
-            by_palette.setdefault(cls.palette(), []).append(cls)
-        names = list(TABS) + sorted(p for p in by_palette if p not in TABS)
-        for palette in names:
-            self.addTab(self._tab(by_palette.get(palette, [])), palette.capitalize())
+        for palette in TABS:
+            self.addTab(self._note("Loading the node library…"), palette.capitalize())
         self.setFixedHeight(ICON_SIZE + 46)
+
+    def populate(self) -> None:
+        """Fill the tabs (listing the catalogue imports every palette, so it is done after
+        the window is first shown)."""
+        if self.populated:
+            return
+        by_palette: dict[str, list[type]] = {}
+        for cls in self.registry:
+            by_palette.setdefault(cls.palette(), []).append(cls)
+        current = self.currentIndex()
+        self.clear()
+        for palette in list(TABS) + sorted(p for p in by_palette if p not in TABS):
+            self.addTab(self._tab(by_palette.get(palette, [])), palette.capitalize())
+        self.setCurrentIndex(max(0, current))
+        self.populated = True
+
+    @staticmethod
+    def _note(text: str) -> QLabel:
+        note = QLabel(text)
+        note.setStyleSheet("color: #777; padding-left: 8px;")
+        return note
 
     def _tab(self, classes: list[type]) -> QWidget:
         strip = QWidget()
@@ -90,9 +109,7 @@ class Palette(QTabWidget):
             button.clicked.connect(lambda _=False, t=cls.type_id: self.place.emit(t))
             layout.addWidget(button)
         if not classes:
-            note = QLabel("No nodes in this palette yet.")
-            note.setStyleSheet("color: #777;")
-            layout.addWidget(note)
+            layout.addWidget(self._note("No nodes in this palette yet."))
         layout.addStretch(1)
         scroll = QScrollArea()
         scroll.setWidget(strip)

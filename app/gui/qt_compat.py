@@ -1,4 +1,4 @@
-"""Work-arounds for bugs in the Qt binding in use (import this before using Qt).
+"""Work-arounds for bugs in the Qt binding in use (imported before Qt is used much).
 
 PySide6 6.12.0 returns ``None`` from *static* functions that return nothing
 (``QTimer.singleShot``, ``QCoreApplication.processEvents``, every ``QTest`` mouse and key
@@ -6,20 +6,21 @@ function …) without taking a reference to it: each call lowers ``None``'s refe
 count by one, and after a few thousand calls CPython 3.11 aborts with "none_dealloc:
 deallocating None". (Python 3.12+ makes ``None`` immortal, so the bug is harmless there.)
 
-When the bug is detected at import, :data:`NONE_RESERVE` holds two million extra
-references to ``None`` (16 MB), which covers any realistic session and test run. The
-app itself also avoids static void calls on paths taken per user action
-(:func:`defer` uses a QTimer object instead of ``QTimer.singleShot``).
+When the bug is detected at import, ``None``'s reference count is raised once by
+:data:`RESERVE` (a count, never handed back, so nothing is freed at exit either), which
+covers any realistic session and test run. The app also avoids static void calls on
+paths taken per user action (:func:`defer` replaces ``QTimer.singleShot``).
 """
 
 from __future__ import annotations
 
+import ctypes
 import sys
 from collections.abc import Callable
 
 from PySide6.QtCore import QCoreApplication, QObject, QTimer
 
-RESERVE_SIZE = 2_000_000
+RESERVE = 1 << 30
 
 
 def static_void_calls_leak_none() -> bool:
@@ -30,7 +31,18 @@ def static_void_calls_leak_none() -> bool:
     return sys.getrefcount(None) < before - 8
 
 
-NONE_RESERVE: list[None] = [None] * RESERVE_SIZE if static_void_calls_leak_none() else []
+def _reserve_none_references() -> bool:
+    """Raise ``None``'s reference count by :data:`RESERVE` (CPython < 3.12 release builds)."""
+    debug_build = hasattr(sys, "gettotalrefcount")  # its objects start with two extra pointers
+    if sys.implementation.name != "cpython" or sys.version_info >= (3, 12) or debug_build:
+        return False
+    refcount = ctypes.c_ssize_t.from_address(id(None))  # ob_refcnt: the first field of every object
+    refcount.value += RESERVE
+    return True
+
+
+LEAK_DETECTED = static_void_calls_leak_none()
+RESERVED = _reserve_none_references() if LEAK_DETECTED else False
 
 
 def defer(parent: QObject, callback: Callable[[], object], ms: int = 0) -> QTimer:

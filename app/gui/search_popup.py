@@ -26,7 +26,8 @@ class SearchPopup(QFrame):
         super().__init__(parent, Qt.WindowType.Popup)
         self.setFrameShape(QFrame.Shape.StyledPanel)
         self.setObjectName("searchPopup")
-        self.entries = build_entries(list(registry))
+        self.registry = registry
+        self._entries: list[Entry] | None = None
         self.accept: Callable[[Entry], bool] | None = None
         self._chose = False
         layout = QVBoxLayout(self)
@@ -46,6 +47,13 @@ class SearchPopup(QFrame):
         self.query.textChanged.connect(self.refresh)
         self.query.installEventFilter(self)
         self.list.itemActivated.connect(lambda _item: self.choose())
+
+    @property
+    def entries(self) -> list[Entry]:
+        """The catalogue, read when first searched (listing it imports every palette)."""
+        if self._entries is None:
+            self._entries = build_entries(list(self.registry))
+        return self._entries
 
     def open_at(
         self, global_pos: QPoint, accept: Callable[[Entry], bool] | None = None, note: str = ""

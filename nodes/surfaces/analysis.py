@@ -212,11 +212,13 @@ def enclosed(curve: Curve) -> tuple[float, np.ndarray]:
     if area <= 1e-14 * size * size:
         raise NodeWarning("The curve encloses no area: it runs back along itself")
     normal = vector_area / area
-    leave = float(np.abs(c @ normal).max())
-    if leave > PLANAR * size:
+    corners = curve.point_at(np.asarray(curve._breakpoints(), dtype=float)) - start
+    heights = np.concatenate([c @ normal, corners @ normal])
+    spread = float(heights.max() - heights.min())
+    if spread > PLANAR * size:
         raise NodeWarning(
-            f"The curve is not planar (it leaves its best plane by {leave:.3g}): only a closed "
-            "planar curve encloses an area"
+            f"The curve is not planar (its points lie up to {spread:.3g} apart across its plane): "
+            "only a closed planar curve encloses an area"
         )
     heights = np.cross(c, d) @ normal
     centroid = start + (c * (heights * w)[:, None]).sum(axis=0) / (3.0 * area)

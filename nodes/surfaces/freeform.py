@@ -25,8 +25,9 @@ from nodes.types import CURVE, SURFACE
 MAX_DEGREE = 11
 """Highest degree NurbsSurface accepts (Rhino's limit, as for curves)."""
 
-SAMPLES = 129
-"""Points per curve where Loft and RuledSurface compare curves (the loft's own sampling)."""
+SAMPLES = 513
+"""Points per curve where Loft samples its curves: circles are reproduced to ~1e-8 of their radius
+(the kernel's default, 129, leaves ~1e-6 where a NURBS circle's quarter arcs meet)."""
 
 
 def _same(a: np.ndarray, b: np.ndarray) -> bool:
@@ -47,7 +48,9 @@ class Loft(Node):
     v runs across the curves (the first curve is the edge v = 0, the last v = 1) and
     u runs along them, following each curve's own direction, so curves that run
     opposite ways give a twisted loft: Flip one. The surface passes through every
-    curve; across them it is cubic (2 curves give a ruled surface, 3 a quadratic one).
+    curve (exactly at 513 points along each, and to ~1e-8 of a circle's radius
+    between them); across the curves it is cubic (2 curves give a ruled surface, 3 a
+    quadratic one).
     Closed curves (circles) give a surface closed smoothly around its seam: circles
     of equal radius at several heights loft to a cylinder.
     """
@@ -103,7 +106,7 @@ class RuledSurface(Node):
         if not (getattr(a, "closed", False) or getattr(b, "closed", False)):
             straight = np.linalg.norm(pa[0] - pb[0]) + np.linalg.norm(pa[-1] - pb[-1])
             crossed = np.linalg.norm(pa[0] - pb[-1]) + np.linalg.norm(pa[-1] - pb[0])
-            if crossed < 0.5 * straight:
+            if crossed < straight:  # in a plane: exactly when A0–B0 and A1–B1 cross
                 self.remark("CurveA and CurveB run in opposite directions, so the rulings cross: Flip one")
         with kernel_errors():
             return ruled.RuledSurface(a, b)

@@ -14,18 +14,27 @@ from scipy.spatial import cKDTree
 Array = np.ndarray
 
 
-def strip_points(starts: Array, ends: Array, k: int) -> Array:
-    """``(rulings − 1, k + 1, k + 1, 3)`` grid points of every bilinear patch."""
-    u = np.linspace(0.0, 1.0, k + 1)
+def strip_points(starts: Array, ends: Array, ku: int, kv: int) -> Array:
+    """``(rulings − 1, ku + 1, kv + 1, 3)`` grid points of every bilinear patch."""
+    u = np.linspace(0.0, 1.0, ku + 1)
+    v = np.linspace(0.0, 1.0, kv + 1)
     p0, p1, q0, q1 = starts[:-1], starts[1:], ends[:-1], ends[1:]
     bottom = p0[:, None, :] + u[None, :, None] * (p1 - p0)[:, None, :]
     top = q0[:, None, :] + u[None, :, None] * (q1 - q0)[:, None, :]
-    return bottom[:, :, None, :] + u[None, None, :, None] * (top - bottom)[:, :, None, :]
+    return bottom[:, :, None, :] + v[None, None, :, None] * (top - bottom)[:, :, None, :]
 
 
-def strip_triangles(starts: Array, ends: Array, k: int = 4) -> Array:
-    """``(t, 3, 3)`` triangles of the strip, each patch split into 2k² triangles."""
-    g = strip_points(starts, ends, k)
+def isotropic_steps(starts: Array, ends: Array, ku: int = 2) -> int:
+    """Steps along the rulings that make the triangles about as long as they are wide."""
+    steps = np.linalg.norm(np.diff(starts, axis=0), axis=1) + np.linalg.norm(np.diff(ends, axis=0), axis=1)
+    width = np.median(steps)
+    length = np.linalg.norm(ends - starts, axis=1).max()
+    return int(np.clip(np.ceil(length / max(width / (2 * ku), 1e-12)), 1, 400))
+
+
+def strip_triangles(starts: Array, ends: Array, ku: int = 2, kv: int | None = None) -> Array:
+    """``(t, 3, 3)`` triangles of the strip, each patch split into 2·ku·kv triangles."""
+    g = strip_points(starts, ends, ku, kv or isotropic_steps(starts, ends, ku))
     a, b = g[:, :-1, :-1], g[:, 1:, :-1]
     c, d = g[:, 1:, 1:], g[:, :-1, 1:]
     first = np.stack([a, b, c], axis=-2).reshape(-1, 3, 3)
@@ -68,7 +77,7 @@ def point_triangle_distance(p: Array, tri: Array) -> Array:
     return np.linalg.norm(p - closest, axis=1)
 
 
-def distance_to_strip(points: Array, triangles: Array, candidates: int = 12) -> Array:
+def distance_to_strip(points: Array, triangles: Array, candidates: int = 32) -> Array:
     """Distance from each point to the nearest of ``triangles`` (checked among the
     ``candidates`` triangles with the nearest centroids, which suffices for fine meshes)."""
     tree = cKDTree(triangles.mean(axis=1))
@@ -78,10 +87,11 @@ def distance_to_strip(points: Array, triangles: Array, candidates: int = 12) -> 
     return d.reshape(len(points), candidates).min(axis=1)
 
 
-def hausdorff(first: tuple[Array, Array], second: tuple[Array, Array], k: int = 6) -> float:
-    """Symmetric Hausdorff distance between two strips given as (starts, ends)."""
+def hausdorff(first: tuple[Array, Array], second: tuple[Array, Array]) -> float:
+    """Symmetric Hausdorff distance between two strips given as (starts, ends), sampled
+    at the corners of triangles about as long as they are wide."""
     result = 0.0
     for x, y in ((first, second), (second, first)):
-        points = strip_points(*x, k).reshape(-1, 3)
+        points = strip_points(*x, 1, max(1, isotropic_steps(*x, 1) // 2)).reshape(-1, 3)
         result = max(result, float(distance_to_strip(points, strip_triangles(*y)).max()))
     return result

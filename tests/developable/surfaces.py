@@ -215,3 +215,44 @@ def nurbs_cone_pair(sweep: float = 2.4) -> Pair:
 
 
 PAIRS["nurbs_cone"] = nurbs_cone_pair
+
+
+# -- smooth NURBS on a cone: tilted plane sections (exact rational conics) ------------------
+#
+# The central projection from the apex (the origin) onto the plane n·x = d, x ↦ d·x/(n·x),
+# is the projective map [[d·I, 0], [nᵀ, 0]]. It keeps every point on its ray from the apex,
+# so it carries a circle on the cone to the conic where the tilted plane cuts the cone:
+# smooth, exact, with a parameter that runs non-uniformly in angle.
+
+
+def _projection(normal, offset: float) -> Array:
+    m = np.zeros((4, 4))
+    m[:3, :3] = offset * np.eye(3)
+    m[3, :3] = normal
+    return m
+
+
+def conic_sections_pair(sweep: float = 2.4) -> Pair:
+    """Two tilted plane sections of the cone of half-angle CONE_ALPHA over ``sweep``."""
+    from nodes.geometry.curves import Arc
+    from nodes.geometry.vectors import Plane
+
+    tan = math.tan(CONE_ALPHA)
+    circle_a = Arc(Plane.from_normal([0, 0, 1], [0, 0, 1]), tan, 0.0, sweep)
+    circle_b = Arc(Plane.from_normal([0, 0, 1], [0, 0, 1]), tan, -0.0, sweep)
+    a = circle_a.transformed(_projection([0.15, 0.1, 1.0], 1.0))
+    b = circle_b.transformed(_projection([-0.1, 0.2, 1.0], 2.4))
+
+    def partner(s: Array) -> Array:
+        target = _angle(a, np.atleast_1d(np.asarray(s, float)))
+        low, high = np.zeros_like(target), np.ones_like(target)
+        for _ in range(60):  # bisection on the (increasing) angle of B
+            mid = 0.5 * (low + high)
+            below = _angle(b, mid) < target
+            low, high = np.where(below, mid, low), np.where(below, high, mid)
+        return 0.5 * (low + high)
+
+    return Pair(a, b, partner, _size(a, b))
+
+
+PAIRS["conic_sections"] = conic_sections_pair

@@ -251,6 +251,10 @@ class PanelWidget(InlineWidget):
     MAX_LINES = 30
     WIDTH = 190.0
 
+    def __init__(self, item: NodeItem) -> None:
+        super().__init__(item)
+        self._cache: tuple[object, list[str]] | None = None
+
     def wired(self) -> bool:
         scene = self.item.scene()
         return scene is not None and bool(scene.doc.graph.wires_into(self.item.node_id))
@@ -268,9 +272,14 @@ class PanelWidget(InlineWidget):
         return lines or ["Double-click to type"]
 
     def visible_lines(self) -> list[str]:
+        """The lines drawn (computed once per result or text, not once per paint)."""
+        key = (self.wired(), id(self.item.result), self.settings.get("text"))
+        if self._cache is not None and self._cache[0] == key:
+            return self._cache[1]
         lines = self.lines()
         if len(lines) > self.MAX_LINES:
             lines = [*lines[: self.MAX_LINES - 1], f"… {len(lines) - self.MAX_LINES + 1} more lines"]
+        self._cache = (key, lines)
         return lines
 
     def size(self) -> QSizeF:

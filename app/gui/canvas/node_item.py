@@ -132,8 +132,6 @@ class NodeItem(QGraphicsItem):
         for (is_input, name), port in self.ports.items():
             state = self.record.inputs.get(name) if is_input else None
             port.has_value = bool(state and state.has_value)
-            port.setToolTip(self._port_tooltip(name, is_input))
-        self.setToolTip(self._tooltip())
         self.update()
 
     def input_port(self, name: str) -> PortItem | None:
@@ -148,7 +146,6 @@ class NodeItem(QGraphicsItem):
         if resize:
             self.rebuild()
         else:
-            self.setToolTip(self._tooltip())
             self.update()
 
     def size(self) -> tuple[float, float]:
@@ -168,7 +165,8 @@ class NodeItem(QGraphicsItem):
             lines.append("<i>preview off</i>")
         return "<br>".join(lines)
 
-    def _port_tooltip(self, name: str, is_input: bool) -> str:
+    def port_tooltip(self, name: str, is_input: bool) -> str:
+        """A port's tooltip: type, access, description, value, modifiers, data (made on hover)."""
         node = self.record.node
         port = node.input_port(name) if is_input else node.output_port(name)
         if port is None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QPointF, QRectF
 from PySide6.QtGui import QPainter, QPainterPath, QPen
-from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
+from PySide6.QtWidgets import QGraphicsItem, QGraphicsSceneHoverEvent, QStyleOptionGraphicsItem, QWidget
 
 from app.gui import theme
 from app.gui.canvas.layout import PORT_R
@@ -31,6 +31,10 @@ class PortItem(QGraphicsItem):
     @property
     def is_output(self) -> bool:
         return not self.is_input
+
+    def hoverEnterEvent(self, event: QGraphicsSceneHoverEvent) -> None:
+        self.setToolTip(self.parentItem().port_tooltip(self.name, self.is_input))
+        super().hoverEnterEvent(event)
 
     def anchor(self) -> QPointF:
         """Where wires attach, in scene coordinates."""

@@ -159,13 +159,20 @@ class CanvasScene(QGraphicsScene):
 
     # -- results ---------------------------------------------------------------------
     def apply_results(self, outcome: SolveOutcome) -> None:
+        """Recolour the nodes whose result changed (only those are repainted)."""
+        resized = False
         for node_id, item in self.nodes.items():
-            item.set_result(self.doc.result(node_id))
+            result = self.doc.result(node_id)
+            if result is not item.result:
+                before = item.size()
+                item.set_result(result)
+                resized = resized or item.size() != before
         for wire, item in self.wires.items():
             item.set_kind(self._wire_kind(wire))
-        for group_id in self.groups:
-            self._fit_group(group_id)
-        self.update_scene_rect()
+        if resized:  # a panel grew or shrank: its wires and group follow
+            for item in self.nodes.values():
+                self.node_item_moved(item)
+            self.update_scene_rect()
 
     def _wire_kind(self, wire: Wire) -> str:
         """``item``, ``list`` or ``tree``, from the data the wire carried last."""

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWidget
 
@@ -38,10 +38,7 @@ class ViewportPanel(QWidget):
         self._hint_shown = False
         self._grid_bounds: tuple[float, ...] | None = None
         self._selected: set[str] = set()
-        self._render_timer = QTimer(self)
-        self._render_timer.setSingleShot(True)
-        self._render_timer.setInterval(0)
-        self._render_timer.timeout.connect(self.render)
+        self._render_began = 0.0
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
         outer.setSpacing(0)
@@ -81,17 +78,30 @@ class ViewportPanel(QWidget):
         from app.gui.viewport.preview import Preview
 
         pv.global_theme.allow_empty_mesh = True
-        plotter = QtInteractor(self, auto_update=False, multi_samples=0)
-        plotter.enable_anti_aliasing("fxaa")  # cheap post-process AA: software GL stays interactive
+        # The interactor is a QOpenGLWidget: Qt then composes its whole native window
+        # through OpenGL on every repaint of anything in it (~35 ms a time with software
+        # GL). In a native child window of its own, the rest of the main window repaints
+        # as plain raster (~1 ms) and only the viewport pays for GL.
+        holder = QWidget(self)
+        holder.setAttribute(Qt.WidgetAttribute.WA_DontCreateNativeAncestors)
+        holder.setAttribute(Qt.WidgetAttribute.WA_NativeWindow)
+        layout = QVBoxLayout(holder)
+        layout.setContentsMargins(0, 0, 0, 0)
+        # No multisampling and no FXAA: with software OpenGL (Mesa llvmpipe, Xvfb) they cost
+        # 25-50 ms a frame, more than everything else together.
+        plotter = QtInteractor(holder, auto_update=False, multi_samples=0)
+        layout.addWidget(plotter)
         plotter.setAcceptDrops(False)  # a dropped .graph goes to the main window
         if plotter.iren is not None:
             plotter.iren.clear_key_event_callbacks()  # no 'q' closing the viewport
         plotter.set_background(theme.VIEWPORT_BACKGROUND, top=theme.VIEWPORT_BACKGROUND_TOP)
         plotter.add_axes(interactive=False)
+        plotter.ren_win.AddObserver("StartEvent", self._render_started)
+        plotter.ren_win.AddObserver("EndEvent", self._render_ended)
         self.plotter = plotter
         self.preview = Preview(plotter)
-        self.stack.addWidget(plotter)
-        self.stack.setCurrentWidget(plotter)
+        self.stack.addWidget(holder)
+        self.stack.setCurrentWidget(holder)
         self.toolbar.setEnabled(True)
         self._update_grid()
         self.refresh()
@@ -134,18 +144,26 @@ class ViewportPanel(QWidget):
             self.schedule_render()
 
     def schedule_render(self) -> None:
-        """Render once on the next event-loop turn, however many updates come before it."""
+        """Repaint once on the next event-loop turn, however many updates come before it.
+
+        The interactor (a QOpenGLWidget) renders VTK in its paint; asking Qt to repaint
+        renders once, where calling ``plotter.render()`` would render, then paint (and
+        render) again.
+        """
         if self.plotter is not None:
-            self._render_timer.start()
+            self.plotter.update()
 
     def render(self) -> None:
-        """Render now (also counts frames, for the slider-drag rate measurement)."""
-        if self.plotter is None:
-            return
-        self._render_timer.stop()
-        started = time.perf_counter()
-        self.plotter.render()
-        self.render_seconds = time.perf_counter() - started
+        """Render now (a screenshot needs the picture at once)."""
+        if self.plotter is not None:
+            self.plotter.render()
+
+    def _render_started(self, *_args: object) -> None:
+        self._render_began = time.perf_counter()
+
+    def _render_ended(self, *_args: object) -> None:
+        """Count finished renders (the slider-drag rate measurement reads :attr:`frames`)."""
+        self.render_seconds = time.perf_counter() - self._render_began
         self.frames += 1
         self.frame_rendered.emit()
 

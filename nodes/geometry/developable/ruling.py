@@ -15,12 +15,17 @@ partners. A root is kept only if its normals are *consistently oriented* (see
 sheet's normals N1 = R × A' and N2 = R × B' point to the same side, so the signed warp
 is ~0, not ~π), and one root per station is chosen so that t never decreases.
 
-The determinant also vanishes wherever A'(s) ∥ B'(t), whatever the ruling. When the
-tangents point the *same* way that root is a genuine torsal ruling (two curves in
-parallel planes are joined exactly there); when they point *opposite* ways the normals
-are opposite and the orientation test rejects it — it belongs to a sheet folded through
-itself (for two coaxial circles, the double cone through their common centre instead of
-the frustum between them).
+The orientation test is what tells the strip from impostors. Along a branch of roots
+with slope dt/ds, the sheet's normal at B is (dt/ds)·(B' × R), so flipped normals mean
+either t running backwards (a sheet folded through itself: the rulings cross) or the
+edge of regression (the sheet's cusp) lying between the two curves. In particular the
+determinant vanishes wherever A'(s) ∥ B'(t), whatever the ruling: when the tangents
+point the *same* way that root is a genuine torsal ruling (two curves in parallel
+planes are joined exactly there); when they point *opposite* ways the normals are
+opposite and the root is rejected (for two coaxial circles, the double cone through
+their common centre instead of the frustum between them). Flipped roots on a
+decreasing branch are what a curve B running the other way produces, and the message
+then says to reverse B.
 
 Algorithm (all stations at once)
 --------------------------------
@@ -238,8 +243,8 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     i, j = rows, cols
     values = []
     for c in (j, j + 1):
-        r = grid.points[c] - a0[i]
-        values += [det(r, a1[i], grid.tangents[c]), det(r, a1[i], grid.second[c])]
+        normal = cross(grid.points[c] - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
+        values += [dot(normal, grid.tangents[c]), dot(normal, grid.second[c])]
     f0, d0, f1, d1 = values
     x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
     d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
@@ -293,7 +298,9 @@ class _Candidates:
 _FIELDS = tuple(_Candidates.__dataclass_fields__)
 
 
-def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray) -> _Candidates:
+def _find_candidates(
+    curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray
+) -> _Candidates:
     """All candidate partners of all stations: refined roots, corner roots, flat-run ends."""
     m = len(grid.t)
     found = _brackets(a0, a1, grid.points, grid.tangents)
@@ -328,8 +335,8 @@ def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray
         c0, c1, c2 = curve_b.derivatives(x, 2)
         root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
         i = rows[index]
-        r = c0 - a0[i]
-        return det(r, a1[i], c1), det(r, a1[i], c2), _rounding_scale(size_a[i], c0, speed_a[i], c1)
+        normal = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
+        return dot(normal, c1), dot(normal, c2), _rounding_scale(size_a[i], c0, speed_a[i], c1)
 
     if k:
         low, high = grid.at[cols], grid.at[cols + 1]
@@ -339,12 +346,13 @@ def _find_candidates(curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch
     r = b0 - a0[root_rows]
-    f_t = det(r, a1[root_rows], b2)
+    normal = cross(r, a1[root_rows])
+    f_t = dot(normal, b2)
     f_s = det(r, a2[root_rows], b1)
     slope = np.clip(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6, 1e6)
     scale = norm(r) * speed_a[root_rows] * norm(b1)
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
-    jumped = np.abs(det(r, a1[root_rows], b1)) > 1e-7 * scale
+    jumped = np.abs(dot(normal, b1)) > 1e-7 * scale
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
@@ -474,11 +482,12 @@ class _Strip:
 
     def choose(self) -> tuple[IntArray, _Candidates, BoolArray]:
         """The chosen candidate per station (−1 where none), the oriented candidates, and
-        per station whether a root with flipped normals was seen."""
+        per station whether it has a root with flipped normals on a decreasing branch —
+        where the strip would be, had B run the other way."""
         n = len(self.s)
         found = _find_candidates(self.curve_b, self.grid, self.a0, self.a1, self.a2)
         flipped = np.zeros(n, dtype=bool)
-        flipped[found.row[~found.oriented]] = True
+        flipped[found.row[~found.oriented & (found.slope < 0)]] = True
         good = found if found.oriented.all() else found.subset(found.oriented)
         t_pad, slope_pad, index_pad = _pad(good, n)
         chosen = np.full(n, -1, dtype=np.int64)
@@ -563,7 +572,9 @@ class _Strip:
 
     # -- step 6 (continued): fans through a point of A ---------------------------------------------
 
-    def a_fans(self, t: FloatArray, slope: FloatArray, regular: BoolArray) -> list[tuple[float, float, float]]:
+    def a_fans(
+        self, t: FloatArray, slope: FloatArray, regular: BoolArray
+    ) -> list[tuple[float, float, float]]:
         """Fans through single points of A, found where t jumps between two stations.
 
         Along one branch t steps by about Δs·(mean slope); a much larger step means the
@@ -591,7 +602,11 @@ class _Strip:
                 k = which[index]
                 r = bm0[k] - c0
                 # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes)
-                return det(r, c1, bm1[k]), det(r, c2, bm1[k]), _rounding_scale(norm(c0), bm0[k], norm(c1), bm1[k])
+                return (
+                    det(r, c1, bm1[k]),
+                    det(r, c2, bm1[k]),
+                    _rounding_scale(norm(c0), bm0[k], norm(c1), bm1[k]),
+                )
 
             low, high = s[pairs[which]], s[pairs[which] + 1]
             apex[which] = refine_roots(coplanarity, low, high, f_left[which])
@@ -643,6 +658,66 @@ class _Strip:
         t = self.map_b.parameter_at(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t)
+
+    # -- assembly -----------------------------------------------------------------------------------
+
+    def merge_fans(self, t: FloatArray, fans: list) -> tuple[FloatArray, FloatArray, IntArray]:
+        """All rulings ordered along the strip: the stations and every fan's rulings.
+
+        Returns s, t and, per ruling, the station it is (−1 for a fan ruling).
+        """
+        n = len(self.s)
+        if not fans:
+            return self.s, t, np.arange(n)
+        s_parts, t_parts = [self.s], [t]
+        for s_star, t_low, t_high in fans:
+            ts = self.fan_parameters(t_low, t_high)
+            s_parts.append(np.full(len(ts), s_star))
+            t_parts.append(ts)
+        s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
+        order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
+        repeat = np.zeros(len(order), dtype=bool)
+        repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
+        order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
+        return s_all[order], t_all[order], np.where(order < n, order, -1)
+
+    def geometry(
+        self,
+        s: FloatArray,
+        t: FloatArray,
+        source: IntArray,
+        chosen: IntArray,
+        good: _Candidates,
+        regular: BoolArray,
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Ruling end points and edge tangents: stations reuse A's values, and B's where
+        their chosen root still stands; at a corner the tangent is the in-plane blend."""
+        k = len(s)
+        starts, ends, ta, tb = np.empty((4, k, 3))
+        station = source >= 0
+        starts[station], ta[station] = self.a0[source[station]], self.a1[source[station]]
+        if not station.all():
+            starts[~station], ta[~station] = self.curve_a.derivatives(s[~station], 1)
+        kept = np.zeros(k, dtype=bool)
+        kept[station] = regular[source[station]]
+        kept[kept] = good.t[chosen[source[kept]]] == t[kept]
+        ends[kept], tb[kept] = good.points[chosen[source[kept]]], good.tangents[chosen[source[kept]]]
+        if not kept.all():
+            ends[~kept], tb[~kept] = self.curve_b.derivatives(t[~kept], 1)
+        ruling = ends - starts
+        # at a corner the tangent may be any blend of the two one-sided ones
+        if len(self.kinks_b):
+            at_b = ~kept & np.isin(t, self.kinks_b)
+            if at_b.any():
+                left = self.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
+                tb[at_b] = in_plane_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
+        if len(self.kinks_a):
+            at_a = np.min(np.abs(s[:, None] - self.kinks_a[None, :]), axis=1) <= 1e-12
+            if at_a.any():
+                around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
+                sides = self.curve_a.derivatives(around, 1)[1]
+                ta[at_a] = in_plane_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
+        return starts, ends, ta, tb
 
 
 def ruling_developable(
@@ -700,55 +775,12 @@ def ruling_developable(
     strip.fill(t)
     fans += strip.a_fans(t, slope, regular)
 
-    # station rulings, then every fan's rulings; ordered along the strip
-    s_all, t_all, order = strip.s, t, np.arange(n)
-    if fans:
-        s_parts, t_parts = [strip.s], [t]
-        for s_star, t_low, t_high in fans:
-            ts = strip.fan_parameters(t_low, t_high)
-            s_parts.append(np.full(len(ts), s_star))
-            t_parts.append(ts)
-        s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
-        station = np.arange(len(s_all)) < n
-        order = np.lexsort((~station, t_all, s_all))
-        repeat = np.zeros(len(order), dtype=bool)
-        repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
-        order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
-
-    # geometry: stations reuse A's values, and B's where the chosen root still stands
-    s_out, t_out = s_all[order], t_all[order]
-    source = np.where(order < n, order, -1)
-    starts = np.empty((len(order), 3))
-    ta = np.empty((len(order), 3))
-    ends = np.empty((len(order), 3))
-    tb = np.empty((len(order), 3))
-    from_station = source >= 0
-    starts[from_station], ta[from_station] = strip.a0[source[from_station]], strip.a1[source[from_station]]
-    if not from_station.all():
-        starts[~from_station], ta[~from_station] = curve_a.derivatives(s_out[~from_station], 1)
-    kept = np.zeros(len(order), dtype=bool)
-    kept[from_station] = regular[source[from_station]]
-    kept[kept] = good.t[chosen[source[kept]]] == t_out[kept]
-    cand = chosen[source[kept]]
-    ends[kept], tb[kept] = good.points[cand], good.tangents[cand]
-    if not kept.all():
-        ends[~kept], tb[~kept] = curve_b.derivatives(t_out[~kept], 1)
-    ruling = ends - starts
-    # at a corner the tangent may be any blend of the two one-sided ones: take the in-plane one
-    at_b = ~kept & np.isin(t_out, strip.kinks_b) if len(strip.kinks_b) else np.zeros(len(order), bool)
-    if at_b.any():
-        left = curve_b.derivatives(t_out[at_b] - SIDE, 1)[1]
-        tb[at_b] = in_plane_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
-    if len(strip.kinks_a):
-        at_a = np.min(np.abs(s_out[:, None] - strip.kinks_a[None, :]), axis=1) <= 1e-12
-        if at_a.any():
-            sides = curve_a.derivatives(np.clip(np.concatenate([s_out[at_a] - SIDE, s_out[at_a] + SIDE]), 0, 1), 1)[1]
-            ta[at_a] = in_plane_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
-    warp, signed = _warps(ruling, ta, tb)
+    s_out, t_out, source = strip.merge_fans(t, fans)
+    starts, ends, ta, tb = strip.geometry(s_out, t_out, source, chosen, good, regular)
+    warp, signed = _warps(ends - starts, ta, tb)
     valid = (warp <= tolerance) & (np.abs(signed) <= 0.5 * np.pi)
-    return RulingResult(
-        s_out, t_out, starts, ends, warp, signed, valid, _message(valid, source, flipped & ~has, tolerance, n), from_station
-    )
+    message = _message(valid, source, flipped & ~has, tolerance, n)
+    return RulingResult(s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0)
 
 
 def _warps(ruling: FloatArray, ta: FloatArray, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -765,13 +797,14 @@ def _message(valid: BoolArray, source: IntArray, flipped: BoolArray, tolerance: 
     bad = source[(source >= 0) & ~valid]
     if len(bad) == 0:
         return None
-    message = f"no ruling within {tolerance:g} rad for {len(bad)} of {n} stations: try swapping curves A and B"
+    message = f"no ruling within {tolerance:g} rad for {len(bad)} of {n} stations: "
     reversed_count = int(flipped[bad].sum())
-    if reversed_count:
+    if 2 * reversed_count >= len(bad):
         return message + (
-            f", or reversing curve B ({reversed_count} of them have a torsal ruling whose normals"
-            " flip, as if B ran the other way)"
+            f"try reversing curve B (at {reversed_count} of them the torsal ruling runs as if B went"
+            " the other way), or swapping curves A and B"
         )
+    message += "try swapping curves A and B"
     if len(bad) == n:
-        return message + ", or changing them: these curves bound no developable strip"
+        message += ", or changing them: these curves bound no developable strip"
     return message

@@ -36,8 +36,15 @@ BACKWARD_PENALTY = 1e3
 
 
 def _minplus(x: FloatArray, y: FloatArray) -> FloatArray:
-    """(min, +) product of stacks of square matrices: ``z[..., a, c] = min_b x[a, b] + y[b, c]``."""
-    return np.min(x[..., :, :, None] + y[..., None, :, :], axis=-2)
+    """(min, +) product of stacks of square matrices: ``z[..., a, c] = min_b x[a, b] + y[b, c]``.
+
+    Written as K whole-stack steps (K, the number of candidates, is small): numpy's
+    reduction over a short middle axis is many times slower.
+    """
+    z = x[..., :, :1] + y[..., :1, :]
+    for b in range(1, x.shape[-1]):
+        np.minimum(z, x[..., :, b : b + 1] + y[..., b : b + 1, :], out=z)
+    return z
 
 
 def step_costs(t: FloatArray, slope: FloatArray, ds: FloatArray) -> FloatArray:

@@ -86,7 +86,9 @@ def warp_of_rulings(starts: ArrayLike, ends: ArrayLike, signed: bool = False) ->
     return warp_angles(a, b, edge_tangents(a), edge_tangents(b), signed=signed)
 
 
-def in_plane_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
+def in_plane_tangent(
+    ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray
+) -> FloatArray:
     """The edge direction at a corner that lies in the plane of the ruling and the other
     edge's tangent, where there is one.
 

@@ -1,0 +1,88 @@
+"""analysis.CurveOfRegression: the sharp edge every ruling of a developable touches."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from engine.node import LIST, In, Node, NodeWarning, Out
+from engine.types import INTEGER, NUMBER, POINT
+from engine.values import Point
+from nodes.analysis.checks import angle, ruled_surface, segments
+from nodes.curves.convert import sentence
+from nodes.geometry.curve_base import Curve
+from nodes.geometry.curves import InterpolatedCurve
+from nodes.geometry.regression import curve_of_regression
+from nodes.types import CURVE, SURFACE, point, points
+
+
+def piece_curve(piece: np.ndarray) -> Curve | None:
+    """The cubic spline through one valid run of points (repeated points dropped), or
+    None when fewer than two distinct points are left."""
+    size = float(np.ptp(piece, axis=0).max()) if len(piece) else 0.0
+    if size == 0.0:
+        return None
+    keep = np.r_[True, np.linalg.norm(np.diff(piece, axis=0), axis=1) > 1e-12 * size]
+    distinct = piece[keep]
+    return InterpolatedCurve(distinct) if len(distinct) >= 2 else None
+
+
+class CurveOfRegression(Node):
+    """The curve of regression of a developable: the curve all its rulings touch.
+
+    Every developable other than a plane, a cylinder or a cone is swept by the
+    tangents of one space curve, its curve of regression (or edge of regression):
+    the sharp cusp where the surface folds back on itself, usually outside the part
+    you model. Knowing it tells you where a sheet cannot be bent to, and the
+    tangent developable of it (TangentDevelopable) rebuilds the whole surface.
+
+    Segments + 1 rulings are taken from the surface. For each pair of neighbours the
+    points where their lines come closest are found; each ruling gets the midpoint
+    of its two such points (the ends keep theirs), and a cubic spline through them
+    is the curve. A stretch is kept only while the curve runs along the rulings, as
+    a tangent must: a segment turning more than Deviation (rad) away from them ends
+    a piece, so the output is a list of curves, split where the surface is not
+    developable within Deviation. More Segments give a closer curve.
+
+    A plane or a cylinder (parallel rulings) and a twisted ruled surface such as a
+    hyperbolic paraboloid (rulings that never meet) have no curve of regression: the
+    node warns. A cone has an apex instead, given as the only Point.
+    """
+
+    type_id = "analysis.CurveOfRegression"
+    inputs = (
+        In("Surface", SURFACE, "S", "The ruled surface, ideally developable."),
+        In("Deviation", NUMBER, "D", "How far (rad) the curve may turn away from the rulings it "
+           "touches and still count, e.g. 0.01.", default=0.01),
+        In("Segments", INTEGER, "N", "How many strips between rulings to sample (rulings minus one).",
+           default=100),
+    )
+    outputs = (
+        Out("Curves", CURVE, "C", "The curve of regression, one curve per valid piece.", access=LIST),
+        Out("Points", POINT, "P", "The points the curves interpolate, in order (a cone: its apex).",
+            access=LIST),
+    )
+
+    def solve(self, surface: Any, deviation: Any, count: Any) -> tuple[list[Curve], list[Point]]:
+        s = ruled_surface(surface, "CurveOfRegression")
+        tolerance = angle("Deviation", deviation, "0.01")
+        n = segments(count)
+        rulings = s.rulings(n + 1)
+        try:
+            regression = curve_of_regression(rulings[:, 0], rulings[:, 1], tolerance)
+        except ValueError as exc:
+            raise NodeWarning(f"No curve of regression can be found: {sentence(exc)}") from None
+        if regression.kind == "apex":
+            self.remark(f"The surface is {regression.message}: Points holds the apex")
+            return [], [point(regression.apex)]
+        if not regression.has_curve:
+            raise NodeWarning(regression.message)
+        curves = [c for c in (piece_curve(p) for p in regression.curves) if c is not None]
+        if len(curves) > 1 or not regression.valid.all():
+            bad = int((~regression.valid).sum())
+            self.warn(f"The curve of regression is split into {len(curves)} pieces: {bad} of "
+                      f"{len(regression.valid)} segments turn more than Deviation away from the "
+                      "rulings, so the surface is not developable there; raise Deviation or Segments "
+                      "to accept them")
+        return curves, points(np.vstack(regression.curves))

@@ -1,0 +1,121 @@
+"""analysis.IsoMapping: unroll a ruled surface into the XY plane, strip by strip."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import shapely
+
+from engine.node import LIST, In, Node, NodeWarning, Out
+from engine.types import INTEGER, NUMBER, TEXT
+from nodes.analysis.checks import ruled_surface, segments
+from nodes.analysis.development_type import DEVELOPMENT
+from nodes.curves.convert import sentence
+from nodes.developable.strip_outputs import strip_outputs
+from nodes.geometry.unroll import Development, unroll_surface
+from nodes.types import LINE, SURFACE
+
+#: Above this relative area difference the node says what it may mean.
+AREA_NOTE = 1e-3
+
+
+def _flat(points2d: np.ndarray) -> np.ndarray:
+    return np.column_stack([points2d, np.zeros(len(points2d))])
+
+
+def overlaps(development: Development) -> bool:
+    """Whether the development covers part of the plane twice (it cannot be cut from one sheet).
+
+    The outline is tested for self-intersection after merging vertices that coincide
+    (to 1e-9 of its size): the rulings of a cone all end at its apex, which the outline
+    visits once per ruling without crossing itself.
+    """
+    ring = development.outline
+    size = float(np.ptp(ring, axis=0).max()) or 1.0
+    keep = np.r_[True, np.linalg.norm(np.diff(ring, axis=0), axis=1) > 1e-9 * size]
+    ring = ring[keep]
+    if len(ring) > 1 and np.linalg.norm(ring[-1] - ring[0]) <= 1e-9 * size:
+        ring = ring[:-1]
+    return len(ring) >= 3 and not shapely.LinearRing(ring).is_simple
+
+
+def area_text(development: Development) -> str:
+    """The Area output: both areas, their difference and the difference in per cent."""
+    a3, a2 = development.area_3d, development.area_2d
+    return (f"input area {a3:.6g}, development area {a2:.6g}, difference {a2 - a3:+.3g} "
+            f"({100 * development.area_error:+.3g} %)")
+
+
+class IsoMapping(Node):
+    """Unroll a ruled surface into the XY plane, keeping the length of every ruling.
+
+    The surface is cut into Segments strips between Segments + 1 rulings; each strip
+    is split into two triangles and the triangles are laid flat one after another,
+    each congruent to its 3D original, so rulings, both edges and the strips' widths
+    keep their lengths (EdgeError shows it: rounding level, ~1e-15). Between the
+    rulings you see, 7 more per strip are unrolled too so the flat edges follow the
+    curved ones closely. The first ruling starts at the origin and runs up the Y
+    axis; the strip continues towards +X.
+
+    For a developable surface (cylinder, cone, tangent developable, the output of the
+    developable nodes) the unrolling is an isometry: areas agree (AreaError ~1e-6 at
+    100 segments) and a cone becomes a circular sector, a cylinder a rectangle. A
+    twisted ruled surface (a hyperbolic paraboloid) has no true development: its
+    rulings still keep their lengths, but the area does not, and AreaError says by
+    how much — a measure of how far the surface is from developable. Map carries
+    points and panel outlines between the development and the surface (wire it into
+    SurfacePatching). A surface without straight rulings gives an error; a
+    development that overlaps itself (a tangent developable of more than a turn)
+    gives a warning, as it cannot be cut from one sheet.
+    """
+
+    type_id = "analysis.IsoMapping"
+    inputs = (
+        In("Surface", SURFACE, "S", "The ruled surface to unroll (its rulings must be straight lines)."),
+        In("Segments", INTEGER, "N", "How many strips to cut it into: rulings minus one (1 or more).",
+           default=100),
+    )
+    outputs = (
+        Out("Development", SURFACE, "D", "The unrolled surface in the XY plane, lofted through the flat "
+            "rulings."),
+        Out("Rulings", LINE, "R", "The Segments + 1 rulings laid flat, in order.", access=LIST),
+        Out("Area", TEXT, "A", "Area of the input and of the development, their difference and "
+            "the difference in per cent."),
+        Out("AreaInput", NUMBER, "Ai", "Area of the input surface, in square model units."),
+        Out("AreaDevelopment", NUMBER, "Ad", "Area of the development, in square model units."),
+        Out("EdgeError", NUMBER, "Ee", "Largest relative change of any edge length in the unrolling "
+            "(rounding level: ~1e-15)."),
+        Out("AreaError", NUMBER, "Ae", "(development area − input area) / input area: ~0 for a "
+            "developable surface."),
+        Out("Map", DEVELOPMENT, "M", "The development with its map to and from the 3D surface, for "
+            "SurfacePatching."),
+    )
+
+    def solve(self, surface: Any, count: Any) -> tuple[Any, ...]:
+        s = ruled_surface(surface, "IsoMapping")
+        n = segments(count)
+        try:
+            development = unroll_surface(s, n)
+        except ValueError as exc:
+            raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
+        starts2d, ends2d = development.rulings2d
+        flat = strip_outputs(_flat(starts2d), _flat(ends2d))
+        if overlaps(development):
+            self.warn("The development overlaps itself, so it cannot be cut from one sheet: unroll "
+                      "less of the surface (fewer turns) or split it into pieces")
+        if abs(development.area_error) > AREA_NOTE:
+            self.remark(f"The development's area differs from the surface's by "
+                        f"{100 * development.area_error:+.3g} %: for a developable surface raise "
+                        "Segments; a twisted ruled surface has no true development, only its rulings "
+                        "keep their lengths")
+        return (
+            flat.surface,
+            flat.rulings,
+            area_text(development),
+            float(development.area_3d),
+            float(development.area_2d),
+            float(development.max_edge_length_error),
+            float(development.area_error),
+            development,
+        )

@@ -1,0 +1,268 @@
+"""Valid rulings: the straight lines a surface contains where it is single-curved.
+
+SurfaceAnalysis asks, at each grid point P where the surface is single-curved within
+a curvature tolerance (min(|k1|, |k2|) <= tol), whether the straight line through P
+along the zero-curvature direction d lies on the surface, and how far. The line
+P + s·d is walked outwards in both directions in steps of h, all grid points at
+once, and each sample Q(s) is projected onto the surface (Gauss–Newton from the
+previous sample's (u, v), so each step costs a few vectorised evaluations). A step
+is accepted while
+
+* the foot point is inside the surface: the gap Q − S has no tangential part (at an
+  edge the projection stops on the boundary and the gap turns sideways);
+* the gap along the normal stays within ½·tol·s², the sag of an arc bent at the
+  tolerance curvature: the line hugs the surface as a ruling must;
+* the surface stays single-curved within tol at the foot point;
+* the warp along the line stays within the warp tolerance: the normals along the
+  line, measured as a signed rotation about d (a ruled surface's normal turns about
+  its ruling), spread over at most ``warp_tolerance`` radians.
+
+Both sides grow together, one step each per round, so a warp budget is shared
+fairly; where a side stops, its end is refined by bisection between the last
+accepted and the first rejected sample, so a ruling ends on the surface's edge, not
+up to a step short of it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+import trimesh
+from numpy.typing import NDArray
+
+from nodes.geometry.mesh_surface import MeshSurface
+from nodes.geometry.surface_base import Surface
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+#: Walking steps per side: a line can reach the surface's diameter from its grid point.
+STEPS = 128
+#: Gauss–Newton iterations per projection (from the previous sample: quadratic convergence).
+NEWTON = 4
+#: Bisection halvings that place a ruling's end between its last two samples.
+BISECTIONS = 40
+#: Distances below this share of the surface's diameter are rounding.
+ROUNDING = 1e-12
+
+
+def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    return np.einsum("ij,ij->i", a, b)
+
+
+@dataclass(frozen=True)
+class Foot:
+    """Projections of k query points onto the surface."""
+
+    points: FloatArray  #: (k, 3) foot points
+    normals: FloatArray  #: (k, 3) unit normals there
+    flatness: FloatArray  #: (k,) min(|k1|, |k2|) there
+    state: FloatArray  #: (k, 2) where the foot is, to start the next projection from
+    on_edge: BoolArray  #: (k,) the foot lies on the surface's boundary
+
+
+class Projector(Protocol):
+    """Projects points onto one surface, starting from a known nearby foot."""
+
+    def project(self, queries: FloatArray, state: FloatArray) -> Foot: ...
+
+
+class SurfaceProjector:
+    """Projection onto a parameterised surface by Gauss–Newton in (u, v).
+
+    The parameters are clamped to [0, 1]² (wrapped across a closed direction), so a
+    query beyond an edge lands on the edge. A foot counts as ``on_edge`` when it is
+    on an open edge, or when the gap still has a tangential part (the iteration has
+    not settled: treated like leaving the surface).
+    """
+
+    def __init__(self, surface: Surface, size: float) -> None:
+        self.surface = surface
+        self.eps = ROUNDING * size
+
+    def _limit(self, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        s = self.surface
+        u = np.mod(u, 1.0) if s.closed_u else np.clip(u, 0.0, 1.0)
+        v = np.mod(v, 1.0) if s.closed_v else np.clip(v, 0.0, 1.0)
+        return u, v
+
+    def project(self, queries: FloatArray, state: FloatArray) -> Foot:
+        u, v = self._limit(state[:, 0].copy(), state[:, 1].copy())
+        for _ in range(NEWTON):
+            s, su, sv = self.surface.derivatives(u, v, 1)
+            r = queries - s
+            e, f, g = _dot(su, su), _dot(su, sv), _dot(sv, sv)
+            bu, bv = _dot(su, r), _dot(sv, r)
+            damp = 1e-14 * (e + g) + 1e-300  # Levenberg: keeps a pole or apex solvable
+            e, g = e + damp, g + damp
+            det = e * g - f * f
+            u, v = self._limit(u + (g * bu - f * bv) / det, v + (e * bv - f * bu) / det)
+        points = self.surface.point_at(u, v).reshape(-1, 3)
+        c = self.surface.curvature(u, v)
+        gap = queries - points
+        sideways = np.linalg.norm(gap - _dot(gap, c.normal)[:, None] * c.normal, axis=1)
+        edge = ~(sideways <= self.eps)
+        if not self.surface.closed_u:
+            edge |= (u <= 0.0) | (u >= 1.0)
+        if not self.surface.closed_v:
+            edge |= (v <= 0.0) | (v >= 1.0)
+        return Foot(points, c.normal, np.minimum(np.abs(c.k1), np.abs(c.k2)),
+                    np.column_stack([u, v]), edge)
+
+
+class MeshProjector:
+    """Projection onto a triangle mesh (exact closest points); normals and flatness are
+    interpolated from the vertices' (so a line crossing from facet to facet sees the
+    normal turn gradually, as on the surface the mesh stands for)."""
+
+    def __init__(self, surface: MeshSurface, flatness: FloatArray) -> None:
+        self.surface = surface
+        mesh = surface.mesh
+        self.flatness = flatness
+        self.normals = np.asarray(mesh.vertex_normals, dtype=float)
+        # which edges of each face are boundary edges (used by that face only)
+        # mesh.edges_sorted lists each face's edges (0,1), (1,2), (2,0) in order, sorted
+        edges = np.asarray(mesh.edges_sorted)
+        boundary = np.zeros(len(edges), dtype=bool)
+        boundary[trimesh.grouping.group_rows(edges, require_count=1)] = True
+        self.boundary = boundary.reshape(-1, 3)
+
+    def project(self, queries: FloatArray, state: FloatArray) -> Foot:
+        found = self.surface.closest_point(queries)
+        mesh = self.surface.mesh
+        corners = np.asarray(mesh.vertices, dtype=float)[np.asarray(mesh.faces)[found.faces]]
+        bary = trimesh.triangles.points_to_barycentric(corners, found.points)
+        corner_ids = np.asarray(mesh.faces)[found.faces]
+        flat = np.einsum("kj,kj->k", bary, self.flatness[corner_ids])
+        normals = np.einsum("kj,kjd->kd", bary, self.normals[corner_ids])
+        normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+        # edge (0,1) is opposite corner 2, (1,2) opposite 0, (2,0) opposite 1
+        near = np.abs(bary[:, [2, 0, 1]]) <= 1e-9
+        edge = np.any(near & self.boundary[found.faces], axis=1)
+        return Foot(found.points, normals, flat, state, edge)
+
+
+@dataclass(frozen=True)
+class Traced:
+    """Rulings found from m origins: ends ``(m, 3)``, the signed spread of the normals
+    along each (its warp, rad) and the lengths of the two halves from the origin."""
+
+    starts: FloatArray
+    ends: FloatArray
+    warp: FloatArray
+    back: FloatArray
+    ahead: FloatArray
+
+    @property
+    def lengths(self) -> FloatArray:
+        return self.back + self.ahead
+
+
+def trace_rulings(
+    projector: Projector,
+    origins: FloatArray,
+    directions: FloatArray,
+    normals: FloatArray,
+    states: FloatArray,
+    curvature_tolerance: float,
+    warp_tolerance: float,
+    size: float,
+    steps: int = STEPS,
+) -> Traced:
+    """Walk the lines ``origins + s·directions`` (unit directions) over the surface.
+
+    ``normals`` are the unit normals at the origins and ``states`` where the origins
+    are for the projector ((u, v) for a parameterised surface). ``size`` is the
+    surface's diameter: steps are ``size / steps`` long. See the module docstring
+    for when a step is accepted.
+    """
+    m = len(origins)
+    d = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    h = size / steps
+    eps = ROUNDING * size
+    reach = np.zeros((2, m))  # accepted distance on each side
+    alive = np.ones((2, m), dtype=bool)
+    state = np.stack([states, states]).astype(float)
+    previous = state.copy()
+    low, high = np.zeros(m), np.zeros(m)  # spread of the signed normal rotation
+    reject = np.full((2, m), np.nan)  # first rejected distance, for the bisection
+    sides = (1.0, -1.0)
+
+    def check(
+        rows: np.ndarray, side: int, s: FloatArray, guess: FloatArray
+    ) -> tuple[BoolArray, Foot, FloatArray]:
+        q = origins[rows] + (sides[side] * s)[:, None] * d[rows]
+        foot = projector.project(q, guess)
+        gap = q - foot.points
+        along = _dot(gap, foot.normals)
+        inside = ~(foot.on_edge & (np.linalg.norm(gap, axis=1) > eps))
+        hugs = np.abs(along) <= 0.5 * curvature_tolerance * s * s + eps
+        flat = foot.flatness <= curvature_tolerance
+        n0 = normals[rows]
+        turn = np.arctan2(_dot(np.cross(n0, foot.normals), d[rows]), _dot(n0, foot.normals))
+        spread = np.maximum(high[rows], turn) - np.minimum(low[rows], turn)
+        ok = inside & hugs & flat & (spread <= warp_tolerance) & np.isfinite(turn)
+        return ok, foot, turn
+
+    for step in range(1, steps + 1):
+        for side in (0, 1):
+            rows = np.flatnonzero(alive[side])
+            if rows.size == 0:
+                continue
+            s = np.full(rows.size, step * h)
+            guess = 2.0 * state[side, rows] - previous[side, rows]  # extrapolate the foot
+            ok, foot, turn = check(rows, side, s, guess)
+            good, bad = rows[ok], rows[~ok]
+            previous[side, good] = state[side, good]
+            state[side, good] = foot.state[ok]
+            reach[side, good] = step * h
+            low[good] = np.minimum(low[good], turn[ok])
+            high[good] = np.maximum(high[good], turn[ok])
+            alive[side, bad] = False
+            reject[side, bad] = step * h
+        if not alive.any():
+            break
+
+    # place each stopped end between its last accepted and first rejected sample
+    for side in (0, 1):
+        rows = np.flatnonzero(np.isfinite(reject[side]))
+        if rows.size == 0:
+            continue
+        lo, hi = reach[side, rows].copy(), reject[side, rows].copy()
+        start = state[side, rows]
+        for _ in range(BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            ok, _, _ = check(rows, side, mid, start)
+            lo = np.where(ok, mid, lo)
+            hi = np.where(ok, hi, mid)
+        reach[side, rows] = lo
+
+    ahead, back = reach[0], reach[1]
+    starts = origins - back[:, None] * d
+    ends = origins + ahead[:, None] * d
+    return Traced(starts, ends, high - low, back, ahead)
+
+
+def distinct_rulings(traced: Traced, origins: FloatArray, size: float, shortest: float) -> NDArray[np.int64]:
+    """Indices of the rulings worth drawing: longer than ``shortest`` and not repeating
+    a longer one (grid points along one ruling all find it: the one whose origin lies
+    on an already kept, parallel ruling is dropped). Longest first."""
+    order = np.argsort(-traced.lengths, kind="stable")
+    order = order[traced.lengths[order] > shortest]
+    kept: list[int] = []
+    tol = 1e-6 * size
+    for i in order:
+        if kept:
+            a, b = traced.starts[kept], traced.ends[kept]
+            axis = b - a
+            length2 = np.maximum(_dot(axis, axis), 1e-300)
+            t = np.clip(_dot(origins[i] - a, axis) / length2, 0.0, 1.0)
+            off = np.linalg.norm(a + t[:, None] * axis - origins[i], axis=1)
+            mine = traced.ends[i] - traced.starts[i]
+            sine = np.linalg.norm(np.cross(axis, mine), axis=1) / np.sqrt(length2) / np.linalg.norm(mine)
+            if np.any((off <= tol) & (sine <= 1e-6)):
+                continue
+        kept.append(int(i))
+    return np.asarray(kept, dtype=np.int64)

@@ -1,0 +1,68 @@
+"""developable.CylindricalSurface: any curve extruded along one direction."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from engine.node import LIST, In, Node, Out
+from engine.types import INTEGER, NUMBER, VECTOR
+from engine.values import UNIT_Z
+from nodes.curves.convert import direction, kernel_errors
+from nodes.developable import direct_inputs as check
+from nodes.developable.strip_outputs import strip_outputs
+from nodes.geometry.curves.line import Line
+from nodes.geometry.developable.direct import cylinder_rulings
+from nodes.geometry.ruled import RuledSurface
+from nodes.types import CURVE, LINE, SURFACE
+
+
+class CylindricalSurface(Node):
+    """Extrude any curve along one direction: the simplest developable.
+
+    Every ruling starts on the Curve and runs Height along Direction, so all rulings
+    are parallel and the surface unrolls to a strip as wide as the curve is long.
+    The Curve may be planar or not, open or closed (a closed curve gives a closed
+    tube: its last ruling repeats the first). Rulings are spaced evenly along the
+    curve by arc length, as Divide Curve would.
+
+    Direction (0, 0, 1) with Height 3 on a circle of radius 2 gives an upright
+    cylinder 3 high; a negative Height extrudes the other way. Both edges of every
+    ruling share the curve's tangent, so every WarpAngle is 0 (to rounding).
+
+    Warns where Direction is parallel to the curve: the strip has no width there —
+    tilt Direction away from the curve.
+    """
+
+    type_id = "developable.CylindricalSurface"
+    inputs = (
+        In("Curve", CURVE, "C", "The section curve the rulings start from, planar or not."),
+        In("Direction", VECTOR, "D", "Direction of the rulings (only its direction counts).",
+           default=UNIT_Z),
+        In("Height", NUMBER, "H",
+           "Length of every ruling, in model units; negative extrudes against Direction.",
+           default=1.0),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+    )
+    outputs = (
+        Out("Surface", SURFACE, "S", "The cylinder: the ruled surface through the rulings."),
+        Out("Rulings", LINE, "R", "The straight generators, parallel, each Height long.",
+            access=LIST),
+        Out("WarpAngles", NUMBER, "W",
+            "Warp angle of each ruling, rad (0 = developable there).", access=LIST),
+    )
+
+    def solve(self, curve: Any, direction_: Any, height: Any, segments: Any
+              ) -> tuple[RuledSurface, list[Line], list[float]]:
+        c = check.curve(curve)
+        d = direction("Direction", direction_)
+        h = check.length("Height", height)
+        n = check.segments(segments)
+        with kernel_errors():
+            r = cylinder_rulings(c, d, h, n)
+        flat = check.along_tangent(r.ends - r.starts, r.start_tangents)
+        if flat.any():
+            self.warn(
+                f"Direction is parallel to the curve at {check.first_where(flat, r.parameters)}: "
+                "the surface has no width there; tilt Direction away from the curve"
+            )
+        return strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents).as_tuple()

@@ -1,0 +1,74 @@
+"""Input checks for the approximation nodes (RulingDevelopable, SplineApproximation,
+SurfaceCoupling).
+
+These nodes cannot do anything sensible with a wrong input, so each check raises
+:class:`~engine.node.NodeError` with one sentence naming the input and what to change.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from engine.node import NodeError
+from engine.types import describe
+from nodes.geometry.curve_base import Curve
+from nodes.geometry.mesh_surface import MeshSurface
+from nodes.geometry.surface_base import Surface
+
+#: The most rulings one call builds (a guard against a typo such as 1e6 segments).
+MAX_SEGMENTS = 100_000
+
+
+def curve_input(name: str, value: Any) -> Curve:
+    """A curve with a length."""
+    if value is None:
+        raise NodeError(f"{name} is empty: connect a curve")
+    if not isinstance(value, Curve):
+        raise NodeError(f"{name} {describe(value)} is not a curve")
+    if not value.length > 0:
+        raise NodeError(f"{name} has zero length, so no rulings can be spaced along it")
+    return value
+
+
+def surface_input(name: str, value: Any) -> Surface:
+    """A parameterised surface (not a mesh)."""
+    if value is None:
+        raise NodeError(f"{name} is empty: connect a surface")
+    if isinstance(value, MeshSurface):
+        raise NodeError(f"{name} is a mesh surface, which has no (u, v) parameters and no rulings")
+    if not isinstance(value, Surface):
+        raise NodeError(f"{name} {describe(value)} is not a surface")
+    return value
+
+
+def segments_input(value: Any, limit: int = MAX_SEGMENTS) -> int:
+    """Segments, the number of rulings minus one: a whole number from 1 to ``limit``."""
+    if value is None:
+        raise NodeError("Segments is empty: give the number of rulings minus one")
+    n = int(value)
+    if n < 1:
+        raise NodeError(f"Segments is {n}: give 1 or more (Segments is the number of rulings minus one)")
+    if n > limit:
+        raise NodeError(f"Segments is {n:,}; at most {limit:,} can be made at once")
+    return n
+
+
+def tolerance_input(name: str, value: Any) -> float:
+    """An angle tolerance in rad: finite and not negative."""
+    if value is None:
+        raise NodeError(f"{name} is empty: give an angle in rad, such as 0.01")
+    x = float(value)
+    if not math.isfinite(x) or x < 0:
+        raise NodeError(f"{name} must be an angle of 0 rad or more, such as 0.01, not {x:g}")
+    return x
+
+
+def edge_input(name: str, value: Any) -> int:
+    """A surface edge number, 0 to 3 (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0)."""
+    if value is None:
+        raise NodeError(f"{name} is empty: give an edge number from 0 to 3")
+    n = int(value)
+    if not 0 <= n <= 3:
+        raise NodeError(f"{name} is {n}: edges are numbered 0 (v = 0), 1 (u = 1), 2 (v = 1) and 3 (u = 0)")
+    return n

@@ -1,0 +1,108 @@
+"""developable.PaperStrip: a digital strip of paper, folded quad by quad (after Lachauer)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from engine.node import LIST, In, Node, NodeWarning, Out
+from engine.types import INTEGER, NUMBER
+from nodes.curves.convert import number
+from nodes.developable import direct_inputs as check
+from nodes.developable.strip_outputs import strip_outputs
+from nodes.geometry.curves.line import Line
+from nodes.geometry.paper_strip import paper_strip
+from nodes.geometry.ruled import RuledSurface
+from nodes.types import LINE, SURFACE
+
+#: Faces whose planarity (off-plane distance / diagonal) exceeds this are reported.
+PLANAR = 1e-12
+
+
+def _angles(name: str, values: list[Any]) -> list[float]:
+    if any(v is None for v in values):
+        raise NodeWarning(f"{name} contains empty (null) items: remove them or fix what made them")
+    return [number(f"{name} {i}", v) for i, v in enumerate(values)]
+
+
+class PaperStrip(Node):
+    """A strip of paper, bent and twisted without stretching: exactly developable.
+
+    The strip is Length long (along its middle line) and Width wide, made of
+    Segments flat quads between Segments + 1 rulings, each Width long. From one
+    ruling to the next the strip
+
+    1. folds about the previous ruling by the Curvature angle (rad; 0 keeps it
+       flat, positive folds towards the face's front), and
+    2. turns the next ruling within the new face so that it makes the IsoAngle
+       (rad) with the strip's advancing direction: π/2 keeps the rulings parallel
+       (bending alone: a cylinder), less leans them forward (a cone or a tangent
+       developable, as a twisted paper strip does).
+
+    IsoAngle and Curvature take one value per segment; a shorter list repeats its
+    last value (so one value applies to all). Twelve segments with Curvature 2π/12
+    and IsoAngle π/2 roll the strip into a closed cylinder with Length as its
+    circumference.
+
+    Every face is planar by construction, so the strip unrolls exactly:
+    Development is that flat strip in the XY plane (first ruling from the origin up
+    +Y, the strip running towards +X), which IsoMapping reproduces. WarpAngles are
+    those of the smooth loft through the rulings, estimated from the edge polylines
+    (small, not 0: the faces themselves are flat; the loft is a smooth fit).
+
+    Warns when neighbouring rulings cross inside the strip (the IsoAngle leans them
+    too far for the segment length): raise IsoAngle towards π/2, narrow the strip or
+    use fewer segments.
+    """
+
+    type_id = "developable.PaperStrip"
+    inputs = (
+        In("Length", NUMBER, "L", "Length of the strip along its middle line, model units.",
+           default=10.0),
+        In("Width", NUMBER, "W", "Width of the strip: every ruling's length, model units.",
+           default=1.0),
+        In("IsoAngle", NUMBER, "I",
+           "Angle between the advancing direction and the next ruling, rad, per segment (π/2: parallel).",
+           default=math.pi / 2, access=LIST),
+        In("Curvature", NUMBER, "K", "Fold angle about the previous ruling, rad, per segment (0: flat).",
+           default=0.2, access=LIST),
+        In("Segments", INTEGER, "S", "Number of flat quads (rulings minus one, 1 or more).",
+           default=24),
+    )
+    outputs = (
+        Out("Surface", SURFACE, "S", "The bent strip: the ruled surface through the rulings."),
+        Out("Rulings", LINE, "R", "The fold lines, each Width long.", access=LIST),
+        Out("Development", SURFACE, "D", "The same strip unfolded flat in the XY plane."),
+        Out("WarpAngles", NUMBER, "W",
+            "Warp angle of each ruling of the loft, rad (0 = developable there).", access=LIST),
+    )
+
+    def solve(self, length: Any, width: Any, iso_angle: list[Any], curvature: list[Any], segments: Any
+              ) -> tuple[RuledSurface, list[Line], RuledSurface, list[float]]:
+        total = check.positive("Length", length)
+        wide = check.positive("Width", width)
+        n = check.segments(segments)
+        iso = _angles("IsoAngle", iso_angle)
+        kappa = _angles("Curvature", curvature)
+        for name, values in (("IsoAngle", iso), ("Curvature", kappa)):
+            if len(values) > n:
+                self.remark(f"{name} has {len(values)} values for {n} segments: the last "
+                            f"{len(values) - n} are not used")
+        strip = paper_strip(total, wide, iso, kappa, n)
+        if not strip.valid:
+            bad = np.flatnonzero(strip.crossing)
+            self.warn(
+                f"Rulings cross inside the strip in {bad.size} of {n} segments (first: segment "
+                f"{int(bad[0])}): the IsoAngle leans them too far for the segment length; raise "
+                "IsoAngle towards π/2, narrow the strip or use fewer segments"
+            )
+        worst = float(strip.planarity.max())
+        if worst > PLANAR:
+            self.warn(f"A face is off plane by {worst:.2g} of its size (rounding at this scale?)")
+        outputs = strip_outputs(strip.starts, strip.ends)
+        flat = np.zeros((len(strip.starts2d), 1))
+        development = RuledSurface.from_rulings(np.hstack([strip.starts2d, flat]),
+                                                np.hstack([strip.ends2d, flat]))
+        return outputs.surface, outputs.rulings, development, outputs.warp

@@ -1,0 +1,98 @@
+"""developable.RulingDevelopable: the developable strip between two space curves."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from engine.node import LIST, In, Node, NodeError, Out
+from engine.types import BOOLEAN, INTEGER, NUMBER
+from nodes.curves.convert import sentence
+from nodes.developable.input_checks import curve_input, segments_input, tolerance_input
+from nodes.developable.strip_outputs import strip_outputs
+from nodes.geometry.curve_base import Curve
+from nodes.geometry.developable import RulingResult, ruling_developable
+from nodes.types import CURVE, LINE, SURFACE
+
+#: Two curves closer than this (relative to their size) everywhere count as one.
+COINCIDENT = 1e-9
+
+
+def _coincident(curve_a: Curve, curve_b: Curve) -> bool:
+    """Whether every sample of A lies on B and every sample of B on A (to rounding)."""
+    t = np.linspace(0.0, 1.0, 17)
+    a, b = curve_a.point_at(t), curve_b.point_at(t)
+    size = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
+    if size == 0.0:
+        return True
+    gap = max(curve_b.closest_point(a).distances.max(), curve_a.closest_point(b).distances.max())
+    return bool(gap <= COINCIDENT * size)
+
+
+def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
+    """The kernel's strip between two checked curves, with its errors as node errors."""
+    if _coincident(curve_a, curve_b):
+        raise NodeError(
+            "CurveA and CurveB are the same curve, so there is no strip between them: "
+            "give two different edges (e.g. a bottom and a top curve)"
+        )
+    try:
+        return ruling_developable(curve_a, curve_b, segments, tolerance)
+    except ValueError as exc:
+        raise NodeError(sentence(exc)) from None
+
+
+class RulingDevelopable(Node):
+    """The developable surface between two curves: find, for each point of CurveA, the
+    ruling to CurveB along which the sheet has one tangent plane.
+
+    Segments + 1 stations are spaced evenly along CurveA (by length). For each, the
+    ruling to CurveB is *torsal*: the ruling and the two curves' tangents at its ends
+    lie in one plane, so a flat sheet bent along it fits without twisting (warp 0).
+    The partner on CurveB is solved to machine precision, never by trial, and rulings
+    never cross. Where the two curves bound a flat piece (two straight segments at an
+    angle, like the middle of the ZVE roof edge) the strip is drawn as two triangles:
+    fans of rulings through one corner each; such fan rulings are added to the
+    Segments + 1 station rulings.
+
+    Both curves should run the same way. A station with no torsal ruling within
+    WarpTolerance gets the plain loft's ruling, is marked Valid = false and counted
+    in a warning: then swap CurveA and CurveB, reverse one of them, or change the
+    curves — not every pair of curves bounds a developable strip.
+    """
+
+    type_id = "developable.RulingDevelopable"
+    inputs = (
+        In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
+        In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+        In("WarpTolerance", NUMBER, "W",
+           "Largest warp angle (rad) a ruling may keep and count as valid: the twist between "
+           "the sheet's normals at its two ends. 0.01 rad is invisible on most sheets; for a "
+           "material allowed k rad/m over rulings about L m long, use k·L.", default=0.01),
+    )
+    outputs = (
+        Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
+        Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", "Warp angle of each ruling, rad (0 = torsal).", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Whether each ruling is torsal within WarpTolerance.", access=LIST),
+    )
+
+    def solve(
+        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any
+    ) -> tuple[Any, list[Any], list[float], list[bool]]:
+        a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
+        n = segments_input(segments)
+        tol = tolerance_input("WarpTolerance", tolerance)
+        result = solve_strip(a, b, n, tol)
+        strip = strip_outputs(result.starts, result.ends)
+        if result.message:
+            self.warn(result.message)
+        fans = int(np.count_nonzero(~result.stations))
+        if fans:
+            self.remark(
+                f"{len(result.s)} rulings: {n + 1} from the stations and {fans} in fans through "
+                "single points (the flat triangles of the strip)"
+            )
+        return strip.surface, strip.rulings, result.warp.tolist(), result.valid.tolist()

@@ -1,0 +1,1 @@
+"""Patching nodes: panel patterns and their mapping from a development onto its surface."""

@@ -1,0 +1,265 @@
+"""RulingDevelopable kernel: the developable strip between two curves.
+
+The bars from the toolbox spec: on curve pairs cut from a cone, a cylinder and the
+tangent developable of a helix (B re-parameterised non-uniformly) the rulings are the
+true ones (partner error < 1e-8), every warp < 1e-7 rad and no two rulings cross;
+swapping A and B gives the same surface; planar pieces become fans; curves that bound
+no developable are flagged with a count.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from nodes.geometry.curves import Arc, Line, Polyline
+from nodes.geometry.developable import ruling_developable
+from nodes.geometry.vectors import Plane
+
+from . import surfaces
+from .strips import hausdorff, strip_triangles
+
+SMOOTH_PAIRS = ["cone", "cylinder", "helix_developable"]
+
+
+@pytest.fixture(scope="module", params=[*SMOOTH_PAIRS, "nurbs_cone"])
+def pair(request: pytest.FixtureRequest) -> surfaces.Pair:
+    return surfaces.PAIRS[request.param]()
+
+
+# -- curves cut from known developables ------------------------------------------------------
+
+
+@pytest.mark.parametrize("segments", [40, 200])
+def test_rulings_between_curves_on_a_developable_are_its_true_rulings(pair, segments):
+    result = ruling_developable(pair.a, pair.b, segments)
+    assert result.message is None
+    assert result.valid.all()
+    assert len(result.s) == segments + 1
+    np.testing.assert_allclose(result.t, pair.partner(result.s), rtol=0, atol=1e-8)
+    assert result.max_warp < 1e-7
+
+
+def test_partner_parameters_are_exact_to_rounding(pair):
+    result = ruling_developable(pair.a, pair.b, 100)
+    assert np.abs(result.t - pair.partner(result.s)).max() < 1e-12
+    assert result.max_warp < 1e-12
+
+
+def test_no_two_rulings_cross(pair):
+    result = ruling_developable(pair.a, pair.b, 200)
+    assert np.all(np.diff(result.s) >= 0)
+    assert np.all(np.diff(result.t) >= 0)
+
+
+def test_normals_at_both_ends_point_the_same_way(pair):
+    result = ruling_developable(pair.a, pair.b, 60)
+    assert np.abs(result.signed_warp).max() < 1e-7
+
+
+def test_ruling_ends_lie_on_their_curves(pair):
+    result = ruling_developable(pair.a, pair.b, 30)
+    np.testing.assert_allclose(result.starts, pair.a.point_at(result.s), atol=1e-14)
+    np.testing.assert_allclose(result.ends, pair.b.point_at(result.t), atol=1e-14)
+
+
+def test_stations_are_spaced_evenly_in_arc_length_along_a(pair):
+    result = ruling_developable(pair.a, pair.b, 50)
+    steps = np.diff(pair.a.length_at(result.s))
+    np.testing.assert_allclose(steps, pair.a.length / 50, rtol=0, atol=1e-6 * pair.a.length)
+
+
+def test_stations_can_be_spaced_evenly_in_parameter(pair):
+    result = ruling_developable(pair.a, pair.b, 50, spacing="parameter")
+    np.testing.assert_allclose(result.s, np.linspace(0, 1, 51))
+    np.testing.assert_allclose(result.t, pair.partner(result.s), atol=1e-8)
+
+
+@pytest.mark.parametrize("name", SMOOTH_PAIRS)
+def test_swapping_curves_a_and_b_gives_the_same_surface(name):
+    pair = surfaces.PAIRS[name]()
+    forward = ruling_developable(pair.a, pair.b, 200)
+    swapped = ruling_developable(pair.b, pair.a, 200)
+    assert swapped.valid.all()
+    distance = hausdorff((forward.starts, forward.ends), (swapped.ends, swapped.starts))
+    assert distance < 1e-4 * pair.size
+
+
+# -- parallel planar curves: the orientation test -------------------------------------------------
+
+
+def test_coaxial_arcs_give_the_frustum_not_the_double_cone_through_their_centre():
+    """Two coaxial arcs sweeping 300° have antiparallel tangents at opposite angles too:
+    that root (the double cone through the common centre) has flipped normals and is
+    rejected; every ruling joins points at the same angle."""
+    low = Arc(Plane.from_normal([0, 0, 0], [0, 0, 1]), 2.0, 0.0, math.radians(300))
+    high = Arc(Plane.from_normal([0, 0, 1.5], [0, 0, 1]), 1.2, math.radians(-20), math.radians(320))
+    result = ruling_developable(low, high, 60)
+    assert result.valid.all()
+    angle_low = np.arctan2(result.starts[:, 1], result.starts[:, 0])
+    angle_high = np.arctan2(result.ends[:, 1], result.ends[:, 0])
+    np.testing.assert_allclose(np.unwrap(angle_high), np.unwrap(angle_low), atol=1e-12)
+
+
+# -- planar pieces and fans ---------------------------------------------------------------------
+
+
+def test_two_straight_segments_at_an_angle_give_two_triangles():
+    """A planar quad: a fan through one corner of B, then a fan through the far corner of
+    A, split along the shorter diagonal A(1)–B(0)."""
+    a = Line([0, 0, 0], [4, 0, 0])
+    b = Line([0.5, 2, 0], [3, 3, 0])
+    result = ruling_developable(a, b, 8)
+    assert result.message is None
+    assert result.valid.all()
+    through_b0 = np.linalg.norm(result.ends - b.start, axis=1) < 1e-12
+    through_a1 = np.linalg.norm(result.starts - a.end, axis=1) < 1e-12
+    assert np.all(through_b0 | through_a1)
+    assert through_b0.sum() == 9  # the fan through B(0): one ruling per station
+    assert through_a1.sum() >= 3  # the fan through A(1) spans B with its own rulings
+    np.testing.assert_allclose(result.ends[through_a1][[0, -1]], [b.start, b.end], atol=1e-12)
+    # the union of the two fans is the whole quad
+    triangles = strip_triangles(result.starts, result.ends, ku=1, kv=1)
+    area = 0.5 * np.linalg.norm(
+        np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1
+    )
+    quad = 0.5 * abs(np.cross(b.end - a.start, b.start - a.end)[2])
+    assert area.sum() == pytest.approx(quad, rel=1e-12)
+
+
+def test_planar_quad_splits_along_its_shorter_diagonal():
+    a = Line([0, 0, 0], [4, 0, 0])
+    b = Line([-1, 2, 0], [2, 3, 0])  # now A(0)–B(1) is the shorter diagonal
+    result = ruling_developable(a, b, 6)
+    through_a0 = np.linalg.norm(result.starts - a.start, axis=1) < 1e-12
+    through_b1 = np.linalg.norm(result.ends - b.end, axis=1) < 1e-12
+    assert np.all(through_a0 | through_b1)
+    assert through_a0.any() and through_b1.any()
+
+
+def zve_roof_middle() -> tuple[Arc, Polyline, list[float]]:
+    """A façade arc below and, above it in a parallel plane, a polyline whose straight
+    pieces are parallel to the arc's tangents at three angles (the ZVE roof's inset edge)."""
+    radius, height = 5.0, 2.0
+    first, last = math.radians(235), math.radians(305)
+    middle = first + 0.37 * (last - first)
+    arc = Arc(Plane.from_normal([0, 0, 0], [0, 0, 1]), radius, first, last)
+    points = [np.array([0.7 * radius * math.cos(first), 0.7 * radius * math.sin(first), height])]
+    for angle, length in ((first, 2.0), (middle, 2.5), (last, 2.0)):
+        points.append(points[-1] + length * np.array([-math.sin(angle), math.cos(angle), 0.0]))
+    return arc, Polyline(np.array(points)), [first, middle, last]
+
+
+def test_straight_pieces_of_b_get_fans_from_one_point_of_a_and_corners_get_cones():
+    arc, polyline, angles = zve_roof_middle()
+    result = ruling_developable(arc, polyline, 20)
+    assert result.message is None
+    assert result.valid.all()
+    assert result.max_warp < 1e-12
+    # every ruling runs from a fan apex on the arc or to a corner of the polyline
+    apex_angles = np.arctan2(result.starts[:, 1], result.starts[:, 0]) % (2 * math.pi)
+    at_apex = np.min(np.abs(apex_angles[:, None] - np.array(angles)[None, :]), axis=1) < 1e-9
+    corners = polyline.points[1:-1]
+    at_corner = np.min(np.linalg.norm(result.ends[:, None, :] - corners[None], axis=2), axis=1) < 1e-12
+    assert np.all(at_apex | at_corner)
+    # three fans (one per straight piece) and two cones, covering both curves
+    assert len(np.unique(result.s[~result.stations])) == 3
+    assert result.s[0] == 0 and result.s[-1] == 1
+    assert result.t[0] == 0 and result.t[-1] == 1
+    for vertex in polyline.vertex_parameters:
+        assert np.any(np.abs(result.t - vertex) < 1e-12)
+
+
+def test_a_fan_through_an_interior_point_of_a_starts_where_a_is_parallel_to_the_straight_piece():
+    arc, polyline, _ = zve_roof_middle()
+    result = ruling_developable(arc, polyline, 20)
+    s_star = np.unique(result.s[~result.stations])[1]
+    tangent = arc.tangent_at(s_star)
+    piece = polyline.points[2] - polyline.points[1]
+    assert np.linalg.norm(np.cross(tangent, piece / np.linalg.norm(piece))) < 1e-12
+
+
+def test_fan_rulings_are_about_as_far_apart_as_the_stations():
+    arc, polyline, _ = zve_roof_middle()
+    result = ruling_developable(arc, polyline, 40)
+    station_step = arc.length / 40
+    fan = ~result.stations
+    fan_steps = np.linalg.norm(np.diff(result.ends[fan], axis=0), axis=1)
+    fan_steps = fan_steps[(fan_steps > 0) & np.isclose(np.diff(result.s[fan]), 0)]
+    assert fan_steps.max() <= station_step * (1 + 1e-9)
+    assert fan_steps.min() >= 0.5 * station_step
+
+
+# -- curves that bound no developable --------------------------------------------------------
+
+
+def test_skew_lines_bound_no_developable_and_every_station_is_flagged():
+    """Between two skew lines the only ruled surfaces are warped (a hyperbolic paraboloid
+    for the even pairing): det[B − A, A', B'] is a non-zero constant."""
+    result = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1]), 10, 0.01)
+    assert not result.valid.any()
+    assert result.message.startswith("no ruling within 0.01 rad for 11 of 11 stations")
+    assert "bound no developable" in result.message
+    # the rulings shown are the plain loft (the hyperbolic paraboloid), with their warp
+    np.testing.assert_allclose(result.t, result.s, atol=1e-9)
+    assert result.warp.min() > 0.5
+
+
+def test_stations_beyond_the_end_of_b_are_flagged_and_swapping_the_curves_fixes_it():
+    """A runs over 0.6 rad more of the cone than B: the generators there miss B."""
+    a = surfaces._curve(surfaces.cone_surface, surfaces._lin(-0.6, 2.5), surfaces._wave(2.0, 0.3, 7.0), False)
+    b = surfaces._curve(
+        surfaces.cone_surface, surfaces._lin(0.0, 2.5), surfaces._wave(4.0, 0.5, 5.0, 1.0), True
+    )
+    result = ruling_developable(a, b, 40)
+    angle = np.arctan2(result.starts[:, 1], result.starts[:, 0])
+    np.testing.assert_array_equal(result.valid, angle >= 0)
+    missing = int((angle < 0).sum())
+    assert (
+        result.message
+        == f"no ruling within 0.01 rad for {missing} of 41 stations: try swapping curves A and B"
+    )
+    swapped = ruling_developable(b, a, 40)
+    assert swapped.valid.all() and swapped.message is None
+
+
+def test_curve_b_running_the_other_way_is_flagged_with_a_hint_to_reverse_it():
+    pair = surfaces.PAIRS["cone"]()
+    result = ruling_developable(pair.a, pair.b.reversed(), 40)
+    assert not result.valid.all()
+    assert "try reversing curve B" in result.message
+    count = int(result.message.split(" for ")[1].split(" of ")[0])
+    assert count == int((~result.valid[result.stations]).sum())
+
+
+def test_warp_tolerance_decides_validity():
+    """Between skew lines the loft's warp falls from 0.79 to 0.62 rad along the strip."""
+    a, b = Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1])
+    assert ruling_developable(a, b, 10, warp_tolerance=0.8).valid.all()
+    partly = ruling_developable(a, b, 10, warp_tolerance=0.7)
+    np.testing.assert_array_equal(partly.valid, partly.warp <= 0.7)
+    assert 0 < partly.valid.sum() < 11
+
+
+# -- input checks ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("segments", [0, -3, 2.5])
+def test_segments_must_be_a_whole_number_of_at_least_one(segments):
+    with pytest.raises(ValueError, match="Segments"):
+        ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 0]), segments)
+
+
+@pytest.mark.parametrize("tolerance", [-0.1, float("nan")])
+def test_warp_tolerance_must_be_a_non_negative_number(tolerance):
+    with pytest.raises(ValueError, match="warp tolerance"):
+        ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 0]), 4, tolerance)
+
+
+def test_a_curve_of_zero_length_is_refused():
+    with pytest.raises(ValueError, match="zero length"):
+        ruling_developable(Line([0, 0, 0], [0, 0, 0]), Line([0, 1, 0], [1, 1, 0]), 4)
+    with pytest.raises(ValueError, match="zero length"):
+        ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [0, 1, 0]), 4)

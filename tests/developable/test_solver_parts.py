@@ -1,0 +1,117 @@
+"""The parts of the RulingDevelopable solver: stations, bracketed roots, monotone choice."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from nodes.geometry.curves import Arc, InterpolatedCurve, Polyline
+from nodes.geometry.developable import LengthMap, station_parameters
+from nodes.geometry.developable.brackets import refine_roots
+from nodes.geometry.developable.selection import monotone_path
+
+CURVE = InterpolatedCurve([[0, 0, 0], [1, 2, 0.5], [3, 1, -0.5], [4, 3, 0.2], [6, 2, 0]])
+
+
+# -- stations ------------------------------------------------------------------------------------
+
+
+def test_length_map_total_matches_the_curves_own_length():
+    assert LengthMap(CURVE).total == pytest.approx(CURVE.length, rel=1e-12)
+    arc = Arc(radius=2.0, start_angle=0.0, end_angle=3.0)
+    assert LengthMap(arc).total == pytest.approx(6.0, rel=1e-13)
+
+
+def test_length_map_inverts_itself():
+    lengths = LengthMap(CURVE)
+    t = np.linspace(0, 1, 57)
+    np.testing.assert_allclose(lengths.parameter_at(lengths.length_at(t)), t, atol=1e-10)
+
+
+def test_stations_are_evenly_spaced_in_arc_length_and_include_both_ends():
+    t = station_parameters(CURVE, 31)
+    assert t[0] == 0.0 and t[-1] == 1.0
+    np.testing.assert_allclose(np.diff(CURVE.length_at(t)), CURVE.length / 30, atol=1e-6 * CURVE.length)
+
+
+def test_stations_on_a_polyline_fall_on_equal_lengths():
+    polyline = Polyline([[0, 0, 0], [1, 0, 0], [1, 3, 0]])
+    np.testing.assert_allclose(station_parameters(polyline, 5), [0, 0.25, 0.5, 0.75, 1.0], atol=1e-15)
+
+
+def test_station_spacing_must_be_length_or_parameter():
+    with pytest.raises(ValueError, match="spacing"):
+        station_parameters(CURVE, 5, "chord")  # type: ignore[arg-type]
+
+
+# -- bracketed roots -----------------------------------------------------------------------------
+
+
+def test_bracketed_roots_converge_to_machine_precision_for_either_slope():
+    dottie = 0.7390851332151607  # the root of cos x = x
+    increasing = refine_roots(
+        lambda x, i: (x - np.cos(x), 1 + np.sin(x), np.ones_like(x)), np.zeros(1), np.ones(1), -np.ones(1)
+    )
+    decreasing = refine_roots(
+        lambda x, i: (np.cos(x) - x, -1 - np.sin(x), np.ones_like(x)), np.zeros(1), np.ones(1), np.ones(1)
+    )
+    assert increasing[0] == pytest.approx(dottie, abs=2e-16)
+    assert decreasing[0] == pytest.approx(dottie, abs=2e-16)
+
+
+def test_bracketed_roots_of_a_jump_converge_onto_the_jump():
+    def step(x, index):
+        return np.where(x < 0.3, -1.0, 1.0), np.zeros_like(x), np.ones_like(x)
+
+    roots = refine_roots(step, np.zeros(1), np.ones(1), -np.ones(1))
+    assert roots[0] == pytest.approx(0.3, abs=1e-15)
+
+
+def test_many_brackets_are_refined_together():
+    targets = np.linspace(0.1, 0.9, 50)
+    roots = refine_roots(
+        lambda x, i: (x**3 - targets[i] ** 3, 3 * x**2, np.ones_like(x)),
+        np.zeros(50),
+        np.ones(50),
+        -(targets**3),
+    )
+    np.testing.assert_allclose(roots, targets, atol=1e-15)
+
+
+# -- monotone choice -----------------------------------------------------------------------------
+
+
+def test_monotone_choice_follows_one_branch_rather_than_jumping():
+    s = np.linspace(0, 1, 6)
+    branch = 0.2 + 0.5 * s  # slope 0.5
+    other = 0.9 - 0.5 * s  # a decreasing branch crossing it
+    t = np.column_stack([np.minimum(branch, other), np.maximum(branch, other)])
+    slope = np.where(branch[:, None] == t, 0.5, -0.5)
+    pick = monotone_path(t, slope, np.diff(s))
+    np.testing.assert_allclose(t[np.arange(6), pick], branch)
+
+
+def test_monotone_choice_prefers_the_branch_spanning_b_from_end_to_end():
+    s = np.linspace(0, 1, 5)
+    t = np.column_stack([0.5 * s, s])  # two smooth increasing branches
+    slope = np.tile([0.5, 1.0], (5, 1))
+    pick = monotone_path(t, slope, np.diff(s))
+    np.testing.assert_array_equal(pick, 1)
+
+
+def test_monotone_choice_never_steps_back_when_it_can_avoid_it():
+    s = np.linspace(0, 1, 7)
+    t = np.array(
+        [[0.0, 0.9], [0.1, 0.95], [0.2, np.nan], [0.3, np.nan], [0.4, 0.35], [0.5, np.nan], [0.6, np.nan]]
+    )
+    slope = np.where(np.isnan(t), np.nan, 0.6)
+    pick = monotone_path(t, slope, np.diff(s))
+    chosen = t[np.arange(7), pick]
+    assert np.all(np.diff(chosen) >= 0)
+    np.testing.assert_allclose(chosen, [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+
+
+def test_monotone_choice_handles_a_single_station_and_single_candidates():
+    assert monotone_path(np.array([[0.2, 0.7]]), np.zeros((1, 2)), np.empty(0)).tolist() == [1]
+    t = np.linspace(0, 1, 9)[:, None]
+    np.testing.assert_array_equal(monotone_path(t, np.ones_like(t), np.diff(t[:, 0])), 0)

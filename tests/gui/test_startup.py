@@ -1,0 +1,46 @@
+"""Start-up benchmark: `torsal gui FILE` to the first shown window (< 3 s on this machine)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import threading
+import time
+
+from tests.gui.fixtures_gui import EXAMPLES, ROOT
+
+LIMIT_S = 3.0
+
+
+def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
+    env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(tmp_path), PYTHONPATH=str(ROOT))
+    began = time.time()
+    child = subprocess.Popen(
+        [sys.executable, "-m", "app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
+        cwd=ROOT,
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    stamps: dict[str, float] = {}
+
+    def read() -> None:
+        for line in child.stderr:
+            parts = line.split()
+            if len(parts) >= 3 and parts[0] == "torsal-startup":
+                stamps[parts[1]] = float(parts[2])
+                if parts[1] == "viewport-ready":
+                    return
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(timeout=60)
+    child.terminate()
+    child.wait(timeout=10)
+    assert "window-shown" in stamps, "the app never reported its window"
+    shown = stamps["window-shown"] - began
+    ready = stamps.get("viewport-ready", float("nan")) - began
+    print(f"\nstart-up: window shown after {shown:.2f} s, 3D viewport and example ready after {ready:.2f} s")
+    assert shown < LIMIT_S
