@@ -36,6 +36,9 @@ MODULES: tuple[str, ...] = (
     "nodes.transform.arrays",
     "nodes.display.preview",
     "nodes.display.plot",
+    "nodes.developable.ruling_developable",
+    "nodes.developable.spline_approximation",
+    "nodes.developable.surface_coupling",
 )
 
 

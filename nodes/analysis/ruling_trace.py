@@ -118,6 +118,7 @@ class MeshProjector:
     normal turn gradually, as on the surface the mesh stands for)."""
 
     def __init__(self, surface: MeshSurface, flatness: FloatArray) -> None:
+        """``flatness``: min(|k1|, |k2|) per vertex (signed or not)."""
         self.surface = surface
         mesh = surface.mesh
         self.flatness = flatness
@@ -141,7 +142,7 @@ class MeshProjector:
         # edge (0,1) is opposite corner 2, (1,2) opposite 0, (2,0) opposite 1
         near = np.abs(bary[:, [2, 0, 1]]) <= 1e-9
         edge = np.any(near & self.boundary[found.faces], axis=1)
-        return Foot(found.points, normals, flat, state, edge)
+        return Foot(found.points, normals, np.abs(flat), state, edge)
 
 
 @dataclass(frozen=True)
@@ -245,24 +246,49 @@ def trace_rulings(
     return Traced(starts, ends, high - low, back, ahead)
 
 
-def distinct_rulings(traced: Traced, origins: FloatArray, size: float, shortest: float) -> NDArray[np.int64]:
-    """Indices of the rulings worth drawing: longer than ``shortest`` and not repeating
-    a longer one (grid points along one ruling all find it: the one whose origin lies
-    on an already kept, parallel ruling is dropped). Longest first."""
-    order = np.argsort(-traced.lengths, kind="stable")
-    order = order[traced.lengths[order] > shortest]
+def _segment_distance(points: FloatArray, starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """Distance of each point ``(k, 3)`` to each segment ``(m, 3)``: ``(k, m)``."""
+    axis = ends - starts
+    length2 = np.maximum(np.einsum("ij,ij->i", axis, axis), 1e-300)
+    rel = points[:, None, :] - starts[None, :, :]
+    t = np.clip(np.einsum("kmj,mj->km", rel, axis) / length2, 0.0, 1.0)
+    return np.linalg.norm(rel - t[..., None] * axis[None], axis=2)
+
+
+def on_rulings(
+    origins: FloatArray, directions: FloatArray, starts: FloatArray, ends: FloatArray, size: float
+) -> NDArray[np.bool_]:
+    """Which origins lie on one of the given rulings (to 1e-6 of ``size``) with their
+    direction along it (to 1e-3 rad): walking from them would find that ruling again."""
+    found = np.zeros(len(origins), dtype=bool)
+    if len(starts) == 0 or len(origins) == 0:
+        return found
+    axis = ends - starts
+    unit_axis = axis / np.maximum(np.linalg.norm(axis, axis=1, keepdims=True), 1e-300)
+    unit = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    chunk = max(1, 4_000_000 // (3 * len(starts)))
+    for lo in range(0, len(origins), chunk):
+        rows = slice(lo, lo + chunk)
+        near = _segment_distance(origins[rows], starts, ends) <= 1e-6 * size
+        sine = np.linalg.norm(np.cross(unit[rows][:, None, :], unit_axis[None]), axis=2)
+        found[rows] = np.any(near & (sine <= 1e-3), axis=1)
+    return found
+
+
+def distinct_rulings(starts: FloatArray, ends: FloatArray, size: float, shortest: float) -> NDArray[np.int64]:
+    """Indices of the rulings worth drawing, longest first: longer than ``shortest``
+    and not lying along a longer one already kept (both ends within 1e-4 of ``size``
+    of it: grid points along one ruling all find it, some only part of it)."""
+    lengths = np.linalg.norm(ends - starts, axis=1)
+    order = np.argsort(-lengths, kind="stable")
+    order = order[lengths[order] > shortest]
     kept: list[int] = []
-    tol = 1e-6 * size
+    tol = 1e-4 * size
     for i in order:
         if kept:
-            a, b = traced.starts[kept], traced.ends[kept]
-            axis = b - a
-            length2 = np.maximum(_dot(axis, axis), 1e-300)
-            t = np.clip(_dot(origins[i] - a, axis) / length2, 0.0, 1.0)
-            off = np.linalg.norm(a + t[:, None] * axis - origins[i], axis=1)
-            mine = traced.ends[i] - traced.starts[i]
-            sine = np.linalg.norm(np.cross(axis, mine), axis=1) / np.sqrt(length2) / np.linalg.norm(mine)
-            if np.any((off <= tol) & (sine <= 1e-6)):
+            ends_i = np.stack([starts[i], ends[i]])
+            distance = _segment_distance(ends_i, starts[kept], ends[kept])
+            if np.any(np.all(distance <= tol, axis=0)):
                 continue
         kept.append(int(i))
     return np.asarray(kept, dtype=np.int64)

@@ -18,10 +18,12 @@ from nodes.analysis.ruling_trace import (
     Projector,
     SurfaceProjector,
     distinct_rulings,
+    on_rulings,
     trace_rulings,
 )
+from nodes.analysis.single_curved import area_fraction, signed_flatness
 from nodes.curves.convert import given
-from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature, vertex_areas
+from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface, uv_grid
@@ -46,10 +48,11 @@ class Sampled:
     curvature: SurfaceCurvature  #: at the analysis points
     states: FloatArray  #: (n, 2) where the points are, for the ruling projector
     mesh: trimesh.Trimesh  #: the mesh to colour
-    flatness: FloatArray  #: min(|k1|, |k2|) at the mesh's vertices
+    flatness: FloatArray  #: sign(K)·min(|k1|, |k2|) at the mesh's vertices
     projector: Projector
     size: float  #: the surface's diameter
     regular: NDArray[np.bool_]  #: (n,) not at a pole or apex (where no ruling is traced)
+    seeds: NDArray[np.bool_]  #: (n,) traced first: one grid point per ruling of a ruled surface
 
 
 def _grid(n: int, closed: bool) -> FloatArray:
@@ -62,6 +65,10 @@ def _flatness(c: SurfaceCurvature) -> FloatArray:
     return np.minimum(np.abs(c.k1), np.abs(c.k2))
 
 
+def _signed(c: SurfaceCurvature) -> FloatArray:
+    return signed_flatness(c.k1, c.k2)
+
+
 def sample_surface(s: Surface, nu: int, nv: int) -> Sampled:
     """Exact curvature on the nu × nv grid and on a finer mesh grid (u-major)."""
     uu, vv = np.meshgrid(_grid(nu, s.closed_u), _grid(nv, s.closed_v), indexing="ij")
@@ -72,15 +79,23 @@ def sample_surface(s: Surface, nu: int, nv: int) -> Sampled:
     size = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     p, su, sv = s.derivatives(u, v, 1)
     span = np.linalg.norm(np.cross(su, sv), axis=1)
+    # On a ruled surface the grid points along one ruling all find it: trace one row
+    # across the rulings first, and from the others only what that did not find.
+    seeds = np.zeros(len(u), dtype=bool)
+    if s.ruling_direction == "v":
+        seeds = (np.arange(len(u)) % nv) == nv // 2
+    elif s.ruling_direction == "u":
+        seeds = (np.arange(len(u)) // nv) == nu // 2
     return Sampled(
         points=p,
         curvature=s.curvature(u, v),
         states=np.column_stack([u, v]),
         mesh=mesh,
-        flatness=_flatness(s.curvature(gu, gv)),
+        flatness=_signed(s.curvature(gu, gv)),
         projector=SurfaceProjector(s, size),
         size=size,
         regular=span > DEGENERATE_RATIO * (np.einsum("ij,ij->i", su, su) + np.einsum("ij,ij->i", sv, sv)),
+        seeds=seeds,
     )
 
 
@@ -98,7 +113,7 @@ def spread_vertices(vertices: FloatArray, area: float, count_: int) -> NDArray[n
 def sample_mesh(m: MeshSurface, nu: int, nv: int) -> Sampled:
     """Discrete curvature at about nu·nv vertices; the mesh itself is coloured."""
     c = m.curvature()
-    flat = _flatness(c)
+    flat = _signed(c)
     vertices = m.points
     pick = spread_vertices(vertices, m.area(), nu * nv)
     picked = SurfaceCurvature(*(np.asarray(getattr(c, f))[pick] for f in (
@@ -113,6 +128,7 @@ def sample_mesh(m: MeshSurface, nu: int, nv: int) -> Sampled:
         projector=MeshProjector(m, flat),
         size=size,
         regular=np.ones(len(pick), dtype=bool),
+        seeds=np.zeros(len(pick), dtype=bool),
     )
 
 
@@ -240,10 +256,8 @@ class SurfaceAnalysis(Node):
             self.warn(f"{bad} grid points have no curvature (the surface is degenerate there); "
                       "their values are NaN")
 
-        mesh = coloured(data.mesh, data.flatness, tol)
-        areas = vertex_areas(mesh)
-        total = float(areas.sum())
-        fraction = float(areas[data.flatness <= tol].sum() / total) if total > 0 else 0.0
+        mesh = coloured(data.mesh, np.abs(data.flatness), tol)
+        fraction = area_fraction(data.flatness, mesh.faces, mesh.area_faces, tol)
 
         rulings = self._rulings(data, tol, warp)
         self.remark(f"{100 * fraction:.3g} % of the area is single-curved within {tol:g} /m; "
@@ -264,17 +278,22 @@ class SurfaceAnalysis(Node):
         c = data.curvature
         flat = _flatness(c)
         direction = np.where((np.abs(c.k1) <= np.abs(c.k2))[:, None], c.direction1, c.direction2)
-        candidate = np.flatnonzero((flat <= tol) & data.regular & np.isfinite(direction).all(axis=1)
-                                   & np.isfinite(c.normal).all(axis=1))
-        if candidate.size == 0 or data.size == 0:
+        usable = (flat <= tol) & data.regular & np.isfinite(direction).all(axis=1) & np.isfinite(
+            c.normal).all(axis=1)
+        if not usable.any() or data.size == 0:
             return []
-        origins = data.points[candidate]
-        states = data.states[candidate]
-        # the normal at each origin as the projector sees it (a mesh face's, for a mesh)
-        foot = data.projector.project(origins, states)
-        normals = foot.normals
-        traced = trace_rulings(data.projector, origins, direction[candidate], normals, foot.state,
-                               tol, warp, data.size)
-        keep = distinct_rulings(traced, origins, data.size, SHORTEST * data.size)
-        return [Line(traced.starts[i], traced.ends[i]) for i in keep]
-
+        starts, ends = np.empty((0, 3)), np.empty((0, 3))
+        for phase in (usable & data.seeds, usable & ~data.seeds):
+            rows = np.flatnonzero(phase)
+            rows = rows[~on_rulings(data.points[rows], direction[rows], starts, ends, data.size)]
+            if rows.size == 0:
+                continue
+            origins = data.points[rows]
+            # the normal at each origin as the projector sees it (interpolated, on a mesh)
+            foot = data.projector.project(origins, data.states[rows])
+            traced = trace_rulings(data.projector, origins, direction[rows], foot.normals, foot.state,
+                                   tol, warp, data.size)
+            starts, ends = np.vstack([starts, traced.starts]), np.vstack([ends, traced.ends])
+            self.check_cancelled()
+        keep = distinct_rulings(starts, ends, data.size, SHORTEST * data.size)
+        return [Line(starts[i], ends[i]) for i in keep]

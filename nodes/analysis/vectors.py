@@ -97,10 +97,11 @@ def vector_products(a: ArrayLike, b: ArrayLike) -> VectorProducts:
     """Cross product, dot product and angle of the pairs (a_i, b_i), all at once.
 
     ``a`` and ``b`` are ``(n, 3)`` and ``(m, 3)`` arrays, matched by :func:`longest_list`.
-    The results are numpy's: ``np.cross(a, b)``, the row-wise dot product
-    ``einsum('ij,ij->i')`` and ``arccos(clip(a·b / (|a| |b|), −1, 1))``. Where a or b has
-    zero length the angle is 0 — a zero vector is parallel to every vector, so that
-    |a × b| = |a||b| sin θ and a·b = |a||b| cos θ still hold — and ``zero`` is set.
+    The results are numpy's, bit for bit: ``np.cross(a, b)``, the row-wise dot product
+    ``einsum("ij,ij->i")`` and ``arccos(clip(a·b / (|a| |b|), −1, 1))`` with the lengths
+    from ``np.linalg.norm``. Where a or b has zero length the angle is 0 — a zero
+    vector is parallel to every vector, so that |a × b| = |a||b| sin θ and
+    a·b = |a||b| cos θ still hold — and ``zero`` is set.
     Vectors so small or large that |a||b| under- or overflows are normalised first.
 
     >>> p = vector_products([[1, 0, 0]], [[0, 2, 0]])
@@ -108,20 +109,20 @@ def vector_products(a: ArrayLike, b: ArrayLike) -> VectorProducts:
     ([[0.0, 0.0, 2.0]], [0.0], 1.570796)
     """
     a, b = longest_list(np.asarray(a, dtype=float).reshape(-1, 3), np.asarray(b, dtype=float).reshape(-1, 3))
-    cross = np.cross(a, b)
-    dot = np.einsum("ij,ij->i", a, b)
-    length_a = np.sqrt(np.einsum("ij,ij->i", a, a))
-    length_b = np.sqrt(np.einsum("ij,ij->i", b, b))
-    zero = (length_a == 0.0) | (length_b == 0.0)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+    with np.errstate(all="ignore"):  # huge vectors may overflow Cross and Dot to ±inf, as they should
+        cross = np.cross(a, b)
+        dot = np.einsum("ij,ij->i", a, b)
+        length_a = np.linalg.norm(a, axis=1)
+        length_b = np.linalg.norm(b, axis=1)
         cosine = dot / (length_a * length_b)
-        awkward = ~zero & ~np.isfinite(cosine)
-        if awkward.any():  # |a||b| under- or overflowed: scale each vector to unit size first
-            ua = a[awkward] / np.abs(a[awkward]).max(axis=1, keepdims=True)
-            ub = b[awkward] / np.abs(b[awkward]).max(axis=1, keepdims=True)
-            ua /= np.linalg.norm(ua, axis=1, keepdims=True)
-            ub /= np.linalg.norm(ub, axis=1, keepdims=True)
-            cosine[awkward] = np.einsum("ij,ij->i", ua, ub)
+    zero = ~(a != 0.0).any(axis=1) | ~(b != 0.0).any(axis=1)
+    awkward = ~zero & ~np.isfinite(cosine)
+    if awkward.any():  # |a||b| under- or overflowed: scale each vector to unit size first
+        ua = a[awkward] / np.abs(a[awkward]).max(axis=1, keepdims=True)
+        ub = b[awkward] / np.abs(b[awkward]).max(axis=1, keepdims=True)
+        ua /= np.linalg.norm(ua, axis=1, keepdims=True)
+        ub /= np.linalg.norm(ub, axis=1, keepdims=True)
+        cosine[awkward] = np.einsum("ij,ij->i", ua, ub)
     angle = np.arccos(np.clip(cosine, -1.0, 1.0))
     angle[zero] = 0.0
     return VectorProducts(cross, dot, angle, zero)

@@ -74,7 +74,8 @@ class RulingDevelopable(Node):
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
-        Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.", access=LIST),
+        Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.",
+            access=LIST),
         Out("WarpAngles", NUMBER, "W", "Warp angle of each ruling, rad (0 = torsal).", access=LIST),
         Out("Valid", BOOLEAN, "V", "Whether each ruling is torsal within WarpTolerance.", access=LIST),
     )

@@ -26,16 +26,26 @@ nonlinear least-squares problem
 
     minimise  Σ_i w_i(θ)²  +  μ² Σ_free (θ_j − θ⁰_j)²,     |θ_j| ≤ π/2,
 
-with w_i the *signed* warp (smooth where the normals exist), by scipy's Levenberg–Marquardt
-(MINPACK) with an analytic Jacobian; the bound holds through θ = (π/2)·sin φ. The spline's tangents at its nodes are a
-fixed linear map of the node values, B'(u_i) = Σ_j D_ij B_j, so the Jacobian is one
-diagonal plus one dense ``n × n`` term. The torsal conditions alone leave (in the
-smooth limit) a one-parameter family of developables through the fixed edge, some
-rotated far from the input; the faint pull μ = 1e-3 towards the starting angles θ⁰
-(zero: the input's rulings, as the thesis advises starting Galapagos) picks the one
-nearest the input without measurably raising the warp. Same input, same answer:
-the method is deterministic. With ``fix_ends`` the first and last rulings keep their
-starting angles (the thesis's option of keeping the input's straight edges).
+with w_i the *signed* warp (smooth where the normals exist), by scipy's
+Levenberg–Marquardt (MINPACK) with an analytic Jacobian; the bound holds through
+θ = (π/2)·sin φ. The spline's tangents at its nodes are a fixed linear map of the node
+values, B'(u_i) = Σ_j D_ij B_j, so the Jacobian is one diagonal plus one dense ``n × n``
+term. MINPACK factors it with its own QR, not multithreaded LAPACK, which stalls when
+the machine is busy.
+
+The torsal conditions alone leave (in the smooth limit) a one-parameter family of
+developables through the fixed edge, some rotated far from the input (unpulled, the
+solver drifts to rulings turned a quarter turn); the faint pull μ = 1e-3 towards the
+starting angles θ⁰ (zero: the input's rulings, as the thesis advises starting
+Galapagos) picks the one nearest the input without measurably raising the warp. Same
+input, same answer: the method is deterministic.
+
+Minimising squared warps spreads what cannot be removed thinly instead of piling it
+onto a few rulings (the thesis's fitness, the plain sum, would favour a few sharply
+warped rulings). That matters with ``fix_ends``: the first and last rulings keep their
+starting angles (the thesis's option of keeping the input's straight edges), which
+over-constrains the strip — the family above has one free parameter, not two — so it
+stays warped, as the thesis observed.
 """
 
 from __future__ import annotations
@@ -158,9 +168,11 @@ def station_rulings(surface: Surface, curve: Curve, segments: int) -> StationRul
     along = edge.closest_point(starts).parameters
     other = 1.0 - side
     if name == "v":
-        near, far = surface.point_at(along, np.full_like(along, side)), surface.point_at(along, np.full_like(along, other))
+        near = surface.point_at(along, np.full_like(along, side))
+        far = surface.point_at(along, np.full_like(along, other))
     else:
-        near, far = surface.point_at(np.full_like(along, side), along), surface.point_at(np.full_like(along, other), along)
+        near = surface.point_at(np.full_like(along, side), along)
+        far = surface.point_at(np.full_like(along, other), along)
     rulings = far - near
     lengths = norm(rulings)
     if np.any(lengths <= 1e-12 * size):
@@ -267,7 +279,9 @@ def approximate(
     if not optimise:
         return strip.result(start, initial_fitness, 0)
     if n > MAX_OPTIMISED:
-        raise ValueError(f"Optimising takes at most {MAX_OPTIMISED} rulings; lower Segments to {MAX_OPTIMISED - 1}.")
+        raise ValueError(
+            f"Optimising takes at most {MAX_OPTIMISED} rulings; lower Segments to {MAX_OPTIMISED - 1}."
+        )
     free = np.arange(1, n - 1) if fix_ends else np.arange(n)
     if len(free) == 0:
         return strip.result(start, initial_fitness, 0)

@@ -224,6 +224,13 @@ def _validate_knots(knots: ArrayLike | None, count: int, degree: int, name: str)
 # --------------------------------------------------------------------------- surface
 
 
+def _span_gauss(breaks: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:
+    """Gauss–Legendre nodes and weights of ``order`` on every interval between ``breaks``."""
+    nodes, weights = np.polynomial.legendre.leggauss(order)
+    width = np.diff(breaks)[:, None]
+    return (breaks[:-1, None] + width * 0.5 * (nodes + 1)).ravel(), (width * 0.5 * weights).ravel()
+
+
 class NurbsSurface(Surface):
     """A tensor-product NURBS surface on (u, v) in [0, 1]².
 
@@ -301,6 +308,31 @@ class NurbsSurface(Surface):
             for slot, value in enumerate(self._evaluate(s[lo:hi], t[lo:hi], order)):
                 out[slot][lo:hi] = value
         return out
+
+    def area(self, rtol: float = 1e-11) -> float:
+        return self.area_and_centroid(rtol)[0]
+
+    def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
+        """Area and centroid by a Gauss rule on every knot-span patch.
+
+        |Su × Sv| is smooth inside a patch but not across knots, where the generic
+        adaptive cubature (cells on a power-of-two grid) refines at length: a loft of
+        512 spans takes it ~20 s, this ~0.1 s. Rules of order 8 and 12 must agree to
+        ``rtol``; otherwise (or for very many spans) the generic cubature decides.
+        """
+        spans_u, spans_v = (np.unique(np.clip(k, 0.0, 1.0)) for k in (self.knots_u, self.knots_v))
+        if (len(spans_u) - 1) * (len(spans_v) - 1) <= 100_000:
+            results = []
+            for order in (8, 12):
+                (u, wu), (v, wv) = _span_gauss(spans_u, order), _span_gauss(spans_v, order)
+                uu, vv = np.meshgrid(u, v, indexing="ij")
+                s, su, sv = self.derivatives(uu.ravel(), vv.ravel(), 1)
+                w = np.linalg.norm(np.cross(su, sv), axis=1) * np.outer(wu, wv).ravel()
+                results.append((float(w.sum()), (s * w[:, None]).sum(axis=0)))
+            (coarse, _), (area, moment) = results
+            if area > 0 and abs(area - coarse) <= max(rtol, 1e-13) * area:
+                return area, moment / area
+        return super().area_and_centroid(rtol)
 
     @cached_property
     def _patches(self) -> FloatArray | None:

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Arc, Line, Polyline
+from nodes.geometry.curves import Arc, Circle, Line, Polyline
 from nodes.geometry.developable import ruling_developable
 from nodes.geometry.vectors import Plane
 
@@ -190,6 +190,55 @@ def test_fan_rulings_are_about_as_far_apart_as_the_stations():
     fan_steps = fan_steps[(fan_steps > 0) & np.isclose(np.diff(result.s[fan]), 0)]
     assert fan_steps.max() <= station_step * (1 + 1e-9)
     assert fan_steps.min() >= 0.5 * station_step
+
+
+def test_a_corner_of_a_gets_a_cone_of_rulings_and_its_straight_legs_fans_through_b():
+    """A V below an arc in a parallel plane: each leg of the V leans on the one point of
+    the arc whose tangent is parallel to it (a triangle), and between them the rulings
+    fan out from the V's corner (a cone)."""
+    v = Polyline([[-3, 0.5, 0], [0, -1, 0], [3, 0.5, 0]])
+    arc = Arc(Plane.from_normal([0, 2, 2], [0, 0, 1]), 4.0, math.radians(200), math.radians(340))
+    result = ruling_developable(v, arc, 12)
+    assert result.message is None and result.max_warp < 1e-12
+    corner = np.linalg.norm(result.starts - v.points[1], axis=1) < 1e-12
+    assert corner.sum() > 2 and result.stations[corner].sum() == 1  # the station at the corner, plus its fan
+    for leg, (start, end) in enumerate(((0, 1), (1, 2))):
+        direction = v.points[end] - v.points[start]
+        on_leg = ~corner & (result.s < 0.5) if leg == 0 else ~corner & (result.s > 0.5)
+        partner = result.ends[on_leg]
+        np.testing.assert_allclose(partner, np.broadcast_to(partner[0], partner.shape), atol=1e-12)
+        tangent = arc.tangent_at(result.t[on_leg][0])
+        assert np.linalg.norm(np.cross(tangent, direction / np.linalg.norm(direction))) < 1e-12
+
+
+def test_closed_curves_with_seams_apart_are_joined_all_round():
+    """Two circles on one cone whose seams are a quarter turn apart."""
+    tan = math.tan(0.5)
+    low = Circle(Plane.from_normal([0, 0, 1], [0, 0, 1]), tan)
+    high = Circle(Plane.from_axes([0, 0, 2], [0, 1, 0], [-1, 0, 0]), 2 * tan)
+    result = ruling_developable(low, high, 24)
+    assert result.message is None and result.valid.all()
+    turn = np.angle(
+        np.exp(
+            1j
+            * (
+                np.arctan2(result.ends[:, 1], result.ends[:, 0])
+                - np.arctan2(result.starts[:, 1], result.starts[:, 0])
+            )
+        )
+    )
+    assert np.abs(turn).max() < 1e-12
+    # t rises from the partner of A's start, wraps once through B's seam, and returns to it
+    assert result.t[0] == pytest.approx(0.75) and result.t[-1] == pytest.approx(0.75)
+    assert (np.diff(result.t) < 0).sum() == 1
+
+
+def test_one_segment_is_two_rulings_or_the_two_triangles_of_a_planar_quad():
+    skew = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 1], [1, 1, 2]), 1)
+    assert len(skew.s) == 2
+    planar = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 1], [1, 1, 1]), 1)
+    np.testing.assert_allclose(planar.t, [0, 0, 1])
+    np.testing.assert_allclose(planar.s, [0, 1, 1])
 
 
 # -- curves that bound no developable --------------------------------------------------------

@@ -11,7 +11,8 @@ from engine.types import encode_value
 from engine.values import Domain, Point
 from nodes.curves.primitives import Circle
 from nodes.geometry import curves as kernel
-from nodes.surfaces.analysis import Isocurve
+from nodes.geometry.vectors import Plane as KernelPlane
+from nodes.surfaces.analysis import Area, Isocurve
 from nodes.surfaces.freeform import Loft, NurbsSurface, ParametricSurface, RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
 
@@ -45,6 +46,14 @@ def test_loft_through_circles_at_heights_is_a_cylinder():
     assert np.abs(np.hypot(p[:, 0], p[:, 1]) - 2.0).max() < 1e-6
     assert p[:, 2].min() > -1e-9 and p[:, 2].max() < 4.0 + 1e-9
     assert surface.closed_u
+
+
+def test_loft_through_circles_has_the_area_and_centroid_of_the_cylinder():
+    circles = [kernel.Circle(KernelPlane.from_normal([0, 0, z], [0, 0, 1]), 2.0) for z in (0.0, 1.5, 4.0)]
+    surface = only(run(Loft(), Curves=tree({(0,): circles})))
+    result = run(Area(), Geometry=tree({(0,): [surface]}))
+    assert only(result, "Area") == pytest.approx(2 * np.pi * 2.0 * 4.0, rel=1e-9)
+    assert np.allclose(only(result, "Centroid"), [0, 0, 2.0], atol=1e-9)
 
 
 def test_loft_passes_through_each_curve():

@@ -133,8 +133,8 @@ def test_one_number_as_vvalues_runs_rulings_from_0_to_it():
 
 def test_several_numbers_as_vvalues_run_from_the_smallest_to_the_largest():
     r = lines(direct(Directrix=POINTS, Direction=[Vector(0, 1, 0)], VValues=[0.5, -1.0, 2.0]))
-    assert np.allclose(r[:, 0], np.asarray(POINTS) + [0.0, -1.0, 0.0], atol=0.0)
-    assert np.allclose(r[:, 1], np.asarray(POINTS) + [0.0, 2.0, 0.0], atol=0.0)
+    assert np.allclose(r[:, 0], np.asarray(POINTS) + np.array([0.0, -1.0, 0.0]), atol=0.0)
+    assert np.allclose(r[:, 1], np.asarray(POINTS) + np.array([0.0, 2.0, 0.0]), atol=0.0)
 
 
 def test_a_curve_directrix_places_segments_plus_one_rulings_evenly_in_t():

@@ -25,7 +25,7 @@ def test_pattern_is_two_closed_panels_the_upper_one_shifted_by_offset():
     lower, upper = rings(chain)
     assert all(c.closed for c in chain.items("bond", "Pattern"))
     assert np.array_equal(lower[:4], [[0, 0, 0], [2, 0, 0], [2, 0.5, 0], [0, 0.5, 0]])
-    assert np.array_equal(upper, lower + [0.75, 0.5, 0.0])
+    assert np.array_equal(upper, lower + np.array([0.75, 0.5, 0.0]))
 
 
 def test_tile_is_width_by_two_heights():

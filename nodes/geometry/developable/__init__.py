@@ -1,7 +1,7 @@
 """Developable-surface kernels: rulings of cylinders, cones, tangent developables and
 of the developable strip between two curves, and the warp angles that check them.
 
-Arrays in, arrays out, numpy/scipy only; the nodes in ``nodes/developable`` wrap these.
+Arrays in, arrays out, numpy/scipy only; the node layer wraps these.
 
 - :func:`ruling_developable` — the strip between two curves (RulingDevelopable).
 - :func:`cylinder_rulings`, :func:`cone_rulings`, :func:`tangent_developable_rulings` —

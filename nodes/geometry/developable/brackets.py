@@ -18,8 +18,10 @@ from ..curve_base import FloatArray
 
 IntArray = NDArray[np.int64]
 
-#: Relative step below which a root counts as converged (a few units in the last place).
-STEP = 4.0 * np.finfo(float).eps
+#: Relative step below which a root counts as converged (~3e-14: past this, Newton's next
+#: step would be below rounding). The caller keeps the last *evaluated* point, within
+#: this step of the root, so that everything it computed there stays consistent.
+STEP = 128.0 * np.finfo(float).eps
 
 
 def refine_roots(
@@ -58,7 +60,7 @@ def refine_roots(
         inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
         step_to = np.where(inside, newton, 0.5 * (lo + hi))
         tiny = STEP * np.maximum(np.abs(xa), 1e-300)
-        zero = np.abs(f) <= 2.0 * STEP * scale
+        zero = np.abs(f) <= 8.0 * np.finfo(float).eps * scale
         done = zero | (inside & (np.abs(newton - xa) <= tiny)) | (hi - lo <= tiny)
         x[active] = np.where(zero, xa, step_to)
         active = active[~done]

@@ -38,8 +38,10 @@ Algorithm (all stations at once)
    consecutive samples (A and B coplanar there, e.g. two straight pieces in one plane),
    contribute their two ends instead; a sign change across a corner of B is a root at the
    corner (the rulings fan through it: a cone).
-4. Refinement: every bracket is refined to machine precision by one vectorised Newton
-   iteration inside the brackets (:mod:`.brackets`), using f_t = det[R, A', B''].
+4. Refinement: every bracket is refined to machine precision at once, by Newton's
+   method kept inside the brackets (:mod:`.brackets`) with f_t = det[R, A', B''],
+   starting from the root of the cubic that matches f and f_t at the bracket's ends —
+   usually two evaluations of B in all.
 5. Selection: the monotone dynamic programme of :mod:`.selection` follows one branch of
    roots, predicting each step from the branch slope dt/ds = −f_s/f_t, with
    f_s = det[R, A'', B'].
@@ -54,15 +56,17 @@ Algorithm (all stations at once)
    their neighbours if its warp is within ``warp_tolerance``; otherwise the partner is
    interpolated in arc length (the plain loft) and the ruling is flagged invalid, never
    hidden, with a message saying what to change.
+8. A closed B whose seam is away from the strip's start is solved again from A(0)'s
+   partner, so that t can run once round B through its seam.
 """
 
 from __future__ import annotations
 
 from bisect import bisect_right
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
@@ -95,7 +99,9 @@ class RulingResult:
     Rulings run from ``A(s)`` to ``B(t)``. There is one per station on A (``Segments + 1``
     of them, marked in ``stations``) plus the rulings of any fan through a single point of
     A (a planar triangle), which repeat that point's s; so ``len(s) >= Segments + 1``.
-    Both ``s`` and ``t`` never decrease: rulings do not cross.
+    Neither ``s`` nor ``t`` ever decreases, so rulings do not cross — except that on a
+    closed curve B, t increases *cyclically*: from the strip's start it runs up to 1,
+    wraps through B's seam to 0 and rises again.
     """
 
     s: FloatArray  #: parameters on curve A, in [0, 1]
@@ -123,19 +129,31 @@ def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
     return np.arctan2(norm(cross(left, right)), dot(left, right)) > CORNER_ANGLE
 
 
-def corners(curve: Curve) -> FloatArray:
-    """Interior parameters where the curve's unit tangent jumps (polyline vertices, kinks)."""
-    b = curve._breakpoints()[1:-1]
-    if len(b) == 0:
-        return b
-    d1 = curve.derivatives(np.concatenate([b - SIDE, b + SIDE]), 1)[1]
-    return b[_jumps(d1[: len(b)], d1[len(b) :])]
-
-
 def _is_linear(curve: Curve) -> bool:
     return isinstance(curve, Line | Polyline) or (
         isinstance(curve, NurbsCurve) and curve.degree == 1 and not curve.is_rational
     )
+
+
+class _Rotated(Curve):
+    """A closed curve started from parameter ``shift`` instead of its seam: C((t + shift) mod 1)."""
+
+    closed = True
+
+    def __init__(self, curve: Curve, shift: float) -> None:
+        self.curve, self.shift = curve, float(shift)
+
+    def original(self, t: FloatArray) -> FloatArray:
+        """The wrapped curve's parameter for parameters ``t`` of this one."""
+        u = np.asarray(t, dtype=float) + self.shift
+        return np.where(u >= 1.0, u - 1.0, u)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        return self.curve.derivatives(self.original(np.atleast_1d(np.asarray(t, dtype=float))), order)
+
+    def _breakpoints(self) -> FloatArray:
+        moved = self.curve._breakpoints() - self.shift
+        return np.unique(np.concatenate([[0.0, 1.0], np.where(moved < 0, moved + 1.0, moved)]))
 
 
 @dataclass
@@ -149,6 +167,8 @@ class _Grid:
     points: FloatArray
     tangents: FloatArray
     second: FloatArray  #: B'' there
+    left_tangents: FloatArray  #: B' and B'' as seen from the left (they differ at knots)
+    left_second: FloatArray
 
 
 def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
@@ -162,16 +182,22 @@ def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
     at_break = np.searchsorted(t, breaks)
     kink = _jumps(tangents[m:], tangents[at_break])
     kinks = breaks[kink]
+    # from the left, a smooth breakpoint shows its left-hand derivatives
+    left = np.arange(m)
+    left[at_break[~kink]] = m + np.flatnonzero(~kink)
     if not len(kinks):
-        grid = _Grid(t, t, np.zeros(m - 1, dtype=bool), points[:m], tangents[:m], second[:m])
-        return grid, kinks
-    index = at_break[kink]
-    left = m + np.flatnonzero(kink)
-    # insert the left copy of each corner just before its right copy
-    order = np.insert(np.arange(m), index, left)
-    t_all = np.insert(t, index, kinks)
-    at = np.insert(t, index, kinks - SIDE)
-    return _Grid(t_all, at, np.diff(t_all) == 0, points[order], tangents[order], second[order]), kinks
+        right = np.arange(m)
+        t_all, at, pair = t, t, np.zeros(m - 1, dtype=bool)
+    else:
+        # a corner gets two samples: its left copy just before its right copy
+        index = at_break[kink]
+        right = np.insert(np.arange(m), index, m + np.flatnonzero(kink))
+        left = np.insert(left, index, m + np.flatnonzero(kink))
+        t_all = np.insert(t, index, kinks)
+        at = np.insert(t, index, kinks - SIDE)
+        pair = np.diff(t_all) == 0
+    grid = _Grid(t_all, at, pair, points[right], tangents[right], second[right], tangents[left], second[left])
+    return grid, kinks
 
 
 # -- brackets and candidates -----------------------------------------------------------------
@@ -241,11 +267,11 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     matches f and f_t = det[R, A', B''] at both ends of the bracket (two Newton steps on
     that cubic from the secant's root), so that one Newton step on f reaches rounding."""
     i, j = rows, cols
-    values = []
-    for c in (j, j + 1):
-        normal = cross(grid.points[c] - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
-        values += [dot(normal, grid.tangents[c]), dot(normal, grid.second[c])]
-    f0, d0, f1, d1 = values
+    # det[R, A', X] = X · (R × A'); the bracket's upper end is seen from the left
+    normal = cross(grid.points[j] - a0[i], a1[i])
+    f0, d0 = dot(normal, grid.tangents[j]), dot(normal, grid.second[j])
+    normal = cross(grid.points[j + 1] - a0[i], a1[i])
+    f1, d1 = dot(normal, grid.left_tangents[j + 1]), dot(normal, grid.left_second[j + 1])
     x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
     d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
     u = np.clip(f0 / (f0 - f1), 0.0, 1.0)
@@ -610,6 +636,11 @@ class _Strip:
 
             low, high = s[pairs[which]], s[pairs[which] + 1]
             apex[which] = refine_roots(coplanarity, low, high, f_left[which])
+            # a root that converged onto a corner of A (a jump of f) or onto a station is that point
+            for exact in (self.kinks_a, s):
+                if len(exact):
+                    nearest = exact[np.argmin(np.abs(apex[:, None] - exact[None, :]), axis=1)]
+                    apex = np.where(np.abs(apex - nearest) <= 1e-12, nearest, apex)
         fans = []
         for k, i in enumerate(pairs):  # one pass per possible fan (rare)
             s_star = float(apex[k])
@@ -678,7 +709,10 @@ class _Strip:
         order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
         repeat = np.zeros(len(order), dtype=bool)
         repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
-        order = order[~repeat]  # a fan ruling equal to a station ruling (sorted just after it)
+        # of two equal rulings keep the station (a fan ruling sorts after its equal station)
+        later_station = np.flatnonzero(repeat & (order < n))
+        order[later_station - 1] = order[later_station]
+        order = order[~repeat]
         return s_all[order], t_all[order], np.where(order < n, order, -1)
 
     def geometry(
@@ -750,19 +784,40 @@ def ruling_developable(
         ones to rounding (partner error ~1e-14, warp ~1e-14 rad).
 
     See the module docstring for the geometry and the algorithm. Two coplanar segments
-    bound a planar quad, drawn as two triangles (fans through B(0) and then A(1)):
+    bound a planar quad, drawn as two triangles: a fan through B(0) from the three
+    stations, then a fan through A(1) whose rulings are about as far apart on B:
 
     >>> from nodes.geometry.curves import Line
     >>> r = ruling_developable(Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [3, 2, 0]), 2)
     >>> r.s.tolist(), r.t.round(3).tolist(), r.message
-    ([0.0, 0.5, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.5, 1.0], None)
+    ([0.0, 0.5, 1.0, 1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0], None)
     """
     if int(segments) != segments or segments < 1:
         raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
     tolerance = float(warp_tolerance)
     if not (np.isfinite(tolerance) and tolerance >= 0):
         raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
-    strip = _Strip(curve_a, curve_b, int(segments), tolerance, spacing, max(int(samples), 8))
+    samples = max(int(samples), 8)
+    result = _solve(curve_a, curve_b, int(segments), tolerance, spacing, samples)
+    if curve_b.closed and result.message is not None:
+        # B's seam may sit away from where the strip starts: restart B at A(0)'s partner
+        # (or, when A is closed too, at the partner of its end, the same point)
+        station = result.t[result.stations]
+        valid = result.valid[result.stations]
+        shift = station[0] if valid[0] else station[-1] if curve_a.closed and valid[-1] else None
+        if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
+            rotated = _Rotated(curve_b, shift)
+            again = _solve(curve_a, rotated, int(segments), tolerance, spacing, samples)
+            if again.valid[again.stations].sum() > valid.sum():
+                return replace(again, t=rotated.original(again.t))
+    return result
+
+
+def _solve(
+    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
+) -> RulingResult:
+    """One solve of :func:`ruling_developable` as the module docstring describes it."""
+    strip = _Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
     n = len(strip.s)
 
     chosen, good, flipped = strip.choose()

@@ -11,9 +11,9 @@ along the whole ruling, so N1 ∥ N2, i.e. det[R, T1, T2] = 0 (the ruling is *to
 - The **signed warp** is the angle *from N1 to N2* about R, in (−π, π]. With both edges
   running the same way and rulings that do not cross, a sheet's two normals point to the
   same side, so a good ruling has a signed warp near 0. A value near ±π also has zero
-  (unsigned) warp but belongs to a sheet folded back on itself: the rulings around it
-  would cross. That is the "second, wrong tangent plane" a search on the unsigned angle
-  picks on re-parameterised curves.
+  (unsigned) warp but belongs to a sheet folded back on itself — its rulings cross, or
+  its edge of regression (the cusp) runs between the two edges. That is the "second,
+  wrong tangent plane" a search on the unsigned angle picks on re-parameterised curves.
 
 Zero-length vectors (a ruling of length 0, a ruling along an edge tangent, an apex)
 give a warp of 0: no plane is defined there, so none is violated.

@@ -1,0 +1,251 @@
+"""developable.SplineApproximation through real graphs (surfaces handed in by a source node,
+angles and switches set as a .graph file holds them), with the kernel's closed forms."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+
+from nodes.developable.spline_approximation import SplineApproximation
+from nodes.geometry.curves import Arc, Line, ParametricCurve
+from nodes.geometry.parametric_surface import sphere
+from nodes.geometry.ruled import RuledSurface
+from tests.nodes.helpers import out, run, texts, tree
+
+
+def _curve(function, first, second) -> ParametricCurve:
+    def wrap(f):
+        return lambda u: f(np.asarray(u, dtype=float))
+
+    return ParametricCurve(wrap(function), (0.0, 1.0), derivatives=(wrap(first), wrap(second)))
+
+
+def twisted_strip() -> tuple[RuledSurface, ParametricCurve]:
+    """A hyperbolic-paraboloid-like strip between two skew curves, and its fixed edge.
+
+    A(u) = (4u, 0, 0.6 sin πu); B(u) = A(u) + (0, 1.5, 0.8(u − ½)): the rulings turn by
+    ±0.26 rad about the x axis from one end to the other, so the strip is twisted
+    (det[B − A, A', B'] = −4.8 ≠ 0 everywhere).
+    """
+    k = math.pi
+
+    def a0(u):
+        return np.column_stack([4 * u, 0 * u, 0.6 * np.sin(k * u)])
+
+    def a1(u):
+        return np.column_stack([4 + 0 * u, 0 * u, 0.6 * k * np.cos(k * u)])
+
+    def a2(u):
+        return np.column_stack([0 * u, 0 * u, -0.6 * k * k * np.sin(k * u)])
+
+    def b0(u):
+        return a0(u) + np.column_stack([0 * u, 1.5 + 0 * u, 0.8 * (u - 0.5)])
+
+    def b1(u):
+        return a1(u) + np.column_stack([0 * u, 0 * u, 0.8 + 0 * u])
+
+    edge = _curve(a0, a1, a2)
+    return RuledSurface(edge, _curve(b0, b1, a2)), edge
+
+
+def solve(surface, curve, **inputs):
+    return run(SplineApproximation(), Surface=tree({(0,): [surface]}), Curve=tree({(0,): [curve]}), **inputs)
+
+
+def only(result, port):
+    (value,) = out(result, port)[(0,)]
+    return value
+
+
+def items(result, port):
+    return out(result, port)[(0,)]
+
+
+# -- optimisation: the bars ---------------------------------------------------------------
+
+
+def test_optimise_reduces_the_summed_warp_of_a_twisted_strip_over_100_times_in_under_2_s():
+    surface, edge = twisted_strip()
+    before = only(solve(surface, edge, Segments=20), "Fitness")
+    started = time.perf_counter()
+    result = solve(surface, edge, Segments=20, Optimise=True)
+    seconds = time.perf_counter() - started
+    after = only(result, "Fitness")
+    assert result.state == "ok"
+    assert before > 3.0  # 21 rulings warped by about 0.18 rad each
+    assert before / after >= 100
+    assert seconds < 2.0
+
+
+def test_optimise_is_deterministic():
+    surface, edge = twisted_strip()
+    first = items(solve(surface, edge, Segments=20, Optimise=True), "BestAngles")
+    second = items(solve(*twisted_strip(), Segments=20, Optimise=True), "BestAngles")
+    assert first == second
+
+
+def test_optimise_says_how_much_the_warp_fell():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=20, Optimise=True)
+    (message,) = texts(result)
+    assert message.startswith("Summed warp 3.71 → 3.12e-05 rad (")
+    assert "× less) in " in message
+
+
+def test_optimised_angles_untwist_the_strip_without_turning_it_away():
+    """The rulings turn back by about the twist (±0.26 rad at the ends), not by a quarter turn."""
+    surface, edge = twisted_strip()
+    angles = np.array(items(solve(surface, edge, Segments=20, Optimise=True), "BestAngles"))
+    assert angles[0] == pytest.approx(0.249, abs=0.01)
+    assert angles[-1] == pytest.approx(-0.249, abs=0.01)
+    assert np.all(np.diff(angles) < 0)
+
+
+def test_optimise_starts_from_the_given_angles_and_finds_the_same_strip_nearby():
+    surface, edge = twisted_strip()
+    free = items(solve(surface, edge, Segments=20, Optimise=True), "BestAngles")
+    started = items(solve(surface, edge, Segments=20, Optimise=True, Angles=[0.05]), "BestAngles")
+    assert np.abs(np.array(started) - np.array(free)).max() < 0.06
+
+
+def test_fix_ends_keeps_the_first_and_last_rulings_and_warns_the_strip_stays_warped():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=20, Optimise=True, FixEnds=True)
+    angles = items(result, "BestAngles")
+    assert angles[0] == 0.0 and angles[-1] == 0.0
+    rulings = items(result, "Rulings")
+    assert np.allclose(rulings[0].end, surface.point_at(0.0, 1.0), atol=1e-12)
+    assert np.allclose(rulings[-1].end, surface.point_at(1.0, 1.0), atol=1e-12)
+    assert result.state == "warning"
+    assert texts(result)[-1].endswith(
+        "with both end rulings fixed the strip cannot become developable: turn FixEnds off"
+    )
+
+
+# -- manual mode -------------------------------------------------------------------------
+
+
+def test_given_angles_tilt_a_cylinders_rulings_to_the_hand_computed_ends():
+    """Quarter cylinder of radius 2 and height 1.5: turning the ruling at angle φ about the
+    circle's tangent (−sin φ, cos φ, 0) by θ tilts it outwards, so its end is at radius
+    2 + 1.5 sin θ and height 1.5 cos θ."""
+    radius, height = 2.0, 1.5
+    lift = np.eye(4)
+    lift[2, 3] = height
+    bottom = Arc(radius=radius)
+    surface = RuledSurface(bottom, bottom.transformed(lift))
+    theta = 0.1 * np.arange(5)
+    result = solve(surface, bottom, Segments=4, Angles=theta.tolist())
+    phi = np.linspace(0.0, math.pi / 2, 5)
+    r = radius + height * np.sin(theta)
+    expected = np.column_stack([r * np.cos(phi), r * np.sin(phi), height * np.cos(theta)])
+    ends = np.array([line.end for line in items(result, "Rulings")])
+    assert np.abs(ends - expected).max() < 1e-8
+    assert items(result, "BestAngles") == theta.tolist()
+
+
+def test_given_angles_on_a_flat_strip_give_the_hand_computed_warp_atan_sin_theta():
+    """Unit square strip along x, Segments 1, the first ruling turned by θ about x: the free
+    edge is the chord (1, 1 − cos θ, −sin θ) and both rulings warp by atan(sin θ)."""
+    theta = 0.3
+    edge = Line([0, 0, 0], [1, 0, 0])
+    surface = RuledSurface(edge, Line([0, 1, 0], [1, 1, 0]))
+    result = solve(surface, edge, Segments=1, Angles=[theta, 0.0])
+    assert result.state == "ok"
+    assert np.allclose(items(result, "Rulings")[0].end, [0, math.cos(theta), math.sin(theta)], atol=1e-15)
+    assert items(result, "WarpAngles") == pytest.approx([math.atan(math.sin(theta))] * 2, abs=1e-15)
+    assert only(result, "Fitness") == pytest.approx(2 * math.atan(math.sin(theta)), abs=1e-15)
+    normals_a = np.array(items(result, "NormalsA"))
+    assert np.allclose(normals_a, [[0, math.sin(theta), -math.cos(theta)], [0, 0, -1]], atol=1e-15)
+
+
+def test_no_angles_keep_the_input_rulings():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=8)
+    rulings = items(result, "Rulings")
+    u = edge.closest_point(np.array([line.start for line in rulings])).parameters  # edge 0 runs in u
+    ends = np.array([line.end for line in rulings])
+    assert np.abs(ends - surface.point_at(u, np.ones(9))).max() < 1e-12
+    assert items(result, "BestAngles") == [0.0] * 9
+
+
+def test_one_angle_turns_every_ruling_alike():
+    surface, edge = twisted_strip()
+    assert items(solve(surface, edge, Segments=4, Angles=[0.2]), "BestAngles") == [0.2] * 5
+
+
+def test_normals_are_unit_and_perpendicular_to_their_rulings_and_tangents_follow_the_curve():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=6, Angles=[0.1])
+    rulings = np.array([line.end - line.start for line in items(result, "Rulings")])
+    tangents = np.array(items(result, "Tangents"))
+    for port in ("NormalsA", "NormalsB"):
+        normals = np.array(items(result, port))
+        assert np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-14)
+        assert np.abs(np.einsum("ij,ij->i", normals, rulings)).max() < 1e-13
+    starts = np.array([line.start for line in items(result, "Rulings")])
+    t = edge.closest_point(starts).parameters
+    assert np.allclose(tangents, edge.tangent_at(t), atol=1e-12)
+
+
+def test_free_edge_passes_through_the_rulings_ends():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=6, Optimise=True)
+    ends = np.array([line.end for line in items(result, "Rulings")])
+    free = only(result, "FreeEdge")
+    assert np.allclose(free.point_at(np.linspace(0, 1, 7)), ends, atol=1e-12)
+
+
+def test_the_fixed_edge_may_be_the_surfaces_other_curved_edge():
+    surface, _ = twisted_strip()
+    result = solve(surface, surface.edges()[2], Segments=10, Optimise=True)
+    starts = np.array([line.start for line in items(result, "Rulings")])
+    assert np.allclose(starts[0], surface.point_at(1.0, 1.0), atol=1e-12)  # edge 2 runs u 1 → 0
+    assert only(result, "Fitness") < 1e-3
+
+
+# -- inputs that cannot work -----------------------------------------------------------------
+
+
+def test_the_wrong_number_of_angles_is_an_error_with_the_counts():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=4, Angles=[0.1, 0.2, 0.3])
+    assert result.state == "error"
+    assert texts(result) == [
+        "Angles has 3 values: give one per ruling (Segments + 1 = 5), or 3 for the inner rulings "
+        "with FixEnds on, or a single angle for all"
+    ]
+
+
+def test_inner_angles_with_fix_ends_leave_the_end_rulings_alone():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=4, Angles=[0.1, 0.2, 0.3], FixEnds=True)
+    assert items(result, "BestAngles") == [0.0, 0.1, 0.2, 0.3, 0.0]
+
+
+def test_a_surface_without_straight_rulings_is_an_error():
+    result = solve(sphere(2.0), Line([0, 0, 0], [1, 0, 0]))
+    assert result.state == "error"
+    assert texts(result) == [
+        "The surface has no straight rulings: SplineApproximation needs a ruled surface, such as a "
+        "loft between two curves"
+    ]
+
+
+def test_a_curve_off_the_surfaces_edges_is_an_error_naming_the_nearest_edge():
+    surface, _ = twisted_strip()
+    result = solve(surface, Line([0, 1.5, 2], [4, 1.5, 2]))
+    assert result.state == "error"
+    (message,) = texts(result)
+    assert message.startswith("The curve is not on a curved edge of the surface: it strays ")
+    assert "(edge 2)" in message
+
+
+def test_zero_segments_is_an_error():
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=0)
+    assert result.state == "error"
+    assert texts(result) == ["Segments is 0: give 1 or more (Segments is the number of rulings minus one)"]
