@@ -39,6 +39,21 @@ MODULES: tuple[str, ...] = (
     "nodes.developable.ruling_developable",
     "nodes.developable.spline_approximation",
     "nodes.developable.surface_coupling",
+    "nodes.developable.cylindrical",
+    "nodes.developable.conical",
+    "nodes.developable.tangent",
+    "nodes.developable.parametric_ruled",
+    "nodes.developable.paper_strip",
+    "nodes.patching.staggered",
+    "nodes.patching.surface_patching",
+    "nodes.io.rhino",
+    "nodes.io.cutting",
+    "nodes.io.meshes",
+    "nodes.io.data",
+    "nodes.analysis.vectors",
+    "nodes.analysis.surface_analysis",
+    "nodes.analysis.iso_mapping",
+    "nodes.analysis.curve_of_regression",
 )
 
 

@@ -16,6 +16,26 @@ from nodes.geometry.curves import InterpolatedCurve
 from nodes.geometry.regression import curve_of_regression
 from nodes.types import CURVE, SURFACE, point, points
 
+#: Points of regression all within this share of the surface's size of one point make a
+#: cone: a loft through a cone's rulings, sampled between them, misses its apex slightly.
+APEX_SPREAD = 1e-4
+
+
+def nearest_point_to_lines(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """The point with the least summed squared distance to the lines through the rulings."""
+    d = ends - starts
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    projector = np.eye(3)[None] - d[:, :, None] * d[:, None, :]  # onto each line's normal plane
+    return np.linalg.solve(projector.sum(axis=0), np.einsum("kij,kj->i", projector, starts))
+
+
+def looks_like_cone(points: np.ndarray, size: float) -> bool:
+    """Whether the points of regression huddle within APEX_SPREAD of the size (a cone)."""
+    finite = points[np.isfinite(points).all(axis=1)]
+    if len(finite) < 2:
+        return False
+    return float(np.linalg.norm(finite - finite.mean(axis=0), axis=1).max()) <= APEX_SPREAD * size
+
 
 def piece_curve(piece: np.ndarray) -> Curve | None:
     """The cubic spline through one valid run of points (repeated points dropped), or
@@ -73,11 +93,17 @@ class CurveOfRegression(Node):
             regression = curve_of_regression(rulings[:, 0], rulings[:, 1], tolerance)
         except ValueError as exc:
             raise NodeWarning(f"No curve of regression can be found: {sentence(exc)}") from None
-        if regression.kind == "apex":
-            self.remark(f"The surface is {regression.message}: Points holds the apex")
-            return [], [point(regression.apex)]
+        size = float(np.linalg.norm(np.ptp(rulings.reshape(-1, 3), axis=0)))
+        if regression.kind == "apex" or (regression.kind in ("curve", "warped")
+                                         and looks_like_cone(regression.points, size)):
+            apex = nearest_point_to_lines(rulings[:, 0], rulings[:, 1])
+            apex = np.where(np.abs(apex) <= 1e-12 * size, 0.0, apex)  # no −1.8e-17 in the message
+            where = ", ".join(f"{x:.6g}" for x in apex)
+            self.remark(f"The surface is a cone: every ruling passes through its apex ({where}), so it "
+                        "has an apex, not a curve of regression; Points holds the apex")
+            return [], [point(apex)]
         if not regression.has_curve:
-            raise NodeWarning(regression.message)
+            raise NodeWarning(regression.message[0].upper() + regression.message[1:])
         curves = [c for c in (piece_curve(p) for p in regression.curves) if c is not None]
         if len(curves) > 1 or not regression.valid.all():
             bad = int((~regression.valid).sum())

@@ -13,12 +13,12 @@ is accepted while
 * the gap along the normal stays within ½·tol·s², the sag of an arc bent at the
   tolerance curvature: the line hugs the surface as a ruling must;
 * the surface stays single-curved within tol at the foot point;
-* the warp along the line stays within the warp tolerance: the normals along the
-  line, measured as a signed rotation about d (a ruled surface's normal turns about
-  its ruling), spread over at most ``warp_tolerance`` radians.
+* the warp of the line stays within the warp tolerance: the angle between the lines
+  of the surface normals at its two ends (the thesis's warp angle: 0 along a ruling
+  of a developable, whose tangent plane is the same all along it).
 
-Both sides grow together, one step each per round, so a warp budget is shared
-fairly; where a side stops, its end is refined by bisection between the last
+Both sides grow together, one step each per round, so the warp budget is shared
+fairly between them; where a side stops, its end is refined by bisection between the last
 accepted and the first rejected sample, so a ruling ends on the surface's edge, not
 up to a step short of it.
 """
@@ -60,11 +60,15 @@ class Foot:
     normals: FloatArray  #: (k, 3) unit normals there
     flatness: FloatArray  #: (k,) min(|k1|, |k2|) there
     state: FloatArray  #: (k, 2) where the foot is, to start the next projection from
-    on_edge: BoolArray  #: (k,) the foot lies on the surface's boundary
+    outside: BoolArray  #: (k,) the query lies beyond the surface's boundary
 
 
 class Projector(Protocol):
-    """Projects points onto one surface, starting from a known nearby foot."""
+    """Projects points onto one surface, starting from a known nearby foot. ``slack`` is
+    the distance a line may stray from the surface for reasons of representation
+    alone (a mesh's facets), on top of rounding."""
+
+    slack: float
 
     def project(self, queries: FloatArray, state: FloatArray) -> Foot: ...
 
@@ -73,14 +77,15 @@ class SurfaceProjector:
     """Projection onto a parameterised surface by Gauss–Newton in (u, v).
 
     The parameters are clamped to [0, 1]² (wrapped across a closed direction), so a
-    query beyond an edge lands on the edge. A foot counts as ``on_edge`` when it is
-    on an open edge, or when the gap still has a tangential part (the iteration has
-    not settled: treated like leaving the surface).
+    query beyond an edge lands on the edge: the query is ``outside`` when its foot is
+    on an open edge and the gap exceeds rounding, or when the gap still has a
+    tangential part (the iteration has not settled: treated like leaving the surface).
     """
 
     def __init__(self, surface: Surface, size: float) -> None:
         self.surface = surface
         self.eps = ROUNDING * size
+        self.slack = 0.0
 
     def _limit(self, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
         s = self.surface
@@ -103,13 +108,14 @@ class SurfaceProjector:
         c = self.surface.curvature(u, v)
         gap = queries - points
         sideways = np.linalg.norm(gap - _dot(gap, c.normal)[:, None] * c.normal, axis=1)
-        edge = ~(sideways <= self.eps)
+        edge = np.zeros(len(u), dtype=bool)
         if not self.surface.closed_u:
             edge |= (u <= 0.0) | (u >= 1.0)
         if not self.surface.closed_v:
             edge |= (v <= 0.0) | (v >= 1.0)
+        outside = (edge & (np.linalg.norm(gap, axis=1) > self.eps)) | ~(sideways <= self.eps)
         return Foot(points, c.normal, np.minimum(np.abs(c.k1), np.abs(c.k2)),
-                    np.column_stack([u, v]), edge)
+                    np.column_stack([u, v]), outside)
 
 
 class MeshProjector:
@@ -117,11 +123,18 @@ class MeshProjector:
     interpolated from the vertices' (so a line crossing from facet to facet sees the
     normal turn gradually, as on the surface the mesh stands for)."""
 
-    def __init__(self, surface: MeshSurface, flatness: FloatArray) -> None:
-        """``flatness``: min(|k1|, |k2|) per vertex (signed or not)."""
+    def __init__(self, surface: MeshSurface, flatness: FloatArray, bending: FloatArray, size: float) -> None:
+        """``flatness``: min(|k1|, |k2|) per vertex (signed or not); ``bending``:
+        max(|k1|, |k2|) per vertex, which with the edge lengths sets ``slack`` to the
+        largest sag of a facet below the smooth surface it stands for (l²·|k|/8)."""
         self.surface = surface
         mesh = surface.mesh
         self.flatness = flatness
+        edges = np.asarray(mesh.edges_unique)
+        lengths = np.asarray(mesh.edges_unique_length)
+        bend = np.maximum(np.abs(bending[edges[:, 0]]), np.abs(bending[edges[:, 1]]))
+        self.slack = float(np.max(lengths**2 * np.nan_to_num(bend) / 8.0, initial=0.0))
+        self.eps = ROUNDING * size
         self.normals = np.asarray(mesh.vertex_normals, dtype=float)
         # which edges of each face are boundary edges (used by that face only)
         # mesh.edges_sorted lists each face's edges (0,1), (1,2), (2,0) in order, sorted
@@ -139,16 +152,27 @@ class MeshProjector:
         flat = np.einsum("kj,kj->k", bary, self.flatness[corner_ids])
         normals = np.einsum("kj,kjd->kd", bary, self.normals[corner_ids])
         normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-        # edge (0,1) is opposite corner 2, (1,2) opposite 0, (2,0) opposite 1
-        near = np.abs(bary[:, [2, 0, 1]]) <= 1e-9
-        edge = np.any(near & self.boundary[found.faces], axis=1)
-        return Foot(found.points, normals, np.abs(flat), state, edge)
+        # A query beyond a boundary edge has its foot on that edge and its gap pointing out
+        # across it, within the face's plane: edge (0,1) is opposite corner 2, (1,2)
+        # opposite 0, (2,0) opposite 1.
+        gap = queries - found.points
+        outside = np.zeros(len(queries), dtype=bool)
+        for edge, (a, b, c) in enumerate(((0, 1, 2), (1, 2, 0), (2, 0, 1))):
+            rows = np.flatnonzero((np.abs(bary[:, c]) <= 1e-9) & self.boundary[found.faces, edge])
+            if rows.size == 0:
+                continue
+            p, q, r = corners[rows, a], corners[rows, b], corners[rows, c]
+            along = (q - p) / np.linalg.norm(q - p, axis=1, keepdims=True)
+            out = (p - r) - _dot(p - r, along)[:, None] * along
+            out /= np.linalg.norm(out, axis=1, keepdims=True)
+            outside[rows] |= _dot(gap[rows], out) > self.eps
+        return Foot(found.points, normals, np.abs(flat), state, outside)
 
 
 @dataclass(frozen=True)
 class Traced:
-    """Rulings found from m origins: ends ``(m, 3)``, the signed spread of the normals
-    along each (its warp, rad) and the lengths of the two halves from the origin."""
+    """Rulings found from m origins: ends ``(m, 3)``, the warp of each (the angle between
+    the lines of its end normals, rad) and the lengths of the two halves from the origin."""
 
     starts: FloatArray
     ends: FloatArray
@@ -182,12 +206,13 @@ def trace_rulings(
     m = len(origins)
     d = directions / np.linalg.norm(directions, axis=1, keepdims=True)
     h = size / steps
-    eps = ROUNDING * size
+    eps = ROUNDING * size + projector.slack
     reach = np.zeros((2, m))  # accepted distance on each side
     alive = np.ones((2, m), dtype=bool)
     state = np.stack([states, states]).astype(float)
     previous = state.copy()
-    low, high = np.zeros(m), np.zeros(m)  # spread of the signed normal rotation
+    end_normals = np.stack([normals, normals]).astype(float)  # at each side's current end
+    warp = np.zeros(m)
     reject = np.full((2, m), np.nan)  # first rejected distance, for the bisection
     sides = (1.0, -1.0)
 
@@ -198,13 +223,13 @@ def trace_rulings(
         foot = projector.project(q, guess)
         gap = q - foot.points
         along = _dot(gap, foot.normals)
-        inside = ~(foot.on_edge & (np.linalg.norm(gap, axis=1) > eps))
+        inside = ~foot.outside
         hugs = np.abs(along) <= 0.5 * curvature_tolerance * s * s + eps
         flat = foot.flatness <= curvature_tolerance
-        n0 = normals[rows]
-        turn = np.arctan2(_dot(np.cross(n0, foot.normals), d[rows]), _dot(n0, foot.normals))
-        spread = np.maximum(high[rows], turn) - np.minimum(low[rows], turn)
-        ok = inside & hugs & flat & (spread <= warp_tolerance) & np.isfinite(turn)
+        other = end_normals[1 - side, rows]
+        turn = np.arctan2(np.linalg.norm(np.cross(other, foot.normals), axis=1),
+                          np.abs(_dot(other, foot.normals)))
+        ok = inside & hugs & flat & (turn <= warp_tolerance)
         return ok, foot, turn
 
     for step in range(1, steps + 1):
@@ -219,8 +244,8 @@ def trace_rulings(
             previous[side, good] = state[side, good]
             state[side, good] = foot.state[ok]
             reach[side, good] = step * h
-            low[good] = np.minimum(low[good], turn[ok])
-            high[good] = np.maximum(high[good], turn[ok])
+            end_normals[side, good] = foot.normals[ok]
+            warp[good] = turn[ok]
             alive[side, bad] = False
             reject[side, bad] = step * h
         if not alive.any():
@@ -233,17 +258,20 @@ def trace_rulings(
             continue
         lo, hi = reach[side, rows].copy(), reject[side, rows].copy()
         start = state[side, rows]
+        normal, turned = end_normals[side, rows].copy(), warp[rows].copy()
         for _ in range(BISECTIONS):
             mid = 0.5 * (lo + hi)
-            ok, _, _ = check(rows, side, mid, start)
+            ok, foot, turn = check(rows, side, mid, start)
             lo = np.where(ok, mid, lo)
             hi = np.where(ok, hi, mid)
+            normal[ok], turned[ok] = foot.normals[ok], turn[ok]
         reach[side, rows] = lo
+        end_normals[side, rows], warp[rows] = normal, turned
 
     ahead, back = reach[0], reach[1]
     starts = origins - back[:, None] * d
     ends = origins + ahead[:, None] * d
-    return Traced(starts, ends, high - low, back, ahead)
+    return Traced(starts, ends, warp, back, ahead)
 
 
 def _segment_distance(points: FloatArray, starts: FloatArray, ends: FloatArray) -> FloatArray:

@@ -125,7 +125,7 @@ def sample_mesh(m: MeshSurface, nu: int, nv: int) -> Sampled:
         states=np.zeros((len(pick), 2)),
         mesh=m.to_mesh(),
         flatness=flat,
-        projector=MeshProjector(m, flat),
+        projector=MeshProjector(m, flat, np.maximum(np.abs(c.k1), np.abs(c.k2)), size),
         size=size,
         regular=np.ones(len(pick), dtype=bool),
         seeds=np.zeros(len(pick), dtype=bool),

@@ -26,8 +26,21 @@ def _coincident(curve_a: Curve, curve_b: Curve) -> bool:
     size = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
     if size == 0.0:
         return True
+    # cheap rejection first: a sample of A far from B's dense polyline settles it
+    if _polyline_gap(a, curve_b.point_at(np.linspace(0.0, 1.0, 257))) > 1e-3 * size:
+        return False
     gap = max(curve_b.closest_point(a).distances.max(), curve_a.closest_point(b).distances.max())
     return bool(gap <= COINCIDENT * size)
+
+
+def _polyline_gap(points: np.ndarray, polyline: np.ndarray) -> float:
+    """The largest distance from ``points`` to the polyline through ``polyline`` (vectorised)."""
+    start, step = polyline[:-1], np.diff(polyline, axis=0)
+    length2 = np.maximum(np.einsum("ij,ij->i", step, step), 1e-300)
+    offset = points[:, None, :] - start[None, :, :]
+    along = np.clip(np.einsum("pkj,kj->pk", offset, step) / length2, 0.0, 1.0)
+    nearest = np.linalg.norm(offset - along[..., None] * step[None], axis=2).min(axis=1)
+    return float(nearest.max())
 
 
 def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:

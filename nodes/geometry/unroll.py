@@ -312,7 +312,7 @@ class DevelopmentMap:
         rows, cols, barys, dists = self._candidates(pts)
         tri = self.proper[cols]
         if hints2d is None:
-            score = np.zeros(len(rows))
+            score = dists
         else:
             images = np.einsum("kj,kjd->kd", barys, self.vertices2d[self.triangles[tri]])
             hints = np.asarray(hints2d, dtype=float).reshape(len(pts), -1, 2)
@@ -349,10 +349,11 @@ class DevelopmentMap:
         pts = np.vstack(polys)
         k = len(pts)
         owner = np.repeat(np.arange(len(polys)), counts)
-        rows, cols, barys, _ = self._candidates(pts)
+        rows, cols, barys, dists = self._candidates(pts)
         images = np.einsum("kj,kjd->kd", barys, self.vertices2d[self.triangles[self.proper[cols]]])
-        # without hints: the lowest-numbered triangle (candidates come sorted by row)
-        order = np.lexsort((cols, rows))
+        # without hints: the nearest triangle, then the lowest-numbered (a tie within TIE
+        # is not a tie in the plane near a cone's apex, where triangles are tiny)
+        order = np.lexsort((cols, dists, rows))
         rows, cols, images = rows[order], cols[order], images[order]
         first = np.flatnonzero(np.r_[True, rows[1:] != rows[:-1]])
         plain = images[first]

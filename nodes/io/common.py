@@ -9,7 +9,11 @@ shell would; ``~`` is expanded.
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
+
+from engine.node import NodeError
 
 #: Length of one unit in metres.
 METRES: dict[str, float] = {"mm": 0.001, "cm": 0.01, "m": 1.0, "in": 0.0254, "ft": 0.3048}
@@ -79,3 +83,16 @@ def numbered(path: Path, count: int) -> list[Path]:
         return [path]
     width = len(str(count))
     return [path.with_name(f"{path.stem}-{i:0{width}d}{path.suffix}") for i in range(1, count + 1)]
+
+
+@contextmanager
+def file_errors() -> Iterator[None]:
+    """Turn a :class:`FileFailure` (or an OS error) into a :class:`~engine.node.NodeError`:
+    a file that cannot be read or written puts the node in error with the reason."""
+    try:
+        yield
+    except FileFailure as exc:
+        raise NodeError(str(exc).rstrip(".")) from None
+    except OSError as exc:
+        where = f" {exc.filename}" if exc.filename else ""
+        raise NodeError(f"Cannot use the file{where}: {exc.strerror or exc}") from None

@@ -22,6 +22,7 @@ without their first and last knot).
 from __future__ import annotations
 
 import fnmatch
+import itertools
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -30,7 +31,7 @@ from typing import Any
 import numpy as np
 import rhino3dm as rh
 import trimesh
-from scipy.interpolate import make_interp_spline
+from scipy.interpolate import make_interp_spline, make_lsq_spline
 
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import Line, NurbsCurve, Polyline, ReversedCurve, TransformedCurve
@@ -142,8 +143,11 @@ def _ruled_form(surface: RuledSurface) -> NurbsForm:
         and np.allclose(rail_a.knots, rail_b.knots, rtol=0, atol=1e-14)
         and rail_a.domain == (0.0, 1.0) == rail_b.domain
     )
-    if not compatible:  # resample both rails on the same cubic knots
-        return _interpolated_surface(surface, ruled=True)
+    if not compatible:
+        common = _common_rails(rail_a, rail_b)
+        if common is None:  # rational rails with different weights: resample both
+            return _interpolated_surface(surface, ruled=True)
+        rail_a, rail_b = common
     net = np.stack([rail_a.control_points, rail_b.control_points], axis=1)
     weights = None
     if rail_a.is_rational or rail_b.is_rational:
@@ -152,7 +156,40 @@ def _ruled_form(surface: RuledSurface) -> NurbsForm:
     return NurbsForm(nurbs, max(a.deviation, b.deviation))
 
 
-def _interpolated_surface(surface: Surface, ruled: bool = False, start: int = 17, limit: int = 257) -> NurbsForm:
+def _common_rails(a: NurbsCurve, b: NurbsCurve) -> tuple[NurbsCurve, NurbsCurve] | None:
+    """Both polynomial rails in one spline space (the higher degree, every knot of either
+    with the multiplicity that keeps its continuity), on t in [0, 1]: exact, by a least
+    squares fit in that space (it holds both curves, so the fit reproduces them). None
+    for rational rails, or if the fit is not exact to rounding."""
+    if a.is_rational or b.is_rational:
+        return None
+    degree = max(a.degree, b.degree)
+    multiplicity: dict[float, int] = {}
+    for rail in (a, b):
+        lo, hi = rail.domain
+        inside = (rail.knots[rail.degree + 1 : len(rail.control_points)] - lo) / (hi - lo)
+        values, counts = np.unique(np.round(inside, 14), return_counts=True)
+        for value, count in zip(values.tolist(), counts.tolist(), strict=True):
+            need = count + degree - rail.degree
+            multiplicity[value] = max(multiplicity.get(value, 0), need)
+    interior = [k for k, m in sorted(multiplicity.items()) for _ in range(min(m, degree))]
+    knots = np.concatenate([np.zeros(degree + 1), interior, np.ones(degree + 1)])
+    breaks = np.unique(knots)
+    spans = itertools.pairwise(breaks)
+    t = np.unique(np.concatenate([np.linspace(lo, hi, 2 * degree + 3) for lo, hi in spans]))
+    rails = []
+    for rail in (a, b):
+        points = rail.point_at(t)
+        spline = make_lsq_spline(t, points, knots, degree)
+        if np.abs(spline(t) - points).max() > 1e-12 * _size(points):
+            return None
+        rails.append(NurbsCurve.from_arrays(spline.c, knots, degree))
+    return rails[0], rails[1]
+
+
+def _interpolated_surface(
+    surface: Surface, ruled: bool = False, start: int = 17, limit: int = 257
+) -> NurbsForm:
     """Cubic interpolation on an evenly spaced (u, v) grid (linear in v when ``ruled``)."""
     count = start
     while True:
@@ -234,7 +271,8 @@ def kernel_curve(curve: rh.Curve, scale: float = 1.0) -> Curve:
     nurbs = curve if isinstance(curve, rh.NurbsCurve) else curve.ToNurbsCurve()
     if nurbs is None:
         raise FileFailure(f"A {type(curve).__name__} has no NURBS form")
-    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in (nurbs.Points[i] for i in range(len(nurbs.Points)))])
+    cells = [nurbs.Points[i] for i in range(len(nurbs.Points))]
+    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in cells])
     weights = homogeneous[:, 3]
     points = homogeneous[:, :3] / weights[:, None] * scale
     knots = _full_knots(nurbs.Knots.ToList())
@@ -457,3 +495,28 @@ def write_3dm(
     if not model.Write(str(path), RHINO_VERSION):
         raise FileFailure(f"Cannot write {path}: rhino3dm refused (is the folder writable?)")
     return Written(path, count, deviation)
+
+
+def tree_entries(
+    tree: Any, layer: str, kind: str, names: Sequence[str] | None = None, name_key: str = ""
+) -> list[Entry]:
+    """The items of a data tree as entries on ``layer``, named ``kind 1``, ``kind 2`` … (or by
+    ``names``, also stored as the user string ``name_key``), each with its tree path and
+    index as the user strings ``TorsalPath`` and ``TorsalIndex``. Empty items are skipped."""
+    from engine.datatree import format_path
+
+    entries = []
+    number = 0
+    for path, items in tree.items():
+        for index, item in enumerate(items):
+            if item is None:
+                continue
+            strings = [("TorsalPath", format_path(path)), ("TorsalIndex", str(index))]
+            name = f"{kind} {number + 1}"
+            if names is not None and number < len(names) and names[number] is not None:
+                name = str(names[number])
+                if name_key:
+                    strings.append((name_key, name))
+            entries.append(Entry(item, layer, name, tuple(strings)))
+            number += 1
+    return entries

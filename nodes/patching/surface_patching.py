@@ -58,8 +58,8 @@ class SurfacePatching(Node):
     the development's bounding rectangle, starting at its lower-left corner; each
     panel is clipped to the development's outline (a panel cut in two becomes two
     panels). PanelsFlat are the outlines to cut from flat sheet; Panels3D the same
-    panels on the surface, with a vertex wherever an outline crosses a ruling, so
-    they follow the surface. A point of a flat panel and its 3D image correspond
+    panels on the surface, with a vertex wherever an outline crosses a ruling or a
+    strip diagonal, so they follow the surface. A point of a flat panel and its 3D image correspond
     exactly (the development is an isometry of the triangulated strip), so the 3D
     panels map back onto the flat ones.
 

@@ -75,6 +75,8 @@ def make_window(qtbot: Any, registry: Registry, folder: Path) -> MainWindow:
     window.resize(1500, 920)
     window.show()
     qtbot.waitExposed(window)
+    window.activateWindow()  # keyboard shortcuts need the active window
+    qtbot.waitActive(window)
     window.start(None, offer_recovery=False)
     return window
 

@@ -20,12 +20,13 @@ def _z(x: np.ndarray) -> np.ndarray:
     return np.zeros_like(x)
 
 
-def hypar(size: float = 1.0) -> ParametricSurface:
-    """z = x·y over [−size, size]²: K = −1/(1 + x² + y²)²."""
+def hypar(size: float = 1.0, rise: float = 1.0) -> ParametricSurface:
+    """z = rise·x·y over [−size, size]²: for rise 1, K = −1/(1 + x² + y²)²."""
+    e = rise
     return ParametricSurface(
-        lambda x, y: (x, y, x * y), (-size, size), (-size, size),
-        first_derivatives=lambda x, y: ((1 + _z(x), _z(x), y), (_z(x), 1 + _z(x), x)),
-        second_derivatives=lambda x, y: ((_z(x),) * 3, (_z(x), _z(x), 1 + _z(x)), (_z(x),) * 3),
+        lambda x, y: (x, y, e * x * y), (-size, size), (-size, size),
+        first_derivatives=lambda x, y: ((1 + _z(x), _z(x), e * y), (_z(x), 1 + _z(x), e * x)),
+        second_derivatives=lambda x, y: ((_z(x),) * 3, (_z(x), _z(x), e + _z(x)), (_z(x),) * 3),
     )
 
 

@@ -72,10 +72,14 @@ def test_only_rulings_nearer_than_height_are_clamped_at_the_apex():
     assert np.abs(np.linalg.norm(r[~clamped, 1] - r[~clamped, 0], axis=1) - 5.0).max() < 1e-12
 
 
-def test_full_cone_on_a_circle_has_the_area_pi_r_l():
+def test_full_cone_surface_on_a_circle_lies_on_the_exact_cone():
+    # radius 3 at z = 0, apex 4 above the centre: at height z the radius is 3·(1 − z/4)
     chain = on_circle(Apex=Point(0.0, 0.0, 4.0), Height=10.0, Segments=96)
     surface = chain.item("cone", "Surface")
-    assert surface.area() == pytest.approx(math.pi * 3.0 * 5.0, rel=1e-6)
+    u, v = np.random.default_rng(1).random((2, 500))
+    p = surface.point_at(u, v)
+    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 3.0 * (1 - p[:, 2] / 4.0)).max() < 1e-6
+    assert np.abs(p[:, 2] - 4.0 * v).max() < 1e-14
 
 
 def test_negative_height_runs_the_rulings_away_from_the_apex():

@@ -72,9 +72,12 @@ def test_closed_curve_gives_a_closed_surface_whose_last_ruling_repeats_the_first
     assert surface.closed_u
 
 
-def test_cylinder_on_a_circle_has_the_area_2_pi_r_h():
+def test_cylinder_surface_on_a_circle_lies_on_the_exact_cylinder():
     surface = on_circle(radius=2.0, Height=3.0, Segments=96).item("cyl", "Surface")
-    assert surface.area() == pytest.approx(2 * math.pi * 2.0 * 3.0, rel=1e-6)
+    u, v = np.random.default_rng(1).random((2, 500))
+    p = surface.point_at(u, v)
+    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 2.0).max() < 1e-6
+    assert np.abs(p[:, 2] - 3.0 * v).max() < 1e-14
 
 
 def test_cylinder_surface_isocurves_are_the_rulings():

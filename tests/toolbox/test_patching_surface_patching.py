@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pytest
 
+from engine.graph import GraphError
 from engine.values import Point, Vector
 from nodes.analysis.iso_mapping import IsoMapping
 from nodes.curves.primitives import Circle, Line
@@ -231,3 +232,9 @@ def test_an_open_pattern_curve_warns(cone):
     chain = sourced(cone.item("iso", "Map"), [KernelLine([0, 0, 0], [1, 0, 0])])
     assert chain.result("patch").state == "warning"
     assert chain.texts("patch") == ["Pattern curve 0 is open: a panel outline must be a closed curve"]
+
+
+def test_the_flat_development_surface_cannot_be_wired_where_the_map_belongs(cone):
+    # IsoMapping's Development output is the flat surface; SurfacePatching needs its Map
+    with pytest.raises(GraphError, match=r"gives Surface, which .*Development \(Development\) cannot take"):
+        cone.wire("iso", "Development", "patch", "Development")

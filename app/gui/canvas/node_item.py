@@ -152,7 +152,8 @@ class NodeItem(QGraphicsItem):
         return (self.layout.width, self.layout.height)
 
     # -- tooltips --------------------------------------------------------------------
-    def _tooltip(self) -> str:
+    def tooltip(self) -> str:
+        """Title, type, id, state and time, every message (the message balloon), preview."""
         record = self.record
         lines = [f"<b>{_escape(record.title)}</b> &nbsp;<i>{record.type_id}</i> &nbsp;[{record.id}]"]
         if self.result is not None:
@@ -322,7 +323,7 @@ class NodeItem(QGraphicsItem):
         super().mouseDoubleClickEvent(event)
 
     def hoverEnterEvent(self, event: QGraphicsSceneHoverEvent) -> None:
-        self.setToolTip(self._tooltip())
+        self.setToolTip(self.tooltip())
         super().hoverEnterEvent(event)
 
 

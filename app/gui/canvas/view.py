@@ -76,14 +76,20 @@ class CanvasView(QGraphicsView):
         """Zoom by ``factor`` keeping the scene point under ``anchor`` (view coordinates) still."""
         target = min(ZOOM_RANGE[1], max(ZOOM_RANGE[0], self.zoom() * factor))
         factor = target / self.zoom()
-        if anchor is None:
-            self.scale(factor, factor)
-            return
+        anchor = anchor if anchor is not None else self.viewport().rect().center()
         before = self.mapToScene(anchor)
+        mode = self.transformationAnchor()
+        self.setTransformationAnchor(QGraphicsView.ViewportAnchor.NoAnchor)
         self.scale(factor, factor)
-        after = self.mapToScene(anchor)
-        delta = after - before
-        self.translate(delta.x(), delta.y())
+        self.setTransformationAnchor(mode)
+        drift = self.mapToScene(anchor) - before
+        self.pan_by(QPointF(drift.x() * self.zoom(), drift.y() * self.zoom()))
+
+    def pan_by(self, delta: QPointF) -> None:
+        """Move the view's content by ``delta`` view pixels (the scroll bars are hidden, not gone)."""
+        horizontal, vertical = self.horizontalScrollBar(), self.verticalScrollBar()
+        horizontal.setValue(round(horizontal.value() - delta.x()))
+        vertical.setValue(round(vertical.value() - delta.y()))
 
     def zoom_to_fit(self) -> None:
         rect = self.canvas.items_rect()
@@ -165,8 +171,7 @@ class CanvasView(QGraphicsView):
             if self._panned or delta.manhattanLength() > PAN_THRESHOLD:
                 self._panned = True
                 self._pan_start = pos
-                scale = self.zoom()
-                self.translate(delta.x() / scale, delta.y() / scale)
+                self.pan_by(QPointF(delta))
             event.accept()
             return
         if self._drag_wire is not None:

@@ -1,0 +1,475 @@
+"""Cut sheets for lasers and routers: flat panels checked, laid out on sheets, written out.
+
+:func:`lay_out` turns closed flat outlines (model units) into a :class:`CutLayout` in
+millimetres: every outline is checked (:func:`panel_outline`, :func:`check_panels`),
+turned so its minimum-area rectangle is axis-aligned (unless ``rotate`` is off), grown
+by half the kerf (mitre joins, :func:`~nodes.geometry.offset2d.offset_polygon`) and
+placed by first-fit decreasing-height *shelf* packing
+(:func:`~nodes.geometry.packing.shelf_pack`) with ``gap`` between parts and from the
+sheet's edges. Each panel's ID is engraved inside it as text outlines.
+
+:func:`write_cut_files` writes one file per sheet (``name.dxf`` for one sheet,
+``name-1.dxf``, ``name-2.dxf`` … for several), by the file's extension:
+
+- **DXF** (ezdxf, AutoCAD 2010 / R2010, ``$INSUNITS`` = 4, millimetres): one closed
+  LWPOLYLINE per cut contour on layer ``CUT`` (red), carrying the panel ID as XDATA
+  of the application ``TORSAL``; the ID's letter outlines as closed LWPOLYLINEs on layer
+  ``ENGRAVE``; the drawing limits are the sheet.
+- **SVG**: ``width``/``height`` in mm with a matching ``viewBox`` (1 user unit = 1 mm,
+  y pointing down as SVG wants), no fill, hairline (0.01 mm) red cut paths and black
+  engraving paths.
+
+Text outlines come from ezdxf's TrueType renderer (``ezdxf.fonts.ttfonts``) drawing
+DejaVu Sans — the font file matplotlib ships, so no system font is needed (ezdxf
+itself bundles no TrueType font) — flattened to 1/1000 of the cap height.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+from typing import Any
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+from shapely.ops import polylabel
+from shapely.validation import explain_validity
+
+from nodes.geometry.curve_base import Curve
+from nodes.geometry.curves import NurbsCurve, Polyline
+from nodes.geometry.offset2d import offset_polygon
+from nodes.geometry.packing import DoesNotFit, shelf_pack
+from nodes.io.common import FileFailure, numbered, unit_scale, writable
+
+FloatArray = NDArray[np.float64]
+
+#: Chord tolerance (mm) for curved outlines.
+FLATTEN_MM = 0.01
+#: Flatness (mm): an outline that leaves its best-fit plane by more is refused.
+FLAT_MM = 0.01
+#: Space between sheets (mm) where sheets are shown side by side (previews, .3dm).
+SHEET_SPACING_MM = 100.0
+#: Smallest engraving (cap height, mm) tried before a label is declared not to fit.
+SMALLEST_TEXT_MM = 2.0
+#: Stroke width of SVG paths (mm): a hairline to laser drivers.
+HAIRLINE_MM = 0.01
+
+CUT, ENGRAVE = "CUT", "ENGRAVE"
+SUFFIXES = (".dxf", ".svg")
+
+
+class PanelProblem(FileFailure):
+    """A panel the pre-export check refuses; the message names it."""
+
+
+@dataclass(frozen=True)
+class Part:
+    """One panel placed on a sheet; coordinates in mm on that sheet."""
+
+    id: str
+    sheet: int  #: 0-based sheet number
+    outline: FloatArray  #: (n, 2) the cut contour (the panel grown by half the kerf), counter-clockwise
+    panel: FloatArray  #: (n, 2) the panel as drawn, where it is cut out
+    label: tuple[FloatArray, ...]  #: closed letter outlines of the ID, (m, 2) each
+    text_height: float  #: cap height of the label, mm (0 without a label)
+
+
+@dataclass(frozen=True)
+class CutLayout:
+    """Panels laid out on sheets of ``width`` × ``height`` mm, ready to write."""
+
+    width: float
+    height: float
+    gap: float
+    kerf: float
+    parts: tuple[Part, ...]
+    sheets: int
+    model_units: str = "m"
+    notes: tuple[str, ...] = ()  #: things worth telling (labels that did not fit ...)
+
+    def on_sheet(self, sheet: int) -> list[Part]:
+        return [p for p in self.parts if p.sheet == sheet]
+
+    @property
+    def usage(self) -> float:
+        """Share of the sheets' area that ends up in the panels (0 to 1)."""
+        if not self.sheets:
+            return 0.0
+        area = sum(abs(_signed_area(p.panel)) for p in self.parts)
+        return area / (self.sheets * self.width * self.height)
+
+    def offset(self, sheet: int) -> float:
+        """Where sheet ``sheet`` starts along X when the sheets are shown side by side (mm)."""
+        return sheet * (self.width + SHEET_SPACING_MM)
+
+    def __repr__(self) -> str:
+        return (
+            f"CutLayout({len(self.parts)} panels on {self.sheets} sheets of "
+            f"{self.width:g} × {self.height:g} mm)"
+        )
+
+
+# ------------------------------------------------------------------ outlines and checks
+
+
+def _signed_area(points: FloatArray) -> float:
+    x, y = points[:, 0], points[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def _vertices(curve: Curve, tolerance: float) -> FloatArray:
+    """The outline's points, exact for polylines and degree-1 NURBS, else within ``tolerance``."""
+    if isinstance(curve, Polyline):
+        return np.asarray(curve.points, dtype=float)
+    if isinstance(curve, NurbsCurve) and curve.degree == 1 and not curve.is_rational:
+        return np.asarray(curve.control_points, dtype=float)
+    return np.asarray(curve.to_polyline(tolerance).points, dtype=float)
+
+
+def panel_outline(curve: Curve, scale: float) -> FloatArray:
+    """A closed flat curve (model units) as an ``(n, 2)`` polygon in mm, counter-clockwise.
+
+    Outlines in the XY plane keep their x and y; a flat outline in another plane is laid
+    into XY by its best-fit plane. Raises ValueError (a sentence about "it") when the
+    outline is open or not flat.
+    """
+    if not curve.closed:
+        gap = float(np.linalg.norm(curve.end - curve.start)) * scale
+        raise ValueError(f"is open: its ends are {gap:.3g} mm apart")
+    points = _vertices(curve, FLATTEN_MM / scale) * scale
+    if np.array_equal(points[0], points[-1]):
+        points = points[:-1]
+    keep = np.concatenate([[True], np.any(np.diff(points, axis=0) != 0, axis=1)])
+    points = points[keep]
+    if len(points) < 3:
+        raise ValueError("has fewer than three distinct corners, so it encloses nothing")
+    if np.ptp(points[:, 2]) > FLAT_MM:
+        centre = points.mean(axis=0)
+        _, _, axes = np.linalg.svd(points - centre)
+        bend = float(np.abs((points - centre) @ axes[2]).max())
+        if bend > FLAT_MM:
+            raise ValueError(f"is not flat: it leaves its plane by {bend:.3g} mm")
+        flat = (points - centre) @ axes[:2].T
+    else:
+        flat = points[:, :2].copy()
+    return flat[::-1] if _signed_area(flat) < 0 else flat
+
+
+def check_panels(outlines: Sequence[FloatArray], ids: Sequence[str]) -> None:
+    """Refuse outlines that cross themselves, repeated IDs and panels given twice."""
+    for outline, name in zip(outlines, ids, strict=True):
+        polygon = shapely.Polygon(outline)
+        if not polygon.is_valid:
+            reason = explain_validity(polygon)
+            where = reason[reason.find("[") :] if "[" in reason else ""
+            raise PanelProblem(f"Panel {name}'s outline crosses or touches itself {where} mm".rstrip())
+        if not polygon.area > 0:
+            raise PanelProblem(f"Panel {name} encloses no area")
+    seen: dict[str, int] = {}
+    for i, name in enumerate(ids):
+        if name in seen:
+            raise PanelProblem(f"Panels {seen[name] + 1} and {i + 1} are both called {name}: IDs must differ")
+        seen[name] = i
+    groups: dict[tuple[int, int, int], list[int]] = {}
+    for i, outline in enumerate(outlines):
+        polygon = shapely.Polygon(outline)
+        size = math.sqrt(polygon.area)
+        step = 1e-6 * size
+        x, y = polygon.centroid.coords[0]
+        key = (round(polygon.area / size / step), round(x / step), round(y / step))
+        groups.setdefault(key, []).append(i)
+    for members in groups.values():
+        for a, b in itertools.pairwise(members):
+            first, second = shapely.Polygon(outlines[a]), shapely.Polygon(outlines[b])
+            if first.symmetric_difference(second).area <= 1e-9 * first.area:
+                raise PanelProblem(
+                    f"Panels {ids[a]} and {ids[b]} are the same outline in the same place "
+                    "(a panel given twice)"
+                )
+
+
+# ------------------------------------------------------------------ labels
+
+
+@cache
+def _font():  # type: ignore[no-untyped-def]
+    import matplotlib
+    from ezdxf.fonts.ttfonts import TTFontRenderer
+    from fontTools.ttLib import TTFont
+
+    return TTFontRenderer(TTFont(Path(matplotlib.get_data_path()) / "fonts" / "ttf" / "DejaVuSans.ttf"))
+
+
+@cache
+def text_outlines(text: str) -> tuple[FloatArray, ...]:
+    """Closed letter outlines of ``text`` at cap height 1, baseline on y = 0, from x = 0."""
+    contours = []
+    for glyph in _font().get_text_glyph_paths(text, cap_height=1.0):
+        for sub in glyph.sub_paths():
+            points = np.array([(v.x, v.y) for v in sub.flattening(distance=1e-3)], dtype=float)
+            if len(points) > 1 and np.array_equal(points[0], points[-1]):
+                points = points[:-1]
+            if len(points) >= 3:
+                contours.append(points)
+    return tuple(contours)
+
+
+def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[FloatArray, ...], float]:
+    """The ID's outlines centred at the panel's pole of inaccessibility, as large as
+    ``height`` (cap height, mm) allows while staying inside the panel; (), 0 when even
+    :data:`SMALLEST_TEXT_MM` does not fit."""
+    glyphs = text_outlines(text)
+    if not glyphs or height <= 0:
+        return (), 0.0
+    every = np.vstack(glyphs)
+    low, high = every.min(axis=0), every.max(axis=0)
+    polygon = shapely.Polygon(panel)
+    centre = np.asarray(polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area))).coords[0])
+    size = float(height)
+    while size >= SMALLEST_TEXT_MM:
+        corner = centre - (low + high) / 2 * size
+        box = shapely.box(*(corner + low * size), *(corner + high * size))
+        if polygon.contains(box.buffer(0.1 * size)):
+            return tuple(g * size + corner for g in glyphs), size
+        size *= 0.8
+    return (), 0.0
+
+
+# ------------------------------------------------------------------ layout
+
+
+def _turn(points: FloatArray, angle: float) -> FloatArray:
+    c, s = math.cos(angle), math.sin(angle)
+    return points @ np.array([[c, s], [-s, c]])
+
+
+def _long_side_angle(points: FloatArray) -> float:
+    rectangle = np.asarray(shapely.Polygon(points).minimum_rotated_rectangle.exterior.coords)[:3]
+    edges = np.diff(rectangle, axis=0)
+    longest = edges[int(np.argmax(np.linalg.norm(edges, axis=1)))]
+    return math.atan2(longest[1], longest[0])
+
+
+def _turn_angle(outline: FloatArray, kerf: float, width: float, height: float, rotate: bool) -> float:
+    """The turn that lays the outline's minimum-area rectangle along the sheet's long
+    side (or across it, when only that fits); 0 when ``rotate`` is off."""
+    if not rotate:
+        return 0.0
+    angle = -_long_side_angle(outline) + (math.pi / 2 if height > width else 0.0)
+    for candidate in (angle, angle + math.pi / 2):
+        cut = _grow(_turn(outline, candidate), kerf)
+        if np.all(np.ptp(cut, axis=0) <= (width, height)):
+            return candidate
+    return angle
+
+
+def _grow(outline: FloatArray, kerf: float) -> FloatArray:
+    return offset_polygon(outline, kerf / 2) if kerf else outline
+
+
+def lay_out(
+    curves: Sequence[Curve],
+    ids: Sequence[str] | None = None,
+    width: float = 2500.0,
+    height: float = 1250.0,
+    gap: float = 10.0,
+    kerf: float = 0.0,
+    text_height: float = 10.0,
+    rotate: bool = True,
+    units: str = "m",
+) -> CutLayout:
+    """Check the panels and place them on as many sheets as they need (see the module)."""
+    for name, value in (("Sheet width", width), ("Sheet height", height)):
+        if not (math.isfinite(value) and value > 0):
+            raise FileFailure(f"{name} must be a positive length in mm, not {value:g}")
+    if not (math.isfinite(gap) and gap >= 0):
+        raise FileFailure(f"Gap must be zero or a positive length in mm, not {gap:g}")
+    if not (math.isfinite(kerf) and kerf >= 0):
+        raise FileFailure(f"Kerf must be zero or a positive width in mm, not {kerf:g}")
+    if 2 * gap >= min(width, height):
+        raise FileFailure(
+            f"A gap of {gap:g} mm on each side leaves no room on a {width:g} × {height:g} mm sheet"
+        )
+    if not curves:
+        raise FileFailure("There are no panels to lay out")
+    names = [f"P-{i:03d}" for i in range(1, len(curves) + 1)] if ids is None else [str(i) for i in ids]
+    if len(names) != len(curves):
+        raise PanelProblem(
+            f"There are {len(names)} panel IDs for {len(curves)} panels: give one ID per panel"
+        )
+    scale = unit_scale(units, "mm")
+    outlines = []
+    for curve, name in zip(curves, names, strict=True):
+        if curve is None:
+            raise PanelProblem(f"Panel {name} is empty (null)")
+        try:
+            outlines.append(panel_outline(curve, scale))
+        except ValueError as exc:
+            raise PanelProblem(f"Panel {name} {exc}") from None
+    check_panels(outlines, names)
+
+    room_w, room_h = width - 2 * gap, height - 2 * gap
+    cuts, drawn, boxes = [], [], []
+    for outline, name in zip(outlines, names, strict=True):
+        panel = _turn(outline, _turn_angle(outline, kerf, room_w, room_h, rotate))
+        cut = _grow(panel, kerf)
+        low, high = cut.min(axis=0), cut.max(axis=0)
+        if np.any(high - low > (room_w, room_h)):
+            w, h = high - low
+            raise PanelProblem(
+                f"Panel {name} is {w:.1f} × {h:.1f} mm{' with its kerf' if kerf else ''}, larger than the "
+                f"{width:g} × {height:g} mm sheet less the {gap:g} mm gap on each side"
+            )
+        cuts.append(cut - low)
+        drawn.append(panel - low)
+        boxes.append(high - low)
+    try:
+        sheet_of, corners = shelf_pack(np.array(boxes), (width, height), gap)
+    except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
+        raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
+    parts, notes = [], []
+    for i, name in enumerate(names):
+        panel = drawn[i] + corners[i]
+        label, size = place_label(name, panel, text_height)
+        if text_height > 0 and not label:
+            notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: not engraved")
+        parts.append(Part(name, int(sheet_of[i]), cuts[i] + corners[i], panel, label, size))
+    return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes))
+
+
+# ------------------------------------------------------------------ writers
+
+
+def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
+    """One DXF R2010 file per sheet (see the module); returns the files written."""
+    import ezdxf
+    from ezdxf import units
+
+    files = numbered(writable(path), layout.sheets)
+    for sheet, file in enumerate(files):
+        doc = ezdxf.new("R2010", units=units.MM)
+        doc.header["$MEASUREMENT"] = 1
+        doc.header["$LIMMIN"] = (0.0, 0.0)
+        doc.header["$LIMMAX"] = (layout.width, layout.height)
+        doc.layers.add(CUT, color=1)
+        doc.layers.add(ENGRAVE, color=7)
+        doc.appids.add("TORSAL")
+        space = doc.modelspace()
+        space.dxf_layout.dxf.limmin = (0.0, 0.0)  # saving syncs the header from the layout
+        space.dxf_layout.dxf.limmax = (layout.width, layout.height)
+        for part in layout.on_sheet(sheet):
+            contour = space.add_lwpolyline(part.outline.tolist(), close=True, dxfattribs={"layer": CUT})
+            contour.set_xdata("TORSAL", [(1000, part.id)])
+            for glyph in part.label:
+                space.add_lwpolyline(glyph.tolist(), close=True, dxfattribs={"layer": ENGRAVE})
+        try:
+            doc.saveas(file)
+        except OSError as exc:
+            raise FileFailure(f"Cannot write {file}: {exc.strerror or exc}") from None
+    return files
+
+
+def _svg_path(points: FloatArray, height: float) -> str:
+    flipped = np.column_stack([points[:, 0], height - points[:, 1]])
+    coords = " ".join(f"{x:.6f},{y:.6f}" for x, y in flipped.tolist())
+    return f"M {coords} Z"
+
+
+def svg_text(layout: CutLayout, sheet: int) -> str:
+    """The SVG document of one sheet."""
+    w, h = layout.width, layout.height
+    lines = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w:g}mm" height="{h:g}mm" '
+        f'viewBox="0 0 {w:g} {h:g}">',
+        f"  <title>Torsal cut sheet {sheet + 1} of {layout.sheets}</title>",
+        f'  <g id="{CUT}" fill="none" stroke="#ff0000" stroke-width="{HAIRLINE_MM:g}">',
+    ]
+    parts = layout.on_sheet(sheet)
+    for part in parts:
+        lines.append(f'    <path data-panel={quoteattr(part.id)} d="{_svg_path(part.outline, h)}"/>')
+    lines.append("  </g>")
+    lines.append(f'  <g id="{ENGRAVE}" fill="none" stroke="#000000" stroke-width="{HAIRLINE_MM:g}">')
+    for part in parts:
+        if part.label:
+            d = " ".join(_svg_path(g, h) for g in part.label)
+            lines.append(f'    <path data-panel={quoteattr(part.id)} d="{d}"/>')
+    lines += ["  </g>", "</svg>", ""]
+    return "\n".join(lines)
+
+
+def write_svg(layout: CutLayout, path: Path) -> list[Path]:
+    """One SVG file per sheet (see the module); returns the files written."""
+    files = numbered(writable(path), layout.sheets)
+    for sheet, file in enumerate(files):
+        try:
+            file.write_text(svg_text(layout, sheet), encoding="utf-8")
+        except OSError as exc:
+            raise FileFailure(f"Cannot write {file}: {exc.strerror or exc}") from None
+    return files
+
+
+def write_cut_files(layout: CutLayout, path: Path) -> list[Path]:
+    """DXF or SVG by ``path``'s extension, one file per sheet."""
+    suffix = path.suffix.lower()
+    if suffix == ".dxf":
+        return write_dxf(layout, path)
+    if suffix == ".svg":
+        return write_svg(layout, path)
+    raise FileFailure(f"A cut sheet is written as .dxf or .svg, not {suffix or 'a file without extension'}")
+
+
+def sheet_outlines(layout: CutLayout, scale: float = 1.0) -> list[Polyline]:
+    """The sheets as closed rectangles side by side along X, lengths multiplied by ``scale``."""
+    out = []
+    for sheet in range(layout.sheets):
+        x = layout.offset(sheet)
+        corners = np.array([[x, 0, 0], [x + layout.width, 0, 0], [x + layout.width, layout.height, 0],
+                            [x, layout.height, 0]])
+        out.append(Polyline(corners * scale, closed=True))
+    return out
+
+
+def placed_curves(layout: CutLayout, which: str = "outline", scale: float = 1.0) -> list[Polyline]:
+    """Each part's cut contour (``"outline"``), drawn panel (``"panel"``) as closed
+    polylines at the sheets' side-by-side positions, lengths multiplied by ``scale``."""
+    out = []
+    for part in layout.parts:
+        points = getattr(part, which) + np.array([layout.offset(part.sheet), 0.0])
+        out.append(Polyline(np.column_stack([points, np.zeros(len(points))]) * scale, closed=True))
+    return out
+
+
+def label_curves(layout: CutLayout, scale: float = 1.0) -> list[list[Polyline]]:
+    """Each part's engraved letter outlines, placed as :func:`placed_curves` places them."""
+    out = []
+    for part in layout.parts:
+        shift = (layout.offset(part.sheet), 0.0)
+        out.append([
+            Polyline(np.column_stack([g + shift, np.zeros(len(g))]) * scale, closed=True) for g in part.label
+        ])
+    return out
+
+
+def layout_entries(layout: CutLayout) -> list[Any]:
+    """The layout as .3dm entries (mm): sheets side by side on ``Sheets``, cut contours on
+    ``CUT`` named by panel ID (user strings ``PanelID`` and ``Sheet``), letters on ``ENGRAVE``."""
+    from nodes.io.threedm import Entry
+
+    sheets = sheet_outlines(layout)
+    entries = [Entry(rectangle, "Sheets", f"Sheet {i + 1}") for i, rectangle in enumerate(sheets)]
+    for part, contour, letters in zip(layout.parts, placed_curves(layout), label_curves(layout), strict=True):
+        strings = (("PanelID", part.id), ("Sheet", str(part.sheet + 1)))
+        entries.append(Entry(contour, CUT, part.id, strings))
+        entries.extend(Entry(letter, ENGRAVE, f"{part.id} label", strings) for letter in letters)
+    return entries
+
+
+#: Layer colours (red cuts, black engraving, grey sheets) for .3dm files of a layout.
+LAYOUT_COLOURS = {CUT: (255, 0, 0, 255), ENGRAVE: (0, 0, 0, 255), "Sheets": (150, 150, 150, 255)}

@@ -1,0 +1,68 @@
+"""Mesh files: ImportMesh and ExportMesh for OBJ, STL, PLY and GLB (through trimesh)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from engine.datatree import DataTree
+from engine.node import TREE, In, Node, Out
+from engine.types import BOOLEAN, TEXT
+from nodes.io import meshfiles
+from nodes.io.common import file_errors, resolve, unit_name
+from nodes.types import MESH
+
+
+class ImportMesh(Node):
+    """A triangle mesh from an OBJ, STL, PLY or GLB file, e.g. a scan to analyse.
+
+    The mesh comes in as one (a GLB scene's meshes joined where its transforms put
+    them), vertices as in the file: not merged, not repaired. OBJ, STL and PLY have no
+    units, so their numbers are read as FileUnits (empty: the model's Units); GLB is
+    in metres by definition. Wire the mesh into MeshSurface to analyse it. A relative
+    Path starts from the working directory.
+    """
+
+    type_id = "io.ImportMesh"
+    inputs = (
+        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to read."),
+        In("FileUnits", TEXT, "Fu", "Units of the file's numbers (empty: the model's; GLB: always m).",
+           default=""),
+        In("Units", TEXT, "U", "The graph's model units (mm, cm, m, in, ft).", default="m"),
+    )
+    outputs = (Out("Mesh", MESH, "M", "The triangles, in model units."),)
+
+    def solve(self, path: Any, file_units: Any, units: Any) -> Any:
+        with file_errors():
+            return meshfiles.read_mesh(resolve(path), unit_name(units), str(file_units or "") or None)
+
+
+class ExportMesh(Node):
+    """Write meshes to an OBJ, STL, PLY or GLB file (by Path's extension), e.g. for a renderer.
+
+    Every mesh wired in is written as one mesh; surfaces wired in are meshed on a
+    33 × 33 grid. Numbers are written in FileUnits (empty: the model's Units), except
+    GLB, which is always in metres. OBJ keeps 15 digits, STL, PLY and GLB single
+    precision. Nothing is written until Write is true; a relative Path starts from
+    the working directory.
+    """
+
+    type_id = "io.ExportMesh"
+    inputs = (
+        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write."),
+        In("Meshes", MESH, "M", "The meshes to write, in model units.", access=TREE),
+        In("FileUnits", TEXT, "Fu", "Units to write in (empty: the model's; GLB: always m).", default=""),
+        In("Units", TEXT, "U", "The graph's model units (mm, cm, m, in, ft).", default="m"),
+        In("Write", BOOLEAN, "W", "Set to true to write the file; while false nothing is written.",
+           default=False),
+    )
+    outputs = (Out("Path", TEXT, "P", "The file written, as an absolute path (empty while Write is false)."),)
+
+    def solve(self, path: Any, meshes: DataTree, file_units: Any, units: Any, write: Any) -> Any:
+        items = [m for m in meshes.all_items() if m is not None]
+        with file_errors():
+            model_units = unit_name(units)
+            if not write:
+                self.remark("Write is false: nothing written")
+                return None
+            target = meshfiles.write_mesh(items, resolve(path), model_units, str(file_units or "") or None)
+        return str(target)
