@@ -9,9 +9,9 @@ the io nodes (:mod:`nodes.io`), so a file exported headless is the file the node
   the file, as ``io.Export3dm`` writes it; an ``io.ExportCutSheet`` Layout is written
   in mm with its sheets side by side (layers CUT, ENGRAVE, Sheets).
 - ``.dxf`` / ``.svg`` — an ``io.ExportCutSheet`` Layout as laid out there; or closed
-  flat curves, laid out with the node's defaults (2500 × 1250 mm sheets, 10 mm gap,
-  no kerf, IDs P-001 … in tree order). One file per sheet (``name-1.dxf`` … when
-  there are several).
+  flat curves or flat surfaces (their boundaries), laid out with the node's defaults
+  (2500 × 1250 mm sheets, 10 mm gap, no kerf, IDs P-001 … in tree order). One file
+  per sheet (``name-1.dxf`` … when there are several).
 - ``.obj`` / ``.stl`` / ``.ply`` / ``.glb`` — meshes and surfaces (meshed 33 × 33),
   as ``io.ExportMesh`` writes them.
 
@@ -85,17 +85,18 @@ def _export_3dm(tree: DataTree, path: Path, units: str) -> Path:
 
 def _layout(tree: DataTree, suffix: str, units: str) -> Any:
     from nodes.geometry.curve_base import Curve
+    from nodes.geometry.surface_base import Surface
     from nodes.io import cutfiles
 
     items = _items(tree)
     layouts = [item for item in items if isinstance(item, cutfiles.CutLayout)]
     if len(layouts) == 1 and len(items) == 1:
         return layouts[0]
-    if items and all(isinstance(item, Curve) for item in items):
+    if items and all(isinstance(item, Curve | Surface) for item in items):
         return cutfiles.lay_out(items, units=units)
     raise ExportError(
-        f"cannot export {_kinds(items)} to {suffix}: a cut sheet needs closed flat curves "
-        "or one ExportCutSheet Layout"
+        f"cannot export {_kinds(items)} to {suffix}: a cut sheet needs closed flat curves, "
+        "flat surfaces or one ExportCutSheet Layout"
     )
 
 

@@ -151,7 +151,328 @@ def kaohsiung() -> None:
     b.save("kaohsiung-stadium")
 
 
-EXAMPLES: dict[str, Callable[[], None]] = {"kaohsiung-stadium": kaohsiung}
+def guggenheim() -> None:
+    """Guggenheim Museum New York (Frank Lloyd Wright): stacked conical rings that widen as
+    they rise, and a cylindrical elevator shaft beside them."""
+    b = Builder(
+        "Guggenheim Museum New York (after Frank Lloyd Wright), as in the 2011 TU Delft toolbox "
+        "case study: a stack of conical rings, each wider than the one below, plus a cylindrical "
+        "elevator shaft. Ring height, flare and count are sliders; every ring is a cone, so it "
+        "unrolls flat without stretching."
+    )
+    b.integer("rings", 0, "Ring count", 5, 1, 9)
+    b.slider("ring_height", 1, "Ring height (m)", 3.2, 1.0, 6.0, 1)
+    b.slider("flare", 2, "Flare per ring (m)", 1.1, 0.2, 3.0, 2)
+    b.slider("radius", 3, "Base radius (m)", 14.0, 6.0, 25.0, 1)
+    b.slider("shaft_radius", 4, "Shaft radius (m)", 3.0, 1.0, 6.0, 1)
+    b.integer("segments", 5, "Segments", 48, 8, 128)
+    b.node("maths.Series", "index", 1, 0, "Ring index", Start=0, Step=1)
+    b.wire("rings.Value", "index.Count")
+    b.node("maths.Expression", "ring_z", 2, 0, "Ring base height",
+           {"expression": "k * h", "variables": ["k", "h"]})
+    b.node("maths.Expression", "ring_r", 2, 1, "Ring base radius",
+           {"expression": "r + k * d", "variables": ["k", "r", "d"]})
+    b.node("maths.Expression", "apex_z", 2, 2, "Apex height (below: the rings flare out)",
+           {"expression": "k * h - h * (r + k * d) / d", "variables": ["k", "h", "r", "d"]})
+    b.node("maths.Expression", "slant", 2, 3, "Ruling length (negative: away from the apex)",
+           {"expression": "-sqrt(h**2 + d**2)", "variables": ["h", "d"]})
+    for target in ("ring_z", "ring_r", "apex_z"):
+        b.wire("index.Series", f"{target}.k")
+    for target in ("ring_z", "apex_z", "slant"):
+        b.wire("ring_height.Value", f"{target}.h")
+    for target in ("ring_r", "apex_z"):
+        b.wire("radius.Value", f"{target}.r")
+    for target in ("ring_r", "apex_z", "slant"):
+        b.wire("flare.Value", f"{target}.d")
+    b.node("params.Point", "ring_centre", 3, 0, "Ring centre", X=0.0, Y=0.0)
+    b.wire("ring_z.Result", "ring_centre.Z")
+    b.node("curves.Circle", "ring_circle", 4, 0, "Ring base circle")
+    b.wire("ring_centre.Point", "ring_circle.Plane")
+    b.wire("ring_r.Result", "ring_circle.Radius")
+    b.node("params.Point", "apex", 3, 2, "Apex", X=0.0, Y=0.0)
+    b.wire("apex_z.Result", "apex.Z")
+    b.node("developable.ConicalSurface", "rings_surface", 5, 0, "Conical rings")
+    b.wire("ring_circle.Circle", "rings_surface.Curve")
+    b.wire("apex.Point", "rings_surface.Apex")
+    b.wire("slant.Result", "rings_surface.Height")
+    b.wire("segments.Value", "rings_surface.Segments")
+    b.node("maths.Expression", "shaft_height", 2, 5, "Shaft height",
+           {"expression": "n * h + 2", "variables": ["n", "h"]})
+    b.wire("rings.Value", "shaft_height.n")
+    b.wire("ring_height.Value", "shaft_height.h")
+    b.node("maths.Expression", "shaft_x", 2, 4, "Shaft position",
+           {"expression": "-(r + s + 2)", "variables": ["r", "s"]})
+    b.wire("radius.Value", "shaft_x.r")
+    b.wire("shaft_radius.Value", "shaft_x.s")
+    b.node("params.Point", "shaft_centre", 3, 4, "Shaft centre", Y=0.0, Z=0.0)
+    b.wire("shaft_x.Result", "shaft_centre.X")
+    b.node("curves.Circle", "shaft_circle", 4, 4, "Shaft section")
+    b.wire("shaft_centre.Point", "shaft_circle.Plane")
+    b.wire("shaft_radius.Value", "shaft_circle.Radius")
+    b.node("developable.CylindricalSurface", "shaft", 5, 4, "Elevator shaft")
+    b.wire("shaft_circle.Circle", "shaft.Curve")
+    b.wire("shaft_height.Result", "shaft.Height")
+    b.wire("segments.Value", "shaft.Segments")
+    b.group("inputs", "Inputs", INPUTS, ["rings", "ring_height", "flare", "radius", "shaft_radius", "segments"])
+    b.group("rings", "Conical rings", GEOMETRY,
+            ["index", "ring_z", "ring_r", "apex_z", "slant", "ring_centre", "ring_circle", "apex",
+             "rings_surface"])
+    b.group("shaft", "Cylindrical shaft", RESULT,
+            ["shaft_height", "shaft_x", "shaft_centre", "shaft_circle", "shaft"])
+    b.save("guggenheim-ny")
+
+
+def zve_roof_edge() -> None:
+    """ZVE roof edge (UNStudio, Stuttgart): the developable between a façade curve and an
+    inset top curve whose middle sections are straight lines at an angle: two triangles."""
+    b = Builder(
+        "ZVE roof edge (after UNStudio, Fraunhofer ZVE Stuttgart), as in the 2011 TU Delft "
+        "toolbox case study: the bottom edge lies in the façade, the top edge is set inwards. "
+        "A loft between them is not developable; RulingDevelopable finds the torsal rulings. "
+        "In the middle both edges are straight lines at an angle, so the only developable "
+        "there is two triangles: a fan of rulings through each corner."
+    )
+    b.slider("inset", 0, "Top inset (m)", 3.0, 1.0, 6.0, 1)
+    b.slider("rise", 1, "Top rise (m)", 2.0, 0.5, 4.0, 1)
+    b.integer("segments", 2, "Segments", 40, 4, 200)
+    bottom = [point(0, 0, 6), point(4, 0, 7.2), point(9, 0, 8), point(21, 0, 8), point(26, 0, 7.2),
+              point(30, 0, 6)]
+    b.node("curves.Polyline", "bottom", 1, 0, "Façade edge (bottom)", Vertices=bottom)
+    # the top edge: each façade point moved in and up by (0, inset, rise) × its factor; in the
+    # middle the factors differ, so the two straight middles lie in one plane at an angle
+    plan = [point(1, 0, 6), point(5, 0, 7.2), point(11, 0, 8), point(19, 0, 8), point(25, 0, 7.2),
+            point(29, 0, 6)]
+    b.node("maths.Expression", "lift_y", 1, 1, "Inset per point",
+           {"expression": "inset * f", "variables": ["inset", "f"]}, f=[1.0, 1.0, 1.0, 1.45, 1.0, 1.0])
+    b.node("maths.Expression", "lift_z", 1, 2, "Rise per point",
+           {"expression": "rise * f", "variables": ["rise", "f"]}, f=[1.0, 1.0, 1.0, 1.45, 1.0, 1.0])
+    b.wire("inset.Value", "lift_y.inset")
+    b.wire("rise.Value", "lift_z.rise")
+    b.node("params.Vector", "lift", 2, 1, "Move in and up", X=0.0)
+    b.wire("lift_y.Result", "lift.Y")
+    b.wire("lift_z.Result", "lift.Z")
+    b.node("transform.Move", "top_points", 3, 1, "Top edge points", Geometry=plan)
+    b.wire("lift.Vector", "top_points.Motion")
+    b.node("curves.Polyline", "top", 4, 1, "Roof edge (top)")
+    b.wire("top_points.Geometry", "top.Vertices")
+    b.node("developable.RulingDevelopable", "edge", 5, 0, "Developable roof edge", WarpTolerance=0.01)
+    b.wire("bottom.Polyline", "edge.CurveA")
+    b.wire("top.Polyline", "edge.CurveB")
+    b.wire("segments.Value", "edge.Segments")
+    b.node("surfaces.RuledSurface", "loft", 5, 2, "Plain loft, for comparison")
+    b.wire("bottom.Polyline", "loft.CurveA")
+    b.wire("top.Polyline", "loft.CurveB")
+    b.group("inputs", "Inputs", INPUTS, ["inset", "rise", "segments"])
+    b.group("curves", "Edge curves", GEOMETRY, ["bottom", "lift_y", "lift_z", "lift", "top_points", "top"])
+    b.group("surface", "Developable roof edge", RESULT, ["edge", "loft"])
+    b.save("zve-roof-edge")
+
+
+def _points_from(b: Builder, prefix: str, column: float, row: float, label: str,
+                 x: str, y: str, z: str, source: str) -> str:
+    """Three Expression nodes in u feeding a Point node: the points (x(u), y(u), z(u))."""
+    point_id = f"{prefix}_points"
+    b.node("params.Point", point_id, column + 1, row, label)
+    for offset, (axis, formula) in enumerate(zip("XYZ", (x, y, z), strict=True)):
+        node_id = f"{prefix}_{axis.lower()}"
+        b.node("maths.Expression", node_id, column, row + offset * 0.5, f"{label} {axis.lower()}(u)",
+               {"expression": formula, "variables": ["u"]})
+        b.wire(source, f"{node_id}.u")
+        b.wire(f"{node_id}.Result", f"{point_id}.{axis}")
+    return point_id
+
+
+def textbook() -> None:
+    """Textbook ruled surfaces: a cylinder, a helicoid and a Möbius strip from their
+    equations with ParametricRuledSurface, and SurfaceAnalysis of a hyperbolic paraboloid
+    and a torus."""
+    b = Builder(
+        "Textbook ruled surfaces, S(u, v) = C(u) + v·a(u): a cylinder (developable), a helicoid "
+        "and a Möbius strip (ruled but not developable: their warp angles are not zero), each "
+        "from its textbook equations. Below, SurfaceAnalysis colours a hyperbolic paraboloid "
+        "(nowhere single-curved) and a torus (elliptic outside, hyperbolic inside, parabolic on "
+        "the top and bottom circles)."
+    )
+    b.integer("steps", 0, "Rulings - 1", 48, 8, 200)
+    b.node("maths.Domain", "turn", 0, 1, "One turn", Start=0.0, End=2 * math.pi)
+    b.node("maths.Range", "u", 1, 0, "Parameter u")
+    b.wire("turn.Domain", "u.Domain")
+    b.wire("steps.Value", "u.Steps")
+    rows = {"cylinder": 0.0, "helicoid": 2.0, "mobius": 4.0}
+    surfaces = {
+        "cylinder": (("cos(u)", "sin(u)", "0"), None, (0.0, 2.0), "Cylinder"),
+        "helicoid": (("0", "0", "0.4 * u"), ("cos(u)", "sin(u)", "0"), (-1.0, 1.0), "Helicoid"),
+        "mobius": (("cos(u)", "sin(u)", "0"),
+                   ("cos(u / 2) * cos(u)", "cos(u / 2) * sin(u)", "sin(u / 2)"), (-0.3, 0.3), "Möbius strip"),
+    }
+    for name, (directrix, direction, extent, label) in surfaces.items():
+        row = rows[name]
+        points = _points_from(b, f"{name}_c", 2, row, f"{label} directrix", *directrix, source="u.Range")
+        surface = b.node("developable.ParametricRuledSurface", name, 6, row, label,
+                         VValues={"type": "Domain", "min": extent[0], "max": extent[1]})
+        b.wire(f"{points}.Point", f"{surface}.Directrix")
+        if direction is None:
+            b.node("params.UnitZ", f"{name}_a", 5, row + 1, f"{label} ruling direction")
+            b.wire(f"{name}_a.Vector", f"{surface}.Direction")
+        else:
+            vector = f"{name}_a_vectors"
+            b.node("params.Vector", vector, 5, row + 1, f"{label} ruling direction")
+            for offset, (axis, formula) in enumerate(zip("XYZ", direction, strict=True)):
+                node_id = f"{name}_a_{axis.lower()}"
+                b.node("maths.Expression", node_id, 4, row + 0.5 + offset * 0.5, f"a_{axis.lower()}(u)",
+                       {"expression": formula, "variables": ["u"]})
+                b.wire("u.Range", f"{node_id}.u")
+                b.wire(f"{node_id}.Result", f"{vector}.{axis}")
+            b.wire(f"{vector}.Vector", f"{surface}.Direction")
+    b.node("surfaces.ParametricSurface", "hypar", 1, 7, "Hyperbolic paraboloid z = xy",
+           X="u", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
+           VDomain={"type": "Domain", "min": -1.0, "max": 1.0})
+    b.node("surfaces.Torus", "torus", 1, 8.5, "Torus", MajorRadius=3.0, MinorRadius=1.0,
+           Plane={"type": "Plane", "origin": [0, 8, 0], "x": [1, 0, 0], "y": [0, 1, 0]})
+    for name, source in (("hypar_analysis", "hypar.Surface"), ("torus_analysis", "torus.Torus")):
+        b.node("analysis.SurfaceAnalysis", name, 3, 7 if name.startswith("hypar") else 8.5,
+               "Curvature analysis", UDensity=24, VDensity=24, Scale=0.3,
+               CurvatureTolerance=0.01, WarpTolerance=0.01)
+        b.wire(source, f"{name}.Surface")
+    b.group("parameter", "Parameter u", INPUTS, ["steps", "turn", "u"])
+    for name, row in rows.items():
+        members = [n for n in b.graph.nodes if n.startswith(f"{name}_") or n == name]
+        b.group(name, surfaces[name][3], GEOMETRY, members)
+    b.group("analysis", "Curvature analysis", RESULT, ["hypar", "torus", "hypar_analysis", "torus_analysis"])
+    b.save("textbook-ruled-surfaces")
+
+
+def paper_strip() -> None:
+    """A paper strip: planar quads folded ruling by ruling; exactly developable by construction."""
+    b = Builder(
+        "A paper strip (after Lachauer): a strip of flat quads, each next ruling found by turning "
+        "the bending direction about the previous one by the local curvature and tilting it by "
+        "(90° − iso angle). It is developable by construction; the Development output is the "
+        "flat sheet to cut. The curvature follows a wave along the strip."
+    )
+    b.slider("length", 0, "Length (m)", 6.0, 1.0, 20.0, 1)
+    b.slider("width", 1, "Width (m)", 0.6, 0.1, 2.0, 2)
+    b.slider("iso", 2, "Iso angle (rad)", 1.5, 0.6, 1.57, 2)
+    b.slider("bend", 3, "Bending per segment (rad)", 0.1, 0.0, 0.4, 3)
+    b.integer("segments", 4, "Segments", 40, 4, 200)
+    b.node("maths.Series", "index", 1, 3, "Segment index", Start=0, Step=1)
+    b.wire("segments.Value", "index.Count")
+    b.node("maths.Expression", "curvature", 2, 3, "Curvature per segment: a wave",
+           {"expression": "b * sin(2 * pi * k / n)", "variables": ["b", "k", "n"]})
+    b.wire("bend.Value", "curvature.b")
+    b.wire("index.Series", "curvature.k")
+    b.wire("segments.Value", "curvature.n")
+    b.node("developable.PaperStrip", "strip", 3, 0, "Paper strip")
+    b.wire("length.Value", "strip.Length")
+    b.wire("width.Value", "strip.Width")
+    b.wire("iso.Value", "strip.IsoAngle")
+    b.wire("curvature.Result", "strip.Curvature")
+    b.wire("segments.Value", "strip.Segments")
+    b.node("analysis.IsoMapping", "unroll", 4, 0, "Check: unroll it again")
+    b.wire("strip.Surface", "unroll.Surface")
+    b.wire("segments.Value", "unroll.Segments")
+    b.group("inputs", "Inputs", INPUTS, ["length", "width", "iso", "bend", "segments"])
+    b.group("strip", "Folded strip", GEOMETRY, ["index", "curvature", "strip"])
+    b.group("check", "Unrolled", RESULT, ["unroll"])
+    b.save("paper-strip")
+
+
+def spline_approximation() -> None:
+    """SplineApproximation: turn the rulings of a twisted ruled surface about its fixed edge
+    until the strip is (nearly) developable, optimised in the node."""
+    b = Builder(
+        "SplineApproximation with optimisation: a twisted ruled surface between two skew edges is "
+        "not developable. Keeping the lower edge fixed, each ruling is turned about the edge "
+        "tangent; Optimise finds the angles that minimise the summed warp in a fraction of a "
+        "second (the thesis drove the same angles with an evolutionary solver for minutes). "
+        "RulingDevelopable then finishes the strip between the fixed edge and the new free edge."
+    )
+    b.slider("twist", 0, "Twist of the top edge (m)", 1.5, 0.0, 4.0, 2)
+    b.integer("segments", 1, "Segments", 20, 4, 100)
+    b.node("params.Toggle", "optimise", 0, 2, "Optimise", {"value": True})
+    lower = [point(0, 0, 0), point(3, 0.8, 0), point(6, 0, 0), point(9, -0.8, 0), point(12, 0, 0)]
+    upper = [point(0, 0, 3), point(3, 0, 3), point(6, 0, 3), point(9, 0, 3), point(12, 0, 3)]
+    b.node("curves.Interpolate", "edge_a", 1, 0, "Fixed edge", Vertices=lower, Degree=3)
+    b.node("params.Vector", "skew", 1, 2, "Twist", X=0.0, Z=0.0)
+    b.wire("twist.Value", "skew.Y")
+    b.node("maths.Expression", "skew_factor", 1, 3, "Twist grows along the edge",
+           {"expression": "t * 2 - 1", "variables": ["t"]}, t=[0.0, 0.3, 0.55, 0.8, 1.0])
+    b.node("params.Vector", "skew_each", 2, 3, "Twist per point", X=0.0, Z=0.0)
+    b.node("maths.Expression", "skew_y", 2, 2, "Twist y",
+           {"expression": "w * s", "variables": ["w", "s"]})
+    b.wire("twist.Value", "skew_y.w")
+    b.wire("skew_factor.Result", "skew_y.s")
+    b.wire("skew_y.Result", "skew_each.Y")
+    b.node("transform.Move", "upper_points", 3, 1, "Top edge points", Geometry=upper)
+    b.wire("skew_each.Vector", "upper_points.Motion")
+    b.node("curves.Interpolate", "edge_b", 4, 1, "Twisted top edge", Degree=3)
+    b.wire("upper_points.Geometry", "edge_b.Vertices")
+    b.node("surfaces.RuledSurface", "twisted", 5, 0, "Twisted ruled surface")
+    b.wire("edge_a.Curve", "twisted.CurveA")
+    b.wire("edge_b.Curve", "twisted.CurveB")
+    b.node("developable.SplineApproximation", "approx", 6, 0, "Spline approximation")
+    b.wire("twisted.Surface", "approx.Surface")
+    b.wire("edge_a.Curve", "approx.Curve")
+    b.wire("segments.Value", "approx.Segments")
+    b.wire("optimise.Value", "approx.Optimise")
+    b.node("developable.RulingDevelopable", "finish", 7, 0, "Finished developable strip")
+    b.wire("edge_a.Curve", "finish.CurveA")
+    b.wire("approx.FreeEdge", "finish.CurveB")
+    b.wire("segments.Value", "finish.Segments")
+    b.group("inputs", "Inputs", INPUTS, ["twist", "segments", "optimise"])
+    b.group("edges", "Twisted ruled surface", GEOMETRY,
+            ["edge_a", "skew", "skew_factor", "skew_each", "skew_y", "upper_points", "edge_b", "twisted"])
+    b.group("approx", "Approximation", RESULT, ["approx", "finish"])
+    b.save("spline-approximation")
+
+
+def panels() -> None:
+    """IsoMapping + SurfacePatching: unroll a conical façade and map a staggered
+    (running-bond) panel pattern onto it, ready for cutting."""
+    b = Builder(
+        "Development and panels: a conical façade strip is unrolled with IsoMapping (lengths and "
+        "area kept), a staggered running-bond pattern (as on the Guggenheim Bilbao) is laid over "
+        "the development and clipped to it, and the panels are mapped back onto the 3D surface. "
+        "The flat panels, with their IDs, are what goes to the cutter."
+    )
+    b.slider("panel_w", 0, "Panel width (m)", 1.2, 0.3, 3.0, 2)
+    b.slider("panel_h", 1, "Panel height (m)", 0.6, 0.2, 2.0, 2)
+    b.slider("rotation", 2, "Pattern rotation (°)", 0.0, -45.0, 45.0, 1)
+    arc = [point(8 * math.cos(a), 8 * math.sin(a), 0.0) for a in (0.0, 0.4, 0.8, 1.2, 1.6)]
+    b.node("curves.Interpolate", "base", 1, 0, "Façade base curve", Vertices=arc, Degree=3)
+    b.node("developable.ConicalSurface", "facade", 2, 0, "Conical façade", Apex=point(0, 0, 14),
+           Height=6.0, Segments=32)
+    b.wire("base.Curve", "facade.Curve")
+    b.node("analysis.IsoMapping", "unroll", 3, 0, "Development", Segments=32)
+    b.wire("facade.Surface", "unroll.Surface")
+    b.node("maths.Expression", "offset", 1, 2, "Half a panel",
+           {"expression": "w / 2", "variables": ["w"]})
+    b.wire("panel_w.Value", "offset.w")
+    b.node("patching.StaggeredPattern", "pattern", 2, 2, "Running bond")
+    b.wire("panel_w.Value", "pattern.Width")
+    b.wire("panel_h.Value", "pattern.Height")
+    b.wire("offset.Result", "pattern.Offset")
+    b.node("patching.SurfacePatching", "patching", 4, 1, "Panels on the façade", Scale=1.0)
+    b.wire("facade.Surface", "patching.Surface")
+    b.wire("unroll.Map", "patching.Development")
+    b.wire("pattern.Pattern", "patching.Pattern")
+    b.wire("pattern.Tile", "patching.Tile")
+    b.wire("rotation.Value", "patching.Rotation")
+    b.group("inputs", "Inputs", INPUTS, ["panel_w", "panel_h", "rotation"])
+    b.group("surface", "Façade and its development", GEOMETRY, ["base", "facade", "unroll"])
+    b.group("panels", "Panels", RESULT, ["offset", "pattern", "patching"])
+    b.save("development-and-panels")
+
+
+EXAMPLES: dict[str, Callable[[], None]] = {
+    "kaohsiung-stadium": kaohsiung,
+    "guggenheim-ny": guggenheim,
+    "zve-roof-edge": zve_roof_edge,
+    "textbook-ruled-surfaces": textbook,
+    "paper-strip": paper_strip,
+    "spline-approximation": spline_approximation,
+    "development-and-panels": panels,
+}
 
 if __name__ == "__main__":
     for name in sys.argv[1:] or list(EXAMPLES):

@@ -73,7 +73,7 @@ class IsoMapping(Node):
     axis; the strip continues towards +X.
 
     For a developable surface (cylinder, cone, tangent developable, the output of the
-    developable nodes) the unrolling is an isometry: areas agree (AreaError ~1e-6 at
+    developable nodes) the unrolling is an isometry: areas agree (AreaError a few 1e-6 at
     100 segments) and a cone becomes a circular sector, a cylinder a rectangle. A
     twisted ruled surface (a hyperbolic paraboloid) has no true development: its
     rulings still keep their lengths, but the area does not, and AreaError says by

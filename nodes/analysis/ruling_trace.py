@@ -40,10 +40,11 @@ BoolArray = NDArray[np.bool_]
 
 #: Walking steps per side: a line can reach the surface's diameter from its grid point.
 STEPS = 128
-#: Gauss–Newton iterations per projection (from the previous sample: quadratic convergence).
+#: Gauss–Newton iterations per projection, at most (from the previous sample: quadratic
+#: convergence, usually settled after two).
 NEWTON = 4
 #: Bisection halvings that place a ruling's end between its last two samples.
-BISECTIONS = 40
+BISECTIONS = 32
 #: Distances below this share of the surface's diameter are rounding.
 ROUNDING = 1e-12
 
@@ -103,7 +104,10 @@ class SurfaceProjector:
             damp = 1e-14 * (e + g) + 1e-300  # Levenberg: keeps a pole or apex solvable
             e, g = e + damp, g + damp
             det = e * g - f * f
-            u, v = self._limit(u + (g * bu - f * bv) / det, v + (e * bv - f * bu) / det)
+            du, dv = (g * bu - f * bv) / det, (e * bv - f * bu) / det
+            u, v = self._limit(u + du, v + dv)
+            if not np.max(np.abs(du) + np.abs(dv), initial=0.0) > 1e-15:
+                break  # settled everywhere (at once on a plane or a cylinder)
         points = self.surface.point_at(u, v).reshape(-1, 3)
         c = self.surface.curvature(u, v)
         gap = queries - points

@@ -55,4 +55,4 @@ def area_fraction(values: ArrayLike, faces: ArrayLike, areas: ArrayLike, toleran
     total = float(a.sum())
     if not total > 0:
         return 0.0
-    return float(np.dot(a, share_within(values, faces, tolerance)) / total)
+    return min(1.0, float(np.dot(a, share_within(values, faces, tolerance)) / total))

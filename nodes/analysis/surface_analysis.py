@@ -182,7 +182,8 @@ class SurfaceAnalysis(Node):
     a quadric fitted to each vertex's neighbours) and shows:
 
     * CurvatureLines — at each grid point a cross of two lines along the principal
-      directions, |k|·Scale long (the k1 line, then the k2 line, per point);
+      directions, |k|·Scale long (the k1 line, then the k2 line, per point; capped
+      at the surface's size, which only matters next to an apex or pole);
     * ColouredMesh — bright pink where min(|k1|, |k2|) is below CurvatureTolerance
       (single-curved: locally developable), dark purple above (double-curved), with
       a colour bar from 0 to twice the tolerance;
@@ -192,6 +193,10 @@ class SurfaceAnalysis(Node):
       normal by at most WarpTolerance radians along its length; a ruling found from
       several grid points is drawn once;
     * DevelopableFraction — the share of the surface's area that is single-curved.
+
+    A mesh (or mesh surface) has no grid: about UDensity·VDensity of its vertices,
+    spread evenly over it, are the analysis points, and its rulings follow the
+    discrete estimator's flat directions (within about 0.1° on a fine mesh).
 
     Curvature is in 1/model unit (1/m when you model in metres): 0.01 /m accepts
     anything bent less than a 100 m radius as flat. A cylinder is 100 % pink with a

@@ -10,22 +10,29 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from engine.node import NodeError
 from engine.types import describe
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 
+#: Where a curve is sampled to see that it is not a single point.
+_SAMPLES = np.linspace(0.0, 1.0, 9)
+
 #: The most rulings one call builds (a guard against a typo such as 1e6 segments).
 MAX_SEGMENTS = 100_000
 
 
 def curve_input(name: str, value: Any) -> Curve:
-    """A curve with a length."""
+    """A curve with a length (two distinct sample points settle it without measuring it)."""
     if value is None:
         raise NodeError(f"{name} is empty: connect a curve")
     if not isinstance(value, Curve):
         raise NodeError(f"{name} {describe(value)} is not a curve")
+    if np.ptp(value.point_at(_SAMPLES), axis=0).max() > 0:
+        return value
     if not value.length > 0:
         raise NodeError(f"{name} has zero length, so no rulings can be spaced along it")
     return value

@@ -26,6 +26,17 @@ def _coincident(curve_a: Curve, curve_b: Curve) -> bool:
     size = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
     if size == 0.0:
         return True
+
+    # cheapest rejection: a curve given twice has the same ends (either way round),
+    # unless both are loops, whose seams may lie anywhere
+    def near(p: np.ndarray, q: np.ndarray) -> bool:
+        return float(np.abs(p - q).max()) <= 1e-6 * size
+
+    (a0, a1), (b0, b1) = a[[0, -1]], b[[0, -1]]
+    if not (
+        (near(a0, b0) and near(a1, b1)) or (near(a0, b1) and near(a1, b0)) or (near(a0, a1) and near(b0, b1))
+    ):
+        return False
     # cheap rejection first: a sample of A far from B's dense polyline settles it
     if _polyline_gap(a, curve_b.point_at(np.linspace(0.0, 1.0, 257))) > 1e-3 * size:
         return False
@@ -100,7 +111,7 @@ class RulingDevelopable(Node):
         n = segments_input(segments)
         tol = tolerance_input("WarpTolerance", tolerance)
         result = solve_strip(a, b, n, tol)
-        strip = strip_outputs(result.starts, result.ends)
+        strip = strip_outputs(result.starts, result.ends, warp=result.warp)
         if result.message:
             self.warn(result.message)
         fans = int(np.count_nonzero(~result.stations))

@@ -36,12 +36,15 @@ def strip_outputs(
     ends: ArrayLike,
     tangents_a: ArrayLike | None = None,
     tangents_b: ArrayLike | None = None,
+    *,
+    warp: ArrayLike | None = None,
 ) -> StripOutputs:
     """Loft ``(n, 3)`` ruling ends into a ruled surface, with lines and warp angles.
 
     When the exact edge tangents are known (a cylinder's section curve, a tangent
     developable's edge) the warp uses them; otherwise it uses the edge polylines'
-    tangents (second-order accurate in the ruling spacing).
+    tangents (second-order accurate in the ruling spacing). A caller that has the
+    warp angles already (RulingDevelopable's kernel reports them) passes ``warp``.
     """
     a = np.asarray(starts, dtype=float)
     b = np.asarray(ends, dtype=float)
@@ -49,7 +52,9 @@ def strip_outputs(
         raise NodeError("A strip needs at least two rulings: set Segments to 1 or more.")
     if not (np.isfinite(a).all() and np.isfinite(b).all()):
         raise NodeError("Some rulings have points that are not finite numbers: check the inputs for NaN.")
-    if tangents_a is not None and tangents_b is not None:
+    if warp is not None:
+        warp = np.asarray(warp, dtype=float)
+    elif tangents_a is not None and tangents_b is not None:
         warp = warp_angles(a, b, tangents_a, tangents_b)
     else:
         warp = warp_of_rulings(a, b)
@@ -57,7 +62,7 @@ def strip_outputs(
         surface = RuledSurface.from_rulings(a, b)
     except ValueError as exc:
         raise NodeError(f"The rulings do not make a surface: {exc}") from None
-    lines = [Line(p, q) for p, q in zip(a, b, strict=True)]
+    lines = Line.many(a, b)
     return StripOutputs(surface, lines, np.nan_to_num(warp).tolist())
 
 

@@ -59,9 +59,9 @@ from scipy.interpolate import make_interp_spline
 from scipy.optimize import least_squares
 
 from .curve_base import Curve
-from .developable._vec import cross, dot, norm, unit
 from .developable.stations import station_parameters
 from .surface_base import IsoCurve, Surface
+from .vec_ops import cross, dot, norm, unit
 
 FloatArray = NDArray[np.float64]
 

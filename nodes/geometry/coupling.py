@@ -45,8 +45,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .curves import NurbsCurve
-from .developable._vec import cross, dot, norm, unit
 from .surface_base import Surface
+from .vec_ops import cross, dot, norm, unit
 
 FloatArray = NDArray[np.float64]
 

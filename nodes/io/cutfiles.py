@@ -45,6 +45,7 @@ from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import NurbsCurve, Polyline
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
+from nodes.geometry.surface_base import Surface
 from nodes.io.common import FileFailure, numbered, unit_scale, writable
 
 FloatArray = NDArray[np.float64]
@@ -141,7 +142,7 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
     """
     if not curve.closed:
         gap = float(np.linalg.norm(curve.end - curve.start)) * scale
-        raise ValueError(f"is open: its ends are {gap:.3g} mm apart")
+        raise ValueError(f"is open: its ends are {gap:.4g} mm apart")
     points = _vertices(curve, FLATTEN_MM / scale) * scale
     if np.array_equal(points[0], points[-1]):
         points = points[:-1]
@@ -161,14 +162,30 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
     return flat[::-1] if _signed_area(flat) < 0 else flat
 
 
+def surface_outline(surface: Surface, tolerance: float) -> Polyline:
+    """The boundary of a flat surface (IsoMapping's Development) as one closed polyline:
+    its four edges in order (see :meth:`~nodes.geometry.surface_base.Surface.edges`),
+    each within ``tolerance`` (model units); collapsed edges drop out."""
+    pieces = []
+    for edge in surface.edges():
+        points = np.asarray(edge.to_polyline(tolerance).points, dtype=float)
+        pieces.append(points[:-1])
+    ring = np.vstack(pieces)
+    keep = np.concatenate([[True], np.any(np.abs(np.diff(ring, axis=0)) > 0, axis=1)])
+    return Polyline(ring[keep], closed=True)
+
+
 def check_panels(outlines: Sequence[FloatArray], ids: Sequence[str]) -> None:
     """Refuse outlines that cross themselves, repeated IDs and panels given twice."""
     for outline, name in zip(outlines, ids, strict=True):
         polygon = shapely.Polygon(outline)
         if not polygon.is_valid:
             reason = explain_validity(polygon)
-            where = reason[reason.find("[") :] if "[" in reason else ""
-            raise PanelProblem(f"Panel {name}'s outline crosses or touches itself {where} mm".rstrip())
+            where = ""
+            if "[" in reason:
+                x, y = (float(c) for c in reason[reason.find("[") + 1 : reason.find("]")].split()[:2])
+                where = f" at ({x:.6g}, {y:.6g}) mm"
+            raise PanelProblem(f"Panel {name}'s outline crosses or touches itself{where}")
         if not polygon.area > 0:
             raise PanelProblem(f"Panel {name} encloses no area")
     seen: dict[str, int] = {}
@@ -221,22 +238,25 @@ def text_outlines(text: str) -> tuple[FloatArray, ...]:
 
 
 def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[FloatArray, ...], float]:
-    """The ID's outlines centred at the panel's pole of inaccessibility, as large as
-    ``height`` (cap height, mm) allows while staying inside the panel; (), 0 when even
-    :data:`SMALLEST_TEXT_MM` does not fit."""
+    """The ID's outlines centred on the panel's centroid, or else on its pole of
+    inaccessibility (the inside point farthest from the edges), as large as ``height``
+    (cap height, mm) allows while staying inside the panel with a margin of a tenth of
+    the height; (), 0 when even :data:`SMALLEST_TEXT_MM` does not fit."""
     glyphs = text_outlines(text)
     if not glyphs or height <= 0:
         return (), 0.0
     every = np.vstack(glyphs)
     low, high = every.min(axis=0), every.max(axis=0)
     polygon = shapely.Polygon(panel)
-    centre = np.asarray(polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area))).coords[0])
+    pole = polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area)))
+    centres = [np.asarray(polygon.centroid.coords[0]), np.asarray(pole.coords[0])]
     size = float(height)
     while size >= SMALLEST_TEXT_MM:
-        corner = centre - (low + high) / 2 * size
-        box = shapely.box(*(corner + low * size), *(corner + high * size))
-        if polygon.contains(box.buffer(0.1 * size)):
-            return tuple(g * size + corner for g in glyphs), size
+        for centre in centres:
+            corner = centre - (low + high) / 2 * size
+            box = shapely.box(*(corner + low * size), *(corner + high * size))
+            if polygon.contains(box.buffer(0.1 * size)):
+                return tuple(g * size + corner for g in glyphs), size
         size *= 0.8
     return (), 0.0
 
@@ -274,7 +294,7 @@ def _grow(outline: FloatArray, kerf: float) -> FloatArray:
 
 
 def lay_out(
-    curves: Sequence[Curve],
+    curves: Sequence[Curve | Surface],
     ids: Sequence[str] | None = None,
     width: float = 2500.0,
     height: float = 1250.0,
@@ -284,7 +304,10 @@ def lay_out(
     rotate: bool = True,
     units: str = "m",
 ) -> CutLayout:
-    """Check the panels and place them on as many sheets as they need (see the module)."""
+    """Check the panels and place them on as many sheets as they need (see the module).
+
+    A panel is a closed flat curve, or a flat surface whose boundary is cut.
+    """
     for name, value in (("Sheet width", width), ("Sheet height", height)):
         if not (math.isfinite(value) and value > 0):
             raise FileFailure(f"{name} must be a positive length in mm, not {value:g}")
@@ -308,6 +331,8 @@ def lay_out(
     for curve, name in zip(curves, names, strict=True):
         if curve is None:
             raise PanelProblem(f"Panel {name} is empty (null)")
+        if isinstance(curve, Surface):
+            curve = surface_outline(curve, FLATTEN_MM / scale)
         try:
             outlines.append(panel_outline(curve, scale))
         except ValueError as exc:

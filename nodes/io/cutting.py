@@ -5,13 +5,13 @@ from __future__ import annotations
 from typing import Any
 
 from engine.datatree import DataTree
-from engine.node import LIST, TREE, In, Node, NodeError, Out
+from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, NUMBER, TEXT, ValueType, register_type
 from nodes.curves.convert import number
 from nodes.io import cutfiles
 from nodes.io.common import file_errors, resolve, unit_name, unit_scale
 from nodes.io.cutfiles import CutLayout
-from nodes.types import CURVE
+from nodes.types import CURVE, SURFACE
 
 
 def _layout_summary(layout: CutLayout) -> dict[str, Any]:
@@ -34,8 +34,9 @@ CUT_LAYOUT = register_type(ValueType(
 class ExportCutSheet(Node):
     """Lay flat panels out on sheets and write cut files: DXF or SVG, in millimetres.
 
-    Panels are closed flat outlines (from SurfacePatching or IsoMapping), in model
-    Units. Before anything is laid out each one is checked: an open, non-flat or
+    Panels are closed flat outlines (SurfacePatching's PanelsFlat), Surfaces flat
+    surfaces whose boundary is the outline (IsoMapping's Development), in model Units.
+    Before anything is laid out each one is checked: an open, non-flat or
     self-crossing outline, a repeated ID, the same panel given twice, or a panel
     larger than the sheet stops the export with a message naming the panel.
     Each panel is turned to lie along the sheet (unless Rotate is false), grown by
@@ -54,9 +55,12 @@ class ExportCutSheet(Node):
 
     type_id = "io.ExportCutSheet"
     inputs = (
-        In("Path", TEXT, "P", "The .dxf or .svg file to write."),
-        In("Panels", CURVE, "Pn", "Closed flat panel outlines, in model units.", access=TREE),
-        In("PanelIDs", TEXT, "ID", "One ID per panel, engraved on it (default P-001, P-002 …).",
+        In("Path", TEXT, "P", "The .dxf or .svg file to write.", default=""),
+        In("Panels", CURVE, "Pn", "Closed flat panel outlines, in model units.", access=TREE,
+           optional=True),
+        In("Surfaces", SURFACE, "S", "Flat surfaces (IsoMapping's Development): their boundary is cut.",
+           access=TREE, optional=True),
+        In("PanelIDs", TEXT, "ID", "One ID per panel, then per surface, engraved (default P-001 …).",
            access=TREE, optional=True),
         In("SheetWidth", NUMBER, "W", "Sheet width along X, mm.", default=2500.0),
         In("SheetHeight", NUMBER, "H", "Sheet height along Y, mm.", default=1250.0),
@@ -83,6 +87,7 @@ class ExportCutSheet(Node):
         self,
         path: Any,
         panels: DataTree,
+        surfaces: DataTree,
         ids: DataTree,
         width: Any,
         height: Any,
@@ -93,7 +98,10 @@ class ExportCutSheet(Node):
         units: Any,
         write: Any,
     ) -> tuple[Any, ...]:
-        curves = panels.all_items()
+        curves = panels.all_items() + surfaces.all_items()
+        if not curves:
+            raise NodeWarning("There are no panels: wire closed flat curves into Panels or flat surfaces "
+                              "into Surfaces")
         names = None if ids.is_empty() else [None if i is None else str(i) for i in ids.all_items()]
         if names is not None and None in names:
             raise NodeError(f"PanelIDs has an empty (null) item at position {names.index(None) + 1}")

@@ -24,7 +24,7 @@ class ExportCSV(Node):
 
     type_id = "io.ExportCSV"
     inputs = (
-        In("Path", TEXT, "P", "The .csv file to write."),
+        In("Path", TEXT, "P", "The .csv file to write.", default=""),
         In("Data", GENERIC, "D", "The data tree to write.", access=TREE),
         In("Write", BOOLEAN, "W", "Set to true to write the file; while false nothing is written.",
            default=False),

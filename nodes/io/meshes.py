@@ -48,7 +48,7 @@ class ExportMesh(Node):
 
     type_id = "io.ExportMesh"
     inputs = (
-        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write."),
+        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write.", default=""),
         In("Meshes", MESH, "M", "The meshes to write, in model units.", access=TREE),
         In("FileUnits", TEXT, "Fu", "Units to write in (empty: the model's; GLB: always m).", default=""),
         In("Units", TEXT, "U", "The graph's model units (mm, cm, m, in, ft).", default="m"),

@@ -88,7 +88,7 @@ class Export3dm(Node):
 
     type_id = "io.Export3dm"
     inputs = (
-        In("Path", TEXT, "P", "The .3dm file to write."),
+        In("Path", TEXT, "P", "The .3dm file to write.", default=""),
         In("Curves", CURVE, "C", "Curves, on the layer Curves.", access=TREE, optional=True),
         In("Surfaces", SURFACE, "S", "Surfaces, on the layer Surfaces.", access=TREE, optional=True),
         In("Rulings", LINE, "R", "Ruling lines, on the layer Rulings.", access=TREE, optional=True),

@@ -9,9 +9,9 @@ import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
 from PySide6.QtGui import QGuiApplication, QWheelEvent
 from PySide6.QtTest import QTest
-from PySide6.QtWidgets import QApplication, QInputDialog, QMenu
+from PySide6.QtWidgets import QApplication, QInputDialog
 
-from app.gui.canvas import context_menus, slider_dialog
+from app.gui.canvas import context_menus, inline_widgets, slider_dialog
 from app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListWidget
 from app.gui.fuzzy import build_entries, search
 from app.gui.icons import node_letters
@@ -255,6 +255,7 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
     }
     wait_solved(qtbot, window)
     toggle = window.scene.nodes[ids["params.Toggle"]]
+    window.view.centerOn(toggle)
     assert isinstance(toggle.widget, ToggleWidget)
     QTest.mouseClick(
         window.view.viewport(),
@@ -265,8 +266,9 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
     assert window.doc.graph.nodes[ids["params.Toggle"]].node.settings["value"] is True
 
     value_list = window.scene.nodes[ids["params.ValueList"]]
+    window.view.centerOn(value_list)
     assert isinstance(value_list.widget, ValueListWidget)
-    monkeypatch.setattr(QMenu, "exec", lambda menu, *a, **k: menu.actions()[2])
+    monkeypatch.setattr(inline_widgets, "pick", lambda names, selected: 2)
     QTest.mouseClick(
         window.view.viewport(),
         Qt.MouseButton.LeftButton,
@@ -276,6 +278,7 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
     assert window.doc.graph.nodes[ids["params.ValueList"]].node.settings["selected"] == 2
 
     panel = window.scene.nodes[ids["params.Panel"]]
+    window.view.centerOn(panel)
     height = panel.size()[1]
     monkeypatch.setattr(
         QInputDialog, "getMultiLineText", staticmethod(lambda *a, **k: ("a\nb\nc\nd\ne", True))
@@ -286,11 +289,13 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
         Qt.KeyboardModifier.NoModifier,
         view_point(window, panel.mapToScene(panel.layout.widget_rect.center())),
     )
+    print("DBG", window.doc.graph.nodes[ids["params.Panel"]].node.settings, window.view.itemAt(view_point(window, panel.mapToScene(panel.layout.widget_rect.center()))), panel.pos(), window.doc.undo_stack.undoText())
     wait_solved(qtbot, window)
     assert window.doc.results[ids["params.Panel"]].outputs["Output"].all_items() == list("abcde")
     assert panel.size()[1] > height  # the panel grew with its text
 
     slider = window.scene.nodes[ids["params.NumberSlider"]]
+    window.view.centerOn(slider)
     assert isinstance(slider.widget, SliderWidget)
     monkeypatch.setattr(
         slider_dialog,

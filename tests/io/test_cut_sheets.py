@@ -120,7 +120,7 @@ def test_no_engraving_with_text_height_zero(tmp_path):
 
 
 def test_narrow_panel_gets_a_smaller_label_or_a_remark(tmp_path):
-    result = cut(tmp_path, [rectangle(0, 0, 1, 0.004)], ids=["LONG-NAME-1"])
+    result = cut(tmp_path, [rectangle(0, 0, 1, 0.002)], ids=["LONG-NAME-1"])
     assert result.state == OK
     assert "Panel LONG-NAME-1 is too narrow for its ID at 2 mm: not engraved" in texts(result)
 
@@ -135,7 +135,8 @@ def test_curved_panels_are_flattened_within_a_hundredth_of_a_mm(tmp_path):
 
 def test_flat_panel_in_a_tilted_plane_is_laid_flat(tmp_path):
     tilted = Plane.from_axes(np.array([0.0, 0.0, 5.0]), np.array([1.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0]))
-    corners = [tilted.origin + a * tilted.x + b * tilted.y for a, b in [(0, 0), (0.8, 0), (0.8, 0.3), (0, 0.3)]]
+    uv = [(0, 0), (0.8, 0), (0.8, 0.3), (0, 0.3)]
+    corners = [tilted.origin + a * tilted.x + b * tilted.y for a, b in uv]
     result = cut(tmp_path, [Polyline(corners, closed=True)])
     (file,) = out(result, "Paths")[(0,)]
     _, (contour,) = closed_polylines(file, "CUT")
@@ -147,6 +148,22 @@ def test_degree_1_nurbs_panels_keep_their_exact_corners(tmp_path):
     result = cut(tmp_path, [square])
     _, (contour,) = closed_polylines(out(result, "Paths")[(0,)][0], "CUT")
     assert len(contour) == 4 and polygon_area(contour) == pytest.approx(250000.0, rel=1e-12)
+
+
+def test_a_development_surface_is_cut_along_its_boundary(tmp_path):
+    from nodes.analysis.iso_mapping import IsoMapping
+    from nodes.geometry.ruled import RuledSurface
+
+    theta = np.linspace(0.0, 2.0, 9)
+    ring = np.column_stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)])
+    cone = RuledSurface.from_rulings(ring, 0.5 * ring + np.array([0.0, 0.0, 0.6]))
+    unrolled = run(IsoMapping(), Surface=tree({(0,): [cone]}), Segments=8)
+    (development,) = out(unrolled, "Development")[(0,)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): [development]}), Path=str(tmp_path / "d.dxf"),
+                 Write=True)
+    assert result.state == OK, texts(result)
+    _, (contour,) = closed_polylines(out(result, "Paths")[(0,)][0], "CUT")
+    assert polygon_area(contour) == pytest.approx(development.area() * 1e6, rel=1e-7)
 
 
 # ------------------------------------------------------------------ kerf
@@ -181,9 +198,11 @@ def test_svg_is_xml_in_mm_with_red_hairline_cuts_and_black_engraving(tmp_path):
     for file in files:
         root = ET.parse(file).getroot()
         assert root.tag == f"{SVG}svg"
-        assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("1200mm", "800mm", "0 0 1200 800")
+        size = (root.get("width"), root.get("height"), root.get("viewBox"))
+        assert size == ("1200mm", "800mm", "0 0 1200 800")
         cut_group, engrave_group = root.findall(f"{SVG}g")
-        assert (cut_group.get("id"), cut_group.get("stroke"), cut_group.get("fill")) == ("CUT", "#ff0000", "none")
+        style = (cut_group.get("id"), cut_group.get("stroke"), cut_group.get("fill"))
+        assert style == ("CUT", "#ff0000", "none")
         assert (engrave_group.get("stroke"), engrave_group.get("fill")) == ("#000000", "none")
         assert float(cut_group.get("stroke-width")) <= 0.0254  # a hairline to laser drivers
         for path in cut_group.findall(f"{SVG}path"):
@@ -244,9 +263,9 @@ def test_panels_from_several_branches_go_into_one_layout(tmp_path):
     ("panels", "ids", "needle"),
     [
         ([rectangle(0, 0, 1, 1), Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0]])], ["A", "B"],
-         "Panel B is open: its ends are 1.41e+03 mm apart"),
+         "Panel B is open: its ends are 1414 mm apart"),
         ([Polyline([[0, 0, 0], [1, 1, 0], [1, 0, 0], [0, 1, 0]], closed=True)], ["Bow-tie"],
-         "Panel Bow-tie's outline crosses or touches itself"),
+         "Panel Bow-tie's outline crosses or touches itself at (500, 500) mm"),
         ([rectangle(0, 0, 1, 1), rectangle(2, 0, 1, 1)], ["P-7", "P-7"], "are both called P-7"),
         ([rectangle(0, 0, 1, 1), rectangle(0, 0, 1, 1)], ["P-1", "P-2"],
          "Panels P-1 and P-2 are the same outline in the same place"),

@@ -232,17 +232,22 @@ class ValueListWidget(InlineWidget):
     def press(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> bool:
         if event.button() != Qt.MouseButton.LeftButton:
             return False
-        menu = QMenu()
-        selected = self.settings.get("selected", 0)
-        for index, name in enumerate(self.names()):
-            action = menu.addAction(name)
-            action.setCheckable(True)
-            action.setChecked(index == selected)
-            action.setData(index)
-        chosen = menu.exec(QCursor.pos())
+        chosen = pick(self.names(), self.settings.get("selected", 0))
         if chosen is not None:
-            self.editor.set_setting(self.item.node_id, "selected", chosen.data())
+            self.editor.set_setting(self.item.node_id, "selected", chosen)
         return True
+
+
+def pick(names: list[str], selected: object) -> int | None:
+    """A drop-down menu of ``names`` at the cursor; the chosen position, or None."""
+    menu = QMenu()
+    for index, name in enumerate(names):
+        action = menu.addAction(name)
+        action.setCheckable(True)
+        action.setChecked(index == selected)
+        action.setData(index)
+    chosen = menu.exec(QCursor.pos())
+    return None if chosen is None else int(chosen.data())
 
 
 class PanelWidget(InlineWidget):

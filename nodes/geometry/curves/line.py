@@ -29,6 +29,29 @@ class Line(Curve):
         self._end.setflags(write=False)
         self.closed = False
 
+    @classmethod
+    def many(cls, starts: ArrayLike, ends: ArrayLike) -> list[Line]:
+        """One line per row of ``starts`` and ``ends`` (``(n, 3)``), checked once for
+        all: several times faster than ``n`` constructor calls, for nodes that output
+        hundreds of rulings on every solve.
+
+        >>> [line.end.tolist() for line in Line.many([[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]])]
+        [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]
+        """
+        a, b = as_points(starts).copy(), as_points(ends).copy()
+        if a.shape != b.shape:
+            raise ValueError(f"Expected as many line ends as starts; got {len(b)} and {len(a)}.")
+        if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+            raise ValueError("A line's end points must have finite coordinates.")
+        a.setflags(write=False)
+        b.setflags(write=False)
+        lines = []
+        for start, end in zip(a, b, strict=True):  # only attribute setting per line
+            line = cls.__new__(cls)
+            line._start, line._end, line.closed = start, end, False
+            lines.append(line)
+        return lines
+
     @property
     def start(self) -> FloatArray:
         return self._start

@@ -165,9 +165,15 @@ class NurbsCurve(Curve):
         return [c * scale**k for k, c in enumerate(result)]
 
     def _breakpoints(self) -> FloatArray:
-        a, b = self.domain
-        inside = self.knots[(self.knots > a) & (self.knots < b)]
-        return np.concatenate([[0.0], (np.unique(inside) - a) / (b - a), [1.0]])
+        # computed once (the knots are read-only) and handed out read-only
+        breaks = self.__dict__.get("_breaks")
+        if breaks is None:
+            a, b = self.domain
+            inside = self.knots[(self.knots > a) & (self.knots < b)]
+            breaks = np.concatenate([[0.0], (np.unique(inside) - a) / (b - a), [1.0]])
+            breaks.setflags(write=False)
+            self._breaks = breaks
+        return breaks
 
     # -- exact operations ---------------------------------------------------------------
 

@@ -23,7 +23,11 @@ from numpy.typing import ArrayLike
 from scipy.special import roots_legendre
 
 if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
     from ..curve_base import Curve, FloatArray
+
+    IntArray = NDArray[np.int64]
 
 Spacing = Literal["length", "parameter"]
 
@@ -40,7 +44,6 @@ class LengthMap:
     """
 
     def __init__(self, curve: Curve, intervals: int = 128) -> None:
-        self.curve = curve
         breaks = curve._breakpoints()
         widths = np.diff(breaks)
         # pieces in proportion to each span's share of the parameter, at least eight per span
@@ -58,49 +61,59 @@ class LengthMap:
         speeds = np.sqrt(np.einsum("ij,ij->i", d1, d1))
         pieces = half * (speeds[: x.size].reshape(x.shape) @ _WEIGHTS)
         at_nodes = speeds[x.size : x.size + len(nodes)]
-        self.nodes: FloatArray = nodes
-        self.lengths: FloatArray = np.concatenate([[0.0], np.cumsum(pieces)])
-        #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
-        self.start_speeds = at_nodes[:-1]
-        self.end_speeds = at_nodes[1:].copy()
-        self.end_speeds[np.cumsum(counts) - 1] = speeds[x.size + len(nodes) :]
-        #: Total arc length of the curve.
-        self.total: float = float(self.lengths[-1])
+        end_speeds = at_nodes[1:].copy()
+        end_speeds[np.cumsum(counts) - 1] = speeds[x.size + len(nodes) :]
+        self._set(curve, nodes, np.concatenate([[0.0], np.cumsum(pieces)]), at_nodes[:-1], end_speeds)
 
-    def _hermite(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """ℓ(t) and dℓ/dt from the cubic Hermite piece through the two nearest nodes."""
-        x = self.nodes
-        k = np.clip(np.searchsorted(x, t, side="right") - 1, 0, len(x) - 2)
-        h = x[k + 1] - x[k]
-        u = (t - x[k]) / h
-        l0, l1 = self.lengths[k], self.lengths[k + 1]
-        d0, d1 = self.start_speeds[k] * h, self.end_speeds[k] * h
-        u2 = u * u
-        value = (
-            l0 * (2 * u2 * u - 3 * u2 + 1)
-            + d0 * (u2 * u - 2 * u2 + u)
-            + l1 * (-2 * u2 * u + 3 * u2)
-            + d1 * (u2 * u - u2)
-        )
-        slope = (
-            l0 * (6 * u2 - 6 * u) + d0 * (3 * u2 - 4 * u + 1) + l1 * (6 * u - 6 * u2) + d1 * (3 * u2 - 2 * u)
-        ) / h
-        return value, slope
+    def _set(
+        self, curve: Curve, nodes: FloatArray, lengths: FloatArray, start: FloatArray, end: FloatArray
+    ) -> None:
+        self.curve = curve
+        self.nodes: FloatArray = nodes
+        self.lengths: FloatArray = lengths
+        #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
+        self.start_speeds: FloatArray = start
+        self.end_speeds: FloatArray = end
+        #: Total arc length of the curve.
+        self.total: float = float(lengths[-1])
+
+    def _piece(self, k: IntArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Width, end lengths and end slopes (per unit of the piece's own coordinate) of pieces ``k``."""
+        h = self.nodes[k + 1] - self.nodes[k]
+        return h, self.lengths[k], self.lengths[k + 1], self.start_speeds[k] * h, self.end_speeds[k] * h
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
-        return self._hermite(np.clip(np.asarray(t, dtype=float), 0.0, 1.0))[0]
+        t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
+        k = np.clip(np.searchsorted(self.nodes, t, side="right") - 1, 0, len(self.nodes) - 2)
+        h, l0, l1, d0, d1 = self._piece(k)
+        return _hermite((t - self.nodes[k]) / h, l0, l1, d0, d1)[0]  # pieces have positive width
 
     def parameter_at(self, length: ArrayLike) -> FloatArray:
         """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
         target = np.clip(np.asarray(length, dtype=float), 0.0, self.total)
-        t = np.interp(target, self.lengths, self.nodes)
-        # two Newton steps on ℓ(t) − target from the piecewise-linear guess
+        k = np.clip(np.searchsorted(self.lengths, target, side="right") - 1, 0, len(self.nodes) - 2)
+        h, l0, l1, d0, d1 = self._piece(k)
+        rise = l1 - l0
+        u = np.where(rise > 0, (target - l0) / np.where(rise > 0, rise, 1.0), 0.0)
+        # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
         for _ in range(2):
-            value, slope = self._hermite(t)
+            value, slope = _hermite(u, l0, l1, d0, d1)
             moving = slope > 1e-12 * max(self.total, 1e-300)
-            t = np.clip(t - np.where(moving, (value - target) / np.where(moving, slope, 1.0), 0.0), 0.0, 1.0)
-        return t
+            u = np.clip(u - np.where(moving, (value - target) / np.where(moving, slope, 1.0), 0.0), 0.0, 1.0)
+        return np.minimum(self.nodes[k] + u * h, 1.0)
+
+
+def _hermite(
+    u: FloatArray, l0: FloatArray, l1: FloatArray, d0: FloatArray, d1: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """The cubic through values ``l0``, ``l1`` with slopes ``d0``, ``d1`` at u = 0 and 1,
+    and its slope, at ``u``."""
+    u2 = u * u
+    u3 = u2 * u
+    value = l0 + (l1 - l0) * (3 * u2 - 2 * u3) + d0 * (u3 - 2 * u2 + u) + d1 * (u3 - u2)
+    slope = (l1 - l0) * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
+    return value, slope
 
 
 def station_parameters(

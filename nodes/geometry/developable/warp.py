@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..curve_base import FloatArray
-from ._vec import cross, dot, norm, unit
+from ..vec_ops import cross, dot, norm, unit
 
 
 def warp_angles(
