@@ -55,7 +55,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
     run.add_argument("--out", type=Path, metavar="DIR", help="also write results.json into DIR")
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
-                     help="write one output's data tree to PATH (.json or .csv)")
+                     help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), .obj/.stl/.ply/.glb")
     run.set_defaults(handler=_run)
 
     check = commands.add_parser("check", help="parse and validate a .graph file without solving")
@@ -88,10 +88,10 @@ def _run(args: argparse.Namespace) -> int:
         if port not in result.outputs:
             raise UsageError(f"--export {request}: {node_id!r} has no output {port!r}")
         try:
-            export_tree(result.outputs[port], Path(destination))
+            export_tree(result.outputs[port], Path(destination), units=run.graph.units)
         except (ExportError, OSError) as exc:
             raise UsageError(f"--export {request}: {exc}") from None
-    data = run.to_json()
+    data = run.to_json() if (args.out or args.json) else None
     if args.out:
         try:
             args.out.mkdir(parents=True, exist_ok=True)

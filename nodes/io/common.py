@@ -78,7 +78,8 @@ def writable(path: Path) -> Path:
 
 
 def numbered(path: Path, count: int) -> list[Path]:
-    """``[path]`` for one file, else ``stem-1.ext`` … ``stem-N.ext`` beside it."""
+    """``[path]`` for one file, else ``stem-1.ext`` … ``stem-N.ext`` beside it, the numbers
+    zero-padded to the same width (``stem-01`` … ``stem-12``) so they sort."""
     if count <= 1:
         return [path]
     width = len(str(count))

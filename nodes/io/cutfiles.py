@@ -21,7 +21,7 @@ sheet's edges. Each panel's ID is engraved inside it as text outlines.
 
 Text outlines come from ezdxf's TrueType renderer (``ezdxf.fonts.ttfonts``) drawing
 DejaVu Sans — the font file matplotlib ships, so no system font is needed (ezdxf
-itself bundles no TrueType font) — flattened to 1/1000 of the cap height.
+itself bundles no TrueType font) — flattened to 1/400 of the cap height (0.025 mm for 10 mm letters).
 """
 
 from __future__ import annotations
@@ -229,7 +229,7 @@ def text_outlines(text: str) -> tuple[FloatArray, ...]:
     contours = []
     for glyph in _font().get_text_glyph_paths(text, cap_height=1.0):
         for sub in glyph.sub_paths():
-            points = np.array([(v.x, v.y) for v in sub.flattening(distance=1e-3)], dtype=float)
+            points = np.array([(v.x, v.y) for v in sub.flattening(distance=2.5e-3)], dtype=float)
             if len(points) > 1 and np.array_equal(points[0], points[-1]):
                 points = points[:-1]
             if len(points) >= 3:

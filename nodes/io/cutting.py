@@ -48,8 +48,9 @@ class ExportCutSheet(Node):
     The file type follows Path's extension. DXF (R2010, units mm): one closed
     polyline per part on layer CUT, the letters on ENGRAVE. SVG: a page of the
     sheet's size in mm, red hairline cuts, black engraving, no fill. One file per
-    sheet: name.dxf for one sheet, name-1.dxf, name-2.dxf … for more. Nothing is
-    written until Write is true; a relative Path starts from the working directory.
+    sheet: name.dxf for one sheet, name-1.dxf, name-2.dxf … for more (name-01 …
+    from ten sheets on, so they sort). Nothing is written until Write is true; a
+    relative Path starts from the working directory.
     Layout also goes to ``torsal run --export ID.Layout=file.dxf`` (.svg, .3dm).
     """
 

@@ -397,25 +397,34 @@ def read_3dm(path: Path, units: str = "m", layers: Sequence[str] = ()) -> Import
         if not layer_matches(layer, layers):
             continue
         name = attributes.Name or ""
-        if isinstance(geometry, rh.Curve):
-            result.curves.append((kernel_curve(geometry, scale), layer, name))
-        elif isinstance(geometry, rh.Brep):
-            faces = geometry.Faces
-            result.trimmed += len(faces)
-            for i in range(len(faces)):
-                result.surfaces.append((kernel_surface(faces[i], scale), layer, name))
-        elif isinstance(geometry, rh.Extrusion):
-            if geometry.IsCappedAtBottom or geometry.IsCappedAtTop:
-                result.trimmed += 1
-            result.surfaces.append((kernel_surface(geometry, scale), layer, name))
-        elif isinstance(geometry, rh.Surface):
-            result.surfaces.append((kernel_surface(geometry, scale), layer, name))
-        elif isinstance(geometry, rh.Mesh):
-            result.meshes.append((kernel_mesh(geometry, scale), layer, name))
-        else:
-            kind = type(geometry).__name__
+        try:
+            _take(result, geometry, layer, name, scale)
+        except (ValueError, FloatingPointError):  # a degenerate object: counted, not fatal
+            kind = f"invalid {type(geometry).__name__}"
             result.skipped[kind] = result.skipped.get(kind, 0) + 1
     return result
+
+
+def _take(result: Imported, geometry: Any, layer: str, name: str, scale: float) -> None:
+    """Convert one object and file it under curves, surfaces or meshes (or skipped)."""
+    if isinstance(geometry, rh.Curve):
+        result.curves.append((kernel_curve(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Brep):
+        faces = geometry.Faces
+        result.trimmed += len(faces)
+        for i in range(len(faces)):
+            result.surfaces.append((kernel_surface(faces[i], scale), layer, name))
+    elif isinstance(geometry, rh.Extrusion):
+        if geometry.IsCappedAtBottom or geometry.IsCappedAtTop:
+            result.trimmed += 1
+        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Surface):
+        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Mesh):
+        result.meshes.append((kernel_mesh(geometry, scale), layer, name))
+    else:
+        kind = type(geometry).__name__
+        result.skipped[kind] = result.skipped.get(kind, 0) + 1
 
 
 # ------------------------------------------------------------------ writing

@@ -136,6 +136,14 @@ def drag(
     QTest.mouseRelease(viewport, Qt.MouseButton.LeftButton, modifiers, end)
 
 
+def double_click(window: MainWindow, point: QPoint) -> None:
+    """A real double-click on the canvas: a click, then the double-click (QTest's
+    double-click alone sends no first press, which QGraphicsScene then takes for a press)."""
+    viewport = window.view.viewport()
+    QTest.mouseClick(viewport, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, point)
+    QTest.mouseDClick(viewport, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, point)
+
+
 def place_by_search(qtbot: Any, window: MainWindow, query: str, scene_pos: QPointF) -> str:
     """Double-click empty canvas at ``scene_pos``, type ``query``, press Enter; the new node's id."""
     before = set(window.doc.graph.nodes)

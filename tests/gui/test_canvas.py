@@ -16,7 +16,7 @@ from app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListW
 from app.gui.fuzzy import build_entries, search
 from app.gui.icons import node_letters
 from engine.graphfile import loads
-from tests.gui.fixtures_gui import EXAMPLES, drag, port_point, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, double_click, drag, port_point, view_point, wait_solved
 
 
 @pytest.fixture
@@ -283,13 +283,7 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
     monkeypatch.setattr(
         QInputDialog, "getMultiLineText", staticmethod(lambda *a, **k: ("a\nb\nc\nd\ne", True))
     )
-    QTest.mouseDClick(
-        window.view.viewport(),
-        Qt.MouseButton.LeftButton,
-        Qt.KeyboardModifier.NoModifier,
-        view_point(window, panel.mapToScene(panel.layout.widget_rect.center())),
-    )
-    print("DBG", window.doc.graph.nodes[ids["params.Panel"]].node.settings, window.view.itemAt(view_point(window, panel.mapToScene(panel.layout.widget_rect.center()))), panel.pos(), window.doc.undo_stack.undoText())
+    double_click(window, view_point(window, panel.mapToScene(panel.layout.widget_rect.center())))
     wait_solved(qtbot, window)
     assert window.doc.results[ids["params.Panel"]].outputs["Output"].all_items() == list("abcde")
     assert panel.size()[1] > height  # the panel grew with its text
@@ -303,12 +297,13 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
         lambda title, settings, integer: {"min": -5.0, "max": 5.0, "value": 2.5, "decimals": 1},
     )
     depth = window.doc.undo_stack.count()
-    QTest.mouseDClick(
-        window.view.viewport(),
-        Qt.MouseButton.LeftButton,
-        Qt.KeyboardModifier.NoModifier,
-        view_point(window, slider.mapToScene(slider.layout.widget_rect.center())),
-    )
+    from app.gui.canvas.node_item import NodeItem
+    _od = NodeItem.mouseDoubleClickEvent
+    monkeypatch.setattr(NodeItem, "mouseDoubleClickEvent", lambda self, e: (print("DBL", self.node_id, e.pos(), self._in_widget(e.pos())), _od(self, e))[1])
+    _op = NodeItem.mousePressEvent
+    monkeypatch.setattr(NodeItem, "mousePressEvent", lambda self, e: (print("PRESS", self.node_id, e.type()), _op(self, e))[1])
+    print("AT", window.view.itemAt(view_point(window, slider.mapToScene(slider.layout.widget_rect.center()))))
+    double_click(window, view_point(window, slider.mapToScene(slider.layout.widget_rect.center())))
     settings = window.doc.graph.nodes[ids["params.NumberSlider"]].node.settings
     assert (settings["min"], settings["max"], settings["value"], settings["decimals"]) == (-5.0, 5.0, 2.5, 1)
     assert window.doc.undo_stack.count() == depth + 1  # one step for the whole dialog
@@ -337,9 +332,7 @@ def test_wires_are_drawn_by_what_they_carry(first_steps):
 
 
 def test_viewport_highlights_selection_and_changes_views(qtbot, window, tmp_path):
-    assert window.open_file(
-        EXAMPLES.parent.parent / "tests" / "gui" / "fixtures" / "showcase.graph", ask=False
-    )
+    assert window.open_file(FIXTURES / "showcase.graph", ask=False)
     wait_solved(qtbot, window)
     viewport = window.viewport
     window.scene.select_nodes(["helix"])

@@ -117,3 +117,11 @@ def test_export_tree_reports_a_bad_panel_as_an_export_error(tmp_path):
     open_curve = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0]])
     with pytest.raises(ExportError, match="Panel P-001 is open"):
         export_tree(DataTree({(0,): [open_curve]}), tmp_path / "x.svg")
+
+
+def test_json_results_describe_the_layout(graph, capsys):
+    assert main(["run", str(graph), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    (layout,) = data["nodes"]["cut"]["outputs"]["Layout"]["{0}"]
+    assert layout == {"type": "CutLayout", "panels": 8, "sheets": 1, "sheet": [2500.0, 1250.0],
+                      "usage": pytest.approx(8 * 0.145 / 3.125, rel=1e-5)}

@@ -1,0 +1,104 @@
+"""The shipped case-study graphs solve headless, with the figures a designer would check."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.headless import Run, run_file
+from engine.solver import ERROR
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "resources" / "examples"
+
+
+def solved(name: str, *assignments: str) -> Run:
+    run = run_file(EXAMPLES / f"{name}.graph", list(assignments))
+    errors = {n: r.messages for n, r in run.solver.results.items() if r.state == ERROR}
+    assert errors == {}
+    return run
+
+
+def items(run: Run, node_id: str, port: str) -> list:
+    return run.solver.result(node_id).outputs[port].all_items()
+
+
+def test_guggenheim_rings_are_frustums_with_the_closed_form_area_and_no_warp():
+    run = solved("guggenheim-ny")
+    rings = items(run, "rings_surface", "Surface")
+    assert len(rings) == 5
+    h, d, r = 3.2, 1.1, 14.0
+    for k, ring in enumerate(rings):
+        r1, r2 = r + k * d, r + (k + 1) * d
+        assert ring.area() == pytest.approx(math.pi * (r1 + r2) * math.hypot(h, d), rel=1e-6)
+    assert max(items(run, "rings_surface", "WarpAngles")) < 1e-10
+    shaft = items(run, "shaft", "Surface")[0]
+    assert shaft.area() == pytest.approx(2 * math.pi * 3.0 * (5 * 3.2 + 2), rel=1e-6)
+
+
+def test_guggenheim_ring_count_follows_its_slider():
+    run = solved("guggenheim-ny", "rings=8")
+    assert len(items(run, "rings_surface", "Surface")) == 8
+
+
+def test_zve_roof_edge_is_developable_with_two_triangle_fans_in_the_middle():
+    run = solved("zve-roof-edge")
+    warp = items(run, "edge", "WarpAngles")
+    assert max(warp) < 1e-7
+    assert all(items(run, "edge", "Valid"))
+    rulings = items(run, "edge", "Rulings")
+    assert len(rulings) > 41  # 41 station rulings plus the fans through the corners
+    assert run.solver.result("edge").state == "ok"
+
+
+def test_kaohsiung_makes_one_developable_strip_per_pair_of_neighbouring_edges():
+    run = solved("kaohsiung-stadium")
+    strips = items(run, "strip", "Surface")
+    count, shift = 24, 2
+    assert len(strips) == count + 1 - 2 * shift - 1
+    valid = np.array(items(run, "strip", "Valid"))
+    warp = np.array(items(run, "strip", "WarpAngles"))
+    assert valid.mean() > 0.9  # a few stations per strip admit no torsal ruling: flagged, not hidden
+    assert warp[valid].max() < 0.01
+
+
+def test_textbook_cylinder_is_developable_and_helicoid_and_mobius_are_not():
+    run = solved("textbook-ruled-surfaces")
+    assert max(items(run, "cylinder", "WarpAngles")) < 1e-9
+    assert min(items(run, "helicoid", "WarpAngles")[1:-1]) > 0.05
+    assert max(items(run, "mobius", "WarpAngles")) > 0.01
+
+
+def test_textbook_hyperbolic_paraboloid_is_nowhere_and_torus_partly_single_curved():
+    run = solved("textbook-ruled-surfaces")
+    assert items(run, "hypar_analysis", "DevelopableFraction") == [0.0]
+    gaussian = np.array(items(run, "torus_analysis", "Gaussian"))
+    assert (gaussian > 1e-6).any() and (gaussian < -1e-6).any() and (np.abs(gaussian) < 1e-9).any()
+    assert 0.0 < items(run, "torus_analysis", "DevelopableFraction")[0] < 0.05
+
+
+def test_paper_strip_unrolls_with_no_length_error():
+    run = solved("paper-strip")
+    assert items(run, "unroll", "EdgeError")[0] < 1e-12
+    assert abs(items(run, "unroll", "AreaError")[0]) < 1e-4
+    assert len(items(run, "strip", "Rulings")) == 41
+
+
+def test_spline_approximation_optimises_the_warp_away_and_the_finished_strip_is_developable():
+    run = solved("spline-approximation")
+    assert items(run, "approx", "Fitness")[0] < 0.01
+    assert all(items(run, "finish", "Valid"))
+    assert max(items(run, "finish", "WarpAngles")) < 1e-3
+
+
+def test_panels_cover_the_development_and_have_ids():
+    run = solved("development-and-panels")
+    ids = items(run, "patching", "PanelIDs")
+    areas = items(run, "patching", "PanelAreas")
+    assert len(ids) == len(set(ids)) == len(areas) > 10
+    development_area = items(run, "unroll", "AreaDevelopment")[0]
+    assert sum(areas) == pytest.approx(development_area, rel=1e-6)
+    assert items(run, "unroll", "EdgeError")[0] < 1e-12
+    assert 0.0 <= items(run, "patching", "Waste")[0] < 1.0
