@@ -55,7 +55,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
     run.add_argument("--out", type=Path, metavar="DIR", help="also write results.json into DIR")
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
-                     help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), .obj/.stl/.ply/.glb")
+                     help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), "
+                     ".obj/.stl/.ply/.glb")
     run.set_defaults(handler=_run)
 
     check = commands.add_parser("check", help="parse and validate a .graph file without solving")

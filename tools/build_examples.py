@@ -213,7 +213,8 @@ def guggenheim() -> None:
     b.wire("shaft_circle.Circle", "shaft.Curve")
     b.wire("shaft_height.Result", "shaft.Height")
     b.wire("segments.Value", "shaft.Segments")
-    b.group("inputs", "Inputs", INPUTS, ["rings", "ring_height", "flare", "radius", "shaft_radius", "segments"])
+    b.group("inputs", "Inputs", INPUTS,
+            ["rings", "ring_height", "flare", "radius", "shaft_radius", "segments"])
     b.group("rings", "Conical rings", GEOMETRY,
             ["index", "ring_z", "ring_r", "apex_z", "slant", "ring_centre", "ring_circle", "apex",
              "rings_surface"])
@@ -335,7 +336,7 @@ def textbook() -> None:
                CurvatureTolerance=0.01, WarpTolerance=0.01)
         b.wire(source, f"{name}.Surface")
     b.group("parameter", "Parameter u", INPUTS, ["steps", "turn", "u"])
-    for name, row in rows.items():
+    for name in rows:
         members = [n for n in b.graph.nodes if n.startswith(f"{name}_") or n == name]
         b.group(name, surfaces[name][3], GEOMETRY, members)
     b.group("analysis", "Curvature analysis", RESULT, ["hypar", "torus", "hypar_analysis", "torus_analysis"])

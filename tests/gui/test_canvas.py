@@ -297,12 +297,6 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
         lambda title, settings, integer: {"min": -5.0, "max": 5.0, "value": 2.5, "decimals": 1},
     )
     depth = window.doc.undo_stack.count()
-    from app.gui.canvas.node_item import NodeItem
-    _od = NodeItem.mouseDoubleClickEvent
-    monkeypatch.setattr(NodeItem, "mouseDoubleClickEvent", lambda self, e: (print("DBL", self.node_id, e.pos(), self._in_widget(e.pos())), _od(self, e))[1])
-    _op = NodeItem.mousePressEvent
-    monkeypatch.setattr(NodeItem, "mousePressEvent", lambda self, e: (print("PRESS", self.node_id, e.type()), _op(self, e))[1])
-    print("AT", window.view.itemAt(view_point(window, slider.mapToScene(slider.layout.widget_rect.center()))))
     double_click(window, view_point(window, slider.mapToScene(slider.layout.widget_rect.center())))
     settings = window.doc.graph.nodes[ids["params.NumberSlider"]].node.settings
     assert (settings["min"], settings["max"], settings["value"], settings["decimals"]) == (-5.0, 5.0, 2.5, 1)
