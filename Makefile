@@ -6,7 +6,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
-EXAMPLE ?= resources/examples/first-steps.graph
+EXAMPLE ?= resources/examples/kaohsiung-stadium.graph
 
 # What Qt 6's xcb plugin, VTK's OpenGL and Xvfb need on a bare Debian 12.
 SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontconfig1 \

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from app.headless import UsageError
 
-EXAMPLE = Path(__file__).resolve().parent.parent / "resources" / "examples" / "first-steps.graph"
+EXAMPLE = Path(__file__).resolve().parent.parent / "resources" / "examples" / "kaohsiung-stadium.graph"
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -22,9 +22,6 @@ from engine.datatree import MODIFIERS
 from engine.graph import GraphError, Group, NodeRecord, Wire
 from engine.types import can_cast
 
-#: While dragging a slider, a new value waits for a solve younger than this (seconds)
-#: instead of cancelling it, so every finished solve reaches the viewport.
-DRAG_WAIT = 0.3
 GROUP_COLOURS = ("#d8e4f0", "#e8e0f4", "#dceee2", "#f4ecd8", "#f2dede", "#e0f0f0")
 Size = tuple[float, float]
 
@@ -137,14 +134,15 @@ class Editor(QObject):
         return ("drag", self._drag_counter)
 
     def drag_setting(self, node_id: str, name: str, value: Any, drag_key: object) -> None:
-        """A value from a slider being dragged: applied now, or as soon as a young solve ends."""
+        """A value from a slider being dragged, latest wins: applied now if the solver is
+        idle, else as soon as the running solve has shown its result. A drag never cancels
+        a solve, so every solve finishes and reaches the viewport while dragging."""
         self._pending_drag = (node_id, name, value, drag_key)
-        solves = self.doc.solves
-        if solves.busy() and solves.running_for() < DRAG_WAIT:
-            return
-        self._flush_drag()
+        if not self.doc.solves.busy():
+            self._flush_drag()
 
     def end_drag(self) -> None:
+        """The drag is over: its last value is applied now (cancelling an older solve)."""
         self._flush_drag()
 
     def _flush_drag(self) -> None:
@@ -154,6 +152,9 @@ class Editor(QObject):
         self._pending_drag = None
         if node_id in self.graph.nodes:
             self.set_setting(node_id, name, value, merge_key=key)
+            # start now, not on the next event-loop turn: the worker solves while the GUI
+            # is still drawing the previous result
+            self.doc.solves.solve_now()
 
     def pending_drag_value(self, node_id: str) -> Any:
         pending = self._pending_drag

@@ -15,7 +15,9 @@ from __future__ import annotations
 import sys
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
@@ -37,6 +39,7 @@ class SolveOutcome:
     report: SolveReport
     results: dict[str, NodeResult] = field(default_factory=dict)
     error: str = ""
+    prepared: Any = None  # what :attr:`SolveController.prepare` made on the worker
 
     @property
     def cancelled(self) -> bool:
@@ -64,6 +67,9 @@ class SolveController(QObject):
         self._generation = 0
         self._started_at = 0.0
         self.auto = True
+        #: Called on the worker after each solve with the solver and its report; what it
+        #: returns travels with the outcome (the viewport makes its meshes there).
+        self.prepare: Callable[[Solver, SolveReport], Any] | None = None
         self._request = QTimer(self)
         self._request.setSingleShot(True)
         self._request.setInterval(0)
@@ -162,7 +168,13 @@ class SolveController(QObject):
         except Exception as exc:  # a graph the engine cannot order: report, never crash the app
             report = SolveReport(cancelled=True)
             error = f"{type(exc).__name__}: {exc}"
-        outcome = SolveOutcome(generation, report, dict(solver.results), error)
+        prepared = None
+        if self.prepare is not None and not error and not token.cancelled:
+            try:
+                prepared = self.prepare(solver, report)
+            except Exception:
+                prepared = None
+        outcome = SolveOutcome(generation, report, dict(solver.results), error, prepared)
         self._worker_done.emit(outcome)
 
     def _on_worker_done(self, outcome: SolveOutcome) -> None:

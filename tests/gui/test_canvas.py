@@ -297,7 +297,8 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
         lambda title, settings, integer: {"min": -5.0, "max": 5.0, "value": 2.5, "decimals": 1},
     )
     depth = window.doc.undo_stack.count()
-    double_click(window, view_point(window, slider.mapToScene(slider.layout.widget_rect.center())))
+    rect = slider.layout.widget_rect  # (the mouse route to double_click is covered by the panel above)
+    assert slider.widget.double_click(rect.center(), rect)
     settings = window.doc.graph.nodes[ids["params.NumberSlider"]].node.settings
     assert (settings["min"], settings["max"], settings["value"], settings["decimals"]) == (-5.0, 5.0, 2.5, 1)
     assert window.doc.undo_stack.count() == depth + 1  # one step for the whole dialog

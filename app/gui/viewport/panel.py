@@ -17,7 +17,9 @@ from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWi
 
 from app.gui import theme
 from app.gui.document import Document
+from app.gui.solve_controller import SolveOutcome
 from engine.graph import GraphEvent
+from engine.solver import Solver, SolveReport
 
 REPREVIEW_EVENTS = {"preview_changed", "enabled_changed", "node_removed"}
 
@@ -63,7 +65,7 @@ class ViewportPanel(QWidget):
             action.setToolTip(tip)
             self.actions_by_name[name] = action
         self.toolbar.setEnabled(False)
-        doc.results_changed.connect(lambda _outcome: self.refresh())
+        doc.results_changed.connect(self._on_results)
         doc.graph_changed.connect(self._on_graph_event)
         doc.graph_replaced.connect(self._on_replaced)
 
@@ -100,6 +102,7 @@ class ViewportPanel(QWidget):
         plotter.ren_win.AddObserver("EndEvent", self._render_ended)
         self.plotter = plotter
         self.preview = Preview(plotter)
+        self.doc.solves.prepare = self._prepare
         self.stack.addWidget(holder)
         self.stack.setCurrentWidget(holder)
         self.toolbar.setEnabled(True)
@@ -123,11 +126,20 @@ class ViewportPanel(QWidget):
             self.preview.clear()
             self.refresh()
 
-    def refresh(self) -> None:
+    def _on_results(self, outcome: SolveOutcome) -> None:
+        self.refresh(outcome.prepared)
+
+    def _prepare(self, solver: Solver, report: SolveReport) -> object:
+        """On the solver's thread: the meshes of the nodes just solved."""
+        from app.gui.viewport.preview import prepare_solved
+
+        return prepare_solved(solver.graph, solver.results, report.solved)
+
+    def refresh(self, prepared: object = None) -> None:
         """Bring the actors up to date with the latest results; render on the next event-loop turn."""
         if self.preview is None:
             return
-        changed = self.preview.update(self.doc.graph, self.doc.results)
+        changed = self.preview.update(self.doc.graph, self.doc.results, prepared)
         self.preview.set_selected(self._selected & set(self.preview.nodes))
         has_geometry = bool(self.preview.actor_names())
         if self._fit_pending and self.doc.results:  # a newly opened graph: show all of it

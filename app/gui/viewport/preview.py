@@ -18,7 +18,8 @@ PREFIX = "preview:"
 NOT_PREVIEWED = {"params.Panel"}
 
 STYLE = {
-    "surfaces": {"color": theme.PREVIEW_SURFACE, "smooth_shading": True, "specular": 0.2, "opacity": 0.92},
+    # opaque: translucency costs a depth-sorting pass on every frame
+    "surfaces": {"color": theme.PREVIEW_SURFACE, "smooth_shading": True, "specular": 0.2},
     "rulings": {"color": theme.PREVIEW_RULING, "line_width": 1.0},
     "curves": {"color": theme.PREVIEW_CURVE, "line_width": 2.0},
     "points": {"color": theme.PREVIEW_POINT, "point_size": 9.0, "render_points_as_spheres": True},
@@ -37,6 +38,37 @@ class NodeActors:
     kinds: dict[str, str] = field(default_factory=dict)
 
 
+@dataclass
+class Prepared:
+    """A node's preview datasets, made (on the solver's thread) from one result."""
+
+    result: NodeResult
+    pieces: list[Piece]
+    problems: list[str]
+
+
+def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
+    """Ids of the nodes whose geometry the viewport shows."""
+    return {
+        node_id
+        for node_id, record in graph.nodes.items()
+        if record.preview and record.enabled and record.type_id not in NOT_PREVIEWED and node_id in results
+    }
+
+
+def prepare(result: NodeResult) -> Prepared:
+    """The datasets for one node's result (no plotter needed: safe off the GUI thread)."""
+    found = collect(v for tree in result.outputs.values() for v in tree.all_items())
+    return Prepared(result, pieces(found), found.problems)
+
+
+def prepare_solved(graph: Graph, results: dict[str, NodeResult], solved: list[str]) -> dict[str, Prepared]:
+    """Datasets for the just-solved nodes that are previewed: run by the solve worker
+    right after solving, so while the GUI draws one frame the next one is being made."""
+    shown = previewed(graph, results)
+    return {node_id: prepare(results[node_id]) for node_id in solved if node_id in shown}
+
+
 class Preview:
     """Keeps the plotter's preview actors in step with the graph's results."""
 
@@ -46,17 +78,16 @@ class Preview:
         self.selected: set[str] = set()
         self.problems: dict[str, list[str]] = {}
 
-    def update(self, graph: Graph, results: dict[str, NodeResult]) -> bool:
-        """Rebuild the actors of nodes whose result or preview changed; True if any did."""
+    def update(
+        self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
+    ) -> bool:
+        """Rebuild the actors of nodes whose result or preview changed; True if any did.
+
+        ``prepared`` holds datasets made on the solver's thread; a node without them (or
+        whose result has moved on since) has its datasets made here.
+        """
         changed = False
-        wanted = {
-            node_id
-            for node_id, record in graph.nodes.items()
-            if record.preview
-            and record.enabled
-            and record.type_id not in NOT_PREVIEWED
-            and node_id in results
-        }
+        wanted = previewed(graph, results)
         for node_id in [n for n in self.nodes if n not in wanted]:
             self._remove(node_id)
             changed = True
@@ -65,37 +96,36 @@ class Preview:
             shown = self.nodes.get(node_id)
             if shown is not None and shown.result is result:
                 continue
-            if shown is None or not self._update_in_place(node_id, shown, result):
+            ready = (prepared or {}).get(node_id)
+            if ready is None or ready.result is not result:
+                ready = prepare(result)
+            if ready.problems:
+                self.problems[node_id] = ready.problems
+            else:
+                self.problems.pop(node_id, None)
+            if shown is None or not self._update_in_place(shown, ready):
                 self._remove(node_id)
-                self._add(node_id, result)
+                self._add(node_id, ready)
             changed = True
         return changed
 
-    def _update_in_place(self, node_id: str, entry: NodeActors, result: NodeResult) -> bool:
+    def _update_in_place(self, entry: NodeActors, ready: Prepared) -> bool:
         """Give the node's existing actors new datasets when the kinds of geometry are the
         same as before (a slider drag): much cheaper than new actors. False if they differ."""
-        values = [v for tree in result.outputs.values() for v in tree.all_items()]
-        new = pieces(collect(values))
-        kinds = [piece.kind for piece in new]
+        kinds = [piece.kind for piece in ready.pieces]
         if kinds != [entry.kinds[name] for name in entry.names] or "scalars" in kinds:
             return False
-        for name, piece in zip(entry.names, new, strict=True):
+        for name, piece in zip(entry.names, ready.pieces, strict=True):
             actor = self.plotter.renderer.actors.get(name)
             if actor is None:
                 return False
             actor.mapper.SetInputData(piece.dataset)
-        entry.result = result
+        entry.result = ready.result
         return True
 
-    def _add(self, node_id: str, result: NodeResult) -> None:
-        values = [v for tree in result.outputs.values() for v in tree.all_items()]
-        found = collect(values)
-        entry = NodeActors(result)
-        if found.problems:
-            self.problems[node_id] = found.problems
-        else:
-            self.problems.pop(node_id, None)
-        for index, piece in enumerate(pieces(found)):
+    def _add(self, node_id: str, ready: Prepared) -> None:
+        entry = NodeActors(ready.result)
+        for index, piece in enumerate(ready.pieces):
             name = f"{PREFIX}{node_id}:{piece.kind}:{index}"
             self._add_piece(name, piece, node_id, entry)
         self.nodes[node_id] = entry

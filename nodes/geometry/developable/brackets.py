@@ -22,6 +22,8 @@ IntArray = NDArray[np.int64]
 #: step would be below rounding). The caller keeps the last *evaluated* point, within
 #: this step of the root, so that everything it computed there stays consistent.
 STEP = 128.0 * np.finfo(float).eps
+#: |f| below this times its terms' size is zero to rounding.
+ZERO = 8.0 * np.finfo(float).eps
 
 
 def refine_roots(
@@ -44,24 +46,27 @@ def refine_roots(
     low = np.array(low, dtype=float)  # copies: the brackets shrink in place
     high = np.array(high, dtype=float)
     low_sign = np.sign(np.asarray(f_low, dtype=float))
-    x = 0.5 * (low + high) if start is None else np.clip(np.array(start, dtype=float), low, high)
+    if start is None:
+        x = 0.5 * (low + high)
+    else:  # (np.clip is slow on small arrays)
+        x = np.minimum(np.maximum(np.asarray(start, dtype=float), low), high)
     active = np.arange(len(x))
-    for _ in range(max_iterations):
-        if len(active) == 0:
-            break
-        xa = x[active]
-        f, df, scale = function(xa, active)
-        on_low_side = np.sign(f) == low_sign[active]
-        lo = np.where(on_low_side, xa, low[active])
-        hi = np.where(on_low_side | (f == 0), high[active], xa)
-        low[active], high[active] = lo, hi
-        with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(max_iterations):
+            if len(active) == 0:
+                break
+            xa = x[active]
+            f, df, scale = function(xa, active)
+            on_low_side = np.sign(f) == low_sign[active]
+            lo = np.where(on_low_side, xa, low[active])
+            hi = np.where(on_low_side | (f == 0), high[active], xa)
+            low[active], high[active] = lo, hi
             newton = xa - f / df
-        inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
-        step_to = np.where(inside, newton, 0.5 * (lo + hi))
-        tiny = STEP * np.maximum(np.abs(xa), 1e-300)
-        zero = np.abs(f) <= 8.0 * np.finfo(float).eps * scale
-        done = zero | (inside & (np.abs(newton - xa) <= tiny)) | (hi - lo <= tiny)
-        x[active] = np.where(zero, xa, step_to)
-        active = active[~done]
+            inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
+            step_to = np.where(inside, newton, 0.5 * (lo + hi))
+            tiny = STEP * np.maximum(np.abs(xa), 1e-300)
+            zero = np.abs(f) <= ZERO * scale
+            done = zero | (inside & (np.abs(newton - xa) <= tiny)) | (hi - lo <= tiny)
+            x[active] = np.where(zero, xa, step_to)
+            active = active[~done]
     return x

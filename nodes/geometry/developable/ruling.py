@@ -177,8 +177,11 @@ def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
     corners, found and sampled on both sides in the same evaluation."""
     t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
     breaks = curve._breakpoints()[1:-1]
-    points, tangents, second = curve.derivatives(np.concatenate([t, breaks - SIDE]), 2)
     m = len(t)
+    if not len(breaks):  # one smooth span
+        points, tangents, second = curve.derivatives(t, 2)
+        return _Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, tangents, second), breaks
+    points, tangents, second = curve.derivatives(np.concatenate([t, breaks - SIDE]), 2)
     # samples include every breakpoint; compare each with its left neighbour's tangent
     at_break = np.searchsorted(t, breaks)
     kink = _jumps(tangents[m:], tangents[at_break])
@@ -226,7 +229,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
     """
-    centre = 0.5 * (a0.mean(axis=0) + b0.mean(axis=0))
+    centre = 0.5 * (a0[len(a0) // 2] + b0[len(b0) // 2])  # about the middle of both curves
     a = a0 - centre
     b = b0 - centre
     ua, ub = unit(a1), unit(b1)
@@ -275,15 +278,16 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     f1, d1 = dot(normal, grid.left_tangents[j + 1]), dot(normal, grid.left_second[j + 1])
     x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
     d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
-    u = np.clip(f0 / (f0 - f1), 0.0, 1.0)
-    for _ in range(2):
-        u2 = u * u
-        p = f0 * (2 * u2 * u - 3 * u2 + 1) + d0 * (u2 * u - 2 * u2 + u) + f1 * (3 * u2 - 2 * u2 * u)
-        p += d1 * (u2 * u - u2)
-        dp = (f1 - f0) * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
-        with np.errstate(divide="ignore", invalid="ignore"):
+    rise = f1 - f0
+    u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(2):
+            u2 = u * u
+            u3 = u2 * u
+            p = f0 + rise * (3 * u2 - 2 * u3) + d0 * (u3 - 2 * u2 + u) + d1 * (u3 - u2)
+            dp = rise * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
             step = p / dp
-        u = np.where(np.isfinite(step), np.clip(u - step, 0.0, 1.0), u)
+            u = np.where(np.isfinite(step), np.minimum(np.maximum(u - step, 0.0), 1.0), u)
     return x0 + u * h
 
 
@@ -293,14 +297,25 @@ def _rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1:
     return (size_a + norm(b0)) * speed_a * norm(b1)
 
 
-def _oriented(r: FloatArray, ta: FloatArray, tb: FloatArray) -> BoolArray:
+def _oriented(
+    r: FloatArray,
+    ta: FloatArray,
+    tb: FloatArray,
+    rr: FloatArray | None = None,
+    aa: FloatArray | None = None,
+    bb: FloatArray | None = None,
+) -> BoolArray:
     """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes).
 
     N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
+    ``rr``, ``aa``, ``bb`` are |R|², |A'|², |B'|² when the caller has them.
     """
-    rr, ra, rb = dot(r, r), dot(r, ta), dot(r, tb)
-    n1n1 = np.maximum(rr * dot(ta, ta) - ra * ra, 0.0)
-    n2n2 = np.maximum(rr * dot(tb, tb) - rb * rb, 0.0)
+    rr = dot(r, r) if rr is None else rr
+    aa = dot(ta, ta) if aa is None else aa
+    bb = dot(tb, tb) if bb is None else bb
+    ra, rb = dot(r, ta), dot(r, tb)
+    n1n1 = np.maximum(rr * aa - ra * ra, 0.0)
+    n2n2 = np.maximum(rr * bb - rb * rb, 0.0)
     return rr * dot(ta, tb) - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
 
 
@@ -347,44 +362,49 @@ def _find_candidates(
         run_end[:-1] = run_start[1:]
         run_rows, run_first = np.divmod(z[run_start], m)
         run_last = z[run_end] % m
-    flat = grid.t[run_last] > grid.t[run_first]
+    flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
     point_rows, point_cols = run_rows[~flat], run_first[~flat]
 
     # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
     # each bracket's last evaluation (at its root, to rounding) is kept for what follows
     root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
     k = len(rows)
-    root_t = np.concatenate([np.empty(k), grid.t[point_cols]])
-    b0, b1, b2 = np.empty((3, len(root_rows), 3))
-    size_a, speed_a = norm(a0), norm(a1)
+    root_t = np.concatenate([np.empty(k), grid.t[point_cols]]) if len(point_rows) else np.empty(k)
+    b0, b1, b2, normal = np.empty((4, len(root_rows), 3))
+    f, f_t = np.empty((2, len(root_rows)))
+    speed_a = norm(a1)
+
+    def evaluate(x: FloatArray, index: IntArray, i: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        c0, c1, c2 = curve_b.derivatives(x, 2)
+        plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
+        value, slope = dot(plane, c1), dot(plane, c2)
+        root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
+        normal[index], f[index], f_t[index] = plane, value, slope
+        return value, slope, c0
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        c0, c1, c2 = curve_b.derivatives(x, 2)
-        root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
         i = rows[index]
-        normal = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
-        return dot(normal, c1), dot(normal, c2), _rounding_scale(size_a[i], c0, speed_a[i], c1)
+        value, slope, c0 = evaluate(x, index, i)
+        return value, slope, _rounding_scale(norm(a0[i]), c0, speed_a[i], b1[index])
 
     if k:
         low, high = grid.at[cols], grid.at[cols + 1]
         refine_roots(coplanarity, low, high, f_low, _cubic_start(grid, a0, a1, rows, cols))
     if len(point_rows):
-        b0[k:], b1[k:], b2[k:] = curve_b.derivatives(root_t[k:], 2)
+        evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch
     r = b0 - a0[root_rows]
-    normal = cross(r, a1[root_rows])
-    f_t = dot(normal, b2)
     f_s = det(r, a2[root_rows], b1)
-    slope = np.clip(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6, 1e6)
-    scale = norm(r) * speed_a[root_rows] * norm(b1)
+    slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a[root_rows] ** 2
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
-    jumped = np.abs(dot(normal, b1)) > 1e-7 * scale
+    jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
     candidates = _Candidates(
-        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1)
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
     )
     if len(corner_rows) == 0 and not flat.any():
         if len(point_rows) == 0:
@@ -485,15 +505,19 @@ class _Strip:
     ) -> None:
         self.curve_a, self.curve_b = curve_a, curve_b
         self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
-        self.map_a = LengthMap(curve_a)
+        self.map_a = LengthMap(curve_a, intervals=64)
         if not self.map_a.total > 0:
             raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
         self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
         n = len(self.s)
         breaks = curve_a._breakpoints()[1:-1]
-        a0, a1, a2 = curve_a.derivatives(np.concatenate([self.s, breaks - SIDE, breaks + SIDE]), 2)
-        self.a0, self.a1, self.a2 = a0[:n], a1[:n], a2[:n]
-        self.kinks_a = breaks[_jumps(a1[n : n + len(breaks)], a1[n + len(breaks) :])]
+        if len(breaks):
+            a0, a1, a2 = curve_a.derivatives(np.concatenate([self.s, breaks - SIDE, breaks + SIDE]), 2)
+            self.a0, self.a1, self.a2 = a0[:n], a1[:n], a2[:n]
+            self.kinks_a = breaks[_jumps(a1[n : n + len(breaks)], a1[n + len(breaks) :])]
+        else:  # one smooth span: no corners
+            self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
+            self.kinks_a = breaks
         self.grid, self.kinks_b = _sample_grid(curve_b, samples)
         if not self._chords_b[-1] > 0:
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
@@ -516,7 +540,7 @@ class _Strip:
     def station_lengths(self) -> FloatArray:
         """Arc length along A to each station."""
         if self.spacing == "length":
-            return np.linspace(0.0, self.map_a.total, len(self.s))
+            return np.arange(len(self.s)) * (self.map_a.total / (len(self.s) - 1))
         return self.map_a.length_at(self.s)
 
     # -- steps 2–5: candidates and the monotone choice ---------------------------------------
@@ -857,12 +881,13 @@ def _solve(
 
 
 def _warps(ruling: FloatArray, ta: FloatArray, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Unsigned and signed warp angles at once (as :func:`.warp.warp_angles`)."""
-    n1 = cross(ruling, unit(ta))
-    n2 = cross(ruling, unit(tb))
+    """Unsigned and signed warp angles at once (as :func:`.warp.warp_angles`; the angles
+    do not depend on the lengths of the normals, so the tangents need not be unit)."""
+    n1 = cross(ruling, ta)
+    n2 = cross(ruling, tb)
     normal_cross, normal_dot = cross(n1, n2), dot(n1, n2)
     unsigned = np.arctan2(norm(normal_cross), np.abs(normal_dot))
-    return unsigned, np.arctan2(dot(normal_cross, unit(ruling)), normal_dot)
+    return unsigned, np.arctan2(dot(normal_cross, ruling), norm(ruling) * normal_dot)
 
 
 def _message(valid: BoolArray, source: IntArray, flipped: BoolArray, tolerance: float, n: int) -> str | None:

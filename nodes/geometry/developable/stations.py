@@ -16,22 +16,46 @@ every solve.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import roots_legendre
 
+from ..curve_base import FloatArray
+
 if TYPE_CHECKING:
-    from numpy.typing import NDArray
-
-    from ..curve_base import Curve, FloatArray
-
-    IntArray = NDArray[np.int64]
+    from ..curve_base import Curve
 
 Spacing = Literal["length", "parameter"]
 
 _NODES, _WEIGHTS = roots_legendre(4)
+
+
+@lru_cache(maxsize=64)
+def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]:
+    """Where a :class:`LengthMap` evaluates the speed (depends only on the breakpoints, so
+    curves rebuilt with the same knots on every solve share it).
+
+    Returns the piece ends ``nodes``, the 4 Gauss nodes of every piece (flat), the pieces'
+    half widths, the index of the last piece of every span, and points just before
+    every breakpoint (the speed may jump at a knot).
+    """
+    edges = np.array(breaks)
+    widths = np.diff(edges)
+    # pieces in proportion to each span's share of the parameter, at least eight per span
+    counts = np.maximum(8, np.ceil(intervals * widths).astype(int))
+    span = np.repeat(np.arange(len(widths)), counts)
+    local = np.arange(len(span)) - np.repeat(np.cumsum(counts) - counts, counts)
+    low = edges[span] + widths[span] * local / counts[span]
+    nodes = np.append(low, 1.0)
+    half = 0.5 * (nodes[1:] - low)
+    gauss = ((0.5 * (nodes[1:] + low))[:, None] + half[:, None] * _NODES[None, :]).reshape(-1)
+    arrays = (nodes, gauss, half, np.cumsum(counts) - 1, edges[1:] - 1e-12 * widths)
+    for array in arrays:
+        array.setflags(write=False)
+    return arrays
 
 
 class LengthMap:
@@ -40,80 +64,55 @@ class LengthMap:
     About ``intervals`` pieces are spread over the curve's smooth spans in proportion to
     their parameter width (at least eight per span);
     each piece is integrated with the 4-point Gauss–Legendre rule (exact to rounding on
-    pieces this short: its error falls as the 8th power of their length).
+    pieces this short: its error falls as the 8th power of their length). Between the
+    piece ends ℓ(t) is the cubic with the right values and slopes (the speed), kept as
+    ℓ = ℓ0 + u·(d0 + u·(c2 + u·c3)) in the piece's own coordinate u.
     """
 
     def __init__(self, curve: Curve, intervals: int = 128) -> None:
-        breaks = curve._breakpoints()
-        widths = np.diff(breaks)
-        # pieces in proportion to each span's share of the parameter, at least eight per span
-        counts = np.maximum(8, np.ceil(intervals * widths).astype(int))
-        span = np.repeat(np.arange(len(widths)), counts)
-        local = np.arange(len(span)) - np.repeat(np.cumsum(counts) - counts, counts)
-        low = breaks[span] + widths[span] * local / counts[span]
-        nodes = np.append(low, 1.0)
-        high = nodes[1:]
-        half = 0.5 * (high - low)
-        x = (0.5 * (high + low))[:, None] + half[:, None] * _NODES[None, :]
-        # the speed at every node, and just before each breakpoint too (it may jump at a knot)
-        span_ends = breaks[1:] - 1e-12 * widths
-        d1 = curve.derivatives(np.concatenate([x.reshape(-1), nodes, span_ends]), 1)[1]
-        speeds = np.sqrt(np.einsum("ij,ij->i", d1, d1))
-        pieces = half * (speeds[: x.size].reshape(x.shape) @ _WEIGHTS)
-        at_nodes = speeds[x.size : x.size + len(nodes)]
-        end_speeds = at_nodes[1:].copy()
-        end_speeds[np.cumsum(counts) - 1] = speeds[x.size + len(nodes) :]
-        self._set(curve, nodes, np.concatenate([[0.0], np.cumsum(pieces)]), at_nodes[:-1], end_speeds)
-
-    def _set(
-        self, curve: Curve, nodes: FloatArray, lengths: FloatArray, start: FloatArray, end: FloatArray
-    ) -> None:
         self.curve = curve
+        nodes, gauss, half, last, span_ends = _layout(tuple(curve._breakpoints().tolist()), int(intervals))
+        d1 = curve.derivatives(np.concatenate([gauss, nodes, span_ends]), 1)[1]
+        speeds = np.sqrt(np.add.reduce(d1 * d1, axis=-1))
+        g, m = len(gauss), len(nodes)
+        pieces = half * (speeds[:g].reshape(-1, 4) @ _WEIGHTS)
+        end_speeds = speeds[g + 1 : g + m].copy()
+        end_speeds[last] = speeds[g + m :]
         self.nodes: FloatArray = nodes
-        self.lengths: FloatArray = lengths
+        self.lengths: FloatArray = np.concatenate([[0.0], np.cumsum(pieces)])
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
-        self.start_speeds: FloatArray = start
-        self.end_speeds: FloatArray = end
+        self.start_speeds: FloatArray = speeds[g : g + m - 1]
+        self.end_speeds: FloatArray = end_speeds
         #: Total arc length of the curve.
-        self.total: float = float(lengths[-1])
-
-    def _piece(self, k: IntArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
-        """Width, end lengths and end slopes (per unit of the piece's own coordinate) of pieces ``k``."""
-        h = self.nodes[k + 1] - self.nodes[k]
-        return h, self.lengths[k], self.lengths[k + 1], self.start_speeds[k] * h, self.end_speeds[k] * h
+        self.total: float = float(self.lengths[-1])
+        h = 2.0 * half
+        self._width, self._rise = h, pieces
+        self._d0 = self.start_speeds * h
+        d1 = end_speeds * h
+        self._c2 = 3.0 * pieces - 2.0 * self._d0 - d1
+        self._c3 = self._d0 + d1 - 2.0 * pieces
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
-        t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
-        k = np.clip(np.searchsorted(self.nodes, t, side="right") - 1, 0, len(self.nodes) - 2)
-        h, l0, l1, d0, d1 = self._piece(k)
-        return _hermite((t - self.nodes[k]) / h, l0, l1, d0, d1)[0]  # pieces have positive width
+        t = np.minimum(np.maximum(np.asarray(t, dtype=float), 0.0), 1.0)
+        k = np.minimum(np.searchsorted(self.nodes, t, side="right") - 1, len(self._rise) - 1)
+        u = (t - self.nodes[k]) / self._width[k]
+        return self.lengths[k] + u * (self._d0[k] + u * (self._c2[k] + u * self._c3[k]))
 
     def parameter_at(self, length: ArrayLike) -> FloatArray:
         """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
-        target = np.clip(np.asarray(length, dtype=float), 0.0, self.total)
-        k = np.clip(np.searchsorted(self.lengths, target, side="right") - 1, 0, len(self.nodes) - 2)
-        h, l0, l1, d0, d1 = self._piece(k)
-        rise = l1 - l0
-        u = np.where(rise > 0, (target - l0) / np.where(rise > 0, rise, 1.0), 0.0)
+        target = np.minimum(np.maximum(np.asarray(length, dtype=float), 0.0), self.total)
+        k = np.minimum(np.searchsorted(self.lengths, target, side="right") - 1, len(self._rise) - 1)
+        d0, c2, c3 = self._d0[k], self._c2[k], self._c3[k]
+        gap = target - self.lengths[k]
+        u = gap / np.maximum(self._rise[k], 1e-300)
         # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
+        floor = 1e-12 * max(self.total, 1e-300)
         for _ in range(2):
-            value, slope = _hermite(u, l0, l1, d0, d1)
-            moving = slope > 1e-12 * max(self.total, 1e-300)
-            u = np.clip(u - np.where(moving, (value - target) / np.where(moving, slope, 1.0), 0.0), 0.0, 1.0)
-        return np.minimum(self.nodes[k] + u * h, 1.0)
-
-
-def _hermite(
-    u: FloatArray, l0: FloatArray, l1: FloatArray, d0: FloatArray, d1: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """The cubic through values ``l0``, ``l1`` with slopes ``d0``, ``d1`` at u = 0 and 1,
-    and its slope, at ``u``."""
-    u2 = u * u
-    u3 = u2 * u
-    value = l0 + (l1 - l0) * (3 * u2 - 2 * u3) + d0 * (u3 - 2 * u2 + u) + d1 * (u3 - u2)
-    slope = (l1 - l0) * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
-    return value, slope
+            slope = d0 + u * (2.0 * c2 + 3.0 * u * c3)
+            step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
+            u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
+        return np.minimum(self.nodes[k] + u * self._width[k], 1.0)
 
 
 def station_parameters(
@@ -133,6 +132,6 @@ def station_parameters(
     lengths = length_map or LengthMap(curve)
     if lengths.total <= 0.0:
         raise ValueError("The curve has zero length, so rulings cannot be spaced along it.")
-    t = lengths.parameter_at(np.linspace(0.0, lengths.total, count))
+    t = lengths.parameter_at(np.arange(count) * (lengths.total / (count - 1)))
     t[0], t[-1] = 0.0, 1.0
     return np.maximum.accumulate(t)
