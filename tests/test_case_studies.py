@@ -102,3 +102,28 @@ def test_panels_cover_the_development_and_have_ids():
     assert sum(areas) == pytest.approx(development_area, rel=1e-6)
     assert items(run, "unroll", "EdgeError")[0] < 1e-12
     assert 0.0 <= items(run, "patching", "Waste")[0] < 1.0
+
+
+def test_kaohsiung_cut_sheets_export_headless_as_dxf_svg_and_3dm(tmp_path, monkeypatch):
+    import ezdxf
+    import rhino3dm
+
+    from app.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    graph = str(EXAMPLES / "kaohsiung-cut-sheets.graph")
+    exports = ["--export", "cut.Layout=roof.dxf", "--export", "cut.Layout=roof.svg",
+               "--export", "cut.Layout=roof.3dm"]
+    assert main(["run", graph, *exports]) == 0
+    strips = len(run_file(graph).solver.result("strip").outputs["Surface"].all_items())
+    dxfs = sorted(tmp_path.glob("roof-*.dxf"))
+    assert dxfs and len(sorted(tmp_path.glob("roof-*.svg"))) == len(dxfs)
+    closed = 0
+    for path in dxfs:
+        document = ezdxf.readfile(path)
+        assert document.header["$INSUNITS"] == 4  # millimetres
+        closed += sum(1 for e in document.modelspace().query('LWPOLYLINE[layer=="CUT"]') if e.closed)
+        assert len(document.modelspace().query('*[layer=="ENGRAVE"]')) > 0
+    assert closed == strips
+    model = rhino3dm.File3dm.Read(str(tmp_path / "roof.3dm"))
+    assert len(model.Objects) >= strips

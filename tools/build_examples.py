@@ -72,6 +72,41 @@ def kaohsiung() -> None:
     """Kaohsiung Solar Stadium (Toyo Ito): a horseshoe base curve, copied up and scaled in;
     edge curves through points shifted by n and 2n along the three curves; a
     RulingDevelopable strip between each pair of neighbouring edges."""
+    kaohsiung_roof().save("kaohsiung-stadium")
+
+
+def kaohsiung_cut_sheets() -> None:
+    """The Kaohsiung roof as a 1:50 study model: every strip unrolled and laid out on
+    2500 × 1250 mm sheets with its ID engraved."""
+    b = kaohsiung_roof(
+        "Kaohsiung Solar Stadium roof as a 1:50 study model: the developable strips of the case "
+        "study are unrolled with IsoMapping, scaled to 1:50 and laid out on 2500 × 1250 mm "
+        "sheets by ExportCutSheet, each strip's ID engraved. Export headless with: torsal run "
+        "kaohsiung-cut-sheets.graph --export cut.Layout=roof.dxf --export cut.Layout=roof.svg "
+        "--export cut.Layout=roof.3dm (for full-size panels, panelise each development with "
+        "SurfacePatching as in development-and-panels.graph).",
+        count=16, shift=1,
+    )
+    b.node("analysis.IsoMapping", "unroll", 10, 3, "Unrolled strips")
+    b.wire("strip.Surface", "unroll.Surface")
+    b.wire("segments.Value", "unroll.Segments")
+    b.slider("model_scale", 5, "Model scale (1:n)", 50.0, 10.0, 200.0, 0)
+    b.node("maths.Expression", "factor", 10, 5, "1 / n", {"expression": "1 / n", "variables": ["n"]})
+    b.wire("model_scale.Value", "factor.n")
+    b.node("transform.Scale", "model", 11, 3, "Scaled to the model", Centre=point(0, 0, 0))
+    b.wire("unroll.Development", "model.Geometry")
+    b.wire("factor.Result", "model.Factor")
+    b.node("io.ExportCutSheet", "cut", 12, 3, "Cut sheets (mm)", Path="out/kaohsiung-roof.dxf",
+           SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
+           Write=False)
+    b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
+    b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
+            ["unroll", "model_scale", "factor", "model", "cut"])
+    b.save("kaohsiung-cut-sheets")
+
+
+def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int = 2) -> Builder:
+    """The Kaohsiung roof graph, up to its developable strips."""
     b = Builder(
         "Kaohsiung Solar Stadium roof (after Toyo Ito), as in the 2011 TU Delft toolbox case "
         "study: a horseshoe base curve is copied up and scaled inwards; the three curves are "
@@ -79,14 +114,15 @@ def kaohsiung() -> None:
         "neighbouring edges, RulingDevelopable makes developable strips: each strip bends one "
         "way only, yet together they read as a double-curved roof. Drag 'Inward scale' or "
         "'Shift n' and watch the strips re-form."
+        if description is None else description
     )
     # a horseshoe: an ellipse open towards +x
     angles = [math.radians(a) for a in range(40, 321, 35)]
     horseshoe = [point(60 * math.cos(a), 42 * math.sin(a), 0.0) for a in angles]
     b.slider("height", 0, "Roof height (m)", 14.0, 4.0, 30.0, 1)
     b.slider("scale", 1, "Inward scale", 0.72, 0.4, 0.95, 2)
-    b.integer("count", 2, "Edge points", 24, 8, 60)
-    b.integer("shift", 3, "Shift n", 2, 0, 6)
+    b.integer("count", 2, "Edge points", count, 8, 60)
+    b.integer("shift", 3, "Shift n", shift, 0, 6)
     b.integer("segments", 4, "Segments per strip", 12, 2, 60)
     b.node("curves.Interpolate", "base", 1, 0, "Horseshoe base curve", Vertices=horseshoe, Degree=3)
     b.node("params.UnitZ", "up", 1, 1.5, "Up")
@@ -148,7 +184,7 @@ def kaohsiung() -> None:
              "index0", "index1", "index2", "pick0", "pick1", "pick2", "edge_curves"])
     b.group("strips", "Developable strips", RESULT,
             ["strips", "left_index", "right_index", "left", "right", "strip"])
-    b.save("kaohsiung-stadium")
+    return b
 
 
 def guggenheim() -> None:
@@ -467,6 +503,7 @@ def panels() -> None:
 
 EXAMPLES: dict[str, Callable[[], None]] = {
     "kaohsiung-stadium": kaohsiung,
+    "kaohsiung-cut-sheets": kaohsiung_cut_sheets,
     "guggenheim-ny": guggenheim,
     "zve-roof-edge": zve_roof_edge,
     "textbook-ruled-surfaces": textbook,

@@ -25,10 +25,13 @@ from engine.node import CancelToken
 from engine.solver import NodeResult, Solver, SolveReport
 
 PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
+#: A solve running longer than this shows what it has so far (``partial``) this often, so
+#: the viewport keeps moving during a slider drag even when one node is slow.
+PARTIAL_INTERVAL = 0.03
 #: How long a Python thread may hold the GIL before handing it over (CPython's default is
 #: 5 ms). Every Qt callback on the GUI thread needs the GIL; with a node computing in pure
 #: Python on the worker, 1 ms keeps the GUI's event loop answering within a few ms.
-GIL_SWITCH_INTERVAL = 0.00005
+GIL_SWITCH_INTERVAL = 0.0005
 
 
 @dataclass
@@ -55,7 +58,9 @@ class SolveController(QObject):
     started = Signal()
     progress = Signal(int, int, str)
     finished = Signal(object)  # SolveOutcome
+    partial = Signal(object)  # SolveOutcome of a solve still running: the nodes solved so far
     _worker_done = Signal(object)
+    _worker_partial = Signal(object)
     _worker_progress = Signal(int, int, str)
 
     def __init__(self, parent: QObject | None = None) -> None:
@@ -75,6 +80,7 @@ class SolveController(QObject):
         self._request.setInterval(0)
         self._request.timeout.connect(self._start)
         self._worker_done.connect(self._on_worker_done)
+        self._worker_partial.connect(self._on_worker_partial)
         self._worker_progress.connect(self.progress)
 
     # -- state -----------------------------------------------------------------------
@@ -154,13 +160,29 @@ class SolveController(QObject):
         self.started.emit()
 
     def _run(self, solver: Solver, token: CancelToken, generation: int) -> None:
-        last = [0.0]
+        started = time.perf_counter()
+        last_progress, last_partial = [0.0], [started]
+        done: list[str] = []  # nodes solved so far in this solve
+        shown = [0]  # how many of them the last partial outcome carried
+        current: list[str | None] = [None]
 
         def progress(index: int, total: int, node_id: str) -> None:
+            if current[0] is not None:
+                done.append(current[0])  # called before each node: the previous one is done
+            current[0] = node_id
             now = time.perf_counter()
-            if now - last[0] >= PROGRESS_INTERVAL:
-                last[0] = now
+            if now - last_progress[0] >= PROGRESS_INTERVAL:
+                last_progress[0] = now
                 self._worker_progress.emit(index, total, node_id)
+            if now - last_partial[0] >= PARTIAL_INTERVAL and len(done) > shown[0]:
+                last_partial[0] = now
+                fresh = SolveReport(solved=done[shown[0] :])
+                shown[0] = len(done)
+                prepared = self._prepare_safely(solver, fresh)
+                partial = SolveOutcome(
+                    generation, SolveReport(list(done)), dict(solver.results), "", prepared
+                )
+                self._worker_partial.emit(partial)
 
         error = ""
         try:
@@ -169,13 +191,22 @@ class SolveController(QObject):
             report = SolveReport(cancelled=True)
             error = f"{type(exc).__name__}: {exc}"
         prepared = None
-        if self.prepare is not None and not error and not token.cancelled:
-            try:
-                prepared = self.prepare(solver, report)
-            except Exception:
-                prepared = None
+        if not error and not token.cancelled:
+            prepared = self._prepare_safely(solver, SolveReport(solved=report.solved[shown[0] :]))
         outcome = SolveOutcome(generation, report, dict(solver.results), error, prepared)
         self._worker_done.emit(outcome)
+
+    def _prepare_safely(self, solver: Solver, report: SolveReport) -> Any:
+        if self.prepare is None or not report.solved:
+            return None
+        try:
+            return self.prepare(solver, report)
+        except Exception:
+            return None
+
+    def _on_worker_partial(self, outcome: SolveOutcome) -> None:
+        if outcome.generation == self._generation and self.busy():
+            self.partial.emit(outcome)
 
     def _on_worker_done(self, outcome: SolveOutcome) -> None:
         if outcome.generation != self._generation:

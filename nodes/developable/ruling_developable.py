@@ -21,27 +21,33 @@ COINCIDENT = 1e-9
 
 def _coincident(curve_a: Curve, curve_b: Curve) -> bool:
     """Whether every sample of A lies on B and every sample of B on A (to rounding)."""
+    if _ends_differ(curve_a, curve_b):
+        return False
     t = np.linspace(0.0, 1.0, 17)
     a, b = curve_a.point_at(t), curve_b.point_at(t)
     size = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
     if size == 0.0:
         return True
-
-    # cheapest rejection: a curve given twice has the same ends (either way round),
-    # unless both are loops, whose seams may lie anywhere
-    def near(p: np.ndarray, q: np.ndarray) -> bool:
-        return float(np.abs(p - q).max()) <= 1e-6 * size
-
-    (a0, a1), (b0, b1) = a[[0, -1]], b[[0, -1]]
-    if not (
-        (near(a0, b0) and near(a1, b1)) or (near(a0, b1) and near(a1, b0)) or (near(a0, a1) and near(b0, b1))
-    ):
-        return False
     # cheap rejection first: a sample of A far from B's dense polyline settles it
     if _polyline_gap(a, curve_b.point_at(np.linspace(0.0, 1.0, 257))) > 1e-3 * size:
         return False
     gap = max(curve_b.closest_point(a).distances.max(), curve_a.closest_point(b).distances.max())
     return bool(gap <= COINCIDENT * size)
+
+
+def _ends_differ(curve_a: Curve, curve_b: Curve) -> bool:
+    """The cheapest rejection: a curve given twice has the same ends (either way round),
+    unless both are loops, whose seams may lie anywhere. Ends count as the same within
+    1e-6 of their spread (or when all four coincide)."""
+    a0, a1 = curve_a.point_at(np.array([0.0, 1.0]))
+    b0, b1 = curve_b.point_at(np.array([0.0, 1.0]))
+    size = float(np.ptp(np.array([a0, a1, b0, b1]), axis=0).max())
+
+    def near(p: np.ndarray, q: np.ndarray) -> bool:
+        return float(np.abs(p - q).max()) <= 1e-6 * size
+
+    same = (near(a0, b0) and near(a1, b1)) or (near(a0, b1) and near(a1, b0))
+    return not (same or (near(a0, a1) and near(b0, b1)))
 
 
 def _polyline_gap(points: np.ndarray, polyline: np.ndarray) -> float:

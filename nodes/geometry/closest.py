@@ -10,6 +10,7 @@ minimum contributes its nearer end. The nearer of the two answers wins.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -22,10 +23,23 @@ if TYPE_CHECKING:
 
 def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> FloatArray:
     """Parameters spread over every smooth span of the curve, at least ``minimum`` of them."""
-    breaks = curve._breakpoints()
-    spans = len(breaks) - 1
-    count = max(per_span, -(-minimum // spans))
-    inner = breaks[:-1, None] + np.linspace(0, 1, count, endpoint=False)[None, :] * np.diff(breaks)[:, None]
+    breaks = tuple(curve._breakpoints().tolist())
+    if len(breaks) > _CACHED_BREAKS:  # a long key costs more than the work it saves
+        return _spread.__wrapped__(breaks, per_span, minimum)
+    return _spread(breaks, per_span, minimum).copy()
+
+
+#: Curves with at most this many breakpoints share their sample layouts (see :func:`_spread`).
+_CACHED_BREAKS = 64
+
+
+@lru_cache(maxsize=64)
+def _spread(breaks: tuple[float, ...], per_span: int, minimum: int) -> FloatArray:
+    """:func:`sample_parameters` for given breakpoints (curves rebuilt on every solve with
+    the same knots share it)."""
+    edges = np.array(breaks)
+    count = max(per_span, -(-minimum // (len(edges) - 1)))
+    inner = edges[:-1, None] + np.linspace(0, 1, count, endpoint=False)[None, :] * np.diff(edges)[:, None]
     return np.concatenate([inner.reshape(-1), [1.0]])
 
 

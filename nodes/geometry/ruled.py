@@ -40,6 +40,13 @@ _AREA_PIECES = 16
 _AREA_MAX_SPANS = 200_000
 
 
+def _uniform(count: int) -> FloatArray:
+    """``np.linspace(0, 1, count)``, bit for bit, at a fraction of its cost."""
+    params = np.arange(count) * (1.0 / (count - 1))
+    params[-1] = 1.0
+    return params
+
+
 def _periodic_uniform_spline(points: FloatArray) -> BSpline:
     """The periodic cubic spline through ``points`` (the last repeating the first) at
     evenly spaced parameters 0 … 1: as scipy's ``make_interp_spline(..., bc_type="periodic")``,
@@ -66,7 +73,7 @@ class _Interpolant:
     def solve(self) -> BSpline:
         """The spline (solved on the first call)."""
         if self._spline is None:
-            uniform = np.array_equal(self.params, np.linspace(0.0, 1.0, len(self.params)))
+            uniform = np.array_equal(self.params, _uniform(len(self.params)))
             if self.closed and uniform:
                 spline = _periodic_uniform_spline(self.points)
             elif self.closed:
@@ -225,7 +232,7 @@ class RuledSurface(Surface):
         lines = np.stack([a, b], axis=1)
         if not np.isfinite(lines).all():
             raise ValueError("ruling end points must be finite")
-        params = np.linspace(0.0, 1.0, n)
+        params = _uniform(n)
         size = float(np.ptp(lines.reshape(-1, 3), axis=0).max()) or 1.0
         closed = n >= 4 and bool(np.abs(lines[0] - lines[-1]).max() <= 1e-12 * size)
         surface = cls.__new__(cls)

@@ -20,7 +20,7 @@ from .curve_base import FloatArray
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise cross product (broadcasting)."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
     np.subtract(a1 * b2, a2 * b1, out=out[..., 0])

@@ -175,8 +175,11 @@ def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     return Polyline(ring[keep], closed=True)
 
 
-def check_panels(outlines: Sequence[FloatArray], ids: Sequence[str]) -> None:
-    """Refuse outlines that cross themselves, repeated IDs and panels given twice."""
+def check_panels(
+    outlines: Sequence[FloatArray], ids: Sequence[str], sources: Sequence[int] | None = None
+) -> None:
+    """Refuse outlines that cross themselves, repeated IDs and panels given twice (twice
+    within one source, when ``sources`` are given)."""
     for outline, name in zip(outlines, ids, strict=True):
         polygon = shapely.Polygon(outline)
         if not polygon.is_valid:
@@ -193,13 +196,14 @@ def check_panels(outlines: Sequence[FloatArray], ids: Sequence[str]) -> None:
         if name in seen:
             raise PanelProblem(f"Panels {seen[name] + 1} and {i + 1} are both called {name}: IDs must differ")
         seen[name] = i
-    groups: dict[tuple[int, int, int], list[int]] = {}
+    groups: dict[tuple[int, int, int, int], list[int]] = {}
     for i, outline in enumerate(outlines):
         polygon = shapely.Polygon(outline)
         size = math.sqrt(polygon.area)
         step = 1e-6 * size
         x, y = polygon.centroid.coords[0]
-        key = (round(polygon.area / size / step), round(x / step), round(y / step))
+        source = 0 if sources is None else sources[i]
+        key = (source, round(polygon.area / size / step), round(x / step), round(y / step))
         groups.setdefault(key, []).append(i)
     for members in groups.values():
         for a, b in itertools.pairwise(members):
@@ -303,10 +307,14 @@ def lay_out(
     text_height: float = 10.0,
     rotate: bool = True,
     units: str = "m",
+    sources: Sequence[int] | None = None,
 ) -> CutLayout:
     """Check the panels and place them on as many sheets as they need (see the module).
 
-    A panel is a closed flat curve, or a flat surface whose boundary is cut.
+    A panel is a closed flat curve, or a flat surface whose boundary is cut. ``sources``
+    (one number per panel, e.g. its data-tree branch) says which panels come from the
+    same drawing: only those can be "the same outline given twice"; panels of separate
+    developments may lie on top of each other in the plane and are still separate parts.
     """
     for name, value in (("Sheet width", width), ("Sheet height", height)):
         if not (math.isfinite(value) and value > 0):
@@ -337,7 +345,7 @@ def lay_out(
             outlines.append(panel_outline(curve, scale))
         except ValueError as exc:
             raise PanelProblem(f"Panel {name} {exc}") from None
-    check_panels(outlines, names)
+    check_panels(outlines, names, sources)
 
     room_w, room_h = width - 2 * gap, height - 2 * gap
     cuts, drawn, boxes = [], [], []

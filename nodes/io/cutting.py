@@ -100,6 +100,9 @@ class ExportCutSheet(Node):
         write: Any,
     ) -> tuple[Any, ...]:
         curves = panels.all_items() + surfaces.all_items()
+        # each branch is one drawing (one strip's development): a part of one branch may
+        # coincide with a part of another in the plane and still be a separate part
+        sources = [b for b, branch in enumerate(panels.branches + surfaces.branches) for _ in branch]
         if not curves:
             raise NodeWarning("There are no panels: wire closed flat curves into Panels or flat surfaces "
                               "into Surfaces")
@@ -113,6 +116,7 @@ class ExportCutSheet(Node):
                 width=number("SheetWidth", width), height=number("SheetHeight", height),
                 gap=number("Gap", gap), kerf=number("Kerf", kerf),
                 text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
+                sources=sources,
             )
             files = []
             if write:

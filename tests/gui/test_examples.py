@@ -69,8 +69,8 @@ def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, pat
     for a, b in itertools.combinations(items, 2):
         overlap = (
             a.sceneBoundingRect()
-            .adjusted(2, 8, -8, -2)
-            .intersects(b.sceneBoundingRect().adjusted(2, 8, -8, -2))
+            .adjusted(1, 1, -1, -1)
+            .intersects(b.sceneBoundingRect().adjusted(1, 1, -1, -1))
         )
         assert not overlap, f"{a.node_id} overlaps {b.node_id}"
 

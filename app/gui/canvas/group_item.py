@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QRectF, Qt
 from PySide6.QtGui import QColor, QFontMetricsF, QPainter, QPen
-from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
+from PySide6.QtWidgets import QGraphicsItem, QGraphicsRectItem, QStyleOptionGraphicsItem, QWidget
 
 from app.gui import theme
 
@@ -12,7 +12,7 @@ MARGIN = 12.0
 TITLE_H = 18.0
 
 
-class GroupItem(QGraphicsItem):
+class GroupItem(QGraphicsRectItem):
     """Draws one engine :class:`~engine.graph.Group` around its members' items."""
 
     def __init__(self, group_id: str) -> None:
@@ -21,12 +21,13 @@ class GroupItem(QGraphicsItem):
         self.title = ""
         self.colour = QColor("#d8e4f0")
         self._rect = QRectF()
+        self.setPen(QPen(Qt.PenStyle.NoPen))
         self.setZValue(-10)
+        self.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         self.font = theme.ui_font(8.5, bold=True)
 
     def set_content(self, title: str, colour: str, member_rects: list[QRectF]) -> None:
         """Fit the box around ``member_rects`` (scene rectangles of the member nodes)."""
-        self.prepareGeometryChange()
         self.title = title
         self.colour = QColor(colour) if QColor.isValidColorName(colour) else QColor("#d8e4f0")
         if member_rects:
@@ -36,11 +37,9 @@ class GroupItem(QGraphicsItem):
             self._rect = rect.adjusted(-MARGIN, -MARGIN - TITLE_H, MARGIN, MARGIN)
         else:
             self._rect = QRectF()
+        self.setRect(self._rect.adjusted(-1, -1, 1, 1))
         self.setVisible(bool(member_rects))
         self.update()
-
-    def boundingRect(self) -> QRectF:
-        return self._rect.adjusted(-1, -1, 1, 1)
 
     def title_rect(self) -> QRectF:
         return QRectF(self._rect.left(), self._rect.top(), self._rect.width(), TITLE_H)

@@ -13,6 +13,7 @@ from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtGui import QColor, QFontMetricsF, QPainter, QPainterPath, QPen
 from PySide6.QtWidgets import (
     QGraphicsItem,
+    QGraphicsRectItem,
     QGraphicsSceneHoverEvent,
     QGraphicsSceneMouseEvent,
     QStyleOptionGraphicsItem,
@@ -34,8 +35,12 @@ if TYPE_CHECKING:
 RADIUS = 5.0
 
 
-class NodeItem(QGraphicsItem):
-    """The drawn form of one node record."""
+class NodeItem(QGraphicsRectItem):
+    """The drawn form of one node record.
+
+    A rectangle item whose bounds Qt computes itself (only :meth:`paint` is Python, and
+    the painting is cached): see :mod:`app.gui.canvas.port_item` for why.
+    """
 
     title_font = theme.ui_font(8.5, bold=True)
     port_font = theme.ui_font(8.0)
@@ -50,6 +55,7 @@ class NodeItem(QGraphicsItem):
         self.layout: NodeLayout | None = None
         self.widget: InlineWidget | None = widget_for(self)
         self._widget_grab = False
+        self.setPen(QPen(Qt.PenStyle.NoPen))
         self.setFlags(
             QGraphicsItem.GraphicsItemFlag.ItemIsMovable
             | QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
@@ -131,7 +137,9 @@ class NodeItem(QGraphicsItem):
             self.ports[(False, slot.name)].setPos(slot.centre)
         for (is_input, name), port in self.ports.items():
             state = self.record.inputs.get(name) if is_input else None
-            port.has_value = bool(state and state.has_value)
+            port.set_has_value(bool(state and state.has_value))
+            port.setToolTip(self.port_tooltip(name, is_input))
+        self.setRect(self.layout.rect)
         self.update()
 
     def input_port(self, name: str) -> PortItem | None:
@@ -146,6 +154,9 @@ class NodeItem(QGraphicsItem):
         if resize:
             self.rebuild()
         else:
+            for (is_input, name), port in self.ports.items():
+                if not is_input:
+                    port.setToolTip(self.port_tooltip(name, is_input))
             self.update()
 
     def size(self) -> tuple[float, float]:
@@ -189,14 +200,6 @@ class NodeItem(QGraphicsItem):
         return text
 
     # -- painting --------------------------------------------------------------------
-    def boundingRect(self) -> QRectF:
-        return self.layout.rect.adjusted(-2, -8, 8, 2)
-
-    def shape(self) -> QPainterPath:
-        path = QPainterPath()
-        path.addRoundedRect(self.layout.rect, RADIUS, RADIUS)
-        return path
-
     def body_colour(self) -> QColor:
         if self.isSelected():
             return theme.SELECTED_BODY
@@ -222,7 +225,8 @@ class NodeItem(QGraphicsItem):
             outline.setStyle(Qt.PenStyle.DashLine)
         painter.setPen(outline)
         painter.setBrush(body)
-        painter.drawRoundedRect(rect, RADIUS, RADIUS)
+        inset = outline.widthF() / 2  # the outline stays inside the item's bounds
+        painter.drawRoundedRect(rect.adjusted(inset, inset, -inset, -inset), RADIUS, RADIUS)
         # title bar
         clip = QPainterPath()
         clip.addRoundedRect(rect, RADIUS, RADIUS)
@@ -236,7 +240,7 @@ class NodeItem(QGraphicsItem):
         painter.drawLine(QPointF(0.5, TITLE_H), QPointF(rect.width() - 0.5, TITLE_H))
         painter.setFont(self.title_font)
         painter.setPen(theme.NODE_TEXT)
-        title_rect = layout.title_rect.adjusted(6, 0, -6, 0)
+        title_rect = layout.title_rect.adjusted(6, 0, -16, 0)
         title = QFontMetricsF(self.title_font).elidedText(
             self.record.title, Qt.TextElideMode.ElideRight, title_rect.width()
         )
@@ -266,7 +270,7 @@ class NodeItem(QGraphicsItem):
             return
         worst = max(m.level for m in self.result.messages).name.lower()
         colour = theme.MESSAGE_COLOURS.get(worst, QColor("#606060"))
-        centre = QPointF(self.layout.width - 1, -1)
+        centre = QPointF(self.layout.width - 10, TITLE_H / 2)
         painter.setOpacity(1.0)
         painter.setPen(QPen(colour.darker(140), 1.0))
         painter.setBrush(colour)

@@ -66,6 +66,7 @@ class ViewportPanel(QWidget):
             self.actions_by_name[name] = action
         self.toolbar.setEnabled(False)
         doc.results_changed.connect(self._on_results)
+        doc.solves.partial.connect(self._on_partial)
         doc.graph_changed.connect(self._on_graph_event)
         doc.graph_replaced.connect(self._on_replaced)
 
@@ -128,6 +129,13 @@ class ViewportPanel(QWidget):
 
     def _on_results(self, outcome: SolveOutcome) -> None:
         self.refresh(outcome.prepared)
+
+    def _on_partial(self, outcome: SolveOutcome) -> None:
+        """A long solve's nodes solved so far: show them now (the rest follow)."""
+        if self.preview is not None and self.preview.update(
+            self.doc.graph, outcome.results, outcome.prepared
+        ):
+            self.schedule_render()
 
     def _prepare(self, solver: Solver, report: SolveReport) -> object:
         """On the solver's thread: the meshes of the nodes just solved."""

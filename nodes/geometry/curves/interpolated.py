@@ -71,7 +71,6 @@ class InterpolatedCurve(NurbsCurve):
                 "Two consecutive points coincide; the curve cannot pass through one point twice in a row."
             )
         u = chord_length_parameters(p)
-        total_chord = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
 
         if closed:
             k = degree
@@ -79,6 +78,8 @@ class InterpolatedCurve(NurbsCurve):
         elif start_tangent is not None or end_tangent is not None:
             # dC/dt at an end: the given direction, with length equal to the chord length
             # (the speed of a chord-length parameterisation there).
+            total_chord = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
+
             def end(tangent: ArrayLike | None, which: str) -> list[tuple[int, np.ndarray]]:
                 if tangent is None:
                     return [(2, np.zeros(3))]

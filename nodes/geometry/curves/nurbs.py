@@ -104,14 +104,22 @@ class NurbsCurve(Curve):
         count = len(points)
         self.domain = (float(knots[degree]), float(knots[count]))
         coefficients = points if weights is None else np.column_stack([points * weights[:, None], weights])
-        # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve.
-        self._spline = BSpline(knots, coefficients, degree, extrapolate="periodic" if periodic else True)
+        # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve; the
+        # knots and coefficients are checked already (construct_fast skips scipy's checks)
+        self._spline = BSpline.construct_fast(
+            np.ascontiguousarray(knots, dtype=float),
+            np.ascontiguousarray(coefficients, dtype=float),
+            degree,
+            extrapolate="periodic" if periodic else True,
+        )
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
-        span = np.ptp(points, axis=0).max()
-        self.closed = periodic or bool(
-            np.linalg.norm(self.point_at(0.0) - self.point_at(1.0)) <= 1e-12 * max(span, 1.0)
-        )
+        if periodic:
+            self.closed = True
+        else:
+            span = np.ptp(points, axis=0).max()
+            start, end = self.point_at(np.array([0.0, 1.0]))
+            self.closed = bool(np.linalg.norm(start - end) <= 1e-12 * max(span, 1.0))
 
     @classmethod
     def from_arrays(

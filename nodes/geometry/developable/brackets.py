@@ -57,6 +57,9 @@ def refine_roots(
                 break
             xa = x[active]
             f, df, scale = function(xa, active)
+            zero = np.abs(f) <= ZERO * scale
+            if zero.all():  # the usual end: every start or step was on its root, to rounding
+                break
             on_low_side = np.sign(f) == low_sign[active]
             lo = np.where(on_low_side, xa, low[active])
             hi = np.where(on_low_side | (f == 0), high[active], xa)
@@ -65,7 +68,6 @@ def refine_roots(
             inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
             step_to = np.where(inside, newton, 0.5 * (lo + hi))
             tiny = STEP * np.maximum(np.abs(xa), 1e-300)
-            zero = np.abs(f) <= ZERO * scale
             done = zero | (inside & (np.abs(newton - xa) <= tiny)) | (hi - lo <= tiny)
             x[active] = np.where(zero, xa, step_to)
             active = active[~done]

@@ -236,7 +236,8 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
     left = np.hstack([ua, -cross(a, ua)])
     right = np.ascontiguousarray(np.hstack([cross(ub, b), ub]).T)
     n, m = len(a0), len(b0)
-    size = float(norm(np.ptp(np.concatenate([a0, b0]), axis=0)))
+    both = np.concatenate([a0, b0])
+    size = float(norm(both.max(axis=0) - both.min(axis=0)))
     block = max(1, 40_000 // m)
     found: list[tuple[IntArray, FloatArray, FloatArray]] = []
     zeros: list[IntArray] = []
@@ -534,7 +535,8 @@ class _Strip:
 
     @cached_property
     def _chords_b(self) -> FloatArray:
-        return np.concatenate([[0.0], np.cumsum(norm(np.diff(self.grid.points, axis=0)))])
+        points = self.grid.points
+        return np.concatenate([[0.0], np.cumsum(norm(points[1:] - points[:-1]))])
 
     @cached_property
     def station_lengths(self) -> FloatArray:
@@ -558,10 +560,11 @@ class _Strip:
         chosen = np.full(n, -1, dtype=np.int64)
         rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
         if len(rows):
-            pick = monotone_path(t_pad[rows], slope_pad[rows], np.diff(self.s[rows]))
+            s = self.s[rows]
+            pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
             chosen[rows] = index_pad[rows, pick]
             t = good.t[chosen[rows]]
-            if np.any(np.diff(t) < -1e-12):  # the selection had to step back: keep a monotone subset
+            if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
                 chosen[rows[~_longest_monotone(t)]] = -1
         return chosen, good, flipped
 
@@ -614,11 +617,12 @@ class _Strip:
         before, after = before[missing], after[missing]
         lo = np.where(before >= 0, t[np.maximum(before, 0)], 0.0)
         hi = np.where(after < n, t[np.minimum(after, n - 1)], 1.0)
-        # the least |signed warp| among B's samples inside each station's window
+        # the least |signed warp| among B's samples inside each station's window (the
+        # angle between the normals does not depend on their lengths: no unit tangents)
         grid = self.grid
         r = grid.points[None, :, :] - self.a0[missing, None, :]
-        n1 = cross(r, unit(self.a1[missing])[:, None, :])
-        n2 = cross(r, unit(grid.tangents)[None, :, :])
+        n1 = cross(r, self.a1[missing, None, :])
+        n2 = cross(r, grid.tangents[None, :, :])
         angle = np.arctan2(norm(cross(n1, n2)), dot(n1, n2))
         inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
         angle = np.where(inside, angle, np.inf)
@@ -632,7 +636,7 @@ class _Strip:
             span = a_hi - a_lo
             fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
             b_lo, b_hi = self.length_b(lo), self.length_b(hi)
-            loft = np.clip(self.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo, hi)
+            loft = np.minimum(np.maximum(self.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
             t[missing] = np.where(near, grid.t[best], loft)
         else:
             t[missing] = grid.t[best]
@@ -651,8 +655,8 @@ class _Strip:
         cone at a corner of A). s* solves f(s, t_mid) = 0 for s, or is the corner of A.
         """
         s = self.s
-        dt = np.diff(t)
-        predicted = 0.5 * np.diff(s) * (slope[:-1] + slope[1:])
+        dt = t[1:] - t[:-1]
+        predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
         jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
         pairs = np.flatnonzero(jump)
         if len(pairs) == 0:

@@ -71,7 +71,9 @@ class LengthMap:
 
     def __init__(self, curve: Curve, intervals: int = 128) -> None:
         self.curve = curve
-        nodes, gauss, half, last, span_ends = _layout(tuple(curve._breakpoints().tolist()), int(intervals))
+        breaks = tuple(curve._breakpoints().tolist())
+        layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
+        nodes, gauss, half, last, span_ends = layout(breaks, int(intervals))
         d1 = curve.derivatives(np.concatenate([gauss, nodes, span_ends]), 1)[1]
         speeds = np.sqrt(np.add.reduce(d1 * d1, axis=-1))
         g, m = len(gauss), len(nodes)
