@@ -19,7 +19,7 @@ from app.gui.document import Document
 from app.gui.fragments import copy_fragment, paste_fragment
 from app.gui.graph_order import fresh_id, group_by_id
 from engine.datatree import MODIFIERS
-from engine.graph import GraphError, Group, NodeRecord, Wire
+from engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 from engine.types import can_cast
 
 GROUP_COLOURS = ("#d8e4f0", "#e8e0f4", "#dceee2", "#f4ecd8", "#f2dede", "#e0f0f0")
@@ -39,7 +39,7 @@ class Editor(QObject):
         doc.results_changed.connect(lambda _outcome: self._flush_drag())
 
     @property
-    def graph(self):
+    def graph(self) -> Graph:
         return self.doc.graph
 
     # -- nodes -----------------------------------------------------------------------
@@ -155,10 +155,6 @@ class Editor(QObject):
             # start now, not on the next event-loop turn: the worker solves while the GUI
             # is still drawing the previous result
             self.doc.solves.solve_now()
-
-    def pending_drag_value(self, node_id: str) -> Any:
-        pending = self._pending_drag
-        return pending[2] if pending and pending[0] == node_id else None
 
     # -- inputs ------------------------------------------------------------------------
     def set_input_value(self, node_id: str, port: str, value: Any) -> None:

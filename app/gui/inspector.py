@@ -21,8 +21,8 @@ from PySide6.QtWidgets import (
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.formatting import format_item
-from engine.datatree import format_path
-from engine.graph import is_placeholder
+from engine.datatree import DataTree, format_path
+from engine.graph import Graph, is_placeholder
 
 MAX_ITEMS_SHOWN = 100
 
@@ -78,7 +78,7 @@ class Inspector(QWidget):
         finally:
             self._filling = False
 
-    def _fill(self, graph) -> None:
+    def _fill(self, graph: Graph) -> None:
         self.settings.setRowCount(0)
         self.ports.clear()
         self.data.clear()
@@ -128,7 +128,7 @@ class Inspector(QWidget):
                 self._add_tree(port.name, tree)
         self.help.setHtml(self._help_html(type(node), is_placeholder(node), record.type_id))
 
-    def _add_tree(self, name: str, tree) -> None:
+    def _add_tree(self, name: str, tree: DataTree) -> None:
         top = QTreeWidgetItem([name, f"{tree.item_count} items in {tree.branch_count} branches"])
         self.data.addTopLevelItem(top)
         shown = 0

@@ -124,7 +124,8 @@ class MainWindow(QMainWindow):
         self._tables_timer = QTimer(self)
         self._tables_timer.setSingleShot(True)
         self._tables_timer.setInterval(200)
-        self._tables_timer.timeout.connect(self._fill_tables)
+        self._tables_timer.timeout.connect(self._tables_due)
+        self._tables_stale = False
         self.actions_by_name: dict[str, QAction] = build_menus(self)
         self._update_title()
         self._help_dialogs: list[QDialog] = []
@@ -225,7 +226,7 @@ class MainWindow(QMainWindow):
         self.settings.add_recent(path)
         self.report(f"Opened {path}")
         self.view.resetTransform()
-        defer(self, self.view.zoom_to_fit)
+        defer(self, lambda: self.view.zoom_to_fit(readable=True))
         return True
 
     def save(self) -> bool:
@@ -296,12 +297,20 @@ class MainWindow(QMainWindow):
         self.status.solve_finished(outcome)
         if outcome.error:
             self.report(outcome.error, "error")
-        # The message log and profiler are tables: refilled at most ~5 times a second, so a
-        # slider drag's stream of solves is not slowed by them.
-        if not self._tables_timer.isActive():
+        # The message log and profiler are tables: refilled at once, then at most ~5 times
+        # a second, so a slider drag's stream of solves is not slowed by them.
+        if self._tables_timer.isActive():
+            self._tables_stale = True
+        else:
+            self._fill_tables()
             self._tables_timer.start()
 
+    def _tables_due(self) -> None:
+        if self._tables_stale:
+            self._fill_tables()
+
     def _fill_tables(self) -> None:
+        self._tables_stale = False
         outcome = self.doc.last_outcome
         if outcome is not None:
             self.log.show_solve(outcome, self.doc.graph)

@@ -70,7 +70,6 @@ class SolveController(QObject):
         self._thread: threading.Thread | None = None
         self._token: CancelToken | None = None
         self._generation = 0
-        self._started_at = 0.0
         self.auto = True
         #: Called on the worker after each solve with the solver and its report; what it
         #: returns travels with the outcome (the viewport makes its meshes there).
@@ -96,10 +95,6 @@ class SolveController(QObject):
     def idle(self) -> bool:
         """No solve running, none requested and no outcome still on its way to the GUI."""
         return self._thread is None and not self._request.isActive()
-
-    def running_for(self) -> float:
-        """Seconds the current solve has been running (0 when idle)."""
-        return time.perf_counter() - self._started_at if self.busy() else 0.0
 
     # -- control ---------------------------------------------------------------------
     def request(self) -> None:
@@ -149,7 +144,6 @@ class SolveController(QObject):
         self.pause()
         self._generation += 1
         self._token = CancelToken()
-        self._started_at = time.perf_counter()
         self._thread = threading.Thread(
             target=self._run,
             args=(self._solver, self._token, self._generation),

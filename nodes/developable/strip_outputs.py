@@ -63,7 +63,7 @@ def strip_outputs(
     except ValueError as exc:
         raise NodeError(f"The rulings do not make a surface: {exc}") from None
     lines = Line.many(a, b)
-    return StripOutputs(surface, lines, np.nan_to_num(warp).tolist())
+    return StripOutputs(surface, lines, (np.nan_to_num(warp) if np.isnan(warp).any() else warp).tolist())
 
 
 def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:

@@ -163,6 +163,63 @@ def _closest_on_triangles(
     return np.column_stack([1.0 - v - w, v, w])
 
 
+class _StripWalk:
+    """Which triangle of a (not self-overlapping) development contains each point, by
+    walking along the strip — all points at once.
+
+    The triangles form a chain: triangle ``chain[k]`` lies between edges E_k and E_{k+1}
+    (the rulings and diagonals in order, each from its A end to its B end), and a point
+    to the right of E_{k+1} lies further along. Every point starts at the triangle of
+    its nearest sample (seven per triangle, in a k-d tree), steps forward or back —
+    always the same way, so at most once along the chain — until it lies between two
+    consecutive edges, and that triangle is then checked to contain it.
+    """
+
+    #: Samples per triangle (barycentric weights): its centroid, three points near its
+    #: corners and its three edge midpoints.
+    WEIGHTS = np.array([[2, 2, 2], [4, 1, 1], [1, 4, 1], [1, 1, 4], [3, 3, 0], [0, 3, 3], [3, 0, 3]]) / 6.0
+
+    def __init__(self, vertices2d: FloatArray, first_diagonal: NDArray[np.bool_], proper: IntArray) -> None:
+        n = len(vertices2d) // 2
+        i = np.arange(n - 1)
+        forward = first_diagonal.astype(np.int64)
+        # quad i: along A_{i+1}B_i triangle 2i comes first, along A_iB_{i+1} triangle 2i + 1
+        self.chain = np.column_stack([2 * i + 1 - forward, 2 * i + forward]).reshape(-1)
+        diagonal_a = np.where(first_diagonal, i + 1, i)
+        diagonal_b = n + np.where(first_diagonal, i, i + 1)
+        edge_a = np.column_stack([i, diagonal_a]).reshape(-1)
+        edge_b = np.column_stack([n + i, diagonal_b]).reshape(-1)
+        self.edge_start = vertices2d[np.append(edge_a, n - 1)]
+        self.edge_vector = vertices2d[np.append(edge_b, 2 * n - 1)] - self.edge_start
+        size = float(np.ptp(vertices2d, axis=0).max()) or 1.0
+        self.tolerance = 1e-12 * size * size
+        position = np.empty(len(self.chain), dtype=np.int64)
+        position[self.chain] = np.arange(len(self.chain))
+        triangles = strip_triangles(n, first_diagonal)[proper]
+        samples = np.einsum("sj,tjd->tsd", self.WEIGHTS, vertices2d[triangles]).reshape(-1, 2)
+        self.tree = cKDTree(samples)
+        self.sample_position = np.repeat(position[proper], len(self.WEIGHTS))
+
+    def _ahead(self, edge: IntArray, points: FloatArray) -> FloatArray:
+        """cross(E, p − E_start): negative ahead of the edge, positive behind it."""
+        d = points - self.edge_start[edge]
+        e = self.edge_vector[edge]
+        return e[:, 0] * d[:, 1] - e[:, 1] * d[:, 0]
+
+    def triangles(self, points: FloatArray) -> IntArray:
+        """The triangle (an index into the strip's triangles) each point walks to."""
+        k = self.sample_position[self.tree.query(points)[1]]
+        last = len(self.chain) - 1
+        active = np.arange(len(points))
+        while active.size:  # each pass moves every active point one triangle on
+            kk, q = k[active], points[active]
+            forward = (kk < last) & (self._ahead(kk + 1, q) < -self.tolerance)
+            back = ~forward & (kk > 0) & (self._ahead(kk, q) > self.tolerance)
+            k[active] = kk + forward - back
+            active = active[forward | back]
+        return self.chain[k]
+
+
 class DevelopmentMap:
     """The piecewise-affine map between a development and its 3D strip.
 
@@ -198,7 +255,8 @@ class DevelopmentMap:
         self._area2 = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # twice the signed area
         size = float(np.ptp(self.vertices2d, axis=0).max()) or 1.0
         #: triangles with area: the only ones a point can be located in
-        self.proper = np.flatnonzero(self._area2 > 1e-13 * size * size)
+        self.proper_area = 1e-13 * size * size
+        self.proper = np.flatnonzero(self._area2 > self.proper_area)
         if self.proper.size == 0:
             raise ValueError("the strip has no area: every triangle is degenerate")
 
@@ -214,30 +272,54 @@ class DevelopmentMap:
         polys = shapely.polygons(self.vertices2d[self.triangles[self.proper]])
         return shapely.STRtree(polys)
 
+    @cached_property
+    def _walk(self) -> _StripWalk | None:
+        """The fast locator, for developments that do not overlap themselves (there a
+        point lies in one triangle only; elsewhere the lowest-numbered must be found)."""
+        outline = np.vstack([self.vertices2d[: self.n], self.vertices2d[self.n :][::-1]])
+        if not _is_simple(outline):
+            return None
+        return _StripWalk(self.vertices2d, self.first_diagonal, self.proper)
+
     def locate(self, points2d: ArrayLike) -> tuple[IntArray, FloatArray]:
         """Triangle index and barycentric coordinates ``(k, 3)`` of each 2D point.
 
-        A shapely STR-tree finds the triangles that contain each point (the first one
-        on a shared edge); points outside every triangle take the nearest one.
+        Each point walks along the strip to its triangle (:class:`_StripWalk`); where
+        that fails (a development that overlaps itself, a point outside it) a shapely
+        STR-tree finds the triangles that contain it (the lowest-numbered wins, also on
+        a shared edge), and points outside every triangle take the nearest one.
         """
         pts = np.asarray(points2d, dtype=float).reshape(-1, 2)
-        geoms = shapely.points(pts)
-        big = np.iinfo(np.int64).max
-        found = np.full(len(pts), big, dtype=np.int64)
-        hit_point, hit_tree = self._tree2d.query(geoms, predicate="intersects")
-        np.minimum.at(found, hit_point, hit_tree)
-        missing = np.flatnonzero(found == big)
-        if missing.size:
-            near_point, near_tree = self._tree2d.query_nearest(geoms[missing])
-            np.minimum.at(found, missing[near_point], near_tree)
-        tri = self.proper[found]
+        tri = np.full(len(pts), -1, dtype=np.int64)
+        if self._walk is not None and len(pts):
+            tri = self._walk.triangles(pts)
+            bary = self._barycentric(tri, pts)
+            inside = (bary >= -1e-9).all(axis=1) & (self._area2[tri] > self.proper_area)
+            tri[~inside] = -1
+        lost = np.flatnonzero(tri < 0)
+        if lost.size:
+            geoms = shapely.points(pts[lost])
+            big = np.iinfo(np.int64).max
+            found = np.full(lost.size, big, dtype=np.int64)
+            hit_point, hit_tree = self._tree2d.query(geoms, predicate="intersects")
+            np.minimum.at(found, hit_point, hit_tree)
+            missing = np.flatnonzero(found == big)
+            if missing.size:
+                near_point, near_tree = self._tree2d.query_nearest(geoms[missing])
+                np.minimum.at(found, missing[near_point], near_tree)
+            tri[lost] = self.proper[found]
+        return tri, self._barycentric(tri, pts)
+
+    def _barycentric(self, tri: IntArray, pts: FloatArray) -> FloatArray:
+        """Barycentric coordinates of ``pts`` in triangles ``tri`` (any, even outside)."""
         corners = self.vertices2d[self.triangles[tri]]
         e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
         d = pts - corners[:, 0]
         area2 = self._area2[tri]
-        v = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / area2
-        w = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / area2
-        return tri, np.column_stack([1.0 - v - w, v, w])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / area2
+            w = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / area2
+        return np.column_stack([1.0 - v - w, v, w])
 
     def to_3d(self, points2d: ArrayLike) -> FloatArray:
         """Points of the development carried onto the 3D strip, ``(k, 3)``."""
@@ -574,7 +656,7 @@ class Development:
         """True when the development overlaps itself in the plane (a tangent developable
         of more than a full turn): it cannot be cut from one sheet, and plane → surface
         mapping is ambiguous where it overlaps."""
-        return not shapely.LinearRing(self.outline).is_simple
+        return not _is_simple(self.outline)
 
     @property
     def centroid(self) -> FloatArray:
@@ -594,6 +676,14 @@ class Development:
             ends2d=_rotate_about(self.ends2d, angle, centre),
             map=self.map.rotated(angle, centre),
         )
+
+
+def _is_simple(outline: FloatArray) -> bool:
+    """Whether the closed polygon does not cross or touch itself. A point repeated in a
+    row, to rounding (a cone's apex, the end of every ruling of its fan), is one vertex."""
+    size = float(np.ptp(outline, axis=0).max()) or 1.0
+    step = np.linalg.norm(outline[1:] - outline[:-1], axis=1)
+    return bool(shapely.LinearRing(outline[np.concatenate([[True], step > 1e-9 * size])]).is_simple)
 
 
 def _place(x2: NDArray, y2: NDArray, along: FloatArray, height: FloatArray) -> NDArray:

@@ -45,7 +45,7 @@ def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
 
 def norm(a: FloatArray) -> FloatArray:
     """Row-wise Euclidean length."""
-    return np.sqrt(dot(a, a))
+    return np.sqrt(np.einsum("...i,...i->...", a, a))
 
 
 def unit(a: FloatArray) -> FloatArray:

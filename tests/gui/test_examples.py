@@ -65,6 +65,8 @@ def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, pat
     expected = KNOWN_ACTORS.get(path.name, expected_actors(window.doc))
     assert window.viewport.preview_actor_count() == expected
 
+    SCREENSHOTS.mkdir(exist_ok=True)
+    shot = window.grab_window(SCREENSHOTS / f"{path.stem}.png")
     items = list(window.scene.nodes.values())
     for a, b in itertools.combinations(items, 2):
         overlap = (
@@ -74,8 +76,6 @@ def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, pat
         )
         assert not overlap, f"{a.node_id} overlaps {b.node_id}"
 
-    SCREENSHOTS.mkdir(exist_ok=True)
-    shot = window.grab_window(SCREENSHOTS / f"{path.stem}.png")
     image = QImage(str(shot))
     assert image.width() >= 1200 and image.height() >= 800
     if expected:  # the viewport shows something besides its background

@@ -19,6 +19,7 @@ from app.gui.formatting import format_tree
 
 if TYPE_CHECKING:
     from app.gui.canvas.node_item import NodeItem
+    from app.gui.editor import Editor
 
 HANDLE_W = 9.0
 VALUE_W = 52.0
@@ -35,7 +36,7 @@ class InlineWidget:
         return self.item.record.node.settings
 
     @property
-    def editor(self):
+    def editor(self) -> Editor:
         return self.item.canvas().editor
 
     def size(self) -> QSizeF:

@@ -12,8 +12,8 @@ from PySide6.QtCore import QPointF, QRectF, QSizeF
 from PySide6.QtGui import QFontMetricsF
 
 TITLE_H = 20.0
-ROW_H = 18.0
-PAD = 6.0
+ROW_H = 15.0
+PAD = 4.0
 PORT_R = 4.5
 ICON = 22.0
 MIN_W = 96.0

@@ -36,6 +36,7 @@ from engine.types import can_cast, get_type
 NODE_MIME = "application/x-torsal-node-type"
 ZOOM_STEP = 1.15
 ZOOM_RANGE = (0.15, 4.0)
+READABLE_ZOOM = 0.75  # below this the 8-point labels cannot be read
 PAN_THRESHOLD = 4
 
 
@@ -91,14 +92,28 @@ class CanvasView(QGraphicsView):
         horizontal.setValue(round(horizontal.value() - delta.x()))
         vertical.setValue(round(vertical.value() - delta.y()))
 
-    def zoom_to_fit(self) -> None:
+    def zoom_to_fit(self, readable: bool = False) -> None:
+        """Show every node. With ``readable`` (a file just opened) the zoom stays at least
+        :data:`READABLE_ZOOM`, so the labels can be read, and the view starts at the graph's
+        top-left (its inputs, by convention) when it does not all fit."""
         rect = self.canvas.items_rect()
         if rect.isNull():
             return
-        self.fitInView(rect.adjusted(-40, -40, 40, 40), Qt.AspectRatioMode.KeepAspectRatio)
-        if self.zoom() > 1.25:
+        margin = rect.adjusted(-30, -30, 30, 30)
+        self.fitInView(margin, Qt.AspectRatioMode.KeepAspectRatio)
+        zoom = self.zoom()
+        target = min(zoom, 1.25)
+        if readable:
+            target = max(target, READABLE_ZOOM)
+        if target != zoom:
             self.resetTransform()
-            self.scale(1.25, 1.25)
+            self.scale(target, target)
+        if target > zoom + 1e-9:  # it does not all fit: begin at the top-left corner
+            view = self.viewport().rect()
+            self.centerOn(
+                margin.left() + view.width() / (2 * target), margin.top() + view.height() / (2 * target)
+            )
+        else:
             self.centerOn(rect.center())
 
     def _port_at(self, view_pos: QPoint) -> PortItem | None:

@@ -13,7 +13,9 @@ they can do otherwise, so kernel types added later draw without changes here:
 - anything with ``point_at`` (a curve) → a polyline through evenly spaced points;
 - Point → a dot, Vector → an arrow from the origin.
 
-Each node's values are merged into one dataset per kind so a node costs a few actors.
+Each node's values are merged into one piece per kind so a node costs a few actors.
+Pieces are plain numpy arrays, made on the solver's thread; :func:`dataset` makes the
+VTK objects, on the GUI thread.
 """
 
 from __future__ import annotations
@@ -31,16 +33,23 @@ SURFACE_GRID = 33
 RULINGS_SHOWN = 17
 CURVE_SAMPLES = 97
 
-KINDS = ("surfaces", "rulings", "curves", "points", "vectors", "scalars")
-
 
 @dataclass
 class Piece:
-    """One dataset to draw for a node: its kind and, for coloured meshes, its scalars."""
+    """One thing to draw for a node, as plain arrays (made on any thread).
+
+    ``points`` are ``(n, 3)``; ``faces`` ``(m, 3)`` triangles, or ``lines`` VTK line cells
+    (``[count, i0, i1, …]`` repeated); for ``vectors`` the points are the vectors
+    themselves (drawn as arrows from the origin). Coloured meshes carry ``scalars``.
+    :func:`dataset` turns a piece into a pyvista dataset — on the GUI thread only.
+    """
 
     kind: str
-    dataset: pv.DataSet
-    scalars: str | None = None
+    points: np.ndarray
+    faces: np.ndarray | None = None
+    lines: np.ndarray | None = None
+    scalars: np.ndarray | None = None
+    scalar_name: str | None = None
     rgb: bool = False
     clim: tuple[float, float] | None = None
     cmap: str | None = None
@@ -113,12 +122,9 @@ def _add_trimesh(found: Collected, mesh: Any) -> None:
         found.meshes.append((vertices, faces))
         return
     name, data, rgb, clim, cmap = coloured
-    poly = pv.PolyData(vertices, _vtk_faces(faces))
-    if len(data) == len(vertices):
-        poly.point_data[name] = data
-    else:
-        poly.cell_data[name] = data
-    found.coloured.append(Piece("scalars", poly, name, rgb, clim, cmap))
+    found.coloured.append(
+        Piece("scalars", vertices, faces=faces, scalars=data, scalar_name=name, rgb=rgb, clim=clim, cmap=cmap)
+    )
 
 
 def mesh_scalars(mesh: Any) -> tuple[str, np.ndarray, bool, tuple[float, float] | None, str | None] | None:
@@ -178,44 +184,55 @@ def curve_points(curve: Any) -> np.ndarray:
     return np.asarray(curve.point_at(np.linspace(0.0, 1.0, CURVE_SAMPLES)), dtype=float).reshape(-1, 3)
 
 
-def _vtk_faces(faces: np.ndarray) -> np.ndarray:
-    return np.hstack([np.full((len(faces), 1), 3, dtype=np.int64), faces]).ravel()
-
-
-def _polylines(chains: list[np.ndarray]) -> pv.PolyData:
+def _line_cells(chains: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Points and VTK line cells for several polylines."""
     points = np.concatenate(chains)
-    cells, start = [], 0
-    for chain in chains:
-        cells.append(np.concatenate([[len(chain)], np.arange(start, start + len(chain))]))
-        start += len(chain)
-    return pv.PolyData(points, lines=np.concatenate(cells).astype(np.int64))
+    lengths = np.array([len(c) for c in chains])
+    starts = np.concatenate([[0], np.cumsum(lengths)[:-1]])
+    cells = np.concatenate(
+        [np.concatenate([[n], np.arange(s, s + n)]) for s, n in zip(starts, lengths, strict=True)]
+    )
+    return points, cells.astype(np.int64)
 
 
 def pieces(found: Collected) -> list[Piece]:
-    """Merge collected geometry into one dataset per kind (coloured meshes stay apart)."""
+    """Merge collected geometry into one piece per kind (coloured meshes stay apart)."""
     out: list[Piece] = []
     if found.meshes:
-        offset, verts, faces = 0, [], []
-        for v, f in found.meshes:
-            verts.append(v)
-            faces.append(f + offset)
-            offset += len(v)
-        out.append(Piece("surfaces", pv.PolyData(np.concatenate(verts), _vtk_faces(np.concatenate(faces)))))
-    if found.rulings:
-        out.append(Piece("rulings", _polylines(found.rulings)))
-    if found.polylines:
-        out.append(Piece("curves", _polylines(found.polylines)))
+        offsets = np.cumsum([0] + [len(v) for v, _ in found.meshes[:-1]])
+        faces = np.concatenate([f + o for (_, f), o in zip(found.meshes, offsets, strict=True)])
+        out.append(Piece("surfaces", np.concatenate([v for v, _ in found.meshes]), faces=faces))
+    for kind, chains in (("rulings", found.rulings), ("curves", found.polylines)):
+        if chains:
+            points, cells = _line_cells(chains)
+            out.append(Piece(kind, points, lines=cells))
     if found.points:
-        out.append(Piece("points", pv.PolyData(np.vstack(found.points))))
+        out.append(Piece("points", np.vstack(found.points)))
     if found.vectors:
         vectors = np.vstack(found.vectors)
-        lengths = np.linalg.norm(vectors, axis=1)
-        keep = lengths > 0
-        if keep.any():
-            origins = pv.PolyData(np.zeros((int(keep.sum()), 3)))
-            origins["vectors"] = vectors[keep]
-            origins["length"] = lengths[keep]
-            arrows = origins.glyph(orient="vectors", scale="length", factor=1.0, geom=pv.Arrow())
-            out.append(Piece("vectors", arrows))
+        vectors = vectors[np.linalg.norm(vectors, axis=1) > 0]
+        if len(vectors):
+            out.append(Piece("vectors", vectors))
     out.extend(found.coloured)
     return out
+
+
+def dataset(piece: Piece) -> pv.PolyData:
+    """The pyvista dataset of a piece. GUI thread only: VTK objects made on the solver's
+    thread can deadlock against a render (VTK's locks and the GIL taken in opposite order)."""
+    if piece.kind == "vectors":
+        origins = pv.PolyData(np.zeros_like(piece.points))
+        origins["vectors"] = piece.points
+        origins["length"] = np.linalg.norm(piece.points, axis=1)
+        return origins.glyph(orient="vectors", scale="length", factor=1.0, geom=pv.Arrow())
+    if piece.faces is not None:
+        cells = np.hstack([np.full((len(piece.faces), 1), 3, dtype=np.int64), piece.faces]).ravel()
+        poly = pv.PolyData(piece.points, cells)
+    elif piece.lines is not None:
+        poly = pv.PolyData(piece.points, lines=piece.lines)
+    else:
+        poly = pv.PolyData(piece.points)
+    if piece.scalars is not None:
+        target = poly.point_data if len(piece.scalars) == poly.n_points else poly.cell_data
+        target[piece.scalar_name or "value"] = piece.scalars
+    return poly

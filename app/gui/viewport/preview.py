@@ -9,7 +9,7 @@ import numpy as np
 import pyvista as pv
 
 from app.gui import theme
-from app.gui.viewport.datasets import Piece, collect, pieces
+from app.gui.viewport.datasets import Piece, collect, dataset, pieces
 from engine.graph import Graph
 from engine.solver import NodeResult
 
@@ -45,6 +45,23 @@ class Prepared:
     result: NodeResult
     pieces: list[Piece]
     problems: list[str]
+
+
+def ascii_title(text: str) -> str:
+    """VTK's built-in font has no symbols beyond ASCII: spell them out for colour-bar titles."""
+    for symbol, spelled in (
+        ("·", "*"),
+        ("×", "x"),
+        ("−", "-"),
+        ("²", "^2"),
+        ("³", "^3"),
+        ("κ", "k"),
+        ("°", " deg"),
+        ("’", "'"),
+        ("…", "..."),
+    ):
+        text = text.replace(symbol, spelled)
+    return text.encode("ascii", "replace").decode("ascii")
 
 
 def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
@@ -119,7 +136,7 @@ class Preview:
             actor = self.plotter.renderer.actors.get(name)
             if actor is None:
                 return False
-            actor.mapper.SetInputData(piece.dataset)
+            actor.mapper.SetInputData(dataset(piece))
         entry.result = ready.result
         return True
 
@@ -135,11 +152,11 @@ class Preview:
     def _add_piece(self, name: str, piece: Piece, node_id: str, entry: NodeActors) -> None:
         style = dict(STYLE[piece.kind])
         if piece.kind == "scalars":
-            title = f"{piece.scalars} — {node_id}"
+            title = f"{ascii_title(piece.scalar_name or 'value')}  [{node_id}]"
             self.plotter.add_mesh(
-                piece.dataset,
+                dataset(piece),
                 name=name,
-                scalars=piece.scalars,
+                scalars=piece.scalar_name or "value",
                 rgb=piece.rgb,
                 clim=piece.clim,
                 cmap=piece.cmap or "viridis",
@@ -149,23 +166,31 @@ class Preview:
                 **style,
             )
             if not piece.rgb:
-                actor = self.plotter.renderer.actors[name]
-                self.plotter.add_scalar_bar(
-                    title=title,
-                    mapper=actor.mapper,
-                    vertical=True,
-                    n_labels=5,
-                    fmt="%.3g",
-                    title_font_size=12,
-                    label_font_size=10,
-                    position_x=0.86,
-                    position_y=0.1 + 0.2 * len(self.plotter.scalar_bars),
-                )
+                self._add_bar(title, self.plotter.renderer.actors[name])
                 entry.bars.append(title)
         else:
-            self.plotter.add_mesh(piece.dataset, name=name, reset_camera=False, render=False, **style)
+            if piece.kind == "points":  # many points: smaller dots
+                style["point_size"] = 9.0 if len(piece.points) <= 60 else 5.0
+            self.plotter.add_mesh(dataset(piece), name=name, reset_camera=False, render=False, **style)
         entry.names.append(name)
         entry.kinds[name] = piece.kind
+
+    def _add_bar(self, title: str, actor: Any) -> None:
+        """A colour bar for a coloured mesh, across the bottom; several stack upwards."""
+        row = len(self.plotter.scalar_bars)
+        self.plotter.add_scalar_bar(
+            title=title,
+            mapper=actor.mapper,
+            vertical=False,
+            n_labels=5,
+            fmt="%.3g",
+            title_font_size=11,
+            label_font_size=10,
+            width=0.55,
+            height=0.07,
+            position_x=0.4,
+            position_y=0.03 + 0.12 * row,
+        )
 
     def _remove(self, node_id: str) -> None:
         entry = self.nodes.pop(node_id, None)

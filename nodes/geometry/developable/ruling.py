@@ -47,7 +47,9 @@ Algorithm (all stations at once)
    f_s = det[R, A'', B'].
 6. Planar pieces: where the chosen partners lie in a flat run the strip is planar and
    any pairing is developable; it is drawn as two triangles (a fan of rulings through a
-   point of B, then a fan through a point of A), split along the shorter diagonal. Fans
+   point of B, then a fan through a point of A), split along the shorter diagonal; a
+   piece whose edges have corners is a polygon, cut into such fans from the corners
+   along diagonals that stay inside it (:func:`_strip_triangulation`). Fans
    through a point of A also arise where B is straight and A curved (the ZVE roof: a
    triangle leaning on a straight edge) or at a corner of A: there t jumps between two
    neighbouring stations, the fan's apex s* is found by solving f for s, and rulings
@@ -280,14 +282,14 @@ def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, co
     x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
     d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
     rise = f1 - f0
+    # the cubic f0 + u·(d0 + u·(c2 + u·c3)) and its slope d0 + u·(2·c2 + 3·c3·u)
+    c2 = 3.0 * rise - 2.0 * d0 - d1
+    c3 = d0 + d1 - 2.0 * rise
+    c2_twice, c3_thrice = 2.0 * c2, 3.0 * c3
     u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
     with np.errstate(divide="ignore", invalid="ignore"):
         for _ in range(2):
-            u2 = u * u
-            u3 = u2 * u
-            p = f0 + rise * (3 * u2 - 2 * u3) + d0 * (u3 - 2 * u2 + u) + d1 * (u3 - u2)
-            dp = rise * (6 * u - 6 * u2) + d0 * (3 * u2 - 4 * u + 1) + d1 * (3 * u2 - 2 * u)
-            step = p / dp
+            step = (f0 + u * (d0 + u * (c2 + u * c3))) / (d0 + u * (c2_twice + u * c3_thrice))
             u = np.where(np.isfinite(step), np.minimum(np.maximum(u - step, 0.0), 1.0), u)
     return x0 + u * h
 
@@ -506,7 +508,7 @@ class _Strip:
     ) -> None:
         self.curve_a, self.curve_b = curve_a, curve_b
         self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
-        self.map_a = LengthMap(curve_a, intervals=64)
+        self.map_a = LengthMap(curve_a)
         if not self.map_a.total > 0:
             raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
         self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
@@ -556,8 +558,12 @@ class _Strip:
         flipped = np.zeros(n, dtype=bool)
         flipped[found.row[~found.oriented & (found.slope < 0)]] = True
         good = found if found.oriented.all() else found.subset(found.oriented)
-        t_pad, slope_pad, index_pad = _pad(good, n)
         chosen = np.full(n, -1, dtype=np.int64)
+        if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
+            # at most one candidate per station, in order along B: nothing to choose
+            chosen[good.row] = np.arange(len(good.row))
+            return chosen, good, flipped
+        t_pad, slope_pad, index_pad = _pad(good, n)
         rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
         if len(rows):
             s = self.s[rows]
@@ -593,6 +599,11 @@ class _Strip:
             t_in = low[i0] if i0 == 0 or np.isnan(t[i0 - 1]) else max(low[i0], t[i0 - 1])
             t_out = high[i1] if i1 == n - 1 or np.isnan(t[i1 + 1]) else min(high[i1], t[i1 + 1])
             t_out = max(t_out, t_in)
+            corners_a = self.kinks_a[(self.kinks_a > self.s[i0]) & (self.kinks_a < self.s[i1])]
+            corners_b = self.kinks_b[(self.kinks_b > t_in) & (self.kinks_b < t_out)]
+            if len(corners_a) or len(corners_b):  # a polygon, not a quad
+                fans += self._polygon_fans(t, i0, i1, corners_a, t_in, corners_b, t_out)
+                continue
             b_in, b_out = self.curve_b.point_at(np.array([t_in, t_out]))
             # the shorter diagonal: a fan through B(t_in) then one through A(s_i1), or a fan
             # through A(s_i0) then one through B(t_out)
@@ -603,6 +614,37 @@ class _Strip:
                 t[i0 : i1 + 1] = t_out
                 fans.append((float(self.s[i0]), float(t_in), float(t_out)))
         return fans, is_flat
+
+    def _polygon_fans(
+        self,
+        t: FloatArray,
+        i0: int,
+        i1: int,
+        corners_a: FloatArray,
+        t_in: float,
+        corners_b: FloatArray,
+        t_out: float,
+    ) -> list[tuple[float, float, float]]:
+        """Fans for a planar piece whose edges have corners: a polygon, cut into triangles
+        that each join an edge of one curve (between corners) to a corner of the other.
+
+        Rewrites ``t`` for stations ``i0..i1`` (each takes the corner of B its triangle
+        leans on) and returns the fans through corners of A; see :func:`_strip_triangulation`.
+        """
+        sa = np.concatenate([[self.s[i0]], corners_a, [self.s[i1]]])
+        tb = np.concatenate([[t_in], corners_b, [t_out]])
+        stations = self.s[i0 : i1 + 1]
+        piece = t[i0 : i1 + 1]
+        fans = []
+        i = j = 0
+        for along_a in _strip_triangulation(self.curve_a.point_at(sa), self.curve_b.point_at(tb)):
+            if along_a:  # triangle A_i A_i+1 B_j: the stations between lean on B_j
+                piece[(stations >= sa[i]) & (stations <= sa[i + 1])] = tb[j]
+                i += 1
+            else:  # triangle A_i B_j B_j+1: a fan through A_i
+                fans.append((float(sa[i]), float(tb[j]), float(tb[j + 1])))
+                j += 1
+        return fans
 
     # -- step 7: stations without a torsal partner ------------------------------------------------
 
@@ -617,13 +659,9 @@ class _Strip:
         before, after = before[missing], after[missing]
         lo = np.where(before >= 0, t[np.maximum(before, 0)], 0.0)
         hi = np.where(after < n, t[np.minimum(after, n - 1)], 1.0)
-        # the least |signed warp| among B's samples inside each station's window (the
-        # angle between the normals does not depend on their lengths: no unit tangents)
+        # the least |signed warp| among B's samples inside each station's window
         grid = self.grid
-        r = grid.points[None, :, :] - self.a0[missing, None, :]
-        n1 = cross(r, self.a1[missing, None, :])
-        n2 = cross(r, grid.tangents[None, :, :])
-        angle = np.arctan2(norm(cross(n1, n2)), dot(n1, n2))
+        angle = _normal_angles(self.a0[missing], self.a1[missing], grid.points, grid.tangents)
         inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
         angle = np.where(inside, angle, np.inf)
         best = np.argmin(angle, axis=1)
@@ -882,6 +920,77 @@ def _solve(
     valid = (warp <= tolerance) & (np.abs(signed) <= 0.5 * np.pi)
     message = _message(valid, source, flipped & ~has, tolerance, n)
     return RulingResult(s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0)
+
+
+def _strip_triangulation(a: FloatArray, b: FloatArray) -> list[bool]:
+    """Triangles for the planar polygon a[0] … a[-1], b[-1] … b[0] whose every diagonal
+    joins a vertex of chain ``a`` to one of chain ``b``: the moves, True to advance along
+    ``a`` (triangle a_i a_i+1 b_j), False along ``b`` (triangle a_i b_j b_j+1).
+
+    Each step takes the shorter new diagonal among the moves whose triangle turns the way
+    the polygon does and whose diagonal crosses no edge of the polygon (so a chain that
+    bends towards the other, as a V, is fanned from its corner instead of being cut off).
+    """
+    polygon = np.concatenate([a, b[::-1]])
+    # the polygon's normal (Newell) and two axes of its plane, for signed areas and crossings
+    normal = cross(polygon, np.roll(polygon, -1, axis=0)).sum(axis=0)
+    normal = normal / max(float(norm(normal)), 1e-300)
+    x_axis = unit(polygon[np.argmax(norm(polygon - polygon[0]))] - polygon[0])
+    flat = np.column_stack([polygon @ x_axis, polygon @ cross(normal, x_axis)])
+    fa, fb = flat[: len(a)], flat[len(a) :][::-1]
+    size = float(np.ptp(flat, axis=0).max()) or 1.0
+    edges = np.stack([flat, np.roll(flat, -1, axis=0)], axis=1)
+
+    def area(p: FloatArray, q: FloatArray, r: FloatArray) -> float:
+        return float((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+
+    def crosses(p: FloatArray, q: FloatArray) -> bool:
+        """Whether segment pq properly crosses an edge of the polygon (shared ends do not count)."""
+        e0, e1 = edges[:, 0], edges[:, 1]
+        d = q - p
+        side0 = d[0] * (e0[:, 1] - p[1]) - d[1] * (e0[:, 0] - p[0])
+        side1 = d[0] * (e1[:, 1] - p[1]) - d[1] * (e1[:, 0] - p[0])
+        e = e1 - e0
+        side_p = e[:, 0] * (p[1] - e0[:, 1]) - e[:, 1] * (p[0] - e0[:, 0])
+        side_q = e[:, 0] * (q[1] - e0[:, 1]) - e[:, 1] * (q[0] - e0[:, 0])
+        tiny = 1e-12 * size * size
+        return bool(np.any((side0 * side1 < -tiny * tiny) & (side_p * side_q < -tiny * tiny)))
+
+    moves: list[bool] = []
+    i = j = 0
+    while i < len(a) - 1 or j < len(b) - 1:
+        options = []  # (invalid, diagonal length, move)
+        if i < len(a) - 1:
+            diagonal = (fa[i + 1], fb[j])
+            bad = area(fa[i], fa[i + 1], fb[j]) <= 1e-12 * size * size or crosses(*diagonal)
+            options.append((bad, float(np.hypot(*(diagonal[1] - diagonal[0]))), True))
+        if j < len(b) - 1:
+            diagonal = (fa[i], fb[j + 1])
+            bad = area(fa[i], fb[j + 1], fb[j]) <= 1e-12 * size * size or crosses(*diagonal)
+            options.append((bad, float(np.hypot(*(diagonal[1] - diagonal[0]))), False))
+        move = min(options)[2]
+        moves.append(move)
+        i, j = (i + 1, j) if move else (i, j + 1)
+    return moves
+
+
+def _normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) -> FloatArray:
+    """The angle (0 to π) between N1 = R × A'_i and N2 = R × B'_j with R = B_j − A_i, for
+    every i and j: ``(len(a), len(b))``.
+
+    All of it comes from (i, j) matrix products: |R|², R·A', R·B' and A'·B' give
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's identity), and N1 × N2 = R·det[R, A', B']
+    with det[R, A', B'] = A'·(B' × B) − (A × A')·B'. Coordinates are taken about a
+    common centre, as in :func:`_brackets`.
+    """
+    centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
+    a, b = a - centre, b - centre
+    aa, bb = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
+    rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
+    ra = ta @ b.T - np.einsum("ij,ij->i", a, ta)[:, None]
+    rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
+    triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
+    return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
 
 
 def _warps(ruling: FloatArray, ta: FloatArray, tb: FloatArray) -> tuple[FloatArray, FloatArray]:

@@ -98,7 +98,9 @@ def in_plane_tangent(
     tangent ``other`` separates ``left`` from ``right`` (a cone with its apex at the
     corner). This returns that in-plane blend of ``left`` and ``right`` where their
     determinants have opposite signs, and otherwise whichever of them gives the smaller
-    warp. All arguments are ``(n, 3)``; the result is unit length.
+    warp — among those that orient the sheet's normals consistently (R × other and
+    R × tangent to one side), which decides when both lie in the plane (a planar piece
+    fanned from the corner). All arguments are ``(n, 3)``; the result is unit length.
     """
     left = unit(np.asarray(left, dtype=float))
     right = unit(np.asarray(right, dtype=float))
@@ -107,5 +109,9 @@ def in_plane_tangent(
     straddles = f_left * f_right < 0
     denominator = np.where(straddles, f_right - f_left, 1.0)
     blend = (f_right[:, None] * left - f_left[:, None] * right) / denominator[:, None]
-    pick = np.where((np.abs(f_left) <= np.abs(f_right))[:, None], left, right)
+    normal = cross(ruling, other)
+    left_agrees = dot(normal, cross(ruling, left)) >= 0
+    right_agrees = dot(normal, cross(ruling, right)) >= 0
+    take_left = np.where(left_agrees != right_agrees, left_agrees, np.abs(f_left) <= np.abs(f_right))
+    pick = np.where(take_left[:, None], left, right)
     return unit(np.where(straddles[:, None], blend, pick))

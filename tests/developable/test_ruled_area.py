@@ -1,0 +1,86 @@
+"""RuledSurface.area and area_and_centroid: Gauss rules per rail span, not adaptive cubature.
+
+The lofts every developable node outputs have cubic spline rails (smooth between ruling
+parameters) and are linear in v, so their area is a sum of small Gauss rules; the
+generic adaptive cubature refines towards every knot and took seconds for a loft of
+a hundred rulings.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import simpson
+
+from nodes.geometry.curves import Circle
+from nodes.geometry.ruled import RuledSurface
+from nodes.geometry.surface_base import Surface
+from nodes.geometry.vectors import Plane
+
+
+def circle_loft(radius: float, height: float, rulings: int, sweep: float = 2 * math.pi) -> RuledSurface:
+    """The loft through ``rulings`` vertical rulings of a cylinder (closed when the sweep is 2π)."""
+    angle = np.linspace(0.0, sweep, rulings)
+    base = np.column_stack([radius * np.cos(angle), radius * np.sin(angle), 0 * angle])
+    if sweep == 2 * math.pi:
+        base[-1] = base[0]
+    return RuledSurface.from_rulings(base, base + np.array([0.0, 0.0, height]))
+
+
+def test_ruled_cylinder_loft_has_area_2_pi_r_h_in_milliseconds():
+    surface = circle_loft(2.0, 3.0, 97)
+    assert surface.closed_u
+    start = time.perf_counter()
+    area, centroid = surface.area_and_centroid()
+    seconds = time.perf_counter() - start
+    # the periodic cubic rails stand in for the circle to ~1e-8 with 96 segments
+    assert area == pytest.approx(2 * math.pi * 2.0 * 3.0, rel=1e-6)
+    np.testing.assert_allclose(centroid, [0.0, 0.0, 1.5], atol=1e-9)
+    assert seconds < 0.5
+
+
+def test_loft_area_agrees_with_the_adaptive_cubature():
+    surface = circle_loft(2.0, 3.0, 13, sweep=1.5)
+    exact_loft = Surface.area(surface, rtol=1e-12)  # the generic rule: seconds, but sure
+    assert surface.area() == pytest.approx(exact_loft, rel=1e-11)
+
+
+def test_loft_of_a_hundred_twisted_rulings_is_measured_within_half_a_second():
+    u = np.linspace(0.0, 4.0, 100)
+    starts = np.column_stack([u, np.sin(u), 0.2 * u**2])
+    ends = starts + np.column_stack([0.3 * np.cos(2 * u), 1.0 + 0 * u, 1.0 + 0.1 * u])
+    surface = RuledSurface.from_rulings(starts, ends)
+    start = time.perf_counter()
+    area = surface.area()
+    assert time.perf_counter() - start < 0.5
+    # the same surface, by Simpson's rule on a fine grid of its own area element
+    uu, vv = np.meshgrid(np.linspace(0, 1, 3961), np.linspace(0, 1, 33), indexing="ij")
+    _, su, sv = surface.derivatives(uu.ravel(), vv.ravel(), 1)
+    element = np.linalg.norm(np.cross(su, sv), axis=1).reshape(uu.shape)
+    fine = simpson(simpson(element, x=vv[0], axis=1), x=uu[:, 0])
+    assert area == pytest.approx(fine, rel=1e-8)
+
+
+def test_ruled_surface_between_two_circles_is_a_frustum_by_its_breakpoints():
+    lower = Circle(Plane.from_normal([0, 0, 0], [0, 0, 1]), 1.0)
+    upper = Circle(Plane.from_normal([0, 0, 2], [0, 0, 1]), 3.0)
+    area, centroid = RuledSurface(lower, upper).area_and_centroid()
+    slant = math.hypot(2.0, 2.0)
+    assert area == pytest.approx(math.pi * (1.0 + 3.0) * slant, rel=1e-12)
+    # centroid of a frustum's lateral surface: h (r1 + 2 r2) / (3 (r1 + r2))
+    np.testing.assert_allclose(centroid, [0.0, 0.0, 2.0 * 7.0 / 12.0], atol=1e-12)
+
+
+def test_rulings_through_the_axis_make_a_double_cone_whose_kink_is_integrated_exactly():
+    """Each ruling joins a point of the lower circle to the opposite point of the upper
+    one, so all pass through the axis at v = 1/2: two cones tip to tip, the area element
+    vanishes there (a kink in v that a rule across it would smear)."""
+    radius, height = 1.0, 2.0
+    lower = Circle(Plane.from_normal([0, 0, 0], [0, 0, 1]), radius)
+    opposite = Plane([0, 0, height], [-1, 0, 0], [0, -1, 0], [0, 0, 1])
+    surface = RuledSurface(lower, Circle(opposite, radius))
+    half_slant = math.hypot(radius, height / 2)
+    assert surface.area() == pytest.approx(2 * math.pi * radius * half_slant, rel=1e-12)
