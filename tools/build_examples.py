@@ -100,6 +100,7 @@ def kaohsiung_cut_sheets() -> None:
            SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
            Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
+    b.graph.set_preview("cut", False)  # the sheet layout is for the cutter, not the 3D view
     b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
             ["unroll", "model_scale", "factor", "model", "cut"])
     b.save("kaohsiung-cut-sheets")

@@ -129,6 +129,8 @@ class Document(QObject):
         self.graph_changed.emit(event)
 
     def close(self) -> None:
-        """Stop the worker (the app is closing)."""
+        """Stop the worker (the app is closing): cancel, and wait a little for it. A node
+        that never checks for cancellation is left to finish on its daemon thread."""
         self.solves.auto = False
-        self.solves.pause()
+        self.solves.cancel()
+        self.solves.wait(timeout=1.0)

@@ -92,6 +92,7 @@ class MainWindow(QMainWindow):
 
         # docks
         self.viewport = ViewportPanel(self.doc)
+        self.viewport.toolbar.addAction("Screenshot…", self.save_viewport_screenshot)
         self.inspector = Inspector(self.doc, self.editor)
         self.log = MessageLog()
         self.profiler = Profiler()

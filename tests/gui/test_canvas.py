@@ -200,7 +200,7 @@ def test_align_left_lines_up_the_selection(first_steps):
     assert len(xs) == 1
 
 
-def test_group_and_ungroup(first_steps):
+def test_group_and_ungroup(first_steps, monkeypatch):
     window = first_steps
     window.scene.select_nodes(["heights", "show_heights"])
     window.group_selection()
@@ -208,8 +208,13 @@ def test_group_and_ungroup(first_steps):
     assert group.nodes == ["heights", "show_heights"]
     box = window.scene.groups[group.id].boundingRect()
     assert box.contains(window.scene.nodes["heights"].sceneBoundingRect())
-    window.editor.edit_group(group.id, title="Output")
+    monkeypatch.setattr(QInputDialog, "getText", staticmethod(lambda *a, **k: ("Output", True)))
+    title_bar = window.scene.groups[group.id].title_rect().center()
+    window.view.centerOn(title_bar)
+    double_click(window, view_point(window, title_bar))  # a double-click on the title renames
+    assert window.doc.graph.groups[-1].title == "Output"
     assert window.scene.groups[group.id].title == "Output"
+    window.scene.select_nodes(["heights"])
     window.ungroup_selection()
     assert all(g.id != group.id for g in window.doc.graph.groups)
 

@@ -15,6 +15,7 @@ from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import Surface
 from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, SCREENSHOTS, wait_solved
 
+SOLVE_BUDGET_MS = 30000
 CASES = [*sorted(EXAMPLES.glob("*.graph")), FIXTURES / "showcase.graph"]
 #: Counted by hand: first-steps makes only numbers; the showcase makes a curve (1), a ruled
 #: surface (shaded + its rulings + the Rulings output: 3), a coloured mesh (1), points (1),
@@ -57,7 +58,7 @@ def expected_actors(doc) -> int:
 @pytest.mark.parametrize("path", CASES, ids=lambda p: p.name)
 def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, path):
     assert window.open_file(path, ask=False)
-    wait_solved(qtbot, window)
+    wait_solved(qtbot, window, timeout=SOLVE_BUDGET_MS)
     qtbot.wait(100)  # the canvas fits itself to the graph on the next turns
     outcome = window.doc.last_outcome
     assert outcome is not None and not outcome.cancelled

@@ -232,6 +232,15 @@ class CanvasScene(QGraphicsScene):
         if ok:
             self.editor.rename(node_id, "" if label == record.node.name() else label)
 
+    def rename_group(self, group_id: str) -> None:
+        """Ask for a group's new title (a double-click on its title bar)."""
+        group = next((g for g in self.doc.graph.groups if g.id == group_id), None)
+        if group is None:
+            return
+        title, ok = QInputDialog.getText(None, "Group", "Title:", text=group.title)
+        if ok and title != group.title:
+            self.editor.edit_group(group_id, title=title)
+
     def items_rect(self) -> QRectF:
         rect = QRectF()
         for item in [*self.nodes.values(), *self.groups.values()]:

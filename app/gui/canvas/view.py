@@ -231,6 +231,10 @@ class CanvasView(QGraphicsView):
     def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
         item = self.itemAt(pos)
+        if isinstance(item, GroupItem) and item.title_rect().contains(self.mapToScene(pos)):
+            self.canvas.rename_group(item.group_id)
+            event.accept()
+            return
         if (item is None or isinstance(item, GroupItem)) and event.button() == Qt.MouseButton.LeftButton:
             self.open_search(self.mapToScene(pos), event.globalPosition().toPoint())
             event.accept()
