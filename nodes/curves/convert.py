@@ -9,7 +9,6 @@ sentence naming the input, so that call is skipped and the other items still sol
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
@@ -19,6 +18,7 @@ import numpy as np
 from engine.node import NodeWarning
 from engine.values import Plane, Point, Vector
 from nodes.geometry.vectors import Plane as KernelPlane
+from nodes.maths.checks import finite
 
 #: Below this length (model units) a direction counts as zero.
 ZERO_LENGTH = 1e-12
@@ -60,16 +60,8 @@ def point_list(name: str, values: Sequence[Any]) -> np.ndarray:
     return array
 
 
-def number(name: str, value: Any) -> float:
-    """A finite number, or a warning saying it is empty, NaN or infinite."""
-    if value is None:
-        raise NodeWarning(f"{name} is empty (null)")
-    x = float(value)
-    if math.isnan(x):
-        raise NodeWarning(f"{name} is not a number (NaN)")
-    if math.isinf(x):
-        raise NodeWarning(f"{name} is infinite")
-    return x
+number = finite
+"""A finite number, or a warning saying it is empty, NaN or infinite (one check for all palettes)."""
 
 
 def kernel_plane(name: str, plane: Any) -> KernelPlane:
