@@ -178,6 +178,11 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("left.Item", "strip.CurveA")
     b.wire("right.Item", "strip.CurveB")
     b.wire("segments.Value", "strip.Segments")
+    # as a Grasshopper user would: preview off on the helpers, so the viewport shows the
+    # three guide curves, the edge curves and the strips (and a drag redraws only those)
+    helpers = ("up", "centre", "divide0", "divide1", "divide2", "pick0", "pick1", "pick2", "left", "right")
+    for helper in helpers:
+        b.graph.set_preview(helper, False)
     b.group("inputs", "Inputs", INPUTS, ["height", "scale", "count", "shift", "segments"])
     b.group("roof", "Base curve, copied up and in", GEOMETRY, ["base", "up", "top", "centre", "inner"])
     b.group("edges", "Edge curves through shifted points", GEOMETRY,

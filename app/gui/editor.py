@@ -138,7 +138,9 @@ class Editor(QObject):
         idle, else as soon as the running solve has shown its result. A drag never cancels
         a solve, so every solve finishes and reaches the viewport while dragging."""
         self._pending_drag = (node_id, name, value, drag_key)
-        if not self.doc.solves.busy():
+        # not busy() but in flight: a solve that has just finished has a result on its way
+        # to the viewport, and starting another now would throw that result away
+        if not self.doc.solves.in_flight():
             self._flush_drag()
 
     def end_drag(self) -> None:

@@ -25,9 +25,10 @@ from engine.node import CancelToken
 from engine.solver import NodeResult, Solver, SolveReport
 
 PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
-#: A solve running longer than this shows what it has so far (``partial``) this often, so
-#: the viewport keeps moving during a slider drag even when one node is slow.
-PARTIAL_INTERVAL = 0.03
+#: A solve running longer than this shows what it has so far (``partial``), and again at
+#: this interval, so a long solve fills the viewport as it goes. Shorter solves show only
+#: their whole result: a partial frame would cost a render for nothing new.
+PARTIAL_INTERVAL = 0.25
 #: How long a Python thread may hold the GIL before handing it over (CPython's default is
 #: 5 ms). Every Qt callback on the GUI thread needs the GIL; with a node computing in pure
 #: Python on the worker, 1 ms keeps the GUI's event loop answering within a few ms.
@@ -91,6 +92,10 @@ class SolveController(QObject):
     def busy(self) -> bool:
         """Whether a worker is solving right now."""
         return self._thread is not None and self._thread.is_alive()
+
+    def in_flight(self) -> bool:
+        """A solve is running, or has finished and its outcome has not reached the GUI yet."""
+        return self._thread is not None
 
     def idle(self) -> bool:
         """No solve running, none requested and no outcome still on its way to the GUI."""

@@ -27,6 +27,7 @@ Curvature signs follow :mod:`nodes.geometry.curvature` (normal ``Su × Sv``).
 
 from __future__ import annotations
 
+import functools
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from functools import cached_property
@@ -72,6 +73,22 @@ def uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
     """
     uu, vv = np.meshgrid(np.linspace(0.0, 1.0, nu), np.linspace(0.0, 1.0, nv), indexing="ij")
     return uu.ravel(), vv.ravel()
+
+
+@functools.lru_cache(maxsize=32)
+def _grid_triangles(nu: int, nv: int) -> np.ndarray:
+    i, j = np.meshgrid(np.arange(nu - 1), np.arange(nv - 1), indexing="ij")
+    a = (i * nv + j).ravel()
+    b, c, d = a + nv, a + nv + 1, a + 1  # (i+1, j), (i+1, j+1), (i, j+1)
+    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    faces.flags.writeable = False
+    return faces
+
+
+def grid_triangles(nu: int, nv: int) -> np.ndarray:
+    """Triangles ``(2 (nu-1)(nv-1), 3)`` of an ``nu × nv`` vertex grid numbered as in
+    :func:`uv_grid`, oriented with u × v (a copy: callers may change it)."""
+    return _grid_triangles(nu, nv).copy()
 
 
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -449,13 +466,9 @@ class Surface(ABC):
         if nu < 2 or nv < 2:
             raise ValueError("to_mesh needs at least 2 × 2 vertices")
         gu, gv = uv_grid(nu, nv)
-        vertices = self.derivatives(gu, gv, 0)[0]
-        normals = self.normal_at(gu, gv)
-        i, j = np.meshgrid(np.arange(nu - 1), np.arange(nv - 1), indexing="ij")
-        a = (i * nv + j).ravel()
-        b, c, d = a + nv, a + nv + 1, a + 1  # (i+1, j), (i+1, j+1), (i, j+1)
-        faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
-        return trimesh.Trimesh(vertices, faces, vertex_normals=normals, process=False)
+        ders = self._regular_derivatives(gu, gv, 1)  # points stay exact; only tangents are nudged
+        normals = unit_normal(ders[1], ders[2])
+        return trimesh.Trimesh(ders[0], grid_triangles(nu, nv), vertex_normals=normals, process=False)
 
 
 class IsoCurve(Curve):

@@ -1,4 +1,8 @@
-"""Start-up benchmark: `torsal gui FILE` to the first shown window (< 3 s on this machine)."""
+"""`torsal gui FILE` starts, shows its window and opens the file in a real process.
+
+The time it takes (< 3 s to the first shown window) is a benchmark:
+``tests/benchmarks/bench_gui.py``, run by ``make bench``.
+"""
 
 from __future__ import annotations
 
@@ -10,10 +14,8 @@ import time
 
 from tests.gui.fixtures_gui import EXAMPLES, ROOT
 
-LIMIT_S = 3.0
 
-
-def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
+def test_torsal_gui_shows_its_window_and_the_example(tmp_path):
     env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(tmp_path), PYTHONPATH=str(ROOT))
     began = time.time()
     child = subprocess.Popen(
@@ -43,4 +45,5 @@ def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
     shown = stamps["window-shown"] - began
     ready = stamps.get("viewport-ready", float("nan")) - began
     print(f"\nstart-up: window shown after {shown:.2f} s, 3D viewport and example ready after {ready:.2f} s")
-    assert shown < LIMIT_S
+    assert "viewport-ready" in stamps, "the 3D viewport never became ready"
+    assert shown <= ready

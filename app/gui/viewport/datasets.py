@@ -38,7 +38,8 @@ CURVE_SAMPLES = 97
 class Piece:
     """One thing to draw for a node, as plain arrays (made on any thread).
 
-    ``points`` are ``(n, 3)``; ``faces`` ``(m, 3)`` triangles, or ``lines`` VTK line cells
+    ``points`` are ``(n, 3)``; ``faces`` ``(m, 3)`` triangles with unit vertex ``normals``
+    (so shading is smooth without a normals filter), or ``lines`` VTK line cells
     (``[count, i0, i1, …]`` repeated); for ``vectors`` the points are the vectors
     themselves (drawn as arrows from the origin). Coloured meshes carry ``scalars``.
     :func:`dataset` turns a piece into a pyvista dataset — on the GUI thread only.
@@ -48,6 +49,7 @@ class Piece:
     points: np.ndarray
     faces: np.ndarray | None = None
     lines: np.ndarray | None = None
+    normals: np.ndarray | None = None
     scalars: np.ndarray | None = None
     scalar_name: str | None = None
     rgb: bool = False
@@ -63,20 +65,45 @@ class Collected:
     polylines: list[np.ndarray] = field(default_factory=list)
     rulings: list[np.ndarray] = field(default_factory=list)
     vectors: list[np.ndarray] = field(default_factory=list)
-    meshes: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    meshes: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = field(default_factory=list)
     coloured: list[Piece] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
 
 
-def collect(values: Iterable[Any]) -> Collected:
-    """Sort ``values`` into drawable geometry; values that are not geometry are skipped."""
+#: Tessellations already made in one preparing pass, by value identity: a curve that
+#: several nodes pass on (List Item, Move by zero …) is sampled once.
+Memo = dict[int, tuple[Any, Collected]]
+
+
+def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
+    """Sort ``values`` into drawable geometry; values that are not geometry are skipped.
+
+    ``memo`` (shared by the nodes of one pass, while their values are alive) reuses the
+    tessellation of a curve or surface met before.
+    """
     found = Collected()
     for value in values:
         try:
-            _add(found, value)
+            if memo is not None and _tessellated(value):
+                key = id(value)
+                if key not in memo or memo[key][0] is not value:
+                    memo[key] = (value, collect([value]))
+                _merge(found, memo[key][1])
+            else:
+                _add(found, value)
         except Exception as exc:
             found.problems.append(f"{type(value).__name__}: {exc}")
     return found
+
+
+def _tessellated(value: Any) -> bool:
+    """Values whose drawing costs an evaluation (curves, surfaces), worth remembering."""
+    return hasattr(value, "point_at") or hasattr(value, "to_mesh")
+
+
+def _merge(found: Collected, part: Collected) -> None:
+    for name in ("points", "polylines", "rulings", "vectors", "meshes", "coloured", "problems"):
+        getattr(found, name).extend(getattr(part, name))
 
 
 def _add(found: Collected, value: Any) -> None:
@@ -119,7 +146,9 @@ def _add_trimesh(found: Collected, mesh: Any) -> None:
         return
     coloured = mesh_scalars(mesh)
     if coloured is None:
-        found.meshes.append((vertices, faces))
+        # the kernel's meshes carry exact normals; trimesh averages face normals otherwise
+        normals = np.asarray(mesh.vertex_normals, dtype=float)
+        found.meshes.append((vertices, faces, normals))
         return
     name, data, rgb, clim, cmap = coloured
     found.coloured.append(
@@ -195,13 +224,54 @@ def _line_cells(chains: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return points, cells.astype(np.int64)
 
 
+ARROW_SIDES = 8
+ARROW_HEAD = 0.25  # head length, as a fraction of the arrow's length
+ARROW_RADIUS = 0.08  # head radius, as a fraction of the arrow's length
+
+
+def arrows(vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Arrows from the origin to each of ``vectors`` ``(n, 3)``: a line for the shaft and
+    a cone of :data:`ARROW_SIDES` triangles (capped) for the head.
+
+    Returns points, triangles and VTK line cells. Per arrow the points are the origin,
+    the centre of the head's base, the tip and the base's rim.
+    """
+    n = len(vectors)
+    length = np.linalg.norm(vectors, axis=1, keepdims=True)
+    axis = vectors / length
+    # any unit vector across the axis: x, unless the axis is nearly along x
+    helper = np.where(np.abs(axis[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
+    across = np.cross(axis, helper)
+    across /= np.linalg.norm(across, axis=1, keepdims=True)
+    other = np.cross(axis, across)
+    base = vectors - ARROW_HEAD * length * axis
+    angle = np.linspace(0.0, 2.0 * np.pi, ARROW_SIDES, endpoint=False)
+    rim = base[:, None, :] + ARROW_RADIUS * length[:, None, :] * (
+        np.cos(angle)[None, :, None] * across[:, None, :] + np.sin(angle)[None, :, None] * other[:, None, :]
+    )
+    stride = 3 + ARROW_SIDES
+    origin = np.zeros((n, 1, 3))
+    points = np.concatenate([origin, base[:, None], vectors[:, None], rim], axis=1).reshape(-1, 3)
+    first = stride * np.arange(n)[:, None]
+    side = 3 + np.arange(ARROW_SIDES)[None, :]
+    following = 3 + (np.arange(ARROW_SIDES)[None, :] + 1) % ARROW_SIDES
+    cone = np.stack([first + side, first + following, first + 2 + 0 * side], axis=-1)
+    cap = np.stack([first + 1 + 0 * side, first + following, first + side], axis=-1)
+    faces = np.concatenate([cone, cap], axis=1).reshape(-1, 3)
+    lines = np.column_stack([np.full(n, 2), stride * np.arange(n), stride * np.arange(n) + 1]).ravel()
+    return points, faces.astype(np.int64), lines.astype(np.int64)
+
+
 def pieces(found: Collected) -> list[Piece]:
     """Merge collected geometry into one piece per kind (coloured meshes stay apart)."""
     out: list[Piece] = []
     if found.meshes:
-        offsets = np.cumsum([0] + [len(v) for v, _ in found.meshes[:-1]])
-        faces = np.concatenate([f + o for (_, f), o in zip(found.meshes, offsets, strict=True)])
-        out.append(Piece("surfaces", np.concatenate([v for v, _ in found.meshes]), faces=faces))
+        vertices, faces, normals = zip(*found.meshes, strict=True)
+        offsets = np.cumsum([0] + [len(v) for v in vertices[:-1]])
+        faces = np.concatenate([f + o for f, o in zip(faces, offsets, strict=True)])
+        out.append(
+            Piece("surfaces", np.concatenate(vertices), faces=faces, normals=np.concatenate(normals))
+        )
     for kind, chains in (("rulings", found.rulings), ("curves", found.polylines)):
         if chains:
             points, cells = _line_cells(chains)
@@ -212,22 +282,24 @@ def pieces(found: Collected) -> list[Piece]:
         vectors = np.vstack(found.vectors)
         vectors = vectors[np.linalg.norm(vectors, axis=1) > 0]
         if len(vectors):
-            out.append(Piece("vectors", vectors))
+            points, faces, lines = arrows(vectors)
+            out.append(Piece("vectors", points, faces=faces, lines=lines))
     out.extend(found.coloured)
     return out
+
+
+def face_cells(faces: np.ndarray) -> np.ndarray:
+    """VTK's flat cell array ``[3, a, b, c, 3, …]`` for triangles."""
+    return np.hstack([np.full((len(faces), 1), 3, dtype=np.int64), faces]).ravel()
 
 
 def dataset(piece: Piece) -> pv.PolyData:
     """The pyvista dataset of a piece. GUI thread only: VTK objects made on the solver's
     thread can deadlock against a render (VTK's locks and the GIL taken in opposite order)."""
-    if piece.kind == "vectors":
-        origins = pv.PolyData(np.zeros_like(piece.points))
-        origins["vectors"] = piece.points
-        origins["length"] = np.linalg.norm(piece.points, axis=1)
-        return origins.glyph(orient="vectors", scale="length", factor=1.0, geom=pv.Arrow())
     if piece.faces is not None:
-        cells = np.hstack([np.full((len(piece.faces), 1), 3, dtype=np.int64), piece.faces]).ravel()
-        poly = pv.PolyData(piece.points, cells)
+        poly = pv.PolyData(piece.points, face_cells(piece.faces), lines=piece.lines)
+        if piece.normals is not None:
+            poly.point_data.active_normals = piece.normals
     elif piece.lines is not None:
         poly = pv.PolyData(piece.points, lines=piece.lines)
     else:
@@ -236,3 +308,20 @@ def dataset(piece: Piece) -> pv.PolyData:
         target = poly.point_data if len(piece.scalars) == poly.n_points else poly.cell_data
         target[piece.scalar_name or "value"] = piece.scalars
     return poly
+
+
+def same_topology(piece: Piece, other: Piece) -> bool:
+    """Whether ``other`` has ``piece``'s kind, point count and cells (only points moved)."""
+    if piece.kind != other.kind or len(piece.points) != len(other.points):
+        return False
+    for mine, theirs in ((piece.faces, other.faces), (piece.lines, other.lines)):
+        if (mine is None) != (theirs is None) or (mine is not None and not np.array_equal(mine, theirs)):
+            return False
+    return (piece.normals is None) == (other.normals is None)
+
+
+def move_points(poly: pv.PolyData, piece: Piece) -> None:
+    """Give ``poly`` (made from a piece of the same topology) the points of ``piece``."""
+    poly.points = np.asarray(piece.points, dtype=float)
+    if piece.normals is not None:
+        poly.point_data.active_normals = piece.normals

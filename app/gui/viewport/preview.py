@@ -9,7 +9,7 @@ import numpy as np
 import pyvista as pv
 
 from app.gui import theme
-from app.gui.viewport.datasets import Piece, collect, dataset, pieces
+from app.gui.viewport.datasets import Memo, Piece, collect, dataset, move_points, pieces, same_topology
 from engine.graph import Graph
 from engine.solver import NodeResult
 
@@ -18,8 +18,10 @@ PREFIX = "preview:"
 NOT_PREVIEWED = {"params.Panel"}
 
 STYLE = {
-    # opaque: translucency costs a depth-sorting pass on every frame
-    "surfaces": {"color": theme.PREVIEW_SURFACE, "smooth_shading": True, "specular": 0.2},
+    # opaque: translucency costs a depth-sorting pass on every frame; the pieces carry
+    # exact normals, so Phong shading needs no normals filter in the pipeline (and moving
+    # a surface's points during a drag keeps it smooth)
+    "surfaces": {"color": theme.PREVIEW_SURFACE, "interpolation": "phong", "specular": 0.2},
     "rulings": {"color": theme.PREVIEW_RULING, "line_width": 1.0},
     "curves": {"color": theme.PREVIEW_CURVE, "line_width": 2.0},
     "points": {"color": theme.PREVIEW_POINT, "point_size": 9.0, "render_points_as_spheres": True},
@@ -36,6 +38,10 @@ class NodeActors:
     names: list[str] = field(default_factory=list)
     bars: list[str] = field(default_factory=list)
     kinds: dict[str, str] = field(default_factory=dict)
+    actors: dict[str, Any] = field(default_factory=dict)
+    #: what each actor was made from, and the dataset it draws (to move its points)
+    pieces: dict[str, Piece] = field(default_factory=dict)
+    datasets: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -73,9 +79,9 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
     }
 
 
-def prepare(result: NodeResult) -> Prepared:
+def prepare(result: NodeResult, memo: Memo | None = None) -> Prepared:
     """The datasets for one node's result (no plotter needed: safe off the GUI thread)."""
-    found = collect(v for tree in result.outputs.values() for v in tree.all_items())
+    found = collect((v for tree in result.outputs.values() for v in tree.all_items()), memo)
     return Prepared(result, pieces(found), found.problems)
 
 
@@ -83,7 +89,8 @@ def prepare_solved(graph: Graph, results: dict[str, NodeResult], solved: list[st
     """Datasets for the just-solved nodes that are previewed: run by the solve worker
     right after solving, so while the GUI draws one frame the next one is being made."""
     shown = previewed(graph, results)
-    return {node_id: prepare(results[node_id]) for node_id in solved if node_id in shown}
+    memo: Memo = {}
+    return {node_id: prepare(results[node_id], memo) for node_id in solved if node_id in shown}
 
 
 class Preview:
@@ -127,16 +134,19 @@ class Preview:
         return changed
 
     def _update_in_place(self, entry: NodeActors, ready: Prepared) -> bool:
-        """Give the node's existing actors new datasets when the kinds of geometry are the
-        same as before (a slider drag): much cheaper than new actors. False if they differ."""
+        """Reuse the node's actors when the kinds of geometry are the same as before (a
+        slider drag): pieces whose cells are unchanged only move their points, others get
+        a new dataset. Much cheaper than new actors. False if the kinds differ."""
         kinds = [piece.kind for piece in ready.pieces]
         if kinds != [entry.kinds[name] for name in entry.names] or "scalars" in kinds:
             return False
         for name, piece in zip(entry.names, ready.pieces, strict=True):
-            actor = self.plotter.renderer.actors.get(name)
-            if actor is None:
-                return False
-            actor.mapper.SetInputData(dataset(piece))
+            if same_topology(entry.pieces[name], piece):
+                move_points(entry.datasets[name], piece)
+            else:
+                entry.datasets[name] = dataset(piece)
+                entry.actors[name].mapper.SetInputData(entry.datasets[name])
+            entry.pieces[name] = piece
         entry.result = ready.result
         return True
 
@@ -151,10 +161,11 @@ class Preview:
 
     def _add_piece(self, name: str, piece: Piece, node_id: str, entry: NodeActors) -> None:
         style = dict(STYLE[piece.kind])
+        data = dataset(piece)
         if piece.kind == "scalars":
             title = f"{ascii_title(piece.scalar_name or 'value')}  [{node_id}]"
-            self.plotter.add_mesh(
-                dataset(piece),
+            actor = self.plotter.add_mesh(
+                data,
                 name=name,
                 scalars=piece.scalar_name or "value",
                 rgb=piece.rgb,
@@ -166,14 +177,17 @@ class Preview:
                 **style,
             )
             if not piece.rgb:
-                self._add_bar(title, self.plotter.renderer.actors[name])
+                self._add_bar(title, actor)
                 entry.bars.append(title)
         else:
             if piece.kind == "points":  # many points: smaller dots
                 style["point_size"] = 9.0 if len(piece.points) <= 60 else 5.0
-            self.plotter.add_mesh(dataset(piece), name=name, reset_camera=False, render=False, **style)
+            actor = self.plotter.add_mesh(data, name=name, reset_camera=False, render=False, **style)
         entry.names.append(name)
         entry.kinds[name] = piece.kind
+        entry.actors[name] = actor
+        entry.pieces[name] = piece
+        entry.datasets[name] = data
 
     def _add_bar(self, title: str, actor: Any) -> None:
         """A colour bar for a coloured mesh, across the bottom; several stack upwards."""
@@ -218,10 +232,7 @@ class Preview:
         entry = self.nodes.get(node_id)
         if entry is None:
             return
-        for name in entry.names:
-            actor = self.plotter.renderer.actors.get(name)
-            if actor is None:
-                continue
+        for name, actor in entry.actors.items():
             kind = entry.kinds[name]
             prop = actor.prop
             if kind == "scalars":
@@ -237,9 +248,8 @@ class Preview:
     def bounds(self) -> np.ndarray | None:
         """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of every preview actor, or None."""
         boxes = []
-        for name in self.actor_names():
-            actor = self.plotter.renderer.actors.get(name)
-            if actor is not None and actor.GetVisibility():
+        for actor in (a for entry in self.nodes.values() for a in entry.actors.values()):
+            if actor.GetVisibility():
                 b = actor.GetBounds()
                 if np.all(np.isfinite(b)) and b[0] <= b[1]:
                     boxes.append(b)

@@ -1,0 +1,140 @@
+"""The desktop app's timed bars (``make bench``, under Xvfb), measured with the real window.
+
+Run alone with::
+
+    xvfb-run -a -s "-screen 0 1600x1000x24" .venv/bin/python -m pytest tests/benchmarks/bench_gui.py \\
+        -o python_files='bench_*.py' -o norecursedirs= -s
+
+- ``torsal gui FILE`` shows its window in < 3 s;
+- during a 10 s solve the event loop answers within 100 ms, and Esc stops the solve
+  within 0.5 s;
+- dragging the main slider of the Kaohsiung example updates the viewport at least 10
+  times a second. Its baseline, measured in the same run, is the headless re-solve of
+  the same edit: the ratio of the GUI's frame interval to it is the cost of the GUI
+  (previewing, drawing, answering the mouse) on top of solving.
+
+The functional side of each (the window appears, the loop ticks, Esc cancels, every
+solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui``.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from tests.gui.conftest import unavailable_reason
+
+REASON = unavailable_reason()
+if REASON:
+    pytest.skip(REASON, allow_module_level=True)
+
+from PySide6.QtCore import Qt  # noqa: E402 - only once Qt is known to be usable
+from PySide6.QtTest import QTest  # noqa: E402
+
+from app.headless import run_file  # noqa: E402
+from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
+from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, ROOT  # noqa: E402
+from tests.gui.test_live_solving import LoopWatch, slow_graph  # noqa: E402
+from tests.gui.test_slider_drag_rate import drag_main_slider  # noqa: E402
+
+START_LIMIT_S = 3.0
+LOOP_LIMIT_MS = 100.0
+ESC_LIMIT_S = 0.5
+RATE_LIMIT = 10.0
+DRAGS = 3  # the best of three 2 s drags (the machine is shared and noisy)
+
+
+def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
+    env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(tmp_path), PYTHONPATH=str(ROOT))
+    began = time.time()
+    child = subprocess.Popen(
+        [sys.executable, "-m", "app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
+        cwd=ROOT,
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    stamps: dict[str, float] = {}
+
+    def read() -> None:
+        for line in child.stderr:
+            parts = line.split()
+            if len(parts) >= 3 and parts[0] == "torsal-startup":
+                stamps[parts[1]] = float(parts[2])
+                if parts[1] == "viewport-ready":
+                    return
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(timeout=60)
+    child.terminate()
+    child.wait(timeout=10)
+    assert "window-shown" in stamps, "the app never reported its window"
+    shown = stamps["window-shown"] - began
+    ready = stamps.get("viewport-ready", float("nan")) - began
+    print(f"\nstart-up: window shown after {shown:.2f} s, 3D viewport and example ready after {ready:.2f} s")
+    assert shown < START_LIMIT_S
+
+
+def test_the_event_loop_answers_within_100_ms_during_a_10_s_solve_and_esc_stops_it_in_half_a_second(
+    qtbot, window, registry, tmp_path
+):
+    solves = window.doc.solves
+    assert window.open_file(slow_graph(registry, tmp_path / "slow.graph"), ask=False)
+    qtbot.waitUntil(solves.busy, timeout=3000)
+    watch = LoopWatch()
+    watch.start()
+    qtbot.wait(1500)
+    worst = watch.stop()
+    window.view.setFocus()
+    with qtbot.waitSignal(solves.finished, timeout=5000):
+        pressed = time.perf_counter()
+        QTest.keyClick(window.view, Qt.Key.Key_Escape)
+    stopped_after = time.perf_counter() - pressed
+    print(
+        f"\nevent loop: worst gap between 10 ms ticks during the solve {worst:.1f} ms "
+        f"(limit {LOOP_LIMIT_MS:.0f}); Esc stopped the solve after {stopped_after * 1000:.0f} ms"
+    )
+    assert worst < LOOP_LIMIT_MS
+    assert stopped_after < ESC_LIMIT_S
+
+
+def headless_resolve_seconds(repeats: int = 7) -> float:
+    """Median headless re-solve of the Kaohsiung example after its 'Inward scale' moves."""
+    run = run_file(EXAMPLES / "kaohsiung-stadium.graph")
+    times = []
+    for index in range(repeats + 1):
+        run.graph.set_setting("scale", "value", 0.70 + 0.005 * index)
+        start = time.perf_counter()
+        run.solver.solve()
+        if index:  # the first re-solve warms caches up
+            times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def test_dragging_the_kaohsiung_slider_updates_the_viewport_at_least_10_times_a_second(qtbot, window):
+    baseline = headless_resolve_seconds()
+    drags = [drag_main_slider(qtbot, window, EXAMPLES / "kaohsiung-stadium.graph") for _ in range(DRAGS)]
+    best = max(drags, key=lambda d: d.rate)
+    print()
+    for drag in drags:
+        print(drag.line("kaohsiung-stadium.graph"))
+    print(
+        f"best {best.rate:.1f} updates/s (limit {RATE_LIMIT:.0f}); "
+        f"headless re-solve {baseline * 1000:.0f} ms: "
+        f"the GUI's frame interval is {1 / best.rate / baseline:.2f}× the headless solve"
+    )
+    assert best.rate >= RATE_LIMIT
+
+
+def test_dragging_a_slider_of_a_cheap_graph_is_bounded_by_the_gui_not_the_solve(qtbot, window):
+    drag = drag_main_slider(qtbot, window, FIXTURES / "showcase.graph")
+    print("\n" + drag.line("showcase.graph"))
+    assert drag.rate >= RATE_LIMIT
