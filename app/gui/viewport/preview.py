@@ -101,6 +101,8 @@ class Preview:
         self.nodes: dict[str, NodeActors] = {}
         self.selected: set[str] = set()
         self.problems: dict[str, list[str]] = {}
+        self.bar_users: dict[str, set[str]] = {}  # colour-bar title -> nodes that use it
+        self.bar_keys: dict[str, tuple[Any, str]] = {}  # colour-bar title -> (range, colour map)
 
     def update(
         self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
@@ -163,7 +165,6 @@ class Preview:
         style = dict(STYLE[piece.kind])
         data = dataset(piece)
         if piece.kind == "scalars":
-            title = f"{ascii_title(piece.scalar_name or 'value')}  [{node_id}]"
             actor = self.plotter.add_mesh(
                 data,
                 name=name,
@@ -177,8 +178,7 @@ class Preview:
                 **style,
             )
             if not piece.rgb:
-                self._add_bar(title, actor)
-                entry.bars.append(title)
+                entry.bars.append(self._add_bar(piece, node_id, actor))
         else:
             if piece.kind == "points":  # many points: smaller dots
                 style["point_size"] = 9.0 if len(piece.points) <= 60 else 5.0
@@ -189,8 +189,22 @@ class Preview:
         entry.pieces[name] = piece
         entry.datasets[name] = data
 
-    def _add_bar(self, title: str, actor: Any) -> None:
-        """A colour bar for a coloured mesh, across the bottom; several stack upwards."""
+    def _add_bar(self, piece: Piece, node_id: str, actor: Any) -> str:
+        """The colour bar of a coloured mesh, at the bottom right; returns its title.
+
+        Nodes showing the same quantity on the same range and colours share one bar
+        (two curvature analyses read against one legend); otherwise the bar's title
+        names its node, and bars stack upwards.
+        """
+        quantity = ascii_title(piece.scalar_name or "value")
+        key = (piece.clim, piece.cmap or "viridis")
+        title = quantity
+        if self.bar_keys.get(title, key) != key:
+            title = f"{quantity}  [{node_id}]"
+        self.bar_users.setdefault(title, set()).add(node_id)
+        if title in self.plotter.scalar_bars:
+            return title
+        self.bar_keys[title] = key
         row = len(self.plotter.scalar_bars)
         self.plotter.add_scalar_bar(
             title=title,
@@ -200,11 +214,12 @@ class Preview:
             fmt="%.3g",
             title_font_size=11,
             label_font_size=10,
-            width=0.55,
+            width=0.45,
             height=0.07,
-            position_x=0.4,
+            position_x=0.52,
             position_y=0.03 + 0.12 * row,
         )
+        return title
 
     def _remove(self, node_id: str) -> None:
         entry = self.nodes.pop(node_id, None)
@@ -213,8 +228,13 @@ class Preview:
         for name in entry.names:
             self.plotter.remove_actor(name, reset_camera=False, render=False)
         for title in entry.bars:
-            if title in self.plotter.scalar_bars:
-                self.plotter.remove_scalar_bar(title, render=False)
+            users = self.bar_users.get(title, set())
+            users.discard(node_id)
+            if not users:
+                self.bar_users.pop(title, None)
+                self.bar_keys.pop(title, None)
+                if title in self.plotter.scalar_bars:
+                    self.plotter.remove_scalar_bar(title, render=False)
 
     def clear(self) -> None:
         for node_id in list(self.nodes):
