@@ -29,6 +29,19 @@ from engine.types import describe
 
 FORMATS = ".json, .csv, .3dm, .dxf, .svg, .obj, .stl, .ply or .glb"
 
+#: The file types :func:`export_tree` writes, by suffix, as a save dialog lists them.
+FILE_TYPES = {
+    ".3dm": "Rhino 3D model",
+    ".csv": "CSV table",
+    ".json": "JSON data tree",
+    ".dxf": "DXF cut sheets",
+    ".svg": "SVG cut sheets",
+    ".obj": "OBJ mesh",
+    ".stl": "STL mesh",
+    ".ply": "PLY mesh",
+    ".glb": "glTF binary mesh",
+}
+
 
 class ExportError(ValueError):
     """An export that cannot be written (unknown format, wrong kind of data, a file error)."""

@@ -33,12 +33,14 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app.bake import Baked
 from app.gui.app_settings import AppSettings, config_dir
 from app.gui.autosave import Autosaver, find_recoveries
 from app.gui.canvas.scene import CanvasScene
 from app.gui.canvas.view import CanvasView
 from app.gui.document import Document
 from app.gui.editor import Editor
+from app.gui.exporting import bake_previewed, export_output
 from app.gui.fragments import MIME_TYPE, looks_like_fragment
 from app.gui.inspector import Inspector
 from app.gui.message_log import MessageLog
@@ -118,6 +120,7 @@ class MainWindow(QMainWindow):
         self.doc.path_changed.connect(lambda _path: self._update_title())
         self.scene.selectionChanged.connect(self._selection_changed)
         self.scene.help_requested.connect(self.show_help)
+        self.scene.export_requested.connect(self.export_output)
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
         self.log.node_activated.connect(self.focus_node)
@@ -127,6 +130,8 @@ class MainWindow(QMainWindow):
         self._tables_timer.setInterval(200)
         self._tables_timer.timeout.connect(self._tables_due)
         self._tables_stale = False
+        self._profiler_stale = False  # the profiler is refilled only while it is shown
+        self.profiler_dock.visibilityChanged.connect(self._profiler_shown)
         self.actions_by_name: dict[str, QAction] = build_menus(self)
         self._update_title()
         self._help_dialogs: list[QDialog] = []
@@ -257,6 +262,14 @@ class MainWindow(QMainWindow):
         self.report(f"Saved {path}")
         return True
 
+    def export_output(self, node_id: str, port: str) -> list[Path]:
+        """Export… one output's current data tree to a file (see :mod:`app.gui.exporting`)."""
+        return export_output(self, node_id, port)
+
+    def bake(self) -> Baked | None:
+        """Bake the previewed geometry into one .3dm (see :mod:`app.bake`); the Baked or None."""
+        return bake_previewed(self)
+
     def dragEnterEvent(self, event: QDragEnterEvent) -> None:
         if any(url.toLocalFile().endswith(".graph") for url in event.mimeData().urls()):
             event.acceptProposedAction()
@@ -315,7 +328,14 @@ class MainWindow(QMainWindow):
         outcome = self.doc.last_outcome
         if outcome is not None:
             self.log.show_solve(outcome, self.doc.graph)
-            self.profiler.show_solve(outcome, self.doc.graph)
+            self._profiler_stale = not self.profiler.isVisible()
+            if not self._profiler_stale:
+                self.profiler.show_solve(outcome, self.doc.graph)
+
+    def _profiler_shown(self, visible: bool) -> None:
+        if visible and self._profiler_stale and self.doc.last_outcome is not None:
+            self._profiler_stale = False
+            self.profiler.show_solve(self.doc.last_outcome, self.doc.graph)
 
     def _selection_changed(self) -> None:
         ids = self.scene.selected_node_ids()

@@ -56,6 +56,14 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     add(file_menu, "save", "&Save", window.save, QKeySequence.StandardKey.Save)
     add(file_menu, "save_as", "Save &As…", window.save_as, QKeySequence.StandardKey.SaveAs)
     file_menu.addSeparator()
+    add(
+        file_menu,
+        "bake",
+        "&Bake to Rhino (.3dm)…",
+        window.bake,
+        "Ctrl+B",
+        "Write the geometry of every previewed node into one .3dm file, one layer per node",
+    )
     add(file_menu, "screenshot", "Save Viewport Screenshot…", window.save_viewport_screenshot)
     file_menu.addSeparator()
     add(file_menu, "quit", "&Quit", window.close, QKeySequence.StandardKey.Quit)

@@ -1,4 +1,5 @@
-"""Right-click menus: on an input (modifiers, set value), an output, a node, the canvas."""
+"""Right-click menus: on an input (modifiers, set value), an output (export), a node, a group,
+the canvas."""
 
 from __future__ import annotations
 
@@ -6,10 +7,12 @@ import json
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QPointF
-from PySide6.QtWidgets import QInputDialog, QMenu
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QColorDialog, QInputDialog, QMenu
 
 from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
+from app.gui.graph_order import group_by_id
 from engine.types import CastError, decode_value
 
 if TYPE_CHECKING:
@@ -58,6 +61,8 @@ def port_menu(scene: CanvasScene, port: PortItem) -> QMenu:
             f"Disconnect ({len(wires)})", lambda: editor.disconnect_output(node_id, name)
         )
         disconnect.setEnabled(bool(wires))
+        menu.addSeparator()
+        menu.addAction("Export…", lambda: scene.export_requested.emit(node_id, name))
     return menu
 
 
@@ -95,6 +100,13 @@ def node_menu(scene: CanvasScene, node: NodeItem) -> QMenu:
     if record.type_id == "maths.Expression":
         menu.addAction("Edit expression…", lambda: ask_expression(scene, node.node_id))
     menu.addAction("Help", lambda: scene.help_requested.emit(node.node_id))
+    outputs = [port.name for port in node.record.node.output_ports()]
+    if outputs:
+        export = menu.addMenu("Export output")
+        for port in outputs:
+            export.addAction(
+                f"{port}…", lambda _=False, p=port: scene.export_requested.emit(node.node_id, p)
+            )
     menu.addSeparator()
     menu.addAction("Delete", lambda: editor.delete(selected))
     return menu
@@ -111,6 +123,25 @@ def ask_expression(scene: CanvasScene, node_id: str) -> None:
     if ok:
         names = [v.strip() for v in variables.split(",") if v.strip()]
         scene.editor.set_settings(node_id, {"expression": text, "variables": names}, text="Edit expression")
+
+
+def group_menu(scene: CanvasScene, group_id: str) -> QMenu:
+    """Rename…, Colour… and Ungroup, each one undo step."""
+    menu = QMenu()
+    menu.addAction("Rename…", lambda: scene.rename_group(group_id))
+    menu.addAction("Colour…", lambda: ask_group_colour(scene, group_id))
+    menu.addSeparator()
+    menu.addAction("Ungroup", lambda: scene.editor.ungroup(group_id))
+    return menu
+
+
+def ask_group_colour(scene: CanvasScene, group_id: str) -> None:
+    group = group_by_id(scene.doc.graph, group_id)
+    if group is None:
+        return
+    colour = QColorDialog.getColor(QColor(group.colour), None, f"Colour of {group.title or 'the group'}")
+    if colour.isValid() and colour.name() != group.colour.lower():
+        scene.editor.edit_group(group_id, colour=colour.name())
 
 
 def canvas_menu(view: CanvasView, scene_pos: QPointF) -> QMenu:

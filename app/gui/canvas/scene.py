@@ -34,6 +34,7 @@ class CanvasScene(QGraphicsScene):
     """Node, wire and group items for the document's graph."""
 
     help_requested = Signal(str)
+    export_requested = Signal(str, str)  # node id, output port: "Export…"
 
     def __init__(self, doc: Document, editor: Editor, parent: QObject | None = None) -> None:
         super().__init__(parent)

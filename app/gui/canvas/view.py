@@ -3,7 +3,9 @@
 Mouse, as in Grasshopper: drag from a port to wire it (Shift adds to what feeds the
 input, Ctrl removes the wire); drop a wire on empty canvas to search for a node that
 takes it; double-click empty canvas to search; wheel zooms about the cursor; middle or
-right drag pans; left drag on empty canvas selects with a box; Alt-drag duplicates.
+right drag pans (a right-click without a drag opens the menu of what is under the cursor:
+a port, a node, a group, the canvas); left drag on empty canvas selects with a box;
+Alt-drag duplicates.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from PySide6.QtGui import (
     QPen,
     QWheelEvent,
 )
-from PySide6.QtWidgets import QGraphicsView, QWidget
+from PySide6.QtWidgets import QGraphicsView, QMenu, QWidget
 
 from app.gui import theme
 from app.gui.canvas import context_menus
@@ -253,14 +255,21 @@ class CanvasView(QGraphicsView):
             menu = context_menus.port_menu(self.canvas, port)
         else:
             node = self._node_at(pos)
+            under = self.itemAt(pos)
             if node is not None:
                 if not node.isSelected():
                     self.canvas.select_nodes([node.node_id])
                 menu = context_menus.node_menu(self.canvas, node)
+            elif isinstance(under, GroupItem):
+                menu = context_menus.group_menu(self.canvas, under.group_id)
             else:
                 menu = context_menus.canvas_menu(self, self.mapToScene(pos))
         if menu is not None:
-            menu.exec(global_pos)
+            self.show_menu(menu, global_pos)
+
+    def show_menu(self, menu: QMenu, global_pos: QPoint) -> None:
+        """Open a right-click menu at ``global_pos`` (tests replace this to pick an entry)."""
+        menu.exec(global_pos)
 
     def keyPressEvent(self, event: QKeyEvent) -> None:
         if event.key() == Qt.Key.Key_Escape:
