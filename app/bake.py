@@ -96,7 +96,10 @@ def bake_entries(
     geometry: dict[str, list[tuple[str, Any]]] = {}
     skipped = 0
     for node_id in wanted:
+        drawn = graph.nodes[node_id].node.previewed_outputs()
         for port, tree in results[node_id].outputs.items():
+            if port not in drawn:
+                continue
             items = [item for item in tree.all_items() if item is not None]
             shapes = sum(is_geometry(item) for item in items)
             skipped += len(items) - shapes

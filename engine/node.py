@@ -112,13 +112,19 @@ class In:
 
 @dataclass(frozen=True)
 class Out:
-    """An output port. ``access=LIST`` means each call returns a list of values."""
+    """An output port. ``access=LIST`` means each call returns a list of values.
+
+    ``preview=False``: the viewport (and Bake) leave this output out even when the node's
+    preview is on — for an output that repeats the node's geometry in another form (the
+    sample points under an analysis's coloured mesh). It stays available to wire.
+    """
 
     name: str
     type: ValueType
     nickname: str = ""
     description: str = ""
     access: Access = ITEM
+    preview: bool = True
 
 
 @dataclass(frozen=True)
@@ -165,6 +171,10 @@ class Node:
 
     def output_ports(self) -> tuple[Out, ...]:
         return self.outputs
+
+    def previewed_outputs(self) -> frozenset[str]:
+        """Names of the outputs the viewport draws when the node's preview is on."""
+        return frozenset(p.name for p in self.output_ports() if p.preview)
 
     def input_port(self, name: str) -> In | None:
         return next((p for p in self.input_ports() if p.name == name), None)

@@ -332,7 +332,7 @@ def textbook() -> None:
     b = Builder(
         "Textbook ruled surfaces, S(u, v) = C(u) + v·a(u): a cylinder (developable), a helicoid "
         "and a Möbius strip (ruled but not developable: their warp angles are not zero), each "
-        "from its textbook equations. Below, SurfaceAnalysis colours a hyperbolic paraboloid "
+        "from its textbook equations. Beside them, SurfaceAnalysis colours a hyperbolic paraboloid "
         "(nowhere single-curved) and a torus (elliptic outside, hyperbolic inside, parabolic on "
         "the top and bottom circles)."
     )
@@ -342,9 +342,10 @@ def textbook() -> None:
     b.wire("turn.Domain", "u.Domain")
     b.wire("steps.Value", "u.Steps")
     rows = {"cylinder": 0.0, "helicoid": 2.0, "mobius": 4.0}
+    # side by side along x, 3.5 m apart, so the viewport shows each one on its own
     surfaces = {
-        "cylinder": (("cos(u)", "sin(u)", "0"), None, (0.0, 2.0), "Cylinder"),
-        "helicoid": (("0", "0", "0.4 * u"), ("cos(u)", "sin(u)", "0"), (-1.0, 1.0), "Helicoid"),
+        "cylinder": (("cos(u) - 7", "sin(u)", "0"), None, (0.0, 2.0), "Cylinder"),
+        "helicoid": (("-3.5", "0", "0.4 * u"), ("cos(u)", "sin(u)", "0"), (-1.0, 1.0), "Helicoid"),
         "mobius": (("cos(u)", "sin(u)", "0"),
                    ("cos(u / 2) * cos(u)", "cos(u / 2) * sin(u)", "sin(u / 2)"), (-0.3, 0.3), "Möbius strip"),
     }
@@ -354,9 +355,11 @@ def textbook() -> None:
         surface = b.node("developable.ParametricRuledSurface", name, 6, row, label,
                          VValues={"type": "Domain", "min": extent[0], "max": extent[1]})
         b.wire(f"{points}.Point", f"{surface}.Directrix")
+        b.graph.set_preview(points, False)  # the surface shows its directrix; the dots would clutter
         if direction is None:
             b.node("params.UnitZ", f"{name}_a", 5, row + 1, f"{label} ruling direction")
             b.wire(f"{name}_a.Vector", f"{surface}.Direction")
+            b.graph.set_preview(f"{name}_a", False)  # directions, not positions: drawn from the origin
         else:
             vector = f"{name}_a_vectors"
             b.node("params.Vector", vector, 5, row + 1, f"{label} ruling direction")
@@ -367,11 +370,12 @@ def textbook() -> None:
                 b.wire("u.Range", f"{node_id}.u")
                 b.wire(f"{node_id}.Result", f"{vector}.{axis}")
             b.wire(f"{vector}.Vector", f"{surface}.Direction")
+            b.graph.set_preview(vector, False)
     b.node("surfaces.ParametricSurface", "hypar", 1, 7, "Hyperbolic paraboloid z = xy",
-           X="u", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
+           X="u + 3.5", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
            VDomain={"type": "Domain", "min": -1.0, "max": 1.0})
-    b.node("surfaces.Torus", "torus", 1, 8.5, "Torus", MajorRadius=3.0, MinorRadius=1.0,
-           Plane={"type": "Plane", "origin": [0, 8, 0], "x": [1, 0, 0], "y": [0, 1, 0]})
+    b.node("surfaces.Torus", "torus", 1, 8.5, "Torus", MajorRadius=1.5, MinorRadius=0.5,
+           Plane={"type": "Plane", "origin": [7.5, 0, 0], "x": [1, 0, 0], "y": [0, 1, 0]})
     for name, source in (("hypar_analysis", "hypar.Surface"), ("torus_analysis", "torus.Torus")):
         b.node("analysis.SurfaceAnalysis", name, 3, 7 if name.startswith("hypar") else 8.5,
                "Curvature analysis", UDensity=24, VDensity=24, Scale=0.3,

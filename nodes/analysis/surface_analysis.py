@@ -234,7 +234,7 @@ class SurfaceAnalysis(Node):
         Out("DevelopableFraction", NUMBER, "F", "Share of the area (0 to 1) that is single-curved "
             "within CurvatureTolerance."),
         Out("Points", POINT, "P", "The grid points, u-major (point i·VDensity + j is (u_i, v_j)).",
-            access=LIST),
+            access=LIST, preview=False),
     )
 
     def solve(self, value: Any, u_density: Any, v_density: Any, scale: Any, curvature_tolerance: Any,

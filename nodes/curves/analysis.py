@@ -40,7 +40,7 @@ class DivideCurve(Node):
     )
     outputs = (
         Out("Points", POINT, "P", "The division points, from the start.", access=LIST),
-        Out("Tangents", VECTOR, "T", "The unit tangent at each point.", access=LIST),
+        Out("Tangents", VECTOR, "T", "The unit tangent at each point.", access=LIST, preview=False),
         Out("Parameters", NUMBER, "t", "The curve parameter t of each point, 0 to 1.", access=LIST),
     )
 
@@ -76,9 +76,9 @@ class EvaluateCurve(Node):
     )
     outputs = (
         Out("Point", POINT, "P", "The point at t."),
-        Out("Tangent", VECTOR, "T", "The unit tangent at t, in the curve's direction."),
+        Out("Tangent", VECTOR, "T", "The unit tangent at t, in the curve's direction.", preview=False),
         Out("Curvature", NUMBER, "K", "The curvature κ at t (1 / radius of curvature)."),
-        Out("CurvatureVector", VECTOR, "Kv", "Towards the centre of curvature, κ long."),
+        Out("CurvatureVector", VECTOR, "Kv", "Towards the centre of curvature, κ long.", preview=False),
     )
 
     def solve(self, curve: Any, parameter: Any) -> tuple[Point, Vector, float, Vector]:

@@ -49,7 +49,7 @@ class EvaluateSurface(Node):
     inputs = (SURFACE_INPUT, UV_INPUT)
     outputs = (
         Out("Point", POINT, "P", "The point at (u, v)."),
-        Out("Normal", VECTOR, "N", "The unit normal there."),
+        Out("Normal", VECTOR, "N", "The unit normal there.", preview=False),
         Out("Frame", PLANE, "F", "The tangent plane: X along u, Z along the normal."),
     )
 
@@ -77,7 +77,7 @@ class SurfaceCurvature(Node):
     inputs = (SURFACE_INPUT, UV_INPUT)
     outputs = (
         Out("Point", POINT, "P", "The point at (u, v)."),
-        Out("Normal", VECTOR, "N", "The unit normal that gives the curvatures their sign."),
+        Out("Normal", VECTOR, "N", "The unit normal that gives the curvatures their sign.", preview=False),
         Out("K1", NUMBER, "K1", "The larger principal curvature."),
         Out("K2", NUMBER, "K2", "The smaller principal curvature."),
         Out("Direction1", VECTOR, "D1", "Unit tangent along which the surface bends by K1."),

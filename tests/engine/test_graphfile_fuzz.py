@@ -2,7 +2,7 @@
 
 Every case must either load to a valid graph — which then solves, saves, and loads and
 saves again to the same text — or raise exactly :class:`GraphFileError` with a message.
-Any other exception, or a case slower than ``CASE_SECONDS``, fails the test.
+Any other exception, or a case that hangs (``CASE_SECONDS``), fails the test.
 
 The cases come from deterministic mutation loops over a seed corpus (truncation at every
 byte, byte flips, a wrong value for every field, unknown fields, hostile special files)
@@ -36,7 +36,10 @@ from tests.engine.nodekit import NODE_CLASSES, make_registry
 
 REGISTRY = make_registry()
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
-CASE_SECONDS = 5.0  # one file taking longer than this counts as a hang
+# A hang guard, not a benchmark: the slowest case (the 5,000-node file, loaded, solved,
+# saved, loaded and saved again) takes about 1 s, so 30 s is 30 times that. How the cost
+# of loading grows is benchmarked, against a baseline, in tests/benchmarks/bench_graphfile.py.
+CASE_SECONDS = 30.0
 MINIMUM_CASES = 10_000
 
 V0_SEED = b"""{
@@ -290,7 +293,7 @@ def test_byte_flips_of_every_seed():
                 run_case("byte_flips", bytes(data))
 
 
-@pytest.mark.timeout(120)
+@pytest.mark.timeout(300)  # a hang guard: its 11,500 cases take about 15 s
 def test_a_wrong_value_for_every_field_of_every_seed():
     with timed("wrong_field_values"):
         for seed in SEEDS.values():

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
 from nodes.geometry.curves import Circle
@@ -19,12 +17,9 @@ def test_bilinear_patch_area_matches_the_closed_form_of_a_flat_rectangle():
     np.testing.assert_allclose(centroid, [1.0, 1.5, 0.0], atol=1e-12)
 
 
-def test_loft_of_two_equal_circles_has_the_area_of_a_cylinder_in_well_under_a_second():
+def test_loft_of_two_equal_circles_has_the_area_of_a_cylinder():
+    """How fast, against scipy's Simpson rule in the same run: bench_areas.py."""
     radius, height = 1.5, 2.0
     circles = [Circle(Plane.from_normal([0, 0, z], [0, 0, 1]), radius) for z in (0.0, height)]
-    loft = Loft(circles)
-    started = time.perf_counter()
-    area = loft.area()
-    seconds = time.perf_counter() - started
+    area = Loft(circles).area()
     assert abs(area - 2 * np.pi * radius * height) < 1e-6 * area
-    assert seconds < 1.0

@@ -26,14 +26,16 @@ KNOWN_ACTORS = {"first-steps.graph": 0, "showcase.graph": 7}
 def expected_actors(doc) -> int:
     """Actors a graph should show, counted from its results by kernel type: one per kind of
     geometry per previewed node, surfaces with straight rulings adding their rulings, and
-    one per mesh that carries colours."""
+    one per mesh that carries colours. Outputs declared ``preview=False`` are not drawn."""
     count = 0
     for node_id, record in doc.graph.nodes.items():
         result = doc.results.get(node_id)
         if result is None or not (record.preview and record.enabled) or record.type_id == "params.Panel":
             continue
         kinds: set[str] = set()
-        for value in (v for tree in result.outputs.values() for v in tree.all_items()):
+        drawn = record.node.previewed_outputs()
+        trees = (tree for port, tree in result.outputs.items() if port in drawn)
+        for value in (v for tree in trees for v in tree.all_items()):
             if isinstance(value, Vector):
                 kinds.add("vectors")
             elif isinstance(value, Point | Plane):

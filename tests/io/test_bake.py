@@ -132,3 +132,14 @@ def test_bake_to_a_folder_in_the_way_is_an_export_error(textbook, tmp_path):
 def test_the_export_dialogs_file_types_are_the_formats_export_tree_writes():
     listed = FORMATS.replace(" or ", ", ").split(", ")
     assert sorted(FILE_TYPES) == sorted(listed)
+
+
+def test_bake_leaves_out_the_outputs_a_node_does_not_preview(textbook, tmp_path):
+    # SurfaceAnalysis shows its coloured mesh, curvature lines and valid rulings, not the
+    # 24 × 24 sample points under them (Out("Points", …, preview=False))
+    graph, results = textbook
+    node = graph.nodes["hypar_analysis"].node
+    assert "Points" not in node.previewed_outputs() and "ColouredMesh" in node.previewed_outputs()
+    _, by_layer = _objects(bake(graph, results, ["hypar_analysis"], tmp_path / "a.3dm").path)
+    outputs = {obj.Attributes.GetUserString("TorsalOutput") for obj in by_layer["Torsal::Curvature analysis"]}
+    assert "Points" not in outputs and {"ColouredMesh", "CurvatureLines"} <= outputs

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
@@ -12,9 +11,6 @@ from nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 from tests.nodes.helpers import out, run, texts, tree
 
 MILLION = 1_000_000
-#: Timings are CPU time of this process: the work done, not the wait for a core on a
-#: shared machine (numpy runs these operations on one thread).
-clock = time.process_time
 
 
 def vectors(*items: tuple[float, float, float]):
@@ -32,12 +28,11 @@ def numpy_reference(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return np.cross(a, b), dot, np.arccos(np.clip(cosine, -1.0, 1.0))
 
 
-def test_products_equal_numpy_on_a_million_random_pairs_in_under_a_second():
+def test_products_equal_numpy_on_a_million_random_pairs():
+    """How fast, against numpy in the same run: bench_vectors.py."""
     rng = np.random.default_rng(2011)
     a, b = rng.normal(size=(MILLION, 3)), rng.normal(size=(MILLION, 3))
-    start = clock()
     result = vector_products(a, b)
-    seconds = clock() - start
     cross, dot, angle = numpy_reference(a, b)
     assert np.array_equal(result.cross, cross)
     assert np.array_equal(result.dot, dot)
@@ -46,22 +41,19 @@ def test_products_equal_numpy_on_a_million_random_pairs_in_under_a_second():
     textbook = a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
     scale = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
     assert np.max(np.abs(result.dot - textbook) / scale) < 1e-15
-    assert seconds < 1.0
 
 
-def test_node_on_a_million_engine_vectors_matches_numpy_in_a_few_seconds():
+def test_node_on_a_million_engine_vectors_matches_numpy():
+    """How fast, against plain numpy and Python in the same run: bench_vectors.py."""
     rng = np.random.default_rng(7)
     a, b = rng.normal(size=(MILLION, 3)), rng.normal(size=(MILLION, 3))
     va, vb = as_vectors(a), as_vectors(b)
-    start = clock()
     cross, dot, angle = VectorAnalysis().solve(va, vb)
-    seconds = clock() - start
     ref_cross, ref_dot, ref_angle = numpy_reference(a, b)
     assert type(cross[0]) is Vector and len(cross) == MILLION
     assert np.array_equal(np.asarray(cross), ref_cross)
     assert np.array_equal(np.asarray(dot), ref_dot)
     assert np.array_equal(np.asarray(angle), ref_angle)
-    assert seconds < 2.0  # ~0.8 s: building the 10⁶ output Vectors dominates
 
 
 def test_perpendicular_vectors_cross_to_the_third_axis_with_zero_dot_and_right_angle():

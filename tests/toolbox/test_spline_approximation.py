@@ -4,7 +4,6 @@ angles and switches set as a .graph file holds them), with the kernel's closed f
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -67,17 +66,15 @@ def items(result, port):
 # -- optimisation: the bars ---------------------------------------------------------------
 
 
-def test_optimise_reduces_the_summed_warp_of_a_twisted_strip_over_100_times_in_under_2_s():
+def test_optimise_reduces_the_summed_warp_of_a_twisted_strip_over_100_times():
+    """How fast, against the same node not optimising in the same run: bench_spline_approximation.py."""
     surface, edge = twisted_strip()
     before = only(solve(surface, edge, Segments=20), "Fitness")
-    started = time.perf_counter()
     result = solve(surface, edge, Segments=20, Optimise=True)
-    seconds = time.perf_counter() - started
     after = only(result, "Fitness")
     assert result.state == "ok"
     assert before > 3.0  # 21 rulings warped by about 0.18 rad each
     assert before / after >= 100
-    assert seconds < 2.0
 
 
 def test_optimise_is_deterministic():

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -98,9 +97,8 @@ def test_invalid_inputs_are_refused():
         paper_strip(-1.0, 1.0, [math.pi / 2], [0.0], 4)
 
 
-def test_a_thousand_segments_build_in_milliseconds():
-    paper_strip(10.0, 0.5, [1.5], [0.01], 10)
-    began = time.perf_counter()
+def test_a_thousand_segments_stay_planar():
+    """How fast, against composing the folds one by one in the same run: bench_unroll.py."""
     strip = paper_strip(100.0, 0.5, RNG.uniform(1.5, 1.64, 1000), RNG.uniform(-0.1, 0.1, 1000), 1000)
-    assert time.perf_counter() - began < 0.05
+    assert len(strip.starts) == 1001
     assert strip.planarity.max() < 1e-12

@@ -10,7 +10,6 @@ than it reports.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -219,13 +218,12 @@ def test_bilinear_area_of_a_planar_trapezoid_is_exact():
     assert bilinear_quad_areas(starts, ends)[0] == pytest.approx(4.0, rel=1e-15)
 
 
-# ----------------------------------------------------------------------------- speed
+# ---------------------------------------------------------------------- large strips
 
 
-def test_ten_thousand_rulings_unroll_in_well_under_a_second():
+def test_ten_thousand_rulings_unroll_keeping_every_edge_length():
+    """How fast, against plain numpy on the same strip in the same run: bench_unroll.py."""
     starts, ends = helix_tangent_rulings(9999, turns=10)
-    unroll_rulings(starts[:100], ends[:100])  # warm-up
-    began = time.perf_counter()
     dev = unroll_rulings(starts, ends)
-    assert time.perf_counter() - began < 0.5
+    assert len(dev.starts2d) == 10_000
     assert dev.max_edge_length_error < 1e-12

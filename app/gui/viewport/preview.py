@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -79,10 +80,17 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
     }
 
 
-def prepare(result: NodeResult, memo: Memo | None = None) -> Prepared:
-    """The datasets for one node's result (no plotter needed: safe off the GUI thread)."""
-    found = collect((v for tree in result.outputs.values() for v in tree.all_items()), memo)
+def prepare(result: NodeResult, outputs: Collection[str] | None = None, memo: Memo | None = None) -> Prepared:
+    """The datasets for one node's result, from its ``outputs`` (all when None) — no
+    plotter needed: safe off the GUI thread."""
+    trees = (tree for port, tree in result.outputs.items() if outputs is None or port in outputs)
+    found = collect((v for tree in trees for v in tree.all_items()), memo)
     return Prepared(result, pieces(found), found.problems)
+
+
+def drawn_outputs(graph: Graph, node_id: str) -> frozenset[str]:
+    """The outputs of a node the viewport draws (see :attr:`engine.node.Out.preview`)."""
+    return graph.nodes[node_id].node.previewed_outputs()
 
 
 def prepare_solved(graph: Graph, results: dict[str, NodeResult], solved: list[str]) -> dict[str, Prepared]:
@@ -90,7 +98,11 @@ def prepare_solved(graph: Graph, results: dict[str, NodeResult], solved: list[st
     right after solving, so while the GUI draws one frame the next one is being made."""
     shown = previewed(graph, results)
     memo: Memo = {}
-    return {node_id: prepare(results[node_id], memo) for node_id in solved if node_id in shown}
+    return {
+        node_id: prepare(results[node_id], drawn_outputs(graph, node_id), memo)
+        for node_id in solved
+        if node_id in shown
+    }
 
 
 class Preview:
@@ -124,7 +136,7 @@ class Preview:
                 continue
             ready = (prepared or {}).get(node_id)
             if ready is None or ready.result is not result:
-                ready = prepare(result)
+                ready = prepare(result, drawn_outputs(graph, node_id))
             if ready.problems:
                 self.problems[node_id] = ready.problems
             else:
