@@ -30,9 +30,9 @@ test: system $(STAMP)
 
 bench: system $(STAMP)
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
-		$(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs= -s -q; \
+		$(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs=".*" -s -q; \
 	else \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs= -s -q; \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs=".*" -s -q; \
 	fi
 
 lint: $(STAMP)

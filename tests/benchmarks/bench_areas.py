@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_areas.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 The bars of the area issue were absolute (a NURBS loft's area in well under a second, a
 ruled loft's in under half a second: the generic adaptive cubature took 4–50 s). Here

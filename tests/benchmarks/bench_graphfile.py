@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_graphfile.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 The baseline of each figure is the same work on a file half the size, measured in the
 same run: linear work doubles (ratio 2), a search of the file per node or wire makes

@@ -3,7 +3,7 @@
 Run alone with::
 
     xvfb-run -a -s "-screen 0 1600x1000x24" .venv/bin/python -m pytest tests/benchmarks/bench_gui.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 - ``torsal gui FILE`` shows its window in < 3 s;
 - during a 10 s solve the event loop answers within 100 ms, and Esc stops the solve

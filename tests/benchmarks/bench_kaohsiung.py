@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_kaohsiung.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 Moving 'Inward scale' expires the scaled top curve and everything downstream: the
 divided points, the 21 edge curves through them and the 20 RulingDevelopable strips

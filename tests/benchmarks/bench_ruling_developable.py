@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_ruling_developable.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 Both methods get the same curves and the same stations on A (evenly spaced in arc
 length). Times are the best of several repeats (the machine is shared and noisy); the

@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_spline_approximation.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 The bar of the toolbox issue: optimising the 20 segments of a twisted strip cuts its
 summed warp over 100 times in under 2 s. Here the optimising solve is timed against a

@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_unroll.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 Each kernel is timed against a baseline measured in the same run:
 

@@ -3,7 +3,7 @@
 Run alone with::
 
     .venv/bin/python -m pytest tests/benchmarks/bench_vectors.py \\
-        -o python_files='bench_*.py' -o norecursedirs= -s
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
 The bars of the analysis issue: cross, dot and angle of 10⁶ pairs in under a second, and
 the node on 10⁶ engine vectors in a few seconds. Here the kernel is timed against numpy
