@@ -46,7 +46,7 @@ def _no_repeats(points: np.ndarray) -> None:
 
 def _tangent(name: str, value: Any) -> np.ndarray | None:
     """An end tangent, or None for a free end (the zero vector)."""
-    if value is None:
+    if value is None or (isinstance(value, tuple) and value == FREE_END):  # the default: no arrays
         return None
     array = xyz(name, value)
     return None if float(np.linalg.norm(array)) <= ZERO_LENGTH else array

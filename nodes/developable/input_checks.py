@@ -31,7 +31,11 @@ def curve_input(name: str, value: Any) -> Curve:
         raise NodeError(f"{name} is empty: connect a curve")
     if not isinstance(value, Curve):
         raise NodeError(f"{name} {describe(value)} is not a curve")
-    if np.ptp(value.point_at(_SAMPLES), axis=0).max() > 0:
+    start, end = value.end_points
+    if np.abs(end - start).max() > 0:  # ends apart (NaN, as no spread, falls through to the checks)
+        return value
+    points = value.point_at(_SAMPLES)
+    if np.ptp(points, axis=0).max() > 0:
         return value
     if not value.length > 0:
         raise NodeError(f"{name} has zero length, so no rulings can be spaced along it")

@@ -39,9 +39,9 @@ def _ends_differ(curve_a: Curve, curve_b: Curve) -> bool:
     """The cheapest rejection: a curve given twice has the same ends (either way round),
     unless both are loops, whose seams may lie anywhere. Ends count as the same within
     1e-6 of their spread (or when all four coincide)."""
-    a0, a1 = curve_a.point_at(np.array([0.0, 1.0]))
-    b0, b1 = curve_b.point_at(np.array([0.0, 1.0]))
-    size = float(np.ptp(np.array([a0, a1, b0, b1]), axis=0).max())
+    ends = np.concatenate([curve_a.end_points, curve_b.end_points])
+    a0, a1, b0, b1 = ends
+    size = float(np.ptp(ends, axis=0).max())
 
     def near(p: np.ndarray, q: np.ndarray) -> bool:
         return float(np.abs(p - q).max()) <= 1e-6 * size

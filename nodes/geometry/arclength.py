@@ -22,7 +22,7 @@ _NODES, _WEIGHTS = roots_legendre(16)
 
 def speed(curve: Curve, t: FloatArray) -> FloatArray:
     """``|C'(t)|``, the rate at which arc length grows with t."""
-    return np.linalg.norm(curve.derivatives(t, 1)[1], axis=1)
+    return np.linalg.norm(curve.derivative_at(t, 1), axis=1)
 
 
 def gauss_length(curve: Curve, low: FloatArray, high: FloatArray) -> FloatArray:

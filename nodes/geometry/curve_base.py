@@ -75,6 +75,13 @@ class Curve(ABC):
         points = self.derivatives(np.atleast_1d(np.asarray(t, dtype=float)), 0)[0]
         return points[0] if scalar else points
 
+    def derivative_at(self, t: ArrayLike, order: int = 1) -> FloatArray:
+        """The ``order``-th derivative alone, ``C⁽ᵒʳᵈᵉʳ⁾(t)``: ``(n, 3)`` for an array, ``(3,)``
+        for a scalar. Subclasses that can skip the lower orders do."""
+        scalar = np.ndim(t) == 0
+        d = self.derivatives(np.atleast_1d(np.asarray(t, dtype=float)), order)[order]
+        return d[0] if scalar else d
+
     # -- parameters ---------------------------------------------------------------------
 
     def to_domain(self, t: ArrayLike) -> FloatArray:
@@ -94,6 +101,14 @@ class Curve(ABC):
         distinct knots, polylines their vertices.
         """
         return np.array([0.0, 1.0])
+
+    @cached_property
+    def end_points(self) -> FloatArray:
+        """The points at t = 0 and t = 1, ``(2, 3)``, read-only: evaluated once per curve
+        (curves do not change), for the checks that compare the ends of many curves."""
+        ends = self.point_at(np.array([0.0, 1.0]))
+        ends.setflags(write=False)
+        return ends
 
     @property
     def start(self) -> FloatArray:

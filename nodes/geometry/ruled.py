@@ -29,6 +29,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 from .curve_base import Curve
 from .curves.line import Line
 from .surface_base import Surface, broadcast_uv
+from .vec_ops import extent
 
 FloatArray = NDArray[np.float64]
 
@@ -121,7 +122,7 @@ class SplineRail(Curve):
     ) -> tuple[SplineRail, SplineRail]:
         """Two rails through ``a`` and ``b`` that share one (lazily solved) spline."""
         closed = closed and len(params) >= 4
-        both = np.hstack([a, b])
+        both = np.concatenate([a, b], axis=1)
         if closed:
             both[-1] = both[0]
         source = _Interpolant(params, both, closed)
@@ -229,11 +230,12 @@ class RuledSurface(Surface):
         n = len(a)
         if n < 2:
             raise ValueError("a ruled surface needs at least two rulings")
-        lines = np.stack([a, b], axis=1)
+        lines = np.empty((n, 2, 3))  # np.stack([a, b], axis=1), without its overhead
+        lines[:, 0], lines[:, 1] = a, b
         if not np.isfinite(lines).all():
             raise ValueError("ruling end points must be finite")
         params = _uniform(n)
-        size = float(np.ptp(lines.reshape(-1, 3), axis=0).max()) or 1.0
+        size = float(extent(lines.reshape(-1, 3)).max()) or 1.0
         closed = n >= 4 and bool(np.abs(lines[0] - lines[-1]).max() <= 1e-12 * size)
         surface = cls.__new__(cls)
         surface._setup(*SplineRail._pair(params, a, b, closed), closed)

@@ -1,4 +1,4 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit.
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent.
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -20,7 +20,7 @@ from .curve_base import FloatArray
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise cross product (broadcasting)."""
-    out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
+    out = np.empty(a.shape if a.shape == b.shape else np.broadcast(a, b).shape)
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
     np.subtract(a1 * b2, a2 * b1, out=out[..., 0])
@@ -52,3 +52,11 @@ def unit(a: FloatArray) -> FloatArray:
     """Row-wise unit vectors; zero rows stay zero."""
     length = norm(a)[..., None]
     return a / np.where(length > 0, length, 1.0)
+
+
+def extent(points: FloatArray) -> FloatArray:
+    """Per-coordinate spread (max − min) of ``(n, 3)`` points: ``np.ptp(points, axis=0)``, bit
+    for bit, several times faster on small arrays (reducing the rows of an (n, 3) array
+    strides across it; its transposed copy reduces along contiguous rows)."""
+    columns = np.ascontiguousarray(points.T)
+    return columns.max(axis=1) - columns.min(axis=1)

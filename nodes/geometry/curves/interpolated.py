@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
 from math import comb
 
 import numpy as np
@@ -15,8 +16,14 @@ from .nurbs import NurbsCurve
 def chord_length_parameters(points: ArrayLike) -> np.ndarray:
     """Parameters in [0, 1] proportional to the cumulative distance between points."""
     p = as_points(points)
-    chords = np.linalg.norm(np.diff(p, axis=0), axis=1)
-    cumulative = np.concatenate([[0.0], np.cumsum(chords)])
+    return _chord_parameters(p[1:] - p[:-1])
+
+
+def _chord_parameters(steps: np.ndarray) -> np.ndarray:
+    """:func:`chord_length_parameters` from the steps between consecutive points."""
+    cumulative = np.empty(len(steps) + 1)
+    cumulative[0] = 0.0
+    np.cumsum(np.sqrt(np.add.reduce(steps * steps, axis=1)), out=cumulative[1:])
     return cumulative / cumulative[-1]
 
 
@@ -53,7 +60,7 @@ class InterpolatedCurve(NurbsCurve):
         degree: int = 3,
     ) -> None:
         p = as_points(points)
-        if not np.all(np.isfinite(p)):
+        if not np.isfinite(p).all():
             raise ValueError("An interpolation point has a non-finite coordinate.")
         if int(degree) != degree or degree < 1:
             raise ValueError(f"The degree must be a whole number >= 1; got {degree}.")
@@ -68,11 +75,12 @@ class InterpolatedCurve(NurbsCurve):
             p = np.concatenate([p, p[:1]])
         elif len(p) < 2:
             raise ValueError(f"An interpolating curve needs at least 2 points; got {len(p)}.")
-        if np.any(np.all(np.diff(p, axis=0) == 0, axis=1)):
+        steps = p[1:] - p[:-1]
+        if (steps == 0).all(axis=1).any():
             raise ValueError(
                 "Two consecutive points coincide; the curve cannot pass through one point twice in a row."
             )
-        u = chord_length_parameters(p)
+        u = _chord_parameters(steps)
 
         if closed:
             k = degree
@@ -113,8 +121,16 @@ def _bezier_through(points: np.ndarray, u: np.ndarray) -> np.ndarray:
     ``u`` (from 0 to 1): what ``make_interp_spline`` gives when there are no interior
     knots, without its overhead (a tenth of a millisecond per curve, which a slider
     rebuilding dozens of short edge curves pays on every solve)."""
-    k = len(points) - 1
-    j = np.arange(k + 1)
-    binomial = np.array([comb(k, i) for i in j], dtype=float)
-    basis = binomial * u[:, None] ** j * (1.0 - u[:, None]) ** (k - j)
+    j, binomial = _bernstein_terms(len(points) - 1)
+    basis = binomial * u[:, None] ** j * (1.0 - u[:, None]) ** j[::-1]
     return np.linalg.solve(basis, points)
+
+
+@lru_cache(maxsize=16)
+def _bernstein_terms(k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The exponents 0 … k and the binomial coefficients C(k, j) of the degree-k Bernstein basis."""
+    j = np.arange(k + 1)
+    binomial = np.array([comb(k, i) for i in range(k + 1)], dtype=float)
+    j.setflags(write=False)
+    binomial.setflags(write=False)
+    return j, binomial

@@ -41,7 +41,7 @@ class Line(Curve):
         a, b = as_points(starts).copy(), as_points(ends).copy()
         if a.shape != b.shape:
             raise ValueError(f"Expected as many line ends as starts; got {len(b)} and {len(a)}.")
-        if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+        if not (np.isfinite(a).all() and np.isfinite(b).all()):
             raise ValueError("A line's end points must have finite coordinates.")
         a.setflags(write=False)
         b.setflags(write=False)

@@ -7,13 +7,14 @@ derivatives of the quotient (the generalised quotient rule) are written here.
 
 from __future__ import annotations
 
-from math import comb
+from math import comb, sqrt
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline
 
 from ..curve_base import Curve, FloatArray
+from ..vec_ops import extent
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots
 
@@ -117,9 +118,9 @@ class NurbsCurve(Curve):
         if periodic:
             self.closed = True
         else:
-            span = np.ptp(points, axis=0).max()
-            start, end = self.point_at(np.array([0.0, 1.0]))
-            self.closed = bool(np.linalg.norm(start - end) <= 1e-12 * max(span, 1.0))
+            span = extent(points).max()
+            gap = self.end_points[0] - self.end_points[1]
+            self.closed = bool(sqrt(gap.dot(gap)) <= 1e-12 * max(span, 1.0))  # as np.linalg.norm(gap)
 
     @classmethod
     def from_arrays(
@@ -151,15 +152,9 @@ class NurbsCurve(Curve):
         ``C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σᵢ₌₁ᵏ C(k,i) w⁽ⁱ⁾ C⁽ᵏ⁻ⁱ⁾) / w``. Each order then gains a factor
         ``(b − a)`` for the map ``u = a + (b − a)·t``.
         """
-        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
-        a, b = self.domain
-        u = a + (b - a) * t
-        scale = b - a
+        u, scale = self._knot_parameters(t)
         if not self.is_rational:
-            return [
-                self._spline(u, nu=k) * scale**k if k <= self.degree else np.zeros((len(u), 3))
-                for k in range(order + 1)
-            ]
+            return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
         homogeneous = [
             self._spline(u, nu=k) if k <= self.degree else np.zeros((len(u), 4)) for k in range(order + 1)
         ]
@@ -172,13 +167,41 @@ class NurbsCurve(Curve):
             result.append(numerator / w[0])
         return [c * scale**k for k, c in enumerate(result)]
 
+    def derivative_at(self, t: ArrayLike, order: int = 1) -> FloatArray:
+        """The ``order``-th derivative alone; a polynomial curve evaluates no lower order."""
+        if self.is_rational:
+            return super().derivative_at(t, order)
+        u, scale = self._knot_parameters(t)
+        d = self._polynomial_derivative(u, order, scale)
+        return d[0] if np.ndim(t) == 0 else d
+
+    def _knot_parameters(self, t: ArrayLike) -> tuple[FloatArray, float]:
+        """Knot parameters ``u = a + (b − a)·t`` for ``t``, and ``b − a``."""
+        t = np.asarray(t, dtype=float).reshape(-1)
+        a, b = self.domain
+        if a == 0.0 and b == 1.0:  # most curves (u is t: spare the two passes over it)
+            return t, 1.0
+        return a + (b - a) * t, b - a
+
+    def _polynomial_derivative(self, u: FloatArray, k: int, scale: float) -> FloatArray:
+        """``C⁽ᵏ⁾`` of a polynomial (non-rational) curve at knot parameters ``u``, per unit t."""
+        if k > self.degree:
+            return np.zeros((len(u), 3))
+        value = self._spline(u, nu=k)
+        return value if k == 0 or scale == 1.0 else value * scale**k
+
     def _breakpoints(self) -> FloatArray:
         # computed once (the knots are read-only) and handed out read-only
         breaks = self.__dict__.get("_breaks")
         if breaks is None:
             a, b = self.domain
-            inside = self.knots[(self.knots > a) & (self.knots < b)]
-            breaks = np.concatenate([[0.0], (np.unique(inside) - a) / (b - a), [1.0]])
+            inside = self.knots[self.degree + 1 : len(self.control_points)]  # (the others lie outside)
+            inside = inside[(inside > a) & (inside < b)]
+            if len(inside):  # the distinct ones (the knots increase)
+                inside = inside[np.concatenate([[True], inside[1:] > inside[:-1]])]
+                breaks = np.concatenate([[0.0], (inside - a) / (b - a), [1.0]])
+            else:  # one span (a Bézier curve)
+                breaks = np.array([0.0, 1.0])
             breaks.setflags(write=False)
             self._breaks = breaks
         return breaks

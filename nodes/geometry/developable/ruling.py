@@ -74,7 +74,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
-from ..vec_ops import cross, det, dot, norm, unit
+from ..vec_ops import cross, det, dot, extent, norm, unit
 from .brackets import refine_roots
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
@@ -173,6 +173,18 @@ class _Grid:
     left_tangents: FloatArray  #: B' and B'' as seen from the left (they differ at knots)
     left_second: FloatArray
 
+    def bracket_ends(self, cols: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """B, B' and B'' at both ends of the brackets from samples ``cols`` to ``cols + 1``,
+        each ``(2k, 3)``: the k lower ends, then the k upper ends as seen from the left."""
+        ends = np.concatenate([cols, cols + 1])
+        if self.left_tangents is self.tangents and self.left_second is self.second:  # one smooth span
+            return self.points[ends], self.tangents[ends], self.second[ends]
+        return (
+            self.points[ends],
+            np.concatenate([self.tangents[cols], self.left_tangents[cols + 1]]),
+            np.concatenate([self.second[cols], self.left_second[cols + 1]]),
+        )
+
 
 def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
     """Samples of B (a straight span needs only its ends: f is linear in t there) and its
@@ -231,17 +243,17 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
     """
-    centre = 0.5 * (a0[len(a0) // 2] + b0[len(b0) // 2])  # about the middle of both curves
-    a = a0 - centre
-    b = b0 - centre
-    ua, ub = unit(a1), unit(b1)
-    left = np.hstack([ua, -cross(a, ua)])
-    right = np.ascontiguousarray(np.hstack([cross(ub, b), ub]).T)
     n, m = len(a0), len(b0)
     both = np.concatenate([a0, b0])
-    size = float(norm(both.max(axis=0) - both.min(axis=0)))
+    size = float(norm(extent(both)))  # the diagonal of the bounding box
+    # A's rows and B's rows at once: unit tangents and their moments Û × P (−A × Â', B̂' × B)
+    units = unit(np.concatenate([a1, b1]))
+    moments = cross(units, both - 0.5 * (a0[n // 2] + b0[m // 2]))  # about the middle of both curves
+    left = np.concatenate([units[:n], moments[:n]], axis=1)
+    right = np.empty((6, m))
+    right[:3], right[3:] = moments[n:].T, units[n:].T
     block = max(1, 40_000 // m)
-    found: list[tuple[IntArray, FloatArray, FloatArray]] = []
+    found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
         f = left[first : first + block] @ right
@@ -256,31 +268,27 @@ def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) ->
                 sign.flat[exact] = 0.0
                 change = sign[:, :-1] * sign[:, 1:] < 0
                 zeros.append(exact + first * m)
-        index = np.flatnonzero(change)
-        r, c = np.divmod(index, m - 1)
-        found.append((index + first * (m - 1), f[r, c], f[r, c + 1]))
-    rows, cols = np.divmod(np.concatenate([x[0] for x in found]), m - 1)
-    return _Brackets(
-        rows,
-        cols,
-        np.concatenate([x[1] for x in found]),
-        np.concatenate([x[2] for x in found]),
-        np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64),
-    )
+        r, c = np.divmod(np.flatnonzero(change), m - 1)
+        found.append((r + first, c, f[r, c], f[r, c + 1]))
+    joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
+    rows, cols, f_low, f_high = joined
+    zero = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
+    return _Brackets(rows, cols, f_low, f_high, zero)
 
 
 def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, cols: IntArray) -> FloatArray:
     """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
     matches f and f_t = det[R, A', B''] at both ends of the bracket (two Newton steps on
     that cubic from the secant's root), so that one Newton step on f reaches rounding."""
-    i, j = rows, cols
-    # det[R, A', X] = X · (R × A'); the bracket's upper end is seen from the left
-    normal = cross(grid.points[j] - a0[i], a1[i])
-    f0, d0 = dot(normal, grid.tangents[j]), dot(normal, grid.second[j])
-    normal = cross(grid.points[j + 1] - a0[i], a1[i])
-    f1, d1 = dot(normal, grid.left_tangents[j + 1]), dot(normal, grid.left_second[j + 1])
-    x0, h = grid.at[j], grid.at[j + 1] - grid.at[j]
-    d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
+    # det[R, A', X] = X · (R × A') at both ends at once; the bracket's upper end is seen from the left
+    k = len(rows)
+    points, tangents, second = grid.bracket_ends(cols)
+    i = np.concatenate([rows, rows])
+    normal = cross(points - a0[i], a1[i])
+    f0, f1 = dot(normal, tangents).reshape(2, k)
+    x0, x1 = grid.at[cols], grid.at[cols + 1]
+    h = x1 - x0
+    d0, d1 = dot(normal, second).reshape(2, k) * h  # slopes in the bracket's unit coordinate
     rise = f1 - f0
     # the cubic f0 + u·(d0 + u·(c2 + u·c3)) and its slope d0 + u·(2·c2 + 3·c3·u)
     c2 = 3.0 * rise - 2.0 * d0 - d1
@@ -373,22 +381,19 @@ def _find_candidates(
     root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
     k = len(rows)
     root_t = np.concatenate([np.empty(k), grid.t[point_cols]]) if len(point_rows) else np.empty(k)
-    b0, b1, b2, normal = np.empty((4, len(root_rows), 3))
+    b0, b1 = np.empty((2, len(root_rows), 3))
     f, f_t = np.empty((2, len(root_rows)))
-    speed_a = norm(a1)
+    speed_a, size_a = norm(a1), norm(a0)
 
     def evaluate(x: FloatArray, index: IntArray, i: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
         plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
         value, slope = dot(plane, c1), dot(plane, c2)
-        root_t[index], b0[index], b1[index], b2[index] = x, c0, c1, c2
-        normal[index], f[index], f_t[index] = plane, value, slope
-        return value, slope, c0
+        root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
+        return value, slope, _rounding_scale(size_a[i], c0, speed_a[i], c1)
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        i = rows[index]
-        value, slope, c0 = evaluate(x, index, i)
-        return value, slope, _rounding_scale(norm(a0[i]), c0, speed_a[i], b1[index])
+        return evaluate(x, index, rows[index])
 
     if k:
         low, high = grid.at[cols], grid.at[cols + 1]
@@ -488,13 +493,12 @@ def _longest_monotone(t: FloatArray) -> BoolArray:
     return keep
 
 
-def _neighbours(chosen: BoolArray) -> tuple[IntArray, IntArray]:
-    """Index of the nearest chosen station before and after each station (−1 / n if none)."""
-    n = len(chosen)
-    index = np.arange(n)
-    before = np.concatenate([[-1], np.maximum.accumulate(np.where(chosen, index, -1))[:-1]])
-    after = np.concatenate([np.minimum.accumulate(np.where(chosen, index, n)[::-1])[::-1][1:], [n]])
-    return before, after
+def _neighbours(partnered: BoolArray) -> tuple[IntArray, IntArray]:
+    """The stations with a partner, and where each other station falls among them: ``i``
+    such that its nearest partnered neighbours are ``stations[i − 1]`` and ``stations[i]``
+    (there is none before it when i = 0, none after it when i = len(stations))."""
+    stations = np.flatnonzero(partnered)
+    return stations, np.searchsorted(stations, np.flatnonzero(~partnered))
 
 
 # -- the solve ---------------------------------------------------------------------------------
@@ -538,7 +542,10 @@ class _Strip:
     @cached_property
     def _chords_b(self) -> FloatArray:
         points = self.grid.points
-        return np.concatenate([[0.0], np.cumsum(norm(points[1:] - points[:-1]))])
+        chords = np.empty(len(points))
+        chords[0] = 0.0
+        np.cumsum(norm(points[1:] - points[:-1]), out=chords[1:])
+        return chords
 
     @cached_property
     def station_lengths(self) -> FloatArray:
@@ -651,14 +658,14 @@ class _Strip:
     def fill(self, t: FloatArray) -> None:
         """Give every station without a partner the least-warped one between its neighbours
         (if within the tolerance) or else the arc-length interpolation between them."""
-        missing = np.flatnonzero(np.isnan(t))
+        gap = np.isnan(t)
+        missing = np.flatnonzero(gap)
         if len(missing) == 0:
             return
-        n = len(t)
-        before, after = _neighbours(~np.isnan(t))
-        before, after = before[missing], after[missing]
-        lo = np.where(before >= 0, t[np.maximum(before, 0)], 0.0)
-        hi = np.where(after < n, t[np.minimum(after, n - 1)], 1.0)
+        partnered, window = _neighbours(~gap)
+        # the neighbours' partners, padded with B's ends: [window] is the one before, [window + 1] after
+        padded = np.concatenate([[0.0], t[partnered], [1.0]])
+        lo, hi = padded[window], padded[window + 1]
         # the least |signed warp| among B's samples inside each station's window
         grid = self.grid
         angle = _normal_angles(self.a0[missing], self.a1[missing], grid.points, grid.tangents)
@@ -669,11 +676,11 @@ class _Strip:
         # otherwise interpolate in arc length between the neighbours: the plain loft
         if not near.all():
             length_a = self.station_lengths
-            a_lo = np.where(before >= 0, length_a[np.maximum(before, 0)], 0.0)
-            a_hi = np.where(after < n, length_a[np.minimum(after, n - 1)], self.map_a.total)
+            padded = np.concatenate([[0.0], length_a[partnered], [self.map_a.total]])
+            a_lo, a_hi = padded[window], padded[window + 1]
             span = a_hi - a_lo
             fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
-            b_lo, b_hi = self.length_b(lo), self.length_b(hi)
+            b_lo, b_hi = self.length_b(np.concatenate([lo, hi])).reshape(2, -1)
             loft = np.minimum(np.maximum(self.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
             t[missing] = np.where(near, grid.t[best], loft)
         else:
@@ -811,16 +818,24 @@ class _Strip:
         """Ruling end points and edge tangents: stations reuse A's values, and B's where
         their chosen root still stands; at a corner the tangent is the in-plane blend."""
         k = len(s)
-        starts, ends, ta, tb = np.empty((4, k, 3))
         station = source >= 0
-        starts[station], ta[station] = self.a0[source[station]], self.a1[source[station]]
-        if not station.all():
+        rows = source[station]
+        if len(rows) == k:  # no fan rulings
+            starts, ta = self.a0[rows], self.a1[rows]
+        else:
+            starts, ta = np.empty((2, k, 3))
+            starts[station], ta[station] = self.a0[rows], self.a1[rows]
             starts[~station], ta[~station] = self.curve_a.derivatives(s[~station], 1)
         kept = np.zeros(k, dtype=bool)
-        kept[station] = regular[source[station]]
-        kept[kept] = good.t[chosen[source[kept]]] == t[kept]
-        ends[kept], tb[kept] = good.points[chosen[source[kept]]], good.tangents[chosen[source[kept]]]
-        if not kept.all():
+        kept[station] = regular[rows]
+        root = chosen[source[kept]]
+        stands = good.t[root] == t[kept]
+        kept[kept], root = stands, root[stands]
+        if len(root) == k:
+            ends, tb = good.points[root], good.tangents[root]
+        else:
+            ends, tb = np.empty((2, k, 3))
+            ends[kept], tb[kept] = good.points[root], good.tangents[root]
             ends[~kept], tb[~kept] = self.curve_b.derivatives(t[~kept], 1)
         ruling = ends - starts
         # at a corner the tangent may be any blend of the two one-sided ones

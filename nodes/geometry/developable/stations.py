@@ -39,7 +39,8 @@ def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]
     curves rebuilt with the same knots on every solve share it).
 
     Returns the piece ends ``nodes``, the 4 Gauss nodes of every piece (flat), the pieces'
-    half widths, the index of the last piece of every span, and points just before
+    half widths, the index of the last piece of every span, and all the parameters at
+    which the speed is needed: the Gauss nodes, the piece ends and points just before
     every breakpoint (the speed may jump at a knot).
     """
     edges = np.array(breaks)
@@ -52,7 +53,8 @@ def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]
     nodes = np.append(low, 1.0)
     half = 0.5 * (nodes[1:] - low)
     gauss = ((0.5 * (nodes[1:] + low))[:, None] + half[:, None] * _NODES[None, :]).reshape(-1)
-    arrays = (nodes, gauss, half, np.cumsum(counts) - 1, edges[1:] - 1e-12 * widths)
+    at = np.concatenate([gauss, nodes, edges[1:] - 1e-12 * widths])
+    arrays = (nodes, gauss, half, np.cumsum(counts) - 1, at)
     for array in arrays:
         array.setflags(write=False)
     return arrays
@@ -73,15 +75,17 @@ class LengthMap:
         self.curve = curve
         breaks = tuple(curve._breakpoints().tolist())
         layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
-        nodes, gauss, half, last, span_ends = layout(breaks, int(intervals))
-        d1 = curve.derivatives(np.concatenate([gauss, nodes, span_ends]), 1)[1]
+        nodes, gauss, half, last, at = layout(breaks, int(intervals))
+        d1 = curve.derivative_at(at, 1)
         speeds = np.sqrt(np.add.reduce(d1 * d1, axis=-1))
         g, m = len(gauss), len(nodes)
         pieces = half * (speeds[:g].reshape(-1, 4) @ _WEIGHTS)
         end_speeds = speeds[g + 1 : g + m].copy()
         end_speeds[last] = speeds[g + m :]
         self.nodes: FloatArray = nodes
-        self.lengths: FloatArray = np.concatenate([[0.0], np.cumsum(pieces)])
+        self.lengths: FloatArray = np.empty(m)
+        self.lengths[0] = 0.0
+        np.cumsum(pieces, out=self.lengths[1:])
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
         self.start_speeds: FloatArray = speeds[g : g + m - 1]
         self.end_speeds: FloatArray = end_speeds
@@ -104,14 +108,15 @@ class LengthMap:
     def parameter_at(self, length: ArrayLike) -> FloatArray:
         """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
         target = np.minimum(np.maximum(np.asarray(length, dtype=float), 0.0), self.total)
-        k = np.minimum(np.searchsorted(self.lengths, target, side="right") - 1, len(self._rise) - 1)
+        k = np.minimum(self.lengths.searchsorted(target, side="right") - 1, len(self._rise) - 1)
         d0, c2, c3 = self._d0[k], self._c2[k], self._c3[k]
         gap = target - self.lengths[k]
         u = gap / np.maximum(self._rise[k], 1e-300)
         # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
         floor = 1e-12 * max(self.total, 1e-300)
+        c2_twice = 2.0 * c2
         for _ in range(2):
-            slope = d0 + u * (2.0 * c2 + 3.0 * u * c3)
+            slope = d0 + u * (c2_twice + 3.0 * u * c3)
             step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
             u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
         return np.minimum(self.nodes[k] + u * self._width[k], 1.0)
