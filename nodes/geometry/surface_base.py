@@ -550,3 +550,24 @@ class TransformedSurface(Surface):
         linear, shift = self.matrix[:3, :3], self.matrix[:3, 3]
         ders = self.surface.derivatives(u, v, order)
         return [ders[0] @ linear.T + shift] + [d @ linear.T for d in ders[1:]]
+
+    def _area_scale(self) -> float | None:
+        """k² when the matrix is a similarity (rotation, mirror, uniform scale k and a
+        move): areas then scale by k² and the surface's own integrator is kept."""
+        linear = self.matrix[:3, :3]
+        gram = linear.T @ linear
+        k2 = float(np.trace(gram)) / 3.0
+        if k2 > 0.0 and np.abs(gram - k2 * np.eye(3)).max() <= 1e-12 * k2:
+            return k2
+        return None
+
+    def area(self, rtol: float = 1e-11) -> float:
+        k2 = self._area_scale()
+        return k2 * self.surface.area(rtol) if k2 is not None else super().area(rtol)
+
+    def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
+        k2 = self._area_scale()
+        if k2 is None:
+            return super().area_and_centroid(rtol)
+        area, centroid = self.surface.area_and_centroid(rtol)
+        return k2 * area, self.matrix[:3, :3] @ centroid + self.matrix[:3, 3]

@@ -87,3 +87,60 @@ def test_rulings_through_the_axis_make_a_double_cone_whose_kink_is_integrated_ex
     surface = RuledSurface(lower, Circle(opposite, radius))
     half_slant = math.hypot(radius, height / 2)
     assert surface.area() == pytest.approx(2 * math.pi * radius * half_slant, rel=1e-12)
+
+
+RULING_CASES = ["generic", "developable kink inside", "kink at an end", "near-cylinder", "flat"]
+
+
+@pytest.mark.parametrize("case", RULING_CASES)
+def test_integrals_along_a_ruling_match_quadrature_across_the_kink(case):
+    from scipy.integrate import quad
+
+    from nodes.geometry.ruled import ruling_integrals
+
+    rng = np.random.default_rng(RULING_CASES.index(case))
+    c0 = rng.normal(size=(6, 3))
+    c1 = {
+        "generic": rng.normal(size=(6, 3)),
+        "developable kink inside": -rng.uniform(1.2, 4.0, size=(6, 1)) * c0,  # zero at v = 1/k
+        "kink at an end": -c0,  # zero exactly at v = 1
+        "near-cylinder": 1e-5 * rng.normal(size=(6, 3)),
+        "flat": np.zeros((6, 3)),
+    }[case]
+    i0, i1 = ruling_integrals(c0, c1)
+    for k in range(6):
+        def element(v, k=k):
+            return float(np.linalg.norm(c0[k] + v * c1[k]))
+
+        cc = float(c1[k] @ c1[k])
+        kink = [min(max(-(c0[k] @ c1[k]) / cc, 0.0), 1.0)] if cc > 0 else None
+        exact0 = quad(element, 0, 1, points=kink, epsabs=0, epsrel=1e-13, limit=200)[0]
+        exact1 = quad(lambda v: v * element(v), 0, 1, points=kink, epsabs=0, epsrel=1e-13, limit=200)[0]
+        assert i0[k] == pytest.approx(exact0, rel=1e-12)
+        assert i1[k] == pytest.approx(exact1, rel=1e-12)
+
+
+def test_a_cone_whose_apex_crosses_the_strips_edge_is_integrated_span_by_span(monkeypatch):
+    """Rulings t·A(θ) of the cone over the circle A(θ) = (cos θ, sin θ, 1), from t = 1 to
+    t = −s(θ), s running from −1/2 to 1/2: for s > 0 each ruling passes the apex, so the
+    area element's kink enters the strip halfway round and the integrand in u is only C¹
+    there. Area: √2 ∫ (1/2 + sign(s)·s²/2) dθ = π/√2 over the turn, exactly (the s² terms
+    cancel by symmetry). No fallback to the generic cubature is allowed."""
+    from nodes.geometry.curves import ParametricCurve
+
+    def circle(u):
+        return np.column_stack([np.cos(u), np.sin(u), np.ones_like(u)])
+
+    def far_end(u):
+        s = u / (2 * np.pi) - 0.5
+        return -s[:, None] * circle(u)
+
+    turn = (0.0, 2 * np.pi)
+    surface = RuledSurface(ParametricCurve(circle, turn), ParametricCurve(far_end, turn))
+
+    def no_fallback(*_args, **_kwargs):
+        raise AssertionError("fell back to the generic cubature")
+
+    monkeypatch.setattr(Surface, "area_and_centroid", no_fallback)
+    area, _ = surface.area_and_centroid()
+    assert area == pytest.approx(math.pi * math.sqrt(2), rel=1e-10)

@@ -102,3 +102,31 @@ def test_mesh_surface_area_is_the_sum_of_triangle_areas():
     area, centroid = surface.area_and_centroid()
     assert area == pytest.approx(22.0, rel=1e-14)
     np.testing.assert_allclose(centroid, 0.0, atol=1e-15)
+
+
+def test_a_moved_and_scaled_surface_keeps_its_own_integrator_and_scales_its_area_by_k_squared(monkeypatch):
+    from nodes.geometry.ruled import RuledSurface
+    from nodes.geometry.surface_base import Surface
+    from nodes.geometry.transforms import rotation, scaling, translation
+
+    # a cone frustum between two circles as a ruled surface: lateral area π(r1 + r2)·slant
+    angle = np.linspace(0.0, 2 * np.pi, 65)
+    ring = np.column_stack([np.cos(angle), np.sin(angle), 0 * angle])
+    ring[-1] = ring[0]
+    frustum = RuledSurface.from_rulings(ring, 0.5 * ring + [0.0, 0.0, 1.0])
+    area, centroid = frustum.area_and_centroid()
+    matrix = translation([4.0, -1.0, 2.0]) @ rotation([1.0, 2.0, 0.5], 0.7) @ scaling(2.5)
+    moved = frustum.transformed(matrix)
+
+    def no_cubature(*_args, **_kwargs):
+        raise AssertionError("used the generic cubature")
+
+    monkeypatch.setattr(Surface, "area_and_centroid", no_cubature)
+    moved_area, moved_centroid = moved.area_and_centroid()
+    assert moved_area == pytest.approx(2.5**2 * area, rel=1e-13)
+    np.testing.assert_allclose(moved_centroid, (matrix @ np.append(centroid, 1.0))[:3], atol=1e-12)
+    monkeypatch.undo()
+
+    # a non-uniform scale is not a similarity: the generic cubature integrates it
+    flat = RuledSurface.from_rulings([[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]])
+    assert flat.transformed(np.diag([2.0, 3.0, 1.0, 1.0])).area() == pytest.approx(6.0, rel=1e-12)
