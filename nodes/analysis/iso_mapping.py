@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -12,11 +11,9 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, TEXT
 from nodes.analysis.checks import ruled_surface, segments
 from nodes.analysis.development_type import DEVELOPMENT
-from nodes.analysis.ruled_area import ruled_area
 from nodes.curves.convert import sentence
 from nodes.developable.strip_outputs import strip_outputs
-from nodes.geometry.surface_base import Surface
-from nodes.geometry.unroll import Development, unroll_rulings
+from nodes.geometry.unroll import Development, unroll_surface
 from nodes.types import LINE, SURFACE
 
 #: Above this relative area difference the node says what it may mean.
@@ -24,14 +21,6 @@ AREA_NOTE = 1e-3
 #: Rulings unrolled per strip the user sees, as in the kernel's ``unroll_surface``: the
 #: chords then hug the surface and the area error shrinks 64-fold.
 SUBDIVISIONS = 8
-
-
-def unroll(surface: Surface, segments: int) -> Development:
-    """``unroll_surface``, with the 3D area from :func:`ruled_area` (milliseconds on a
-    loft of hundreds of rulings, where the generic cubature takes tens of seconds)."""
-    rulings = surface.rulings(segments * SUBDIVISIONS + 1)
-    development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=ruled_area(surface))
-    return replace(development, stride=SUBDIVISIONS)
 
 
 def _flat(points2d: np.ndarray) -> np.ndarray:
@@ -110,7 +99,7 @@ class IsoMapping(Node):
         s = ruled_surface(surface, "IsoMapping")
         n = segments(count)
         try:
-            development = unroll(s, n)
+            development = unroll_surface(s, n, SUBDIVISIONS)
         except ValueError as exc:
             raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
         starts2d, ends2d = development.rulings2d

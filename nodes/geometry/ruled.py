@@ -144,11 +144,6 @@ class SplineRail(Curve):
             return spline
         return BSpline(spline.t, spline.c[:, self._columns], spline.k, extrapolate=spline.extrapolate)
 
-    @property
-    def _splines(self) -> list[BSpline]:
-        """``[spline]``, for readers of the former layout (``_splines[0]``)."""
-        return [self.spline]
-
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
         t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
         if order > 3:

@@ -89,7 +89,7 @@ def curve_form(curve: Curve) -> NurbsForm:
         inner = curve_form(curve.curve)
         return NurbsForm(inner.nurbs.transformed(curve.matrix), inner.deviation)  # type: ignore[union-attr]
     if isinstance(curve, SplineRail):
-        spline = curve.spline if hasattr(curve, "spline") else curve._splines[0]
+        spline = curve.spline
         count = len(spline.t) - spline.k - 1
         return NurbsForm(NurbsCurve.from_arrays(np.asarray(spline.c)[:count], spline.t, spline.k))
     return _interpolated_curve(curve)
