@@ -85,7 +85,7 @@ def kaohsiung_cut_sheets() -> None:
         "kaohsiung-cut-sheets.graph --export cut.Layout=roof.dxf --export cut.Layout=roof.svg "
         "--export cut.Layout=roof.3dm (for full-size panels, panelise each development with "
         "SurfacePatching as in development-and-panels.graph).",
-        count=16, shift=1, walk_right=False,
+        count=16, shift=1,
     )
     b.node("analysis.IsoMapping", "unroll", 10, 3, "Unrolled strips")
     b.wire("strip.Surface", "unroll.Surface")
@@ -106,9 +106,7 @@ def kaohsiung_cut_sheets() -> None:
     b.save("kaohsiung-cut-sheets")
 
 
-def kaohsiung_roof(
-    description: str | None = None, count: int = 24, shift: int = 2, walk_right: bool = True
-) -> Builder:
+def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int = 2) -> Builder:
     """The Kaohsiung roof graph, up to its developable strips."""
     b = Builder(
         "Kaohsiung Solar Stadium roof (after Toyo Ito), as in the 2011 TU Delft toolbox case "
@@ -177,13 +175,8 @@ def kaohsiung_roof(
     b.wire("left_index.Series", "left.Index")
     b.wire("right_index.Series", "right.Index")
     b.node("developable.RulingDevelopable", "strip", 9, 3, "Developable strips", WarpTolerance=0.01)
-    # RulingDevelopable walks curve A and looks along B for each ruling's partner. For the
-    # stadium, walking the right-hand edges, 98 % of the stations find a torsal ruling (77 %
-    # from the left); the study model's coarser roof is walked from the left, where every
-    # strip unrolls without folding over itself
-    walked, other = ("right", "left") if walk_right else ("left", "right")
-    b.wire(f"{walked}.Item", "strip.CurveA")
-    b.wire(f"{other}.Item", "strip.CurveB")
+    b.wire("left.Item", "strip.CurveA")
+    b.wire("right.Item", "strip.CurveB")
     b.wire("segments.Value", "strip.Segments")
     # as a Grasshopper user would: preview off on the helpers, so the viewport shows the
     # three guide curves, the edge curves and the strips (and a drag redraws only those)
