@@ -328,7 +328,8 @@ class MainWindow(QMainWindow):
         outcome = self.doc.last_outcome
         if outcome is not None:
             self.log.show_solve(outcome, self.doc.graph)
-            self._profiler_stale = not self.profiler.isVisible()
+            # a dock behind another's tab counts as visible, but shows nothing
+            self._profiler_stale = not self.profiler.isVisible() or self.profiler.visibleRegion().isEmpty()
             if not self._profiler_stale:
                 self.profiler.show_solve(outcome, self.doc.graph)
 
