@@ -14,6 +14,7 @@ pessimistic (it measures the parent's error, the children are far better).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 
 import numpy as np
@@ -24,9 +25,21 @@ FloatArray = NDArray[np.float64]
 Integrand = Callable[[FloatArray, FloatArray], FloatArray]
 
 
-def _gauss_legendre_01(order: int) -> tuple[FloatArray, FloatArray]:
+@functools.lru_cache(maxsize=32)
+def gauss_legendre_01(order: int) -> tuple[FloatArray, FloatArray]:
+    """Gauss–Legendre nodes and weights of ``order`` on [0, 1] (cached, read-only)."""
     nodes, weights = np.polynomial.legendre.leggauss(order)
-    return 0.5 * (nodes + 1.0), 0.5 * weights
+    nodes, weights = 0.5 * (nodes + 1.0), 0.5 * weights
+    nodes.flags.writeable = weights.flags.writeable = False
+    return nodes, weights
+
+
+def span_gauss(lows: FloatArray, highs: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:
+    """Nodes and weights of an ``order``-point Gauss rule on each interval [lows, highs],
+    flattened interval by interval: ``(spans · order,)`` each."""
+    x, w = gauss_legendre_01(order)
+    width = (highs - lows)[:, None]
+    return (lows[:, None] + width * x).ravel(), (width * w).ravel()
 
 
 def _cells_integral(
@@ -65,7 +78,7 @@ def integrate_unit_square(
     ``max(atol, rtol·|I|)`` (componentwise maximum), or when ``max_level`` or
     ``max_cells`` is reached.
     """
-    nodes, weights = _gauss_legendre_01(order)
+    nodes, weights = gauss_legendre_01(order)
     grid = np.arange(start) / start
     u0, v0 = (a.ravel() for a in np.meshgrid(grid, grid, indexing="ij"))
     size = np.full(u0.shape, 1.0 / start)

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import sparse
 from scipy.interpolate import make_interp_spline
 
+from .area import span_gauss
 from .curve_base import Curve
 from .surface_base import Surface, broadcast_uv
 
@@ -224,13 +225,6 @@ def _validate_knots(knots: ArrayLike | None, count: int, degree: int, name: str)
 # --------------------------------------------------------------------------- surface
 
 
-def _span_gauss(breaks: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:
-    """Gauss–Legendre nodes and weights of ``order`` on every interval between ``breaks``."""
-    nodes, weights = np.polynomial.legendre.leggauss(order)
-    width = np.diff(breaks)[:, None]
-    return (breaks[:-1, None] + width * 0.5 * (nodes + 1)).ravel(), (width * 0.5 * weights).ravel()
-
-
 class NurbsSurface(Surface):
     """A tensor-product NURBS surface on (u, v) in [0, 1]².
 
@@ -324,7 +318,7 @@ class NurbsSurface(Surface):
         if (len(spans_u) - 1) * (len(spans_v) - 1) <= 100_000:
             results = []
             for order in (8, 12):
-                (u, wu), (v, wv) = _span_gauss(spans_u, order), _span_gauss(spans_v, order)
+                (u, wu), (v, wv) = (span_gauss(s[:-1], s[1:], order) for s in (spans_u, spans_v))
                 uu, vv = np.meshgrid(u, v, indexing="ij")
                 s, su, sv = self.derivatives(uu.ravel(), vv.ravel(), 1)
                 w = np.linalg.norm(np.cross(su, sv), axis=1) * np.outer(wu, wv).ravel()

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import BSpline, make_interp_spline
 
+from .area import gauss_legendre_01, span_gauss
 from .curve_base import Curve
 from .curves.line import Line
 from .surface_base import Surface, broadcast_uv
@@ -154,11 +155,6 @@ class SplineRail(Curve):
         return np.unique(np.clip(self._source.solve().t, 0.0, 1.0))
 
 
-def _gauss_01(order: int) -> tuple[FloatArray, FloatArray]:
-    x, w = np.polynomial.legendre.leggauss(order)
-    return 0.5 * (x + 1.0), 0.5 * w
-
-
 #: Below this ratio |c1| / |c0| the area element along a ruling is nearly constant (an
 #: analytic function with its nearest singularity over 1000 ruling lengths away) and a
 #: 16-point Gauss rule is exact to rounding; above it the closed form loses at most
@@ -197,7 +193,7 @@ def ruling_integrals(c0: FloatArray, c1: FloatArray) -> tuple[FloatArray, FloatA
         i0[closed] = root_a * (p1 - p0)
         i1[closed] = root_a * (q1 - q0) + m * i0[closed]
     if (~closed).any():
-        x, w = _gauss_01(16)
+        x, w = gauss_legendre_01(16)
         element = np.linalg.norm(c0[~closed, None, :] + x[None, :, None] * c1[~closed, None, :], axis=2)
         i0[~closed] = element @ w
         i1[~closed] = element @ (w * x)
@@ -387,10 +383,7 @@ class RuledSurface(Surface):
     def _gauss_spans(self, lows: FloatArray, highs: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:
         """Area and first moment ∫∫ S |Su × Sv| on each u span [lows, highs] (exact in v,
         by an ``order``-point Gauss rule in u): ``(spans,)`` and ``(spans, 3)``."""
-        x, w = _gauss_01(order)
-        width = highs - lows
-        u = (lows[:, None] + width[:, None] * x[None, :]).ravel()
-        weight_u = (width[:, None] * w[None, :]).ravel()
+        u, weight_u = span_gauss(lows, highs, order)
         area, moment = np.empty(len(u)), np.empty((len(u), 3))
         for lo in range(0, len(u), 4096):  # blocks of u nodes bound the memory
             block = slice(lo, lo + 4096)

@@ -39,6 +39,8 @@ import shapely
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
+from .area import gauss_legendre_01
+
 if TYPE_CHECKING:
     from .surface_base import Surface
 
@@ -112,8 +114,7 @@ def bilinear_quad_areas(starts: ArrayLike, ends: ArrayLike, order: int = QUAD_OR
     for warped ones.
     """
     a, b = _as_rulings(starts, ends)
-    x, w = np.polynomial.legendre.leggauss(order)
-    x, w = 0.5 * (x + 1.0), 0.5 * w
+    x, w = gauss_legendre_01(order)
     da, db = np.diff(a, axis=0), np.diff(b, axis=0)  # rail steps
     ra, rb = b[:-1] - a[:-1], b[1:] - a[1:]  # rulings i and i + 1
     # S_a = (1 − b)·dA + b·dB and S_b = (1 − a)·r_i + a·r_{i+1}, so S_a × S_b is bilinear

@@ -22,11 +22,7 @@ solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui
 
 from __future__ import annotations
 
-import os
 import statistics
-import subprocess
-import sys
-import threading
 import time
 
 import pytest
@@ -37,14 +33,13 @@ REASON = unavailable_reason()
 if REASON:
     pytest.skip(REASON, allow_module_level=True)
 
-from PySide6.QtCore import Qt  # noqa: E402 - only once Qt is known to be usable
-from PySide6.QtTest import QTest  # noqa: E402
 
 from app.headless import run_file  # noqa: E402
 from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
-from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, ROOT  # noqa: E402
-from tests.gui.test_live_solving import LoopWatch, slow_graph  # noqa: E402
+from tests.gui.fixtures_gui import EXAMPLES, FIXTURES  # noqa: E402
+from tests.gui.test_live_solving import press_escape, start_long_solve, watch_event_loop  # noqa: E402
 from tests.gui.test_slider_drag_rate import drag_main_slider  # noqa: E402
+from tests.gui.test_startup import start_app  # noqa: E402
 
 START_LIMIT_S = 3.0
 LOOP_LIMIT_MS = 100.0
@@ -56,34 +51,9 @@ DRAGS = 3  # the best of three 2 s drags (the machine is shared and noisy)
 
 
 def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
-    env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(tmp_path), PYTHONPATH=str(ROOT))
-    began = time.time()
-    child = subprocess.Popen(
-        [sys.executable, "-m", "app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
-        cwd=ROOT,
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    stamps: dict[str, float] = {}
-
-    def read() -> None:
-        for line in child.stderr:
-            parts = line.split()
-            if len(parts) >= 3 and parts[0] == "torsal-startup":
-                stamps[parts[1]] = float(parts[2])
-                if parts[1] == "viewport-ready":
-                    return
-
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    reader.join(timeout=60)
-    child.terminate()
-    child.wait(timeout=10)
+    stamps = start_app(tmp_path)
     assert "window-shown" in stamps, "the app never reported its window"
-    shown = stamps["window-shown"] - began
-    ready = stamps.get("viewport-ready", float("nan")) - began
+    shown, ready = stamps["window-shown"], stamps.get("viewport-ready", float("nan"))
     print(f"\nstart-up: window shown after {shown:.2f} s, 3D viewport and example ready after {ready:.2f} s")
     assert shown < START_LIMIT_S
 
@@ -91,22 +61,14 @@ def test_torsal_gui_shows_its_window_within_3_s(tmp_path):
 def test_the_event_loop_answers_within_100_ms_during_a_10_s_solve_and_esc_stops_it_in_half_a_second(
     qtbot, window, registry, tmp_path
 ):
-    solves = window.doc.solves
-    assert window.open_file(slow_graph(registry, tmp_path / "slow.graph"), ask=False)
-    qtbot.waitUntil(solves.busy, timeout=3000)
-    watch = LoopWatch()
-    watch.start()
-    qtbot.wait(1500)
-    worst = watch.stop()
-    window.view.setFocus()
-    with qtbot.waitSignal(solves.finished, timeout=5000):
-        pressed = time.perf_counter()
-        QTest.keyClick(window.view, Qt.Key.Key_Escape)
-    stopped_after = time.perf_counter() - pressed
+    start_long_solve(qtbot, window, registry, tmp_path)
+    worst = max(watch_event_loop(qtbot).gaps[1:])
+    _, stopped_after, outcome = press_escape(qtbot, window)
     print(
         f"\nevent loop: worst gap between 10 ms ticks during the solve {worst:.1f} ms "
         f"(limit {LOOP_LIMIT_MS:.0f}); Esc stopped the solve after {stopped_after * 1000:.0f} ms"
     )
+    assert outcome.cancelled
     assert worst < LOOP_LIMIT_MS
     assert stopped_after < ESC_LIMIT_S
 

@@ -58,20 +58,37 @@ class LoopWatch:
         return max(self.gaps[1:])
 
 
-def test_gui_answers_during_a_10_s_solve_and_esc_stops_it(
-    qtbot, window, registry, tmp_path
-):
-    path = slow_graph(registry, tmp_path / "slow.graph")
-    solves = window.doc.solves
-    assert window.open_file(path, ask=False)
-    qtbot.waitUntil(solves.busy, timeout=3000)
-    started = time.perf_counter()
+def start_long_solve(qtbot, window, registry, tmp_path) -> float:
+    """Open a graph whose one node computes for 10 s; returns when its solve has begun."""
+    assert window.open_file(slow_graph(registry, tmp_path / "slow.graph"), ask=False)
+    qtbot.waitUntil(window.doc.solves.busy, timeout=3000)
+    return time.perf_counter()
 
+
+def watch_event_loop(qtbot, milliseconds: int = 1500) -> LoopWatch:
+    """Let the event loop run for a while, timing a 10 ms timer's ticks."""
     watch = LoopWatch()
     watch.start()
-    qtbot.wait(1500)  # the solve goes on; the event loop keeps ticking
-    worst = watch.stop()
-    print(f"\nevent loop: worst gap between 10 ms ticks during the solve: {worst:.1f} ms")
+    qtbot.wait(milliseconds)
+    watch.stop()
+    return watch
+
+
+def press_escape(qtbot, window) -> tuple[float, float, object]:
+    """Esc on the canvas during a solve: (when it was pressed, how long the solve took to
+    stop after it, the stopped solve's outcome)."""
+    window.view.setFocus()
+    with qtbot.waitSignal(window.doc.solves.finished, timeout=5000) as finished:
+        pressed = time.perf_counter()
+        QTest.keyClick(window.view, Qt.Key.Key_Escape)
+    return pressed, time.perf_counter() - pressed, finished.args[0]
+
+
+def test_gui_answers_during_a_10_s_solve_and_esc_stops_it(qtbot, window, registry, tmp_path):
+    solves = window.doc.solves
+    started = start_long_solve(qtbot, window, registry, tmp_path)
+    watch = watch_event_loop(qtbot)  # the solve goes on; the event loop keeps ticking
+    print(f"\nevent loop: worst gap between 10 ms ticks during the solve: {max(watch.gaps[1:]):.1f} ms")
     assert solves.busy()
     assert len(watch.gaps) > 10  # the timer kept firing: the GUI thread was never blocked
     assert window.status.progress.isVisible()  # the solve has run for more than 0.5 s
@@ -80,16 +97,12 @@ def test_gui_answers_during_a_10_s_solve_and_esc_stops_it(
     window.editor.move({"out": (500.0, 40.0)})
     assert solves.busy()
 
-    window.view.setFocus()
-    with qtbot.waitSignal(solves.finished, timeout=2000) as finished:
-        pressed = time.perf_counter()
-        QTest.keyClick(window.view, Qt.Key.Key_Escape)
-    stopped_after = time.perf_counter() - pressed
+    pressed, stopped_after, outcome = press_escape(qtbot, window)
     print(
         f"Esc stopped the solve after {stopped_after * 1000:.0f} ms "
         f"(it had run {pressed - started:.1f} s of 10 s)"
     )
-    assert finished.args[0].cancelled
+    assert outcome.cancelled
     assert pressed - started < 9.0  # stopped long before the 10 s solve would have ended
     assert not window.status.progress.isVisible()
     assert "cancelled" in window.status.solve_label.text()

@@ -36,13 +36,16 @@ class NodeActors:
     """What one node shows: the result it was built from, and its actors."""
 
     result: NodeResult | None
-    names: list[str] = field(default_factory=list)
     bars: list[str] = field(default_factory=list)
-    kinds: dict[str, str] = field(default_factory=dict)
+    #: by actor name, in drawing order: the actor, the piece it was made from (its kind,
+    #: its cells) and the dataset it draws (whose points a drag moves)
     actors: dict[str, Any] = field(default_factory=dict)
-    #: what each actor was made from, and the dataset it draws (to move its points)
     pieces: dict[str, Piece] = field(default_factory=dict)
     datasets: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def names(self) -> list[str]:
+        return list(self.actors)
 
 
 @dataclass
@@ -80,10 +83,10 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
     }
 
 
-def prepare(result: NodeResult, outputs: Collection[str] | None = None, memo: Memo | None = None) -> Prepared:
-    """The datasets for one node's result, from its ``outputs`` (all when None) — no
-    plotter needed: safe off the GUI thread."""
-    trees = (tree for port, tree in result.outputs.items() if outputs is None or port in outputs)
+def prepare(result: NodeResult, outputs: Collection[str], memo: Memo | None = None) -> Prepared:
+    """The datasets for one node's result, from the ``outputs`` it draws — no plotter
+    needed: safe off the GUI thread."""
+    trees = (tree for port, tree in result.outputs.items() if port in outputs)
     found = collect((v for tree in trees for v in tree.all_items()), memo)
     return Prepared(result, pieces(found), found.problems)
 
@@ -152,7 +155,7 @@ class Preview:
         slider drag): pieces whose cells are unchanged only move their points, others get
         a new dataset. Much cheaper than new actors. False if the kinds differ."""
         kinds = [piece.kind for piece in ready.pieces]
-        if kinds != [entry.kinds[name] for name in entry.names] or "scalars" in kinds:
+        if kinds != [piece.kind for piece in entry.pieces.values()] or "scalars" in kinds:
             return False
         for name, piece in zip(entry.names, ready.pieces, strict=True):
             if same_topology(entry.pieces[name], piece):
@@ -195,8 +198,6 @@ class Preview:
             if piece.kind == "points":  # many points: smaller dots
                 style["point_size"] = 9.0 if len(piece.points) <= 60 else 5.0
             actor = self.plotter.add_mesh(data, name=name, reset_camera=False, render=False, **style)
-        entry.names.append(name)
-        entry.kinds[name] = piece.kind
         entry.actors[name] = actor
         entry.pieces[name] = piece
         entry.datasets[name] = data
@@ -265,7 +266,7 @@ class Preview:
         if entry is None:
             return
         for name, actor in entry.actors.items():
-            kind = entry.kinds[name]
+            kind = entry.pieces[name].kind
             prop = actor.prop
             if kind == "scalars":
                 prop.show_edges = selected
