@@ -9,7 +9,8 @@ clear sentence.
 Round trip: every object keeps the dictionary it was read from, and saving writes
 those dictionaries back with only the changed fields replaced, so load → save gives
 the same bytes for any file Torsal wrote, and fields this version does not know
-survive. Saving is atomic and keeps the previous file as ``<name>.graph.bak``.
+survive. Saving is atomic and keeps the previous file as ``<name>.graph.bak``
+(see :mod:`engine.atomic`).
 """
 
 from __future__ import annotations
@@ -17,8 +18,6 @@ from __future__ import annotations
 import copy
 import json
 import os
-import shutil
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -26,6 +25,7 @@ from typing import Annotated, Any, Literal
 import msgspec
 
 from engine import __version__
+from engine.atomic import replace_keeping_backup
 from engine.graph import Graph, GraphError, Group, InputState, NodeRecord, PlaceholderNode, Wire
 from engine.registry import Registry
 
@@ -373,7 +373,7 @@ def _scalar(value: Any) -> str:
 
 
 def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
-    """Save atomically; the file it replaces is kept as ``<name>.graph.bak``.
+    """Save atomically; the file it replaces is kept as ``<name>.graph.bak`` (also atomically).
 
     Refuses to replace a file written by a newer Torsal.
     """
@@ -381,30 +381,12 @@ def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
     text = dumps(graph)
     if path.exists():
         _refuse_if_newer(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+
+    def write(temporary: Path) -> None:
+        with open(temporary, "w", encoding="utf-8", newline="\n") as stream:
             stream.write(text)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.chmod(temporary, _mode_for(path))
-        if path.exists():
-            shutil.copy2(path, path.with_name(path.name + ".bak"))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
 
-
-def _mode_for(path: Path) -> int:
-    """Keep the replaced file's permissions; a new file gets the usual 0666 less the umask."""
-    try:
-        return path.stat().st_mode & 0o7777
-    except OSError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
+    replace_keeping_backup(path, write)
 
 
 def _refuse_if_newer(path: Path) -> None:

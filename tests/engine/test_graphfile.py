@@ -36,8 +36,8 @@ def read(name: str) -> str:
 
 
 def no_temporaries(directory: Path) -> list[str]:
-    """Leftover temporary files of an interrupted save (``.<name>.*.tmp``)."""
-    return sorted(p.name for p in directory.iterdir() if p.name.endswith(".tmp"))
+    """Leftover temporary files of an interrupted save (``.<name>.<pid>-<token>.tmp<suffix>``)."""
+    return sorted(p.name for p in directory.iterdir() if ".tmp" in p.name)
 
 
 # --------------------------------------------------------------------------- round trip
