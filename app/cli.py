@@ -1,6 +1,7 @@
 """The ``torsal`` command: solve graphs headless, check them, list nodes, open the app.
 
     torsal run FILE.graph [--set ID=VALUE ...] [--json] [--out DIR] [--export ID.PORT=PATH ...]
+               [--allow-writes]
     torsal check FILE.graph
     torsal nodes [--json]
     torsal gui [FILE.graph]
@@ -53,7 +54,11 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
                      help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48)")
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
-    run.add_argument("--out", type=Path, metavar="DIR", help="also write results.json into DIR")
+    run.add_argument("--out", type=Path, metavar="DIR",
+                     help="also write results.json into DIR; the graph's own file nodes write into DIR too")
+    run.add_argument("--allow-writes", action="store_true",
+                     help="let the graph's file nodes (ExportCSV, Export3dm, ExportCutSheet, ExportMesh) "
+                     "write their files, inside the graph's folder (or DIR of --out) only")
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
                      help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), "
                      ".obj/.stl/.ply/.glb")
@@ -77,7 +82,14 @@ def _run(args: argparse.Namespace) -> int:
     from app.exports import ExportError, export_tree
     from app.headless import run_file, summary
 
-    run = run_file(args.file, args.set)
+    if args.out is not None:
+        if args.out.exists() and not args.out.is_dir():
+            raise UsageError(f"--out {args.out} is a file, not a folder: give a folder for the results")
+        try:
+            args.out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UsageError(f"--out {args.out}: cannot create that folder ({exc.strerror or exc})") from None
+    run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out)
     for request in args.export:
         target, sep, destination = request.partition("=")
         node_id, dot, port = target.partition(".")

@@ -15,6 +15,7 @@ from engine.graphfile import GraphFileError, read_graph
 from engine.registry import Registry
 from engine.solver import ERROR, MISSING, OK, WARNING, Solver, SolveReport
 from engine.types import summarize_value
+from engine.writes import WriteAccess
 from nodes.catalogue import default_registry
 
 
@@ -113,8 +114,19 @@ def apply_assignment(graph: Graph, text: str) -> None:
     graph.set_input_value(node_id, port, value)
 
 
-def run_file(path: str | Path, assignments: list[str] = (), registry: Registry | None = None) -> Run:
-    """Open, adjust with ``--set`` assignments, and solve a graph file."""
+def run_file(
+    path: str | Path,
+    assignments: list[str] = (),
+    registry: Registry | None = None,
+    *,
+    allow_writes: bool = False,
+    write_folder: Path | None = None,
+) -> Run:
+    """Open, adjust with ``--set`` assignments, and solve a graph file.
+
+    Nodes write files only when ``allow_writes`` (``--allow-writes``) is given, and only
+    inside ``write_folder`` (``--out``), or the graph's own folder without one.
+    """
     try:
         graph, registry = open_graph(path, registry)
     except GraphFileError as exc:
@@ -124,7 +136,8 @@ def run_file(path: str | Path, assignments: list[str] = (), registry: Registry |
             apply_assignment(graph, assignment)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
-    solver = Solver(graph)
+    folder = write_folder if write_folder is not None else Path(path).resolve().parent
+    solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes))
     report = solver.solve()
     return Run(Path(path), graph, solver, report, registry)
 

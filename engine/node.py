@@ -25,9 +25,12 @@ from __future__ import annotations
 import enum
 import threading
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from engine.types import ValueType
+
+if TYPE_CHECKING:
+    from engine.writes import NodeFiles
 
 
 class Access(enum.Enum):
@@ -164,6 +167,7 @@ class Node:
             self.settings.update(settings)
         self.messages: list[Message] = []
         self.token: CancelToken = CancelToken()
+        self._files: NodeFiles | None = None
 
     # -- ports (instances may vary them with their settings, like Expression) -------------
     def input_ports(self) -> tuple[In, ...]:
@@ -181,6 +185,22 @@ class Node:
 
     def output_port(self, name: str) -> Out | None:
         return next((p for p in self.output_ports() if p.name == name), None)
+
+    # -- files ------------------------------------------------------------------------
+    @property
+    def files(self) -> NodeFiles:
+        """Where this node may write files, and whether the user allows it (see
+        :mod:`engine.writes`). The solver sets it for each solve; a node solved on its own
+        has no folder and may write nothing."""
+        if self._files is None:
+            from engine.writes import WriteAccess
+
+            self._files = WriteAccess().for_node("")
+        return self._files
+
+    @files.setter
+    def files(self, files: NodeFiles) -> None:
+        self._files = files
 
     # -- behaviour --------------------------------------------------------------------
     def solve(self, *args: Any) -> Any:

@@ -32,6 +32,7 @@ from engine.node import (
     NodeWarning,
 )
 from engine.types import GENERIC, CastError, cast, decode_value
+from engine.writes import WriteAccess
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
 
@@ -66,9 +67,11 @@ class SolveReport:
 class Solver:
     """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
 
-    def __init__(self, graph: Graph) -> None:
+    def __init__(self, graph: Graph, files: WriteAccess | None = None) -> None:
         self.graph = graph
         self.results: dict[str, NodeResult] = {}
+        #: where the graph's nodes may write files, and whether the user allows it
+        self.files = files if files is not None else WriteAccess()
 
     def result(self, node_id: str) -> NodeResult:
         return self.results.get(node_id) or NodeResult()
@@ -100,6 +103,7 @@ class Solver:
         node = record.node
         node.messages = []
         node.token = token
+        node.files = self.files.for_node(record.id)
         started = time.perf_counter()
         if is_placeholder(node):
             text = f"node type {record.type_id!r} is not installed; its data is kept as it is"

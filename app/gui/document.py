@@ -20,6 +20,7 @@ from engine.graph import Graph, GraphEvent
 from engine.graphfile import read_graph, write_graph
 from engine.registry import Registry
 from engine.solver import NodeResult, Solver
+from engine.writes import WriteAccess, WriteRequest
 
 
 class Document(QObject):
@@ -31,6 +32,8 @@ class Document(QObject):
     results_changed = Signal(object)  # SolveOutcome
     dirty_changed = Signal(bool)
     path_changed = Signal(object)  # Path | None
+    #: nodes want to write files and this document has not been asked yet: list[WriteRequest]
+    writes_requested = Signal(object)
 
     def __init__(self, registry: Registry, parent: QObject | None = None) -> None:
         super().__init__(parent)
@@ -43,7 +46,10 @@ class Document(QObject):
         self.results: dict[str, NodeResult] = {}
         self.last_outcome: SolveOutcome | None = None
         self.graph = Graph()
-        self.solver = Solver(self.graph)
+        #: where this document's nodes may write, and whether the user has said they may
+        self.writes = WriteAccess()
+        self.writes_asked = False
+        self.solver = Solver(self.graph, self.writes)
         self._unsubscribe = self.graph.subscribe(self._relay)
         self.solves.set_solver(self.solver)
 
@@ -53,7 +59,9 @@ class Document(QObject):
         self.solves.pause()
         self._unsubscribe()
         self.graph = graph
-        self.solver = Solver(graph)
+        self.writes = WriteAccess(path.parent if path is not None else None)  # a new document: not allowed
+        self.writes_asked = False
+        self.solver = Solver(graph, self.writes)
         self.solves.set_solver(self.solver)
         self._unsubscribe = graph.subscribe(self._relay)
         self.results = {}
@@ -90,7 +98,30 @@ class Document(QObject):
     def set_path(self, path: Path | None) -> None:
         if path != self.path:
             self.path = path
+        folder = path.parent if path is not None else None
+        if folder != self.writes.folder:
+            # consent was for the old folder: files now go elsewhere, so ask again
+            self.writes.folder, self.writes.allowed, self.writes_asked = folder, False, False
         self.path_changed.emit(path)
+
+    # -- writing files (see engine.writes) --------------------------------------------
+    def answer_writes(self, allow: bool) -> None:
+        """The user's answer to "may this graph write files?"; allowing solves the nodes
+        that were waiting again, so they write now."""
+        self.writes_asked = True
+        if self.writes.allowed == allow:
+            return
+        waiting = [r.node_id for r in self.writes.pending()]
+        self.writes.allowed = allow
+        self.writes.clear_requests()
+        if allow:
+            with self.editing() as graph:
+                for node_id in waiting:
+                    if node_id in graph.nodes:
+                        graph.expire(node_id)
+
+    def pending_writes(self) -> list[WriteRequest]:
+        return [r for r in self.writes.pending() if r.node_id in self.graph.nodes]
 
     @property
     def dirty(self) -> bool:
@@ -124,6 +155,11 @@ class Document(QObject):
         self.results = {k: v for k, v in outcome.results.items() if k in self.graph.nodes}
         self.last_outcome = outcome
         self.results_changed.emit(outcome)
+        if not self.writes_asked and not self.writes.allowed and not outcome.cancelled:
+            pending = self.pending_writes()
+            if pending:
+                self.writes_asked = True
+                self.writes_requested.emit(pending)
 
     def _relay(self, event: GraphEvent) -> None:
         self.graph_changed.emit(event)

@@ -52,6 +52,7 @@ from app.gui.solve_controller import SolveOutcome
 from app.gui.status import SolveStatus
 from app.gui.viewport.panel import ViewportPanel
 from app.gui.window_actions import build_menus
+from app.gui.write_consent import ask_to_write, sync_action
 from engine.graphfile import GraphFileError
 from engine.registry import Registry
 
@@ -118,6 +119,8 @@ class MainWindow(QMainWindow):
         self.doc.results_changed.connect(self._solved)
         self.doc.dirty_changed.connect(lambda _dirty: self._update_title())
         self.doc.path_changed.connect(lambda _path: self._update_title())
+        self.doc.path_changed.connect(lambda _path: sync_action(self))
+        self.doc.writes_requested.connect(lambda requests: defer(self, lambda: ask_to_write(self, requests)))
         self.scene.selectionChanged.connect(self._selection_changed)
         self.scene.help_requested.connect(self.show_help)
         self.scene.export_requested.connect(self.export_output)

@@ -10,6 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QMenu, QMessageBox
 
+from app.gui.write_consent import toggle_writes
 from engine import __version__
 
 if TYPE_CHECKING:
@@ -65,6 +66,14 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
         "Write the geometry of every previewed node into one .3dm file, one layer per node",
     )
     add(file_menu, "screenshot", "Save Viewport Screenshot…", window.save_viewport_screenshot)
+    allow = add(
+        file_menu,
+        "allow_writes",
+        "Allow File &Writes",
+        lambda: toggle_writes(window),
+        tip="Let this graph's export nodes write their files (inside the graph's folder only)",
+    )
+    allow.setCheckable(True)
     file_menu.addSeparator()
     add(file_menu, "quit", "&Quit", window.close, QKeySequence.StandardKey.Quit)
 

@@ -1,19 +1,26 @@
 """What every file node shares: length units, where a relative path points, file errors.
 
 Units are named as in the ``.graph`` file's ``"units"`` field: ``mm``, ``cm``, ``m``,
-``in`` and ``ft`` (a few spelled-out synonyms are accepted). A relative path is taken
-from the current working directory (where ``torsal run`` or the app was started), as a
-shell would; ``~`` is expanded.
+``in`` and ``ft`` (a few spelled-out synonyms are accepted).
+
+Paths: a file a node *reads* may be anywhere; a relative one starts from the graph's
+folder (so a graph and the files beside it move together), or from the working
+directory for a graph with no file yet; ``~`` is expanded. A file a node *writes* must
+lie inside the graph's folder and needs the user's consent (:mod:`engine.writes`);
+:func:`write_target` and :func:`may_write` are the two questions a writing node asks.
+Every file written replaces the old one atomically and keeps it as ``<name>.bak``
+(:func:`replacing`).
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 
-from engine.node import NodeError
+from engine.atomic import replace_keeping_backup
+from engine.node import Node, NodeError
 
 #: Length of one unit in metres.
 METRES: dict[str, float] = {"mm": 0.001, "cm": 0.01, "m": 1.0, "in": 0.0254, "ft": 0.3048}
@@ -47,12 +54,57 @@ def unit_scale(source: str, target: str) -> float:
     return METRES[unit_name(source)] / METRES[unit_name(target)]
 
 
-def resolve(path: str | os.PathLike[str] | None, what: str = "Path") -> Path:
-    """An absolute path: ``~`` expanded, a relative path taken from the working directory."""
+def resolve(path: str | os.PathLike[str] | None, what: str = "Path", folder: Path | None = None) -> Path:
+    """An absolute path to read: ``~`` expanded, a relative path taken from ``folder`` (the
+    graph's folder) or, without one, from the working directory."""
     text = os.fspath(path).strip() if path is not None else ""
     if not text:
         raise FileFailure(f"{what} is empty: give a file name")
-    return Path(os.path.abspath(os.path.expanduser(text)))
+    expanded = os.path.expanduser(text)
+    if folder is not None and not os.path.isabs(expanded):
+        expanded = os.path.join(folder, expanded)
+    return Path(os.path.abspath(expanded))
+
+
+def read_path(node: Node, path: object, what: str = "Path") -> Path:
+    """The file ``node`` is asked to read, a relative path taken from the graph's folder."""
+    return resolve(None if path is None else str(path), what, node.files.folder)
+
+
+def write_target(node: Node, path: object, what: str = "Path") -> Path:
+    """The file ``node`` is asked to write, inside the graph's folder, or a NodeError that
+    says why not (outside the folder, ``~``, an absolute path, a ``.graph`` file)."""
+    return node.files.target(path, what)
+
+
+def may_write(node: Node, paths: Sequence[Path]) -> bool:
+    """Whether ``node`` may write ``paths`` now; if the user has not allowed this graph to
+    write files, the node warns (naming the files) and the request waits for consent."""
+    if node.files.permit(tuple(paths)):
+        return True
+    folder = node.files.folder
+    names = ", ".join(_shown(p, folder) for p in paths)
+    node.warn(
+        f"Nothing written to {names}: this graph writes files only with your consent "
+        "(torsal run --allow-writes; in the app, answer Allow when it asks)"
+    )
+    return False
+
+
+def _shown(path: Path, folder: Path | None) -> str:
+    try:
+        return str(path.relative_to(os.path.realpath(folder))) if folder is not None else str(path)
+    except ValueError:
+        return str(path)
+
+
+def replacing(path: Path, write: Callable[[Path], object]) -> Path:
+    """Write ``path`` through ``write(temporary)`` and swap it in atomically, keeping the
+    file it replaces as ``<name>.bak``; an OS error becomes a FileFailure naming ``path``."""
+    try:
+        return replace_keeping_backup(path, write)
+    except OSError as exc:
+        raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None
 
 
 def readable(path: Path, kind: str) -> Path:

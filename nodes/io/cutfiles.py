@@ -46,7 +46,7 @@ from nodes.geometry.curves import NurbsCurve, Polyline
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
-from nodes.io.common import FileFailure, numbered, unit_scale, writable
+from nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
 
 FloatArray = NDArray[np.float64]
 
@@ -401,10 +401,7 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
             contour.set_xdata("TORSAL", [(1000, part.id)])
             for glyph in part.label:
                 space.add_lwpolyline(glyph.tolist(), close=True, dxfattribs={"layer": ENGRAVE})
-        try:
-            doc.saveas(file)
-        except OSError as exc:
-            raise FileFailure(f"Cannot write {file}: {exc.strerror or exc}") from None
+        replacing(file, doc.saveas)
     return files
 
 
@@ -441,10 +438,8 @@ def write_svg(layout: CutLayout, path: Path) -> list[Path]:
     """One SVG file per sheet (see the module); returns the files written."""
     files = numbered(writable(path), layout.sheets)
     for sheet, file in enumerate(files):
-        try:
-            file.write_text(svg_text(layout, sheet), encoding="utf-8")
-        except OSError as exc:
-            raise FileFailure(f"Cannot write {file}: {exc.strerror or exc}") from None
+        text = svg_text(layout, sheet)
+        replacing(file, lambda temporary, text=text: temporary.write_text(text, encoding="utf-8"))
     return files
 
 

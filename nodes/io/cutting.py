@@ -9,7 +9,7 @@ from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, NUMBER, TEXT, ValueType, register_type
 from nodes.curves.convert import number
 from nodes.io import cutfiles
-from nodes.io.common import file_errors, resolve, unit_name, unit_scale
+from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
 from nodes.io.cutfiles import CutLayout
 from nodes.types import CURVE, SURFACE
 
@@ -49,14 +49,15 @@ class ExportCutSheet(Node):
     polyline per part on layer CUT, the letters on ENGRAVE. SVG: a page of the
     sheet's size in mm, red hairline cuts, black engraving, no fill. One file per
     sheet: name.dxf for one sheet, name-1.dxf, name-2.dxf … for more (name-01 …
-    from ten sheets on, so they sort). Nothing is written until Write is true; a
-    relative Path starts from the working directory.
+    from ten sheets on, so they sort). Nothing is written until Write is true and
+    you have allowed the graph to write files; Path is relative to the graph's folder
+    and must stay inside it. A file it replaces is kept as ``<name>.bak``.
     Layout also goes to ``torsal run --export ID.Layout=file.dxf`` (.svg, .3dm).
     """
 
     type_id = "io.ExportCutSheet"
     inputs = (
-        In("Path", TEXT, "P", "The .dxf or .svg file to write.", default=""),
+        In("Path", TEXT, "P", "The .dxf or .svg file to write, relative to the graph's folder.", default=""),
         In("Panels", CURVE, "Pn", "Closed flat panel outlines, in model units.", access=TREE,
            optional=True),
         In("Surfaces", SURFACE, "S", "Flat surfaces (IsoMapping's Development): their boundary is cut.",
@@ -120,7 +121,9 @@ class ExportCutSheet(Node):
             )
             files = []
             if write:
-                files = [str(p) for p in cutfiles.write_cut_files(layout, resolve(path))]
+                target = write_target(self, path)
+                if may_write(self, cutfiles.numbered(target, layout.sheets)):
+                    files = [str(p) for p in cutfiles.write_cut_files(layout, target)]
             else:
                 self.remark("Write is false: nothing written")
         for note in layout.notes:

@@ -8,7 +8,7 @@ from engine.datatree import DataTree
 from engine.node import TREE, In, Node, Out
 from engine.types import BOOLEAN, GENERIC, TEXT
 from nodes.io import tables
-from nodes.io.common import file_errors, resolve
+from nodes.io.common import file_errors, may_write, write_target
 
 
 class ExportCSV(Node):
@@ -19,12 +19,13 @@ class ExportCSV(Node):
     as three cells x, y, z, geometry as its key figures in JSON (a curve's length,
     a surface's area). Wire rulings' warp angles or panel areas in. The same format
     as ``torsal run --export ID.PORT=file.csv``. Nothing is written until Write is
-    true; a relative Path starts from the working directory.
+    true and you have allowed the graph to write files; Path is relative to the graph's
+    folder and must stay inside it. A file it replaces is kept as ``<name>.bak``.
     """
 
     type_id = "io.ExportCSV"
     inputs = (
-        In("Path", TEXT, "P", "The .csv file to write.", default=""),
+        In("Path", TEXT, "P", "The .csv file to write, relative to the graph's folder.", default=""),
         In("Data", GENERIC, "D", "The data tree to write.", access=TREE),
         In("Write", BOOLEAN, "W", "Set to true to write the file; while false nothing is written.",
            default=False),
@@ -36,4 +37,7 @@ class ExportCSV(Node):
             self.remark("Write is false: nothing written")
             return None
         with file_errors():
-            return str(tables.write_csv(data, resolve(path)))
+            target = write_target(self, path)
+            if not may_write(self, [target]):
+                return None
+            return str(tables.write_csv(data, target))

@@ -8,7 +8,7 @@ from engine.datatree import DataTree
 from engine.node import TREE, In, Node, Out
 from engine.types import BOOLEAN, TEXT
 from nodes.io import meshfiles
-from nodes.io.common import file_errors, resolve, unit_name
+from nodes.io.common import file_errors, may_write, read_path, unit_name, write_target
 from nodes.types import MESH
 
 
@@ -19,7 +19,7 @@ class ImportMesh(Node):
     them), vertices as in the file: not merged, not repaired. OBJ, STL and PLY have no
     units, so their numbers are read as FileUnits (empty: the model's Units); GLB is
     in metres by definition. Wire the mesh into MeshSurface to analyse it. A relative
-    Path starts from the working directory.
+    Path starts from the graph's folder.
     """
 
     type_id = "io.ImportMesh"
@@ -33,7 +33,7 @@ class ImportMesh(Node):
 
     def solve(self, path: Any, file_units: Any, units: Any) -> Any:
         with file_errors():
-            return meshfiles.read_mesh(resolve(path), unit_name(units), str(file_units or "") or None)
+            return meshfiles.read_mesh(read_path(self, path), unit_name(units), str(file_units or "") or None)
 
 
 class ExportMesh(Node):
@@ -42,13 +42,15 @@ class ExportMesh(Node):
     Every mesh wired in is written as one mesh; surfaces wired in are meshed on a
     33 × 33 grid. Numbers are written in FileUnits (empty: the model's Units), except
     GLB, which is always in metres. OBJ keeps 15 digits, STL, PLY and GLB single
-    precision. Nothing is written until Write is true; a relative Path starts from
-    the working directory.
+    precision. Nothing is written until Write is true and you have allowed the graph to
+    write files; Path is relative to the graph's folder and must stay inside it. A file
+    it replaces is kept as ``<name>.bak``.
     """
 
     type_id = "io.ExportMesh"
     inputs = (
-        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write.", default=""),
+        In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write, relative to the graph's folder.",
+           default=""),
         In("Meshes", MESH, "M", "The meshes to write, in model units.", access=TREE),
         In("FileUnits", TEXT, "Fu", "Units to write in (empty: the model's; GLB: always m).", default=""),
         In("Units", TEXT, "U", "The graph's model units (mm, cm, m, in, ft).", default="m"),
@@ -64,5 +66,8 @@ class ExportMesh(Node):
             if not write:
                 self.remark("Write is false: nothing written")
                 return None
-            target = meshfiles.write_mesh(items, resolve(path), model_units, str(file_units or "") or None)
+            target = write_target(self, path)
+            if not may_write(self, [target]):
+                return None
+            target = meshfiles.write_mesh(items, target, model_units, str(file_units or "") or None)
         return str(target)

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from nodes.io.common import FileFailure, readable, unit_name, unit_scale, writable
+from nodes.io.common import FileFailure, readable, replacing, unit_name, unit_scale, writable
 
 SUFFIXES = (".obj", ".stl", ".ply", ".glb")
 NAMES = {".obj": "OBJ", ".stl": "STL", ".ply": "PLY", ".glb": "GLB"}
@@ -71,8 +71,4 @@ def write_mesh(
         mesh.apply_scale(factor)
     writable(path)
     options = {"digits": 15} if suffix == ".obj" else {}
-    try:
-        mesh.export(str(path), file_type=suffix[1:], **options)
-    except OSError as exc:
-        raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None
-    return path
+    return replacing(path, lambda temporary: mesh.export(str(temporary), file_type=suffix[1:], **options))

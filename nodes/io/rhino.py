@@ -8,7 +8,7 @@ from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, Out
 from engine.types import BOOLEAN, INTEGER, TEXT
 from nodes.io import threedm
-from nodes.io.common import file_errors, resolve, unit_name
+from nodes.io.common import file_errors, may_write, read_path, unit_name, write_target
 from nodes.types import CURVE, LINE, MESH, SURFACE
 
 #: Layer names under the parent layer, one per input of Export3dm.
@@ -26,7 +26,7 @@ class Import3dm(Node):
     as NURBS surfaces. Lengths are converted from the file's units to Units, so a file
     in millimetres comes into a metre graph at 1/1000. Layers picks layers by full
     path (``Facade::Panels``) or name, ``*`` as a wildcard; a layer brings its
-    sublayers. A relative Path starts from the working directory.
+    sublayers. A relative Path starts from the graph's folder.
     """
 
     type_id = "io.Import3dm"
@@ -51,7 +51,7 @@ class Import3dm(Node):
     def solve(self, path: Any, layers: list[Any], units: Any) -> tuple[Any, ...]:
         with file_errors():
             model_units = unit_name(units)
-            found = threedm.read_3dm(resolve(path), model_units, [str(x) for x in layers if x])
+            found = threedm.read_3dm(read_path(self, path), model_units, [str(x) for x in layers if x])
         if found.units == "none":
             self.remark("The file has no units: its numbers are taken as model units")
         elif found.scale != 1.0:
@@ -82,13 +82,14 @@ class Export3dm(Node):
     interpolated to within 1e-9 of its size (the node says how close). Every object
     is named (Curve 1 …, panels by their ID) and keeps its tree path in the user
     strings TorsalPath and TorsalIndex; panels also carry PanelID. The file's units
-    are Units. Nothing is written until Write is true; a relative Path starts from
-    the working directory.
+    are Units. Nothing is written until Write is true and you have allowed the
+    graph to write files; Path is relative to the graph's folder and must stay inside
+    it. A file it replaces is kept as ``<name>.bak``.
     """
 
     type_id = "io.Export3dm"
     inputs = (
-        In("Path", TEXT, "P", "The .3dm file to write.", default=""),
+        In("Path", TEXT, "P", "The .3dm file to write, relative to the graph's folder.", default=""),
         In("Curves", CURVE, "C", "Curves, on the layer Curves.", access=TREE, optional=True),
         In("Surfaces", SURFACE, "S", "Surfaces, on the layer Surfaces.", access=TREE, optional=True),
         In("Rulings", LINE, "R", "Ruling lines, on the layer Rulings.", access=TREE, optional=True),
@@ -138,7 +139,10 @@ class Export3dm(Node):
                 return None, len(entries)
             if not entries:
                 self.warn("There is nothing to write: every geometry input is empty")
-            written = threedm.write_3dm(resolve(path), entries, model_units)
+            target = write_target(self, path)
+            if not may_write(self, [target]):
+                return None, len(entries)
+            written = threedm.write_3dm(target, entries, model_units)
         if written.deviation > 0:
             self.remark(
                 f"Some geometry was interpolated as NURBS: within {written.deviation:.2g} {model_units}"

@@ -15,7 +15,7 @@ from typing import Any
 
 from engine.datatree import DataTree, format_path
 from engine.types import summarize_value
-from nodes.io.common import FileFailure, writable
+from nodes.io.common import replacing, writable
 
 
 def cells(value: Any) -> list[Any]:
@@ -30,24 +30,21 @@ def cells(value: Any) -> list[Any]:
 def write_csv(tree: DataTree, path: Path) -> Path:
     """Write ``tree`` as CSV (see the module) and return the path."""
     writable(path)
-    try:
-        with path.open("w", newline="", encoding="utf-8") as stream:
+
+    def write(temporary: Path) -> None:
+        with temporary.open("w", newline="", encoding="utf-8") as stream:
             writer = csv.writer(stream)
             writer.writerow(["path", "index", "value"])
             for p, items in tree.items():
                 for i, item in enumerate(items):
                     writer.writerow([format_path(p), i, *cells(summarize_value(item))])
-    except OSError as exc:
-        raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None
-    return path
+
+    return replacing(path, write)
 
 
 def write_json(tree: DataTree, path: Path) -> Path:
     """Write ``tree`` as JSON (paths to lists of item summaries) and return the path."""
     data = {format_path(p): [summarize_value(v) for v in items] for p, items in tree.items()}
     writable(path)
-    try:
-        path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
-    except OSError as exc:
-        raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None
-    return path
+    text = json.dumps(data, indent=2, sort_keys=True) + "\n"
+    return replacing(path, lambda temporary: temporary.write_text(text, encoding="utf-8"))

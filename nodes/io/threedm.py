@@ -40,7 +40,7 @@ from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.nurbs_surface import NurbsSurface, interpolate_grid
 from nodes.geometry.ruled import RuledSurface, SplineRail
 from nodes.geometry.surface_base import Surface, TransformedSurface
-from nodes.io.common import FileFailure, readable, unit_name, writable
+from nodes.io.common import FileFailure, readable, replacing, unit_name, writable
 
 #: Relative accuracy (of the object's size) an interpolated NURBS form aims for.
 APPROXIMATION = 1e-9
@@ -503,8 +503,12 @@ def write_3dm(
         model.Objects.Add(geometry, attributes)
         count += 1
     writable(path)
-    if not model.Write(str(path), RHINO_VERSION):
-        raise FileFailure(f"Cannot write {path}: rhino3dm refused (is the folder writable?)")
+
+    def write(temporary: Path) -> None:
+        if not model.Write(str(temporary), RHINO_VERSION):
+            raise FileFailure(f"Cannot write {path}: rhino3dm refused (is the folder writable?)")
+
+    replacing(path, write)
     return Written(path, count, deviation)
 
 

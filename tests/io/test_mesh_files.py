@@ -10,7 +10,7 @@ from scipy.spatial import cKDTree
 from engine.solver import ERROR, OK
 from nodes.geometry import parametric_surface
 from nodes.io.meshes import ExportMesh, ImportMesh
-from tests.nodes.helpers import out, run, texts, tree
+from tests.nodes.helpers import allowed, out, run, texts, tree
 
 FORMATS = ["obj", "stl", "ply", "glb"]
 PRECISION = {"obj": 1e-13, "stl": 1e-6, "ply": 1e-6, "glb": 1e-6}  # STL, PLY, GLB: single precision
@@ -24,7 +24,8 @@ def ball() -> trimesh.Trimesh:
 def test_mesh_written_then_read_back_has_the_same_triangles(tmp_path, fmt):
     mesh = ball()
     target = tmp_path / f"ball.{fmt}"
-    result = run(ExportMesh(), Path=str(target), Meshes=tree({(0,): [mesh]}), Write=True)
+    result = run(ExportMesh(), Path=target.name, Meshes=tree({(0,): [mesh]}), Write=True,
+                 writes=allowed(tmp_path))
     assert result.state == OK, texts(result)
     assert out(result) == {(0,): [str(target)]}
     back = out(run(ImportMesh(), Path=str(target)))[(0,)][0]
@@ -36,7 +37,8 @@ def test_mesh_written_then_read_back_has_the_same_triangles(tmp_path, fmt):
 
 def test_glb_is_in_metres_whatever_the_model_units(tmp_path):
     target = tmp_path / "ball.glb"
-    run(ExportMesh(), Path=str(target), Meshes=tree({(0,): [ball()]}), Units="mm", Write=True)
+    run(ExportMesh(), Path=target.name, Meshes=tree({(0,): [ball()]}), Units="mm", Write=True,
+        writes=allowed(tmp_path))
     raw = trimesh.load(str(target), force="mesh")
     assert np.ptp(raw.vertices, axis=0).max() == pytest.approx(0.003, rel=1e-6)
     back = out(run(ImportMesh(), Path=str(target), Units="mm"))[(0,)][0]
@@ -53,7 +55,8 @@ def test_file_units_scale_unitless_formats(tmp_path):
 def test_surfaces_and_several_meshes_are_written_as_one_mesh(tmp_path):
     target = tmp_path / "both.obj"
     sphere = parametric_surface.sphere(1.0)
-    result = run(ExportMesh(), Path=str(target), Meshes=tree({(0,): [ball(), sphere]}), Write=True)
+    result = run(ExportMesh(), Path=target.name, Meshes=tree({(0,): [ball(), sphere]}), Write=True,
+                 writes=allowed(tmp_path))
     assert result.state == OK, texts(result)
     back = out(run(ImportMesh(), Path=str(target)))[(0,)][0]
     assert len(back.faces) == len(ball().faces) + 2 * 32 * 32

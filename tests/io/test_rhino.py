@@ -19,7 +19,7 @@ from nodes.geometry.vectors import Plane
 from nodes.io import threedm
 from nodes.io.rhino import Export3dm, Import3dm
 from tests.io.helpers import rectangle, rhino_points, rhino_surface_points
-from tests.nodes.helpers import out, run, texts, tree
+from tests.nodes.helpers import allowed, out, run, texts, tree
 
 RNG = np.random.default_rng(2024)
 UP = np.array([0.0, 0.0, 2.0])
@@ -70,7 +70,7 @@ SURFACES = _surfaces()
 def export(tmp_path, **inputs):
     target = tmp_path / "model.3dm"
     trees = {k: tree({(0,): v}) if isinstance(v, list) else v for k, v in inputs.items()}
-    result = run(Export3dm(), Path=str(target), Write=True, **trees)
+    result = run(Export3dm(), Path=target.name, Write=True, writes=allowed(tmp_path), **trees)
     return result, target
 
 
@@ -341,15 +341,16 @@ def test_unitless_file_is_read_as_model_units(tmp_path):
 def test_export_to_an_unwritable_place_is_an_error_not_a_crash(tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("x")
-    result = run(Export3dm(), Path=str(blocker / "sub" / "model.3dm"), Write=True,
+    result = run(Export3dm(), Path="file/sub/model.3dm", Write=True, writes=allowed(tmp_path),
                  Curves=tree({(0,): [CURVES["line"]]}))
     assert result.state == ERROR
     assert "Cannot create the folder" in texts(result)[0]
 
 
-def test_relative_path_is_taken_from_the_working_directory(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    result = run(Export3dm(), Path="out/rel.3dm", Write=True, Curves=tree({(0,): [CURVES["line"]]}))
+def test_relative_path_is_taken_from_the_graphs_folder(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path.parent)
+    result = run(Export3dm(), Path="out/rel.3dm", Write=True, writes=allowed(tmp_path),
+                 Curves=tree({(0,): [CURVES["line"]]}))
     assert out(result, "Path") == {(0,): [str(tmp_path / "out" / "rel.3dm")]}
     assert (tmp_path / "out" / "rel.3dm").exists()
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 from engine.datatree import DataTree
@@ -9,6 +10,7 @@ from engine.graph import Graph
 from engine.node import TREE, Node, Out
 from engine.solver import NodeResult, Solver
 from engine.types import GENERIC, encode_value
+from engine.writes import WriteAccess
 
 
 class Source(Node):
@@ -33,10 +35,12 @@ def tree(branches: dict[tuple[int, ...], list[Any]]) -> DataTree:
 def run(
     node: Node,
     modifiers: dict[str, list[str]] | None = None,
+    writes: WriteAccess | None = None,
     **inputs: Any,
 ) -> NodeResult:
     """Solve ``node`` with ``inputs``: a DataTree is wired in from a Source node, anything
-    else is set as the input's persistent value (as a ``.graph`` file would hold it)."""
+    else is set as the input's persistent value (as a ``.graph`` file would hold it).
+    ``writes`` is where the node may write files (by default nowhere)."""
     graph = Graph()
     graph.add_node(node, "node")
     for name, value in inputs.items():
@@ -47,9 +51,14 @@ def run(
             graph.set_input_value("node", name, encode_value(value))
     for name, mods in (modifiers or {}).items():
         graph.set_modifiers("node", name, mods)
-    solver = Solver(graph)
+    solver = Solver(graph, writes)
     solver.solve()
     return solver.result("node")
+
+
+def allowed(folder: Any) -> WriteAccess:
+    """Writes allowed, into ``folder`` (as ``torsal run --allow-writes`` on a graph there)."""
+    return WriteAccess(Path(folder), allowed=True)
 
 
 def out(result: NodeResult, port: str | None = None) -> dict[tuple[int, ...], list[Any]]:
