@@ -256,3 +256,92 @@ def conic_sections_pair(sweep: float = 2.4) -> Pair:
 
 
 PAIRS["conic_sections"] = conic_sections_pair
+
+
+# -- plane sections of a cylinder and of a cone over a directrix with inflection points ------
+#
+# The directrix d(u) = (u, Y·sin(ω·u)), u in [0, U], turns its bending direction at every
+# zero of sin(ω·u): ω·U/π − 1 inflection points in all. Each curve of a pair is where a
+# plane meets the cylinder (generators parallel to z) or the cone (generators through the
+# origin) over that directrix; the two planes are not parallel. Plane sections keep the
+# inflections, and the true partner of A(s) is the point of B on the same generator.
+
+DIRECTRIX_Y, DIRECTRIX_OMEGA, DIRECTRIX_U = 0.6, 3.0 * math.pi / 4.0, 4.0  # 2 inflections
+
+
+def _directrix(u: Array) -> tuple[Array, Array, Array]:
+    """d, d', d'' of the wavy planar directrix, each ``(n, 3)``."""
+    y, w = DIRECTRIX_Y, DIRECTRIX_OMEGA
+    zero, one = np.zeros_like(u), np.ones_like(u)
+    return (
+        np.column_stack([u, y * np.sin(w * u), zero]),
+        np.column_stack([one, y * w * np.cos(w * u), zero]),
+        np.column_stack([zero, -y * w * w * np.sin(w * u), zero]),
+    )
+
+
+def _section_curve(section, warped: bool) -> ParametricCurve:
+    """x ↦ section(U·τ(x)) with τ = x or :func:`warp`, given ``section(u) -> (P, P_u, P_uu)``."""
+
+    def parts(x):
+        x = np.asarray(x, float)
+        tau, dtau, ddtau = warp(x) if warped else (x, np.ones_like(x), np.zeros_like(x))
+        p, pu, puu = section(DIRECTRIX_U * tau)
+        du, ddu = DIRECTRIX_U * dtau, DIRECTRIX_U * ddtau
+        return p, pu * du[:, None], puu * (du**2)[:, None] + pu * ddu[:, None]
+
+    return ParametricCurve(
+        lambda x: parts(x)[0], (0.0, 1.0), derivatives=(lambda x: parts(x)[1], lambda x: parts(x)[2])
+    )
+
+
+def _cylinder_section(slope: tuple[float, float], height: float):
+    """The cut of the cylinder over the directrix by the plane z = slope·(x, y) + height."""
+    k = np.array([slope[0], slope[1], 0.0])
+
+    def section(u):
+        d, d1, d2 = _directrix(u)
+        lift = np.zeros_like(d)
+        return (
+            d + np.outer(d @ k + height, [0, 0, 1]),
+            d1 + np.outer(d1 @ k, [0, 0, 1]) + lift,
+            d2 + np.outer(d2 @ k, [0, 0, 1]),
+        )
+
+    return section
+
+
+def cylinder_sections_pair() -> Pair:
+    """Two non-parallel plane cuts of the cylinder over the inflected directrix; B warped."""
+    a = _section_curve(_cylinder_section((0.15, -0.1), 0.0), warped=False)
+    b = _section_curve(_cylinder_section((-0.2, 0.25), 2.5), warped=True)
+    return Pair(a, b, lambda s: unwarp(np.asarray(s, float)), _size(a, b))
+
+
+def _cone_section(normal: tuple[float, float, float], offset: float):
+    """The cut of the cone from the origin over the directrix lifted to z = 1 by the plane
+    normal·x = offset: the central projection P = offset·c/(normal·c) of c = d + (0, 0, 1)."""
+    n = np.asarray(normal, float)
+
+    def section(u):
+        d, d1, d2 = _directrix(u)
+        c = d + np.array([0.0, 0.0, 1.0])
+        g, g1, g2 = c @ n, d1 @ n, d2 @ n
+        q = (offset / g)[:, None]
+        # P = q·c with q = offset/g: q' = −q·g'/g, q'' = q·(2g'² − g·g'')/g²
+        q1 = -q * (g1 / g)[:, None]
+        q2 = q * ((2 * g1 * g1 - g * g2) / (g * g))[:, None]
+        return q * c, q1 * c + q * d1, q2 * c + 2 * q1 * d1 + q * d2
+
+    return section
+
+
+def cone_sections_pair() -> Pair:
+    """Two non-parallel plane cuts of the cone over the inflected directrix; B warped."""
+    a = _section_curve(_cone_section((0.05, 0.1, 1.0), 1.0), warped=False)
+    b = _section_curve(_cone_section((-0.08, 0.12, 1.0), 2.2), warped=True)
+    return Pair(a, b, lambda s: unwarp(np.asarray(s, float)), _size(a, b))
+
+
+PAIRS["cylinder_sections"] = cylinder_sections_pair
+PAIRS["cone_sections"] = cone_sections_pair

@@ -8,6 +8,7 @@ import pytest
 from nodes.geometry.curves import Arc, InterpolatedCurve, Polyline
 from nodes.geometry.developable import LengthMap, station_parameters
 from nodes.geometry.developable.brackets import refine_roots
+from nodes.geometry.developable.isolation import Pieces, certified_empty, certified_single, isolate
 from nodes.geometry.developable.selection import monotone_path
 
 CURVE = InterpolatedCurve([[0, 0, 0], [1, 2, 0.5], [3, 1, -0.5], [4, 3, 0.2], [6, 2, 0]])
@@ -76,6 +77,76 @@ def test_many_brackets_are_refined_together():
         -(targets**3),
     )
     np.testing.assert_allclose(roots, targets, atol=1e-15)
+
+
+# -- certified isolation -------------------------------------------------------------------------
+
+
+def parabola_b(c: float):
+    """B(t) = (0, t − ½, (t − ½)² + c) against A = 0 with tangent x: there
+    f(t) = det[B − A, x, B'] = c − (t − ½)², roots ½ ± √c; its B and three derivatives."""
+
+    def evaluate(x):
+        x = np.asarray(x, float)
+        zero, one = np.zeros_like(x), np.ones_like(x)
+        return [
+            np.column_stack([zero, x - 0.5, (x - 0.5) ** 2 + c]),
+            np.column_stack([zero, one, 2 * (x - 0.5)]),
+            np.column_stack([zero, zero, 2 * one]),
+            np.zeros((len(x), 3)),
+        ]
+
+    return evaluate
+
+
+def one_piece(evaluate, x0: float, x1: float) -> Pieces:
+    """The interval [x0, x1] for the station A = 0, Â' = x, with its B-data."""
+    ends = evaluate(np.array([x0, x1]))
+    plane = np.cross(ends[0], [1.0, 0.0, 0.0])  # det[R, Â', X] = X · (R × Â')
+    f = np.einsum("ij,ij->i", plane, ends[1])
+    d = np.einsum("ij,ij->i", plane, ends[2])
+    speed, second = np.linalg.norm(ends[1], axis=1), np.linalg.norm(ends[2], axis=1)
+    return Pieces(
+        np.array([0]), np.array([x0]), np.array([x1]), f[:1], f[1:], d[:1], d[1:],
+        speed[:1], speed[1:], second[:1], second[1:], ends[3][:1], ends[3][1:],
+    )
+
+
+def test_two_roots_hidden_between_two_samples_are_isolated_in_separate_brackets():
+    c = 1e-6  # roots 0.499 and 0.501, f < 0 at both ends of [0.25, 0.75]
+    evaluate = parabola_b(c)
+    a0, a1 = np.zeros((1, 3)), np.array([[1.0, 0.0, 0.0]])
+    found = isolate(one_piece(evaluate, 0.25, 0.75), np.array([4.0 * 0.25]), evaluate, a0, a1, 1.0)
+    order = np.argsort(found.low)
+    low, high = found.low[order], found.high[order]
+    assert len(low) == 2
+    roots = [0.5 - np.sqrt(c), 0.5 + np.sqrt(c)]
+    assert low[0] <= roots[0] <= high[0] < low[1] <= roots[1] <= high[1]
+
+
+def test_a_double_root_is_reported_as_a_touching_point():
+    evaluate = parabola_b(0.0)  # f = −(t − ½)²: touches zero at ½
+    a0, a1 = np.zeros((1, 3)), np.array([[1.0, 0.0, 0.0]])
+    found = isolate(one_piece(evaluate, 0.2, 0.7), np.array([4.0 * 0.25]), evaluate, a0, a1, 1.0)
+    assert len(found.rows) == 0
+    assert found.double_t == pytest.approx([0.5], abs=1e-12)
+
+
+def test_an_interval_far_from_zero_is_certified_empty_and_a_dip_to_zero_is_not():
+    # f = 1 + u − u² on [0, 1] with |f''| = 2: stays >= 1
+    def empty(f0: float, f1: float, e0: float, e1: float, m: float) -> bool:
+        return bool(certified_empty(*(np.array([x]) for x in (f0, f1, e0, e1, m)))[0])
+
+    assert empty(1.0, 1.0, 1.0, -1.0, 2.0)
+    # f = (u − ½)² − 0.01 has f(0) = f(1) = 0.24 > 0 but dips below zero
+    assert not empty(0.24, 0.24, -1.0, 1.0, 2.0)
+
+
+def test_a_sign_change_is_certified_single_only_when_the_slope_cannot_turn():
+    f0, f1 = np.array([-1.0]), np.array([1.0])
+    assert certified_single(f0, f1, np.array([2.0]), np.array([2.0]), np.array([1.0])).all()
+    # slopes of opposite sign at the ends: three roots cannot be ruled out
+    assert not certified_single(f0, f1, np.array([-0.5]), np.array([4.0]), np.array([1.0])).any()
 
 
 # -- monotone choice -----------------------------------------------------------------------------

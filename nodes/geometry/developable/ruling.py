@@ -76,6 +76,7 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, det, dot, extent, norm, unit
 from .brackets import refine_roots
+from .isolation import IntervalBounds, Pieces, interval_bounds, isolate
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
 from .warp import in_plane_tangent
@@ -162,7 +163,7 @@ class _Rotated(Curve):
 @dataclass
 class _Grid:
     """Samples of curve B: nominal parameters, where they are evaluated (a corner's first
-    copy just before it), and the points and tangents there."""
+    copy just before it), and B and its first three derivatives there."""
 
     t: FloatArray
     at: FloatArray
@@ -170,20 +171,24 @@ class _Grid:
     points: FloatArray
     tangents: FloatArray
     second: FloatArray  #: B'' there
-    left_tangents: FloatArray  #: B' and B'' as seen from the left (they differ at knots)
-    left_second: FloatArray
+    third: FloatArray  #: B''' there
+    left_second: FloatArray  #: B'' and B''' as seen from the left (they differ at knots)
+    left_third: FloatArray
 
-    def bracket_ends(self, cols: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """B, B' and B'' at both ends of the brackets from samples ``cols`` to ``cols + 1``,
-        each ``(2k, 3)``: the k lower ends, then the k upper ends as seen from the left."""
-        ends = np.concatenate([cols, cols + 1])
-        if self.left_tangents is self.tangents and self.left_second is self.second:  # one smooth span
-            return self.points[ends], self.tangents[ends], self.second[ends]
-        return (
-            self.points[ends],
-            np.concatenate([self.tangents[cols], self.left_tangents[cols + 1]]),
-            np.concatenate([self.second[cols], self.left_second[cols + 1]]),
+    def interval_bounds(self, diameter: float) -> IntervalBounds:
+        """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
+        the zero-width intervals between the two sides of a corner get reach −1 (never
+        looked at: a sign change there is a corner root)."""
+        width = self.at[1:] - self.at[:-1]
+        bounds = interval_bounds(
+            width,
+            (norm(self.tangents[:-1]), norm(self.tangents[1:])),
+            (norm(self.second[:-1]), norm(self.left_second[1:])),
+            (self.third[:-1], self.left_third[1:]),
+            diameter,
         )
+        bounds.reach[self.pair] = -1.0
+        return bounds
 
 
 def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
@@ -193,9 +198,10 @@ def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
     breaks = curve._breakpoints()[1:-1]
     m = len(t)
     if not len(breaks):  # one smooth span
-        points, tangents, second = curve.derivatives(t, 2)
-        return _Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, tangents, second), breaks
-    points, tangents, second = curve.derivatives(np.concatenate([t, breaks - SIDE]), 2)
+        points, tangents, second, third = curve.derivatives(t, 3)
+        smooth = _Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, third, second, third)
+        return smooth, breaks
+    points, tangents, second, third = curve.derivatives(np.concatenate([t, breaks - SIDE]), 3)
     # samples include every breakpoint; compare each with its left neighbour's tangent
     at_break = np.searchsorted(t, breaks)
     kink = _jumps(tangents[m:], tangents[at_break])
@@ -214,7 +220,8 @@ def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
         t_all = np.insert(t, index, kinks)
         at = np.insert(t, index, kinks - SIDE)
         pair = np.diff(t_all) == 0
-    grid = _Grid(t_all, at, pair, points[right], tangents[right], second[right], tangents[left], second[left])
+    on_right = points[right], tangents[right], second[right], third[right]
+    grid = _Grid(t_all, at, pair, *on_right, second[left], third[left])
     return grid, kinks
 
 
@@ -223,8 +230,9 @@ def _sample_grid(curve: Curve, minimum: int) -> tuple[_Grid, FloatArray]:
 
 @dataclass
 class _Brackets:
-    """Where the determinant of station ``rows`` changes sign between samples ``cols`` and
-    ``cols + 1`` (with its values there), and the samples where it is zero."""
+    """Sample intervals worth a closer look: where the determinant of station ``rows``
+    changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
+    its values there), and the samples where it is zero."""
 
     rows: IntArray
     cols: IntArray
@@ -233,69 +241,68 @@ class _Brackets:
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
-def _brackets(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) -> _Brackets:
-    """Sign changes of det[B_j − A_i, Â'_i, B̂'_j] (unit tangents) over all station–sample pairs.
+def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) -> _Brackets:
+    """Intervals where f = det[B_j − A_i, Â'_i, B'_j] (unit tangent of A) changes sign or
+    may reach zero — |f| at an end within ``reach`` (see :mod:`.isolation`) — over all
+    station–sample pairs.
 
     By the cyclic symmetry of the triple product,
-    ``det[B − A, Â', B̂'] = Â'·(B̂' × B) − (A × Â')·B̂'``, so the whole matrix is one
+    ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
     (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
     small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
     """
+    b0, b1 = grid.points, grid.tangents
     n, m = len(a0), len(b0)
-    both = np.concatenate([a0, b0])
-    size = float(norm(extent(both)))  # the diagonal of the bounding box
-    # A's rows and B's rows at once: unit tangents and their moments Û × P (−A × Â', B̂' × B)
-    units = unit(np.concatenate([a1, b1]))
-    moments = cross(units, both - 0.5 * (a0[n // 2] + b0[m // 2]))  # about the middle of both curves
-    left = np.concatenate([units[:n], moments[:n]], axis=1)
+    size = float(norm(extent(np.concatenate([a0, b0]))))  # the diagonal of the bounding box
+    centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
+    units = unit(a1)
+    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
     right = np.empty((6, m))
-    right[:3], right[3:] = moments[n:].T, units[n:].T
+    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
+    speed_b = norm(b1)
+    flat_scale = FLAT * size * speed_b
     block = max(1, 40_000 // m)
     found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
         f = left[first : first + block] @ right
         negative = np.signbit(f)
-        change = negative[:, :-1] != negative[:, 1:]
-        maybe = np.flatnonzero(np.abs(f) <= FLAT * size)
+        size_f = np.abs(f)
+        look = (negative[:, :-1] != negative[:, 1:]) | (np.minimum(size_f[:, :-1], size_f[:, 1:]) <= reach)
+        maybe = np.flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
-            exact = maybe[np.abs(f.flat[maybe]) <= FLAT * norm(b0[c] - a0[r + first])]
+            exact = maybe[size_f.flat[maybe] <= FLAT * norm(b0[c] - a0[r + first]) * speed_b[c]]
             if len(exact):
-                sign = np.sign(f)
-                sign.flat[exact] = 0.0
-                change = sign[:, :-1] * sign[:, 1:] < 0
+                zero = np.zeros(f.shape, dtype=bool)
+                zero.flat[exact] = True
+                look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
-        r, c = np.divmod(np.flatnonzero(change), m - 1)
+        r, c = np.divmod(np.flatnonzero(look), m - 1)
         found.append((r + first, c, f[r, c], f[r, c + 1]))
     joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
     rows, cols, f_low, f_high = joined
-    zero = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
-    return _Brackets(rows, cols, f_low, f_high, zero)
+    zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
+    return _Brackets(rows, cols, f_low, f_high, zero_flat)
 
 
-def _cubic_start(grid: _Grid, a0: FloatArray, a1: FloatArray, rows: IntArray, cols: IntArray) -> FloatArray:
+def _cubic_start(
+    x0: FloatArray, x1: FloatArray, f0: FloatArray, f1: FloatArray, d0: FloatArray, d1: FloatArray
+) -> FloatArray:
     """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
-    matches f and f_t = det[R, A', B''] at both ends of the bracket (two Newton steps on
-    that cubic from the secant's root), so that one Newton step on f reaches rounding."""
-    # det[R, A', X] = X · (R × A') at both ends at once; the bracket's upper end is seen from the left
-    k = len(rows)
-    points, tangents, second = grid.bracket_ends(cols)
-    i = np.concatenate([rows, rows])
-    normal = cross(points - a0[i], a1[i])
-    f0, f1 = dot(normal, tangents).reshape(2, k)
-    x0, x1 = grid.at[cols], grid.at[cols + 1]
+    matches f and f' at both ends of the bracket (two Newton steps on that cubic from
+    the secant's root), so that one Newton step on f reaches rounding."""
     h = x1 - x0
-    d0, d1 = dot(normal, second).reshape(2, k) * h  # slopes in the bracket's unit coordinate
+    d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
     rise = f1 - f0
     # the cubic f0 + u·(d0 + u·(c2 + u·c3)) and its slope d0 + u·(2·c2 + 3·c3·u)
     c2 = 3.0 * rise - 2.0 * d0 - d1
     c3 = d0 + d1 - 2.0 * rise
     c2_twice, c3_thrice = 2.0 * c2, 3.0 * c3
-    u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
     with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
         for _ in range(2):
             step = (f0 + u * (d0 + u * (c2 + u * c3))) / (d0 + u * (c2_twice + u * c3_thrice))
             u = np.where(np.isfinite(step), np.minimum(np.maximum(u - step, 0.0), 1.0), u)
@@ -354,15 +361,20 @@ _FIELDS = tuple(_Candidates.__dataclass_fields__)
 def _find_candidates(
     curve_b: Curve, grid: _Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray
 ) -> _Candidates:
-    """All candidate partners of all stations: refined roots, corner roots, flat-run ends."""
+    """All candidate partners of all stations: refined roots (every root of f, isolated
+    with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
     m = len(grid.t)
-    found = _brackets(a0, a1, grid.points, grid.tangents)
-    rows, cols, f_low = found.rows, found.cols, found.f_low
+    units = unit(a1)
+    diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
+    bounds = grid.interval_bounds(diameter)
+    found = _brackets(a0, units, grid, bounds.reach)
+    rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
-        rows, cols, f_low = rows[~at_corner], cols[~at_corner], f_low[~at_corner]
+        keep = ~at_corner
+        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -374,13 +386,47 @@ def _find_candidates(
         run_rows, run_first = np.divmod(z[run_start], m)
         run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
-    point_rows, point_cols = run_rows[~flat], run_first[~flat]
+
+    # judge every interval looked at, subdividing where a root pair may hide
+    plane_low = cross(grid.points[cols] - a0[rows], units[rows])  # det[R, Â', X] = X · (R × Â')
+    plane_high = cross(grid.points[cols + 1] - a0[rows], units[rows])
+    none = np.empty(0)
+    first = Pieces(
+        rows,
+        grid.at[cols],
+        grid.at[cols + 1],
+        f_low,
+        f_high,
+        dot(plane_low, grid.second[cols]),
+        dot(plane_high, grid.left_second[cols + 1]),
+        *([none] * 6),
+    )
+
+    def ends(pieces: Pieces, index: IntArray) -> Pieces:
+        c = cols[index]
+        return replace(
+            pieces.take(index),
+            speed0=norm(grid.tangents[c]),
+            speed1=norm(grid.tangents[c + 1]),
+            second0=norm(grid.second[c]),
+            second1=norm(grid.left_second[c + 1]),
+            third0=grid.third[c],
+            third1=grid.left_third[c + 1],
+        )
+
+    def evaluate_b(x: FloatArray) -> list[FloatArray]:
+        return curve_b.derivatives(x, 3)
+
+    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, diameter, ends)
+    rows = isolated.rows
+    point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
+    point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
 
     # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
     # each bracket's last evaluation (at its root, to rounding) is kept for what follows
     root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
     k = len(rows)
-    root_t = np.concatenate([np.empty(k), grid.t[point_cols]]) if len(point_rows) else np.empty(k)
+    root_t = np.concatenate([np.empty(k), point_t]) if len(point_rows) else np.empty(k)
     b0, b1 = np.empty((2, len(root_rows), 3))
     f, f_t = np.empty((2, len(root_rows)))
     speed_a, size_a = norm(a1), norm(a0)
@@ -396,8 +442,9 @@ def _find_candidates(
         return evaluate(x, index, rows[index])
 
     if k:
-        low, high = grid.at[cols], grid.at[cols + 1]
-        refine_roots(coplanarity, low, high, f_low, _cubic_start(grid, a0, a1, rows, cols))
+        i = isolated
+        start = _cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
+        refine_roots(coplanarity, i.low, i.high, i.f_low, start)
     if len(point_rows):
         evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)
 
@@ -415,8 +462,6 @@ def _find_candidates(
         root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
     )
     if len(corner_rows) == 0 and not flat.any():
-        if len(point_rows) == 0:
-            return candidates  # already in station order, t increasing
         return candidates.subset(np.lexsort((candidates.t, candidates.row)))
 
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
