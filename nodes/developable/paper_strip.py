@@ -11,9 +11,8 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER
 from nodes.curves.convert import number
 from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import strip_outputs
 from nodes.geometry.curves.line import Line
-from nodes.geometry.paper_strip import paper_strip
+from nodes.geometry.paper_strip import face_warp, paper_strip
 from nodes.geometry.ruled import RuledSurface
 from nodes.types import LINE, SURFACE
 
@@ -46,11 +45,13 @@ class PaperStrip(Node):
     and IsoAngle π/2 roll the strip into a closed cylinder with Length as its
     circumference.
 
-    Every face is planar by construction, so the strip unrolls exactly:
-    Development is that flat strip in the XY plane (first ruling from the origin up
-    +Y, the strip running towards +X), which IsoMapping reproduces. WarpAngles are
-    those of the smooth loft through the rulings, estimated from the edge polylines
-    (small, not 0: the faces themselves are flat; the loft is a smooth fit).
+    Every face is planar by construction, and Surface is exactly these faces: flat
+    quads with straight edges between the fold lines. So the strip unrolls exactly:
+    Development is the same faces laid flat in the XY plane (first ruling from the
+    origin up +Y, the strip running towards +X) — cut a sheet along its outline and it
+    folds into Surface, every face's edges and angles kept. IsoMapping reproduces it
+    with no area error. WarpAngles are measured on the faces (the turn of the tangent
+    plane along each ruling, rad in [0, π]): 0 to rounding.
 
     Warns when neighbouring rulings cross inside the strip (the IsoAngle leans them
     too far for the segment length): raise IsoAngle towards π/2, narrow the strip or
@@ -72,11 +73,12 @@ class PaperStrip(Node):
            default=24),
     )
     outputs = (
-        Out("Surface", SURFACE, "S", "The bent strip: the ruled surface through the rulings."),
+        Out("Surface", SURFACE, "S", "The bent strip: its flat quads between the fold lines."),
         Out("Rulings", LINE, "R", "The fold lines, each Width long.", access=LIST),
-        Out("Development", SURFACE, "D", "The same strip unfolded flat in the XY plane."),
+        Out("Development", SURFACE, "D", "The same quads unfolded flat in the XY plane: the outline "
+            "to cut."),
         Out("WarpAngles", NUMBER, "W",
-            "Warp angle of each ruling of the loft, rad (0 = developable there).", access=LIST),
+            "Turn of the tangent plane along each ruling, rad in [0, π] (0: flat faces).", access=LIST),
     )
 
     def solve(self, length: Any, width: Any, iso_angle: list[Any], curvature: list[Any], segments: Any
@@ -101,8 +103,9 @@ class PaperStrip(Node):
         worst = float(strip.planarity.max())
         if worst > PLANAR:
             self.warn(f"A face is off plane by {worst:.2g} of its size (rounding at this scale?)")
-        outputs = strip_outputs(strip.starts, strip.ends)
+        surface = RuledSurface.from_rulings(strip.starts, strip.ends, degree=1)
         flat = np.zeros((len(strip.starts2d), 1))
         development = RuledSurface.from_rulings(np.hstack([strip.starts2d, flat]),
-                                                np.hstack([strip.ends2d, flat]))
-        return outputs.surface, outputs.rulings, development, outputs.warp
+                                                np.hstack([strip.ends2d, flat]), degree=1)
+        warp = face_warp(strip.starts, strip.ends).tolist()
+        return surface, Line.many(strip.starts, strip.ends), development, warp

@@ -20,6 +20,12 @@ log₂(segments)-step parallel prefix product, and the midpoints by a cumulative
 Unfolding is the same construction with every κ = 0 (a fold about a ruling is an
 isometry of the face), so the development comes exact, not from a numerical
 unrolling; :func:`~nodes.geometry.unroll.unroll_rulings` reproduces it.
+
+The strip *is* its faces: between two fold lines the paper is the flat quad through
+their end points, with straight edges. So the surface a node outputs is the loft with
+polyline rails (``RuledSurface.from_rulings(..., degree=1)``), not a smooth loft,
+whose curved edges would leave the faces' planes; cut along the development's
+straight edges, a sheet folds into exactly these faces.
 """
 
 from __future__ import annotations
@@ -53,6 +59,22 @@ def quad_planarity(starts: ArrayLike, ends: ArrayLike) -> FloatArray:
     off = np.abs(np.einsum("ij,ij->i", other - origin, normal)) / np.where(length > 0, length, 1.0)
     size = np.maximum(np.linalg.norm(b1 - a0, axis=1), np.linalg.norm(b0 - a1, axis=1))
     return np.where(size > 0, off / np.where(size > 0, size, 1.0), 0.0)
+
+
+def face_warp(starts: ArrayLike, ends: ArrayLike) -> FloatArray:
+    """Warp angle (rad, in [0, π]) along each ruling of the strip of flat quads through
+    the rulings: the turn of the tangent plane from the ruling's start to its end on the
+    face after it (the last ruling: on the face before it). The face's plane at A_i is
+    spanned by the ruling and the edge A_i → A_{i+1}, at B_i by the ruling and
+    B_i → B_{i+1}; for a planar quad the two agree, so the warp is 0 to rounding."""
+    a = np.asarray(starts, dtype=float)
+    b = np.asarray(ends, dtype=float)
+    face = np.minimum(np.arange(len(a)), len(a) - 2)  # the face each ruling is measured on
+    ruling = b - a
+    at_start = np.cross(a[face + 1] - a[face], ruling)
+    at_end = np.cross(b[face + 1] - b[face], ruling)
+    return np.arctan2(np.linalg.norm(np.cross(at_start, at_end), axis=1),
+                      np.einsum("ij,ij->i", at_start, at_end))
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,9 @@ Two constructions:
 * ``RuledSurface.from_rulings(starts, ends)`` — the loft every developable node
   outputs. Ruling i sits at u_i = i/(n − 1) and the rails are splines *through* the
   ruling end points at those parameters (cubic, not-a-knot; quadratic/linear for
-  3/2 rulings; periodic when the last ruling repeats the first), so the isocurve
+  3/2 rulings; periodic when the last ruling repeats the first; tangents limited
+  where unevenly spaced ends would make the spline overshoot, see
+  :mod:`.rail_tangents`), so the isocurve
   v ↦ S(u_i, v) is exactly ruling i (to rounding, ~1e-15 of the coordinates) and
   the surface is linear in v. Derivatives are analytic from the splines.
 
@@ -29,6 +31,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 from .area import gauss_legendre_01, span_gauss
 from .curve_base import Curve
 from .curves.line import Line
+from .rail_tangents import without_overshoot
 from .surface_base import Surface, broadcast_uv
 from .vec_ops import extent
 
@@ -68,22 +71,27 @@ def _periodic_uniform_spline(points: FloatArray) -> BSpline:
 
 class _Interpolant:
     """The interpolating spline through the rows of ``points`` at ``params``, solved on
-    first use (one spline for any number of columns: both rails of a loft share one)."""
+    first use (one spline for any number of columns: both rails of a loft share one).
+    Cubic, with its tangents limited where unevenly spaced points would make it
+    overshoot (:mod:`.rail_tangents`); ``degree=1``: the polyline through the points."""
 
-    def __init__(self, params: FloatArray, points: FloatArray, closed: bool) -> None:
-        self.params, self.points, self.closed = params, points, closed
+    def __init__(self, params: FloatArray, points: FloatArray, closed: bool, degree: int = 3) -> None:
+        self.params, self.points, self.closed, self.degree = params, points, closed, degree
         self._spline: BSpline | None = None
 
     def solve(self) -> BSpline:
         """The spline (solved on the first call)."""
         if self._spline is None:
             uniform = np.array_equal(self.params, _uniform(len(self.params)))
-            if self.closed and uniform:
+            if self.degree == 1:
+                spline = make_interp_spline(self.params, self.points, k=1)
+            elif self.closed and uniform:
                 spline = _periodic_uniform_spline(self.points)
             elif self.closed:
                 spline = make_interp_spline(self.params, self.points, k=3, bc_type="periodic")
             else:
                 spline = make_interp_spline(self.params, self.points, k=min(3, len(self.params) - 1))
+            spline = without_overshoot(spline, self.params, self.points, self.closed) or spline
             spline.extrapolate = "periodic" if self.closed else True
             self._spline = spline
         return self._spline
@@ -121,14 +129,14 @@ class SplineRail(Curve):
 
     @classmethod
     def _pair(
-        cls, params: FloatArray, a: FloatArray, b: FloatArray, closed: bool
+        cls, params: FloatArray, a: FloatArray, b: FloatArray, closed: bool, degree: int = 3
     ) -> tuple[SplineRail, SplineRail]:
         """Two rails through ``a`` and ``b`` that share one (lazily solved) spline."""
         closed = closed and len(params) >= 4
         both = np.concatenate([a, b], axis=1)
         if closed:
             both[-1] = both[0]
-        source = _Interpolant(params, both, closed)
+        source = _Interpolant(params, both, closed, degree)
         rails = []
         for columns in (slice(0, 3), slice(3, 6)):
             rail = cls.__new__(cls)
@@ -244,7 +252,9 @@ class RuledSurface(Surface):
         return f"RuledSurface({self.curve_a!r}, {self.curve_b!r})"
 
     @classmethod
-    def from_rulings(cls, starts: ArrayLike | Sequence[Curve], ends: ArrayLike | None = None) -> RuledSurface:
+    def from_rulings(
+        cls, starts: ArrayLike | Sequence[Curve], ends: ArrayLike | None = None, degree: int = 3
+    ) -> RuledSurface:
         """The ruled surface whose rulings are exactly the given lines.
 
         ``starts`` and ``ends`` are ``(n, 3)`` arrays of ruling end points; or pass a
@@ -253,7 +263,11 @@ class RuledSurface(Surface):
         running from v = 0 at its start to v = 1 at its end. When the last ruling
         repeats the first (to 1e-12 of the size) the rails are closed periodic
         splines. The rails' spline is solved when the surface is first evaluated.
+        ``degree=1`` makes the rails the polylines through the ruling ends: the surface
+        is then the chain of quads between consecutive rulings (a paper strip's faces).
         """
+        if degree not in (1, 3):
+            raise ValueError(f"rails are cubic (degree 3) or polylines (degree 1), not degree {degree}")
         if ends is None and isinstance(starts, Sequence) and starts and isinstance(starts[0], Curve):
             starts = np.array([[line.start, line.end] for line in starts])  # type: ignore[union-attr]
         a = np.asarray(starts, dtype=float)
@@ -276,7 +290,7 @@ class RuledSurface(Surface):
         size = float(extent(lines.reshape(-1, 3)).max()) or 1.0
         closed = n >= 4 and bool(np.abs(lines[0] - lines[-1]).max() <= 1e-12 * size)
         surface = cls.__new__(cls)
-        surface._setup(*SplineRail._pair(params, a, b, closed), closed)
+        surface._setup(*SplineRail._pair(params, a, b, closed, degree), closed)
         surface.ruling_parameters = params
         surface.ruling_lines = lines
         return surface
