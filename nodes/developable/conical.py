@@ -11,7 +11,7 @@ from engine.types import INTEGER, NUMBER, POINT
 from engine.values import Point
 from nodes.curves.convert import kernel_errors, xyz
 from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import cone_rulings
 from nodes.geometry.ruled import RuledSurface
@@ -31,7 +31,9 @@ class ConicalSurface(Node):
 
     The curve must not pass through the Apex (a ruling there would have no length):
     move the Apex off the curve. Warns where a ruling runs along the curve's own
-    tangent (the surface has no width there).
+    tangent (the surface has no width there; its WarpAngle is NaN). Rulings that reach
+    the Apex are a fan of flat triangles there: their warp is measured in the
+    triangles' plane, which holds the ruling and the curve's tangent, so it is 0.
     """
 
     type_id = "developable.ConicalSurface"
@@ -48,8 +50,8 @@ class ConicalSurface(Node):
         Out("Rulings", LINE, "R",
             "The straight generators, from the curve towards the Apex, Height long or ending at it.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W",
-            "Warp angle of each ruling, rad (0 = developable there).", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact tangents; a ruling "
+            "ending at the Apex is measured in the plane of its fan triangles.", access=LIST),
     )
 
     def solve(self, curve: Any, apex: Any, height: Any, segments: Any
@@ -72,11 +74,13 @@ class ConicalSurface(Node):
         if flat.any():
             self.warn(
                 f"The Apex lies on the curve's tangent line at {check.first_where(flat, r.parameters)}: "
-                "the surface has no width there; move the Apex"
+                "the surface has no width there (no tangent plane: its WarpAngles are NaN); move the Apex"
             )
         reach = (h >= distance) & (h > 0)
         if reach.any():
             self.remark(
                 f"{int(reach.sum())} of {reach.size} rulings reach the Apex within Height and stop there"
             )
-        return strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents).as_tuple()
+        strip = strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents)
+        strip.report(self, explained=flat)
+        return strip.as_tuple()

@@ -9,7 +9,7 @@ from engine.types import INTEGER, NUMBER, VECTOR
 from engine.values import UNIT_Z
 from nodes.curves.convert import direction, kernel_errors
 from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import cylinder_rulings
 from nodes.geometry.ruled import RuledSurface
@@ -27,7 +27,8 @@ class CylindricalSurface(Node):
 
     Direction (0, 0, 1) with Height 3 on a circle of radius 2 gives an upright
     cylinder 3 high; a negative Height extrudes the other way. Both edges of every
-    ruling share the curve's tangent, so every WarpAngle is 0 (to rounding).
+    ruling share the curve's tangent, so every WarpAngle is 0 (to rounding) — NaN
+    where Direction is parallel to the curve (no tangent plane there).
 
     Warns where Direction is parallel to the curve: the strip has no width there —
     tilt Direction away from the curve.
@@ -47,8 +48,7 @@ class CylindricalSurface(Node):
         Out("Surface", SURFACE, "S", "The cylinder: the ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "The straight generators, parallel, each Height long.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W",
-            "Warp angle of each ruling, rad (0 = developable there).", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact tangents.", access=LIST),
     )
 
     def solve(self, curve: Any, direction_: Any, height: Any, segments: Any
@@ -63,6 +63,9 @@ class CylindricalSurface(Node):
         if flat.any():
             self.warn(
                 f"Direction is parallel to the curve at {check.first_where(flat, r.parameters)}: "
-                "the surface has no width there; tilt Direction away from the curve"
+                "the surface has no width there (no tangent plane: its WarpAngles are NaN); tilt "
+                "Direction away from the curve"
             )
-        return strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents).as_tuple()
+        strip = strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents)
+        strip.report(self, explained=flat)
+        return strip.as_tuple()

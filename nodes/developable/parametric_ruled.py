@@ -11,7 +11,7 @@ from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, VECTOR, describe
 from engine.values import Domain
 from nodes.curves.convert import number
 from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves.line import Line
 from nodes.geometry.ruled import RuledSurface
@@ -106,8 +106,12 @@ class ParametricRuledSurface(Node):
 
     A ruled surface is developable only where its rulings are torsal, so the
     WarpAngles output matters here: 0 on a cylinder, but a helicoid twists by the
-    same angle along every ruling. Warp uses the edge tangents of the ruling end
-    points (central differences), since only points are known.
+    same angle along every ruling. The warp angle is the angle between the sheet's
+    normals at a ruling's two ends, 0 to π: on the hyperbolic paraboloid z = xy
+    (C = (u, 0, 0), a = (0, 1, u), two-sided to v = ±L) it is 2·atan(L) on every
+    ruling. Warp uses the edge tangents of the ruling end points (central
+    differences), since only points are known; it is NaN where a ruling has no tangent
+    plane (zero length, or along an edge).
     """
 
     type_id = "developable.ParametricRuledSurface"
@@ -128,8 +132,8 @@ class ParametricRuledSurface(Node):
         Out("Surface", SURFACE, "S", "The ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "Ruling i from C(u_i) + v0·a(u_i) to C(u_i) + v1·a(u_i).",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W",
-            "Warp angle of each ruling, rad (0 = developable there).", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}; edge tangents from the neighbouring ruling "
+            "ends.", access=LIST),
     )
 
     def solve(self, directrix: list[Any], direction: list[Any], v_values: list[Any], two_sided: Any,
@@ -145,4 +149,6 @@ class ParametricRuledSurface(Node):
                 f"Give one Direction per Directrix point ({len(base)}) or one for all; got {len(a)}"
             )
         a = np.broadcast_to(a, base.shape)
-        return strip_outputs(base + v0 * a, base + v1 * a).as_tuple()
+        strip = strip_outputs(base + v0 * a, base + v1 * a)
+        strip.report(self)
+        return strip.as_tuple()

@@ -10,7 +10,7 @@ from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER
 from nodes.curves.convert import sentence
 from nodes.developable.input_checks import curve_input, segments_input, tolerance_input
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.types import CURVE, LINE, SURFACE
@@ -106,8 +106,10 @@ class RulingDevelopable(Node):
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
         Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W", "Warp angle of each ruling, rad (0 = torsal).", access=LIST),
-        Out("Valid", BOOLEAN, "V", "Whether each ruling is torsal within WarpTolerance.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, recomputed from the output rulings and the "
+            "curves' tangents.", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Whether each ruling's recomputed warp is a number within "
+            "WarpTolerance.", access=LIST),
     )
 
     def solve(
@@ -117,13 +119,15 @@ class RulingDevelopable(Node):
         n = segments_input(segments)
         tol = tolerance_input("WarpTolerance", tolerance)
         result = solve_strip(a, b, n, tol)
-        strip = strip_outputs(result.starts, result.ends, warp=result.warp)
+        # Valid from the warp recomputed from the output rulings and the curves' tangents
+        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
         if result.message:
             self.warn(result.message)
+        strip.report(self)
         fans = int(np.count_nonzero(~result.stations))
         if fans:
             self.remark(
                 f"{len(result.s)} rulings: {n + 1} from the stations and {fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        return strip.surface, strip.rulings, result.warp.tolist(), result.valid.tolist()
+        return strip.surface, strip.rulings, strip.warp, strip.valid

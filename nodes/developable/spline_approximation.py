@@ -11,7 +11,7 @@ from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, VECTOR
 from nodes.curves.convert import sentence, vectors
 from nodes.developable.input_checks import curve_input, segments_input, surface_input
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.approximation import MAX_OPTIMISED, Approximation, approximate, station_rulings
 from nodes.types import CURVE, LINE, SURFACE
 
@@ -53,8 +53,10 @@ class SplineApproximation(Node):
     anticlockwise seen from ahead); rulings keep their length. The result is the loft
     of the rotated rulings; its free edge is the spline through their new ends.
     NormalsA/NormalsB are the sheet's normals at the two ends of each ruling (ruling ×
-    edge tangent); their angle is the ruling's warp, and Fitness is the sum of the
-    warp angles.
+    edge tangent); their angle is the ruling's warp — 0 to π, the turn of the tangent
+    plane along the ruling (on the hyperbolic paraboloid z = xy between y = −L and L it
+    is 2·atan(L)) — and Fitness is the sum of the warp angles. Where a normal has no
+    direction (a ruling along an edge's tangent) the warp is NaN and the node warns.
 
     Manual mode (Optimise off): the rulings are turned by Angles, as in the thesis,
     where Galapagos drives the Angles sliders to minimise Fitness. Optimise on: the
@@ -93,8 +95,9 @@ class SplineApproximation(Node):
             preview=False),
         Out("Tangents", VECTOR, "T", "Unit tangent of Curve at each ruling: the rotation axes.",
             access=LIST, preview=False),
-        Out("Fitness", NUMBER, "F", "Sum of the warp angles, rad (0 = developable at every ruling)."),
-        Out("WarpAngles", NUMBER, "W", "Warp angle of each ruling, rad: the angle between its normals.",
+        Out("Fitness", NUMBER, "F", "Sum of the warp angles, rad (0 = developable at every ruling; "
+            "NaN if a warp is undefined)."),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}: the angle between NormalsA and NormalsB.",
             access=LIST),
         Out("BestAngles", NUMBER, "BA",
             "The angles used, rad: the optimised ones with Optimise on, else Angles.", access=LIST),
@@ -118,7 +121,8 @@ class SplineApproximation(Node):
         result = approximate(stations, start, optimise, fix_ends, check=self.check_cancelled)
         if optimise:
             self._report(result, fix_ends)
-        strip = strip_outputs(result.starts, result.ends, result.tangents_a, result.tangents_b)
+        strip = strip_outputs(result.starts, result.ends, warp=result.warp)
+        strip.report(self)
         return (
             strip.surface,
             strip.rulings,

@@ -4,6 +4,13 @@ rulings as lines, and their warp angles.
 The thesis convention, kept here: a developable is *built on* its rulings, so the
 output surface is the ruled surface whose rulings are exactly the output lines, and
 the warp angles are reported with it so developability is visible, not assumed.
+
+Every WarpAngles output means the same (see :mod:`nodes.geometry.developable.warp`):
+the angle between the sheet's normal vectors at the ruling's two ends, 0 to π — the
+turn of the tangent plane along the ruling, 0 where the ruling is torsal. Where no
+tangent plane is defined (a zero-length ruling, a ruling along an edge's tangent) the
+warp is NaN, never 0, and the node says so. A ruling called valid has had its warp
+recomputed from the output rulings and found within the tolerance.
 """
 
 from __future__ import annotations
@@ -13,22 +20,60 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from engine.node import NodeError
+from engine.node import Node, NodeError
+from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves.line import Line
-from nodes.geometry.developable.warp import warp_angles, warp_of_rulings
+from nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from nodes.geometry.ruled import RuledSurface
+
+#: The help text every WarpAngles output shares (a node may add a sentence).
+WARP_HELP = (
+    "Warp angle of each ruling, rad, 0 to π: the angle between the sheet's normals at its two "
+    "ends (the turn of the tangent plane along it; 0 = torsal, developable there). NaN where "
+    "no tangent plane is defined"
+)
+
+
+_UNDEFINED = "The warp is undefined (NaN) at"
 
 
 @dataclass(frozen=True)
 class StripOutputs:
-    """``Surface``, ``Rulings`` and ``WarpAngles`` of one ruled strip, ready for a node."""
+    """``Surface``, ``Rulings`` and ``WarpAngles`` of one ruled strip, ready for a node,
+    with ``Valid`` when a tolerance was given and the messages the node should show."""
 
     surface: RuledSurface
     rulings: list[Line]
     warp: list[float]
+    valid: list[bool] | None = None
+    messages: tuple[str, ...] = ()
 
     def as_tuple(self) -> tuple[RuledSurface, list[Line], list[float]]:
         return self.surface, self.rulings, self.warp
+
+    def report(self, node: Node, explained: ArrayLike | None = None) -> None:
+        """Show the messages on ``node`` as warnings; the one about NaN warps is left out
+        when every NaN ruling is among those ``explained`` (a mask the node has already
+        warned about, saying that the warp is undefined there)."""
+        for text in self.messages:
+            if text.startswith(_UNDEFINED) and explained is not None:
+                nan = np.isnan(np.asarray(self.warp, dtype=float))
+                if not (nan & ~np.asarray(explained, dtype=bool)).any():
+                    continue
+            node.warn(text)
+
+
+def undefined_message(warp: ArrayLike) -> str | None:
+    """The warning for NaN warps: how many, the first, and why; None when there are none."""
+    w = np.asarray(warp, dtype=float)
+    bad = np.isnan(w)
+    if not bad.any():
+        return None
+    return (
+        f"{_UNDEFINED} {int(bad.sum())} of {w.size} rulings (first: ruling "
+        f"{int(np.argmax(bad))}): a ruling there has zero length or runs along an edge's tangent, "
+        "so the sheet has no tangent plane to measure"
+    )
 
 
 def strip_outputs(
@@ -38,13 +83,17 @@ def strip_outputs(
     tangents_b: ArrayLike | None = None,
     *,
     warp: ArrayLike | None = None,
+    apex_a: ArrayLike | None = None,
+    apex_b: ArrayLike | None = None,
 ) -> StripOutputs:
     """Loft ``(n, 3)`` ruling ends into a ruled surface, with lines and warp angles.
 
     When the exact edge tangents are known (a cylinder's section curve, a tangent
-    developable's edge) the warp uses them; otherwise it uses the edge polylines'
-    tangents (second-order accurate in the ruling spacing). A caller that has the
-    warp angles already (RulingDevelopable's kernel reports them) passes ``warp``.
+    developable's edge) the warp uses them (``apex_a``/``apex_b`` flag ends on the edge
+    of regression, see :func:`~nodes.geometry.developable.warp.warp_angles`); otherwise
+    it uses the edge polylines' tangents (second-order accurate in the ruling spacing).
+    A caller that has the warp angles already passes ``warp``. NaN warps stay NaN and
+    add a message.
     """
     a = np.asarray(starts, dtype=float)
     b = np.asarray(ends, dtype=float)
@@ -53,26 +102,66 @@ def strip_outputs(
     if not (np.isfinite(a).all() and np.isfinite(b).all()):
         raise NodeError("Some rulings have points that are not finite numbers: check the inputs for NaN.")
     if warp is not None:
-        warp = np.asarray(warp, dtype=float)
+        w = np.asarray(warp, dtype=float)
     elif tangents_a is not None and tangents_b is not None:
-        warp = warp_angles(a, b, tangents_a, tangents_b)
+        w = warp_angles(a, b, tangents_a, tangents_b, apex_a=apex_a, apex_b=apex_b)
     else:
-        warp = warp_of_rulings(a, b)
+        w = warp_of_rulings(a, b)
     try:
         surface = RuledSurface.from_rulings(a, b)
     except ValueError as exc:
         raise NodeError(f"The rulings do not make a surface: {exc}") from None
-    lines = Line.many(a, b)
-    return StripOutputs(surface, lines, (np.nan_to_num(warp) if np.isnan(warp).any() else warp).tolist())
+    message = undefined_message(w)
+    return StripOutputs(surface, Line.many(a, b), w.tolist(), messages=(message,) if message else ())
+
+
+def curve_strip_outputs(
+    curve_a: Curve,
+    curve_b: Curve,
+    s: ArrayLike,
+    t: ArrayLike,
+    starts: ArrayLike,
+    ends: ArrayLike,
+    tolerance: float,
+    claimed: ArrayLike | None = None,
+) -> StripOutputs:
+    """The outputs of a strip between two curves whose rulings run from ``A(s)`` to ``B(t)``:
+    the warp recomputed from the output rulings with the curves' exact tangents
+    (:func:`~nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
+    number within ``tolerance``.
+
+    ``claimed`` is what the solver thought valid; rulings it accepted that the
+    recomputation rejects are counted in a message.
+    """
+    w = curve_warp(curve_a, curve_b, s, t, starts, ends)
+    strip = strip_outputs(starts, ends, warp=w)
+    valid = np.isfinite(w) & (w <= tolerance)
+    messages = list(strip.messages)
+    if claimed is not None:
+        refused = np.asarray(claimed, dtype=bool) & ~valid & np.isfinite(w)
+        if refused.any():
+            messages.append(
+                f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
+                f"{tolerance:g} rad (largest {float(w[refused].max()):.3g} rad, first: ruling "
+                f"{int(np.argmax(refused))}): they are marked Valid = false"
+            )
+    return StripOutputs(strip.surface, strip.rulings, strip.warp, valid.tolist(), tuple(messages))
 
 
 def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:
-    """One line for a node's remark: the largest warp and, given a tolerance, how many exceed it."""
+    """One line for a node's remark: the largest warp and, given a tolerance, how many exceed
+    it (NaN warps are counted apart, never as 0)."""
     w = np.asarray(warp, dtype=float)
     if w.size == 0:
         return "no rulings"
-    text = f"largest warp {np.max(w):.3g} rad over {w.size} rulings"
+    nan = int(np.isnan(w).sum())
+    if nan == w.size:
+        return f"no defined warp over {w.size} rulings"
+    text = f"largest warp {np.nanmax(w):.3g} rad over {w.size} rulings"
+    if nan:
+        text += f" ({nan} undefined)"
     if tolerance is not None:
         over = int(np.count_nonzero(w > tolerance))
-        text += f"; {over} above {tolerance:g} rad" if over else f"; all within {tolerance:g} rad"
+        within = "all defined ones" if nan else "all"
+        text += f"; {over} above {tolerance:g} rad" if over else f"; {within} within {tolerance:g} rad"
     return text

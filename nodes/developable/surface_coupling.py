@@ -5,14 +5,12 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import INTEGER, NUMBER
 from nodes.curves.convert import sentence
 from nodes.developable.input_checks import edge_input, segments_input, surface_input
 from nodes.developable.ruling_developable import solve_strip
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.geometry.coupling import couple
 from nodes.types import CURVE, LINE, SURFACE
 
@@ -62,7 +60,8 @@ class SurfaceCoupling(Node):
         Out("CurveB", CURVE, "CB", "Connecting curve from the end of EdgeA to SurfaceB (cubic, 4 points)."),
         Out("Surface", SURFACE, "S", "The connecting developable between CurveA and CurveB."),
         Out("Rulings", LINE, "R", "Its rulings, from CurveA to CurveB.", access=LIST),
-        Out("WarpAngles", NUMBER, "W", "Warp angle of each ruling, rad (0 = torsal).", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, recomputed from the rulings and the curves' "
+            "tangents.", access=LIST),
     )
 
     def solve(
@@ -89,11 +88,9 @@ class SurfaceCoupling(Node):
         result = solve_strip(coupling.curve_a, coupling.curve_b, n, WARP_TOLERANCE)
         if result.message:
             self.warn(f"Connecting surface: {result.message}")
-        strip = strip_outputs(result.starts, result.ends)
-        return (
-            coupling.curve_a,
-            coupling.curve_b,
-            strip.surface,
-            strip.rulings,
-            np.asarray(result.warp).tolist(),
+        strip = curve_strip_outputs(
+            coupling.curve_a, coupling.curve_b, result.s, result.t, result.starts, result.ends,
+            WARP_TOLERANCE, result.valid,
         )
+        strip.report(self)
+        return coupling.curve_a, coupling.curve_b, strip.surface, strip.rulings, strip.warp

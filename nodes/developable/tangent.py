@@ -10,9 +10,10 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER
 from nodes.curves.convert import kernel_errors, number
 from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import tangent_developable_rulings
+from nodes.geometry.developable.warp import warp_angles
 from nodes.geometry.ruled import RuledSurface
 from nodes.types import CURVE, LINE, SURFACE
 
@@ -35,6 +36,14 @@ class TangentDevelopable(Node):
     at the crease are shown (CuttingLength is then not used). The CurveOfRegression
     node recovers the curve from the surface.
 
+    WarpAngles measure the turn of the tangent plane along each ruling (0 to π). A
+    ruling that starts on the curve (CuttingLength 0) starts on the edge of regression,
+    where the sheet has no normal of its own; there, as at a cone's apex, the plane is
+    the one along the rest of the ruling. A ruling that runs through the curve
+    (TwoSided, or a negative CuttingLength) crosses the crease, where the sheet folds
+    back and its normal flips: its warp is the larger of the two sheets' warps, not
+    the flip (which would read π).
+
     A straight curve has a single tangent line: the surface degenerates to that line
     (the node warns; give the curve some bend).
     """
@@ -56,8 +65,8 @@ class TangentDevelopable(Node):
     outputs = (
         Out("Surface", SURFACE, "S", "The tangent developable: the ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "The tangent segments, one per station.", access=LIST),
-        Out("WarpAngles", NUMBER, "W",
-            "Warp angle of each ruling, rad (0 = developable there).", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact derivatives; a ruling "
+            "through the curve is measured on each sheet.", access=LIST),
     )
 
     def solve(self, curve: Any, segments: Any, length: Any, cutting_length: Any, two_sided: Any
@@ -89,14 +98,32 @@ class TangentDevelopable(Node):
         one_line = np.linalg.norm(np.cross(t, t[0]), axis=1).max() <= STRAIGHT
         if one_line:
             self.warn("The curve is straight, so all its tangents lie on one line: the tangent "
-                      "developable degenerates to that line (no area); give the curve some bend")
+                      "developable degenerates to that line (no area, no tangent plane: WarpAngles NaN); "
+                      "give the curve some bend")
         elif straight.all():
             self.warn("The curve has no bend at any station (straight pieces, as in a polyline): "
-                      "neighbouring rulings lie on one line, so the surface has no area; use a "
-                      "smooth curve, e.g. Interpolate")
+                      "neighbouring rulings lie on one line, so the surface has no area (WarpAngles NaN); "
+                      "use a smooth curve, e.g. Interpolate")
         elif straight.any():
             self.remark(
                 f"The curve is straight at {check.first_where(straight, r.parameters)}: the surface "
-                "has no width there (neighbouring rulings lie on one line)"
+                "has no width there (neighbouring rulings lie on one line; no tangent plane: WarpAngle NaN)"
             )
-        return strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents).as_tuple()
+        if near < 0 < far:
+            warp = _two_sheet_warp(c, r.parameters, r.starts, r.ends, r.start_tangents, r.end_tangents)
+            strip = strip_outputs(r.starts, r.ends, warp=warp)
+        else:
+            strip = strip_outputs(r.starts, r.ends, r.start_tangents, r.end_tangents,
+                                  apex_a=near == 0, apex_b=far == 0)
+        strip.report(self, explained=straight | one_line)
+        return strip.as_tuple()
+
+
+def _two_sheet_warp(curve, parameters, starts, ends, start_tangents, end_tangents) -> np.ndarray:
+    """Warp of rulings that cross the curve (the edge of regression): the larger of the warps
+    of the two halves, each measured from the curve (where it takes the other end's plane)."""
+    points = curve.point_at(parameters)
+    tangents = curve.tangent_at(parameters)
+    back = warp_angles(starts, points, start_tangents, tangents, apex_b=True)
+    ahead = warp_angles(points, ends, tangents, end_tangents, apex_a=True)
+    return np.maximum(back, ahead)

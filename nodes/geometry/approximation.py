@@ -16,8 +16,9 @@ Construction (as in the thesis, Fig. 6.10)
    cubic not-a-knot splines through A_i and through B_i at u_i = i/n, see
    :meth:`~.ruled.RuledSurface.from_rulings`). The warp of ruling i is the angle between
    N1 = R × k_i (the fixed edge's exact tangent) and N2 = R × B'(u_i) (the free edge
-   spline's tangent), R = B_i − A_i. *Fitness* is the sum of the warp angles, the value
-   the thesis feeds to Galapagos.
+   spline's tangent), R = B_i − A_i, in [0, π] (the turn of the tangent plane along the
+   ruling; NaN where a normal has no direction). *Fitness* is the sum of the warp
+   angles, the value the thesis feeds to Galapagos.
 
 Optimisation (beyond the thesis)
 --------------------------------
@@ -60,6 +61,7 @@ from scipy.optimize import least_squares
 
 from .curve_base import Curve
 from .developable.stations import station_parameters
+from .developable.warp import end_normals
 from .surface_base import IsoCurve, Surface
 from .vec_ops import cross, dot, norm, unit
 
@@ -103,14 +105,14 @@ class Approximation:
     tangents_b: FloatArray  #: (n, 3) unit tangents of the free edge spline at the ends
     normals_a: FloatArray  #: (n, 3) unit N1 = R × T1
     normals_b: FloatArray  #: (n, 3) unit N2 = R × T2
-    warp: FloatArray  #: (n,) warp angle, rad, in [0, π/2]
+    warp: FloatArray  #: (n,) warp angle, rad, in [0, π]: angle between N1 and N2 (NaN: undefined)
     signed_warp: FloatArray  #: (n,) angle from N1 to N2 about R, rad
     initial_fitness: float  #: summed warp at the starting angles
     evaluations: int  #: residual evaluations the optimiser used (0 without optimising)
 
     @property
     def fitness(self) -> float:
-        """Sum of the warp angles, rad (the thesis's fitness)."""
+        """Sum of the warp angles, rad (the thesis's fitness; NaN if any warp is undefined)."""
         return float(self.warp.sum())
 
 
@@ -248,11 +250,19 @@ class RotatedStrip:
         tb = unit(b)
         n1, n2 = unit(cross(rulings, self.k)), unit(cross(rulings, tb))
         signed = self.signed_warp(angles)[0]
-        warp = np.minimum(np.abs(signed), np.pi - np.abs(signed))
+        undefined = ~_has_plane(rulings, self.k, tb)
+        signed[undefined] = np.nan
+        warp = np.abs(signed)
         return Approximation(
             angles.copy(), self.stations.starts.copy(), ends, self.k.copy(), tb, n1, n2, warp, signed,
             initial_fitness, evaluations,
         )
+
+
+def _has_plane(rulings: FloatArray, ta: FloatArray, tb: FloatArray) -> NDArray[np.bool_]:
+    """Where both end normals R × T have a direction (:mod:`.developable.warp`'s rule)."""
+    n1, n2, _ = end_normals(np.zeros_like(rulings), rulings, ta, tb)
+    return np.isfinite(n1).all(axis=1) & np.isfinite(n2).all(axis=1)
 
 
 def approximate(
@@ -275,7 +285,9 @@ def approximate(
     if not np.all(np.isfinite(start)):
         raise ValueError("An angle is not a finite number.")
     initial = strip.signed_warp(start)[0]
-    initial_fitness = float(np.minimum(np.abs(initial), np.pi - np.abs(initial)).sum())
+    rulings, _, b = strip.geometry(start)
+    initial[~_has_plane(rulings, strip.k, unit(b))] = np.nan
+    initial_fitness = float(np.abs(initial).sum())
     if not optimise:
         return strip.result(start, initial_fitness, 0)
     if n > MAX_OPTIMISED:

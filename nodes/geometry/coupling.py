@@ -76,7 +76,7 @@ class EdgeRuling:
     end: FloatArray  #: (3,) second corner
     outward: FloatArray  #: (2, 3) unit tangents of the curved boundary at the corners, pointing out
     normals: FloatArray  #: (2, 3) unit normals of the tangent planes at the corners (ruling × outward)
-    warp: float  #: angle between those planes, rad (0 when the edge is torsal)
+    warp: float  #: angle between those normals, rad, 0 to π (0 when the edge is torsal)
 
 
 @dataclass(frozen=True)
@@ -127,7 +127,8 @@ def edge_ruling(surface: Surface, edge: int, name: str = "the surface") -> EdgeR
             f"At a corner of edge {edge} of {name} the boundary runs along the edge: no tangent plane."
         )
     normals = unit(normals)
-    warp = float(np.arctan2(norm(cross(normals[0], normals[1])), abs(dot(normals[0], normals[1]))))
+    # the angle between the normal vectors, 0 to π (as every warp in Torsal: developable/warp.py)
+    warp = float(np.arctan2(norm(cross(normals[0], normals[1])), dot(normals[0], normals[1])))
     return EdgeRuling(start, end, outward, normals, warp)
 
 

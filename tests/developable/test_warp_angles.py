@@ -1,4 +1,4 @@
-"""Warp angles: between the lines of the end normals (0…π/2), and signed about the ruling."""
+"""Warp angles: between the end normal vectors (0…π), signed about the ruling, NaN where undefined."""
 
 from __future__ import annotations
 
@@ -25,9 +25,17 @@ def test_warp_is_zero_when_the_ruling_and_both_tangents_are_coplanar():
     assert warp_angles(np.zeros((100, 3)), r, t1, t2).max() < 1e-14
 
 
-def test_warp_is_between_lines_so_opposite_tangents_give_no_warp():
+def test_warp_is_between_vectors_so_opposite_tangents_give_a_half_turn():
     w = warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 0]], [[-1, 0, 0]])
-    assert w[0] == 0.0
+    assert w[0] == pytest.approx(math.pi, abs=1e-15)
+
+
+@pytest.mark.parametrize("half", [0.5, 1.0, 2.0, 5.0])
+def test_warp_along_the_hyperbolic_paraboloid_is_twice_atan_of_its_half_length(half):
+    """z = xy along x = 0 from y = −L to L: edge tangents (1, 0, ∓L) at y = ∓L, so the
+    normals (−L, 0, −1)·2L and (L, 0, −1)·2L make the angle 2·atan(L), past π/2 for L > 1."""
+    w = warp_angles([[0, -half, 0]], [[0, half, 0]], [[1, 0, -half]], [[1, 0, half]])
+    assert w[0] == pytest.approx(2 * math.atan(half), abs=1e-15)
 
 
 def test_signed_warp_tells_a_flipped_sheet_from_a_good_one():
@@ -53,9 +61,35 @@ def test_tiny_warps_keep_their_relative_accuracy():
     assert w[0] == pytest.approx(angle, rel=1e-6)
 
 
-def test_zero_length_vectors_count_as_no_warp():
-    assert warp_angles([[0, 0, 0]], [[0, 0, 0]], [[1, 0, 0]], [[0, 1, 1]])[0] == 0.0
-    assert warp_angles([[0, 0, 0]], [[0, 1, 0]], [[0, 0, 0]], [[0, 1, 1]])[0] == 0.0
+def test_a_zero_length_ruling_has_no_warp_but_nan():
+    assert np.isnan(warp_angles([[0, 0, 0]], [[0, 0, 0]], [[1, 0, 0]], [[0, 1, 1]])[0])
+    assert np.isnan(warp_angles([[0, 0, 0]], [[0, 0, 0]], [[1, 0, 0]], [[0, 1, 1]], signed=True)[0])
+
+
+def test_a_ruling_along_an_edge_tangent_has_no_warp_but_nan():
+    assert np.isnan(warp_angles([[0, 0, 0]], [[0, 1, 0]], [[0, 2, 0]], [[1, 0, 1]])[0])
+    assert np.isnan(warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 1]], [[0, -3, 0]])[0])
+
+
+def test_nan_input_gives_nan_warp():
+    w = warp_angles([[0, 0, 0], [0, 0, 0]], [[0, 1, 0], [0, 1, 0]], [[1, 0, 0], [np.nan, 0, 0]],
+                    [[1, 0, 0], [1, 0, 0]])
+    assert w[0] == 0.0 and np.isnan(w[1])
+
+
+def test_an_edge_standing_still_takes_the_other_ends_plane():
+    """A zero tangent is a fan's apex: the triangles there contain the ruling and the other
+    edge's tangent, so the warp is 0 — and NaN when the other end has no plane either."""
+    w = warp_angles([[0, 0, 0]] * 3, [[0, 1, 0]] * 3, [[0, 0, 0]] * 3,
+                    [[1, 0, 1], [0, 1, 0], [0, 0, 0]])
+    assert w[0] == 0.0
+    assert np.isnan(w[1]) and np.isnan(w[2])
+
+
+def test_an_end_flagged_on_the_edge_of_regression_takes_the_other_ends_plane():
+    # a tangent developable's ruling starts along the curve's tangent
+    w = warp_angles([[0, 0, 0]], [[0, 1, 0]], [[0, 1, 0]], [[1, 1, 0]], apex_a=[True])
+    assert w[0] == 0.0
 
 
 def test_warp_of_rulings_of_a_cylinder_is_zero():
@@ -82,3 +116,28 @@ def test_in_plane_tangent_at_a_corner_lies_in_the_plane_of_ruling_and_other_tang
     t = in_plane_tangent(ruling, other, left, right)
     np.testing.assert_allclose(t, [[1.0, 0.0, 0.0]], atol=1e-15)
     assert warp_angles(np.zeros((1, 3)), ruling, other, t)[0] < 1e-15
+
+
+def test_warp_of_rulings_measures_a_fan_in_the_plane_of_its_triangles():
+    """Rulings from one point to a space curve (a cone's rulings): the start polyline
+    stands still, so every ruling takes the plane through it and the far edge's tangent."""
+    u = np.linspace(0.0, 2.0, 15)
+    ends = np.column_stack([np.cos(u), np.sin(u), 0.3 * u * u])
+    starts = np.tile([0.2, -0.1, 2.0], (15, 1))
+    w = warp_of_rulings(starts, ends)
+    assert np.all(w == 0.0)
+
+
+def test_warp_of_rulings_inside_a_fan_through_a_point_of_one_edge_is_zero():
+    starts = np.array([[0, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0], [2, 0, 0.5]], dtype=float)
+    ends = np.array([[0, 1, 0], [0.5, 1, 0.2], [1, 1, 0.3], [1.5, 1, 0.2], [2, 1, 0]], dtype=float)
+    w = warp_of_rulings(starts, ends)
+    assert w[2] == 0.0
+    assert np.all(np.isfinite(w))
+
+
+def test_warp_of_rulings_where_an_edge_doubles_back_is_nan():
+    starts = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 0]], dtype=float)
+    ends = np.array([[0, 1, 0], [1, 1, 0.2], [2, 1, 0]], dtype=float)
+    w = warp_of_rulings(starts, ends)
+    assert np.isnan(w[1]) and np.isfinite(w[[0, 2]]).all()

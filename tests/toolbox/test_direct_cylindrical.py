@@ -114,8 +114,9 @@ def test_direction_along_a_straight_curve_warns_the_surface_has_no_width():
     assert chain.result("cyl").state == "warning"
     assert chain.texts("cyl") == [
         "Direction is parallel to the curve at 5 of 5 stations (first at t = 0): the surface has no "
-        "width there; tilt Direction away from the curve"
+        "width there (no tangent plane: its WarpAngles are NaN); tilt Direction away from the curve"
     ]
+    assert all(math.isnan(w) for w in chain.items("cyl", "WarpAngles"))
 
 
 def test_empty_curve_input_warns():

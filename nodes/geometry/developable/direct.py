@@ -50,9 +50,12 @@ def _finite(value: float, name: str) -> float:
     return value
 
 
-def _rulings(u: FloatArray, starts: FloatArray, ends: FloatArray, ta: FloatArray, tb: FloatArray) -> Rulings:
+def _rulings(
+    u: FloatArray, starts: FloatArray, ends: FloatArray, ta: FloatArray, tb: FloatArray,
+    apex_a: bool = False, apex_b: bool = False,
+) -> Rulings:
     ta, tb = unit(ta), unit(tb)
-    return Rulings(u, starts, ends, ta, tb, warp_angles(starts, ends, ta, tb))
+    return Rulings(u, starts, ends, ta, tb, warp_angles(starts, ends, ta, tb, apex_a=apex_a, apex_b=apex_b))
 
 
 def cylinder_rulings(
@@ -154,6 +157,8 @@ def tangent_developable_rulings(
             c + b * tangent,
             d1 + a * tangent_rate,
             d1 + b * tangent_rate,
+            apex_a=a == 0,  # on the curve: the edge of regression (warp.py)
+            apex_b=b == 0,
         )
         for a, b in sheets
     ]

@@ -1,31 +1,91 @@
 """Warp angles: how far a ruling is from being torsal (developable).
 
 A ruling R from a point of edge A to a point of edge B, with unit edge tangents T1 and
-T2 at its two ends, has end normals N1 = R × T1 and N2 = R × T2: the normals of the two
-planes that the sheet would have at its ends. A developable sheet has one tangent plane
-along the whole ruling, so N1 ∥ N2, i.e. det[R, T1, T2] = 0 (the ruling is *torsal*).
+T2 at its two ends, has end normals N1 = R × T1 and N2 = R × T2: the normals of the
+sheet's tangent planes at its ends. A developable sheet has one tangent plane along the
+whole ruling, so N1 ∥ N2, i.e. det[R, T1, T2] = 0 (the ruling is *torsal*).
 
-- The **warp angle** is the angle between the *lines* of N1 and N2, in [0, π/2]: what a
-  fabricator twists a flat sheet by over the ruling (the thesis's definition; divided by
-  |R| it is the warp factor in rad/m).
-- The **signed warp** is the angle *from N1 to N2* about R, in (−π, π]. With both edges
-  running the same way and rulings that do not cross, a sheet's two normals point to the
-  same side, so a good ruling has a signed warp near 0. A value near ±π also has zero
-  (unsigned) warp but belongs to a sheet folded back on itself — its rulings cross, or
-  its edge of regression (the cusp) runs between the two edges. That is the "second,
-  wrong tangent plane" a search on the unsigned angle picks on re-parameterised curves.
+- The **warp angle** is the angle between the normal *vectors* N1 and N2, in [0, π]:
+  the turn of the tangent plane along the ruling (the normal along a ruled surface is
+  linear in the ruling parameter, so it turns monotonically from N1 to N2, through less
+  than π). On z = xy along x = 0 from y = −L to L it is 2·atan(L), past π/2 for L > 1.
+  Divided by |R| it is the warp factor in rad/m. With both edges running the same way
+  and rulings that do not cross, a good ruling has a warp near 0; a warp near π also
+  makes the ruling's two planes the same plane, but the sheet is folded back on itself
+  there (its rulings cross, or its edge of regression runs between the two edges) —
+  that is not a developable strip, and it counts as warped by π.
+- The **signed warp** is the same angle with a sign: the turn from N1 to N2 about R,
+  in (−π, π].
 
-Zero-length vectors (a ruling of length 0, a ruling along an edge tangent, an apex)
-give a warp of 0: no plane is defined there, so none is violated.
+Where no tangent plane is defined the warp is NaN, never 0: a ruling of zero length, a
+ruling along an edge's tangent (R × T = 0: the sheet has no width there), or a NaN in
+the input. One degenerate end is defined, by the geometry: where an edge *stands still*
+— its tangent is zero because consecutive rulings share that end point, as in a fan of
+triangles through one point (a cone's apex, a flat fan closing a strip) — the sheet next
+to the ruling is the fan's triangles, whose plane contains the ruling and the *other*
+edge's tangent. That end's normal is the other end's, so a fan ruling's warp is 0 (its
+triangles are flat) when the other end has a normal, and NaN when it does not.
+The same holds at a point the caller knows is on the edge of regression (``apex_a``,
+``apex_b``; a tangent developable's curve, where the ruling runs along the tangent).
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
-from ..curve_base import FloatArray
+from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, norm, unit
+
+BoolArray = NDArray[np.bool_]
+
+#: Below this share of the strip's size a ruling has no length and a tangent is zero
+#: (the edge stands still there).
+ZERO = 1e-12
+#: A normal R × T̂ shorter than this share of |R| has no direction: the ruling runs
+#: within 1e-10 rad of the edge's tangent.
+PARALLEL = 1e-10
+
+
+def _mask(value: ArrayLike | None, n: int) -> BoolArray:
+    if value is None:
+        return np.zeros(n, dtype=bool)
+    return np.broadcast_to(np.asarray(value, dtype=bool), (n,))
+
+
+def end_normals(
+    starts: ArrayLike,
+    ends: ArrayLike,
+    tangents_a: ArrayLike,
+    tangents_b: ArrayLike,
+    apex_a: ArrayLike | None = None,
+    apex_b: ArrayLike | None = None,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The end normals N1 = R × T̂1 and N2 = R × T̂2 of each ruling, and the rulings R.
+
+    Rows where no tangent plane is defined (see the module docstring) are NaN in both
+    normals. A zero tangent (the edge stands still: a fan's apex), or an end flagged in
+    ``apex_a``/``apex_b``, takes the other end's normal.
+    """
+    start = np.asarray(starts, dtype=float).reshape(-1, 3)
+    ruling = np.asarray(ends, dtype=float).reshape(-1, 3) - start
+    ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
+    tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
+    n = len(ruling)
+    points = np.concatenate([start, start + ruling])
+    finite = points[np.isfinite(points).all(axis=1)]
+    size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
+    length = norm(ruling)
+    still_a = (norm(ta) <= ZERO * size) | _mask(apex_a, n)
+    still_b = (norm(tb) <= ZERO * size) | _mask(apex_b, n)
+    n1, n2 = cross(ruling, unit(ta)), cross(ruling, unit(tb))
+    has1 = norm(n1) > PARALLEL * length
+    has2 = norm(n2) > PARALLEL * length
+    defined = (length > ZERO * size) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
+    n1, n2 = np.where(still_a[:, None], n2, n1), np.where(still_b[:, None], n1, n2)
+    n1[~defined] = np.nan
+    n2[~defined] = np.nan
+    return n1, n2, ruling
 
 
 def warp_angles(
@@ -34,40 +94,63 @@ def warp_angles(
     tangents_a: ArrayLike,
     tangents_b: ArrayLike,
     signed: bool = False,
+    *,
+    apex_a: ArrayLike | None = None,
+    apex_b: ArrayLike | None = None,
 ) -> FloatArray:
     """Warp angle of each ruling ``starts[i] → ends[i]`` given the edge tangents at its ends.
 
     Args:
         starts, ends: ``(n, 3)`` ruling end points (on edge A and edge B).
         tangents_a, tangents_b: ``(n, 3)`` edge tangents there (any length; both edges
-            oriented the same way for the signed angle to mean anything).
-        signed: ``False`` for the warp angle in [0, π/2] (angle between normal lines);
-            ``True`` for the angle from N1 to N2 about the ruling, in (−π, π].
+            oriented the same way). A zero tangent means the edge stands still there (a
+            fan's apex): that end takes the other end's plane.
+        signed: ``False`` for the warp angle in [0, π] (the angle between the normal
+            vectors N1 and N2); ``True`` for the angle from N1 to N2 about the ruling, in
+            (−π, π].
+        apex_a, apex_b: optional ``(n,)`` flags for ends known to lie on the edge of
+            regression (there the ruling may run along the tangent); they take the
+            other end's plane, as a fan's apex does.
 
-    Computed as ``atan2`` of the cross and dot products of the normals, which keeps full
-    relative accuracy for tiny angles (``arccos`` of a dot product would not).
+    Returns NaN where no tangent plane is defined: a zero-length ruling, a ruling along
+    an edge tangent, both ends standing still, or NaN input. Computed as ``atan2`` of the
+    cross and dot products of the normals, which keeps full relative accuracy for tiny
+    angles (``arccos`` of a dot product would not).
 
     >>> warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 0]], [[1, 0, 1]]).round(6).tolist()
     [0.785398]
+    >>> warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 0]], [[-1, 0, 0]]).round(6).tolist()
+    [3.141593]
     """
-    start = np.asarray(starts, dtype=float)
-    ruling = np.asarray(ends, dtype=float) - start
-    n1 = cross(ruling, unit(np.asarray(tangents_a, dtype=float)))
-    n2 = cross(ruling, unit(np.asarray(tangents_b, dtype=float)))
+    n1, n2, ruling = end_normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b)
     normal_cross = cross(n1, n2)
     normal_dot = dot(n1, n2)
     if signed:
         return np.arctan2(dot(normal_cross, unit(ruling)), normal_dot)
-    return np.arctan2(norm(normal_cross), np.abs(normal_dot))
+    return np.arctan2(norm(normal_cross), normal_dot)
 
 
 def edge_tangents(points: ArrayLike) -> FloatArray:
     """Tangents of the polyline through ``points`` ``(n, 3)``: second-order central
-    differences inside, one-sided at the two ends (unit length; zero where points repeat)."""
+    differences inside, one-sided at the two ends (unit length).
+
+    Zero where the polyline stands still at a point it shares with a neighbouring row (a
+    fan's apex); NaN where it has no direction for another reason (it doubles back, so
+    the points on either side coincide, or it has fewer than two points).
+    """
     p = np.asarray(points, dtype=float)
     if len(p) < 2:
-        return np.zeros_like(p)
-    return unit(np.gradient(p, axis=0))
+        return np.full_like(p, np.nan)
+    gradient = np.gradient(p, axis=0)
+    finite = p[np.isfinite(p).all(axis=1)]
+    size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
+    still = norm(gradient) <= ZERO * size
+    step = norm(np.diff(p, axis=0)) <= ZERO * size
+    shared = np.concatenate([[False], step]) | np.concatenate([step, [False]])
+    tangents = unit(gradient)
+    tangents[still & shared] = 0.0
+    tangents[still & ~shared] = np.nan
+    return tangents
 
 
 def warp_of_rulings(starts: ArrayLike, ends: ArrayLike, signed: bool = False) -> FloatArray:
@@ -78,8 +161,9 @@ def warp_of_rulings(starts: ArrayLike, ends: ArrayLike, signed: bool = False) ->
     a loft, an optimised strip, an imported surface — without its defining curves. The
     tangents are second-order accurate in the ruling spacing, so on a smooth developable
     the reported warp is O(h²), not 0; use :func:`warp_angles` with exact tangents where
-    they are known. A fan (rulings through one point) has a zero tangent at the point,
-    which counts as no warp there.
+    they are known. Inside a fan (rulings through one point) the polyline stands still at
+    the point, so the fan's rulings are measured in the plane of their triangles: 0 when
+    the other edge has a tangent there (see the module docstring).
     """
     a = np.asarray(starts, dtype=float)
     b = np.asarray(ends, dtype=float)
@@ -115,3 +199,90 @@ def in_plane_tangent(
     take_left = np.where(left_agrees != right_agrees, left_agrees, np.abs(f_left) <= np.abs(f_right))
     pick = np.where(take_left[:, None], left, right)
     return unit(np.where(straddles[:, None], blend, pick))
+
+
+#: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
+CORNER_ANGLE = 1e-7
+#: Parameter offset for one-sided tangents beside a corner.
+_SIDE = 1e-11
+#: A parameter this close to a breakpoint sits on it.
+_AT_BREAK = 1e-10
+
+
+def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, FloatArray]:
+    """Which parameters ``t`` sit on a corner of ``curve`` (a breakpoint where the unit
+    tangent jumps), and the one-sided tangents there (left, right; undefined elsewhere)."""
+    breaks = np.asarray(curve._breakpoints(), dtype=float)
+    inner = breaks[(breaks > 0.0) & (breaks < 1.0)]
+    if curve.closed:
+        inner = np.concatenate([inner, [0.0]])
+    n = len(t)
+    left = np.zeros((n, 3))
+    right = np.zeros((n, 3))
+    corner = np.zeros(n, dtype=bool)
+    if not len(inner):
+        return corner, left, right
+    distance = np.abs(t[:, None] - inner[None, :])
+    if curve.closed:
+        distance = np.minimum(distance, 1.0 - distance)
+    nearest = np.argmin(distance, axis=1)
+    near = distance[np.arange(n), nearest] <= _AT_BREAK
+    if not near.any():
+        return corner, left, right
+    b = inner[nearest[near]]
+    below, above = b - _SIDE, b + _SIDE
+    if curve.closed:
+        below = np.where(below < 0.0, below + 1.0, below)
+    d = curve.derivatives(np.concatenate([below, above]), 1)[1]
+    lt, rt = unit(d[: len(b)]), unit(d[len(b) :])
+    jump = np.arctan2(norm(cross(lt, rt)), dot(lt, rt)) > CORNER_ANGLE
+    rows = np.flatnonzero(near)
+    corner[rows] = jump
+    left[rows], right[rows] = lt, rt
+    return corner, left, right
+
+
+def _interior_of_fan(points: FloatArray, size: float) -> BoolArray:
+    """Rows whose point is shared with both neighbouring rows: inside a fan through it."""
+    same = norm(np.diff(points, axis=0)) <= ZERO * size
+    inside = np.zeros(len(points), dtype=bool)
+    inside[1:-1] = same[:-1] & same[1:]
+    return inside
+
+
+def curve_warp(
+    curve_a: Curve, curve_b: Curve, s: ArrayLike, t: ArrayLike, starts: ArrayLike, ends: ArrayLike,
+    signed: bool = False,
+) -> FloatArray:
+    """Warp angles (as :func:`warp_angles`, [0, π] or signed, NaN where undefined) of the
+    rulings ``starts[i] → ends[i]`` of a strip between two curves, in order along it,
+    measured with the curves' exact tangents at the rulings' parameters ``s`` on A and
+    ``t`` on B — independently of how the rulings were found.
+
+    At a corner of a curve (its tangent jumps from ``left`` to ``right``) the tangent is
+    the one in the plane of the ruling and the other end's tangent where the corner
+    straddles that plane (:func:`in_plane_tangent`: a cone through the corner). A ruling
+    inside a fan (its end shared with both neighbouring rulings) is measured in the
+    plane of the fan's triangles (the curve's tangent at the fan's apex plays no part).
+    """
+    s = np.asarray(s, dtype=float).reshape(-1)
+    t = np.asarray(t, dtype=float).reshape(-1)
+    a = np.asarray(starts, dtype=float).reshape(-1, 3)
+    b = np.asarray(ends, dtype=float).reshape(-1, 3)
+    ruling = b - a
+    ta = curve_a.derivatives(s, 1)[1]
+    tb = curve_b.derivatives(t, 1)[1]
+    corner_a, left_a, right_a = _corner_sides(curve_a, s)
+    corner_b, left_b, right_b = _corner_sides(curve_b, t)
+    if corner_a.any():
+        ta = ta.copy()
+        ta[corner_a] = in_plane_tangent(ruling[corner_a], tb[corner_a], left_a[corner_a], right_a[corner_a])
+    if corner_b.any():
+        tb = tb.copy()
+        tb[corner_b] = in_plane_tangent(ruling[corner_b], ta[corner_b], left_b[corner_b], right_b[corner_b])
+    points = np.concatenate([a, b])
+    finite = points[np.isfinite(points).all(axis=1)]
+    size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
+    return warp_angles(
+        a, b, ta, tb, signed, apex_a=_interior_of_fan(a, size), apex_b=_interior_of_fan(b, size)
+    )
