@@ -12,7 +12,8 @@ from engine.types import INTEGER, NUMBER, TEXT
 from nodes.analysis.checks import ruled_surface, segments
 from nodes.analysis.development_type import DEVELOPMENT
 from nodes.curves.convert import sentence
-from nodes.developable.strip_outputs import strip_outputs
+from nodes.geometry.curves.line import Line
+from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_surface
 from nodes.types import LINE, SURFACE
 
@@ -25,6 +26,22 @@ SUBDIVISIONS = 8
 
 def _flat(points2d: np.ndarray) -> np.ndarray:
     return np.column_stack([points2d, np.zeros(len(points2d))])
+
+
+def development_surface(development: Development) -> RuledSurface:
+    """The development as a flat surface: the loft of every unrolled ruling (the requested
+    ones and those between them) with straight edges from one to the next — exactly the
+    outline of the unrolled triangles, the polygon a sheet is cut along — whose rulings
+    are the requested ones (:attr:`Development.rulings2d`). Its u parameter is the 3D
+    surface's at every unrolled ruling."""
+    zero = np.zeros((len(development.starts2d), 1))
+    surface = RuledSurface.from_rulings(np.hstack([development.starts2d, zero]),
+                                        np.hstack([development.ends2d, zero]), degree=1)
+    stride = development.stride
+    assert surface.ruling_lines is not None and surface.ruling_parameters is not None
+    surface.ruling_lines = surface.ruling_lines[::stride]
+    surface.ruling_parameters = surface.ruling_parameters[::stride]
+    return surface
 
 
 def overlaps(development: Development) -> bool:
@@ -58,8 +75,9 @@ class IsoMapping(Node):
     each congruent to its 3D original, so rulings, both edges and the strips' widths
     keep their lengths (EdgeError shows it: rounding level, ~1e-15). Between the
     rulings you see, 7 more per strip are unrolled too so the flat edges follow the
-    curved ones closely. The first ruling starts at the origin and runs up the Y
-    axis; the strip continues towards +X.
+    curved ones closely; Development is the outline of all these triangles, edge by
+    straight edge, so a sheet cut along it is exactly what was unrolled. The first
+    ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
 
     For a developable surface (cylinder, cone, tangent developable, the output of the
     developable nodes) the unrolling is an isometry: areas agree (AreaError a few 1e-6 at
@@ -80,8 +98,8 @@ class IsoMapping(Node):
            default=100),
     )
     outputs = (
-        Out("Development", SURFACE, "D", "The unrolled surface in the XY plane, lofted through the flat "
-            "rulings."),
+        Out("Development", SURFACE, "D", "The unrolled surface in the XY plane: the unrolled triangles' "
+            "outline, with the flat rulings."),
         Out("Rulings", LINE, "R", "The Segments + 1 rulings laid flat, in order.", access=LIST),
         Out("Area", TEXT, "A", "Area of the input and of the development, their difference and "
             "the difference in per cent."),
@@ -103,7 +121,6 @@ class IsoMapping(Node):
         except ValueError as exc:
             raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
         starts2d, ends2d = development.rulings2d
-        flat = strip_outputs(_flat(starts2d), _flat(ends2d))
         if overlaps(development):
             self.warn("The development overlaps itself, so it cannot be cut from one sheet: unroll "
                       "less of the surface (fewer turns) or split it into pieces")
@@ -113,8 +130,8 @@ class IsoMapping(Node):
                         "Segments; a twisted ruled surface has no true development, only its rulings "
                         "keep their lengths")
         return (
-            flat.surface,
-            flat.rulings,
+            development_surface(development),
+            Line.many(_flat(starts2d), _flat(ends2d)),
             area_text(development),
             float(development.area_3d),
             float(development.area_2d),

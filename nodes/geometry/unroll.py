@@ -59,6 +59,11 @@ EDGE_COLLAPSED = 1e-9
 #: located on the 3D triangles (a point on a shared edge is on both triangles).
 TIE = 1e-9
 
+#: Consecutive ruling ends closer than this share of the strip's size are one point (a
+#: fan's apex, sampled once per ruling): they get one image in the plane, so the outline
+#: visits the apex's image, not a cluster of points a rounding error apart that cross.
+REPEATED = 1e-12
+
 #: Gauss–Legendre points per direction for the area of a bilinear quad.
 QUAD_ORDER = 8
 
@@ -687,6 +692,19 @@ def _is_simple(outline: FloatArray) -> bool:
     return bool(shapely.LinearRing(outline[np.concatenate([[True], step > 1e-9 * size])]).is_simple)
 
 
+def _one_image_per_point(points3d: FloatArray, points2d: FloatArray, tolerance: float) -> FloatArray:
+    """``points2d`` with every run of coinciding consecutive 3D points (within
+    ``tolerance``) drawn at one point: the mean of the run's images (which differ by the
+    recurrence's rounding only)."""
+    repeat = np.r_[False, np.linalg.norm(np.diff(points3d, axis=0), axis=1) <= tolerance]
+    if not repeat.any():
+        return points2d
+    run = np.cumsum(~repeat) - 1
+    count = np.bincount(run)
+    mean = np.column_stack([np.bincount(run, points2d[:, k]) / count for k in range(points2d.shape[1])])
+    return mean[run]
+
+
 def _place(x2: NDArray, y2: NDArray, along: FloatArray, height: FloatArray) -> NDArray:
     """2D points (complex) ``along`` the edge x→y from x and ``height`` to its left."""
     edge = y2 - x2
@@ -752,15 +770,15 @@ def unroll_rulings(
     rot /= np.abs(rot)
     shift = np.concatenate([[0j], np.cumsum(rot[:-1] * next_a)])
     za, zb = shift, shift + rot * 1j * length
-    starts2d = np.column_stack([za.real, za.imag])
-    ends2d = np.column_stack([zb.real, zb.imag])
+    diameter = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
+    starts2d = _one_image_per_point(a, np.column_stack([za.real, za.imag]), REPEATED * diameter)
+    ends2d = _one_image_per_point(b, np.column_stack([zb.real, zb.imag]), REPEATED * diameter)
 
     vertices2d, vertices3d = np.vstack([starts2d, ends2d]), np.vstack([a, b])
     tmap = DevelopmentMap(vertices2d, vertices3d, first)
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]
     edges2d = np.linalg.norm(t2 - np.roll(t2, -1, axis=1), axis=2)
     edges3d = np.linalg.norm(t3 - np.roll(t3, -1, axis=1), axis=2)
-    diameter = float(np.linalg.norm(np.ptp(vertices3d, axis=0)))
     scale = np.where(edges3d > EDGE_COLLAPSED * diameter, edges3d, diameter)
     edge_error = float(np.max(np.abs(edges2d - edges3d) / scale))
 

@@ -60,6 +60,8 @@ SHEET_SPACING_MM = 100.0
 SMALLEST_TEXT_MM = 2.0
 #: Stroke width of SVG paths (mm): a hairline to laser drivers.
 HAIRLINE_MM = 0.01
+#: Outline points closer than this share of the outline's size to the previous one are one point.
+SAME_POINT = 1e-9
 
 CUT, ENGRAVE = "CUT", "ENGRAVE"
 SUFFIXES = (".dxf", ".svg")
@@ -165,14 +167,21 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
 def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     """The boundary of a flat surface (IsoMapping's Development) as one closed polyline:
     its four edges in order (see :meth:`~nodes.geometry.surface_base.Surface.edges`),
-    each within ``tolerance`` (model units); collapsed edges drop out."""
+    each within ``tolerance`` (model units); collapsed edges drop out, and so do points
+    within :data:`SAME_POINT` of the outline's size of the one before (a fan's apex,
+    where an edge stands still and its samples differ by rounding only: kept, they would
+    zigzag across each other)."""
     pieces = []
     for edge in surface.edges():
         points = np.asarray(edge.to_polyline(tolerance).points, dtype=float)
         pieces.append(points[:-1])
     ring = np.vstack(pieces)
-    keep = np.concatenate([[True], np.any(np.abs(np.diff(ring, axis=0)) > 0, axis=1)])
-    return Polyline(ring[keep], closed=True)
+    size = float(np.ptp(ring, axis=0).max()) or 1.0
+    keep = np.concatenate([[True], np.linalg.norm(np.diff(ring, axis=0), axis=1) > SAME_POINT * size])
+    ring = ring[keep]
+    if len(ring) > 1 and np.linalg.norm(ring[-1] - ring[0]) <= SAME_POINT * size:
+        ring = ring[:-1]
+    return Polyline(ring, closed=True)
 
 
 def check_panels(
