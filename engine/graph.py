@@ -3,6 +3,13 @@
 Every edit goes through a method here. Edits that change what a node computes
 *expire* that node and everything downstream of it, so the solver re-solves only
 those. Listeners (a GUI, an undo stack) receive a :class:`GraphEvent` per edit.
+
+Each edit costs what it touches, not the size of the graph: the wires into and out of
+every node are indexed, and a topological rank of every node is kept up to date as
+wires are added (the Pearce–Kelly method: a wire that runs forward in the ranks costs
+nothing; one that runs backward re-ranks only the nodes between its ends). The rank
+answers "would this wire make a loop?" by searching only between the two ends, and
+lets the solver put its expired nodes in order without walking the whole graph.
 """
 
 from __future__ import annotations
@@ -104,17 +111,23 @@ class Graph:
 
     def __init__(self) -> None:
         self.nodes: dict[str, NodeRecord] = {}
-        self.wires: list[Wire] = []
         self.groups: list[Group] = []
         self.units: str = "m"
         self.meta: dict[str, Any] = {}
         self.raw: dict[str, Any] = {}
         self.expired: set[str] = set()
+        #: how many nodes have been removed so far (lets a solver forget their results cheaply)
+        self.removals = 0
         self._listeners: list[Listener] = []
+        # every wire, in wire order, with a serial number that only grows
+        self._wires: dict[Wire, int] = {}
+        self._serial = 0
+        self._into: dict[str, dict[Wire, None]] = {}  # node → wires into it, in wire order
+        self._from: dict[str, dict[Wire, None]] = {}  # node → wires out of it, in wire order
+        # topological rank of every node (None: to be computed from scratch by order())
+        self._rank: dict[str, int] | None = {}
+        self._next_rank = 0
         self._order: list[str] | None = None
-        self._targets_cache: dict[str, list[str]] | None = None
-        self._into_cache: dict[str, list[Wire]] | None = None
-        self._wire_set: set[Wire] = set()
 
     # -- events ---------------------------------------------------------------------
     def subscribe(self, listener: Listener) -> Callable[[], None]:
@@ -123,6 +136,8 @@ class Graph:
         return lambda: self._listeners.remove(listener)
 
     def _emit(self, kind: str, node_id: str | None = None, **data: Any) -> None:
+        if not self._listeners:  # a graph being loaded or built by a script: no one listens
+            return
         event = GraphEvent(kind, node_id, data)
         for listener in list(self._listeners):
             listener(event)
@@ -158,25 +173,78 @@ class Graph:
         if record.id in self.nodes:
             raise GraphError(f"there is already a node with id {record.id!r}")
         self.nodes[record.id] = record
-        self._order = self._targets_cache = self._into_cache = None
+        if self._rank is not None:  # a node without wires may go last in the order
+            self._rank[record.id] = self._next_rank
+            self._next_rank += 1
+            if self._order is not None:
+                self._order.append(record.id)
         self.expired.add(record.id)
         self._emit("node_added", record.id)
         return record
 
     def remove_node(self, node_id: str) -> NodeRecord:
         """Remove a node and every wire touching it."""
+        return self._remove_node(node_id, None)
+
+    def _remove_node(self, node_id: str, groups_of: dict[str, list[Group]] | None) -> NodeRecord:
         record = self._record(node_id)
-        for wire in [w for w in self.wires if node_id in (w.source, w.target)]:
+        for wire in self._wires_touching(node_id):
             self.disconnect(wire)
         self.expire(node_id)
         del self.nodes[node_id]
         self.expired.discard(node_id)
-        for group in self.groups:
+        self._into.pop(node_id, None)
+        self._from.pop(node_id, None)
+        if self._rank is not None:
+            del self._rank[node_id]
+        self._order = None
+        self.removals += 1
+        for group in self.groups if groups_of is None else groups_of.get(node_id, ()):
             if node_id in group.nodes:
                 group.nodes.remove(node_id)
-        self._order = self._targets_cache = self._into_cache = None
         self._emit("node_removed", node_id, record=record)
         return record
+
+    # -- bulk edits -------------------------------------------------------------------
+    def add_many(self, records: Iterable[NodeRecord], wires: Iterable[Wire] = ()) -> None:
+        """Add node records, then wires, as one edit (a paste, a duplicate, an undone delete).
+
+        The events are those of :meth:`add_record` and :meth:`connect_wire` called in turn.
+        Wires are checked one by one except for loops, which one search at the end finds
+        (cheaper than a search per wire when many wires run against the current order).
+        If any record or wire cannot be added, what was added is taken out again (in
+        reverse) and the :class:`GraphError` is raised: the graph is left as it was.
+        """
+        added_records: list[NodeRecord] = []
+        added_wires: list[Wire] = []
+        try:
+            for record in records:
+                added_records.append(self.add_record(record))
+            for wire in wires:
+                added_wires.append(self.connect_wire(wire, check_loops=False))
+            self._ranks()  # a loop among the new wires: GraphError
+        except GraphError:
+            for wire in reversed(added_wires):
+                self.disconnect(wire)
+            for record in reversed(added_records):
+                self.remove_node(record.id)
+            raise
+
+    def remove_many(self, node_ids: Iterable[str]) -> list[NodeRecord]:
+        """Remove several nodes with their wires (a deletion), in the order given.
+
+        The events are those of :meth:`remove_node` called for each id in turn; ids that
+        are not in the graph raise :class:`GraphError` before anything is removed.
+        """
+        ids = list(dict.fromkeys(node_ids))
+        for node_id in ids:
+            self._record(node_id)
+        doomed = set(ids)
+        groups_of: dict[str, list[Group]] = {}
+        for group in self.groups:
+            for member in doomed.intersection(group.nodes):
+                groups_of.setdefault(member, []).append(group)
+        return [self._remove_node(node_id, groups_of) for node_id in ids]
 
     def _record(self, node_id: str) -> NodeRecord:
         try:
@@ -196,13 +264,16 @@ class Graph:
         loops with one :meth:`order` call instead of a search per wire.
         """
         self.check_wire(wire, check_loops)
-        self.wires.append(wire)
-        self._wire_set.add(wire)
-        self._order = None
-        if self._targets_cache is not None:
-            self._targets_cache.setdefault(wire.source, []).append(wire.target)
-        if self._into_cache is not None:
-            self._into_cache.setdefault(wire.target, []).append(wire)
+        self._wires[wire] = self._serial
+        self._serial += 1
+        self._into.setdefault(wire.target, {})[wire] = None
+        self._from.setdefault(wire.source, {})[wire] = None
+        rank = self._rank
+        if rank is not None and rank[wire.source] > rank[wire.target]:
+            if check_loops:
+                self._rerank(wire.source, wire.target)
+            else:  # unchecked (a file being loaded): order() sorts afresh and finds any loop
+                self._rank = self._order = None
         self.expire(wire.target)
         self._emit("wire_added", wire.target, wire=wire)
         return wire
@@ -216,7 +287,7 @@ class Graph:
             raise GraphError(f"{src.title} has no output called {wire.source_port!r}")
         if in_port is None and not is_placeholder(dst.node):
             raise GraphError(f"{dst.title} has no input called {wire.target_port!r}")
-        if wire in self._wire_set:
+        if wire in self._wires:
             raise GraphError(f"{wire} is already connected")
         if out_port and in_port and not can_cast(out_port.type, in_port.type):
             raise GraphError(
@@ -228,31 +299,43 @@ class Graph:
                 f"{dst.title}.{in_port.name} takes one wire; disconnect the other first "
                 "(or hold Shift to add to a list input)"
             )
-        if wire.source == wire.target or (check_loops and wire.target in self.upstream(wire.source)):
+        if wire.source == wire.target or (check_loops and self.reaches(wire.target, wire.source)):
             raise GraphError(f"{wire} would make a loop: {wire.target} already feeds {wire.source}")
 
     def disconnect(self, wire: Wire) -> None:
-        if wire not in self._wire_set:
+        if wire not in self._wires:
             raise GraphError(f"{wire} is not connected")
-        self.wires.remove(wire)
-        self._wire_set.discard(wire)
-        self._order = self._targets_cache = self._into_cache = None
+        del self._wires[wire]
+        del self._into[wire.target][wire]
+        del self._from[wire.source][wire]
         if wire.target in self.nodes:
             self.expire(wire.target)
         self._emit("wire_removed", wire.target, wire=wire)
 
+    @property
+    def wires(self) -> list[Wire]:
+        """Every wire, in wire order (the order of the file; a new wire goes last). A copy:
+        edit through :meth:`connect` and :meth:`disconnect`."""
+        return list(self._wires)
+
+    def has_wire(self, wire: Wire) -> bool:
+        return wire in self._wires
+
     def wires_into(self, node_id: str, port: str | None = None) -> list[Wire]:
         """Wires into ``node_id`` (into one of its ports when ``port`` is given), in wire order."""
-        if self._into_cache is None:
-            into: dict[str, list[Wire]] = {}
-            for w in self.wires:
-                into.setdefault(w.target, []).append(w)
-            self._into_cache = into
-        wires = self._into_cache.get(node_id, [])
+        wires = self._into.get(node_id, ())
         return list(wires) if port is None else [w for w in wires if w.target_port == port]
 
     def wires_from(self, node_id: str) -> list[Wire]:
-        return [w for w in self.wires if w.source == node_id]
+        """Wires out of ``node_id``, in wire order."""
+        return list(self._from.get(node_id, ()))
+
+    def _wires_touching(self, node_id: str) -> list[Wire]:
+        """Wires into or out of ``node_id``, in wire order."""
+        into, out = self._into.get(node_id, {}), self._from.get(node_id, {})
+        if not into or not out:
+            return list(into or out)
+        return sorted([*into, *out], key=self._wires.__getitem__)
 
     # -- node state -------------------------------------------------------------------
     def set_setting(self, node_id: str, name: str, value: Any) -> None:
@@ -269,7 +352,7 @@ class Graph:
             return
         inputs = {p.name for p in record.node.input_ports()}
         outputs = {p.name for p in record.node.output_ports()}
-        for wire in list(self.wires):
+        for wire in self._wires_touching(record.id):
             if (wire.target == record.id and wire.target_port not in inputs) or (
                 wire.source == record.id and wire.source_port not in outputs
             ):
@@ -333,64 +416,128 @@ class Graph:
     # -- topology -------------------------------------------------------------------
     def expire(self, node_id: str) -> None:
         """Mark ``node_id`` and everything downstream of it for re-solving."""
-        targets = self._targets()
+        out = self._from
         stack = [node_id]
         expired = self.expired
         expired.add(node_id)
         while stack:
-            for target in targets.get(stack.pop(), ()):
+            for wire in out.get(stack.pop(), ()):
+                target = wire.target
                 if target not in expired:
                     expired.add(target)
                     stack.append(target)
-
-    def _targets(self) -> dict[str, list[str]]:
-        """Downstream neighbours of every node (cached until the wiring changes)."""
-        if self._targets_cache is None:
-            targets: dict[str, list[str]] = {}
-            for w in self.wires:
-                targets.setdefault(w.source, []).append(w.target)
-            self._targets_cache = targets
-        return self._targets_cache
 
     def expire_all(self) -> None:
         self.expired.update(self.nodes)
 
     def upstream(self, node_id: str) -> set[str]:
         """Every node whose output reaches ``node_id`` (not including it)."""
-        feeds: dict[str, list[str]] = {}
-        for w in self.wires:
-            feeds.setdefault(w.target, []).append(w.source)
+        into = self._into
         seen: set[str] = set()
-        stack = list(feeds.get(node_id, ()))
+        stack = [w.source for w in into.get(node_id, ())]
         while stack:
             current = stack.pop()
             if current not in seen:
                 seen.add(current)
-                stack.extend(feeds.get(current, ()))
+                stack.extend(w.source for w in into.get(current, ()))
         return seen
 
+    def reaches(self, start: str, goal: str) -> bool:
+        """Whether wires lead from ``start`` down to ``goal`` (a node reaches itself).
+
+        ``connect(goal, …, start, …)`` would make a loop exactly when this is true. With
+        the ranks up to date only the nodes ranked between the two are searched.
+        """
+        if start == goal:
+            return True
+        rank = self._current_rank()
+        if rank is not None and rank[start] > rank[goal]:
+            return False  # every wire runs forward in the ranks
+        limit = rank[goal] if rank is not None else None
+        out = self._from
+        seen = {start}
+        stack = [start]
+        while stack:
+            for wire in out.get(stack.pop(), ()):
+                target = wire.target
+                if target == goal:
+                    return True
+                if target not in seen and (limit is None or rank[target] < limit):
+                    seen.add(target)
+                    stack.append(target)
+        return False
+
+    def _current_rank(self) -> dict[str, int] | None:
+        """The ranks, computed afresh if unchecked wires made them stale (None: a loop)."""
+        try:
+            return self._ranks()
+        except GraphError:
+            return None
+
+    def _ranks(self) -> dict[str, int]:
+        """The ranks, computed afresh if unchecked wires made them stale (GraphError: a loop)."""
+        if self._rank is None:
+            self._rank = self._sort()
+            self._next_rank = len(self._rank)
+            self._order = None
+        return self._rank
+
+    def _rerank(self, source: str, target: str) -> None:
+        """A new wire ``source → target`` runs backward in the ranks: move what ``target``
+        feeds (up to ``source``'s rank) after what feeds ``source`` (down to ``target``'s),
+        reusing the same ranks. The caller has checked there is no loop."""
+        rank = self._rank
+        lower, upper = rank[target], rank[source]
+        forward = self._search(target, self._from, "target", lambda n: rank[n] < upper)
+        backward = self._search(source, self._into, "source", lambda n: rank[n] > lower)
+        moved = sorted(backward, key=rank.__getitem__) + sorted(forward, key=rank.__getitem__)
+        for node_id, new_rank in zip(moved, sorted(rank[n] for n in moved), strict=True):
+            rank[node_id] = new_rank
+        self._order = None
+
+    @staticmethod
+    def _search(
+        start: str, index: dict[str, dict[Wire, None]], end: str, inside: Callable[[str], bool]
+    ) -> list[str]:
+        """``start`` and the nodes reached from it through ``index`` while ``inside`` holds."""
+        seen = {start}
+        stack = [start]
+        while stack:
+            for wire in index.get(stack.pop(), ()):
+                node_id = getattr(wire, end)
+                if node_id not in seen and inside(node_id):
+                    seen.add(node_id)
+                    stack.append(node_id)
+        return list(seen)
+
     def order(self) -> list[str]:
-        """Node ids in a topological order (sources first; ties in insertion order)."""
+        """Node ids in a topological order (sources first)."""
         if self._order is None:
-            indegree = dict.fromkeys(self.nodes, 0)
-            targets: dict[str, list[str]] = {}
-            for w in self.wires:
-                indegree[w.target] += 1
-                targets.setdefault(w.source, []).append(w.target)
-            ready = [n for n, d in indegree.items() if d == 0]
-            order: list[str] = []
-            while ready:
-                current = ready.pop()
-                order.append(current)
-                for t in targets.get(current, ()):
-                    indegree[t] -= 1
-                    if indegree[t] == 0:
-                        ready.append(t)
-            if len(order) != len(self.nodes):
-                stuck = sorted(n for n, d in indegree.items() if d > 0)
-                raise GraphError(f"the wires form a loop through {', '.join(stuck[:5])}")
-            self._order = order
+            rank = self._ranks()
+            self._order = sorted(self.nodes, key=rank.__getitem__)
         return self._order
+
+    def in_order(self, node_ids: Iterable[str]) -> list[str]:
+        """``node_ids`` sorted into topological order; costs what it sorts, not the graph."""
+        return sorted(node_ids, key=self._ranks().__getitem__)
+
+    def _sort(self) -> dict[str, int]:
+        """Ranks from scratch (Kahn's algorithm); raises :class:`GraphError` on a loop."""
+        indegree = {n: len(self._into.get(n, ())) for n in self.nodes}
+        ready = [n for n, d in indegree.items() if d == 0]
+        rank: dict[str, int] = {}
+        while ready:
+            current = ready.pop()
+            rank[current] = len(rank)
+            for wire in self._from.get(current, ()):
+                t = wire.target
+                indegree[t] -= 1
+                if indegree[t] == 0:
+                    ready.append(t)
+        if len(rank) != len(self.nodes):
+            stuck = sorted(n for n, d in indegree.items() if d > 0)
+            raise GraphError(f"the wires form a loop through {', '.join(stuck[:5])}")
+        return rank
 
     def messages_of(self, node_id: str) -> list[Message]:
         return list(self._record(node_id).node.messages)

@@ -166,7 +166,7 @@ class Node:
         if settings:
             self.settings.update(settings)
         self.messages: list[Message] = []
-        self.token: CancelToken = CancelToken()
+        self._token: CancelToken | None = None
         self._files: NodeFiles | None = None
 
     # -- ports (instances may vary them with their settings, like Expression) -------------
@@ -185,6 +185,19 @@ class Node:
 
     def output_port(self, name: str) -> Out | None:
         return next((p for p in self.output_ports() if p.name == name), None)
+
+    # -- cancellation -----------------------------------------------------------------
+    @property
+    def token(self) -> CancelToken:
+        """The running solve's cancel token (the solver sets it). A node solved on its own
+        gets a token of its own when first asked: nodes cost no token until then."""
+        if self._token is None:
+            self._token = CancelToken()
+        return self._token
+
+    @token.setter
+    def token(self, token: CancelToken) -> None:
+        self._token = token
 
     # -- files ------------------------------------------------------------------------
     @property

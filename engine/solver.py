@@ -72,6 +72,7 @@ class Solver:
         self.results: dict[str, NodeResult] = {}
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
+        self._removals_seen = graph.removals
 
     def result(self, node_id: str) -> NodeResult:
         return self.results.get(node_id) or NodeResult()
@@ -82,9 +83,12 @@ class Solver:
         token = token or CancelToken()
         report = SolveReport()
         start = time.perf_counter()
-        for stale in set(self.results) - set(graph.nodes):
-            del self.results[stale]
-        pending = [n for n in graph.order() if n in graph.expired]
+        if graph.removals != self._removals_seen:  # forget removed nodes' results
+            self._removals_seen = graph.removals
+            for stale in self.results.keys() - graph.nodes.keys():
+                del self.results[stale]
+        # only the expired nodes are visited: sorted by their topological rank
+        pending = graph.in_order(graph.expired)
         try:
             for index, node_id in enumerate(pending):
                 token.check()
@@ -95,6 +99,8 @@ class Solver:
                 report.solved.append(node_id)
         except Cancelled:
             report.cancelled = True
+        if not graph.expired:  # a set keeps its largest table, and iterating it costs that
+            graph.expired.clear()
         report.seconds = time.perf_counter() - start
         return report
 

@@ -61,17 +61,13 @@ class AddNodes(GraphCommand):
         self.wires = list(wires)
 
     def apply(self, graph: Graph) -> None:
-        for record in self.records:
-            graph.add_record(record)
-        for wire in self.wires:
-            graph.connect_wire(wire)
+        graph.add_many(self.records, self.wires)
 
     def revert(self, graph: Graph) -> None:
         for wire in reversed(self.wires):
-            if wire in graph.wires:
+            if graph.has_wire(wire):
                 graph.disconnect(wire)
-        for record in reversed(self.records):
-            graph.remove_node(record.id)
+        graph.remove_many([record.id for record in reversed(self.records)])
 
 
 class RemoveNodes(GraphCommand):
@@ -93,16 +89,12 @@ class RemoveNodes(GraphCommand):
         self.wire_order = list(graph.wires)
         self.removed_wires = [w for w in graph.wires if w.source in doomed or w.target in doomed]
         self.memberships = {g.id: list(g.nodes) for g in graph.groups}
-        for node_id in self.node_ids:
-            graph.remove_node(node_id)
-        if any(doomed & set(members) for members in self.memberships.values()):
+        graph.remove_many(self.node_ids)
+        if any(doomed.intersection(members) for members in self.memberships.values()):
             self.doc.groups_changed.emit()
 
     def revert(self, graph: Graph) -> None:
-        for record in self.records:
-            graph.add_record(record)
-        for wire in self.removed_wires:
-            graph.connect_wire(wire)
+        graph.add_many(self.records, self.removed_wires)
         restore_wire_order(graph, self.wire_order)
         restore_node_order(graph, self.node_order)
         for group in graph.groups:

@@ -188,11 +188,11 @@ class Editor(QObject):
         graph = self.graph
         wire = Wire(source, source_port, target, target_port)
         if mode == "remove":
-            if wire in graph.wires:
+            if graph.has_wire(wire):
                 self.doc.push(cmd.ChangeWires(self.doc, remove=[wire], text="Disconnect"))
                 return True
             return False
-        if wire in graph.wires:
+        if graph.has_wire(wire):
             return False
         in_port = graph.nodes[target].node.input_port(target_port)
         existing = graph.wires_into(target, target_port)
@@ -229,7 +229,7 @@ class Editor(QObject):
                 f"{src.title}.{out_port.name} gives {out_port.type.name}, "
                 f"which {dst.title}.{in_port.name} ({in_port.type.name}) cannot take"
             )
-        if wire.source == wire.target or wire.target in graph.upstream(wire.source):
+        if graph.reaches(wire.target, wire.source):
             return f"{wire} would make a loop: {dst.title} already feeds {src.title}"
         return ""
 
@@ -300,7 +300,8 @@ class Editor(QObject):
         self.move(target, text=f"Align {how}")
 
     def group(self, node_ids: Iterable[str], title: str = "Group") -> str | None:
-        ids = [n for n in self.graph.nodes if n in set(node_ids)]
+        wanted = set(node_ids)
+        ids = [n for n in self.graph.nodes if n in wanted]
         if not ids:
             return None
         group_id = fresh_id("group", {g.id for g in self.graph.groups})

@@ -20,7 +20,8 @@ MIME_TYPE = "application/x-torsal-graph"
 
 def copy_fragment(graph: Graph, node_ids: list[str]) -> str:
     """The text of a fragment holding ``node_ids`` and the wires among them."""
-    chosen = [n for n in graph.nodes if n in set(node_ids)]
+    wanted = set(node_ids)
+    chosen = [n for n in graph.nodes if n in wanted]
     inside = set(chosen)
     data = {
         "format": FORMAT,
