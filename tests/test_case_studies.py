@@ -60,13 +60,16 @@ def test_kaohsiung_makes_one_developable_strip_per_pair_of_neighbouring_edges():
     assert len(strips) == count + 1 - 2 * shift - 1
     valid = np.array(items(run, "strip", "Valid"))
     warp = np.array(items(run, "strip", "WarpAngles"))
-    # near the open ends of the horseshoe some stations admit no torsal ruling (77 % valid
-    # at the shipped settings, 94 % with Shift n = 0): they are flagged, never hidden
+    # near the open ends of the horseshoe some stations admit no torsal ruling (201 of 260
+    # at the shipped settings): flat triangles close the strips there, marked Kind = "fan"
+    # and counted in a warning with their share of the area, never hidden
     assert valid.mean() > 0.7
     assert warp[valid].max() < 0.01
+    kinds = np.array(items(run, "strip", "Kind"))
+    assert warp[kinds == "torsal"].max() < 0.01
     result = run.solver.result("strip")
     assert result.state == "warning"
-    assert any("no ruling within 0.01 rad" in m.text for m in result.messages)
+    assert any("closed by flat triangles" in m.text for m in result.messages)
 
 
 def test_textbook_cylinder_is_developable_and_helicoid_and_mobius_are_not():

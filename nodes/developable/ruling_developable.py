@@ -7,12 +7,13 @@ from typing import Any
 import numpy as np
 
 from engine.node import LIST, In, Node, NodeError, Out
-from engine.types import BOOLEAN, INTEGER, NUMBER
+from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT
 from nodes.curves.convert import sentence
 from nodes.developable.input_checks import curve_input, segments_input, tolerance_input
 from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
+from nodes.geometry.developable.alternatives import better_pairing
 from nodes.types import CURVE, LINE, SURFACE
 
 #: Two curves closer than this (relative to their size) everywhere count as one.
@@ -73,6 +74,16 @@ def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float)
         raise NodeError(sentence(exc)) from None
 
 
+def fan_limit_input(value: Any) -> float:
+    """FanLimit: a share of the strip's area, from 0 to 1."""
+    if value is None:
+        raise NodeError("FanLimit is empty: give a share of the strip's area from 0 to 1, such as 0.1")
+    x = float(value)
+    if not (0.0 <= x <= 1.0):
+        raise NodeError(f"FanLimit must be a share of the strip's area from 0 to 1, such as 0.1, not {x:g}")
+    return x
+
+
 class RulingDevelopable(Node):
     """The developable surface between two curves: find, for each point of CurveA, the
     ruling to CurveB along which the sheet has one tangent plane.
@@ -80,16 +91,24 @@ class RulingDevelopable(Node):
     Segments + 1 stations are spaced evenly along CurveA (by length). For each, the
     ruling to CurveB is *torsal*: the ruling and the two curves' tangents at its ends
     lie in one plane, so a flat sheet bent along it fits without twisting (warp 0).
-    The partner on CurveB is solved to machine precision, never by trial, and rulings
-    never cross. Where the two curves bound a flat piece (two straight segments at an
-    angle, like the middle of the ZVE roof edge) the strip is drawn as two triangles:
-    fans of rulings through one corner each; such fan rulings are added to the
-    Segments + 1 station rulings.
+    Every such partner on CurveB is found (the search is certified: two candidates
+    close together are never missed between samples), solved to machine precision,
+    and rulings never cross. Where the two curves bound a flat piece (two straight
+    segments at an angle, like the middle of the ZVE roof edge) the strip is drawn as
+    triangles: fans of rulings through single points, added to the station rulings.
 
-    Both curves should run the same way. A station with no torsal ruling within
-    WarpTolerance gets the plain loft's ruling, is marked Valid = false and counted
-    in a warning: then swap CurveA and CurveB, reverse one of them, or change the
-    curves — not every pair of curves bounds a developable strip.
+    Where no torsal ruling exists over a stretch (the curves there bound no
+    developable), the strip is closed by flat triangles, each with two corners on one
+    curve and one on the other, so the Surface still spans both curves from end to
+    end, stays developable (it unrolls exactly) and has no holes; the same closes the
+    ends of CurveB beyond the first and last torsal ruling. Those rulings are marked
+    Kind = "fan" and the node reports their share of the strip's area; it warns when
+    the share is above FanLimit, and names swapping the curves or reversing CurveB only
+    when it has solved that alternative and found it needs fewer triangles.
+
+    Valid is true where a ruling's warp, recomputed from the output (its end points
+    and the curves' exact tangents there), is within WarpTolerance — never where the
+    warp is undefined (a ruling of zero length or along a tangent).
     """
 
     type_id = "developable.RulingDevelopable"
@@ -101,6 +120,9 @@ class RulingDevelopable(Node):
            "Largest warp angle (rad) a ruling may keep and count as valid: the twist between "
            "the sheet's normals at its two ends. 0.01 rad is invisible on most sheets; for a "
            "material allowed k rad/m over rulings about L m long, use k·L.", default=0.01),
+        In("FanLimit", NUMBER, "F",
+           "Largest share of the strip's area (0 to 1) that may be closed by flat triangles "
+           "without a warning; 0.1 = 10 %.", default=0.1),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
@@ -110,24 +132,35 @@ class RulingDevelopable(Node):
             "curves' tangents.", access=LIST),
         Out("Valid", BOOLEAN, "V", "Whether each ruling's recomputed warp is a number within "
             "WarpTolerance.", access=LIST),
+        Out("Kind", TEXT, "K",
+            'Per ruling: "torsal" for a ruling of the developable through both curves, "fan" for '
+            "a ruling of the flat triangles that close the strip where no torsal ruling exists.",
+            access=LIST),
     )
 
     def solve(
-        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any
-    ) -> tuple[Any, list[Any], list[float], list[bool]]:
+        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any
+    ) -> tuple[Any, list[Any], list[float], list[bool], list[str]]:
         a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
         n = segments_input(segments)
         tol = tolerance_input("WarpTolerance", tolerance)
+        limit = fan_limit_input(fan_limit)
         result = solve_strip(a, b, n, tol)
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
         if result.message:
-            self.warn(result.message)
-        strip.report(self)
-        fans = int(np.count_nonzero(~result.stations))
-        if fans:
+            if result.fan_share > limit:
+                hint = better_pairing(a, b, n, tol, result)
+                text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
+                self.warn(f"{text}; {hint}" if hint else text)
+            else:
+                self.remark(result.message)
+        strip.report(self, explained=result.fan)  # a fan ruling's undefined warp is no news
+        torsal_fans = int(np.count_nonzero(~result.stations & ~result.fan))
+        if torsal_fans:
             self.remark(
-                f"{len(result.s)} rulings: {n + 1} from the stations and {fans} in fans through "
+                f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        return strip.surface, strip.rulings, strip.warp, strip.valid
+        kinds = np.where(result.fan, "fan", "torsal").tolist()
+        return strip.surface, strip.rulings, strip.warp, strip.valid, kinds

@@ -16,6 +16,7 @@ import pytest
 
 from nodes.geometry.curves import Arc, Circle, Line, Polyline
 from nodes.geometry.developable import ruling_developable
+from nodes.geometry.developable.alternatives import better_pairing
 from nodes.geometry.vectors import Plane
 
 from . import surfaces
@@ -136,14 +137,18 @@ def test_rulings_between_sections_with_inflections_never_cross(name):
 def test_coaxial_arcs_give_the_frustum_not_the_double_cone_through_their_centre():
     """Two coaxial arcs sweeping 300° have antiparallel tangents at opposite angles too:
     that root (the double cone through the common centre) has flipped normals and is
-    rejected; every ruling joins points at the same angle."""
+    rejected; every torsal ruling joins points at the same angle. The upper arc runs 20°
+    further at both ends: flat fans through the lower arc's ends reach them."""
     low = Arc(Plane.from_normal([0, 0, 0], [0, 0, 1]), 2.0, 0.0, math.radians(300))
     high = Arc(Plane.from_normal([0, 0, 1.5], [0, 0, 1]), 1.2, math.radians(-20), math.radians(320))
     result = ruling_developable(low, high, 60)
-    assert result.valid.all()
-    angle_low = np.arctan2(result.starts[:, 1], result.starts[:, 0])
-    angle_high = np.arctan2(result.ends[:, 1], result.ends[:, 0])
+    torsal = ~result.fan
+    assert torsal[result.stations].all() and result.valid[torsal].all()
+    angle_low = np.arctan2(result.starts[torsal, 1], result.starts[torsal, 0])
+    angle_high = np.arctan2(result.ends[torsal, 1], result.ends[torsal, 0])
     np.testing.assert_allclose(np.unwrap(angle_high), np.unwrap(angle_low), atol=1e-12)
+    np.testing.assert_allclose(result.ends[[0, -1]], high.point_at(np.array([0.0, 1.0])), atol=1e-12)
+    assert set(result.s[result.fan]) == {0.0, 1.0}
 
 
 # -- planar pieces and fans ---------------------------------------------------------------------
@@ -242,12 +247,15 @@ def test_a_corner_of_a_gets_a_cone_of_rulings_and_its_straight_legs_fans_through
     v = Polyline([[-3, 0.5, 0], [0, -1, 0], [3, 0.5, 0]])
     arc = Arc(Plane.from_normal([0, 2, 2], [0, 0, 1]), 4.0, math.radians(200), math.radians(340))
     result = ruling_developable(v, arc, 12)
-    assert result.message is None and result.max_warp < 1e-12
+    # the arc runs on beyond the legs' partners: flat fans through the V's ends reach its ends
+    assert set(result.s[result.fan]) == {0.0, 1.0}
+    assert result.valid[~result.fan].all() and result.warp[~result.fan].max() < 1e-12
     corner = np.linalg.norm(result.starts - v.points[1], axis=1) < 1e-12
     assert corner.sum() > 2 and result.stations[corner].sum() == 1  # the station at the corner, plus its fan
     for leg, (start, end) in enumerate(((0, 1), (1, 2))):
         direction = v.points[end] - v.points[start]
-        on_leg = ~corner & (result.s < 0.5) if leg == 0 else ~corner & (result.s > 0.5)
+        torsal = ~corner & ~result.fan
+        on_leg = torsal & (result.s < 0.5) if leg == 0 else torsal & (result.s > 0.5)
         partner = result.ends[on_leg]
         np.testing.assert_allclose(partner, np.broadcast_to(partner[0], partner.shape), atol=1e-12)
         tangent = arc.tangent_at(result.t[on_leg][0])
@@ -277,8 +285,9 @@ def test_closed_curves_with_seams_apart_are_joined_all_round():
 
 
 def test_one_segment_is_two_rulings_or_the_two_triangles_of_a_planar_quad():
-    skew = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 1], [1, 1, 2]), 1)
-    assert len(skew.s) == 2
+    pair = surfaces.PAIRS["cone"]()
+    cone = ruling_developable(pair.a, pair.b, 1)
+    np.testing.assert_allclose(cone.t, pair.partner(np.array([0.0, 1.0])), atol=1e-12)
     planar = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 1], [1, 1, 1]), 1)
     np.testing.assert_allclose(planar.t, [0, 0, 1])
     np.testing.assert_allclose(planar.s, [0, 1, 1])
@@ -291,39 +300,67 @@ def test_skew_lines_bound_no_developable_and_every_station_is_flagged():
     """Between two skew lines the only ruled surfaces are warped (a hyperbolic paraboloid
     for the even pairing): det[B − A, A', B'] is a non-zero constant."""
     result = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1]), 10, 0.01)
-    assert not result.valid.any()
-    assert result.message.startswith("no ruling within 0.01 rad for 11 of 11 stations")
-    assert "bound no developable" in result.message
-    # the rulings shown are the plain loft (the hyperbolic paraboloid), with their warp
-    np.testing.assert_allclose(result.t, result.s, atol=1e-9)
-    assert result.warp.min() > 0.5
+    assert result.fan.all() and result.fan_share == 1.0
+    assert result.message == (
+        "no torsal ruling within 0.01 rad at 11 of 11 stations: "
+        "closed by flat triangles (100 % of the strip's area)"
+    )
 
 
-def test_stations_beyond_the_end_of_b_are_flagged_and_swapping_the_curves_fixes_it():
+def test_where_no_ruling_is_torsal_the_strip_is_closed_by_flat_triangles_end_to_end():
+    a, b = Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1])
+    result = ruling_developable(a, b, 10, 0.01)
+    assert result.s[0] == result.t[0] == 0.0 and result.s[-1] == result.t[-1] == 1.0
+    assert np.all(np.diff(result.s) >= 0) and np.all(np.diff(result.t) >= 0)
+    # every two consecutive rulings share an end: each piece between them is a triangle
+    same_start = np.linalg.norm(np.diff(result.starts, axis=0), axis=1) == 0
+    same_end = np.linalg.norm(np.diff(result.ends, axis=0), axis=1) == 0
+    assert np.all(same_start ^ same_end)
+
+
+def overhanging_cone_pair():
     """A runs over 0.6 rad more of the cone than B: the generators there miss B."""
     a = surfaces._curve(surfaces.cone_surface, surfaces._lin(-0.6, 2.5), surfaces._wave(2.0, 0.3, 7.0), False)
     b = surfaces._curve(
         surfaces.cone_surface, surfaces._lin(0.0, 2.5), surfaces._wave(4.0, 0.5, 5.0, 1.0), True
     )
+    return a, b
+
+
+def test_stations_beyond_the_end_of_b_are_closed_by_fans_and_counted():
+    a, b = overhanging_cone_pair()
     result = ruling_developable(a, b, 40)
-    angle = np.arctan2(result.starts[:, 1], result.starts[:, 0])
-    np.testing.assert_array_equal(result.valid, angle >= 0)
+    stations = result.stations
+    angle = np.arctan2(result.starts[stations, 1], result.starts[stations, 0])
+    np.testing.assert_array_equal(result.fan[stations], angle < 0)
+    assert result.valid[~result.fan].all()
     missing = int((angle < 0).sum())
-    assert (
-        result.message
-        == f"no ruling within 0.01 rad for {missing} of 41 stations: try swapping curves A and B"
-    )
+    assert result.message.startswith(f"no torsal ruling within 0.01 rad at {missing} of 41 stations")
+
+
+def test_a_hint_names_the_alternative_that_lowers_the_fan_share_with_the_share_it_reaches():
+    a, b = overhanging_cone_pair()
+    result = ruling_developable(a, b, 40)
     swapped = ruling_developable(b, a, 40)
-    assert swapped.valid.all() and swapped.message is None
+    assert swapped.fan[swapped.stations].sum() == 0  # every station torsal, B's overhang fanned
+    assert swapped.fan_share < result.fan_share
+    hint = better_pairing(a, b, 40, 0.01, result)
+    share = f"{100 * swapped.fan_share:.3g} %"
+    assert hint == f"swap CurveA and CurveB: flat triangles fall to {share} of the area"
 
 
-def test_curve_b_running_the_other_way_is_flagged_with_a_hint_to_reverse_it():
+def test_curve_b_running_the_other_way_gets_the_hint_to_reverse_it():
     pair = surfaces.PAIRS["cone"]()
     result = ruling_developable(pair.a, pair.b.reversed(), 40)
-    assert not result.valid.all()
-    assert "try reversing curve B" in result.message
-    count = int(result.message.split(" for ")[1].split(" of ")[0])
-    assert count == int((~result.valid[result.stations]).sum())
+    assert not result.valid[result.stations].all()
+    assert better_pairing(pair.a, pair.b.reversed(), 40, 0.01, result) == (
+        "reverse CurveB: flat triangles fall to 0 % of the area"
+    )
+
+
+def test_no_hint_is_given_when_no_alternative_helps():
+    a, b = Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1])  # skew: no pairing is developable
+    assert better_pairing(a, b, 10, 0.01, ruling_developable(a, b, 10, 0.01)) is None
 
 
 def test_warp_tolerance_decides_validity():

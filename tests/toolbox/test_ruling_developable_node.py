@@ -109,17 +109,37 @@ def test_two_triangle_fans_are_announced_with_their_ruling_count():
     ]
 
 
-def test_curves_that_bound_no_developable_warn_with_the_count_and_flag_valid_false():
-    """Two skew straight lines: det[B − A, A', B'] is the same non-zero number everywhere."""
+def test_curves_that_bound_no_developable_warn_with_the_fan_share_and_mark_every_ruling_fan():
+    """Two skew straight lines: det[B − A, A', B'] is the same non-zero number everywhere, so
+    the strip is closed by flat triangles end to end; swapping or reversing does not help,
+    so no hint is given."""
     a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 1], [3, 1, 2])
     result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), Segments=39)
     assert result.state == "warning"
     assert texts(result) == [
-        "no ruling within 0.01 rad for 40 of 40 stations: try swapping curves A and B, or changing "
-        "them: these curves bound no developable strip"
+        "no torsal ruling within 0.01 rad at 40 of 40 stations: closed by flat triangles (100 % of the "
+        "strip's area), above FanLimit 10 %"
     ]
-    assert out(result, "Valid")[(0,)] == [False] * 40
-    assert len(lines(result)) == 40  # still drawn (as the plain loft), never hidden
+    assert set(out(result, "Kind")[(0,)]) == {"fan"}
+    assert len(lines(result)) >= 40  # still drawn (as flat triangles), never hidden
+
+
+def test_a_fan_share_within_fan_limit_is_reported_without_a_warning():
+    a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 1], [3, 1, 2])
+    result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), Segments=9,
+                 FanLimit=1.0)
+    assert result.state == "ok"
+    assert texts(result) == [
+        "no torsal ruling within 0.01 rad at 10 of 10 stations: closed by flat triangles (100 % of the "
+        "strip's area)"
+    ]
+
+
+def test_a_fan_limit_outside_0_to_1_is_an_error():
+    a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 1], [3, 1, 2])
+    result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), FanLimit=1.5)
+    assert result.state == "error"
+    assert texts(result) == ["FanLimit must be a share of the strip's area from 0 to 1, such as 0.1, not 1.5"]
 
 
 def test_a_looser_warp_tolerance_accepts_the_same_rulings():

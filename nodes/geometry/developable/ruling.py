@@ -76,10 +76,11 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, det, dot, extent, norm, unit
 from .brackets import refine_roots
+from .fans import fan_share, zigzag
 from .isolation import IntervalBounds, Pieces, interval_bounds, isolate
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
-from .warp import in_plane_tangent
+from .warp import curve_warp, in_plane_tangent, warp_angles
 
 BoolArray = NDArray[np.bool_]
 IntArray = NDArray[np.int64]
@@ -92,6 +93,8 @@ CORNER_ANGLE = 1e-7
 SIDE = 1e-11
 #: Most candidates kept per station for the selection.
 MAX_CANDIDATES = 8
+#: Most rounds of checking the torsal rulings and closing the stations that fail.
+MAX_CHECKS = 3
 
 ROOT, CORNER, FLAT_END = 0, 1, 2
 
@@ -112,11 +115,17 @@ class RulingResult:
     t: FloatArray  #: partner parameters on curve B, in [0, 1]
     starts: FloatArray  #: (n, 3) points A(s)
     ends: FloatArray  #: (n, 3) points B(t)
-    warp: FloatArray  #: warp angle per ruling, rad, in [0, π/2]
-    signed_warp: FloatArray  #: angle from N1 to N2 about the ruling, rad, in (−π, π]
-    valid: BoolArray  #: torsal within the tolerance, with consistently oriented normals
-    message: str | None  #: what went wrong and what to try, or None
+    #: warp angle per ruling, rad, in [0, π]: the angle between the end normals R × A'
+    #: and R × B', recomputed from the output (NaN where a normal is not defined)
+    warp: FloatArray
+    signed_warp: FloatArray  #: angle from N1 to N2 about the ruling, rad, in (−π, π] (or NaN)
+    valid: BoolArray  #: the recomputed warp is within the tolerance (never where it is NaN)
+    message: str | None  #: how much of the strip is closed by flat triangles, or None
     stations: BoolArray  #: True for the Segments + 1 station rulings, False for added fan rulings
+    #: True for the rulings of the flat triangles that close the strip where no torsal
+    #: ruling exists (gap stations and the rulings added there), False for torsal ones
+    fan: BoolArray
+    fan_share: float  #: share of the strip's area in those triangles, 0 to 1
 
     @property
     def max_warp(self) -> float:
@@ -601,20 +610,17 @@ class _Strip:
 
     # -- steps 2–5: candidates and the monotone choice ---------------------------------------
 
-    def choose(self) -> tuple[IntArray, _Candidates, BoolArray]:
-        """The chosen candidate per station (−1 where none), the oriented candidates, and
-        per station whether it has a root with flipped normals on a decreasing branch —
-        where the strip would be, had B run the other way."""
+    def choose(self) -> tuple[IntArray, _Candidates]:
+        """The chosen candidate per station (−1 where none) and the consistently oriented
+        candidates."""
         n = len(self.s)
         found = _find_candidates(self.curve_b, self.grid, self.a0, self.a1, self.a2)
-        flipped = np.zeros(n, dtype=bool)
-        flipped[found.row[~found.oriented & (found.slope < 0)]] = True
         good = found if found.oriented.all() else found.subset(found.oriented)
         chosen = np.full(n, -1, dtype=np.int64)
         if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
             # at most one candidate per station, in order along B: nothing to choose
             chosen[good.row] = np.arange(len(good.row))
-            return chosen, good, flipped
+            return chosen, good
         t_pad, slope_pad, index_pad = _pad(good, n)
         rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
         if len(rows):
@@ -624,7 +630,7 @@ class _Strip:
             t = good.t[chosen[rows]]
             if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
                 chosen[rows[~_longest_monotone(t)]] = -1
-        return chosen, good, flipped
+        return chosen, good
 
     # -- step 6: planar pieces ------------------------------------------------------------------
 
@@ -700,9 +706,12 @@ class _Strip:
 
     # -- step 7: stations without a torsal partner ------------------------------------------------
 
-    def fill(self, t: FloatArray) -> None:
-        """Give every station without a partner the least-warped one between its neighbours
-        (if within the tolerance) or else the arc-length interpolation between them."""
+    def near_partners(self, t: FloatArray) -> None:
+        """Give every station without a partner one whose warp is within the tolerance
+        (the strip is torsal to within it there), if it has one between its neighbours'
+        partners: the plain loft's (in arc length between those neighbours) if that is
+        within it, else the least-warped sample of B. The others stay NaN, to be closed
+        by fans."""
         gap = np.isnan(t)
         missing = np.flatnonzero(gap)
         if len(missing) == 0:
@@ -711,26 +720,84 @@ class _Strip:
         # the neighbours' partners, padded with B's ends: [window] is the one before, [window + 1] after
         padded = np.concatenate([[0.0], t[partnered], [1.0]])
         lo, hi = padded[window], padded[window + 1]
-        # the least |signed warp| among B's samples inside each station's window
+        length_a = self.station_lengths
+        padded = np.concatenate([[0.0], length_a[partnered], [self.map_a.total]])
+        a_lo, a_hi = padded[window], padded[window + 1]
+        span = a_hi - a_lo
+        fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
+        b_lo, b_hi = self.length_b(np.concatenate([lo, hi])).reshape(2, -1)
+        loft = np.minimum(np.maximum(self.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
+        points, tangents = self.curve_b.derivatives(loft, 1)
+        loft_warp = warp_angles(self.a0[missing], points, self.a1[missing], tangents)
+        # else the least angle between the end normals among B's samples in the window
         grid = self.grid
         angle = _normal_angles(self.a0[missing], self.a1[missing], grid.points, grid.tangents)
         inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
-        angle = np.where(inside, angle, np.inf)
+        angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
         best = np.argmin(angle, axis=1)
-        near = angle[np.arange(len(missing)), best] <= self.tolerance
-        # otherwise interpolate in arc length between the neighbours: the plain loft
-        if not near.all():
-            length_a = self.station_lengths
-            padded = np.concatenate([[0.0], length_a[partnered], [self.map_a.total]])
-            a_lo, a_hi = padded[window], padded[window + 1]
-            span = a_hi - a_lo
-            fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
-            b_lo, b_hi = self.length_b(np.concatenate([lo, hi])).reshape(2, -1)
-            loft = np.minimum(np.maximum(self.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
-            t[missing] = np.where(near, grid.t[best], loft)
-        else:
-            t[missing] = grid.t[best]
-        t[:] = np.maximum.accumulate(t)
+        sample_ok = angle[np.arange(len(missing)), best] <= self.tolerance
+        with np.errstate(invalid="ignore"):
+            loft_ok = loft_warp <= self.tolerance
+        t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t[best], np.nan))
+        # consecutive stations in one window may have picked samples out of order
+        known = ~np.isnan(t)
+        t[known] = np.maximum.accumulate(t[known])
+
+    def close_gaps(self, t: FloatArray) -> list[tuple[FloatArray, FloatArray]]:
+        """Close every run of stations still without a partner (NaN in ``t``) with flat
+        triangles (:mod:`.fans`), and the stretches of B beyond the first and the last
+        ruling with fans through A's ends.
+
+        Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
+        """
+        n = len(t)
+        gap = np.isnan(t)
+        added: list[tuple[FloatArray, FloatArray]] = []
+        begins = np.flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
+        finishes = np.flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+        closed = self.curve_b.closed
+        for i0, i1 in zip(begins, finishes, strict=True):  # one pass per gap (few)
+            k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
+            t_lo = float(t[i0 - 1]) if i0 > 0 else 0.0
+            t_hi = float(t[i1 + 1]) if i1 < n - 1 else (float(t[0]) if closed and i0 > 0 else 1.0)
+            if t_hi < t_lo and not closed:
+                t_hi = t_lo
+            if t_hi < t_lo:  # through the seam of a closed B
+                before, after = self.gap_parameters(t_lo, 1.0), self.gap_parameters(0.0, t_hi)[1:]
+                tb = np.concatenate([before, after])
+                lb = np.concatenate([self.length_b(before), self.length_b(after) + self._chords_b[-1]])
+            else:
+                tb = self.gap_parameters(t_lo, t_hi)
+                lb = self.length_b(tb)
+            i, j = zigzag(self.station_lengths[k0 : k1 + 1], lb)
+            station = k0 + i
+            # the first ruling from each gap station is its station ruling; the rest are added
+            first = np.ones(len(i), dtype=bool)
+            first[1:] = i[1:] != i[:-1]
+            is_gap = (station >= i0) & (station <= i1)
+            t[station[first & is_gap]] = tb[j[first & is_gap]]
+            extra = ~(first & is_gap)
+            if i0 > 0:
+                extra[0] = False  # the torsal ruling before the gap
+            if i1 < n - 1:
+                extra[-1] = False  # and after it
+            if extra.any():
+                added.append((self.s[station[extra]], tb[j[extra]]))
+        if not closed:
+            if t[0] > 0.0:
+                tb = self.gap_parameters(0.0, float(t[0]))[:-1]
+                added.append((np.zeros(len(tb)), tb))
+            if t[-1] < 1.0:
+                tb = self.gap_parameters(float(t[-1]), 1.0)[1:]
+                added.append((np.ones(len(tb)), tb))
+        return added
+
+    def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
+        """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
+        every corner of B between them."""
+        t = self.fan_parameters(t_low, t_high)
+        corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
+        return np.unique(np.concatenate([t, corners])) if len(corners) else t
 
     # -- step 6 (continued): fans through a point of A ---------------------------------------------
 
@@ -828,74 +895,66 @@ class _Strip:
 
     # -- assembly -----------------------------------------------------------------------------------
 
-    def merge_fans(self, t: FloatArray, fans: list) -> tuple[FloatArray, FloatArray, IntArray]:
-        """All rulings ordered along the strip: the stations and every fan's rulings.
+    def merge(
+        self, t: FloatArray, gap: BoolArray, fans: list, added: list[tuple[FloatArray, FloatArray]]
+    ) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
+        """All rulings ordered along the strip: the stations, every torsal fan's rulings
+        ``(s*, t_low, t_high)`` and the rulings ``added`` to close gaps.
 
-        Returns s, t and, per ruling, the station it is (−1 for a fan ruling).
+        Returns s, t, per ruling the station it is (−1 for an added ruling) and whether
+        it closes a gap (the gap stations ``gap`` and the ``added`` rulings).
         """
         n = len(self.s)
-        if not fans:
-            return self.s, t, np.arange(n)
-        s_parts, t_parts = [self.s], [t]
+        if not fans and not added:
+            return self.s, t, np.arange(n), gap.copy()
+        s_parts, t_parts, gap_parts = [self.s], [t], [gap]
         for s_star, t_low, t_high in fans:
             ts = self.fan_parameters(t_low, t_high)
             s_parts.append(np.full(len(ts), s_star))
             t_parts.append(ts)
-        s_all, t_all = np.concatenate(s_parts), np.concatenate(t_parts)
+            gap_parts.append(np.zeros(len(ts), dtype=bool))
+        for s_add, t_add in added:
+            s_parts.append(s_add)
+            t_parts.append(t_add)
+            gap_parts.append(np.ones(len(s_add), dtype=bool))
+        s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
         order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
         repeat = np.zeros(len(order), dtype=bool)
         repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
-        # of two equal rulings keep the station (a fan ruling sorts after its equal station)
+        # of two equal rulings keep the station (an added ruling sorts after its equal station)
         later_station = np.flatnonzero(repeat & (order < n))
         order[later_station - 1] = order[later_station]
         order = order[~repeat]
-        return s_all[order], t_all[order], np.where(order < n, order, -1)
+        return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
 
-    def geometry(
-        self,
-        s: FloatArray,
-        t: FloatArray,
-        source: IntArray,
-        chosen: IntArray,
-        good: _Candidates,
-        regular: BoolArray,
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """Ruling end points and edge tangents: stations reuse A's values, and B's where
-        their chosen root still stands; at a corner the tangent is the in-plane blend."""
-        k = len(s)
-        station = source >= 0
-        rows = source[station]
-        if len(rows) == k:  # no fan rulings
-            starts, ta = self.a0[rows], self.a1[rows]
-        else:
-            starts, ta = np.empty((2, k, 3))
-            starts[station], ta[station] = self.a0[rows], self.a1[rows]
-            starts[~station], ta[~station] = self.curve_a.derivatives(s[~station], 1)
-        kept = np.zeros(k, dtype=bool)
-        kept[station] = regular[rows]
-        root = chosen[source[kept]]
-        stands = good.t[root] == t[kept]
-        kept[kept], root = stands, root[stands]
-        if len(root) == k:
-            ends, tb = good.points[root], good.tangents[root]
-        else:
-            ends, tb = np.empty((2, k, 3))
-            ends[kept], tb[kept] = good.points[root], good.tangents[root]
-            ends[~kept], tb[~kept] = self.curve_b.derivatives(t[~kept], 1)
-        ruling = ends - starts
-        # at a corner the tangent may be any blend of the two one-sided ones
-        if len(self.kinks_b):
-            at_b = ~kept & np.isin(t, self.kinks_b)
-            if at_b.any():
-                left = self.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
-                tb[at_b] = in_plane_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
-        if len(self.kinks_a):
-            at_a = np.min(np.abs(s[:, None] - self.kinks_a[None, :]), axis=1) <= 1e-12
-            if at_a.any():
-                around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
-                sides = self.curve_a.derivatives(around, 1)[1]
-                ta[at_a] = in_plane_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
-        return starts, ends, ta, tb
+    def corner_retry(
+        self, signed: FloatArray, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray
+    ) -> None:
+        """Where a ruling ending at a corner has no defined warp because the tangent taken
+        there runs along it, measure it with the corner's other one-sided tangent (every
+        direction between the two touches the corner), keeping the smaller warp; rewrites
+        ``signed`` there. A warp that stays undefined stays NaN."""
+        at_a = np.isin(s, self.kinks_a) if len(self.kinks_a) else np.zeros(len(s), dtype=bool)
+        at_b = np.isin(t, self.kinks_b) if len(self.kinks_b) else np.zeros(len(t), dtype=bool)
+        retry = np.flatnonzero(np.isnan(signed) & (at_a | at_b))
+        if len(retry) == 0:
+            return
+        ta = self.curve_a.derivatives(s[retry], 1)[1]
+        tb = self.curve_b.derivatives(t[retry], 1)[1]
+        left_a = np.where(at_a[retry, None], self.curve_a.derivatives(s[retry] - SIDE, 1)[1], ta)
+        left_b = np.where(at_b[retry, None], self.curve_b.derivatives(t[retry] - SIDE, 1)[1], tb)
+        best = np.full(len(retry), np.nan)
+        for one in (ta, left_a):
+            for other in (tb, left_b):
+                w = warp_angles(starts[retry], ends[retry], one, other, signed=True)
+                better = ~np.isnan(w) & (np.isnan(best) | (np.abs(w) < np.abs(best)))
+                best = np.where(better, w, best)
+        signed[retry] = best
+
+    def geometry(self, s: FloatArray, t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Ruling end points A(s) and B(t), evaluated afresh (nothing carried over from the
+        solve, so that the check of the output measures the output)."""
+        return self.curve_a.point_at(s), self.curve_b.point_at(t)
 
 
 def ruling_developable(
@@ -943,16 +1002,16 @@ def ruling_developable(
         raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
     samples = max(int(samples), 8)
     result = _solve(curve_a, curve_b, int(segments), tolerance, spacing, samples)
-    if curve_b.closed and result.message is not None:
+    if curve_b.closed and result.fan.any():
         # B's seam may sit away from where the strip starts: restart B at A(0)'s partner
         # (or, when A is closed too, at the partner of its end, the same point)
         station = result.t[result.stations]
-        valid = result.valid[result.stations]
-        shift = station[0] if valid[0] else station[-1] if curve_a.closed and valid[-1] else None
+        torsal = (result.valid & ~result.fan)[result.stations]
+        shift = station[0] if torsal[0] else station[-1] if curve_a.closed and torsal[-1] else None
         if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
             rotated = _Rotated(curve_b, shift)
             again = _solve(curve_a, rotated, int(segments), tolerance, spacing, samples)
-            if again.valid[again.stations].sum() > valid.sum():
+            if again.fan_share < result.fan_share:
                 return replace(again, t=rotated.original(again.t))
     return result
 
@@ -964,22 +1023,52 @@ def _solve(
     strip = _Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
     n = len(strip.s)
 
-    chosen, good, flipped = strip.choose()
+    chosen, good = strip.choose()
     has = chosen >= 0
     t = np.full(n, np.nan)
     slope = np.zeros(n)
     t[has], slope[has] = good.t[chosen[has]], good.slope[chosen[has]]
     fans, planar = strip.flat_fans(t, chosen, good)
     regular = has & ~planar
-    strip.fill(t)
+    strip.near_partners(t)
     fans += strip.a_fans(t, slope, regular)
 
-    s_out, t_out, source = strip.merge_fans(t, fans)
-    starts, ends, ta, tb = strip.geometry(s_out, t_out, source, chosen, good, regular)
-    warp, signed = _warps(ends - starts, ta, tb)
-    valid = (warp <= tolerance) & (np.abs(signed) <= 0.5 * np.pi)
-    message = _message(valid, source, flipped & ~has, tolerance, n)
-    return RulingResult(s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0)
+    for _ in range(MAX_CHECKS):
+        gap = np.isnan(t)
+        closed_t = t.copy()
+        added = strip.close_gaps(closed_t)
+        kept = _outside_gaps(fans, strip.s, gap)
+        s_out, t_out, source, fan = strip.merge(closed_t, gap, kept, added)
+        starts, ends = strip.geometry(s_out, t_out)
+        # the warp of the output, from the curves' exact tangents (NaN where undefined)
+        signed = curve_warp(strip.curve_a, strip.curve_b, s_out, t_out, starts, ends, signed=True)
+        strip.corner_retry(signed, s_out, t_out, starts, ends)
+        warp = np.abs(signed)
+        with np.errstate(invalid="ignore"):
+            valid = warp <= tolerance  # NaN (no normal defined) is never valid
+        # a station ruling taken as torsal that fails the check is a gap after all
+        failed = source[(source >= 0) & ~fan & ~valid]
+        if len(failed) == 0:
+            break
+        t[failed] = np.nan
+    share = fan_share(starts, ends, fan)
+    message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share)
+    return RulingResult(s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share)
+
+
+def _outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
+    """The torsal fans ``(s*, t_low, t_high)`` whose apex is neither inside a gap's stretch
+    of A (from the torsal station before the gap to the one after it) nor a gap station."""
+    if not fans or not gap.any():
+        return fans
+    n = len(s)
+    begins = np.flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
+    finishes = np.flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+    low, high = s[np.maximum(begins - 1, 0)], s[np.minimum(finishes + 1, n - 1)]
+    through_gap = s[gap]
+    return [
+        fan for fan in fans if not (np.any((low < fan[0]) & (fan[0] < high)) or np.any(through_gap == fan[0]))
+    ]
 
 
 def _strip_triangulation(a: FloatArray, b: FloatArray) -> list[bool]:
@@ -1053,29 +1142,14 @@ def _normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray)
     return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
 
 
-def _warps(ruling: FloatArray, ta: FloatArray, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Unsigned and signed warp angles at once (as :func:`.warp.warp_angles`; the angles
-    do not depend on the lengths of the normals, so the tangents need not be unit)."""
-    n1 = cross(ruling, ta)
-    n2 = cross(ruling, tb)
-    normal_cross, normal_dot = cross(n1, n2), dot(n1, n2)
-    unsigned = np.arctan2(norm(normal_cross), np.abs(normal_dot))
-    return unsigned, np.arctan2(dot(normal_cross, ruling), norm(ruling) * normal_dot)
-
-
-def _message(valid: BoolArray, source: IntArray, flipped: BoolArray, tolerance: float, n: int) -> str | None:
-    """What went wrong, with a count, and what to try; None when every station is valid."""
-    bad = source[(source >= 0) & ~valid]
-    if len(bad) == 0:
+def _message(fan_stations: int, n: int, tolerance: float, share: float) -> str | None:
+    """How much of the strip had to be closed by flat triangles; None when none."""
+    if fan_stations == 0 and share == 0.0:
         return None
-    message = f"no ruling within {tolerance:g} rad for {len(bad)} of {n} stations: "
-    reversed_count = int(flipped[bad].sum())
-    if 2 * reversed_count >= len(bad):
-        return message + (
-            f"try reversing curve B (at {reversed_count} of them the torsal ruling runs as if B went"
-            " the other way), or swapping curves A and B"
-        )
-    message += "try swapping curves A and B"
-    if len(bad) == n:
-        message += ", or changing them: these curves bound no developable strip"
-    return message
+    area = f"{100 * share:.3g} % of the strip's area"
+    if fan_stations == 0:
+        return f"the torsal rulings do not reach the ends of curve B: closed by flat triangles ({area})"
+    return (
+        f"no torsal ruling within {tolerance:g} rad at {fan_stations} of {n} stations: "
+        f"closed by flat triangles ({area})"
+    )

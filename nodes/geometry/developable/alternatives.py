@@ -1,0 +1,50 @@
+"""Hints that work: solve the other pairings of two curves and say what they gain.
+
+When a strip needs many flat triangles (no torsal ruling over part of it), two changes
+a designer can make in a second are swapping the curves (stations then lie on the
+other one) and reversing B (when the two were drawn in opposite directions). Rather
+than guess, :func:`better_pairing` solves both and names the one that lowers the fan
+share, with the share it reaches — or returns None, and nothing is suggested.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..curve_base import Curve
+from .ruling import RulingResult, ruling_developable
+
+#: An alternative is worth naming when it lowers the fan share by at least this much.
+GAIN = 0.01
+
+
+@dataclass(frozen=True)
+class Alternative:
+    """Another way to pair the curves, and the fan share it gives."""
+
+    change: str  #: what the designer does, e.g. "swap CurveA and CurveB"
+    fan_share: float
+
+
+def alternatives(
+    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float
+) -> list[Alternative]:
+    """The fan shares of the strip with the curves swapped and with B reversed."""
+    tries: list[tuple[str, Callable[[], RulingResult]]] = [
+        ("swap CurveA and CurveB", lambda: ruling_developable(curve_b, curve_a, segments, tolerance)),
+        ("reverse CurveB", lambda: ruling_developable(curve_a, curve_b.reversed(), segments, tolerance)),
+    ]
+    return [Alternative(change, solve().fan_share) for change, solve in tries]
+
+
+def better_pairing(
+    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, result: RulingResult
+) -> str | None:
+    """A sentence naming the alternative that lowers the fan share of ``result`` most
+    (by at least :data:`GAIN`), e.g. "swap CurveA and CurveB: flat triangles fall to 0 %
+    of the area"; None when neither helps."""
+    best = min(alternatives(curve_a, curve_b, segments, tolerance), key=lambda a: a.fan_share)
+    if best.fan_share > result.fan_share - GAIN:
+        return None
+    return f"{best.change}: flat triangles fall to {100 * best.fan_share:.3g} % of the area"
