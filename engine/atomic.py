@@ -21,6 +21,7 @@ Example, from an io node::
 from __future__ import annotations
 
 import contextlib
+import errno
 import glob
 import os
 import secrets
@@ -28,6 +29,8 @@ import shutil
 import time
 from collections.abc import Callable
 from pathlib import Path
+
+from engine.bounded_read import kind_of
 
 BACKUP_SUFFIX = ".bak"
 _TEMP_MARK = ".tmp"
@@ -52,6 +55,9 @@ def replace_keeping_backup(path: Path, write: Callable[[Path], None]) -> Path:
     killed are removed first.
     """
     path = Path(path)
+    kind = kind_of(path)
+    if kind is not None:
+        raise OSError(errno.EINVAL, f"{path} is {kind}, not a regular file; it is not replaced")
     backup = backup_path(path)
     remove_stale_temporaries(path)
     remove_stale_temporaries(backup)

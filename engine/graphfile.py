@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -26,6 +27,7 @@ import msgspec
 
 from engine import __version__
 from engine.atomic import replace_keeping_backup
+from engine.bounded_read import UnreadableFileError, read_bounded
 from engine.graph import Graph, GraphError, Group, InputState, NodeRecord, PlaceholderNode, Wire
 from engine.registry import Registry
 
@@ -115,17 +117,21 @@ def _migrate_0_to_1(data: dict[str, Any]) -> dict[str, Any]:
 MIGRATIONS: dict[int, Callable[[dict[str, Any]], dict[str, Any]]] = {0: _migrate_0_to_1}
 
 
+def _newer_message(version: int) -> str:
+    return (
+        f"this file was written by a newer Torsal (file format version {version}); "
+        f"this Torsal {__version__} reads up to version {VERSION}. Update Torsal to open "
+        "it; the file has not been changed."
+    )
+
+
 def migrate(data: dict[str, Any]) -> dict[str, Any]:
     """Bring ``data`` up to :data:`VERSION` one step at a time."""
     version = data.get("version")
     if isinstance(version, bool) or not isinstance(version, int):
         raise GraphFileError("the file has no valid 'version' number")
     if version > VERSION:
-        raise NewerVersionError(
-            f"this file was written by a newer Torsal (file format version {version}); "
-            f"this Torsal {__version__} reads up to version {VERSION}. Update Torsal to open "
-            "it; the file has not been changed."
-        )
+        raise NewerVersionError(_newer_message(version))
     while version < VERSION:
         step = MIGRATIONS.get(version)
         if step is None:
@@ -138,16 +144,19 @@ def migrate(data: dict[str, Any]) -> dict[str, Any]:
 # --------------------------------------------------------------------------- reading
 
 def read_graph(path: str | os.PathLike[str], registry: Registry) -> Graph:
-    """Open a ``.graph`` file; raises :class:`GraphFileError` with the reason."""
-    path = Path(path)
+    """Open a ``.graph`` file; raises :class:`GraphFileError` with the reason.
+
+    Only a regular file of at most 64 MB is read (see :mod:`engine.bounded_read`).
+    """
+    return loads(read_file(path), registry)
+
+
+def read_file(path: str | os.PathLike[str]) -> bytes:
+    """The bytes of a graph file: a regular file of at most :data:`MAX_FILE_BYTES`."""
     try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise GraphFileError(f"{path.name} is {size // 2**20} MB; a graph file is at most 64 MB")
-        content = path.read_bytes()
-    except OSError as exc:
-        raise GraphFileError(f"cannot read {path}: {exc.strerror or exc}") from None
-    return loads(content, registry)
+        return read_bounded(path, MAX_FILE_BYTES, "a graph file")
+    except UnreadableFileError as exc:
+        raise GraphFileError(str(exc)) from None
 
 
 def loads(content: bytes | str, registry: Registry) -> Graph:
@@ -161,13 +170,60 @@ def loads(content: bytes | str, registry: Registry) -> Graph:
     return _build(data, registry)
 
 
+class _Header(msgspec.Struct):
+    """The two top-level fields read before anything else; every other field is skipped."""
+
+    format: Any = None
+    version: Any = None
+
+
+_HEADER = msgspec.json.Decoder(_Header)
+
+
+# Numbers with a fraction or exponent go through ``float``, which takes about the same time
+# for any of them; msgspec's own parser needs ~2 µs a byte for ones like 1e308. A number
+# too large for a float becomes infinity there: :func:`_check_tree` refuses it.
+_DOCUMENT = msgspec.json.Decoder(float_hook=float)
+
+
+def _newer_version(header: _Header) -> int | None:
+    """The header's version if it is newer than this Torsal reads."""
+    version = header.version
+    if isinstance(version, int) and not isinstance(version, bool) and version > VERSION:
+        return version
+    return None
+
+
+def check_header(content: bytes) -> None:
+    """Refuse, before the whole file is parsed, a document that is not a Torsal graph or
+    was written by a newer Torsal. Reading the two fields skips the rest of the file
+    without building it (16 MB in about 20 ms), wherever in the top-level object they
+    are. Content that is not even JSON passes: the full parse says what is wrong."""
+    try:
+        header = _HEADER.decode(content)
+    except msgspec.ValidationError:  # the top level is not an object
+        raise GraphFileError(_NOT_A_GRAPH) from None
+    except (msgspec.DecodeError, RecursionError):
+        return
+    if header.format != FORMAT:
+        raise GraphFileError(_NOT_A_GRAPH)
+    newer = _newer_version(header)
+    if newer is not None:
+        raise NewerVersionError(_newer_message(newer))
+
+
+_NOT_A_GRAPH = "this is not a Torsal graph file (it lacks \"format\": \"torsal.graph\")"
+
+
 def parse(content: bytes | str) -> dict[str, Any]:
-    """Decode JSON and check it claims to be a Torsal graph."""
+    """Decode JSON and check it claims to be a Torsal graph (that claim, and the format
+    version, are checked first: see :func:`check_header`)."""
     if isinstance(content, str):
         content = content.encode("utf-8", "surrogatepass")
     content = content.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte-order mark some editors add
+    check_header(content)
     try:
-        data = msgspec.json.decode(content)
+        data = _DOCUMENT.decode(content)
     except msgspec.ValidationError as exc:  # a subclass of DecodeError: catch it first
         raise GraphFileError(f"the file holds a number Torsal cannot read ({exc})") from None
     except msgspec.DecodeError as exc:
@@ -176,37 +232,72 @@ def parse(content: bytes | str) -> dict[str, Any]:
         raise GraphFileError("the file is not UTF-8 text") from None
     except RecursionError:
         raise GraphFileError("the file is nested too deeply to be a graph") from None
-    if nesting_depth(data) > MAX_DEPTH:
-        raise GraphFileError(f"the file is nested more than {MAX_DEPTH} levels deep; a graph never is")
+    _check_tree(data)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise GraphFileError("this is not a Torsal graph file (it lacks \"format\": \"torsal.graph\")")
+        raise GraphFileError(_NOT_A_GRAPH)
     return data
 
 
+_CONTAINERS = (list, dict)
+_TOO_LARGE = "the file holds a number Torsal cannot read (a number too large for a float)"
+
+
+def _levels(data: Any, refuse_infinity: bool = False) -> Iterator[int]:
+    """Walk the lists and objects in ``data`` level by level; yields each level's depth.
+
+    Each container is searched at C speed (``set(map(type, ...))``), so a list of a
+    million numbers costs little more than the numbers' types. With ``refuse_infinity``
+    a float that is infinite (a JSON number too large for a float) raises
+    :class:`GraphFileError`.
+    """
+    level = [data] if type(data) in _CONTAINERS else []
+    depth = 0
+    while level:
+        depth += 1
+        yield depth
+        below = []
+        for value in level:
+            children = value.values() if type(value) is dict else value
+            kinds = set(map(type, children))
+            if refuse_infinity and float in kinds and (math.inf in children or -math.inf in children):
+                raise GraphFileError(_TOO_LARGE)
+            if list in kinds or dict in kinds:
+                below.extend(child for child in children if type(child) in _CONTAINERS)
+        level = below
+
+
 def nesting_depth(data: Any) -> int:
-    """How deeply lists and objects nest in ``data`` (counted with a loop, not recursion)."""
+    """How deeply lists and objects nest in ``data`` (counted level by level, not by
+    recursion, and only to one level past :data:`MAX_DEPTH`)."""
     deepest = 0
-    stack = [(data, 1)]
-    while stack:
-        value, depth = stack.pop()
-        if isinstance(value, dict):
-            children = value.values()
-        elif isinstance(value, list):
-            children = value
-        else:
-            continue
-        deepest = max(deepest, depth)
+    for deepest in _levels(data):
         if deepest > MAX_DEPTH:
             break
-        stack.extend((child, depth + 1) for child in children)
     return deepest
+
+
+def _check_tree(data: Any) -> None:
+    """Refuse decoded JSON nested deeper than :data:`MAX_DEPTH`, or holding a number too
+    large for a float (decoded as infinity)."""
+    for depth in _levels(data, refuse_infinity=True):
+        if depth > MAX_DEPTH:
+            raise GraphFileError(f"the file is nested more than {MAX_DEPTH} levels deep; a graph never is")
+
+
+def copy_data(value: Any) -> Any:
+    """A deep copy of JSON data, at C speed (through msgpack, which keeps every float's
+    bits); :func:`copy.deepcopy` for anything msgpack cannot hold (integers over 64 bits)."""
+    try:
+        return msgspec.msgpack.decode(msgspec.msgpack.encode(value))
+    except (TypeError, OverflowError, msgspec.MsgspecError):
+        return copy.deepcopy(value)
 
 
 def _build(data: dict[str, Any], registry: Registry) -> Graph:
     graph = Graph()
     graph.raw = data
     graph.units = data.get("units", "m")
-    graph.meta = copy.deepcopy(data.get("meta", {}))
+    graph.meta = copy_data(data.get("meta", {}))
     try:
         for raw in data["nodes"]:
             graph.add_record(_record(raw, registry))
@@ -230,7 +321,7 @@ def _build(data: dict[str, Any], registry: Registry) -> Graph:
 
 
 def _record(raw: dict[str, Any], registry: Registry) -> NodeRecord:
-    settings = copy.deepcopy(raw.get("settings", {}))
+    settings = copy_data(raw.get("settings", {}))
     cls = registry.get(raw["type"])
     try:
         node = cls(settings) if cls is not None else PlaceholderNode(raw["type"], settings)
@@ -239,7 +330,7 @@ def _record(raw: dict[str, Any], registry: Registry) -> NodeRecord:
     inputs = {}
     for name, entry in raw.get("inputs", {}).items():
         inputs[name] = InputState(
-            value=copy.deepcopy(entry.get("value")),
+            value=copy_data(entry.get("value")),
             has_value="value" in entry,
             modifiers=list(entry.get("modifiers", [])),
             raw=entry,
@@ -262,7 +353,7 @@ def _record(raw: dict[str, Any], registry: Registry) -> NodeRecord:
 
 def to_data(graph: Graph) -> dict[str, Any]:
     """The graph as JSON data, keeping every field it was read with."""
-    data = copy.deepcopy(graph.raw)
+    data = copy_data(graph.raw)
     data.update(format=FORMAT, version=VERSION)
     data["nodes"] = [node_data(graph.nodes[node_id]) for node_id in graph.nodes]
     data["wires"] = [wire_data(w) for w in graph.wires]
@@ -391,12 +482,12 @@ def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
 
 def _refuse_if_newer(path: Path) -> None:
     try:
-        data = msgspec.json.decode(path.read_bytes())
-    except (OSError, msgspec.DecodeError, msgspec.ValidationError, RecursionError):
-        return
-    version = data.get("version") if isinstance(data, dict) else None
-    if isinstance(version, int) and not isinstance(version, bool) and version > VERSION:
+        header = _HEADER.decode(read_file(path).removeprefix(b"\xef\xbb\xbf"))
+    except (GraphFileError, msgspec.DecodeError, RecursionError):
+        return  # unreadable, or not a graph: replacing it is fine (it is kept as .bak)
+    newer = _newer_version(header)
+    if newer is not None:
         raise NewerVersionError(
-            f"{path.name} was written by a newer Torsal (format version {version}); "
+            f"{path.name} was written by a newer Torsal (format version {newer}); "
             "it is not overwritten. Save under another name."
         )
