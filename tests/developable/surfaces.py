@@ -345,3 +345,55 @@ def cone_sections_pair() -> Pair:
 
 PAIRS["cylinder_sections"] = cylinder_sections_pair
 PAIRS["cone_sections"] = cone_sections_pair
+
+
+# -- a pair with a stretch that admits no developable -----------------------------------------
+#
+# Curve A is the low cut of the cylinder pair above, except that over s in [0.4, 0.6] it is
+# the straight chord between A(0.4) and A(0.6) (blended in smoothly over [0.3, 0.4] and
+# [0.6, 0.7]). From a straight piece of A a torsal ruling can only reach a point of B where
+# B's angle about that line is stationary; B winds round the chord monotonically, so the
+# chord's stations have no torsal partner at all.
+
+CHORD = (0.4, 0.6)
+BLEND = 0.1
+
+
+def _smoothstep(x: Array) -> tuple[Array, Array, Array]:
+    """The quintic ramp 0 → 1 on [0, 1] (C² at both ends) and its first two derivatives."""
+    x = np.clip(x, 0.0, 1.0)
+    return (
+        x**3 * (10 - 15 * x + 6 * x * x),
+        30 * x * x * (1 - x) ** 2,
+        60 * x * (1 - x) * (1 - 2 * x),
+    )
+
+
+def chorded_pair() -> tuple[ParametricCurve, ParametricCurve]:
+    """A (the low cylinder cut with a straight chord in its middle) and B (the high cut)."""
+    section = cylinder_sections_pair().a
+    b = cylinder_sections_pair().b
+    (s0, s1), w = CHORD, BLEND
+    p0, p1 = section.point_at(np.array([s0, s1]))
+
+    def parts(x):
+        x = np.asarray(x, float)
+        c, c1, c2 = section.derivatives(x, 2)
+        chord = p0 + ((x - s0) / (s1 - s0))[:, None] * (p1 - p0)
+        chord1 = np.broadcast_to((p1 - p0) / (s1 - s0), c.shape)
+        up, up1, up2 = _smoothstep((x - (s0 - w)) / w)
+        down, down1, down2 = _smoothstep(((s1 + w) - x) / w)
+        weight = up * down
+        weight1 = (up1 * down - up * down1) / w
+        weight2 = (up2 * down - 2 * up1 * down1 + up * down2) / (w * w)
+        gap, gap1, gap2 = chord - c, chord1 - c1, -c2
+        return (
+            c + weight[:, None] * gap,
+            c1 + weight1[:, None] * gap + weight[:, None] * gap1,
+            c2 + weight2[:, None] * gap + 2 * weight1[:, None] * gap1 + weight[:, None] * gap2,
+        )
+
+    a = ParametricCurve(
+        lambda x: parts(x)[0], (0.0, 1.0), derivatives=(lambda x: parts(x)[1], lambda x: parts(x)[2])
+    )
+    return a, b
