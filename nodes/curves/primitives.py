@@ -26,7 +26,9 @@ class Line(Node):
     """A straight line from Start to End, the simplest curve.
 
     Its parameter t runs from 0 at Start to 1 at End in proportion to the distance
-    travelled. Start = (0, 0, 0) and End = (3, 4, 0) give a line 5 long.
+    travelled. Start = (0, 0, 0) and End = (3, 4, 0) give a line 5 long. Equal Start
+    and End give a zero-length line, with a warning (the nodes it feeds say that their
+    curve has zero length).
     """
 
     type_id = "curves.Line"
@@ -39,7 +41,8 @@ class Line(Node):
     def solve(self, start: Any, end: Any) -> kernel.Line:
         a, b = xyz("Start", start), xyz("End", end)
         if np.array_equal(a, b):
-            raise NodeWarning("Start and End are the same point, so the line would have no length")
+            # hand on the zero-length line, so the nodes downstream can say what is wrong
+            self.warn("Start and End are the same point, so the line has zero length")
         return kernel.Line(a, b)
 
 
@@ -49,6 +52,7 @@ class Polyline(Node):
     With Closed on, a last segment returns from the last vertex to the first (unless
     the last vertex already repeats the first). The parameter t is the fraction of
     the length travelled, so evaluating at evenly spaced t gives evenly spaced points.
+    Vertices that are all one point give a zero-length line there, with a warning.
     """
 
     type_id = "curves.Polyline"
@@ -59,12 +63,13 @@ class Polyline(Node):
     )
     outputs = (Out("Polyline", CURVE, "Pl", "The polyline through the vertices."),)
 
-    def solve(self, vertices: list[Any], closed: bool) -> kernel.Polyline:
+    def solve(self, vertices: list[Any], closed: bool) -> kernel.Polyline | kernel.Line:
         points = point_list("Vertices", vertices)
         if len(points) < 2:
             raise NodeWarning(f"A polyline needs at least 2 vertices; got {len(points)}")
         if np.all(points == points[0]):
-            raise NodeWarning("All the vertices are the same point, so the polyline would have no length")
+            self.warn("All the vertices are the same point, so the polyline has zero length")
+            return kernel.Line(points[0], points[0])
         return kernel.Polyline(points, closed=bool(closed))
 
 

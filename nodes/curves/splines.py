@@ -64,7 +64,9 @@ class Interpolate(Node):
     with a warning: 2 vertices give a straight line, 3 a parabola.
 
     Two vertices in a row at the same place are refused, since no curve can pass
-    through one point twice in a row.
+    through one point twice in a row. When all the vertices are one point the node
+    warns and hands on a zero-length curve there, so the nodes it feeds say that their
+    curve has zero length.
     """
 
     type_id = "curves.Interpolate"
@@ -84,13 +86,17 @@ class Interpolate(Node):
 
     def solve(
         self, vertices: list[Any], degree: Any, closed: bool, start: Any, end: Any
-    ) -> kernel.InterpolatedCurve:
+    ) -> kernel.InterpolatedCurve | kernel.Line:
         points = point_list("Vertices", vertices)
         k = _degree(degree)
         start_tangent, end_tangent = _tangent("StartTangent", start), _tangent("EndTangent", end)
         tangents = start_tangent is not None or end_tangent is not None
         if closed and tangents:
             raise NodeWarning("A closed curve has no ends: leave StartTangent and EndTangent at zero")
+        if len(points) > 1 and np.all(points == points[0]):
+            # hand on a zero-length curve at that point, so the nodes downstream can say so
+            self.warn("All the vertices are the same point, so the curve has zero length")
+            return kernel.Line(points[0], points[0])
         _no_repeats(points)
         if closed:
             unique = points[:-1] if len(points) > 1 and np.array_equal(points[0], points[-1]) else points

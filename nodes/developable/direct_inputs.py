@@ -13,6 +13,7 @@ import numpy as np
 from engine.node import NodeWarning
 from engine.types import describe
 from nodes.curves.convert import given, number
+from nodes.developable.input_checks import has_no_length
 from nodes.geometry.curve_base import Curve
 
 #: The most rulings one call builds (a guard against a typo such as 1e6 segments).
@@ -23,11 +24,12 @@ COINCIDENT = 1e-12
 
 
 def curve(value: Any, name: str = "Curve") -> Curve:
-    """A curve with a length, or a warning naming what arrived instead."""
+    """A curve with a length, or a warning naming what arrived instead (a zero-length
+    curve is named as one, not as empty)."""
     given(name, value)
     if not isinstance(value, Curve):
         raise NodeWarning(f"{name} {describe(value)} is not a curve")
-    if not value.length > 0:
+    if has_no_length(value):
         raise NodeWarning(f"{name} has zero length, so no rulings can be spaced along it")
     return value
 

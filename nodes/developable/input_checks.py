@@ -19,25 +19,37 @@ from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 
 #: Where a curve is sampled to see that it is not a single point.
-_SAMPLES = np.linspace(0.0, 1.0, 9)
+_SAMPLES = np.linspace(0.0, 1.0, 65)
+
+#: Samples spread less than this share of the curve's distance from the origin are one
+#: point (rounding: the curve's length, measured by quadrature, is then noise).
+_ROUNDING = 1e-14
 
 #: The most rulings one call builds (a guard against a typo such as 1e6 segments).
 MAX_SEGMENTS = 100_000
 
 
+def has_no_length(curve: Curve) -> bool:
+    """Whether ``curve`` is a single point: its ends and samples all coincide (to
+    rounding), or its length is not a positive number. A zero-length line, a spline or
+    NURBS curve through one point, an expression curve that does not move."""
+    start, end = curve.end_points
+    points = curve.point_at(_SAMPLES)
+    if not np.isfinite(points).all():
+        return not curve.length > 0
+    spread = float(np.ptp(points, axis=0).max())
+    scale = float(np.abs(points).max())
+    # a point has no size to be relative to: rounding is relative to its coordinates
+    return not (np.abs(end - start).max() > _ROUNDING * scale or spread > _ROUNDING * scale)
+
+
 def curve_input(name: str, value: Any) -> Curve:
-    """A curve with a length (two distinct sample points settle it without measuring it)."""
+    """A curve with a length; a zero-length one says so (naming the input), not that it is empty."""
     if value is None:
         raise NodeError(f"{name} is empty: connect a curve")
     if not isinstance(value, Curve):
         raise NodeError(f"{name} {describe(value)} is not a curve")
-    start, end = value.end_points
-    if np.abs(end - start).max() > 0:  # ends apart (NaN, as no spread, falls through to the checks)
-        return value
-    points = value.point_at(_SAMPLES)
-    if np.ptp(points, axis=0).max() > 0:
-        return value
-    if not value.length > 0:
+    if has_no_length(value):
         raise NodeError(f"{name} has zero length, so no rulings can be spaced along it")
     return value
 

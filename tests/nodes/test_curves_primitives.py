@@ -23,11 +23,13 @@ def test_line_from_3_4_0_is_5_long():
     assert np.array_equal(line.point_at(0.5), [1.5, 2.0, 0.0])
 
 
-def test_line_with_equal_ends_warns_and_gives_nothing():
+def test_line_with_equal_ends_warns_and_gives_a_zero_length_line():
     result = run(Line(), Start=Point(1, 2, 3), End=Point(1, 2, 3))
     assert result.state == "warning"
-    assert texts(result) == ["Start and End are the same point, so the line would have no length"]
-    assert out(result) == {(0,): [None]}
+    assert texts(result) == ["Start and End are the same point, so the line has zero length"]
+    (line,) = out(result)[(0,)]
+    assert line.length == 0.0
+    assert np.array_equal(line.point_at(0.5), [1.0, 2.0, 3.0])
 
 
 def test_line_needs_both_ends():
