@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import shapely
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, TEXT
@@ -45,19 +44,10 @@ def development_surface(development: Development) -> RuledSurface:
 
 
 def overlaps(development: Development) -> bool:
-    """Whether the development covers part of the plane twice (it cannot be cut from one sheet).
-
-    The outline is tested for self-intersection after merging vertices that coincide
-    (to 1e-9 of its size): the rulings of a cone all end at its apex, which the outline
-    visits once per ruling without crossing itself.
-    """
-    ring = development.outline
-    size = float(np.ptp(ring, axis=0).max()) or 1.0
-    keep = np.r_[True, np.linalg.norm(np.diff(ring, axis=0), axis=1) > 1e-9 * size]
-    ring = ring[keep]
-    if len(ring) > 1 and np.linalg.norm(ring[-1] - ring[0]) <= 1e-9 * size:
-        ring = ring[:-1]
-    return len(ring) >= 3 and not shapely.LinearRing(ring).is_simple
+    """Whether the development covers part of the plane twice (it cannot be cut from one
+    sheet): its outline crosses or touches itself, vertices that coincide to rounding (a
+    cone's apex, visited once per ruling) counted once (:attr:`Development.overlaps`)."""
+    return development.overlaps
 
 
 def area_text(development: Development) -> str:

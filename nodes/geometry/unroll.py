@@ -59,10 +59,10 @@ EDGE_COLLAPSED = 1e-9
 #: located on the 3D triangles (a point on a shared edge is on both triangles).
 TIE = 1e-9
 
-#: Consecutive ruling ends closer than this share of the strip's size are one point (a
-#: fan's apex, sampled once per ruling): they get one image in the plane, so the outline
-#: visits the apex's image, not a cluster of points a rounding error apart that cross.
-REPEATED = 1e-12
+#: Consecutive outline points closer than this share of the development's size are one
+#: vertex (a fan's apex, unrolled once per ruling: its images differ by rounding only, and
+#: kept apart they would zigzag across each other).
+REPEATED = 1e-9
 
 #: Gauss–Legendre points per direction for the area of a bilinear quad.
 QUAD_ORDER = 8
@@ -648,8 +648,10 @@ class Development:
 
     @property
     def outline(self) -> FloatArray:
-        """The boundary polygon ``(2n, 2)``: the starts forwards, then the ends backwards."""
-        return np.vstack([self.starts2d, self.ends2d[::-1]])
+        """The boundary polygon ``(m, 2)``: the starts forwards, then the ends backwards
+        (m ≤ 2n: a run of points within :data:`REPEATED` of the size of each other, as at
+        a fan's apex, is one vertex, so a simple development has a valid outline)."""
+        return _merge_repeats(np.vstack([self.starts2d, self.ends2d[::-1]]))
 
     @property
     def bounds(self) -> FloatArray:
@@ -684,25 +686,21 @@ class Development:
         )
 
 
+def _merge_repeats(ring: FloatArray) -> FloatArray:
+    """The closed polygon without the points within :data:`REPEATED` of its size of the
+    point before them (nor a last point that repeats the first)."""
+    size = float(np.ptp(ring, axis=0).max()) or 1.0
+    keep = np.r_[True, np.linalg.norm(np.diff(ring, axis=0), axis=1) > REPEATED * size]
+    merged = ring[keep]
+    if len(merged) > 1 and np.linalg.norm(merged[-1] - merged[0]) <= REPEATED * size:
+        merged = merged[:-1]
+    return merged
+
+
 def _is_simple(outline: FloatArray) -> bool:
     """Whether the closed polygon does not cross or touch itself. A point repeated in a
     row, to rounding (a cone's apex, the end of every ruling of its fan), is one vertex."""
-    size = float(np.ptp(outline, axis=0).max()) or 1.0
-    step = np.linalg.norm(outline[1:] - outline[:-1], axis=1)
-    return bool(shapely.LinearRing(outline[np.concatenate([[True], step > 1e-9 * size])]).is_simple)
-
-
-def _one_image_per_point(points3d: FloatArray, points2d: FloatArray, tolerance: float) -> FloatArray:
-    """``points2d`` with every run of coinciding consecutive 3D points (within
-    ``tolerance``) drawn at one point: the mean of the run's images (which differ by the
-    recurrence's rounding only)."""
-    repeat = np.r_[False, np.linalg.norm(np.diff(points3d, axis=0), axis=1) <= tolerance]
-    if not repeat.any():
-        return points2d
-    run = np.cumsum(~repeat) - 1
-    count = np.bincount(run)
-    mean = np.column_stack([np.bincount(run, points2d[:, k]) / count for k in range(points2d.shape[1])])
-    return mean[run]
+    return bool(shapely.LinearRing(_merge_repeats(outline)).is_simple)
 
 
 def _place(x2: NDArray, y2: NDArray, along: FloatArray, height: FloatArray) -> NDArray:
@@ -770,15 +768,15 @@ def unroll_rulings(
     rot /= np.abs(rot)
     shift = np.concatenate([[0j], np.cumsum(rot[:-1] * next_a)])
     za, zb = shift, shift + rot * 1j * length
-    diameter = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
-    starts2d = _one_image_per_point(a, np.column_stack([za.real, za.imag]), REPEATED * diameter)
-    ends2d = _one_image_per_point(b, np.column_stack([zb.real, zb.imag]), REPEATED * diameter)
+    starts2d = np.column_stack([za.real, za.imag])
+    ends2d = np.column_stack([zb.real, zb.imag])
 
     vertices2d, vertices3d = np.vstack([starts2d, ends2d]), np.vstack([a, b])
     tmap = DevelopmentMap(vertices2d, vertices3d, first)
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]
     edges2d = np.linalg.norm(t2 - np.roll(t2, -1, axis=1), axis=2)
     edges3d = np.linalg.norm(t3 - np.roll(t3, -1, axis=1), axis=2)
+    diameter = float(np.linalg.norm(np.ptp(vertices3d, axis=0)))
     scale = np.where(edges3d > EDGE_COLLAPSED * diameter, edges3d, diameter)
     edge_error = float(np.max(np.abs(edges2d - edges3d) / scale))
 

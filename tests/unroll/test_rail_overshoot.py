@@ -24,7 +24,7 @@ def test_rail_through_unevenly_spaced_points_on_a_line_stays_on_it_and_never_dou
     x = np.array([0.0, 0.1, 0.2, 5.0, 10.0, 10.5, 17.0])
     a = np.column_stack([x, 0 * x, 0 * x])
     rail = loft(a, a + np.array([0.0, 1.0, 0.0])).curve_a.point_at(U)
-    assert np.abs(rail[:, 1:]).max() == 0.0
+    assert np.abs(rail[:, 1:]).max() < 1e-15 * 17
     assert np.diff(rail[:, 0]).min() >= 0.0
     assert rail[:, 0].min() == 0.0 and rail[:, 0].max() == 17.0
 
