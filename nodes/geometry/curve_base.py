@@ -69,6 +69,22 @@ class Curve(ABC):
         respect to that normalised parameter.
         """
 
+    @property
+    def anchor(self) -> FloatArray:
+        """A point near the curve that :meth:`local_derivatives` measures positions from
+        (the world origin unless the curve keeps its coefficients relative to one)."""
+        return np.zeros(3)
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        """:meth:`derivatives` with the points relative to :attr:`anchor`.
+
+        Where positions are subtracted (a ruling ``B − A``, a chord), the local points of
+        a curve that keeps an anchor carry rounding relative to its size, not to its
+        distance from the origin."""
+        result = self.derivatives(t, order)
+        result[0] = result[0] - self.anchor
+        return result
+
     def point_at(self, t: ArrayLike) -> FloatArray:
         """Points at parameters ``t``: ``(n, 3)`` for an array, ``(3,)`` for a scalar."""
         scalar = np.ndim(t) == 0

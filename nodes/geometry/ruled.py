@@ -33,7 +33,7 @@ from .curve_base import Curve
 from .curves.line import Line
 from .rail_tangents import without_overshoot
 from .surface_base import Surface, broadcast_uv
-from .vec_ops import extent
+from .vec_ops import anchor, extent
 
 FloatArray = NDArray[np.float64]
 
@@ -73,37 +73,61 @@ class _Interpolant:
     """The interpolating spline through the rows of ``points`` at ``params``, solved on
     first use (one spline for any number of columns: both rails of a loft share one).
     Cubic, with its tangents limited where unevenly spaced points would make it
-    overshoot (:mod:`.rail_tangents`); ``degree=1``: the polyline through the points."""
+    overshoot (:mod:`.rail_tangents`); ``degree=1``: the polyline through the points.
+
+    The spline is solved and evaluated on the points relative to :attr:`anchor` (the
+    centre of their box, the same for every group of three columns), so derivatives and
+    the differences of the two rails round relative to the rails' size, not to their
+    distance from the origin (site coordinates)."""
 
     def __init__(self, params: FloatArray, points: FloatArray, closed: bool, degree: int = 3) -> None:
         self.params, self.points, self.closed, self.degree = params, points, closed, degree
+        columns = points.shape[1]
+        centre = anchor(points.reshape(-1, 3)) if columns % 3 == 0 else anchor(points)
+        self.anchor: FloatArray = np.tile(centre, columns // len(centre))
+        self._local: BSpline | None = None
         self._spline: BSpline | None = None
 
-    def solve(self) -> BSpline:
-        """The spline (solved on the first call)."""
-        if self._spline is None:
+    def solve_local(self) -> BSpline:
+        """The spline through the points relative to :attr:`anchor` (solved on the first call)."""
+        if self._local is None:
+            local = self.points - self.anchor
             uniform = np.array_equal(self.params, _uniform(len(self.params)))
             if self.degree == 1:
-                spline = make_interp_spline(self.params, self.points, k=1)
+                spline = make_interp_spline(self.params, local, k=1)
             elif self.closed and uniform:
-                spline = _periodic_uniform_spline(self.points)
+                spline = _periodic_uniform_spline(local)
             elif self.closed:
-                spline = make_interp_spline(self.params, self.points, k=3, bc_type="periodic")
+                spline = make_interp_spline(self.params, local, k=3, bc_type="periodic")
             else:
-                spline = make_interp_spline(self.params, self.points, k=min(3, len(self.params) - 1))
-            spline = without_overshoot(spline, self.params, self.points, self.closed) or spline
+                spline = make_interp_spline(self.params, local, k=min(3, len(self.params) - 1))
+            spline = without_overshoot(spline, self.params, local, self.closed) or spline
             spline.extrapolate = "periodic" if self.closed else True
-            self._spline = spline
+            self._local = spline
+        return self._local
+
+    def solve(self) -> BSpline:
+        """The spline in world coordinates (for export; evaluation uses :meth:`solve_local`)."""
+        if self._spline is None:
+            local = self.solve_local()
+            self._spline = BSpline(local.t, local.c + self.anchor, local.k, extrapolate=local.extrapolate)
         return self._spline
 
-    def derivatives(self, t: FloatArray, order: int) -> list[FloatArray]:
-        """Values and derivatives up to ``order`` at ``t``, each ``(len(t), columns)``."""
-        spline = self.solve()
+    def local_derivatives(self, t: FloatArray, order: int) -> list[FloatArray]:
+        """Values relative to :attr:`anchor` and derivatives up to ``order`` at ``t``,
+        each ``(len(t), columns)``."""
+        spline = self.solve_local()
         columns = self.points.shape[1]
         return [
             np.asarray(spline(t, nu=k), dtype=float) if k <= spline.k else np.zeros((len(t), columns))
             for k in range(order + 1)
         ]
+
+    def derivatives(self, t: FloatArray, order: int) -> list[FloatArray]:
+        """Values and derivatives up to ``order`` at ``t``, each ``(len(t), columns)``."""
+        result = self.local_derivatives(t, order)
+        result[0] = result[0] + self.anchor
+        return result
 
 
 class SplineRail(Curve):
@@ -125,7 +149,7 @@ class SplineRail(Curve):
         self.params, self.points = t, pts
         self._source = _Interpolant(t, pts, self.closed)
         self._columns = slice(0, 3)
-        self._source.solve()  # now: a bad parameter sequence fails here, not later
+        self._source.solve_local()  # now: a bad parameter sequence fails here, not later
 
     @classmethod
     def _pair(
@@ -159,8 +183,18 @@ class SplineRail(Curve):
             raise ValueError("rail derivatives are available to order 3")
         return [d[:, self._columns] for d in self._source.derivatives(t, order)]
 
+    @property
+    def anchor(self) -> FloatArray:
+        return self._source.anchor[self._columns]
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        if order > 3:
+            raise ValueError("rail derivatives are available to order 3")
+        return [d[:, self._columns] for d in self._source.local_derivatives(t, order)]
+
     def _breakpoints(self) -> FloatArray:
-        return np.unique(np.clip(self._source.solve().t, 0.0, 1.0))
+        return np.unique(np.clip(self._source.solve_local().t, 0.0, 1.0))
 
 
 #: Below this ratio |c1| / |c0| the area element along a ruling is nearly constant (an
@@ -312,11 +346,33 @@ class RuledSurface(Surface):
         return "v"
 
     def _rails(self, u: FloatArray, order: int) -> tuple[list[FloatArray], list[FloatArray]]:
-        """Derivatives of rail A and of rail B at ``u`` (one evaluation for a loft's pair)."""
+        """Derivatives of rail A and of rail B at ``u`` (one evaluation for a loft's pair),
+        the points of each relative to rail A's anchor (see :meth:`_rail_anchors`)."""
+        offset = self._rail_anchors[1]
         if self._both is not None:
-            both = self._both.derivatives(u, order)
+            both = self._both.local_derivatives(u, order)
             return [d[:, :3] for d in both], [d[:, 3:] for d in both]
-        return self.curve_a.derivatives(u, order), self.curve_b.derivatives(u, order)
+        da = self.curve_a.local_derivatives(u, order)
+        db = self.curve_b.local_derivatives(u, order)
+        db[0] = db[0] + offset
+        return da, db
+
+    @property
+    def _rail_anchors(self) -> tuple[FloatArray, FloatArray]:
+        """Rail A's anchor (the origin of :meth:`_rails`' points) and rail B's relative to it.
+
+        Rulings B − A and area elements are computed from points relative to the rails'
+        anchors, so they round relative to the surface's size wherever it sits."""
+        anchors = self.__dict__.get("_anchors")
+        if anchors is None:
+            if self._both is not None:
+                origin = self._both.anchor[:3]
+                anchors = (origin, np.zeros(3))
+            else:
+                origin = np.asarray(self.curve_a.anchor, dtype=float)
+                anchors = (origin, np.asarray(self.curve_b.anchor, dtype=float) - origin)
+            self._anchors = anchors
+        return anchors
 
     def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
         self._check_order(order)
@@ -324,7 +380,7 @@ class RuledSurface(Surface):
         da, db = self._rails(s, order)
         w = t[:, None]
         span = db[0] - da[0]
-        out = [da[0] + w * span]
+        out = [self._rail_anchors[0] + (da[0] + w * span)]
         if order >= 1:
             out += [da[1] + w * (db[1] - da[1]), span]
         if order == 2:
@@ -392,7 +448,7 @@ class RuledSurface(Surface):
             moment += fine_moment[~done].sum(axis=0)
         if area <= 0.0:
             return super().area_and_centroid(rtol)
-        return area, moment / area
+        return area, self._rail_anchors[0] + moment / area
 
     def _gauss_spans(self, lows: FloatArray, highs: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:
         """Area and first moment ∫∫ S |Su × Sv| on each u span [lows, highs] (exact in v,

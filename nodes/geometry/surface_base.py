@@ -51,6 +51,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
+from .vec_ops import anchor, extent
 
 FloatArray = NDArray[np.float64]
 
@@ -250,15 +251,23 @@ class Surface(ABC):
         return float(integrate_unit_square(element, rtol=rtol)[0])
 
     def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
-        """Area and area centroid ∫∫ S |Su × Sv| / area, by the same cubature."""
+        """Area and area centroid ∫∫ S |Su × Sv| / area, by the same cubature.
+
+        The moment is integrated about a point of the surface and in units of its size,
+        so that the cubature's tolerance (relative to the largest component) is set by
+        the area wherever the surface sits, not by its distance from the origin."""
+        grid = np.linspace(0.0, 1.0, 5)
+        probe = self.point_at(*(a.ravel() for a in np.meshgrid(grid, grid)))
+        origin = anchor(probe)
+        size = float(np.linalg.norm(extent(probe))) or 1.0
 
         def integrand(u: FloatArray, v: FloatArray) -> FloatArray:
             s, su, sv = self.derivatives(u, v, 1)
             w = np.linalg.norm(np.cross(su, sv), axis=1)
-            return np.column_stack([w, s * w[:, None]])
+            return np.column_stack([w, (s - origin) * (w / size)[:, None]])
 
         result = integrate_unit_square(integrand, rtol=rtol)
-        return float(result[0]), result[1:] / result[0]
+        return float(result[0]), origin + size * result[1:] / result[0]
 
     # ------------------------------------------------------------------ queries
 

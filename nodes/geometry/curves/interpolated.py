@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import make_interp_spline
 
+from ..vec_ops import anchor
 from ..vectors import as_points, normalise
 from .nurbs import NurbsCurve
 
@@ -81,14 +82,18 @@ class InterpolatedCurve(NurbsCurve):
                 "Two consecutive points coincide; the curve cannot pass through one point twice in a row."
             )
         u = _chord_parameters(steps)
+        # solved on the points relative to their box's centre: the spline's coefficients
+        # are then as accurate far from the origin as at it (see vec_ops.anchor)
+        origin = anchor(p)
+        local = p - origin
 
         if closed:
             k = degree
-            spline = make_interp_spline(u, p, k=k, bc_type="periodic")
+            spline = make_interp_spline(u, local, k=k, bc_type="periodic")
         elif start_tangent is not None or end_tangent is not None:
             # dC/dt at an end: the given direction, with length equal to the chord length
             # (the speed of a chord-length parameterisation there).
-            total_chord = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
+            total_chord = float(np.sum(np.linalg.norm(steps, axis=1)))
 
             def end(tangent: ArrayLike | None, which: str) -> list[tuple[int, np.ndarray]]:
                 if tangent is None:
@@ -97,17 +102,18 @@ class InterpolatedCurve(NurbsCurve):
 
             k = 3
             spline = make_interp_spline(
-                u, p, k=k, bc_type=(end(start_tangent, "start"), end(end_tangent, "end"))
+                u, local, k=k, bc_type=(end(start_tangent, "start"), end(end_tangent, "end"))
             )
         else:
             k = min(degree, len(p) - 1)
             if len(p) == k + 1:  # one polynomial span: a small Bernstein system
                 self._set_points(p, u)
-                self._setup(_bezier_through(p, u), None, np.repeat([0.0, 1.0], k + 1), k, closed)
+                control = _bezier_through(local, u) + origin
+                self._setup(control, None, np.repeat([0.0, 1.0], k + 1), k, closed)
                 return
-            spline = make_interp_spline(u, p, k=k)
+            spline = make_interp_spline(u, local, k=k)
         self._set_points(p, u)
-        self._setup(np.asarray(spline.c, float), None, np.asarray(spline.t, float), k, closed)
+        self._setup(np.asarray(spline.c, float) + origin, None, np.asarray(spline.t, float), k, closed)
 
     def _set_points(self, points: np.ndarray, parameters: np.ndarray) -> None:
         self.points = points

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..curve_base import ClosestPoints, Curve, FloatArray
+from ..vec_ops import anchor
 from ..vectors import as_points, as_vector
 from .nurbs import NurbsCurve
 
@@ -75,6 +78,17 @@ class Line(Curve):
         if order >= 1:
             result.append(np.broadcast_to(self.direction, (len(t), 3)).copy())
         result.extend(np.zeros((len(t), 3)) for _ in range(order - 1))
+        return result
+
+    @property
+    def anchor(self) -> FloatArray:
+        """The start (see :meth:`local_derivatives`)."""
+        return self._start
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        result = self.derivatives(t, order)
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        result[0] = t[:, None] * self.direction
         return result
 
     def length_at(self, t: ArrayLike) -> FloatArray:
@@ -161,15 +175,34 @@ class Polyline(Curve):
         index = np.searchsorted(self.vertex_parameters, t, side="right") - 1
         return np.clip(index, 0, len(self.points) - 2)
 
+    @property
+    def anchor(self) -> FloatArray:
+        """The centre of the vertices' bounding box (see :meth:`local_derivatives`)."""
+        return self._local[0]
+
+    @cached_property
+    def _local(self) -> tuple[FloatArray, FloatArray]:
+        """The anchor and the vertices relative to it (exact, as in ``vec_ops.anchor``)."""
+        origin = anchor(self.points)
+        return origin, self.points - origin
+
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        result = self.local_derivatives(t, order)
+        result[0] = result[0] + self._local[0]
+        return result
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        """Points relative to :attr:`anchor` (rounded to the polyline's size, not to its
+        position) and derivatives."""
         t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        points = self._local[1]
         i = self._segment_index(t)
         t0, t1 = self.vertex_parameters[i], self.vertex_parameters[i + 1]
         width = t1 - t0
         safe = np.where(width > 0, width, 1.0)
-        segment = self.points[i + 1] - self.points[i]
+        segment = points[i + 1] - points[i]
         local = np.where(width > 0, (t - t0) / safe, 0.0)
-        result = [self.points[i] + local[:, None] * segment]
+        result = [points[i] + local[:, None] * segment]
         if order >= 1:
             result.append(np.where(width[:, None] > 0, segment / safe[:, None], 0.0))
         result.extend(np.zeros((len(t), 3)) for _ in range(order - 1))

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import extent
+from ..vec_ops import anchor, extent
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots
 
@@ -104,7 +104,13 @@ class NurbsCurve(Curve):
         self.periodic: bool = periodic
         count = len(points)
         self.domain = (float(knots[degree]), float(knots[count]))
-        coefficients = points if weights is None else np.column_stack([points * weights[:, None], weights])
+        # the spline runs on control points relative to their box's centre (kept in
+        # _anchor): derivatives, lengths and areas then round relative to the curve's
+        # size, wherever it sits; only positions add the anchor back
+        self._anchor: FloatArray = anchor(points)
+        self._anchor.setflags(write=False)
+        local = points - self._anchor
+        coefficients = local if weights is None else np.column_stack([local * weights[:, None], weights])
         # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve; the
         # knots and coefficients are checked already (construct_fast skips scipy's checks)
         self._spline = BSpline.construct_fast(
@@ -152,6 +158,18 @@ class NurbsCurve(Curve):
         ``C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σᵢ₌₁ᵏ C(k,i) w⁽ⁱ⁾ C⁽ᵏ⁻ⁱ⁾) / w``. Each order then gains a factor
         ``(b − a)`` for the map ``u = a + (b − a)·t``.
         """
+        result = self.local_derivatives(t, order)
+        result[0] = result[0] + self._anchor
+        return result
+
+    @property
+    def anchor(self) -> FloatArray:
+        """The centre of the control points' bounding box: see :meth:`local_derivatives`."""
+        return self._anchor
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        """:meth:`derivatives` with the points relative to :attr:`anchor` (not rounded to
+        the world position: the rounding is relative to the curve's size)."""
         u, scale = self._knot_parameters(t)
         if not self.is_rational:
             return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
@@ -173,6 +191,8 @@ class NurbsCurve(Curve):
             return super().derivative_at(t, order)
         u, scale = self._knot_parameters(t)
         d = self._polynomial_derivative(u, order, scale)
+        if order == 0:
+            d = d + self._anchor
         return d[0] if np.ndim(t) == 0 else d
 
     def _knot_parameters(self, t: ArrayLike) -> tuple[FloatArray, float]:
@@ -184,7 +204,8 @@ class NurbsCurve(Curve):
         return a + (b - a) * t, b - a
 
     def _polynomial_derivative(self, u: FloatArray, k: int, scale: float) -> FloatArray:
-        """``C⁽ᵏ⁾`` of a polynomial (non-rational) curve at knot parameters ``u``, per unit t."""
+        """``C⁽ᵏ⁾`` of a polynomial (non-rational) curve at knot parameters ``u``, per unit t
+        (for k = 0 relative to :attr:`anchor`)."""
         if k > self.degree:
             return np.zeros((len(u), 3))
         value = self._spline(u, nu=k)

@@ -24,6 +24,15 @@ class ReversedCurve(Curve):
         values = self.curve.derivatives(1.0 - t, order)
         return [v if k % 2 == 0 else -v for k, v in enumerate(values)]
 
+    @property
+    def anchor(self) -> FloatArray:
+        return self.curve.anchor
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        values = self.curve.local_derivatives(1.0 - t, order)
+        return [v if k % 2 == 0 else -v for k, v in enumerate(values)]
+
     def _breakpoints(self) -> FloatArray:
         return np.sort(1.0 - self.curve._breakpoints())
 
@@ -56,6 +65,14 @@ class TransformedCurve(Curve):
         out = [v @ linear for v in values]
         out[0] = out[0] + self.matrix[:3, 3]
         return out
+
+    @property
+    def anchor(self) -> FloatArray:
+        return self.matrix[:3, :3] @ self.curve.anchor + self.matrix[:3, 3]
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        linear = self.matrix[:3, :3].T
+        return [v @ linear for v in self.curve.local_derivatives(t, order)]
 
     def _breakpoints(self) -> FloatArray:
         return self.curve._breakpoints()
