@@ -13,9 +13,10 @@ is accepted while
 * the gap along the normal stays within ½·tol·s², the sag of an arc bent at the
   tolerance curvature: the line hugs the surface as a ruling must;
 * the surface stays single-curved within tol at the foot point;
-* the warp of the line stays within the warp tolerance: the angle between the lines
-  of the surface normals at its two ends (the thesis's warp angle: 0 along a ruling
-  of a developable, whose tangent plane is the same all along it).
+* the warp of the line stays within the warp tolerance: the angle between the
+  surface normals at its two ends, 0 to π (the turn of the tangent plane along it,
+  as every WarpAngles output measures it: 0 along a ruling of a developable, whose
+  tangent plane is the same all along it; a normal that flips over counts as π).
 
 Both sides grow together, one step each per round, so the warp budget is shared
 fairly between them; where a side stops, its end is refined by bisection between the last
@@ -232,7 +233,7 @@ def trace_rulings(
         flat = foot.flatness <= curvature_tolerance
         other = end_normals[1 - side, rows]
         turn = np.arctan2(np.linalg.norm(np.cross(other, foot.normals), axis=1),
-                          np.abs(_dot(other, foot.normals)))
+                          _dot(other, foot.normals))
         ok = inside & hugs & flat & (turn <= warp_tolerance)
         return ok, foot, turn
 

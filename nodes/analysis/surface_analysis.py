@@ -216,8 +216,9 @@ class SurfaceAnalysis(Node):
            default=1.0),
         In("CurvatureTolerance", NUMBER, "Kt", "Below this min(|k1|, |k2|), in 1/m, the surface counts "
            "as single-curved (0.01 /m: radii above 100 m are flat).", default=0.01),
-        In("WarpTolerance", NUMBER, "Wt", "How far (rad) the normal may twist along a ruling, end to "
-           "end, for it to be valid.", default=0.01),
+        In("WarpTolerance", NUMBER, "Wt", "How far (rad) the tangent plane may turn along a ruling for "
+           "it to be valid: the angle between the surface normals at its two ends, as WarpAngles "
+           "measure it.", default=0.01),
     )
     outputs = (
         Out("CurvatureLines", LINE, "L", "Per grid point the k1 line then the k2 line, centred on it, "
