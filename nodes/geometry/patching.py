@@ -30,6 +30,7 @@ waste = 1 − Σ clipped areas / Σ whole-panel areas.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
@@ -42,9 +43,24 @@ from .unroll import Development
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
-#: Clipped pieces smaller than this share of their whole panel are slivers from
-#: edges that merely touch the outline, and are dropped.
+#: Clipped pieces smaller than this share of their whole panel (or of the development,
+#: when the panel is larger than it) are slivers from edges that merely touch the
+#: outline, and are dropped.
 SLIVER = 1e-12
+
+
+class TooManyPanels(ValueError):
+    """The tiling would make more pattern copies than allowed; nothing was allocated.
+
+    ``count`` is how many copies the tiling asked for (a float: it may be astronomical,
+    or ∞), ``limit`` the cap it was checked against.
+    """
+
+    def __init__(self, count: float, limit: int) -> None:
+        super().__init__(f"the pattern would be laid {count:.3g} times over the development; "
+                         f"at most {limit:,} panels can be made at once")
+        self.count = count
+        self.limit = limit
 
 
 @dataclass(frozen=True)
@@ -176,6 +192,7 @@ def tile_pattern(
     scale: float = 1.0,
     rotation_deg: float = 0.0,
     pivot: ArrayLike | None = None,
+    max_panels: int | None = None,
 ) -> Patching:
     """Tile ``pattern`` over ``development``, clip it, and map the panels to 3D.
 
@@ -183,22 +200,34 @@ def tile_pattern(
     period is their bounding rectangle). ``scale`` multiplies the tile; ``rotation_deg``
     turns the development first, about ``pivot`` (default: its area centroid) — see
     the module docstring for what that does on the surface.
+
+    ``max_panels`` caps the pattern copies (tiles × polygons, before clipping): a tiling
+    that needs more raises :class:`TooManyPanels` before any copy is made.
     """
-    if not scale > 0:
-        raise ValueError("scale must be positive")
+    if not (scale > 0 and math.isfinite(scale)):
+        raise ValueError("scale must be a positive, finite number")
     polys, period = _as_pattern(pattern)
     centre = development.centroid if pivot is None else np.asarray(pivot, dtype=float)
     turned = development.rotated(rotation_deg, centre)
     outline = development_polygon(turned)
     xmin, ymin, xmax, ymax = turned.bounds
 
-    tile = (period[2:] - period[:2]) * scale
-    scaled = [(p - period[:2]) * scale for p in polys]
+    with np.errstate(over="ignore", invalid="ignore"):
+        tile = (period[2:] - period[:2]) * scale
+        scaled = [(p - period[:2]) * scale for p in polys]
     allpts = np.vstack(scaled)
+    if not (np.isfinite(allpts).all() and np.isfinite(tile).all() and (tile > 0).all()):
+        raise ValueError(f"scale {scale:g} takes the pattern out of the range of floating-point numbers")
     low, high = allpts.min(axis=0), allpts.max(axis=0)
     # tile (p, q) sits at (xmin, ymin) + (p, q)·tile; keep every copy reaching the box
-    p_range = np.arange(np.ceil(-high[0] / tile[0] - 1e-12), np.floor((xmax - xmin - low[0]) / tile[0]) + 1)
-    q_range = np.arange(np.ceil(-high[1] / tile[1] - 1e-12), np.floor((ymax - ymin - low[1]) / tile[1]) + 1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        first = np.ceil(-high / tile - 1e-12)
+        last = np.floor((np.array([xmax - xmin, ymax - ymin]) - low) / tile)
+    copies = float(np.prod(np.maximum(last - first + 1, 0.0))) * len(scaled)
+    if max_panels is not None and not copies <= max_panels:  # counted before anything is made
+        raise TooManyPanels(copies, max_panels)
+    p_range = np.arange(first[0], last[0] + 1)
+    q_range = np.arange(first[1], last[1] + 1)
     pq = np.stack(np.meshgrid(p_range, q_range, indexing="xy"), axis=-1).reshape(-1, 2)  # row by row
     corner = np.array([xmin, ymin])
     offsets = corner + pq * tile
@@ -220,7 +249,8 @@ def tile_pattern(
     polygons = shapely.get_type_id(parts) == shapely.GeometryType.POLYGON.value
     parts, owner = parts[polygons], owner[polygons]
     areas = shapely.area(parts)
-    keep = areas > SLIVER * full_all[owner]
+    development_area = float(shapely.area(outline))
+    keep = areas > SLIVER * np.minimum(full_all[owner], development_area)
     parts, owner, areas = parts[keep], owner[keep], areas[keep]
     used = np.unique(owner)
     waste = 1.0 - float(areas.sum() / full_all[used].sum()) if used.size else 0.0
@@ -237,7 +267,7 @@ def tile_pattern(
         areas=areas,
         full_areas=full_all[owner],
         waste=waste,
-        development_area=float(shapely.area(outline)),
+        development_area=development_area,
         pattern_bounds=np.concatenate([corner, corner + tile]),
         development_bounds=np.array([xmin, ymin, xmax, ymax]),
         rotation_deg=float(rotation_deg),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from engine.node import LIST, In, Node, NodeWarning, Out
@@ -45,5 +46,8 @@ class StaggeredPattern(Node):
         for name, value in (("Width", w), ("Height", h)):
             if value <= 0:
                 raise NodeWarning(f"{name} must be a positive length, not {value:g}")
+            if not math.isfinite(2.0 * value):  # the tile is 2 × Height tall, the bond 2 × Width wide
+                raise NodeWarning(f"{name} is {value:g}: twice that is larger than any number can hold; "
+                                  "give a panel size in model units")
         pattern = staggered_pattern(w, h, o)
         return [closed_polyline(p) for p in pattern.polygons], rectangle(pattern.period)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -13,9 +14,10 @@ from nodes.analysis.development_type import DEVELOPMENT
 from nodes.analysis.iso_mapping import overlaps
 from nodes.curves.convert import number
 from nodes.geometry.curves.line import Polyline
-from nodes.geometry.patching import Pattern, tile_pattern
+from nodes.geometry.patching import Pattern, TooManyPanels, tile_pattern
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.unroll import Development, unroll_surface
+from nodes.limits import MAX_PANELS
 from nodes.patching.outlines import closed_polyline, rectangle, ring
 from nodes.types import CURVE, SURFACE
 
@@ -82,6 +84,9 @@ class SurfacePatching(Node):
     unrolled from: the node checks they belong together, and with no Development
     wired it unrolls the Surface itself (48 segments). Waste is the share of sheet
     cut off: each panel is cut from a sheet the size of its whole pattern panel.
+
+    At most 20,000 pattern copies are laid over one development (a guard against a
+    Scale typo: 1e-9 for 1 asks for billions); the node says so instead of stalling.
     """
 
     type_id = "patching.SurfacePatching"
@@ -118,12 +123,23 @@ class SurfacePatching(Node):
         s = number("Scale", scale)
         if s <= 0:
             raise NodeWarning(f"Scale must be positive, not {s:g}")
+        extent = float(np.max(np.abs(np.concatenate([np.ravel(p) for p in polygons] + [period]))))
+        if not math.isfinite(s * extent):
+            raise NodeWarning(f"Scale is {s:g}: the scaled pattern would be larger than any number "
+                              "can hold; give a Scale near 1 (the pattern's own size)")
         angle = number("Rotation", rotation)
         if overlaps(dev):
             self.warn("The development overlaps itself in the plane: it cannot be cut from one sheet, "
                       "and where it overlaps a panel may land on either layer; unroll fewer turns")
         try:
-            patching = tile_pattern(Pattern(tuple(polygons), period), dev, s, angle)
+            patching = tile_pattern(Pattern(tuple(polygons), period), dev, s, angle, max_panels=MAX_PANELS)
+        except TooManyPanels as exc:
+            times = f"{exc.count:,.0f}" if exc.count < 1e9 else f"{exc.count:.3g}"
+            raise NodeWarning(
+                f"Scale is {s:g}: the pattern would be laid {times} times over the development; "
+                f"at most {exc.limit:,} panels can be made at once (raise Scale, or give larger "
+                "panels)"
+            ) from None
         except ValueError as exc:
             raise NodeWarning(str(exc).rstrip(".")) from None
         if not patching.panels_flat:
