@@ -50,6 +50,15 @@ def test_cone_rulings_end_at_the_apex_when_height_reaches_it():
     assert chain.texts("cone") == ["31 of 31 rulings reach the Apex within Height and stop there"]
 
 
+def test_rulings_ending_at_the_apex_are_measured_in_the_plane_of_their_fan():
+    """At the apex the far edge stands still (a fan of flat triangles): the warp there is
+    taken in the triangles' plane, so it is 0 — a number, not NaN and not a guess."""
+    chain = on_helix(Height=100.0, Segments=30)
+    warp = chain.items("cone", "WarpAngles")
+    assert warp == [0.0] * 31
+    assert chain.result("cone").state == "ok"
+
+
 def test_cone_rulings_are_height_long_and_aim_at_the_apex_below_it():
     chain = on_helix(Height=2.5, Segments=30)
     r = lines(chain)

@@ -91,6 +91,30 @@ def test_textbook_helicoid_is_not_developable_and_warps_as_closed_form():
     assert expected == pytest.approx(2 * math.atan(w / c), rel=3e-3)
 
 
+def test_wide_helicoid_warps_past_a_quarter_turn():
+    """Half-width 3 on pitch 1: 2·atan(3·sin(h)/h) ≈ 2.5 rad, the turn of the tangent plane
+    (folded into [0, π/2] it would read π minus that, about 0.64)."""
+    c, w = 1.0, 3.0
+    h = 2 * math.pi / STEPS
+    expected = 2 * math.atan(w * math.sin(h) / (h * c))
+    warp = np.array(helicoid(c, w).items("prs", "WarpAngles"))
+    assert expected > 2.4
+    assert np.abs(warp - expected).max() < 1e-12
+
+
+def test_rulings_along_the_directrix_have_undefined_warp_and_say_so():
+    chain = Chain()
+    chain.add("prs", ParametricRuledSurface(), Directrix=[Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, 0)],
+              Direction=[Vector(1, 0, 0)])
+    chain.solve()
+    assert all(math.isnan(w) for w in chain.items("prs", "WarpAngles"))
+    assert chain.result("prs").state == "warning"
+    assert chain.texts("prs") == [
+        "The warp is undefined (NaN) at 3 of 3 rulings (first: ruling 0): a ruling there has zero "
+        "length or runs along an edge's tangent, so the sheet has no tangent plane to measure"
+    ]
+
+
 def mobius(**values) -> Chain:
     return textbook(
         {"X": "cos(u)", "Y": "sin(u)"},

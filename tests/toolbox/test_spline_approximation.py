@@ -246,3 +246,19 @@ def test_zero_segments_is_an_error():
     result = solve(surface, edge, Segments=0)
     assert result.state == "error"
     assert texts(result) == ["Segments is 0: give 1 or more (Segments is the number of rulings minus one)"]
+
+
+def test_a_ruling_turned_onto_the_edge_tangent_has_undefined_warp_not_zero():
+    """Ruling 1 lies along the fixed edge's tangent: R × k = 0, so that end has no plane;
+    its warp and the summed Fitness are NaN, the others are numbers."""
+    from nodes.geometry.approximation import StationRulings, approximate
+
+    n = 3
+    x = np.array([0.0, 1.0, 2.0])
+    starts = np.column_stack([x, 0 * x, 0 * x])
+    axes = np.tile([1.0, 0.0, 0.0], (n, 1))
+    directions = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    stations = StationRulings(x / 2, starts, axes, directions, np.ones(n), 0, 0.0)
+    result = approximate(stations)
+    assert np.isnan(result.warp[1]) and np.isfinite(result.warp[[0, 2]]).all()
+    assert math.isnan(result.fitness)
