@@ -39,7 +39,7 @@ class Vector(Triple):
 
     @property
     def length(self) -> float:
-        return math.sqrt(self[0] ** 2 + self[1] ** 2 + self[2] ** 2)
+        return math.hypot(self[0], self[1], self[2])  # ** 2 raises OverflowError from 1e155
 
 
 class Domain(NamedTuple):

@@ -7,11 +7,9 @@ from typing import Any
 
 from engine.node import NodeError, NodeWarning
 from nodes.geometry.surface_base import Surface
+from nodes.limits import MAX_ANALYSIS_SEGMENTS as MAX_SEGMENTS
 from nodes.maths.checks import count, finite
 from nodes.surfaces.convert import surface
-
-#: The most segments IsoMapping and CurveOfRegression take (a guard against typos).
-MAX_SEGMENTS = 10_000
 
 NOT_RULED = (
     "surface has no straight rulings: {node} works on ruled surfaces (a loft between two curves, "

@@ -27,13 +27,12 @@ from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface, uv_grid
+from nodes.limits import MAX_DENSITY
 from nodes.maths.checks import count, finite
 from nodes.types import LINE, MESH, points
 
 FloatArray = NDArray[np.float64]
 
-#: The most grid points per direction (a guard against typos: 500 × 500 is 250 000 points).
-MAX_DENSITY = 500
 #: Vertices per direction of the coloured mesh, at least (finer when the grid is finer).
 MESH_GRID = 65
 #: Rulings shorter than this share of the surface's size are not drawn.

@@ -11,11 +11,9 @@ from engine.types import INTEGER, NUMBER, POINT, VECTOR
 from engine.values import Point, Vector
 from nodes.curves.convert import given, number, vector, vectors
 from nodes.geometry.curve_base import Curve
+from nodes.limits import MAX_DIVISIONS
 from nodes.maths.checks import whole
 from nodes.types import CURVE, point, points
-
-MAX_SEGMENTS = 1_000_000
-"""The most segments one DivideCurve call makes (a guard against typos)."""
 
 
 def _curve(value: Any) -> Curve:
@@ -51,8 +49,8 @@ class DivideCurve(Node):
             raise NodeWarning("Count is 0, so the curve is not divided: give 1 segment or more")
         if n < 0:
             raise NodeWarning(f"Count must be at least 1, not {n}")
-        if n > MAX_SEGMENTS:
-            raise NodeWarning(f"Count is {n:,}; at most {MAX_SEGMENTS:,} segments can be made at once")
+        if n > MAX_DIVISIONS:
+            raise NodeWarning(f"Count is {n:,}; at most {MAX_DIVISIONS:,} segments can be made at once")
         if c.length == 0:
             raise NodeWarning("The curve has zero length, so it cannot be divided")
         t = c.divide_by_count(n)

@@ -15,9 +15,7 @@ from engine.types import describe
 from nodes.curves.convert import given, number
 from nodes.developable.input_checks import has_no_length
 from nodes.geometry.curve_base import Curve
-
-#: The most rulings one call builds (a guard against a typo such as 1e6 segments).
-MAX_SEGMENTS = 100_000
+from nodes.limits import MAX_RULINGS as MAX_SEGMENTS
 
 #: Below this share of a shape's size a distance counts as zero.
 COINCIDENT = 1e-12

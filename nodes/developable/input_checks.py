@@ -17,6 +17,7 @@ from engine.types import describe
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
+from nodes.limits import MAX_RULINGS as MAX_SEGMENTS
 
 #: Where a curve is sampled to see that it is not a single point.
 _SAMPLES = np.linspace(0.0, 1.0, 65)
@@ -24,9 +25,6 @@ _SAMPLES = np.linspace(0.0, 1.0, 65)
 #: Samples spread less than this share of the curve's distance from the origin are one
 #: point (rounding: the curve's length, measured by quadrature, is then noise).
 _ROUNDING = 1e-14
-
-#: The most rulings one call builds (a guard against a typo such as 1e6 segments).
-MAX_SEGMENTS = 100_000
 
 
 def has_no_length(curve: Curve) -> bool:

@@ -13,6 +13,7 @@ from nodes.curves.convert import sentence, vectors
 from nodes.developable.input_checks import curve_input, segments_input, surface_input
 from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.approximation import MAX_OPTIMISED, Approximation, approximate, station_rulings
+from nodes.limits import MAX_SPLINE_SEGMENTS
 from nodes.types import CURVE, LINE, SURFACE
 
 #: Above this largest warp (rad) after optimising, the node says the strip is still warped.
@@ -109,7 +110,7 @@ class SplineApproximation(Node):
     ) -> tuple[Any, ...]:
         s = surface_input("Surface", surface)
         c = curve_input("Curve", curve)
-        n = segments_input(segments)
+        n = segments_input(segments, limit=MAX_SPLINE_SEGMENTS)  # the fit is dense: (n + 1)² numbers
         optimise, fix_ends = bool(optimise), bool(fix_ends)
         if optimise and n + 1 > MAX_OPTIMISED:
             raise NodeError(f"Segments is {n}: optimising takes at most {MAX_OPTIMISED - 1} segments")

@@ -12,6 +12,7 @@ from nodes.developable.input_checks import edge_input, segments_input, surface_i
 from nodes.developable.ruling_developable import solve_strip
 from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.geometry.coupling import couple
+from nodes.limits import MAX_COUPLING_SEGMENTS
 from nodes.types import CURVE, LINE, SURFACE
 
 #: Warp tolerance (rad) for the connecting strip's rulings, as RulingDevelopable's default.
@@ -69,7 +70,7 @@ class SurfaceCoupling(Node):
     ) -> tuple[Any, ...]:
         a, b = surface_input("SurfaceA", surface_a), surface_input("SurfaceB", surface_b)
         ea, eb = edge_input("EdgeA", edge_a), edge_input("EdgeB", edge_b)
-        n = segments_input(segments)
+        n = segments_input(segments, limit=MAX_COUPLING_SEGMENTS)
         try:
             coupling = couple(a, ea, b, eb)
         except ValueError as exc:

@@ -104,6 +104,8 @@ class Plot(Node):
         y = _values(values)
         if not np.isfinite(y).any():
             raise NodeWarning("None of the Values is a finite number: there is nothing to plot")
+        if np.abs(y[np.isfinite(y)]).max() > 1e300:  # the axis' margins and ticks would overflow
+            raise NodeWarning("Values reach beyond 1e+300: too large to draw an axis for")
         heading = "" if title is None else str(title)
         path, chosen = _target("" if file is None else str(file), heading, y)
         try:

@@ -10,9 +10,7 @@ import math
 from typing import Any
 
 from engine.node import NodeWarning
-
-MAX_COUNT = 10_000_000
-"""The most numbers one call of Series, Range or Random makes (a guard against typos)."""
+from nodes.limits import MAX_NUMBERS as MAX_COUNT
 
 
 def finite(name: str, value: Any) -> float:

@@ -10,11 +10,9 @@ from engine.types import GENERIC, INTEGER, NUMBER, PLANE, VECTOR
 from engine.values import WORLD_XY, Vector
 from nodes.curves.convert import direction, kernel_plane, number
 from nodes.geometry import transforms
+from nodes.limits import MAX_COPIES
 from nodes.maths.checks import whole
 from nodes.transform.dispatch import SUPPORTED, transform_value
-
-MAX_COPIES = 100_000
-"""The most copies one call makes (a guard against typos)."""
 
 
 def _count(value: Any) -> int:

@@ -48,7 +48,7 @@ def test_series_with_negative_count_warns():
 
 def test_series_with_absurd_count_warns_instead_of_filling_memory():
     result = run(Series(), Count=10**12)
-    assert texts(result) == ["Count is 1,000,000,000,000; at most 10,000,000 can be made at once"]
+    assert texts(result) == ["Count is 1,000,000,000,000; at most 1,000,000 can be made at once"]
 
 
 def test_series_with_nan_step_warns():
