@@ -141,3 +141,26 @@ def test_warp_of_rulings_where_an_edge_doubles_back_is_nan():
     ends = np.array([[0, 1, 0], [1, 1, 0.2], [2, 1, 0]], dtype=float)
     w = warp_of_rulings(starts, ends)
     assert np.isnan(w[1]) and np.isfinite(w[[0, 2]]).all()
+
+
+def test_curve_warp_at_a_corner_uses_the_side_whose_tangent_does_not_run_along_the_ruling():
+    """A ruling from the corner of A = (0,0,0)–(1,0,0)–(1,1,0) along A's first side to the
+    line B at x = 2 (tangent y): the side along x gives no normal, the side along y gives
+    the plane z = 0, which holds B's tangent too, so the warp is 0."""
+    from nodes.geometry.curves import Line, Polyline
+    from nodes.geometry.developable.warp import curve_warp
+
+    a = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0]])
+    b = Line([2, 0, 0], [2, 2, 0])
+    w = curve_warp(a, b, [0.5], [0.0], [[1.0, 0, 0]], [[2.0, 0, 0]])
+    assert w[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_curve_warp_is_that_of_the_curves_tangents_away_from_corners():
+    from nodes.geometry.curves import Line
+    from nodes.geometry.developable.warp import curve_warp
+
+    half = 2.0  # the hyperbolic paraboloid's ruling along x = 0, from y = −L to L
+    a, b = Line([-1, -half, half], [1, -half, -half]), Line([-1, half, -half], [1, half, half])
+    w = curve_warp(a, b, [0.5], [0.5], [[0, -half, 0]], [[0, half, 0]])
+    assert w[0] == pytest.approx(2 * math.atan(half), abs=1e-15)

@@ -261,7 +261,9 @@ def curve_warp(
 
     At a corner of a curve (its tangent jumps from ``left`` to ``right``) the tangent is
     the one in the plane of the ruling and the other end's tangent where the corner
-    straddles that plane (:func:`in_plane_tangent`: a cone through the corner). A ruling
+    straddles that plane (:func:`in_plane_tangent`: a cone through the corner), and where
+    that tangent runs along the ruling, the one-sided tangent that gives the least
+    defined warp (every direction of the corner's cone touches it). A ruling
     inside a fan (its end shared with both neighbouring rulings) is measured in the
     plane of the fan's triangles (the curve's tangent at the fan's apex plays no part).
     """
@@ -283,6 +285,23 @@ def curve_warp(
     points = np.concatenate([a, b])
     finite = points[np.isfinite(points).all(axis=1)]
     size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
-    return warp_angles(
-        a, b, ta, tb, signed, apex_a=_interior_of_fan(a, size), apex_b=_interior_of_fan(b, size)
-    )
+    apex_a, apex_b = _interior_of_fan(a, size), _interior_of_fan(b, size)
+    warp = warp_angles(a, b, ta, tb, signed, apex_a=apex_a, apex_b=apex_b)
+    # at a corner whose chosen tangent runs along the ruling (a fan's edge on a side of
+    # the corner), any other direction of the corner's cone is a tangent too: take the
+    # one-sided tangents there and keep the least warp that is defined
+    retry = np.flatnonzero(np.isnan(warp) & (corner_a | corner_b))
+    if len(retry):
+        options_a = (ta[retry], np.where(corner_a[retry, None], left_a[retry], ta[retry]),
+                     np.where(corner_a[retry, None], right_a[retry], ta[retry]))
+        options_b = (tb[retry], np.where(corner_b[retry, None], left_b[retry], tb[retry]),
+                     np.where(corner_b[retry, None], right_b[retry], tb[retry]))
+        best = np.full(len(retry), np.nan)
+        for one in options_a:
+            for other in options_b:
+                w = warp_angles(a[retry], b[retry], one, other, signed,
+                                apex_a=apex_a[retry], apex_b=apex_b[retry])
+                better = ~np.isnan(w) & (np.isnan(best) | (np.abs(w) < np.abs(best)))
+                best = np.where(better, w, best)
+        warp[retry] = best
+    return warp
