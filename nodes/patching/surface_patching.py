@@ -124,7 +124,7 @@ class SurfacePatching(Node):
         if s <= 0:
             raise NodeWarning(f"Scale must be positive, not {s:g}")
         extent = float(np.max(np.abs(np.concatenate([np.ravel(p) for p in polygons] + [period]))))
-        if not math.isfinite(s * extent):
+        if not math.isfinite(4 * (s * extent) * (s * extent)):  # areas too (float ** 2 would raise)
             raise NodeWarning(f"Scale is {s:g}: the scaled pattern would be larger than any number "
                               "can hold; give a Scale near 1 (the pattern's own size)")
         angle = number("Rotation", rotation)

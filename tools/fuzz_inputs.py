@@ -1,0 +1,243 @@
+"""Every numeric input of every node type, fed hostile numbers: the input-cap sweep.
+
+For each node type in the registry and each of its numeric inputs (Number, Integer and
+Domain ports, and numeric settings such as a slider's value), a case builds a graph of
+that one node — with a small, valid value wired into every input that has no default
+(a curve, a developable strip, its development, a rectangle for a pattern ...), so the
+numbers reach the code that uses them — sets the input to one of :data:`HOSTILE`
+(0, -1, 1e12, 1e308, NaN, ∞) and solves it.
+
+A node must answer each with a clear message or a result: never an exception it did not
+mean, never a stall, never a huge allocation (see tools/fuzz_pool.py for the guard).
+``python -m tools.fuzz_inputs`` runs the sweep and prints the worst cases.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cache
+from typing import Any
+
+#: The numbers every numeric input is fed (1e-9: a Scale that divides, as in issue 11).
+HOSTILE: tuple[float, ...] = (0.0, -1.0, 1e-9, 1e12, 1e308, math.nan, math.inf)
+
+NUMERIC_TYPES = ("Number", "Integer", "Domain")
+
+
+@dataclass(frozen=True)
+class InputCase:
+    """One node type, one input (or setting) and one hostile value."""
+
+    type_id: str
+    name: str
+    value: float
+    setting: bool = False
+
+    def __str__(self) -> str:
+        where = "setting " if self.setting else ""
+        return f"{self.type_id} {where}{self.name}={self.value!r}"
+
+
+def cases() -> list[InputCase]:
+    """Every node type's numeric inputs and settings, each with every hostile value."""
+    from nodes.catalogue import default_registry
+
+    found = []
+    for cls in default_registry(plugins=False):
+        names = [(p.name, False) for p in cls.inputs if p.type.name in NUMERIC_TYPES]
+        names += [(s.name, True) for s in cls.settings_spec if s.kind in (int, float)]
+        for name, setting in names:
+            found += [InputCase(cls.type_id, name, value, setting) for value in HOSTILE]
+    return found
+
+
+# --------------------------------------------------------------------------- supplies
+
+
+@cache
+def _supplies() -> dict[str, Any]:
+    """Small valid values to wire into inputs that have no default (made by the nodes)."""
+    from engine.graph import Graph
+    from engine.solver import Solver
+    from engine.values import Point
+    from nodes.catalogue import default_registry
+
+    registry = default_registry(plugins=False)
+    graph = Graph()
+
+    def add(node_id: str, type_id: str, **values: Any) -> None:
+        graph.add_node(registry.create(type_id), node_id)
+        for port, value in values.items():
+            graph.set_input_value(node_id, port, value)
+
+    points = [{"type": "Point", "xyz": xyz} for xyz in ([0, 0, 0], [1, 0.4, 0], [2, 0.1, 0.3], [3, 0.5, 0.2])]
+    above = [{"type": "Point", "xyz": [x, y, z + 1.0]} for x, y, z in (p["xyz"] for p in points)]
+    corners = [{"type": "Point", "xyz": xyz} for xyz in ([0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0])]
+    add("a", "curves.Interpolate", Vertices=points)
+    add("b", "curves.Interpolate", Vertices=above)
+    add("rect", "curves.Polyline", Vertices=corners, Closed=True)
+    add("strip", "surfaces.RuledSurface")
+    graph.connect("a", "Curve", "strip", "CurveA")
+    graph.connect("b", "Curve", "strip", "CurveB")
+    add("unroll", "analysis.IsoMapping", Segments=8)
+    graph.connect("strip", "Surface", "unroll", "Surface")
+    add("line", "curves.Line", Start={"type": "Point", "xyz": [0, 0, 0]},
+        End={"type": "Point", "xyz": [1, 1, 0]})
+    solver = Solver(graph)
+    solver.solve()
+
+    def first(node_id: str, port: str) -> Any:
+        tree = solver.result(node_id).output(port)
+        if tree.is_empty():
+            raise RuntimeError(f"the supply {node_id}.{port} made nothing: "
+                               f"{[m.text for m in solver.result(node_id).messages]}")
+        return tree.first()
+
+    import trimesh
+
+    from engine.values import Plane, Vector
+
+    curve = first("a", "Curve")
+    surface = first("strip", "Surface")
+    return {
+        "Curve": curve,
+        "Curve2": first("b", "Curve"),
+        "Closed": first("rect", "Polyline"),
+        "Surface": surface,
+        "Development": first("unroll", "Map"),
+        "Line": first("line", "Line"),
+        "Mesh": trimesh.creation.box(),
+        "Point": [Point(0, 0, 0), Point(1, 0.5, 0), Point(2, 0.2, 0.4), Point(3, 1, 0.1)],
+        "Vector": [Vector(1, 0, 0), Vector(0, 1, 0), Vector(0, 0, 1), Vector(1, 1, 0)],
+        "OneVector": [Vector(0, 0, 1)],
+        "Plane": Plane(Point(0, 0, 0), Vector(1, 0, 0), Vector(0, 1, 0)),
+        "Number": [0.1, 0.4, 0.7, 1.0],
+        "Integer": 2,
+        "Boolean": [True, False],
+        "Text": "panel",
+    }
+
+
+#: Inputs that need a particular kind of value (by node type and port; "*" for any type).
+_SPECIAL: dict[tuple[str, str], str] = {
+    ("patching.SurfacePatching", "Pattern"): "Closed",
+    ("*", "CurveB"): "Curve2",
+    ("developable.ParametricRuledSurface", "Directrix"): "Curve",
+    ("developable.ParametricRuledSurface", "Direction"): "OneVector",  # so Segments counts
+    ("analysis.SurfaceAnalysis", "Surface"): "Surface",
+    ("surfaces.Area", "Geometry"): "Surface",
+    ("surfaces.NurbsSurface", "Points"): "Point",
+    ("*", "Geometry"): "Curve",
+    ("io.Import3dm", "Path"): "Text",
+    ("io.ImportMesh", "Path"): "Text",
+}
+
+
+def _supply_for(type_id: str, port: Any) -> Any:
+    supplies = _supplies()
+    key = _SPECIAL.get((type_id, port.name)) or _SPECIAL.get(("*", port.name))
+    if key is None:
+        key = port.type.name if port.type.name in supplies else "Number"
+        if port.type.name == "Generic":
+            key = "Number"
+    value = supplies[key]
+    many = port.access.name != "ITEM"
+    if isinstance(value, list) and not many:
+        return value[0]
+    if many and not isinstance(value, list):
+        return [value]
+    return value
+
+
+def _supply_node(value: Any, type_name: str, access: Any) -> Any:
+    from engine.node import Node, Out
+    from engine.types import get_type
+
+    class Supply(Node):
+        type_id = "fuzz.Supply"
+        outputs = (Out("Value", get_type(type_name), "V", "A fixed value.", access=access),)
+
+        def solve(self) -> Any:
+            return value
+
+    return Supply()
+
+
+def build(case: InputCase) -> tuple[Any, str]:
+    """The one-node graph of ``case`` (with its supplies wired in) and the node's id."""
+    from engine.graph import Graph
+    from engine.node import ITEM, LIST
+    from nodes.catalogue import default_registry
+
+    registry = default_registry(plugins=False)
+    graph = Graph()
+    node = registry.create(case.type_id)
+    graph.add_node(node, "node")
+    for port in node.input_ports():
+        if port.has_default or (port.name == case.name and not case.setting):
+            continue
+        if port.optional and port.type.name not in ("Curve", "Surface", "Development"):
+            continue
+        if case.type_id == "patching.SurfacePatching" and port.name == "Tile":
+            continue
+        value = _supply_for(case.type_id, port)
+        access = LIST if isinstance(value, list) else ITEM
+        graph.add_node(_supply_node(value, port.type.name, access), f"supply_{port.name}")
+        graph.connect(f"supply_{port.name}", "Value", "node", port.name)
+    hostile: Any = case.value
+    if case.setting:
+        kind = next(s.kind for s in node.settings_spec if s.name == case.name)
+        if kind is int and math.isfinite(hostile) and abs(hostile) < 1e300:
+            hostile = int(hostile)
+        graph.set_setting("node", case.name, hostile)
+    else:
+        port = node.input_port(case.name)
+        if port.type.name == "Integer" and math.isfinite(hostile) and abs(hostile) < 1e300:
+            hostile = int(hostile)
+        graph.set_input_value("node", case.name, hostile)
+    return graph, "node"
+
+
+def solve_case(case: InputCase) -> dict[str, Any]:
+    """Build and solve ``case`` (run inside a guarded worker)."""
+    from tools.fuzz_pool import solve_guarded
+
+    graph, node_id = build(case)
+    solved = solve_guarded(graph)
+    return {"state": solved["nodes"][node_id][0], "messages": solved["nodes"][node_id][1]}
+
+
+def sweep(workers: int = 2, seconds: float = 10.0, memory_bytes: int = 1 << 30,
+          only: str = "") -> Iterator[tuple[InputCase, Any]]:
+    """Run every case (whose type id contains ``only``) in a :class:`GuardedPool`."""
+    from tools.fuzz_pool import GuardedPool
+
+    pool = GuardedPool(workers=workers, memory_bytes=memory_bytes, seconds=seconds,
+                       preload=("nodes.catalogue", "tools.fuzz_inputs"))
+    chosen = [c for c in cases() if only in c.type_id]
+    yield from pool.run(solve_case, chosen)
+
+
+def main(argv: list[str]) -> int:
+    only = argv[0] if argv else ""
+    bad = 0
+    results = list(sweep(only=only))
+    for case, result in sorted(results, key=lambda r: -r[1].seconds):
+        failed = result.unexpected or result.stalled or result.seconds > 3 or result.peak_bytes > 256 << 20
+        bad += bool(failed)
+        if failed or result.seconds > 0.5:
+            print(f"{'FAIL' if failed else 'slow'} {case}: {result.seconds:.2f} s, "
+                  f"{result.peak_bytes / 2**20:.0f} MiB, stalled={result.stalled}")
+            for line in result.unexpected:
+                print("    ", line)
+            if result.info:
+                print("    ", result.info.get("messages"))
+    print(f"{len(results)} cases, {bad} failed, slowest {max(r.seconds for _, r in results):.2f} s")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
