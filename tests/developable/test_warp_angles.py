@@ -164,3 +164,17 @@ def test_curve_warp_is_that_of_the_curves_tangents_away_from_corners():
     a, b = Line([-1, -half, half], [1, -half, -half]), Line([-1, half, -half], [1, half, half])
     w = curve_warp(a, b, [0.5], [0.5], [[0, -half, 0]], [[0, half, 0]])
     assert w[0] == pytest.approx(2 * math.atan(half), abs=1e-15)
+
+
+@pytest.mark.parametrize("seam", [0.0, 1.0])
+def test_curve_warp_sees_the_corner_at_the_seam_of_a_closed_polyline(seam):
+    """The unit square's corner (0, 0, 0) is its seam: tangents (0, −1, 0) before it and
+    (1, 0, 0) after. The plane of the ruling to (−1, −1, 1) and B's tangent (1, −1, 0) has
+    normal (1, 1, 2), which separates them: a cone through the corner, warp 0."""
+    from nodes.geometry.curves import Line, Polyline
+    from nodes.geometry.developable.warp import curve_warp
+
+    square = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], closed=True)
+    b = Line([-1.5, -0.5, 1], [-0.5, -1.5, 1])
+    w = curve_warp(square, b, [seam], [0.5], [[0.0, 0, 0]], [[-1.0, -1, 1]])
+    assert w[0] == pytest.approx(0.0, abs=1e-15)

@@ -222,11 +222,19 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
     corner = np.zeros(n, dtype=bool)
     if not len(inner):
         return corner, left, right
-    distance = np.abs(t[:, None] - inner[None, :])
+    inner = np.sort(inner)
+    # the nearest breakpoint of each parameter: one of its two neighbours in the sorted list
+    above = np.clip(np.searchsorted(inner, t), 0, len(inner) - 1)
+    below = np.clip(above - 1, 0, len(inner) - 1)
+    pair = np.stack([below, above])
+    if curve.closed:  # the seam (0, the first breakpoint) is also next to 1
+        pair = np.vstack([pair, np.zeros((1, n), dtype=pair.dtype)])
+    distance = np.abs(t[None, :] - inner[pair])
     if curve.closed:
         distance = np.minimum(distance, 1.0 - distance)
-    nearest = np.argmin(distance, axis=1)
-    near = distance[np.arange(n), nearest] <= _AT_BREAK
+    pick = np.argmin(distance, axis=0)
+    nearest = pair[pick, np.arange(n)]
+    near = distance[pick, np.arange(n)] <= _AT_BREAK
     if not near.any():
         return corner, left, right
     b = inner[nearest[near]]
