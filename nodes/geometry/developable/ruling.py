@@ -80,7 +80,7 @@ from .fans import fan_share, zigzag
 from .isolation import IntervalBounds, Pieces, interval_bounds, isolate
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
-from .warp import curve_warp, in_plane_tangent, warp_angles
+from .warp import in_plane_tangent, warp_angles
 
 BoolArray = NDArray[np.bool_]
 IntArray = NDArray[np.int64]
@@ -189,10 +189,13 @@ class _Grid:
         the zero-width intervals between the two sides of a corner get reach −1 (never
         looked at: a sign change there is a corner root)."""
         width = self.at[1:] - self.at[:-1]
+        speed = norm(self.tangents)
+        second = norm(self.second)
+        left_second = second if self.left_second is self.second else norm(self.left_second)
         bounds = interval_bounds(
             width,
-            (norm(self.tangents[:-1]), norm(self.tangents[1:])),
-            (norm(self.second[:-1]), norm(self.left_second[1:])),
+            (speed[:-1], speed[1:]),
+            (second[:-1], left_second[1:]),
             (self.third[:-1], self.left_third[1:]),
             diameter,
         )
@@ -247,6 +250,8 @@ class _Brackets:
     cols: IntArray
     f_low: FloatArray
     f_high: FloatArray
+    d_low: FloatArray  #: f' = det[B − A, Â', B''] there (from the right at the low end, the left at the high)
+    d_high: FloatArray
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
@@ -257,7 +262,8 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
 
     By the cyclic symmetry of the triple product,
     ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
-    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
+    (n×6)(6×m) product, and so is f' = det[B − A, Â', B''] (B'' in place of B'): both are
+    one product with B's columns side by side. Coordinates are taken about a common centre to keep the terms
     small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
@@ -268,15 +274,20 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
     left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
-    right = np.empty((6, m))
-    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
+    # columns: B' (for f), B'' from the right and, where it differs, from the left (for f')
+    columns = [b1, grid.second] if grid.left_second is grid.second else [b1, grid.second, grid.left_second]
+    along = np.concatenate(columns)
+    right = np.empty((6, len(along)))
+    right[:3], right[3:] = cross(along, np.tile(b0 - centre, (len(columns), 1))).T, along.T
+    high = 2 * m if len(columns) == 3 else m  # where the left-hand f' columns start
     speed_b = norm(b1)
     flat_scale = FLAT * size * speed_b
     block = max(1, 40_000 // m)
-    found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
+    found: list[tuple[IntArray, ...]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
-        f = left[first : first + block] @ right
+        product = left[first : first + block] @ right
+        f = product[:, :m]
         negative = np.signbit(f)
         size_f = np.abs(f)
         look = (negative[:, :-1] != negative[:, 1:]) | (np.minimum(size_f[:, :-1], size_f[:, 1:]) <= reach)
@@ -290,11 +301,10 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
                 look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
         r, c = np.divmod(np.flatnonzero(look), m - 1)
-        found.append((r + first, c, f[r, c], f[r, c + 1]))
+        found.append((r + first, c, f[r, c], f[r, c + 1], product[r, m + c], product[r, high + c + 1]))
     joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
-    rows, cols, f_low, f_high = joined
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
-    return _Brackets(rows, cols, f_low, f_high, zero_flat)
+    return _Brackets(*joined, zero_flat)
 
 
 def _cubic_start(
@@ -378,12 +388,14 @@ def _find_candidates(
     bounds = grid.interval_bounds(diameter)
     found = _brackets(a0, units, grid, bounds.reach)
     rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
+    d_low, d_high = found.d_low, found.d_high
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
         rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+        d_low, d_high = d_low[keep], d_high[keep]
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -397,19 +409,8 @@ def _find_candidates(
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
 
     # judge every interval looked at, subdividing where a root pair may hide
-    plane_low = cross(grid.points[cols] - a0[rows], units[rows])  # det[R, Â', X] = X · (R × Â')
-    plane_high = cross(grid.points[cols + 1] - a0[rows], units[rows])
     none = np.empty(0)
-    first = Pieces(
-        rows,
-        grid.at[cols],
-        grid.at[cols + 1],
-        f_low,
-        f_high,
-        dot(plane_low, grid.second[cols]),
-        dot(plane_high, grid.left_second[cols + 1]),
-        *([none] * 6),
-    )
+    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 6))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
         c = cols[index]
@@ -927,34 +928,52 @@ class _Strip:
         order = order[~repeat]
         return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
 
-    def corner_retry(
-        self, signed: FloatArray, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray
-    ) -> None:
-        """Where a ruling ending at a corner has no defined warp because the tangent taken
-        there runs along it, measure it with the corner's other one-sided tangent (every
-        direction between the two touches the corner), keeping the smaller warp; rewrites
-        ``signed`` there. A warp that stays undefined stays NaN."""
-        at_a = np.isin(s, self.kinks_a) if len(self.kinks_a) else np.zeros(len(s), dtype=bool)
-        at_b = np.isin(t, self.kinks_b) if len(self.kinks_b) else np.zeros(len(t), dtype=bool)
-        retry = np.flatnonzero(np.isnan(signed) & (at_a | at_b))
-        if len(retry) == 0:
-            return
-        ta = self.curve_a.derivatives(s[retry], 1)[1]
-        tb = self.curve_b.derivatives(t[retry], 1)[1]
-        left_a = np.where(at_a[retry, None], self.curve_a.derivatives(s[retry] - SIDE, 1)[1], ta)
-        left_b = np.where(at_b[retry, None], self.curve_b.derivatives(t[retry] - SIDE, 1)[1], tb)
-        best = np.full(len(retry), np.nan)
-        for one in (ta, left_a):
-            for other in (tb, left_b):
-                w = warp_angles(starts[retry], ends[retry], one, other, signed=True)
-                better = ~np.isnan(w) & (np.isnan(best) | (np.abs(w) < np.abs(best)))
-                best = np.where(better, w, best)
-        signed[retry] = best
-
-    def geometry(self, s: FloatArray, t: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Ruling end points A(s) and B(t), evaluated afresh (nothing carried over from the
-        solve, so that the check of the output measures the output)."""
-        return self.curve_a.point_at(s), self.curve_b.point_at(t)
+    def measured(
+        self, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: _Candidates
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The output rulings A(s) → B(t) and their signed warp, measured from the curves:
+        the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
+        (NaN where no normal is defined), with the tangent at a corner taken in the plane
+        of the ruling where the corner straddles it (:func:`_corner_tangent`), and an end
+        shared with both neighbouring rulings (the apex of a fan of flat triangles)
+        taking the other end's plane. Nothing of the solve enters but the curves'
+        evaluations at those very parameters (a station's, a refined root's), which are
+        reused rather than repeated. Returns starts, ends and the signed warp."""
+        k = len(s)
+        station = source >= 0
+        rows = source[station]
+        if len(rows) == k:  # no added rulings
+            starts, ta = self.a0[rows], self.a1[rows]
+        else:
+            starts, ta = np.empty((2, k, 3))
+            starts[station], ta[station] = self.a0[rows], self.a1[rows]
+            starts[~station], ta[~station] = self.curve_a.derivatives(s[~station], 1)
+        # B where a station's chosen root still stands (a flat end or corner is re-evaluated)
+        root = np.full(k, -1)
+        picked = chosen[rows]
+        root[station] = np.where(picked >= 0, picked, -1)
+        kept = root >= 0
+        kept[kept] = (good.t[root[kept]] == t[kept]) & (good.kind[root[kept]] == ROOT)
+        if kept.all():
+            ends, tb = good.points[root], good.tangents[root]
+        else:
+            ends, tb = np.empty((2, k, 3))
+            ends[kept], tb[kept] = good.points[root[kept]], good.tangents[root[kept]]
+            ends[~kept], tb[~kept] = self.curve_b.derivatives(t[~kept], 1)
+        ruling = ends - starts
+        if len(self.kinks_b):
+            at_b = np.isin(t, self.kinks_b)
+            if at_b.any():
+                left = self.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
+                tb[at_b] = _corner_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
+        if len(self.kinks_a):
+            at_a = np.min(np.abs(s[:, None] - self.kinks_a[None, :]), axis=1) <= 1e-12
+            if at_a.any():
+                around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
+                sides = self.curve_a.derivatives(around, 1)[1]
+                ta[at_a] = _corner_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
+        signed = warp_angles(starts, ends, ta, tb, signed=True, apex_a=_fan_apex(s), apex_b=_fan_apex(t))
+        return starts, ends, signed
 
 
 def ruling_developable(
@@ -1039,10 +1058,8 @@ def _solve(
         added = strip.close_gaps(closed_t)
         kept = _outside_gaps(fans, strip.s, gap)
         s_out, t_out, source, fan = strip.merge(closed_t, gap, kept, added)
-        starts, ends = strip.geometry(s_out, t_out)
         # the warp of the output, from the curves' exact tangents (NaN where undefined)
-        signed = curve_warp(strip.curve_a, strip.curve_b, s_out, t_out, starts, ends, signed=True)
-        strip.corner_retry(signed, s_out, t_out, starts, ends)
+        starts, ends, signed = strip.measured(s_out, t_out, source, chosen, good)
         warp = np.abs(signed)
         with np.errstate(invalid="ignore"):
             valid = warp <= tolerance  # NaN (no normal defined) is never valid
@@ -1140,6 +1157,30 @@ def _normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray)
     rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
     triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
     return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
+
+
+def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
+    """The tangent of a curve at a corner for rulings ending there: the in-plane blend of
+    :func:`.warp.in_plane_tangent`, or, where that runs along the ruling (no normal), the
+    one-sided tangent that gives a defined normal with the smaller warp."""
+    tangent = in_plane_tangent(ruling, other, left, right)
+    along = norm(cross(ruling, tangent)) <= 1e-10 * norm(ruling)
+    if along.any():
+        r, o = ruling[along], other[along]
+        sides = unit(left[along]), unit(right[along])
+        zero = np.zeros_like(r)
+        warps = [warp_angles(zero, r, o, side) for side in sides]
+        pick_left = ~np.isnan(warps[0]) & (np.isnan(warps[1]) | (warps[0] <= warps[1]))
+        tangent[along] = np.where(pick_left[:, None], sides[0], sides[1])
+    return tangent
+
+
+def _fan_apex(parameters: FloatArray) -> BoolArray:
+    """Rulings whose end is shared with both neighbouring rulings: the apex of a fan."""
+    same = parameters[1:] == parameters[:-1]
+    apex = np.zeros(len(parameters), dtype=bool)
+    apex[1:-1] = same[:-1] & same[1:]
+    return apex
 
 
 def _message(fan_stations: int, n: int, tolerance: float, share: float) -> str | None:
