@@ -50,8 +50,8 @@ class ConicalSurface(Node):
         Out("Rulings", LINE, "R",
             "The straight generators, from the curve towards the Apex, Height long or ending at it.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact tangents; a ruling "
-            "ending at the Apex is measured in the plane of its fan triangles.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Measured with the curve's exact tangents; a "
+            "ruling ending at the Apex in the plane of its fan triangles.", access=LIST),
     )
 
     def solve(self, curve: Any, apex: Any, height: Any, segments: Any

@@ -48,7 +48,7 @@ class CylindricalSurface(Node):
         Out("Surface", SURFACE, "S", "The cylinder: the ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "The straight generators, parallel, each Height long.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact tangents.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Measured with the curve's exact tangents.", access=LIST),
     )
 
     def solve(self, curve: Any, direction_: Any, height: Any, segments: Any

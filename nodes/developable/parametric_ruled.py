@@ -132,7 +132,7 @@ class ParametricRuledSurface(Node):
         Out("Surface", SURFACE, "S", "The ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "Ruling i from C(u_i) + v0·a(u_i) to C(u_i) + v1·a(u_i).",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}; edge tangents from the neighbouring ruling "
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Edge tangents from the neighbouring rulings' "
             "ends.", access=LIST),
     )
 

@@ -128,7 +128,7 @@ class RulingDevelopable(Node):
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
         Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.",
             access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, recomputed from the output rulings and the "
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Recomputed from the output rulings and the "
             "curves' tangents.", access=LIST),
         Out("Valid", BOOLEAN, "V", "Whether each ruling's recomputed warp is a number within "
             "WarpTolerance.", access=LIST),

@@ -98,7 +98,7 @@ class SplineApproximation(Node):
             access=LIST, preview=False),
         Out("Fitness", NUMBER, "F", "Sum of the warp angles, rad (0 = developable at every ruling; "
             "NaN if a warp is undefined)."),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}: the angle between NormalsA and NormalsB.",
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} The angle between NormalsA and NormalsB.",
             access=LIST),
         Out("BestAngles", NUMBER, "BA",
             "The angles used, rad: the optimised ones with Optimise on, else Angles.", access=LIST),

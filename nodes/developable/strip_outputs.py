@@ -29,8 +29,8 @@ from nodes.geometry.ruled import RuledSurface
 #: The help text every WarpAngles output shares (a node may add a sentence).
 WARP_HELP = (
     "Warp angle of each ruling, rad, 0 to π: the angle between the sheet's normals at its two "
-    "ends (the turn of the tangent plane along it; 0 = torsal, developable there). NaN where "
-    "no tangent plane is defined"
+    "ends, i.e. the turn of the tangent plane along it (0 = torsal, developable there; NaN where "
+    "no tangent plane is defined)."
 )
 
 

@@ -61,7 +61,7 @@ class SurfaceCoupling(Node):
         Out("CurveB", CURVE, "CB", "Connecting curve from the end of EdgeA to SurfaceB (cubic, 4 points)."),
         Out("Surface", SURFACE, "S", "The connecting developable between CurveA and CurveB."),
         Out("Rulings", LINE, "R", "Its rulings, from CurveA to CurveB.", access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, recomputed from the rulings and the curves' "
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Recomputed from the rulings and the curves' "
             "tangents.", access=LIST),
     )
 

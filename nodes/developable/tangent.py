@@ -65,8 +65,8 @@ class TangentDevelopable(Node):
     outputs = (
         Out("Surface", SURFACE, "S", "The tangent developable: the ruled surface through the rulings."),
         Out("Rulings", LINE, "R", "The tangent segments, one per station.", access=LIST),
-        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP}, from the curve's exact derivatives; a ruling "
-            "through the curve is measured on each sheet.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Measured with the curve's exact derivatives; a "
+            "ruling through the curve on each sheet.", access=LIST),
     )
 
     def solve(self, curve: Any, segments: Any, length: Any, cutting_length: Any, two_sided: Any
