@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
+from nodes.geometry.vec_ops import position_rounding
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
@@ -118,7 +119,8 @@ class SurfaceProjector:
             edge |= (u <= 0.0) | (u >= 1.0)
         if not self.surface.closed_v:
             edge |= (v <= 0.0) | (v >= 1.0)
-        outside = (edge & (np.linalg.norm(gap, axis=1) > self.eps)) | ~(sideways <= self.eps)
+        eps = self.eps + position_rounding(queries)  # far from the origin, gaps round to more
+        outside = (edge & (np.linalg.norm(gap, axis=1) > eps)) | ~(sideways <= eps)
         return Foot(points, c.normal, np.minimum(np.abs(c.k1), np.abs(c.k2)),
                     np.column_stack([u, v]), outside)
 
@@ -211,7 +213,7 @@ def trace_rulings(
     m = len(origins)
     d = directions / np.linalg.norm(directions, axis=1, keepdims=True)
     h = size / steps
-    eps = ROUNDING * size + projector.slack
+    eps = ROUNDING * size + projector.slack + position_rounding(origins)
     reach = np.zeros((2, m))  # accepted distance on each side
     alive = np.ones((2, m), dtype=bool)
     state = np.stack([states, states]).astype(float)
@@ -313,7 +315,9 @@ def distinct_rulings(starts: FloatArray, ends: FloatArray, size: float, shortest
     and not lying along a longer one already kept (both ends within 1e-4 of ``size``
     of it: grid points along one ruling all find it, some only part of it)."""
     lengths = np.linalg.norm(ends - starts, axis=1)
-    order = np.argsort(-lengths, kind="stable")
+    # equal lengths (to 1e-6 of the size: a symmetric surface's) keep the grid's order,
+    # not the order rounding gives them, which changes when the surface is moved
+    order = np.argsort(-np.round(lengths / (1e-6 * size)), kind="stable")
     order = order[lengths[order] > shortest]
     kept: list[int] = []
     tol = 1e-4 * size

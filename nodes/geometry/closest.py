@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .roots import safeguarded_newton
+from .vec_ops import anchor
 
 if TYPE_CHECKING:
     from .curve_base import Curve, FloatArray
@@ -61,12 +62,17 @@ def search_parameters(curve: Curve) -> FloatArray:
 
 
 def nearest_sample(samples: FloatArray, points: FloatArray) -> np.ndarray:
-    """Index of the nearest sample to each point (brute force in memory-bounded chunks)."""
+    """Index of the nearest sample to each point (brute force in memory-bounded chunks).
+
+    Distances are compared as |s|² − 2 q·s, about the samples' anchor: from the world
+    origin, at site coordinates the squares (1e12 at 1e6 m) would swamp the differences."""
     result = np.empty(len(points), dtype=np.int64)
     chunk = max(1, 4_000_000 // len(samples))
+    origin = anchor(samples)
+    samples = samples - origin
     norms = np.einsum("ij,ij->i", samples, samples)
     for start in range(0, len(points), chunk):  # chunks bound memory; each is vectorised
-        q = points[start : start + chunk]
+        q = points[start : start + chunk] - origin
         result[start : start + chunk] = np.argmin(norms[None, :] - 2.0 * q @ samples.T, axis=1)
     return result
 

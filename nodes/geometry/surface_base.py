@@ -51,7 +51,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
-from .vec_ops import anchor, extent
+from .vec_ops import anchor, extent, position_rounding
 
 FloatArray = NDArray[np.float64]
 
@@ -428,7 +428,8 @@ class Surface(ABC):
             unit = np.divide(axis, length, out=np.zeros_like(axis), where=length > 0)
             rel = lines - a
             off = rel - np.sum(rel * unit, axis=2, keepdims=True) * unit
-            return bool(np.max(np.linalg.norm(off, axis=2)) <= 1e-9 * size)
+            # to 1e-9 of the size, or to the rounding of positions far from the origin
+            return bool(np.max(np.linalg.norm(off, axis=2)) <= 1e-9 * size + position_rounding(pts))
 
         if straight(pts):
             return "v"
@@ -559,6 +560,11 @@ class TransformedSurface(Surface):
         linear, shift = self.matrix[:3, :3], self.matrix[:3, 3]
         ders = self.surface.derivatives(u, v, order)
         return [ders[0] @ linear.T + shift] + [d @ linear.T for d in ders[1:]]
+
+    @cached_property
+    def ruling_direction(self) -> str | None:
+        """The wrapped surface's: an affine map takes straight lines to straight lines."""
+        return self.surface.ruling_direction
 
     def _area_scale(self) -> float | None:
         """k² when the matrix is a similarity (rotation, mirror, uniform scale k and a

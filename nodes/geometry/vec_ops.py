@@ -74,3 +74,18 @@ def anchor(points: FloatArray) -> FloatArray:
     """
     columns = np.ascontiguousarray(points.T)
     return 0.5 * (columns.max(axis=1) + columns.min(axis=1))
+
+
+#: Ulps of the largest coordinate that a difference of computed positions may be off by.
+POSITION_ULPS = 16
+
+
+def position_rounding(points: FloatArray) -> float:
+    """The rounding error of a difference of positions near ``points`` (absolute).
+
+    A point computed at site coordinates (1e6 m) is rounded to ~1e-10 m whatever the
+    object's size, so a gap between two computed positions (a query and its closest
+    point, say) cannot be smaller than this; tests of such a gap against a tolerance
+    relative to the object's size add it, or they never pass far from the origin.
+    """
+    return POSITION_ULPS * float(np.finfo(float).eps) * float(np.abs(points).max(initial=0.0))
