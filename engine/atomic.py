@@ -121,6 +121,9 @@ def _create_temporary(path: Path) -> Path:
 
 def _replace_backup(path: Path, backup: Path) -> None:
     """Make the current ``path`` the ``.bak`` in one atomic step."""
+    with contextlib.suppress(OSError):
+        if os.path.samefile(path, backup):
+            return  # a save killed after its backup step: the backup already is this file
     staged = _create_temporary(backup)
     try:
         staged.unlink()
@@ -130,9 +133,10 @@ def _replace_backup(path: Path, backup: Path) -> None:
             shutil.copy2(path, staged)
             _flush(staged)
         os.replace(staged, backup)
-    except BaseException:
+    finally:
+        # gone after a rename, unless ``backup`` was already a link to the same file (then
+        # rename does nothing and leaves ``staged`` in place)
         staged.unlink(missing_ok=True)
-        raise
 
 
 def _flush(path: Path) -> None:

@@ -157,3 +157,16 @@ def test_names_with_glob_characters_are_handled(tmp_path):
     assert target.read_text(encoding="utf-8") == "newer"
     assert backup_path(target).read_text(encoding="utf-8") == "new"
     assert temporaries(tmp_path) == []
+
+
+def test_a_backup_that_already_is_the_file_leaves_no_temporary(tmp_path):
+    """A save killed between its two renames leaves ``.bak`` a hard link to the file;
+    renaming a link onto another link of the same file does nothing, so the staged link
+    must not be left behind by the next save."""
+    target = tmp_path / "a.txt"
+    target.write_text("old", encoding="utf-8")
+    os.link(target, backup_path(target))
+    replace_keeping_backup(target, writer("new"))
+    assert target.read_text(encoding="utf-8") == "new"
+    assert backup_path(target).read_text(encoding="utf-8") == "old"
+    assert temporaries(tmp_path) == []
