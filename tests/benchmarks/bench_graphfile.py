@@ -11,15 +11,27 @@ it about 4. The bars: a 2,000-wire chain loads in well under half a second, and 
 fuzz corpus's slowest file (5,000 nodes) goes through load, solve, save, load and save
 in about a second. ``make test`` checks the same growth by counting function calls
 (``tests/engine/test_graphfile.py``) and keeps only a hang guard on the corpus.
+
+Issue 11's bars on reading, with their baselines: a 16 MB file of format version 99 is
+refused in a small part (under a tenth: < 0.1 s) of the time parsing the same file at
+version 1 takes; a file of ``1e308`` tokens loads within 3x of a file of short numbers
+of the same size; and ``torsal check`` refuses /dev/zero, a FIFO and a folder in no
+more time than it takes to check a small valid file (well under a second).
 """
 
 from __future__ import annotations
 
 import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
 
 from engine import graphfile
 from engine.solver import Solver
-from tests.benchmarks.timing import ratio_to_baseline
+from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
 from tests.engine.nodekit import make_registry
 
 REGISTRY = make_registry()
@@ -70,3 +82,88 @@ def test_the_fuzz_corpus_slowest_file_costs_twice_one_half_its_size():
         7,
     )
     assert ratio <= 3.0
+
+
+SIXTEEN_MB = 16 * 2**20
+
+
+def nodes_file(version: int, size: int) -> bytes:
+    """A graph of plain nodes about ``size`` bytes long, keys sorted as Torsal saves them
+    (so ``version`` comes after the nodes)."""
+    sample = json.dumps({"id": "n100000", "position": [1.5, 2.5], "type": "maths.Add"}) + ", "
+    count = size // len(sample)
+    nodes = [{"id": f"n{i}", "position": [1.5, 2.5], "type": "maths.Add"} for i in range(count)]
+    return json.dumps({"format": "torsal.graph", "nodes": nodes, "version": version}).encode("utf-8")
+
+
+def test_a_16_mb_version_99_file_is_refused_in_a_tenth_of_the_time_parsing_it_takes(tmp_path):
+    newer, current = tmp_path / "newer.graph", tmp_path / "current.graph"
+    newer.write_bytes(nodes_file(99, SIXTEEN_MB))
+    current.write_bytes(nodes_file(1, SIXTEEN_MB))
+    print(f"\nfiles of {newer.stat().st_size / 2**20:.1f} MB")
+
+    def refuse() -> None:
+        try:
+            graphfile.read_graph(newer, REGISTRY)
+        except graphfile.NewerVersionError:
+            return
+        raise AssertionError("the version-99 file was not refused")
+
+    ratio = ratio_to_baseline(
+        "refuse the version-99 file",
+        refuse,
+        "read and parse the same file at version 1",
+        lambda: graphfile.parse(graphfile.read_file(current)),
+        5,
+    )
+    assert ratio <= 0.1
+
+
+def numbers_file(token: str, size: int) -> bytes:
+    count = size // (len(token) + 2)
+    items = ", ".join([token] * count)
+    return f'{{"format": "torsal.graph", "meta": {{"x": [{items}]}}, "nodes": [], "version": 1}}'.encode()
+
+
+@pytest.mark.parametrize(("short", "bar"), [("1.5", 3.0), ("1", 4.0)])
+def test_a_file_of_1e308_tokens_loads_within_3x_of_one_of_short_numbers(short, bar):
+    """Each number with an exponent or a fraction costs one ``float()``: ~80 ns for 1.5,
+    ~350 ns for 1e308 (CPython's correctly rounded parser works with big integers
+    there). Integers cost msgspec ~6 ns, so against single-digit integers the file of
+    1e308 tokens (2.3 times fewer tokens a byte) is held to 4x, not 3x: that is the cost
+    of ``float()`` itself (it was 10x, msgspec's own parser taking 2 µs a byte)."""
+    large, small = numbers_file("1e308", 8 * 2**20), numbers_file(short, 8 * 2**20)
+    print(f"\n{len(large) / 2**20:.1f} MB of 1e308 against {len(small) / 2**20:.1f} MB of {short}")
+    ratio = ratio_to_baseline(
+        "load 8 MB of 1e308 tokens",
+        lambda: graphfile.loads(large, REGISTRY),
+        f"load 8 MB of {short!r} tokens",
+        lambda: graphfile.loads(small, REGISTRY),
+        5,
+    )
+    assert ratio <= bar
+
+
+ROOT = Path(__file__).resolve().parents[2]
+CHECK = [sys.executable, "-m", "app.cli", "check"]
+
+
+def check(path: Path | str, expected_code: int) -> None:
+    done = subprocess.run([*CHECK, str(path)], capture_output=True, text=True, timeout=30, cwd=ROOT)
+    assert done.returncode == expected_code, done.stderr
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo") or not Path("/dev/zero").exists(), reason="needs POSIX")
+def test_torsal_check_refuses_a_device_a_fifo_and_a_folder_as_fast_as_it_checks_a_small_file(tmp_path):
+    fifo = tmp_path / "pipe.graph"
+    os.mkfifo(fifo)
+    example = ROOT / "resources" / "examples" / "first-steps.graph"
+    refusals = {"/dev/zero": "/dev/zero", "a FIFO": fifo, "a folder": tmp_path}
+    functions = [lambda: check(example, 0)] + [lambda p=p: check(p, 2) for p in refusals.values()]
+    rounds = timed_rounds(functions, 3)
+    best = [min(r[i] for r in rounds) for i in range(len(functions))]
+    print(f"\ntorsal check of {example.name}: {duration(best[0])}")
+    for name, seconds in zip(refusals, best[1:], strict=True):
+        ratio = sorted(r[1 + list(refusals).index(name)] / r[0] for r in rounds)[1]
+        print(f"  refusal of {name}: {duration(seconds)} (median ratio {ratio:.2f})")
+        assert ratio <= 1.5
