@@ -22,18 +22,25 @@ of its spans gets instead the geometric tangent
 
 (H the harmonic mean, as in Fritsch and Butland's monotone interpolation), which
 meets them always: its component along either chord is ≥ 0 (the two unit chords'
-sum never points backwards along one of them) and |m| h ≤ 2 |c|. A zero chord (two
-rulings through one point) gives m = 0 at both of its nodes, so the rail stays at the
-point across the span: the loft over a fan is exactly the cone through its apex. The
-result is C¹ (C² across the spans left alone, which keep the spline's own cubic), and
-for evenly spaced smooth data no tangent is touched and the spline is returned as is.
+sum never points backwards along one of them) and |m| h ≤ 2 |c|. The result is C¹ (C²
+across the spans left alone, which keep the spline's own cubic), and for evenly spaced
+smooth data no tangent is touched and the spline is returned as is.
+
+A zero chord (two rulings through one point: a fan) is a span where the rail stands
+still, tangents 0, so the loft over a fan is exactly the cone through its apex. The
+points between fans are interpolated run by run, each run by its own spline (limited
+as above): one spline through the repeated apex would swing out around it, and a rail
+slowed to a stop there would leave it in the direction of its next control point, a
+kink of up to ~20° in the edge. So the rail reaches the apex with the tangent of the
+run before and leaves it with that of the run after (continuous in position there,
+and in direction as far as the two runs agree).
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import BSpline
+from scipy.interpolate import BSpline, make_interp_spline
 
 FloatArray = NDArray[np.float64]
 
@@ -67,7 +74,8 @@ def _fits(tangent: FloatArray, chord: FloatArray, length: FloatArray, step: Floa
 
 
 def _geometric(chords: FloatArray, lengths: FloatArray, steps: FloatArray, closed: bool) -> FloatArray:
-    """The fallback tangents m_i (module docstring) at every node, ``(nodes, rails, 3)``."""
+    """The fallback tangents m_i (module docstring) at every node, ``(nodes, rails, 3)``;
+    at the ends of an open rail the chord's own slope."""
     units = chords / np.where(lengths > 0, lengths, 1.0)[..., None]
     speed = lengths / steps  # |c| / h per span
     if closed:
@@ -83,18 +91,86 @@ def _geometric(chords: FloatArray, lengths: FloatArray, steps: FloatArray, close
     with np.errstate(invalid="ignore", divide="ignore"):
         harmonic = np.where(slow * fast > 0, 2 * slow * fast / (slow + fast), 0.0)
     direction = total / np.where(size > 1e-12, size, 1.0)[..., None]
-    return np.where((size > 1e-12)[..., None], direction * harmonic[..., None], 0.0)
+    tangents = np.where((size > 1e-12)[..., None], direction * harmonic[..., None], 0.0)
+    return np.concatenate([tangents, tangents[:1]]) if closed else tangents
 
 
-def hermite_spline(params: FloatArray, points: FloatArray, tangents: FloatArray) -> BSpline:
-    """The C¹ piecewise cubic through ``points`` at ``params`` with ``tangents`` there, as a
-    B-spline with double interior knots (its coefficients are the inner Bézier points)."""
+def _limited(params: FloatArray, p: FloatArray, d: FloatArray, closed: bool) -> tuple[FloatArray, bool]:
+    """Node tangents ``(n, rails, 3)``: the spline's ``d`` where they fit both spans at the
+    node, the fallback elsewhere; and whether any was replaced."""
+    chords = np.diff(p, axis=0)
+    lengths = _norm(chords)
+    steps = np.diff(params)[:, None]
+    zero = np.zeros(lengths.shape, dtype=bool)
+    good = np.ones(d.shape[:2], dtype=bool)
+    good[:-1] &= _fits(d[:-1], chords, lengths, steps, zero)  # against the span after the node
+    good[1:] &= _fits(d[1:], chords, lengths, steps, zero)  # and the span before it
+    if closed:  # the last node is the first one
+        good[0] &= good[-1]
+        good[-1] = good[0]
+    if good.all():
+        return d, False
+    tangents = np.where(good[..., None], d, _geometric(chords, lengths, steps, closed))
+    if closed:
+        tangents[-1] = tangents[0]  # C¹ across the seam exactly
+    return tangents, True
+
+
+def _runs(zero: NDArray[np.bool_], closed: bool) -> list[NDArray[np.int64]]:
+    """The nodes of each maximal run of consecutive nonzero chords, in order (on a closed
+    rail the indices may pass its last node: take them modulo the number of spans)."""
+    spans = len(zero)
+    if closed:
+        first = int(np.flatnonzero(zero)[0]) + 1  # a run starts after a zero chord
+        unwrapped = first + np.arange(spans)
+    else:
+        unwrapped = np.arange(spans)
+    runs, current = [], []
+    for index in unwrapped.tolist():
+        if zero[index % spans]:
+            if current:
+                runs.append(np.array([*current, current[-1] + 1]))
+            current = []
+        else:
+            current.append(index)
+    if current:
+        runs.append(np.array([*current, current[-1] + 1]))
+    return runs
+
+
+def _fan_tangents(params: FloatArray, p: FloatArray, zero: NDArray[np.bool_], closed: bool
+                  ) -> tuple[FloatArray, FloatArray]:
+    """Start and end tangents ``(spans, 3)`` of every span of one rail with zero chords: 0 on
+    those (the rail stays on the fan's apex), and on each run of nonzero chords between
+    them the limited tangents of the interpolating spline through that run alone (the
+    repeated apex would make a spline through all the points swing out near it)."""
+    spans = len(zero)
+    start, end = np.zeros((spans, 3)), np.zeros((spans, 3))
+    for run in _runs(zero, closed):
+        index = run % spans if closed else run
+        u = params[index] + (run // spans if closed else 0)
+        q = p[index]
+        spline = make_interp_spline(u, q, k=min(3, len(run) - 1))
+        d = np.asarray(spline(u, nu=1), dtype=float)
+        tangents, _ = _limited(u, q[:, None, :], d[:, None, :], closed=False)
+        span = index[:-1]
+        start[span], end[span] = tangents[:-1, 0], tangents[1:, 0]
+    return start, end
+
+
+def bezier_spline(params: FloatArray, points: FloatArray, start: FloatArray, end: FloatArray) -> BSpline:
+    """The piecewise cubic through ``points`` at ``params`` whose span i leaves point i with
+    tangent ``start[i]`` and reaches point i + 1 with tangent ``end[i]``, as a B-spline with
+    triple interior knots (its coefficients are the spans' Bézier points); C¹ where
+    ``end[i − 1] == start[i]``."""
     h = np.diff(params)[:, None]
-    inner = np.empty((2 * (len(params) - 1), points.shape[1]))
-    inner[0::2] = points[:-1] + tangents[:-1] * h / 3.0
-    inner[1::2] = points[1:] - tangents[1:] * h / 3.0
-    coefficients = np.vstack([points[:1], inner, points[-1:]])
-    knots = np.concatenate([np.full(4, params[0]), np.repeat(params[1:-1], 2), np.full(4, params[-1])])
+    spans = len(h)
+    coefficients = np.empty((3 * spans + 1, points.shape[1]))
+    coefficients[0:-1:3] = points[:-1]
+    coefficients[1::3] = points[:-1] + start * h / 3.0
+    coefficients[2::3] = points[1:] - end * h / 3.0
+    coefficients[-1] = points[-1]
+    knots = np.concatenate([np.full(4, params[0]), np.repeat(params[1:-1], 3), np.full(4, params[-1])])
     return BSpline(knots, coefficients, 3)
 
 
@@ -107,32 +183,28 @@ def without_overshoot(
     ``points`` ``(n, columns)`` are the interpolated points at ``params`` (several 3D
     rails side by side when the columns are a multiple of 3: each rail is limited on its
     own); ``closed`` means the last point repeats the first and the spline is periodic.
+    A rail with zero chords (a fan of rulings through one point) stands still on them
+    and is interpolated on each run of points between them on its own.
     """
     if spline.k < 2 or len(params) < 3:
         return None  # a polyline (or a single segment) cannot overshoot
     p = _points(points)
-    d = _points(np.asarray(spline(params, nu=1), dtype=float))
-    chords = np.diff(p, axis=0)
-    lengths = _norm(chords)
+    lengths = _norm(np.diff(p, axis=0))
     size = np.ptp(p, axis=0).max(axis=-1)  # per rail
     zero = lengths <= ZERO_CHORD * np.where(size > 0, size, 1.0)
-    steps = np.diff(params)[:, None]
-    # every node's spline tangent against the span after it and the span before it
-    ahead = _fits(d[:-1], chords, lengths, steps, zero)
-    behind = _fits(d[1:], chords, lengths, steps, zero)
-    good = np.ones(d.shape[:2], dtype=bool)
-    good[:-1] &= ahead
-    good[1:] &= behind
-    if closed:  # the last node is the first one
-        good[0] &= good[-1]
-        good[-1] = good[0]
-    if good.all():
-        return None
-    fallback = _geometric(chords, lengths, steps, closed)
-    if closed:
-        fallback = np.concatenate([fallback, fallback[:1]])
-    tangents = np.where(good[..., None], d, fallback)
-    if closed:
-        tangents[-1] = tangents[0]  # C¹ across the seam exactly
-    tangents = tangents.reshape(len(params), -1)
-    return hermite_spline(params, points, tangents)
+    d = _points(np.asarray(spline(params, nu=1), dtype=float))
+    if not zero.any():
+        tangents, changed = _limited(params, p, d, closed)
+        if not changed:
+            return None
+        flat = tangents.reshape(len(params), -1)
+        return bezier_spline(params, points, flat[:-1], flat[1:])
+    shape = (len(lengths), *p.shape[1:])
+    starts, ends = np.empty(shape), np.empty(shape)
+    for rail in range(p.shape[1]):
+        if zero[:, rail].any():
+            starts[:, rail], ends[:, rail] = _fan_tangents(params, p[:, rail], zero[:, rail], closed)
+        else:
+            tangents, _ = _limited(params, p[:, rail : rail + 1], d[:, rail : rail + 1], closed)
+            starts[:, rail], ends[:, rail] = tangents[:-1, 0], tangents[1:, 0]
+    return bezier_spline(params, points, starts.reshape(len(lengths), -1), ends.reshape(len(lengths), -1))

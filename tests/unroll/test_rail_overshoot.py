@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import make_interp_spline
 
-from nodes.geometry.rail_tangents import hermite_spline
+from nodes.geometry.rail_tangents import bezier_spline
 from nodes.geometry.ruled import RuledSurface
 
 U = np.linspace(0.0, 1.0, 4001)
@@ -84,10 +84,30 @@ def test_rail_on_an_unevenly_divided_circle_turns_one_way_only():
     assert np.diff(angle).min() >= 0.0
 
 
-def test_hermite_spline_interpolates_values_and_tangents():
+def test_bezier_spline_interpolates_values_and_each_spans_end_tangents():
     params = np.array([0.0, 0.25, 0.7, 1.0])
     points = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.0]])
-    tangents = np.array([[1.0, 0.0], [2.0, 1.0], [0.0, -3.0], [1.0, 1.0]])
-    spline = hermite_spline(params, points, tangents)
+    start = np.array([[1.0, 0.0], [2.0, 1.0], [0.0, -3.0]])
+    end = np.array([[0.5, 0.5], [0.0, -1.0], [1.0, 1.0]])
+    spline = bezier_spline(params, points, start, end)
     assert np.abs(spline(params) - points).max() < 1e-15
-    assert np.abs(spline(params, nu=1) - tangents).max() < 1e-13
+    eps = 1e-12  # one-sided derivatives at the spans' ends
+    assert np.abs(spline(params[:-1] + eps, nu=1) - start).max() < 1e-8
+    assert np.abs(spline(params[1:] - eps, nu=1) - end).max() < 1e-8
+
+
+def test_rail_through_a_fan_on_a_circle_keeps_the_circles_tangent_at_the_apex():
+    """B divides a circle evenly but stays on one point for three rulings (a fan): the rail
+    reaches and leaves that point along the circle's tangent there, not with a kink."""
+    phi = np.r_[np.arange(6) * 0.3, [1.5, 1.5, 1.5], 1.5 + np.arange(1, 6) * 0.3]
+    b = np.column_stack([5 * np.cos(phi), 5 * np.sin(phi), 0 * phi])
+    a = np.column_stack([np.linspace(0, 6, len(phi)), np.full(len(phi), -3.0), np.full(len(phi), 2.0)])
+    rail = loft(a, b).curve_b
+    h = 1.0 / (len(phi) - 1)
+    arrive = rail.derivatives(np.array([5 * h - 1e-9]), 1)[1][0]
+    leave = rail.derivatives(np.array([8 * h + 1e-9]), 1)[1][0]
+    tangent = np.array([-np.sin(1.5), np.cos(1.5), 0.0])
+    # each run's own spline ends 0.27° off the circle's tangent (0.3 rad between points);
+    # one spline through all of them, apex three times, is 5.2° off
+    for direction in (arrive, leave):
+        assert np.degrees(np.arccos(direction @ tangent / np.linalg.norm(direction))) < 0.3
