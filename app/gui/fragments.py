@@ -52,12 +52,7 @@ def paste_fragment(
     Raises :class:`~engine.graphfile.GraphFileError` for text that is not a fragment.
     """
     fragment = loads(text, registry)
-    taken = set(graph.nodes)
-    renamed: dict[str, str] = {}
-    for node_id in fragment.nodes:
-        new_id = fresh_id(node_id, taken) if node_id in taken else node_id
-        taken.add(new_id)
-        renamed[node_id] = new_id
+    renamed = fresh_ids(list(fragment.nodes), set(graph.nodes))
     if anchor is not None and fragment.nodes:
         left = min(r.position[0] for r in fragment.nodes.values())
         top = min(r.position[1] for r in fragment.nodes.values())
@@ -78,3 +73,28 @@ def paste_fragment(
         for w in fragment.wires
     ]
     return records, wires
+
+
+def fresh_ids(node_ids: list[str], taken: set[str]) -> dict[str, str]:
+    """A new id for each of ``node_ids`` that clashes with ``taken`` (or with one given
+    before it): the ids :func:`~app.gui.graph_order.fresh_id` gives one by one, found
+    without searching each stem's numbers from 2 again (pasting ``e0``…``e999`` into a
+    graph that has ``e0``…``e9999`` tries each number once, not once per node)."""
+    taken = set(taken)
+    next_number: dict[str, int] = {}  # stem → the smallest number that may still be free
+    renamed: dict[str, str] = {}
+    for node_id in node_ids:
+        new_id = node_id
+        if node_id in taken:
+            stem = fresh_id(node_id, set())  # the stem fresh_id would use
+            n = next_number.get(stem, 2)
+            if stem not in taken:
+                new_id = stem
+            else:
+                while f"{stem}{n}" in taken:
+                    n += 1
+                new_id = f"{stem}{n}"
+                next_number[stem] = n + 1
+        taken.add(new_id)
+        renamed[node_id] = new_id
+    return renamed

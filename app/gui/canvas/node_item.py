@@ -26,7 +26,7 @@ from app.gui.canvas.layout import TITLE_H, NodeLayout, compute_layout
 from app.gui.canvas.port_item import PortItem
 from app.gui.formatting import MODIFIER_MARKS, format_item
 from app.gui.icons import node_letters, paint_letter_tile, palette_colour
-from engine.graph import NodeRecord, is_placeholder
+from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.solver import NodeResult
 
 if TYPE_CHECKING:
@@ -46,9 +46,10 @@ class NodeItem(QGraphicsRectItem):
     port_font = theme.ui_font(8.0)
     mono_font = theme.mono_font(8.0)
 
-    def __init__(self, record: NodeRecord) -> None:
+    def __init__(self, record: NodeRecord, graph: Graph | None = None) -> None:
         super().__init__()
         self.record = record
+        self._graph = graph  # a placeholder's ports come from its wires in this graph
         self.node_id = record.id
         self.result: NodeResult | None = None
         self.ports: dict[tuple[bool, str], PortItem] = {}
@@ -87,13 +88,11 @@ class NodeItem(QGraphicsRectItem):
         node = self.record.node
         if is_placeholder(node):
             scene = self.scene()
-            wires = scene.doc.graph.wires if scene is not None else []
-            ins = list(
-                dict.fromkeys(
-                    [*self.record.inputs, *(w.target_port for w in wires if w.target == self.node_id)]
-                )
-            )
-            outs = list(dict.fromkeys(w.source_port for w in wires if w.source == self.node_id))
+            graph = scene.doc.graph if scene is not None else self._graph
+            into = graph.wires_into(self.node_id) if graph is not None else []
+            out = graph.wires_from(self.node_id) if graph is not None else []
+            ins = list(dict.fromkeys([*self.record.inputs, *(w.target_port for w in into)]))
+            outs = list(dict.fromkeys(w.source_port for w in out))
             return [(n, n, "?") for n in ins], [(n, "?") for n in outs]
         if self.record.type_id == "params.Panel":  # a note: ports without labels, as in Grasshopper
             return [(p.name, "", p.type.name) for p in node.input_ports()], [
@@ -141,6 +140,11 @@ class NodeItem(QGraphicsRectItem):
             port.setToolTip(self.port_tooltip(name, is_input))
         self.setRect(self.layout.rect)
         self.update()
+
+    def drawn_from_wires(self) -> bool:
+        """Whether the wires into this node change how it is drawn: a placeholder's ports
+        come from its wires, and an inline widget may show what is wired in."""
+        return self.widget is not None or is_placeholder(self.record.node)
 
     def input_port(self, name: str) -> PortItem | None:
         return self.ports.get((True, name))

@@ -3,11 +3,16 @@
 The scene owns no data. It creates, updates and removes node, wire and group items
 when the :class:`~app.gui.document.Document` reports a change, and recolours them
 when solve results arrive.
+
+An edit costs what it touches: the wire items of each node are indexed, and the work
+that concerns the whole scene (its rectangle, the one ``selectionChanged`` for the
+selected items an edit removed) is done once when the edit's undo command has run
+(or on the next event-loop turn for an edit made outside the undo stack).
 """
 
 from __future__ import annotations
 
-from PySide6.QtCore import QObject, QPointF, QRectF, Signal
+from PySide6.QtCore import QObject, QPointF, QRectF, QTimer, Signal
 from PySide6.QtWidgets import QGraphicsScene, QInputDialog
 
 from app.gui.canvas.group_item import GroupItem
@@ -43,10 +48,19 @@ class CanvasScene(QGraphicsScene):
         self.nodes: dict[str, NodeItem] = {}
         self.wires: dict[Wire, WireItem] = {}
         self.groups: dict[str, GroupItem] = {}
+        self._wires_of: dict[str, dict[Wire, None]] = {}  # node id → its wire items' wires
+        self._highlighted: set[Wire] = set()
         self._syncing_move = False
+        self._rect_due = False  # the scene rectangle waits for the end of the edit
+        self._selection_due = False  # selected items were removed: selectionChanged is owed
+        self._finish_timer = QTimer(self)
+        self._finish_timer.setSingleShot(True)
+        self._finish_timer.setInterval(0)
+        self._finish_timer.timeout.connect(self.finish_edit)
         self.setItemIndexMethod(QGraphicsScene.ItemIndexMethod.NoIndex)
         doc.graph_replaced.connect(self.rebuild)
         doc.graph_changed.connect(self.on_graph_event)
+        doc.undo_stack.indexChanged.connect(lambda _index: self.finish_edit())
         doc.groups_changed.connect(self.refresh_groups)
         doc.results_changed.connect(self.apply_results)
         self.selectionChanged.connect(self._highlight_wires)
@@ -58,6 +72,8 @@ class CanvasScene(QGraphicsScene):
         self.nodes.clear()
         self.wires.clear()
         self.groups.clear()
+        self._wires_of.clear()
+        self._highlighted.clear()
         graph = self.doc.graph
         for record in graph.nodes.values():
             self._add_node(record.id)
@@ -67,10 +83,11 @@ class CanvasScene(QGraphicsScene):
         self.update_scene_rect()
 
     def _add_node(self, node_id: str) -> NodeItem:
-        item = NodeItem(self.doc.graph.nodes[node_id])
+        item = NodeItem(self.doc.graph.nodes[node_id], self.doc.graph)  # laid out once, here
         self.addItem(item)
-        item.rebuild()
-        item.set_result(self.doc.result(node_id))
+        result = self.doc.result(node_id)
+        if result is not None:
+            item.set_result(result)
         self.nodes[node_id] = item
         return item
 
@@ -88,12 +105,21 @@ class CanvasScene(QGraphicsScene):
         item.set_kind(self._wire_kind(wire))
         self.addItem(item)
         self.wires[wire] = item
+        self._wires_of.setdefault(wire.source, {})[wire] = None
+        self._wires_of.setdefault(wire.target, {})[wire] = None
         return item
 
     def _remove_wire(self, wire: Wire) -> None:
         item = self.wires.pop(wire, None)
         if item is not None:
             self.removeItem(item)
+            self._highlighted.discard(wire)
+            for node_id in (wire.source, wire.target):
+                self._wires_of.get(node_id, {}).pop(wire, None)
+
+    def wire_items_of(self, node_id: str) -> list[WireItem]:
+        """The wire items into and out of ``node_id``."""
+        return [self.wires[w] for w in self._wires_of.get(node_id, ())]
 
     # -- engine events ---------------------------------------------------------------
     def on_graph_event(self, event: GraphEvent) -> None:
@@ -102,14 +128,15 @@ class CanvasScene(QGraphicsScene):
             self._add_node(node_id)
         elif kind == "node_removed":
             item = self.nodes.pop(node_id, None)
+            self._wires_of.pop(node_id, None)
             if item is not None:
-                self.removeItem(item)
+                self._remove_node_item(item)
         elif kind == "wire_added":
             self._add_wire(event.data["wire"])
-            self._refresh_node(event.data["wire"].target)
+            self._rewired(event.data["wire"].target)
         elif kind == "wire_removed":
             self._remove_wire(event.data["wire"])
-            self._refresh_node(event.data["wire"].target)
+            self._rewired(event.data["wire"].target)
         elif kind == "node_moved":
             item = self.nodes.get(node_id)
             if item is not None and (item.pos().x(), item.pos().y()) != tuple(event.data["new"]):
@@ -121,7 +148,38 @@ class CanvasScene(QGraphicsScene):
             self._refresh_node(node_id)
         elif kind in ("group_added", "group_removed"):
             self.refresh_groups()
-        self.update_scene_rect()
+        self._rect_due = True
+        self._finish_timer.start()
+
+    def _remove_node_item(self, item: NodeItem) -> None:
+        """Remove a node's item; a selected one owes one ``selectionChanged`` for the edit."""
+        if not item.isSelected():
+            self.removeItem(item)
+            return
+        blocked = self.blockSignals(True)
+        try:
+            self.removeItem(item)
+        finally:
+            self.blockSignals(blocked)
+        self._selection_due = True
+        self._finish_timer.start()
+
+    def finish_edit(self) -> None:
+        """What waits for the end of an edit: the scene rectangle, one ``selectionChanged``."""
+        self._finish_timer.stop()
+        if self._rect_due:
+            self._rect_due = False
+            self.update_scene_rect()
+        if self._selection_due:
+            self._selection_due = False
+            self.selectionChanged.emit()
+
+    def _rewired(self, node_id: str) -> None:
+        """A wire into ``node_id`` came or went: only a node drawn from its wires (a
+        placeholder's ports, a panel showing its input) is laid out again."""
+        item = self.nodes.get(node_id)
+        if item is not None and item.drawn_from_wires():
+            self._refresh_node(node_id)
 
     def _refresh_node(self, node_id: str | None) -> None:
         item = self.nodes.get(node_id) if node_id else None
@@ -132,9 +190,8 @@ class CanvasScene(QGraphicsScene):
 
     def node_item_moved(self, item: NodeItem) -> None:
         """Keep wires and group boxes attached while an item moves."""
-        for wire, wire_item in self.wires.items():
-            if item.node_id in (wire.source, wire.target):
-                wire_item.update_path()
+        for wire_item in self.wire_items_of(item.node_id):
+            wire_item.update_path()
         for group in self.doc.graph.groups:
             if item.node_id in group.nodes:
                 self._fit_group(group.id)
@@ -162,14 +219,18 @@ class CanvasScene(QGraphicsScene):
     def apply_results(self, outcome: SolveOutcome) -> None:
         """Recolour the nodes whose result changed (only those are repainted)."""
         resized = False
+        changed = []
         for node_id, item in self.nodes.items():
             result = self.doc.result(node_id)
             if result is not item.result:
+                changed.append(node_id)
                 before = item.size()
                 item.set_result(result)
                 resized = resized or item.size() != before
-        for wire, item in self.wires.items():
-            item.set_kind(self._wire_kind(wire))
+        for node_id in changed:  # a wire's kind follows the data its source gave
+            for wire in self._wires_of.get(node_id, ()):
+                if wire.source == node_id:
+                    self.wires[wire].set_kind(self._wire_kind(wire))
         if resized:  # a panel grew or shrank: its wires and group follow
             for item in self.nodes.values():
                 self.node_item_moved(item)
@@ -196,15 +257,28 @@ class CanvasScene(QGraphicsScene):
         return [i.node_id for i in self.selectedItems() if isinstance(i, NodeItem)]
 
     def select_nodes(self, node_ids: list[str]) -> None:
-        self.clearSelection()
-        for node_id in node_ids:
-            if node_id in self.nodes:
-                self.nodes[node_id].setSelected(True)
+        """Select exactly ``node_ids``: one ``selectionChanged``, however many they are."""
+        before = set(self.selectedItems())
+        blocked = self.blockSignals(True)
+        try:
+            self.clearSelection()
+            for node_id in node_ids:
+                if node_id in self.nodes:
+                    self.nodes[node_id].setSelected(True)
+        finally:
+            self.blockSignals(blocked)
+        if set(self.selectedItems()) != before and not blocked:
+            self.selectionChanged.emit()
 
     def _highlight_wires(self) -> None:
-        selected = set(self.selected_node_ids())
-        for wire, item in self.wires.items():
-            item.set_highlighted(wire.source in selected or wire.target in selected)
+        """Highlight the wires of the selected nodes (only the wires that change are touched)."""
+        wanted = {w for n in self.selected_node_ids() for w in self._wires_of.get(n, ())}
+        for wire in self._highlighted - wanted:
+            if wire in self.wires:
+                self.wires[wire].set_highlighted(False)
+        for wire in wanted - self._highlighted:
+            self.wires[wire].set_highlighted(True)
+        self._highlighted = wanted
 
     def commit_moves(self) -> None:
         """Turn items dragged to new places into one Move command."""

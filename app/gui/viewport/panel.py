@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWidget
 
@@ -69,6 +69,14 @@ class ViewportPanel(QWidget):
         doc.solves.partial.connect(self._on_partial)
         doc.graph_changed.connect(self._on_graph_event)
         doc.graph_replaced.connect(self._on_replaced)
+        # an edit of many nodes (deleting 1,000) refreshes once, when its undo command has
+        # run (or on the next event-loop turn for an edit made outside the undo stack)
+        self._refresh_due = False
+        self._refresh_timer = QTimer(self)
+        self._refresh_timer.setSingleShot(True)
+        self._refresh_timer.setInterval(0)
+        self._refresh_timer.timeout.connect(self._refresh_if_due)
+        doc.undo_stack.indexChanged.connect(lambda _index: self._refresh_if_due())
 
     # -- creation --------------------------------------------------------------------
     def create_plotter(self) -> None:
@@ -118,6 +126,13 @@ class ViewportPanel(QWidget):
     # -- updates ---------------------------------------------------------------------
     def _on_graph_event(self, event: GraphEvent) -> None:
         if event.kind in REPREVIEW_EVENTS:
+            self._refresh_due = True
+            self._refresh_timer.start()
+
+    def _refresh_if_due(self) -> None:
+        if self._refresh_due:
+            self._refresh_due = False
+            self._refresh_timer.stop()
             self.refresh()
 
     def _on_replaced(self) -> None:

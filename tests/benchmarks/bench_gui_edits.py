@@ -1,0 +1,96 @@
+"""Bulk edits in the desktop app (``make bench``, under Xvfb): pasting 1,000 nodes into a
+10,000-node graph takes at most half a second, and deleting them again the same.
+
+Run alone with::
+
+    xvfb-run -a -s "-screen 0 1600x1000x24" .venv/bin/python -m pytest tests/benchmarks/bench_gui_edits.py \\
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
+
+Each figure is the best of three, measured in the real window (canvas, viewport and
+inspector all listening), from the editor's call until the event loop has nothing
+left to do; the solve the edit asks for runs on the worker thread and is not counted.
+``make test`` counts the node items the canvas builds (``tests/gui/test_canvas_scale.py``).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.gui.conftest import unavailable_reason
+
+REASON = unavailable_reason()
+if REASON:
+    pytest.skip(REASON, allow_module_level=True)
+
+from PySide6.QtWidgets import QApplication  # noqa: E402
+
+from engine.graph import Graph  # noqa: E402
+from engine.graphfile import write_graph  # noqa: E402
+from engine.registry import Registry  # noqa: E402
+from tests.benchmarks.timing import duration  # noqa: E402
+from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
+from tests.gui.fixtures_gui import wait_solved  # noqa: E402
+
+NODES = 10_000
+PASTED = 1_000
+LIMIT_S = 0.5
+ROUNDS = 3
+
+
+def expression_chain(registry: Registry, count: int, columns: int = 100) -> Graph:
+    """``count`` Expression nodes laid out in rows, each one's Result into the next one's x."""
+    graph = Graph()
+    for i in range(count):
+        graph.add_node(
+            registry.create("maths.Expression"), f"e{i}", position=(200.0 * (i % columns), 120.0 * (i // columns))
+        )
+        if i:
+            graph.connect(f"e{i - 1}", "Result", f"e{i}", "x")
+    return graph
+
+
+def open_big_graph(qtbot, window, registry: Registry, folder: Path) -> None:
+    path = folder / "big.graph"
+    write_graph(expression_chain(registry, NODES), path)
+    window.doc.open(path)
+    wait_solved(qtbot, window, timeout=120_000)
+
+
+def timed(action) -> tuple[float, object]:
+    start = time.perf_counter()
+    value = action()
+    QApplication.processEvents()
+    return time.perf_counter() - start, value
+
+
+def test_pasting_1000_nodes_into_10000_and_deleting_them_take_at_most_half_a_second_each(
+    qtbot, window, registry, tmp_path
+):
+    open_big_graph(qtbot, window, registry, tmp_path)
+    text = window.editor.copy([f"e{i}" for i in range(PASTED)])
+    pastes, deletes = [], []
+
+    def paste() -> list[str]:  # as Edit ▸ Paste does: the pasted nodes end up selected
+        ids = window.editor.paste(text, offset=(0.0, 20_000.0))
+        window.scene.select_nodes(ids)
+        return ids
+
+    for _ in range(ROUNDS):
+        seconds, ids = timed(paste)
+        pastes.append(seconds)
+        assert len(ids) == PASTED and len(window.doc.graph.nodes) == NODES + PASTED
+        wait_solved(qtbot, window, timeout=60_000)
+        seconds, _ = timed(lambda ids=ids: window.editor.delete(ids))
+        deletes.append(seconds)
+        assert len(window.doc.graph.nodes) == NODES
+        wait_solved(qtbot, window, timeout=60_000)
+    print(
+        f"\npaste {PASTED:,} nodes into {NODES:,}: best {duration(min(pastes))} "
+        f"(all: {', '.join(duration(s) for s in pastes)}); delete them: best {duration(min(deletes))} "
+        f"(all: {', '.join(duration(s) for s in deletes)})"
+    )
+    assert min(pastes) <= LIMIT_S
+    assert min(deletes) <= LIMIT_S
