@@ -29,9 +29,9 @@ def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArr
     points on A at arc lengths ``length_a`` (non-decreasing) and one on B at
     ``length_b``: from (0, 0) to (last, last), each step advancing along one chain.
 
-    >>> i, j = zigzag(np.array([0.0, 1.0, 2.0]), np.array([0.0, 4.0]))
+    >>> i, j = zigzag(np.array([0.0, 1.0, 2.0]), np.array([0.0, 3.0, 4.0]))
     >>> i.tolist(), j.tolist()
-    ([0, 1, 1, 2], [0, 0, 1, 1])
+    ([0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
     """
     fa, fb = _fractions(length_a), _fractions(length_b)
     keys = np.concatenate([fa[1:], fb[1:]])

@@ -31,13 +31,19 @@ Algorithm (all stations at once)
 --------------------------------
 1. Stations: ``Segments + 1`` parameters on A, evenly spaced in arc length
    (:mod:`.stations`).
-2. Coarse sampling: B is sampled on every smooth span, with both one-sided values at its
-   corners, and the whole ``stations × samples`` determinant matrix is one thin matrix
-   product (see :func:`_brackets`).
-3. Brackets: sign changes along each row. *Flat runs*, where the determinant is zero on
-   consecutive samples (A and B coplanar there, e.g. two straight pieces in one plane),
-   contribute their two ends instead; a sign change across a corner of B is a root at the
-   corner (the rulings fan through it: a cone).
+2. Sampling: B is sampled on every smooth span, with both one-sided values at its
+   corners, and the whole ``stations × samples`` matrix of f and of f_t is one thin
+   matrix product (see :func:`_brackets`).
+3. Certified isolation (:mod:`.isolation`): every sample interval where f changes sign
+   or comes within reach of zero is judged with a bound on f_tt from B's derivatives,
+   and split until each piece provably holds no root, exactly one simple root (a
+   bracket), or a double root to rounding. So no root of f is missed between samples —
+   not two roots close together at an inflection of a section, nor where A' and B'
+   become parallel, nor at a curve's end (the guarantee and its one assumption are in
+   that module). *Flat runs*, where f is zero on consecutive samples (A and B coplanar
+   there, e.g. two straight pieces in one plane), contribute their two ends instead; a
+   sign change across a corner of B is a root at the corner (the rulings fan through
+   it: a cone).
 4. Refinement: every bracket is refined to machine precision at once, by Newton's
    method kept inside the brackets (:mod:`.brackets`) with f_t = det[R, A', B''],
    starting from the root of the cubic that matches f and f_t at the bracket's ends —
@@ -54,11 +60,19 @@ Algorithm (all stations at once)
    triangle leaning on a straight edge) or at a corner of A: there t jumps between two
    neighbouring stations, the fan's apex s* is found by solving f for s, and rulings
    are added through A(s*) at about the station spacing.
-7. Stations with no consistently oriented root get the least-warped partner between
-   their neighbours if its warp is within ``warp_tolerance``; otherwise the partner is
-   interpolated in arc length (the plain loft) and the ruling is flagged invalid, never
-   hidden, with a message saying what to change.
-8. A closed B whose seam is away from the strip's start is solved again from A(0)'s
+7. Stations with no consistently oriented root get the plain loft's partner (in arc
+   length between their neighbours' partners) or else the least-warped sample of B
+   there, if its warp is within ``warp_tolerance``. The others admit no torsal ruling:
+   each run of them is closed by flat triangles between the two stretches of A and B
+   (:mod:`.fans`), and so are the ends of B beyond the first and last ruling and any
+   stretch of B that t jumps over with no torsal fan to cover it. Their rulings are
+   flagged (``fan``), the strip has no holes and stays developable (every triangle is
+   flat), and the message gives the share of the strip's area they take.
+8. Check: every output ruling's warp is measured from the curves at its (s, t) — end
+   points and exact tangents, :func:`.warp.warp_angles`, NaN where no normal is defined
+   — and ``valid`` is that warp within the tolerance (never NaN). A station taken as
+   torsal that fails the check joins the fans and the strip is closed again.
+9. A closed B whose seam is away from the strip's start is solved again from A(0)'s
    partner, so that t can run once round B through its seam.
 """
 
@@ -105,7 +119,9 @@ class RulingResult:
 
     Rulings run from ``A(s)`` to ``B(t)``. There is one per station on A (``Segments + 1``
     of them, marked in ``stations``) plus the rulings of any fan through a single point of
-    A (a planar triangle), which repeat that point's s; so ``len(s) >= Segments + 1``.
+    A (a planar triangle), which repeat that point's s, and of the flat triangles that
+    close the strip where no torsal ruling exists (marked in ``fan``, with the stations
+    there); so ``len(s) >= Segments + 1``.
     Neither ``s`` nor ``t`` ever decreases, so rulings do not cross — except that on a
     closed curve B, t increases *cyclically*: from the strip's start it runs up to 1,
     wraps through B's seam to 0 and rises again.
@@ -581,6 +597,9 @@ class _Strip:
             self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
             self.kinks_a = breaks
         self.grid, self.kinks_b = _sample_grid(curve_b, samples)
+        #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
+        #: torsal fan covers (set by :meth:`a_fans`)
+        self.holes: list[int] = []
         if not self._chords_b[-1] > 0:
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
 
@@ -749,11 +768,21 @@ class _Strip:
         triangles (:mod:`.fans`), and the stretches of B beyond the first and the last
         ruling with fans through A's ends.
 
+        A stretch of B between two torsal stations that no torsal fan covers (t jumps
+        there: :meth:`a_fans` lists it in ``holes``) is closed the same way.
+
         Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
         """
         n = len(t)
         gap = np.isnan(t)
         added: list[tuple[FloatArray, FloatArray]] = []
+        for i in self.holes:  # one pass per stretch of B that t jumps over (rare)
+            if gap[i] or gap[i + 1]:
+                continue  # closed with the gap around it
+            tb = self.gap_parameters(float(t[i]), float(t[i + 1]))
+            a, b = zigzag(self.station_lengths[i : i + 2], self.length_b(tb))
+            inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
+            added.append((self.s[i + a[inner]], tb[b[inner]]))
         begins = np.flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
         finishes = np.flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
         closed = self.curve_b.closed
@@ -819,6 +848,13 @@ class _Strip:
         pairs = np.flatnonzero(jump)
         if len(pairs) == 0:
             return []
+        # a hole, if no torsal fan covers it, only where the step dwarfs both neighbouring
+        # ones (the slope is a poor guide where f_t vanishes, as at an inflection)
+        before = np.concatenate([[np.nan], dt[:-1]])
+        after = np.concatenate([dt[1:], [np.nan]])
+        neighbours = np.fmax(before, after)
+        with np.errstate(invalid="ignore"):
+            dwarfs = dt > 4.0 * neighbours  # (never with no neighbour to compare)
         t_mid = 0.5 * (t[pairs] + t[pairs + 1])
         bm0, bm1 = self.curve_b.derivatives(t_mid, 1)
         f_left = det(bm0 - self.a0[pairs], self.a1[pairs], bm1)
@@ -851,11 +887,15 @@ class _Strip:
             if np.isnan(s_star):
                 inside = self.kinks_a[(self.kinks_a >= s[i]) & (self.kinks_a <= s[i + 1])]
                 if len(inside) == 0:
+                    if dwarfs[i]:
+                        self.holes.append(int(i))
                     continue
                 s_star = float(inside[0])
             extent = self._fan_extent(s_star, float(t[i]), float(t[i + 1]))
             if extent is not None:
                 fans.append((s_star, *extent))
+            elif dwarfs[i]:
+                self.holes.append(int(i))
         return fans
 
     def _fan_extent(self, s_star: float, t0: float, t1: float) -> tuple[float, float] | None:
@@ -990,16 +1030,17 @@ def ruling_developable(
     Args:
         curve_a: the base curve; ``segments + 1`` stations are placed along it.
         curve_b: the partner curve. Both should run the same way (from the same end of
-            the strip); otherwise every ruling comes out invalid and the message says to
-            reverse B.
+            the strip); otherwise almost no ruling is torsal and the strip is mostly flat
+            triangles (:func:`.alternatives.better_pairing` says whether reversing B helps).
         segments: number of rulings minus one (at least 1).
         warp_tolerance: largest warp angle (rad) a ruling may have and count as valid,
             e.g. 0.01; for a sheet allowed a warp factor of k rad/m over rulings about
             L long, k·L.
         spacing: ``"length"`` (default) spaces the stations evenly in arc length along A,
             ``"parameter"`` evenly in its parameter.
-        samples: how many samples of B bracket the roots (at least this many and two per
-            smooth span of B; more separates roots that lie closer together).
+        samples: how many samples of B start the root isolation (at least this many and
+            two per smooth span of B); roots closer together are separated by subdivision,
+            so more samples only trade matrix work for fewer subdivisions.
 
     Returns:
         A :class:`RulingResult`. On curves cut from a developable the rulings are the true
