@@ -1,0 +1,51 @@
+"""Every example solves as fast at site coordinates as at the origin (``make bench``).
+
+Run alone with::
+
+    .venv/bin/python -m pytest tests/benchmarks/bench_site_coordinates.py \\
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
+
+The bar of issue 11: moved by (1e6, 2e6, 300) m or by 1e9 m (see ``tests/site_shift.py``),
+each example is loaded, solved and measured (every curve's length, every surface's area,
+as ``torsal run --json`` does) within 2× of the same at the origin, timed in pairs in one
+run. Before the kernel kept its curves relative to an anchor, the Guggenheim example
+took 149 s at 1e6 m against 0.016 s at the origin, and the ZVE roof edge 160 s.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from engine import graphfile
+from tests.benchmarks.timing import ratio_to_baseline
+from tests.site_shift import EXAMPLES, FAR, REGISTRY, SITE, shifted, solve
+
+REPEATS = 5
+BAR = 2.0
+
+
+#: RulingDevelopable at 1e9 m finds other (and more) rulings on the ZVE roof edge, and
+#: takes 1.9× as long (nodes/geometry/developable/ is being rewritten): not asserted.
+KNOWN = {("zve-roof-edge", FAR)}
+
+CASES = [
+    pytest.param(path, offset, id=f"{path.stem}@{offset[0]:.0e}",
+                 marks=[pytest.mark.xfail(reason="RulingDevelopable at 1e9 m", strict=False)]
+                 if (path.stem, offset) in KNOWN else [])
+    for path in EXAMPLES
+    for offset in (SITE, FAR)
+]
+
+
+@pytest.mark.parametrize(("path", "offset"), CASES)
+def test_example_far_from_the_origin_solves_within_2x_of_its_time_at_the_origin(path: Path, offset):
+    ratio = ratio_to_baseline(
+        f"{path.stem} moved by {offset[0]:.0e}: load, solve, measure",
+        lambda: solve(shifted(path, offset)),
+        "at the origin",
+        lambda: solve(graphfile.read_graph(path, REGISTRY)),
+        REPEATS,
+    )
+    assert ratio <= BAR
