@@ -785,7 +785,8 @@ def unroll_rulings(
     normals = np.cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0]).reshape(n - 1, 2, 3)
     hinge = np.arctan2(np.linalg.norm(np.cross(normals[:, 0], normals[:, 1]), axis=1),
                        _dot(normals[:, 0], normals[:, 1]))
-    hinge = np.where(np.linalg.norm(normals, axis=2).min(axis=1) > 0, hinge, 0.0)
+    # a quad with a collapsed edge (in a fan) is one triangle: it does not fold
+    hinge = np.where(np.linalg.norm(normals, axis=2).min(axis=1) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
     return Development(
         starts2d=starts2d, ends2d=ends2d, starts3d=a, ends3d=b,
         area_3d=area3, area_2d=area_2d,

@@ -13,7 +13,7 @@ import shapely
 from app.headless import Run, run_file
 from nodes.analysis.iso_mapping import IsoMapping
 from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.unroll import Development, unroll_surface
+from nodes.geometry.unroll import Development, unroll_rulings, unroll_surface
 from nodes.io.cutfiles import surface_outline
 from tests.nodes.helpers import out, run, tree
 
@@ -148,3 +148,15 @@ def test_iso_mapping_development_is_the_outline_of_the_unrolled_triangles():
         halfway = flat.point_at(middle, np.full(count - 1, v))[:, :2]
         assert np.abs(halfway - (ends[:-1] + ends[1:]) / 2).max() < 1e-14 * 40  # straight between
     assert len(flat.ruling_lines) == 33  # its rulings are the requested ones
+
+
+def test_quads_of_a_fan_are_single_triangles_that_do_not_fold():
+    """Even where the apex's samples differ by rounding (here 1e-14), a quad with a
+    collapsed edge is one triangle: its fold (hinge angle) is 0, not the angle of a
+    rounding-sized triangle's normal."""
+    surface, _, fan = fan_heavy_strip()
+    starts, ends = surface.ruling_lines[:, 0], surface.ruling_lines[:, 1].copy()
+    ends[fan] += np.random.default_rng(5).uniform(-1e-14, 1e-14, ends[fan].shape)
+    development = unroll_rulings(starts, ends)
+    inside = slice(fan.start, fan.stop - 1)  # the quads between the fan's rulings
+    assert np.all(development.hinge_angles[inside] == 0.0)
