@@ -64,6 +64,15 @@ class Registry:
             raise KeyError(f"no node type {type_id!r} is installed")
         return cls(settings)
 
+    def palettes(self) -> list[str]:
+        """Every palette with node types, registered or promised, without importing any."""
+        return sorted({t.partition(".")[0] for t in self._types} | set(self._lazy))
+
+    def types_in(self, palette: str) -> list[type[Node]]:
+        """The node types of one palette, sorted by id; imports only that palette's modules."""
+        self._load_palette(palette)
+        return sorted((c for c in self._types.values() if c.palette() == palette), key=lambda c: c.type_id)
+
     def __contains__(self, type_id: object) -> bool:
         return isinstance(type_id, str) and self.get(type_id) is not None
 

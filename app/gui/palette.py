@@ -1,7 +1,8 @@
 """The node palette: one tab per palette (Params, Maths, …), a letter icon per node type.
 
 Click an icon to place the node in the middle of the canvas, or drag it onto the
-canvas to place it where it is dropped.
+canvas to place it where it is dropped. A tab's node modules are imported when the tab
+is first shown, so starting the app imports only the first palette's.
 """
 
 from __future__ import annotations
@@ -73,25 +74,54 @@ class Palette(QTabWidget):
         super().__init__(parent)
         self.registry = registry
         self.populated = False
+        #: the palette of each tab, and the palettes whose tab has its buttons
+        self.tab_palettes: list[str] = list(TABS)
+        self.filled: set[str] = set()
         self.setDocumentMode(True)
         for palette in TABS:
             self.addTab(self._note("Loading the node library…"), palette.capitalize())
         self.setFixedHeight(ICON_SIZE + 46)
+        self.currentChanged.connect(self._fill)
 
     def populate(self) -> None:
-        """Fill the tabs (listing the catalogue imports every palette, so it is done after
-        the window is first shown)."""
+        """Set up the tabs (after the window is first shown) and fill the current one; the
+        others are filled when first shown, importing only their own palette's modules."""
         if self.populated:
             return
-        by_palette: dict[str, list[type]] = {}
-        for cls in self.registry:
-            by_palette.setdefault(cls.palette(), []).append(cls)
         current = self.currentIndex()
-        self.clear()
-        for palette in list(TABS) + sorted(p for p in by_palette if p not in TABS):
-            self.addTab(self._tab(by_palette.get(palette, [])), palette.capitalize())
-        self.setCurrentIndex(max(0, current))
+        palettes = self.registry.palettes()
+        self.tab_palettes = list(TABS) + [p for p in palettes if p not in TABS]
+        self.blockSignals(True)
+        try:
+            self.clear()
+            for palette in self.tab_palettes:
+                self.addTab(self._note("Loading…"), palette.capitalize())
+            self.setCurrentIndex(max(0, current))
+        finally:
+            self.blockSignals(False)
         self.populated = True
+        self._fill(self.currentIndex())
+
+    def fill_all(self) -> None:
+        """Fill every tab now (imports every palette)."""
+        for index in range(self.count()):
+            self._fill(index)
+
+    def _fill(self, index: int) -> None:
+        if not self.populated or not 0 <= index < len(self.tab_palettes):
+            return
+        palette = self.tab_palettes[index]
+        if palette in self.filled:
+            return
+        self.filled.add(palette)
+        title, current = self.tabText(index), self.currentIndex()
+        self.blockSignals(True)
+        try:
+            self.removeTab(index)
+            self.insertTab(index, self._tab(self.registry.types_in(palette)), title)
+            self.setCurrentIndex(current)
+        finally:
+            self.blockSignals(False)
 
     @staticmethod
     def _note(text: str) -> QLabel:

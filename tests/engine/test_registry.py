@@ -80,3 +80,41 @@ def test_a_run_of_sliders_and_expressions_imports_no_geometry_library():
     )
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def lazy_registry() -> Registry:
+    """Two promised palettes whose modules are fakes that record being imported."""
+    registry = Registry()
+    registry.register_lazy("params", "fake_params_nodes")
+    registry.register_lazy("maths", "fake_maths_nodes")
+    return registry
+
+
+@pytest.fixture
+def fake_modules(monkeypatch) -> list[str]:
+    """``fake_params_nodes`` and ``fake_maths_nodes``, each holding one node type."""
+    imported: list[str] = []
+    for palette in ("params", "maths"):
+        module = types.ModuleType(f"fake_{palette}_nodes")
+        cls = type("One", (Node,), {"type_id": f"{palette}.One", "__module__": module.__name__})
+        module.One = cls
+        monkeypatch.setitem(sys.modules, module.__name__, module)
+    real_import = registry_module.importlib.import_module
+
+    def recording(name: str) -> types.ModuleType:
+        imported.append(name)
+        return real_import(name)
+
+    monkeypatch.setattr(registry_module.importlib, "import_module", recording)
+    return imported
+
+
+def test_palettes_lists_promised_palettes_without_importing_them(fake_modules):
+    assert lazy_registry().palettes() == ["maths", "params"]
+    assert fake_modules == []
+
+
+def test_types_in_imports_only_that_palettes_modules(fake_modules):
+    registry = lazy_registry()
+    assert [c.type_id for c in registry.types_in("maths")] == ["maths.One"]
+    assert fake_modules == ["fake_maths_nodes"]
