@@ -49,9 +49,6 @@ ROUNDING_ULPS = 32
 KNOWN = {
     ("zve-roof-edge", FAR): "RulingDevelopable at 1e9 m finds other rulings (developable/ is being "
                             "rewritten)",
-    ("spline-approximation", SITE): "SplineApproximation's optimised angles move by 2.5e-5 at 1e6 m "
-                                    "(nodes/geometry/approximation.py)",
-    ("spline-approximation", FAR): "SplineApproximation's optimised angles move by 3e-5 at 1e9 m",
     ("textbook-ruled-surfaces", FAR): "the Möbius band's warp angles move by 9.6e-7 rad: tangents of "
                                       "rails through points rounded to 6e-8 m, 0.13 m apart (the "
                                       "inputs' own rounding, amplified by 1/spacing)",

@@ -63,7 +63,7 @@ from .curve_base import Curve
 from .developable.stations import station_parameters
 from .developable.warp import end_normals
 from .surface_base import IsoCurve, Surface
-from .vec_ops import cross, dot, norm, unit
+from .vec_ops import anchor, cross, dot, norm, unit
 
 FloatArray = NDArray[np.float64]
 
@@ -205,6 +205,10 @@ class RotatedStrip:
         self.k_dot_e0 = dot(self.k, self.e0)[:, None]
         self.lengths = stations.lengths[:, None]
         self.derivative = node_derivative_matrix(len(stations.lengths))
+        # the free edge's tangents D @ B are differences of the ends: taken about the
+        # stations' anchor, they round relative to the strip's size, not its position
+        self.origin = anchor(stations.starts)
+        self.local_starts = stations.starts - self.origin
 
     def directions(self, angles: FloatArray) -> FloatArray:
         c, s = np.cos(angles)[:, None], np.sin(angles)[:, None]
@@ -213,8 +217,8 @@ class RotatedStrip:
     def geometry(self, angles: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Rulings R_i, free ends B_i and the free edge's (unscaled) tangents there."""
         rulings = self.lengths * self.directions(angles)
-        ends = self.stations.starts + rulings
-        return rulings, ends, self.derivative @ ends
+        local_ends = self.local_starts + rulings
+        return rulings, self.origin + local_ends, self.derivative @ local_ends
 
     def signed_warp(self, angles: FloatArray, jacobian: bool = False) -> tuple[FloatArray, FloatArray | None]:
         """Signed warp w_i = atan2(det[R, k, b]·|R|, (R × k)·(R × b)) and, optionally, dw/dθ.
