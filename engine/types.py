@@ -180,7 +180,7 @@ def decode_value(data: Any) -> Any:
             raise CastError(f"unknown value {{'type': {kind!r}}}")
         try:
             return _TYPES[kind].decode(data)
-        except (KeyError, TypeError, ValueError) as exc:
+        except (KeyError, TypeError, ValueError, OverflowError) as exc:  # OverflowError: 1e400 as int
             raise CastError(f"malformed {kind} value: {exc}") from None
     if data is None or isinstance(data, bool | int | float | str):
         return data

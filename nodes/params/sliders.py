@@ -14,6 +14,8 @@ def _setting(node: Node, name: str, value_type: ValueType) -> Any:
     raw = node.settings.get(name)
     if raw is None or (isinstance(raw, bool) and value_type is not BOOLEAN):
         raise NodeError(f"The slider's {name} must be a number, not {raw!r}")
+    if isinstance(raw, int) and abs(raw) > 1e300:  # no float holds it: cast and {:g} would overflow
+        raise NodeError(f"The slider's {name} has {len(str(abs(raw)))} digits: give a number up to 1e300")
     try:
         value = cast(raw, value_type)
     except CastError as exc:
