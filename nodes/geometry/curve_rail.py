@@ -1,0 +1,144 @@
+"""Rails that run *on* given curves: the ruled surface between two curves through chosen rulings.
+
+A developable strip found between curves A and B is a set of rulings A(s_i) → B(t_i).
+Lofting splines through the ruling ends (:meth:`RuledSurface.from_rulings`) makes a
+surface whose edges only pass *through* those points: between rulings they leave the
+curves, so two strips that share a curve do not share an edge, and the surface's
+tangent plane along a ruling is that of the spline, not of the curves the rulings were
+made torsal on.
+
+Here the rails are the curves themselves, reparameterised: rail A is u ↦ A(σ(u)) with σ
+the monotone piecewise-cubic (PCHIP) interpolant through (u_i, s_i), and the same for
+B. So
+
+- the isocurve u = u_i is exactly ruling i (to rounding);
+- both edges lie on A and B everywhere, so neighbouring strips meet exactly;
+- the rail's tangent at u_i is σ'(u_i)·A'(s_i), parallel to A's own tangent: the surface's
+  tangent plane along ruling i is the one the ruling was solved for, and a warp
+  recomputed from the surface is the curves' warp;
+- a stretch where s stands still (a fan of rulings through one point of A) keeps the
+  rail on that point (PCHIP never overshoots a flat run).
+
+On a closed curve a parameter that runs on through the seam (t rising to 1, then again
+from 0) is unwrapped before interpolating and wrapped back when evaluated.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.interpolate import PchipInterpolator
+
+from .curve_base import Curve, FloatArray
+from .ruled import RuledSurface
+
+
+def unwrap_cyclic(t: FloatArray) -> FloatArray:
+    """Parameters on a closed curve made non-decreasing by adding a turn after each drop
+    of more than half the parameter range (the seam)."""
+    t = np.asarray(t, dtype=float)
+    drops = np.diff(t) < -0.5
+    return t + np.concatenate([[0.0], np.cumsum(drops)])
+
+
+class CurveRail(Curve):
+    """``C(σ(u))``: curve C run at the pace of the monotone interpolant σ through
+    ``(u_i, p_i)`` (``params`` → ``curve_params``, non-decreasing). Exact derivatives to
+    order 3 by the chain rule."""
+
+    def __init__(self, curve: Curve, params: ArrayLike, curve_params: ArrayLike) -> None:
+        u = np.asarray(params, dtype=float)
+        p = np.asarray(curve_params, dtype=float)
+        if curve.closed:
+            p = unwrap_cyclic(p)
+        if len(u) < 2 or u.shape != p.shape or np.any(np.diff(u) <= 0) or np.any(np.diff(p) < 0):
+            raise ValueError("a curve rail needs increasing u and non-decreasing curve parameters")
+        self.curve = curve
+        self.params, self.curve_params = u, p
+        self._pace = PchipInterpolator(u, p, extrapolate=True)
+        self.closed = False  # the rail covers the stretch of the curve between its rulings
+
+    def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
+        return [self._pace(u, nu=k) for k in range(order + 1)]
+
+    def _wrapped(self, p: FloatArray) -> FloatArray:
+        if self.curve.closed:
+            return np.mod(p, 1.0)
+        return np.clip(p, 0.0, 1.0)
+
+    def _compose(self, values: list[FloatArray], pace: list[FloatArray], order: int) -> list[FloatArray]:
+        out = [values[0]]
+        d1 = pace[1][:, None] if order >= 1 else None
+        if order >= 1:
+            out.append(values[1] * d1)
+        if order >= 2:
+            d2 = pace[2][:, None]
+            out.append(values[2] * d1**2 + values[1] * d2)
+        if order >= 3:
+            d3 = pace[3][:, None]
+            out.append(values[3] * d1**3 + 3.0 * values[2] * d1 * d2 + values[1] * d3)
+        return out
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        if order > 3:
+            raise ValueError("curve rail derivatives are available to order 3")
+        u = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        pace = self._pace_derivatives(u, order)
+        return self._compose(self.curve.derivatives(self._wrapped(pace[0]), order), pace, order)
+
+    @property
+    def anchor(self) -> FloatArray:
+        return self.curve.anchor
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        if order > 3:
+            raise ValueError("curve rail derivatives are available to order 3")
+        u = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        pace = self._pace_derivatives(u, order)
+        return self._compose(self.curve.local_derivatives(self._wrapped(pace[0]), order), pace, order)
+
+    def _breakpoints(self) -> FloatArray:
+        """The ruling parameters, and where the pace crosses one of the curve's own
+        breakpoints (or its seam) — between them the rail is smooth."""
+        u, p = self.params, self.curve_params
+        inner = self.curve._breakpoints()
+        turns = np.arange(np.floor(p[0]), np.ceil(p[-1]) + 1.0)
+        marks = (turns[:, None] + inner[None, :]).ravel() if self.curve.closed else inner
+        marks = marks[(marks > p[0]) & (marks < p[-1])]
+        # σ is monotone: its inverse at the marks, by interpolation on the ruling spans,
+        # then one Newton step on the PCHIP itself
+        crossing = np.interp(marks, p, u)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = (self._pace(crossing) - marks) / self._pace(crossing, nu=1)
+        crossing = np.where(np.isfinite(step), crossing - step, crossing)
+        return np.unique(np.clip(np.concatenate([u, crossing, [0.0, 1.0]]), 0.0, 1.0))
+
+    def __repr__(self) -> str:
+        return f"CurveRail({self.curve!r}, {len(self.params)} rulings)"
+
+
+def ruled_between(curve_a: Curve, s: ArrayLike, curve_b: Curve, t: ArrayLike) -> RuledSurface:
+    """The ruled surface whose rulings are A(s_i) → B(t_i) at u_i = i/(n − 1) and whose
+    edges run on A and B (see the module). ``s`` and ``t`` are non-decreasing (``t`` may
+    run on through B's seam when B is closed, as RulingDevelopable's partners do).
+
+    >>> from nodes.geometry.curves import Line
+    >>> a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [2, 1, 0])
+    >>> strip = ruled_between(a, [0, 0.5, 1], b, [0, 0.5, 1])
+    >>> round(strip.area(), 12), strip.point_at(0.25, 0.0).round(12).tolist()
+    (2.0, [0.5, 0.0, 0.0])
+    """
+    s = np.asarray(s, dtype=float)
+    t = np.asarray(t, dtype=float)
+    n = len(s)
+    if n < 2 or len(t) != n:
+        raise ValueError("a strip needs at least two rulings, one s and one t each")
+    u = np.linspace(0.0, 1.0, n)
+    rail_a, rail_b = CurveRail(curve_a, u, s), CurveRail(curve_b, u, t)
+    surface = RuledSurface(rail_a, rail_b)
+    lines = np.empty((n, 2, 3))
+    lines[:, 0] = curve_a.point_at(rail_a._wrapped(rail_a.curve_params))
+    lines[:, 1] = curve_b.point_at(rail_b._wrapped(rail_b.curve_params))
+    surface.ruling_parameters = u
+    surface.ruling_lines = lines
+    return surface
