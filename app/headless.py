@@ -111,6 +111,10 @@ def apply_assignment(graph: Graph, text: str) -> None:
     known = [p.name for p in record.node.input_ports()]
     if known and port not in known:
         raise UsageError(f"--set {text}: {node_id!r} has no input {port!r} (inputs: {', '.join(known)})")
+    feeding = graph.wires_into(node_id, port)
+    if feeding:  # a wired input ignores its own value: setting it would change nothing
+        sources = " and ".join(f"{w.source}.{w.source_port}" for w in feeding)
+        raise UsageError(f"--set {text}: {node_id}.{port} is wired from {sources}: set the source")
     graph.set_input_value(node_id, port, value)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -143,3 +144,52 @@ def test_the_installed_command_runs_as_a_ci_user_would(tmp_path):
     done = subprocess.run([*command, "run", str(tmp_path / "missing.graph")], capture_output=True, text=True)
     assert done.returncode == 2
     assert done.stderr.startswith("torsal: ") and "Traceback" not in done.stderr
+
+
+# ------------------------------------------------------------------- bounded reads, clear messages
+
+HANG_GUARD = 30  # seconds; a FIFO opened for reading would block forever
+
+
+def special_file(kind: str, tmp_path: Path) -> str:
+    if kind == "/dev/zero":
+        return "/dev/zero"
+    if kind == "a FIFO":
+        fifo = tmp_path / "pipe.graph"
+        os.mkfifo(fifo)
+        return str(fifo)
+    return str(tmp_path)  # a folder
+
+
+REASONS = {"/dev/zero": "is a device", "a FIFO": "is a named pipe (FIFO)", "a folder": "is a folder"}
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo") or not Path("/dev/zero").exists(), reason="needs POSIX")
+@pytest.mark.parametrize("command", ["run", "check"])
+@pytest.mark.parametrize("kind", list(REASONS))
+def test_only_regular_files_are_read_the_rest_exit_2_at_once_with_the_reason(tmp_path, command, kind):
+    target = special_file(kind, tmp_path)
+    done = subprocess.run(
+        [*TORSAL, command, target], capture_output=True, text=True, timeout=HANG_GUARD, cwd=ROOT
+    )
+    assert done.returncode == 2
+    assert done.stderr == (
+        f"torsal: {target}: it {REASONS[kind]}, not a graph file: only regular files are read\n"
+    )
+
+
+def test_set_on_a_wired_input_exits_2_naming_the_source(capsys):
+    assert main(["run", str(EXAMPLE), "--set", "total.w=3"]) == 2
+    err = capsys.readouterr().err
+    assert "total.w is wired from width.Value: set the source" in err
+    assert "Traceback" not in err
+
+
+def test_out_pointed_at_a_file_is_a_sentence_not_an_errno(tmp_path, capsys):
+    existing = tmp_path / "results.txt"
+    existing.write_text("mine\n")
+    assert main(["run", str(EXAMPLE), "--out", str(existing)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"torsal: --out {existing} is a file, not a folder")
+    assert "Errno" not in err and "Traceback" not in err
+    assert existing.read_text() == "mine\n"
