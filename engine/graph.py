@@ -38,6 +38,13 @@ class Wire:
     target_port: str
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
+    def __post_init__(self) -> None:  # a wire is looked up in several indexes: hash it once
+        ends = (self.source, self.source_port, self.target, self.target_port)
+        object.__setattr__(self, "_hash", hash(ends))
+
+    def __hash__(self) -> int:
+        return self._hash
+
     def __str__(self) -> str:
         return f"{self.source}.{self.source_port} → {self.target}.{self.target_port}"
 
@@ -266,8 +273,13 @@ class Graph:
         self.check_wire(wire, check_loops)
         self._wires[wire] = self._serial
         self._serial += 1
-        self._into.setdefault(wire.target, {})[wire] = None
-        self._from.setdefault(wire.source, {})[wire] = None
+        source, target = wire.source, wire.target
+        into, out = self._into.get(target), self._from.get(source)
+        if into is None:
+            into = self._into[target] = {}
+        if out is None:
+            out = self._from[source] = {}
+        into[wire] = out[wire] = None
         rank = self._rank
         if rank is not None and rank[wire.source] > rank[wire.target]:
             if check_loops:
@@ -294,13 +306,17 @@ class Graph:
                 f"{src.title}.{out_port.name} gives {out_port.type.name}, "
                 f"which {dst.title}.{in_port.name} ({in_port.type.name}) cannot take"
             )
-        if in_port and not in_port.accepts_several_wires and self.wires_into(wire.target, wire.target_port):
+        if in_port and not in_port.accepts_several_wires and self._fed(wire.target, wire.target_port):
             raise GraphError(
                 f"{dst.title}.{in_port.name} takes one wire; disconnect the other first "
                 "(or hold Shift to add to a list input)"
             )
         if wire.source == wire.target or (check_loops and self.reaches(wire.target, wire.source)):
             raise GraphError(f"{wire} would make a loop: {wire.target} already feeds {wire.source}")
+
+    def _fed(self, node_id: str, port: str) -> bool:
+        """Whether a wire runs into ``port`` of ``node_id``."""
+        return any(w.target_port == port for w in self._into.get(node_id, ()))
 
     def disconnect(self, wire: Wire) -> None:
         if wire not in self._wires:
