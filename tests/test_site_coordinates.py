@@ -141,3 +141,37 @@ def test_a_loft_at_site_coordinates_has_the_area_of_the_loft_at_the_origin():
         moved_area, moved_centroid = loft(offset).area_and_centroid()
         assert moved_area == pytest.approx(area, rel=bound(tuple(offset), 120.0))
         assert np.abs(moved_centroid - offset - centroid).max() <= bound(tuple(offset), 120.0) * 120.0
+
+
+def _wavy_grid(offset: tuple[float, float, float]) -> np.ndarray:
+    x, y = np.meshgrid(np.linspace(0.0, 12.0, 7), np.linspace(0.0, 8.0, 5), indexing="ij")
+    return np.stack([x, y, np.sin(x / 3.0) * np.cos(y / 4.0)], axis=2) + offset
+
+
+def test_a_nurbs_surface_at_site_coordinates_has_the_area_of_the_one_at_the_origin():
+    from nodes.geometry.nurbs_surface import NurbsSurface
+
+    area = NurbsSurface.from_points(_wavy_grid((0.0, 0.0, 0.0))).area()
+    for offset in (SITE, FAR):
+        moved = NurbsSurface.from_points(_wavy_grid(offset)).area()
+        assert moved == pytest.approx(area, rel=bound(offset, 14.5))
+
+
+def test_a_curve_crosses_a_plane_at_site_coordinates_where_it_does_at_the_origin():
+    """One crossing of a wave with the plane x = 2 through its middle, found at the same
+    parameter wherever the two sit (the distances are measured from the curve's anchor)."""
+    from nodes.geometry.curves.interpolated import InterpolatedCurve
+    from nodes.geometry.intersections import curve_plane_intersections
+    from nodes.geometry.vectors import Plane as KernelPlane
+
+    wave = np.array([[0, 0, 0], [1, 1, 0], [2, -1, 0], [3, 0.5, 0], [4, 0, 0]], dtype=float)
+
+    def hits(offset: np.ndarray):
+        plane = KernelPlane.from_axes(np.add(offset, (2.0, 0.0, 0.0)), [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
+        return curve_plane_intersections(InterpolatedCurve(wave + offset), plane)
+
+    at_origin = hits(np.zeros(3))
+    for offset in (np.array(SITE), np.array(FAR)):
+        moved = hits(offset)
+        assert len(moved.parameters) == len(at_origin.parameters) == 1
+        assert np.abs(moved.points - offset - at_origin.points).max() <= bound(tuple(offset), 5.0) * 5.0

@@ -134,8 +134,14 @@ def curve_plane_intersections(
     per_span = sample_parameters(curve, per_span=samples_per_span, minimum=256)
     samples = np.union1d(per_span, curve._search_parameters)
 
+    # measured from the curve's anchor: far from the origin the distances then round
+    # relative to the curve's size, not to its coordinates
+    normal = np.asarray(plane.z, dtype=float)
+    height = float((np.asarray(curve.anchor, dtype=float) - np.asarray(plane.origin, dtype=float)) @ normal)
+
     def distance(t: FloatArray) -> FloatArray:
-        return plane.signed_distance(curve.point_at(np.ravel(t))).reshape(np.shape(t))
+        local = curve.local_derivatives(np.ravel(t), 0)[0]
+        return (local @ normal + height).reshape(np.shape(t))
 
     def rate(t: FloatArray) -> FloatArray:
         return (curve.derivatives(np.ravel(t), 1)[1] @ plane.z).reshape(np.shape(t))

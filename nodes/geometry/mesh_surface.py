@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
 from .curvature import SurfaceCurvature, mesh_vertex_curvature
+from .vec_ops import position_rounding
 
 FloatArray = NDArray[np.float64]
 
@@ -104,7 +105,9 @@ class MeshSurface:
         centres = triangles.mean(axis=1)
         reach = float(np.linalg.norm(triangles - centres[:, None], axis=2).max())
         d0, _ = cKDTree(self.mesh.vertices).query(query)
-        candidates = cKDTree(centres).query_ball_point(query, d0 + reach * (1 + 1e-9) + 1e-12)
+        # the slack covers the rounding of the centres and distances (more far from the origin)
+        slack = reach * 1e-9 + 1e-12 + position_rounding(centres)
+        candidates = cKDTree(centres).query_ball_point(query, d0 + reach + slack)
         counts = np.array([len(c) for c in candidates])
         faces = np.concatenate([np.asarray(c, dtype=np.intp) for c in candidates])
         owner = np.repeat(np.arange(len(query)), counts)

@@ -29,6 +29,7 @@ from scipy.interpolate import make_interp_spline
 from .area import span_gauss
 from .curve_base import Curve
 from .surface_base import Surface, broadcast_uv
+from .vec_ops import anchor
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.intp]
@@ -265,11 +266,16 @@ class NurbsSurface(Surface):
         self.control_points = points
         self.weights = w
         self.is_rational = bool(np.any(w != w.flat[0]))
+        # The net is kept relative to the control points' box centre (added back to
+        # positions only): derivatives and areas then round relative to the surface's
+        # size, not to its distance from the origin (site coordinates).
+        self._anchor = anchor(points.reshape(-1, 3))
+        local = points - self._anchor
         # Homogeneous control net (w·P, w), or plain P when all weights are equal.
         self._net = (
-            np.concatenate([points * w[..., None], w[..., None]], axis=2)
+            np.concatenate([local * w[..., None], w[..., None]], axis=2)
             if self.is_rational
-            else points.copy()
+            else local
         )
         self._basis_u = SpanBasis(self.knots_u, self.degree_u, nu)
         self._basis_v = SpanBasis(self.knots_v, self.degree_v, nv)
@@ -301,6 +307,7 @@ class NurbsSurface(Surface):
             hi = min(lo + _CHUNK, n)
             for slot, value in enumerate(self._evaluate(s[lo:hi], t[lo:hi], order)):
                 out[slot][lo:hi] = value
+        out[0] += self._anchor
         return out
 
     def area(self, rtol: float = 1e-11) -> float:
