@@ -9,6 +9,7 @@ messages and solve time. An exception in one node never stops the others.
 
 from __future__ import annotations
 
+import math
 import time
 import traceback
 from collections.abc import Callable
@@ -31,7 +32,7 @@ from engine.node import (
     NodeError,
     NodeWarning,
 )
-from engine.types import GENERIC, CastError, cast, decode_value
+from engine.types import GENERIC, TEXT, CastError, cast, decode_value
 from engine.writes import WriteAccess
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
@@ -206,6 +207,8 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
     def convert(item: Any) -> Any:
         if item is None:
             return None
+        if isinstance(item, float) and math.isnan(item) and port.type is not TEXT:
+            raise NodeError(f"{port.name} is not a number (NaN)")  # not "empty", and never 0 or True
         try:
             return cast(item, port.type)
         except CastError as exc:

@@ -216,9 +216,22 @@ def _text_to_number(text: str) -> float:
 
 
 def _to_integer(x: float) -> int:
+    if math.isnan(x):
+        raise CastError("NaN is not a number, so it cannot be used as an Integer")
     if not math.isfinite(x):
         raise CastError(f"Number {x!r} cannot be used as an Integer")
     return round(x)
+
+
+def _a_number(target: str, convert: Callable[[float], Any]) -> Callable[[float], Any]:
+    """``convert``, refusing NaN (which ``bool`` would read as true)."""
+
+    def checked(x: float) -> Any:
+        if math.isnan(x):
+            raise CastError(f"NaN is not a number, so it cannot be used as {target}")
+        return convert(x)
+
+    return checked
 
 
 def _text_to_bool(text: str) -> bool:
@@ -293,7 +306,7 @@ register_cast(TEXT, NUMBER, _text_to_number)
 register_cast(NUMBER, INTEGER, _to_integer)
 register_cast(BOOLEAN, INTEGER, int)
 register_cast(TEXT, INTEGER, lambda t: _to_integer(_text_to_number(t)))
-register_cast(NUMBER, BOOLEAN, bool)
+register_cast(NUMBER, BOOLEAN, _a_number("a Boolean", bool))
 register_cast(INTEGER, BOOLEAN, bool)
 register_cast(TEXT, BOOLEAN, _text_to_bool)
 for _t in (NUMBER, INTEGER, BOOLEAN, POINT, VECTOR, DOMAIN, PLANE):
@@ -302,7 +315,7 @@ register_cast(VECTOR, POINT, lambda v: Point(*v))
 register_cast(POINT, VECTOR, lambda p: Vector(*p))
 register_cast(TEXT, POINT, _text_to_point(Point))
 register_cast(TEXT, VECTOR, _text_to_point(Vector))
-register_cast(NUMBER, DOMAIN, lambda x: Domain(0.0, float(x)))
+register_cast(NUMBER, DOMAIN, _a_number("a Domain", lambda x: Domain(0.0, float(x))))
 register_cast(INTEGER, DOMAIN, lambda x: Domain(0.0, float(x)))
 register_cast(POINT, PLANE, lambda p: Plane(p, Vector(1, 0, 0), Vector(0, 1, 0)))
 
