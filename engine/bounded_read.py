@@ -67,12 +67,15 @@ def read_bounded(path: str | os.PathLike[str], limit: int, what: str = "a file")
         flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
         handle = os.open(path, flags | getattr(os, "O_CLOEXEC", 0))
         try:
-            kind = _kind(os.fstat(handle).st_mode)
+            status = os.fstat(handle)
+            kind = _kind(status.st_mode)
             if kind is not None:
                 raise _refuse(kind, what)
-            chunks, total = [], 0
+            # the reported size is only a hint for the first read (one read for most files)
+            chunks, total, want = [], 0, max(_CHUNK, status.st_size + 1)
             while total <= limit:
-                chunk = os.read(handle, min(_CHUNK, limit + 1 - total))
+                chunk = os.read(handle, min(want, limit + 1 - total))
+                want = _CHUNK
                 if not chunk:
                     break
                 chunks.append(chunk)

@@ -193,3 +193,10 @@ def test_out_pointed_at_a_file_is_a_sentence_not_an_errno(tmp_path, capsys):
     assert err.startswith(f"torsal: --out {existing} is a file, not a folder")
     assert "Errno" not in err and "Traceback" not in err
     assert existing.read_text() == "mine\n"
+
+
+def test_a_nan_given_with_set_is_reported_as_not_a_number(capsys):
+    assert main(["run", str(EXAMPLE), "--set", "edges.Start=NaN"]) == 0
+    out = capsys.readouterr().out
+    assert "[edges] warning: Start is not a number (NaN)" in out
+    assert "null" not in out
