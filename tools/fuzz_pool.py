@@ -159,16 +159,18 @@ def run_guarded(function: Callable[[Any], Any], argument: Any, seconds: float) -
     _reset_peak()
     base = _current_rss()
     faulthandler.dump_traceback_later(seconds + HARD_GRACE, exit=True)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
     started = time.perf_counter()
     try:
-        result.info = function(argument)
+        try:  # the alarm is one-shot: once it has fired (anywhere in here) it cannot fire again
+            signal.setitimer(signal.ITIMER_REAL, seconds)
+            result.info = function(argument)
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
     except Stalled:
         result.stalled = True
     except Exception as exc:  # the harness itself must report, not die
         result.unexpected.append(f"harness: {type(exc).__name__}: {str(exc)[:300]}\n{traceback.format_exc()}")
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
         faulthandler.cancel_dump_traceback_later()
     result.seconds = time.perf_counter() - started
     result.peak_bytes = max(0, _peak_rss() - base)
