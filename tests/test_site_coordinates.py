@@ -175,3 +175,25 @@ def test_a_curve_crosses_a_plane_at_site_coordinates_where_it_does_at_the_origin
         moved = hits(offset)
         assert len(moved.parameters) == len(at_origin.parameters) == 1
         assert np.abs(moved.points - offset - at_origin.points).max() <= bound(tuple(offset), 5.0) * 5.0
+
+
+def test_a_curve_given_by_a_function_at_site_coordinates_stops_refining_at_its_rounding_noise():
+    """Its derivatives are finite differences of positions rounded to 1e-11 m at 1e5 m:
+    the length table stops where halving no longer helps (it went on to 735,541 entries
+    and 100 s), and the length is as accurate as that rounding allows."""
+    from nodes.geometry.curves.parametric import ParametricCurve
+
+    def helix(offset: float) -> ParametricCurve:
+        return ParametricCurve(
+            lambda t: np.column_stack([offset + 10 * np.cos(t), offset + 7 * np.sin(t), 0.5 * t]), (0.0, 5.0)
+        )
+
+    at_origin = helix(0.0)
+    size = float(np.linalg.norm(np.ptp(at_origin.point_at(SAMPLES_T), axis=0)))
+    for offset in (1e5, 1e6):
+        moved = helix(offset)
+        assert abs(moved.length - at_origin.length) <= bound((offset, offset, 0.0), size) * size
+        assert len(moved._length_table.parameters) <= 8 * len(at_origin._length_table.parameters)
+
+
+SAMPLES_T = np.linspace(0.0, 1.0, 65)

@@ -19,6 +19,12 @@ if TYPE_CHECKING:
 
 _NODES, _WEIGHTS = roots_legendre(16)
 
+#: An interval whose error estimate is below this share of the length (per unit of
+#: parameter) and does not shrink when halved is at the speed's rounding noise: kept.
+#: (A smooth interval's estimate falls by orders of magnitude per halving; one too long
+#: for the curve's turns has an estimate far above this.)
+_NOISE_SHARE = 1e-8
+
 
 def speed(curve: Curve, t: FloatArray) -> FloatArray:
     """``|C'(t)|``, the rate at which arc length grows with t."""
@@ -38,7 +44,9 @@ class LengthTable:
 
     Intervals start at the curve's smooth spans (``curve._breakpoints()``), four per span,
     and are halved wherever the 16-point rule on the whole interval and on its two
-    halves disagree by more than the interval's share of the tolerance. The length
+    halves disagree by more than the interval's share of the tolerance, or until halving
+    no longer shrinks an already small disagreement (rounding noise, which far from the
+    origin can exceed the tolerance: the table then stays as short as there). The length
     between table entries is then computed by the same rule, which is exact to rounding
     on such short smooth pieces.
     """
@@ -51,6 +59,7 @@ class LengthTable:
         low, high = edges[:, :-1].reshape(-1), edges[:, 1:].reshape(-1)
         done_low, done_high, done_length = [], [], []
         estimate = float(gauss_length(curve, low, high).sum())
+        parent = np.full(len(low), np.inf)  # the error estimate of each interval's parent
         for round_ in range(max_rounds):
             mid = 0.5 * (low + high)
             left = gauss_length(curve, low, mid)
@@ -59,7 +68,11 @@ class LengthTable:
             error = np.abs(whole - left - right)
             # each interval's share of the tolerance, plus a floor for rounding error
             allowed = rel_tol * estimate * (high - low) + 8e-16 * np.abs(whole)
-            accept = (error <= allowed) | (round_ == max_rounds - 1) | (high - low < 1e-14)
+            # an error that halving no longer shrinks, though already small, is the noise
+            # of the speed's rounding (a curve evaluated at site coordinates, 1e5 m and
+            # more, by finite differences): refining further only multiplies intervals
+            noise = (error >= 0.5 * parent) & (error <= _NOISE_SHARE * estimate * (high - low))
+            accept = (error <= allowed) | noise | (round_ == max_rounds - 1) | (high - low < 1e-14)
             if len(low) > 200_000:  # a pathological curve: stop refining, keep what we have
                 accept[:] = True
             done_low += [low[accept], mid[accept]]
@@ -70,6 +83,7 @@ class LengthTable:
                 break
             low = np.concatenate([low[refine], mid[refine]])
             high = np.concatenate([mid[refine], high[refine]])
+            parent = np.concatenate([error[refine], error[refine]])
         order = np.argsort(np.concatenate(done_low))
         lengths = np.concatenate(done_length)[order]
         #: Parameters of the table entries, from 0 to 1.
