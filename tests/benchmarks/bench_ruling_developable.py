@@ -26,7 +26,7 @@ import pytest
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import ruling_developable, station_parameters
 from tests.benchmarks.ruling_baseline.ruling import ruling_developable as sampled_search
-from tests.benchmarks.timing import ratio_to_baseline
+from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
 from tests.developable.surfaces import PAIRS, Pair
 
 CANDIDATES = 5000
@@ -113,13 +113,14 @@ def test_200_stations_certified_are_20_times_faster_than_the_directed_search():
     print_table(
         "RulingDevelopable vs the thesis's directed search (5000 candidates)", [("conic sections", result)]
     )
-    ratio = ratio_to_baseline(
-        "certified search, 200 stations",
-        lambda: ruling_developable(pair.a, pair.b, 199),
-        "brute-force directed search, 5000 candidates",
-        lambda: directed_search(pair.a, pair.b, 199),
-        repeats=21,
+    # best of each, interleaved in one run: a 1 ms solve timed right after a 30 ms one
+    # starts with cold caches, which the median of pair ratios would charge to it
+    rounds = timed_rounds(
+        [lambda: ruling_developable(pair.a, pair.b, 199), lambda: directed_search(pair.a, pair.b, 199)], 21
     )
+    ours, brute = (min(times) for times in zip(*rounds, strict=True))
+    ratio = ours / brute
+    print(f"\ncertified search {duration(ours)}, brute force {duration(brute)} (best of 21, interleaved)")
     warp_ratio = result["brute_warp"] / max(result["ours_warp"], 1e-300)
     print(f"200 stations: {1 / ratio:.0f}× faster, warp {warp_ratio:.0e}× smaller")
     assert ratio <= 1 / 20

@@ -84,7 +84,7 @@ def test_many_brackets_are_refined_together():
 
 def parabola_b(c: float):
     """B(t) = (0, t − ½, (t − ½)² + c) against A = 0 with tangent x: there
-    f(t) = det[B − A, x, B'] = c − (t − ½)², roots ½ ± √c; its B and three derivatives."""
+    f(t) = det[B − A, x, B'] = c − (t − ½)², roots ½ ± √c; B and two derivatives (B''' = 0)."""
 
     def evaluate(x):
         x = np.asarray(x, float)
@@ -93,7 +93,6 @@ def parabola_b(c: float):
             np.column_stack([zero, x - 0.5, (x - 0.5) ** 2 + c]),
             np.column_stack([zero, one, 2 * (x - 0.5)]),
             np.column_stack([zero, zero, 2 * one]),
-            np.zeros((len(x), 3)),
         ]
 
     return evaluate
@@ -108,7 +107,8 @@ def one_piece(evaluate, x0: float, x1: float) -> Pieces:
     speed, second = np.linalg.norm(ends[1], axis=1), np.linalg.norm(ends[2], axis=1)
     return Pieces(
         np.array([0]), np.array([x0]), np.array([x1]), f[:1], f[1:], d[:1], d[1:],
-        speed[:1], speed[1:], second[:1], second[1:], ends[3][:1], ends[3][1:],
+        speed[:1], speed[1:], second[:1], second[1:], np.zeros(1),  # B''' = 0: β3 = 0
+        *np.linalg.norm(ends[0], axis=1)[:, None],  # |B − A| at both ends
     )
 
 
@@ -116,7 +116,7 @@ def test_two_roots_hidden_between_two_samples_are_isolated_in_separate_brackets(
     c = 1e-6  # roots 0.499 and 0.501, f < 0 at both ends of [0.25, 0.75]
     evaluate = parabola_b(c)
     a0, a1 = np.zeros((1, 3)), np.array([[1.0, 0.0, 0.0]])
-    found = isolate(one_piece(evaluate, 0.25, 0.75), np.array([4.0 * 0.25]), evaluate, a0, a1, 1.0)
+    found = isolate(one_piece(evaluate, 0.25, 0.75), np.array([4.0 * 0.25]), evaluate, a0, a1)
     order = np.argsort(found.low)
     low, high = found.low[order], found.high[order]
     assert len(low) == 2
@@ -127,7 +127,7 @@ def test_two_roots_hidden_between_two_samples_are_isolated_in_separate_brackets(
 def test_a_double_root_is_reported_as_a_touching_point():
     evaluate = parabola_b(0.0)  # f = −(t − ½)²: touches zero at ½
     a0, a1 = np.zeros((1, 3)), np.array([[1.0, 0.0, 0.0]])
-    found = isolate(one_piece(evaluate, 0.2, 0.7), np.array([4.0 * 0.25]), evaluate, a0, a1, 1.0)
+    found = isolate(one_piece(evaluate, 0.2, 0.7), np.array([4.0 * 0.25]), evaluate, a0, a1)
     assert len(found.rows) == 0
     assert found.double_t == pytest.approx([0.5], abs=1e-12)
 

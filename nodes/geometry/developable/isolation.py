@@ -18,22 +18,27 @@ curvature of f is bounded by
 
     M = h²·(β1·β2 + D·β3) >= |d²f/du²|,
 
-with D a bound on the ruling length |B − A| (the diameter of both curves' samples plus
-the interval's chord slack) and β_k bounds on |B⁽ᵏ⁾| over the interval, read from its
-two ends: β3 = max |B'''| at the ends + |ΔB'''| between them, β2 = max |B''| + h·β3/2,
+with D a bound on the ruling length |B − A| over the interval (the diameter of both
+curves' samples to sift all intervals at once, then, for the few that need a closer
+look, the longer of the rulings to the interval's two ends; plus the chord slack
+h·β1/2) and β_k bounds on |B⁽ᵏ⁾| over the interval, read from its two ends:
+β3 = max |B'''| at the ends + |ΔB'''| between them, β2 = max |B''| + h·β3/2,
 β1 = max |B'| + h·β2/2. The last two follow from the first by the mean value theorem;
 β3 is exact whenever B''' is affine on the interval (polynomial spans of degree <= 4,
 straight pieces) and otherwise carries a margin of one whole change of B''' across the
 interval — curves whose third derivative swings more than that within one sample
-interval (far under-sampled) are outside the guarantee.
+interval (far under-sampled) are outside the guarantee. A bound over an interval holds
+on its parts, so the halves of a split interval keep its β3 (and B''' is never evaluated
+again: subdivision needs only B, B' and B'').
 
 The guarantee
 -------------
 With M, and f, f' at both ends (f0, f1, e0 = h·f'(t_j), e1 = h·f'(t_j+1)), the lower
 bounds q0(u) = f0 + e0·u − M·u²/2 and q1(u) = f1 − e1·(1 − u) − M·(1 − u)²/2 hold for
-σ·f (σ the sign of f0). Both are concave, so when f0, f1 have the same sign, σ·f > 0 on
-the whole interval iff max(q0, q1) > 0 at the one point where q0 = q1 (their difference
-is linear in u) — **certified empty**. When f0, f1 have opposite signs the interval holds
+σ·f (σ the sign of f0). When f0, f1 have the same sign, σ·f > 0 on the whole interval
+if max(q0, q1) > 0 on it; both are concave and their difference is linear in u, so that
+holds iff it holds at the ends (it does: q0(0) = σf0, q1(1) = σf1) and at the one point
+where q0 = q1 — **certified empty**. When f0, f1 have opposite signs the interval holds
 exactly one root, a simple one, if σ'·f' > 0 throughout (σ' the sign of f1 − f0), which
 holds when σ'e0 > 0, σ'e1 > 0 and σ'(e0 + e1) > M — **certified single**. Every other
 interval is split (at the extremum of the cubic through f0, f1, e0, e1, or in half) and
@@ -44,7 +49,8 @@ every root lies in a single bracket or is a double root, and no interval certifi
 empty holds one.
 
 Cost: a cheap filter discards every interval where |f| at both ends exceeds h/2·D·β2
-(f cannot reach zero from either end over half the interval) without computing f'.
+(f cannot reach zero from either end over half the interval) without computing f', first
+with the diameter for D, then with the rulings' own lengths.
 Only the few intervals near roots are judged with f'; the fewer still that are not
 certified at once are subdivided, vectorised over all of them per level.
 """
@@ -72,31 +78,40 @@ MAX_LEVELS = 64
 @dataclass
 class IntervalBounds:
     """Per sample interval: ``curvature`` M (bound on |d²f/du²|) and ``reach`` (bound on
-    |f'|·h/2: how far f can move from the nearer end)."""
+    |f'|·h/2: how far f can move from the nearer end) and ``third`` (β3, the bound on
+    |B'''| they rest on)."""
 
     curvature: FloatArray
     reach: FloatArray
+    third: FloatArray
+    slope: FloatArray  #: h/2·β2: reach is slope·(length + chord)
+    chord: FloatArray  #: h/2·β1: how far B moves from the nearer end
+
+
+def third_bound(low: FloatArray, high: FloatArray) -> FloatArray:
+    """β3 of the module docstring from the vectors B''' at the intervals' two ends."""
+    return np.maximum(norm(low), norm(high)) + norm(high - low)
 
 
 def interval_bounds(
     width: FloatArray,
     speed: tuple[FloatArray, FloatArray],
     second: tuple[FloatArray, FloatArray],
-    third: tuple[FloatArray, FloatArray],
-    diameter: float,
+    b3: FloatArray,
+    length: FloatArray | float,
 ) -> IntervalBounds:
     """The bounds of the module docstring for intervals of ``width`` h.
 
-    ``speed`` and ``second`` are |B'| and |B''| at the intervals' low and high ends;
-    ``third`` the vectors B''' there (``(k, 3)`` each). ``diameter`` bounds |B − A| at
-    the samples.
+    ``speed`` and ``second`` are |B'| and |B''| at the intervals' low and high ends and
+    ``b3`` is β3 (:func:`third_bound`). ``length`` bounds |B − A| at the two ends (the
+    diameter of both curves, or the larger of the two rulings' lengths).
     """
-    b3 = np.maximum(norm(third[0]), norm(third[1])) + norm(third[1] - third[0])
     b2 = np.maximum(second[0], second[1]) + 0.5 * width * b3
     b1 = np.maximum(speed[0], speed[1]) + 0.5 * width * b2
-    reach_r = diameter + 0.5 * width * b1  # |B − A| anywhere inside
+    reach_r = length + 0.5 * width * b1  # |B − A| anywhere inside
     curvature = width * width * (b1 * b2 + reach_r * b3)
-    return IntervalBounds(curvature, 0.5 * width * reach_r * b2)
+    slope, chord = 0.5 * width * b2, 0.5 * width * b1
+    return IntervalBounds(curvature, slope * reach_r, b3, slope, chord)
 
 
 def certified_empty(
@@ -125,7 +140,7 @@ def certified_single(
 @dataclass
 class Pieces:
     """Station–interval pairs still to judge: station ``row``, ends ``x0 < x1`` and, at
-    both ends, f, f' (per unit t), B' and B'' lengths and B'''."""
+    both ends, f, f' (per unit t) and the lengths of B' and B'', and the interval's β3."""
 
     row: IntArray
     x0: FloatArray
@@ -138,8 +153,9 @@ class Pieces:
     speed1: FloatArray
     second0: FloatArray
     second1: FloatArray
-    third0: FloatArray
-    third1: FloatArray
+    bound3: FloatArray
+    r0: FloatArray  #: |B − A| at the two ends
+    r1: FloatArray
 
     def take(self, keep: BoolArray | IntArray) -> Pieces:
         """The pieces ``keep`` (a mask or indices); B-data not filled in stays empty."""
@@ -214,16 +230,15 @@ def isolate(
     evaluate: Callable[[FloatArray], list[FloatArray]],
     a0: FloatArray,
     a1: FloatArray,
-    diameter: float,
     ends: Callable[[Pieces, IntArray], Pieces] | None = None,
 ) -> Isolated:
     """Judge and subdivide the pieces ``first`` (whose f'' bounds are ``curvature``) until
     each is certified (module docstring).
 
-    ``evaluate(t)`` returns B and its first three derivatives at parameters ``t``; ``a0``
+    ``evaluate(t)`` returns B and its first two derivatives at parameters ``t``; ``a0``
     and ``a1`` are the stations' points and unit tangents. ``ends(first, index)``, if
-    given, returns the pieces ``index`` of ``first`` with their B-data (speed, second
-    and third derivative at both ends) filled in: ``first`` need not carry them, since
+    given, returns the pieces ``index`` of ``first`` with their B-data (speed and second
+    derivative and ruling lengths at both ends, β3) filled in: ``first`` need not carry them, since
     only the few pieces that are split read them.
     """
     found: list[tuple[FloatArray, ...]] = []
@@ -240,10 +255,12 @@ def isolate(
         if not uncertain.any():
             break
         if level == 0 and ends is not None:
+            # judge again with the bound from the rulings' own lengths before splitting
             pieces = ends(pieces, np.flatnonzero(uncertain))
-        else:
-            pieces = pieces.take(uncertain)
-        pieces, curvature = _split(pieces, evaluate, a0, a1, diameter)
+            curvature = _curvature(pieces)
+            continue
+        pieces = pieces.take(uncertain)
+        pieces, curvature = _split(pieces, evaluate, a0, a1)
     else:  # levels exhausted (never on curves within the guarantee): keep what changes sign
         b = pieces.take(np.signbit(pieces.f0) != np.signbit(pieces.f1))
         found.append((b.row, b.x0, b.x1, b.f0, b.f1, b.d0, b.d1))
@@ -270,15 +287,14 @@ def _split(
     evaluate: Callable[[FloatArray], list[FloatArray]],
     a0: FloatArray,
     a1: FloatArray,
-    diameter: float,
 ) -> tuple[Pieces, FloatArray]:
     """Every piece cut in two (:func:`_split_points`), and the halves' f'' bounds."""
     x = _split_points(pieces)
-    b0, b1, b2, b3 = evaluate(x)
+    b0, b1, b2 = evaluate(x)
     i = pieces.row
     plane = cross(b0 - a0[i], a1[i])  # det[R, Â', X] = X · (R × Â')
     f, d = dot(plane, b1), dot(plane, b2)
-    speed, second = norm(b1), norm(b2)
+    speed, second, r = norm(b1), norm(b2), norm(b0 - a0[i])
     p = pieces
     halves = Pieces(
         np.concatenate([i, i]),
@@ -292,14 +308,15 @@ def _split(
         np.concatenate([speed, p.speed1]),
         np.concatenate([p.second0, second]),
         np.concatenate([second, p.second1]),
-        np.concatenate([p.third0, b3]),
-        np.concatenate([b3, p.third1]),
+        np.concatenate([p.bound3, p.bound3]),  # a bound over the whole holds on its halves
+        np.concatenate([p.r0, r]),
+        np.concatenate([r, p.r1]),
     )
-    bounds = interval_bounds(
-        halves.x1 - halves.x0,
-        (halves.speed0, halves.speed1),
-        (halves.second0, halves.second1),
-        (halves.third0, halves.third1),
-        diameter,
-    )
-    return halves, bounds.curvature
+    return halves, _curvature(halves)
+
+
+def _curvature(p: Pieces) -> FloatArray:
+    """M of every piece, from its own ends' data."""
+    width = p.x1 - p.x0
+    length = np.maximum(p.r0, p.r1)
+    return interval_bounds(width, (p.speed0, p.speed1), (p.second0, p.second1), p.bound3, length).curvature

@@ -91,7 +91,7 @@ from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, det, dot, extent, norm, unit
 from .brackets import refine_roots
 from .fans import fan_share, zigzag
-from .isolation import IntervalBounds, Pieces, interval_bounds, isolate
+from .isolation import IntervalBounds, Pieces, interval_bounds, isolate, third_bound
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
 from .warp import in_plane_tangent, warp_angles
@@ -212,7 +212,7 @@ class _Grid:
             width,
             (speed[:-1], speed[1:]),
             (second[:-1], left_second[1:]),
-            (self.third[:-1], self.left_third[1:]),
+            third_bound(self.third[:-1], self.left_third[1:]),
             diameter,
         )
         bounds.reach[self.pair] = -1.0
@@ -266,8 +266,6 @@ class _Brackets:
     cols: IntArray
     f_low: FloatArray
     f_high: FloatArray
-    d_low: FloatArray  #: f' = det[B − A, Â', B''] there (from the right at the low end, the left at the high)
-    d_high: FloatArray
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
@@ -278,8 +276,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
 
     By the cyclic symmetry of the triple product,
     ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
-    (n×6)(6×m) product, and so is f' = det[B − A, Â', B''] (B'' in place of B'): both are
-    one product with B's columns side by side. Coordinates are taken about a common centre to keep the terms
+    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
     small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
@@ -290,20 +287,15 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
     left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
-    # columns: B' (for f), B'' from the right and, where it differs, from the left (for f')
-    columns = [b1, grid.second] if grid.left_second is grid.second else [b1, grid.second, grid.left_second]
-    along = np.concatenate(columns)
-    right = np.empty((6, len(along)))
-    right[:3], right[3:] = cross(along, np.tile(b0 - centre, (len(columns), 1))).T, along.T
-    high = 2 * m if len(columns) == 3 else m  # where the left-hand f' columns start
+    right = np.empty((6, m))
+    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
     speed_b = norm(b1)
     flat_scale = FLAT * size * speed_b
-    block = max(1, 40_000 // m)
+    block = max(1, 40_000 // right.shape[1])
     found: list[tuple[IntArray, ...]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
-        product = left[first : first + block] @ right
-        f = product[:, :m]
+        f = left[first : first + block] @ right
         negative = np.signbit(f)
         size_f = np.abs(f)
         look = (negative[:, :-1] != negative[:, 1:]) | (np.minimum(size_f[:, :-1], size_f[:, 1:]) <= reach)
@@ -317,7 +309,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
                 look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
         r, c = np.divmod(np.flatnonzero(look), m - 1)
-        found.append((r + first, c, f[r, c], f[r, c + 1], product[r, m + c], product[r, high + c + 1]))
+        found.append((r + first, c, f[r, c], f[r, c + 1]))
     joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
     return _Brackets(*joined, zero_flat)
@@ -404,14 +396,12 @@ def _find_candidates(
     bounds = grid.interval_bounds(diameter)
     found = _brackets(a0, units, grid, bounds.reach)
     rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
-    d_low, d_high = found.d_low, found.d_high
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
         rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
-        d_low, d_high = d_low[keep], d_high[keep]
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -424,9 +414,23 @@ def _find_candidates(
         run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
 
-    # judge every interval looked at, subdividing where a root pair may hide
+    # sift again with the rulings' own lengths in place of the diameter (a sign change
+    # is always kept), then judge what is left, subdividing where a root pair may hide
+    r_low = grid.points[cols] - a0[rows]
+    r_high = grid.points[cols + 1] - a0[rows]
+    length_low, length_high = norm(r_low), norm(r_high)
+    reach = bounds.slope[cols] * (np.maximum(length_low, length_high) + bounds.chord[cols])
+    keep = (np.signbit(f_low) != np.signbit(f_high)) | (np.minimum(np.abs(f_low), np.abs(f_high)) <= reach)
+    if not keep.all():
+        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+        r_low, r_high = r_low[keep], r_high[keep]
+        length_low, length_high = length_low[keep], length_high[keep]
+    # f' there is det[R, Â', B''] = B'' · (R × Â'), gathered for these intervals only
+    ua = units[rows]
+    d_low = dot(cross(r_low, ua), grid.second[cols])
+    d_high = dot(cross(r_high, ua), grid.left_second[cols + 1])
     none = np.empty(0)
-    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 6))
+    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 7))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
         c = cols[index]
@@ -436,14 +440,15 @@ def _find_candidates(
             speed1=norm(grid.tangents[c + 1]),
             second0=norm(grid.second[c]),
             second1=norm(grid.left_second[c + 1]),
-            third0=grid.third[c],
-            third1=grid.left_third[c + 1],
+            bound3=bounds.third[c],
+            r0=length_low[index],
+            r1=length_high[index],
         )
 
     def evaluate_b(x: FloatArray) -> list[FloatArray]:
-        return curve_b.derivatives(x, 3)
+        return curve_b.derivatives(x, 2)
 
-    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, diameter, ends)
+    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, ends)
     rows = isolated.rows
     point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
     point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
