@@ -24,7 +24,7 @@ from engine.atomic import backup_path
 from engine.graph import Graph
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
-KILLS = 200
+KILLS = 150
 PADDING = "x" * 150_000  # a file of ~150 kB: a save takes long enough to be caught mid-write
 
 pytestmark = [
