@@ -4,6 +4,8 @@
                [--allow-writes]
     torsal check FILE.graph
     torsal nodes [--json]
+    torsal sweep FILE.graph --vary ID=LO:HI:N ... --collect NODE.OUTPUT ... --out DIR  (see app/explore)
+    torsal optimise FILE.graph --vary ID=LO:HI ... (--minimise | --maximise) NODE.OUTPUT ...
     torsal gui [FILE.graph]
 
 Exit codes: 0 every node ok or in warning; 1 at least one node in error; 2 the file or
@@ -71,6 +73,10 @@ def _parser() -> argparse.ArgumentParser:
     nodes = commands.add_parser("nodes", help="list the node catalogue")
     nodes.add_argument("--json", action="store_true", help="types, ports and help as JSON")
     nodes.set_defaults(handler=_nodes)
+
+    from app.explore.commands import add_commands as add_exploration
+
+    add_exploration(commands)  # torsal sweep, torsal optimise
 
     gui = commands.add_parser("gui", help="open the desktop app")
     gui.add_argument("file", type=Path, nargs="?", help="a .graph file to open")
