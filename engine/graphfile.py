@@ -6,6 +6,11 @@ point at real ports, no loops) is checked by building the graph through its norm
 validated edits. Anything that goes wrong raises :class:`GraphFileError` with one
 clear sentence.
 
+Reading is bounded before it starts: only a regular file of at most 64 MB is read
+(:mod:`engine.bounded_read`), the format and version are read from the top-level
+object before the document is built (:func:`check_header`), and every step after the
+parse costs C time per number, so the time grows with the file's size alone.
+
 Round trip: every object keeps the dictionary it was read from, and saving writes
 those dictionaries back with only the changed fields replaced, so load → save gives
 the same bytes for any file Torsal wrote, and fields this version does not know
