@@ -44,6 +44,7 @@ lint: $(STAMP)
 fuzz: $(STAMP)
 	$(BIN)/python -m tools.fuzz_graphs --mutants 1000 --seed $${SEED:-0}
 	$(BIN)/python -m tools.fuzz_inputs
+	$(BIN)/python -m tools.fuzz_inputs --at-caps
 
 # System packages: installed only when missing, and only when we are root with apt-get.
 system:

@@ -9,11 +9,14 @@ numbers reach the code that uses them — sets the input to one of :data:`HOSTIL
 
 A node must answer each with a clear message or a result: never an exception it did not
 mean, never a stall, never a huge allocation (see tools/fuzz_pool.py for the guard).
-``python -m tools.fuzz_inputs`` runs the sweep and prints the worst cases.
+``python -m tools.fuzz_inputs`` runs the sweep and prints the worst cases;
+``--at-caps`` runs every capped input at its cap (nodes/limits.py), which must stay
+under 20 s and 1 GB.
 """
 
 from __future__ import annotations
 
+import argparse
 import math
 import sys
 from collections.abc import Iterator
@@ -221,12 +224,50 @@ def sweep(workers: int = 2, seconds: float = 10.0, memory_bytes: int = 1 << 30,
     yield from pool.run(solve_case, chosen)
 
 
+def at_caps() -> list[InputCase]:
+    """Every capped input at its cap (from nodes/limits.py): the cap itself must be safe."""
+    from nodes import limits
+
+    capped = [  # (cap, inputs): several caps have equal values
+        (limits.MAX_RULINGS, [(f"developable.{name}", "Segments") for name in (
+            "CylindricalSurface", "ConicalSurface", "TangentDevelopable", "PaperStrip",
+            "ParametricRuledSurface", "RulingDevelopable")]),
+        (limits.MAX_ANALYSIS_SEGMENTS, [("analysis.IsoMapping", "Segments"),
+                                        ("analysis.CurveOfRegression", "Segments")]),
+        (limits.MAX_COUPLING_SEGMENTS, [("developable.SurfaceCoupling", "Segments")]),
+        (limits.MAX_SPLINE_SEGMENTS, [("developable.SplineApproximation", "Segments")]),
+        (limits.MAX_DIVISIONS, [("curves.DivideCurve", "Count")]),
+        (limits.MAX_NUMBERS, [("maths.Series", "Count"), ("maths.Range", "Steps"),
+                              ("maths.Random", "Number")]),
+        (limits.MAX_COPIES, [("transform.Array", "Count"), ("transform.PolarArray", "Count")]),
+        (limits.MAX_DENSITY, [("analysis.SurfaceAnalysis", "UDensity")]),
+    ]
+    return [InputCase(t, name, float(cap)) for cap, inputs in capped for t, name in inputs]
+
+
 def main(argv: list[str]) -> int:
-    only = argv[0] if argv else ""
+    parser = argparse.ArgumentParser(prog="python -m tools.fuzz_inputs", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--at-caps", action="store_true",
+                        help="run every capped input at its cap instead (each must stay under 20 s and 1 GB)")
+    parser.add_argument("only", nargs="?", default="", help="only node types whose id contains this")
+    args = parser.parse_args(argv)
+    if args.at_caps:
+        return _report(list(_run(at_caps(), seconds=20.0)), seconds=20.0, memory=1 << 30)
+    return _report(list(sweep(only=args.only)), seconds=3.0, memory=256 << 20)
+
+
+def _run(chosen: list[InputCase], seconds: float) -> Iterator[tuple[InputCase, Any]]:
+    from tools.fuzz_pool import GuardedPool
+
+    pool = GuardedPool(workers=2, memory_bytes=(1 << 30) + (256 << 20), seconds=seconds,
+                       preload=("nodes.catalogue", "tools.fuzz_inputs"))
+    yield from pool.run(solve_case, chosen)
+
+
+def _report(results: list[tuple[InputCase, Any]], seconds: float, memory: int) -> int:
     bad = 0
-    results = list(sweep(only=only))
     for case, result in sorted(results, key=lambda r: -r[1].seconds):
-        failed = result.unexpected or result.stalled or result.seconds > 3 or result.peak_bytes > 256 << 20
+        failed = result.unexpected or result.stalled or result.seconds > seconds or result.peak_bytes > memory
         bad += bool(failed)
         if failed or result.seconds > 0.5:
             print(f"{'FAIL' if failed else 'slow'} {case}: {result.seconds:.2f} s, "
