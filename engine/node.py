@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import enum
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -168,6 +169,8 @@ class Node:
         self.messages: list[Message] = []
         self._token: CancelToken | None = None
         self._files: NodeFiles | None = None
+        #: where :meth:`progress` reports go (the solver sets it for each solve)
+        self.on_progress: Callable[[float], None] | None = None
 
     # -- ports (instances may vary them with their settings, like Expression) -------------
     def input_ports(self) -> tuple[In, ...]:
@@ -240,6 +243,12 @@ class Node:
     def check_cancelled(self) -> None:
         """Long-running nodes call this inside their loops so a solve can be stopped."""
         self.token.check()
+
+    def progress(self, fraction: float) -> None:
+        """Long-running nodes say how far they are, 0 to 1; the solver passes it on to
+        the front-end (``torsal run``'s progress line, the app's progress bar)."""
+        if self.on_progress is not None:
+            self.on_progress(fraction)
 
     # -- catalogue ---------------------------------------------------------------------
     @classmethod

@@ -38,6 +38,8 @@ from engine.writes import WriteAccess
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
 
 Progress = Callable[[int, int, str], None]
+#: A node's own progress within its solve: (node id, fraction 0 to 1).
+NodeProgress = Callable[[str, float], None]
 
 
 @dataclass
@@ -78,8 +80,10 @@ class Solver:
     def result(self, node_id: str) -> NodeResult:
         return self.results.get(node_id) or NodeResult()
 
-    def solve(self, token: CancelToken | None = None, progress: Progress | None = None) -> SolveReport:
-        """Solve every expired node; cancelled solves leave the rest expired."""
+    def solve(self, token: CancelToken | None = None, progress: Progress | None = None,
+              node_progress: NodeProgress | None = None) -> SolveReport:
+        """Solve every expired node; cancelled solves leave the rest expired.
+        ``node_progress`` hears what long nodes report with :meth:`Node.progress`."""
         graph = self.graph
         token = token or CancelToken()
         report = SolveReport()
@@ -95,6 +99,9 @@ class Solver:
                 token.check()
                 if progress is not None:
                     progress(index, len(pending), node_id)
+                node = graph.nodes[node_id].node
+                node.on_progress = None if node_progress is None else (
+                    lambda fraction, node_id=node_id: node_progress(node_id, fraction))
                 self.results[node_id] = self._solve_node(graph.nodes[node_id], token)
                 graph.expired.discard(node_id)
                 report.solved.append(node_id)
