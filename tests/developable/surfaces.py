@@ -397,3 +397,25 @@ def chorded_pair() -> tuple[ParametricCurve, ParametricCurve]:
         lambda x: parts(x)[0], (0.0, 1.0), derivatives=(lambda x: parts(x)[1], lambda x: parts(x)[2])
     )
     return a, b
+
+
+def folded_cone_pair() -> tuple[ParametricCurve, ParametricCurve]:
+    """Two curves on the cone; B's generator angle runs forward, back and forward again
+    about τ = 0.5 (a Z fold). The generators meet the fold three times; the oriented
+    strip takes the first and the last, so t jumps over the fold's stretch of B, which
+    no torsal ruling reaches."""
+    k, c, w = 0.35, 0.5, 0.08
+
+    def angle(x):
+        g = np.exp(-(((x - c) / w) ** 2))
+        q = (x - c) / w**2
+        return (
+            2.5 * x - 7.5 * k * (x - c) * g,
+            2.5 - 7.5 * k * (g - 2 * (x - c) * q * g),
+            -7.5 * k * (-2 * q * g - (4 * q - 4 * (x - c) ** 2 * q / w**2) * g),
+        )
+
+    a = _curve(cone_surface, _lin(0.0, 2.5), _wave(2.0, 0.3, 7.0), False)
+    b = _curve(cone_surface, angle, _wave(4.0, 0.5, 5.0, 1.0), False)
+    return a, b
+

@@ -139,3 +139,22 @@ def test_the_node_names_reversing_b_when_that_removes_the_fans():
     node = run(RulingDevelopable(), **curves, Segments=40)
     assert node.state == "warning"
     assert texts(node)[0].endswith("; reverse CurveB: flat triangles fall to 0 % of the area")
+
+
+# -- a stretch of B that t jumps over ------------------------------------------------------------
+
+
+def test_a_fold_of_b_that_no_torsal_ruling_reaches_is_closed_by_flat_triangles():
+    a, b = surfaces.folded_cone_pair()
+    result = ruling_developable(a, b, 60)
+    assert result.fan[result.stations].sum() == 0  # every station has its torsal ruling
+    assert result.fan.any() and np.all(np.diff(result.t) >= 0)
+    # the triangles cover the stretch of B between the last torsal partner before the fold
+    # and the first after it, and only that
+    torsal_t = result.t[~result.fan]
+    gap = int(np.argmax(np.diff(torsal_t)))
+    assert np.all((result.t[result.fan] > torsal_t[gap]) & (result.t[result.fan] < torsal_t[gap + 1]))
+    p0, p1, q0, q1 = result.starts[:-1], result.starts[1:], result.ends[:-1], result.ends[1:]
+    in_fan = result.fan[:-1] | result.fan[1:]
+    assert (np.all(p0 == p1, axis=1) | np.all(q0 == q1, axis=1))[in_fan].all()
+    assert result.message.startswith("no torsal ruling reaches part of curve B")

@@ -853,13 +853,13 @@ class _Strip:
         pairs = np.flatnonzero(jump)
         if len(pairs) == 0:
             return []
-        # a hole, if no torsal fan covers it, only where the step dwarfs both neighbouring
+        # a hole, if no torsal fan covers it, only where the step is over twice both neighbouring
         # ones (the slope is a poor guide where f_t vanishes, as at an inflection)
         before = np.concatenate([[np.nan], dt[:-1]])
         after = np.concatenate([dt[1:], [np.nan]])
         neighbours = np.fmax(before, after)
         with np.errstate(invalid="ignore"):
-            dwarfs = dt > 4.0 * neighbours  # (never with no neighbour to compare)
+            dwarfs = dt > 2.0 * neighbours  # (never with no neighbour to compare)
         t_mid = 0.5 * (t[pairs] + t[pairs + 1])
         bm0, bm1 = self.curve_b.derivatives(t_mid, 1)
         f_left = det(bm0 - self.a0[pairs], self.a1[pairs], bm1)
@@ -1235,7 +1235,7 @@ def _message(fan_stations: int, n: int, tolerance: float, share: float) -> str |
         return None
     area = f"{100 * share:.3g} % of the strip's area"
     if fan_stations == 0:
-        return f"the torsal rulings do not reach the ends of curve B: closed by flat triangles ({area})"
+        return f"no torsal ruling reaches part of curve B: it is closed by flat triangles ({area})"
     return (
         f"no torsal ruling within {tolerance:g} rad at {fan_stations} of {n} stations: "
         f"closed by flat triangles ({area})"
