@@ -117,7 +117,11 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int) -> Out
             warnings += 1
     outputs: dict[str, Any] = {}
     for target in job.targets:
-        tree = solver.result(target.node_id).outputs.get(target.port)
+        result = solver.result(target.node_id)
+        if result.state == ERROR:  # no value, not 0 or an empty list's count
+            outputs[target.name] = None
+            continue
+        tree = result.outputs.get(target.port)
         items = tree.all_items() if tree is not None else []
         value, why = reduce_items(items, target.reducer)
         outputs[target.name] = value

@@ -1,0 +1,50 @@
+"""The same sweep on a dask.distributed LocalCluster (two processes on loopback), and a dead worker."""
+
+from __future__ import annotations
+
+import os
+import signal
+from pathlib import Path
+
+import pytest
+
+from app.explore.executors import DaskExecutor, InlineExecutor
+from app.explore.samplers import grid
+from app.explore.study import open_study
+from app.explore.sweep import RESULTS, run_sweep
+from tests.explore.graphs import formula_graph
+
+KAOHSIUNG = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-stadium.graph"
+pytestmark = pytest.mark.timeout(180)
+
+
+def test_a_sweep_on_the_cluster_writes_the_same_table_as_one_in_this_process(cluster, tmp_path):
+    path = formula_graph(tmp_path / "wave.graph", {"x": (0, 3, 1), "y": (0, 3, 1)},
+                         {"f": "sin(x) * cos(2*y)"})
+    study = open_study(path, ["x=0:3:4", "y=0:3:5"], ["f.Result"], steps=True)
+    run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "here")
+    with DaskExecutor(scheduler=cluster.scheduler_address) as executor:
+        result = run_sweep(study, grid(study.variables), executor, tmp_path / "there")
+    assert result.solved == 20
+    assert (tmp_path / "there" / RESULTS).read_text() == (tmp_path / "here" / RESULTS).read_text()
+
+
+def test_killing_a_worker_mid_sweep_loses_no_row(cluster, tmp_path):
+    study = open_study(KAOHSIUNG, ["scale=0.6:0.8:6"], ["strips.Result", "strip.Valid:mean"], steps=True)
+    variants = grid(study.variables)
+    killed = []
+    with DaskExecutor(scheduler=cluster.scheduler_address) as executor:
+        workers = list(executor.client.scheduler_info()["workers"])
+
+        def kill_one(index, outcome):
+            if not killed:  # the first variant is back: the other worker is busy with one
+                busy = [a for a, tasks in executor.client.processing().items() if tasks] or workers
+                nanny = next(n for n in cluster.workers.values() if n.worker_address == busy[0])
+                os.kill(nanny.process.process.pid, signal.SIGKILL)
+                killed.append(busy[0])
+
+        result = run_sweep(study, variants, executor, tmp_path / "out", on_outcome=kill_one)
+    assert killed
+    assert [o.values for o in result.outcomes] == variants
+    assert all(o.status.startswith("ok") for o in result.outcomes)
+    assert all(o.outputs["strips.Result"] == 20.0 for o in result.outcomes)
