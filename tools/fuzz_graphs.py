@@ -88,9 +88,11 @@ class Mutant:
     example: str
     index: int
     seed: int = 0
+    #: also describe every output as ``torsal run --json`` does (areas, lengths: slower)
+    summarize: bool = False
 
     def __str__(self) -> str:
-        return f"{self.example}#{self.index} (seed {self.seed})"
+        return f"{self.example}#{self.index} (seed {self.seed}{', summarized' if self.summarize else ''})"
 
 
 @cache
@@ -317,7 +319,7 @@ def make(mutant: Mutant) -> tuple[str, list[str]]:
 
 
 def run_mutant(mutant: Mutant) -> dict[str, Any]:
-    """Load and solve ``mutant``, then save it (run inside a guarded worker)."""
+    """Load and solve ``mutant``, describe its outputs, then save it (in a guarded worker)."""
     from engine import graphfile
     from engine.graphfile import GraphFileError
     from nodes.catalogue import default_registry
@@ -330,7 +332,7 @@ def run_mutant(mutant: Mutant) -> dict[str, Any]:
         if not str(exc).strip():
             raise AssertionError("a GraphFileError without a message") from None
         return {"outcome": "refused", "bytes": len(text)}
-    solved = solve_guarded(graph)
+    solved = solve_guarded(graph, summarize=mutant.summarize)
     graphfile.dumps(graph)  # what was loaded can be saved
     states = Counter(state for state, _ in solved["nodes"].values())
     return {"outcome": "solved", "bytes": len(text), "states": dict(states)}
@@ -352,15 +354,19 @@ class Summary:
 
 
 def fuzz(mutants_per_example: int, seed: int = 0, workers: int = 2, seconds: float = 20.0,
-         memory: int = 1 << 30, out: Path | None = None, names: list[str] | None = None) -> Summary:
-    """Run ``mutants_per_example`` mutants of every example; failing ones are written to ``out``."""
+         memory: int = 1 << 30, out: Path | None = None, names: list[str] | None = None,
+         summarize: bool = False) -> Summary:
+    """Run ``mutants_per_example`` mutants of every example; failing ones are written to ``out``.
+
+    ``summarize`` also describes every output as ``torsal run --json`` does.
+    """
     import time
 
     from tools.fuzz_pool import GuardedPool
 
     started = time.perf_counter()
     chosen = names or list(examples())
-    cases = [Mutant(name, i, seed) for name in chosen for i in range(mutants_per_example)]
+    cases = [Mutant(name, i, seed, summarize) for name in chosen for i in range(mutants_per_example)]
     summary = Summary(outcomes=Counter(), failures=[], written=[], by_kind=defaultdict(Counter),
                       slowest_cases=[])
     with tempfile.TemporaryDirectory(prefix="torsal-fuzz-") as scratch:  # io nodes' relative paths land here
@@ -407,10 +413,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--memory-mb", type=int, default=1024, help="peak memory limit per mutant, MiB")
     parser.add_argument("--out", type=Path, default=Path(tempfile.gettempdir()) / "torsal-fuzz",
                         help="folder for failing mutants (default: $TMPDIR/torsal-fuzz)")
+    parser.add_argument("--summarize", action="store_true",
+                        help="also describe every output as torsal run --json does (slower)")
     parser.add_argument("examples", nargs="*", help="example file names (default: all)")
     args = parser.parse_args(argv)
     summary = fuzz(args.mutants, args.seed, args.workers, args.seconds, args.memory_mb << 20, args.out,
-                   args.examples or None)
+                   args.examples or None, args.summarize)
     for failure in summary.failures:
         print("FAIL", failure)
     for kind in sorted(summary.by_kind):

@@ -117,11 +117,16 @@ def _on_alarm(signum: int, frame: Any) -> None:
     raise Stalled("the case ran past its time")
 
 
+def _one_line(exc: BaseException) -> str:
+    """``Type: message [file:line function <- ...]``, the innermost three frames."""
+    frames = traceback.extract_tb(exc.__traceback__)[-3:]
+    where = " <- ".join(f"{os.path.basename(f.filename)}:{f.lineno} {f.name}" for f in reversed(frames))
+    return f"{type(exc).__name__}: {str(exc)[:300]} [{where}]"
+
+
 def _record_exception(original: Callable[[Exception], str]) -> Callable[[Exception], str]:
     def describe(exc: Exception) -> str:
-        frames = traceback.extract_tb(exc.__traceback__)[-3:]
-        where = " <- ".join(f"{os.path.basename(f.filename)}:{f.lineno} {f.name}" for f in reversed(frames))
-        _EXCEPTIONS.append(f"{type(exc).__name__}: {str(exc)[:300]} [{where}]")
+        _EXCEPTIONS.append(_one_line(exc))
         return original(exc)
 
     return describe
@@ -248,14 +253,19 @@ class GuardedPool:
                 alone.shutdown(wait=True)
 
 
-def solve_guarded(graph: Any) -> dict[str, Any]:
+def solve_guarded(graph: Any, summarize: bool = False) -> dict[str, Any]:
     """Solve ``graph`` with the engine's solver; per node: state and messages.
 
     Exceptions a node did not mean are collected by the worker (see :func:`init_worker`)
     and land in :attr:`CaseResult.unexpected`; a message in the exception format without
-    that record (a node formatting one itself) is listed too.
+    that record (a node formatting one itself) is listed too. With ``summarize``, every
+    output is also described as ``torsal run --json`` describes it (lengths, areas), and
+    an exception there is reported the same way.
     """
+    import json
+
     from engine.solver import Solver
+    from engine.types import summarize_value
 
     solver = Solver(graph)
     report = solver.solve()
@@ -267,4 +277,10 @@ def solve_guarded(graph: Any) -> dict[str, Any]:
         for text in texts:
             if EXCEPTION_MESSAGE.match(text) and not _EXCEPTIONS:
                 _EXCEPTIONS.append(f"exception-shaped message from {node_id}: {text[:300]}")
+        if summarize:
+            try:
+                json.dumps({port: [summarize_value(v) for v in tree.all_items()]
+                            for port, tree in result.outputs.items()})
+            except Exception as exc:
+                _EXCEPTIONS.append(f"summary of {node_id}: {_one_line(exc)}")
     return {"cancelled": report.cancelled, "nodes": states}
