@@ -30,9 +30,11 @@ def restore_node_order(graph: Graph, order: list[str]) -> None:
 
 def restore_wire_order(graph: Graph, order: list[Wire]) -> None:
     """Reconnect wires so that ``graph.wires`` follows ``order`` (extra wires go last)."""
-    wanted = [w for w in order if w in graph.wires]
-    wanted += [w for w in graph.wires if w not in wanted]
     current = list(graph.wires)
+    present = set(current)
+    wanted = [w for w in order if w in present]
+    listed = set(wanted)
+    wanted += [w for w in current if w not in listed]
     first = next((i for i, (a, b) in enumerate(zip(current, wanted, strict=True)) if a != b), None)
     if first is None:
         return

@@ -116,8 +116,8 @@ class NodeItem(QGraphicsRectItem):
             self.record.title,
             [(name, label) for name, label, _ in inputs],
             [(name, "" if self.record.type_id == "params.Panel" else name) for name, _ in outputs],
-            QFontMetricsF(self.title_font),
-            QFontMetricsF(self.port_font),
+            _title_metrics(),
+            _port_metrics(),
             widget_size,
         )
         wanted = {(True, name): type_name for name, _, type_name in inputs}
@@ -333,6 +333,37 @@ class NodeItem(QGraphicsRectItem):
     def hoverEnterEvent(self, event: QGraphicsSceneHoverEvent) -> None:
         self.setToolTip(self.tooltip())
         super().hoverEnterEvent(event)
+
+
+class _Widths:
+    """Text widths in one font, measured once per text (titles and port names repeat)."""
+
+    def __init__(self, font: Any) -> None:
+        self.metrics = QFontMetricsF(font)
+        self.widths: dict[str, float] = {}
+
+    def horizontalAdvance(self, text: str) -> float:
+        width = self.widths.get(text)
+        if width is None:
+            if len(self.widths) > 4096:
+                self.widths.clear()
+            width = self.widths[text] = self.metrics.horizontalAdvance(text)
+        return width
+
+
+_widths: dict[str, _Widths] = {}
+
+
+def _title_metrics() -> Any:
+    if "title" not in _widths:
+        _widths["title"] = _Widths(NodeItem.title_font)
+    return _widths["title"]
+
+
+def _port_metrics() -> Any:
+    if "port" not in _widths:
+        _widths["port"] = _Widths(NodeItem.port_font)
+    return _widths["port"]
 
 
 def _escape(text: str) -> str:

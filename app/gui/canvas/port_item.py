@@ -15,6 +15,14 @@ from app.gui import theme
 from app.gui.canvas.layout import PORT_R
 
 HIT_R = 9.0  # ports are easier to hit than they look
+# made once: a canvas of 10,000 nodes has 30,000 ports, and Qt copies these cheaply
+_HIT_RECT = QRectF(-HIT_R, -HIT_R, HIT_R * 2, HIT_R * 2)
+_DOT_RECT = QRectF(-PORT_R, -PORT_R, PORT_R * 2, PORT_R * 2)
+_NO_PEN = QPen(Qt.PenStyle.NoPen)
+_NO_BRUSH = QBrush(Qt.BrushStyle.NoBrush)
+_NO_BUTTON = Qt.MouseButton.NoButton
+_DOT_PEN = QPen(theme.NODE_OUTLINE, 1.0)
+_FILL, _SET_FILL = QBrush(theme.PORT_FILL), QBrush(theme.PORT_SET_FILL)
 
 
 class PortItem(QGraphicsEllipseItem):
@@ -25,18 +33,18 @@ class PortItem(QGraphicsEllipseItem):
     """
 
     def __init__(self, parent: QGraphicsItem, name: str, is_input: bool, type_name: str) -> None:
-        super().__init__(QRectF(-HIT_R, -HIT_R, HIT_R * 2, HIT_R * 2), parent)
+        super().__init__(_HIT_RECT, parent)
         self.name = name
         self.is_input = is_input
         self.type_name = type_name
         self.has_value = False
-        self.setPen(QPen(Qt.PenStyle.NoPen))
-        self.setBrush(QBrush(Qt.BrushStyle.NoBrush))
+        self.setPen(_NO_PEN)
+        self.setBrush(_NO_BRUSH)
         self.setZValue(1)
-        self.dot = QGraphicsEllipseItem(QRectF(-PORT_R, -PORT_R, PORT_R * 2, PORT_R * 2), self)
-        self.dot.setPen(QPen(theme.NODE_OUTLINE, 1.0))
-        self.dot.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
-        self.set_has_value(False)
+        self.dot = QGraphicsEllipseItem(_DOT_RECT, self)
+        self.dot.setPen(_DOT_PEN)
+        self.dot.setAcceptedMouseButtons(_NO_BUTTON)
+        self.dot.setBrush(_FILL)
 
     @property
     def node_id(self) -> str:
@@ -48,8 +56,9 @@ class PortItem(QGraphicsEllipseItem):
 
     def set_has_value(self, has_value: bool) -> None:
         """Filled blue when the input keeps a value of its own (used when nothing is wired)."""
-        self.has_value = has_value
-        self.dot.setBrush(theme.PORT_SET_FILL if has_value else theme.PORT_FILL)
+        if has_value != self.has_value:
+            self.has_value = has_value
+            self.dot.setBrush(_SET_FILL if has_value else _FILL)
 
     def anchor(self) -> QPointF:
         """Where wires attach, in scene coordinates."""
