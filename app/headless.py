@@ -13,7 +13,7 @@ from typing import Any
 from engine.graph import Graph, GraphError
 from engine.graphfile import GraphFileError, read_graph
 from engine.registry import Registry
-from engine.solver import ERROR, MISSING, OK, WARNING, Solver, SolveReport
+from engine.solver import ERROR, MISSING, OK, WARNING, NodeProgress, Solver, SolveReport
 from engine.types import summarize_value
 from engine.writes import WriteAccess
 from nodes.catalogue import default_registry
@@ -32,6 +32,8 @@ class Run:
     solver: Solver
     report: SolveReport
     registry: Registry = field(repr=False, default_factory=Registry)
+    #: the files ``--export`` wrote, in order
+    exported: list[Path] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -68,6 +70,7 @@ class Run:
             "ok": self.ok,
             "solve_seconds": round(self.report.seconds, 6),
             "nodes": nodes,
+            "exported": [str(p) for p in self.exported],
         }
 
 
@@ -125,11 +128,13 @@ def run_file(
     *,
     allow_writes: bool = False,
     write_folder: Path | None = None,
+    node_progress: NodeProgress | None = None,
 ) -> Run:
     """Open, adjust with ``--set`` assignments, and solve a graph file.
 
     Nodes write files only when ``allow_writes`` (``--allow-writes``) is given, and only
     inside ``write_folder`` (``--out``), or the graph's own folder without one.
+    ``node_progress`` hears long nodes' progress (node id, fraction).
     """
     try:
         graph, registry = open_graph(path, registry)
@@ -142,7 +147,7 @@ def run_file(
         raise UsageError(str(exc)) from None
     folder = write_folder if write_folder is not None else Path(path).resolve().parent
     solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes))
-    report = solver.solve()
+    report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry)
 
 

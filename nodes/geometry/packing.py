@@ -43,23 +43,25 @@ class _Sheet:
 
 
 def shelf_pack(
-    sizes: ArrayLike, sheet: tuple[float, float], gap: float = 0.0
+    sizes: ArrayLike, sheet: tuple[float, float], gap: float = 0.0, margin: float | None = None
 ) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
-    """Sheet number and lower-left corner of each ``(width, height)`` rectangle.
+    """Sheet number and lower-left corner of each ``(width, height)`` rectangle, ``gap``
+    apart and ``margin`` (the gap when None) from the sheet's edges.
 
-    Raises :class:`DoesNotFit` for a rectangle wider or taller than the sheet less two gaps.
+    Raises :class:`DoesNotFit` for a rectangle wider or taller than the sheet less two margins.
     """
     wh = np.asarray(sizes, dtype=float).reshape(-1, 2)
     width, height = float(sheet[0]), float(sheet[1])
-    if not (width > 2 * gap and height > 2 * gap):
-        raise ValueError(f"A {width:g} × {height:g} sheet leaves no room inside a gap of {gap:g}.")
-    too_big = (wh[:, 0] > width - 2 * gap) | (wh[:, 1] > height - 2 * gap)
+    edge = gap if margin is None else float(margin)
+    if not (width > 2 * edge and height > 2 * edge):
+        raise ValueError(f"A {width:g} × {height:g} sheet leaves no room inside a margin of {edge:g}.")
+    too_big = (wh[:, 0] > width - 2 * edge) | (wh[:, 1] > height - 2 * edge)
     if too_big.any():
         i = int(np.flatnonzero(too_big)[0])
         raise DoesNotFit(
             i,
             f"Part {i} is {wh[i, 0]:g} × {wh[i, 1]:g}, larger than the {width:g} × {height:g} sheet "
-            f"less a gap of {gap:g} on each side.",
+            f"less a margin of {edge:g} on each side.",
         )
     order = np.lexsort((-wh[:, 0], -wh[:, 1]))  # tallest first, then widest
     sheets: list[_Sheet] = []
@@ -70,19 +72,19 @@ def shelf_pack(
         placed = False
         for s, current in enumerate(sheets):
             for shelf in current.shelves:
-                if h <= shelf.height and shelf.x + w <= width - gap:
+                if h <= shelf.height and shelf.x + w <= width - edge:
                     sheet_of[i], corner[i] = s, (shelf.x, shelf.y)
                     shelf.x += w + gap
                     placed = True
                     break
-            if not placed and current.top + h <= height - gap:
-                current.shelves.append(_Shelf(current.top, h, gap + w + gap))
-                sheet_of[i], corner[i] = s, (gap, current.top)
+            if not placed and current.top + h <= height - edge:
+                current.shelves.append(_Shelf(current.top, h, edge + w + gap))
+                sheet_of[i], corner[i] = s, (edge, current.top)
                 current.top += h + gap
                 placed = True
             if placed:
                 break
         if not placed:
-            sheets.append(_Sheet([_Shelf(gap, h, gap + w + gap)], gap + h + gap))
-            sheet_of[i], corner[i] = len(sheets) - 1, (gap, gap)
+            sheets.append(_Sheet([_Shelf(edge, h, edge + w + gap)], edge + h + gap))
+            sheet_of[i], corner[i] = len(sheets) - 1, (edge, edge)
     return sheet_of, corner

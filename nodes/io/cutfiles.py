@@ -28,7 +28,8 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -43,6 +44,7 @@ from shapely.validation import explain_validity
 
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import NurbsCurve, Polyline
+from nodes.geometry.nesting import nest, place
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
@@ -63,8 +65,13 @@ HAIRLINE_MM = 0.01
 #: Outline points closer than this share of the outline's size to the previous one are one point.
 SAME_POINT = 1e-9
 
-CUT, ENGRAVE = "CUT", "ENGRAVE"
+CUT, ENGRAVE, SHEET, REFERENCE = "CUT", "ENGRAVE", "SHEET", "REFERENCE"
+#: Nesting methods: sparrow's true-shape nesting, or rows of bounding rectangles.
+TRUE_SHAPE, SHELF = "TrueShape", "Shelf"
+NESTINGS = (TRUE_SHAPE, SHELF)
 SUFFIXES = (".dxf", ".svg")
+#: Longest time budget (s) a true-shape nesting may be given.
+MAX_BUDGET = 3600.0
 
 
 class PanelProblem(FileFailure):
@@ -89,23 +96,51 @@ class CutLayout:
 
     width: float
     height: float
-    gap: float
+    gap: float  #: space between parts (mm)
     kerf: float
     parts: tuple[Part, ...]
     sheets: int
     model_units: str = "m"
     notes: tuple[str, ...] = ()  #: things worth telling (labels that did not fit ...)
+    margin: float | None = None  #: space from the sheet's edges (mm); None: the gap
+    nesting: str = SHELF
+    reference: bool = False  #: also draw the drawn (un-offset) outlines on layer REFERENCE
+    stopped: bool = False  #: the nesting was stopped early and kept its best layout so far
+    seconds: float = 0.0  #: time the layout took
 
     def on_sheet(self, sheet: int) -> list[Part]:
         return [p for p in self.parts if p.sheet == sheet]
+
+    @property
+    def edge(self) -> float:
+        """The space kept free along the sheet's edges (mm)."""
+        return self.gap if self.margin is None else self.margin
+
+    @property
+    def panel_area(self) -> float:
+        return sum(abs(_signed_area(p.panel)) for p in self.parts)
 
     @property
     def usage(self) -> float:
         """Share of the sheets' area that ends up in the panels (0 to 1)."""
         if not self.sheets:
             return 0.0
-        area = sum(abs(_signed_area(p.panel)) for p in self.parts)
-        return area / (self.sheets * self.width * self.height)
+        return self.panel_area / (self.sheets * self.width * self.height)
+
+    @property
+    def last_length(self) -> float:
+        """How far along X the last sheet's cut contours reach (mm): the rest is offcut."""
+        last = self.on_sheet(self.sheets - 1)
+        return max((float(p.outline[:, 0].max()) for p in last), default=0.0)
+
+    @property
+    def stock_usage(self) -> float:
+        """Share of the stock used by panels, the last sheet counted only up to
+        :attr:`last_length` (its offcut goes back to stock)."""
+        if not self.sheets:
+            return 0.0
+        stock = (self.sheets - 1) * self.width * self.height + self.last_length * self.height
+        return self.panel_area / stock if stock > 0 else 0.0
 
     def offset(self, sheet: int) -> float:
         """Where sheet ``sheet`` starts along X when the sheets are shown side by side (mm)."""
@@ -317,6 +352,15 @@ def lay_out(
     rotate: bool = True,
     units: str = "m",
     sources: Sequence[int] | None = None,
+    *,
+    margin: float | None = None,
+    nesting: str = SHELF,
+    grain: bool = False,
+    budget: float = 10.0,
+    seed: int = 0,
+    reference: bool = False,
+    stop: Callable[[], bool] | None = None,
+    report: Callable[[float], None] | None = None,
 ) -> CutLayout:
     """Check the panels and place them on as many sheets as they need (see the module).
 
@@ -324,18 +368,29 @@ def lay_out(
     (one number per panel, e.g. its data-tree branch) says which panels come from the
     same drawing: only those can be "the same outline given twice"; panels of separate
     developments may lie on top of each other in the plane and are still separate parts.
+    ``gap`` is the space between parts, ``margin`` the space from the sheet's edges (the
+    gap when None). ``nesting`` is :data:`TRUE_SHAPE` (sparrow, ``budget`` seconds,
+    ``seed``; ``stop`` and ``report`` as in :func:`~nodes.geometry.nesting.nest`) or
+    :data:`SHELF`. ``grain``: parts turn only by 0° or 180°; ``rotate`` False: not at all.
     """
+    edge = gap if margin is None else margin
     for name, value in (("Sheet width", width), ("Sheet height", height)):
         if not (math.isfinite(value) and value > 0):
             raise FileFailure(f"{name} must be a positive length in mm, not {value:g}")
-    if not (math.isfinite(gap) and gap >= 0):
-        raise FileFailure(f"Gap must be zero or a positive length in mm, not {gap:g}")
+    for name, value in (("Gap", gap), ("Margin", edge)):
+        if not (math.isfinite(value) and value >= 0):
+            raise FileFailure(f"{name} must be zero or a positive length in mm, not {value:g}")
     if not (math.isfinite(kerf) and kerf >= 0):
         raise FileFailure(f"Kerf must be zero or a positive width in mm, not {kerf:g}")
-    if 2 * gap >= min(width, height):
+    if 2 * edge >= min(width, height):
+        what = "gap" if margin is None else "margin"
         raise FileFailure(
-            f"A gap of {gap:g} mm on each side leaves no room on a {width:g} × {height:g} mm sheet"
+            f"A {what} of {edge:g} mm on each side leaves no room on a {width:g} × {height:g} mm sheet"
         )
+    if nesting not in NESTINGS:
+        raise FileFailure(f"Nesting is {nesting!r}: use {' or '.join(NESTINGS)}")
+    if nesting == TRUE_SHAPE and not (math.isfinite(budget) and 0 < budget <= MAX_BUDGET):
+        raise FileFailure(f"TimeBudget must be between 1 and {MAX_BUDGET:g} s, not {budget:g}")
     if not curves:
         raise FileFailure("There are no panels to lay out")
     names = [f"P-{i:03d}" for i in range(1, len(curves) + 1)] if ids is None else [str(i) for i in ids]
@@ -343,6 +398,7 @@ def lay_out(
         raise PanelProblem(
             f"There are {len(names)} panel IDs for {len(curves)} panels: give one ID per panel"
         )
+    started = time.perf_counter()
     scale = unit_scale(units, "mm")
     outlines = []
     for curve, name in zip(curves, names, strict=True):
@@ -356,33 +412,48 @@ def lay_out(
             raise PanelProblem(f"Panel {name} {exc}") from None
     check_panels(outlines, names, sources)
 
-    room_w, room_h = width - 2 * gap, height - 2 * gap
+    room_w, room_h = width - 2 * edge, height - 2 * edge
     cuts, drawn, boxes = [], [], []
     for outline, name in zip(outlines, names, strict=True):
-        panel = _turn(outline, _turn_angle(outline, kerf, room_w, room_h, rotate))
+        panel = _turn(outline, _turn_angle(outline, kerf, room_w, room_h, rotate and not grain))
         cut = _grow(panel, kerf)
         low, high = cut.min(axis=0), cut.max(axis=0)
         if np.any(high - low > (room_w, room_h)):
             w, h = high - low
+            what = "gap" if margin is None else "margin"
             raise PanelProblem(
                 f"Panel {name} is {w:.1f} × {h:.1f} mm{' with its kerf' if kerf else ''}, larger than the "
-                f"{width:g} × {height:g} mm sheet less the {gap:g} mm gap on each side"
+                f"{width:g} × {height:g} mm sheet less the {edge:g} mm {what} on each side"
             )
         cuts.append(cut - low)
         drawn.append(panel - low)
         boxes.append(high - low)
-    try:
-        sheet_of, corners = shelf_pack(np.array(boxes), (width, height), gap)
-    except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
-        raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
+    stopped = False
+    if nesting == TRUE_SHAPE:
+        orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
+        nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report)
+        stopped = nested.stopped
+        cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
+        drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
+        sheet_of = nested.sheet
+    else:
+        try:
+            sheet_of, corners = shelf_pack(np.array(boxes), (width, height), gap, edge)
+        except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
+            raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
+        cuts = [c + corner for c, corner in zip(cuts, corners, strict=True)]
+        drawn = [d + corner for d, corner in zip(drawn, corners, strict=True)]
     parts, notes = [], []
     for i, name in enumerate(names):
-        panel = drawn[i] + corners[i]
-        label, size = place_label(name, panel, text_height)
+        label, size = place_label(name, drawn[i], text_height)
         if text_height > 0 and not label:
             notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: not engraved")
-        parts.append(Part(name, int(sheet_of[i]), cuts[i] + corners[i], panel, label, size))
-    return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes))
+        parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size))
+    if stopped:
+        notes.append("Nesting was stopped: this is the best layout found by then")
+    return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),
+                     margin=margin, nesting=nesting, reference=reference, stopped=stopped,
+                     seconds=time.perf_counter() - started)
 
 
 # ------------------------------------------------------------------ writers
@@ -401,17 +472,27 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
         doc.header["$LIMMAX"] = (layout.width, layout.height)
         doc.layers.add(CUT, color=1)
         doc.layers.add(ENGRAVE, color=7)
+        for name, colour in ((SHEET, 8), (REFERENCE, 3)):  # drawn, never cut: not plotted
+            doc.layers.add(name, color=colour).dxf.plot = 0
         doc.appids.add("TORSAL")
         space = doc.modelspace()
         space.dxf_layout.dxf.limmin = (0.0, 0.0)  # saving syncs the header from the layout
         space.dxf_layout.dxf.limmax = (layout.width, layout.height)
+        space.add_lwpolyline(_border(layout).tolist(), close=True, dxfattribs={"layer": SHEET})
         for part in layout.on_sheet(sheet):
+            if layout.reference:
+                space.add_lwpolyline(part.panel.tolist(), close=True, dxfattribs={"layer": REFERENCE})
             contour = space.add_lwpolyline(part.outline.tolist(), close=True, dxfattribs={"layer": CUT})
             contour.set_xdata("TORSAL", [(1000, part.id)])
             for glyph in part.label:
                 space.add_lwpolyline(glyph.tolist(), close=True, dxfattribs={"layer": ENGRAVE})
         replacing(file, doc.saveas)
     return files
+
+
+def _border(layout: CutLayout) -> FloatArray:
+    w, h = layout.width, layout.height
+    return np.array([[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]])
 
 
 def _svg_path(points: FloatArray, height: float) -> str:
@@ -428,9 +509,17 @@ def svg_text(layout: CutLayout, sheet: int) -> str:
         f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w:g}mm" height="{h:g}mm" '
         f'viewBox="0 0 {w:g} {h:g}">',
         f"  <title>Torsal cut sheet {sheet + 1} of {layout.sheets}</title>",
-        f'  <g id="{CUT}" fill="none" stroke="#ff0000" stroke-width="{HAIRLINE_MM:g}">',
+        f'  <g id="{SHEET}" fill="none" stroke="#969696" stroke-width="{HAIRLINE_MM:g}">',
+        f'    <path d="{_svg_path(_border(layout), h)}"/>',
+        "  </g>",
     ]
     parts = layout.on_sheet(sheet)
+    if layout.reference:
+        lines.append(f'  <g id="{REFERENCE}" fill="none" stroke="#00a000" stroke-width="{HAIRLINE_MM:g}">')
+        for part in parts:
+            lines.append(f'    <path data-panel={quoteattr(part.id)} d="{_svg_path(part.panel, h)}"/>')
+        lines.append("  </g>")
+    lines.append(f'  <g id="{CUT}" fill="none" stroke="#ff0000" stroke-width="{HAIRLINE_MM:g}">')
     for part in parts:
         lines.append(f'    <path data-panel={quoteattr(part.id)} d="{_svg_path(part.outline, h)}"/>')
     lines.append("  </g>")

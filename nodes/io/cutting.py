@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from engine.datatree import DataTree
@@ -14,6 +15,21 @@ from nodes.io.cutfiles import CutLayout
 from nodes.types import CURVE, SURFACE
 
 
+def _nesting(value: Any) -> str:
+    text = str(value or "").strip().replace(" ", "").replace("-", "").lower()
+    for name in cutfiles.NESTINGS:
+        if text == name.lower():
+            return name
+    raise NodeError(f"Nesting is {value!r}: use {' or '.join(cutfiles.NESTINGS)}")
+
+
+def _seed(value: Any) -> int:
+    seed = number("Seed", value)
+    if not (math.isfinite(seed) and seed == int(seed) and 0 <= seed < 2**63):
+        raise NodeError(f"Seed must be a whole number from 0, not {seed:g}")
+    return int(seed)
+
+
 def _layout_summary(layout: CutLayout) -> dict[str, Any]:
     return {
         "type": "CutLayout",
@@ -21,6 +37,8 @@ def _layout_summary(layout: CutLayout) -> dict[str, Any]:
         "sheets": layout.sheets,
         "sheet": [layout.width, layout.height],
         "usage": round(layout.usage, 6),
+        "stock_usage": round(layout.stock_usage, 6),
+        "nesting": layout.nesting,
     }
 
 
@@ -39,15 +57,27 @@ class ExportCutSheet(Node):
     Before anything is laid out each one is checked: an open, non-flat or
     self-crossing outline, a repeated ID, the same panel given twice, or a panel
     larger than the sheet stops the export with a message naming the panel.
-    Each panel is turned to lie along the sheet (unless Rotate is false), grown by
-    half the Kerf so the cut part keeps its drawn size, and placed by shelf packing
-    (rows of parts, tallest first) with Gap between parts and from the sheet's
-    edges. Its ID is engraved inside it as letter outlines, TextHeight tall or
-    smaller where the panel is narrow.
+    Each panel is grown by half the Kerf (mitred corners) so the cut part keeps its
+    drawn size, and nested with Gap between the cut contours and Margin from the
+    sheet's edges. Nesting TrueShape nests the parts' true outlines with
+    sparrow, the state of the art in irregular strip packing, filling one sheet after
+    the other and leaving the last one as short as it can (its offcut goes back to
+    stock); it searches for TimeBudget seconds with the random Seed (the search runs
+    against the clock, so a busy machine may find another layout). Stop (Esc in the
+    app) keeps the best layout found so far. Nesting Shelf (the default, so graphs
+    made before TrueShape keep their layout) places the parts' bounding rectangles in
+    rows, tallest first: instant, more sheets. TrueShape turns parts freely (Shelf
+    lays them along the sheet);
+    Grain true turns them only by 0° or 180° (the grain runs along the sheet's X in
+    every part); Rotate false keeps them as drawn. Each ID is engraved inside its
+    part as letter outlines, TextHeight tall or smaller where the panel is narrow.
 
     The file type follows Path's extension. DXF (R2010, units mm): one closed
-    polyline per part on layer CUT, the letters on ENGRAVE. SVG: a page of the
-    sheet's size in mm, red hairline cuts, black engraving, no fill. One file per
+    polyline per part on layer CUT, the letters on ENGRAVE, the sheet's border on
+    SHEET and, with Reference true, the drawn (un-offset) outlines on REFERENCE —
+    those two layers are not plotted and not to be cut. SVG: a page of the sheet's
+    size in mm, red hairline cuts, black engraving, a grey SHEET border, green
+    REFERENCE outlines, no fill. One file per
     sheet: name.dxf for one sheet, name-1.dxf, name-2.dxf … for more (name-01 …
     from ten sheets on, so they sort). Nothing is written until Write is true and
     you have allowed the graph to write files; Path is relative to the graph's folder
@@ -66,12 +96,22 @@ class ExportCutSheet(Node):
            access=TREE, optional=True),
         In("SheetWidth", NUMBER, "W", "Sheet width along X, mm.", default=2500.0),
         In("SheetHeight", NUMBER, "H", "Sheet height along Y, mm.", default=1250.0),
-        In("Gap", NUMBER, "G", "Space between parts and from the sheet's edges, mm.", default=10.0),
+        In("Gap", NUMBER, "G", "Space between the parts' cut contours, mm.", default=10.0),
         In("Kerf", NUMBER, "K", "Width of the cut, mm; the contour moves out by half of it.", default=0.0),
         In("TextHeight", NUMBER, "Th", "Cap height of the engraved IDs, mm (0: no engraving).", default=10.0),
-        In("Rotate", BOOLEAN, "Ro", "Turn panels to lie along the sheet (false: keep their direction).",
+        In("Rotate", BOOLEAN, "Ro", "Turn panels to nest them (false: keep their direction).",
            default=True),
         In("Units", TEXT, "U", "The graph's model units (mm, cm, m, in, ft), those of Panels.", default="m"),
+        In("Margin", NUMBER, "M", "Space kept free along the sheet's edges, mm (empty: the Gap).",
+           optional=True),
+        In("Nesting", TEXT, "N", "TrueShape (sparrow: true outlines, fewer sheets) or Shelf (bounding "
+           "rectangles in rows: instant).", default=cutfiles.SHELF),
+        In("Grain", BOOLEAN, "Gr", "Turn parts only by 0° or 180°, so the grain runs the same way in all.",
+           default=False),
+        In("TimeBudget", NUMBER, "T", "Seconds TrueShape nesting searches (at least 1).", default=10.0),
+        In("Seed", NUMBER, "Sd", "Seed of TrueShape nesting's random search.", default=0),
+        In("Reference", BOOLEAN, "Rf", "Also draw the drawn (un-offset) outlines on layer REFERENCE.",
+           default=False),
         In("Write", BOOLEAN, "Wr", "Set to true to write the files; while false nothing is written.",
            default=False),
     )
@@ -98,6 +138,12 @@ class ExportCutSheet(Node):
         text_height: Any,
         rotate: Any,
         units: Any,
+        margin: Any,
+        nesting: Any,
+        grain: Any,
+        budget: Any,
+        seed: Any,
+        reference: Any,
         write: Any,
     ) -> tuple[Any, ...]:
         curves = panels.all_items() + surfaces.all_items()
@@ -117,7 +163,10 @@ class ExportCutSheet(Node):
                 width=number("SheetWidth", width), height=number("SheetHeight", height),
                 gap=number("Gap", gap), kerf=number("Kerf", kerf),
                 text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
-                sources=sources,
+                sources=sources, margin=None if margin is None else number("Margin", margin),
+                nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
+                seed=_seed(seed), reference=bool(reference),
+                stop=lambda: self.token.cancelled, report=self.progress,
             )
             files = []
             if write:
@@ -125,7 +174,7 @@ class ExportCutSheet(Node):
                 if may_write(self, cutfiles.numbered(target, layout.sheets)):
                     files = [str(p) for p in cutfiles.write_cut_files(layout, target)]
             else:
-                self.remark("Write is false: nothing written")
+                self.remark("Write is false: this node writes no files (Layout still goes to --export and Export…)")
         for note in layout.notes:
             self.remark(note)
         back = unit_scale("mm", model_units)

@@ -123,5 +123,28 @@ def test_json_results_describe_the_layout(graph, capsys):
     assert main(["run", str(graph), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     (layout,) = data["nodes"]["cut"]["outputs"]["Layout"]["{0}"]
-    assert layout == {"type": "CutLayout", "panels": 8, "sheets": 1, "sheet": [2500.0, 1250.0],
-                      "usage": pytest.approx(8 * 0.145 / 3.125, rel=1e-5)}
+    assert {k: layout[k] for k in ("type", "panels", "sheets", "sheet", "usage", "nesting")} == {
+        "type": "CutLayout", "panels": 8, "sheets": 1, "sheet": [2500.0, 1250.0],
+        "usage": pytest.approx(8 * 0.145 / 3.125, rel=1e-5), "nesting": "Shelf"}
+
+
+def test_export_prints_each_file_written_and_json_lists_them(graph, tmp_path, capsys):
+    dxf, svg = tmp_path / "out" / "roof.dxf", tmp_path / "out" / "roof.svg"
+    args = ["run", str(graph), "--set", "cut.SheetWidth=1500", "--export", f"cut.Layout={dxf}",
+            "--export", f"cut.Layout={svg}"]
+    assert main(args) == 0
+    printed = [line.removeprefix("wrote ") for line in capsys.readouterr().out.splitlines()
+               if line.startswith("wrote ")]
+    assert main([*args, "--json"]) == 0
+    exported = json.loads(capsys.readouterr().out)["exported"]
+    assert exported == printed and len(exported) == 4  # 8 panels need two 1500 mm sheets
+    assert sorted(p.rsplit("/", 1)[1] for p in exported) == ["roof-1.dxf", "roof-1.svg", "roof-2.dxf",
+                                                              "roof-2.svg"]
+    assert all((tmp_path / "out" / p).exists() for p in exported)
+
+
+def test_the_node_says_it_wrote_nothing_without_contradicting_an_export(graph, tmp_path, capsys):
+    assert main(["run", str(graph), "--export", f"cut.Layout={tmp_path / 'x.dxf'}"]) == 0
+    out = capsys.readouterr().out
+    assert "nothing written" not in out
+    assert "wrote " in out

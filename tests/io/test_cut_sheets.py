@@ -200,7 +200,8 @@ def test_svg_is_xml_in_mm_with_red_hairline_cuts_and_black_engraving(tmp_path):
         assert root.tag == f"{SVG}svg"
         size = (root.get("width"), root.get("height"), root.get("viewBox"))
         assert size == ("1200mm", "800mm", "0 0 1200 800")
-        cut_group, engrave_group = root.findall(f"{SVG}g")
+        groups = {g.get("id"): g for g in root.findall(f"{SVG}g")}
+        cut_group, engrave_group = groups["CUT"], groups["ENGRAVE"]
         style = (cut_group.get("id"), cut_group.get("stroke"), cut_group.get("fill"))
         assert style == ("CUT", "#ff0000", "none")
         assert (engrave_group.get("stroke"), engrave_group.get("fill")) == ("#000000", "none")
@@ -217,7 +218,7 @@ def test_svg_areas_match_the_panels(tmp_path):
     panels = random_panels(5, seed=9)
     result = cut(tmp_path, panels, name="a.svg")
     (file,) = out(result, "Paths")[(0,)]
-    cut_group = ET.parse(file).getroot().find(f"{SVG}g")
+    cut_group = ET.parse(file).getroot().find(f"{SVG}g[@id='CUT']")
     areas = []
     for path in cut_group.findall(f"{SVG}path"):
         pairs = [pair for pair in path.get("d").split() if "," in pair]

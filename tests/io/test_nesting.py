@@ -1,0 +1,252 @@
+"""True-shape nesting (sparrow), kerf offsets and the SHEET / REFERENCE layers, checked
+independently with shapely on what the DXF and SVG files hold. Budgets are 1-2 s."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import threading
+import time
+import xml.etree.ElementTree as ET
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+
+from engine.graph import Graph
+from engine.node import CancelToken
+from engine.solver import OK, Solver
+from nodes.geometry.curves import Circle, Polyline
+from nodes.geometry.nesting import nest, place
+from nodes.io import cutfiles
+from nodes.io.cutting import ExportCutSheet
+from tests.io.helpers import random_panels, rectangle
+from tests.nodes.helpers import Source, allowed, out, run, texts, tree
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def cut(tmp_path, panels, name="sheet.dxf", **settings):
+    inputs = {"Panels": tree({(0,): panels}), "Path": name, "Write": True, "Nesting": "TrueShape",
+              "TimeBudget": 1.0, **settings}
+    result = run(ExportCutSheet(), writes=allowed(tmp_path), **inputs)
+    assert result.state == OK, texts(result)
+    return result
+
+
+def layer(path, name):
+    doc = ezdxf.readfile(path)
+    found = []
+    for entity in doc.modelspace().query(f'LWPOLYLINE[layer=="{name}"]'):
+        assert entity.closed
+        found.append(np.array([(x, y) for x, y, *_ in entity.get_points()]))
+    return doc, found
+
+
+def check_sheets(files, width, height, margin, gap):
+    """Every cut contour simple and inside the sheet less its margin, no two closer than
+    the gap less 0.01 mm; returns the contours per sheet."""
+    room = shapely.box(margin, margin, width - margin, height - margin)
+    sheets = []
+    for file in files:
+        _, contours = layer(file, "CUT")
+        polygons = [shapely.Polygon(c) for c in contours]
+        for polygon in polygons:
+            assert polygon.is_valid and polygon.exterior.is_simple
+            assert room.buffer(1e-9).covers(polygon)
+        for a, b in itertools.combinations(polygons, 2):
+            assert a.distance(b) >= gap - 0.01
+        sheets.append(polygons)
+    return sheets
+
+
+def triangles(count):
+    """Right triangles 1.0 × 0.5 m: two make a rectangle, so they nest in pairs."""
+    return [Polyline([[2 * i, 0, 0], [2 * i + 1.0, 0, 0], [2 * i, 0.5, 0]], closed=True) for i in range(count)]
+
+
+# ------------------------------------------------------------------ layouts
+
+
+def test_true_shape_layout_keeps_gap_and_margin_on_every_sheet(tmp_path):
+    result = cut(tmp_path, random_panels(24, seed=4), Gap=6.0, Margin=15.0, SheetWidth=1500.0,
+                 SheetHeight=1000.0)
+    files = out(result, "Paths")[(0,)]
+    sheets = check_sheets(files, 1500.0, 1000.0, 15.0, 6.0)
+    assert sum(len(s) for s in sheets) == 24
+
+
+def test_true_shape_pairs_triangles_onto_one_sheet_where_shelf_needs_two(tmp_path):
+    shelf = run(ExportCutSheet(), Panels=tree({(0,): triangles(8)}), Nesting="Shelf")
+    assert out(shelf, "Layout")[(0,)][0].sheets == 2  # 4 bounding rectangles of 1000 × 500 per sheet
+    result = cut(tmp_path, triangles(8), TimeBudget=2.0)
+    (file,) = out(result, "Paths")[(0,)]
+    check_sheets([file], 2500.0, 1250.0, 10.0, 10.0)
+
+
+def test_grain_turns_parts_only_by_0_or_180_degrees(tmp_path):
+    panels = random_panels(10, seed=8)
+    result = cut(tmp_path, panels, Grain=True)
+    layout = out(result, "Layout")[(0,)][0]
+    for part, panel in zip(layout.parts, panels, strict=True):
+        drawn = panel.points[:-1, :2] * 1000.0
+        edge, placed = drawn[1] - drawn[0], part.panel[1] - part.panel[0]
+        assert np.allclose(placed, edge, atol=1e-6) or np.allclose(placed, -edge, atol=1e-6)
+
+
+def test_rotate_false_keeps_every_part_as_drawn(tmp_path):
+    panels = random_panels(6, seed=2)
+    layout = out(cut(tmp_path, panels, Rotate=False), "Layout")[(0,)][0]
+    for part, panel in zip(layout.parts, panels, strict=True):
+        drawn = panel.points[:-1, :2] * 1000.0
+        assert np.allclose(part.panel - part.panel[0], drawn - drawn[0], atol=1e-6)
+
+
+def test_nest_stopped_at_once_still_places_every_part_apart():
+    shapes = [np.asarray(p.points[:-1, :2]) * 1000 for p in random_panels(12, seed=6)]
+    started = time.perf_counter()
+    nested = nest(shapes, 2500.0, 1250.0, 10.0, 10.0, budget=30.0, stop=lambda: True)
+    assert nested.stopped and time.perf_counter() - started < 5.0
+    polygons = [(s, shapely.Polygon(place(shape, a, t)))
+                for shape, s, a, t in zip(shapes, nested.sheet, nested.angle, nested.shift, strict=True)]
+    room = shapely.box(10, 10, 2490, 1240).buffer(1e-9)
+    assert all(room.covers(p) for _, p in polygons)
+    for (s, a), (t, b) in itertools.combinations(polygons, 2):
+        assert s != t or a.distance(b) >= 10.0 - 0.01
+
+
+def test_nest_stopped_midway_keeps_the_best_layout_found_and_reports_progress():
+    shapes = [np.asarray(p.points[:-1, :2]) * 1000 for p in random_panels(12, seed=6)]
+    started = time.perf_counter()
+    fractions: list[float] = []
+    nested = nest(shapes, 2500.0, 1250.0, 10.0, 10.0, budget=30.0,
+                  stop=lambda: time.perf_counter() - started > 1.5, report=fractions.append)
+    assert nested.stopped and time.perf_counter() - started < 5.0
+    assert fractions == sorted(fractions) and fractions[-1] == 1.0 and 0 < fractions[0] < 0.2
+    assert nested.sheets >= 1 and (nested.sheet >= 0).all()
+
+
+def test_the_node_keeps_its_best_layout_when_cancelled_and_reports_progress():
+    graph = Graph()
+    graph.add_node(Source(tree({(0,): random_panels(6, seed=1)})), "panels")
+    graph.add_node(ExportCutSheet(), "cut")
+    graph.connect("panels", "Tree", "cut", "Panels")
+    for name, value in (("Nesting", "TrueShape"), ("TimeBudget", 30.0)):
+        graph.set_input_value("cut", name, value)
+    token, heard = CancelToken(), []
+    threading.Timer(1.5, token.cancel).start()
+    started = time.perf_counter()
+    solver = Solver(graph)
+    solver.solve(token, node_progress=lambda node, f: heard.append((node, f)))
+    assert time.perf_counter() - started < 6.0
+    result = solver.result("cut")
+    assert "Nesting was stopped: this is the best layout found by then" in texts(result)
+    assert len(out(result, "Layout")[(0,)][0].parts) == 6
+    assert {node for node, _ in heard} == {"cut"} and heard[-1][1] == 1.0
+
+
+# ------------------------------------------------------------------ kerf
+
+
+def _kerf_errors(part, half):
+    """How far the cut contour is from the mitred offset of the panel by ``half``: each
+    contour edge must be parallel to its panel edge (largest sine of the angle between them
+    times the edge's length, mm) and lie ``half`` from the panel (error at its midpoint, mm,
+    measured by shapely: the midpoint of an offset edge is nearest its own panel edge)."""
+    cut, panel = part.outline, part.panel
+    assert len(cut) == len(panel)
+    cut = np.roll(cut, -int(np.argmin(np.linalg.norm(cut - panel[0], axis=1))), axis=0)  # corner by corner
+    cut_edges, panel_edges = np.roll(cut, -1, axis=0) - cut, np.roll(panel, -1, axis=0) - panel
+    cross = cut_edges[:, 0] * panel_edges[:, 1] - cut_edges[:, 1] * panel_edges[:, 0]
+    skew = float(np.abs(cross / np.linalg.norm(panel_edges, axis=1)).max())
+    middles = shapely.points(cut + cut_edges / 2)
+    distance = shapely.distance(middles, shapely.Polygon(panel).exterior)
+    return skew, float(np.abs(distance - half).max())
+
+
+@pytest.mark.parametrize("nesting", ["Shelf", "TrueShape"])
+def test_kerf_offset_of_a_square_is_exact_to_a_millionth_of_a_mm(tmp_path, nesting):
+    result = cut(tmp_path, [rectangle(0, 0, 0.4, 0.4)], Kerf=0.3, Nesting=nesting)
+    (file,) = out(result, "Paths")[(0,)]
+    _, (contour,) = layer(file, "CUT")
+    assert np.ptp(contour, axis=0) == pytest.approx([400.3, 400.3], abs=1e-6)
+    part = out(result, "Layout")[(0,)][0].parts[0]
+    assert max(_kerf_errors(part, 0.15)) <= 1e-6
+    expected = shapely.Polygon(part.panel).buffer(0.15, join_style="mitre")
+    assert shapely.Polygon(part.outline).exterior.hausdorff_distance(expected.exterior) <= 1e-6
+
+
+def test_kerf_offset_of_a_circle_is_exact_to_a_millionth_of_a_mm(tmp_path):
+    result = cut(tmp_path, [Circle(radius=0.2)], Kerf=0.25, Nesting="Shelf")
+    part = out(result, "Layout")[(0,)][0].parts[0]
+    assert max(_kerf_errors(part, 0.125)) <= 1e-6
+
+
+# ------------------------------------------------------------------ SHEET and REFERENCE layers
+
+
+def test_dxf_has_an_unplotted_sheet_border_and_optional_reference_outlines(tmp_path):
+    result = cut(tmp_path, [rectangle(0, 0, 1, 0.5), rectangle(2, 0, 0.5, 0.5)], Kerf=0.2,
+                 Reference=True, SheetWidth=2000.0, SheetHeight=1000.0)
+    (file,) = out(result, "Paths")[(0,)]
+    doc, (border,) = layer(file, "SHEET")
+    assert shapely.Polygon(border).equals(shapely.box(0, 0, 2000, 1000))
+    assert doc.layers.get("SHEET").dxf.plot == 0 and doc.layers.get("REFERENCE").dxf.plot == 0
+    _, references = layer(file, "REFERENCE")
+    assert sorted(round(shapely.Polygon(r).area) for r in references) == [250000, 500000]
+    _, contours = layer(file, "CUT")
+    for reference in references:  # each drawn outline lies inside its cut contour, kerf/2 away
+        polygon = shapely.Polygon(reference)
+        (owner,) = [c for c in contours if shapely.Polygon(c).contains(polygon)]
+        assert shapely.Polygon(owner).exterior.distance(polygon.exterior) == pytest.approx(0.1, abs=1e-6)
+
+
+def test_no_reference_layer_entities_unless_asked(tmp_path):
+    (file,) = out(cut(tmp_path, [rectangle(0, 0, 1, 0.5)], Kerf=0.2), "Paths")[(0,)]
+    assert layer(file, "REFERENCE")[1] == []
+
+
+def test_svg_has_the_sheet_border_and_reference_groups(tmp_path):
+    result = cut(tmp_path, [rectangle(0, 0, 1, 0.5)], name="s.svg", Reference=True, SheetWidth=1200.0,
+                 SheetHeight=800.0)
+    (file,) = out(result, "Paths")[(0,)]
+    groups = {g.get("id"): g for g in ET.parse(file).getroot().findall(f"{SVG}g")}
+    assert set(groups) == {"SHEET", "REFERENCE", "CUT", "ENGRAVE"}
+    (border,) = groups["SHEET"].findall(f"{SVG}path")
+    corners = [tuple(float(x) for x in pair.split(",")) for pair in border.get("d").split() if "," in pair]
+    assert sorted(corners) == [(0, 0), (0, 800), (1200, 0), (1200, 800)]
+    assert len(groups["REFERENCE"].findall(f"{SVG}path")) == 1
+
+
+# ------------------------------------------------------------------ settings
+
+
+@pytest.mark.parametrize(
+    ("settings", "needle"),
+    [
+        ({"Nesting": "Best"}, "Nesting is 'Best': use TrueShape or Shelf"),
+        ({"TimeBudget": 0.0}, "TimeBudget must be between 1 and 3600 s"),
+        ({"Seed": 1.5}, "Seed must be a whole number"),
+        ({"Margin": 700.0}, "A margin of 700 mm on each side leaves no room"),
+    ],
+)
+def test_bad_nesting_settings_are_errors_naming_the_input(settings, needle):
+    result = run(ExportCutSheet(), Panels=tree({(0,): [rectangle(0, 0, 1, 0.5)]}),
+                 **{"Nesting": "TrueShape", **settings})
+    assert needle in texts(result)[0]
+
+
+def test_stock_usage_counts_the_last_sheet_up_to_its_parts(tmp_path):
+    layout = out(cut(tmp_path, [rectangle(0, 0, 0.5, 0.5)], Nesting="Shelf"), "Layout")[(0,)][0]
+    assert layout.last_length == pytest.approx(510.0)  # 10 mm margin + 500 mm part
+    assert layout.stock_usage == pytest.approx(500 * 500 / (510 * 1250))
+    assert math.isclose(layout.usage, 500 * 500 / (2500 * 1250))
+
+
+def test_layout_area_is_kept_under_true_shape_nesting(tmp_path):
+    panels = random_panels(10, seed=12)
+    layout = out(cut(tmp_path, panels), "Layout")[(0,)][0]
+    expected = sorted(shapely.Polygon(p.points[:-1, :2] * 1000).area for p in panels)
+    assert np.allclose(sorted(shapely.Polygon(p.outline).area for p in layout.parts), expected, rtol=1e-9)
+    assert cutfiles.TRUE_SHAPE == layout.nesting
