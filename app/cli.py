@@ -6,8 +6,7 @@
     torsal nodes [--json]
     torsal sweep FILE.graph --vary ID=LO:HI:N ... --collect NODE.OUTPUT ... --out DIR  (see app/explore)
     torsal optimise FILE.graph --vary ID=LO:HI ... (--minimise | --maximise) NODE.OUTPUT ...
-    torsal examples
-    torsal gui [FILE.graph | --example NAME]
+    torsal gui [FILE.graph]
 
 Exit codes: 0 every node ok or in warning; 1 at least one node in error; 2 the file or
 the command line could not be used (the reason on stderr, never a traceback).
@@ -17,7 +16,6 @@ Only ``gui`` imports Qt or VTK.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 import os
 import sys
@@ -25,8 +23,7 @@ from pathlib import Path
 
 from app.headless import UsageError
 
-#: How to install the desktop app when Qt is missing (``torsal gui`` says so and exits 2).
-GUI_INSTALL = "pip install 'torsal[gui]'"
+EXAMPLE = Path(__file__).resolve().parent.parent / "resources" / "examples" / "kaohsiung-stadium.graph"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -59,8 +56,6 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
                      help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48)")
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
-    run.add_argument("--verbose", "-v", action="store_true",
-                     help="also print how long each node took (slowest first)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="also write results.json into DIR; the graph's own file nodes write into DIR too")
     run.add_argument("--allow-writes", action="store_true",
@@ -83,12 +78,8 @@ def _parser() -> argparse.ArgumentParser:
 
     add_exploration(commands)  # torsal sweep, torsal optimise
 
-    examples = commands.add_parser("examples", help="list the example graphs that ship with Torsal")
-    examples.set_defaults(handler=_examples)
-
     gui = commands.add_parser("gui", help="open the desktop app")
     gui.add_argument("file", type=Path, nargs="?", help="a .graph file to open")
-    gui.add_argument("--example", metavar="NAME", help="open one of the examples (see torsal examples)")
     gui.set_defaults(handler=_gui)
     return parser
 
@@ -135,19 +126,7 @@ def _run(args: argparse.Namespace) -> int:
         print(json.dumps(data, indent=2))
     else:
         print(summary(run))
-        if args.verbose:
-            print(_timings(run))
     return run.exit_code
-
-
-def _timings(run) -> str:  # type: ignore[no-untyped-def]
-    """Per-node solve times, slowest first: ``  12.345 ms  ok       id  (type)``."""
-    rows = sorted(((run.solver.result(node_id), node_id, record.type_id)
-                   for node_id, record in run.graph.nodes.items()), key=lambda row: -row[0].seconds)
-    lines = [f"per-node time ({len(rows)} nodes, solve {run.report.seconds * 1000:.3f} ms):"]
-    lines += [f"  {result.seconds * 1000:10.3f} ms  {result.state:8s} {node_id}  ({type_id})"
-              for result, node_id, type_id in rows]
-    return "\n".join(lines)
 
 
 def _progress_line():  # type: ignore[no-untyped-def]
@@ -202,55 +181,22 @@ def has_display() -> bool:
     return True
 
 
-def _examples(args: argparse.Namespace) -> int:
-    from app import examples
-
-    for name in examples.names():
-        text = examples.description(name).split(". ")[0]
-        print(f"{name:26s} {text if len(text) <= 90 else text[:89] + '…'}")
-    return 0
-
-
-def _gui_missing() -> str | None:
-    """Why the desktop app's libraries cannot be used here, or None when they can.
-
-    Qt is imported (it is what fails when its system libraries are missing too); pyvista
-    and pyvistaqt are only looked up, as the app imports them once its window is shown.
-    """
-    try:
-        import PySide6.QtWidgets  # noqa: F401
-    except ImportError as exc:
-        return f"Qt for Python (PySide6) is not installed or does not load ({exc})"
-    for name in ("pyvista", "pyvistaqt"):
-        try:
-            found = importlib.util.find_spec(name) is not None
-        except (ImportError, ValueError):  # a module blocked in sys.modules, or a broken parent
-            found = False
-        if not found:
-            return f"{name} is not installed"
-    return None
-
-
 def _gui(args: argparse.Namespace) -> int:
-    from app import examples
     from app.headless import run_file, summary
 
-    if args.file is not None and args.example is not None:
-        raise UsageError("give either a FILE or --example NAME, not both")
-    file = args.file or examples.path(args.example or examples.DEFAULT)
+    file = args.file or EXAMPLE
     if not has_display():
         print(f"No display found (DISPLAY is not set): solving {file} headless instead.")
         run = run_file(file)
         print(summary(run))
         return run.exit_code
-    missing = _gui_missing()
-    if missing is not None:
-        print(f"torsal: the desktop app cannot start: {missing}.\n"
-              f"        Install it with: {GUI_INSTALL}\n"
-              f"        (or solve the graph headless: torsal run {file})", file=sys.stderr)
-        return 2
-    from app.gui.main import launch
-
+    try:
+        from app.gui.main import launch
+    except ImportError as exc:
+        print(f"The desktop app cannot start here ({exc}); solving {file} headless instead.")
+        run = run_file(file)
+        print(summary(run))
+        return run.exit_code
     return launch(file)
 
 
