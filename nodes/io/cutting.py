@@ -174,7 +174,8 @@ class ExportCutSheet(Node):
                 if may_write(self, cutfiles.numbered(target, layout.sheets)):
                     files = [str(p) for p in cutfiles.write_cut_files(layout, target)]
             else:
-                self.remark("Write is false: this node writes no files (Layout still goes to --export and Export…)")
+                self.remark("Write is false: this node writes no files (its Layout still goes to "
+                            "--export and Export…)")
         for note in layout.notes:
             self.remark(note)
         back = unit_scale("mm", model_units)

@@ -63,7 +63,8 @@ def check_sheets(files, width, height, margin, gap):
 
 def triangles(count):
     """Right triangles 1.0 × 0.5 m: two make a rectangle, so they nest in pairs."""
-    return [Polyline([[2 * i, 0, 0], [2 * i + 1.0, 0, 0], [2 * i, 0.5, 0]], closed=True) for i in range(count)]
+    return [Polyline([[2 * i, 0, 0], [2 * i + 1.0, 0, 0], [2 * i, 0.5, 0]], closed=True)
+            for i in range(count)]
 
 
 # ------------------------------------------------------------------ layouts
@@ -249,4 +250,4 @@ def test_layout_area_is_kept_under_true_shape_nesting(tmp_path):
     layout = out(cut(tmp_path, panels), "Layout")[(0,)][0]
     expected = sorted(shapely.Polygon(p.points[:-1, :2] * 1000).area for p in panels)
     assert np.allclose(sorted(shapely.Polygon(p.outline).area for p in layout.parts), expected, rtol=1e-9)
-    assert cutfiles.TRUE_SHAPE == layout.nesting
+    assert layout.nesting == cutfiles.TRUE_SHAPE
