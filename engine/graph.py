@@ -126,6 +126,7 @@ class Graph:
         #: how many nodes have been removed so far (lets a solver forget their results cheaply)
         self.removals = 0
         self._listeners: list[Listener] = []
+        self._id_hints: dict[str, int] = {}  # stem → a number below which new_id finds no gap
         # every wire, in wire order, with a serial number that only grows
         self._wires: dict[Wire, int] = {}
         self._serial = 0
@@ -155,9 +156,11 @@ class Graph:
         stem = "".join(c for c in base.lower() if c.isalnum() or c in "_-") or "node"
         if stem not in self.nodes:
             return stem
-        n = 2
+        # every number below the hint is taken (hints are forgotten when a node goes)
+        n = self._id_hints.get(stem, 2)
         while f"{stem}{n}" in self.nodes:
             n += 1
+        self._id_hints[stem] = n
         return f"{stem}{n}"
 
     def add_node(
@@ -206,6 +209,7 @@ class Graph:
             del self._rank[node_id]
         self._order = None
         self.removals += 1
+        self._id_hints.clear()
         for group in self.groups if groups_of is None else groups_of.get(node_id, ()):
             if node_id in group.nodes:
                 group.nodes.remove(node_id)

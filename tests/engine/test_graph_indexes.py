@@ -250,3 +250,19 @@ def test_remove_many_with_an_unknown_id_removes_nothing():
     with pytest.raises(GraphError, match="no node"):
         graph.remove_many(["s", "missing"])
     assert list(graph.nodes) == ["s", "t", "u"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.booleans(), st.integers(0, 50)), max_size=40))
+def test_new_id_is_always_the_smallest_free_number(steps):
+    graph = Graph()
+    for add, seed in steps:
+        ids = list(graph.nodes)
+        if add or not ids:
+            expected = "add" if "add" not in graph.nodes else next(
+                f"add{n}" for n in range(2, 10**6) if f"add{n}" not in graph.nodes
+            )
+            assert graph.new_id("Add") == expected
+            graph.add_node(Add())
+        else:
+            graph.remove_node(ids[seed % len(ids)])
