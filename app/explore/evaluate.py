@@ -15,6 +15,7 @@ from typing import Any
 
 from app.explore.variables import Target
 from engine.graphfile import GraphFileError, loads
+from engine.node import CancelToken
 from engine.registry import Registry
 from engine.solver import ERROR, WARNING, Solver
 from engine.writes import WriteAccess
@@ -87,12 +88,21 @@ def reduce_items(items: list[Any], reducer: str | None) -> tuple[Any, str | None
     return value, None
 
 
-def solve_variant(graph_text: str, values: dict[str, Any], job: Job, index: int = 0) -> dict[str, Any]:
-    """Solve ``graph_text`` with ``values`` set on its sliders; the outcome as a JSON-able dict."""
-    return _solve(graph_text, values, job, index).to_json()
+class Stopped(Exception):
+    """The user stopped the exploration while a variant was being solved."""
 
 
-def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int) -> Outcome:
+def solve_variant(graph_text: str, values: dict[str, Any], job: Job, index: int = 0,
+                  token: CancelToken | None = None) -> dict[str, Any]:
+    """Solve ``graph_text`` with ``values`` set on its sliders; the outcome as a JSON-able dict.
+
+    A cancelled ``token`` stops the solve at the next node and raises :class:`Stopped`.
+    """
+    return _solve(graph_text, values, job, index, token).to_json()
+
+
+def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token: CancelToken | None
+           ) -> Outcome:
     try:
         graph = loads(graph_text, _registry())
     except GraphFileError as exc:
@@ -104,7 +114,8 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int) -> Out
         folder = Path(job.write_root) / f"{index:05d}"
         folder.mkdir(parents=True, exist_ok=True)
     solver = Solver(graph, WriteAccess(folder, allowed=job.allow_writes and folder is not None))
-    solver.solve()
+    if solver.solve(token).cancelled:
+        raise Stopped
     notes: list[str] = []
     errors: list[str] = []
     warnings = 0

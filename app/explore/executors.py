@@ -14,8 +14,9 @@ import os
 from collections.abc import Iterable, Iterator
 from typing import Any
 
-from app.explore.evaluate import Job, solve_variant
+from app.explore.evaluate import Job, Stopped, solve_variant
 from app.headless import UsageError
+from engine.node import CancelToken
 
 #: how often dask re-runs a variant whose worker died or which raised
 RETRIES = 3
@@ -48,15 +49,22 @@ class Executor:
 
 
 class InlineExecutor(Executor):
-    """Solves variants one after the other in this process (tests, the app's own thread)."""
+    """Solves variants one after the other in this process (tests, the app's own thread).
 
-    def __init__(self) -> None:
+    Cancelling ``token`` (from another thread) stops the variant being solved at its
+    next node: :meth:`run` then raises :class:`~app.explore.evaluate.Stopped`.
+    """
+
+    def __init__(self, token: CancelToken | None = None) -> None:
         self.solves = 0
+        self.token = token or CancelToken()
 
     def run(self, graph_text, job, batch):
         for index, values in batch:
+            if self.token.cancelled:
+                raise Stopped
             self.solves += 1
-            yield index, solve_variant(graph_text, values, job, index)
+            yield index, solve_variant(graph_text, values, job, index, self.token)
 
 
 class DaskExecutor(Executor):

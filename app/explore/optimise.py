@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from app.explore.evaluate import Job, Outcome
+from app.explore.evaluate import Job, Outcome, Stopped
 from app.explore.executors import Executor
 from app.explore.progress import Progress
 from app.explore.study import Study
@@ -181,12 +181,15 @@ def optimise(
             return True
         return False
 
-    if len(senses) > 1:
-        _nsga2(objective, budget, seed, generation_done)
-    elif method == "de":
-        _differential_evolution(objective, budget, seed, generation_done)
-    else:
-        _cma(objective, budget, seed, generation_done)
+    try:
+        if len(senses) > 1:
+            _nsga2(objective, budget, seed, generation_done)
+        elif method == "de":
+            _differential_evolution(objective, budget, seed, generation_done)
+        else:
+            _cma(objective, budget, seed, generation_done)
+    except Stopped:  # stopped in the middle of a generation: keep what was evaluated
+        objective.result.stopped = True
     result = objective.result
     if len(senses) > 1:
         result.front = pareto_front(list(objective.memo.values()), senses)

@@ -25,16 +25,25 @@ class Study:
 def open_study(path: Path, vary: list[str], collect: list[str], steps: bool, collect_flag: str = "--collect"
                ) -> Study:
     """Read ``path`` and check every ``--vary`` and ``--collect`` against it (UsageError when wrong)."""
-    from app.explore.evaluate import _registry
 
     try:
-        content = read_file(path)
-        text = content.decode("utf-8")
-        graph = loads(text, _registry())
+        text = read_file(path).decode("utf-8")
     except GraphFileError as exc:
         raise UsageError(f"{path}: {exc}") from None
     except UnicodeDecodeError:
         raise UsageError(f"{path}: the file is not UTF-8 text, so not a graph file") from None
+    return study_from_text(text, path, vary, collect, steps, collect_flag)
+
+
+def study_from_text(text: str, path: Path, vary: list[str], collect: list[str], steps: bool,
+                    collect_flag: str = "--collect") -> Study:
+    """As :func:`open_study`, for a graph's text (the app's open document, saved or not)."""
+    from app.explore.evaluate import _registry
+
+    try:
+        graph = loads(text, _registry())
+    except GraphFileError as exc:
+        raise UsageError(f"{path}: {exc}") from None
     if not vary:
         raise UsageError("give at least one --vary ID=LO:HI" + (":N" if steps else ""))
     variables = [parse_vary(text_, graph, steps) for text_ in vary]
