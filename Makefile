@@ -1,11 +1,15 @@
 # Torsal: `make run` opens the app on an example; `make test` runs the whole suite.
 # Both set everything up first: system packages (via apt-get, when root on Debian),
-# the virtualenv and the Python packages.
+# the virtualenv and the Python packages — `run` only the app's (.[gui]), `test` the test
+# tools too (.[test]), each pinned by constraints.txt to the versions CI tested.
+# `make check-bounds` installs the lowest versions pyproject.toml allows and imports everything.
 
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
 BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+RUN_STAMP  := $(VENV)/.installed-run
+TEST_STAMP := $(VENV)/.installed-test
+CONSTRAINTS := constraints.txt
 EXAMPLE ?= resources/examples/kaohsiung-stadium.graph
 
 # What Qt 6's xcb plugin, VTK's OpenGL and Xvfb need on a bare Debian 12.
@@ -15,12 +19,12 @@ SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontco
 	libxcb-xkb1 libxcb-xfixes0 libxcb-sync1 libxcb-shm0 libxcb-render0 libxrender1 libxext6 \
 	libxi6 libsm6 libice6 libx11-xcb1
 
-.PHONY: run test bench lint system venv clean fuzz
+.PHONY: run test bench lint system venv clean fuzz check-bounds
 
-run: system $(STAMP)
+run: system $(RUN_STAMP)
 	$(BIN)/torsal gui $(EXAMPLE)
 
-test: system $(STAMP)
+test: system $(TEST_STAMP)
 	$(BIN)/ruff check .
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
 		$(BIN)/python -m pytest; \
@@ -28,21 +32,21 @@ test: system $(STAMP)
 		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest; \
 	fi
 
-bench: system $(STAMP)
+bench: system $(TEST_STAMP)
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
 		$(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs=".*" -s -q; \
 	else \
 		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/benchmarks -o python_files="bench_*.py" -o norecursedirs=".*" -s -q; \
 	fi
 
-lint: $(STAMP)
+lint: $(TEST_STAMP)
 	$(BIN)/ruff check .
 
 # A larger, seeded fuzzing corpus than make test's (SEED=n for another; about 15 minutes):
 # 600 structure-aware mutants of every example, their outputs described as by --json; every
 # node's numeric inputs fed hostile numbers; every capped input at its cap. Failing mutants
 # are written to $TMPDIR/torsal-fuzz for `torsal run FILE`.
-fuzz: $(STAMP)
+fuzz: $(TEST_STAMP)
 	$(BIN)/python -m tools.fuzz_graphs --mutants 600 --seed $${SEED:-0} --summarize
 	$(BIN)/python -m tools.fuzz_inputs
 	$(BIN)/python -m tools.fuzz_inputs --at-caps
@@ -61,13 +65,25 @@ system:
 		echo "      install them with: sudo apt-get install$$missing"; \
 	fi
 
-venv: $(STAMP)
+venv: $(TEST_STAMP)
 
-$(STAMP): pyproject.toml
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
-	touch $(STAMP)
+
+# The app's runtime only: no pytest, no ruff.
+$(RUN_STAMP): pyproject.toml $(CONSTRAINTS) | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -c $(CONSTRAINTS) -e '.[gui]'
+	touch $(RUN_STAMP)
+
+# The runtime and the test tools (.[test] includes .[gui]).
+$(TEST_STAMP): pyproject.toml $(CONSTRAINTS) | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -c $(CONSTRAINTS) -e '.[test]'
+	touch $(TEST_STAMP) $(RUN_STAMP)
+
+# Slow (downloads the oldest allowed wheels): not part of `make test`.
+check-bounds:
+	$(PYTHON) -m tools.check_bounds
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

@@ -6,7 +6,8 @@
     torsal nodes [--json]
     torsal sweep FILE.graph --vary ID=LO:HI:N ... --collect NODE.OUTPUT ... --out DIR  (see app/explore)
     torsal optimise FILE.graph --vary ID=LO:HI ... (--minimise | --maximise) NODE.OUTPUT ...
-    torsal gui [FILE.graph]
+    torsal examples
+    torsal gui [FILE.graph | --example NAME]
 
 Exit codes: 0 every node ok or in warning; 1 at least one node in error; 2 the file or
 the command line could not be used (the reason on stderr, never a traceback).
@@ -21,9 +22,7 @@ import os
 import sys
 from pathlib import Path
 
-from app.headless import UsageError
-
-EXAMPLE = Path(__file__).resolve().parent.parent / "resources" / "examples" / "kaohsiung-stadium.graph"
+from app.headless import Run, UsageError
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -56,6 +55,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
                      help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48)")
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
+    run.add_argument("--verbose", "-v", action="store_true",
+                     help="also print how long each node took (slowest first)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="also write results.json into DIR; the graph's own file nodes write into DIR too")
     run.add_argument("--allow-writes", action="store_true",
@@ -78,8 +79,12 @@ def _parser() -> argparse.ArgumentParser:
 
     add_exploration(commands)  # torsal sweep, torsal optimise
 
+    examples = commands.add_parser("examples", help="list the example graphs that ship with Torsal")
+    examples.set_defaults(handler=_examples)
+
     gui = commands.add_parser("gui", help="open the desktop app")
     gui.add_argument("file", type=Path, nargs="?", help="a .graph file to open")
+    gui.add_argument("--example", metavar="NAME", help="open one of the examples (see torsal examples)")
     gui.set_defaults(handler=_gui)
     return parser
 
@@ -126,7 +131,19 @@ def _run(args: argparse.Namespace) -> int:
         print(json.dumps(data, indent=2))
     else:
         print(summary(run))
+        if args.verbose:
+            print(_timings(run))
     return run.exit_code
+
+
+def _timings(run: Run) -> str:
+    """Per-node solve times, slowest first: ``  12.345 ms  ok       id  (type)``."""
+    rows = sorted(((run.solver.result(node_id), node_id, record.type_id)
+                   for node_id, record in run.graph.nodes.items()), key=lambda row: -row[0].seconds)
+    lines = [f"per-node time ({len(rows)} nodes, solve {run.report.seconds * 1000:.3f} ms):"]
+    lines += [f"  {result.seconds * 1000:10.3f} ms  {result.state:8s} {node_id}  ({type_id})"
+              for result, node_id, type_id in rows]
+    return "\n".join(lines)
 
 
 def _progress_line():  # type: ignore[no-untyped-def]
@@ -181,22 +198,37 @@ def has_display() -> bool:
     return True
 
 
+def _examples(args: argparse.Namespace) -> int:
+    from app import examples
+
+    for name in examples.names():
+        text = examples.description(name).split(". ")[0]
+        print(f"{name:26s} {text if len(text) <= 90 else text[:89] + '…'}")
+    return 0
+
+
 def _gui(args: argparse.Namespace) -> int:
+    from app import examples
     from app.headless import run_file, summary
 
-    file = args.file or EXAMPLE
+    if args.file is not None and args.example is not None:
+        raise UsageError("give either a FILE or --example NAME, not both")
+    file = args.file or examples.path(args.example or examples.DEFAULT)
     if not has_display():
         print(f"No display found (DISPLAY is not set): solving {file} headless instead.")
         run = run_file(file)
         print(summary(run))
         return run.exit_code
-    try:
-        from app.gui.main import launch
-    except ImportError as exc:
-        print(f"The desktop app cannot start here ({exc}); solving {file} headless instead.")
-        run = run_file(file)
-        print(summary(run))
-        return run.exit_code
+    from app.gui.availability import INSTALL, missing
+
+    reason = missing()
+    if reason is not None:
+        print(f"torsal: the desktop app cannot start: {reason}.\n"
+              f"        Install it with: {INSTALL}\n"
+              f"        (or solve the graph headless: torsal run {file})", file=sys.stderr)
+        return 2
+    from app.gui.main import launch
+
     return launch(file)
 
 

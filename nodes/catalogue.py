@@ -54,6 +54,8 @@ MODULES: tuple[str, ...] = (
     "nodes.analysis.surface_analysis",
     "nodes.analysis.iso_mapping",
     "nodes.analysis.curve_of_regression",
+    "nodes.analysis.curvature_histogram",
+    "nodes.analysis.warp_chart",
 )
 
 

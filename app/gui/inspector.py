@@ -1,13 +1,18 @@
-"""The inspector: the selected node's settings (editable), ports, current output data and help."""
+"""The inspector: the selected node's settings (editable), ports, current output data, help,
+and the plot a node drew (display.Plot, analysis.CurvatureHistogram, analysis.WarpChart)."""
 
 from __future__ import annotations
 
 import html
 import json
+from pathlib import Path
+from typing import Any
 
 from PySide6.QtCore import Qt
+from PySide6.QtGui import QPixmap
 from PySide6.QtWidgets import (
     QLabel,
+    QScrollArea,
     QTableWidget,
     QTableWidgetItem,
     QTabWidget,
@@ -25,6 +30,21 @@ from engine.datatree import DataTree, format_path
 from engine.graph import Graph, is_placeholder
 
 MAX_ITEMS_SHOWN = 100
+#: An output item that is a path to one of these is shown as an image on the Plot tab.
+IMAGE_SUFFIXES = (".png",)
+
+
+def plot_image(outputs: dict[str, DataTree] | None) -> Path | None:
+    """The first image file among a node's text outputs (a plot node's ``Image``), or None."""
+    for tree in (outputs or {}).values():
+        for _path, branch in tree.items():
+            value: Any = branch[0] if branch else None
+            if isinstance(value, str) and value.lower().endswith(IMAGE_SUFFIXES):
+                path = Path(value)
+                if path.is_file():
+                    return path
+            break  # only the first item of each output is looked at
+    return None
 
 
 class Inspector(QWidget):
@@ -56,6 +76,16 @@ class Inspector(QWidget):
         self.data.setHeaderLabels(["Output data", "Value"])
         self.data.setColumnWidth(0, 150)
         self.help = QTextBrowser()
+        # The Plot tab is shown only for a node that drew an image (the node drew it on
+        # the solver's thread; here it is only read, once per new file).
+        self.plot = QLabel()
+        self.plot.setObjectName("inspector:plot")
+        self.plot.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.plot_area = QScrollArea()
+        self.plot_area.setWidget(self.plot)
+        self.plot_area.setWidgetResizable(True)
+        self.plot_path: Path | None = None
+        self._plot_key: tuple[str, int, int] | None = None
         self.tabs.addTab(self.settings, "Settings")
         self.tabs.addTab(self.ports, "Ports")
         self.tabs.addTab(self.data, "Data")
@@ -65,8 +95,11 @@ class Inspector(QWidget):
         doc.graph_replaced.connect(lambda: self.show_node(None))
 
     def show_node(self, node_id: str | None) -> None:
+        changed = node_id != self.node_id
         self.node_id = node_id
         self.refresh()
+        if changed and self.plot_path is not None:
+            self.tabs.setCurrentWidget(self.plot_area)
 
     def refresh(self) -> None:
         graph = self.doc.graph
@@ -85,6 +118,7 @@ class Inspector(QWidget):
         if self.node_id is None:
             self.header.setText("Select a node to inspect it.")
             self.help.clear()
+            self._show_plot(None)
             return
         record = graph.nodes[self.node_id]
         result = self.doc.result(self.node_id)
@@ -127,6 +161,35 @@ class Inspector(QWidget):
             if tree is not None:
                 self._add_tree(port.name, tree)
         self.help.setHtml(self._help_html(type(node), is_placeholder(node), record.type_id))
+        self._show_plot(plot_image(result.outputs if result else None))
+
+    def _show_plot(self, path: Path | None) -> None:
+        """Show the image at ``path`` on the Plot tab (added first), or remove the tab."""
+        self.plot_path = path
+        index = self.tabs.indexOf(self.plot_area)
+        if path is None:
+            if index >= 0:
+                self.tabs.removeTab(index)
+            self.plot.clear()
+            self._plot_key = None
+            return
+        if index < 0:
+            self.tabs.insertTab(0, self.plot_area, "Plot")
+        try:
+            stat = path.stat()
+        except OSError:
+            self.plot.setText(f"The plot {path} cannot be read.")
+            return
+        key = (str(path), stat.st_mtime_ns, stat.st_size)
+        if key == self._plot_key:
+            return
+        self._plot_key = key
+        pixmap = QPixmap(str(path))
+        if pixmap.isNull():
+            self.plot.setText(f"The plot {path} is not a readable image.")
+            return
+        self.plot.setPixmap(pixmap)
+        self.plot.setToolTip(str(path))
 
     def _add_tree(self, name: str, tree: DataTree) -> None:
         top = QTreeWidgetItem([name, f"{tree.item_count} items in {tree.branch_count} branches"])

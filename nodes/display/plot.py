@@ -37,6 +37,12 @@ def summary(y: np.ndarray) -> str:
 
 def _target(file: str, title: str, y: np.ndarray) -> tuple[Path, bool]:
     """The PNG path to write and whether it was chosen by the node."""
+    return target(file, title.encode() + y.tobytes())
+
+
+def target(file: str, key: bytes) -> tuple[Path, bool]:
+    """The PNG path to write (File, or one in PLOT_FOLDER named for ``key``, the bytes
+    that make the plot) and whether it was chosen by the node."""
     if file.strip():
         path = Path(file.strip()).expanduser()
         if not path.suffix:
@@ -44,7 +50,7 @@ def _target(file: str, title: str, y: np.ndarray) -> tuple[Path, bool]:
         if path.suffix.lower() != ".png":
             raise NodeWarning(f"File must be a .png image, not {path.name!r}")
         return path, False
-    digest = hashlib.sha1(title.encode() + y.tobytes()).hexdigest()[:12]
+    digest = hashlib.sha1(key).hexdigest()[:12]
     return PLOT_FOLDER / f"plot-{digest}.png", True
 
 
@@ -55,18 +61,30 @@ def draw(path: Path, y: np.ndarray, title: str) -> None:
     so it works headless and from a solver thread. The file is written next to the
     target and renamed over it, so a viewer never reads half an image.
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(6.4, 4.0), dpi=100)
-    FigureCanvasAgg(figure)
-    axes = figure.add_subplot()
+    figure, axes = new_figure()
     x = np.arange(len(y))
     axes.plot(x, y, color="#d55e00", linewidth=1.5, marker="o" if len(y) <= 60 else None, markersize=3)
     axes.set_title(title)
     axes.set_xlabel("Index")
     axes.set_ylabel("Value")
     axes.grid(True, alpha=0.3)
+    save(figure, path)
+
+
+def new_figure() -> tuple[Any, Any]:
+    """A figure on matplotlib's Agg canvas (no pyplot, no window, no global state: safe
+    headless and on the solver's worker thread) and its one axes."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(6.4, 4.0), dpi=100)
+    FigureCanvasAgg(figure)
+    return figure, figure.add_subplot()
+
+
+def save(figure: Any, path: Path) -> None:
+    """Write ``figure`` as a PNG at ``path``: next to it first, then renamed over it, so
+    a viewer never reads half an image."""
     figure.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     partial = path.with_name(f".{path.stem}.{os.getpid()}.partial.png")

@@ -1,0 +1,119 @@
+"""Install the lowest versions pyproject.toml allows in a scratch venv and import every module.
+
+    .venv/bin/python -m tools.check_bounds [--keep DIR] [--gui]
+
+Each ``name>=X`` in ``[project] dependencies`` becomes ``name==X`` (``--gui`` adds the
+``gui`` extra's lower bounds, and then app/gui is imported too); the project is installed
+from this checkout into a new venv under the temporary folder with those pins as
+constraints, then every module of engine/, nodes/ and app/ is imported there and every
+example graph is solved with ``torsal run``. Exit 0 when all of that worked. It downloads
+the old wheels, so it takes minutes: ``make check-bounds`` runs it, ``make test`` does not
+(``TORSAL_CHECK_BOUNDS=1`` makes tests/test_packaging.py run it too).
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import subprocess
+import sys
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGES = ("engine", "nodes", "app")
+
+_IMPORT_ALL = r"""
+import importlib, pkgutil, sys, traceback
+skip_gui = {skip_gui!r}
+failed = 0
+count = 0
+for top in {packages!r}:
+    package = importlib.import_module(top)
+    names = [top] + [m.name for m in pkgutil.walk_packages(package.__path__, top + ".")]
+    for name in names:
+        if skip_gui and name.startswith("app.gui"):
+            continue
+        count += 1
+        try:
+            importlib.import_module(name)
+        except Exception:
+            failed += 1
+            print("FAILED", name)
+            traceback.print_exc(limit=2)
+print(f"imported {{count - failed}} of {{count}} modules")
+sys.exit(1 if failed else 0)
+"""
+
+
+def lower_bounds(extras: tuple[str, ...] = ()) -> list[str]:
+    """``name==X`` for every ``name>=X`` requirement (extras of a requirement dropped)."""
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    requirements = list(project["dependencies"])
+    for extra in extras:
+        requirements += project["optional-dependencies"][extra]
+    pins = []
+    for requirement in requirements:
+        match = re.match(r"^\s*([A-Za-z0-9_.-]+)(\[[^\]]*\])?\s*>=\s*([^,;\s]+)", requirement)
+        if match is None:
+            continue  # e.g. "torsal[gui]", or a requirement without a lower bound
+        pins.append(f"{match.group(1)}=={match.group(3)}")
+    return pins
+
+
+def _step(title: str, command: list[str], **kwargs: object) -> subprocess.CompletedProcess[str]:
+    start = time.perf_counter()
+    print(f"-- {title}", flush=True)
+    done = subprocess.run(command, text=True, capture_output=True, **kwargs)  # type: ignore[call-overload]
+    print(done.stdout[-4000:], end="")
+    if done.returncode:
+        print(done.stderr[-4000:], end="")
+    print(f"   ({time.perf_counter() - start:.0f} s, exit {done.returncode})", flush=True)
+    return done
+
+
+def check(folder: Path, gui: bool = False) -> int:
+    """Build the venv in ``folder`` and run the checks; returns the number of failed steps."""
+    pins = lower_bounds(("gui",) if gui else ())
+    constraints = folder / "lower-bounds.txt"
+    constraints.write_text("\n".join(pins) + "\n", encoding="utf-8")
+    print("lower bounds:", " ".join(pins))
+    python = folder / "venv" / "bin" / "python"
+    failures = 0
+    if _step("venv", [sys.executable, "-m", "venv", str(folder / "venv")]).returncode:
+        return 1
+    target = f"{ROOT}[gui]" if gui else str(ROOT)
+    install = _step("install", [str(python), "-m", "pip", "install", "--quiet", "--no-cache-dir",
+                                "-c", str(constraints), target])
+    if install.returncode:
+        return 1
+    _step("installed versions", [str(python), "-m", "pip", "list", "--format=freeze"])
+    code = _IMPORT_ALL.format(packages=PACKAGES, skip_gui=not gui)
+    # From a folder outside the checkout, so the modules come from the installed wheel.
+    failures += bool(_step("import every module", [str(python), "-c", code], cwd=folder).returncode)
+    torsal = folder / "venv" / "bin" / "torsal"
+    for example in sorted((ROOT / "resources" / "examples").glob("*.graph")):
+        run = _step(f"torsal run {example.name}", [str(torsal), "run", str(example)], cwd=folder)
+        failures += run.returncode not in (0,)
+    return failures
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="check_bounds", description=__doc__.splitlines()[0])
+    parser.add_argument("--keep", type=Path, metavar="DIR", help="build the venv in DIR and keep it")
+    parser.add_argument("--gui", action="store_true", help="also the gui extra's lower bounds, and app/gui")
+    args = parser.parse_args(argv)
+    if args.keep:
+        args.keep.mkdir(parents=True, exist_ok=True)
+        failures = check(args.keep, args.gui)
+    else:
+        with tempfile.TemporaryDirectory(prefix="torsal-bounds-") as folder:
+            failures = check(Path(folder), args.gui)
+    print("lower bounds: OK" if not failures else f"lower bounds: {failures} step(s) failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
