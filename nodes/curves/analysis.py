@@ -11,7 +11,7 @@ from engine.types import INTEGER, NUMBER, POINT, VECTOR
 from engine.values import Point, Vector
 from nodes.curves.convert import given, number, vector, vectors
 from nodes.geometry.curve_base import Curve
-from nodes.limits import MAX_DIVISIONS
+from nodes.limits import MAX_DIVISIONS, shown
 from nodes.maths.checks import whole
 from nodes.types import CURVE, point, points
 
@@ -48,9 +48,9 @@ class DivideCurve(Node):
         if n == 0:
             raise NodeWarning("Count is 0, so the curve is not divided: give 1 segment or more")
         if n < 0:
-            raise NodeWarning(f"Count must be at least 1, not {n}")
+            raise NodeWarning(f"Count must be at least 1, not {shown(n)}")
         if n > MAX_DIVISIONS:
-            raise NodeWarning(f"Count is {n:,}; at most {MAX_DIVISIONS:,} segments can be made at once")
+            raise NodeWarning(f"Count is {shown(n)}; at most {MAX_DIVISIONS:,} segments can be made at once")
         if c.length == 0:
             raise NodeWarning("The curve has zero length, so it cannot be divided")
         t = c.divide_by_count(n)

@@ -16,6 +16,7 @@ from nodes.curves.convert import given, number
 from nodes.developable.input_checks import has_no_length
 from nodes.geometry.curve_base import Curve
 from nodes.limits import MAX_RULINGS as MAX_SEGMENTS
+from nodes.limits import shown
 
 #: Below this share of a shape's size a distance counts as zero.
 COINCIDENT = 1e-12
@@ -38,10 +39,10 @@ def segments(value: Any) -> int:
     n = int(value)
     if n < 1:
         raise NodeWarning(
-            f"Segments is {n}: give 1 or more (Segments is the number of rulings minus one)"
+            f"Segments is {shown(n)}: give 1 or more (Segments is the number of rulings minus one)"
         )
     if n > MAX_SEGMENTS:
-        raise NodeWarning(f"Segments is {n:,}; at most {MAX_SEGMENTS:,} can be made at once")
+        raise NodeWarning(f"Segments is {shown(n)}; at most {MAX_SEGMENTS:,} can be made at once")
     return n
 
 

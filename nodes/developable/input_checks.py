@@ -18,6 +18,7 @@ from nodes.geometry.curve_base import Curve
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 from nodes.limits import MAX_RULINGS as MAX_SEGMENTS
+from nodes.limits import shown
 
 #: Where a curve is sampled to see that it is not a single point.
 _SAMPLES = np.linspace(0.0, 1.0, 65)
@@ -69,9 +70,11 @@ def segments_input(value: Any, limit: int = MAX_SEGMENTS) -> int:
         raise NodeError("Segments is empty: give the number of rulings minus one")
     n = int(value)
     if n < 1:
-        raise NodeError(f"Segments is {n}: give 1 or more (Segments is the number of rulings minus one)")
+        raise NodeError(
+            f"Segments is {shown(n)}: give 1 or more (Segments is the number of rulings minus one)"
+        )
     if n > limit:
-        raise NodeError(f"Segments is {n:,}; at most {limit:,} can be made at once")
+        raise NodeError(f"Segments is {shown(n)}; at most {limit:,} can be made at once")
     return n
 
 

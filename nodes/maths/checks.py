@@ -11,6 +11,7 @@ from typing import Any
 
 from engine.node import NodeWarning
 from nodes.limits import MAX_NUMBERS as MAX_COUNT
+from nodes.limits import shown
 
 
 def finite(name: str, value: Any) -> float:
@@ -36,7 +37,7 @@ def count(name: str, value: Any, least: int = 0, limit: int = MAX_COUNT) -> int:
     """A count of things to make: a whole number from ``least`` to ``limit``."""
     number = whole(name, value)
     if number < least:
-        raise NodeWarning(f"{name} must be at least {least}, not {number}")
+        raise NodeWarning(f"{name} must be at least {least}, not {shown(number)}")
     if number > limit:
-        raise NodeWarning(f"{name} is {number:,}; at most {limit:,} can be made at once")
+        raise NodeWarning(f"{name} is {shown(number)}; at most {limit:,} can be made at once")
     return number

@@ -10,7 +10,7 @@ from engine.types import GENERIC, INTEGER, NUMBER, PLANE, VECTOR
 from engine.values import WORLD_XY, Vector
 from nodes.curves.convert import direction, kernel_plane, number
 from nodes.geometry import transforms
-from nodes.limits import MAX_COPIES
+from nodes.limits import MAX_COPIES, shown
 from nodes.maths.checks import whole
 from nodes.transform.dispatch import SUPPORTED, transform_value
 
@@ -18,9 +18,9 @@ from nodes.transform.dispatch import SUPPORTED, transform_value
 def _count(value: Any) -> int:
     n = whole("Count", value)
     if n < 1:
-        raise NodeWarning(f"Count must be at least 1, not {n}")
+        raise NodeWarning(f"Count must be at least 1, not {shown(n)}")
     if n > MAX_COPIES:
-        raise NodeWarning(f"Count is {n:,}; at most {MAX_COPIES:,} copies can be made at once")
+        raise NodeWarning(f"Count is {shown(n)}; at most {MAX_COPIES:,} copies can be made at once")
     return n
 
 
