@@ -10,6 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QMenu, QMessageBox
 
+from app.gui.optimise_window import open_optimise_window
 from app.gui.write_consent import toggle_writes
 from engine import __version__
 
@@ -132,6 +133,9 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     auto.toggled.connect(lambda on: setattr(window.doc.solves, "auto", on))
     solve.addAction(auto)
     actions["auto_solve"] = auto
+    solve.addSeparator()
+    add(solve, "optimise", "&Optimise…", lambda: open_optimise_window(window),
+        tip="Search sliders for the best value of an output (runs beside the canvas)")
 
     help_menu = bar.addMenu("&Help")
     add(
