@@ -72,13 +72,14 @@ def curvature_samples(target_: Surface | MeshSurface, nu: int, nv: int) -> tuple
 
 def bin_edges(values: FloatArray, bins: int, size: float) -> FloatArray:
     """``bins + 1`` even edges from the smallest to the largest value; values that are all
-    the same (to rounding) get one range around them, so they fall in the middle bar."""
+    the same (to rounding) get a range ±5 % around them with the value in the middle of
+    bar ``bins // 2``, so rounding cannot split them between two bars."""
     low, high = float(values.min()), float(values.max())
     scale = max(abs(low), abs(high), 1.0 / size if size > 0 else 1.0)
     if high - low <= CONSTANT * scale:
-        centre = 0.5 * (low + high)
-        half = 0.05 * scale
-        low, high = centre - half, centre + half
+        width = 0.1 * scale / bins
+        low = 0.5 * (low + high) - (bins // 2 + 0.5) * width
+        return low + width * np.arange(bins + 1)
     return np.linspace(low, high, bins + 1)
 
 

@@ -1,0 +1,130 @@
+"""Packaging: what the wheel carries, what `make run` installs, `torsal gui` without Qt,
+and (opt-in, slow) the declared lower bounds."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = sorted(p.name for p in (ROOT / "resources" / "examples").glob("*.graph"))
+INSTALL_LINE = "pip install 'torsal[gui]'"
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory) -> Path:
+    """The wheel `pip wheel .` builds from this checkout (about 20 s)."""
+    folder = tmp_path_factory.mktemp("wheel")
+    source = folder / "src"
+    # A copy without the checkout's build leftovers, as a clean clone would be.
+    shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(
+        ".venv", ".git", "build", "*.egg-info", "__pycache__", ".pytest_cache", ".ruff_cache", "tests"))
+    done = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w", str(folder),
+                           str(source)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    (built,) = folder.glob("torsal-*.whl")
+    return built
+
+
+def test_the_wheel_contains_every_example_graph(wheel):
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert EXAMPLES
+    assert {f"resources/examples/{name}" for name in EXAMPLES} <= names
+
+
+def test_the_wheel_carries_the_mit_license(wheel):
+    names = zipfile.ZipFile(wheel).namelist()
+    (metadata,) = [n for n in names if n.endswith(".dist-info/METADATA")]
+    text = zipfile.ZipFile(wheel).read(metadata).decode()
+    assert "License-Expression: MIT" in text
+    assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
+
+
+def test_torsal_examples_lists_the_examples_from_an_installed_wheel(wheel, tmp_path):
+    site = tmp_path / "site"
+    done = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "--quiet", "--target",
+                           str(site), str(wheel)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    script = ("import sys, app\n"
+              f"assert app.__file__.startswith({str(site)!r}), app.__file__\n"
+              "from app.cli import main\n"
+              "sys.exit(main(['examples']))\n")
+    env = {**os.environ, "PYTHONPATH": str(site)}
+    listed = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=tmp_path,
+                            env=env, timeout=120)
+    assert listed.returncode == 0, listed.stderr
+    assert [line.split()[0] for line in listed.stdout.splitlines()] == [n[: -len(".graph")] for n in EXAMPLES]
+
+
+def test_torsal_gui_without_pyside6_exits_2_with_the_install_line(tmp_path):
+    script = ("import sys\n"
+              "sys.modules['PySide6'] = None  # as if PySide6 were not installed\n"
+              "from app.cli import main\n"
+              "sys.exit(main(['gui', '--example', 'first-steps']))\n")
+    env = {**os.environ, "DISPLAY": os.environ.get("DISPLAY") or ":99"}
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=ROOT, env=env,
+                          timeout=120)
+    assert done.returncode == 2
+    assert INSTALL_LINE in done.stderr
+    assert "Traceback" not in done.stderr + done.stdout
+
+
+def test_torsal_gui_opens_an_example_by_name_headless_without_a_display(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    done = subprocess.run([sys.executable, "-m", "app.cli", "gui", "--example", "first-steps"],
+                          capture_output=True, text=True, cwd=ROOT, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "first-steps.graph: solved 8 nodes" in done.stdout
+
+
+def make_dry_run(tmp_path: Path, target: str) -> str:
+    """`make -n TARGET` in a folder holding only what a fresh clone has for make (no .venv)."""
+    for name in ("Makefile", "pyproject.toml", "constraints.txt"):
+        shutil.copy(ROOT / name, tmp_path / name)
+    done = subprocess.run(["make", "-n", target], capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_make_run_in_a_fresh_clone_installs_the_app_but_no_test_tools(tmp_path):
+    commands = make_dry_run(tmp_path, "run")
+    assert "-m venv .venv" in commands
+    assert "-c constraints.txt -e '.[gui]'" in commands
+    assert "[test]" not in commands and "pytest" not in commands
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_make_test_in_a_fresh_clone_installs_the_test_tools_with_the_constraints(tmp_path):
+    commands = make_dry_run(tmp_path, "test")
+    assert "-c constraints.txt -e '.[test]'" in commands
+    assert "-m pytest" in commands
+
+
+def test_constraints_pin_every_declared_dependency():
+    import tomllib
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    extras = project["optional-dependencies"].values()
+    declared = project["dependencies"] + [r for extra in extras for r in extra]
+    names = {r.split(">")[0].split("=")[0].split("[")[0].split("<")[0].strip().lower().replace("_", "-")
+             for r in declared if not r.startswith("torsal")}
+    lines = (ROOT / "constraints.txt").read_text(encoding="utf-8").splitlines()
+    pinned = {line.split("==")[0].strip().lower().replace("_", "-") for line in lines if "==" in line}
+    assert names <= pinned, sorted(names - pinned)
+
+
+@pytest.mark.skipif(os.environ.get("TORSAL_CHECK_BOUNDS") != "1",
+                    reason="slow (downloads the oldest allowed wheels): TORSAL_CHECK_BOUNDS=1 "
+                    "or make check-bounds")
+def test_the_declared_lower_bounds_install_and_every_module_imports():
+    done = subprocess.run([sys.executable, "-m", "tools.check_bounds"], capture_output=True, text=True,
+                          cwd=ROOT, timeout=1800)
+    assert done.returncode == 0, done.stdout[-4000:]
+    assert "lower bounds: OK" in done.stdout
