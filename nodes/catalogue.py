@@ -56,6 +56,7 @@ MODULES: tuple[str, ...] = (
     "nodes.analysis.curve_of_regression",
     "nodes.analysis.curvature_histogram",
     "nodes.analysis.warp_chart",
+    "nodes.analysis.bending",
 )
 
 

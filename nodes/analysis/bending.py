@@ -1,0 +1,210 @@
+"""analysis.BendingCheck: can each strip be bent from the chosen sheet material?
+
+A developable strip is bent, not stretched: at each point it curves only across its
+rulings, with the one nonzero principal curvature k (the other is 0). Its *bending
+radius* there is 1/|k| — the radius of normal curvature across the ruling: r on a
+cylinder of radius r, d·tan α on a cone d from its apex with half-angle α, infinite on
+a plane. The strip's smallest bending radius is compared with the material's minimum
+bending radius (:data:`MATERIALS`, or a number in mm).
+
+Curvature comes from the surface's exact derivatives at an ``n × n`` grid of (u, v)
+(:meth:`~nodes.geometry.surface_base.Surface.curvature`); the larger of |k1|, |k2| is
+taken, so a strip that is not quite developable is judged by its stronger bend.
+A curvature below :data:`FLAT` of the strip's inverse size counts as none: the radius
+is infinite (a plane passes every material).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import trimesh
+from numpy.typing import NDArray
+
+from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT
+from nodes.curves.convert import given
+from nodes.geometry.surface_base import Surface, grid_triangles, uv_grid
+from nodes.io.common import FileFailure, unit_name, unit_scale
+from nodes.limits import MAX_DENSITY
+from nodes.maths.checks import count, finite
+from nodes.types import MESH, points
+
+FloatArray = NDArray[np.float64]
+
+#: |k| below this share of 1/size is no curvature at all (rounding on a plane).
+FLAT = 1e-9
+
+
+@dataclass(frozen=True)
+class Material:
+    """A sheet material and the smallest radius it may be bent to, cold, without damage."""
+
+    name: str
+    thickness: float  #: mm
+    radius: float  #: minimum bending radius, mm
+    source: str
+
+
+def _elastic(modulus: float, stress: float, thickness: float) -> float:
+    """Radius (mm) at which the outer fibre of a sheet ``thickness`` mm thick reaches
+    ``stress`` (MPa) for a Young's modulus ``modulus`` (MPa): R = E·t / (2σ)."""
+    return modulus * thickness / (2.0 * stress)
+
+
+#: The Material value list. Figures and where they come from (in the node's help too).
+MATERIALS: dict[str, Material] = {m.name: m for m in (
+    Material("Paper 80 g/m²", 0.1, 0.0,
+             "paper folds without breaking: any radius (a fold is not a bend; see paper-strip.graph)"),
+    Material("Card 0.5 mm", 0.5, 0.5 / (2 * 0.015),
+             "estimate R = t / (2ε) with ε = 1.5 % stretch at break, a typical machine-direction figure "
+             "for folding boxboard: about 17 mm; test the board you use"),
+    Material("Birch plywood 4 mm", 4.0, 16.0 * 25.4,
+             "FAA Advisory Circular AC 43.13-1B, plywood minimum bend radius table: 0.155 in 3-ply at "
+             "10 % moisture on a cold mandrel, 16 in (406 mm) at 90° to the face grain (10 in at 0–45°)"),
+    Material("Aluminium 1 mm", 1.0, _elastic(70_000.0, 130.0, 1.0),
+             "elastic bend R = E·t / (2 Rp0.2) of EN AW-5754 H22: E = 70 GPa, Rp0.2 ≥ 130 MPa "
+             "(EN 485-2): 269 mm (tighter bends yield and stay bent)"),
+    Material("Steel 1.5 mm", 1.5, _elastic(210_000.0, 235.0, 1.5),
+             "elastic bend R = E·t / (2 ReH) of S235 (EN 10025-2): E = 210 GPa, ReH ≥ 235 MPa: 670 mm"),
+    Material("Polycarbonate 6 mm", 6.0, 100.0 * 6.0,
+             "cold curving at no less than 100 × the thickness, the sheet suppliers' rule against crazing "
+             "(e.g. High Line PC, 'Cold forming polycarbonate sheet'): 600 mm"),
+)}
+
+
+def bending_radii(surface: Surface, u: FloatArray, v: FloatArray) -> FloatArray:
+    """The bending radius 1/max(|k1|, |k2|) at (u, v), model units; inf where flat (see
+    :data:`FLAT`), NaN where the surface has no curvature (degenerate)."""
+    c = surface.curvature(u, v)
+    k = np.maximum(np.abs(c.k1), np.abs(c.k2))
+    size = _size(surface)
+    with np.errstate(divide="ignore"):
+        radius = 1.0 / k
+    return np.where(k <= FLAT / size, np.inf, radius)
+
+
+def _size(surface: Surface) -> float:
+    box = surface.bounding_box(samples=9)
+    size = float(np.ptp(box, axis=0).max())
+    return size if size > 0 else 1.0
+
+
+def material_radius(value: Any) -> tuple[float, str]:
+    """A Material name or a number (mm): the minimum radius in mm and how to call it."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        radius = float(value)
+        if not (math.isfinite(radius) and radius >= 0):
+            raise NodeWarning(f"Material must be a name or a radius of 0 mm or more, not {radius:g}")
+        return radius, f"{radius:g} mm"
+    text = str(value or "").strip()
+    for name, material in MATERIALS.items():
+        if text.lower() == name.lower():
+            return material.radius, name
+    try:
+        return material_radius(float(text))
+    except ValueError:
+        pass
+    names = "; ".join(MATERIALS)
+    raise NodeWarning(f"Material {text!r} is not in the table ({names}) nor a radius in mm")
+
+
+def _colour(radius_mm: FloatArray, limit: float) -> NDArray[np.uint8]:
+    """Red below the material's radius, orange up to twice it, green beyond (and flat)."""
+    ratio = np.where(np.isfinite(radius_mm), radius_mm / limit if limit > 0 else np.inf, np.inf)
+    rgb = np.where((ratio < 1)[:, None], (220, 40, 40), np.where((ratio < 2)[:, None], (245, 160, 40),
+                                                                  (60, 170, 90)))
+    rgb = np.where(np.isnan(radius_mm)[:, None], (128, 128, 128), rgb)
+    return np.column_stack([rgb, np.full(len(rgb), 255)]).astype(np.uint8)
+
+
+def _table() -> str:
+    return "\n".join(f"    - {m.name}: {m.radius:.0f} mm — {m.source}." for m in MATERIALS.values())
+
+
+class BendingCheck(Node):
+    """Check that each strip can be bent from a sheet material.
+
+    Strips are developable surfaces (in model Units); at a grid of Density × Density
+    points each one's bending radius is measured — the radius of normal curvature
+    across the rulings, 1/|k| of its one nonzero principal curvature (a cylinder of
+    radius r gives r, a cone at distance d from its apex with half-angle α gives
+    d·tan α, a plane is infinite). With ModelScale n (a 1:n model) the cut part bends
+    n times tighter than the surface in the model's units, so radii are divided by n
+    before the check. Ok is true where the smallest radius is at least the material's
+    minimum bending radius. Material is a name from the table below or a number in mm.
+
+    Materials (minimum bending radius, cold, and the source of the figure):
+
+{table}
+    """
+
+    type_id = "analysis.BendingCheck"
+    inputs = (
+        In("Strips", GENERIC, "S", "The developable strips (surfaces), in model units.", access=LIST),
+        In("Material", GENERIC, "M", "A material from the table (see help) or its minimum bending radius "
+           "in mm.", default="Birch plywood 4 mm"),
+        In("Units", TEXT, "U", "The model's units (mm, cm, m, in, ft).", default="m"),
+        In("ModelScale", NUMBER, "n", "1:n — the model is n times smaller than the built strips' drawing "
+           "(1 at full size).", default=1.0),
+        In("Density", INTEGER, "D", "Grid points per direction on each strip (2 or more).", default=24),
+    )
+    outputs = (
+        Out("MinRadius", NUMBER, "R", "Each strip's smallest bending radius, mm as cut (inf: flat).",
+            access=LIST),
+        Out("Ok", BOOLEAN, "Ok", "Per strip: true when it can be bent from the material.", access=LIST),
+        Out("Failing", POINT, "F", "Points where a strip bends tighter than the material allows.",
+            access=LIST),
+        Out("ColouredMesh", MESH, "Cm", "The strips coloured by radius: red below the material's, "
+            "orange up to twice it, green beyond.", access=LIST),
+        Out("MaterialRadius", NUMBER, "Mr", "The material's minimum bending radius, mm."),
+    )
+
+    def solve(self, strips: list[Any], material: Any, units: Any, model_scale: Any,
+              density: Any) -> tuple[Any, ...]:
+        limit, called = material_radius(material)
+        try:
+            to_mm = unit_scale(unit_name(units), "mm")
+        except FileFailure as exc:
+            raise NodeError(str(exc)) from None
+        scale = finite("ModelScale", model_scale)
+        if not scale > 0:
+            raise NodeWarning(f"ModelScale must be positive (1 for full size, 50 for 1:50), not {scale:g}")
+        n = count("Density", density, least=2, limit=MAX_DENSITY)
+        if not strips:
+            raise NodeWarning("There are no strips: wire surfaces into Strips")
+        u, v = uv_grid(n, n)
+        radii, oks, failing, meshes = [], [], [], []
+        for index, strip in enumerate(strips):
+            surface = given("Strips", strip)
+            if not isinstance(surface, Surface):
+                raise NodeError(f"Strip {index + 1} is not a surface")
+            self.check_cancelled()
+            radius = bending_radii(surface, u, v) * to_mm / scale
+            known = radius[~np.isnan(radius)]
+            smallest = float(known.min()) if len(known) else math.nan
+            if not len(known):
+                self.warn(f"Strip {index + 1} has no curvature anywhere (degenerate): its radius is NaN")
+            radii.append(smallest)
+            oks.append(bool(smallest >= limit))
+            xyz = surface.point_at(u, v)
+            failing += points(xyz[radius < limit])
+            mesh = trimesh.Trimesh(xyz, grid_triangles(n, n), process=False)
+            mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=_colour(radius, limit))
+            mesh.metadata.update({"scalars": np.where(np.isfinite(radius), radius, np.nan),
+                                  "scalar_name": "bending radius, mm"})
+            meshes.append(mesh)
+        bad = [i + 1 for i, ok in enumerate(oks) if not ok]
+        if bad:
+            listed = ", ".join(map(str, bad[:20])) + (" …" if len(bad) > 20 else "")
+            self.remark(f"{len(bad)} of {len(oks)} strips bend tighter than {called} allows "
+                        f"({limit:.0f} mm): strips {listed}")
+        else:
+            self.remark(f"Every strip can be bent from {called} ({limit:.0f} mm)")
+        return radii, oks, failing, meshes, limit
+
+
+BendingCheck.__doc__ = (BendingCheck.__doc__ or "").replace("{table}", _table())
