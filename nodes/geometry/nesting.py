@@ -22,6 +22,10 @@ Repeatability: sparrow is seeded, but its search runs against the clock, so how 
 gets — and so the layout — can differ from run to run on a busy machine, even with the
 same seed. A seed fixes the random choices, not the number of them made.
 
+Out of time with parts left (many sheets, a short budget), what is left is packed into
+one last strip and cut into sheet lengths: each sheet takes the parts that end within a
+sheet's length of the first part not yet placed.
+
 Stopping: ``stop()`` is polled about every 50 ms; when it says yes, the best layout
 found so far is kept (a strip under way contributes its best feasible packing), and
 the rest is placed on further sheets by bounding-rectangle shelf packing so every part
@@ -30,11 +34,17 @@ is still on a sheet. ``report(fraction)`` is told how far the budget is spent.
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import queue
+import subprocess
+import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -96,81 +106,70 @@ class _Clock:
         return self.stopped
 
 
-def _child(conn, shapes, height, spacing, orientations, seconds, seed) -> None:  # type: ignore[no-untyped-def]
-    """In a worker process: run sparrow, sending each better feasible packing as
-    ``(width, [(id, angle, x, y), ...])`` and ``None`` when done."""
-    import spyrrow
-
-    items = [
-        spyrrow.Item(str(i), [tuple(p) for p in shape], demand=1, allowed_orientations=orientations)
-        for i, shape in shapes
-    ]
-    instance = spyrrow.StripPackingInstance("torsal", height, items)
-    config = spyrrow.StripPackingConfig(
-        early_termination=True, total_computation_time=seconds,
-        min_items_separation=spacing + SLACK if spacing > 0 else None, seed=seed, num_workers=1,
-    )
-    queue = spyrrow.ProgressQueue()
-    done: list[object] = []
-    worker = threading.Thread(target=lambda: done.append(instance.solve(config, progress=queue)))
-    worker.start()
-    feasible = (spyrrow.ReportType.ExplFeas, spyrrow.ReportType.CmprFeas, spyrrow.ReportType.Final)
-    best = math.inf
-
-    def send(solutions) -> None:  # type: ignore[no-untyped-def]
-        nonlocal best
-        for solution in solutions:
-            if solution.width < best:
-                best = solution.width
-                conn.send((solution.width, [(int(p.id), float(p.rotation), float(p.translation[0]),
-                                              float(p.translation[1])) for p in solution.placed_items]))
-
-    while worker.is_alive():
-        worker.join(POLL)
-        send([solution for kind, solution in queue.drain() if kind in feasible])
-    send([solution for kind, solution in queue.drain() if kind in feasible] + done)
-    conn.send(None)
-    conn.close()
-
-
 def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
            orientations: Sequence[float] | None, seconds: int, seed: int,
-           clock: _Clock) -> dict[int, tuple[float, tuple[float, float]]] | None:
+           clock: _Clock, enough: float = 0.0) -> dict[int, tuple[float, tuple[float, float]]] | None:
     """Pack ``members`` into a strip of ``height``: {part: (angle, shift)}, or None when
-    stopped before sparrow found a feasible packing.
+    stopped before sparrow found a feasible packing. A packing no longer than ``enough``
+    ends the search at once (a sheet's length: shorter is no better).
 
-    sparrow cannot be interrupted, so it runs in a worker process that a stop ends at
-    once; the best feasible packing it reported by then is kept."""
-    import multiprocessing
+    sparrow cannot be interrupted, so it runs in a worker process
+    (:mod:`nodes.geometry.sparrow_worker`) that a stop ends at once; the best feasible
+    packing it reported by then is kept."""
+    job = {
+        "shapes": [[i, shapes[i].tolist()] for i in members], "height": float(height),
+        "spacing": float(spacing) + SLACK if spacing > 0 else None,
+        "orientations": None if orientations is None else [float(a) for a in orientations],
+        "seconds": int(seconds), "seed": int(seed),
+    }
+    root = str(Path(__file__).resolve().parents[2])
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
+    worker = subprocess.Popen(
+        [sys.executable, "-m", "nodes.geometry.sparrow_worker"], stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, text=True,
+    )
+    lines: queue.Queue[str | None] = queue.Queue()
 
-    context = multiprocessing.get_context("spawn")  # no fork of a process with threads (the app's)
-    receive, send = context.Pipe(duplex=False)
-    args = ([(i, shapes[i].tolist()) for i in members], float(height), float(spacing),
-            None if orientations is None else [float(a) for a in orientations], int(seconds), int(seed))
-    worker = context.Process(target=_child, args=(send, *args), daemon=True)
-    worker.start()
-    send.close()
+    def read() -> None:
+        assert worker.stdout is not None
+        for line in worker.stdout:
+            lines.put(line)
+        lines.put(None)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
     best = None
     try:
-        while True:
-            if receive.poll(POLL):
+        assert worker.stdin is not None
+        worker.stdin.write(json.dumps(job))
+        worker.stdin.close()
+        finished = False
+        while not finished:
+            try:
+                line = lines.get(timeout=POLL)
+            except queue.Empty:
+                line = ""
+            while line is not None:
+                if line.strip():
+                    best = json.loads(line)
+                    if best[0] <= enough:
+                        finished = True
                 try:
-                    message = receive.recv()
-                except EOFError:
+                    line = lines.get_nowait()
+                except queue.Empty:
                     break
-                if message is None:
-                    break
-                best = message
+            else:
+                finished = True
             if clock.tick():
-                break
+                finished = True
     finally:
-        if worker.is_alive():
+        if worker.poll() is None:
             worker.kill()
-        worker.join()
-        receive.close()
+        worker.wait()
+        reader.join(timeout=1.0)
     if best is None:
         return None
-    return {i: (a, (x, y)) for i, a, x, y in best[1]}
+    return {int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]}
 
 
 def _valid(polygons: dict[int, shapely.Polygon], room: shapely.Polygon, spacing: float) -> list[int]:
@@ -229,7 +228,7 @@ def nest(
     def seconds(share: float) -> int:
         return max(SHORTEST, round(max(clock.left(), 0.0) * share))
 
-    while remaining and not clock.stopped:
+    while remaining and not clock.stopped and clock.left() > 0:
         packing = _strip(centred, remaining, strip_height, spacing, orientations,
                          seconds(0.5 if len(remaining) > 1 else 0.1), attempt_seed, clock)
         attempt_seed += 1
@@ -252,7 +251,7 @@ def nest(
                     continue
                 members = [*chosen, candidate]
                 trial = _strip(centred, members, strip_height, spacing, orientations,
-                               seconds(0.25), attempt_seed, clock)
+                               seconds(0.25), attempt_seed, clock, enough=room_length + 2 * spacing)
                 attempt_seed += 1
                 if trial is None or len(trial) != len(members):
                     continue
@@ -276,6 +275,26 @@ def nest(
             shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
         remaining = [i for i in remaining if sheet_of[i] < 0]
         sheet += 1
+    if remaining and not clock.stopped:  # out of time: one strip of the rest, cut into sheet lengths
+        packing = _strip(centred, remaining, strip_height, spacing, orientations, SHORTEST,
+                         attempt_seed, clock)
+        polygons = polygons_of(packing) if packing is not None else {}
+        open_room = shapely.box(margin, margin, math.inf, height - margin)
+        if len(polygons) == len(remaining) and len(_valid(polygons, open_room, spacing)) == len(polygons):
+            left = sorted(polygons, key=lambda i: polygons[i].bounds[0])
+            while left:
+                start = polygons[left[0]].bounds[0] - margin  # this sheet's cut-off along the strip
+                here = [i for i in left if polygons[i].bounds[2] - start <= width - margin]
+                if not here:  # turned longer than the sheet: the shelf below takes the rest
+                    break
+                for i in here:
+                    a, t = packing[i]
+                    sheet_of[i], angle[i] = sheet, a
+                    lift = np.add(t, (margin - spacing - start, margin - spacing))
+                    shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
+                left = [i for i in left if i not in here]
+                sheet += 1
+            remaining = [i for i in remaining if sheet_of[i] < 0]
     if remaining:  # stopped: the rest on further sheets by their bounding rectangles
         boxes = [np.ptp(centred[i], axis=0) for i in remaining]
         extra, corner = shelf_pack(np.array(boxes), (width, height), max(margin, spacing))
