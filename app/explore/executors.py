@@ -20,6 +20,8 @@ from engine.node import CancelToken
 
 #: how often dask re-runs a variant whose worker died or which raised
 RETRIES = 3
+#: the status of a variant that failed on every try: not cached, a re-run tries again
+WORKER_FAILED = "error: the worker failed"
 _BLAS_THREADS = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
 
 
@@ -90,7 +92,7 @@ class DaskExecutor(Executor):
                 os.environ.setdefault(name, "1")
             self._cluster = LocalCluster(
                 n_workers=count, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None, silence_logs=logging.ERROR,
+                dashboard_address=None, silence_logs=logging.CRITICAL,
             )
             self.client = Client(self._cluster, set_as_default=False)
 
@@ -116,7 +118,7 @@ class DaskExecutor(Executor):
             except Exception as exc:  # the variant failed even after dask's retries
                 outcome = {"values": dict(values),
                            "outputs": {t.name: None for t in job.targets},
-                           "status": f"error: the worker failed: {type(exc).__name__}: {exc}"}
+                           "status": f"{WORKER_FAILED}: {type(exc).__name__}: {exc}"}
             yield index, outcome
 
     def close(self) -> None:

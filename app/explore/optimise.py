@@ -117,10 +117,10 @@ class Objective:
             outcome = Outcome.from_json(data)
             self.memo[order[index]] = Evaluated(outcome.values, self._objectives(outcome), outcome)
             self.result.solves += 1
-            if self.progress is not None:
-                self.progress.advance()
         rows = []
         for key in keys:
+            if self.progress is not None:
+                self.progress.advance(cached=key not in todo)
             evaluated = self.memo[key]
             self.result.evaluated.append(evaluated)
             self.result.evaluations += 1

@@ -18,7 +18,8 @@ class Progress:
     """Counts finished variants and prints how many, how fast and the ETA.
 
     Variants taken from the cache count as done but do not enter the rate, so the ETA
-    of a resumed sweep is the time its remaining solves will take.
+    of a resumed sweep is the time its remaining solves will take; the rate is measured
+    from the first solved variant on, so starting the workers does not inflate it.
     """
 
     def __init__(self, what: str, total: int, stream: TextIO | None = None, quiet: bool = False) -> None:
@@ -31,6 +32,7 @@ class Progress:
         self.cached = 0
         self.solved = 0
         self.start = time.monotonic()
+        self._first: float | None = None  # when the first solved variant came back
         self._last = 0.0
 
     def advance(self, cached: bool = False, note: str = "") -> None:
@@ -40,6 +42,8 @@ class Progress:
         else:
             self.solved += 1
         now = time.monotonic()
+        if not cached and self._first is None:
+            self._first = now
         if self.done == self.total or now - self._last >= (0.2 if self.tty else 5.0):
             self._last = now
             self._print(note)
@@ -47,10 +51,12 @@ class Progress:
     def eta(self) -> float | None:
         if self.done >= self.total:
             return 0.0
-        if not self.solved:
+        if self.solved < 2 or self._first is None:
             return None
-        rate = self.solved / max(time.monotonic() - self.start, 1e-9)
-        return (self.total - self.done) / rate
+        seconds = time.monotonic() - self._first
+        if seconds <= 0:
+            return None
+        return (self.total - self.done) * seconds / (self.solved - 1)
 
     def line(self, note: str = "") -> str:
         eta = self.eta()

@@ -17,7 +17,7 @@ from typing import Any
 
 from app.explore.cache import ResultCache, graph_digest, variant_key
 from app.explore.evaluate import Job, Outcome
-from app.explore.executors import Executor
+from app.explore.executors import WORKER_FAILED, Executor
 from app.explore.progress import Progress
 from app.explore.study import Study
 
@@ -70,7 +70,7 @@ def run_sweep(
             outcome = Outcome.from_json(data)
             outcomes[index] = outcome
             solved += 1
-            if cache is not None:
+            if cache is not None and not outcome.status.startswith(WORKER_FAILED):
                 cache.put(keys[index], data)
             if progress is not None:
                 progress.advance(note="" if not outcome.failed else f"variant {index + 1} in error")
