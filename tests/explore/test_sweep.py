@@ -105,3 +105,31 @@ def test_the_same_seed_draws_the_same_sobol_samples(plane):
     study = open_study(plane, ["x=0:1", "y=0:2"], ["f.Result"], steps=False)
     assert sample(study.variables, "sobol", 8, seed=1) == sample(study.variables, "sobol", 8, seed=1)
     assert sample(study.variables, "sobol", 8, seed=1) != sample(study.variables, "sobol", 8, seed=2)
+
+
+def export_graph(folder):
+    from nodes.io.data import ExportCSV
+
+    graph = Graph()
+    graph.add_node(IntegerSlider({"min": 0, "max": 3, "value": 1}), "n")
+    graph.add_node(ExportCSV(), "export")
+    graph.connect("n", "Value", "export", "Data")
+    graph.set_input_value("export", "Path", "n.csv")
+    graph.set_input_value("export", "Write", True)
+    write_graph(graph, folder / "export.graph")
+    return folder / "export.graph"
+
+
+def test_a_swept_graph_writes_no_file_without_allow_writes(tmp_path):
+    path = export_graph(tmp_path)
+    study = open_study(path, ["n=0:1:2"], ["n.Value"], steps=True)
+    run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "out")
+    assert sorted(p.name for p in tmp_path.rglob("*.csv")) == [RESULTS]
+
+
+def test_with_allow_writes_each_variant_writes_into_its_own_folder(tmp_path):
+    path = export_graph(tmp_path)
+    study = open_study(path, ["n=0:1:2"], ["n.Value"], steps=True)
+    run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "out", allow_writes=True)
+    written = sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("n.csv"))
+    assert written == ["out/variants/00000/n.csv", "out/variants/00001/n.csv"]
