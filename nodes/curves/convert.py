@@ -72,6 +72,8 @@ def kernel_plane(name: str, plane: Any) -> KernelPlane:
     """
     given(name, plane)
     origin, x, y = (xyz(name, part) for part in plane)
+    if not np.isfinite(np.linalg.norm(np.concatenate([x, y]))):  # an axis near 1e308: its length overflows
+        raise NodeWarning(f"{name}'s axes are too long to measure (past 1e154): give axes of ordinary length")
     if float(np.linalg.norm(x)) <= ZERO_LENGTH:
         raise NodeWarning(f"{name}'s X axis has zero length, so the plane has no orientation")
     x = x / np.linalg.norm(x)
