@@ -8,6 +8,8 @@ from collections import Counter
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from PySide6.QtCore import QEvent
+from PySide6.QtWidgets import QGraphicsSceneHelpEvent
 
 from app.gui.canvas.node_item import NodeItem
 from app.gui.fragments import fresh_ids
@@ -109,3 +111,15 @@ def test_fresh_ids_are_the_ids_fresh_id_gives_one_by_one(pasted, present):
         taken.add(new_id)
         expected[node_id] = new_id
     assert fresh_ids(ids, set(present)) == expected
+
+
+def test_a_ports_tooltip_is_written_when_asked_for_and_names_its_data(qtbot, first_window):
+    window, _ = first_window
+    node_id = next(n for n in window.scene.nodes if window.doc.graph.wires_from(n))
+    port = window.scene.nodes[node_id].output_port(window.doc.graph.wires_from(node_id)[0].source_port)
+    assert port.toolTip() == ""  # nothing is written until someone hovers
+    event = QGraphicsSceneHelpEvent(QEvent.Type.GraphicsSceneHelp)
+    event.setScenePos(port.scenePos())
+    event.setScreenPos(window.view.mapToGlobal(window.view.mapFromScene(port.scenePos())))
+    window.scene.helpEvent(event)
+    assert f"<b>{port.name}</b>" in port.toolTip() and "items in" in port.toolTip()

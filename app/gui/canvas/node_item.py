@@ -137,7 +137,6 @@ class NodeItem(QGraphicsRectItem):
         for (is_input, name), port in self.ports.items():
             state = self.record.inputs.get(name) if is_input else None
             port.set_has_value(bool(state and state.has_value))
-            port.setToolTip(self.port_tooltip(name, is_input))
         self.setRect(self.layout.rect)
         self.update()
 
@@ -158,9 +157,6 @@ class NodeItem(QGraphicsRectItem):
         if resize:
             self.rebuild()
         else:
-            for (is_input, name), port in self.ports.items():
-                if not is_input:
-                    port.setToolTip(self.port_tooltip(name, is_input))
             self.update()
 
     def size(self) -> tuple[float, float]:
@@ -182,7 +178,8 @@ class NodeItem(QGraphicsRectItem):
         return "<br>".join(lines)
 
     def port_tooltip(self, name: str, is_input: bool) -> str:
-        """A port's tooltip: type, access, description, value, modifiers, data (made on hover)."""
+        """A port's tooltip: type, access, description, value, modifiers, data (made when
+        asked for: see :meth:`CanvasScene.helpEvent`)."""
         node = self.record.node
         port = node.input_port(name) if is_input else node.output_port(name)
         if port is None:
