@@ -32,7 +32,7 @@ from tests.toolbox.direct_graphs import Chain
 from tools.fuzz_inputs import HOSTILE, InputCase, sweep
 
 # Guards, not benchmarks: the slowest case takes about 1.2 s (a Plot drawn with
-# matplotlib on a loaded machine) and the largest about 85 MB (first imports in a worker).
+# matplotlib on a loaded machine) and the largest about 31 MB (the same Plot).
 CASE_SECONDS = 10.0
 CASE_BYTES = 512 << 20
 WORKERS = min(2, os.cpu_count() or 1)

@@ -362,7 +362,7 @@ def fuzz(mutants_per_example: int, seed: int = 0, workers: int = 2, seconds: flo
     """
     import time
 
-    from tools.fuzz_pool import GuardedPool
+    from tools.fuzz_pool import GuardedPool, node_modules
 
     started = time.perf_counter()
     chosen = names or list(examples())
@@ -372,7 +372,7 @@ def fuzz(mutants_per_example: int, seed: int = 0, workers: int = 2, seconds: flo
     with tempfile.TemporaryDirectory(prefix="torsal-fuzz-") as scratch:  # io nodes' relative paths land here
         # headroom over ``memory`` so that a case just past it is measured, not killed
         pool = GuardedPool(workers=workers, memory_bytes=memory + (256 << 20), seconds=seconds, cwd=scratch,
-                           preload=("nodes.catalogue", "tools.fuzz_graphs"))
+                           preload=(*node_modules(), "tools.fuzz_graphs"))
         for mutant, result in pool.run(run_mutant, cases):
             summary.cases += 1
             summary.slowest = max(summary.slowest, result.seconds)

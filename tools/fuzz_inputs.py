@@ -216,10 +216,10 @@ def solve_case(case: InputCase) -> dict[str, Any]:
 def sweep(workers: int = 2, seconds: float = 10.0, memory_bytes: int = 1 << 30,
           only: str = "") -> Iterator[tuple[InputCase, Any]]:
     """Run every case (whose type id contains ``only``) in a :class:`GuardedPool`."""
-    from tools.fuzz_pool import GuardedPool
+    from tools.fuzz_pool import GuardedPool, node_modules
 
     pool = GuardedPool(workers=workers, memory_bytes=memory_bytes, seconds=seconds,
-                       preload=("nodes.catalogue", "tools.fuzz_inputs"))
+                       preload=(*node_modules(), "tools.fuzz_inputs"))
     chosen = [c for c in cases() if only in c.type_id]
     yield from pool.run(solve_case, chosen)
 
@@ -257,10 +257,10 @@ def main(argv: list[str]) -> int:
 
 
 def _run(chosen: list[InputCase], seconds: float) -> Iterator[tuple[InputCase, Any]]:
-    from tools.fuzz_pool import GuardedPool
+    from tools.fuzz_pool import GuardedPool, node_modules
 
     pool = GuardedPool(workers=2, memory_bytes=(1 << 30) + (256 << 20), seconds=seconds,
-                       preload=("nodes.catalogue", "tools.fuzz_inputs"))
+                       preload=(*node_modules(), "tools.fuzz_inputs"))
     yield from pool.run(solve_case, chosen)
 
 

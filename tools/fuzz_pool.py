@@ -253,6 +253,14 @@ class GuardedPool:
                 alone.shutdown(wait=True)
 
 
+def node_modules() -> tuple[str, ...]:
+    """The modules of every installed node type, for a pool to import once before forking
+    its workers (so a case's time is its own, not the first import of its palette's)."""
+    from nodes.catalogue import default_registry
+
+    return tuple(sorted({cls.__module__ for cls in default_registry(plugins=False)}))
+
+
 def solve_guarded(graph: Any, summarize: bool = False) -> dict[str, Any]:
     """Solve ``graph`` with the engine's solver; per node: state and messages.
 
