@@ -40,11 +40,14 @@ from app.gui.commands import SetSetting
 from app.headless import UsageError
 from engine.graphfile import dumps
 from engine.node import CancelToken
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER
 
 if TYPE_CHECKING:
     from app.gui.main_window import MainWindow
 
 SLIDER_TYPES = ("params.NumberSlider", "params.IntegerSlider")
+#: outputs offered as fitness: numbers, and generic ones that may hold numbers
+FITNESS_TYPES = (NUMBER, INTEGER, BOOLEAN, GENERIC)
 
 
 class FitnessPlot(QWidget):
@@ -176,6 +179,8 @@ class OptimiseWindow(QDialog):
                 self.genes.addItem(item)
             else:
                 for port in record.node.output_ports():
+                    if port.type not in FITNESS_TYPES:
+                        continue
                     label = f"{record.title} [{node_id}] · {port.name}"
                     self.fitness.addItem(label, f"{node_id}.{port.name}")
 

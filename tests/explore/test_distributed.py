@@ -48,3 +48,16 @@ def test_killing_a_worker_mid_sweep_loses_no_row(cluster, tmp_path):
     assert [o.values for o in result.outcomes] == variants
     assert all(o.status.startswith("ok") for o in result.outcomes)
     assert all(o.outputs["strips.Result"] == 20.0 for o in result.outcomes)
+
+
+def test_an_optimisation_on_the_cluster_makes_the_same_evaluations_as_one_in_this_process(cluster, tmp_path):
+    from app.explore.optimise import optimise
+
+    path = formula_graph(tmp_path / "bowl.graph", {"x": (-5, 5, 4), "y": (-5, 5, -3)},
+                         {"f": "(x - 1.3)**2 + 2*(y + 0.7)**2"})
+    study = open_study(path, ["x=-5:5", "y=-5:5"], ["f.Result"], steps=False)
+    here = optimise(study, InlineExecutor(), [1], budget=60, seed=4)
+    with DaskExecutor(scheduler=cluster.scheduler_address) as executor:
+        there = optimise(study, executor, [1], budget=60, seed=4)
+    assert [e.values for e in there.evaluated] == [e.values for e in here.evaluated]
+    assert there.best.objectives == here.best.objectives
