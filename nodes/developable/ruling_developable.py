@@ -100,11 +100,17 @@ class RulingDevelopable(Node):
     Where no torsal ruling exists over a stretch (the curves there bound no
     developable), the strip is closed by flat triangles, each with two corners on one
     curve and one on the other, so the Surface still spans both curves from end to
-    end, stays developable (it unrolls exactly) and has no holes; the same closes the
-    ends of CurveB beyond the first and last torsal ruling. Those rulings are marked
-    Kind = "fan" and the node reports their share of the strip's area; it warns when
-    the share is above FanLimit, and names swapping the curves or reversing CurveB only
-    when it has solved that alternative and found it needs fewer triangles.
+    end, stays developable (it unrolls exactly) and has no holes. Those rulings are
+    marked Kind = "fan" and the node reports their share of the strip's area.
+
+    At the strip's ends, where the curves' end points have no torsal partner (the
+    usual case when both edges end on a rim), the end is closed by one cone through
+    the end point of a curve, joined to the torsal rulings at the torsal ruling through
+    that very point: the sheet stays smooth there (no fold) and exactly developable,
+    so this is reported, never warned about. Fans that need apexes on both curves
+    fold the sheet at every change of apex: the node warns when those take more than
+    FanLimit of the area, and names swapping the curves or reversing CurveB only when
+    it has solved that alternative and found it needs fewer of them.
 
     Valid is true where a ruling's warp, recomputed from the output (its end points
     and the curves' exact tangents there), is within WarpTolerance — never where the
@@ -121,8 +127,9 @@ class RulingDevelopable(Node):
            "the sheet's normals at its two ends. 0.01 rad is invisible on most sheets; for a "
            "material allowed k rad/m over rulings about L m long, use k·L.", default=0.01),
         In("FanLimit", NUMBER, "F",
-           "Largest share of the strip's area (0 to 1) that may be closed by flat triangles "
-           "without a warning; 0.1 = 10 %.", default=0.1),
+           "Largest share of the strip's area (0 to 1) that may be closed by creased fans of flat "
+           "triangles without a warning; 0.1 = 10 %. Smooth cones through one point never warn.",
+           default=0.1),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
@@ -149,7 +156,7 @@ class RulingDevelopable(Node):
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
         if result.message:
-            if result.fan_share > limit:
+            if result.creased_share > limit:
                 hint = better_pairing(a, b, n, tol, result)
                 text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
                 self.warn(f"{text}; {hint}" if hint else text)

@@ -15,13 +15,15 @@ recomputed from the output rulings and found within the tolerance.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from contextlib import suppress
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from engine.node import Node, NodeError
 from nodes.geometry.curve_base import Curve
+from nodes.geometry.curve_rail import ruled_between
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from nodes.geometry.ruled import RuledSurface
@@ -126,7 +128,10 @@ def curve_strip_outputs(
     claimed: ArrayLike | None = None,
 ) -> StripOutputs:
     """The outputs of a strip between two curves whose rulings run from ``A(s)`` to ``B(t)``:
-    the warp recomputed from the output rulings with the curves' exact tangents
+    the Surface whose edges run on the two curves through those rulings
+    (:func:`~nodes.geometry.curve_rail.ruled_between`: its tangent plane along each ruling
+    is the curves', so the warp measured on the surface is the warp reported), the warp
+    recomputed from the output rulings with the curves' exact tangents
     (:func:`~nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
     number within ``tolerance``.
 
@@ -135,6 +140,10 @@ def curve_strip_outputs(
     """
     w = curve_warp(curve_a, curve_b, s, t, starts, ends)
     strip = strip_outputs(starts, ends, warp=w)
+    # edges on the curves themselves, so neighbouring strips meet exactly; parameters that
+    # do not run one way keep the loft through the rulings
+    with suppress(ValueError):
+        strip = replace(strip, surface=ruled_between(curve_a, s, curve_b, t))
     valid = np.isfinite(w) & (w <= tolerance)
     messages = list(strip.messages)
     if claimed is not None:

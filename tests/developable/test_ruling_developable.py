@@ -335,18 +335,39 @@ def test_stations_beyond_the_end_of_b_are_closed_by_fans_and_counted():
     np.testing.assert_array_equal(result.fan[stations], angle < 0)
     assert result.valid[~result.fan].all()
     missing = int((angle < 0).sum())
-    assert result.message.startswith(f"no torsal ruling within 0.01 rad at {missing} of 41 stations")
+    assert result.message.startswith(
+        f"closed by smooth cones through single points of the curves at {missing} of 41 stations"
+    )
+    assert result.creased_share == 0.0
 
 
-def test_a_hint_names_the_alternative_that_lowers_the_fan_share_with_the_share_it_reaches():
+def test_a_strip_end_with_no_torsal_partner_is_one_cone_joined_at_the_true_generator_through_bs_end():
+    """The stations before B's start (angle < 0 on the cone) are closed by the cone through
+    B(0); the ruling joining it to the torsal rulings is the cone's generator through B(0),
+    which meets A at angle 0 (the construction's closed form)."""
+    a, b = overhanging_cone_pair()
+    result = ruling_developable(a, b, 40)
+    first_torsal = int(np.argmin(result.fan))
+    joint = result.starts[first_torsal]
+    assert not result.stations[first_torsal]
+    assert abs(np.arctan2(joint[1], joint[0])) <= 1e-10
+    assert np.abs(result.ends[first_torsal] - b.point_at(0.0)).max() <= 1e-12
+    apex = np.repeat(b.point_at(0.0)[None], first_torsal, 0)
+    np.testing.assert_array_equal(result.ends[:first_torsal], apex)
+    assert result.warp[first_torsal] <= 1e-9
+
+
+def test_either_pairing_of_an_overhanging_cone_closes_the_same_smooth_cone_so_no_hint_is_given():
+    """The cone through B's end point is the same surface whichever curve is A: the two
+    closures cover the same share of the area (to the rulings' spacing), neither creases,
+    and no alternative is named."""
     a, b = overhanging_cone_pair()
     result = ruling_developable(a, b, 40)
     swapped = ruling_developable(b, a, 40)
     assert swapped.fan[swapped.stations].sum() == 0  # every station torsal, B's overhang fanned
-    assert swapped.fan_share < result.fan_share
-    hint = better_pairing(a, b, 40, 0.01, result)
-    share = f"{100 * swapped.fan_share:.3g} %"
-    assert hint == f"swap CurveA and CurveB: flat triangles fall to {share} of the area"
+    assert result.creased_share == swapped.creased_share == 0.0
+    assert swapped.fan_share == pytest.approx(result.fan_share, abs=1e-4)
+    assert better_pairing(a, b, 40, 0.01, result) is None
 
 
 def test_curve_b_running_the_other_way_gets_the_hint_to_reverse_it():
@@ -354,7 +375,7 @@ def test_curve_b_running_the_other_way_gets_the_hint_to_reverse_it():
     result = ruling_developable(pair.a, pair.b.reversed(), 40)
     assert not result.valid[result.stations].all()
     assert better_pairing(pair.a, pair.b.reversed(), 40, 0.01, result) == (
-        "reverse CurveB: flat triangles fall to 0 % of the area"
+        "reverse CurveB: creased fans fall to 0 % of the area"
     )
 
 

@@ -138,7 +138,7 @@ def test_the_node_names_reversing_b_when_that_removes_the_fans():
     curves = {"CurveA": tree({(0,): [pair.a]}), "CurveB": tree({(0,): [pair.b.reversed()]})}
     node = run(RulingDevelopable(), **curves, Segments=40)
     assert node.state == "warning"
-    assert texts(node)[0].endswith("; reverse CurveB: flat triangles fall to 0 % of the area")
+    assert texts(node)[0].endswith("; reverse CurveB: creased fans fall to 0 % of the area")
 
 
 # -- a stretch of B that t jumps over ------------------------------------------------------------

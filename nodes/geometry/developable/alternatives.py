@@ -24,7 +24,7 @@ class Alternative:
     """Another way to pair the curves, and the fan share it gives."""
 
     change: str  #: what the designer does, e.g. "swap CurveA and CurveB"
-    fan_share: float
+    fan_share: float  #: share of the area in creased fans (the ones that need the designer)
 
 
 def alternatives(
@@ -35,16 +35,16 @@ def alternatives(
         ("swap CurveA and CurveB", lambda: ruling_developable(curve_b, curve_a, segments, tolerance)),
         ("reverse CurveB", lambda: ruling_developable(curve_a, curve_b.reversed(), segments, tolerance)),
     ]
-    return [Alternative(change, solve().fan_share) for change, solve in tries]
+    return [Alternative(change, solve().creased_share) for change, solve in tries]
 
 
 def better_pairing(
     curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, result: RulingResult
 ) -> str | None:
     """A sentence naming the alternative that lowers the fan share of ``result`` most
-    (by at least :data:`GAIN`), e.g. "swap CurveA and CurveB: flat triangles fall to 0 %
+    (by at least :data:`GAIN`), e.g. "swap CurveA and CurveB: creased fans fall to 0 %
     of the area"; None when neither helps."""
     best = min(alternatives(curve_a, curve_b, segments, tolerance), key=lambda a: a.fan_share)
-    if best.fan_share > result.fan_share - GAIN:
+    if best.fan_share > result.creased_share - GAIN:
         return None
-    return f"{best.change}: flat triangles fall to {100 * best.fan_share:.3g} % of the area"
+    return f"{best.change}: creased fans fall to {100 * best.fan_share:.3g} % of the area"

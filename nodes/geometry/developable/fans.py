@@ -60,6 +60,40 @@ def patch_areas(starts: FloatArray, ends: FloatArray) -> FloatArray:
     return 0.5 * norm(cross(diagonal, other))
 
 
+def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """Which pieces between consecutive rulings belong to a fan that creases the sheet.
+
+    A run of fan pieces whose rulings all pass through one point (a cone through a single
+    point of A or of B, like the triangle that closes a strip's end where the curves' ends
+    admit no torsal ruling) meets the torsal rulings on either side in their own tangent
+    planes — both contain the ruling and the moving curve's tangent — so the sheet stays
+    smooth (G1) and exactly developable. A run that needs apexes on both curves (a zigzag
+    of triangles over a stretch with no torsal ruling) folds at every change of apex:
+    those are the pieces that need the designer. Returns one flag per piece.
+    """
+    in_fan = fan[:-1] | fan[1:]
+    creased = np.zeros(len(in_fan), dtype=bool)
+    if not in_fan.any():
+        return creased
+    size = float(np.ptp(np.concatenate([starts, ends]), axis=0).max()) or 1.0
+    same_start = norm(starts[1:] - starts[:-1]) <= 1e-12 * size
+    same_end = norm(ends[1:] - ends[:-1]) <= 1e-12 * size
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))
+    for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
+        one_apex = same_start[first:stop].all() or same_end[first:stop].all()
+        creased[first:stop] = not one_apex
+    return creased
+
+
+def area_share(starts: FloatArray, ends: FloatArray, pieces: NDArray[np.bool_]) -> float:
+    """The share of the strip's area in the flagged ``pieces`` (0 to 1)."""
+    areas = patch_areas(starts, ends)
+    total = float(areas.sum())
+    if not total > 0:
+        return 0.0 if not pieces.any() else 1.0
+    return float(areas[pieces].sum() / total)
+
+
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
     """The share of the strip's area in pieces next to a fan ruling (0 to 1)."""
     areas = patch_areas(starts, ends)

@@ -90,7 +90,8 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, det, dot, extent, norm, unit
 from .brackets import refine_roots
-from .fans import fan_share, zigzag
+from .end_cones import Rulings, smooth_ends
+from .fans import area_share, creased_fans, fan_share, zigzag
 from .isolation import IntervalBounds, Pieces, interval_bounds, isolate, third_bound
 from .selection import monotone_path
 from .stations import LengthMap, Spacing, station_parameters
@@ -142,6 +143,9 @@ class RulingResult:
     #: ruling exists (gap stations and the rulings added there), False for torsal ones
     fan: BoolArray
     fan_share: float  #: share of the strip's area in those triangles, 0 to 1
+    #: share of the area in fans that crease the sheet (apexes on both curves, see
+    #: :func:`.fans.creased_fans`); a single cone closing a strip's end is smooth and not counted
+    creased_share: float = 0.0
 
     @property
     def max_warp(self) -> float:
@@ -1114,9 +1118,25 @@ def _solve(
         if len(failed) == 0:
             break
         t[failed] = np.nan
+    # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
+    # the curve's end point, where that ruling exists (see .end_cones)
+    smoothed = smooth_ends(curve_a, curve_b, Rulings(s_out, t_out, source, fan))
+    if len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out):
+        starts2, ends2, signed2 = strip.measured(smoothed.s, smoothed.t, smoothed.source, chosen, good)
+        with np.errstate(invalid="ignore"):
+            valid2 = np.abs(signed2) <= tolerance
+        torsal = ~smoothed.fan
+        kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
+        if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
+            s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
+            starts, ends, signed, valid = starts2, ends2, signed2, valid2
+            warp = np.abs(signed)
     share = fan_share(starts, ends, fan)
-    message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share)
-    return RulingResult(s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share)
+    creased = area_share(starts, ends, creased_fans(starts, ends, fan))
+    message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share, creased)
+    return RulingResult(
+        s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share, creased
+    )
 
 
 def _outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
@@ -1229,11 +1249,19 @@ def _fan_apex(parameters: FloatArray) -> BoolArray:
     return apex
 
 
-def _message(fan_stations: int, n: int, tolerance: float, share: float) -> str | None:
+def _message(fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0) -> str | None:
     """How much of the strip had to be closed by flat triangles; None when none."""
     if fan_stations == 0 and share == 0.0:
         return None
     area = f"{100 * share:.3g} % of the strip's area"
+    if creased == 0.0:
+        where = f"at {fan_stations} of {n} stations" if fan_stations else "beyond the last torsal ruling"
+        return (
+            f"closed by smooth cones through single points of the curves {where}, where no ruling "
+            f"tangent to both curves exists ({area}; the sheet stays smooth and developable)"
+        )
+    if creased < share:
+        area = f"{area}, {100 * creased:.3g} % in creased fans"
     if fan_stations == 0:
         return f"no torsal ruling reaches part of curve B: it is closed by flat triangles ({area})"
     return (
