@@ -538,8 +538,10 @@ class Graph:
         return self._order
 
     def in_order(self, node_ids: Iterable[str]) -> list[str]:
-        """``node_ids`` sorted into topological order; costs what it sorts, not the graph."""
-        return sorted(node_ids, key=self._ranks().__getitem__)
+        """``node_ids`` sorted into topological order (ids not in the graph are left out);
+        costs what it sorts, not the graph."""
+        rank = self._ranks()
+        return sorted((n for n in node_ids if n in rank), key=rank.__getitem__)
 
     def _sort(self) -> dict[str, int]:
         """Ranks from scratch (Kahn's algorithm); raises :class:`GraphError` on a loop."""

@@ -266,3 +266,10 @@ def test_new_id_is_always_the_smallest_free_number(steps):
             graph.add_node(Add())
         else:
             graph.remove_node(ids[seed % len(ids)])
+
+
+def test_an_expired_id_that_is_not_a_node_is_left_out_of_the_solve():
+    graph = base_graph()
+    graph.expire("ghost")
+    graph.expire("t")
+    assert Solver(graph).solve().solved == ["t", "u"]
