@@ -226,7 +226,11 @@ def nest(
         return {i: shapely.Polygon(place(centred[i], a, np.add(t, lift))) for i, (a, t) in packing.items()}
 
     def seconds(share: float) -> int:
-        return max(SHORTEST, round(max(clock.left(), 0.0) * share))
+        """``share`` of this sheet's part of the time left: the time left split among the
+        sheets the remaining parts need at least (their area over the usable sheet)."""
+        usable = room_length * (height - 2 * margin)
+        sheets_left = max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
+        return max(SHORTEST, round(max(clock.left(), 0.0) / sheets_left * share))
 
     while remaining and not clock.stopped and clock.left() > 0:
         packing = _strip(centred, remaining, strip_height, spacing, orientations,

@@ -48,7 +48,9 @@ from nodes.geometry.nesting import nest, place
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
+from nodes.io import seams as seam_edges
 from nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
+from nodes.io.seams import Seam, SeamLengths
 
 FloatArray = NDArray[np.float64]
 
@@ -88,6 +90,8 @@ class Part:
     panel: FloatArray  #: (n, 2) the panel as drawn, where it is cut out
     label: tuple[FloatArray, ...]  #: closed letter outlines of the ID, (m, 2) each
     text_height: float  #: cap height of the label, mm (0 without a label)
+    ticks: tuple[FloatArray, ...] = ()  #: open (2, 2) alignment ticks along its seams, engraved
+    seam_labels: tuple[FloatArray, ...] = ()  #: closed letter outlines of its seams' IDs
 
 
 @dataclass(frozen=True)
@@ -107,6 +111,7 @@ class CutLayout:
     reference: bool = False  #: also draw the drawn (un-offset) outlines on layer REFERENCE
     stopped: bool = False  #: the nesting was stopped early and kept its best layout so far
     seconds: float = 0.0  #: time the layout took
+    seams: tuple[SeamLengths, ...] = ()  #: per seam, its two flat edges' lengths (mm)
 
     def on_sheet(self, sheet: int) -> list[Part]:
         return [p for p in self.parts if p.sheet == sheet]
@@ -361,6 +366,8 @@ def lay_out(
     reference: bool = False,
     stop: Callable[[], bool] | None = None,
     report: Callable[[float], None] | None = None,
+    seams: Sequence[Seam] = (),
+    tick_spacing: float = 50.0,
 ) -> CutLayout:
     """Check the panels and place them on as many sheets as they need (see the module).
 
@@ -372,6 +379,8 @@ def lay_out(
     gap when None). ``nesting`` is :data:`TRUE_SHAPE` (sparrow, ``budget`` seconds,
     ``seed``; ``stop`` and ``report`` as in :func:`~nodes.geometry.nesting.nest`) or
     :data:`SHELF`. ``grain``: parts turn only by 0° or 180°; ``rotate`` False: not at all.
+    ``seams`` (:func:`~nodes.io.seams.find_seams`, between flat surfaces among the panels)
+    are engraved on both parts with their ID and ticks every ``tick_spacing`` mm.
     """
     edge = gap if margin is None else margin
     for name, value in (("Sheet width", width), ("Sheet height", height)):
@@ -413,11 +422,14 @@ def lay_out(
     check_panels(outlines, names, sources)
 
     room_w, room_h = width - 2 * edge, height - 2 * edge
-    cuts, drawn, boxes = [], [], []
+    cuts, drawn, boxes, turns, lows = [], [], [], [], []
     for outline, name in zip(outlines, names, strict=True):
-        panel = _turn(outline, _turn_angle(outline, kerf, room_w, room_h, rotate and not grain))
+        turn = _turn_angle(outline, kerf, room_w, room_h, rotate and not grain)
+        panel = _turn(outline, turn)
         cut = _grow(panel, kerf)
         low, high = cut.min(axis=0), cut.max(axis=0)
+        turns.append(turn)
+        lows.append(low)
         if np.any(high - low > (room_w, room_h)):
             w, h = high - low
             what = "gap" if margin is None else "margin"
@@ -436,6 +448,9 @@ def lay_out(
         cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
         drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
         sheet_of = nested.sheet
+
+        def move(i: int, points: FloatArray) -> FloatArray:
+            return place(_turn(points, turns[i]) - lows[i], nested.angle[i], nested.shift[i])
     else:
         try:
             sheet_of, corners = shelf_pack(np.array(boxes), (width, height), gap, edge)
@@ -443,17 +458,53 @@ def lay_out(
             raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
         cuts = [c + corner for c, corner in zip(cuts, corners, strict=True)]
         drawn = [d + corner for d, corner in zip(drawn, corners, strict=True)]
+
+        def move(i: int, points: FloatArray) -> FloatArray:
+            return _turn(points, turns[i]) - lows[i] + corners[i]
     parts, notes = [], []
+    marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move, notes)
     for i, name in enumerate(names):
         label, size = place_label(name, drawn[i], text_height)
         if text_height > 0 and not label:
             notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: not engraved")
-        parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size))
+        tick_list, seam_glyphs = marks.get(i, ([], []))
+        parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
+                          tuple(seam_glyphs)))
     if stopped:
         notes.append("Nesting was stopped: this is the best layout found by then")
     return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),
                      margin=margin, nesting=nesting, reference=reference, stopped=stopped,
-                     seconds=time.perf_counter() - started)
+                     seconds=time.perf_counter() - started, seams=tuple(lengths))
+
+
+def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, notes):  # type: ignore[no-untyped-def]
+    """Per part index, (ticks, seam-ID outlines) as laid out; and each seam's lengths."""
+    marks: dict[int, tuple[list[FloatArray], list[FloatArray]]] = {}
+    lengths: list[SeamLengths] = []
+    for seam in seams:
+        sides = []
+        for index, edge_index in ((seam.a, seam.edge_a), (seam.b, seam.edge_b)):
+            surface = curves[index] if 0 <= index < len(curves) else None
+            if not isinstance(surface, Surface):
+                break
+            flat = seam_edges.edge_polyline(surface, edge_index, FLATTEN_MM / scale) * scale
+            sides.append((index, flat))
+        if len(sides) != 2:
+            notes.append(f"Seam {seam.id} joins panels that are not flat surfaces: not marked")
+            continue
+        (a, edge_a), (b, edge_b) = sides
+        lengths.append(SeamLengths(seam.id, names[a], names[b], seam_edges.length(edge_a),
+                                   seam_edges.length(edge_b)))
+        glyphs = text_outlines(seam.id)
+        for index, flat, reverse in ((a, edge_a, False), (b, edge_b, seam.reversed)):
+            placed = move(index, flat)
+            ticks, letters = marks.setdefault(index, ([], []))
+            ticks += seam_edges.ticks(placed, drawn[index], spacing, reverse)
+            label = seam_edges.seam_label(seam.id, placed, drawn[index], 0.6 * text_height, glyphs)
+            if text_height > 0 and not label:
+                notes.append(f"Seam {seam.id}'s ID does not fit beside its edge on panel {names[index]}")
+            letters += label
+    return marks, lengths
 
 
 # ------------------------------------------------------------------ writers
@@ -484,8 +535,10 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
                 space.add_lwpolyline(part.panel.tolist(), close=True, dxfattribs={"layer": REFERENCE})
             contour = space.add_lwpolyline(part.outline.tolist(), close=True, dxfattribs={"layer": CUT})
             contour.set_xdata("TORSAL", [(1000, part.id)])
-            for glyph in part.label:
+            for glyph in part.label + part.seam_labels:
                 space.add_lwpolyline(glyph.tolist(), close=True, dxfattribs={"layer": ENGRAVE})
+            for tick in part.ticks:
+                space.add_lwpolyline(tick.tolist(), close=False, dxfattribs={"layer": ENGRAVE})
         replacing(file, doc.saveas)
     return files
 
@@ -525,8 +578,9 @@ def svg_text(layout: CutLayout, sheet: int) -> str:
     lines.append("  </g>")
     lines.append(f'  <g id="{ENGRAVE}" fill="none" stroke="#000000" stroke-width="{HAIRLINE_MM:g}">')
     for part in parts:
-        if part.label:
-            d = " ".join(_svg_path(g, h) for g in part.label)
+        if part.label or part.seam_labels or part.ticks:
+            d = " ".join([_svg_path(g, h) for g in part.label + part.seam_labels]
+                         + [_svg_path(t, h)[:-2] for t in part.ticks])
             lines.append(f'    <path data-panel={quoteattr(part.id)} d="{d}"/>')
     lines += ["  </g>", "</svg>", ""]
     return "\n".join(lines)

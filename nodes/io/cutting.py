@@ -9,7 +9,8 @@ from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, NUMBER, TEXT, ValueType, register_type
 from nodes.curves.convert import number
-from nodes.io import cutfiles
+from nodes.geometry.surface_base import Surface
+from nodes.io import cutfiles, seams
 from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
 from nodes.io.cutfiles import CutLayout
 from nodes.types import CURVE, SURFACE
@@ -112,6 +113,10 @@ class ExportCutSheet(Node):
         In("Seed", NUMBER, "Sd", "Seed of TrueShape nesting's random search.", default=0),
         In("Reference", BOOLEAN, "Rf", "Also draw the drawn (un-offset) outlines on layer REFERENCE.",
            default=False),
+        In("Strips", SURFACE, "St", "The 3D strips the Surfaces were unrolled from, in the same order: "
+           "edges they share are seams.", access=TREE, optional=True),
+        In("TickSpacing", NUMBER, "Ts", "Alignment ticks along each seam every this many mm (0: none).",
+           default=50.0),
         In("Write", BOOLEAN, "Wr", "Set to true to write the files; while false nothing is written.",
            default=False),
     )
@@ -123,6 +128,10 @@ class ExportCutSheet(Node):
             access=LIST),
         Out("Sheets", CURVE, "S", "The sheets' outlines, side by side along X, model units.", access=LIST),
         Out("Usage", NUMBER, "U", "Share of the sheets' area used by panels, 0 to 1."),
+        Out("Seams", TEXT, "Sm", "Per seam: its ID, the two parts and their edges' lengths (mm).",
+            access=LIST),
+        Out("SeamDifferences", NUMBER, "Sd", "Per seam, the difference of its two flat edges' lengths, mm.",
+            access=LIST),
     )
 
     def solve(
@@ -144,6 +153,8 @@ class ExportCutSheet(Node):
         budget: Any,
         seed: Any,
         reference: Any,
+        strips: DataTree,
+        tick_spacing: Any,
         write: Any,
     ) -> tuple[Any, ...]:
         curves = panels.all_items() + surfaces.all_items()
@@ -156,6 +167,18 @@ class ExportCutSheet(Node):
         names = None if ids.is_empty() else [None if i is None else str(i) for i in ids.all_items()]
         if names is not None and None in names:
             raise NodeError(f"PanelIDs has an empty (null) item at position {names.index(None) + 1}")
+        found: list[seams.Seam] = []
+        if not strips.is_empty():
+            solids = strips.all_items()
+            if len(solids) != len(surfaces.all_items()) or any(not isinstance(x, Surface) for x in solids):
+                raise NodeError(f"Strips has {len(solids)} items for {len(surfaces.all_items())} Surfaces: "
+                                "give the 3D strip of each development, in the same order")
+            offset = len(panels.all_items())
+            found = [seams.Seam(f.id, f.a + offset, f.edge_a, f.b + offset, f.edge_b, f.reversed)
+                     for f in seams.find_seams(solids)]
+        spacing = number("TickSpacing", tick_spacing)
+        if not (math.isfinite(spacing) and spacing >= 0):
+            raise NodeError(f"TickSpacing must be 0 or a positive length in mm, not {spacing:g}")
         with file_errors():
             model_units = unit_name(units)
             layout = cutfiles.lay_out(
@@ -167,6 +190,7 @@ class ExportCutSheet(Node):
                 nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
                 seed=_seed(seed), reference=bool(reference),
                 stop=lambda: self.token.cancelled, report=self.progress,
+                seams=found, tick_spacing=spacing,
             )
             files = []
             if write:
@@ -178,6 +202,10 @@ class ExportCutSheet(Node):
                             "--export and Export…)")
         for note in layout.notes:
             self.remark(note)
+        if layout.seams:
+            worst = max(layout.seams, key=lambda s: s.difference)
+            self.remark(f"{len(layout.seams)} seams; the largest edge-length difference is "
+                        f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
         back = unit_scale("mm", model_units)
         return (
             files,
@@ -185,4 +213,7 @@ class ExportCutSheet(Node):
             cutfiles.placed_curves(layout, scale=back),
             cutfiles.sheet_outlines(layout, scale=back),
             layout.usage,
+            [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
+             for s in layout.seams],
+            [s.difference for s in layout.seams],
         )

@@ -1,0 +1,135 @@
+"""Seams on the cut sheets: strips that share a curve are neighbours, each seam's ID is
+engraved on both parts with alignment ticks, and its two flat edge lengths are reported."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from engine.solver import OK
+from nodes.geometry.ruled import RuledSurface
+from nodes.io import cutfiles
+from nodes.io.cutting import ExportCutSheet
+from nodes.io.seams import TICK_MM, find_seams
+from tests.nodes.helpers import out, run, texts, tree
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-cut-sheets.graph"
+
+
+def band(y0: float, y1: float, length: float = 1.0, bend: float = 0.0) -> RuledSurface:
+    """A flat band between y = y0 and y = y1 along x (bend > 0 curves it up in z)."""
+    x = np.linspace(0.0, length, 9)
+    z = bend * (x / length) ** 2
+    return RuledSurface.from_rulings(np.column_stack([x, np.full(9, y0), z]),
+                                     np.column_stack([x, np.full(9, y1), z]))
+
+
+def normalised(glyphs):
+    every = np.vstack(glyphs)
+    low, high = every.min(axis=0), every.max(axis=0)
+    return [(g - low) / (high - low)[1] for g in glyphs]
+
+
+def carries(part, text):
+    """Whether the part's seam labels hold ``text``'s letter outlines (any size and place)."""
+    expected = normalised(cutfiles.text_outlines(text))
+    labels = part.seam_labels
+    for start in range(len(labels) - len(expected) + 1):
+        run_ = labels[start:start + len(expected)]
+        if all(a.shape == b.shape for a, b in zip(run_, expected, strict=True)):
+            got = normalised(run_)
+            if all(np.allclose(a, b, atol=1e-9) for a, b in zip(got, expected, strict=True)):
+                return True
+    return False
+
+
+def test_strips_sharing_an_edge_are_found_as_one_seam_and_others_not():
+    strips = [band(0.0, 0.3), band(0.3, 0.5), band(2.0, 2.4)]
+    (seam,) = find_seams(strips)
+    assert (seam.id, seam.a, seam.b) == ("S1", 0, 1)
+    assert {seam.edge_a, seam.edge_b} == {2, 0}  # v = 1 of the first is v = 0 of the second
+
+
+def test_a_seam_between_flat_bands_has_equal_lengths_an_id_on_both_parts_and_ticks(tmp_path):
+    strips = [band(0.0, 0.3), band(0.3, 0.5)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips}),
+                 TickSpacing=100.0, TextHeight=20.0)
+    assert result.state == OK, texts(result)
+    assert out(result, "SeamDifferences")[(0,)] == [pytest.approx(0.0, abs=1e-9)]
+    layout = out(result, "Layout")[(0,)][0]
+    first, second = layout.parts
+    assert carries(first, "S1") and carries(second, "S1")
+    # a 1000 mm seam, ticks every 100 mm up to half a spacing from the end: 9 on each part
+    for part in layout.parts:
+        assert len(part.ticks) == 9
+        boundary = shapely.Polygon(part.panel).exterior
+        polygon = shapely.Polygon(part.panel)
+        for tick in part.ticks:
+            assert boundary.distance(shapely.Point(tick[0])) < 1e-6  # on the edge
+            assert polygon.contains(shapely.Point(tick[1]))  # pointing in
+            assert np.linalg.norm(tick[1] - tick[0]) == pytest.approx(TICK_MM)
+
+
+def test_ticks_are_at_the_same_distances_from_the_same_end_on_both_parts():
+    strips = [band(0.0, 0.3), band(0.3, 0.5)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips}),
+                 TickSpacing=130.0, Rotate=False, Nesting="Shelf")
+    first, second = out(result, "Layout")[(0,)][0].parts
+    # not turned: both bands keep x along the seam, so the ticks' x from the parts' left ends agree
+    xs = [np.sort([t[0][0] for t in p.ticks]) - p.panel[:, 0].min() for p in (first, second)]
+    assert np.allclose(xs[0], xs[1], atol=1e-6)
+    # from the end where the first strip's edge v = 1 starts (u = 1, x = 1000 mm)
+    assert np.allclose(xs[0], np.sort(1000.0 - 130.0 * np.arange(1, 8)), atol=1e-6)
+
+
+def test_the_seams_are_engraved_in_the_dxf(tmp_path):
+    from tests.nodes.helpers import allowed
+
+    strips = [band(0.0, 0.3), band(0.3, 0.5)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips}),
+                 Path="s.dxf", Write=True, writes=allowed(tmp_path), TickSpacing=100.0)
+    import ezdxf
+
+    (file,) = out(result, "Paths")[(0,)]
+    engraved = ezdxf.readfile(file).modelspace().query('LWPOLYLINE[layer=="ENGRAVE"]')
+    assert sum(1 for e in engraved if not e.closed) == 18  # the ticks, open polylines
+
+
+def test_strips_that_do_not_match_the_surfaces_are_an_error():
+    strips = [band(0.0, 0.3), band(0.3, 0.5)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips[:1]}))
+    assert "Strips has 1 items for 2 Surfaces" in texts(result)[0]
+
+
+@functools.cache
+def kaohsiung():
+    from app.headless import run_file
+
+    solved = run_file(EXAMPLE)
+    strips = solved.solver.result("strip").outputs["Surface"].all_items()
+    developments = solved.solver.result("unroll").outputs["Development"].all_items()
+    if not strips or len(strips) != len(developments):
+        pytest.skip("the Kaohsiung example gives no strips here")
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): developments}), Strips=tree({(0,): strips}),
+                 SheetWidth=100000.0, SheetHeight=50000.0, TextHeight=200.0)  # 1:1, in mm
+    assert result.state == OK, texts(result)
+    return out(result, "Layout")[(0,)][0]
+
+
+def test_kaohsiung_neighbouring_strips_meet_at_thirteen_seams_each_id_on_both_parts():
+    layout = kaohsiung()
+    assert len(layout.seams) == len(layout.parts) - 1 == 13
+    parts = {p.id: p for p in layout.parts}
+    for seam in layout.seams:
+        assert carries(parts[seam.part_a], seam.id) and carries(parts[seam.part_b], seam.id)
+
+
+@pytest.mark.xfail(reason="IsoMapping's developments change the seam edges' lengths: at 1:1 the two flat "
+                   "sides differ by 0.2 to 1.7 mm while the 3D edges agree to 0.014 mm (issue 18)",
+                   strict=False)
+def test_kaohsiung_seams_close_to_a_hundredth_of_a_mm_at_full_size():
+    assert max(s.difference for s in kaohsiung().seams) <= 0.01
