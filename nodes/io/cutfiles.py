@@ -499,7 +499,10 @@ def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, 
         for index, flat, reverse in ((a, edge_a, False), (b, edge_b, seam.reversed)):
             placed = move(index, flat)
             ticks, letters = marks.setdefault(index, ([], []))
-            ticks += seam_edges.ticks(placed, drawn[index], spacing, reverse)
+            try:
+                ticks += seam_edges.ticks(placed, drawn[index], spacing, reverse)
+            except ValueError as exc:
+                raise FileFailure(f"Seam {seam.id}: {exc}") from None
             label = seam_edges.seam_label(seam.id, placed, drawn[index], 0.6 * text_height, glyphs)
             if text_height > 0 and not label:
                 notes.append(f"Seam {seam.id}'s ID does not fit beside its edge on panel {names[index]}")

@@ -31,6 +31,8 @@ COARSE, FINE = 41, 4001
 SEAM_TOLERANCE = 1e-3
 #: Length of an alignment tick, mm.
 TICK_MM = 4.0
+#: Most ticks along one seam edge (a smaller TickSpacing is refused).
+MAX_TICKS = 10_000
 
 
 @dataclass(frozen=True)
@@ -109,6 +111,9 @@ def ticks(edge: FloatArray, panel: FloatArray, spacing: float, reverse: bool = F
     steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(steps)])
     total = along[-1]
+    if total / spacing > MAX_TICKS:
+        raise ValueError(f"a tick every {spacing:g} mm along a {total:.0f} mm seam makes more than "
+                         f"{MAX_TICKS:,} ticks: give a larger TickSpacing")
     stations = np.arange(spacing, total - 0.5 * spacing, spacing)
     polygon = shapely.Polygon(panel)
     out = []
