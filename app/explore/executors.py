@@ -130,7 +130,8 @@ class DaskExecutor(Executor):
 class LazyExecutor(Executor):
     """Starts (or connects to) the workers at the first batch that has something to solve.
 
-    A sweep found whole in the cache starts no cluster at all.
+    A sweep found whole in the cache starts no cluster at all, and a local cluster gets
+    no more processes than the first batch has variants (without ``--workers``).
     """
 
     def __init__(self, workers: int | None, scheduler: str | None) -> None:
@@ -143,7 +144,8 @@ class LazyExecutor(Executor):
         if not batch:
             return iter(())
         if self.inner is None:
-            self.inner = DaskExecutor(scheduler=self.scheduler, workers=self.workers)
+            workers = self.workers or min(default_workers(), len(batch))
+            self.inner = DaskExecutor(scheduler=self.scheduler, workers=workers)
         return self.inner.run(graph_text, job, batch)
 
     def close(self) -> None:
