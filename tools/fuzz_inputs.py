@@ -127,6 +127,7 @@ def _supplies() -> dict[str, Any]:
 #: Inputs that need a particular kind of value (by node type and port; "*" for any type).
 _SPECIAL: dict[tuple[str, str], str] = {
     ("patching.SurfacePatching", "Pattern"): "Closed",
+    ("io.ExportCutSheet", "Panels"): "Closed",  # cut sheets take closed flat outlines
     ("*", "CurveB"): "Curve2",
     ("developable.ParametricRuledSurface", "Directrix"): "Curve",
     ("developable.ParametricRuledSurface", "Direction"): "OneVector",  # so Segments counts
@@ -136,6 +137,14 @@ _SPECIAL: dict[tuple[str, str], str] = {
     ("*", "Geometry"): "Curve",
     ("io.Import3dm", "Path"): "Text",
     ("io.ImportMesh", "Path"): "Text",
+}
+
+
+#: Optional inputs left empty (a supply there would make the node refuse the case early).
+_UNSUPPLIED = {
+    ("patching.SurfacePatching", "Tile"),
+    ("io.ExportCutSheet", "Surfaces"),  # the supply strip is not flat
+    ("io.ExportCutSheet", "Strips"),
 }
 
 
@@ -184,7 +193,7 @@ def build(case: InputCase) -> tuple[Any, str]:
             continue
         if port.optional and port.type.name not in ("Curve", "Surface", "Development"):
             continue
-        if case.type_id == "patching.SurfacePatching" and port.name == "Tile":
+        if (case.type_id, port.name) in _UNSUPPLIED:
             continue
         value = _supply_for(case.type_id, port)
         access = LIST if isinstance(value, list) else ITEM
