@@ -120,9 +120,9 @@ def kaohsiung():
     return out(result, "Layout")[(0,)][0]
 
 
-def test_kaohsiung_neighbouring_strips_meet_at_thirteen_seams_each_id_on_both_parts():
+def test_kaohsiung_neighbouring_strips_meet_at_a_seam_each_with_its_id_on_both_parts():
     layout = kaohsiung()
-    assert len(layout.seams) == len(layout.parts) - 1 == 13
+    assert len(layout.seams) == len(layout.parts) - 1  # a row of strips, each meeting the next
     parts = {p.id: p for p in layout.parts}
     for seam in layout.seams:
         assert carries(parts[seam.part_a], seam.id) and carries(parts[seam.part_b], seam.id)
