@@ -110,11 +110,13 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     """The Kaohsiung roof graph, up to its developable strips."""
     b = Builder(
         "Kaohsiung Solar Stadium roof (after Toyo Ito), as in the 2011 TU Delft toolbox case "
-        "study: a horseshoe base curve is copied up and scaled inwards; the three curves are "
-        "divided, and edge curves run through points shifted by n and 2n along them. Between "
-        "neighbouring edges, RulingDevelopable makes developable strips: each strip bends one "
-        "way only, yet together they read as a double-curved roof. Drag 'Inward scale' or "
-        "'Shift n' and watch the strips re-form."
+        "study: a horseshoe base curve is copied up and scaled inwards, and edge curves run "
+        "through points shifted by n and 2n along the three curves (gathering at the curves' "
+        "ends, so the roof tapers to both ends of the horseshoe). Between neighbouring edges, "
+        "RulingDevelopable makes developable strips: each strip bends one way only, yet together "
+        "they read as a double-curved roof; neighbouring strips share their edge curve exactly, and "
+        "each strip's ends are closed by smooth cones where its rims admit no torsal ruling. Drag "
+        "'Inward scale' or 'Shift n' and watch the strips re-form."
         if description is None else description
     )
     # a horseshoe: an ellipse open towards +x
@@ -136,31 +138,28 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("top.Geometry", "inner.Geometry")
     b.wire("centre.Point", "inner.Centre")
     b.wire("scale.Value", "inner.Factor")
-    for column, (node_id, source) in enumerate([("divide0", "base.Curve"), ("divide1", "top.Geometry"),
-                                                ("divide2", "inner.Geometry")]):
-        b.node("curves.DivideCurve", node_id, 4, 3 + column, f"Divide curve {column}")
-        b.wire(source, f"{node_id}.Curve")
-        b.wire("count.Value", f"{node_id}.Count")
-    # how many edge curves fit once the lists are shifted by n and 2n: count + 1 - 2n
+    # Edge curve j runs through the base, top and inner curves at parameters shifted by 2n,
+    # n and 0 steps of 1/count, clamped to the curves' ends: in the middle it is the thesis's
+    # point-shifted edge; towards both ends of the horseshoe the edges gather at the curves'
+    # ends, so the strips taper there and the roof reaches the end of the horseshoe.
     b.node("maths.Expression", "edges", 1, 3, "Edge count",
-           {"expression": "count + 1 - 2 * n", "variables": ["count", "n"]})
-    b.node("maths.Expression", "starts", 1, 4.5, "Shifts 0, n, 2n",
-           {"expression": "k * n", "variables": ["k", "n"]}, k=[0, 1, 2])
+           {"expression": "count + 1 + 2 * n", "variables": ["count", "n"]})
     b.wire("count.Value", "edges.count")
     b.wire("shift.Value", "edges.n")
-    b.wire("shift.Value", "starts.n")
-    for k in range(3):
-        b.node("lists.ListItem", f"start{k}", 2, 3 + k, f"Shift by {k}n", Index=k)
-        b.wire("starts.Result", f"start{k}.List")
-        b.node("maths.Series", f"index{k}", 3, 3 + k, f"Indices from {k}n")
-        b.wire(f"start{k}.Item", f"index{k}.Start")
-        b.wire("edges.Result", f"index{k}.Count")
-        b.node("lists.ListItem", f"pick{k}", 5, 3 + k, f"Points {k}")
-        b.wire(f"divide{k}.Points", f"pick{k}.List")
-        b.wire(f"index{k}.Series", f"pick{k}.Index", ["graft"])  # one branch per edge curve
+    b.node("maths.Series", "edge_index", 2, 3, "Edge numbers j", Start=0)
+    b.wire("edges.Result", "edge_index.Count")
+    for k, (source, lag) in enumerate([("base.Curve", 2), ("top.Geometry", 1), ("inner.Geometry", 0)]):
+        b.node("maths.Expression", f"param{k}", 3, 3 + k, f"t on curve {k}",
+               {"expression": f"min(max((j - {lag} * n) / count, 0), 1)", "variables": ["j", "n", "count"]})
+        b.wire("edge_index.Series", f"param{k}.j")
+        b.wire("shift.Value", f"param{k}.n")
+        b.wire("count.Value", f"param{k}.count")
+        b.node("curves.EvaluateCurve", f"pick{k}", 5, 3 + k, f"Points on curve {k}")
+        b.wire(source, f"pick{k}.Curve")
+        b.wire(f"param{k}.Result", f"pick{k}.Parameter", ["graft"])  # one branch per edge curve
     b.node("curves.Interpolate", "edge_curves", 6, 3, "Strip edge curves", Degree=2)
     for k in range(3):
-        b.wire(f"pick{k}.Item", "edge_curves.Vertices")
+        b.wire(f"pick{k}.Point", "edge_curves.Vertices")
     b.node("maths.Expression", "strips", 6, 5, "Strip count",
            {"expression": "edges - 1", "variables": ["edges"]})
     b.wire("edges.Result", "strips.edges")
@@ -180,14 +179,13 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("segments.Value", "strip.Segments")
     # as a Grasshopper user would: preview off on the helpers, so the viewport shows the
     # three guide curves, the edge curves and the strips (and a drag redraws only those)
-    helpers = ("up", "centre", "divide0", "divide1", "divide2", "pick0", "pick1", "pick2", "left", "right")
+    helpers = ("up", "centre", "top", "pick0", "pick1", "pick2", "left", "right")
     for helper in helpers:
         b.graph.set_preview(helper, False)
     b.group("inputs", "Inputs", INPUTS, ["height", "scale", "count", "shift", "segments"])
     b.group("roof", "Base curve, copied up and in", GEOMETRY, ["base", "up", "top", "centre", "inner"])
     b.group("edges", "Edge curves through shifted points", GEOMETRY,
-            ["divide0", "divide1", "divide2", "edges", "starts", "start0", "start1", "start2",
-             "index0", "index1", "index2", "pick0", "pick1", "pick2", "edge_curves"])
+            ["edges", "edge_index", "param0", "param1", "param2", "pick0", "pick1", "pick2", "edge_curves"])
     b.group("strips", "Developable strips", RESULT,
             ["strips", "left_index", "right_index", "left", "right", "strip"])
     return b
@@ -334,7 +332,10 @@ def textbook() -> None:
         "and a Möbius strip (ruled but not developable: their warp angles are not zero), each "
         "from its textbook equations. Beside them, SurfaceAnalysis colours a hyperbolic paraboloid "
         "(nowhere single-curved) and a torus (elliptic outside, hyperbolic inside, parabolic on "
-        "the top and bottom circles)."
+        "the top and bottom circles). Select a chart node to read it in the inspector: WarpChart "
+        "draws each strip's warp along it against the tolerance (0 on the cylinder), "
+        "CurvatureHistogram how the torus's min(|k1|, |k2|) is spread (only the points left of the "
+        "tolerance line are single-curved)."
     )
     b.integer("steps", 0, "Rulings - 1", 48, 8, 200)
     b.node("maths.Domain", "turn", 0, 1, "One turn", Start=0.0, End=2 * math.pi)
@@ -371,6 +372,10 @@ def textbook() -> None:
                 b.wire(f"{node_id}.Result", f"{vector}.{axis}")
             b.wire(f"{vector}.Vector", f"{surface}.Direction")
             b.graph.set_preview(vector, False)
+        chart = b.node("analysis.WarpChart", f"{name}_warp", 8, row, f"{label}: warp along the strip",
+                       Tolerance=0.01, Title=f"{label}: warp along the strip")
+        b.wire(f"{surface}.WarpAngles", f"{chart}.WarpAngles")
+        b.wire(f"{surface}.Rulings", f"{chart}.Rulings")
     b.node("surfaces.ParametricSurface", "hypar", 1, 7, "Hyperbolic paraboloid z = xy",
            X="u + 3.5", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
            VDomain={"type": "Domain", "min": -1.0, "max": 1.0})
@@ -381,11 +386,16 @@ def textbook() -> None:
                "Curvature analysis", UDensity=24, VDensity=24, Scale=0.3,
                CurvatureTolerance=0.01, WarpTolerance=0.01)
         b.wire(source, f"{name}.Surface")
+    b.node("analysis.CurvatureHistogram", "torus_histogram", 5, 8.5, "Torus: curvature histogram",
+           Measure="min|k|", UDensity=48, VDensity=24, Bins=24, Tolerance=0.01,
+           Title="Torus: min(|k1|, |k2|), 1/m")
+    b.wire("torus.Torus", "torus_histogram.Surface")
     b.group("parameter", "Parameter u", INPUTS, ["steps", "turn", "u"])
     for name in rows:
         members = [n for n in b.graph.nodes if n.startswith(f"{name}_") or n == name]
         b.group(name, surfaces[name][3], GEOMETRY, members)
-    b.group("analysis", "Curvature analysis", RESULT, ["hypar", "torus", "hypar_analysis", "torus_analysis"])
+    b.group("analysis", "Curvature analysis", RESULT,
+            ["hypar", "torus", "hypar_analysis", "torus_analysis", "torus_histogram"])
     b.save("textbook-ruled-surfaces")
 
 

@@ -31,6 +31,8 @@ MEASURES: dict[str, str] = {
 }
 #: The most bars a histogram may have.
 MAX_BINS = 1000
+#: Values beyond this cannot be given an axis (its margins and ticks would overflow).
+LARGEST = 1e300
 #: Values spread over less than this share of their size (or of 1/diameter) count as one value.
 CONSTANT = 1e-9
 
@@ -65,7 +67,8 @@ def curvature_samples(target_: Surface | MeshSurface, nu: int, nv: int) -> tuple
     else:
         uu, vv = np.meshgrid(grid(nu, target_.closed_u), grid(nv, target_.closed_v), indexing="ij")
         c = target_.curvature(uu.ravel(), vv.ravel())
-        vertices = np.asarray(target_.to_mesh(max(nu, 8), max(nv, 8)).vertices, dtype=float)
+        vertices = np.asarray(target_.derivatives(uu.ravel(), vv.ravel(), 0)[0], dtype=float)
+        vertices = vertices[np.isfinite(vertices).all(axis=1)]
     size = float(np.linalg.norm(np.ptp(vertices, axis=0))) if len(vertices) else 0.0
     return c, size
 
@@ -157,6 +160,9 @@ class CurvatureHistogram(Node):
         if len(finite_values) == 0:
             raise NodeWarning("The surface has no curvature at any grid point (it is degenerate): "
                               "there is nothing to count")
+        if np.abs(finite_values).max() > LARGEST:
+            raise NodeWarning(f"The curvature reaches {np.abs(finite_values).max():.3g}: too large to draw "
+                              "an axis for (the surface is degenerate somewhere)")
         edges = bin_edges(finite_values, n_bins, size)
         counts = histogram(finite_values, edges)
         summary = (f"{name}: min {finite_values.min():.6g}, max {finite_values.max():.6g}, "

@@ -30,14 +30,13 @@ def _warps(values: list[Any]) -> FloatArray:
     return out
 
 
-def positions(rulings: list[Line]) -> tuple[FloatArray, FloatArray]:
-    """The distance along the strip of each ruling (between the rulings' midpoints,
-    from the first) and each ruling's length."""
+def positions(rulings: list[Line]) -> FloatArray:
+    """The distance along the strip of each ruling: from the first ruling's midpoint,
+    through the midpoints of those between."""
     starts = np.array([np.asarray(r.start, dtype=float) for r in rulings]).reshape(-1, 3)
     ends = np.array([np.asarray(r.end, dtype=float) for r in rulings]).reshape(-1, 3)
-    mid = 0.5 * (starts + ends)
-    steps = np.linalg.norm(np.diff(mid, axis=0), axis=1)
-    return np.concatenate([[0.0], np.cumsum(steps)]), np.linalg.norm(ends - starts, axis=1)
+    steps = np.linalg.norm(np.diff(0.5 * (ends - starts), axis=0) + np.diff(starts, axis=0), axis=1)
+    return np.concatenate([[0.0], np.cumsum(steps)])
 
 
 class WarpChart(Node):
@@ -45,9 +44,9 @@ class WarpChart(Node):
 
     Wire a developable node's WarpAngles (radians, one per ruling, as every strip
     node gives them) and, optionally, its Rulings: then the chart runs along the
-    strip in model units (the distance between the rulings' midpoints) and
-    WarpFactors gives each warp per unit of ruling length (rad/m, the thesis's warp
-    factor). A dashed line marks Tolerance; Over counts the rulings whose warp is
+    strip in model units (Positions: the distance from the first ruling's midpoint
+    through the others'), else ruling by ruling. A dashed line marks Tolerance;
+    Over counts the rulings whose warp is
     above it — those a flat sheet cannot follow there. A NaN warp (no tangent plane
     at that ruling) leaves a gap and is counted in Summary, never drawn as 0.
 
@@ -60,7 +59,7 @@ class WarpChart(Node):
         In("WarpAngles", NUMBER, "W", "The warp angle of each ruling, rad, in order along the strip.",
            access=LIST),
         In("Rulings", LINE, "R", "Optional: the rulings themselves, same order, for distances along the "
-           "strip and warp factors.", access=LIST, optional=True),
+           "strip.", access=LIST, optional=True),
         In("Tolerance", NUMBER, "Tol", "The warp (rad) a sheet may take along one ruling.", default=0.01),
         In("Title", TEXT, "T", "The chart's title.", default="Warp along the strip"),
         In("File", TEXT, "F", "Path of the .png to write; empty for a temporary file.", default=""),
@@ -68,8 +67,8 @@ class WarpChart(Node):
     outputs = (
         Out("Image", TEXT, "I", "Path of the PNG image written."),
         Out("Over", INTEGER, "O", "How many rulings warp by more than Tolerance."),
-        Out("WarpFactors", NUMBER, "F", "Warp per unit of ruling length, rad/m (needs Rulings; NaN for a "
-            "ruling of no length).", access=LIST),
+        Out("Positions", NUMBER, "P", "Where each ruling is along the strip, in model units (with "
+            "Rulings; else its index).", access=LIST),
         Out("Summary", TEXT, "S", "Largest and mean warp, and how many rulings are over Tolerance."),
     )
 
@@ -86,15 +85,15 @@ class WarpChart(Node):
         if lines and len(lines) != len(warp):
             raise NodeWarning(f"Rulings has {len(lines)} lines but WarpAngles {len(warp)} values: wire the "
                               "same node's Rulings and WarpAngles")
-        if lines:
-            x, length = positions(lines)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                factors = np.where(length > 0, warp / np.where(length > 0, length, 1.0), math.nan)
-        else:
-            x, factors = np.arange(len(warp), dtype=float), np.full(len(warp), math.nan)
+        x = positions(lines) if lines else np.arange(len(warp), dtype=float)
         defined = np.isfinite(warp)
         if not defined.any():
             raise NodeWarning("None of the WarpAngles is a number: there is nothing to chart")
+        if np.abs(warp[defined]).max() > 1e300:  # the axis' margins and ticks would overflow
+            raise NodeWarning("WarpAngles reach beyond 1e+300: too large to draw an axis for (warps are "
+                              "angles in radians, 0 to π)")
+        if np.abs(x).max() > 1e300:
+            raise NodeWarning("The Rulings lie beyond 1e+300 along the strip: too far to draw an axis for")
         over = int(np.count_nonzero(warp[defined] > tol))
         summary = (f"max {warp[defined].max():.6g} rad, mean {warp[defined].mean():.6g} rad over "
                    f"{int(defined.sum())} rulings; {over} over the tolerance {tol:g} rad")
@@ -110,7 +109,7 @@ class WarpChart(Node):
             raise NodeWarning(f"Could not write the chart to {path}: {exc.strerror or exc}") from None
         if chosen:
             self.remark(f"No File given: the chart was written to {path}")
-        return str(path), over, factors.tolist(), summary
+        return str(path), over, x.tolist(), summary
 
 
 def draw_warp(path: Any, x: FloatArray, warp: FloatArray, tolerance: float, title: str, along: bool) -> None:
@@ -129,5 +128,5 @@ def draw_warp(path: Any, x: FloatArray, warp: FloatArray, tolerance: float, titl
     axes.set_ylabel("Warp angle, rad")
     axes.set_ylim(bottom=0.0)
     axes.grid(True, alpha=0.3)
-    axes.legend(loc="upper right")
+    axes.legend(loc="best")
     save(figure, path)

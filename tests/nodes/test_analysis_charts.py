@@ -74,7 +74,7 @@ def test_histogram_names_an_unknown_measure(tmp_path):
 
 # -- warp along a hyperbolic paraboloid z = x·y -------------------------------------
 # Rulings at x = t from (t, −L, −tL) to (t, L, tL); the normal (−y, −t, 1) turns along
-# one by 2·atan(L / √(1 + t²)); its length is 2L·√(1 + t²).
+# one by 2·atan(L / √(1 + t²)).
 HALF = 1.0
 T = np.linspace(0.0, 2.0, 9)
 
@@ -99,11 +99,10 @@ def test_warp_chart_counts_the_hypar_rulings_over_the_tolerance(tmp_path):
     assert out(result, "Over") == {(0,): [expected]}
 
 
-def test_warp_chart_gives_the_hypar_warp_per_unit_of_ruling_length(tmp_path):
+def test_warp_chart_places_the_hypar_rulings_along_the_strip(tmp_path):
+    # the rulings' midpoints are (t, 0, 0): each is t − t0 along the strip
     result = run(WarpChart(), WarpAngles=hypar_warp(), Rulings=hypar_rulings(), File=str(tmp_path / "w.png"))
-    factors = np.array(out(result, "WarpFactors")[(0,)])
-    expected = np.array(hypar_warp()) / (2 * HALF * np.sqrt(1 + T * T))
-    assert np.allclose(factors, expected, rtol=1e-12)
+    assert np.allclose(out(result, "Positions")[(0,)], T - T[0], rtol=0, atol=1e-15)
 
 
 def test_warp_chart_leaves_an_undefined_warp_out_and_says_so(tmp_path):
