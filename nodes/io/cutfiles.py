@@ -213,8 +213,8 @@ def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     zigzag across each other)."""
     pieces = []
     for edge in surface.edges():
-        points = np.asarray(edge.to_polyline(tolerance).points, dtype=float)
-        pieces.append(points[:-1])
+        points = np.asarray(edge.point_at(edge.tessellate(tolerance)), dtype=float)
+        pieces.append(points[:-1])  # (a collapsed edge, a tapering strip's tip, is one point)
     ring = np.vstack(pieces)
     size = float(np.ptp(ring, axis=0).max()) or 1.0
     keep = np.concatenate([[True], np.linalg.norm(np.diff(ring, axis=0), axis=1) > SAME_POINT * size])
@@ -630,13 +630,15 @@ def placed_curves(layout: CutLayout, which: str = "outline", scale: float = 1.0)
 
 
 def label_curves(layout: CutLayout, scale: float = 1.0) -> list[list[Polyline]]:
-    """Each part's engraved letter outlines, placed as :func:`placed_curves` places them."""
+    """Each part's engraved letter outlines (its ID, its seams' IDs) and seam ticks, placed
+    as :func:`placed_curves` places them."""
     out = []
     for part in layout.parts:
         shift = (layout.offset(part.sheet), 0.0)
         out.append([
-            Polyline(np.column_stack([g + shift, np.zeros(len(g))]) * scale, closed=True) for g in part.label
-        ])
+            Polyline(np.column_stack([g + shift, np.zeros(len(g))]) * scale, closed=True)
+            for g in part.label + part.seam_labels
+        ] + [Polyline(np.column_stack([t + shift, np.zeros(len(t))]) * scale) for t in part.ticks])
     return out
 
 
