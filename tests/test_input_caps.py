@@ -68,10 +68,28 @@ def test_the_sweep_covers_every_numeric_input_of_every_node_type(swept):
     assert all(len(results) % len(HOSTILE) == 0 for results in swept.values())
 
 
+#: Cases that fail in code other engineers own, reported to them: each is expected to fail
+#: until fixed (strict: a fix shows as XPASS and the entry must go).
+KNOWN = {
+    InputCase("io.ExportCutSheet", "TextHeight", 1e308): "io/cutfiles.py place_label: AttributeError",
+    InputCase("io.ExportCutSheet", "Kerf", 1e308): "io/cutfiles.py: GEOS buffer of NaN/Inf (GEOSException)",
+}
+
+
 @pytest.mark.parametrize("type_id", SWEPT_TYPES)
 def test_hostile_numbers_give_messages_not_exceptions(swept, type_id):
-    failures = [f"{case}: {line}" for case, result in swept[type_id] for line in result.unexpected]
+    failures = [f"{case}: {line}" for case, result in swept[type_id] if case not in KNOWN
+                for line in result.unexpected]
     assert not failures, "\n".join(failures)
+
+
+@pytest.mark.parametrize("case", [
+    pytest.param(case, marks=pytest.mark.xfail(strict=True, reason=why), id=str(case))
+    for case, why in KNOWN.items()
+])
+def test_known_findings_are_fixed(swept, case):
+    (result,) = [r for c, r in swept[case.type_id] if c == case]
+    assert not result.unexpected
 
 
 @pytest.mark.parametrize("type_id", SWEPT_TYPES)
