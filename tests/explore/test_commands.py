@@ -68,3 +68,18 @@ def test_the_pareto_front_csv_is_written_for_two_objectives(tmp_path, cluster):
         rows = list(csv.reader(handle))
     assert rows[0] == ["in:x", "out:f1.Result", "out:f2.Result", "status"]
     assert len(rows) > 5 and all(-0.01 <= float(r[0]) <= 1.01 for r in rows[1:])  # the front is 0 ≤ x ≤ 1
+
+
+def test_the_torsal_command_starts_its_own_local_workers(bowl, tmp_path):
+    import subprocess
+    import sys
+
+    out = tmp_path / "o"
+    done = subprocess.run(
+        [sys.executable, "-m", "app.cli", "sweep", str(bowl), "--vary", "x=0:1:3", "--collect", "f.Result",
+         "--out", str(out), "--workers", "1"],
+        capture_output=True, text=True, timeout=180,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "3 variants — 3 solved" in done.stdout
+    assert len((out / "results.csv").read_text().splitlines()) == 1 + 3
