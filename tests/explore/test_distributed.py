@@ -62,3 +62,12 @@ def test_an_optimisation_on_the_cluster_makes_the_same_evaluations_as_one_in_thi
         there = optimise(study, executor, [1], budget=60, seed=4)
     assert [e.values for e in there.evaluated] == [e.values for e in here.evaluated]
     assert there.best.objectives == here.best.objectives
+
+
+def test_local_workers_run_one_thread_each_with_blas_limited_to_one_thread():
+    with DaskExecutor(workers=1) as executor:
+        threads = executor.client.nthreads()
+        environ = executor.client.run(lambda: {k: os.environ.get(k) for k in ("OMP_NUM_THREADS",
+                                                                               "OPENBLAS_NUM_THREADS")})
+    assert list(threads.values()) == [1]
+    assert list(environ.values()) == [{"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}]
