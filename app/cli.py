@@ -155,7 +155,7 @@ def _progress_line():  # type: ignore[no-untyped-def]
         if text != shown[0]:
             end = "\n" if fraction >= 1 else ""
             print(f"\r{text}", end=end, file=sys.stderr, flush=True)
-            shown[0] = "" if fraction >= 1 else text
+            shown[0] = text
 
     return show
 

@@ -100,7 +100,7 @@ class _Clock:
     def tick(self) -> bool:
         """Report progress; True when a stop was asked for."""
         if self.report is not None:
-            self.report(min(1.0, (time.perf_counter() - self.start) / self.budget))
+            self.report(min(0.99, (time.perf_counter() - self.start) / self.budget))  # 1 when done
         if not self.stopped and self.stop is not None and self.stop():
             self.stopped = True
         return self.stopped

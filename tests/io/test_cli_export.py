@@ -148,3 +148,17 @@ def test_the_node_says_it_wrote_nothing_without_contradicting_an_export(graph, t
     out = capsys.readouterr().out
     assert "nothing written" not in out
     assert "wrote " in out
+
+
+def test_run_shows_a_long_nodes_progress_on_a_terminals_stderr(graph, capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
+    assert main(["run", str(graph), "--set", "cut.Nesting=TrueShape", "--set", "cut.TimeBudget=1"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\rcut 100 %\n") == 1 and err.count("%") > 2  # one line, kept up to date
+
+
+def test_run_prints_no_progress_when_stderr_is_not_a_terminal(graph, capsys):
+    assert main(["run", str(graph), "--set", "cut.Nesting=TrueShape", "--set", "cut.TimeBudget=1"]) == 0
+    assert "%" not in capsys.readouterr().err
