@@ -92,7 +92,7 @@ class DaskExecutor(Executor):
                 os.environ.setdefault(name, "1")
             self._cluster = LocalCluster(
                 n_workers=count, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None, silence_logs=logging.CRITICAL,
+                dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
             )
             self.client = Client(self._cluster, set_as_default=False)
 
