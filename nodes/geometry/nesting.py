@@ -61,6 +61,10 @@ SLACK = 0.02
 POLL = 0.05
 #: Shortest packing sparrow runs (s; it counts whole seconds).
 SHORTEST = 1
+#: Parts covering at most this share of a usable sheet probably fit on it: the last one.
+LAST_SHEET = 0.8
+#: Share of the budget kept for the last sheet, whose length decides what goes back to stock.
+LAST_RESERVE = 0.3
 
 
 @dataclass(frozen=True)
@@ -225,16 +229,19 @@ def nest(
         lift = (margin - spacing, margin - spacing)  # strip origin -> sheet
         return {i: shapely.Polygon(place(centred[i], a, np.add(t, lift))) for i, (a, t) in packing.items()}
 
+    usable = room_length * (height - 2 * margin)
+
     def seconds(share: float) -> int:
         """``share`` of this sheet's part of the time left: the time left split among the
         sheets the remaining parts need at least (their area over the usable sheet)."""
-        usable = room_length * (height - 2 * margin)
         sheets_left = max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
         return max(SHORTEST, round(max(clock.left(), 0.0) / sheets_left * share))
 
     while remaining and not clock.stopped and clock.left() > 0:
+        # likely the last sheet: all the time left, since its length is what the offcut saves
+        last = sum(area[i] for i in remaining) <= LAST_SHEET * usable
         packing = _strip(centred, remaining, strip_height, spacing, orientations,
-                         seconds(0.5 if len(remaining) > 1 else 0.1), attempt_seed, clock)
+                         seconds(1.0 if last else 0.35), attempt_seed, clock)
         attempt_seed += 1
         if packing is None:
             break
@@ -249,13 +256,16 @@ def nest(
                             key=lambda i: -area[i])
             free = room_length * (height - 2 * margin) - sum(area[i] for i in chosen)
             for candidate in crossing + others:
-                if clock.stopped or clock.left() < SHORTEST or not chosen:
+                rest = sum(area[i] for i in remaining if i not in chosen)
+                # the next sheet is likely the last: keep a share of the budget for it
+                reserve = LAST_RESERVE * clock.budget if rest <= LAST_SHEET * usable else 0.0
+                if clock.stopped or clock.left() - reserve < SHORTEST or not chosen:
                     break
                 if area[candidate] > free:
                     continue
                 members = [*chosen, candidate]
                 trial = _strip(centred, members, strip_height, spacing, orientations,
-                               seconds(0.25), attempt_seed, clock, enough=room_length + 2 * spacing)
+                               seconds(0.15), attempt_seed, clock, enough=room_length + 2 * spacing)
                 attempt_seed += 1
                 if trial is None or len(trial) != len(members):
                     continue
