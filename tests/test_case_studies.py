@@ -58,18 +58,25 @@ def test_kaohsiung_makes_one_developable_strip_per_pair_of_neighbouring_edges():
     run = solved("kaohsiung-stadium")
     strips = items(run, "strip", "Surface")
     count, shift = 24, 2
-    assert len(strips) == count + 1 - 2 * shift - 1
+    assert len(strips) == count + 2 * shift  # edges j = 0 … count + 2n
     valid = np.array(items(run, "strip", "Valid"))
     warp = np.array(items(run, "strip", "WarpAngles"))
     kinds = np.array(items(run, "strip", "Kind"))
+    lengths = np.array([line.length for line in items(run, "strip", "Rulings")])
+    tips = lengths <= 1e-9  # where the edges gather at the horseshoe's ends, strips taper to a point
+    assert np.isnan(warp[tips]).all() and not valid[tips].any()
     # where the edges end on the rims their end points have no torsal partner: a smooth cone
     # through the end point closes each end (Kind = "fan"); every other ruling is torsal
-    assert warp[kinds == "torsal"].max() < 0.01
-    assert valid[kinds == "torsal"].all()
-    assert (kinds == "torsal").mean() > 0.75
+    torsal = (kinds == "torsal") & ~tips
+    assert warp[torsal].max() < 0.01
+    assert valid[torsal].all()
+    assert torsal.mean() > 0.7  # 0.74 measured: the rest are the ends' cones
     result = run.solver.result("strip")
     assert result.state == "ok", [m.text for m in result.messages]
-    assert all("smooth cones" in m.text for m in result.messages if "closed by" in m.text)
+    # the strips in the middle close their ends by smooth cones; the tapering ones near the
+    # horseshoe's ends keep a few creased triangles (under 2 % of their area, FanLimit 10 %)
+    middle = [m.text for m in result.messages if "closed by" in m.text][4:-4]
+    assert middle and all("smooth cones" in text for text in middle)
 
 
 @pytest.mark.parametrize("name", ["kaohsiung-stadium", "kaohsiung-cut-sheets"])
@@ -77,6 +84,16 @@ def test_kaohsiung_examples_solve_with_no_warning(name):
     run = solved(name)
     warnings = {n: [m.text for m in r.messages] for n, r in run.solver.results.items() if r.state != "ok"}
     assert warnings == {}
+
+
+def test_kaohsiung_roof_reaches_both_ends_of_the_horseshoe():
+    run = solved("kaohsiung-stadium")
+    strips = items(run, "strip", "Surface")
+    corners = np.vstack([s.point_at([0.0, 0.0, 1.0, 1.0], [0.0, 1.0, 0.0, 1.0]) for s in strips])
+    for node_id, port in (("base", "Curve"), ("inner", "Geometry")):
+        (curve,) = items(run, node_id, port)
+        for end in curve.point_at(np.array([0.0, 1.0])):
+            assert np.linalg.norm(corners - end, axis=1).min() <= 1e-9 * 100.0
 
 
 def test_kaohsiung_neighbouring_strips_share_their_boundary_curve():

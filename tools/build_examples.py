@@ -110,11 +110,13 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     """The Kaohsiung roof graph, up to its developable strips."""
     b = Builder(
         "Kaohsiung Solar Stadium roof (after Toyo Ito), as in the 2011 TU Delft toolbox case "
-        "study: a horseshoe base curve is copied up and scaled inwards; the three curves are "
-        "divided, and edge curves run through points shifted by n and 2n along them. Between "
-        "neighbouring edges, RulingDevelopable makes developable strips: each strip bends one "
-        "way only, yet together they read as a double-curved roof. Drag 'Inward scale' or "
-        "'Shift n' and watch the strips re-form."
+        "study: a horseshoe base curve is copied up and scaled inwards, and edge curves run "
+        "through points shifted by n and 2n along the three curves (gathering at the curves' "
+        "ends, so the roof tapers to both ends of the horseshoe). Between neighbouring edges, "
+        "RulingDevelopable makes developable strips: each strip bends one way only, yet together "
+        "they read as a double-curved roof; neighbouring strips share their edge curve exactly, and "
+        "each strip's ends are closed by smooth cones where its rims admit no torsal ruling. Drag "
+        "'Inward scale' or 'Shift n' and watch the strips re-form."
         if description is None else description
     )
     # a horseshoe: an ellipse open towards +x
@@ -136,31 +138,28 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("top.Geometry", "inner.Geometry")
     b.wire("centre.Point", "inner.Centre")
     b.wire("scale.Value", "inner.Factor")
-    for column, (node_id, source) in enumerate([("divide0", "base.Curve"), ("divide1", "top.Geometry"),
-                                                ("divide2", "inner.Geometry")]):
-        b.node("curves.DivideCurve", node_id, 4, 3 + column, f"Divide curve {column}")
-        b.wire(source, f"{node_id}.Curve")
-        b.wire("count.Value", f"{node_id}.Count")
-    # how many edge curves fit once the lists are shifted by n and 2n: count + 1 - 2n
+    # Edge curve j runs through the base, top and inner curves at parameters shifted by 2n,
+    # n and 0 steps of 1/count, clamped to the curves' ends: in the middle it is the thesis's
+    # point-shifted edge; towards both ends of the horseshoe the edges gather at the curves'
+    # ends, so the strips taper there and the roof reaches the end of the horseshoe.
     b.node("maths.Expression", "edges", 1, 3, "Edge count",
-           {"expression": "count + 1 - 2 * n", "variables": ["count", "n"]})
-    b.node("maths.Expression", "starts", 1, 4.5, "Shifts 0, n, 2n",
-           {"expression": "k * n", "variables": ["k", "n"]}, k=[0, 1, 2])
+           {"expression": "count + 1 + 2 * n", "variables": ["count", "n"]})
     b.wire("count.Value", "edges.count")
     b.wire("shift.Value", "edges.n")
-    b.wire("shift.Value", "starts.n")
-    for k in range(3):
-        b.node("lists.ListItem", f"start{k}", 2, 3 + k, f"Shift by {k}n", Index=k)
-        b.wire("starts.Result", f"start{k}.List")
-        b.node("maths.Series", f"index{k}", 3, 3 + k, f"Indices from {k}n")
-        b.wire(f"start{k}.Item", f"index{k}.Start")
-        b.wire("edges.Result", f"index{k}.Count")
-        b.node("lists.ListItem", f"pick{k}", 5, 3 + k, f"Points {k}")
-        b.wire(f"divide{k}.Points", f"pick{k}.List")
-        b.wire(f"index{k}.Series", f"pick{k}.Index", ["graft"])  # one branch per edge curve
+    b.node("maths.Series", "edge_index", 2, 3, "Edge numbers j", Start=0)
+    b.wire("edges.Result", "edge_index.Count")
+    for k, (source, lag) in enumerate([("base.Curve", 2), ("top.Geometry", 1), ("inner.Geometry", 0)]):
+        b.node("maths.Expression", f"param{k}", 3, 3 + k, f"t on curve {k}",
+               {"expression": f"min(max((j - {lag} * n) / count, 0), 1)", "variables": ["j", "n", "count"]})
+        b.wire("edge_index.Series", f"param{k}.j")
+        b.wire("shift.Value", f"param{k}.n")
+        b.wire("count.Value", f"param{k}.count")
+        b.node("curves.EvaluateCurve", f"pick{k}", 5, 3 + k, f"Points on curve {k}")
+        b.wire(source, f"pick{k}.Curve")
+        b.wire(f"param{k}.Result", f"pick{k}.Parameter", ["graft"])  # one branch per edge curve
     b.node("curves.Interpolate", "edge_curves", 6, 3, "Strip edge curves", Degree=2)
     for k in range(3):
-        b.wire(f"pick{k}.Item", "edge_curves.Vertices")
+        b.wire(f"pick{k}.Point", "edge_curves.Vertices")
     b.node("maths.Expression", "strips", 6, 5, "Strip count",
            {"expression": "edges - 1", "variables": ["edges"]})
     b.wire("edges.Result", "strips.edges")
@@ -180,14 +179,13 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("segments.Value", "strip.Segments")
     # as a Grasshopper user would: preview off on the helpers, so the viewport shows the
     # three guide curves, the edge curves and the strips (and a drag redraws only those)
-    helpers = ("up", "centre", "divide0", "divide1", "divide2", "pick0", "pick1", "pick2", "left", "right")
+    helpers = ("up", "centre", "top", "pick0", "pick1", "pick2", "left", "right")
     for helper in helpers:
         b.graph.set_preview(helper, False)
     b.group("inputs", "Inputs", INPUTS, ["height", "scale", "count", "shift", "segments"])
     b.group("roof", "Base curve, copied up and in", GEOMETRY, ["base", "up", "top", "centre", "inner"])
     b.group("edges", "Edge curves through shifted points", GEOMETRY,
-            ["divide0", "divide1", "divide2", "edges", "starts", "start0", "start1", "start2",
-             "index0", "index1", "index2", "pick0", "pick1", "pick2", "edge_curves"])
+            ["edges", "edge_index", "param0", "param1", "param2", "pick0", "pick1", "pick2", "edge_curves"])
     b.group("strips", "Developable strips", RESULT,
             ["strips", "left_index", "right_index", "left", "right", "strip"])
     return b

@@ -74,6 +74,16 @@ def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float)
         raise NodeError(sentence(exc)) from None
 
 
+def _tips(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """The first and last rulings where they have zero length (to rounding): the curves
+    meet there and the strip tapers to a point."""
+    lengths = np.linalg.norm(ends - starts, axis=1)
+    size = float(np.ptp(np.vstack([starts, ends]), axis=0).max()) or 1.0
+    tip = np.zeros(len(lengths), dtype=bool)
+    tip[[0, -1]] = lengths[[0, -1]] <= 1e-12 * size
+    return tip
+
+
 def fan_limit_input(value: Any) -> float:
     """FanLimit: a share of the strip's area, from 0 to 1."""
     if value is None:
@@ -162,7 +172,13 @@ class RulingDevelopable(Node):
                 self.warn(f"{text}; {hint}" if hint else text)
             else:
                 self.remark(result.message)
-        strip.report(self, explained=result.fan)  # a fan ruling's undefined warp is no news
+        tip = _tips(result.starts, result.ends)
+        if tip.any():
+            ends = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
+            self.remark(f"the strip tapers to a point at its {ends} (the curves meet there): the "
+                        "warp of that zero-length ruling is undefined, so it is not Valid")
+        # a fan ruling's or a tip's undefined warp is no news
+        strip.report(self, explained=result.fan | tip)
         torsal_fans = int(np.count_nonzero(~result.stations & ~result.fan))
         if torsal_fans:
             self.remark(

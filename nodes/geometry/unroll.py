@@ -742,10 +742,55 @@ def unroll_rulings(
     ruling = b - a
     length = np.linalg.norm(ruling, axis=1)
     size = float(np.ptp(np.vstack([a, b]), axis=0).max())
-    if np.any(length <= 1e-12 * size):
-        bad = np.flatnonzero(length <= 1e-12 * size)
+    zero = length <= 1e-12 * size
+    tip_start, tip_end = bool(zero[0]) and n > 2, bool(zero[-1]) and n > 2
+    inner = zero.copy()
+    inner[0] &= not tip_start
+    inner[-1] &= not tip_end
+    if np.any(inner):
+        bad = np.flatnonzero(inner)
         raise ValueError(f"ruling {int(bad[0])} has zero length: a strip cannot be unrolled "
                          f"through a point ({len(bad)} such rulings)")
+    if tip_start or tip_end:  # the strip tapers to a point: unroll the rest, then its tips
+        return _with_tips(a, b, tip_start, tip_end, area_3d)
+    starts2d, ends2d, first = _unrolled(a, b, length)
+    return _development(a, b, starts2d, ends2d, first, area_3d)
+
+
+def _with_tips(
+    a: FloatArray, b: FloatArray, tip_start: bool, tip_end: bool, area_3d: float | None
+) -> Development:
+    """Unroll a strip whose first and/or last ruling has zero length (its curves meet
+    there): the rulings between are unrolled as usual and each tip is laid down as the
+    corner of its triangle with the neighbouring ruling, away from the strip."""
+    core = slice(1 if tip_start else 0, len(a) - 1 if tip_end else len(a))
+    ca, cb = a[core], b[core]
+    starts2d, ends2d, _ = _unrolled(ca, cb, np.linalg.norm(cb - ca, axis=1))
+    z_a = starts2d[:, 0] + 1j * starts2d[:, 1]
+    z_b = ends2d[:, 0] + 1j * ends2d[:, 1]
+    parts_a, parts_b = [z_a], [z_b]
+    if tip_start:  # left of the first ruling: the strip runs on to its right
+        u, h = _local(a[1:2], b[1:2], a[0:1])
+        tip = _place(z_a[:1], z_b[:1], u, h)
+        parts_a.insert(0, tip)
+        parts_b.insert(0, tip)
+    if tip_end:  # right of the last ruling
+        u, h = _local(a[-2:-1], b[-2:-1], a[-1:])
+        tip = _place(z_a[-1:], z_b[-1:], u, -h)
+        parts_a.append(tip)
+        parts_b.append(tip)
+    za, zb = np.concatenate(parts_a), np.concatenate(parts_b)
+    first = np.linalg.norm(a[1:] - b[:-1], axis=1) <= np.linalg.norm(b[1:] - a[:-1], axis=1) * (
+        1 + DIAGONAL_TIE
+    )
+    starts2d = np.column_stack([za.real, za.imag])
+    ends2d = np.column_stack([zb.real, zb.imag])
+    return _development(a, b, starts2d, ends2d, first, area_3d)
+
+
+def _unrolled(a: FloatArray, b: FloatArray, length: FloatArray) -> tuple[FloatArray, FloatArray, NDArray]:
+    """The 2D ruling ends of a strip with no zero-length ruling, and each quad's diagonal."""
+    n = len(a)
     a0, a1, b0, b1 = a[:-1], a[1:], b[:-1], b[1:]
     first = np.linalg.norm(a1 - b0, axis=1) <= np.linalg.norm(b1 - a0, axis=1) * (1 + DIAGONAL_TIE)
     col = first[:, None]
@@ -770,7 +815,15 @@ def unroll_rulings(
     za, zb = shift, shift + rot * 1j * length
     starts2d = np.column_stack([za.real, za.imag])
     ends2d = np.column_stack([zb.real, zb.imag])
+    return starts2d, ends2d, first
 
+
+def _development(
+    a: FloatArray, b: FloatArray, starts2d: FloatArray, ends2d: FloatArray, first: NDArray,
+    area_3d: float | None,
+) -> Development:
+    """The :class:`Development` of the strip ``a → b`` laid down at ``starts2d → ends2d``."""
+    n = len(a)
     vertices2d, vertices3d = np.vstack([starts2d, ends2d]), np.vstack([a, b])
     tmap = DevelopmentMap(vertices2d, vertices3d, first)
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]

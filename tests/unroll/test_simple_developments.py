@@ -56,21 +56,38 @@ def kaohsiung_developments() -> list[tuple[str, int, Development]]:
     return found
 
 
+def tips(development: Development) -> int:
+    """How many of the strip's two end rulings have zero length (it tapers to a point)."""
+    lengths = np.linalg.norm(development.ends3d - development.starts3d, axis=1)
+    return int(lengths[0] <= 1e-9) + int(lengths[-1] <= 1e-9)
+
+
 def test_every_kaohsiung_strip_unrolls_to_a_simple_polygon_with_exactly_four_corners():
+    """Four corners; where the strip tapers to a point at a horseshoe's end, two to four
+    (its tip, and the far end's corners, which on a thin sliver may turn by under 25°, and
+    where the tip's cone meets the rim): never the many turns of a wiggle."""
     developments = kaohsiung_developments()
-    assert len(developments) == 14 + 20
+    assert len(developments) == (16 + 2) + (24 + 4)  # count + 2n strips in each example
+    assert sum(tips(d) for _, _, d in developments) > 0
     for name, k, development in developments:
         assert_simple(development.outline)
         assert not development.overlaps, (name, k)
-        assert corners(development.outline) == 4, (name, k)
+        if tips(development):  # a sliver's blunt corners may turn by less or more than 25°
+            assert 2 <= corners(development.outline) <= 4, (name, k)
+        else:
+            assert corners(development.outline) == 4, (name, k)
 
 
 def test_every_kaohsiung_cut_contour_is_simple_with_exactly_four_corners():
     layout = solved("kaohsiung-cut-sheets").solver.result("cut").outputs["Layout"].all_items()[0]
-    assert len(layout.parts) == 14
-    for part in layout.parts:
+    maps = solved("kaohsiung-cut-sheets").solver.result("unroll").outputs["Map"].all_items()
+    assert len(layout.parts) == len(maps) == 16 + 2
+    for part, development in zip(layout.parts, maps, strict=True):
         assert_simple(part.outline)
-        assert corners(part.outline) == 4, part.id
+        if tips(development):
+            assert 2 <= corners(part.outline) <= 4, part.id
+        else:
+            assert corners(part.outline) == 4, part.id
 
 
 def fan_heavy_strip() -> tuple[RuledSurface, np.ndarray, slice]:
@@ -127,12 +144,16 @@ def test_kaohsiung_strips_have_no_rail_that_doubles_back(name):
 def test_every_kaohsiung_development_surface_outline_is_simple_with_four_corners():
     """The cut outline is traced from IsoMapping's Development surface (as ExportCutSheet
     does), here finer than any cutter: a fan's apex, where the edge stands still, is one point."""
-    developments = solved("kaohsiung-cut-sheets").solver.result("unroll").outputs["Development"].all_items()
-    assert len(developments) == 14
-    for k, development in enumerate(developments):
+    unrolled = solved("kaohsiung-cut-sheets").solver.result("unroll").outputs
+    developments, maps = unrolled["Development"].all_items(), unrolled["Map"].all_items()
+    assert len(developments) == 16 + 2
+    for k, (development, unrolled_map) in enumerate(zip(developments, maps, strict=True)):
         outline = surface_outline(development, 1e-7).points[:, :2]
         assert_simple(outline)
-        assert corners(outline) == 4, k
+        if tips(unrolled_map):
+            assert 2 <= corners(outline) <= 4, k
+        else:
+            assert corners(outline) == 4, k
 
 
 def test_iso_mapping_development_is_the_outline_of_the_unrolled_triangles():
