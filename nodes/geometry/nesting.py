@@ -34,6 +34,7 @@ is still on a sheet. ``report(fraction)`` is told how far the budget is spent.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -65,6 +66,10 @@ SHORTEST = 1
 LAST_SHEET = 0.8
 #: Share of the budget kept for the last sheet, whose length decides what goes back to stock.
 LAST_RESERVE = 0.3
+
+
+class NestingFailed(RuntimeError):
+    """sparrow's worker failed (not installed, refused the parts): the message says how."""
 
 
 @dataclass(frozen=True)
@@ -130,7 +135,7 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
     worker = subprocess.Popen(
         [sys.executable, "-m", "nodes.geometry.sparrow_worker"], stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, text=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
     )
     lines: queue.Queue[str | None] = queue.Queue()
 
@@ -162,15 +167,24 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
                     line = lines.get_nowait()
                 except queue.Empty:
                     break
-            else:
+            else:  # the worker closed its output: it has ended, or is about to
                 finished = True
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    worker.wait(timeout=5.0)
             if clock.tick():
                 finished = True
     finally:
-        if worker.poll() is None:
+        ended = worker.poll() is not None
+        if not ended:
             worker.kill()
         worker.wait()
         reader.join(timeout=1.0)
+        problem = worker.stderr.read() if worker.stderr is not None and ended else ""
+        if worker.stderr is not None:
+            worker.stderr.close()
+    if ended and worker.returncode != 0 and best is None:
+        last = (problem.strip().splitlines() or ["no message"])[-1]
+        raise NestingFailed(f"the nesting engine (sparrow) stopped with {last}")
     if best is None:
         return None
     return {int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]}

@@ -44,7 +44,7 @@ from shapely.validation import explain_validity
 
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import NurbsCurve, Polyline
-from nodes.geometry.nesting import nest, place
+from nodes.geometry.nesting import NestingFailed, nest, place
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
@@ -443,7 +443,10 @@ def lay_out(
     stopped = False
     if nesting == TRUE_SHAPE:
         orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
-        nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report)
+        try:
+            nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report)
+        except NestingFailed as exc:
+            raise FileFailure(f"TrueShape nesting failed: {exc} (Nesting = Shelf still works)") from None
         stopped = nested.stopped
         cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
         drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]

@@ -251,3 +251,21 @@ def test_layout_area_is_kept_under_true_shape_nesting(tmp_path):
     expected = sorted(shapely.Polygon(p.points[:-1, :2] * 1000).area for p in panels)
     assert np.allclose(sorted(shapely.Polygon(p.outline).area for p in layout.parts), expected, rtol=1e-9)
     assert layout.nesting == cutfiles.TRUE_SHAPE
+
+
+def test_a_failing_nesting_engine_is_an_error_saying_so(monkeypatch):
+    import subprocess
+
+    from nodes.geometry import nesting
+
+    real = subprocess.Popen
+
+    def broken(args, **kwargs):  # the worker as it fails without spyrrow installed
+        code = "import sys; sys.stdin.read(); raise ModuleNotFoundError(\"No module named 'spyrrow'\")"
+        return real([args[0], "-c", code], **kwargs)
+
+    monkeypatch.setattr(nesting.subprocess, "Popen", broken)
+    result = run(ExportCutSheet(), Panels=tree({(0,): [rectangle(0, 0, 1, 0.5)]}), Nesting="TrueShape")
+    (message,) = texts(result)
+    assert "TrueShape nesting failed: the nesting engine (sparrow) stopped with ModuleNotFound" in message
+    assert "Nesting = Shelf still works" in message
