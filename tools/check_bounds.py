@@ -5,10 +5,11 @@
 Each ``name>=X`` in ``[project] dependencies`` becomes ``name==X`` (``--gui`` adds the
 ``gui`` extra's lower bounds, and then app/gui is imported too); the project is installed
 from this checkout into a new venv under the temporary folder with those pins as
-constraints, then every module of engine/, nodes/ and app/ is imported there and every
-example graph is solved with ``torsal run``. Exit 0 when all of that worked. It downloads
-the old wheels, so it takes minutes: ``make check-bounds`` runs it, ``make test`` does not
-(``TORSAL_CHECK_BOUNDS=1`` makes tests/test_packaging.py run it too).
+constraints — without extras, as a headless install — then every module of engine/,
+nodes/ and app/ is imported there, every example graph is solved with ``torsal run`` and
+a few outputs are exported (CSV, JSON, 3dm, OBJ, DXF, SVG). Exit 0 when all of that
+worked. It downloads the old wheels, so it takes minutes: ``make check-bounds`` runs it,
+``make test`` does not (``TORSAL_CHECK_BOUNDS=1`` makes tests/test_packaging.py run it).
 """
 
 from __future__ import annotations
@@ -97,6 +98,22 @@ def check(folder: Path, gui: bool = False) -> int:
     for example in sorted((ROOT / "resources" / "examples").glob("*.graph")):
         run = _step(f"torsal run {example.name}", [str(torsal), "run", str(example)], cwd=folder)
         failures += run.returncode not in (0,)
+    exports = {"first-steps": ["heights.Result=heights.csv", "heights.Result=heights.json"],
+               "textbook-ruled-surfaces": ["cylinder.Surface=cylinder.3dm", "helicoid.Surface=helicoid.obj"],
+               "kaohsiung-cut-sheets": ["cut.Layout=roof.dxf", "cut.Layout=roof.svg"]}
+    for name, requests in exports.items():
+        command = [str(torsal), "run", str(ROOT / "resources" / "examples" / f"{name}.graph")]
+        for request in requests:
+            command += ["--export", request.replace("=", f"={folder}/", 1)]
+        run = _step(f"torsal run {name} --export …", command, cwd=folder)
+        written = [folder / r.split("=", 1)[1] for r in requests]
+        # a layout over several sheets is written as NAME-1.dxf, NAME-2.dxf, …
+        empty = [file.name for file in written if not any(
+            f.is_file() and f.stat().st_size > 0 for f in [file, *folder.glob(f"{file.stem}-*{file.suffix}")]
+        )]
+        if empty:
+            print(f"   not written or empty: {', '.join(empty)}")
+        failures += run.returncode != 0 or bool(empty)
     return failures
 
 
