@@ -441,6 +441,13 @@ def lay_out(
         drawn.append(panel - low)
         boxes.append(high - low)
     stopped = False
+    notes: list[str] = []
+    try:
+        shelf_of, corners = shelf_pack(np.array(boxes), (width, height), gap, edge)
+    except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
+        raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
+    shelf_cuts = [c + corner for c, corner in zip(cuts, corners, strict=True)]
+    use_shelf = nesting == SHELF
     if nesting == TRUE_SHAPE:
         orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
         try:
@@ -448,23 +455,25 @@ def lay_out(
         except NestingFailed as exc:
             raise FileFailure(f"TrueShape nesting failed: {exc} (Nesting = Shelf still works)") from None
         stopped = nested.stopped
-        cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
-        drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
-        sheet_of = nested.sheet
+        nested_cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
+        # the shelf layout is instant: keep it when the search did not beat it (rectangles)
+        if _stock(shelf_of, shelf_cuts) < _stock(nested.sheet, nested_cuts):
+            use_shelf = True
+            notes.append("Shelf packing uses less stock than the true-shape nesting found in its time: "
+                         "the parts are laid out in rows")
+        else:
+            cuts, sheet_of = nested_cuts, nested.sheet
+            drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
 
-        def move(i: int, points: FloatArray) -> FloatArray:
-            return place(_turn(points, turns[i]) - lows[i], nested.angle[i], nested.shift[i])
-    else:
-        try:
-            sheet_of, corners = shelf_pack(np.array(boxes), (width, height), gap, edge)
-        except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
-            raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
-        cuts = [c + corner for c, corner in zip(cuts, corners, strict=True)]
+            def move(i: int, points: FloatArray) -> FloatArray:
+                return place(_turn(points, turns[i]) - lows[i], nested.angle[i], nested.shift[i])
+    if use_shelf:
+        cuts, sheet_of = shelf_cuts, shelf_of
         drawn = [d + corner for d, corner in zip(drawn, corners, strict=True)]
 
         def move(i: int, points: FloatArray) -> FloatArray:
             return _turn(points, turns[i]) - lows[i] + corners[i]
-    parts, notes = [], []
+    parts = []
     marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move, notes)
     for i, name in enumerate(names):
         label, size = place_label(name, drawn[i], text_height)
@@ -476,8 +485,15 @@ def lay_out(
     if stopped:
         notes.append("Nesting was stopped: this is the best layout found by then")
     return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),
-                     margin=margin, nesting=nesting, reference=reference, stopped=stopped,
+                     margin=margin, nesting=SHELF if use_shelf else TRUE_SHAPE, reference=reference,
+                     stopped=stopped,
                      seconds=time.perf_counter() - started, seams=tuple(lengths))
+
+
+def _stock(sheet_of: NDArray[np.intp], cuts: Sequence[FloatArray]) -> tuple[int, float]:
+    """What a layout takes from stock: its sheets, and how far the last one's parts reach."""
+    last = int(sheet_of.max())
+    return last + 1, max(float(c[:, 0].max()) for c, s in zip(cuts, sheet_of, strict=True) if s == last)
 
 
 def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, notes):  # type: ignore[no-untyped-def]

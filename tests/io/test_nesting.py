@@ -269,3 +269,16 @@ def test_a_failing_nesting_engine_is_an_error_saying_so(monkeypatch):
     (message,) = texts(result)
     assert "TrueShape nesting failed: the nesting engine (sparrow) stopped with ModuleNotFound" in message
     assert "Nesting = Shelf still works" in message
+
+
+RECTANGLES = [rectangle(3 * i, 0, 1.2, 0.6) for i in range(8)]
+
+
+@pytest.mark.parametrize("panels", [random_panels(30, seed=21), RECTANGLES], ids=["random", "rectangles"])
+def test_true_shape_never_takes_more_stock_than_shelf_packing(panels):
+    def layout(nesting):
+        result = run(ExportCutSheet(), Panels=tree({(0,): panels}), Nesting=nesting, TimeBudget=1.0)
+        return out(result, "Layout")[(0,)][0]
+
+    shelf, true = layout("Shelf"), layout("TrueShape")
+    assert (true.sheets, true.last_length) <= (shelf.sheets, shelf.last_length + 1e-9)
