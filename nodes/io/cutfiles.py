@@ -2,22 +2,27 @@
 
 :func:`lay_out` turns closed flat outlines (model units) into a :class:`CutLayout` in
 millimetres: every outline is checked (:func:`panel_outline`, :func:`check_panels`),
-turned so its minimum-area rectangle is axis-aligned (unless ``rotate`` is off), grown
-by half the kerf (mitre joins, :func:`~nodes.geometry.offset2d.offset_polygon`) and
-placed by first-fit decreasing-height *shelf* packing
-(:func:`~nodes.geometry.packing.shelf_pack`) with ``gap`` between parts and from the
-sheet's edges. Each panel's ID is engraved inside it as text outlines.
+grown by half the kerf (mitre joins, :func:`~nodes.geometry.offset2d.offset_polygon`)
+and placed with ``gap`` between the cut contours and ``margin`` from the sheet's edges,
+by true-shape nesting (:func:`~nodes.geometry.nesting.nest`, sparrow; the instant shelf
+layout is kept when the search does not beat it) or by first-fit decreasing-height
+*shelf* packing of the parts' minimum-area rectangles
+(:func:`~nodes.geometry.packing.shelf_pack`). Each panel's ID is engraved inside it as
+text outlines; seams between strips (:mod:`nodes.io.seams`) are engraved on both parts
+with their ID and alignment ticks, and their two flat edge lengths are reported.
 
 :func:`write_cut_files` writes one file per sheet (``name.dxf`` for one sheet,
 ``name-1.dxf``, ``name-2.dxf`` … for several), by the file's extension:
 
 - **DXF** (ezdxf, AutoCAD 2010 / R2010, ``$INSUNITS`` = 4, millimetres): one closed
   LWPOLYLINE per cut contour on layer ``CUT`` (red), carrying the panel ID as XDATA
-  of the application ``TORSAL``; the ID's letter outlines as closed LWPOLYLINEs on layer
-  ``ENGRAVE``; the drawing limits are the sheet.
+  of the application ``TORSAL``; the ID's letter outlines (closed) and the seam ticks
+  (open) on layer ``ENGRAVE``; the sheet's border on ``SHEET`` and, when asked, the
+  drawn (un-offset) outlines on ``REFERENCE`` — those two layers are not plotted (and
+  are not to be cut); the drawing limits are the sheet.
 - **SVG**: ``width``/``height`` in mm with a matching ``viewBox`` (1 user unit = 1 mm,
-  y pointing down as SVG wants), no fill, hairline (0.01 mm) red cut paths and black
-  engraving paths.
+  y pointing down as SVG wants), no fill, hairline (0.01 mm) paths in groups ``SHEET``
+  (grey), ``REFERENCE`` (green, when asked), ``CUT`` (red) and ``ENGRAVE`` (black).
 
 Text outlines come from ezdxf's TrueType renderer (``ezdxf.fonts.ttfonts``) drawing
 DejaVu Sans — the font file matplotlib ships, so no system font is needed (ezdxf

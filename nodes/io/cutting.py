@@ -60,18 +60,23 @@ class ExportCutSheet(Node):
     larger than the sheet stops the export with a message naming the panel.
     Each panel is grown by half the Kerf (mitred corners) so the cut part keeps its
     drawn size, and nested with Gap between the cut contours and Margin from the
-    sheet's edges. Nesting TrueShape nests the parts' true outlines with
-    sparrow, the state of the art in irregular strip packing, filling one sheet after
-    the other and leaving the last one as short as it can (its offcut goes back to
-    stock); it searches for TimeBudget seconds with the random Seed (the search runs
-    against the clock, so a busy machine may find another layout). Stop (Esc in the
-    app) keeps the best layout found so far. Nesting Shelf (the default, so graphs
-    made before TrueShape keep their layout) places the parts' bounding rectangles in
-    rows, tallest first: instant, more sheets. TrueShape turns parts freely (Shelf
-    lays them along the sheet);
-    Grain true turns them only by 0° or 180° (the grain runs along the sheet's X in
-    every part); Rotate false keeps them as drawn. Each ID is engraved inside its
+    sheet's edges. Nesting TrueShape nests the parts' true outlines with sparrow,
+    the state of the art in irregular strip packing, filling one sheet after the other
+    and leaving the last one as short as it can (its offcut goes back to stock); it
+    searches for TimeBudget seconds with the random Seed (the search runs against the
+    clock, so a busy machine may find another layout), and keeps the row layout when
+    that takes less stock. Stop (Esc in the app) keeps the best layout found so far.
+    Nesting Shelf (the default, so graphs made before TrueShape keep their layout)
+    places the parts' bounding rectangles in rows, tallest first: instant, more
+    sheets. TrueShape turns parts freely (Shelf lays them along the sheet); Grain
+    true turns them only by 0° or 180° (the grain runs along the sheet's X in every
+    part); Rotate false keeps them as drawn. Each ID is engraved inside its
     part as letter outlines, TextHeight tall or smaller where the panel is narrow.
+    Wire the 3D strips the Surfaces were unrolled from into Strips (same order) and
+    the edges neighbouring strips share become seams: each seam's ID (S1, S2 …) is
+    engraved beside the edge on both parts, with alignment ticks every TickSpacing mm
+    measured from the same end, and Seams / SeamDifferences report the two flat edges'
+    lengths — a seam closes when they are equal.
 
     The file type follows Path's extension. DXF (R2010, units mm): one closed
     polyline per part on layer CUT, the letters on ENGRAVE, the sheet's border on
