@@ -30,10 +30,7 @@ WORKERS = min(2, os.cpu_count() or 1)
 #: mutant written out: (why, strict). Each is expected to fail until fixed; a strict entry
 #: that passes shows as XPASS and must go. The timed one is not strict (it runs 7-10 s on
 #: a quiet machine, over 20 s on a loaded one).
-FAN = "developable/ruling.py fan_parameters: np.linspace sized by a gap at 1e12"
 KNOWN: dict[str, tuple[str, bool]] = {
-    "zve-roof-edge.graph#19": (FAN, True),
-    "zve-roof-edge.graph#145": (FAN, True),
     "kaohsiung-cut-sheets.graph#132": ("io/cutfiles.py surface_outline: ValueError from to_polyline", True),
     "kaohsiung-cut-sheets.graph#95": ("the length table of a curve at z = 1e308 refines for seconds", False),
 }

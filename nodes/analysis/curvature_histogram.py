@@ -177,7 +177,7 @@ class CurvatureHistogram(Node):
             summary += f"; {below} of {len(finite_values)} below {tol:g}"
         heading = str(title).strip() if title else f"Curvature: {name}"
         key = heading.encode() + name.encode() + edges.tobytes() + np.asarray(counts).tobytes()
-        path, chosen = target("" if file is None else str(file), key + repr(tol).encode())
+        path, chosen = target("" if file is None else str(file), key + repr(tol).encode(), self)
         try:
             draw_histogram(path, edges, counts, heading, name, tol)
         except OSError as exc:

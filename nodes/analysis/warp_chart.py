@@ -102,7 +102,7 @@ class WarpChart(Node):
             summary += f" ({undefined} undefined, left out)"
         heading = "" if title is None else str(title)
         path, chosen = target("" if file is None else str(file),
-                              heading.encode() + warp.tobytes() + x.tobytes() + repr(tol).encode())
+                              heading.encode() + warp.tobytes() + x.tobytes() + repr(tol).encode(), self)
         try:
             draw_warp(path, x, warp, tol, heading, along=bool(lines))
         except OSError as exc:

@@ -13,6 +13,7 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER, TEXT
+from nodes.io.common import FileFailure, may_write, replacing, writable, write_target
 
 PLOT_FOLDER = Path(tempfile.gettempdir()) / "torsal" / "plots"
 """Where plots go when no File is given: one file per distinct plot, rewritten in place."""
@@ -35,23 +36,27 @@ def summary(y: np.ndarray) -> str:
     return text
 
 
-def _target(file: str, title: str, y: np.ndarray) -> tuple[Path, bool]:
-    """The PNG path to write and whether it was chosen by the node."""
-    return target(file, title.encode() + y.tobytes())
+def target(file: str, key: bytes, node: Node | None = None) -> tuple[Path, bool]:
+    """The PNG path to write and whether it was chosen by the node (no File given).
 
-
-def target(file: str, key: bytes) -> tuple[Path, bool]:
-    """The PNG path to write (File, or one in PLOT_FOLDER named for ``key``, the bytes
-    that make the plot) and whether it was chosen by the node."""
-    if file.strip():
-        path = Path(file.strip()).expanduser()
-        if not path.suffix:
-            path = path.with_suffix(".png")
-        if path.suffix.lower() != ".png":
-            raise NodeWarning(f"File must be a .png image, not {path.name!r}")
-        return path, False
-    digest = hashlib.sha1(key).hexdigest()[:12]
-    return PLOT_FOLDER / f"plot-{digest}.png", True
+    A File is a file the graph writes, so it follows the write rules
+    (:mod:`engine.writes`): inside the graph's folder, never a ``.graph``, and only once
+    the user allows the graph to write (``node`` asks; without consent it warns and the
+    image goes to the temporary folder, so it can still be shown). Without a File the
+    image goes to :data:`PLOT_FOLDER`, named for ``key`` (the bytes that make the plot).
+    """
+    temporary = PLOT_FOLDER / f"plot-{hashlib.sha1(key).hexdigest()[:12]}.png"
+    name = file.strip()
+    if not name:
+        return temporary, True
+    if not Path(name).suffix:
+        name += ".png"
+    if Path(name).suffix.lower() != ".png":
+        raise NodeWarning(f"File must be a .png image, not {Path(name).name!r}")
+    if node is None:
+        raise NodeWarning("File: a plot is written to a file only by a node of a graph")
+    path = write_target(node, name, "File")
+    return (path, False) if may_write(node, [path]) else (temporary, False)
 
 
 def draw(path: Path, y: np.ndarray, title: str) -> None:
@@ -86,6 +91,10 @@ def save(figure: Any, path: Path) -> None:
     """Write ``figure`` as a PNG at ``path``: next to it first, then renamed over it, so
     a viewer never reads half an image."""
     figure.tight_layout()
+    if PLOT_FOLDER not in path.parents:  # the user's own file: atomic, keeping a .bak
+        writable(path)
+        replacing(path, lambda temporary: figure.savefig(temporary, format="png"))
+        return
     path.parent.mkdir(parents=True, exist_ok=True)
     partial = path.with_name(f".{path.stem}.{os.getpid()}.partial.png")
     try:
@@ -109,7 +118,8 @@ class Plot(Node):
     inputs = (
         In("Values", NUMBER, "V", "The numbers to plot, in order.", access=LIST),
         In("Title", TEXT, "T", "The graph's title.", default=""),
-        In("File", TEXT, "F", "Path of the .png to write; empty for a temporary file.", default=""),
+        In("File", TEXT, "F", "The .png to write, relative to the graph's folder (written only when you "
+           "allow the graph to write files); empty for a temporary file.", default=""),
     )
     outputs = (
         Out("Image", TEXT, "I", "Path of the PNG image written."),
@@ -125,11 +135,13 @@ class Plot(Node):
         if np.abs(y[np.isfinite(y)]).max() > 1e300:  # the axis' margins and ticks would overflow
             raise NodeWarning("Values reach beyond 1e+300: too large to draw an axis for")
         heading = "" if title is None else str(title)
-        path, chosen = _target("" if file is None else str(file), heading, y)
+        path, chosen = target("" if file is None else str(file), heading.encode() + y.tobytes(), self)
         try:
             draw(path, y, heading)
         except OSError as exc:
             raise NodeWarning(f"Could not write the plot to {path}: {exc.strerror or exc}") from None
+        except FileFailure as exc:
+            raise NodeWarning(f"Could not write the plot to {path}: {exc}") from None
         if chosen:
             self.remark(f"No File given: the plot was written to {path}")
         return str(path), summary(y)

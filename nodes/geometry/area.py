@@ -42,6 +42,10 @@ def span_gauss(lows: FloatArray, highs: FloatArray, order: int) -> tuple[FloatAr
     return (lows[:, None] + width * x).ravel(), (width * w).ravel()
 
 
+#: Most cells whose Gauss points are evaluated in one call of the integrand.
+CHUNK_CELLS = 8192
+
+
 def _cells_integral(
     func: Integrand,
     u0: FloatArray,
@@ -50,7 +54,14 @@ def _cells_integral(
     nodes: FloatArray,
     weights: FloatArray,
 ) -> FloatArray:
-    """Tensor Gauss rule on square cells [u0, u0+size] × [v0, v0+size]; → (cells, k)."""
+    """Tensor Gauss rule on square cells [u0, u0+size] × [v0, v0+size]; → (cells, k).
+    Cells are evaluated :data:`CHUNK_CELLS` at a time, so memory stays bounded."""
+    if len(u0) > CHUNK_CELLS:
+        return np.concatenate([
+            _cells_integral(func, u0[i:i + CHUNK_CELLS], v0[i:i + CHUNK_CELLS], size[i:i + CHUNK_CELLS],
+                            nodes, weights)
+            for i in range(0, len(u0), CHUNK_CELLS)
+        ])
     g = len(nodes)
     uu = u0[:, None, None] + size[:, None, None] * nodes[None, :, None]
     vv = v0[:, None, None] + size[:, None, None] * nodes[None, None, :]
@@ -98,7 +109,8 @@ def integrate_unit_square(
         tolerance = max(atol, rtol * float(np.max(np.abs(total))))
         done = error <= tolerance * (size * size)
         accepted = accepted + child_sum[done].sum(axis=0)
-        if done.all() or 4 * np.count_nonzero(~done) > max_cells:
+        # the next level would evaluate 4 children of each of the 4 kept children
+        if done.all() or 16 * np.count_nonzero(~done) > max_cells:
             return accepted + child_sum[~done].sum(axis=0)
         keep = np.tile(~done, 4)
         u0, v0, size, parent = cu[keep], cv[keep], ch[keep], children[keep]

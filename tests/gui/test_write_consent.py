@@ -90,7 +90,9 @@ def test_allow_writes_the_files_in_the_graphs_folder(qtbot, window, tmp_path):
     assert window.actions_by_name["allow_writes"].isChecked()
 
 
-def test_a_graph_aiming_outside_its_folder_is_refused_without_a_question(qtbot, window, tmp_path, monkeypatch):
+def test_a_graph_aiming_outside_its_folder_is_refused_without_a_question(
+    qtbot, window, tmp_path, monkeypatch
+):
     home = tmp_path / "home"
     home.mkdir()
     monkeypatch.setenv("HOME", str(home))

@@ -156,3 +156,36 @@ def test_requests_wait_for_consent_with_their_node_and_paths(tmp_path):
     access.allowed = True
     assert files.permit([target]) is True
     assert access.pending() == []
+
+
+def plot_graph(folder: Path, file: str) -> Path:
+    from nodes.display.plot import Plot
+
+    graph = Graph()
+    graph.add_node(Panel({"text": "1\n3\n2"}), "values")
+    graph.add_node(Plot(), "plot")
+    graph.connect("values", "Output", "plot", "Values")
+    graph.set_input_value("plot", "File", file)
+    path = folder / "plot.graph"
+    write_graph(graph, path)
+    return path
+
+
+@pytest.mark.parametrize("file", ["~/.bashrc.png", "../../outside/chart.png"])
+def test_a_plots_file_obeys_the_same_rules(site, file):
+    home, project, outside = site
+    graph = plot_graph(project, file)
+    before = {folder: files_under(folder) for folder in (home, outside)}
+    report = run_json(graph, "--allow-writes", home=home)
+    assert {folder: files_under(folder) for folder in (home, outside)} == before
+    assert report["nodes"]["plot"]["state"] == "error"
+
+
+def test_a_plot_is_written_to_its_file_only_with_consent(site):
+    home, project, _ = site
+    graph = plot_graph(project, "charts/warp.png")
+    report = run_json(graph, home=home)
+    assert not (project / "charts").exists()
+    assert report["nodes"]["plot"]["state"] == "warning"  # nothing written to charts/warp.png
+    run_json(graph, "--allow-writes", home=home)
+    assert (project / "charts" / "warp.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

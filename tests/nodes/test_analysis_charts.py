@@ -11,7 +11,7 @@ from nodes.analysis.curvature_histogram import CurvatureHistogram
 from nodes.analysis.warp_chart import WarpChart
 from nodes.geometry.curves.line import Line
 from nodes.surfaces.primitives import Cylinder
-from tests.nodes.helpers import out, run, texts, tree
+from tests.nodes.helpers import allowed, out, run, texts, tree
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 RADIUS = 2.0
@@ -25,7 +25,7 @@ def cylinder():
 
 def histogram(tmp_path: Path, **inputs):
     return run(CurvatureHistogram(), Surface=cylinder(), UDensity=NU, VDensity=NV,
-               File=str(tmp_path / "histogram.png"), **inputs)
+               File="histogram.png", writes=allowed(tmp_path), **inputs)
 
 
 def only_bar(counts: list[int]) -> int:
@@ -93,7 +93,7 @@ def test_warp_chart_counts_the_hypar_rulings_over_the_tolerance(tmp_path):
     limit = math.sqrt((HALF / math.tan(tolerance / 2)) ** 2 - 1)
     expected = int(np.count_nonzero(limit > T))
     result = run(WarpChart(), WarpAngles=hypar_warp(), Rulings=hypar_rulings(), Tolerance=tolerance,
-                 File=str(tmp_path / "warp.png"))
+                 File="warp.png", writes=allowed(tmp_path))
     assert result.state == "ok"
     assert expected == 5
     assert out(result, "Over") == {(0,): [expected]}
@@ -101,21 +101,22 @@ def test_warp_chart_counts_the_hypar_rulings_over_the_tolerance(tmp_path):
 
 def test_warp_chart_places_the_hypar_rulings_along_the_strip(tmp_path):
     # the rulings' midpoints are (t, 0, 0): each is t − t0 along the strip
-    result = run(WarpChart(), WarpAngles=hypar_warp(), Rulings=hypar_rulings(), File=str(tmp_path / "w.png"))
+    result = run(WarpChart(), WarpAngles=hypar_warp(), Rulings=hypar_rulings(), File="w.png",
+                 writes=allowed(tmp_path))
     assert np.allclose(out(result, "Positions")[(0,)], T - T[0], rtol=0, atol=1e-15)
 
 
 def test_warp_chart_leaves_an_undefined_warp_out_and_says_so(tmp_path):
     warp = hypar_warp()
     warp[3] = float("nan")
-    result = run(WarpChart(), WarpAngles=warp, Tolerance=0.5, File=str(tmp_path / "w.png"))
+    result = run(WarpChart(), WarpAngles=warp, Tolerance=0.5, File="w.png", writes=allowed(tmp_path))
     assert out(result, "Over") == {(0,): [8]}
     assert out(result, "Summary")[(0,)][0].endswith("(1 undefined, left out)")
 
 
 def test_warp_chart_says_when_rulings_and_warps_do_not_pair_up(tmp_path):
     result = run(WarpChart(), WarpAngles=hypar_warp()[:4], Rulings=hypar_rulings(),
-                 File=str(tmp_path / "w.png"))
+                 File="w.png", writes=allowed(tmp_path))
     assert result.state == "warning"
     assert texts(result) == ["Rulings has 9 lines but WarpAngles 4 values: wire the same node's Rulings and "
                              "WarpAngles"]

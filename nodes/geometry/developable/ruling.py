@@ -938,7 +938,10 @@ class _Strip:
         """Parameters on B for a fan's rulings, at about the station spacing along A."""
         spacing = self.map_a.total / self.segments
         lb = self.length_b(np.array([t_low, t_high]))
-        count = max(2, int(np.ceil((lb[1] - lb[0]) / spacing - 1e-9)) + 1)
+        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
+        # must not ask for billions); and at least the fan's two bounding rulings
+        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
+        count = max(2, int(np.ceil(min(wanted, self.segments + 1) - 1e-9)) + 1)
         t = self.parameter_b(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t)
