@@ -38,7 +38,7 @@ def test_a_cone_bends_at_d_tan_alpha_a_distance_d_from_its_apex(v):
 
 def test_a_plane_is_infinitely_flat_and_passes_every_material():
     starts = np.column_stack([np.linspace(0, 2, 6), np.zeros(6), np.zeros(6)])
-    plane = RuledSurface.from_rulings(starts, starts + [0.0, 0.5, 0.0])
+    plane = RuledSurface.from_rulings(starts, starts + np.array([0.0, 0.5, 0.0]))
     for material in MATERIALS:
         result = check([plane], Material=material)
         assert out(result, "MinRadius")[(0,)] == [math.inf]
