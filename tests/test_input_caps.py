@@ -70,10 +70,7 @@ def test_the_sweep_covers_every_numeric_input_of_every_node_type(swept):
 
 #: Cases that fail in code other engineers own, reported to them: each is expected to fail
 #: until fixed (strict: a fix shows as XPASS and the entry must go).
-KNOWN = {
-    InputCase("io.ExportCutSheet", "TextHeight", 1e308): "io/cutfiles.py place_label: AttributeError",
-    InputCase("io.ExportCutSheet", "Kerf", 1e308): "io/cutfiles.py: GEOS buffer of NaN/Inf (GEOSException)",
-}
+KNOWN: dict[InputCase, str] = {}
 
 
 @pytest.mark.parametrize("type_id", SWEPT_TYPES)

@@ -308,7 +308,7 @@ def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[Floa
     polygon = shapely.Polygon(panel)
     pole = polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area)))
     centres = [np.asarray(polygon.centroid.coords[0]), np.asarray(pole.coords[0])]
-    size = float(height)
+    size = min(float(height), float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= SMALLEST_TEXT_MM:
         for centre in centres:
             corner = centre - (low + high) / 2 * size
@@ -396,6 +396,10 @@ def lay_out(
             raise FileFailure(f"{name} must be zero or a positive length in mm, not {value:g}")
     if not (math.isfinite(kerf) and kerf >= 0):
         raise FileFailure(f"Kerf must be zero or a positive width in mm, not {kerf:g}")
+    if kerf >= min(width, height):
+        raise FileFailure(f"A kerf of {kerf:g} mm is wider than the {width:g} × {height:g} mm sheet")
+    if not (math.isfinite(text_height) and text_height >= 0):
+        raise FileFailure(f"TextHeight must be zero or a positive height in mm, not {text_height:g}")
     if 2 * edge >= min(width, height):
         what = "gap" if margin is None else "margin"
         raise FileFailure(

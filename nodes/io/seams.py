@@ -151,7 +151,7 @@ def seam_label(text: str, edge: FloatArray, panel: FloatArray, height: float,
     polygon = shapely.Polygon(panel)
     if not polygon.contains(shapely.Point(middle + 1e-3 * normal)):
         normal = -normal
-    size = height
+    size = min(height, float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= height / 5:
         for away in (1.2, 2.0, 3.0):
             centre = middle + normal * (TICK_MM + away * size * max(1.0, (high - low).max() / 2))
