@@ -47,8 +47,6 @@ ROUNDING_ULPS = 32
 
 #: Examples whose moved solve is known to differ, with the reason (code owned elsewhere).
 KNOWN = {
-    ("zve-roof-edge", FAR): "RulingDevelopable at 1e9 m finds other rulings (developable/ is being "
-                            "rewritten)",
     ("textbook-ruled-surfaces", FAR): "the Möbius band's warp angles move by 9.6e-7 rad: tangents of "
                                       "rails through points rounded to 6e-8 m, 0.13 m apart (the "
                                       "inputs' own rounding, amplified by 1/spacing)",

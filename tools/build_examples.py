@@ -138,19 +138,24 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.wire("top.Geometry", "inner.Geometry")
     b.wire("centre.Point", "inner.Centre")
     b.wire("scale.Value", "inner.Factor")
-    # Edge curve j runs through the base, top and inner curves at parameters shifted by 2n,
-    # n and 0 steps of 1/count, clamped to the curves' ends: in the middle it is the thesis's
-    # point-shifted edge; towards both ends of the horseshoe the edges gather at the curves'
-    # ends, so the strips taper there and the roof reaches the end of the horseshoe.
+    # Edge curve j runs through the base and inner curves at parameters shifted by 2n and 0
+    # steps of 1/count, clamped to the curves' ends, and through the top curve midway: in the
+    # middle it is the thesis's point-shifted edge (shifts 2n, n, 0); towards both ends of the
+    # horseshoe the edges gather at the curves' end points, so the strips taper there and the
+    # roof reaches the ends of the horseshoe.
     b.node("maths.Expression", "edges", 1, 3, "Edge count",
            {"expression": "count + 1 + 2 * n", "variables": ["count", "n"]})
     b.wire("count.Value", "edges.count")
     b.wire("shift.Value", "edges.n")
     b.node("maths.Series", "edge_index", 2, 3, "Edge numbers j", Start=0)
     b.wire("edges.Result", "edge_index.Count")
-    for k, (source, lag) in enumerate([("base.Curve", 2), ("top.Geometry", 1), ("inner.Geometry", 0)]):
+    on_base, on_inner = "min(max((j - 2 * n) / count, 0), 1)", "min(max(j / count, 0), 1)"
+    # the top point midway between the other two, so two edges share at most their end point
+    expressions = [on_base, f"({on_base} + {on_inner}) / 2", on_inner]
+    for k, (source, expression) in enumerate(zip(["base.Curve", "top.Geometry", "inner.Geometry"],
+                                                 expressions, strict=True)):
         b.node("maths.Expression", f"param{k}", 3, 3 + k, f"t on curve {k}",
-               {"expression": f"min(max((j - {lag} * n) / count, 0), 1)", "variables": ["j", "n", "count"]})
+               {"expression": expression, "variables": ["j", "n", "count"]})
         b.wire("edge_index.Series", f"param{k}.j")
         b.wire("shift.Value", f"param{k}.n")
         b.wire("count.Value", f"param{k}.count")

@@ -88,7 +88,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
-from ..vec_ops import cross, det, dot, extent, norm, unit
+from ..vec_ops import cross, det, dot, extent, norm, position_rounding, unit
 from .brackets import refine_roots
 from .end_cones import Rulings, smooth_ends
 from .fans import area_share, creased_fans, fan_share, zigzag
@@ -294,7 +294,10 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
     right = np.empty((6, m))
     right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
     speed_b = norm(b1)
-    flat_scale = FLAT * size * speed_b
+    # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
+    # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
+    rounding = max(position_rounding(a0), position_rounding(b0))
+    flat_scale = (FLAT * size + rounding) * speed_b
     block = max(1, 40_000 // right.shape[1])
     found: list[tuple[IntArray, ...]] = []
     zeros: list[IntArray] = []
@@ -306,7 +309,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: _Grid, reach: FloatArray) ->
         maybe = np.flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
-            exact = maybe[size_f.flat[maybe] <= FLAT * norm(b0[c] - a0[r + first]) * speed_b[c]]
+            exact = maybe[size_f.flat[maybe] <= (FLAT * norm(b0[c] - a0[r + first]) + rounding) * speed_b[c]]
             if len(exact):
                 zero = np.zeros(f.shape, dtype=bool)
                 zero.flat[exact] = True
