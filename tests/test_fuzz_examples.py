@@ -31,7 +31,6 @@ WORKERS = min(2, os.cpu_count() or 1)
 #: that passes shows as XPASS and must go. The timed one is not strict (it runs 7-10 s on
 #: a quiet machine, over 20 s on a loaded one).
 KNOWN: dict[str, tuple[str, bool]] = {
-    "kaohsiung-cut-sheets.graph#132": ("io/cutfiles.py surface_outline: ValueError from to_polyline", True),
     "kaohsiung-cut-sheets.graph#95": ("the length table of a curve at z = 1e308 refines for seconds", False),
 }
 

@@ -226,6 +226,8 @@ def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     ring = ring[keep]
     if len(ring) > 1 and np.linalg.norm(ring[-1] - ring[0]) <= SAME_POINT * size:
         ring = ring[:-1]
+    if len(ring) < 3:
+        raise ValueError("has fewer than three distinct corners, so it encloses nothing")
     return Polyline(ring, closed=True)
 
 
@@ -422,9 +424,9 @@ def lay_out(
     for curve, name in zip(curves, names, strict=True):
         if curve is None:
             raise PanelProblem(f"Panel {name} is empty (null)")
-        if isinstance(curve, Surface):
-            curve = surface_outline(curve, FLATTEN_MM / scale)
         try:
+            if isinstance(curve, Surface):
+                curve = surface_outline(curve, FLATTEN_MM / scale)
             outlines.append(panel_outline(curve, scale))
         except ValueError as exc:
             raise PanelProblem(f"Panel {name} {exc}") from None
