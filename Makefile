@@ -81,9 +81,10 @@ $(TEST_STAMP): pyproject.toml $(CONSTRAINTS) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -c $(CONSTRAINTS) -e '.[test]'
 	touch $(TEST_STAMP) $(RUN_STAMP)
 
-# Slow (downloads the oldest allowed wheels): not part of `make test`.
+# Slow (downloads the oldest allowed wheels): not part of `make test`. GUI=1 adds the gui
+# extra's lower bounds, imports app/gui and opens the app under Xvfb.
 check-bounds:
-	$(PYTHON) -m tools.check_bounds
+	$(PYTHON) -m tools.check_bounds $(if $(GUI),--gui)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

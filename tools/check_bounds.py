@@ -3,7 +3,8 @@
     .venv/bin/python -m tools.check_bounds [--keep DIR] [--gui]
 
 Each ``name>=X`` in ``[project] dependencies`` becomes ``name==X`` (``--gui`` adds the
-``gui`` extra's lower bounds, and then app/gui is imported too); the project is installed
+``gui`` extra's lower bounds: then app/gui is imported too, and the app is opened on an
+example until its 3D viewport is ready); the project is installed
 from this checkout into a new venv under the temporary folder with those pins as
 constraints — without extras, as a headless install — then every module of engine/,
 nodes/ and app/ is imported there, every example graph is solved with ``torsal run`` and
@@ -15,7 +16,10 @@ worked. It downloads the old wheels, so it takes minutes: ``make check-bounds`` 
 from __future__ import annotations
 
 import argparse
+import os
 import re
+import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -114,7 +118,44 @@ def check(folder: Path, gui: bool = False) -> int:
         if empty:
             print(f"   not written or empty: {', '.join(empty)}")
         failures += run.returncode != 0 or bool(empty)
+    if gui:
+        failures += not _app_starts(torsal, folder)
+    else:  # no Qt here: torsal gui must say how to install it, and exit 2
+        env = {**os.environ, "DISPLAY": os.environ.get("DISPLAY") or ":99"}
+        run = _step("torsal gui without the gui extra", [str(torsal), "gui", "--example", "first-steps"],
+                    cwd=folder, env=env)
+        print(run.stderr, end="")
+        failures += run.returncode != 2 or "pip install 'torsal[gui]'" not in run.stderr or \
+            "Traceback" in run.stderr
     return failures
+
+
+def _app_starts(torsal: Path, folder: Path, timeout: float = 90.0) -> bool:
+    """Open the app on an example (under xvfb-run when there is no display) and wait for
+    its viewport to be ready; then close it."""
+    print("-- torsal gui --example textbook-ruled-surfaces (until the viewport is ready)", flush=True)
+    command = [str(torsal), "gui", "--example", "textbook-ruled-surfaces"]
+    if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
+        command = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", *command]
+    env = {**os.environ, "TORSAL_REPORT_STARTUP": "1", "TORSAL_CONFIG_DIR": str(folder / "config")}
+    start = time.perf_counter()
+    with subprocess.Popen(command, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, env=env,
+                          cwd=folder, start_new_session=True) as app:
+        lines: list[str] = []
+        ready = False
+        assert app.stderr is not None
+        for line in app.stderr:
+            lines.append(line)
+            if "viewport-ready" in line:
+                ready = True
+                break
+            if time.perf_counter() - start > timeout:
+                break
+        os.killpg(app.pid, signal.SIGTERM)
+    if not ready:
+        print("".join(lines[-30:]), end="")
+    print(f"   ({time.perf_counter() - start:.0f} s, {'ready' if ready else 'did not start'})", flush=True)
+    return ready
 
 
 def main(argv: list[str] | None = None) -> int:
