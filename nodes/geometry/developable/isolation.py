@@ -73,6 +73,11 @@ BoolArray = NDArray[np.bool_]
 NARROWEST = 1e-13
 #: Most subdivision levels (each at least halves the interval: 1/128 → 1e-13 in ~40).
 MAX_LEVELS = 64
+#: Most pieces judged, per first sample interval, over all levels. Curves within the
+#: guarantee split a few intervals a few times (well under 1 a interval); a curve far
+#: outside it (a stray vertex at 1e12 m) would split hundreds of thousands: it stops
+#: here, as when the levels run out, and Valid (recomputed) tells what was found.
+PIECES_PER_INTERVAL = 16
 
 
 @dataclass
@@ -244,7 +249,14 @@ def isolate(
     found: list[tuple[FloatArray, ...]] = []
     doubles: list[tuple[IntArray, FloatArray]] = []
     pieces = first
+    # the work a curve far outside the guarantee gets (a few intervals may need all levels)
+    budget = max(PIECES_PER_INTERVAL * len(first.row), 8 * MAX_LEVELS)
     for level in range(MAX_LEVELS):
+        budget -= len(pieces.row)
+        if budget < 0:  # as when the levels run out (below): what still changes sign is kept
+            b = pieces.take(np.signbit(pieces.f0) != np.signbit(pieces.f1))
+            found.append((b.row, b.x0, b.x1, b.f0, b.f1, b.d0, b.d1))
+            break
         bracket, touching, uncertain = _judge(pieces, curvature)
         if bracket.any():
             b = pieces.take(bracket)
