@@ -25,6 +25,8 @@ from engine.node import CancelToken
 from engine.solver import NodeResult, Solver, SolveReport
 
 PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
+#: Steps of the progress bar per node, so a long node's own progress moves it.
+STEPS = 1000
 #: A solve running longer than this shows what it has so far (``partial``), and again at
 #: this interval, so a long solve fills the viewport as it goes. Shorter solves show only
 #: their whole result: a partial frame would cost a render for nothing new.
@@ -165,14 +167,26 @@ class SolveController(QObject):
         shown = [0]  # how many of them the last partial outcome carried
         current: list[str | None] = [None]
 
+        position = [0, 1]  # the node being solved and how many there are
+
         def progress(index: int, total: int, node_id: str) -> None:
             if current[0] is not None:
                 done.append(current[0])  # called before each node: the previous one is done
             current[0] = node_id
+            position[:] = [index, total]
             now = time.perf_counter()
             if now - last_progress[0] >= PROGRESS_INTERVAL:
                 last_progress[0] = now
-                self._worker_progress.emit(index, total, node_id)
+                self._worker_progress.emit(index * STEPS, total * STEPS, node_id)
+
+        def node_progress(node_id: str, fraction: float) -> None:
+            """A long node's own progress moves the bar within its share of the solve."""
+            now = time.perf_counter()
+            if now - last_progress[0] >= PROGRESS_INTERVAL:
+                last_progress[0] = now
+                index, total = position
+                step = int(STEPS * min(max(float(fraction), 0.0), 1.0))
+                self._worker_progress.emit(index * STEPS + step, total * STEPS, node_id)
             if now - last_partial[0] >= PARTIAL_INTERVAL and len(done) > shown[0]:
                 last_partial[0] = now
                 fresh = SolveReport(solved=done[shown[0] :])
@@ -185,7 +199,7 @@ class SolveController(QObject):
 
         error = ""
         try:
-            report = solver.solve(token, progress)
+            report = solver.solve(token, progress, node_progress=node_progress)
         except Exception as exc:  # a graph the engine cannot order: report, never crash the app
             report = SolveReport(cancelled=True)
             error = f"{type(exc).__name__}: {exc}"

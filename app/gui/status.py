@@ -22,7 +22,7 @@ class SolveStatus(QStatusBar):
         self.progress = QProgressBar()
         self.progress.setMaximumWidth(220)
         self.progress.setTextVisible(True)
-        self.progress.setFormat("Solving %v/%m — Esc cancels")
+        self.progress.setFormat("Solving %p % — Esc cancels")
         self.progress.hide()
         self.addPermanentWidget(self.progress)
         self.addPermanentWidget(self.solve_label)

@@ -74,7 +74,8 @@ class Bumps(Node):
 
 
 class Slow(Node):
-    """Busy for Seconds (pure Python, holding the GIL), checking for cancellation."""
+    """Busy for Seconds (pure Python, holding the GIL), checking for cancellation and
+    saying how far it is."""
 
     type_id = "showcase.Slow"
     inputs = (In("Seconds", NUMBER, "S", "How long to work.", default=10.0),)
@@ -83,10 +84,11 @@ class Slow(Node):
     def solve(self, seconds: float) -> float:
         start = time.perf_counter()
         total = 0
-        while time.perf_counter() - start < seconds:
+        while (elapsed := time.perf_counter() - start) < seconds:
             for k in range(2000):
                 total += k * k
             self.check_cancelled()
+            self.progress(elapsed / seconds)
         return time.perf_counter() - start
 
 

@@ -121,3 +121,15 @@ def test_an_edit_during_a_long_solve_restarts_it_without_blocking(qtbot, window,
     assert time.perf_counter() - started < 5.0
     wait_solved(qtbot, window, timeout=5000)
     assert window.doc.results["slow"].outputs["Value"].first() < 1.0
+
+
+def test_a_long_node_moves_the_progress_bar_while_it_runs(qtbot, window, registry, tmp_path):
+    """One node working for 2 s (reporting how far it is) moves the bar many times, not
+    only between nodes."""
+    values: list[int] = []
+    window.status.progress.valueChanged.connect(values.append)
+    window.open_file(slow_graph(registry, tmp_path / "slow.graph", seconds=2.0), ask=False)
+    wait_solved(qtbot, window, timeout=20000)
+    single_node = [v for v in values if 0 < v < window.status.progress.maximum()]
+    assert len(set(single_node)) >= 5, values
+    assert single_node == sorted(single_node)
