@@ -90,7 +90,7 @@ def kaohsiung_cut_sheets() -> None:
     b.node("analysis.IsoMapping", "unroll", 10, 3, "Unrolled strips")
     b.wire("strip.Surface", "unroll.Surface")
     b.wire("segments.Value", "unroll.Segments")
-    b.slider("model_scale", 5, "Model scale (1:n)", 50.0, 10.0, 200.0, 0)
+    b.slider("model_scale", 6.5, "Model scale (1:n)", 50.0, 10.0, 200.0, 0, column=10)
     b.node("maths.Expression", "factor", 10, 5, "1 / n", {"expression": "1 / n", "variables": ["n"]})
     b.wire("model_scale.Value", "factor.n")
     b.node("transform.Scale", "model", 11, 3, "Scaled to the model", Centre=point(0, 0, 0))
@@ -100,7 +100,8 @@ def kaohsiung_cut_sheets() -> None:
            SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
            Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
-    b.graph.set_preview("cut", False)  # the sheet layout is for the cutter, not the 3D view
+    for flat in ("unroll", "model", "cut"):  # the flat parts are for the cutter, not the 3D view
+        b.graph.set_preview(flat, False)
     b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
             ["unroll", "model_scale", "factor", "model", "cut"])
     b.save("kaohsiung-cut-sheets")
@@ -165,11 +166,11 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.node("curves.Interpolate", "edge_curves", 6, 3, "Strip edge curves", Degree=2)
     for k in range(3):
         b.wire(f"pick{k}.Point", "edge_curves.Vertices")
-    b.node("maths.Expression", "strips", 6, 5, "Strip count",
+    b.node("maths.Expression", "strips", 7, 4.5, "Strip count",
            {"expression": "edges - 1", "variables": ["edges"]})
     b.wire("edges.Result", "strips.edges")
-    b.node("maths.Series", "left_index", 7, 5, "Left edges", Start=0)
-    b.node("maths.Series", "right_index", 7, 6, "Right edges", Start=1)
+    b.node("maths.Series", "left_index", 7, 5.7, "Left edges", Start=0)
+    b.node("maths.Series", "right_index", 7, 6.9, "Right edges", Start=1)
     b.wire("strips.Result", "left_index.Count")
     b.wire("strips.Result", "right_index.Count")
     b.node("lists.ListItem", "left", 8, 3, "Left edge")
