@@ -11,7 +11,7 @@ from PySide6.QtGui import QGuiApplication, QWheelEvent
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QInputDialog
 
-from app.gui.canvas import context_menus, inline_widgets, slider_dialog
+from app.gui.canvas import inline_widgets, slider_dialog
 from app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListWidget
 from app.gui.fuzzy import build_entries, search
 from app.gui.icons import node_letters
@@ -217,39 +217,6 @@ def test_group_and_ungroup(first_steps, monkeypatch):
     window.scene.select_nodes(["heights"])
     window.ungroup_selection()
     assert all(g.id != group.id for g in window.doc.graph.groups)
-
-
-def test_input_menu_sets_modifiers_and_values(first_steps, monkeypatch):
-    window = first_steps
-    port = window.scene.nodes["edges"].input_port("Step")
-    menu = context_menus.port_menu(window.scene, port)
-    texts = [a.text() for a in menu.actions()]
-    assert texts[:4] == ["Graft", "Flatten", "Simplify", "Reverse"]
-    next(a for a in menu.actions() if a.text() == "Graft").trigger()
-    assert window.doc.graph.nodes["edges"].inputs["Step"].modifiers == ["graft"]
-    assert "↑" in window.scene.nodes["edges"].layout.inputs[1].text
-    monkeypatch.setattr(QInputDialog, "getText", staticmethod(lambda *a, **k: ("[1, 2, 3]", True)))
-    port = window.scene.nodes["edges"].input_port("Start")
-    menu = context_menus.port_menu(window.scene, port)
-    next(a for a in menu.actions() if a.text() == "Set value…").trigger()
-    assert window.doc.graph.nodes["edges"].inputs["Start"].value == [1, 2, 3]
-
-
-def test_node_menu_toggles_preview_and_enabled_and_opens_help(qtbot, first_steps):
-    window = first_steps
-    item = window.scene.nodes["heights"]
-    window.scene.select_nodes(["heights"])
-    menu = context_menus.node_menu(window.scene, item)
-    actions = {a.text(): a for a in menu.actions()}
-    actions["Preview"].trigger()
-    assert not window.doc.graph.nodes["heights"].preview
-    actions["Enabled"].trigger()
-    wait_solved(qtbot, window)
-    assert item.state == "disabled" and window.doc.results["heights"].state == "disabled"
-    actions["Help"].trigger()
-    dialog = window._help_dialogs[-1]
-    assert dialog.isVisible() and "formula" in window.inspector.help.toPlainText()
-    dialog.close()
 
 
 def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeypatch):

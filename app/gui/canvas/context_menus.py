@@ -13,6 +13,7 @@ from PySide6.QtWidgets import QColorDialog, QInputDialog, QMenu
 from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
 from app.gui.graph_order import group_by_id
+from engine.graph import Wire
 from engine.types import CastError, decode_value
 
 if TYPE_CHECKING:
@@ -33,6 +34,18 @@ def parse_value(text: str) -> Any:
     return value
 
 
+def add_modifier_actions(menu: QMenu, scene: CanvasScene, node_id: str, name: str) -> None:
+    """Graft, Flatten, Simplify, Reverse of input ``name`` (checkable, each one undo step)."""
+    editor = scene.editor
+    state = scene.doc.graph.nodes[node_id].inputs.get(name)
+    current = state.modifiers if state else []
+    for modifier, label in MODIFIER_LABELS.items():
+        action = menu.addAction(label)
+        action.setCheckable(True)
+        action.setChecked(modifier in current)
+        action.triggered.connect(lambda _=False, m=modifier: editor.toggle_modifier(node_id, name, m))
+
+
 def port_menu(scene: CanvasScene, port: PortItem) -> QMenu:
     menu = QMenu()
     editor = scene.editor
@@ -40,12 +53,7 @@ def port_menu(scene: CanvasScene, port: PortItem) -> QMenu:
     node_id, name = port.node_id, port.name
     if port.is_input:
         state = graph.nodes[node_id].inputs.get(name)
-        current = state.modifiers if state else []
-        for modifier, label in MODIFIER_LABELS.items():
-            action = menu.addAction(label)
-            action.setCheckable(True)
-            action.setChecked(modifier in current)
-            action.triggered.connect(lambda _=False, m=modifier: editor.toggle_modifier(node_id, name, m))
+        add_modifier_actions(menu, scene, node_id, name)
         menu.addSeparator()
         menu.addAction("Set value…", lambda: ask_input_value(scene, node_id, name))
         clear = menu.addAction("Clear value", lambda: editor.clear_input_value(node_id, name))
@@ -63,6 +71,18 @@ def port_menu(scene: CanvasScene, port: PortItem) -> QMenu:
         disconnect.setEnabled(bool(wires))
         menu.addSeparator()
         menu.addAction("Export…", lambda: scene.export_requested.emit(node_id, name))
+    return menu
+
+
+def wire_menu(scene: CanvasScene, wire: Wire) -> QMenu:
+    """A wire's menu: the modifiers of the input it feeds, and Delete wire."""
+    menu = QMenu()
+    add_modifier_actions(menu, scene, wire.target, wire.target_port)
+    menu.addSeparator()
+    menu.addAction(
+        "Delete wire",
+        lambda: scene.editor.connect(wire.source, wire.source_port, wire.target, wire.target_port, "remove"),
+    )
     return menu
 
 

@@ -13,12 +13,14 @@ from __future__ import annotations
 from PySide6.QtCore import QMimeData, QPoint, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import (
     QContextMenuEvent,
+    QCursor,
     QDragEnterEvent,
     QDragMoveEvent,
     QDropEvent,
     QKeyEvent,
     QMouseEvent,
     QPainter,
+    QPainterPathStroker,
     QPen,
     QWheelEvent,
 )
@@ -30,7 +32,7 @@ from app.gui.canvas.group_item import GroupItem
 from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
 from app.gui.canvas.scene import CanvasScene
-from app.gui.canvas.wire_item import DragWire
+from app.gui.canvas.wire_item import DragWire, WireItem
 from app.gui.fuzzy import Entry
 from app.gui.search_popup import SearchPopup
 from engine.types import can_cast, get_type
@@ -40,6 +42,7 @@ ZOOM_STEP = 1.15
 ZOOM_RANGE = (0.15, 4.0)
 READABLE_ZOOM = 0.75  # below this the 8-point labels cannot be read
 PAN_THRESHOLD = 4
+WIRE_REACH = 4.0  # view pixels either side of a wire that a right-click still finds it
 
 
 class CanvasView(QGraphicsView):
@@ -68,6 +71,9 @@ class CanvasView(QGraphicsView):
         self._alt_drag: tuple[QPointF, dict[NodeItem, QPointF]] | None = None
         self._pending_wire: PortItem | None = None
         self._place_at = QPointF()
+        self._last_mouse: QPoint | None = None
+        self._menu_on_release = False
+        self.viewport().setMouseTracking(True)  # the Menu key opens the menu under the mouse
         popup.chosen.connect(self._place_chosen)
         popup.dismissed.connect(self._forget_pending_wire)
 
@@ -158,12 +164,13 @@ class CanvasView(QGraphicsView):
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
-        under = self.itemAt(pos)
-        if event.button() == Qt.MouseButton.MiddleButton or (
-            event.button() == Qt.MouseButton.RightButton and (under is None or isinstance(under, GroupItem))
-        ):
+        self._last_mouse = pos
+        if event.button() in (Qt.MouseButton.MiddleButton, Qt.MouseButton.RightButton):
+            # Right: a drag pans, a click (released without a drag) opens the menu of what
+            # is under the cursor, wherever the press lands (node, port, wire, group, canvas).
             self._pan_start = pos
             self._panned = False
+            self._menu_on_release = False
             event.accept()
             return
         if event.button() == Qt.MouseButton.LeftButton:
@@ -183,6 +190,7 @@ class CanvasView(QGraphicsView):
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
+        self._last_mouse = pos
         if self._pan_start is not None:
             delta = pos - self._pan_start
             if self._panned or delta.manhattanLength() > PAN_THRESHOLD:
@@ -213,6 +221,7 @@ class CanvasView(QGraphicsView):
             panned = self._panned
             self._pan_start = None
             if not panned and event.button() == Qt.MouseButton.RightButton:
+                self._menu_on_release = True  # a platform context-menu event after this is spent
                 self._context_menu(pos, event.globalPosition().toPoint())
             event.accept()
             return
@@ -244,10 +253,45 @@ class CanvasView(QGraphicsView):
         super().mouseDoubleClickEvent(event)
 
     def contextMenuEvent(self, event: QContextMenuEvent) -> None:
-        # Right-button menus open on release (so right-drag can pan); keyboard menus here.
-        if event.reason() != QContextMenuEvent.Reason.Mouse:
-            self._context_menu(event.pos(), event.globalPos())
+        """The platform's context-menu event. A right press in progress opens its menu on
+        release (so a right drag can pan: X11 sends this event on the press); a menu the
+        release already opened is not opened twice (Windows sends it after the release); any
+        other mouse-made event (a touch-and-hold, a pen) opens the menu where it points. The
+        keyboard's event opens the menu of the item under the mouse."""
+        if event.reason() == QContextMenuEvent.Reason.Mouse:
+            if self._pan_start is not None:
+                pass
+            elif self._menu_on_release:
+                self._menu_on_release = False
+            else:
+                self._context_menu(event.pos(), event.globalPos())
+        else:
+            self._menu_under_mouse()
         event.accept()
+
+    def _menu_under_mouse(self) -> None:
+        """The Menu key: the menu of the item under the mouse (the view's centre when the
+        mouse is elsewhere)."""
+        viewport = self.viewport()
+        pos = viewport.mapFromGlobal(QCursor.pos())
+        if self._last_mouse is not None and (viewport.underMouse() or not viewport.rect().contains(pos)):
+            pos = self._last_mouse
+        if not viewport.rect().contains(pos):
+            pos = viewport.rect().center()
+        self._context_menu(pos, viewport.mapToGlobal(pos))
+
+    def _wire_at(self, view_pos: QPoint) -> WireItem | None:
+        """The wire passing within a few pixels of ``view_pos`` (its stroke, not the area its
+        curve encloses)."""
+        scene_pos = self.mapToScene(view_pos)
+        reach = WIRE_REACH / max(self.zoom(), 1e-6)
+        near = QRectF(scene_pos.x() - reach, scene_pos.y() - reach, 2 * reach, 2 * reach)
+        stroker = QPainterPathStroker()
+        stroker.setWidth(2 * reach)
+        for item in self.canvas.items(near):
+            if isinstance(item, WireItem) and stroker.createStroke(item.path()).contains(scene_pos):
+                return item
+        return None
 
     def _context_menu(self, pos: QPoint, global_pos: QPoint) -> None:
         port = self._port_at(pos)
@@ -260,6 +304,8 @@ class CanvasView(QGraphicsView):
                 if not node.isSelected():
                     self.canvas.select_nodes([node.node_id])
                 menu = context_menus.node_menu(self.canvas, node)
+            elif (wire := self._wire_at(pos)) is not None:
+                menu = context_menus.wire_menu(self.canvas, wire.wire)
             elif isinstance(under, GroupItem):
                 menu = context_menus.group_menu(self.canvas, under.group_id)
             else:
@@ -272,6 +318,10 @@ class CanvasView(QGraphicsView):
         menu.exec(global_pos)
 
     def keyPressEvent(self, event: QKeyEvent) -> None:
+        if event.key() == Qt.Key.Key_Menu:
+            self._menu_under_mouse()
+            event.accept()  # accepted: the platform sends no second, keyboard context-menu event
+            return
         if event.key() == Qt.Key.Key_Escape:
             if self._drag_wire is not None:  # Esc first drops a wire being dragged
                 self.canvas.removeItem(self._drag_wire)
