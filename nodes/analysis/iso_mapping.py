@@ -18,9 +18,13 @@ from nodes.types import LINE, SURFACE
 
 #: Above this relative area difference the node says what it may mean.
 AREA_NOTE = 1e-3
-#: Rulings unrolled per strip the user sees, as in the kernel's ``unroll_surface``: the
-#: chords then hug the surface and the area error shrinks 64-fold.
+#: Fewest rulings unrolled per strip the user sees, as in the kernel's ``unroll_surface``:
+#: the chords then hug the surface and the area error shrinks 64-fold.
 SUBDIVISIONS = 8
+#: More are sampled until both flat edges are as long as the 3D edges to this share of the
+#: surface's size (``unroll_surface``'s ``edge_tolerance``): 4 µm on a 40 m strip, so two
+#: strips that share a curve have flat edges of the same length and their seam closes.
+EDGE_TOLERANCE = 1e-7
 
 
 def _flat(points2d: np.ndarray) -> np.ndarray:
@@ -63,9 +67,11 @@ class IsoMapping(Node):
     The surface is cut into Segments strips between Segments + 1 rulings; each strip
     is split into two triangles and the triangles are laid flat one after another,
     each congruent to its 3D original, so rulings, both edges and the strips' widths
-    keep their lengths (EdgeError shows it: rounding level, ~1e-15). Between the
-    rulings you see, 7 more per strip are unrolled too so the flat edges follow the
-    curved ones closely; Development is the outline of all these triangles, edge by
+    keep their lengths (EdgeError shows it: rounding level). Between the rulings you
+    see, at least 7 more per strip are unrolled too — as many as it takes for both
+    flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size —
+    so two strips made between a shared curve have flat edges of the same length
+    and their seam closes; Development is the outline of all these triangles, edge by
     straight edge, so a sheet cut along it is exactly what was unrolled. The first
     ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
 
@@ -96,7 +102,7 @@ class IsoMapping(Node):
         Out("AreaInput", NUMBER, "Ai", "Area of the input surface, in square model units."),
         Out("AreaDevelopment", NUMBER, "Ad", "Area of the development, in square model units."),
         Out("EdgeError", NUMBER, "Ee", "Largest relative change of any edge length in the unrolling "
-            "(rounding level: ~1e-15)."),
+            "(rounding level: ~1e-15, up to ~1e-9 on the shortest edges of a finely sampled strip)."),
         Out("AreaError", NUMBER, "Ae", "(development area − input area) / input area: ~0 for a "
             "developable surface."),
         Out("Map", DEVELOPMENT, "M", "The development with its map to and from the 3D surface, for "
@@ -107,7 +113,7 @@ class IsoMapping(Node):
         s = ruled_surface(surface, "IsoMapping")
         n = segments(count)
         try:
-            development = unroll_surface(s, n, SUBDIVISIONS)
+            development = unroll_surface(s, n, SUBDIVISIONS, EDGE_TOLERANCE)
         except ValueError as exc:
             raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
         starts2d, ends2d = development.rulings2d

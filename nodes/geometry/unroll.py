@@ -848,7 +848,49 @@ def _development(
     )
 
 
-def unroll_surface(surface: Surface, segments: int, subdivisions: int = 8) -> Development:
+def _rail_lengths(rulings: FloatArray) -> FloatArray:
+    """Lengths ``(2,)`` of the two chord polylines through the rulings' starts and ends."""
+    return np.linalg.norm(np.diff(rulings, axis=0), axis=2).sum(axis=0)
+
+
+def edge_subdivisions(
+    surface: Surface, segments: int, subdivisions: int, tolerance: float
+) -> tuple[int, FloatArray, float]:
+    """About the fewest rulings per segment (at least ``subdivisions``) for which both rails'
+    chord polylines are within ``tolerance`` (relative to the strip's size) of the rails'
+    arc lengths, the sampled rulings ``(n, 2, 3)`` and that estimated relative error.
+
+    A chord polyline of a smooth rail falls short of its arc length by C/k² at k rulings
+    per segment, so the chord sums L(k₁) and L(k₂) of two samplings give the error of the
+    finer one as |L(k₂) − L(k₁)| / ((k₂/k₁)² − 1) (Richardson). Starting from
+    ``subdivisions`` and twice that, the next k is the one that law asks for (at least
+    1.5 times the last), until the estimate is within ``tolerance`` or the strip reaches
+    :data:`MAX_RULINGS` (the error returned then says how far it got).
+    """
+    longest = max(MAX_RULINGS // segments, 2 * subdivisions)
+    k1 = subdivisions
+    coarse = surface.rulings(segments * k1 + 1)
+    size = float(np.ptp(coarse.reshape(-1, 3), axis=0).max()) or 1.0
+    k2 = 2 * k1
+    while True:
+        fine = surface.rulings(segments * k2 + 1)
+        step = np.abs(_rail_lengths(fine) - _rail_lengths(coarse))
+        error = float(step.max() / ((k2 / k1) ** 2 - 1.0) / size)
+        if error * (k2 / k1) ** 2 <= tolerance:  # the coarser sampling was already enough
+            return k1, coarse, error * (k2 / k1) ** 2
+        if error <= tolerance or k2 >= longest or not np.isfinite(error):
+            return k2, fine, error
+        wanted = int(np.ceil(k2 * np.sqrt(error / tolerance) * 1.2))
+        k1, coarse, k2 = k2, fine, min(max(wanted, int(np.ceil(1.5 * k2))), longest)
+
+
+#: Most rulings :func:`unroll_surface` samples along a strip when it refines for its edges.
+MAX_RULINGS = 1 << 16
+
+
+def unroll_surface(
+    surface: Surface, segments: int, subdivisions: int = 8, edge_tolerance: float | None = None
+) -> Development:
     """Unroll a smooth ruled surface: IsoMapping's accurate path.
 
     ``segments + 1`` rulings are the ones the user sees; between each pair
@@ -857,10 +899,19 @@ def unroll_surface(surface: Surface, segments: int, subdivisions: int = 8) -> De
     ``subdivisions²`` (area error of a full cone at 100 segments: 2.9e-4 → 4.5e-6). The 3D area is the
     surface's own (exact cubature). ``Development.rulings2d`` picks the user's rulings.
 
+    With ``edge_tolerance`` (relative to the strip's size) more rulings are sampled, as
+    many per segment as :func:`edge_subdivisions` finds, until both flat edges — chord
+    polylines congruent to the 3D ones — are as long as the 3D edges to that tolerance:
+    then two strips that share a curve have flat edges of the same length (their seam
+    closes), whatever stations each strip samples the curve at.
+
     Raises ValueError("surface has no straight rulings") for a non-ruled surface.
     """
     if segments < 1 or subdivisions < 1:
         raise ValueError("segments and subdivisions must be at least 1")
-    rulings = surface.rulings(segments * subdivisions + 1)
+    if edge_tolerance is None:
+        rulings = surface.rulings(segments * subdivisions + 1)
+    else:
+        subdivisions, rulings, _ = edge_subdivisions(surface, segments, subdivisions, edge_tolerance)
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=surface.area())
     return replace(development, stride=subdivisions)
