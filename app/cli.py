@@ -213,8 +213,11 @@ def _gui(args: argparse.Namespace) -> int:
 
     if args.file is not None and args.example is not None:
         raise UsageError("give either a FILE or --example NAME, not both")
-    file = args.file or examples.path(args.example or examples.DEFAULT)
+    file = args.file or (examples.path(args.example) if args.example else None)  # none: a blank document
     if not has_display():
+        if file is None:
+            print("No display found (DISPLAY is not set), and no FILE to solve headless.")
+            return 2
         print(f"No display found (DISPLAY is not set): solving {file} headless instead.")
         run = run_file(file)
         print(summary(run))
@@ -225,7 +228,7 @@ def _gui(args: argparse.Namespace) -> int:
     if reason is not None:
         print(f"torsal: the desktop app cannot start: {reason}.\n"
               f"        Install it with: {INSTALL}\n"
-              f"        (or solve the graph headless: torsal run {file})", file=sys.stderr)
+              f"        (or solve the graph headless: torsal run {file or 'FILE.graph'})", file=sys.stderr)
         return 2
     from app.gui.main import launch
 

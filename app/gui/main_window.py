@@ -214,6 +214,8 @@ class MainWindow(QMainWindow):
             return False
         self.doc.new()
         self.autosaver.discard()
+        self.log.clear_messages()
+        self.view.resetTransform()
         return True
 
     def open_dialog(self) -> bool:
@@ -322,6 +324,16 @@ class MainWindow(QMainWindow):
             self._fill_tables()
             self._tables_timer.start()
 
+    def _fit_log_dock(self) -> None:
+        """Grow the Messages dock until it shows every message (up to ten rows; never shrunk,
+        so a dock the user made taller stays so)."""
+        if self.log_dock.isFloating() or not self.log_dock.isVisible():
+            return
+        wanted = self.log.wanted_height()
+        if self.log.viewport().height() < wanted - self.log.header().height() - 6:
+            title = self.log_dock.height() - self.log.height()
+            self.resizeDocks([self.log_dock], [wanted + title], Qt.Orientation.Vertical)
+
     def _tables_due(self) -> None:
         if self._tables_stale:
             self._fill_tables()
@@ -331,6 +343,7 @@ class MainWindow(QMainWindow):
         outcome = self.doc.last_outcome
         if outcome is not None:
             self.log.show_solve(outcome, self.doc.graph)
+            self._fit_log_dock()
             # a dock behind another's tab counts as visible, but shows nothing
             self._profiler_stale = not self.profiler.isVisible() or self.profiler.visibleRegion().isEmpty()
             if not self._profiler_stale:

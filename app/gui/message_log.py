@@ -13,6 +13,7 @@ from app.gui.solve_controller import SolveOutcome
 from engine.graph import Graph
 
 APP_MESSAGES_KEPT = 40
+ROWS_SHOWN_AT_MOST = 10  # the dock grows to show this many rows, then scrolls
 
 
 class MessageLog(QTreeWidget):
@@ -27,6 +28,8 @@ class MessageLog(QTreeWidget):
         self.setColumnWidth(0, 70)
         self.setColumnWidth(1, 160)
         self.setAlternatingRowColors(True)
+        self.setUniformRowHeights(True)
+        self.setWordWrap(False)
         self.app_messages: list[tuple[str, str, str]] = []
         self.node_rows: list[tuple[str, str, str, str]] = []
         self.itemActivated.connect(self._activated)
@@ -41,6 +44,18 @@ class MessageLog(QTreeWidget):
                 rows.append((message.level.name.lower(), node_id, record.title, message.text))
         self.node_rows = rows
         self._fill()
+
+    def clear_messages(self) -> None:
+        """Forget every row (File ▸ New: the last document's messages do not belong to the new one)."""
+        self.app_messages.clear()
+        self.node_rows = []
+        self._fill()
+
+    def wanted_height(self) -> int:
+        """The height that shows every row (at most :data:`ROWS_SHOWN_AT_MOST`) under the header."""
+        rows = min(max(self.topLevelItemCount(), 1), ROWS_SHOWN_AT_MOST)
+        row_h = self.sizeHintForRow(0) if self.topLevelItemCount() else self.fontMetrics().height() + 6
+        return self.header().sizeHint().height() + rows * row_h + 2 * self.frameWidth() + 4
 
     def add(self, text: str, level: str = "info") -> None:
         self.app_messages.append((time.strftime("%H:%M:%S"), level, text))
@@ -57,9 +72,10 @@ class MessageLog(QTreeWidget):
             item.setToolTip(2, text)
             self.addTopLevelItem(item)
         for stamp, level, text in reversed(self.app_messages):
-            item = QTreeWidgetItem([level, stamp, text])
+            item = QTreeWidgetItem([level, "", text])  # the app's own: no node; the time in the tip
             item.setForeground(0, QBrush(theme.MESSAGE_COLOURS.get(level, theme.NODE_TEXT)))
-            item.setToolTip(2, text)
+            item.setToolTip(0, stamp)
+            item.setToolTip(2, f"{stamp}  {text}")
             self.addTopLevelItem(item)
 
     def _activated(self, item: QTreeWidgetItem) -> None:

@@ -1,0 +1,45 @@
+"""`torsal gui` with no file opens a blank, untitled document; File ▸ New starts afresh."""
+
+from __future__ import annotations
+
+import app.gui.main
+from app.cli import main
+from tests.gui.fixtures_gui import EXAMPLES, wait_solved
+
+
+def test_torsal_gui_with_no_file_launches_on_no_file(monkeypatch):
+    launched = []
+    monkeypatch.setattr(app.gui.main, "launch", lambda path=None: launched.append(path) or 0)
+    monkeypatch.setenv("DISPLAY", ":99")
+    assert main(["gui"]) == 0
+    assert launched == [None]
+
+
+def test_a_window_started_on_no_file_is_untitled_and_its_canvas_empty(window):
+    assert window.windowTitle().startswith("Untitled")
+    assert window.scene.nodes == {} and window.scene.wires == {} and window.scene.groups == {}
+    assert window.doc.path is None
+
+
+def test_the_makefile_runs_the_app_on_the_flagship_explicitly():
+    text = (EXAMPLES.parent.parent / "Makefile").read_text(encoding="utf-8")
+    assert "EXAMPLE ?= resources/examples/kaohsiung-stadium.graph" in text
+    assert "torsal gui $(EXAMPLE)" in text
+
+
+def test_file_new_clears_the_message_log(qtbot, window):
+    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
+    wait_solved(qtbot, window)
+    assert window.log.topLevelItemCount() > 0  # "Opened …" at least
+    window.doc.undo_stack.setClean()
+    assert window.new_document()
+    wait_solved(qtbot, window)
+    texts = [window.log.topLevelItem(i).text(2) for i in range(window.log.topLevelItemCount())]
+    assert not any("Opened" in t for t in texts)
+    assert window.windowTitle().startswith("Untitled") and window.scene.nodes == {}
+
+
+def test_app_messages_leave_the_node_column_empty(window):
+    window.report("Saved somewhere")
+    row = window.log.topLevelItem(0)
+    assert (row.text(0), row.text(1), row.text(2)) == ("info", "", "Saved somewhere")
