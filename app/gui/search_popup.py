@@ -1,17 +1,19 @@
 """The search popup: type a few letters, press Enter, the node is placed.
 
 Opened by a double-click on empty canvas, or by dropping a wire on empty canvas (then
-only nodes that can take, or give, the wire's type are listed).
+only nodes that can take, or give, the wire's type are listed). A typed number (``6``) or
+range (``0<6<10``) lists a slider set to it first. The popup is kept inside the window.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from PySide6.QtCore import QEvent, QObject, QPoint, QSize, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, QPoint, QRect, QSize, Qt, Signal
+from PySide6.QtGui import QGuiApplication
 from PySide6.QtWidgets import QFrame, QLabel, QLineEdit, QListWidget, QListWidgetItem, QVBoxLayout, QWidget
 
-from app.gui.fuzzy import Entry, build_entries, search
+from app.gui.fuzzy import Entry, build_entries, search, slider_settings
 from app.gui.icons import node_icon
 from engine.registry import Registry
 
@@ -19,7 +21,7 @@ from engine.registry import Registry
 class SearchPopup(QFrame):
     """A frameless popup with a query line and the matching node types."""
 
-    chosen = Signal(str)  # type_id
+    chosen = Signal(str, object)  # type_id, the settings to give it (None: its defaults)
     dismissed = Signal()
 
     def __init__(self, registry: Registry, parent: QWidget | None = None) -> None:
@@ -65,14 +67,42 @@ class SearchPopup(QFrame):
         self.note.setVisible(bool(note))
         self.query.clear()
         self.refresh()
-        self.move(global_pos)
+        self.move(self.inside_window(global_pos))
         self.show()
         self.raise_()
         self.activateWindow()
         self.query.setFocus()
 
+    def inside_window(self, global_pos: QPoint) -> QPoint:
+        """Where to put the popup's top-left so all of it lies inside the main window (and the
+        screen): moved left and up from ``global_pos`` as far as needed."""
+        parent = self.parentWidget()
+        if parent is not None:
+            window = parent.window()
+            bounds = QRect(window.mapToGlobal(QPoint(0, 0)), window.size())
+        else:
+            bounds = QRect()
+        screen = QGuiApplication.screenAt(global_pos) or QGuiApplication.primaryScreen()
+        if screen is not None:
+            bounds = bounds.intersected(screen.availableGeometry()) if bounds.isValid() else (
+                screen.availableGeometry()
+            )
+        if not bounds.isValid():
+            return global_pos
+        x = max(bounds.left(), min(global_pos.x(), bounds.right() + 1 - self.width()))
+        y = max(bounds.top(), min(global_pos.y(), bounds.bottom() + 1 - self.height()))
+        return QPoint(x, y)
+
     def refresh(self) -> None:
         self.list.clear()
+        slider = slider_settings(self.query.text())
+        if slider is not None and self._accepts("params.NumberSlider"):
+            text = f"Number slider = {self.query.text().strip()}   ·  {slider['min']:g} to {slider['max']:g}"
+            item = QListWidgetItem(text)
+            item.setToolTip("A NumberSlider set to the typed value (type lo<value<hi to set its range)")
+            item.setData(Qt.ItemDataRole.UserRole, "params.NumberSlider")
+            item.setData(Qt.ItemDataRole.UserRole + 1, slider)
+            self.list.addItem(item)
         for entry in search(self.entries, self.query.text(), self.accept):
             first_line = entry.description.splitlines()[0] if entry.description else ""
             item = QListWidgetItem(node_icon(entry.cls, 20), f"{entry.name}   ·  {entry.palette}")
@@ -88,8 +118,15 @@ class SearchPopup(QFrame):
             return
         self._chose = True
         type_id = item.data(Qt.ItemDataRole.UserRole)
+        settings = item.data(Qt.ItemDataRole.UserRole + 1)
         self.hide()
-        self.chosen.emit(type_id)
+        self.chosen.emit(type_id, settings)
+
+    def _accepts(self, type_id: str) -> bool:
+        if self.accept is None:
+            return True
+        entry = next((e for e in self.entries if e.type_id == type_id), None)
+        return entry is not None and bool(self.accept(entry))
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:
         if watched is self.query and event.type() == QEvent.Type.KeyPress:

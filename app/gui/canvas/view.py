@@ -381,19 +381,19 @@ class CanvasView(QGraphicsView):
         self._place_at = scene_pos
         self.popup.open_at(global_pos, accept, note)
 
-    def _place_chosen(self, type_id: str) -> None:
+    def _place_chosen(self, type_id: str, settings: dict | None = None) -> None:
         pending, self._pending_wire = self._pending_wire, None
         editor = self.canvas.editor
         doc = self.canvas.doc
         position = (self._place_at.x(), self._place_at.y())
         if pending is None:
-            node_id = editor.add_node(type_id, position)
+            node_id = editor.add_node(type_id, position, settings)
         else:
             doc.undo_stack.beginMacro("Add and connect")
             if pending.is_output:
-                node_id = editor.add_node(type_id, position)
+                node_id = editor.add_node(type_id, position, settings)
             else:  # the new node feeds the input: put it to the left of the drop point
-                node_id = editor.add_node(type_id, (position[0] - 160, position[1]))
+                node_id = editor.add_node(type_id, (position[0] - 160, position[1]), settings)
             if node_id is not None:
                 self._connect_new(pending, node_id)
             doc.undo_stack.endMacro()
