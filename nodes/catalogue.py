@@ -44,6 +44,7 @@ MODULES: tuple[str, ...] = (
     "nodes.developable.tangent",
     "nodes.developable.parametric_ruled",
     "nodes.developable.paper_strip",
+    "nodes.developable.rationalise",
     "nodes.patching.staggered",
     "nodes.patching.surface_patching",
     "nodes.io.rhino",

@@ -1,0 +1,143 @@
+"""developable.Rationalise: a freeform design as developable strips within a tolerance."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from engine.node import LIST, In, Node, NodeError, Out
+from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
+from nodes.curves.convert import sentence
+from nodes.developable.input_checks import surface_input
+from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.geometry.developable.rationalise import rationalise
+from nodes.types import CURVE, LINE, SURFACE
+
+#: A ruling counts as torsal (Valid) when its recomputed warp is within this, rad.
+WARP_TOLERANCE = 1e-7
+
+#: The most strips one solve may make.
+STRIP_LIMIT = 256
+
+
+def _positive(name: str, value: Any) -> float:
+    if value is None:
+        raise NodeError(f"{name} is empty: give the largest distance from the design, in model units")
+    x = float(value)
+    if not (np.isfinite(x) and x > 0.0):
+        raise NodeError(f"{name} must be a positive distance in model units, not {x:g}")
+    return x
+
+
+def _count(value: Any) -> int:
+    if value is None:
+        raise NodeError("MaxStrips is empty: give the largest number of strips, such as 40")
+    n = int(value)
+    if not 1 <= n <= STRIP_LIMIT:
+        raise NodeError(f"MaxStrips is {n}: give a whole number from 1 to {STRIP_LIMIT}")
+    return n
+
+
+def _direction(value: Any) -> np.ndarray | None:
+    if value is None:
+        return None
+    d = np.asarray(value, dtype=float).ravel()
+    if d.shape != (3,) or not np.isfinite(d).all() or not np.linalg.norm(d) > 0.0:
+        raise NodeError("Direction must be a non-zero vector along which the strips should run")
+    return d
+
+
+class Rationalise(Node):
+    """Cover a freeform design with developable strips, each within Tolerance of it.
+
+    The strips run side by side across the design. Each is a developable sheet between
+    two boundary curves lying on the design, with straight torsal rulings from one to
+    the other (flat triangles only where no torsal ruling exists), so it bends from a
+    flat sheet without stretching. Neighbouring strips share their boundary curve
+    exactly, so they meet without gaps or steps.
+
+    The rulings run where the design bends least and the boundaries across them: the
+    boundaries are the design's parameter lines of the family the node picks from the
+    surface's normal curvature, or the family running most nearly along Direction when
+    it is given. Starting from one edge, each strip is made as wide as the tolerance
+    allows, measured by the largest distance of a dense grid of its points from the
+    design. When more than MaxStrips would be needed, the node makes MaxStrips strips
+    (the worst split repeatedly) and warns with the deviation reached.
+
+    An already developable design, such as a cylinder patch, comes back as one strip
+    or a few. A design closed across the strips (a full tube around) must be cut open
+    first. Mesh surfaces have no parameter lines and are refused.
+    """
+
+    type_id = "developable.Rationalise"
+    inputs = (
+        In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),
+        In("Tolerance", NUMBER, "T", "Largest distance of any strip from the design, model units.",
+           default=0.02),
+        In("MaxStrips", INTEGER, "M", "Largest number of strips to make.", default=40),
+        In("Direction", VECTOR, "D", "Optional: a vector the strips (their boundaries) should run "
+           "along; without it the node chooses from the surface's curvature.", optional=True),
+        In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24),
+    )
+    outputs = (
+        Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
+        Out("Boundaries", CURVE, "B", "The boundary curves on the design: strip i lies between "
+            "boundaries i and i + 1, which it shares exactly with its neighbours.", access=LIST),
+        Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
+            "rulings and the boundary curves' tangents.", access=LIST),
+        Out("Deviation", NUMBER, "E", "Largest distance of each strip from the design.", access=LIST),
+        Out("Valid", BOOLEAN, "V", f"Per ruling, as Rulings: the recomputed warp is a number within "
+            f"{WARP_TOLERANCE:g} rad.", access=LIST),
+        Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
+            "triangles that close a strip where no torsal ruling exists.", access=LIST),
+    )
+
+    def solve(
+        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, segments: Any
+    ) -> tuple[
+        list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str]
+    ]:
+        design = surface_input("Surface", surface)
+        tol = _positive("Tolerance", tolerance)
+        count = _count(max_strips)
+        guide = _direction(direction)
+        n = int(segments) if segments is not None else 24
+        if not 1 <= n <= 1000:
+            raise NodeError(f"Segments is {n}: give a whole number from 1 to 1000")
+        try:
+            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=WARP_TOLERANCE)
+        except ValueError as exc:
+            raise NodeError(f"Surface: {sentence(exc)}") from None
+        rulings: list[Any] = []
+        warp: list[float] = []
+        valid: list[bool] = []
+        kinds: list[str] = []
+        fans = 0
+        for strip in result.strips:
+            lines = strip_outputs(strip.result.starts, strip.result.ends, warp=strip.warp)
+            rulings.extend(lines.rulings)
+            w = strip.warp
+            warp.extend(w.tolist())
+            ok = np.isfinite(w) & (w <= WARP_TOLERANCE)
+            valid.extend(ok.tolist())
+            fans += int(np.count_nonzero(strip.result.fan))
+            kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
+        deviation = [s.deviation for s in result.strips]
+        worst = max(deviation)
+        text = (f"{len(result.strips)} strips, worst deviation {worst:.4g} (tolerance {tol:g}); "
+                f"boundaries along {result.family}")
+        if fans:
+            text += f"; {fans} rulings in flat fans"
+        if result.within:
+            self.remark(text)
+        else:
+            self.warn(f"MaxStrips {count} cannot meet Tolerance {tol:g}: {text}; raise MaxStrips or "
+                      "the tolerance")
+        bad = int(np.count_nonzero(~np.asarray(valid)))
+        if bad:
+            self.warn(f"{bad} of {len(valid)} rulings have a recomputed warp that is undefined or above "
+                      f"{WARP_TOLERANCE:g} rad (Valid = false)")
+        strips = [s.surface for s in result.strips]
+        return strips, list(result.boundaries), rulings, warp, deviation, valid, kinds

@@ -1,0 +1,219 @@
+"""Rationalising a freeform design into developable strips (developable.Rationalise).
+
+Method (a first version)
+------------------------
+1. Direction. A strip's rulings are straight, so a ruling deviates least from the
+   design where the design bends least along it: the rulings should run along the
+   direction of least normal curvature and the strips' boundary curves across it.
+   The boundaries are taken as isocurves of the design: of the two parameter
+   families, the one whose *cross* direction has the smaller mean absolute normal
+   curvature (sampled on a grid) becomes the boundaries. A guide vector instead picks
+   the family whose tangents run most nearly along it (the strips follow the guide).
+2. Strips. Between two neighbouring boundaries the strip is RulingDevelopable's
+   (:func:`~nodes.geometry.developable.ruling_developable`): certified torsal rulings,
+   flat fans where none exist, and its Surface is
+   :func:`~nodes.geometry.curve_rail.ruled_between`, whose edges run on the boundary
+   curves themselves — so two neighbours share their boundary exactly.
+3. Placement. Marching from one edge of the design, each next boundary is placed so
+   that the strip is as wide as the tolerance allows: a few trial strips, the width
+   guessed from the square law (a straight ruling's deviation grows as the width²) and
+   kept inside the bracket of widths found too wide and within. A strip's deviation is
+   the largest distance of a dense grid of its points from the design, by the design's
+   own closest-point search. When more than ``max_strips`` would be needed, the design
+   is instead split into ``max_strips`` strips, the worst halved each time, and the
+   result reports the deviation reached.
+
+What this version does not do (yet): boundaries are isocurves, not curves traced along
+principal directions or optimised (the issue's least-squares route), so on a design
+whose parameter lines are far from its curvature lines the strips are narrower than they
+need be.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from nodes.geometry.curve_rail import ruled_between
+from nodes.geometry.developable.ruling import RulingResult, ruling_developable
+from nodes.geometry.developable.warp import curve_warp
+from nodes.geometry.ruled import RuledSurface
+from nodes.geometry.surface_base import IsoCurve, Surface, uv_grid
+
+FloatArray = np.ndarray
+
+#: Dense samples per strip for its deviation: along the boundaries x across the strip.
+DEVIATION_SAMPLES = (41, 7)
+
+
+@dataclass
+class Strip:
+    """One strip between the boundaries at parameters ``lo`` < ``hi`` of the design."""
+
+    lo: float
+    hi: float
+    result: RulingResult
+    surface: RuledSurface
+    warp: FloatArray  #: per ruling, recomputed from the curves' exact tangents (NaN undefined)
+    deviation: float  #: largest distance of the strip's dense samples from the design
+
+
+@dataclass
+class Rationalisation:
+    """The strips in order across the design, their boundary curves and how far they are."""
+
+    family: str  #: "u": the boundaries are isocurves running along u (fixed v), else along v
+    strips: list[Strip]
+    boundaries: list[IsoCurve]  #: len(strips) + 1 curves; strip i lies between i and i + 1
+    tolerance: float
+
+    @property
+    def deviation(self) -> float:
+        return max(strip.deviation for strip in self.strips)
+
+    @property
+    def within(self) -> bool:
+        return self.deviation <= self.tolerance
+
+
+def boundary_family(surface: Surface, direction: ArrayLike | None = None, samples: int = 9) -> str:
+    """Which isocurves bound the strips: "u" (curves along u at fixed v) or "v".
+
+    Without ``direction``: the family across which the design bends least, so the
+    rulings (running across the boundaries) lie along the flatter direction. With a
+    guide vector: the family whose unit tangents are most nearly parallel to it.
+    """
+    u, v = uv_grid(samples, samples)
+    _, su, sv, suu, _, svv = surface.derivatives(u, v, 2)
+    if direction is not None:
+        d = np.asarray(direction, dtype=float)
+        d = d / np.linalg.norm(d)
+
+        def along(t: FloatArray) -> float:
+            return float(np.mean(np.abs(t @ d) / np.maximum(np.linalg.norm(t, axis=1), 1e-300)))
+
+        return "u" if along(su) >= along(sv) else "v"
+    n = np.cross(su, sv)
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+
+    def bend(second: FloatArray, first: FloatArray) -> float:
+        k = np.einsum("ij,ij->i", second, n) / np.maximum(np.einsum("ij,ij->i", first, first), 1e-300)
+        return float(np.mean(np.abs(k)))
+
+    # rulings along v (across u-boundaries) bend by the normal curvature along Sv
+    return "u" if bend(svv, sv) <= bend(suu, su) else "v"
+
+
+def strip_deviation(
+    design: Surface, strip: RuledSurface, samples: tuple[int, int] = DEVIATION_SAMPLES
+) -> float:
+    """Largest distance from a grid of points of ``strip`` to ``design`` (closest points)."""
+    nu, nv = samples
+    u, v = uv_grid(nu, nv)
+    points = strip.point_at(u, v)
+    return float(design.closest_point(points).distances.max())
+
+
+def _strip(design: Surface, family: str, lo: float, hi: float, segments: int, warp_tolerance: float) -> Strip:
+    a, b = IsoCurve(design, family, lo), IsoCurve(design, family, hi)
+    result = ruling_developable(a, b, segments, warp_tolerance)
+    surface = ruled_between(a, result.s, b, result.t)
+    warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
+    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), strip_deviation(design, surface))
+
+
+#: Strips are widened to about this share of the tolerance (deviation grows as width²).
+AIM = 0.9
+#: Trial strips per accepted strip while marching.
+TRIALS = 6
+
+
+def _march(
+    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float
+) -> list[Strip] | None:
+    """Strips from one edge of the design to the other, each as wide as the tolerance
+    allows: each next boundary is placed by a few trials (a secant on the square law
+    deviation ∝ width², kept inside the bracket of widths found too wide and within).
+    None when more than ``max_strips`` would be needed."""
+    strips: list[Strip] = []
+    lo, width = 0.0, 1.0
+    while lo < 1.0:
+        if len(strips) >= max_strips:
+            return None
+        good: Strip | None = None
+        bad = 1.0 - lo + 1.0  # the smallest width known too wide (none yet)
+        w = min(width, 1.0 - lo)
+        for trial in range(TRIALS * 4):
+            strip = _strip(design, family, lo, min(1.0, lo + w), segments, warp_tolerance)
+            if strip.deviation <= tolerance:
+                good = strip if good is None or strip.hi > good.hi else good
+                if strip.hi >= 1.0:
+                    break
+            else:
+                bad = min(bad, w)
+            if good is not None and trial >= TRIALS - 1:
+                break
+            ratio = np.sqrt(AIM * tolerance / max(strip.deviation, 1e-300))
+            w_new = w * float(np.clip(ratio, 0.25, 2.0))
+            floor = (good.hi - lo) if good is not None else 0.0
+            if not floor < w_new < bad:
+                w_new = 0.5 * (floor + min(bad, 1.0 - lo))
+            w = min(w_new, 1.0 - lo)
+            if w <= 1e-6:
+                return None
+        if good is None:
+            return None
+        strips.append(good)
+        width = good.hi - lo
+        lo = good.hi
+    return strips
+
+
+def _bisect(
+    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float
+) -> list[Strip]:
+    """Up to ``max_strips`` strips, the worst split in two at its middle until all are
+    within the tolerance or the count is reached."""
+    strips = [_strip(design, family, 0.0, 1.0, segments, warp_tolerance)]
+    while len(strips) < max_strips:
+        worst = int(np.argmax([s.deviation for s in strips]))
+        if strips[worst].deviation <= tolerance:
+            break
+        old = strips[worst]
+        mid = 0.5 * (old.lo + old.hi)
+        strips[worst : worst + 1] = [
+            _strip(design, family, old.lo, mid, segments, warp_tolerance),
+            _strip(design, family, mid, old.hi, segments, warp_tolerance),
+        ]
+    return strips
+
+
+def rationalise(
+    design: Surface,
+    tolerance: float,
+    max_strips: int = 64,
+    direction: ArrayLike | None = None,
+    segments: int = 24,
+    warp_tolerance: float = 1e-7,
+) -> Rationalisation:
+    """Developable strips within ``tolerance`` of ``design`` (see the module).
+
+    Raises ``ValueError`` for a design closed across the boundaries (cut it first).
+    """
+    family = boundary_family(design, direction)
+    closed_across = design.closed_v if family == "u" else design.closed_u
+    if closed_across:
+        raise ValueError(
+            "the surface is closed across the strips' direction: cut it open (e.g. split it at its seam "
+            "into two patches) and rationalise each patch"
+        )
+    if not (tolerance > 0.0 and np.isfinite(tolerance)):
+        raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
+    strips = _march(design, family, tolerance, int(max_strips), segments, warp_tolerance)
+    if strips is None:  # the tolerance needs more than max_strips: the best split of that many
+        strips = _bisect(design, family, tolerance, int(max_strips), segments, warp_tolerance)
+    params = [strips[0].lo] + [s.hi for s in strips]
+    boundaries = [IsoCurve(design, family, p) for p in params]
+    return Rationalisation(family, strips, boundaries, float(tolerance))

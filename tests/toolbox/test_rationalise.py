@@ -1,0 +1,213 @@
+"""developable.Rationalise on design surfaces about 10 m across at a 2 cm tolerance.
+
+Every check is recomputed here from closed forms: the designs are height fields
+z = f(x, y) given with their exact derivatives, a strip's distance from the design is
+found by a Newton iteration on the height field written in this file (from the nearest
+of a dense sample grid, cKDTree), warps by the triple product with the design's exact
+tangents, areas by triangles of dense samples.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+import pytest
+import trimesh
+from scipy.integrate import dblquad
+from scipy.spatial import cKDTree
+
+from engine.values import Vector
+from nodes.developable.rationalise import Rationalise
+from nodes.geometry.mesh_surface import MeshSurface
+from nodes.geometry.parametric_surface import ParametricSurface
+from tests.nodes.helpers import out, run, texts, tree
+
+TOL = 0.02
+SIZE = 10.0
+HALF = SIZE / 2
+
+
+@dataclass(frozen=True)
+class HeightField:
+    """z = f(x, y) on [-5, 5]² with its first and second derivatives."""
+
+    f: Callable
+    fx: Callable
+    fy: Callable
+    fxx: Callable
+    fxy: Callable
+    fyy: Callable
+
+    def surface(self) -> ParametricSurface:
+        square = (-HALF, HALF)
+        return ParametricSurface(lambda x, y: np.column_stack([x, y, self.f(x, y)]), square, square)
+
+
+def _zero(x, y):
+    return np.zeros_like(x)
+
+
+SADDLE = HeightField(lambda x, y: (x**2 - y**2) / 20, lambda x, y: x / 10, lambda x, y: -y / 10,
+                     lambda x, y: np.full_like(x, 0.1), _zero, lambda x, y: np.full_like(x, -0.1))
+DOME = HeightField(lambda x, y: 3 - (x**2 + y**2) / 20, lambda x, y: -x / 10, lambda x, y: -y / 10,
+                   lambda x, y: np.full_like(x, -0.1), _zero, lambda x, y: np.full_like(x, -0.1))
+WAVE = HeightField(lambda x, y: 0.6 * np.sin(0.9 * x) + 0.3 * np.sin(0.5 * y),
+                   lambda x, y: 0.54 * np.cos(0.9 * x), lambda x, y: 0.15 * np.cos(0.5 * y),
+                   lambda x, y: -0.486 * np.sin(0.9 * x), _zero, lambda x, y: -0.075 * np.sin(0.5 * y))
+DESIGNS = {"saddle": SADDLE, "dome": DOME, "wave": WAVE}
+
+
+def distance_to(field: HeightField, points: np.ndarray) -> np.ndarray:
+    """Distance from each point to the height field over [-5, 5]² (Newton on ½|S − P|²,
+    clamped to the square, from the nearest of 201² samples)."""
+    g = np.linspace(-HALF, HALF, 201)
+    gx, gy = (a.ravel() for a in np.meshgrid(g, g))
+    samples = np.column_stack([gx, gy, field.f(gx, gy)])
+    _, index = cKDTree(samples).query(points)
+    x, y = gx[index].copy(), gy[index].copy()
+    for _ in range(30):
+        d = np.column_stack([x, y, field.f(x, y)]) - points
+        fx, fy = field.fx(x, y), field.fy(x, y)
+        gradient = np.column_stack([d[:, 0] + d[:, 2] * fx, d[:, 1] + d[:, 2] * fy])
+        h11 = 1 + fx * fx + d[:, 2] * field.fxx(x, y)
+        h12 = fx * fy + d[:, 2] * field.fxy(x, y)
+        h22 = 1 + fy * fy + d[:, 2] * field.fyy(x, y)
+        det = h11 * h22 - h12 * h12
+        x = np.clip(x - (h22 * gradient[:, 0] - h12 * gradient[:, 1]) / det, -HALF, HALF)
+        y = np.clip(y - (h11 * gradient[:, 1] - h12 * gradient[:, 0]) / det, -HALF, HALF)
+    return np.linalg.norm(np.column_stack([x, y, field.f(x, y)]) - points, axis=1)
+
+
+@cache
+def solved(name: str):
+    result = run(Rationalise(), Surface=tree({(0,): [DESIGNS[name].surface()]}), Tolerance=TOL, MaxStrips=40)
+    assert result.state == "ok", texts(result)
+    return result
+
+
+def items(result, port: str) -> list:
+    return out(result, port)[(0,)]
+
+
+def grid(strip, nu: int = 121, nv: int = 21) -> np.ndarray:
+    u, v = np.meshgrid(np.linspace(0, 1, nu), np.linspace(0, 1, nv), indexing="ij")
+    return strip.point_at(u.ravel(), v.ravel()).reshape(nu, nv, 3)
+
+
+def grid_area(points: np.ndarray) -> float:
+    a, b, c, d = points[:-1, :-1], points[1:, :-1], points[1:, 1:], points[:-1, 1:]
+    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1)
+                        + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_every_strip_lies_within_the_tolerance_of_the_design(name):
+    strips = items(solved(name), "Strips")
+    worst = max(distance_to(DESIGNS[name], grid(s).reshape(-1, 3)).max() for s in strips)
+    assert worst <= TOL * 1.001
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_every_torsal_ruling_has_warp_below_1e_7_by_the_triple_product(name):
+    field = DESIGNS[name]
+    rulings = items(solved(name), "Rulings")
+    kinds = items(solved(name), "Kind")
+    a = np.array([r.start for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
+    b = np.array([r.end for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
+    assert len(a) > 10
+    # the boundaries are parameter lines: along x (y fixed) or along y (x fixed)
+    along_x = bool(np.ptp(items(solved(name), "Boundaries")[0].point_at(np.linspace(0, 1, 9))[:, 1]) < 1e-9)
+
+    def tangent(p):
+        if along_x:
+            return np.column_stack([np.ones(len(p)), np.zeros(len(p)), field.fx(p[:, 0], p[:, 1])])
+        return np.column_stack([np.zeros(len(p)), np.ones(len(p)), field.fy(p[:, 0], p[:, 1])])
+
+    n1, n2 = np.cross(b - a, tangent(a)), np.cross(b - a, tangent(b))
+    warp = np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2))
+    assert warp.max() < 1e-7
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_fan_rulings_share_an_apex_with_a_neighbour(name):
+    """A flat fan's rulings pass through one point of a boundary (a flat triangle)."""
+    rulings, kinds = items(solved(name), "Rulings"), items(solved(name), "Kind")
+    for i, kind in enumerate(kinds):
+        if kind == "fan":
+            here = np.array([rulings[i].start, rulings[i].end], dtype=float)
+            near = [np.array([rulings[j].start, rulings[j].end], dtype=float)
+                    for j in (i - 1, i + 1) if 0 <= j < len(rulings)]
+            assert any(np.abs(here - n).max(axis=1).min() < 1e-12 * SIZE for n in near)
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_neighbouring_strips_share_their_boundary(name):
+    """Both edges along a boundary run on that boundary curve of the design, end to end."""
+    field = DESIGNS[name]
+    strips = items(solved(name), "Strips")
+    assert len(strips) >= 2
+    for lower, upper in itertools.pairwise(strips):
+        top, bottom = grid(lower)[:, -1], grid(upper)[:, 0]
+        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-9 * SIZE
+        for edge in (top, bottom):
+            assert np.abs(edge[:, 2] - field.f(edge[:, 0], edge[:, 1])).max() <= 1e-9 * SIZE
+        fixed = 1 if np.ptp(top[:, 1]) < np.ptp(top[:, 0]) else 0
+        assert np.abs(np.concatenate([top, bottom])[:, fixed] - top[0, fixed]).max() <= 1e-9 * SIZE
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_summed_strip_area_is_within_one_percent_of_the_designs(name):
+    field = DESIGNS[name]
+    design, _ = dblquad(lambda y, x: np.sqrt(1 + field.fx(x, y) ** 2 + field.fy(x, y) ** 2),
+                        -HALF, HALF, -HALF, HALF, epsabs=1e-9)
+    strips = sum(grid_area(grid(s, 241, 21)) for s in items(solved(name), "Strips"))
+    assert abs(strips - design) <= 0.01 * design
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_every_ruling_is_valid_and_the_remark_gives_the_count_and_deviation(name):
+    result = solved(name)
+    assert all(items(result, "Valid"))
+    count = len(items(result, "Strips"))
+    assert any(f"{count} strips" in t and "worst deviation" in t for t in texts(result))
+    assert max(items(result, "Deviation")) <= TOL
+
+
+def test_a_cylinder_patch_comes_back_as_one_strip_on_the_cylinder():
+    radius = 6.0
+    cylinder = ParametricSurface(lambda a, y: np.column_stack([radius * np.sin(a), y, radius * np.cos(a)]),
+                                 (-0.8, 0.8), (-HALF, HALF))
+    result = run(Rationalise(), Surface=tree({(0,): [cylinder]}), Tolerance=TOL, MaxStrips=40)
+    strips = items(result, "Strips")
+    assert len(strips) == 1
+    p = grid(strips[0]).reshape(-1, 3)
+    assert np.abs(np.hypot(p[:, 0], p[:, 2]) - radius).max() <= 1e-9 * SIZE
+
+
+def test_too_few_strips_warn_with_the_deviation_reached():
+    result = run(Rationalise(), Surface=tree({(0,): [DOME.surface()]}), Tolerance=TOL, MaxStrips=3)
+    assert len(items(result, "Strips")) == 3
+    reached = max(items(result, "Deviation"))
+    assert reached > TOL
+    warning = [t for t in texts(result) if "MaxStrips 3 cannot meet" in t]
+    assert warning and f"{reached:.4g}" in warning[0]
+
+
+def test_a_surface_closed_across_the_strips_asks_to_be_cut():
+    tube = ParametricSurface(lambda a, y: np.column_stack([3 * np.cos(a), 3 * np.sin(a), y]),
+                             (0, 2 * np.pi), (0, 10))
+    result = run(Rationalise(), Surface=tree({(0,): [tube]}), Tolerance=TOL, MaxStrips=40,
+                 Direction=Vector(0.0, 0.0, 1.0))
+    assert result.state == "error"
+    assert any("cut it open" in t for t in texts(result))
+
+
+def test_a_mesh_surface_is_refused_naming_the_input():
+    mesh = MeshSurface(trimesh.creation.box())
+    result = run(Rationalise(), Surface=tree({(0,): [mesh]}), Tolerance=TOL)
+    assert result.state == "error"
+    assert any("Surface" in t and "mesh" in t.lower() for t in texts(result))
