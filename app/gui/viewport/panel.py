@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWidget
@@ -37,6 +38,7 @@ class ViewportPanel(QWidget):
         self.frames = 0
         self.render_seconds = 0.0
         self._fit_pending = True
+        self._auto_camera: np.ndarray | None = None  # the camera as the app last framed it
         self._hint_shown = False
         self._grid_bounds: tuple[float, ...] | None = None
         self._selected: set[str] = set()
@@ -150,6 +152,7 @@ class ViewportPanel(QWidget):
         if self.preview is not None and self.preview.update(
             self.doc.graph, outcome.results, outcome.prepared
         ):
+            self._frame_or_follow()
             self.schedule_render()
 
     def _prepare(self, solver: Solver, report: SolveReport) -> object:
@@ -165,12 +168,61 @@ class ViewportPanel(QWidget):
         changed = self.preview.update(self.doc.graph, self.doc.results, prepared)
         self.preview.set_selected(self._selected & set(self.preview.nodes))
         has_geometry = bool(self.preview.actor_names())
-        if self._fit_pending and self.doc.results:  # a newly opened graph: show all of it
-            self.set_view("perspective", render=False)
-            self._fit_pending = False
+        if has_geometry:
+            changed = self._frame_or_follow() or changed
         self._update_hint(has_geometry)
         if changed or not self.frames:
             self.schedule_render()
+
+    def _frame_or_follow(self) -> bool:
+        """A newly opened graph is framed once it shows geometry; later, geometry that leaves
+        the view is followed (zoom extents) unless the user has moved the camera since the
+        app last framed it. True if the camera moved."""
+        if self.preview is None or self.preview.bounds() is None:
+            return False
+        if self._fit_pending:
+            self._fit_pending = False
+            self.set_view("perspective", render=False)
+            return True
+        if self.user_moved_camera() or self.bounds_in_view():
+            return False
+        self.zoom_extents()
+        return True
+
+    def _camera_state(self) -> np.ndarray:
+        camera = self.plotter.renderer.GetActiveCamera()
+        return np.array(
+            [*camera.GetPosition(), *camera.GetFocalPoint(), *camera.GetViewUp(),
+             camera.GetParallelScale(), camera.GetViewAngle(), float(camera.GetParallelProjection())]
+        )
+
+    def user_moved_camera(self) -> bool:
+        """Whether the camera differs from where the app last put it (the user orbited,
+        panned or zoomed since)."""
+        if self._auto_camera is None or self.plotter is None:
+            return False
+        state = self._camera_state()
+        scale = float(np.max(np.abs(self._auto_camera[:6]))) or 1.0
+        return not np.allclose(state, self._auto_camera, rtol=1e-6, atol=1e-9 * scale)
+
+    def bounds_in_view(self) -> bool:
+        """Whether every corner of the previewed geometry's bounding box is inside the view."""
+        bounds = self.preview.bounds() if self.preview is not None else None
+        if bounds is None or self.plotter is None:
+            return True
+        renderer = self.plotter.renderer
+        width, height = renderer.GetSize()
+        if width <= 0 or height <= 0:
+            return True
+        for x in bounds[:, 0]:
+            for y in bounds[:, 1]:
+                for z in bounds[:, 2]:
+                    renderer.SetWorldPoint(float(x), float(y), float(z), 1.0)
+                    renderer.WorldToDisplay()
+                    dx, dy, dz = renderer.GetDisplayPoint()
+                    if not (0 <= dx <= width and 0 <= dy <= height and 0 <= dz <= 1):
+                        return False
+        return True
 
     def set_selected(self, node_ids: list[str]) -> None:
         self._selected = set(node_ids)
@@ -259,9 +311,10 @@ class ViewportPanel(QWidget):
         bounds = self.preview.bounds() if self.preview is not None else None
         if bounds is None:
             self.plotter.renderer.reset_camera(render=False)
-            return
-        (x0, y0, z0), (x1, y1, z1) = bounds
-        self.plotter.renderer.reset_camera(render=False, bounds=(x0, x1, y0, y1, z0, z1))
+        else:
+            (x0, y0, z0), (x1, y1, z1) = bounds
+            self.plotter.renderer.reset_camera(render=False, bounds=(x0, x1, y0, y1, z0, z1))
+        self._auto_camera = self._camera_state()
 
     def screenshot(self, path: str | Path) -> Path:
         """Save what the viewport shows as a PNG."""
