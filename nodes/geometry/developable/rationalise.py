@@ -116,7 +116,10 @@ def strip_deviation(
     return float(design.closest_point(points).distances.max())
 
 
-def _strip(design: Surface, family: str, lo: float, hi: float, segments: int, warp_tolerance: float) -> Strip:
+def strip_between(
+    design: Surface, family: str, lo: float, hi: float, segments: int = 24, warp_tolerance: float = 1e-7
+) -> Strip:
+    """The strip between the boundaries at ``lo`` and ``hi``, with its warp and deviation."""
     a, b = IsoCurve(design, family, lo), IsoCurve(design, family, hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
     surface = ruled_between(a, result.s, b, result.t)
@@ -146,7 +149,7 @@ def _march(
         bad = 1.0 - lo + 1.0  # the smallest width known too wide (none yet)
         w = min(width, 1.0 - lo)
         for trial in range(TRIALS * 4):
-            strip = _strip(design, family, lo, min(1.0, lo + w), segments, warp_tolerance)
+            strip = strip_between(design, family, lo, min(1.0, lo + w), segments, warp_tolerance)
             if strip.deviation <= tolerance:
                 good = strip if good is None or strip.hi > good.hi else good
                 if strip.hi >= 1.0:
@@ -176,7 +179,7 @@ def _bisect(
 ) -> list[Strip]:
     """Up to ``max_strips`` strips, the worst split in two at its middle until all are
     within the tolerance or the count is reached."""
-    strips = [_strip(design, family, 0.0, 1.0, segments, warp_tolerance)]
+    strips = [strip_between(design, family, 0.0, 1.0, segments, warp_tolerance)]
     while len(strips) < max_strips:
         worst = int(np.argmax([s.deviation for s in strips]))
         if strips[worst].deviation <= tolerance:
@@ -184,8 +187,8 @@ def _bisect(
         old = strips[worst]
         mid = 0.5 * (old.lo + old.hi)
         strips[worst : worst + 1] = [
-            _strip(design, family, old.lo, mid, segments, warp_tolerance),
-            _strip(design, family, mid, old.hi, segments, warp_tolerance),
+            strip_between(design, family, old.lo, mid, segments, warp_tolerance),
+            strip_between(design, family, mid, old.hi, segments, warp_tolerance),
         ]
     return strips
 
