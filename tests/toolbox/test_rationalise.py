@@ -16,6 +16,7 @@ from functools import cache
 
 import numpy as np
 import pytest
+import rhino3dm
 import trimesh
 from scipy.integrate import dblquad
 from scipy.spatial import cKDTree
@@ -211,3 +212,20 @@ def test_a_mesh_surface_is_refused_naming_the_input():
     result = run(Rationalise(), Surface=tree({(0,): [mesh]}), Tolerance=TOL)
     assert result.state == "error"
     assert any("Surface" in t and "mesh" in t.lower() for t in texts(result))
+
+
+def test_strips_exported_to_3dm_read_back_as_nurbs_of_degree_1_across_the_rulings(tmp_path):
+    from app.exports import export_tree
+    from engine.datatree import DataTree
+
+    strips = items(solved("wave"), "Strips")
+    path = export_tree(DataTree.from_branches([strips]), tmp_path / "r.3dm")[0]
+    objects = list(rhino3dm.File3dm.Read(str(path)).Objects)
+    assert len(objects) == len(strips)
+    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 5)))
+    for obj, strip in zip(objects, strips, strict=True):
+        nurbs = obj.Geometry
+        assert isinstance(nurbs, rhino3dm.NurbsSurface)
+        assert nurbs.Degree(1) == 1
+        back = np.array([[p.X, p.Y, p.Z] for p in (nurbs.PointAt(a, b) for a, b in zip(u, v, strict=True))])
+        assert np.abs(back - strip.point_at(u, v)).max() <= 1e-9 * SIZE
