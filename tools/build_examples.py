@@ -348,7 +348,7 @@ def textbook() -> None:
     b.node("maths.Range", "u", 1, 0, "Parameter u")
     b.wire("turn.Domain", "u.Domain")
     b.wire("steps.Value", "u.Steps")
-    rows = {"cylinder": 0.0, "helicoid": 2.0, "mobius": 4.0}
+    rows = {"cylinder": 0.0, "helicoid": 2.0, "mobius": 4.5}
     # side by side along x, 3.5 m apart, so the viewport shows each one on its own
     surfaces = {
         "cylinder": (("cos(u) - 7", "sin(u)", "0"), None, (0.0, 2.0), "Cylinder"),
@@ -382,17 +382,17 @@ def textbook() -> None:
                        Tolerance=0.01, Title=f"{label}: warp along the strip")
         b.wire(f"{surface}.WarpAngles", f"{chart}.WarpAngles")
         b.wire(f"{surface}.Rulings", f"{chart}.Rulings")
-    b.node("surfaces.ParametricSurface", "hypar", 1, 7, "Hyperbolic paraboloid z = xy",
+    b.node("surfaces.ParametricSurface", "hypar", 1, 7.5, "Hyperbolic paraboloid z = xy",
            X="u + 3.5", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
            VDomain={"type": "Domain", "min": -1.0, "max": 1.0})
-    b.node("surfaces.Torus", "torus", 1, 8.5, "Torus", MajorRadius=1.5, MinorRadius=0.5,
+    b.node("surfaces.Torus", "torus", 1, 9, "Torus", MajorRadius=1.5, MinorRadius=0.5,
            Plane={"type": "Plane", "origin": [7.5, 0, 0], "x": [1, 0, 0], "y": [0, 1, 0]})
     for name, source in (("hypar_analysis", "hypar.Surface"), ("torus_analysis", "torus.Torus")):
-        b.node("analysis.SurfaceAnalysis", name, 3, 7 if name.startswith("hypar") else 8.5,
+        b.node("analysis.SurfaceAnalysis", name, 3, 7.5 if name.startswith("hypar") else 9,
                "Curvature analysis", UDensity=24, VDensity=24, Scale=0.3,
                CurvatureTolerance=0.01, WarpTolerance=0.01)
         b.wire(source, f"{name}.Surface")
-    b.node("analysis.CurvatureHistogram", "torus_histogram", 5, 8.5, "Torus: curvature histogram",
+    b.node("analysis.CurvatureHistogram", "torus_histogram", 5, 9, "Torus: curvature histogram",
            Measure="min|k|", UDensity=48, VDensity=24, Bins=24, Tolerance=0.01,
            Title="Torus: min(|k1|, |k2|), 1/m")
     b.wire("torus.Torus", "torus_histogram.Surface")
@@ -515,7 +515,7 @@ def panels() -> None:
     b.wire("panel_w.Value", "pattern.Width")
     b.wire("panel_h.Value", "pattern.Height")
     b.wire("offset.Result", "pattern.Offset")
-    b.node("patching.SurfacePatching", "patching", 4, 1, "Panels on the façade", Scale=1.0)
+    b.node("patching.SurfacePatching", "patching", 4, 2, "Panels on the façade", Scale=1.0)
     b.wire("facade.Surface", "patching.Surface")
     b.wire("unroll.Map", "patching.Development")
     b.wire("pattern.Pattern", "patching.Pattern")
@@ -527,6 +527,52 @@ def panels() -> None:
     b.save("development-and-panels")
 
 
+def rationalise_roof() -> None:
+    """Rationalise: a freeform saddle roof as developable strips within a tolerance, unrolled,
+    checked for bending and laid out on cut sheets as a 1:50 model."""
+    b = Builder(
+        "Rationalise a freeform roof: a saddle (anticlastic) roof 10 m across is covered by "
+        "developable strips, each within the Tolerance of the design and sharing its boundary "
+        "curves exactly with its neighbours. Each strip is unrolled with IsoMapping, checked "
+        "against 0.5 mm card with BendingCheck at 1:50, and the developments are scaled to "
+        "1:50 and laid out on 2500 × 1250 mm sheets by ExportCutSheet. Export headless with: "
+        "torsal run rationalise-roof.graph --export strips.Strips=strips.3dm "
+        "--export cut.Layout=roof.dxf"
+    )
+    b.slider("tolerance", 0, "Tolerance (m)", 0.02, 0.005, 0.1, 3)
+    b.integer("max_strips", 1, "Most strips", 40, 1, 120)
+    b.slider("model_scale", 2, "Model scale (1:n)", 50.0, 10.0, 200.0, 0)
+    b.node("surfaces.ParametricSurface", "design", 1, 0, "Freeform roof (saddle)",
+           X="u", Y="v", Z="4 + (u * u - v * v) / 20",
+           UDomain={"type": "Domain", "min": -5.0, "max": 5.0},
+           VDomain={"type": "Domain", "min": -5.0, "max": 5.0})
+    b.node("developable.Rationalise", "strips", 2, 0, "Developable strips")
+    b.wire("design.Surface", "strips.Surface")
+    b.wire("tolerance.Value", "strips.Tolerance")
+    b.wire("max_strips.Value", "strips.MaxStrips")
+    b.node("analysis.BendingCheck", "bending", 3, 2, "Bending at 1:50", Material="Card 0.5 mm")
+    b.wire("strips.Strips", "bending.Strips")
+    b.wire("model_scale.Value", "bending.ModelScale")
+    b.node("analysis.IsoMapping", "unroll", 3, 0, "Unrolled strips", Segments=24)
+    b.wire("strips.Strips", "unroll.Surface")
+    b.node("maths.Expression", "factor", 3, 4, "1 / n", {"expression": "1 / n", "variables": ["n"]})
+    b.wire("model_scale.Value", "factor.n")
+    b.node("transform.Scale", "model", 4, 0, "Scaled to the model", Centre=point(0, 0, 0))
+    b.wire("unroll.Development", "model.Geometry")
+    b.wire("factor.Result", "model.Factor")
+    b.node("io.ExportCutSheet", "cut", 5, 0, "Cut sheets (mm)", Path="out/rationalised-roof.dxf",
+           SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
+           Nesting="Shelf", Write=False)
+    b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
+    for flat in ("unroll", "model", "cut"):  # the flat parts are for the cutter, not the 3D view
+        b.graph.set_preview(flat, False)
+    b.group("inputs", "Inputs", INPUTS, ["tolerance", "max_strips", "model_scale"])
+    b.group("surface", "Design and its strips", GEOMETRY, ["design", "strips"])
+    b.group("fabrication", "Unrolled, checked, laid out", RESULT,
+            ["bending", "unroll", "factor", "model", "cut"])
+    b.save("rationalise-roof")
+
+
 EXAMPLES: dict[str, Callable[[], None]] = {
     "kaohsiung-stadium": kaohsiung,
     "kaohsiung-cut-sheets": kaohsiung_cut_sheets,
@@ -536,6 +582,7 @@ EXAMPLES: dict[str, Callable[[], None]] = {
     "paper-strip": paper_strip,
     "spline-approximation": spline_approximation,
     "development-and-panels": panels,
+    "rationalise-roof": rationalise_roof,
 }
 
 if __name__ == "__main__":

@@ -9,13 +9,10 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
 from nodes.curves.convert import sentence
-from nodes.developable.input_checks import surface_input
+from nodes.developable.input_checks import surface_input, tolerance_input
 from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.developable.rationalise import rationalise
 from nodes.types import CURVE, LINE, SURFACE
-
-#: A ruling counts as torsal (Valid) when its recomputed warp is within this, rad.
-WARP_TOLERANCE = 1e-7
 
 #: The most strips one solve may make.
 STRIP_LIMIT = 256
@@ -79,6 +76,8 @@ class Rationalise(Node):
         In("Direction", VECTOR, "D", "Optional: a vector the strips (their boundaries) should run "
            "along; without it the node chooses from the surface's curvature.", optional=True),
         In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24),
+        In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
+           "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
     )
     outputs = (
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
@@ -88,14 +87,15 @@ class Rationalise(Node):
         Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
             "rulings and the boundary curves' tangents.", access=LIST),
         Out("Deviation", NUMBER, "E", "Largest distance of each strip from the design.", access=LIST),
-        Out("Valid", BOOLEAN, "V", f"Per ruling, as Rulings: the recomputed warp is a number within "
-            f"{WARP_TOLERANCE:g} rad.", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Per ruling, as Rulings: the recomputed warp is a number within "
+            "WarpTolerance.", access=LIST),
         Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
             "triangles that close a strip where no torsal ruling exists.", access=LIST),
     )
 
     def solve(
-        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, segments: Any
+        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, segments: Any,
+        warp_tolerance: Any,
     ) -> tuple[
         list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str]
     ]:
@@ -106,8 +106,9 @@ class Rationalise(Node):
         n = int(segments) if segments is not None else 24
         if not 1 <= n <= 1000:
             raise NodeError(f"Segments is {n}: give a whole number from 1 to 1000")
+        warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
         try:
-            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=WARP_TOLERANCE)
+            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=warp_limit)
         except ValueError as exc:
             raise NodeError(f"Surface: {sentence(exc)}") from None
         rulings: list[Any] = []
@@ -120,7 +121,7 @@ class Rationalise(Node):
             rulings.extend(lines.rulings)
             w = strip.warp
             warp.extend(w.tolist())
-            ok = np.isfinite(w) & (w <= WARP_TOLERANCE)
+            ok = np.isfinite(w) & (w <= warp_limit)
             valid.extend(ok.tolist())
             fans += int(np.count_nonzero(strip.result.fan))
             kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
@@ -138,6 +139,6 @@ class Rationalise(Node):
         bad = int(np.count_nonzero(~np.asarray(valid)))
         if bad:
             self.warn(f"{bad} of {len(valid)} rulings have a recomputed warp that is undefined or above "
-                      f"{WARP_TOLERANCE:g} rad (Valid = false)")
+                      f"{warp_limit:g} rad (Valid = false)")
         strips = [s.surface for s in result.strips]
         return strips, list(result.boundaries), rulings, warp, deviation, valid, kinds

@@ -98,6 +98,17 @@ def recompute(type_id: str, inputs: dict[str, Any], outputs: dict[str, Any]) -> 
         quad = np.einsum("ij,ij->i", a[1:] - a[:-1], np.cross(b[:-1] - a[:-1], b[1:] - a[:-1]))
         assert np.abs(quad).max() <= 1e-12 * size**3
         return np.zeros(len(a)), EXACT
+    if type_id == "developable.Rationalise":
+        # every ruling end lies on a boundary, a parameter line of the design: the tangent there
+        # is the design's Su or Sv (the parameter that takes few values is the fixed one)
+        design = inputs["Surface"]
+        ua, ub = design.closest_point(a).parameters, design.closest_point(b).parameters
+        both = np.vstack([ua, ub]).round(9)
+        along_u = len(np.unique(both[:, 1])) < len(np.unique(both[:, 0]))
+        pick = 1 if along_u else 2
+        ta = design.derivatives(ua[:, 0], ua[:, 1], 1)[pick]
+        tb = design.derivatives(ub[:, 0], ub[:, 1], 1)[pick]
+        return warp_check.warp(a, b, ta, tb), NUMERIC
     raise AssertionError(f"no independent warp for {type_id}")
 
 
