@@ -153,6 +153,12 @@ class Message:
         return {"level": self.level.name.lower(), "text": self.text}
 
 
+#: The most calls of ``solve`` one solve of a node makes (item access over long lists, or
+#: one call per branch). Series, Range and Random make up to 1,000,000 numbers, so a cheap
+#: node follows any of them; a list wired by mistake cannot run a node past this.
+MAX_CALLS = 1_000_000
+
+
 class Node:
     """Base class of every node type. Subclasses set the class attributes and ``solve``."""
 
@@ -161,6 +167,15 @@ class Node:
     outputs: ClassVar[tuple[Out, ...]] = ()
     settings_spec: ClassVar[tuple[Setting, ...]] = ()
     icon: ClassVar[str] = ""
+    #: The most calls of ``solve`` in one solve of this node (the solver refuses more
+    #: before the first, naming the input with the most values).
+    max_calls: ClassVar[int] = MAX_CALLS
+    #: For a node whose one call can take seconds: the most work, summed over a solve's
+    #: calls by :meth:`call_work`, in the node's own unit (None: calls alone are counted).
+    #: Caps limit one call; this limits what a list of values multiplies them into.
+    max_work: ClassVar[int | None] = None
+    #: What :meth:`call_work` counts, as the refusal names it ("grid samples").
+    work_unit: ClassVar[str] = "units of work"
 
     def __init__(self, settings: dict[str, Any] | None = None) -> None:
         self.settings: dict[str, Any] = {s.name: s.default for s in self.settings_spec}
@@ -221,6 +236,12 @@ class Node:
     # -- behaviour --------------------------------------------------------------------
     def solve(self, *args: Any) -> Any:
         raise NotImplementedError(f"{type(self).__name__} does not define solve()")
+
+    def call_work(self, *args: Any) -> int:
+        """How much work one call of ``solve`` with these arguments asks for, counted
+        against :attr:`max_work` before any call is made (only nodes that set it define
+        this). Values ``solve`` would refuse count as 1: its own message says why."""
+        return 1
 
     def before_solve(self) -> None:
         """Called once before the iterations of a solve (reset per-solve state here)."""

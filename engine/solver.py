@@ -282,36 +282,87 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         for b in range(branch_count)
     )
 
+    # plan every call first, so the budget is checked before the first one is made
+    plan: list[tuple[Path, Any, bool]] = []  # (path, args of one call or rows of calls, is rows)
+    calls = 0
     for b in range(branch_count):
-        node.check_cancelled()
         branches = [bl[min(b, len(bl) - 1)] for bl in branch_lists]
         path = path_lists[master][b]
         if not iterated:
             args = list(template)
             for slot, port_index in enumerate(slot_of_port):
                 args[port_index] = branches[slot]
-            _store(node, out_ports, outputs, path, [_call(node, args)], iterated=False)
+            plan.append((path, args, False))
+            calls += 1
             continue
         lengths = [len(branches[i]) for i in item_slots]
         if min(lengths) == 0:
             continue
-        calls = max(lengths)
+        count = max(lengths)
         columns: list[Any] = []
         for slot, port_index in enumerate(slot_of_port):
             branch = branches[slot]
             if matched[slot][0].access is LIST:
-                columns.append((port_index, repeat(branch, calls)))
-            elif len(branch) == calls:
+                columns.append((port_index, repeat(branch, count)))
+            elif len(branch) == count:
                 columns.append((port_index, branch))
             else:
-                columns.append((port_index, branch + [branch[-1]] * (calls - len(branch))))
+                columns.append((port_index, branch + [branch[-1]] * (count - len(branch))))
         if no_tree_inputs:
-            arg_rows = zip(*(c[1] for c in columns), strict=False)
+            arg_rows: Any = zip(*(c[1] for c in columns), strict=False)
         else:
             arg_rows = (_fill(template, columns, row) for row in zip(*(c[1] for c in columns), strict=False))
-        results = _call_rows(node, arg_rows)
+        plan.append((path, arg_rows, True))
+        calls += count
+    if calls > node.max_calls:
+        raise NodeError(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
+    if node.max_work is not None:
+        plan = [(path, list(rows) if is_rows else rows, is_rows) for path, rows, is_rows in plan]
+        work = sum(
+            sum(_work(node, row) for row in rows) if is_rows else _work(node, rows)
+            for _, rows, is_rows in plan
+        )
+        if work > node.max_work:
+            raise NodeError(_too_many_calls(
+                node, matched, calls,
+                f"{work:,} {node.work_unit} in all, at most {node.max_work:,} (the work of "
+                f"{node.max_work / max(work / calls, 1):,.0f} such runs)",
+            ))
+
+    for path, rows, is_rows in plan:
+        node.check_cancelled()
+        if not is_rows:
+            _store(node, out_ports, outputs, path, [_call(node, rows)], iterated=False)
+            continue
+        results = _call_rows(node, rows)
         _store(node, out_ports, outputs, path, results, iterated=sub_branches)
     return outputs
+
+
+def _work(node: Node, args: Any) -> int:
+    """One call's :meth:`Node.call_work`; a value it cannot count costs 1 (solve refuses it)."""
+    try:
+        return max(int(node.call_work(*args)), 1)
+    except Exception:  # a bad value: solve's own message names it
+        return 1
+
+
+def _too_many_calls(node: Node, matched: list[tuple[In, DataTree]], calls: int, limit: str) -> str:
+    """"UDensity has 200 values: SurfaceAnalysis would run 200 times; …": names the input
+    with the most values (or branches, for a node that runs once per branch)."""
+    def size(tree: DataTree) -> int:
+        return sum(len(branch) for branch in tree.branches)
+
+    items = [(p, t) for p, t in matched if p.access is ITEM]
+    if items:
+        port, tree = max(items, key=lambda pt: size(pt[1]))
+        many = f"{port.name} has {size(tree):,} values"
+    else:
+        port, tree = max(matched, key=lambda pt: pt[1].branch_count)
+        many = f"{port.name} has {tree.branch_count:,} branches"
+    if tree.branch_count > 1 and items:
+        many += f" in {tree.branch_count:,} branches"
+    return f"{many}: {node.name()} would run {calls:,} times; {limit}"
 
 
 def _fill(template: list[Any], columns: list[Any], row: tuple[Any, ...]) -> list[Any]:
