@@ -385,14 +385,14 @@ def textbook() -> None:
     b.node("surfaces.ParametricSurface", "hypar", 1, 7.5, "Hyperbolic paraboloid z = xy",
            X="u + 3.5", Y="v", Z="u * v", UDomain={"type": "Domain", "min": -1.0, "max": 1.0},
            VDomain={"type": "Domain", "min": -1.0, "max": 1.0})
-    b.node("surfaces.Torus", "torus", 1, 9, "Torus", MajorRadius=1.5, MinorRadius=0.5,
+    b.node("surfaces.Torus", "torus", 1, 9.5, "Torus", MajorRadius=1.5, MinorRadius=0.5,
            Plane={"type": "Plane", "origin": [7.5, 0, 0], "x": [1, 0, 0], "y": [0, 1, 0]})
     for name, source in (("hypar_analysis", "hypar.Surface"), ("torus_analysis", "torus.Torus")):
-        b.node("analysis.SurfaceAnalysis", name, 3, 7.5 if name.startswith("hypar") else 9,
+        b.node("analysis.SurfaceAnalysis", name, 3, 7.5 if name.startswith("hypar") else 9.5,
                "Curvature analysis", UDensity=24, VDensity=24, Scale=0.3,
                CurvatureTolerance=0.01, WarpTolerance=0.01)
         b.wire(source, f"{name}.Surface")
-    b.node("analysis.CurvatureHistogram", "torus_histogram", 5, 9, "Torus: curvature histogram",
+    b.node("analysis.CurvatureHistogram", "torus_histogram", 5, 9.5, "Torus: curvature histogram",
            Measure="min|k|", UDensity=48, VDensity=24, Bins=24, Tolerance=0.01,
            Title="Torus: min(|k1|, |k2|), 1/m")
     b.wire("torus.Torus", "torus_histogram.Surface")

@@ -134,6 +134,7 @@ class MainWindow(QMainWindow):
         self._tables_timer.timeout.connect(self._tables_due)
         self._tables_stale = False
         self._profiler_stale = False  # the profiler is refilled only while it is shown
+        self._attention_pending = False  # a file just opened: show its first troubled node
         self.profiler_dock.visibilityChanged.connect(self._profiler_shown)
         self.actions_by_name: dict[str, QAction] = build_menus(self)
         self._update_title()
@@ -235,7 +236,9 @@ class MainWindow(QMainWindow):
             return False
         self.autosaver.discard()
         self.settings.add_recent(path)
+        self.log.clear_messages()  # the last document's messages do not belong to this one
         self.report(f"Opened {path}")
+        self._attention_pending = True
         self.view.resetTransform()
         defer(self, lambda: self.view.zoom_to_fit(readable=True))
         return True
@@ -312,8 +315,25 @@ class MainWindow(QMainWindow):
         self.setWindowTitle(f"{self.doc.title}[*] — Torsal")
         self.setWindowModified(self.doc.dirty)
 
+    def _show_attention(self, outcome: SolveOutcome) -> None:
+        """After an opened file's first solve: when the graph does not all fit at a readable
+        zoom, bring the first node with an error or warning (in graph order) into view."""
+        if not self._attention_pending or outcome.cancelled:
+            return
+        self._attention_pending = False
+        shown = self.view.mapToScene(self.view.viewport().rect()).boundingRect()
+        for node_id in self.doc.graph.nodes:
+            result = outcome.results.get(node_id)
+            item = self.scene.nodes.get(node_id)
+            if result is None or item is None or result.state not in ("error", "warning"):
+                continue
+            if not shown.contains(item.sceneBoundingRect()):
+                self.view.centerOn(item)
+            return
+
     def _solved(self, outcome: SolveOutcome) -> None:
         self.status.solve_finished(outcome)
+        defer(self, lambda: self._show_attention(outcome))  # after the view has fitted the graph
         if outcome.error:
             self.report(outcome.error, "error")
         # The message log and profiler are tables: refilled at once, then at most ~5 times

@@ -9,9 +9,9 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from PySide6.QtCore import QPoint, QPointF, Qt
+from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtTest import QTest
-from PySide6.QtWidgets import QApplication, QMessageBox
+from PySide6.QtWidgets import QApplication, QMenu, QMessageBox
 
 from app.gui.main_window import MainWindow
 from engine.registry import Registry
@@ -159,3 +159,59 @@ def place_by_search(qtbot: Any, window: MainWindow, query: str, scene_pos: QPoin
     qtbot.waitUntil(lambda: bool(set(window.doc.graph.nodes) - before), timeout=3000)
     (node_id,) = set(window.doc.graph.nodes) - before
     return node_id
+
+
+NONE = Qt.KeyboardModifier.NoModifier
+
+
+class MenuCatcher:
+    """Polls for the popup a gesture opens; reads its entries, then picks ``pick`` with a
+    mouse click on it (or closes the menu with Esc)."""
+
+    def __init__(self, pick: str | tuple[str, ...] | None = None) -> None:
+        self.pick = [pick] if isinstance(pick, str) else list(pick or [])
+        self.menus: list[list[str]] = []
+        self._seen: list[QMenu] = []
+        self.polls = 0
+        QTimer.singleShot(10, self._poll)
+
+    def _poll(self) -> None:
+        menu = QApplication.activePopupWidget()
+        if not isinstance(menu, QMenu):
+            self.polls += 1
+            if self.polls < 200:
+                QTimer.singleShot(10, self._poll)
+            return
+        if menu in self._seen:  # a submenu is still opening
+            QTimer.singleShot(10, self._poll)
+            return
+        actions = [a for a in menu.actions() if not a.isSeparator()]
+        self._seen.append(menu)
+        if len(self._seen) == 1:
+            self.menus.append([a.text() for a in actions])
+        want = self.pick.pop(0) if self.pick else None
+        chosen = next((a for a in actions if a.text() == want), None)
+        if chosen is None:
+            QTest.keyClick(menu, Qt.Key.Key_Escape)
+            return
+        QTest.mouseClick(menu, Qt.MouseButton.LeftButton, NONE, menu.actionGeometry(chosen).center())
+        if chosen.menu() is not None:  # a submenu: pick on in it
+            self.polls = 0
+            QTimer.singleShot(10, self._poll)
+
+    @property
+    def entries(self) -> list[str]:
+        assert len(self.menus) == 1, f"expected one menu, saw {self.menus}"
+        return self.menus[0]
+
+
+def right_click(window: MainWindow, point: QPoint, pick: str | tuple[str, ...] | None = None) -> MenuCatcher:
+    """A right-click (press and release, no drag) on the canvas at ``point``; the menu it
+    opens is read and ``pick`` chosen from it (a path of entries for a submenu)."""
+    catcher = MenuCatcher(pick)
+    viewport = window.view.viewport()
+    QTest.mouseMove(viewport, point)
+    QTest.mousePress(viewport, Qt.MouseButton.RightButton, NONE, point)
+    QTest.mouseRelease(viewport, Qt.MouseButton.RightButton, NONE, point)
+    QApplication.processEvents()
+    return catcher

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import app.gui.main
 from app.cli import main
 from tests.gui.fixtures_gui import EXAMPLES, wait_solved
@@ -43,3 +45,18 @@ def test_app_messages_leave_the_node_column_empty(window):
     window.report("Saved somewhere")
     row = window.log.topLevelItem(0)
     assert (row.text(0), row.text(1), row.text(2)) == ("info", "", "Saved somewhere")
+
+
+def test_an_opened_file_too_big_to_fit_shows_its_first_node_with_a_warning(qtbot, window, tmp_path):
+    nodes = [{"id": f"s{i}", "type": "params.NumberSlider", "position": [300.0 * i, 0.0]} for i in range(12)]
+    nodes.append({"id": "bad", "type": "curves.Circle", "position": [3300.0, 1800.0],
+                  "inputs": {"Radius": {"value": -1.0}}})
+    path = tmp_path / "wide.graph"
+    path.write_text(json.dumps({"format": "torsal.graph", "version": 1, "nodes": nodes, "wires": []}))
+    assert window.open_file(path, ask=False)
+    wait_solved(qtbot, window)
+    assert window.doc.results["bad"].state == "warning"  # a negative radius
+    qtbot.wait(50)
+    shown = window.view.mapToScene(window.view.viewport().rect()).boundingRect()
+    assert shown.contains(window.scene.nodes["bad"].sceneBoundingRect())
+    assert window.view.zoom() >= 0.75  # still readable

@@ -6,13 +6,13 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
-from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
+from PySide6.QtCore import QPoint, QPointF, Qt
 from PySide6.QtGui import QContextMenuEvent
 from PySide6.QtTest import QTest
-from PySide6.QtWidgets import QApplication, QInputDialog, QMenu
+from PySide6.QtWidgets import QApplication, QInputDialog
 
 from app.gui.canvas.wire_item import WireItem
-from tests.gui.fixtures_gui import EXAMPLES, port_point, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, MenuCatcher, port_point, right_click, view_point, wait_solved
 
 RIGHT = Qt.MouseButton.RightButton
 NONE = Qt.KeyboardModifier.NoModifier
@@ -24,47 +24,6 @@ def first_steps(qtbot, window):
     wait_solved(qtbot, window)
     qtbot.wait(50)
     return window
-
-
-class MenuCatcher:
-    """Polls for the popup a gesture opens; reads its entries, then picks ``pick`` with a
-    mouse click on it (or closes the menu with Esc)."""
-
-    def __init__(self, pick: str | None = None) -> None:
-        self.pick = pick
-        self.menus: list[list[str]] = []
-        self.polls = 0
-        QTimer.singleShot(10, self._poll)
-
-    def _poll(self) -> None:
-        menu = QApplication.activePopupWidget()
-        if not isinstance(menu, QMenu):
-            self.polls += 1
-            if self.polls < 200:
-                QTimer.singleShot(10, self._poll)
-            return
-        actions = [a for a in menu.actions() if not a.isSeparator()]
-        self.menus.append([a.text() for a in actions])
-        chosen = next((a for a in actions if a.text() == self.pick), None)
-        if chosen is None:
-            QTest.keyClick(menu, Qt.Key.Key_Escape)
-        else:
-            QTest.mouseClick(menu, Qt.MouseButton.LeftButton, NONE, menu.actionGeometry(chosen).center())
-
-    @property
-    def entries(self) -> list[str]:
-        assert len(self.menus) == 1, f"expected one menu, saw {self.menus}"
-        return self.menus[0]
-
-
-def right_click(window: Any, point: QPoint, pick: str | None = None) -> MenuCatcher:
-    catcher = MenuCatcher(pick)
-    viewport = window.view.viewport()
-    QTest.mouseMove(viewport, point)
-    QTest.mousePress(viewport, RIGHT, NONE, point)
-    QTest.mouseRelease(viewport, RIGHT, NONE, point)
-    QApplication.processEvents()
-    return catcher
 
 
 def title_point(window: Any, node_id: str) -> QPoint:

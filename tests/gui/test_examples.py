@@ -58,7 +58,7 @@ def expected_actors(doc) -> int:
 
 
 @pytest.mark.parametrize("path", CASES, ids=lambda p: p.name)
-def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, path):
+def test_example_opens_renders_its_actors_is_photographed_and_its_boxes_do_not_overlap(qtbot, window, path):
     assert window.open_file(path, ask=False)
     wait_solved(qtbot, window, timeout=SOLVE_BUDGET_MS)
     qtbot.wait(100)  # the canvas fits itself to the graph on the next turns
@@ -78,6 +78,11 @@ def test_example_opens_renders_its_actors_and_is_photographed(qtbot, window, pat
             .intersects(b.sceneBoundingRect().adjusted(1, 1, -1, -1))
         )
         assert not overlap, f"{a.node_id} overlaps {b.node_id}"
+    groups = [g for g in window.scene.groups.values() if g.isVisible()]
+    for a, b in itertools.combinations(groups, 2):  # the boxes as the canvas draws them
+        assert not a.sceneBoundingRect().intersects(b.sceneBoundingRect()), (
+            f"group {a.group_id} overlaps group {b.group_id}"
+        )
 
     image = QImage(str(shot))
     assert image.width() >= 1200 and image.height() >= 800

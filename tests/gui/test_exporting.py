@@ -8,14 +8,14 @@ import json
 import numpy as np
 import pytest
 import rhino3dm as rh
-from PySide6.QtCore import QPoint, Qt
+from PySide6.QtCore import QPoint, QPointF, Qt
 from PySide6.QtGui import QColor, QKeySequence
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QColorDialog, QFileDialog, QMenu
 
-from app.gui.canvas import context_menus
 from app.gui.canvas.view import CanvasView
-from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, port_point, view_point, wait_solved
+from tests.gui.fixtures_gui import right_click as right_click_menu
 from tests.io.helpers import rhino_points, rhino_surface_points
 
 
@@ -56,8 +56,11 @@ def trigger(menu: QMenu, text: str) -> None:
     raise AssertionError(f"no {text!r} in {[a.text() for a in menu.actions()]}")
 
 
-def port_menu(window, node_id, port):
-    return context_menus.port_menu(window.scene, window.scene.nodes[node_id].output_port(port))
+def export_from_port(window, node_id, port):
+    """Right-click the output port and choose Export… (real events on the canvas)."""
+    window.view.centerOn(window.scene.nodes[node_id])
+    catcher = right_click_menu(window, port_point(window, node_id, port, False), "Export…")
+    assert "Export…" in catcher.entries
 
 
 # -- Export… -------------------------------------------------------------------------
@@ -66,7 +69,7 @@ def test_export_on_an_output_port_writes_its_rulings_to_3dm_point_for_point(
 ):
     open_example(qtbot, window, "textbook-ruled-surfaces.graph", tmp_path)
     dialog = save_as(monkeypatch, tmp_path / "out" / "rulings.3dm")
-    trigger(port_menu(window, "helicoid", "Rulings"), "Export…")
+    export_from_port(window, "helicoid", "Rulings")
     start, filters, selected = dialog.offered[0]
     assert start == str(tmp_path / "Helicoid-Rulings.3dm")  # the label, beside the graph file
     assert selected == "Rhino 3D model (*.3dm)"
@@ -89,8 +92,10 @@ def test_export_on_an_output_port_writes_its_rulings_to_3dm_point_for_point(
 def test_export_of_a_surface_from_the_node_menu_matches_it_within_1e_9(qtbot, window, tmp_path, monkeypatch):
     open_example(qtbot, window, "textbook-ruled-surfaces.graph", tmp_path)
     save_as(monkeypatch, tmp_path / "mobius.3dm")
-    menu = context_menus.node_menu(window.scene, window.scene.nodes["mobius"])
-    trigger(menu, "Surface…")  # Export output ▸ Surface…
+    item = window.scene.nodes["mobius"]
+    window.view.centerOn(item)
+    title = view_point(window, item.mapToScene(QPointF(item.size()[0] / 2, 8)))
+    right_click_menu(window, title, ("Export output", "Surface…"))
     (obj,) = list(rh.File3dm.Read(str(tmp_path / "mobius.3dm")).Objects)
     surface = window.doc.results["mobius"].outputs["Surface"].first()
     rng = np.random.default_rng(11)
@@ -103,7 +108,7 @@ def test_export_of_a_surface_from_the_node_menu_matches_it_within_1e_9(qtbot, wi
 def test_export_of_numbers_offers_csv_and_writes_one_row_per_item(qtbot, window, tmp_path, monkeypatch):
     open_example(qtbot, window, "first-steps.graph", tmp_path)
     dialog = save_as(monkeypatch, tmp_path / "heights")  # typed without an extension
-    trigger(port_menu(window, "heights", "Result"), "Export…")
+    export_from_port(window, "heights", "Result")
     start, _, selected = dialog.offered[0]
     assert start == str(tmp_path / "Panel heights-Result.csv")
     assert selected == "CSV table (*.csv)"
@@ -130,7 +135,7 @@ def test_export_before_the_graph_is_solved_warns_and_writes_nothing(
 def test_export_of_numbers_to_3dm_warns_with_the_reason(qtbot, window, tmp_path, monkeypatch, dialogs):
     open_example(qtbot, window, "first-steps.graph", tmp_path)
     save_as(monkeypatch, tmp_path / "numbers.3dm")
-    trigger(port_menu(window, "heights", "Result"), "Export…")
+    export_from_port(window, "heights", "Result")
     kind, title, text = dialogs.calls[-1]
     assert (kind, title) == ("warning", "Cannot export")
     assert "cannot export Number to .3dm" in text

@@ -12,7 +12,7 @@ from PySide6.QtCore import QPointF, QRectF, QSizeF
 from PySide6.QtGui import QFontMetricsF
 
 TITLE_H = 20.0
-ROW_H = 15.0
+ROW_H = 16.0  # ports 16 px apart: comfortable targets
 PAD = 4.0
 PORT_R = 4.5
 ICON = 22.0

@@ -14,7 +14,7 @@ from PySide6.QtWidgets import QGraphicsEllipseItem, QGraphicsItem
 from app.gui import theme
 from app.gui.canvas.layout import PORT_R
 
-HIT_R = 9.0  # ports are easier to hit than they look
+HIT_R = 8.0  # ports are easier to hit than they look (neighbours, ROW_H apart, do not overlap)
 # made once: a canvas of 10,000 nodes has 30,000 ports, and Qt copies these cheaply
 _HIT_RECT = QRectF(-HIT_R, -HIT_R, HIT_R * 2, HIT_R * 2)
 _DOT_RECT = QRectF(-PORT_R, -PORT_R, PORT_R * 2, PORT_R * 2)

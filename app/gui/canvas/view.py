@@ -24,7 +24,7 @@ from PySide6.QtGui import (
     QPen,
     QWheelEvent,
 )
-from PySide6.QtWidgets import QGraphicsView, QMenu, QWidget
+from PySide6.QtWidgets import QGraphicsItem, QGraphicsView, QMenu, QWidget
 
 from app.gui import theme
 from app.gui.canvas import context_menus
@@ -127,6 +127,14 @@ class CanvasView(QGraphicsView):
     def _port_at(self, view_pos: QPoint) -> PortItem | None:
         for item in self.items(view_pos):
             if isinstance(item, PortItem):
+                return item
+        return None
+
+    def itemAt(self, *pos: object) -> QGraphicsItem | None:
+        """The topmost item under the point that is not a wire (wires draw above the nodes,
+        and the area a curved wire encloses would otherwise hide what is under it)."""
+        for item in self.items(*pos):
+            if not isinstance(item, WireItem | DragWire):
                 return item
         return None
 

@@ -11,6 +11,7 @@ from PySide6.QtGui import QPainterPath, QPen
 from PySide6.QtWidgets import QGraphicsPathItem
 
 from app.gui import theme
+from app.gui.canvas.layout import PORT_R
 from engine.graph import Wire
 
 WIDTHS = {"item": 1.3, "list": 3.0, "tree": 2.2}
@@ -24,8 +25,13 @@ def wire_path(start: QPointF, end: QPointF) -> QPainterPath:
     return path
 
 
+WIRE_Z = 0.5  # above group boxes (-10) and nodes (0): a wire never hides behind a node it passes
+
+
 class WireItem(QGraphicsPathItem):
-    """One engine wire between two port items."""
+    """One engine wire between two port items, drawn above the nodes (so it never runs
+    hidden behind one it does not connect to); it starts and ends at its ports' rims, so
+    the port dots stay whole."""
 
     def __init__(self, wire: Wire, source_port: object, target_port: object) -> None:
         super().__init__()
@@ -34,12 +40,14 @@ class WireItem(QGraphicsPathItem):
         self.target_port = target_port
         self.kind = "item"
         self.highlighted = False
-        self.setZValue(-1)
+        self.setZValue(WIRE_Z)
+        self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)  # clicks go to the nodes under it
         self.update_path()
         self.update_pen()
 
     def update_path(self) -> None:
-        self.setPath(wire_path(self.source_port.anchor(), self.target_port.anchor()))
+        rim = QPointF(PORT_R, 0.0)
+        self.setPath(wire_path(self.source_port.anchor() + rim, self.target_port.anchor() - rim))
 
     def set_kind(self, kind: str) -> None:
         if kind != self.kind:

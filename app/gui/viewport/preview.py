@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection
 from dataclasses import dataclass, field
 from typing import Any
@@ -58,7 +59,8 @@ class Prepared:
 
 
 def ascii_title(text: str) -> str:
-    """VTK's built-in font has no symbols beyond ASCII: spell them out for colour-bar titles."""
+    """VTK's built-in font has no symbols beyond ASCII (and loses "|"): spell them out for
+    colour-bar titles."""
     for symbol, spelled in (
         ("·", "*"),
         ("×", "x"),
@@ -71,6 +73,9 @@ def ascii_title(text: str) -> str:
         ("…", "..."),
     ):
         text = text.replace(symbol, spelled)
+    # VTK's text renderer drops "|" (and turns the comma between two into a quote):
+    # "min(|k1|, |k2|)" rendered "min( k1 ' k2 )". Absolute values are spelled abs(...).
+    text = re.sub(r"\|([^|]*)\|", r"abs(\1)", text).replace("|", "/")
     return text.encode("ascii", "replace").decode("ascii")
 
 
