@@ -164,6 +164,8 @@ class Solved:
     seconds: float
     errors: dict[str, list[str]]
     evaluations: int = 0
+    #: every node's output trees, for the comparisons the figures cannot make
+    outputs: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 def solve(graph: Graph) -> Solved:
@@ -181,7 +183,8 @@ def solve(graph: Graph) -> Solved:
                     figures[(node_id, port, str(path), index)] = measure(item)
     seconds = time.perf_counter() - start
     errors = {n: [m.text for m in r.messages] for n, r in solver.results.items() if r.state == ERROR}
-    return Solved(figures, seconds, errors)
+    outputs = {n: r.outputs for n, r in solver.results.items()}
+    return Solved(figures, seconds, errors, outputs=outputs)
 
 
 def model_size(solved: Solved) -> float:
@@ -222,7 +225,7 @@ class Deviation:
 
 
 def compare(origin: Solved, moved: Solved, offset: tuple[float, float, float], size: float,
-            moving: set[tuple[str, str]]) -> Deviation:
+            moving: set[tuple[str, str]], skip: frozenset[tuple[str, str]] = frozenset()) -> Deviation:
     """How far ``moved`` is from ``origin`` shifted by ``offset``, relative to ``size``:
     positions and lengths as fractions of the model's size, areas of themselves,
     plain numbers of max(|x|, 1)."""
@@ -233,6 +236,8 @@ def compare(origin: Solved, moved: Solved, offset: tuple[float, float, float], s
         return (value, where) if value > current[0] or not np.isfinite(value) else current
 
     for key, a in origin.figures.items():
+        if key[:2] in skip:
+            continue
         where = f"{key[0]}.{key[1]}{key[2]}[{key[3]}]"
         b = moved.figures.get(key)
         if b is None or b.kind != a.kind:
@@ -250,3 +255,4 @@ def compare(origin: Solved, moved: Solved, offset: tuple[float, float, float], s
             deviation.numbers = worse(deviation.numbers, abs(x - y) / max(abs(x), 1.0), where)
     deviation.missing += [f"{k[0]}.{k[1]} (new)" for k in moved.figures.keys() - origin.figures.keys()]
     return deviation
+
