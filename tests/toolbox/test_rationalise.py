@@ -229,3 +229,59 @@ def test_strips_exported_to_3dm_read_back_as_nurbs_of_degree_1_across_the_ruling
         assert nurbs.Degree(1) == 1
         back = np.array([[p.X, p.Y, p.Z] for p in (nurbs.PointAt(a, b) for a, b in zip(u, v, strict=True))])
         assert np.abs(back - strip.point_at(u, v)).max() <= 1e-9 * SIZE
+
+
+def kaohsiung_roof():
+    """The Kaohsiung roof of the example as one surface: a loft through its horseshoe base
+    curve, that curve 14 m up and that copy scaled by 0.72 about (0, 0, 28)."""
+    from nodes.geometry.curves import InterpolatedCurve
+    from nodes.geometry.nurbs_surface import Loft
+
+    angles = np.radians(np.arange(40, 321, 35))
+    base = np.column_stack([60 * np.cos(angles), 42 * np.sin(angles), np.zeros(len(angles))])
+    top = base + np.array([0.0, 0.0, 14.0])
+    inner = (top - [0, 0, 28]) * 0.72 + [0, 0, 28]
+    return Loft([InterpolatedCurve(p, degree=3) for p in (base, top, inner)], degree=2)
+
+
+def distance_to_surface(surface, points: np.ndarray, grid_size: int = 401) -> np.ndarray:
+    """Distance from each point to ``surface``: the nearest of a dense grid of its points
+    (cKDTree), refined by Gauss–Newton on |S(u, v) − P|² with the surface's derivatives,
+    clamped to the unit square."""
+    g = np.linspace(0, 1, grid_size)
+    gu, gv = (a.ravel() for a in np.meshgrid(g, g))
+    _, index = cKDTree(surface.point_at(gu, gv)).query(points)
+    u, v = gu[index].copy(), gv[index].copy()
+    for _ in range(20):
+        s, su, sv = surface.derivatives(u, v, 1)
+        d = s - points
+        a11, a12, a22 = (np.einsum("ij,ij->i", x, y) for x, y in ((su, su), (su, sv), (sv, sv)))
+        b1, b2 = np.einsum("ij,ij->i", su, d), np.einsum("ij,ij->i", sv, d)
+        det = a11 * a22 - a12 * a12
+        u = np.clip(u - (a22 * b1 - a12 * b2) / det, 0, 1)
+        v = np.clip(v - (a11 * b2 - a12 * b1) / det, 0, 1)
+    return np.linalg.norm(surface.point_at(u, v) - points, axis=1)
+
+
+@cache
+def kaohsiung_solved():
+    result = run(Rationalise(), Surface=tree({(0,): [kaohsiung_roof()]}), Tolerance=TOL, MaxStrips=40)
+    assert result.state == "ok", texts(result)
+    return result
+
+
+def test_the_kaohsiung_roof_as_one_surface_is_covered_within_the_tolerance():
+    roof = kaohsiung_roof()
+    strips = items(kaohsiung_solved(), "Strips")
+    worst = max(distance_to_surface(roof, grid(s, 241, 9).reshape(-1, 3)).max() for s in strips)
+    assert worst <= TOL * 1.001
+    assert all(items(kaohsiung_solved(), "Valid"))
+
+
+def test_the_kaohsiung_strips_run_along_the_horseshoe_and_cover_its_area():
+    roof = kaohsiung_roof()
+    strips = items(kaohsiung_solved(), "Strips")
+    assert len(strips) <= 30  # slicing across the 250 m horseshoe would take ~90
+    design = grid_area(roof.point_at(*(a.ravel() for a in np.meshgrid(
+        np.linspace(0, 1, 801), np.linspace(0, 1, 81), indexing="ij"))).reshape(801, 81, 3))
+    assert abs(sum(grid_area(grid(s, 401, 9)) for s in strips) - design) <= 0.01 * design

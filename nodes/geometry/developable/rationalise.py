@@ -6,9 +6,10 @@ Method (a first version)
    design where the design bends least along it: the rulings should run along the
    direction of least normal curvature and the strips' boundary curves across it.
    The boundaries are taken as isocurves of the design: of the two parameter
-   families, the one whose *cross* direction has the smaller mean absolute normal
-   curvature (sampled on a grid) becomes the boundaries. A guide vector instead picks
-   the family whose tangents run most nearly along it (the strips follow the guide).
+   families, the one that needs fewer strips by the square law (see
+   :func:`boundary_family`: normal curvature along the rulings and the extent the
+   strips are stacked over). A guide vector instead picks the family whose tangents
+   run most nearly along it (the strips follow the guide).
 2. Strips. Between two neighbouring boundaries the strip is RulingDevelopable's
    (:func:`~nodes.geometry.developable.ruling_developable`): certified torsal rulings,
    flat fans where none exist, and its Surface is
@@ -78,12 +79,17 @@ class Rationalisation:
         return self.deviation <= self.tolerance
 
 
-def boundary_family(surface: Surface, direction: ArrayLike | None = None, samples: int = 9) -> str:
+def boundary_family(surface: Surface, direction: ArrayLike | None = None, samples: int = 17) -> str:
     """Which isocurves bound the strips: "u" (curves along u at fixed v) or "v".
 
-    Without ``direction``: the family across which the design bends least, so the
-    rulings (running across the boundaries) lie along the flatter direction. With a
-    guide vector: the family whose unit tangents are most nearly parallel to it.
+    Without ``direction``: the family that needs fewer strips by the square law. A
+    strip of width w whose rulings bend away from the design with normal curvature k
+    deviates by about k·w²/8, so the strips stacked across the boundaries number about
+    ∫ √(|k| / 8·tol) ds along the rulings' direction; the family with the smaller mean
+    of that integral (tolerance aside) wins. So the rulings lie along the flatter way
+    *and* the strips are stacked across the shorter extent (a long horseshoe roof gets
+    strips along its length, not hundreds of slices across it). With a guide vector:
+    the family whose unit tangents are most nearly parallel to it.
     """
     u, v = uv_grid(samples, samples)
     _, su, sv, suu, _, svv = surface.derivatives(u, v, 2)
@@ -98,12 +104,13 @@ def boundary_family(surface: Surface, direction: ArrayLike | None = None, sample
     n = np.cross(su, sv)
     n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
 
-    def bend(second: FloatArray, first: FloatArray) -> float:
-        k = np.einsum("ij,ij->i", second, n) / np.maximum(np.einsum("ij,ij->i", first, first), 1e-300)
-        return float(np.mean(np.abs(k)))
+    def count(second: FloatArray, first: FloatArray) -> float:
+        speed2 = np.maximum(np.einsum("ij,ij->i", first, first), 1e-300)
+        k = np.einsum("ij,ij->i", second, n) / speed2
+        return float(np.mean(np.sqrt(np.abs(k) * speed2)))  # √|k| · |S'|, the integrand in ds
 
-    # rulings along v (across u-boundaries) bend by the normal curvature along Sv
-    return "u" if bend(svv, sv) <= bend(suu, su) else "v"
+    # rulings along v (between u-boundaries) bend by the normal curvature along Sv
+    return "u" if count(svv, sv) <= count(suu, su) else "v"
 
 
 def strip_deviation(
@@ -128,9 +135,11 @@ def strip_between(
 
 
 #: Strips are widened to about this share of the tolerance (deviation grows as width²).
-AIM = 0.9
-#: Trial strips per accepted strip while marching.
+AIM = 0.97
+#: Trial strips per accepted strip while marching, at most (then the widest within).
 TRIALS = 6
+#: A strip within the tolerance and this close to it is wide enough: marching moves on.
+CLOSE = 0.95
 
 
 def _march(
@@ -156,7 +165,7 @@ def _march(
                     break
             else:
                 bad = min(bad, w)
-            if good is not None and trial >= TRIALS - 1:
+            if good is not None and (trial >= TRIALS - 1 or good.deviation >= CLOSE * tolerance):
                 break
             ratio = np.sqrt(AIM * tolerance / max(strip.deviation, 1e-300))
             w_new = w * float(np.clip(ratio, 0.25, 2.0))
