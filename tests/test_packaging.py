@@ -87,7 +87,11 @@ def make_dry_run(tmp_path: Path, target: str) -> str:
     """`make -n TARGET` in a folder holding only what a fresh clone has for make (no .venv)."""
     for name in ("Makefile", "pyproject.toml", "constraints.txt"):
         shutil.copy(ROOT / name, tmp_path / name)
-    done = subprocess.run(["make", "-n", target], capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    # as a user types it: not as a sub-make of `make test` (whose flags and "Entering
+    # directory /tmp/pytest-…" lines would leak in)
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MAKELEVEL", "MFLAGS")}
+    done = subprocess.run(["make", "--no-print-directory", "-n", target], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=60, env=env)
     assert done.returncode == 0, done.stderr
     return done.stdout
 

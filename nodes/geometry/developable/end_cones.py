@@ -24,7 +24,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from ..curve_base import Curve, FloatArray
 from .warp import warp_angles
@@ -33,7 +32,7 @@ IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
-SAMPLES = 65
+SAMPLES = 33
 
 
 @dataclass(frozen=True)
@@ -92,19 +91,13 @@ def _head(curve_a: Curve, curve_b: Curve, r: Rulings) -> tuple[Rulings, int, int
         return None  # already one cone
     run_s, run_t, run_source = r.s[:k], r.t[:k], r.source[:k]
     stations = run_source >= 0
-    def on_a(s: FloatArray) -> FloatArray:
-        return _coplanarity(curve_a, curve_b, s, t0)
-
-    def on_b(t: FloatArray) -> FloatArray:
-        return _coplanarity(curve_a, curve_b, s0, t)
-
-    through_b = _root(on_a, curve_a, curve_b, s0, sk, t0, True)
+    through_b = _root(_Pencil(curve_a, curve_b, t0, fixed_a=False), s0, sk)
     if through_b is not None and not np.any(stations & (run_s > through_b) & (run_s < sk)):
         keep = (run_s < through_b) & stations  # the stations the cone through B(t0) covers
         head_s = np.append(run_s[keep], through_b)
         head_t = np.full(len(head_s), t0)
     else:
-        through_a = _root(on_b, curve_a, curve_b, t0, tk, s0, False)
+        through_a = _root(_Pencil(curve_a, curve_b, s0, fixed_a=True), t0, tk)
         if through_a is None or np.any(stations & (run_s > s0)):
             return None
         keep = (run_t < through_a) & (run_s == s0)  # the cone through A(s0) over B[t0, t*]
@@ -119,36 +112,92 @@ def _head(curve_a: Curve, curve_b: Curve, r: Rulings) -> tuple[Rulings, int, int
     return Rulings(head_s, head_t, head_source, head_fan), k, source_k
 
 
-def _coplanarity(curve_a: Curve, curve_b: Curve, s: FloatArray, t: FloatArray) -> FloatArray:
-    """det[B(t) − A(s), Â'(s), B̂'(t)] (unit tangents), vectorised over s or t."""
-    s, t = np.broadcast_arrays(np.atleast_1d(s), np.atleast_1d(t))
-    a, da = curve_a.local_derivatives(s, 1)
-    b, db = curve_b.local_derivatives(t, 1)
-    ruling = b + (curve_b.anchor - curve_a.anchor) - a
-    da = da / np.linalg.norm(da, axis=1, keepdims=True)
-    db = db / np.linalg.norm(db, axis=1, keepdims=True)
-    return np.einsum("ij,ij->i", ruling, np.cross(da, db))
+class _Pencil:
+    """The rulings from a fixed point of one curve (``A(s)`` when ``fixed_a``, else
+    ``B(t)``) to the points of the other: the fixed end is evaluated once."""
+
+    def __init__(self, curve_a: Curve, curve_b: Curve, fixed: float, fixed_a: bool) -> None:
+        self.curve_a, self.curve_b, self.fixed_a = curve_a, curve_b, fixed_a
+        self.offset = curve_b.anchor - curve_a.anchor
+        still = curve_a if fixed_a else curve_b
+        self.point, self.tangent = still.local_derivatives(np.array([fixed]), 1)
+
+    def values(self, x: FloatArray, warp: bool = True) -> tuple[FloatArray, FloatArray | None]:
+        """The coplanarity det[B − A, Â', B̂'] and (with ``warp``) the signed warp (−π…π) of
+        the rulings to the moving curve's parameters ``x``."""
+        moving = self.curve_b if self.fixed_a else self.curve_a
+        p, dp = moving.local_derivatives(np.atleast_1d(x), 1)
+        q, dq = np.broadcast_to(self.point, p.shape), np.broadcast_to(self.tangent, p.shape)
+        a, da, b, db = (q, dq, p, dp) if self.fixed_a else (p, dp, q, dq)
+        b = b + self.offset
+        ua = da / np.linalg.norm(da, axis=1, keepdims=True)
+        ub = db / np.linalg.norm(db, axis=1, keepdims=True)
+        f = np.einsum("ij,ij->i", b - a, np.cross(ua, ub))
+        return f, warp_angles(a, b, da, db, signed=True) if warp else None
 
 
-def _root(
-    f, curve_a: Curve, curve_b: Curve, low: float, high: float, fixed: float, moving_a: bool
-) -> float | None:
-    """The root of ``f`` in (low, high) nearest ``high`` whose ruling has consistently
-    oriented normals (signed warp near 0, not near π), or None."""
+def _root(pencil: _Pencil, low: float, high: float) -> float | None:
+    """The parameter in (low, high), nearest ``high``, of the moving end of a torsal ruling
+    of ``pencil`` with consistently oriented normals (signed warp near 0, not near π), or
+    None: bracketed on :data:`SAMPLES` samples (one vectorised evaluation, which also tells
+    the orientation), then refined by the Illinois variant of regula falsi."""
     if not high > low:
         return None
     x = np.linspace(low, high, SAMPLES)
     with np.errstate(invalid="ignore", divide="ignore"):
-        y = f(x)
+        y, signed = pencil.values(x)
     if not np.isfinite(y).all():
         return None
-    changes = np.flatnonzero(np.sign(y[:-1]) * np.sign(y[1:]) < 0)
+    oriented = np.isfinite(signed) & (np.abs(signed) < 0.5 * np.pi)
+    changes = np.flatnonzero((np.sign(y[:-1]) * np.sign(y[1:]) < 0) & (oriented[:-1] | oriented[1:]))
     for i in changes[::-1]:
-        root = brentq(lambda v: float(f(np.array([v]))[0]), x[i], x[i + 1], xtol=1e-15)
-        s, t = (root, fixed) if moving_a else (fixed, root)
-        a, da = curve_a.derivatives(np.array([s]), 1)
-        b, db = curve_b.derivatives(np.array([t]), 1)
-        signed = warp_angles(a, b, da, db, signed=True)[0]
-        if np.isfinite(signed) and abs(signed) < 0.5 * np.pi:
+        def f(v: float) -> float:
+            return float(pencil.values(np.array([v]), warp=False)[0][0])
+
+        root = _illinois(f, x[i], x[i + 1], y[i], y[i + 1], first=_inverse_cubic(x, y, i))
+        _, at_root = pencil.values(np.array([root]))
+        if np.isfinite(at_root[0]) and abs(at_root[0]) < 0.5 * np.pi:
             return float(root)
     return None
+
+
+def _inverse_cubic(x: FloatArray, y: FloatArray, i: int) -> float | None:
+    """Where the cubic through the samples around the sign change between ``i`` and
+    ``i + 1`` (as x of y) crosses zero: the refinement's first trial (None where the
+    samples there do not run one way)."""
+    j = min(max(i - 1, 0), len(x) - 4)
+    ys, xs = y[j : j + 4], x[j : j + 4]
+    if len(ys) < 4 or not (np.all(np.diff(ys) > 0) or np.all(np.diff(ys) < 0)):
+        return None
+    # Lagrange interpolation of x as a function of y, at y = 0
+    total = 0.0
+    for m in range(4):
+        others = np.delete(ys, m)
+        total += xs[m] * float(np.prod(others / (others - ys[m])))
+    return total if x[i] < total < x[i + 1] else None
+
+
+def _illinois(
+    f, x0: float, x1: float, f0: float, f1: float, first: float | None = None, iterations: int = 60
+) -> float:
+    """A root of ``f`` in the bracket [x0, x1] (f0, f1 of opposite signs) to rounding,
+    trying ``first`` before the first secant step."""
+    side = 0
+    for step in range(iterations):
+        x = first if step == 0 and first is not None else x1 - f1 * (x1 - x0) / (f1 - f0)
+        if not (min(x0, x1) <= x <= max(x0, x1)):
+            x = 0.5 * (x0 + x1)
+        fx = f(x)
+        if fx == 0.0 or abs(x1 - x0) <= 4.0 * np.finfo(float).eps * max(abs(x), 1.0):
+            return x
+        if np.sign(fx) == np.sign(f1):
+            x1, f1 = x, fx
+            if side == 1:
+                f0 *= 0.5
+            side = 1
+        else:
+            x0, f0 = x, fx
+            if side == -1:
+                f1 *= 0.5
+            side = -1
+    return x
