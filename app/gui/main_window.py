@@ -28,6 +28,7 @@ from PySide6.QtWidgets import (
     QFileDialog,
     QMainWindow,
     QMessageBox,
+    QTabBar,
     QTextBrowser,
     QVBoxLayout,
     QWidget,
@@ -352,7 +353,14 @@ class MainWindow(QMainWindow):
         wanted = self.log.wanted_height()
         if self.log.viewport().height() < wanted - self.log.header().height() - 6:
             title = self.log_dock.height() - self.log.height()
-            self.resizeDocks([self.log_dock], [wanted + title], Qt.Orientation.Vertical)
+            tabs = 0  # Qt counts the tab bar of tabified docks in the size asked for
+            if self.tabifiedDockWidgets(self.log_dock):
+                bars = [
+                    bar for bar in self.findChildren(QTabBar)
+                    if bar.isVisible() and any(bar.tabText(i) == "Messages" for i in range(bar.count()))
+                ]
+                tabs = bars[0].height() if bars else 0
+            self.resizeDocks([self.log_dock], [wanted + title + tabs], Qt.Orientation.Vertical)
 
     def _tables_due(self) -> None:
         if self._tables_stale:

@@ -60,3 +60,18 @@ def test_an_opened_file_too_big_to_fit_shows_its_first_node_with_a_warning(qtbot
     shown = window.view.mapToScene(window.view.viewport().rect()).boundingRect()
     assert shown.contains(window.scene.nodes["bad"].sceneBoundingRect())
     assert window.view.zoom() >= 0.75  # still readable
+
+
+def test_the_messages_dock_grows_to_show_every_message(qtbot, window):
+    for i in range(6):
+        window.report(f"message {i}")
+    window.editor.add_node("params.NumberSlider", (0.0, 0.0))  # a solve refills the tables
+    wait_solved(qtbot, window)
+    log = window.log
+    assert log.topLevelItemCount() == 6
+
+    def last_row_shown() -> bool:
+        last = log.visualItemRect(log.topLevelItem(5))
+        return last.height() > 0 and log.viewport().rect().contains(last)
+
+    qtbot.waitUntil(last_row_shown, timeout=2000)  # the tables refill at most ~5 times a second
