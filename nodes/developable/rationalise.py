@@ -14,6 +14,9 @@ from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
 from nodes.geometry.developable.rationalise import rationalise
 from nodes.types import CURVE, LINE, SURFACE
 
+#: Share of a strip's area in creased fans above which the node warns.
+CREASED = 0.1
+
 #: The most strips one solve may make.
 STRIP_LIMIT = 256
 
@@ -131,6 +134,15 @@ class Rationalise(Node):
                 f"boundaries along {result.family}")
         if fans:
             text += f"; {fans} rulings in flat fans"
+        creased = [i + 1 for i, strip in enumerate(result.strips) if strip.result.creased_share > CREASED]
+        if creased:
+            shown_strips = ", ".join(map(str, creased[:8])) + (" …" if len(creased) > 8 else "")
+            self.warn(
+                f"{len(creased)} of {len(result.strips)} strips are mostly flat triangles that crease the "
+                f"sheet (strips {shown_strips}): between those boundaries no smooth torsal strip exists "
+                "(the design's parameter lines there are close to its straight asymptotic lines, as on a "
+                "hyperbolic paraboloid); the strips are still developable and within the tolerance"
+            )
         if result.within:
             self.remark(text)
         else:

@@ -285,3 +285,38 @@ def test_the_kaohsiung_strips_run_along_the_horseshoe_and_cover_its_area():
     design = grid_area(roof.point_at(*(a.ravel() for a in np.meshgrid(
         np.linspace(0, 1, 801), np.linspace(0, 1, 81), indexing="ij"))).reshape(801, 81, 3))
     assert abs(sum(grid_area(grid(s, 401, 9)) for s in strips) - design) <= 0.01 * design
+
+
+def hypar_solved():
+    hypar = ParametricSurface(lambda x, y: np.column_stack([x, y, x * y / 10]), (-HALF, HALF), (-HALF, HALF))
+    return run(Rationalise(), Surface=tree({(0,): [hypar]}), Tolerance=TOL, MaxStrips=40)
+
+
+def test_a_hyperbolic_paraboloid_between_its_straight_lines_gives_flat_triangles_with_a_warning():
+    """Two skew straight lines bound no torsal strip: the strips are flat triangles, each a
+    ruling pair through one point (so coplanar), still within the tolerance."""
+    result = hypar_solved()
+    assert any("crease the sheet" in t for t in texts(result))
+    rulings = items(result, "Rulings")
+    assert set(items(result, "Kind")) == {"fan"}
+    pairs = 0
+    for first, second in itertools.pairwise(rulings):
+        p = np.array([first.start, first.end, second.start, second.end], dtype=float)
+        if abs(p[0, 1] - p[2, 1]) > 1e-12 or abs(p[1, 1] - p[3, 1]) > 1e-12:
+            continue  # the next strip (its boundaries are the lines y = const)
+        pairs += 1
+        volume = np.linalg.det(np.stack([p[1] - p[0], p[2] - p[0], p[3] - p[0]]))
+        assert abs(volume) <= 1e-9 * SIZE**3
+    assert pairs >= len(rulings) - len(items(result, "Strips"))
+    field = HeightField(lambda x, y: x * y / 10, lambda x, y: y / 10, lambda x, y: x / 10,
+                        _zero, lambda x, y: np.full_like(x, 0.1), _zero)
+    worst = max(distance_to(field, grid(s).reshape(-1, 3)).max() for s in items(result, "Strips"))
+    assert worst <= TOL * 1.001
+
+
+def test_direction_makes_the_boundaries_run_along_it():
+    for guide, fixed in ((Vector(1.0, 0.0, 0.0), 1), (Vector(0.0, 1.0, 0.0), 0)):
+        result = run(Rationalise(), Surface=tree({(0,): [SADDLE.surface()]}), Tolerance=TOL, MaxStrips=40,
+                     Direction=guide)
+        for boundary in items(result, "Boundaries"):
+            assert np.ptp(boundary.point_at(np.linspace(0, 1, 9))[:, fixed]) <= 1e-9 * SIZE
