@@ -111,7 +111,8 @@ class Rationalise(Node):
             raise NodeError(f"Segments is {n}: give a whole number from 1 to 1000")
         warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
         try:
-            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=warp_limit)
+            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=warp_limit,
+                                 progress=self.progress)
         except ValueError as exc:
             raise NodeError(f"Surface: {sentence(exc)}") from None
         rulings: list[Any] = []

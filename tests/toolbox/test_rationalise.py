@@ -320,3 +320,12 @@ def test_direction_makes_the_boundaries_run_along_it():
                      Direction=guide)
         for boundary in items(result, "Boundaries"):
             assert np.ptp(boundary.point_at(np.linspace(0, 1, 9))[:, fixed]) <= 1e-9 * SIZE
+
+
+def test_progress_rises_to_one_as_the_strips_cover_the_design():
+    from nodes.geometry.developable.rationalise import rationalise
+
+    seen: list[float] = []
+    result = rationalise(DOME.surface(), 0.05, 40, progress=seen.append)
+    assert len(seen) == len(result.strips)
+    assert np.all(np.diff(seen) > 0) and seen[-1] == 1.0

@@ -32,6 +32,7 @@ need be.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -143,7 +144,8 @@ CLOSE = 0.95
 
 
 def _march(
-    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float
+    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float,
+    progress: Callable[[float], None] | None = None,
 ) -> list[Strip] | None:
     """Strips from one edge of the design to the other, each as wide as the tolerance
     allows: each next boundary is placed by a few trials (a secant on the square law
@@ -180,6 +182,8 @@ def _march(
         strips.append(good)
         width = good.hi - lo
         lo = good.hi
+        if progress is not None:
+            progress(lo)
     return strips
 
 
@@ -209,10 +213,12 @@ def rationalise(
     direction: ArrayLike | None = None,
     segments: int = 24,
     warp_tolerance: float = 1e-7,
+    progress: Callable[[float], None] | None = None,
 ) -> Rationalisation:
     """Developable strips within ``tolerance`` of ``design`` (see the module).
 
     Raises ``ValueError`` for a design closed across the boundaries (cut it first).
+    ``progress`` is called with the share of the design covered so far (0 to 1).
     """
     family = boundary_family(design, direction)
     closed_across = design.closed_v if family == "u" else design.closed_u
@@ -223,7 +229,7 @@ def rationalise(
         )
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
-    strips = _march(design, family, tolerance, int(max_strips), segments, warp_tolerance)
+    strips = _march(design, family, tolerance, int(max_strips), segments, warp_tolerance, progress)
     if strips is None:  # the tolerance needs more than max_strips: the best split of that many
         strips = _bisect(design, family, tolerance, int(max_strips), segments, warp_tolerance)
     params = [strips[0].lo] + [s.hi for s in strips]
