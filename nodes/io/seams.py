@@ -21,6 +21,7 @@ import shapely
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
+from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import Surface
 
 FloatArray = NDArray[np.float64]
@@ -31,6 +32,9 @@ COARSE, FINE = 41, 4001
 SEAM_TOLERANCE = 1e-3
 #: Length of an alignment tick, mm.
 TICK_MM = 4.0
+#: How far from an edge (mm) a point is tested to tell the panel's side: well beyond the
+#: 0.01 mm by which a cut outline, drawn within that tolerance, may miss the edge's vertices.
+SIDE_MM = 0.1
 #: Most ticks along one seam edge (a smaller TickSpacing is refused).
 MAX_TICKS = 10_000
 
@@ -93,8 +97,26 @@ def find_seams(strips: Sequence[Surface], tolerance: float = SEAM_TOLERANCE) -> 
 
 
 def edge_polyline(surface: Surface, edge: int, tolerance: float) -> FloatArray:
-    """Edge ``edge`` of a flat surface as ``(n, 2)`` points (its x and y)."""
-    return np.asarray(surface.edges()[edge].to_polyline(tolerance).points, dtype=float)[:, :2]
+    """Edge ``edge`` of a flat surface as ``(n, 2)`` points (its x and y), within
+    ``tolerance`` of it and through every vertex of a ruled surface's rail on it: an
+    unrolled strip's edges are polylines (IsoMapping's Development), and samples between
+    their vertices alone would cut the corners and measure the edge short."""
+    curve = surface.edges()[edge]
+    t = np.asarray(curve.tessellate(tolerance), dtype=float)
+    rail = getattr(surface, {0: "curve_a", 2: "curve_b"}.get(edge, ""), None)
+    if isinstance(rail, Curve):
+        breaks = np.clip(np.asarray(rail._breakpoints(), dtype=float), 0.0, 1.0)
+        t = np.unique(np.concatenate([t, 1.0 - breaks if edge == 2 else breaks]))
+    points = np.asarray(curve.point_at(t), dtype=float)[:, :2]
+    # a sample that repeats a vertex to rounding would give a step with no direction
+    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    size = float(np.ptp(points, axis=0).max()) or 1.0
+    keep = np.r_[True, steps > 1e-9 * size]
+    if not keep[-1]:  # the end repeats the point before it: keep the end itself
+        before = np.flatnonzero(keep)[-1]
+        keep[before] = before == 0
+        keep[-1] = True
+    return points[keep]
 
 
 def length(points: FloatArray) -> float:
@@ -125,7 +147,7 @@ def ticks(edge: FloatArray, panel: FloatArray, spacing: float, reverse: bool = F
             continue
         foot = points[k] + (s - along[k]) / norm * direction
         normal = np.array([-direction[1], direction[0]]) / norm
-        if not polygon.contains(shapely.Point(foot + 1e-3 * normal)):
+        if not polygon.contains(shapely.Point(foot + SIDE_MM * normal)):
             normal = -normal
         out.append(np.array([foot, foot + TICK_MM * normal]))
     return out
@@ -149,7 +171,7 @@ def seam_label(text: str, edge: FloatArray, panel: FloatArray, height: float,
     middle = edge[k] + (along[-1] / 2 - along[k]) / norm * direction
     normal = np.array([-direction[1], direction[0]]) / norm
     polygon = shapely.Polygon(panel)
-    if not polygon.contains(shapely.Point(middle + 1e-3 * normal)):
+    if not polygon.contains(shapely.Point(middle + SIDE_MM * normal)):
         normal = -normal
     size = min(height, float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= height / 5:

@@ -14,7 +14,7 @@ from engine.solver import OK
 from nodes.geometry.ruled import RuledSurface
 from nodes.io import cutfiles
 from nodes.io.cutting import ExportCutSheet
-from nodes.io.seams import TICK_MM, find_seams
+from nodes.io.seams import TICK_MM, edge_polyline, find_seams, length
 from tests.nodes.helpers import out, run, texts, tree
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-cut-sheets.graph"
@@ -52,6 +52,18 @@ def test_strips_sharing_an_edge_are_found_as_one_seam_and_others_not():
     (seam,) = find_seams(strips)
     assert (seam.id, seam.a, seam.b) == ("S1", 0, 1)
     assert {seam.edge_a, seam.edge_b} == {2, 0}  # v = 1 of the first is v = 0 of the second
+
+
+def test_a_polyline_edge_is_measured_through_its_vertices():
+    # a flat strip whose rails are polylines with corners (IsoMapping's Development is one):
+    # rail A is a zigzag of 7 legs, each of length hypot(1/7, 0.02) (corners off the
+    # tessellation's own dyadic parameters)
+    x = np.linspace(0.0, 1.0, 8)
+    a = np.column_stack([x, 0.02 * (np.arange(8) % 2), np.zeros(8)])
+    strip = RuledSurface.from_rulings(a, a + np.array([0.0, 0.5, 0.0]), degree=1)
+    edge = edge_polyline(strip, 0, 1e-3)
+    assert length(edge) == pytest.approx(7 * np.hypot(1 / 7, 0.02), rel=1e-12)
+    assert length(edge_polyline(strip, 2, 1e-3)) == pytest.approx(7 * np.hypot(1 / 7, 0.02), rel=1e-12)
 
 
 def test_a_seam_between_flat_bands_has_equal_lengths_an_id_on_both_parts_and_ticks(tmp_path):
