@@ -456,8 +456,9 @@ def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
     items = [(p.name, t) for p, t in matched if p.access is ITEM and not t.is_empty()]
     if len(items) < 2:
         return
+    branch_lists = [(n, t.branches) for n, t in items]  # built once: ``branches`` copies the tree's list
     for path_index in range(max(t.branch_count for _, t in items)):
-        lengths = [(n, len(t.branches[min(path_index, t.branch_count - 1)])) for n, t in items]
+        lengths = [(n, len(bl[min(path_index, len(bl) - 1)])) for n, bl in branch_lists]
         longest = max(length for _, length in lengths)
         for name, length in lengths:
             if 1 < length < longest:
