@@ -6,7 +6,7 @@ import shutil
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
@@ -168,14 +168,24 @@ class MenuCatcher:
     """Polls for the popup a gesture opens; reads its entries, then picks ``pick`` with a
     mouse click on it (or closes the menu with Esc)."""
 
+    live: ClassVar[list[MenuCatcher]] = []  # stopped when the test ends (see :func:`stop_menu_catchers`)
+
     def __init__(self, pick: str | tuple[str, ...] | None = None) -> None:
         self.pick = [pick] if isinstance(pick, str) else list(pick or [])
         self.menus: list[list[str]] = []
         self._seen: list[QMenu] = []
         self.polls = 0
+        self.stopped = False
+        MenuCatcher.live.append(self)
         QTimer.singleShot(10, self._poll)
 
+    def stop(self) -> None:
+        """Poll no more (a catcher outliving its test would pick from the next test's menus)."""
+        self.stopped = True
+
     def _poll(self) -> None:
+        if self.stopped:
+            return
         menu = QApplication.activePopupWidget()
         if not isinstance(menu, QMenu):
             self.polls += 1
@@ -214,4 +224,13 @@ def right_click(window: MainWindow, point: QPoint, pick: str | tuple[str, ...] |
     QTest.mousePress(viewport, Qt.MouseButton.RightButton, NONE, point)
     QTest.mouseRelease(viewport, Qt.MouseButton.RightButton, NONE, point)
     QApplication.processEvents()
+    catcher.stop()  # the menu's exec has returned: it was handled, or none opened
     return catcher
+
+
+@pytest.fixture(autouse=True)
+def stop_menu_catchers() -> Iterator[None]:
+    yield
+    for catcher in MenuCatcher.live:
+        catcher.stop()
+    MenuCatcher.live.clear()
