@@ -17,6 +17,9 @@ from nodes.types import CURVE, LINE, SURFACE
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
 
+#: The most rulings (MaxStrips × (Segments + 1)) one solve may make.
+RULING_BUDGET = 6_000
+
 #: The most strips one solve may make.
 STRIP_LIMIT = 256
 
@@ -62,8 +65,8 @@ class Rationalise(Node):
     surface's normal curvature, or the family running most nearly along Direction when
     it is given. Starting from one edge, each strip is made as wide as the tolerance
     allows, measured by the largest distance of a dense grid of its points from the
-    design. When more than MaxStrips would be needed, the node makes MaxStrips strips
-    (the worst split repeatedly) and warns with the deviation reached.
+    design. When more than MaxStrips would be needed, the node makes MaxStrips evenly
+    spaced strips and warns with the deviation reached.
 
     An already developable design, such as a cylinder patch, comes back as one strip
     or a few. A design closed across the strips (a full tube around) must be cut open
@@ -110,6 +113,9 @@ class Rationalise(Node):
         if not 1 <= n <= 1000:
             raise NodeError(f"Segments is {n}: give a whole number from 1 to 1000")
         warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
+        if count * (n + 1) > RULING_BUDGET:
+            raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "
+                            "at once: lower MaxStrips or Segments")
         try:
             result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=warp_limit,
                                  progress=self.progress)

@@ -329,3 +329,10 @@ def test_progress_rises_to_one_as_the_strips_cover_the_design():
     result = rationalise(DOME.surface(), 0.05, 40, progress=seen.append)
     assert len(seen) == len(result.strips)
     assert np.all(np.diff(seen) > 0) and seen[-1] == 1.0
+
+
+def test_too_many_rulings_at_once_are_refused_naming_maxstrips_and_segments():
+    result = run(Rationalise(), Surface=tree({(0,): [DOME.surface()]}), Tolerance=TOL, MaxStrips=200,
+                 Segments=200)
+    assert result.state == "error"
+    assert any("MaxStrips 200" in t and "Segments" in t for t in texts(result))

@@ -21,8 +21,8 @@ Method (a first version)
    kept inside the bracket of widths found too wide and within. A strip's deviation is
    the largest distance of a dense grid of its points from the design, by the design's
    own closest-point search. When more than ``max_strips`` would be needed, the design
-   is instead split into ``max_strips`` strips, the worst halved each time, and the
-   result reports the deviation reached.
+   is instead split into ``max_strips`` evenly spaced strips, and the result reports
+   the deviation reached.
 
 What this version does not do (yet): boundaries are isocurves, not curves traced along
 principal directions or optimised (the issue's least-squares route), so on a design
@@ -32,6 +32,7 @@ need be.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -187,22 +188,17 @@ def _march(
     return strips
 
 
-def _bisect(
-    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float
+def _even(
+    design: Surface, family: str, count: int, segments: int, warp_tolerance: float,
+    progress: Callable[[float], None] | None = None,
 ) -> list[Strip]:
-    """Up to ``max_strips`` strips, the worst split in two at its middle until all are
-    within the tolerance or the count is reached."""
-    strips = [strip_between(design, family, 0.0, 1.0, segments, warp_tolerance)]
-    while len(strips) < max_strips:
-        worst = int(np.argmax([s.deviation for s in strips]))
-        if strips[worst].deviation <= tolerance:
-            break
-        old = strips[worst]
-        mid = 0.5 * (old.lo + old.hi)
-        strips[worst : worst + 1] = [
-            strip_between(design, family, old.lo, mid, segments, warp_tolerance),
-            strip_between(design, family, mid, old.hi, segments, warp_tolerance),
-        ]
+    """``count`` strips between evenly spaced boundaries (when the tolerance needs more)."""
+    cuts = np.linspace(0.0, 1.0, count + 1)
+    strips = []
+    for lo, hi in itertools.pairwise(cuts):
+        strips.append(strip_between(design, family, float(lo), float(hi), segments, warp_tolerance))
+        if progress is not None:
+            progress(float(hi))
     return strips
 
 
@@ -230,8 +226,8 @@ def rationalise(
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
     strips = _march(design, family, tolerance, int(max_strips), segments, warp_tolerance, progress)
-    if strips is None:  # the tolerance needs more than max_strips: the best split of that many
-        strips = _bisect(design, family, tolerance, int(max_strips), segments, warp_tolerance)
+    if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
+        strips = _even(design, family, int(max_strips), segments, warp_tolerance)
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [IsoCurve(design, family, p) for p in params]
     return Rationalisation(family, strips, boundaries, float(tolerance))
