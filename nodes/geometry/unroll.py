@@ -40,12 +40,17 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
 from .area import gauss_legendre_01
+from .triangle_search import TriangleIndex
+from .watch import watch_check, watch_progress
 
 if TYPE_CHECKING:
     from .surface_base import Surface
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+
+#: Points measured against the strip's triangles in one block of the closest-point search.
+_QUERY_CHUNK = 2048
 
 #: Diagonals within this relative margin count as equally long; the first one
 #: (A_{i+1} to B_i) is then taken, so symmetric strips triangulate uniformly.
@@ -335,11 +340,6 @@ class DevelopmentMap:
     # ------------------------------------------------------------- surface → plane
 
     @cached_property
-    def _boxes3d(self) -> tuple[FloatArray, FloatArray]:
-        corners = self.vertices3d[self.triangles[self.proper]]
-        return corners.min(axis=1), corners.max(axis=1)
-
-    @cached_property
     def _samples3d(self) -> tuple[cKDTree, IntArray]:
         # the centroid and the three edge midpoints of every proper triangle
         corners = self.vertices3d[self.triangles[self.proper]]
@@ -355,8 +355,8 @@ class DevelopmentMap:
         ``TIE`` of the strip's size.
 
         The triangle owning the nearest sample gives an upper bound on the distance;
-        only triangles whose bounding box lies within it are measured exactly (in
-        memory-bounded chunks, each vectorised).
+        only triangles whose bounding ball lies within it (:class:`TriangleIndex`, a
+        k-d tree per class of triangle size) are measured exactly.
         """
         pts = points3d
         tree, owner = self._samples3d
@@ -365,24 +365,31 @@ class DevelopmentMap:
         g = corners[guess]
         bary = _closest_on_triangles(pts, g[:, 0], g[:, 1], g[:, 2])
         bound = np.linalg.norm(np.einsum("kj,kjd->kd", bary, g) - pts, axis=1)
-        low, high = self._boxes3d
         tie = TIE * (float(np.linalg.norm(np.ptp(self.vertices3d, axis=0))) or 1.0)
-        chunk = max(1, 2_000_000 // len(low))
+        check, progress = watch_check(), watch_progress()
         found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
-        for start in range(0, len(pts), chunk):  # memory-bounded chunks, vectorised inside
-            q = pts[start:start + chunk]
-            gap = np.maximum(low[None] - q[:, None], 0.0) + np.maximum(q[:, None] - high[None], 0.0)
-            near = np.linalg.norm(gap, axis=2) <= (bound[start:start + chunk] + tie)[:, None]
-            row, col = np.nonzero(near)
-            c = corners[col]
-            b = _closest_on_triangles(q[row], c[:, 0], c[:, 1], c[:, 2])
-            dist = np.linalg.norm(np.einsum("kj,kjd->kd", b, c) - q[row], axis=1)
+        for start in range(0, len(pts), _QUERY_CHUNK):  # blocks: bounded memory, cancellable
+            if check is not None:
+                check()
+            q = pts[start:start + _QUERY_CHUNK]
+            rows, cols = self._index3d.candidates(q, bound[start:start + _QUERY_CHUNK] + 2 * tie)
+            c = corners[cols]
+            barys = _closest_on_triangles(q[rows], c[:, 0], c[:, 1], c[:, 2])
+            dists = np.linalg.norm(np.einsum("kj,kjd->kd", barys, c) - q[rows], axis=1)
             best = np.full(len(q), np.inf)
-            np.minimum.at(best, row, dist)
-            keep = dist <= best[row] + tie
-            found.append((start + row[keep], col[keep], b[keep], dist[keep]))
+            np.minimum.at(best, rows, dists)
+            keep = dists <= best[rows] + tie
+            found.append((start + rows[keep], cols[keep], barys[keep], dists[keep]))
+            if progress is not None:
+                progress(min(1.0, (start + len(q)) / len(pts)))
+        if not found:
+            return (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros((0, 3)), np.zeros(0))
         rows, cols, barys, dists = (np.concatenate(parts) for parts in zip(*found, strict=True))
         return rows, cols, barys, dists
+
+    @cached_property
+    def _index3d(self) -> TriangleIndex:
+        return TriangleIndex(self.vertices3d[self.triangles[self.proper]])
 
     def closest(
         self, points3d: ArrayLike, hints2d: ArrayLike | None = None
@@ -864,28 +871,39 @@ def edge_subdivisions(
     per segment, so the chord sums L(k₁) and L(k₂) of two samplings give the error of the
     finer one as |L(k₂) − L(k₁)| / ((k₂/k₁)² − 1) (Richardson). Starting from
     ``subdivisions`` and twice that, the next k is the one that law asks for (at least
-    1.5 times the last), until the estimate is within ``tolerance`` or the strip reaches
-    :data:`MAX_RULINGS` (the error returned then says how far it got).
+    1.5 times the last). A rail that is not smooth enough for the law (a kink, a cusp at
+    an edge of regression) does not settle within :data:`REFINEMENTS` samplings or
+    :data:`MAX_RULINGS` rulings: then the first sampling is returned, with its error.
     """
     longest = max(MAX_RULINGS // segments, 2 * subdivisions)
-    k1 = subdivisions
-    coarse = surface.rulings(segments * k1 + 1)
+    k1 = first = subdivisions
+    coarse = start = surface.rulings(segments * k1 + 1)
     size = float(np.ptp(coarse.reshape(-1, 3), axis=0).max()) or 1.0
     k2 = 2 * k1
-    while True:
+    first_error = np.inf
+    for _ in range(REFINEMENTS):
         fine = surface.rulings(segments * k2 + 1)
         step = np.abs(_rail_lengths(fine) - _rail_lengths(coarse))
         error = float(step.max() / ((k2 / k1) ** 2 - 1.0) / size)
-        if error * (k2 / k1) ** 2 <= tolerance:  # the coarser sampling was already enough
-            return k1, coarse, error * (k2 / k1) ** 2
-        if error <= tolerance or k2 >= longest or not np.isfinite(error):
+        if not np.isfinite(error):
+            break
+        if k1 == first:
+            first_error = error * (k2 / k1) ** 2
+            if first_error <= tolerance:  # the first sampling was already enough
+                return k1, coarse, first_error
+        if error <= tolerance:
             return k2, fine, error
+        if k2 >= longest:
+            break
         wanted = int(np.ceil(k2 * np.sqrt(error / tolerance) * 1.2))
         k1, coarse, k2 = k2, fine, min(max(wanted, int(np.ceil(1.5 * k2))), longest)
+    return first, start, first_error
 
 
-#: Most rulings :func:`unroll_surface` samples along a strip when it refines for its edges.
-MAX_RULINGS = 1 << 16
+#: Most rulings :func:`edge_subdivisions` samples along a strip.
+MAX_RULINGS = 1 << 13
+#: Most refined samplings :func:`edge_subdivisions` tries before it gives up.
+REFINEMENTS = 4
 
 
 def unroll_surface(

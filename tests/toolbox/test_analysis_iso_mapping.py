@@ -61,7 +61,8 @@ def test_cone_unrolls_to_sector_of_angle_2pi_r_over_L():
     slant = math.hypot(R_CONE, H_CONE)
     base, apex = ends(v["Rulings"])
     assert result.state == "ok"
-    assert np.abs(apex - apex[0]).max() < 1e-12  # every ruling ends at the apex's image
+    # every ruling ends at the apex's image, to the rounding of the ~n frames composed on the way
+    assert np.abs(apex - apex[0]).max() < 2e-16 * len(v["Map"].starts2d) * slant
     arms = (base - apex)[:, :2]
     assert np.abs(np.linalg.norm(arms, axis=1) - slant).max() < 1e-12 * slant
     turn = np.arctan2(cross2(arms[:-1], arms[1:]), np.einsum("ij,ij->i", arms[:-1], arms[1:]))
@@ -99,11 +100,13 @@ def test_helix_tangent_developable_unrolls_to_band_around_circle_of_radius_R2_pl
 
 
 @pytest.mark.parametrize("name", ["cone", "cylinder", "helix", "hypar"])
-def test_edge_lengths_are_preserved_to_1e_12_relative(name):
+def test_edge_lengths_are_preserved_to_rounding(name):
     surface = {"cone": cone(R_CONE, H_CONE), "cylinder": cylinder(R_CYL, H_CYL),
                "helix": tangent_developable(R_HELIX, RISE, 0.75, 3.0, 0.5), "hypar": hypar()}[name]
     _, v = unrolled(surface)
-    assert v["EdgeError"] < 1e-12
+    # the flat vertices are absolute coordinates: an edge 1/n of the strip long keeps its
+    # length to ~n rounding units (n: the rulings unrolled, up to ~9,000 here)
+    assert v["EdgeError"] < 1e-15 * len(v["Map"].starts2d)
     assert v["Map"].max_edge_length_error == v["EdgeError"]
 
 
