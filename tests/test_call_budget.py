@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
+import numpy as np
+
 from engine.node import LIST, MAX_CALLS, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER
 from nodes.analysis.surface_analysis import SurfaceAnalysis
@@ -122,3 +124,30 @@ def test_surface_analysis_over_200_densities_is_refused_at_once_naming_udensity(
 def test_surface_analysis_of_a_few_strips_at_the_default_density_runs():
     result = run(SurfaceAnalysis(), Surface=tree({(0,): [cylinder(1.5, 2.0)] * 3}))
     assert result.state == "ok"
+
+
+def _patching_inputs(scales: list[float]) -> dict[str, Any]:
+    from nodes.geometry.curves.line import Polyline
+    from nodes.geometry.unroll import unroll_surface
+
+    surface = cylinder(1.0, 2.0)
+    panel = Polyline(np.array([[0, 0, 0], [0.3, 0, 0], [0.3, 0.2, 0], [0, 0.2, 0], [0, 0, 0]], dtype=float))
+    return {"Surface": tree({(0,): [surface]}), "Development": tree({(0,): [unroll_surface(surface, 48)]}),
+            "Pattern": tree({(0,): [panel]}), "Scale": tree({(0,): scales})}
+
+
+def test_surface_patching_over_200_small_scales_is_refused_at_once_naming_scale():
+    from nodes.patching.surface_patching import SurfacePatching
+
+    result = run(SurfacePatching(), **_patching_inputs([0.1 + 0.001 * i for i in range(200)]))
+    assert result.state == "error"
+    assert result.seconds < 1.0
+    assert result.messages[0].text.startswith("Scale has 200 values: SurfacePatching would run 200 times")
+
+
+def test_surface_patching_at_two_scales_runs():
+    from nodes.patching.surface_patching import SurfacePatching
+
+    result = run(SurfacePatching(), **_patching_inputs([1.0, 2.0]))
+    assert result.state == "ok"
+    assert len(out(result, "PanelsFlat")) == 2

@@ -52,6 +52,11 @@ def _panel_ids(count: int) -> list[str]:
     return [f"P-{i + 1:0{digits}d}" for i in range(count)]
 
 
+#: What one call costs besides its copies, in pattern copies (checking the development
+#: against the surface, the outline, the mapping of the panels to 3D).
+_CALL_COPIES = 500
+
+
 class SurfacePatching(Node):
     """Lay a panel pattern over a development and carry the panels onto the 3D surface.
 
@@ -114,6 +119,30 @@ class SurfacePatching(Node):
         Out("PanelAreas", NUMBER, "A", "Area of each flat panel, model units².", access=LIST),
         Out("Waste", NUMBER, "W", "Share of sheet cut off, 0 to 1."),
     )
+
+    # a list of Scales (or of developments) multiplies the capped copies of one call: one
+    # solve lays at most four calls' worth at the cap (each call also costs about what
+    # _CALL_COPIES copies do)
+    max_work = 4 * MAX_PANELS
+    work_unit = "pattern copies"
+
+    def call_work(self, surface: Any, development: Any, pattern: list[Any], tile: Any, scale: Any,
+                  rotation: Any) -> int:
+        """The pattern copies one call lays, over-counted for any Rotation (the square on
+        the development's diagonal), before anything is made; at most :data:`MAX_PANELS`
+        (a call past that is refused by its own check)."""
+        if development is None or not pattern:
+            return _CALL_COPIES
+        rings = [ring("Pattern", curve)[0] for curve in pattern]
+        corners = ring("Tile", tile)[0] if tile is not None else np.vstack(rings)
+        with np.errstate(over="ignore", invalid="ignore"):
+            size = np.ptp(corners[:, :2], axis=0) * float(scale)
+            xmin, ymin, xmax, ymax = _development(development).bounds
+            reach = math.hypot(xmax - xmin, ymax - ymin)
+            copies = float(np.prod(reach / size + 2.0)) * len(rings)
+        if not (np.all(size > 0) and math.isfinite(copies)):
+            return 1
+        return int(min(copies, MAX_PANELS)) + _CALL_COPIES
 
     def solve(self, surface: Any, development: Any, pattern: list[Any], tile: Any, scale: Any,
               rotation: Any) -> tuple[Polyline, Polyline, list[Polyline], list[Polyline], list[str],
