@@ -217,8 +217,8 @@ def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     where an edge stands still and its samples differ by rounding only: kept, they would
     zigzag across each other)."""
     pieces = []
-    for edge in surface.edges():
-        points = np.asarray(edge.point_at(edge.tessellate(tolerance)), dtype=float)
+    for index, edge in enumerate(surface.edges()):  # through every vertex of a polyline edge
+        points = np.asarray(edge.point_at(seam_edges.edge_parameters(surface, index, tolerance)), dtype=float)
         pieces.append(points[:-1])  # (a collapsed edge, a tapering strip's tip, is one point)
     ring = np.vstack(pieces)
     size = float(np.ptp(ring, axis=0).max()) or 1.0

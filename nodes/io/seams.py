@@ -96,18 +96,26 @@ def find_seams(strips: Sequence[Surface], tolerance: float = SEAM_TOLERANCE) -> 
     return seams
 
 
-def edge_polyline(surface: Surface, edge: int, tolerance: float) -> FloatArray:
-    """Edge ``edge`` of a flat surface as ``(n, 2)`` points (its x and y), within
-    ``tolerance`` of it and through every vertex of a ruled surface's rail on it: an
-    unrolled strip's edges are polylines (IsoMapping's Development), and samples between
-    their vertices alone would cut the corners and measure the edge short."""
+def edge_parameters(surface: Surface, edge: int, tolerance: float) -> FloatArray:
+    """Parameters along edge ``edge`` of ``surface`` (see :meth:`Surface.edges`) for a
+    polyline within ``tolerance`` of it that also passes through every vertex of the
+    ruled surface's rail on that edge (an unrolled strip's edges are polylines)."""
     curve = surface.edges()[edge]
     t = np.asarray(curve.tessellate(tolerance), dtype=float)
     rail = getattr(surface, {0: "curve_a", 2: "curve_b"}.get(edge, ""), None)
     if isinstance(rail, Curve):
         breaks = np.clip(np.asarray(rail._breakpoints(), dtype=float), 0.0, 1.0)
         t = np.unique(np.concatenate([t, 1.0 - breaks if edge == 2 else breaks]))
-    points = np.asarray(curve.point_at(t), dtype=float)[:, :2]
+    return t
+
+
+def edge_polyline(surface: Surface, edge: int, tolerance: float) -> FloatArray:
+    """Edge ``edge`` of a flat surface as ``(n, 2)`` points (its x and y), within
+    ``tolerance`` of it and through every vertex of a ruled surface's rail on it: an
+    unrolled strip's edges are polylines (IsoMapping's Development), and samples between
+    their vertices alone would cut the corners and measure the edge short."""
+    curve = surface.edges()[edge]
+    points = np.asarray(curve.point_at(edge_parameters(surface, edge, tolerance)), dtype=float)[:, :2]
     # a sample that repeats a vertex to rounding would give a step with no direction
     steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
     size = float(np.ptp(points, axis=0).max()) or 1.0
