@@ -220,7 +220,6 @@ def right_click(window: MainWindow, point: QPoint, pick: str | tuple[str, ...] |
     opens is read and ``pick`` chosen from it (a path of entries for a submenu)."""
     catcher = MenuCatcher(pick)
     viewport = window.view.viewport()
-    QTest.mouseMove(viewport, point)
     QTest.mousePress(viewport, Qt.MouseButton.RightButton, NONE, point)
     QTest.mouseRelease(viewport, Qt.MouseButton.RightButton, NONE, point)
     QApplication.processEvents()
@@ -234,3 +233,6 @@ def stop_menu_catchers() -> Iterator[None]:
     for catcher in MenuCatcher.live:
         catcher.stop()
     MenuCatcher.live.clear()
+    while (popup := QApplication.activePopupWidget()) is not None:  # none may outlive its test
+        popup.close()
+        QApplication.processEvents()
