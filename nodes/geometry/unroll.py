@@ -40,7 +40,6 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
 from .area import gauss_legendre_01
-from .triangle_search import TriangleIndex
 from .watch import watch_check, watch_progress
 
 if TYPE_CHECKING:
@@ -48,9 +47,6 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-
-#: Points measured against the strip's triangles in one block of the closest-point search.
-_QUERY_CHUNK = 2048
 
 #: Diagonals within this relative margin count as equally long; the first one
 #: (A_{i+1} to B_i) is then taken, so symmetric strips triangulate uniformly.
@@ -355,8 +351,9 @@ class DevelopmentMap:
         ``TIE`` of the strip's size.
 
         The triangle owning the nearest sample gives an upper bound on the distance;
-        only triangles whose bounding ball lies within it (:class:`TriangleIndex`, a
-        k-d tree per class of triangle size) are measured exactly.
+        only triangles whose bounding box lies within it are measured exactly (in
+        memory-bounded blocks of points, each vectorised; between blocks the search
+        checks for cancellation and reports progress, see :mod:`.watch`).
         """
         pts = points3d
         tree, owner = self._samples3d
@@ -365,31 +362,34 @@ class DevelopmentMap:
         g = corners[guess]
         bary = _closest_on_triangles(pts, g[:, 0], g[:, 1], g[:, 2])
         bound = np.linalg.norm(np.einsum("kj,kjd->kd", bary, g) - pts, axis=1)
+        low, high = self._boxes3d
         tie = TIE * (float(np.linalg.norm(np.ptp(self.vertices3d, axis=0))) or 1.0)
+        chunk = max(1, 2_000_000 // len(low))
         check, progress = watch_check(), watch_progress()
         found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
-        for start in range(0, len(pts), _QUERY_CHUNK):  # blocks: bounded memory, cancellable
+        for start in range(0, len(pts), chunk):  # memory-bounded chunks, vectorised inside
             if check is not None:
                 check()
-            q = pts[start:start + _QUERY_CHUNK]
-            rows, cols = self._index3d.candidates(q, bound[start:start + _QUERY_CHUNK] + 2 * tie)
-            c = corners[cols]
-            barys = _closest_on_triangles(q[rows], c[:, 0], c[:, 1], c[:, 2])
-            dists = np.linalg.norm(np.einsum("kj,kjd->kd", barys, c) - q[rows], axis=1)
+            q = pts[start:start + chunk]
+            gap = np.maximum(low[None] - q[:, None], 0.0) + np.maximum(q[:, None] - high[None], 0.0)
+            near = np.linalg.norm(gap, axis=2) <= (bound[start:start + chunk] + tie)[:, None]
+            row, col = np.nonzero(near)
+            c = corners[col]
+            b = _closest_on_triangles(q[row], c[:, 0], c[:, 1], c[:, 2])
+            dist = np.linalg.norm(np.einsum("kj,kjd->kd", b, c) - q[row], axis=1)
             best = np.full(len(q), np.inf)
-            np.minimum.at(best, rows, dists)
-            keep = dists <= best[rows] + tie
-            found.append((start + rows[keep], cols[keep], barys[keep], dists[keep]))
+            np.minimum.at(best, row, dist)
+            keep = dist <= best[row] + tie
+            found.append((start + row[keep], col[keep], b[keep], dist[keep]))
             if progress is not None:
                 progress(min(1.0, (start + len(q)) / len(pts)))
-        if not found:
-            return (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros((0, 3)), np.zeros(0))
         rows, cols, barys, dists = (np.concatenate(parts) for parts in zip(*found, strict=True))
         return rows, cols, barys, dists
 
     @cached_property
-    def _index3d(self) -> TriangleIndex:
-        return TriangleIndex(self.vertices3d[self.triangles[self.proper]])
+    def _boxes3d(self) -> tuple[FloatArray, FloatArray]:
+        corners = self.vertices3d[self.triangles[self.proper]]
+        return corners.min(axis=1), corners.max(axis=1)
 
     def closest(
         self, points3d: ArrayLike, hints2d: ArrayLike | None = None
@@ -901,7 +901,7 @@ def edge_subdivisions(
 
 
 #: Most rulings :func:`edge_subdivisions` samples along a strip.
-MAX_RULINGS = 1 << 13
+MAX_RULINGS = 1 << 12
 #: Most refined samplings :func:`edge_subdivisions` tries before it gives up.
 REFINEMENTS = 4
 
