@@ -69,9 +69,9 @@ class IsoMapping(Node):
     each congruent to its 3D original, so rulings, both edges and the strips' widths
     keep their lengths (EdgeError shows it: rounding level). Between the rulings you
     see, at least 7 more per strip are unrolled too — as many as it takes for both
-    flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size —
-    so two strips made between a shared curve have flat edges of the same length
-    and their seam closes; Development is the outline of all these triangles, edge by
+    flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size, up
+    to 4096 rulings in all — so two strips made between a shared curve have flat
+    edges of the same length and their seam closes; Development is the outline of all these triangles, edge by
     straight edge, so a sheet cut along it is exactly what was unrolled. The first
     ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
 
