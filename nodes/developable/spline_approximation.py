@@ -119,7 +119,9 @@ class SplineApproximation(Node):
         except ValueError as exc:
             raise NodeError(sentence(exc)) from None
         start = _angles(angles or [], n + 1, fix_ends)
-        result = approximate(stations, start, optimise, fix_ends, check=self.check_cancelled)
+        result = approximate(
+            stations, start, optimise, fix_ends, check=self.check_cancelled, progress=self.progress
+        )
         if optimise:
             self._report(result, fix_ends)
         strip = strip_outputs(result.starts, result.ends, warp=result.warp)

@@ -79,6 +79,8 @@ EDGE_TOLERANCE = 1e-3
 MAX_OPTIMISED = 300
 #: Most residual evaluations per optimisation (it usually needs 7 to 15).
 MAX_EVALUATIONS = 200
+#: The evaluations a progress estimate counts as half the work.
+TYPICAL_EVALUATIONS = 10
 
 
 @dataclass(frozen=True)
@@ -275,11 +277,15 @@ def approximate(
     optimise: bool = False,
     fix_ends: bool = False,
     check: Callable[[], None] | None = None,
+    progress: Callable[[float], None] | None = None,
 ) -> Approximation:
     """Rotate the rulings by ``angles`` (rad, one per ruling; None for all 0) or, with
     ``optimise``, by the angles of least summed warp starting from them.
 
-    ``check`` is called at every evaluation (a node passes its cancellation check).
+    ``check`` is called at every evaluation (a node passes its cancellation check);
+    ``progress`` gets an estimate of the fraction done after each: e / (e + 10) after
+    e evaluations (the optimisation usually needs 7 to 15; how many is not known
+    beforehand), and 1 when it ends.
     """
     strip = RotatedStrip(stations)
     n = len(stations.lengths)
@@ -317,6 +323,8 @@ def approximate(
         evaluations += 1
         if check is not None:
             check()
+        if progress is not None:
+            progress(evaluations / (evaluations + TYPICAL_EVALUATIONS))
         return np.concatenate([strip.signed_warp(full(phi))[0], PULL * (ANGLE_LIMIT * np.sin(phi) - x0)])
 
     def jacobian(phi: FloatArray) -> FloatArray:
@@ -329,4 +337,6 @@ def approximate(
         residuals, np.arcsin(x0 / ANGLE_LIMIT), jac=jacobian, method="lm",
         xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=MAX_EVALUATIONS,
     )
+    if progress is not None:
+        progress(1.0)
     return strip.result(full(fit.x), initial_fitness, evaluations)

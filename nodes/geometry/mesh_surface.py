@@ -11,16 +11,21 @@ a discrete estimator — see :func:`nodes.geometry.curvature.mesh_vertex_curvatu
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
-from scipy.spatial import cKDTree
 
 from .curvature import SurfaceCurvature, mesh_vertex_curvature
+from .triangle_search import TriangleIndex
 from .vec_ops import position_rounding
 
 FloatArray = NDArray[np.float64]
+
+
+#: Queries measured in one block by :meth:`MeshSurface.closest_point`.
+_QUERY_CHUNK = 4096
 
 
 @dataclass(frozen=True)
@@ -93,31 +98,46 @@ class MeshSurface:
     def closest_point(self, points: ArrayLike) -> MeshClosestPoint:
         """Exact closest points on the triangles.
 
-        Candidate triangles for a query P are those whose centroid lies within
-        d₀ + r of P, where d₀ is the distance to the nearest vertex (an upper bound
-        of the answer) and r the largest centroid-to-corner distance of any
-        triangle; every triangle that could hold the answer is among them. The
-        candidates are then measured exactly with trimesh's vectorised
-        point–triangle projection.
+        The triangle whose centroid is nearest P gives an upper bound d₀ of the
+        answer (its exact distance); the candidates are the triangles that may lie
+        within d₀ (:class:`~.triangle_search.TriangleIndex`: by their bounding balls,
+        per class of triangle size, then boxes and planes), measured exactly with
+        trimesh's vectorised point–triangle projection. (Searching by the largest
+        triangle's reach made thin strips 4× slower than trimesh's own query.)
         """
         query = np.atleast_2d(np.asarray(points, dtype=float))
+        parts = [self._closest_block(query[i:i + _QUERY_CHUNK]) for i in range(0, len(query), _QUERY_CHUNK)]
+        if not parts:
+            return MeshClosestPoint(np.zeros((0, 3)), np.zeros(0), np.zeros(0, np.intp))
+        return MeshClosestPoint(
+            points=np.concatenate([p.points for p in parts]),
+            distances=np.concatenate([p.distances for p in parts]),
+            faces=np.concatenate([p.faces for p in parts]),
+        )
+
+    def _closest_block(self, query: FloatArray) -> MeshClosestPoint:
+        """:meth:`closest_point` for one block of queries (memory stays bounded)."""
         triangles = np.asarray(self.mesh.triangles, dtype=float)
-        centres = triangles.mean(axis=1)
-        reach = float(np.linalg.norm(triangles - centres[:, None], axis=2).max())
-        d0, _ = cKDTree(self.mesh.vertices).query(query)
+        index = self._index
+        guess = index.nearest_centre(query)
+        d0 = np.linalg.norm(trimesh.triangles.closest_point(triangles[guess], query) - query, axis=1)
         # the slack covers the rounding of the centres and distances (more far from the origin)
-        slack = reach * 1e-9 + 1e-12 + position_rounding(centres)
-        candidates = cKDTree(centres).query_ball_point(query, d0 + reach + slack)
-        counts = np.array([len(c) for c in candidates])
-        faces = np.concatenate([np.asarray(c, dtype=np.intp) for c in candidates])
-        owner = np.repeat(np.arange(len(query)), counts)
+        reach = float(index.radii.max())
+        slack = reach * 1e-9 + 1e-12 + position_rounding(index.centres)
+        owner, faces = index.candidates(query, d0 + slack)
+        owner = np.concatenate([np.arange(len(query)), owner])  # each query keeps its guess
+        faces = np.concatenate([guess, faces])
         found = trimesh.triangles.closest_point(triangles[faces], query[owner])
         dist = np.linalg.norm(found - query[owner], axis=1)
         # Minimum per query over its candidates: sort by (owner, distance).
         order = np.lexsort((dist, owner))
-        first = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        best = order[first]
+        owner = owner[order]
+        best = order[np.r_[True, owner[1:] != owner[:-1]]]
         return MeshClosestPoint(points=found[best], distances=dist[best], faces=faces[best])
+
+    @cached_property
+    def _index(self) -> TriangleIndex:
+        return TriangleIndex(np.asarray(self.mesh.triangles, dtype=float))
 
     def to_mesh(self) -> trimesh.Trimesh:
         """The wrapped mesh (a copy)."""

@@ -248,7 +248,13 @@ class Surface(ABC):
             _, su, sv = self.derivatives(u, v, 1)
             return np.linalg.norm(np.cross(su, sv), axis=1)
 
-        return float(integrate_unit_square(element, rtol=rtol)[0])
+        bu, bv = self.area_breaks()
+        return float(integrate_unit_square(element, rtol=rtol, breaks_u=bu, breaks_v=bv)[0])
+
+    def area_breaks(self) -> tuple[FloatArray | None, FloatArray | None]:
+        """Parameters in u and v where the area element may not be smooth (knots), or
+        None: the area cubature starts from their grid, so no cell straddles one."""
+        return None, None
 
     def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
         """Area and area centroid ∫∫ S |Su × Sv| / area, by the same cubature.
@@ -266,7 +272,8 @@ class Surface(ABC):
             w = np.linalg.norm(np.cross(su, sv), axis=1)
             return np.column_stack([w, (s - origin) * (w / size)[:, None]])
 
-        result = integrate_unit_square(integrand, rtol=rtol)
+        bu, bv = self.area_breaks()
+        result = integrate_unit_square(integrand, rtol=rtol, breaks_u=bu, breaks_v=bv)
         return float(result[0]), origin + size * result[1:] / result[0]
 
     # ------------------------------------------------------------------ queries

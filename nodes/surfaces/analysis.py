@@ -12,6 +12,7 @@ from engine.types import GENERIC, NUMBER, PLANE, POINT, VECTOR, describe
 from engine.values import Plane, Point, Vector
 from nodes.curves.convert import given, vector
 from nodes.geometry import mesh_surface
+from nodes.geometry.area import watched
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import IsoCurve, Surface
 from nodes.surfaces.convert import surface, uv
@@ -181,7 +182,8 @@ class Area(Node):
     def solve(self, geometry: Any) -> tuple[float, Point]:
         g = given("Geometry", geometry)
         if isinstance(g, Surface | mesh_surface.MeshSurface):
-            area, centroid = g.area_and_centroid()
+            with watched(self.check_cancelled, self.progress):
+                area, centroid = g.area_and_centroid()
         elif isinstance(g, trimesh.Trimesh):
             if len(g.faces) == 0:
                 raise NodeWarning("The mesh has no faces, so it has no area")
