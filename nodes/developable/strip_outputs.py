@@ -16,7 +16,7 @@ recomputed from the output rulings and found within the tolerance.
 from __future__ import annotations
 
 from contextlib import suppress
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -87,6 +87,7 @@ def strip_outputs(
     warp: ArrayLike | None = None,
     apex_a: ArrayLike | None = None,
     apex_b: ArrayLike | None = None,
+    surface: RuledSurface | None = None,
 ) -> StripOutputs:
     """Loft ``(n, 3)`` ruling ends into a ruled surface, with lines and warp angles.
 
@@ -109,10 +110,11 @@ def strip_outputs(
         w = warp_angles(a, b, tangents_a, tangents_b, apex_a=apex_a, apex_b=apex_b)
     else:
         w = warp_of_rulings(a, b)
-    try:
-        surface = RuledSurface.from_rulings(a, b)
-    except ValueError as exc:
-        raise NodeError(f"The rulings do not make a surface: {exc}") from None
+    if surface is None:  # (a caller with a better surface through these rulings passes it)
+        try:
+            surface = RuledSurface.from_rulings(a, b)
+        except ValueError as exc:
+            raise NodeError(f"The rulings do not make a surface: {exc}") from None
     message = undefined_message(w)
     return StripOutputs(surface, Line.many(a, b), w.tolist(), messages=(message,) if message else ())
 
@@ -139,11 +141,12 @@ def curve_strip_outputs(
     recomputation rejects are counted in a message.
     """
     w = curve_warp(curve_a, curve_b, s, t, starts, ends)
-    strip = strip_outputs(starts, ends, warp=w)
     # edges on the curves themselves, so neighbouring strips meet exactly; parameters that
     # do not run one way keep the loft through the rulings
+    on_curves = None
     with suppress(ValueError):
-        strip = replace(strip, surface=ruled_between(curve_a, s, curve_b, t))
+        on_curves = ruled_between(curve_a, s, curve_b, t)
+    strip = strip_outputs(starts, ends, warp=w, surface=on_curves)
     valid = np.isfinite(w) & (w <= tolerance)
     messages = list(strip.messages)
     if claimed is not None:
