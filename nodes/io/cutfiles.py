@@ -72,6 +72,11 @@ HAIRLINE_MM = 0.01
 #: Outline points closer than this share of the outline's size to the previous one are one point.
 SAME_POINT = 1e-9
 
+#: The finest an outline is sampled, as a fraction of the panel's size: 0.001 mm on a
+#: 10 m panel, well below :data:`FLATTEN_MM`; it only bites on panels far larger than any
+#: sheet, whose edges would otherwise be sampled to a millionth of their length.
+FINEST_RELATIVE = 1e-7
+
 CUT, ENGRAVE, SHEET, REFERENCE = "CUT", "ENGRAVE", "SHEET", "REFERENCE"
 #: Nesting methods: sparrow's true-shape nesting, or rows of bounding rectangles.
 TRUE_SHAPE, SHELF = "TrueShape", "Shelf"
@@ -212,12 +217,16 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
 def surface_outline(surface: Surface, tolerance: float) -> Polyline:
     """The boundary of a flat surface (IsoMapping's Development) as one closed polyline:
     its four edges in order (see :meth:`~nodes.geometry.surface_base.Surface.edges`),
-    each within ``tolerance`` (model units); collapsed edges drop out, and so do points
+    each within ``tolerance`` (model units, but never finer than :data:`FINEST_RELATIVE`
+    of the panel's size); collapsed edges drop out, and so do points
     within :data:`SAME_POINT` of the outline's size of the one before (a fan's apex,
     where an edge stands still and its samples differ by rounding only: kept, they would
     zigzag across each other)."""
+    edges = surface.edges()
+    coarse = np.vstack([np.asarray(edge.point_at(np.linspace(0.0, 1.0, 9)), dtype=float) for edge in edges])
+    tolerance = max(tolerance, FINEST_RELATIVE * float(np.ptp(coarse, axis=0).max()))
     pieces = []
-    for index, edge in enumerate(surface.edges()):  # through every vertex of a polyline edge
+    for index, edge in enumerate(edges):  # through every vertex of a polyline edge
         points = np.asarray(edge.point_at(seam_edges.edge_parameters(surface, index, tolerance)), dtype=float)
         pieces.append(points[:-1])  # (a collapsed edge, a tapering strip's tip, is one point)
     ring = np.vstack(pieces)

@@ -324,3 +324,26 @@ def test_shelf_packing_refuses_a_part_larger_than_the_sheet():
     with pytest.raises(DoesNotFit) as caught:
         shelf_pack([[1, 1], [11, 1]], (10, 6), gap=0.0)
     assert caught.value.index == 1
+
+
+# ------------------------------------------------------------------ panels far larger than a sheet
+
+
+@pytest.mark.parametrize("radius", [1.0, 1e12])
+def test_a_flat_annulus_outline_stays_within_its_relative_tolerance_and_a_few_thousand_points(radius):
+    # a flat half annulus between two concentric arcs: its outline points lie on the two
+    # circles exactly; a 1e12 m one (a fuzzed site) must not be sampled to 0.01 mm
+    from nodes.geometry.curves import Arc
+    from nodes.geometry.ruled import RuledSurface
+
+    outer = Arc(radius=2.0 * radius, start_angle=0.0, end_angle=math.pi)
+    inner = Arc(radius=radius, start_angle=0.0, end_angle=math.pi)
+    outline = cutfiles.surface_outline(RuledSurface(outer, inner), cutfiles.FLATTEN_MM / 1000.0)
+    points = np.asarray(outline.points)
+    curved = np.abs(points[:, 1]) > 1e-9 * radius  # the two straight ends lie on y = 0
+    r = np.linalg.norm(points[curved, :2], axis=1)
+    on_a_circle = np.minimum(np.abs(r - radius), np.abs(r - 2.0 * radius))
+    assert on_a_circle.max() <= 1e-12 * radius
+    # chords of sagitta 1e-7 of the 4r-wide panel: pi / sqrt(8e-7 * 4r / 2r) ~ 2,500 on
+    # the outer arc, halving rounds up to 4,096; the inner arc half that
+    assert len(points) <= 4097 + 2049 + 8
