@@ -4,7 +4,8 @@
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
 call these hundreds of times per solve; written out they are two to three times
 faster. They take arrays as they are (no conversion, no checks): for validated input
-use :mod:`.vectors`.
+use :mod:`.vectors`. This is the kernel's one home for them; it imports nothing of the
+kernel but :mod:`.array_types`, so any module can use it without an import circle.
 
 >>> import numpy as np
 >>> cross(np.array([[1.0, 0, 0]]), np.array([[0, 1.0, 0]])).tolist()
@@ -15,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .curve_base import FloatArray
+from .array_types import FloatArray
 
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:

@@ -2,7 +2,8 @@
 
 Every function takes single vectors ``(3,)`` or stacks ``(n, 3)`` and broadcasts; none
 loops over points. Zero-length vectors never produce NaN: :func:`unit` maps them to the
-zero vector and :func:`angle_between` reports 0 for them.
+zero vector and :func:`angle_between` reports 0 for them. The lean unchecked array
+helpers (:mod:`.vec_ops`) do the arithmetic; this module adds conversion and checks.
 """
 
 from __future__ import annotations
@@ -10,9 +11,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-FloatArray = NDArray[np.float64]
+from .array_types import FloatArray
+from .vec_ops import cross, dot
 
 #: Below this length a vector counts as zero (lengths are in model units).
 ZERO_LENGTH = 1e-300
@@ -76,7 +78,7 @@ def angle_between(a: ArrayLike, b: ArrayLike) -> FloatArray:
     """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
-    return np.arctan2(norm(np.cross(a, b)), np.sum(a * b, axis=-1))
+    return np.arctan2(norm(cross(a, b)), dot(a, b))
 
 
 def signed_angle(a: ArrayLike, b: ArrayLike, normal: ArrayLike) -> FloatArray:
@@ -84,7 +86,7 @@ def signed_angle(a: ArrayLike, b: ArrayLike, normal: ArrayLike) -> FloatArray:
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
     n = unit(normal)
-    return np.arctan2(np.sum(np.cross(a, b) * n, axis=-1), np.sum(a * b, axis=-1))
+    return np.arctan2(dot(cross(a, b), n), dot(a, b))
 
 
 def rotation_matrix(axis: ArrayLike, angle: float) -> FloatArray:
