@@ -6,19 +6,17 @@ from typing import Any
 
 import numpy as np
 import trimesh
-from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, TEXT, describe
 from nodes.curves.convert import given
 from nodes.display.plot import new_figure, save, target
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import SurfaceCurvature
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 from nodes.limits import MAX_DENSITY
 from nodes.maths.checks import count, finite
-
-FloatArray = NDArray[np.float64]
 
 #: What can be counted, and how it is computed from the principal curvatures.
 MEASURES: dict[str, str] = {

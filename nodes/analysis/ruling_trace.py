@@ -33,12 +33,10 @@ import numpy as np
 import trimesh
 from numpy.typing import NDArray
 
+from nodes.geometry.array_types import BoolArray, FloatArray
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.vec_ops import position_rounding
-
-FloatArray = NDArray[np.float64]
-BoolArray = NDArray[np.bool_]
 
 #: Walking steps per side: a line can reach the surface's diameter from its grid point.
 STEPS = 128

@@ -16,9 +16,9 @@ dome-like to saddle-like, which is exactly where it is single-curved.
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-FloatArray = NDArray[np.float64]
+from nodes.geometry.array_types import FloatArray
 
 
 def signed_flatness(k1: ArrayLike, k2: ArrayLike) -> FloatArray:

@@ -24,6 +24,7 @@ from nodes.analysis.ruling_trace import (
 )
 from nodes.analysis.single_curved import area_fraction, signed_flatness
 from nodes.curves.convert import given
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
@@ -31,8 +32,6 @@ from nodes.geometry.surface_base import Surface, uv_grid
 from nodes.limits import MAX_DENSITY
 from nodes.maths.checks import count, finite
 from nodes.types import LINE, MESH, points
-
-FloatArray = NDArray[np.float64]
 
 #: Vertices per direction of the coloured mesh, at least (finer when the grid is finer).
 MESH_GRID = 65

@@ -20,8 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER, VECTOR
 from engine.values import Vector
-
-FloatArray = NDArray[np.float64]
+from nodes.geometry.array_types import FloatArray
 
 #: Above this many items, conversions pause the garbage collector: creating a million
 #: tuples otherwise triggers dozens of full collections and takes 3–4× as long.

@@ -6,16 +6,14 @@ import math
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, TEXT, describe
 from nodes.analysis.checks import angle
 from nodes.display.plot import new_figure, save, target
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curves.line import Line
 from nodes.types import LINE
-
-FloatArray = NDArray[np.float64]
 
 
 def _warps(values: list[Any]) -> FloatArray:

@@ -12,10 +12,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.special import roots_legendre
 
+from .array_types import FloatArray
 from .roots import safeguarded_newton
 
 if TYPE_CHECKING:
-    from .curve_base import Curve, FloatArray
+    from .curve_base import Curve
 
 _NODES, _WEIGHTS = roots_legendre(16)
 

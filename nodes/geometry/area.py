@@ -28,15 +28,15 @@ import functools
 from collections.abc import Callable
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from .array_types import FloatArray
 from .watch import watch_check, watch_progress, watched
 
 __all__ = [
     "CHUNK_POINTS", "gauss_legendre_01", "integrate_unit_square", "span_gauss", "watch_check", "watched",
 ]
 
-FloatArray = NDArray[np.float64]
 
 Integrand = Callable[[FloatArray, FloatArray], FloatArray]
 Check = Callable[[], None]

@@ -16,11 +16,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.spatial import cKDTree
 
+from .array_types import FloatArray
 from .roots import safeguarded_newton
 from .vec_ops import anchor
 
 if TYPE_CHECKING:
-    from .curve_base import Curve, FloatArray
+    from .curve_base import Curve
 
 
 def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> FloatArray:

@@ -42,13 +42,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
+from .array_types import FloatArray
 from .curves import NurbsCurve
 from .surface_base import Surface
 from .vec_ops import cross, dot, norm, unit
-
-FloatArray = NDArray[np.float64]
 
 #: Corners of each edge in (u, v), in the edge's direction (numbering as Surface.edges()).
 EDGE_CORNERS = {

@@ -27,10 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import trimesh
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy import sparse
 
-FloatArray = NDArray[np.float64]
+from .array_types import FloatArray
 
 
 @dataclass(frozen=True)

@@ -15,14 +15,14 @@ from functools import cached_property
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
+
+from .array_types import FloatArray
 
 if TYPE_CHECKING:
     from .arclength import LengthTable
     from .curves.line import Polyline
     from .vectors import Plane
-
-FloatArray = NDArray[np.float64]
 
 
 class ClosestPoints(NamedTuple):

@@ -15,9 +15,8 @@ from itertools import pairwise
 from math import factorial
 
 import numpy as np
-from numpy.typing import NDArray
 
-FloatArray = NDArray[np.float64]
+from .array_types import FloatArray
 
 #: Half-width of the stencil: 2·HALF_WIDTH + 1 points.
 HALF_WIDTH = 4

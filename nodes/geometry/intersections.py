@@ -10,14 +10,13 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from .vectors import FloatArray, Plane
+from .array_types import BoolArray, FloatArray
+from .vectors import Plane
 
 if TYPE_CHECKING:
     from .curve_base import Curve
-
-BoolArray = NDArray[np.bool_]
 
 
 class LineLineClosest(NamedTuple):

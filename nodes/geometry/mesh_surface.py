@@ -17,12 +17,10 @@ import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
 
+from .array_types import FloatArray
 from .curvature import SurfaceCurvature, mesh_vertex_curvature
 from .triangle_search import TriangleIndex
 from .vec_ops import position_rounding
-
-FloatArray = NDArray[np.float64]
-
 
 #: Queries measured in one block by :meth:`MeshSurface.closest_point`.
 _QUERY_CHUNK = 4096

@@ -22,17 +22,15 @@ from collections.abc import Sequence
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy import sparse
 from scipy.interpolate import make_interp_spline
 
 from .area import CHUNK_POINTS, span_gauss, watch_check
+from .array_types import FloatArray, IntArray
 from .curve_base import Curve
 from .surface_base import Surface, broadcast_uv
 from .vec_ops import anchor
-
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.intp]
 
 _CHUNK = 8192  # points per evaluation pass: keeps the sparse rows and temporaries in cache
 _LOOKUP_LIMIT = 1 << 16  # cells of a knot-span lookup table

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-FloatArray = NDArray[np.float64]
+from .array_types import FloatArray
 
 
 def quad_planarity(starts: ArrayLike, ends: ArrayLike) -> FloatArray:

@@ -34,11 +34,11 @@ from math import factorial
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from .array_types import FloatArray
 from .surface_base import Surface, broadcast_uv
 
-FloatArray = NDArray[np.float64]
 SurfaceFunction = Callable[[FloatArray, FloatArray], Any]
 DerivativeFunction = Callable[[FloatArray, FloatArray], Sequence[Any]]
 

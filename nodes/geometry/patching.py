@@ -36,12 +36,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from .array_types import FloatArray, IntArray
 from .unroll import Development
-
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
 
 #: Clipped pieces smaller than this share of their whole panel (or of the development,
 #: when the panel is larger than it) are slivers from edges that merely touch the

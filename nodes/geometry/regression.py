@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-FloatArray = NDArray[np.float64]
+from .array_types import FloatArray
 
 #: Rulings within this angle (rad) count as parallel.
 PARALLEL_ANGLE = 1e-9

@@ -17,12 +17,9 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy.optimize import elementwise
 
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
-
+from .array_types import FloatArray, IntArray
 
 #: Relative step below which a root counts as converged (~3e-14: past this, Newton's next
 #: step would be below rounding). The caller keeps the last *evaluated* point, within

@@ -25,17 +25,16 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline, make_interp_spline
 
 from .area import gauss_legendre_01, span_gauss
+from .array_types import FloatArray
 from .curve_base import Curve
 from .curves.line import Line
 from .rail_tangents import without_overshoot
 from .surface_base import Surface, broadcast_uv
 from .vec_ops import anchor, extent
-
-FloatArray = NDArray[np.float64]
 
 #: Gauss–Legendre orders whose area estimates must agree (to ``rtol``) per attempt.
 _AREA_ORDERS = (12, 16)

@@ -34,11 +34,12 @@ from functools import cached_property
 
 import numpy as np
 import trimesh
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy import optimize
 from scipy.spatial import cKDTree
 
 from .area import integrate_unit_square
+from .array_types import FloatArray
 from .curvature import (
     BLOCK,
     DEGENERATE_RATIO,
@@ -52,8 +53,6 @@ from .curvature import (
 )
 from .curve_base import Curve
 from .vec_ops import anchor, extent, position_rounding
-
-FloatArray = NDArray[np.float64]
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
 #: an apex, a collapsed edge) normals and curvature are taken this step (in

@@ -6,8 +6,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .array_types import FloatArray
+
 if TYPE_CHECKING:
-    from .curve_base import Curve, FloatArray
+    from .curve_base import Curve
 
 
 def _distance_to_chords(points: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .vectors import FloatArray, Plane, as_points, as_vector, normalise, rotation_matrix
+from .array_types import FloatArray
+from .vectors import Plane, as_points, as_vector, normalise, rotation_matrix
 
 
 def translation(vector: ArrayLike) -> FloatArray:

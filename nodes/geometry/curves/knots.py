@@ -7,9 +7,9 @@ clamped or periodic ones for given control points, nor check user input; that is
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-FloatArray = NDArray[np.float64]
+from ..array_types import FloatArray
 
 
 def clamped_uniform_knots(count: int, degree: int) -> FloatArray:

@@ -7,7 +7,8 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..curve_base import ClosestPoints, Curve, FloatArray
+from ..array_types import FloatArray
+from ..curve_base import ClosestPoints, Curve
 from ..vec_ops import anchor
 from ..vectors import as_points, as_vector
 from .nurbs import NurbsCurve

@@ -13,7 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline
 
-from ..curve_base import Curve, FloatArray
+from ..array_types import FloatArray
+from ..curve_base import Curve
 from ..vec_ops import anchor, extent
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots

@@ -8,7 +8,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import finite_differences
-from ..curve_base import Curve, FloatArray
+from ..array_types import FloatArray
+from ..curve_base import Curve
 
 CurveFunction = Callable[[FloatArray], ArrayLike]
 
