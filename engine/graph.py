@@ -2,7 +2,8 @@
 
 Every edit goes through a method here. Edits that change what a node computes
 *expire* that node and everything downstream of it, so the solver re-solves only
-those. Listeners (a GUI, an undo stack) receive a :class:`GraphEvent` per edit.
+those. Listeners (a GUI, an undo stack) receive one event per edit, a small frozen dataclass
+per kind (see :mod:`engine.events`).
 
 Each edit costs what it touches, not the size of the graph: the wires into and out of
 every node are indexed, and a topological rank of every node is kept up to date as
@@ -20,7 +21,23 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from engine.datatree import MODIFIERS
-from engine.node import Message, Node
+from engine.events import (
+    EnabledChanged,
+    GraphEvent,
+    GroupAdded,
+    GroupRemoved,
+    InputChanged,
+    LabelChanged,
+    ModifiersChanged,
+    NodeAdded,
+    NodeMoved,
+    NodeRemoved,
+    PreviewChanged,
+    SettingChanged,
+    WireAdded,
+    WireRemoved,
+)
+from engine.node import Node
 from engine.types import can_cast
 
 
@@ -101,15 +118,6 @@ class Group:
     raw: dict[str, Any] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
-class GraphEvent:
-    """A change to a graph: ``kind`` names it, ``data`` holds what a listener needs."""
-
-    kind: str
-    node_id: str | None = None
-    data: dict[str, Any] = field(default_factory=dict)
-
-
 Listener = Callable[[GraphEvent], None]
 
 
@@ -143,10 +151,11 @@ class Graph:
         self._listeners.append(listener)
         return lambda: self._listeners.remove(listener)
 
-    def _emit(self, kind: str, node_id: str | None = None, **data: Any) -> None:
+    def _emit(self, event_type: type[GraphEvent], *fields: Any) -> None:
+        """Tell the listeners: the event is made only when someone listens."""
         if not self._listeners:  # a graph being loaded or built by a script: no one listens
             return
-        event = GraphEvent(kind, node_id, data)
+        event = event_type(*fields)
         for listener in list(self._listeners):
             listener(event)
 
@@ -189,7 +198,7 @@ class Graph:
             if self._order is not None:
                 self._order.append(record.id)
         self.expired.add(record.id)
-        self._emit("node_added", record.id)
+        self._emit(NodeAdded, record.id)
         return record
 
     def remove_node(self, node_id: str) -> NodeRecord:
@@ -213,7 +222,7 @@ class Graph:
         for group in self.groups if groups_of is None else groups_of.get(node_id, ()):
             if node_id in group.nodes:
                 group.nodes.remove(node_id)
-        self._emit("node_removed", node_id, record=record)
+        self._emit(NodeRemoved, node_id, record)
         return record
 
     # -- bulk edits -------------------------------------------------------------------
@@ -291,7 +300,7 @@ class Graph:
             else:  # unchecked (a file being loaded): order() sorts afresh and finds any loop
                 self._rank = self._order = None
         self.expire(wire.target)
-        self._emit("wire_added", wire.target, wire=wire)
+        self._emit(WireAdded, wire)
         return wire
 
     def check_wire(self, wire: Wire, check_loops: bool = True) -> None:
@@ -330,7 +339,7 @@ class Graph:
         del self._from[wire.source][wire]
         if wire.target in self.nodes:
             self.expire(wire.target)
-        self._emit("wire_removed", wire.target, wire=wire)
+        self._emit(WireRemoved, wire)
 
     @property
     def wires(self) -> list[Wire]:
@@ -363,7 +372,7 @@ class Graph:
         old = record.node.settings.get(name)
         record.node.settings[name] = value
         self.expire(node_id)
-        self._emit("setting_changed", node_id, name=name, old=old, new=value)
+        self._emit(SettingChanged, node_id, name, old, value)
         self._drop_wires_to_vanished_ports(record)
 
     def _drop_wires_to_vanished_ports(self, record: NodeRecord) -> None:
@@ -385,7 +394,7 @@ class Graph:
         old = (state.has_value, copy.deepcopy(state.value))
         state.value, state.has_value = (value, True) if present else (None, False)
         self.expire(node_id)
-        self._emit("input_changed", node_id, port=port, old=old, new=(present, value))
+        self._emit(InputChanged, node_id, port, old, (present, value))
 
     def set_modifiers(self, node_id: str, port: str, modifiers: Iterable[str]) -> None:
         modifiers = list(modifiers)
@@ -395,34 +404,34 @@ class Graph:
         state = self._record(node_id).input_state(port)
         old, state.modifiers = state.modifiers, modifiers
         self.expire(node_id)
-        self._emit("modifiers_changed", node_id, port=port, old=old, new=modifiers)
+        self._emit(ModifiersChanged, node_id, port, old, modifiers)
 
     def set_enabled(self, node_id: str, enabled: bool) -> None:
         record = self._record(node_id)
         record.enabled = enabled
         self.expire(node_id)
-        self._emit("enabled_changed", node_id, enabled=enabled)
+        self._emit(EnabledChanged, node_id, enabled)
 
     def set_preview(self, node_id: str, preview: bool) -> None:
         self._record(node_id).preview = preview
-        self._emit("preview_changed", node_id, preview=preview)
+        self._emit(PreviewChanged, node_id, preview)
 
     def move_node(self, node_id: str, position: tuple[float, float]) -> None:
         record = self._record(node_id)
         old, record.position = record.position, (float(position[0]), float(position[1]))
-        self._emit("node_moved", node_id, old=old, new=record.position)
+        self._emit(NodeMoved, node_id, old, record.position)
 
     def set_label(self, node_id: str, label: str) -> None:
         record = self._record(node_id)
         old, record.label = record.label, label
-        self._emit("label_changed", node_id, old=old, new=label)
+        self._emit(LabelChanged, node_id, old, label)
 
     # -- groups ---------------------------------------------------------------------
     def add_group(self, group: Group) -> Group:
         if any(g.id == group.id for g in self.groups):
             raise GraphError(f"there is already a group with id {group.id!r}")
         self.groups.append(group)
-        self._emit("group_added", group=group)
+        self._emit(GroupAdded, group)
         return group
 
     def remove_group(self, group_id: str) -> Group:
@@ -430,7 +439,7 @@ class Graph:
         if group is None:
             raise GraphError(f"there is no group with id {group_id!r}")
         self.groups.remove(group)
-        self._emit("group_removed", group=group)
+        self._emit(GroupRemoved, group)
         return group
 
     # -- topology -------------------------------------------------------------------
@@ -560,9 +569,6 @@ class Graph:
             stuck = sorted(n for n, d in indegree.items() if d > 0)
             raise GraphError(f"the wires form a loop through {', '.join(stuck[:5])}")
         return rank
-
-    def messages_of(self, node_id: str) -> list[Message]:
-        return list(self._record(node_id).node.messages)
 
 
 class PlaceholderNode(Node):

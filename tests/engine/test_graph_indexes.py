@@ -178,7 +178,7 @@ def test_the_solver_forgets_the_results_of_removed_nodes():
 
 def recorded(graph: Graph) -> list[tuple[str, str | None, Any]]:
     events: list[tuple[str, str | None, Any]] = []
-    graph.subscribe(lambda e: events.append((e.kind, e.node_id, e.data.get("wire"))))
+    graph.subscribe(lambda e: events.append((e.kind, e.node_id, getattr(e, "wire", None))))
     return events
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import time
 from typing import ClassVar
@@ -9,6 +10,7 @@ from typing import ClassVar
 import pytest
 
 from engine import solver as solver_module
+from engine.events import NodeAdded, NodeMoved, NodeRemoved, SettingChanged, WireAdded, WireRemoved
 from engine.graph import Graph, GraphError
 from engine.node import LIST, CancelToken, In, Node, NodeError, Out, Setting
 from engine.solver import DISABLED, ERROR, OK, WARNING, Solver
@@ -320,11 +322,20 @@ def test_edits_are_reported_as_events():
     graph.move_node("a", (10, 20))
     graph.disconnect(wire)
     graph.remove_node("a")
-    assert [e.kind for e in events] == [
-        "node_added", "node_added", "wire_added", "setting_changed", "node_moved",
-        "wire_removed", "node_removed",
+    assert [type(e) for e in events] == [
+        NodeAdded, NodeAdded, WireAdded, SettingChanged, NodeMoved, WireRemoved, NodeRemoved,
     ]
-    assert events[3].data == {"name": "value", "old": 1.0, "new": 3.0}
+    assert events[3] == SettingChanged("c", "value", 1.0, 3.0)
+    assert events[2].wire == wire and events[2].node_id == "a"  # a wire event concerns its target
+
+
+def test_events_are_frozen():
+    graph = Graph()
+    events = []
+    graph.subscribe(events.append)
+    graph.add_node(Constant(), "c")
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        events[0].node_id = "other"
 
 
 def test_moving_a_node_does_not_expire_it():
@@ -357,7 +368,7 @@ def test_a_setting_that_removes_a_port_unplugs_its_wires_so_the_file_still_opens
     graph.subscribe(events.append)
     graph.set_setting("e", "variables", ["x"])
     assert graph.wires == []
-    assert [e.kind for e in events] == ["setting_changed", "wire_removed"]
+    assert [type(e) for e in events] == [SettingChanged, WireRemoved]
     reopened = graphfile.loads(graphfile.dumps(graph), registry)
     assert list(reopened.nodes) == ["s", "e"]
 
