@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from engine.types import ValueType
+from engine.widgets import Widget
 
 if TYPE_CHECKING:
     from engine.writes import NodeFiles
@@ -93,7 +94,9 @@ class In:
 
     ``default`` is used when nothing is wired and no value is set; an input with no
     default and not ``optional`` must receive data. ``multiple`` lets an item-access
-    input take several wires (list and tree inputs always may).
+    input take several wires (list and tree inputs always may). ``min`` and ``max``
+    bound a number input: the solver refuses a value outside them, naming the input
+    (:mod:`engine.bounds`), and front-ends show them.
     """
 
     name: str
@@ -104,6 +107,8 @@ class In:
     access: Access = ITEM
     optional: bool = False
     multiple: bool = False
+    min: float | None = None
+    max: float | None = None
 
     @property
     def has_default(self) -> bool:
@@ -167,6 +172,8 @@ class Node:
     outputs: ClassVar[tuple[Out, ...]] = ()
     settings_spec: ClassVar[tuple[Setting, ...]] = ()
     icon: ClassVar[str] = ""
+    #: How a front-end lets a designer set this node by hand (:mod:`engine.widgets`), if at all.
+    widget: ClassVar[Widget | None] = None
     #: The most calls of ``solve`` in one solve of this node (the solver refuses more
     #: before the first, naming the input with the most values).
     max_calls: ClassVar[int] = MAX_CALLS

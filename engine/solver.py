@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from itertools import repeat
 from typing import Any
 
+from engine.bounds import within_bounds
 from engine.datatree import DataTree, Path, apply_modifiers, format_path
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.node import (
@@ -170,7 +171,7 @@ class Solver:
                 tree = DataTree()
             if state is not None and state.modifiers:
                 tree = apply_modifiers(tree, state.modifiers)
-            trees.append(cast_tree(tree, port))
+            trees.append(within_bounds(cast_tree(tree, port), port))
         return trees, wired
 
 

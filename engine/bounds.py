@@ -1,0 +1,78 @@
+"""Port bounds: the least and the greatest value an input takes, declared on the port.
+
+A node says ``In("Segments", INTEGER, "S", "Rulings minus one.", default=24, min=1,
+max=MAX_SEGMENTS)`` and the solver refuses a value outside the bounds before ``solve``
+is called, with one sentence naming the input (Segments 0: "Segments must be at least
+1, not 0"; Segments 1e12: "Segments is 1,000,000,000,000; at most 100,000 can be made at
+once"). The node is put in warning and makes nothing, as for any input a check refuses.
+The same declaration is what a front-end shows: the inspector lists the bounds of each
+input and a slider wired into a bounded input is kept within them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from decimal import Decimal
+from typing import TYPE_CHECKING, Any
+
+from engine.node import NodeWarning
+
+if TYPE_CHECKING:
+    from engine.datatree import DataTree
+    from engine.node import In
+
+
+def shown(count: int) -> str:
+    """A count as a message shows it: in full with separators up to 10^15 (1,000,000),
+    beyond that in three figures (Segments 1e308 arrives as a 309-digit integer)."""
+    if abs(count) < 10**15:
+        return f"{count:,}"
+    return f"{Decimal(count):.2e}"  # exact for any integer (a float would overflow past 1e308)
+
+
+def _text(value: float) -> str:
+    return shown(value) if isinstance(value, int) else f"{value:g}"
+
+
+def bounds_text(port: In) -> str:
+    """The bounds as the inspector shows them ("1 to 100,000", "0 or more"), or ""."""
+    low, high = port.min, port.max
+    if low is not None and high is not None:
+        return f"{_text(low)} to {_text(high)}"
+    if low is not None:
+        return f"{_text(low)} or more"
+    if high is not None:
+        return f"at most {_text(high)}"
+    return ""
+
+
+def refusal(port: In, value: float) -> str | None:
+    """The sentence refusing ``value`` for ``port``, or None when it is within the bounds."""
+    if port.min is not None and value < port.min:
+        return f"{port.name} must be at least {_text(port.min)}, not {_text(value)}"
+    if port.max is not None and value > port.max:
+        if isinstance(value, int):
+            return f"{port.name} is {shown(value)}; at most {_text(port.max)} can be made at once"
+        return f"{port.name} must be at most {_text(port.max)}, not {_text(value)}"
+    return None
+
+
+def _numbers(items: Iterable[Any]) -> Iterable[float]:
+    return (v for v in items if isinstance(v, int | float) and not isinstance(v, bool))
+
+
+def within_bounds(tree: DataTree, port: In) -> DataTree:
+    """``tree`` unchanged when every number in it lies within ``port``'s bounds; otherwise a
+    :class:`~engine.node.NodeWarning` naming the input and a value outside them
+    (the smallest or the largest of a branch)."""
+    if port.min is None and port.max is None:
+        return tree
+    for branch in tree.branches:
+        numbers = list(_numbers(branch))
+        if not numbers:
+            continue
+        for value in (min(numbers), max(numbers)):
+            message = refusal(port, value)
+            if message is not None:
+                raise NodeWarning(message)
+    return tree
