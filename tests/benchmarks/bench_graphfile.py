@@ -10,7 +10,7 @@ same run: linear work doubles (ratio 2), a search of the file per node or wire m
 it about 4. The bars: a 2,000-wire chain loads in well under half a second, and the
 fuzz corpus's slowest file (5,000 nodes) goes through load, solve, save, load and save
 in about a second. ``make test`` checks the same growth by counting function calls
-(``tests/engine/test_graphfile.py``) and keeps only a hang guard on the corpus.
+(``tests/engine/test_graphfile_round_trip.py``) and keeps only a hang guard on the corpus.
 
 Issue 11's bars on reading, with their baselines: a 16 MB file of format version 99 is
 refused in a small part (under a tenth: < 0.1 s) of the time parsing the same file at

@@ -4,9 +4,10 @@ of the developable strip between two curves, and the warp angles that check them
 Arrays in, arrays out, numpy/scipy only; the node layer wraps these.
 
 - :func:`ruling_developable` — the strip between two curves (RulingDevelopable): every
-  torsal ruling found by certified root isolation (:mod:`.isolation`), stretches without
-  one closed by flat triangles (:mod:`.fans`); :func:`.alternatives.better_pairing`
-  names a swap or reversal of the curves only when solving it shows fewer triangles.
+  torsal ruling found by the partner search (:mod:`.candidates`, with certified root
+  isolation, :mod:`.isolation`), stretches without one closed by flat triangles
+  (:mod:`.fans`), run by :mod:`.ruling`; :func:`.alternatives.better_pairing` names a
+  swap or reversal of the curves only when solving it shows fewer triangles.
 - :func:`cylinder_rulings`, :func:`cone_rulings`, :func:`tangent_developable_rulings` —
   direct developables with exact edge tangents.
 - :func:`warp_angles`, :func:`warp_of_rulings` — how far rulings are from torsal.

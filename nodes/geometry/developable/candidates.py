@@ -1,0 +1,447 @@
+"""The partner search: every candidate partner on B of every station on A, and the choice.
+
+For each station s on A the torsal partners are the roots t of
+f_s(t) = det[B(t) − A(s), A'(s), B'(t)] (see :mod:`.ruling` for the geometry). This
+module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
+
+- :func:`find_candidates` — brackets from one thin matrix product of f over all
+  station–sample pairs (:func:`_brackets`), judged and split by the certified isolation
+  (:mod:`.isolation`) until each holds provably no root, one simple root or a double
+  root, refined to rounding (:mod:`.brackets`); plus the roots at corners of B and the
+  ends of flat runs. Each candidate carries its branch slope dt/ds and whether its
+  normals are consistently oriented.
+- :func:`choose` — one consistently oriented candidate per station with t never
+  decreasing (:mod:`.selection`).
+- :func:`near_partners` — for stations left without one, a partner whose warp is
+  within the tolerance (the plain loft's or the least-warped sample of B), if any.
+"""
+
+from __future__ import annotations
+
+from bisect import bisect_right
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..curve_base import Curve, FloatArray
+from ..vec_ops import cross, det, dot, extent, norm, position_rounding, unit
+from .brackets import refine_roots
+from .isolation import Pieces, isolate
+from .selection import monotone_path
+from .strip import Grid, Strip
+from .warp import in_plane_tangent, warp_angles
+
+BoolArray = NDArray[np.bool_]
+IntArray = NDArray[np.int64]
+
+#: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
+FLAT = 1e-10
+#: Most candidates kept per station for the selection.
+MAX_CANDIDATES = 8
+
+#: What a candidate is: a refined root of f, a root at a corner of B, an end of a flat run.
+ROOT, CORNER, FLAT_END = 0, 1, 2
+
+
+@dataclass
+class _Brackets:
+    """Sample intervals worth a closer look: where the determinant of station ``rows``
+    changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
+    its values there), and the samples where it is zero."""
+
+    rows: IntArray
+    cols: IntArray
+    f_low: FloatArray
+    f_high: FloatArray
+    zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
+
+
+def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> _Brackets:
+    """Intervals where f = det[B_j − A_i, Â'_i, B'_j] (unit tangent of A) changes sign or
+    may reach zero — |f| at an end within ``reach`` (see :mod:`.isolation`) — over all
+    station–sample pairs.
+
+    By the cyclic symmetry of the triple product,
+    ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
+    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
+    small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
+    thread (threads cost more than they save on a product this thin, and stall when the
+    machine is busy) and lets every block reuse the memory of the last.
+    """
+    b0, b1 = grid.points, grid.tangents
+    n, m = len(a0), len(b0)
+    size = float(norm(extent(np.concatenate([a0, b0]))))  # the diagonal of the bounding box
+    centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
+    units = unit(a1)
+    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
+    right = np.empty((6, m))
+    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
+    speed_b = norm(b1)
+    # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
+    # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
+    rounding = max(position_rounding(a0), position_rounding(b0))
+    flat_scale = (FLAT * size + rounding) * speed_b
+    block = max(1, 40_000 // right.shape[1])
+    found: list[tuple[IntArray, ...]] = []
+    zeros: list[IntArray] = []
+    for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
+        f = left[first : first + block] @ right
+        negative = np.signbit(f)
+        size_f = np.abs(f)
+        look = (negative[:, :-1] != negative[:, 1:]) | (np.minimum(size_f[:, :-1], size_f[:, 1:]) <= reach)
+        maybe = np.flatnonzero(size_f <= flat_scale)
+        if len(maybe):  # rare: test the candidates against their own ruling length
+            r, c = np.divmod(maybe, m)
+            exact = maybe[size_f.flat[maybe] <= (FLAT * norm(b0[c] - a0[r + first]) + rounding) * speed_b[c]]
+            if len(exact):
+                zero = np.zeros(f.shape, dtype=bool)
+                zero.flat[exact] = True
+                look &= ~(zero[:, :-1] | zero[:, 1:])
+                zeros.append(exact + first * m)
+        r, c = np.divmod(np.flatnonzero(look), m - 1)
+        found.append((r + first, c, f[r, c], f[r, c + 1]))
+    joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
+    zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
+    return _Brackets(*joined, zero_flat)
+
+
+def _cubic_start(
+    x0: FloatArray, x1: FloatArray, f0: FloatArray, f1: FloatArray, d0: FloatArray, d1: FloatArray
+) -> FloatArray:
+    """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
+    matches f and f' at both ends of the bracket (two Newton steps on that cubic from
+    the secant's root), so that one Newton step on f reaches rounding."""
+    h = x1 - x0
+    d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
+    rise = f1 - f0
+    # the cubic f0 + u·(d0 + u·(c2 + u·c3)) and its slope d0 + u·(2·c2 + 3·c3·u)
+    c2 = 3.0 * rise - 2.0 * d0 - d1
+    c3 = d0 + d1 - 2.0 * rise
+    c2_twice, c3_thrice = 2.0 * c2, 3.0 * c3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
+        for _ in range(2):
+            step = (f0 + u * (d0 + u * (c2 + u * c3))) / (d0 + u * (c2_twice + u * c3_thrice))
+            u = np.where(np.isfinite(step), np.minimum(np.maximum(u - step, 0.0), 1.0), u)
+    return x0 + u * h
+
+
+def rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1: FloatArray) -> FloatArray:
+    """Size of the rounding error of det[B − A, A', B'] from |A|, B, |A'|, B': positions are
+    rounded relative to their own magnitude, not to the ruling's length."""
+    return (size_a + norm(b0)) * speed_a * norm(b1)
+
+
+def _oriented(
+    r: FloatArray,
+    ta: FloatArray,
+    tb: FloatArray,
+    rr: FloatArray | None = None,
+    aa: FloatArray | None = None,
+    bb: FloatArray | None = None,
+) -> BoolArray:
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes).
+
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
+    ``rr``, ``aa``, ``bb`` are |R|², |A'|², |B'|² when the caller has them.
+    """
+    rr = dot(r, r) if rr is None else rr
+    aa = dot(ta, ta) if aa is None else aa
+    bb = dot(tb, tb) if bb is None else bb
+    ra, rb = dot(r, ta), dot(r, tb)
+    n1n1 = np.maximum(rr * aa - ra * ra, 0.0)
+    n2n2 = np.maximum(rr * bb - rb * rb, 0.0)
+    return rr * dot(ta, tb) - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
+
+
+@dataclass
+class Candidates:
+    """Candidate partners, one entry each, sorted by station then t."""
+
+    row: IntArray
+    t: FloatArray
+    kind: IntArray
+    slope: FloatArray  #: dt/ds of the branch (0 at corners and flat ends)
+    low: FloatArray  #: flat run extent (NaN for roots and corners)
+    high: FloatArray
+    points: FloatArray  #: (k, 3) B(t)
+    tangents: FloatArray  #: (k, 3) tangent of B there (the in-plane one at a corner)
+    oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
+
+    def subset(self, keep: BoolArray | IntArray) -> Candidates:
+        return Candidates(*(getattr(self, name)[keep] for name in _FIELDS))
+
+
+_FIELDS = tuple(Candidates.__dataclass_fields__)
+
+
+def find_candidates(
+    curve_b: Curve, grid: Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray
+) -> Candidates:
+    """All candidate partners of all stations: refined roots (every root of f, isolated
+    with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
+    m = len(grid.t)
+    units = unit(a1)
+    diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
+    bounds = grid.interval_bounds(diameter)
+    found = _brackets(a0, units, grid, bounds.reach)
+    rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
+    corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
+    if grid.pair.any():
+        at_corner = grid.pair[cols]
+        corner_rows, corner_cols = rows[at_corner], cols[at_corner]
+        keep = ~at_corner
+        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+    if len(found.zeros):
+        # runs of zero samples along a row: a run of positive extent is flat (its two ends
+        # are candidates), a single zero sample is a root
+        z = found.zeros
+        run_start = np.ones(len(z), dtype=bool)
+        run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
+        run_end = np.ones(len(z), dtype=bool)
+        run_end[:-1] = run_start[1:]
+        run_rows, run_first = np.divmod(z[run_start], m)
+        run_last = z[run_end] % m
+    flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
+
+    # sift again with the rulings' own lengths in place of the diameter (a sign change
+    # is always kept), then judge what is left, subdividing where a root pair may hide
+    r_low = grid.points[cols] - a0[rows]
+    r_high = grid.points[cols + 1] - a0[rows]
+    length_low, length_high = norm(r_low), norm(r_high)
+    reach = bounds.slope[cols] * (np.maximum(length_low, length_high) + bounds.chord[cols])
+    keep = (np.signbit(f_low) != np.signbit(f_high)) | (np.minimum(np.abs(f_low), np.abs(f_high)) <= reach)
+    if not keep.all():
+        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+        r_low, r_high = r_low[keep], r_high[keep]
+        length_low, length_high = length_low[keep], length_high[keep]
+    # f' there is det[R, Â', B''] = B'' · (R × Â'), gathered for these intervals only
+    ua = units[rows]
+    d_low = dot(cross(r_low, ua), grid.second[cols])
+    d_high = dot(cross(r_high, ua), grid.left_second[cols + 1])
+    none = np.empty(0)
+    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 7))
+
+    def ends(pieces: Pieces, index: IntArray) -> Pieces:
+        c = cols[index]
+        return replace(
+            pieces.take(index),
+            speed0=norm(grid.tangents[c]),
+            speed1=norm(grid.tangents[c + 1]),
+            second0=norm(grid.second[c]),
+            second1=norm(grid.left_second[c + 1]),
+            bound3=bounds.third[c],
+            r0=length_low[index],
+            r1=length_high[index],
+        )
+
+    def evaluate_b(x: FloatArray) -> list[FloatArray]:
+        return curve_b.derivatives(x, 2)
+
+    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, ends)
+    rows = isolated.rows
+    point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
+    point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+
+    # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
+    # each bracket's last evaluation (at its root, to rounding) is kept for what follows
+    root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
+    k = len(rows)
+    root_t = np.concatenate([np.empty(k), point_t]) if len(point_rows) else np.empty(k)
+    b0, b1 = np.empty((2, len(root_rows), 3))
+    f, f_t = np.empty((2, len(root_rows)))
+    speed_a, size_a = norm(a1), norm(a0)
+
+    def evaluate(x: FloatArray, index: IntArray, i: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        c0, c1, c2 = curve_b.derivatives(x, 2)
+        plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
+        value, slope = dot(plane, c1), dot(plane, c2)
+        root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
+        return value, slope, rounding_scale(size_a[i], c0, speed_a[i], c1)
+
+    def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        return evaluate(x, index, rows[index])
+
+    if k:
+        i = isolated
+        start = _cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
+        refine_roots(coplanarity, i.low, i.high, i.f_low, start)
+    if len(point_rows):
+        evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)
+
+    # the slope dt/ds = −f_s/f_t of each smooth root's branch
+    r = b0 - a0[root_rows]
+    f_s = det(r, a2[root_rows], b1)
+    slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a[root_rows] ** 2
+    # converged onto a jump of B' that is not a flagged corner: f is far from zero there
+    jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
+    kind = np.where(jumped, CORNER, ROOT)
+    slope[jumped] = 0.0
+    nan = np.full(len(root_rows), np.nan)
+    candidates = Candidates(
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
+    )
+    if len(corner_rows) == 0 and not flat.any():
+        return candidates.subset(np.lexsort((candidates.t, candidates.row)))
+
+    # roots at corners of B: the tangent plane turns about the corner (a cone through it)
+    corner_points = grid.points[corner_cols + 1]
+    corner_tangents = in_plane_tangent(
+        corner_points - a0[corner_rows],
+        a1[corner_rows],
+        grid.tangents[corner_cols],
+        grid.tangents[corner_cols + 1],
+    )
+    # the two ends of every flat run
+    flat_rows = np.repeat(run_rows[flat], 2)
+    flat_cols = np.column_stack([run_first[flat], run_last[flat]]).reshape(-1)
+    extra_rows = np.concatenate([corner_rows, flat_rows])
+    extra_points = np.concatenate([corner_points, grid.points[flat_cols]])
+    extra_tangents = np.concatenate([corner_tangents, grid.tangents[flat_cols]])
+    corner_nan = np.full(len(corner_rows), np.nan)
+    extra = Candidates(
+        extra_rows,
+        np.concatenate([grid.t[corner_cols], grid.t[flat_cols]]),
+        np.concatenate([np.full(len(corner_rows), CORNER), np.full(len(flat_rows), FLAT_END)]),
+        np.zeros(len(extra_rows)),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_first[flat]], 2)]),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
+        extra_points,
+        extra_tangents,
+        _oriented(extra_points - a0[extra_rows], a1[extra_rows], extra_tangents),
+    )
+    both = Candidates(
+        *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
+    )
+    return both.subset(np.lexsort((both.t, both.row)))
+
+
+def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
+    """Candidates as ``(n, K)`` arrays (NaN padded) and the index of each cell's candidate."""
+    # drop duplicates (a flat end that is also a root) and keep at most MAX_CANDIDATES
+    first = np.ones(len(c.row), dtype=bool)
+    first[1:] = (c.row[1:] != c.row[:-1]) | (c.t[1:] - c.t[:-1] > 1e-13)
+    keep = np.flatnonzero(first)
+    rows = c.row[keep]
+    column = np.arange(len(rows)) - np.searchsorted(rows, rows, side="left")
+    fits = column < MAX_CANDIDATES
+    keep, rows, column = keep[fits], rows[fits], column[fits]
+    k = max(int(column.max(initial=-1)) + 1, 1)
+    t = np.full((n, k), np.nan)
+    slope = np.full((n, k), np.nan)
+    index = np.full((n, k), -1, dtype=np.int64)
+    t[rows, column] = c.t[keep]
+    slope[rows, column] = c.slope[keep]
+    index[rows, column] = keep
+    return t, slope, index
+
+
+def _longest_monotone(t: FloatArray) -> BoolArray:
+    """Mask of a longest non-decreasing subsequence (patience sorting)."""
+    tails: list[float] = []
+    tail_index: list[int] = []
+    parent = np.full(len(t), -1, dtype=np.int64)
+    for i, x in enumerate(t.tolist()):  # fallback only: when the selection had to step back
+        j = bisect_right(tails, x)
+        if j == len(tails):
+            tails.append(x)
+            tail_index.append(i)
+        else:
+            tails[j] = x
+            tail_index[j] = i
+        parent[i] = tail_index[j - 1] if j > 0 else -1
+    keep = np.zeros(len(t), dtype=bool)
+    i = tail_index[-1] if tail_index else -1
+    while i >= 0:
+        keep[i] = True
+        i = parent[i]
+    return keep
+
+
+def _neighbours(partnered: BoolArray) -> tuple[IntArray, IntArray]:
+    """The stations with a partner, and where each other station falls among them: ``i``
+    such that its nearest partnered neighbours are ``stations[i − 1]`` and ``stations[i]``
+    (there is none before it when i = 0, none after it when i = len(stations))."""
+    stations = np.flatnonzero(partnered)
+    return stations, np.searchsorted(stations, np.flatnonzero(~partnered))
+
+
+def choose(strip: Strip) -> tuple[IntArray, Candidates]:
+    """The chosen candidate per station (−1 where none) and the consistently oriented
+    candidates."""
+    n = len(strip.s)
+    found = find_candidates(strip.curve_b, strip.grid, strip.a0, strip.a1, strip.a2)
+    good = found if found.oriented.all() else found.subset(found.oriented)
+    chosen = np.full(n, -1, dtype=np.int64)
+    if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
+        # at most one candidate per station, in order along B: nothing to choose
+        chosen[good.row] = np.arange(len(good.row))
+        return chosen, good
+    t_pad, slope_pad, index_pad = _pad(good, n)
+    rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
+    if len(rows):
+        s = strip.s[rows]
+        pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
+        chosen[rows] = index_pad[rows, pick]
+        t = good.t[chosen[rows]]
+        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
+            chosen[rows[~_longest_monotone(t)]] = -1
+    return chosen, good
+
+def near_partners(strip: Strip, t: FloatArray) -> None:
+    """Give every station without a partner one whose warp is within the tolerance
+    (the strip is torsal to within it there), if it has one between its neighbours'
+    partners: the plain loft's (in arc length between those neighbours) if that is
+    within it, else the least-warped sample of B. The others stay NaN, to be closed
+    by fans."""
+    gap = np.isnan(t)
+    missing = np.flatnonzero(gap)
+    if len(missing) == 0:
+        return
+    partnered, window = _neighbours(~gap)
+    # the neighbours' partners, padded with B's ends: [window] is the one before, [window + 1] after
+    padded = np.concatenate([[0.0], t[partnered], [1.0]])
+    lo, hi = padded[window], padded[window + 1]
+    length_a = strip.station_lengths
+    padded = np.concatenate([[0.0], length_a[partnered], [strip.map_a.total]])
+    a_lo, a_hi = padded[window], padded[window + 1]
+    span = a_hi - a_lo
+    fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
+    b_lo, b_hi = strip.length_b(np.concatenate([lo, hi])).reshape(2, -1)
+    loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
+    points, tangents = strip.curve_b.derivatives(loft, 1)
+    loft_warp = warp_angles(strip.a0[missing], points, strip.a1[missing], tangents)
+    # else the least angle between the end normals among B's samples in the window
+    grid = strip.grid
+    angle = normal_angles(strip.a0[missing], strip.a1[missing], grid.points, grid.tangents)
+    inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
+    angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
+    best = np.argmin(angle, axis=1)
+    sample_ok = angle[np.arange(len(missing)), best] <= strip.tolerance
+    with np.errstate(invalid="ignore"):
+        loft_ok = loft_warp <= strip.tolerance
+    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t[best], np.nan))
+    # consecutive stations in one window may have picked samples out of order
+    known = ~np.isnan(t)
+    t[known] = np.maximum.accumulate(t[known])
+
+def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) -> FloatArray:
+    """The angle (0 to π) between N1 = R × A'_i and N2 = R × B'_j with R = B_j − A_i, for
+    every i and j: ``(len(a), len(b))``.
+
+    All of it comes from (i, j) matrix products: |R|², R·A', R·B' and A'·B' give
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's identity), and N1 × N2 = R·det[R, A', B']
+    with det[R, A', B'] = A'·(B' × B) − (A × A')·B'. Coordinates are taken about a
+    common centre, as in :func:`_brackets`.
+    """
+    centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
+    a, b = a - centre, b - centre
+    aa, bb = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
+    rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
+    ra = ta @ b.T - np.einsum("ij,ij->i", a, ta)[:, None]
+    rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
+    triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
+    return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
+
