@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 from nodes.geometry.array_types import BoolArray, FloatArray
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
-from nodes.geometry.vec_ops import position_rounding
+from nodes.geometry.vec_ops import dot, position_rounding
 
 #: Walking steps per side: a line can reach the surface's diameter from its grid point.
 STEPS = 128
@@ -47,10 +47,6 @@ NEWTON = 4
 BISECTIONS = 32
 #: Distances below this share of the surface's diameter are rounding.
 ROUNDING = 1e-12
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("ij,ij->i", a, b)
 
 
 @dataclass(frozen=True)
@@ -99,8 +95,8 @@ class SurfaceProjector:
         for _ in range(NEWTON):
             s, su, sv = self.surface.derivatives(u, v, 1)
             r = queries - s
-            e, f, g = _dot(su, su), _dot(su, sv), _dot(sv, sv)
-            bu, bv = _dot(su, r), _dot(sv, r)
+            e, f, g = dot(su, su), dot(su, sv), dot(sv, sv)
+            bu, bv = dot(su, r), dot(sv, r)
             damp = 1e-14 * (e + g) + 1e-300  # Levenberg: keeps a pole or apex solvable
             e, g = e + damp, g + damp
             det = e * g - f * f
@@ -111,7 +107,7 @@ class SurfaceProjector:
         points = self.surface.point_at(u, v).reshape(-1, 3)
         c = self.surface.curvature(u, v)
         gap = queries - points
-        sideways = np.linalg.norm(gap - _dot(gap, c.normal)[:, None] * c.normal, axis=1)
+        sideways = np.linalg.norm(gap - dot(gap, c.normal)[:, None] * c.normal, axis=1)
         edge = np.zeros(len(u), dtype=bool)
         if not self.surface.closed_u:
             edge |= (u <= 0.0) | (u >= 1.0)
@@ -168,9 +164,9 @@ class MeshProjector:
                 continue
             p, q, r = corners[rows, a], corners[rows, b], corners[rows, c]
             along = (q - p) / np.linalg.norm(q - p, axis=1, keepdims=True)
-            out = (p - r) - _dot(p - r, along)[:, None] * along
+            out = (p - r) - dot(p - r, along)[:, None] * along
             out /= np.linalg.norm(out, axis=1, keepdims=True)
-            outside[rows] |= _dot(gap[rows], out) > self.eps
+            outside[rows] |= dot(gap[rows], out) > self.eps
         return Foot(found.points, normals, np.abs(flat), state, outside)
 
 
@@ -227,13 +223,13 @@ def trace_rulings(
         q = origins[rows] + (sides[side] * s)[:, None] * d[rows]
         foot = projector.project(q, guess)
         gap = q - foot.points
-        along = _dot(gap, foot.normals)
+        along = dot(gap, foot.normals)
         inside = ~foot.outside
         hugs = np.abs(along) <= 0.5 * curvature_tolerance * s * s + eps
         flat = foot.flatness <= curvature_tolerance
         other = end_normals[1 - side, rows]
         turn = np.arctan2(np.linalg.norm(np.cross(other, foot.normals), axis=1),
-                          _dot(other, foot.normals))
+                          dot(other, foot.normals))
         ok = inside & hugs & flat & (turn <= warp_tolerance)
         return ok, foot, turn
 

@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike
 from scipy import sparse
 
 from .array_types import FloatArray
+from .vec_ops import dot
 
 
 @dataclass(frozen=True)
@@ -69,10 +70,6 @@ class SurfaceCurvature:
         return len(self.k1)
 
 
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("ij,ij->i", a, b)
-
-
 #: A point is *degenerate* (pole, apex, collapsed edge) when |Su × Sv| is below this
 #: fraction of (|Su|² + |Sv|²); curvature there is NaN (Surface nudges it inwards).
 DEGENERATE_RATIO = 1e-10
@@ -92,12 +89,12 @@ def fundamental_forms(
     """Fundamental forms from the partial derivatives (each ``(n, 3)``)."""
     normal = unit_normal(su, sv)
     return FundamentalForms(
-        E=_dot(su, su),
-        F=_dot(su, sv),
-        G=_dot(sv, sv),
-        L=_dot(suu, normal),
-        M=_dot(suv, normal),
-        N=_dot(svv, normal),
+        E=dot(su, su),
+        F=dot(su, sv),
+        G=dot(sv, sv),
+        L=dot(suu, normal),
+        M=dot(suv, normal),
+        N=dot(svv, normal),
         normal=normal,
     )
 

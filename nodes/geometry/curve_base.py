@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .array_types import FloatArray
+from .vec_ops import dot
 
 if TYPE_CHECKING:
     from .arclength import LengthTable
@@ -45,10 +46,6 @@ class Frames(NamedTuple):
 def _parameters(t: ArrayLike) -> tuple[FloatArray, bool]:
     """``t`` as a 1-D float array, and whether it was a scalar."""
     return np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1), np.ndim(t) == 0
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("ij,ij->i", a, b)
 
 
 class Curve(ABC):
@@ -156,9 +153,9 @@ class Curve(ABC):
         curvature with length κ. Zero where the speed is zero."""
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
-        speed2 = _dot(d1, d1)
+        speed2 = dot(d1, d1)
         safe = np.where(speed2 > 0, speed2, 1.0)
-        normal_part = d2 - (_dot(d2, d1) / safe)[:, None] * d1
+        normal_part = d2 - (dot(d2, d1) / safe)[:, None] * d1
         k = np.where(speed2[:, None] > 0, normal_part / safe[:, None], 0.0)
         return k[0] if scalar else k
 
@@ -176,10 +173,10 @@ class Curve(ABC):
         ts, scalar = _parameters(t)
         _, d1, d2, d3 = self.derivatives(ts, 3)
         b = np.cross(d1, d2)
-        bb = _dot(b, b)
+        bb = dot(b, b)
         # the torsion is undefined on straight stretches; report 0 rather than noise
-        straight = bb <= 1e-24 * _dot(d1, d1) ** 3
-        tau = np.where(straight, 0.0, _dot(b, d3) / np.where(straight, 1.0, bb))
+        straight = bb <= 1e-24 * dot(d1, d1) ** 3
+        tau = np.where(straight, 0.0, dot(b, d3) / np.where(straight, 1.0, bb))
         return tau[0] if scalar else tau
 
     def frames_at(self, t: ArrayLike) -> Frames:

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .array_types import BoolArray, FloatArray
+from .vec_ops import dot
 from .vectors import Plane
 
 if TYPE_CHECKING:
@@ -28,10 +29,6 @@ class LineLineClosest(NamedTuple):
     parameters_b: FloatArray  #: (n,)
     distances: FloatArray  #: (n,) |points_a − points_b|
     parallel: BoolArray  #: (n,) no unique pair: parallel lines or a zero-length line
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("...i,...i->...", a, b)
 
 
 def line_line_closest_points(
@@ -57,7 +54,7 @@ def line_line_closest_points(
     v = np.atleast_2d(np.asarray(b_end, dtype=float)) - q
     p, u, q, v = np.broadcast_arrays(p, u, q, v)
     w = p - q
-    a, b, c, d, e = _dot(u, u), _dot(u, v), _dot(v, v), _dot(u, w), _dot(v, w)
+    a, b, c, d, e = dot(u, u), dot(u, v), dot(v, v), dot(u, w), dot(v, w)
     denominator = a * c - b * b
     parallel = denominator <= parallel_tolerance * a * c
     safe = np.where(parallel, 1.0, denominator)

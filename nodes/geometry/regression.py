@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .array_types import FloatArray
+from .vec_ops import det, dot
 
 #: Rulings within this angle (rad) count as parallel.
 PARALLEL_ANGLE = 1e-9
@@ -45,14 +46,6 @@ PARALLEL_ANGLE = 1e-9
 APEX_TOLERANCE = 1e-7
 #: A strip whose points lie within this share of its size from one plane is planar.
 PLANAR_TOLERANCE = 1e-9
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("ij,ij->i", a, b)
-
-
-def _det(a: FloatArray, b: FloatArray, c: FloatArray) -> FloatArray:
-    return _dot(np.cross(a, b), c)
 
 
 @dataclass(frozen=True)
@@ -98,11 +91,11 @@ def closest_points_of_lines(
     u0, u1 = directions[:-1], directions[1:]
     w = starts[1:] - starts[:-1]
     normal = np.cross(u0, u1)
-    sin2 = _dot(normal, normal)
+    sin2 = dot(normal, normal)
     parallel = sin2 <= PARALLEL_ANGLE**2
     with np.errstate(divide="ignore", invalid="ignore"):
-        s = np.where(parallel, np.nan, _det(w, u1, normal) / sin2)
-        t = np.where(parallel, np.nan, _det(w, u0, normal) / sin2)
+        s = np.where(parallel, np.nan, det(normal, w, u1) / sin2)
+        t = np.where(parallel, np.nan, det(normal, w, u0) / sin2)
     return s, t, parallel
 
 
@@ -148,9 +141,9 @@ def curve_of_regression(starts: ArrayLike, ends: ArrayLike, deviation: float) ->
 
     # segment directions against the mean of the two rulings' lines
     chord = np.diff(points, axis=0)
-    sign = np.where(_dot(unit[:-1], unit[1:]) < 0, -1.0, 1.0)
+    sign = np.where(dot(unit[:-1], unit[1:]) < 0, -1.0, 1.0)
     mean = unit[:-1] + sign[:, None] * unit[1:]
-    deviations = np.arctan2(np.linalg.norm(np.cross(chord, mean), axis=1), np.abs(_dot(chord, mean)))
+    deviations = np.arctan2(np.linalg.norm(np.cross(chord, mean), axis=1), np.abs(dot(chord, mean)))
     collapsed = np.linalg.norm(chord, axis=1) <= APEX_TOLERANCE * size  # the rulings meet in one point
     deviations = np.where(collapsed, 0.0, deviations)
     finite = np.all(np.isfinite(chord), axis=1)

@@ -52,7 +52,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
-from .vec_ops import anchor, extent, position_rounding
+from .vec_ops import anchor, dot, extent, position_rounding
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
 #: an apex, a collapsed edge) normals and curvature are taken this step (in
@@ -89,10 +89,6 @@ def grid_triangles(nu: int, nv: int) -> np.ndarray:
     """Triangles ``(2 (nu-1)(nv-1), 3)`` of an ``nu × nv`` vertex grid numbered as in
     :func:`uv_grid`, oriented with u × v (a copy: callers may change it)."""
     return _grid_triangles(nu, nv).copy()
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("ij,ij->i", a, b)
 
 
 @dataclass(frozen=True)
@@ -152,7 +148,7 @@ class Surface(ABC):
         if bad is None:
             su, sv = ders[1], ders[2]
             cross = np.linalg.norm(np.cross(su, sv), axis=1)
-            bad = ~(cross > DEGENERATE_RATIO * (_dot(su, su) + _dot(sv, sv)))
+            bad = ~(cross > DEGENERATE_RATIO * (dot(su, su) + dot(sv, sv)))
         if bad.any():
             nudged_u = uu[bad] + np.where(uu[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
             nudged_v = vv[bad] + np.where(vv[bad] < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
@@ -330,9 +326,9 @@ class Surface(ABC):
             ua, va, pa = u[active], v[active], query[active]
             s, su, sv, suu, suv, svv = self.derivatives(ua, va, 2)
             d = s - pa
-            g_u, g_v = _dot(d, su), _dot(d, sv)
-            e, f, g = _dot(su, su), _dot(su, sv), _dot(sv, sv)
-            h_uu, h_uv, h_vv = e + _dot(d, suu), f + _dot(d, suv), g + _dot(d, svv)
+            g_u, g_v = dot(d, su), dot(d, sv)
+            e, f, g = dot(su, su), dot(su, sv), dot(sv, sv)
+            h_uu, h_uv, h_vv = e + dot(d, suu), f + dot(d, suv), g + dot(d, svv)
             det = h_uu * h_vv - h_uv * h_uv
             indefinite = (h_uu <= 0) | (det <= 1e-14 * (e * g + 1e-300))
             # Gauss–Newton (first fundamental form), lightly damped, where indefinite.
@@ -355,14 +351,14 @@ class Surface(ABC):
                 dv = np.where(pin_v, 0.0, np.where(only_u, -g_v / h_vv, dv))
             du = np.nan_to_num(du)
             dv = np.nan_to_num(dv)
-            f0 = 0.5 * _dot(d, d)
+            f0 = 0.5 * dot(d, d)
             step = np.ones_like(ua)
             new_u, new_v = self._project(ua + du, va + dv)
             pending = np.arange(len(ua))
             for _ in range(40):  # backtracking: never let the distance grow
                 pts = self.derivatives(new_u[pending], new_v[pending], 0)[0]
                 dd = pts - pa[pending]
-                fn = 0.5 * _dot(dd, dd)
+                fn = 0.5 * dot(dd, dd)
                 worse = fn > f0[pending] * (1.0 + 1e-14) + 1e-300
                 pending = pending[worse]
                 if pending.size == 0:
