@@ -28,6 +28,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from engine.solve_context import SolveContext, active
 from engine.types import ValueType
 from engine.widgets import Widget
 
@@ -188,11 +189,7 @@ class Node:
         self.settings: dict[str, Any] = {s.name: s.default for s in self.settings_spec}
         if settings:
             self.settings.update(settings)
-        self.messages: list[Message] = []
-        self._token: CancelToken | None = None
-        self._files: NodeFiles | None = None
-        #: where :meth:`progress` reports go (the solver sets it for each solve)
-        self.on_progress: Callable[[float], None] | None = None
+        self._own: SolveContext | None = None  # run state when used on its own, not by a solver
 
     # -- ports (instances may vary them with their settings, like Expression) -------------
     def input_ports(self) -> tuple[In, ...]:
@@ -211,34 +208,65 @@ class Node:
     def output_port(self, name: str) -> Out | None:
         return next((p for p in self.output_ports() if p.name == name), None)
 
+    # -- run state (see engine.solve_context) -----------------------------------------------
+    def context(self) -> SolveContext:
+        """The run state of the solve of this node under way in this thread, or, when no
+        solver is solving it, the node's own (made when first asked)."""
+        current = active()
+        if current is not None and current.node is self:
+            return current
+        return self.own_context()
+
+    def own_context(self) -> SolveContext:
+        """The run state of this node used on its own (a test or a script calling ``solve``)."""
+        if self._own is None:
+            self._own = SolveContext(self)
+        return self._own
+
+    @property
+    def messages(self) -> list[Message]:
+        """The messages of the solve under way (or of the node used on its own)."""
+        return self.context().messages
+
+    @property
+    def run_state(self) -> dict[str, Any]:
+        """Scratch for one solve, empty at its start: counts a node keeps across its calls
+        and summarises in :meth:`after_solve`. Never kept on the node between solves."""
+        return self.context().state
+
     # -- cancellation -----------------------------------------------------------------
     @property
     def token(self) -> CancelToken:
-        """The running solve's cancel token (the solver sets it). A node solved on its own
-        gets a token of its own when first asked: nodes cost no token until then."""
-        if self._token is None:
-            self._token = CancelToken()
-        return self._token
-
-    @token.setter
-    def token(self, token: CancelToken) -> None:
-        self._token = token
+        """The running solve's cancel token. A node solved on its own gets a token of its
+        own when first asked: nodes cost no token until then."""
+        context = self.context()
+        if context.token is None:
+            context.token = CancelToken()
+        return context.token
 
     # -- files ------------------------------------------------------------------------
     @property
     def files(self) -> NodeFiles:
         """Where this node may write files, and whether the user allows it (see
-        :mod:`engine.writes`). The solver sets it for each solve; a node solved on its own
+        :mod:`engine.writes`). The solver gives each solve its own; a node solved on its own
         has no folder and may write nothing."""
-        if self._files is None:
+        context = self.context()
+        if context.files is None:
             from engine.writes import WriteAccess
 
-            self._files = WriteAccess().for_node("")
-        return self._files
+            context.files = WriteAccess().for_node("")
+        return context.files
 
-    @files.setter
-    def files(self, files: NodeFiles) -> None:
-        self._files = files
+    # -- progress -----------------------------------------------------------------------
+    @property
+    def on_progress(self) -> Callable[[float], None] | None:
+        """Where :meth:`progress` reports go (the solver gives each solve its own)."""
+        return self.context().on_progress
+
+    @on_progress.setter
+    def on_progress(self, listener: Callable[[float], None] | None) -> None:
+        """For a node used on its own: hear its progress."""
+        self.own_context().on_progress = listener
 
     # -- behaviour --------------------------------------------------------------------
     def solve(self, *args: Any) -> Any:
@@ -251,7 +279,7 @@ class Node:
         return 1
 
     def before_solve(self) -> None:
-        """Called once before the iterations of a solve (reset per-solve state here)."""
+        """Called once before the iterations of a solve (start :attr:`run_state` counts here)."""
 
     def after_solve(self) -> None:
         """Called once after all iterations (summarise per-solve messages here)."""
@@ -264,9 +292,9 @@ class Node:
         self._say(Level.WARNING, text)
 
     def _say(self, level: Level, text: str) -> None:
-        message = Message(level, text)
-        if message not in self.messages:
-            self.messages.append(message)
+        message, messages = Message(level, text), self.messages
+        if message not in messages:
+            messages.append(message)
 
     def check_cancelled(self) -> None:
         """Long-running nodes call this inside their loops so a solve can be stopped."""
@@ -275,8 +303,9 @@ class Node:
     def progress(self, fraction: float) -> None:
         """Long-running nodes say how far they are, 0 to 1; the solver passes it on to
         the front-end (``torsal run``'s progress line, the app's progress bar)."""
-        if self.on_progress is not None:
-            self.on_progress(fraction)
+        listener = self.context().on_progress
+        if listener is not None:
+            listener(fraction)
 
     # -- catalogue ---------------------------------------------------------------------
     @classmethod

@@ -33,6 +33,7 @@ from engine.node import (
     NodeError,
     NodeWarning,
 )
+from engine.solve_context import SolveContext, solving
 from engine.types import GENERIC, TEXT, CastError, cast, decode_value
 from engine.writes import WriteAccess
 
@@ -100,10 +101,9 @@ class Solver:
                 token.check()
                 if progress is not None:
                     progress(index, len(pending), node_id)
-                node = graph.nodes[node_id].node
-                node.on_progress = None if node_progress is None else (
+                on_progress = None if node_progress is None else (
                     lambda fraction, node_id=node_id: node_progress(node_id, fraction))
-                self.results[node_id] = self._solve_node(graph.nodes[node_id], token)
+                self.results[node_id] = self._solve_node(graph.nodes[node_id], token, on_progress)
                 graph.expired.discard(node_id)
                 report.solved.append(node_id)
         except Cancelled:
@@ -114,39 +114,42 @@ class Solver:
         return report
 
     # -- one node -------------------------------------------------------------------
-    def _solve_node(self, record: NodeRecord, token: CancelToken) -> NodeResult:
+    def _solve_node(self, record: NodeRecord, token: CancelToken,
+                    on_progress: Callable[[float], None] | None = None) -> NodeResult:
+        """Solve one node in a fresh :class:`SolveContext` (its token, files, progress and
+        messages): nothing of the solve is written on the node object."""
         node = record.node
-        node.messages = []
-        node.token = token
-        node.files = self.files.for_node(record.id)
         started = time.perf_counter()
         if is_placeholder(node):
             text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
             return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
+        context = SolveContext(node, token, self.files.for_node(record.id), on_progress)
+        messages = context.messages
         outputs: dict[str, DataTree] = {}
-        try:
-            trees, wired = self._gather(record)
-            node.before_solve()
-            outputs = run_node(node, trees, wired)
-            node.after_solve()
-        except Cancelled:
-            raise
-        except NodeError as exc:
-            node.messages.append(Message(Level.ERROR, str(exc)))
-        except NodeWarning as exc:
-            node.messages.append(Message(Level.WARNING, str(exc)))
-        except Exception as exc:  # a bug in a node must not stop the rest of the graph
-            node.messages.append(Message(Level.ERROR, _describe_exception(exc)))
+        with solving(context):
+            try:
+                trees, wired = self._gather(record)
+                node.before_solve()
+                outputs = run_node(node, trees, wired)
+                node.after_solve()
+            except Cancelled:
+                raise
+            except NodeError as exc:
+                messages.append(Message(Level.ERROR, str(exc)))
+            except NodeWarning as exc:
+                messages.append(Message(Level.WARNING, str(exc)))
+            except Exception as exc:  # a bug in a node must not stop the rest of the graph
+                messages.append(Message(Level.ERROR, _describe_exception(exc)))
         seconds = time.perf_counter() - started
         state = OK
-        if node.messages:
-            worst = max(m.level for m in node.messages)
+        if messages:
+            worst = max(m.level for m in messages)
             state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
         if state == ERROR or not outputs:
             outputs = _empty_outputs(node)
-        return NodeResult(state, node.messages, seconds, outputs)
+        return NodeResult(state, messages, seconds, outputs)
 
     def _gather(self, record: NodeRecord) -> tuple[list[DataTree], list[bool]]:
         """The modified, cast input trees of ``record``, one per input port, and which are wired."""

@@ -73,7 +73,6 @@ class Expression(Node):
         super().__init__(settings)
         if isinstance(self.settings["variables"], list):  # never share the mutable default
             self.settings["variables"] = list(self.settings["variables"])
-        self._not_finite = 0
 
     # -- ports follow the variables -----------------------------------------------------
     def _variables(self) -> tuple[str, ...]:
@@ -102,10 +101,10 @@ class Expression(Node):
 
     # -- solving -----------------------------------------------------------------------
     def before_solve(self) -> None:
-        self._not_finite = 0
+        self.run_state["not_finite"] = 0
 
     def after_solve(self) -> None:
-        n = self._not_finite
+        n = self.run_state.get("not_finite", 0)
         if n:
             self.warn(
                 f"{n} result is not a finite number (division by zero?)" if n == 1
@@ -135,7 +134,8 @@ class Expression(Node):
         except ExpressionError as exc:
             raise NodeError(str(exc)) from None
         result = np.broadcast_to(np.asarray(result, dtype=np.float64), (count,))
-        self._not_finite += int(np.count_nonzero(~np.isfinite(result)))
+        state = self.run_state
+        state["not_finite"] = state.get("not_finite", 0) + int(np.count_nonzero(~np.isfinite(result)))
         return result.tolist()
 
     def _remark_uneven(self, lists: dict[str, list[Any]], count: int) -> None:
