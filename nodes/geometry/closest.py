@@ -18,6 +18,7 @@ from scipy.spatial import cKDTree
 
 from .array_types import FloatArray
 from .roots import safeguarded_newton
+from .tessellate import tessellation_parameters
 from .vec_ops import anchor
 
 if TYPE_CHECKING:
@@ -53,8 +54,6 @@ def search_parameters(curve: Curve) -> FloatArray:
     within 1/1000 of the curve's size of the curve, so a curve with many turns in one
     span (a long helix given by a function) still gets several samples per turn.
     """
-    from .tessellate import tessellation_parameters
-
     t = sample_parameters(curve)
     points = curve.point_at(t)
     size = float(np.linalg.norm(np.ptp(points, axis=0)))

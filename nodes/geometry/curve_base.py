@@ -2,7 +2,10 @@
 
 A subclass implements :meth:`Curve.derivatives`; everything else (tangent, curvature,
 frames, length, division, closest point ...) is derived generically here or overridden
-where a closed form is faster or exact.
+where a closed form is faster or exact. :class:`ReversedCurve` and
+:class:`TransformedCurve`, the generic views :meth:`Curve.reversed` and
+:meth:`Curve.transformed` return, live here too, so the base class needs no import from
+the modules of its subclasses.
 
 Every method that takes ``t`` accepts a scalar or a 1-D array: an array gives arrays
 with one row per parameter, a scalar gives a single value or a ``(3,)`` vector.
@@ -12,18 +15,19 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from functools import cached_property
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .arclength import LengthTable
 from .array_types import FloatArray
+from .closest import closest_parameters, search_parameters
+from .roots import roots_in_samples
+from .tessellate import tessellation_parameters
+from .transforms import check_matrix, is_affine
 from .vec_ops import dot
-
-if TYPE_CHECKING:
-    from .arclength import LengthTable
-    from .curves.line import Polyline
-    from .vectors import Plane
+from .vectors import Plane, as_points, perpendicular, unit
 
 
 class ClosestPoints(NamedTuple):
@@ -138,8 +142,6 @@ class Curve(ABC):
     def tangent_at(self, t: ArrayLike) -> FloatArray:
         """Unit tangents. Where C' vanishes (a stationary point) the direction of C''
         is used, its limit; where both vanish the tangent is the zero vector."""
-        from .vectors import unit
-
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
         speed = np.linalg.norm(d1, axis=1)
@@ -185,8 +187,6 @@ class Curve(ABC):
         Where the curvature vanishes N is undefined; there it is a fixed unit vector
         perpendicular to T (:func:`~.vectors.perpendicular`), so the frame stays valid.
         """
-        from .vectors import perpendicular, unit
-
         ts, _ = _parameters(t)
         origins, d1, d2 = self.derivatives(ts, 2)
         tangents = self.tangent_at(ts)
@@ -200,8 +200,6 @@ class Curve(ABC):
     def plane_at(self, t: float) -> Plane:
         """The Frenet frame at one parameter as a :class:`~.vectors.Plane`
         (x = tangent, y = normal, z = binormal)."""
-        from .vectors import Plane
-
         frames = self.frames_at(np.array([float(t)]))
         return Plane(frames.origins[0], frames.tangents[0], frames.normals[0], frames.binormals[0])
 
@@ -209,8 +207,6 @@ class Curve(ABC):
 
     @cached_property
     def _length_table(self) -> LengthTable:
-        from .arclength import LengthTable
-
         return LengthTable(self)
 
     @property
@@ -262,8 +258,6 @@ class Curve(ABC):
     @cached_property
     def _search_parameters(self) -> FloatArray:
         """Samples for closest points, bounds and intersections (see ``closest.py``)."""
-        from .closest import search_parameters
-
         return search_parameters(self)
 
     # -- closest point --------------------------------------------------------------------
@@ -275,9 +269,6 @@ class Curve(ABC):
         method on ``(C − P)·C' = 0``, safeguarded by a bracket, converges to rounding.
         Always returns arrays (one row per query point).
         """
-        from .closest import closest_parameters
-        from .vectors import as_points
-
         p = as_points(points)
         t = closest_parameters(self, p)
         c = self.point_at(t)
@@ -287,14 +278,10 @@ class Curve(ABC):
 
     def reversed(self) -> Curve:
         """The same curve traversed from end to start: ``C_rev(t) = C(1 − t)``."""
-        from .curves.wrappers import ReversedCurve
-
         return ReversedCurve(self)
 
     def transformed(self, matrix: ArrayLike) -> Curve:
         """The curve under an affine 4×4 transform (NURBS curves also take projective ones)."""
-        from .curves.wrappers import TransformedCurve
-
         return TransformedCurve(self, matrix)
 
     def bounding_box(self) -> FloatArray:
@@ -303,8 +290,6 @@ class Curve(ABC):
         Extremes are at the ends or where a coordinate of C' changes sign; those roots
         are bracketed on a dense sampling and refined (scipy's vectorised solver).
         """
-        from .roots import roots_in_samples
-
         samples = self._search_parameters
         candidates = [np.array([0.0, 1.0]), samples]
         for axis in range(3):
@@ -318,12 +303,81 @@ class Curve(ABC):
 
     def tessellate(self, tolerance: float) -> FloatArray:
         """Parameters of a polyline within ``tolerance`` (a distance) of the curve."""
-        from .tessellate import tessellation_parameters
-
         return tessellation_parameters(self, tolerance)
 
-    def to_polyline(self, tolerance: float) -> Polyline:
-        """A :class:`~.curves.Polyline` within ``tolerance`` of the curve (adaptive)."""
-        from .curves.line import Polyline
 
-        return Polyline(self.point_at(self.tessellate(tolerance)))
+# -- generic views (NURBS curves, lines and polylines override them with exact curves) --
+
+
+class ReversedCurve(Curve):
+    """``C(1 − t)`` for a wrapped curve C; the k-th derivative gains a factor (−1)^k."""
+
+    def __init__(self, curve: Curve) -> None:
+        self.curve = curve
+        self.closed = curve.closed
+        a, b = curve.domain
+        self.domain = (-b, -a)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        values = self.curve.derivatives(1.0 - t, order)
+        return [v if k % 2 == 0 else -v for k, v in enumerate(values)]
+
+    @property
+    def anchor(self) -> FloatArray:
+        return self.curve.anchor
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        values = self.curve.local_derivatives(1.0 - t, order)
+        return [v if k % 2 == 0 else -v for k, v in enumerate(values)]
+
+    def _breakpoints(self) -> FloatArray:
+        return np.sort(1.0 - self.curve._breakpoints())
+
+    def reversed(self) -> Curve:
+        return self.curve
+
+    def __repr__(self) -> str:
+        return f"ReversedCurve({self.curve!r})"
+
+
+class TransformedCurve(Curve):
+    """``A·C(t) + b`` for a wrapped curve C and an affine 4×4 transform [A b; 0 1].
+
+    Derivatives are ``A·C⁽ᵏ⁾``. A perspective transform is rejected here: it is exact
+    only for NURBS curves (:meth:`NurbsCurve.transformed`).
+    """
+
+    def __init__(self, curve: Curve, matrix: ArrayLike) -> None:
+        m = check_matrix(matrix)
+        if not is_affine(m):
+            raise ValueError("Perspective transforms apply only to NURBS curves.")
+        self.curve = curve
+        self.matrix = m
+        self.closed = curve.closed
+        self.domain = curve.domain
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        values = self.curve.derivatives(t, order)
+        linear = self.matrix[:3, :3].T
+        out = [v @ linear for v in values]
+        out[0] = out[0] + self.matrix[:3, 3]
+        return out
+
+    @property
+    def anchor(self) -> FloatArray:
+        return self.matrix[:3, :3] @ self.curve.anchor + self.matrix[:3, 3]
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        linear = self.matrix[:3, :3].T
+        return [v @ linear for v in self.curve.local_derivatives(t, order)]
+
+    def _breakpoints(self) -> FloatArray:
+        return self.curve._breakpoints()
+
+    def transformed(self, matrix: ArrayLike) -> Curve:
+        return TransformedCurve(self.curve, check_matrix(matrix) @ self.matrix)
+
+    def __repr__(self) -> str:
+        return f"TransformedCurve({self.curve!r})"

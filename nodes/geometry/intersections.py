@@ -13,6 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .array_types import BoolArray, FloatArray
+from .closest import sample_parameters
+from .roots import roots_in_samples
 from .vec_ops import dot
 from .vectors import Plane
 
@@ -124,9 +126,6 @@ def curve_plane_intersections(
     ``|g| <= tolerance``. A stretch of curve lying in the plane gives its sampled points.
     Crossings closer together than a sampling interval can be missed.
     """
-    from .closest import sample_parameters
-    from .roots import roots_in_samples
-
     per_span = sample_parameters(curve, per_span=samples_per_span, minimum=256)
     samples = np.union1d(per_span, curve._search_parameters)
 

@@ -232,7 +232,7 @@ def test_bounding_box_of_a_helix_spans_its_radius_and_height():
 
 @pytest.mark.parametrize("tolerance", [1e-1, 1e-3, 1e-5])
 def test_polyline_stays_within_tolerance_of_the_curve(tolerance):
-    polyline = WIGGLE.to_polyline(tolerance)
+    polyline = Polyline.from_curve(WIGGLE, tolerance)
     dense = WIGGLE.point_at(np.linspace(0, 1, 5_001))
     assert polyline.closest_point(dense).distances.max() <= tolerance * 1.01
     assert np.allclose(polyline.points[[0, -1]], [WIGGLE.start, WIGGLE.end])

@@ -7,12 +7,12 @@
 - :class:`ParametricCurve` — from a vectorised function over a domain.
 """
 
+from ..curve_base import ReversedCurve, TransformedCurve
 from .conics import Arc, Circle
 from .interpolated import InterpolatedCurve, chord_length_parameters
 from .line import Line, Polyline
 from .nurbs import NurbsCurve
 from .parametric import ParametricCurve
-from .wrappers import ReversedCurve, TransformedCurve
 
 __all__ = [
     "Arc",

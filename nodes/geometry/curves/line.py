@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike
 
 from ..array_types import FloatArray
 from ..curve_base import ClosestPoints, Curve
+from ..transforms import apply_transform
 from ..vec_ops import anchor
 from ..vectors import as_points, as_vector
 from .nurbs import NurbsCurve
@@ -116,8 +117,6 @@ class Line(Curve):
         return Line(self._end, self._start)
 
     def transformed(self, matrix: ArrayLike) -> Line:
-        from ..transforms import apply_transform
-
         start, end = apply_transform(matrix, np.stack([self._start, self._end]))
         return Line(start, end)
 
@@ -161,6 +160,12 @@ class Polyline(Curve):
         self.closed = bool(np.array_equal(p[0], p[-1]))
         for array in (self.points, self.vertex_parameters):
             array.setflags(write=False)
+
+    @classmethod
+    def from_curve(cls, curve: Curve, tolerance: float) -> Polyline:
+        """A polyline within ``tolerance`` (a distance) of ``curve``, by adaptive subdivision
+        (:meth:`Curve.tessellate`)."""
+        return cls(curve.point_at(curve.tessellate(tolerance)))
 
     @property
     def length(self) -> float:
@@ -250,8 +255,6 @@ class Polyline(Curve):
         return Polyline(self.points[::-1])
 
     def transformed(self, matrix: ArrayLike) -> Polyline:
-        from ..transforms import apply_transform
-
         return Polyline(apply_transform(matrix, self.points))
 
     def to_nurbs(self) -> NurbsCurve:
