@@ -97,6 +97,10 @@ def test_warp_along_every_fold_line_is_zero():
 
 
 def test_iso_mapping_of_the_paper_strip_example_has_no_area_error():
+    """The spec: zero area and length error, to rounding. AreaError sums the areas of the
+    Map's n = 321 strips (measured 3.7e-16); an edge keeps its length to ~n rounding units,
+    the flat frames composed one after another (measured 2.4e-14)."""
     result = run_file(EXAMPLE).solver.result("unroll")
-    assert abs(result.outputs["AreaError"].all_items()[0]) < 1e-12
-    assert result.outputs["EdgeError"].all_items()[0] < 1e-12
+    rulings = len(result.outputs["Map"].all_items()[0].starts2d)
+    assert abs(result.outputs["AreaError"].all_items()[0]) < 1e-14
+    assert result.outputs["EdgeError"].all_items()[0] < 1e-15 * rulings

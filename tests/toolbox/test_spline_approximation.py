@@ -66,6 +66,34 @@ def items(result, port):
 # -- optimisation: the bars ---------------------------------------------------------------
 
 
+def closed_form_warp(u: np.ndarray) -> np.ndarray:
+    """The twisted strip's warp at parameters ``u``: the angle between its normals at the
+    two ends of the ruling R = B − A, A' × R and B' × R (A' = (4, 0, 0.6π cos πu),
+    B' = A' + (0, 0, 0.8), R = (0, 1.5, 0.8(u − ½)))."""
+    zero = 0 * u
+    a1 = np.column_stack([4 + zero, zero, 0.6 * math.pi * np.cos(math.pi * u)])
+    b1 = a1 + np.array([0.0, 0.0, 0.8])
+    ruling = np.column_stack([zero, 1.5 + zero, 0.8 * (u - 0.5)])
+    na, nb = np.cross(a1, ruling), np.cross(b1, ruling)
+    return np.arctan2(np.linalg.norm(np.cross(na, nb), axis=1), np.einsum("ij,ij->i", na, nb))
+
+
+def station_parameters(result) -> np.ndarray:
+    """Where the rulings start on the fixed edge A(u) = (4u, 0, 0.6 sin πu): u = x / 4."""
+    return np.array([line.start[0] for line in items(result, "Rulings")]) / 4.0
+
+
+def test_unoptimised_warp_is_the_strips_closed_form_warp_at_the_stations():
+    """The node's free edge is a spline through the ruling ends, so its tangent, and with
+    it the warp, differs from B' by the interpolation error (measured 2.9e-5 rad at most,
+    9.3e-6 rad in the sum of 21)."""
+    surface, edge = twisted_strip()
+    result = solve(surface, edge, Segments=20)
+    expected = closed_form_warp(station_parameters(result))
+    assert np.abs(np.array(items(result, "WarpAngles")) - expected).max() < 6e-5
+    assert only(result, "Fitness") == pytest.approx(expected.sum(), abs=3e-5)
+
+
 def test_optimise_reduces_the_summed_warp_of_a_twisted_strip_over_100_times():
     """How fast, against the same node not optimising in the same run: bench_spline_approximation.py."""
     surface, edge = twisted_strip()
@@ -73,7 +101,6 @@ def test_optimise_reduces_the_summed_warp_of_a_twisted_strip_over_100_times():
     result = solve(surface, edge, Segments=20, Optimise=True)
     after = only(result, "Fitness")
     assert result.state == "ok"
-    assert before > 3.0  # 21 rulings warped by about 0.18 rad each
     assert before / after >= 100
 
 
@@ -86,18 +113,23 @@ def test_optimise_is_deterministic():
 
 def test_optimise_says_how_much_the_warp_fell():
     surface, edge = twisted_strip()
+    before = only(solve(surface, edge, Segments=20), "Fitness")
     result = solve(surface, edge, Segments=20, Optimise=True)
+    after = only(result, "Fitness")
     (message,) = texts(result)
-    assert message.startswith("Summed warp 3.71 → 3.12e-05 rad (")
-    assert "× less) in " in message
+    assert message.startswith(f"Summed warp {before:.3g} → {after:.3g} rad ({before / after:,.0f}× less) in ")
+    assert message.endswith(" evaluations")
 
 
 def test_optimised_angles_untwist_the_strip_without_turning_it_away():
-    """The rulings turn back by about the twist (±0.26 rad at the ends), not by a quarter turn."""
+    """The rulings turn back by about the strip's twist, atan(0.4 / 1.5) = 0.26 rad at the
+    ends, not by a quarter turn. Not exactly by it: they turn about the edge's tangent,
+    which is not the x axis the twist is measured about (measured 0.249, 4.5 % less)."""
     surface, edge = twisted_strip()
     angles = np.array(items(solve(surface, edge, Segments=20, Optimise=True), "BestAngles"))
-    assert angles[0] == pytest.approx(0.249, abs=0.01)
-    assert angles[-1] == pytest.approx(-0.249, abs=0.01)
+    twist = math.atan(0.4 / 1.5)
+    assert abs(angles[0] - twist) < 0.1 * twist
+    assert abs(angles[-1] + twist) < 0.1 * twist
     assert np.all(np.diff(angles) < 0)
 
 
@@ -201,7 +233,7 @@ def test_the_fixed_edge_may_be_the_surfaces_other_curved_edge():
     result = solve(surface, surface.edges()[2], Segments=10, Optimise=True)
     starts = np.array([line.start for line in items(result, "Rulings")])
     assert np.allclose(starts[0], surface.point_at(1.0, 1.0), atol=1e-12)  # edge 2 runs u 1 → 0
-    assert only(result, "Fitness") < 1e-3
+    assert only(result, "Fitness") < 5e-4  # measured 2.2e-4 (1.93 before: 8,980 times less)
 
 
 # -- inputs that cannot work -----------------------------------------------------------------
@@ -241,11 +273,11 @@ def test_a_curve_off_the_surfaces_edges_is_an_error_naming_the_nearest_edge():
     assert "(edge 2)" in message
 
 
-def test_zero_segments_is_an_error():
+def test_zero_segments_is_a_warning():
     surface, edge = twisted_strip()
     result = solve(surface, edge, Segments=0)
-    assert result.state == "error"
-    assert texts(result) == ["Segments is 0: give 1 or more (Segments is the number of rulings minus one)"]
+    assert result.state == "warning"
+    assert texts(result) == ["Segments must be at least 1, not 0"]
 
 
 def test_a_ruling_turned_onto_the_edge_tangent_has_undefined_warp_not_zero():
