@@ -27,7 +27,7 @@ up to a step short of it.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 import trimesh
@@ -35,8 +35,10 @@ from numpy.typing import NDArray
 
 from nodes.geometry.array_types import BoolArray, FloatArray
 from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.surface_base import Surface
 from nodes.geometry.vec_ops import dot, position_rounding
+
+if TYPE_CHECKING:
+    from nodes.geometry.surface_base import Surface
 
 #: Walking steps per side: a line can reach the surface's diameter from its grid point.
 STEPS = 128

@@ -40,13 +40,16 @@ rulings it cannot make torsal.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .array_types import FloatArray
 from .curves import NurbsCurve
-from .surface_base import Surface
 from .vec_ops import cross, dot, norm, unit
+
+if TYPE_CHECKING:
+    from .surface_base import Surface
 
 #: Corners of each edge in (u, v), in the edge's direction (numbering as Surface.edges()).
 EDGE_CORNERS = {

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -28,9 +29,11 @@ from scipy.interpolate import make_interp_spline
 
 from .area import CHUNK_POINTS, span_gauss, watch_check
 from .array_types import FloatArray, IntArray
-from .curve_base import Curve
 from .surface_base import Surface, broadcast_uv
 from .vec_ops import anchor
+
+if TYPE_CHECKING:
+    from .curve_base import Curve
 
 _CHUNK = 8192  # points per evaluation pass: keeps the sparse rows and temporaries in cache
 _LOOKUP_LIMIT = 1 << 16  # cells of a knot-span lookup table
