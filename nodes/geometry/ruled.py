@@ -34,7 +34,7 @@ from .curve_base import Curve
 from .curves.line import Line
 from .rail_tangents import without_overshoot
 from .surface_base import Surface, broadcast_uv
-from .vec_ops import anchor, extent
+from .vec_ops import anchor, extent, position_rounding
 
 #: Gauss–Legendre orders whose area estimates must agree (to ``rtol``) per attempt.
 _AREA_ORDERS = (12, 16)
@@ -427,11 +427,17 @@ class RuledSurface(Surface):
         lows, highs = edges[:-1], edges[1:]
         area, moment = 0.0, np.zeros(3)
         scale = 0.0  # the area's size, from the first pass: the tolerance is relative to it
+        # far from the origin the rails' points are rounded to an ulp of their coordinates
+        # (1.2e-7 m at 1e9 m): the rules cannot agree closer than that relative to the
+        # strip's extent, and asking more refines to the span limit for nothing
+        probe = self.derivatives(*np.meshgrid(np.linspace(0.0, 1.0, 5), [0.0, 1.0]), 0)[0]
+        rounding = position_rounding(probe) / (float(extent(probe).max()) or 1.0)
+        tolerance = max(rtol, 1e-13, rounding)
         for _level in range(_AREA_LEVELS):
             (coarse, _), (fine, fine_moment) = (self._gauss_spans(lows, highs, n) for n in _AREA_ORDERS)
             scale = scale or float(np.abs(fine).sum())
             # a span is done when its two rules agree to its share of the tolerance
-            done = np.abs(fine - coarse) <= max(rtol, 1e-13) * scale * (highs - lows)
+            done = np.abs(fine - coarse) <= tolerance * scale * (highs - lows)
             area += float(fine[done].sum())
             moment += fine_moment[done].sum(axis=0)
             lows, highs = lows[~done], highs[~done]
@@ -442,11 +448,11 @@ class RuledSurface(Surface):
             lows, highs = cuts[:, :-1].ravel(), cuts[:, 1:].ravel()
         if len(lows):
             if scale == 0.0 or 4 * len(lows) > _AREA_MAX_SPANS:
-                return super().area_and_centroid(rtol)
+                return super().area_and_centroid(max(rtol, rounding))
             area += float(fine[~done].sum())  # kept at the finest level reached
             moment += fine_moment[~done].sum(axis=0)
         if area <= 0.0:
-            return super().area_and_centroid(rtol)
+            return super().area_and_centroid(max(rtol, rounding))
         return area, self._rail_anchors[0] + moment / area
 
     def _gauss_spans(self, lows: FloatArray, highs: FloatArray, order: int) -> tuple[FloatArray, FloatArray]:

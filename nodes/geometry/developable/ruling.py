@@ -70,7 +70,10 @@ Algorithm (all stations at once)
    flat), and the message gives the share of the strip's area they take.
 8. Check: every output ruling's warp is measured from the curves at its (s, t) — end
    points and exact tangents, :func:`.warp.warp_angles`, NaN where no normal is defined
-   — and ``valid`` is that warp within the tolerance (never NaN). A station taken as
+   — and ``valid`` is that warp within the tolerance (never NaN), plus what the rounding
+   of the rulings' end points alone can add to it far from the origin (their positions'
+   rounding over the ruling's length: nothing at the origin, 3e-6 rad for a 1.3 m ruling
+   at 1e9 m; see :func:`warp_allowance`). A station taken as
    torsal that fails the check joins the fans and the strip is closed again.
 9. A closed B whose seam is away from the strip's start is solved again from A(0)'s
    partner, so that t can run once round B through its seam.
@@ -91,7 +94,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, norm, unit
+from ..vec_ops import cross, norm, position_rounding, unit
 from .candidates import ROOT, Candidates, choose, near_partners
 from .end_cones import Rulings, smooth_ends
 from .fans import a_fans, area_share, close_gaps, creased_fans, fan_share, flat_fans, outside_gaps
@@ -252,7 +255,7 @@ def _solve(
         starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
         warp = np.abs(signed)
         with np.errstate(invalid="ignore"):
-            valid = warp <= tolerance  # NaN (no normal defined) is never valid
+            valid = warp <= tolerance + warp_allowance(starts, ends)  # NaN is never valid
         # a station ruling taken as torsal that fails the check is a gap after all
         failed = source[(source >= 0) & ~fan & ~valid]
         if len(failed) == 0:
@@ -264,7 +267,7 @@ def _solve(
     if len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out):
         starts2, ends2, signed2 = _measured(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
         with np.errstate(invalid="ignore"):
-            valid2 = np.abs(signed2) <= tolerance
+            valid2 = np.abs(signed2) <= tolerance + warp_allowance(starts2, ends2)
         torsal = ~smoothed.fan
         kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
         if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
@@ -277,6 +280,17 @@ def _solve(
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share, creased
     )
+
+def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """What the rounding of the rulings' end points alone adds to a warp measured from
+    them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
+    the origin; at site coordinates the ends are known to an ulp of their coordinates
+    (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
+    length = norm(ends - starts)
+    rounding = max(position_rounding(starts), position_rounding(ends))
+    with np.errstate(divide="ignore"):
+        return rounding / np.where(length > 0.0, length, np.inf)
+
 
 def _merge(
     strip: Strip, t: FloatArray, gap: BoolArray, fans: list, added: list[tuple[FloatArray, FloatArray]]
