@@ -59,13 +59,12 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import make_interp_spline
 from scipy.optimize import least_squares
 
+from .array_types import FloatArray
 from .curve_base import Curve
 from .developable.stations import station_parameters
 from .developable.warp import end_normals
 from .surface_base import IsoCurve, Surface
 from .vec_ops import anchor, cross, dot, norm, unit
-
-FloatArray = NDArray[np.float64]
 
 #: Largest rotation (rad) either way the optimiser may give a ruling: beyond a quarter
 #: turn a ruling folds back over the fixed edge.
