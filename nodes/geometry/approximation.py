@@ -170,18 +170,26 @@ def station_rulings(surface: Surface, curve: Curve, segments: int) -> StationRul
         raise ValueError("The curve stops (zero tangent) at a station: rebuild it without stationary points.")
     along = edge.closest_point(starts).parameters
     other = 1.0 - side
+    sides = np.full_like(along, side), np.full_like(along, other)
     if name == "v":
-        near = surface.point_at(along, np.full_like(along, side))
-        far = surface.point_at(along, np.full_like(along, other))
+        (near, *d_near), far = surface.derivatives(along, sides[0], 1), surface.point_at(along, sides[1])
     else:
-        near = surface.point_at(np.full_like(along, side), along)
-        far = surface.point_at(np.full_like(along, other), along)
-    rulings = far - near
-    lengths = norm(rulings)
+        (near, *d_near), far = surface.derivatives(sides[0], along, 1), surface.point_at(sides[1], along)
+    lengths = norm(far - near)
     if np.any(lengths <= 1e-12 * size):
         i = int(np.argmin(lengths))
         raise ValueError(f"The surface's ruling at station {i} has zero length: the surface collapses there.")
-    return StationRulings(t, starts, unit(d1), rulings / lengths[:, None], lengths, number, distance)
+    # along a straight ruling the surface's derivative is the ruling's direction; taken
+    # from it rather than from far - near, it is not rounded to the ends' coordinates (at
+    # site coordinates those are known to an ulp of 1e6 m, and the optimiser turns the
+    # directions' rounding into ~70x as much in its angles)
+    chords = far - near
+    across = d_near[1] if name == "v" else d_near[0]
+    along_ruling = np.einsum("ij,ij->i", across, chords)
+    signed = np.where((along_ruling < 0.0)[:, None], -across, chords)
+    across = np.where((along_ruling > 0.0)[:, None], across, signed)
+    directions = unit(across)
+    return StationRulings(t, starts, unit(d1), directions, lengths, number, distance)
 
 
 # -- rotated rulings, their warp and its derivatives --------------------------------------
