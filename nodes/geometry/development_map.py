@@ -18,6 +18,7 @@ import shapely
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
+from .strip_walk import StripWalk, strip_triangles
 from .watch import watch_check, watch_progress
 
 FloatArray = NDArray[np.float64]
@@ -43,26 +44,6 @@ def rotate_about(points: FloatArray, angle: float, pivot: FloatArray) -> FloatAr
     c, s = np.cos(angle), np.sin(angle)
     d = points - pivot
     return pivot + np.column_stack([c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1]])
-
-
-# --------------------------------------------------------------------------- triangles
-
-
-def strip_triangles(n: int, first_diagonal: NDArray[np.bool_]) -> IntArray:
-    """Vertex indices of the 2(n − 1) triangles of an n-ruling strip, counter-clockwise.
-
-    Vertex ``i`` is A_i (a start), vertex ``n + i`` is B_i (an end). Quad i gives
-    triangles 2i and 2i + 1: along diagonal A_{i+1}B_i (``first_diagonal[i]``) they are
-    (A_i, A_{i+1}, B_i) and (A_{i+1}, B_{i+1}, B_i), along A_iB_{i+1} they are
-    (A_i, A_{i+1}, B_{i+1}) and (A_i, B_{i+1}, B_i).
-    """
-    i = np.arange(n - 1)
-    a0, a1, b0, b1 = i, i + 1, n + i, n + i + 1
-    first = np.where(first_diagonal[:, None], np.column_stack([a0, a1, b0]),
-                     np.column_stack([a0, a1, b1]))
-    second = np.where(first_diagonal[:, None], np.column_stack([a1, b1, b0]),
-                      np.column_stack([a0, b1, b0]))
-    return np.stack([first, second], axis=1).reshape(-1, 3).astype(np.int64)
 
 
 # --------------------------------------------------------------------------- the map
@@ -100,63 +81,6 @@ def _closest_on_triangles(
     v = np.select(conditions, [zero, one, t_ab, zero, zero, 1.0 - t_bc], v_in)
     w = np.select(conditions, [zero, zero, zero, one, t_ac, t_bc], w_in)
     return np.column_stack([1.0 - v - w, v, w])
-
-
-class _StripWalk:
-    """Which triangle of a (not self-overlapping) development contains each point, by
-    walking along the strip — all points at once.
-
-    The triangles form a chain: triangle ``chain[k]`` lies between edges E_k and E_{k+1}
-    (the rulings and diagonals in order, each from its A end to its B end), and a point
-    to the right of E_{k+1} lies further along. Every point starts at the triangle of
-    its nearest sample (seven per triangle, in a k-d tree), steps forward or back —
-    always the same way, so at most once along the chain — until it lies between two
-    consecutive edges, and that triangle is then checked to contain it.
-    """
-
-    #: Samples per triangle (barycentric weights): its centroid, three points near its
-    #: corners and its three edge midpoints.
-    WEIGHTS = np.array([[2, 2, 2], [4, 1, 1], [1, 4, 1], [1, 1, 4], [3, 3, 0], [0, 3, 3], [3, 0, 3]]) / 6.0
-
-    def __init__(self, vertices2d: FloatArray, first_diagonal: NDArray[np.bool_], proper: IntArray) -> None:
-        n = len(vertices2d) // 2
-        i = np.arange(n - 1)
-        forward = first_diagonal.astype(np.int64)
-        # quad i: along A_{i+1}B_i triangle 2i comes first, along A_iB_{i+1} triangle 2i + 1
-        self.chain = np.column_stack([2 * i + 1 - forward, 2 * i + forward]).reshape(-1)
-        diagonal_a = np.where(first_diagonal, i + 1, i)
-        diagonal_b = n + np.where(first_diagonal, i, i + 1)
-        edge_a = np.column_stack([i, diagonal_a]).reshape(-1)
-        edge_b = np.column_stack([n + i, diagonal_b]).reshape(-1)
-        self.edge_start = vertices2d[np.append(edge_a, n - 1)]
-        self.edge_vector = vertices2d[np.append(edge_b, 2 * n - 1)] - self.edge_start
-        size = float(np.ptp(vertices2d, axis=0).max()) or 1.0
-        self.tolerance = 1e-12 * size * size
-        position = np.empty(len(self.chain), dtype=np.int64)
-        position[self.chain] = np.arange(len(self.chain))
-        triangles = strip_triangles(n, first_diagonal)[proper]
-        samples = np.einsum("sj,tjd->tsd", self.WEIGHTS, vertices2d[triangles]).reshape(-1, 2)
-        self.tree = cKDTree(samples)
-        self.sample_position = np.repeat(position[proper], len(self.WEIGHTS))
-
-    def _ahead(self, edge: IntArray, points: FloatArray) -> FloatArray:
-        """cross(E, p − E_start): negative ahead of the edge, positive behind it."""
-        d = points - self.edge_start[edge]
-        e = self.edge_vector[edge]
-        return e[:, 0] * d[:, 1] - e[:, 1] * d[:, 0]
-
-    def triangles(self, points: FloatArray) -> IntArray:
-        """The triangle (an index into the strip's triangles) each point walks to."""
-        k = self.sample_position[self.tree.query(points)[1]]
-        last = len(self.chain) - 1
-        active = np.arange(len(points))
-        while active.size:  # each pass moves every active point one triangle on
-            kk, q = k[active], points[active]
-            forward = (kk < last) & (self._ahead(kk + 1, q) < -self.tolerance)
-            back = ~forward & (kk > 0) & (self._ahead(kk, q) > self.tolerance)
-            k[active] = kk + forward - back
-            active = active[forward | back]
-        return self.chain[k]
 
 
 class DevelopmentMap:
@@ -212,18 +136,18 @@ class DevelopmentMap:
         return shapely.STRtree(polys)
 
     @cached_property
-    def _walk(self) -> _StripWalk | None:
+    def _walk(self) -> StripWalk | None:
         """The fast locator, for developments that do not overlap themselves (there a
         point lies in one triangle only; elsewhere the lowest-numbered must be found)."""
         outline = np.vstack([self.vertices2d[: self.n], self.vertices2d[self.n :][::-1]])
         if not is_simple(outline):
             return None
-        return _StripWalk(self.vertices2d, self.first_diagonal, self.proper)
+        return StripWalk(self.vertices2d, self.first_diagonal)
 
     def locate(self, points2d: ArrayLike) -> tuple[IntArray, FloatArray]:
         """Triangle index and barycentric coordinates ``(k, 3)`` of each 2D point.
 
-        Each point walks along the strip to its triangle (:class:`_StripWalk`); where
+        Each point walks along the strip to its triangle (:class:`.strip_walk.StripWalk`); where
         that fails (a development that overlaps itself, a point outside it) a shapely
         STR-tree finds the triangles that contain it (the lowest-numbered wins, also on
         a shared edge), and points outside every triangle take the nearest one.
@@ -232,9 +156,7 @@ class DevelopmentMap:
         tri = np.full(len(pts), -1, dtype=np.int64)
         if self._walk is not None and len(pts):
             tri = self._walk.triangles(pts)
-            bary = self._barycentric(tri, pts)
-            inside = (bary >= -1e-9).all(axis=1) & (self._area2[tri] > self.proper_area)
-            tri[~inside] = -1
+            tri[~self._holds(tri, pts)] = -1
         lost = np.flatnonzero(tri < 0)
         if lost.size:
             geoms = shapely.points(pts[lost])
@@ -248,6 +170,12 @@ class DevelopmentMap:
                 np.minimum.at(found, missing[near_point], near_tree)
             tri[lost] = self.proper[found]
         return tri, self._barycentric(tri, pts)
+
+    def _holds(self, tri: IntArray, pts: FloatArray) -> NDArray[np.bool_]:
+        """Whether each triangle has area and holds its point (to rounding)."""
+        with np.errstate(invalid="ignore"):
+            inside = (self._barycentric(tri, pts) >= -1e-9).all(axis=1)
+        return inside & (self._area2[tri] > self.proper_area)
 
     def _barycentric(self, tri: IntArray, pts: FloatArray) -> FloatArray:
         """Barycentric coordinates of ``pts`` in triangles ``tri`` (any, even outside)."""
@@ -458,6 +386,65 @@ class DevelopmentMap:
         p, q = p[keep], q[keep]
         return shapely.STRtree(shapely.linestrings(np.stack([p, q], axis=1))), p, q
 
+    @cached_property
+    def _outline_tree(self) -> shapely.STRtree:
+        """The development's outline, edge by edge (short edges: a tight tree)."""
+        ring = merge_repeats(np.vstack([self.vertices2d[: self.n], self.vertices2d[self.n :][::-1]]))
+        return shapely.STRtree(shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1)))
+
+    def _crossings(self, p0: FloatArray, d: FloatArray) -> tuple[IntArray, FloatArray]:
+        """Where segments ``p0 → p0 + d`` cross a ruling or diagonal: pairs (segment,
+        parameter along it), ends excluded.
+
+        A segment that lies in a development which does not overlap itself crosses exactly
+        the edges between the chain positions of its two ends, each once (two straight
+        segments meet at most once, and an edge between them separates the ends); those
+        are measured directly (its ends located by the walk, the outline not crossed). The
+        other segments (an overlapping development, a segment that leaves the outline) are
+        tested against every edge through a shapely STR-tree.
+        """
+        walk = self._walk
+        rest = np.arange(len(p0))
+        seg_parts: list[IntArray] = []
+        par_parts: list[FloatArray] = []
+        if walk is not None:
+            lines = shapely.linestrings(np.stack([p0, p0 + d], axis=1))
+            inside = np.ones(len(p0), dtype=bool)
+            inside[self._outline_tree.query(lines, predicate="crosses")[0]] = False
+            k0, k1 = walk.positions(p0), walk.positions(p0 + d)
+            inside &= self._holds(walk.chain[k0], p0) & self._holds(walk.chain[k1], p0 + d)
+            rest, seg = np.flatnonzero(~inside), np.flatnonzero(inside)
+            k0, k1 = k0[seg], k1[seg]
+            low, count = np.minimum(k0, k1), np.abs(k1 - k0)
+            pair_seg = np.repeat(seg, count)
+            edge = np.repeat(low + 1 - np.cumsum(count) + count, count) + np.arange(int(count.sum()))
+            seg_parts.append(pair_seg)
+            par_parts.append(self._cross_parameters(p0[pair_seg], d[pair_seg], walk.edge_start[edge],
+                                                    walk.edge_vector[edge]))
+        if rest.size:
+            tree, ep, eq = self._edge_tree
+            hit, hit_edge = tree.query(shapely.linestrings(np.stack([p0[rest], p0[rest] + d[rest]], axis=1)),
+                                       predicate="intersects")
+            seg_parts.append(rest[hit])
+            par_parts.append(self._cross_parameters(p0[rest[hit]], d[rest[hit]], ep[hit_edge],
+                                                    eq[hit_edge] - ep[hit_edge]))
+        seg_all, par_all = np.concatenate(seg_parts), np.concatenate(par_parts)
+        ok = np.isfinite(par_all)
+        return seg_all[ok], par_all[ok]
+
+    @staticmethod
+    def _cross_parameters(p0: FloatArray, ds: FloatArray, ep: FloatArray, de: FloatArray) -> FloatArray:
+        """Parameter along each segment ``p0 → p0 + ds`` where it meets the line of its edge
+        ``ep → ep + de``; NaN where they are parallel or meet at (or beyond) the segment's
+        ends (collinear overlaps need no split)."""
+        w = ep - p0
+        den = ds[:, 0] * de[:, 1] - ds[:, 1] * de[:, 0]
+        ok = np.abs(den) > 1e-14 * np.linalg.norm(ds, axis=1) * np.linalg.norm(de, axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (w[:, 0] * de[:, 1] - w[:, 1] * de[:, 0]) / den
+        ok &= (t > 1e-12) & (t < 1.0 - 1e-12)
+        return np.where(ok, t, np.nan)
+
     def subdivide(self, polyline2d: ArrayLike, max_length: float | None = None) -> FloatArray:
         """The polyline with a vertex added wherever it crosses a ruling or diagonal.
 
@@ -489,19 +476,10 @@ class DevelopmentMap:
             rank = np.arange(len(extra)) - np.repeat(np.cumsum(pieces - 1) - (pieces - 1), pieces - 1)
             seg.append(extra)
             param.append((rank + 1) / pieces[extra])
-        tree, ep, eq = self._edge_tree
         if len(inner):
-            hit_seg, hit_edge = tree.query(shapely.linestrings(np.stack([p0, p0 + d], axis=1)),
-                                           predicate="intersects")
-            ds, de = d[hit_seg], eq[hit_edge] - ep[hit_edge]
-            w = ep[hit_edge] - p0[hit_seg]
-            den = ds[:, 0] * de[:, 1] - ds[:, 1] * de[:, 0]
-            ok = np.abs(den) > 1e-14 * np.linalg.norm(ds, axis=1) * np.linalg.norm(de, axis=1)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                t = (w[:, 0] * de[:, 1] - w[:, 1] * de[:, 0]) / den
-            ok &= (t > 1e-12) & (t < 1.0 - 1e-12)  # collinear overlaps need no split
-            seg.append(hit_seg[ok])
-            param.append(t[ok])
+            hit_seg, t = self._crossings(p0, d)
+            seg.append(hit_seg)
+            param.append(t)
         seg_all, par_all = np.concatenate(seg), np.concatenate(param)
         # every polyline's own last vertex closes it: key (its last point's index, 0)
         last = np.cumsum(counts) - 1
