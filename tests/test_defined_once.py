@@ -54,8 +54,6 @@ KNOWN_COPIES: set[tuple[str, str]] = {
     ("nodes/geometry/nesting.py", "FloatArray"),
     ("nodes/io/cutfiles.py", "FloatArray"),
     ("nodes/io/seams.py", "FloatArray"),
-    # the lead: nodes/geometry/developable/rationalise.py
-    ("nodes/geometry/developable/rationalise.py", "FloatArray"),
 }
 
 
