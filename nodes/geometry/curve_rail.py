@@ -21,13 +21,17 @@ B. So
 
 On a closed curve a parameter that runs on through the seam (t rising to 1, then again
 from 0) is unwrapped before interpolating and wrapped back when evaluated.
+
+σ is scipy's ``PchipInterpolator`` (Fritsch–Carlson slopes, Moler's one-sided three-point
+ends, extrapolating with the end pieces), written out in :class:`Pace`: a strip's rails
+are built on every re-solve, and the general interpolator's set-up costs more than the
+rest of the rail.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.interpolate import PchipInterpolator
 
 from .curve_base import Curve, FloatArray
 from .ruled import RuledSurface
@@ -39,6 +43,68 @@ def unwrap_cyclic(t: FloatArray) -> FloatArray:
     t = np.asarray(t, dtype=float)
     drops = np.diff(t) < -0.5
     return t + np.concatenate([[0.0], np.cumsum(drops)])
+
+
+class Pace:
+    """The monotone piecewise-cubic interpolant (PCHIP) through ``(u_i, p_i)``, ``u``
+    increasing, with its derivatives: the same interpolant as scipy's
+    ``PchipInterpolator(u, p, extrapolate=True)`` (to rounding).
+
+    The slope at an inner point is 0 where the neighbouring chords' slopes differ in sign
+    or one is 0, else their weighted harmonic mean; at the ends it is the one-sided
+    three-point estimate, set to 0 where its sign differs from the end chord's and to 3×
+    that chord's slope where it would overshoot (a straight line through two points).
+    Monotone data give a monotone interpolant; a run of equal values stays flat.
+    """
+
+    def __init__(self, u: FloatArray, p: FloatArray) -> None:
+        h = u[1:] - u[:-1]
+        m = (p[1:] - p[:-1]) / h
+        slopes = np.empty(len(p))
+        if len(p) == 2:
+            slopes[:] = m[0]
+        else:
+            sign = np.sign(m)
+            flat = (sign[1:] != sign[:-1]) | (m[1:] == 0) | (m[:-1] == 0)
+            w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                harmonic = (w1 + w2) / (w1 / m[:-1] + w2 / m[1:])
+            slopes[1:-1] = np.where(flat, 0.0, harmonic)
+            slopes[0] = _end_slope(h[0], h[1], m[0], m[1])
+            slopes[-1] = _end_slope(h[-1], h[-2], m[-1], m[-2])
+        # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
+        bend = (slopes[:-1] + slopes[1:] - 2.0 * m) / h
+        self.u = u
+        self.c3, self.c2, self.c1, self.c0 = bend / h, (m - slopes[:-1]) / h - bend, slopes[:-1], p[:-1]
+
+    def __call__(self, x: FloatArray, nu: int = 0) -> FloatArray:
+        """The interpolant's ``nu``-th derivative at ``x``."""
+        return self.derivatives(np.asarray(x, dtype=float), nu)[nu]
+
+    def derivatives(self, x: FloatArray, order: int) -> list[FloatArray]:
+        """The interpolant and its derivatives up to ``order`` (at most 3) at ``x``; the end
+        pieces extend beyond the first and last points."""
+        i = np.minimum(np.maximum(np.searchsorted(self.u, x, side="right") - 1, 0), len(self.u) - 2)
+        z = x - self.u[i]
+        c3, c2, c1 = self.c3[i], self.c2[i], self.c1[i]
+        out = [((c3 * z + c2) * z + c1) * z + self.c0[i]]
+        if order >= 1:
+            out.append((3.0 * c3 * z + 2.0 * c2) * z + c1)
+        if order >= 2:
+            out.append(6.0 * c3 * z + 2.0 * c2)
+        if order >= 3:
+            out.append(6.0 * c3 + 0.0 * z)
+        return out
+
+
+def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
+    """PCHIP's slope at an end: the one-sided three-point estimate, kept monotone."""
+    d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+    if np.sign(d) != np.sign(m0):
+        return 0.0
+    if np.sign(m0) != np.sign(m1) and abs(d) > 3.0 * abs(m0):
+        return 3.0 * m0
+    return float(d)
 
 
 class CurveRail(Curve):
@@ -55,11 +121,11 @@ class CurveRail(Curve):
             raise ValueError("a curve rail needs increasing u and non-decreasing curve parameters")
         self.curve = curve
         self.params, self.curve_params = u, p
-        self._pace = PchipInterpolator(u, p, extrapolate=True)
+        self._pace = Pace(u, p)
         self.closed = False  # the rail covers the stretch of the curve between its rulings
 
     def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
-        return [self._pace(u, nu=k) for k in range(order + 1)]
+        return self._pace.derivatives(u, order)
 
     def _wrapped(self, p: FloatArray) -> FloatArray:
         if self.curve.closed:

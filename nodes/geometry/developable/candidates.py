@@ -106,7 +106,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> 
     return _Brackets(*joined, zero_flat)
 
 
-def _cubic_start(
+def cubic_start(
     x0: FloatArray, x1: FloatArray, f0: FloatArray, f1: FloatArray, d0: FloatArray, d1: FloatArray
 ) -> FloatArray:
     """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
@@ -265,7 +265,7 @@ def find_candidates(
 
     if k:
         i = isolated
-        start = _cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
+        start = cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
         refine_roots(coplanarity, i.low, i.high, i.f_low, start)
     if len(point_rows):
         evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)

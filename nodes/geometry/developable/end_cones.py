@@ -16,6 +16,12 @@ gives) and rewrites the first run of fan rulings; the last run is done on the re
 curves. Where the fan run holds a station strictly inside the new torsal stretch (the
 solve found no torsal partner for it, so the stretch is not known to be torsal), or no
 such ruling exists, the run is left as it was.
+
+Both ends are solved together: the pencils of rulings through the curves' end points
+are sampled in one evaluation of the moving curve, every sign change of the coplanarity
+function is refined at once by Newton's method inside its bracket (:mod:`..roots`), and
+the tail is solved on the curves' own parameters run backwards (1 − x) rather than on
+reversed copies of the curves.
 """
 
 from __future__ import annotations
@@ -26,6 +32,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..curve_base import Curve, FloatArray
+from ..vec_ops import cross, dot, norm
+from .brackets import refine_roots
+from .candidates import cubic_start, rounding_scale
 from .warp import warp_angles
 
 IntArray = NDArray[np.int64]
@@ -49,155 +58,189 @@ class Rulings:
         return Rulings(1.0 - self.s[::-1], 1.0 - self.t[::-1], self.source[::-1], self.fan[::-1])
 
 
+@dataclass(frozen=True)
+class _Run:
+    """The run of fan rulings before the first torsal ruling ``k`` of the rulings (or of
+    the reversed rulings, for the tail: ``reverse``), in those rulings' parameters."""
+
+    k: int
+    reverse: bool
+    s0: float
+    t0: float
+    sk: float
+    tk: float
+    s: FloatArray
+    t: FloatArray
+    source: IntArray
+
+    @property
+    def stations(self) -> BoolArray:
+        return self.source >= 0
+
+
 def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     """``rulings`` with each end's run of fans made one cone where that is possible (see
     the module). Not for a closed B, whose partners may run through its seam. Rulings
     away from the ends keep their parameters bit for bit."""
     if curve_b.closed or rulings.fan.all() or not rulings.fan.any():
         return rulings
-    fix = _head(curve_a, curve_b, rulings)
-    if fix is not None:
-        head, k, source_k = fix
+    runs = [run for run in (_run(rulings, False), _run(rulings.reversed(), True)) if run is not None]
+    if not runs:
+        return rulings
+    # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); both ends at once
+    through_b = _roots(curve_a, curve_b, runs, moving_a=True)
+    cones: dict[bool, tuple[bool, float]] = {}
+    others = []
+    for run, root in zip(runs, through_b, strict=True):
+        if root is not None and not np.any(run.stations & (run.s > root) & (run.s < run.sk)):
+            cones[run.reverse] = (False, root)
+        elif not np.any(run.stations & (run.s > run.s0)):
+            others.append(run)  # else the cone through A(s0) could not cover the run's stations
+    if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
+        for run, root in zip(others, _roots(curve_a, curve_b, others, moving_a=False), strict=True):
+            if root is not None:
+                cones[run.reverse] = (True, root)
+    head = next((run for run in runs if not run.reverse), None)
+    if head is not None and False in cones:
+        cone, k, source_k = _cone(head, *cones[False], int(rulings.source[head.k]))
         rest = rulings.source[k:].copy()
         rest[0] = source_k
         rulings = Rulings(
-            np.concatenate([head.s, rulings.s[k:]]), np.concatenate([head.t, rulings.t[k:]]),
-            np.concatenate([head.source, rest]), np.concatenate([head.fan, rulings.fan[k:]]),
+            np.concatenate([cone.s, rulings.s[k:]]), np.concatenate([cone.t, rulings.t[k:]]),
+            np.concatenate([cone.source, rest]), np.concatenate([cone.fan, rulings.fan[k:]]),
         )
-    fix = _head(curve_a.reversed(), curve_b.reversed(), rulings.reversed())
-    if fix is not None:
-        head, k, source_k = fix
-        tail = head.reversed()
-        m = len(rulings.s) - k  # rulings[m:] are replaced by the tail, rulings[m - 1] gets source_k
+    tail = next((run for run in runs if run.reverse), None)
+    if tail is not None and True in cones:
+        # (the head's cone leaves the tail's run as it was, but may have given the first
+        # torsal ruling, if it is also the last, a station)
+        cone, k, source_k = _cone(tail, *cones[True], int(rulings.source[-1 - tail.k]))
+        end = cone.reversed()
+        m = len(rulings.s) - k  # rulings[m:] are replaced by the cone, rulings[m - 1] gets source_k
         rest = rulings.source[:m].copy()
         rest[-1] = source_k
         rulings = Rulings(
-            np.concatenate([rulings.s[:m], tail.s]), np.concatenate([rulings.t[:m], tail.t]),
-            np.concatenate([rest, tail.source]), np.concatenate([rulings.fan[:m], tail.fan]),
+            np.concatenate([rulings.s[:m], end.s]), np.concatenate([rulings.t[:m], end.t]),
+            np.concatenate([rest, end.source]), np.concatenate([rulings.fan[:m], end.fan]),
         )
     return rulings
 
 
-def _head(curve_a: Curve, curve_b: Curve, r: Rulings) -> tuple[Rulings, int, int] | None:
-    """The rulings that replace the first ``k`` (the run of fans before the first torsal
-    ruling): a cone's rulings and the torsal ruling through the curve's end point; with
-    ``k`` and the station index the first torsal ruling carries from then on. None when
-    the start is one cone already or cannot be made one."""
+def _run(r: Rulings, reverse: bool) -> _Run | None:
+    """The run of fans before the first torsal ruling, or None where there is none or it
+    is one cone already."""
     k = int(np.argmin(r.fan))  # the first torsal ruling
     if k == 0:
         return None
-    s0, t0, sk, tk = r.s[0], r.t[0], r.s[k], r.t[k]
+    s0, t0 = r.s[0], r.t[0]
     if np.all(r.s[: k + 1] == s0) or np.all(r.t[: k + 1] == t0):
         return None  # already one cone
-    run_s, run_t, run_source = r.s[:k], r.t[:k], r.source[:k]
-    stations = run_source >= 0
-    through_b = _root(_Pencil(curve_a, curve_b, t0, fixed_a=False), s0, sk)
-    if through_b is not None and not np.any(stations & (run_s > through_b) & (run_s < sk)):
-        keep = (run_s < through_b) & stations  # the stations the cone through B(t0) covers
-        head_s = np.append(run_s[keep], through_b)
-        head_t = np.full(len(head_s), t0)
+    ends = float(s0), float(t0), float(r.s[k]), float(r.t[k])
+    return _Run(k, reverse, *ends, r.s[:k], r.t[:k], r.source[:k])
+
+
+def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulings, int, int]:
+    """The rulings that replace the run (a cone's rulings and the torsal ruling through the
+    curve's end point ``root``), with ``k`` and the station index the first torsal ruling
+    carries from then on (``source_k`` now)."""
+    stations = run.stations
+    if not through_a:
+        keep = (run.s < root) & stations  # the stations the cone through B(t0) covers
+        head_s = np.append(run.s[keep], root)
+        head_t = np.full(len(head_s), run.t0)
     else:
-        through_a = _root(_Pencil(curve_a, curve_b, s0, fixed_a=True), t0, tk)
-        if through_a is None or np.any(stations & (run_s > s0)):
-            return None
-        keep = (run_t < through_a) & (run_s == s0)  # the cone through A(s0) over B[t0, t*]
-        head_s = np.append(run_s[keep], s0)
-        head_t = np.append(run_t[keep], through_a)
-    head_source = np.append(run_source[keep], -1).astype(np.int64)
-    dropped = set(run_source[stations].tolist()) - set(run_source[keep].tolist())
-    source_k = int(r.source[k])
+        keep = (run.t < root) & (run.s == run.s0)  # the cone through A(s0) over B[t0, t*]
+        head_s = np.append(run.s[keep], run.s0)
+        head_t = np.append(run.t[keep], root)
+    head_source = np.append(run.source[keep], -1).astype(np.int64)
+    dropped = set(run.source[stations].tolist()) - set(run.source[keep].tolist())
     if dropped and source_k < 0:  # a fan ruling of the station at the first torsal ruling's s
         source_k = min(dropped)
     head_fan = np.append(np.ones(int(keep.sum()), dtype=bool), False)
-    return Rulings(head_s, head_t, head_source, head_fan), k, source_k
+    return Rulings(head_s, head_t, head_source, head_fan), run.k, source_k
 
 
-class _Pencil:
-    """The rulings from a fixed point of one curve (``A(s)`` when ``fixed_a``, else
-    ``B(t)``) to the points of the other: the fixed end is evaluated once."""
+def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> list[float | None]:
+    """For each run, the parameter nearest the first torsal ruling of the moving end of a
+    torsal ruling with consistently oriented normals (signed warp near 0, not near π)
+    through the fixed end point — B(t0) when ``moving_a`` (the root in (s0, sk)), else
+    A(s0) (the root in (t0, tk)) — or None.
 
-    def __init__(self, curve_a: Curve, curve_b: Curve, fixed: float, fixed_a: bool) -> None:
-        self.curve_a, self.curve_b, self.fixed_a = curve_a, curve_b, fixed_a
-        self.offset = curve_b.anchor - curve_a.anchor
-        still = curve_a if fixed_a else curve_b
-        self.point, self.tangent = still.local_derivatives(np.array([fixed]), 1)
+    Each run's pencil is bracketed on :data:`SAMPLES` samples; all runs' samples are one
+    evaluation of the moving curve, which also tells the orientation. Every sign change
+    is then refined at once, by Newton's method inside its bracket on
+    g = det[B − A, A', B'] (the coplanarity with the curves' own tangents: the same
+    roots), with g' = det[R, A'', B'] (or det[R, A', B''] when B moves).
+    """
+    moving, still = (curve_a, curve_b) if moving_a else (curve_b, curve_a)
+    offset = curve_b.anchor - curve_a.anchor
+    reverse = np.array([run.reverse for run in runs])
+    fixed = np.array([run.t0 if moving_a else run.s0 for run in runs])
+    low = np.array([run.s0 if moving_a else run.t0 for run in runs])
+    high = np.array([run.sk if moving_a else run.tk for run in runs])
+    found: list[float | None] = [None] * len(runs)
+    wide = high > low
+    if not wide.any():
+        return found
+    q, dq = still.local_derivatives(np.where(reverse, 1.0 - fixed, fixed), 1)
+    # (runs, SAMPLES), in each run's parameters, as np.linspace places them
+    x = low[:, None] + ((high - low) / (SAMPLES - 1))[:, None] * np.arange(SAMPLES)
+    x[:, -1] = high
+    flip = np.repeat(reverse, SAMPLES)
+    u = x.reshape(-1)
+    p, dp, ddp = moving.local_derivatives(np.where(flip, 1.0 - u, u), 2)
+    rows = np.repeat(np.arange(len(runs)), SAMPLES)
 
-    def values(self, x: FloatArray, warp: bool = True) -> tuple[FloatArray, FloatArray | None]:
-        """The coplanarity det[B − A, Â', B̂'] and (with ``warp``) the signed warp (−π…π) of
-        the rulings to the moving curve's parameters ``x``."""
-        moving = self.curve_b if self.fixed_a else self.curve_a
-        p, dp = moving.local_derivatives(np.atleast_1d(x), 1)
-        q, dq = np.broadcast_to(self.point, p.shape), np.broadcast_to(self.tangent, p.shape)
-        a, da, b, db = (q, dq, p, dp) if self.fixed_a else (p, dp, q, dq)
-        b = b + self.offset
-        ua = da / np.linalg.norm(da, axis=1, keepdims=True)
-        ub = db / np.linalg.norm(db, axis=1, keepdims=True)
-        f = np.einsum("ij,ij->i", b - a, np.cross(ua, ub))
-        return f, warp_angles(a, b, da, db, signed=True) if warp else None
+    def pencil(rows: IntArray, p: FloatArray, dp: FloatArray) -> tuple[FloatArray, ...]:
+        """The rulings of the pencils ``rows`` to the moving points ``p`` (tangents ``dp``)
+        as ``(a, da, b, db)``, B's points measured in A's local coordinates."""
+        if moving_a:
+            return p, dp, q[rows] + offset, dq[rows]
+        return q[rows], dq[rows], p + offset, dp
 
+    def coplanarity(rows: IntArray, p: FloatArray, dp: FloatArray, ddp: FloatArray, flip: BoolArray):
+        """g, its slope in the run's parameter, its rounding scale and the rulings."""
+        a, da, b, db = pencil(rows, p, dp)
+        r = b - a
+        if moving_a:  # g' = det[R, A'', B'] (det[−A', A', B'] vanishes)
+            plane = cross(r, db)
+            g, slope = -dot(plane, da), -dot(plane, ddp)
+        else:  # g' = det[R, A', B''] (det[B', A', B'] vanishes)
+            plane = cross(r, da)
+            g, slope = dot(plane, db), dot(plane, ddp)
+        slope = np.where(flip, -slope, slope)  # d/dx = −d/du on a run read backwards
+        return g, slope, rounding_scale(norm(a), b, norm(da), db), (a, da, b, db)
 
-def _root(pencil: _Pencil, low: float, high: float) -> float | None:
-    """The parameter in (low, high), nearest ``high``, of the moving end of a torsal ruling
-    of ``pencil`` with consistently oriented normals (signed warp near 0, not near π), or
-    None: bracketed on :data:`SAMPLES` samples (one vectorised evaluation, which also tells
-    the orientation), then refined by the Illinois variant of regula falsi."""
-    if not high > low:
-        return None
-    x = np.linspace(low, high, SAMPLES)
     with np.errstate(invalid="ignore", divide="ignore"):
-        y, signed = pencil.values(x)
-    if not np.isfinite(y).all():
-        return None
+        g, slope, _, (a, da, b, db) = coplanarity(rows, p, dp, ddp, flip)
+        signed = warp_angles(a, b, da, db, signed=True)
+    g, slope, signed = g.reshape(x.shape), slope.reshape(x.shape), signed.reshape(x.shape)
     oriented = np.isfinite(signed) & (np.abs(signed) < 0.5 * np.pi)
-    changes = np.flatnonzero((np.sign(y[:-1]) * np.sign(y[1:]) < 0) & (oriented[:-1] | oriented[1:]))
-    for i in changes[::-1]:
-        def f(v: float) -> float:
-            return float(pencil.values(np.array([v]), warp=False)[0][0])
+    usable = wide & np.isfinite(g).all(axis=1)
+    change = (np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0) & (oriented[:, :-1] | oriented[:, 1:])
+    change &= usable[:, None]
+    run_of, j = np.nonzero(change)
+    if len(run_of) == 0:
+        return found
+    x0, x1 = x[run_of, j], x[run_of, j + 1]
+    g0, g1 = g[run_of, j], g[run_of, j + 1]
+    start = cubic_start(x0, x1, g0, g1, slope[run_of, j], slope[run_of, j + 1])
+    roots = np.empty(len(run_of))
+    at_root = np.empty((4, len(run_of), 3))
 
-        root = _illinois(f, x[i], x[i + 1], y[i], y[i + 1], first=_inverse_cubic(x, y, i))
-        _, at_root = pencil.values(np.array([root]))
-        if np.isfinite(at_root[0]) and abs(at_root[0]) < 0.5 * np.pi:
-            return float(root)
-    return None
+    def refined(xs: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        back = reverse[run_of[index]]
+        c = moving.local_derivatives(np.where(back, 1.0 - xs, xs), 2)
+        value, value_slope, scale, ends = coplanarity(run_of[index], *c, back)
+        roots[index] = xs  # the last evaluated point of each bracket, and its ruling
+        at_root[:, index] = ends
+        return value, value_slope, scale
 
-
-def _inverse_cubic(x: FloatArray, y: FloatArray, i: int) -> float | None:
-    """Where the cubic through the samples around the sign change between ``i`` and
-    ``i + 1`` (as x of y) crosses zero: the refinement's first trial (None where the
-    samples there do not run one way)."""
-    j = min(max(i - 1, 0), len(x) - 4)
-    ys, xs = y[j : j + 4], x[j : j + 4]
-    if len(ys) < 4 or not (np.all(np.diff(ys) > 0) or np.all(np.diff(ys) < 0)):
-        return None
-    # Lagrange interpolation of x as a function of y, at y = 0
-    total = 0.0
-    for m in range(4):
-        others = np.delete(ys, m)
-        total += xs[m] * float(np.prod(others / (others - ys[m])))
-    return total if x[i] < total < x[i + 1] else None
-
-
-def _illinois(
-    f, x0: float, x1: float, f0: float, f1: float, first: float | None = None, iterations: int = 60
-) -> float:
-    """A root of ``f`` in the bracket [x0, x1] (f0, f1 of opposite signs) to rounding,
-    trying ``first`` before the first secant step."""
-    side = 0
-    for step in range(iterations):
-        x = first if step == 0 and first is not None else x1 - f1 * (x1 - x0) / (f1 - f0)
-        if not (min(x0, x1) <= x <= max(x0, x1)):
-            x = 0.5 * (x0 + x1)
-        fx = f(x)
-        if fx == 0.0 or abs(x1 - x0) <= 4.0 * np.finfo(float).eps * max(abs(x), 1.0):
-            return x
-        if np.sign(fx) == np.sign(f1):
-            x1, f1 = x, fx
-            if side == 1:
-                f0 *= 0.5
-            side = 1
-        else:
-            x0, f0 = x, fx
-            if side == -1:
-                f1 *= 0.5
-            side = -1
-    return x
+    refine_roots(refined, x0, x1, g0, start)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        a, da, b, db = at_root
+        signed_root = warp_angles(a, b, da, db, signed=True)
+    good = np.isfinite(signed_root) & (np.abs(signed_root) < 0.5 * np.pi)
+    # per run, the root of the last (nearest the torsal ruling) sign change whose root is oriented
+    for i in set(run_of[good].tolist()):  # (at most two runs)
+        found[int(i)] = float(roots[good & (run_of == i)][-1])
+    return found

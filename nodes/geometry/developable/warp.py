@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, dot, norm, unit
+from ..vec_ops import cross, dot, extent, norm, unit
 
 BoolArray = NDArray[np.bool_]
 
@@ -47,10 +47,52 @@ ZERO = 1e-12
 PARALLEL = 1e-10
 
 
-def _mask(value: ArrayLike | None, n: int) -> BoolArray:
+def _mask(value: ArrayLike | None, n: int) -> BoolArray | None:
     if value is None:
-        return np.zeros(n, dtype=bool)
+        return None
     return np.broadcast_to(np.asarray(value, dtype=bool), (n,))
+
+
+def _normals(
+    starts: ArrayLike,
+    ends: ArrayLike,
+    tangents_a: ArrayLike,
+    tangents_b: ArrayLike,
+    apex_a: ArrayLike | None,
+    apex_b: ArrayLike | None,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """:func:`end_normals` and the rulings' lengths."""
+    start = np.asarray(starts, dtype=float).reshape(-1, 3)
+    end = np.asarray(ends, dtype=float).reshape(-1, 3)
+    ruling = end - start
+    ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
+    tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
+    n = len(ruling)
+    points = np.concatenate([start, end])
+    finite = np.isfinite(points)
+    if not finite.all():
+        points = points[finite.all(axis=1)]
+    size = float(norm(extent(points))) if len(points) else 0.0
+    length = norm(ruling)
+    speed_a, speed_b = norm(ta), norm(tb)
+    still_a, still_b = speed_a <= ZERO * size, speed_b <= ZERO * size
+    mask_a, mask_b = _mask(apex_a, n), _mask(apex_b, n)
+    if mask_a is not None:
+        still_a = still_a | mask_a
+    if mask_b is not None:
+        still_b = still_b | mask_b
+    n1 = cross(ruling, ta / np.where(speed_a > 0, speed_a, 1.0)[:, None])
+    n2 = cross(ruling, tb / np.where(speed_b > 0, speed_b, 1.0)[:, None])
+    parallel = PARALLEL * length
+    has1 = norm(n1) > parallel
+    has2 = norm(n2) > parallel
+    defined = (length > ZERO * size) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
+    if still_a.any() or still_b.any():
+        n1, n2 = np.where(still_a[:, None], n2, n1), np.where(still_b[:, None], n1, n2)
+    if not defined.all():
+        n1[~defined] = np.nan
+        n2[~defined] = np.nan
+    return n1, n2, ruling, length
 
 
 def end_normals(
@@ -67,24 +109,7 @@ def end_normals(
     normals. A zero tangent (the edge stands still: a fan's apex), or an end flagged in
     ``apex_a``/``apex_b``, takes the other end's normal.
     """
-    start = np.asarray(starts, dtype=float).reshape(-1, 3)
-    ruling = np.asarray(ends, dtype=float).reshape(-1, 3) - start
-    ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
-    tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
-    n = len(ruling)
-    points = np.concatenate([start, start + ruling])
-    finite = points[np.isfinite(points).all(axis=1)]
-    size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
-    length = norm(ruling)
-    still_a = (norm(ta) <= ZERO * size) | _mask(apex_a, n)
-    still_b = (norm(tb) <= ZERO * size) | _mask(apex_b, n)
-    n1, n2 = cross(ruling, unit(ta)), cross(ruling, unit(tb))
-    has1 = norm(n1) > PARALLEL * length
-    has2 = norm(n2) > PARALLEL * length
-    defined = (length > ZERO * size) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
-    n1, n2 = np.where(still_a[:, None], n2, n1), np.where(still_b[:, None], n1, n2)
-    n1[~defined] = np.nan
-    n2[~defined] = np.nan
+    n1, n2, ruling, _ = _normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b)
     return n1, n2, ruling
 
 
@@ -122,11 +147,11 @@ def warp_angles(
     >>> warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 0]], [[-1, 0, 0]]).round(6).tolist()
     [3.141593]
     """
-    n1, n2, ruling = end_normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b)
+    n1, n2, ruling, length = _normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b)
     normal_cross = cross(n1, n2)
     normal_dot = dot(n1, n2)
     if signed:
-        return np.arctan2(dot(normal_cross, unit(ruling)), normal_dot)
+        return np.arctan2(dot(normal_cross, ruling) / np.where(length > 0, length, 1.0), normal_dot)
     return np.arctan2(norm(normal_cross), normal_dot)
 
 
