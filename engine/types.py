@@ -8,8 +8,10 @@ Mesh ...) with :func:`register_type` and :func:`register_cast`. A failed cast ra
 
 from __future__ import annotations
 
+import importlib
 import math
-from collections.abc import Callable
+import sys
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -48,24 +50,112 @@ class ValueType:
         return isinstance(value, self.classes)
 
 
-_TYPES: dict[str, ValueType] = {}
+class TypeTable:
+    """Value types by name: the engine's own, and those the node library and plug-ins declare.
+
+    A package declares the modules that define its value types in its ``__init__``
+    (``VALUE_TYPES = ("values",)``, names relative to the package); every
+    :class:`ValueType` at module level in them is a value type. The node registry
+    (:class:`engine.registry.Registry`) reads the declarations of the palettes it finds
+    and hands them to its table with :meth:`declare`; nothing is registered as a side
+    effect of importing a node module. A declared module is loaded (imported) the first
+    time a type is asked for by a name the table does not know yet (a value in a file);
+    a value of a type the table has not met makes it load the declared modules that are
+    already imported, and read the declarations of packages imported since (a node used
+    on its own, without a registry).
+    """
+
+    def __init__(self) -> None:
+        self._types: dict[str, ValueType] = {}
+        self._declared: dict[str, None] = {}  # modules defining value types, not loaded yet
+        self._loaded: set[str] = set()
+        self._modules_seen = 0  # len(sys.modules) when declarations were last looked for
+
+    # -- filling ------------------------------------------------------------------------
+    def add(self, value_type: ValueType) -> ValueType:
+        """Add ``value_type`` (replacing one of the same name)."""
+        self._types[value_type.name] = value_type
+        return value_type
+
+    def learn(self, value_type: ValueType) -> None:
+        """Add ``value_type`` unless one of its name is there (a port's type)."""
+        if value_type.name not in self._types:
+            self._types[value_type.name] = value_type
+
+    def declare(self, module_name: str) -> None:
+        """Promise that ``module_name`` defines value types; it is imported when needed."""
+        if module_name not in self._loaded:
+            self._declared[module_name] = None
+
+    def load(self, module_name: str) -> None:
+        """Import ``module_name`` and add every :class:`ValueType` defined at its top level."""
+        self._declared.pop(module_name, None)
+        if module_name in self._loaded:
+            return
+        module = importlib.import_module(module_name)
+        self._loaded.add(module_name)
+        for value in vars(module).values():
+            if isinstance(value, ValueType):
+                self.learn(value)
+
+    def _settle(self) -> None:
+        """Load declared modules that are already imported (no import is made here), after
+        reading the declarations of packages imported since the last look."""
+        modules = sys.modules
+        if len(modules) == self._modules_seen:
+            return
+        self._modules_seen = len(modules)
+        for name, module in list(modules.items()):
+            namespace = getattr(module, "__dict__", None)  # not getattr(module, ...): no lazy imports
+            declared = namespace.get("VALUE_TYPES") if isinstance(namespace, dict) else None
+            if isinstance(declared, tuple) and "__path__" in namespace:
+                for relative in declared:
+                    self.declare(f"{name}.{relative}")
+        for module_name in [m for m in self._declared if m in modules]:
+            self.load(module_name)
+
+    # -- looking up ---------------------------------------------------------------------
+    def find(self, name: str) -> ValueType | None:
+        """The type called ``name``, loading declared modules if it is not known yet."""
+        found = self._types.get(name)
+        if found is None and isinstance(name, str):
+            self._settle()
+            for module_name in list(self._declared):
+                found = self._types.get(name)
+                if found is not None:
+                    break
+                self.load(module_name)
+            found = self._types.get(name)
+        return found
+
+    def values(self) -> Iterable[ValueType]:
+        """Every type loaded so far (with those of modules already imported)."""
+        self._settle()
+        return self._types.values()
+
+    def __contains__(self, name: object) -> bool:
+        return isinstance(name, str) and self.find(name) is not None
+
+
+#: The value types of this process: the engine's own below, and what registries declare.
+TYPES = TypeTable()
 
 
 def register_type(value_type: ValueType) -> ValueType:
-    """Add ``value_type`` to the registry (replacing one of the same name)."""
-    _TYPES[value_type.name] = value_type
-    return value_type
+    """Add ``value_type`` to the table at once (for a plug-in that does not declare its
+    types in ``VALUE_TYPES``); Torsal's own packages declare theirs."""
+    return TYPES.add(value_type)
 
 
 def get_type(name: str) -> ValueType:
-    try:
-        return _TYPES[name]
-    except KeyError:
-        raise KeyError(f"unknown value type {name!r}") from None
+    found = TYPES.find(name)
+    if found is None:
+        raise KeyError(f"unknown value type {name!r}")
+    return found
 
 
 def all_types() -> dict[str, ValueType]:
-    return dict(_TYPES)
+    return {t.name: t for t in TYPES.values()}
 
 
 def register_cast(source: ValueType, target: ValueType, cast: Callable[[Any], Any]) -> None:
@@ -76,7 +166,7 @@ def register_cast(source: ValueType, target: ValueType, cast: Callable[[Any], An
 def type_of(value: Any) -> ValueType | None:
     """The most specific registered type whose classes hold ``value``."""
     best: ValueType | None = None
-    for value_type in _TYPES.values():
+    for value_type in TYPES.values():
         if value_type is GENERIC or not value_type.accepts(value):
             continue
         # Prefer the type whose class is deepest in the MRO (Vector over Point).
@@ -176,10 +266,11 @@ def decode_value(data: Any) -> Any:
         return [decode_value(d) for d in data]
     if isinstance(data, dict):
         kind = data.get("type")
-        if not isinstance(kind, str) or kind not in _TYPES or _TYPES[kind].decode is None:
+        value_type = TYPES.find(kind) if isinstance(kind, str) else None
+        if value_type is None or value_type.decode is None:
             raise CastError(f"unknown value {{'type': {kind!r}}}")
         try:
-            return _TYPES[kind].decode(data)
+            return value_type.decode(data)
         except (KeyError, TypeError, ValueError, OverflowError) as exc:  # OverflowError: 1e400 as int
             raise CastError(f"malformed {kind} value: {exc}") from None
     if data is None or isinstance(data, bool | int | float | str):

@@ -5,3 +5,8 @@ the helper modules (``common``, ``threedm``, ``cutfiles``, ``meshfiles``, ``csvf
 do the reading and writing, and are what ``torsal run --export`` calls too
 (:mod:`app.exports`), so a file written headless is the file the node writes.
 """
+
+#: The modules holding this palette's node types (read by engine.registry; imported on demand).
+NODE_TYPES = ("rhino", "cutting", "meshes", "data")
+#: The modules defining value types this palette adds.
+VALUE_TYPES = ("cutting",)

@@ -1,4 +1,5 @@
-"""The node registry: lazy palettes, type ids, and third-party plug-ins by entry point."""
+"""The registry: palettes found by their declarations and loaded lazily, type ids,
+value types, and third-party plug-ins by entry point."""
 
 from __future__ import annotations
 
@@ -12,8 +13,8 @@ import pytest
 from engine import registry as registry_module
 from engine.node import Node, Out
 from engine.registry import Registry
-from engine.types import NUMBER
-from nodes.catalogue import MODULES, default_registry
+from engine.types import NUMBER, TypeTable, ValueType
+from nodes.catalogue import default_registry
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -66,7 +67,29 @@ def test_every_catalogue_module_holds_only_its_own_palette():
     for cls in registry:
         module_palette = cls.__module__.split(".")[1]
         assert cls.palette() == module_palette, cls.type_id
-    assert all(name.startswith("nodes.") and name.count(".") == 2 for name in MODULES)
+    assert all(cls.__module__.startswith("nodes.") and cls.__module__.count(".") == 2 for cls in registry)
+
+
+def test_every_module_with_node_types_is_declared_by_its_palette():
+    """A node module left out of its palette's NODE_TYPES would vanish from the app."""
+    declared = {name for names in default_registry(plugins=False)._lazy.values() for name in names}
+    holding = set()
+    for path in (ROOT / "nodes").glob("*/*.py"):
+        if 'type_id = "' in path.read_text(encoding="utf-8"):
+            holding.add(".".join(path.relative_to(ROOT).with_suffix("").parts))
+    assert holding == declared
+
+
+def test_finding_the_palettes_imports_no_node_module():
+    script = (
+        "import sys\n"
+        "from nodes.catalogue import default_registry\n"
+        "registry = default_registry(plugins=False)\n"
+        "print(len(registry.palettes()), sorted(m for m in sys.modules if m.count('.') == 2 "
+        "and m.startswith('nodes.')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert out.stdout.split(maxsplit=1) == ["11", "[]\n"]
 
 
 def test_a_run_of_sliders_and_expressions_imports_no_geometry_library():
@@ -118,3 +141,65 @@ def test_types_in_imports_only_that_palettes_modules(fake_modules):
     registry = lazy_registry()
     assert [c.type_id for c in registry.types_in("maths")] == ["maths.One"]
     assert fake_modules == ["fake_maths_nodes"]
+
+
+def plugin_package(monkeypatch, name: str, declarations: dict) -> types.ModuleType:
+    """A fake palette package ``name`` with a node module ``name.nodes`` (holding Seven-like
+    ``tiles.Eight`` with an ``Octagon`` output) and a value-type module ``name.values``."""
+    octagon = ValueType("Octagon", (tuple,), "Eight sides.")
+    values = types.ModuleType(f"{name}.values")
+    values.OCTAGON = octagon
+    nodes_module = types.ModuleType(f"{name}.nodes")
+    eight = type("Eight", (Node,), {
+        "type_id": "tiles.Eight", "__module__": nodes_module.__name__,
+        "outputs": (Out("Shape", octagon, "S", "An octagon."),),
+    })
+    nodes_module.Eight = eight
+    package = types.ModuleType(name)
+    package.__path__ = []
+    vars(package).update(declarations)
+    for module in (package, values, nodes_module):
+        monkeypatch.setitem(sys.modules, module.__name__, module)
+    return package
+
+
+def test_a_plugin_palette_package_loads_lazily_with_its_value_types(monkeypatch, fake_modules):
+    package = plugin_package(monkeypatch, "torsal_tiles",
+                             {"PALETTE": "tiles", "NODE_TYPES": ("nodes",), "VALUE_TYPES": ("values",)})
+    monkeypatch.setattr(registry_module, "entry_points", lambda group: [FakeEntryPoint("tiles", package)])
+    registry = Registry(value_types=TypeTable())
+    registry.load_entry_points()
+    assert registry.palettes() == ["tiles"] and fake_modules == []
+    assert registry.get("tiles.Eight").__name__ == "Eight"
+    assert fake_modules == ["torsal_tiles.values", "torsal_tiles.nodes"]
+    assert registry.value_types.find("Octagon").description == "Eight sides."
+
+
+def test_a_value_type_asked_for_by_name_loads_the_module_declaring_it(monkeypatch):
+    table = TypeTable()
+    values = types.ModuleType("fake_values")
+    values.OCTAGON = ValueType("Octagon", (tuple,), "Eight sides.")
+    monkeypatch.setitem(sys.modules, "fake_values", values)
+    table.declare("fake_values")
+    assert table.find("Octagon") is values.OCTAGON
+    assert table.find("Nonagon") is None
+
+
+def test_the_ports_of_a_registered_node_type_make_their_value_types_known():
+    table = TypeTable()
+    Registry(value_types=table).register(Seven)
+    assert table.find("Number") is NUMBER
+
+
+def test_a_value_in_a_file_is_read_with_the_type_its_palette_declares():
+    """A Tag is a display value type: reading one needs no display node in the graph."""
+    script = (
+        "import sys\n"
+        "from nodes.catalogue import default_registry\n"
+        "from engine.types import decode_value\n"
+        "default_registry(plugins=False)\n"
+        "tag = decode_value({'type': 'Tag', 'text': 'north', 'location': [1, 2, 3]})\n"
+        "print(type(tag).__name__, tag.text)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert out.stdout.split() == ["Tag", "north"]
