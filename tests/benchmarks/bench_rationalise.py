@@ -21,6 +21,7 @@ import time
 import numpy as np
 import pytest
 
+from nodes.geometry.developable.guided import IsoBoundaries
 from nodes.geometry.developable.rationalise import boundary_family, rationalise, strip_between
 from tests.toolbox.test_rationalise import DESIGNS, kaohsiung_roof
 
@@ -29,7 +30,8 @@ TOLERANCES = (0.01, 0.02, 0.05)
 
 def _even_ok(design, family: str, tolerance: float, count: int) -> bool:
     cuts = np.linspace(0.0, 1.0, count + 1)
-    return all(strip_between(design, family, lo, hi).deviation <= tolerance
+    boundaries = IsoBoundaries(design, family)
+    return all(strip_between(design, boundaries, lo, hi).deviation <= tolerance
                for lo, hi in itertools.pairwise(cuts))
 
 

@@ -33,19 +33,23 @@ need be.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from nodes.geometry.array_types import FloatArray
+from nodes.geometry.curve_base import Curve
 from nodes.geometry.curve_rail import ruled_between
+from nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from nodes.geometry.developable.warp import curve_warp
 from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.surface_base import IsoCurve, Surface, uv_grid
+from nodes.geometry.surface_base import Surface, uv_grid
 
-FloatArray = np.ndarray
+#: The boundaries of a rationalisation: a curve on the design for every level in [0, 1].
+Boundaries = IsoBoundaries | GuidedBoundaries
 
 #: Dense samples per strip for its deviation: along the boundaries x across the strip.
 DEVIATION_SAMPLES = (41, 7)
@@ -53,7 +57,7 @@ DEVIATION_SAMPLES = (41, 7)
 
 @dataclass
 class Strip:
-    """One strip between the boundaries at parameters ``lo`` < ``hi`` of the design."""
+    """One strip between the boundaries at levels ``lo`` < ``hi`` (see :mod:`.guided`)."""
 
     lo: float
     hi: float
@@ -69,7 +73,7 @@ class Rationalisation:
 
     family: str  #: "u": the boundaries are isocurves running along u (fixed v), else along v
     strips: list[Strip]
-    boundaries: list[IsoCurve]  #: len(strips) + 1 curves; strip i lies between i and i + 1
+    boundaries: list[Curve]  #: len(strips) + 1 curves; strip i lies between i and i + 1
     tolerance: float
 
     @property
@@ -126,10 +130,11 @@ def strip_deviation(
 
 
 def strip_between(
-    design: Surface, family: str, lo: float, hi: float, segments: int = 24, warp_tolerance: float = 1e-7
+    design: Surface, boundaries: Boundaries, lo: float, hi: float, segments: int = 24,
+    warp_tolerance: float = 1e-7,
 ) -> Strip:
-    """The strip between the boundaries at ``lo`` and ``hi``, with its warp and deviation."""
-    a, b = IsoCurve(design, family, lo), IsoCurve(design, family, hi)
+    """The strip between the boundaries at levels ``lo`` and ``hi``, with its warp and deviation."""
+    a, b = boundaries.at(lo), boundaries.at(hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
     surface = ruled_between(a, result.s, b, result.t)
     warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
@@ -145,26 +150,26 @@ CLOSE = 0.95
 
 
 def _march(
-    design: Surface, family: str, tolerance: float, max_strips: int, segments: int, warp_tolerance: float,
-    progress: Callable[[float], None] | None = None,
+    design: Surface, boundaries: Boundaries, start: float, end: float, tolerance: float, max_strips: int,
+    segments: int, warp_tolerance: float, progress: Callable[[float], None] | None = None,
 ) -> list[Strip] | None:
-    """Strips from one edge of the design to the other, each as wide as the tolerance
-    allows: each next boundary is placed by a few trials (a secant on the square law
-    deviation ∝ width², kept inside the bracket of widths found too wide and within).
-    None when more than ``max_strips`` would be needed."""
+    """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
+    the tolerance allows: each next boundary is placed by a few trials (a secant on the
+    square law deviation ∝ width², kept inside the bracket of widths found too wide and
+    within). None when more than ``max_strips`` would be needed."""
     strips: list[Strip] = []
-    lo, width = 0.0, 1.0
-    while lo < 1.0:
+    lo, width = start, end - start
+    while lo < end:
         if len(strips) >= max_strips:
             return None
         good: Strip | None = None
-        bad = 1.0 - lo + 1.0  # the smallest width known too wide (none yet)
-        w = min(width, 1.0 - lo)
+        bad = end - lo + 1.0  # the smallest width known too wide (none yet)
+        w = min(width, end - lo)
         for trial in range(TRIALS * 4):
-            strip = strip_between(design, family, lo, min(1.0, lo + w), segments, warp_tolerance)
+            strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance)
             if strip.deviation <= tolerance:
                 good = strip if good is None or strip.hi > good.hi else good
-                if strip.hi >= 1.0:
+                if strip.hi >= end:
                     break
             else:
                 bad = min(bad, w)
@@ -174,8 +179,8 @@ def _march(
             w_new = w * float(np.clip(ratio, 0.25, 2.0))
             floor = (good.hi - lo) if good is not None else 0.0
             if not floor < w_new < bad:
-                w_new = 0.5 * (floor + min(bad, 1.0 - lo))
-            w = min(w_new, 1.0 - lo)
+                w_new = 0.5 * (floor + min(bad, end - lo))
+            w = min(w_new, end - lo)
             if w <= 1e-6:
                 return None
         if good is None:
@@ -189,14 +194,19 @@ def _march(
 
 
 def _even(
-    design: Surface, family: str, count: int, segments: int, warp_tolerance: float,
+    design: Surface, boundaries: Boundaries, count: int, segments: int, warp_tolerance: float,
     progress: Callable[[float], None] | None = None,
 ) -> list[Strip]:
-    """``count`` strips between evenly spaced boundaries (when the tolerance needs more)."""
-    cuts = np.linspace(0.0, 1.0, count + 1)
+    """About ``count`` strips between evenly spaced boundaries (when the tolerance needs
+    more), at least one in each band between guides, the bands' shares by their widths."""
+    levels = boundaries.levels
+    widths = np.diff(levels)
+    shares = np.maximum(1, np.floor(widths / widths.sum() * count + 0.5).astype(int))
+    pieces = [np.linspace(a, b, k + 1) for a, b, k in zip(levels[:-1], levels[1:], shares, strict=True)]
+    cuts = np.unique(np.concatenate(pieces))
     strips = []
     for lo, hi in itertools.pairwise(cuts):
-        strips.append(strip_between(design, family, float(lo), float(hi), segments, warp_tolerance))
+        strips.append(strip_between(design, boundaries, float(lo), float(hi), segments, warp_tolerance))
         if progress is not None:
             progress(float(hi))
     return strips
@@ -210,24 +220,41 @@ def rationalise(
     segments: int = 24,
     warp_tolerance: float = 1e-7,
     progress: Callable[[float], None] | None = None,
+    guides: Sequence[Curve] = (),
 ) -> Rationalisation:
     """Developable strips within ``tolerance`` of ``design`` (see the module).
 
-    Raises ``ValueError`` for a design closed across the boundaries (cut it first).
-    ``progress`` is called with the share of the design covered so far (0 to 1).
+    With ``guides`` (curves on or near the design from edge to edge) the boundaries run
+    through them and blend between them (:mod:`.guided`); ``direction`` is then unused.
+    Raises ``ValueError`` for a design closed across the boundaries (cut it first) and for
+    guides that cannot be followed (saying which). ``progress`` is called with the share
+    of the design covered so far (0 to 1).
     """
-    family = boundary_family(design, direction)
-    closed_across = design.closed_v if family == "u" else design.closed_u
-    if closed_across:
-        raise ValueError(
-            "the surface is closed across the strips' direction: cut it open (e.g. split it at its seam "
-            "into two patches) and rationalise each patch"
-        )
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
-    strips = _march(design, family, tolerance, int(max_strips), segments, warp_tolerance, progress)
+    if guides:
+        family_of: Boundaries = guided_boundaries(design, guides)
+    else:
+        family = boundary_family(design, direction)
+        closed_across = design.closed_v if family == "u" else design.closed_u
+        if closed_across:
+            raise ValueError(
+                "the surface is closed across the strips' direction: cut it open (e.g. split it at its "
+                "seam into two patches) and rationalise each patch"
+            )
+        family_of = IsoBoundaries(design, family)
+    strips: list[Strip] | None = []
+    levels = family_of.levels
+    for start, end in itertools.pairwise(levels):  # a boundary on every guide, each band marched
+        assert strips is not None
+        band = _march(design, family_of, float(start), float(end), tolerance, int(max_strips) - len(strips),
+                      segments, warp_tolerance, progress)
+        if band is None:
+            strips = None
+            break
+        strips.extend(band)
     if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
-        strips = _even(design, family, int(max_strips), segments, warp_tolerance)
+        strips = _even(design, family_of, int(max_strips), segments, warp_tolerance)
     params = [strips[0].lo] + [s.hi for s in strips]
-    boundaries = [IsoCurve(design, family, p) for p in params]
-    return Rationalisation(family, strips, boundaries, float(tolerance))
+    boundaries = [family_of.at(p) for p in params]
+    return Rationalisation(family_of.family, strips, boundaries, float(tolerance))
