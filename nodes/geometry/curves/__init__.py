@@ -5,6 +5,8 @@
 - :class:`InterpolatedCurve` — cubic spline through points (chord-length).
 - :class:`Circle`, :class:`Arc` — exact rational quadratic NURBS.
 - :class:`ParametricCurve` — from a vectorised function over a domain.
+- :class:`ReversedCurve`, :class:`TransformedCurve` — generic views of any curve (defined
+  in ``curve_base``, whose :meth:`~..curve_base.Curve.reversed` and ``transformed`` return them).
 """
 
 from ..curve_base import ReversedCurve, TransformedCurve
