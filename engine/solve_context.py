@@ -14,9 +14,8 @@ gets one of its own the first time it asks (:meth:`Node.own_context`).
 
 from __future__ import annotations
 
-import contextlib
 import contextvars
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -25,12 +24,13 @@ if TYPE_CHECKING:
     from engine.writes import NodeFiles
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class SolveContext:
     """What one solve of one node knows and collects.
 
     ``state`` is the node's scratch for the solve (counts that ``after_solve``
-    summarises in one message); it starts empty each solve.
+    summarises in one message); it starts empty each solve. ``with context:`` makes it
+    the active one for the block (what :func:`solving` does).
     """
 
     node: Node
@@ -39,6 +39,16 @@ class SolveContext:
     on_progress: Callable[[float], None] | None = None
     messages: list[Message] = field(default_factory=list)
     state: dict[str, Any] = field(default_factory=dict)
+    _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
+
+    def __enter__(self) -> SolveContext:
+        self._reset = _ACTIVE.set(self)
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self._reset is not None:
+            _ACTIVE.reset(self._reset)
+            self._reset = None
 
 
 _ACTIVE: contextvars.ContextVar[SolveContext | None] = contextvars.ContextVar(
@@ -51,11 +61,7 @@ def active() -> SolveContext | None:
     return _ACTIVE.get()
 
 
-@contextlib.contextmanager
-def solving(context: SolveContext) -> Iterator[SolveContext]:
-    """Make ``context`` the active one for the block (the solver wraps a node's solve)."""
-    reset = _ACTIVE.set(context)
-    try:
-        yield context
-    finally:
-        _ACTIVE.reset(reset)
+def solving(context: SolveContext) -> SolveContext:
+    """``with solving(context):`` makes ``context`` the active one for the block (the
+    solver wraps each node's solve in it)."""
+    return context
