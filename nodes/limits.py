@@ -20,11 +20,12 @@ memory.
 
 from __future__ import annotations
 
-from decimal import Decimal
+from engine.bounds import shown as shown  # how a count is written in a message (one home: the engine's)
 
-#: Rulings of one developable strip built directly (Cylindrical, Conical, Tangent,
-#: PaperStrip, ParametricRuled, RulingDevelopable): 0.7–3.7 s and 20–210 MB at the cap.
-MAX_RULINGS = 100_000
+#: Segments (rulings minus one) of one developable strip built directly (Cylindrical,
+#: Conical, Tangent, PaperStrip, ParametricRuled, RulingDevelopable): 0.7–3.7 s and
+#: 20–210 MB at the cap.
+MAX_SEGMENTS = 100_000
 
 #: Segments of IsoMapping and CurveOfRegression (each segment is unrolled or traced):
 #: 0.8–1.5 s and < 90 MB at the cap.
@@ -56,12 +57,3 @@ MAX_DENSITY = 500
 #: development-and-panels example), each panel clipped and mapped onto the surface; a
 #: Scale of 1e-9 asked for 3.3 billion (23.8 GiB).
 MAX_PANELS = 20_000
-
-
-
-def shown(count: int) -> str:
-    """A count as a message shows it: in full with separators up to 10^15 (1,000,000),
-    beyond that in three figures (Segments 1e308 arrives as a 309-digit integer)."""
-    if abs(count) < 10**15:
-        return f"{count:,}"
-    return f"{Decimal(count):.2e}"  # exact for any integer (a float would overflow past 1e308)

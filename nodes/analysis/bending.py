@@ -26,13 +26,13 @@ from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT
-from nodes.curves.convert import given
+from nodes.common.checks import count, finite, given
+from nodes.common.convert import points
+from nodes.common.values import MESH
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.surface_base import Surface, grid_triangles, uv_grid
 from nodes.io.common import FileFailure, unit_name, unit_scale
 from nodes.limits import MAX_DENSITY
-from nodes.maths.checks import count, finite
-from nodes.types import MESH, points
 
 #: |k| below this share of 1/size is no curvature at all (rounding on a plane).
 FLAT = 1e-9

@@ -9,14 +9,13 @@ import trimesh
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, TEXT, describe
-from nodes.curves.convert import given
+from nodes.common.checks import count, finite, given
 from nodes.display.plot import new_figure, save, target
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import SurfaceCurvature
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 from nodes.limits import MAX_DENSITY
-from nodes.maths.checks import count, finite
 
 #: What can be counted, and how it is computed from the principal curvatures.
 MEASURES: dict[str, str] = {

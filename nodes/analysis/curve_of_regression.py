@@ -9,12 +9,14 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, POINT
 from engine.values import Point
-from nodes.analysis.checks import angle, ruled_surface, segments
-from nodes.curves.convert import sentence
+from nodes.common.checks import analysis_segments as segments
+from nodes.common.checks import angle
+from nodes.common.convert import point, points, sentence
+from nodes.common.geometry_checks import ruled_surface
+from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import InterpolatedCurve
 from nodes.geometry.regression import curve_of_regression
-from nodes.types import CURVE, SURFACE, point, points
 
 #: Points of regression all within this share of the surface's size of one point make a
 #: cone: a loft through a cone's rulings, sampled between them, misses its apex slightly.

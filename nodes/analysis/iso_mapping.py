@@ -8,13 +8,13 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, TEXT
-from nodes.analysis.checks import ruled_surface, segments
-from nodes.analysis.development_type import DEVELOPMENT
-from nodes.curves.convert import sentence
+from nodes.common.checks import analysis_segments as segments
+from nodes.common.convert import sentence
+from nodes.common.geometry_checks import ruled_surface
+from nodes.common.values import DEVELOPMENT, LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_surface
-from nodes.types import LINE, SURFACE
 
 #: Above this relative area difference the node says what it may mean.
 AREA_NOTE = 1e-3

@@ -12,7 +12,6 @@ from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, POINT, describe
-from nodes.analysis.checks import angle
 from nodes.analysis.colours import colour_table, colours
 from nodes.analysis.ruling_trace import (
     MeshProjector,
@@ -23,15 +22,15 @@ from nodes.analysis.ruling_trace import (
     trace_rulings,
 )
 from nodes.analysis.single_curved import area_fraction, signed_flatness
-from nodes.curves.convert import given
+from nodes.common.checks import angle, count, finite, given
+from nodes.common.convert import points
+from nodes.common.values import LINE, MESH
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface, uv_grid
 from nodes.limits import MAX_DENSITY
-from nodes.maths.checks import count, finite
-from nodes.types import LINE, MESH, points
 
 #: Vertices per direction of the coloured mesh, at least (finer when the grid is finer).
 MESH_GRID = 65

@@ -9,11 +9,11 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, POINT, VECTOR
 from engine.values import Point, Vector
-from nodes.curves.convert import given, number, vector, vectors
+from nodes.common.checks import given, number, whole
+from nodes.common.convert import point, points, vector, vectors
+from nodes.common.values import CURVE
 from nodes.geometry.curve_base import Curve
 from nodes.limits import MAX_DIVISIONS, shown
-from nodes.maths.checks import whole
-from nodes.types import CURVE, point, points
 
 
 def _curve(value: Any) -> Curve:

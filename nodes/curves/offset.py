@@ -32,12 +32,13 @@ import numpy as np
 from engine.node import In, Node, Out
 from engine.types import NUMBER, PLANE
 from engine.values import WORLD_XY
-from nodes.curves.convert import ZERO_LENGTH, given, kernel_errors, kernel_plane, number
+from nodes.common.checks import ZERO_LENGTH, given, number
+from nodes.common.convert import kernel_errors, kernel_plane
+from nodes.common.values import CURVE
 from nodes.geometry import curves as kernel
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.vectors import Plane as KernelPlane
 from nodes.geometry.vectors import unit
-from nodes.types import CURVE
 
 OFFSET_TOLERANCE = 1e-8
 """How far (relative to the curve's size) a sampled offset may stray from the exact one."""

@@ -10,9 +10,10 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, NUMBER, PLANE, POINT
 from engine.values import WORLD_XY, Domain
-from nodes.curves.convert import kernel_errors, kernel_plane, number, point_list, xyz
+from nodes.common.checks import number, point_list, xyz
+from nodes.common.convert import kernel_errors, kernel_plane
+from nodes.common.values import CURVE, LINE
 from nodes.geometry import curves as kernel
-from nodes.types import CURVE, LINE
 
 
 def _radius(value: Any) -> float:

@@ -12,12 +12,12 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, VECTOR
 from engine.values import Domain, Vector
-from nodes.curves.convert import ZERO_LENGTH, kernel_errors, number, point_list, xyz
+from nodes.common.checks import ZERO_LENGTH, number, point_list, whole, xyz
+from nodes.common.convert import kernel_errors
+from nodes.common.values import CURVE
 from nodes.expressions import CompiledExpression, ExpressionError, compile_expression
 from nodes.geometry import curves as kernel
 from nodes.geometry.curve_base import Curve
-from nodes.maths.checks import whole
-from nodes.types import CURVE
 
 FREE_END = Vector(0.0, 0.0, 0.0)
 """Tangent input default: the zero vector leaves that end of the curve free."""

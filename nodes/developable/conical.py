@@ -9,13 +9,17 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, POINT
 from engine.values import Point
-from nodes.curves.convert import kernel_errors, xyz
-from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common import checks as check
+from nodes.common import geometry_checks
+from nodes.common.checks import xyz
+from nodes.common.convert import kernel_errors
+from nodes.common.stations import COINCIDENT, along_tangent, first_where
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import cone_rulings
 from nodes.geometry.ruled import RuledSurface
-from nodes.types import CURVE, LINE, SURFACE
+from nodes.limits import MAX_SEGMENTS
 
 
 class ConicalSurface(Node):
@@ -43,7 +47,8 @@ class ConicalSurface(Node):
         In("Height", NUMBER, "H",
            "Length of every ruling towards the Apex, model units; clamped at the Apex.",
            default=1.0),
-        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
+           min=1, max=MAX_SEGMENTS),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The cone: the ruled surface through the rulings."),
@@ -56,7 +61,7 @@ class ConicalSurface(Node):
 
     def solve(self, curve: Any, apex: Any, height: Any, segments: Any
               ) -> tuple[RuledSurface, list[Line], list[float]]:
-        c = check.curve(curve)
+        c = geometry_checks.curve("Curve", curve)
         p = xyz("Apex", apex)
         h = check.length("Height", height)
         n = check.segments(segments)
@@ -64,16 +69,16 @@ class ConicalSurface(Node):
             r = cone_rulings(c, p, h, n)
         distance = np.linalg.norm(p - r.starts, axis=1)
         size = float(np.ptp(np.vstack([r.starts, p]), axis=0).max()) or 1.0
-        through = distance <= check.COINCIDENT * size
+        through = distance <= COINCIDENT * size
         if through.any():
             raise NodeWarning(
-                f"The curve passes through the Apex at {check.first_where(through, r.parameters)}: "
+                f"The curve passes through the Apex at {first_where(through, r.parameters)}: "
                 "a ruling there would have no length; move the Apex off the curve"
             )
-        flat = check.along_tangent(p - r.starts, r.start_tangents)
+        flat = along_tangent(p - r.starts, r.start_tangents)
         if flat.any():
             self.warn(
-                f"The Apex lies on the curve's tangent line at {check.first_where(flat, r.parameters)}: "
+                f"The Apex lies on the curve's tangent line at {first_where(flat, r.parameters)}: "
                 "the surface has no width there (no tangent plane: its WarpAngles are NaN); move the Apex"
             )
         reach = (h >= distance) & (h > 0)

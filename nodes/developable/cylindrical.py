@@ -7,13 +7,17 @@ from typing import Any
 from engine.node import LIST, In, Node, Out
 from engine.types import INTEGER, NUMBER, VECTOR
 from engine.values import UNIT_Z
-from nodes.curves.convert import direction, kernel_errors
-from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common import checks as check
+from nodes.common import geometry_checks
+from nodes.common.checks import direction
+from nodes.common.convert import kernel_errors
+from nodes.common.stations import along_tangent, first_where
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import cylinder_rulings
 from nodes.geometry.ruled import RuledSurface
-from nodes.types import CURVE, LINE, SURFACE
+from nodes.limits import MAX_SEGMENTS
 
 
 class CylindricalSurface(Node):
@@ -42,7 +46,8 @@ class CylindricalSurface(Node):
         In("Height", NUMBER, "H",
            "Length of every ruling, in model units; negative extrudes against Direction.",
            default=1.0),
-        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
+           min=1, max=MAX_SEGMENTS),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The cylinder: the ruled surface through the rulings."),
@@ -53,16 +58,16 @@ class CylindricalSurface(Node):
 
     def solve(self, curve: Any, direction_: Any, height: Any, segments: Any
               ) -> tuple[RuledSurface, list[Line], list[float]]:
-        c = check.curve(curve)
+        c = geometry_checks.curve("Curve", curve)
         d = direction("Direction", direction_)
         h = check.length("Height", height)
         n = check.segments(segments)
         with kernel_errors():
             r = cylinder_rulings(c, d, h, n)
-        flat = check.along_tangent(r.ends - r.starts, r.start_tangents)
+        flat = along_tangent(r.ends - r.starts, r.start_tangents)
         if flat.any():
             self.warn(
-                f"Direction is parallel to the curve at {check.first_where(flat, r.parameters)}: "
+                f"Direction is parallel to the curve at {first_where(flat, r.parameters)}: "
                 "the surface has no width there (no tangent plane: its WarpAngles are NaN); tilt "
                 "Direction away from the curve"
             )

@@ -9,12 +9,13 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER
-from nodes.curves.convert import number
-from nodes.developable import direct_inputs as check
+from nodes.common import checks as check
+from nodes.common.checks import number
+from nodes.common.values import LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.paper_strip import face_warp, paper_strip
 from nodes.geometry.ruled import RuledSurface
-from nodes.types import LINE, SURFACE
+from nodes.limits import MAX_SEGMENTS
 
 #: Faces whose planarity (off-plane distance / diagonal) exceeds this are reported.
 PLANAR = 1e-12
@@ -70,7 +71,7 @@ class PaperStrip(Node):
         In("Curvature", NUMBER, "K", "Fold angle about the previous ruling, rad, per segment (0: flat).",
            default=0.2, access=LIST),
         In("Segments", INTEGER, "S", "Number of flat quads (rulings minus one, 1 or more).",
-           default=24),
+           default=24, min=1, max=MAX_SEGMENTS),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The bent strip: its flat quads between the fold lines."),

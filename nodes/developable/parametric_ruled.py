@@ -9,13 +9,14 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, VECTOR, describe
 from engine.values import Domain
-from nodes.curves.convert import number
-from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common import checks as check
+from nodes.common import geometry_checks
+from nodes.common.checks import number
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import LINE, SURFACE
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves.line import Line
 from nodes.geometry.ruled import RuledSurface
-from nodes.types import LINE, SURFACE
 
 
 def _directrix(values: list[Any]) -> Curve | np.ndarray:
@@ -25,7 +26,7 @@ def _directrix(values: list[Any]) -> Curve | np.ndarray:
     if isinstance(values[0], Curve):
         if len(values) > 1:
             raise NodeWarning(f"Directrix has {len(values)} curves: give one curve, or a list of points")
-        return check.curve(values[0], "Directrix")
+        return geometry_checks.curve("Directrix", values[0])
     rows = []
     for i, value in enumerate(values):
         if value is None:

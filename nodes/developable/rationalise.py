@@ -8,11 +8,12 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
-from nodes.curves.convert import sentence
-from nodes.developable.input_checks import surface_input, tolerance_input
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.checks import tolerance as tolerance_input
+from nodes.common.convert import sentence
+from nodes.common.geometry_checks import parametric_surface as surface_input
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.developable.rationalise import rationalise
-from nodes.types import CURVE, LINE, SURFACE
 
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1

@@ -8,13 +8,15 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT
-from nodes.curves.convert import sentence
-from nodes.developable.input_checks import curve_input, segments_input, tolerance_input
-from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
+from nodes.common.checks import segments as segments_input
+from nodes.common.checks import tolerance as tolerance_input
+from nodes.common.convert import sentence
+from nodes.common.geometry_checks import curve as curve_input
+from nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
-from nodes.types import CURVE, LINE, SURFACE
 
 #: Two curves closer than this (relative to their size) everywhere count as one.
 COINCIDENT = 1e-9

@@ -9,12 +9,14 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, VECTOR
-from nodes.curves.convert import sentence, vectors
-from nodes.developable.input_checks import curve_input, segments_input, surface_input
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.checks import segments as segments_input
+from nodes.common.convert import sentence, vectors
+from nodes.common.geometry_checks import curve as curve_input
+from nodes.common.geometry_checks import parametric_surface as surface_input
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.approximation import MAX_OPTIMISED, Approximation, approximate, station_rulings
 from nodes.limits import MAX_SPLINE_SEGMENTS
-from nodes.types import CURVE, LINE, SURFACE
 
 #: Above this largest warp (rad) after optimising, the node says the strip is still warped.
 STILL_WARPED = 0.01

@@ -7,13 +7,15 @@ from typing import Any
 
 from engine.node import LIST, In, Node, NodeError, Out
 from engine.types import INTEGER, NUMBER
-from nodes.curves.convert import sentence
-from nodes.developable.input_checks import edge_input, segments_input, surface_input
+from nodes.common.checks import edge as edge_input
+from nodes.common.checks import segments as segments_input
+from nodes.common.convert import sentence
+from nodes.common.geometry_checks import parametric_surface as surface_input
+from nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.developable.ruling_developable import solve_strip
-from nodes.developable.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.geometry.coupling import couple
 from nodes.limits import MAX_COUPLING_SEGMENTS
-from nodes.types import CURVE, LINE, SURFACE
 
 #: Warp tolerance (rad) for the connecting strip's rulings, as RulingDevelopable's default.
 WARP_TOLERANCE = 0.01
@@ -54,7 +56,8 @@ class SurfaceCoupling(Node):
            "Straight edge of SurfaceA to join: 0 (v = 0), 1 (u = 1), 2 (v = 1) or 3 (u = 0).", default=1),
         In("EdgeB", INTEGER, "EB",
            "Straight edge of SurfaceB to join: 0 (v = 0), 1 (u = 1), 2 (v = 1) or 3 (u = 0).", default=3),
-        In("Segments", INTEGER, "S", "Number of rulings of the connecting surface minus one.", default=24),
+        In("Segments", INTEGER, "S", "Number of rulings of the connecting surface minus one.", default=24,
+           min=1, max=MAX_COUPLING_SEGMENTS),
     )
     outputs = (
         Out("CurveA", CURVE, "CA", "Connecting curve from the start of EdgeA to SurfaceB (cubic, 4 points)."),

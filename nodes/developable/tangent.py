@@ -8,14 +8,18 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER
-from nodes.curves.convert import kernel_errors, number
-from nodes.developable import direct_inputs as check
-from nodes.developable.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common import checks as check
+from nodes.common import geometry_checks
+from nodes.common.checks import number
+from nodes.common.convert import kernel_errors
+from nodes.common.stations import first_where
+from nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.developable.direct import tangent_developable_rulings
 from nodes.geometry.developable.warp import warp_angles
 from nodes.geometry.ruled import RuledSurface
-from nodes.types import CURVE, LINE, SURFACE
+from nodes.limits import MAX_SEGMENTS
 
 #: Curvature × curve length below which the curve counts as straight at a station.
 STRAIGHT = 1e-9
@@ -51,7 +55,8 @@ class TangentDevelopable(Node):
     type_id = "developable.TangentDevelopable"
     inputs = (
         In("Curve", CURVE, "C", "The space curve whose tangents sweep the surface (its edge of regression)."),
-        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
+           min=1, max=MAX_SEGMENTS),
         In("Length", NUMBER, "L",
            "Where each ruling ends, measured along the tangent from the curve, model units.",
            default=1.0),
@@ -71,7 +76,7 @@ class TangentDevelopable(Node):
 
     def solve(self, curve: Any, segments: Any, length: Any, cutting_length: Any, two_sided: Any
               ) -> tuple[RuledSurface, list[Line], list[float]]:
-        c = check.curve(curve)
+        c = geometry_checks.curve("Curve", curve)
         n = check.segments(segments)
         far = number("Length", length)
         near = number("CuttingLength", cutting_length)
@@ -106,7 +111,7 @@ class TangentDevelopable(Node):
                       "use a smooth curve, e.g. Interpolate")
         elif straight.any():
             self.remark(
-                f"The curve is straight at {check.first_where(straight, r.parameters)}: the surface "
+                f"The curve is straight at {first_where(straight, r.parameters)}: the surface "
                 "has no width there (neighbouring rulings lie on one line; no tangent plane: WarpAngle NaN)"
             )
         if near < 0 < far:

@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-import nodes.types  # noqa: F401  (registers the geometry types a Styled summary describes)
+import nodes.common.values  # noqa: F401  (registers the geometry types a Styled summary describes)
 from engine.types import ValueType, register_type, summarize_value
 from engine.values import Point
 

@@ -8,7 +8,7 @@ from typing import Any
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, NUMBER, POINT, TEXT
 from engine.values import Point
-from nodes.curves.convert import given, xyz
+from nodes.common.checks import given, xyz
 from nodes.display.hints import STYLED, TAG, StyledGeometry, parse_colour
 from nodes.display.hints import Tag as TagValue
 

@@ -8,12 +8,12 @@ from typing import Any
 from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, NUMBER, TEXT, ValueType, register_type
-from nodes.curves.convert import number
+from nodes.common.checks import number
+from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.surface_base import Surface
 from nodes.io import cutfiles, seams
 from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
 from nodes.io.cutfiles import CutLayout
-from nodes.types import CURVE, SURFACE
 
 
 def _nesting(value: Any) -> str:

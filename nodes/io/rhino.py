@@ -7,9 +7,9 @@ from typing import Any
 from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, Out
 from engine.types import BOOLEAN, INTEGER, TEXT
+from nodes.common.values import CURVE, LINE, MESH, SURFACE
 from nodes.io import threedm
 from nodes.io.common import file_errors, may_write, read_path, unit_name, write_target
-from nodes.types import CURVE, LINE, MESH, SURFACE
 
 #: Layer names under the parent layer, one per input of Export3dm.
 LAYERS = {"Curves": "Curves", "Surfaces": "Surfaces", "Rulings": "Rulings", "Panels": "Panels",

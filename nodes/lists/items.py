@@ -6,7 +6,7 @@ from typing import Any
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER
-from nodes.maths.checks import whole
+from nodes.common.checks import whole
 
 
 class ListItem(Node):

@@ -7,7 +7,7 @@ from typing import Any
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER
-from nodes.maths.checks import whole
+from nodes.common.checks import whole
 
 
 class Shift(Node):

@@ -5,7 +5,7 @@ from __future__ import annotations
 from engine.node import In, Node, Out
 from engine.types import DOMAIN, NUMBER
 from engine.values import Domain as DomainValue
-from nodes.maths.checks import finite
+from nodes.common.checks import finite
 
 
 class Domain(Node):

@@ -7,7 +7,7 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import DOMAIN, INTEGER, NUMBER
 from engine.values import Domain
-from nodes.maths.checks import count, finite
+from nodes.common.checks import count, finite
 
 
 class Series(Node):

@@ -5,7 +5,7 @@ from __future__ import annotations
 from engine.node import In, Node, Out
 from engine.types import NUMBER, POINT
 from engine.values import Point as PointValue
-from nodes.maths.checks import finite
+from nodes.common.checks import finite
 
 
 class Point(Node):

@@ -5,7 +5,7 @@ from __future__ import annotations
 from engine.node import In, Node, Out
 from engine.types import NUMBER, VECTOR
 from engine.values import Vector as VectorValue
-from nodes.maths.checks import finite
+from nodes.common.checks import finite
 
 
 class Vector(Node):

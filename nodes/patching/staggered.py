@@ -7,11 +7,11 @@ from typing import Any
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER
-from nodes.curves.convert import number
+from nodes.common.checks import number
+from nodes.common.values import CURVE
 from nodes.geometry.curves.line import Polyline
 from nodes.geometry.patching import staggered_pattern
 from nodes.patching.outlines import closed_polyline, rectangle
-from nodes.types import CURVE
 
 
 class StaggeredPattern(Node):

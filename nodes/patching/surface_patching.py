@@ -10,16 +10,14 @@ import shapely
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER, TEXT, describe
-from nodes.analysis.development_type import DEVELOPMENT
-from nodes.analysis.iso_mapping import overlaps
-from nodes.curves.convert import number
+from nodes.common.checks import number
+from nodes.common.values import CURVE, DEVELOPMENT, SURFACE
 from nodes.geometry.curves.line import Polyline
 from nodes.geometry.patching import Pattern, TooManyPanels, tile_pattern
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.unroll import Development, unroll_surface
 from nodes.limits import MAX_PANELS
 from nodes.patching.outlines import closed_polyline, rectangle, ring
-from nodes.types import CURVE, SURFACE
 
 #: Segments used to unroll the Surface when no Development is wired.
 UNROLL_SEGMENTS = 48
@@ -157,7 +155,7 @@ class SurfacePatching(Node):
             raise NodeWarning(f"Scale is {s:g}: the scaled pattern would be larger than any number "
                               "can hold; give a Scale near 1 (the pattern's own size)")
         angle = number("Rotation", rotation)
-        if overlaps(dev):
+        if dev.overlaps:
             self.warn("The development overlaps itself in the plane: it cannot be cut from one sheet, "
                       "and where it overlaps a panel may land on either layer; unroll fewer turns")
         try:

@@ -10,14 +10,15 @@ import trimesh
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, NUMBER, PLANE, POINT, VECTOR, describe
 from engine.values import Plane, Point, Vector
-from nodes.curves.convert import given, vector
+from nodes.common.checks import given, uv
+from nodes.common.convert import point, vector
+from nodes.common.geometry_checks import surface
+from nodes.common.values import CURVE, SURFACE
 from nodes.geometry import mesh_surface
 from nodes.geometry.area import watched
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import IsoCurve, Surface
-from nodes.surfaces.convert import surface, uv
 from nodes.surfaces.measure import enclosed
-from nodes.types import CURVE, SURFACE, point
 
 MIDDLE = Point(0.5, 0.5, 0.0)
 """UV default: the middle of the parameter square."""
@@ -55,8 +56,8 @@ class EvaluateSurface(Node):
     )
 
     def solve(self, value: Any, place: Any) -> tuple[Point, Vector, Plane]:
-        s = surface(value)
-        u, v = uv(place)
+        s = surface("Surface", value)
+        u, v = uv("UV", place)
         origin, x, y, z = (row[0] for row in s.frame_at(u, v))
         _regular(np.concatenate([x, z]), u, v)
         return point(origin), vector(z), Plane(point(origin), vector(x), vector(y))
@@ -88,8 +89,8 @@ class SurfaceCurvature(Node):
     )
 
     def solve(self, value: Any, place: Any) -> tuple[Any, ...]:
-        s = surface(value)
-        u, v = uv(place)
+        s = surface("Surface", value)
+        u, v = uv("UV", place)
         c = s.curvature(u, v)
         _regular(np.concatenate([c.normal[0], c.direction1[0], [c.k1[0], c.k2[0]]]), u, v)
         return (
@@ -121,8 +122,8 @@ class Isocurve(Node):
     )
 
     def solve(self, value: Any, place: Any) -> tuple[IsoCurve, IsoCurve]:
-        s = surface(value)
-        u, v = uv(place)
+        s = surface("Surface", value)
+        u, v = uv("UV", place)
         return s.isocurve("u", v), s.isocurve("v", u)
 
 
@@ -148,7 +149,7 @@ class SurfaceEdges(Node):
     outputs = (Out("Edges", CURVE, "E", "Edges 0 to 3, in the order above.", access=LIST),)
 
     def solve(self, value: Any) -> list[IsoCurve]:
-        s = surface(value)
+        s = surface("Surface", value)
         edges = s.edges()
         samples = [edge.point_at(np.linspace(0.0, 1.0, 9)) for edge in edges]
         size = float(np.ptp(np.vstack(samples), axis=0).max())

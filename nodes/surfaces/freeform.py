@@ -12,15 +12,14 @@ from engine.datatree import DataTree, Path, format_path
 from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, POINT, TEXT
 from engine.values import Domain
-from nodes.curves.convert import given, kernel_errors, point_list
+from nodes.common.checks import given, interval, point_list, whole
+from nodes.common.convert import kernel_errors
+from nodes.common.values import CURVE, SURFACE
 from nodes.expressions import CompiledExpression, ExpressionError, compile_expression
 from nodes.geometry import nurbs_surface, parametric_surface, ruled
 from nodes.geometry.curvature import DEGENERATE_RATIO
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import Surface, uv_grid
-from nodes.maths.checks import whole
-from nodes.surfaces.convert import interval
-from nodes.types import CURVE, SURFACE
 
 MAX_DEGREE = 11
 """Highest degree NurbsSurface accepts (Rhino's limit, as for curves)."""

@@ -7,10 +7,9 @@ from typing import Any
 import numpy as np
 
 from engine.node import In, Node, NodeWarning, Out
-from nodes.curves.convert import given
+from nodes.common.checks import given
+from nodes.common.values import MESH, MESH_SURFACE
 from nodes.geometry import mesh_surface as kernel
-from nodes.surfaces.convert import MESH_SURFACE
-from nodes.types import MESH
 
 
 class MeshSurface(Node):

@@ -17,14 +17,14 @@ import numpy as np
 from engine.node import In, Node, NodeWarning, Out
 from engine.types import NUMBER, PLANE
 from engine.values import WORLD_XY
-from nodes.curves.convert import kernel_plane, number
+from nodes.common.checks import number, positive
+from nodes.common.convert import kernel_plane
+from nodes.common.values import SURFACE
 from nodes.geometry import parametric_surface as kernel
 from nodes.geometry import transforms
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.vectors import WORLD_XY as KERNEL_XY
 from nodes.geometry.vectors import Plane as KernelPlane
-from nodes.surfaces.convert import positive
-from nodes.types import SURFACE
 
 
 def _placed(frame: KernelPlane, build: Callable[[np.ndarray], Surface]) -> Surface:

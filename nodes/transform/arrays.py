@@ -8,10 +8,10 @@ from typing import Any
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, PLANE, VECTOR
 from engine.values import WORLD_XY, Vector
-from nodes.curves.convert import direction, kernel_plane, number
+from nodes.common.checks import direction, number, whole
+from nodes.common.convert import kernel_plane
 from nodes.geometry import transforms
 from nodes.limits import MAX_COPIES, shown
-from nodes.maths.checks import whole
 from nodes.transform.dispatch import SUPPORTED, transform_value
 
 

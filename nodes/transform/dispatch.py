@@ -16,12 +16,11 @@ import trimesh
 from engine.node import NodeWarning
 from engine.types import describe
 from engine.values import Plane, Point, Vector
-from nodes.curves.convert import engine_plane, kernel_errors, kernel_plane, vector
+from nodes.common.convert import engine_plane, kernel_errors, kernel_plane, point, vector
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.transforms import apply_to_vectors, apply_transform, transform_plane
-from nodes.types import point
 
 SUPPORTED = "points, vectors, planes, curves, surfaces and meshes"
 

@@ -10,7 +10,8 @@ import numpy as np
 from engine.node import In, Node, NodeWarning, Out
 from engine.types import GENERIC, NUMBER, PLANE, POINT, VECTOR
 from engine.values import WORLD_XY, Point, Vector
-from nodes.curves.convert import WORLD_YZ, kernel_plane, number, xyz
+from nodes.common.checks import number, xyz
+from nodes.common.convert import WORLD_YZ, kernel_plane
 from nodes.geometry import transforms
 from nodes.transform.dispatch import SUPPORTED, transform_value
 

@@ -14,10 +14,10 @@ from engine.node import LIST, In, Node, Out
 from engine.registry import Registry
 from engine.types import NUMBER
 from nodes.catalogue import default_registry
+from nodes.common.values import CURVE, LINE, MESH, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.curves.parametric import ParametricCurve
 from nodes.geometry.parametric_surface import ParametricSurface
-from nodes.types import CURVE, LINE, MESH, SURFACE
 
 
 class Helix(Node):

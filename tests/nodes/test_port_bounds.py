@@ -63,3 +63,21 @@ def test_bounds_read_as_the_inspector_shows_them():
     assert bounds_text(Angle.inputs[0]) == "at most 1.5"
     assert bounds_text(In("Count", INTEGER, min=0)) == "0 or more"
     assert bounds_text(In("X", NUMBER)) == ""
+
+
+def test_a_developable_refuses_segments_outside_its_port_bounds_before_any_ruling_is_made():
+    from engine.values import Vector
+    from nodes.developable.cylindrical import CylindricalSurface
+    from nodes.geometry.curves import Line
+    from nodes.limits import MAX_SEGMENTS
+
+    port = next(p for p in CylindricalSurface.inputs if p.name == "Segments")
+    assert (port.min, port.max) == (1, MAX_SEGMENTS)
+    curve = Line([0, 0, 0], [1, 0, 0])
+    for segments, message in ((0, "Segments must be at least 1, not 0"),
+                              (MAX_SEGMENTS + 1, f"Segments is {MAX_SEGMENTS + 1:,}; at most "
+                                                 f"{MAX_SEGMENTS:,} can be made at once")):
+        result = run(CylindricalSurface(), Curve=tree({(0,): [curve]}), Direction=Vector(0, 0, 1),
+                     Segments=segments)
+        assert result.state == "warning" and texts(result) == [message]
+        assert out(result, "Surface") == {}

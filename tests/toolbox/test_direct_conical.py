@@ -109,7 +109,7 @@ def test_curve_through_the_apex_says_move_the_apex():
 @pytest.mark.parametrize(
     ("values", "message"),
     [
-        ({"Segments": -3}, "Segments is -3: give 1 or more (Segments is the number of rulings minus one)"),
+        ({"Segments": -3}, "Segments must be at least 1, not -3"),
         ({"Height": 0.0}, "Height is 0, so the rulings would have no length: give a length"),
     ],
 )

@@ -92,7 +92,6 @@ def test_cylinder_surface_isocurves_are_the_rulings():
 @pytest.mark.parametrize(
     ("values", "message"),
     [
-        ({"Segments": 0}, "Segments is 0: give 1 or more (Segments is the number of rulings minus one)"),
         ({"Direction": Vector(0, 0, 0)}, "Direction has zero length, so it has no direction"),
         ({"Height": 0.0}, "Height is 0, so the rulings would have no length: give a length"),
         ({"Height": math.nan}, "Height is not a number (NaN)"),

@@ -111,5 +111,5 @@ def test_two_sided_needs_a_positive_length():
 def test_segments_zero_warns():
     chain = on_helix(Segments=0)
     assert chain.texts("tan") == [
-        "Segments is 0: give 1 or more (Segments is the number of rulings minus one)"
+        "Segments must be at least 1, not 0"
     ]

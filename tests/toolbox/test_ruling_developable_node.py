@@ -160,23 +160,23 @@ def test_coincident_curves_are_an_error_saying_so():
     ]
 
 
-def test_zero_segments_is_an_error_saying_what_to_give():
+def test_zero_segments_is_a_warning_saying_what_to_give():
     a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [2, 1, 0])
     result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), Segments=0)
-    assert result.state == "error"
-    assert texts(result) == ["Segments is 0: give 1 or more (Segments is the number of rulings minus one)"]
+    assert result.state == "warning"
+    assert texts(result) == ["Segments must be at least 1, not 0"]
 
 
-def test_a_nan_warp_tolerance_is_an_error():
+def test_a_nan_warp_tolerance_is_a_warning():
     a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [2, 1, 0])
     result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}),
                  WarpTolerance=float("nan"))
-    assert result.state == "error"
+    assert result.state == "warning"
     assert texts(result) == ["WarpTolerance must be an angle of 0 rad or more, such as 0.01, not nan"]
 
 
-def test_a_missing_curve_is_an_error_naming_it():
+def test_a_missing_curve_is_a_warning_naming_it():
     a = Line([0, 0, 0], [2, 0, 0])
     result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [None]}))
-    assert result.state == "error"
+    assert result.state == "warning"
     assert texts(result) == ["CurveB is empty: connect a curve"]

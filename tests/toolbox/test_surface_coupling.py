@@ -184,9 +184,9 @@ def test_a_curved_edge_is_an_error_asking_for_a_straight_one():
     assert message.endswith("couple along a straight edge, a ruling of the patch")
 
 
-def test_an_edge_number_out_of_range_is_an_error_listing_the_numbers():
+def test_an_edge_number_out_of_range_is_a_warning_listing_the_numbers():
     result = couple(edge_b=4)
-    assert result.state == "error"
+    assert result.state == "warning"
     assert texts(result) == ["EdgeB is 4: edges are numbered 0 (v = 0), 1 (u = 1), 2 (v = 1) and 3 (u = 0)"]
 
 
