@@ -67,7 +67,8 @@ class TypeTable:
 
     def __init__(self) -> None:
         self._types: dict[str, ValueType] = {}
-        self._declared: dict[str, None] = {}  # modules defining value types, not loaded yet
+        self._declared: dict[str, None] = {}  # modules a registry declared, not loaded yet
+        self._seen_declared: dict[str, None] = {}  # declared by packages met in sys.modules
         self._loaded: set[str] = set()
         self._modules_seen = 0  # len(sys.modules) when declarations were last looked for
 
@@ -90,6 +91,7 @@ class TypeTable:
     def load(self, module_name: str) -> None:
         """Import ``module_name`` and add every :class:`ValueType` defined at its top level."""
         self._declared.pop(module_name, None)
+        self._seen_declared.pop(module_name, None)
         if module_name in self._loaded:
             return
         module = importlib.import_module(module_name)
@@ -110,8 +112,15 @@ class TypeTable:
             declared = namespace.get("VALUE_TYPES") if isinstance(namespace, dict) else None
             if isinstance(declared, tuple) and "__path__" in namespace:
                 for relative in declared:
-                    self.declare(f"{name}.{relative}")
-        for module_name in [m for m in self._declared if m in modules]:
+                    if f"{name}.{relative}" not in self._loaded:
+                        self._seen_declared[f"{name}.{relative}"] = None
+        for module_name in (*self._declared, *self._seen_declared):
+            module = modules.get(module_name)
+            if module is None:
+                continue
+            if getattr(module.__spec__, "_initializing", False):
+                self._modules_seen = 0  # still being imported: look again next time
+                continue
             self.load(module_name)
 
     # -- looking up ---------------------------------------------------------------------

@@ -203,3 +203,19 @@ def test_a_value_in_a_file_is_read_with_the_type_its_palette_declares():
     )
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
     assert out.stdout.split() == ["Tag", "north"]
+
+
+def test_a_value_made_without_a_registry_finds_the_type_its_imported_package_declares(monkeypatch):
+    """A node used on its own (no registry): its package's VALUE_TYPES, already imported, is read."""
+    class Octagon(tuple):
+        pass
+
+    table = TypeTable()
+    values = types.ModuleType("fake_library.values")
+    values.OCTAGON = ValueType("Octagon", (Octagon,), "Eight sides.")
+    package = types.ModuleType("fake_library")
+    package.__path__ = []
+    package.VALUE_TYPES = ("values",)
+    for module in (package, values):
+        monkeypatch.setitem(sys.modules, module.__name__, module)
+    assert [t for t in table.values() if t.name == "Octagon"] == [values.OCTAGON]
