@@ -11,7 +11,7 @@ The bars, each a ratio to a baseline measured in the same run (see
 
 - building a 10,000-node chain, and a 100 × 100 lattice, through the API (``add_node``
   and ``connect``, every wire checked for loops) costs at most 3× loading the same
-  graph from its file; the chain is built in under a second;
+  graph from its file;
 - changing a setting of a leaf node and re-solving costs at most 3× as much in a
   10,000-node graph as in a 100-node one;
 - loading 10,000 nodes costs at most 1.5 × 10 × loading 1,000.
@@ -25,7 +25,7 @@ from __future__ import annotations
 from engine import graphfile
 from engine.graph import Graph
 from engine.solver import Solver
-from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
+from tests.benchmarks.timing import ratio_to_baseline
 from tests.engine.nodekit import make_registry
 
 REGISTRY = make_registry()
@@ -72,7 +72,7 @@ def lattice_ids(side: int) -> list[str]:
     return [f"n{i}_{j}" for i in range(side) for j in range(side)]
 
 
-def test_building_a_10000_node_chain_through_the_api_costs_at_most_3x_loading_it_and_under_a_second():
+def test_building_a_10000_node_chain_through_the_api_costs_at_most_3x_loading_it():
     ids, wires = chain_ids(10_000), chain_wires(10_000)
     text = file_text(ids, wires)
     ratio = ratio_to_baseline(
@@ -82,10 +82,7 @@ def test_building_a_10000_node_chain_through_the_api_costs_at_most_3x_loading_it
         lambda: graphfile.loads(text, REGISTRY),
         7,
     )
-    best = min(times[0] for times in timed_rounds([lambda: build(ids, wires)], 5))
-    print(f"  building the chain: best {duration(best)}")
     assert ratio <= 3.0
-    assert best < 1.0
 
 
 def test_building_a_100x100_lattice_through_the_api_costs_at_most_3x_loading_it():
