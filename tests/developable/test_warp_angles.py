@@ -9,6 +9,7 @@ import pytest
 
 from nodes.geometry.curves import InterpolatedCurve
 from nodes.geometry.developable import cylinder_rulings, in_plane_tangent, warp_angles, warp_of_rulings
+from nodes.geometry.developable.warp import consistently_oriented
 
 
 def test_warp_is_the_angle_between_the_end_normals():
@@ -178,3 +179,22 @@ def test_curve_warp_sees_the_corner_at_the_seam_of_a_closed_polyline(seam):
     b = Line([-1.5, -0.5, 1], [-0.5, -1.5, 1])
     w = curve_warp(square, b, [seam], [0.5], [[0.0, 0, 0]], [[-1.0, -1, 1]])
     assert w[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_consistent_orientation_holds_exactly_for_normals_less_than_a_right_angle_apart():
+    # R = (0, 1, 0), T1 = (1, 0, 0), T2 = (cos θ, 0, sin θ): the normals are θ apart
+    theta = np.array([0.0, 0.3, 1.5, 1.6, 3.0, np.pi])
+    n = len(theta)
+    starts, ends = np.zeros((n, 3)), np.tile([0.0, 1.0, 0.0], (n, 1))
+    ta = np.tile([1.0, 0.0, 0.0], (n, 1))
+    tb = np.column_stack([np.cos(theta), np.zeros(n), np.sin(theta)])
+    assert consistently_oriented(starts, ends, ta, tb).tolist() == [True, True, True, False, False, False]
+
+
+def test_consistent_orientation_needs_defined_normals_and_lets_a_standing_end_take_the_other():
+    starts = np.zeros((4, 3))
+    ends = np.array([[0.0, 1, 0], [0, 1, 0], [0, 0, 0], [0, 1, 0]])
+    ta = np.array([[1.0, 0, 0], [0, 0, 0], [1, 0, 0], [0, 0, 0]])
+    tb = np.array([[0.0, 2, 0], [1, 0, 0], [1, 0, 0], [0, 0, 0]])
+    # along the ruling (no normal), a fan's apex (takes B's), zero length, both standing
+    assert consistently_oriented(starts, ends, ta, tb).tolist() == [False, True, False, False]

@@ -35,7 +35,7 @@ from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
-from .warp import warp_angles
+from .warp import consistently_oriented
 
 IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
@@ -166,7 +166,8 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
     A(s0) (the root in (t0, tk)) — or None.
 
     Each run's pencil is bracketed on :data:`SAMPLES` samples; all runs' samples are one
-    evaluation of the moving curve, which also tells the orientation. Every sign change
+    evaluation of the moving curve, which also tells the orientation
+    (:func:`.warp.consistently_oriented`). Every sign change
     is then refined at once, by Newton's method inside its bracket on
     g = det[B − A, A', B'] (the coplanarity with the curves' own tangents: the same
     roots), with g' = det[R, A'', B'] (or det[R, A', B''] when B moves).
@@ -210,11 +211,10 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
         slope = np.where(flip, -slope, slope)  # d/dx = −d/du on a run read backwards
         return g, slope, rounding_scale(norm(a), b, norm(da), db), (a, da, b, db)
 
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         g, slope, _, (a, da, b, db) = coplanarity(rows, p, dp, ddp, flip)
-        signed = warp_angles(a, b, da, db, signed=True)
-    g, slope, signed = g.reshape(x.shape), slope.reshape(x.shape), signed.reshape(x.shape)
-    oriented = np.isfinite(signed) & (np.abs(signed) < 0.5 * np.pi)
+        oriented = consistently_oriented(a, b, da, db).reshape(x.shape)
+    g, slope = g.reshape(x.shape), slope.reshape(x.shape)
     usable = wide & np.isfinite(g).all(axis=1)
     change = (np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0) & (oriented[:, :-1] | oriented[:, 1:])
     change &= usable[:, None]
@@ -236,10 +236,9 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
         return value, value_slope, scale
 
     refine_roots(refined, x0, x1, g0, start)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", over="ignore"):
         a, da, b, db = at_root
-        signed_root = warp_angles(a, b, da, db, signed=True)
-    good = np.isfinite(signed_root) & (np.abs(signed_root) < 0.5 * np.pi)
+        good = consistently_oriented(a, b, da, db)
     # per run, the root of the last (nearest the torsal ruling) sign change whose root is oriented
     for i in set(run_of[good].tolist()):  # (at most two runs)
         found[int(i)] = float(roots[good & (run_of == i)][-1])

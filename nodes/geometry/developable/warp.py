@@ -155,6 +155,30 @@ def warp_angles(
     return np.arctan2(norm(normal_cross), normal_dot)
 
 
+def consistently_oriented(
+    starts: FloatArray, ends: FloatArray, tangents_a: FloatArray, tangents_b: FloatArray
+) -> BoolArray:
+    """Where the signed warp is a number within (−π/2, π/2): the end normals are defined
+    and point to the same side, ``|warp_angles(..., signed=True)| < π/2`` (the rules of
+    :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays."""
+    ruling = ends - starts
+    points = np.concatenate([starts, ends])
+    finite = np.isfinite(points)
+    if not finite.all():
+        points = points[finite.all(axis=1)]
+    size = float(norm(extent(points))) if len(points) else 0.0
+    zero = (ZERO * size) ** 2
+    rr, aa, bb = dot(ruling, ruling), dot(tangents_a, tangents_a), dot(tangents_b, tangents_b)
+    n1, n2 = cross(ruling, tangents_a), cross(ruling, tangents_b)
+    # |R × T̂| > PARALLEL·|R|, squared and times |T|²
+    has1 = dot(n1, n1) > PARALLEL**2 * rr * aa
+    has2 = dot(n2, n2) > PARALLEL**2 * rr * bb
+    still_a, still_b = aa <= zero, bb <= zero
+    defined = (rr > zero) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
+    # a standing end takes the other end's normal: then N1·N2 = |N|² > 0
+    return defined & ((dot(n1, n2) > 0) | still_a | still_b)
+
+
 def edge_tangents(points: ArrayLike) -> FloatArray:
     """Tangents of the polyline through ``points`` ``(n, 3)``: second-order central
     differences inside, one-sided at the two ends (unit length).
