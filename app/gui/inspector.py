@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.formatting import format_item
+from engine.bounds import bounds_text
 from engine.datatree import DataTree, format_path
 from engine.graph import Graph, is_placeholder
 
@@ -149,8 +150,10 @@ class Inspector(QWidget):
                 source = "optional" if port.optional else "needs data"
             if inputs is not None and inputs.modifiers:
                 source += f"  [{', '.join(inputs.modifiers)}]"
-            item = QTreeWidgetItem([f"▸ {port.name}", port.type.name, port.access.value, source])
-            item.setToolTip(0, port.description)
+            bounds = bounds_text(port)  # declared on the port, enforced by the solver
+            kind = f"{port.type.name}, {bounds}" if bounds else port.type.name
+            item = QTreeWidgetItem([f"▸ {port.name}", kind, port.access.value, source])
+            item.setToolTip(0, f"{port.description} Takes {bounds}." if bounds else port.description)
             self.ports.addTopLevelItem(item)
         for port in node.output_ports():
             tree = result.outputs.get(port.name) if result else None

@@ -41,11 +41,11 @@ from app.headless import UsageError
 from engine.graphfile import dumps
 from engine.node import CancelToken
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER
+from engine.widgets import Widget
 
 if TYPE_CHECKING:
     from app.gui.main_window import MainWindow
 
-SLIDER_TYPES = ("params.NumberSlider", "params.IntegerSlider")
 #: outputs offered as fitness: numbers, and generic ones that may hold numbers
 FITNESS_TYPES = (NUMBER, INTEGER, BOOLEAN, GENERIC)
 
@@ -169,7 +169,7 @@ class OptimiseWindow(QDialog):
         self.genes.clear()
         self.fitness.clear()
         for node_id, record in self.doc.graph.nodes.items():
-            if record.type_id in SLIDER_TYPES:
+            if record.node.widget is Widget.SLIDER:  # a slider, built in or a plug-in's
                 settings = record.node.settings
                 limits = f"{settings.get('min')} … {settings.get('max')}"
                 item = QListWidgetItem(f"{record.title} [{node_id}]  {limits}")

@@ -10,6 +10,7 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeError, Out, Setting
 from engine.types import NUMBER
+from engine.widgets import Widget
 from nodes.expressions import CompiledExpression, ExpressionError, compile_expression
 
 
@@ -60,6 +61,7 @@ class Expression(Node):
     """
 
     type_id = "maths.Expression"
+    widget = Widget.EXPRESSION
     inputs = (_port("x", True), _port("y", True))
     outputs = (
         Out("Result", NUMBER, "R", "The formula's value for each matched item.", access=LIST),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from engine.datatree import DataTree
 from engine.node import TREE, In, Node, NodeError, Out, Setting
 from engine.types import GENERIC
+from engine.widgets import Widget
 
 
 class Panel(Node):
@@ -22,6 +23,7 @@ class Panel(Node):
     """
 
     type_id = "params.Panel"
+    widget = Widget.PANEL
     inputs = (
         In("Input", GENERIC, "I", "Data to show and pass on; leave unwired to use the text.",
            access=TREE, optional=True),

@@ -7,6 +7,7 @@ from typing import Any
 
 from engine.node import Node, NodeError, Out, Setting
 from engine.types import BOOLEAN, INTEGER, NUMBER, CastError, ValueType, cast
+from engine.widgets import Widget
 
 
 def _setting(node: Node, name: str, value_type: ValueType) -> Any:
@@ -53,6 +54,7 @@ class NumberSlider(Node):
     """
 
     type_id = "params.NumberSlider"
+    widget = Widget.SLIDER
     outputs = (Out("Value", NUMBER, "V", "The slider's number, in model units or as a ratio."),)
     settings_spec = (
         Setting("value", float, 0.5, "The number the slider is set to."),
@@ -80,6 +82,7 @@ class IntegerSlider(Node):
     """
 
     type_id = "params.IntegerSlider"
+    widget = Widget.SLIDER
     outputs = (Out("Value", INTEGER, "V", "The slider's whole number, e.g. a count of segments."),)
     settings_spec = (
         Setting("value", int, 5, "The whole number the slider is set to."),
@@ -103,6 +106,7 @@ class Toggle(Node):
     """
 
     type_id = "params.Toggle"
+    widget = Widget.TOGGLE
     outputs = (Out("Value", BOOLEAN, "B", "True when the toggle is on."),)
     settings_spec = (Setting("value", bool, False, "Whether the toggle is on."),)
 

@@ -6,6 +6,7 @@ from typing import Any
 
 from engine.node import Node, NodeError, Out, Setting
 from engine.types import GENERIC, CastError, decode_value
+from engine.widgets import Widget
 
 DEFAULT_ITEMS = [
     {"name": "One", "value": 1},
@@ -25,6 +26,7 @@ class ValueList(Node):
     """
 
     type_id = "params.ValueList"
+    widget = Widget.VALUE_LIST
     outputs = (Out("Value", GENERIC, "V", "The value of the selected item."),)
     settings_spec = (
         Setting("items", list, DEFAULT_ITEMS, 'The choices, each {"name": ..., "value": ...}.'),

@@ -266,7 +266,9 @@ def test_inline_toggle_value_list_panel_and_slider_dialog(qtbot, window, monkeyp
     monkeypatch.setattr(
         slider_dialog,
         "edit_slider",
-        lambda title, settings, integer: {"min": -5.0, "max": 5.0, "value": 2.5, "decimals": 1},
+        lambda title, settings, integer, bounds=None: {
+            "min": -5.0, "max": 5.0, "value": 2.5, "decimals": 1
+        },
     )
     depth = window.doc.undo_stack.count()
     rect = slider.layout.widget_rect  # (the mouse route to double_click is covered by the panel above)

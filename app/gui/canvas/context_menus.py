@@ -15,6 +15,7 @@ from app.gui.canvas.port_item import PortItem
 from app.gui.graph_order import group_by_id
 from engine.graph import Wire
 from engine.types import CastError, decode_value
+from engine.widgets import Widget
 
 if TYPE_CHECKING:
     from app.gui.canvas.scene import CanvasScene
@@ -117,7 +118,7 @@ def node_menu(scene: CanvasScene, node: NodeItem) -> QMenu:
     enabled.triggered.connect(lambda on: editor.set_enabled(selected, on))
     menu.addSeparator()
     menu.addAction("Rename…", lambda: scene.rename_node(node.node_id))
-    if record.type_id == "maths.Expression":
+    if record.node.widget is Widget.EXPRESSION:
         menu.addAction("Edit expression…", lambda: ask_expression(scene, node.node_id))
     menu.addAction("Help", lambda: scene.help_requested.emit(node.node_id))
     outputs = [port.name for port in node.record.node.output_ports()]

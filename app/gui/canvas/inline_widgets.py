@@ -1,5 +1,9 @@
 """Widgets drawn inside nodes: number/integer sliders, toggle, value list, panel.
 
+A node gets one by declaring a :class:`~engine.widgets.Widget` hint (``widget =
+Widget.SLIDER``) and keeping the widget's settings, never by its type id: a plug-in's
+slider is drawn as the built-in one.
+
 They are painted by their :class:`NodeItem` (not QWidgets: hundreds of nodes stay
 cheap) and get the node's mouse events that fall in their rectangle. Every change
 is an edit through the scene's :class:`~app.gui.editor.Editor`.
@@ -16,6 +20,9 @@ from PySide6.QtWidgets import QGraphicsSceneMouseEvent, QInputDialog, QMenu
 
 from app.gui import theme
 from app.gui.formatting import format_tree
+from engine.node import Node
+from engine.types import INTEGER
+from engine.widgets import Widget
 
 if TYPE_CHECKING:
     from app.gui.canvas.node_item import NodeItem
@@ -167,9 +174,11 @@ class SliderWidget(InlineWidget):
         self.item.update()
 
     def double_click(self, pos: QPointF, rect: QRectF) -> bool:
-        from app.gui.canvas.slider_dialog import edit_slider
+        from app.gui.canvas.slider_dialog import WiredBounds, edit_slider
 
-        values = edit_slider(self.item.record.title, dict(self.settings), self.integer)
+        scene = self.item.scene()
+        bounds = WiredBounds(scene.doc.graph, self.item.node_id) if scene is not None else None
+        values = edit_slider(self.item.record.title, dict(self.settings), self.integer, bounds)
         if values:
             self.editor.set_settings(self.item.node_id, values, text="Edit slider")
         return True
@@ -322,18 +331,23 @@ class PanelWidget(InlineWidget):
         return True
 
 
+def integer_slider(node: Node) -> bool:
+    """Whether a slider node gives whole numbers: its first output is an Integer."""
+    outputs = node.output_ports()
+    return bool(outputs) and outputs[0].type is INTEGER
+
+
 def widget_for(item: NodeItem) -> InlineWidget | None:
-    """The inline widget a node type shows, if any."""
-    type_id = item.record.type_id
-    if type_id == "params.NumberSlider":
-        return SliderWidget(item, integer=False)
-    if type_id == "params.IntegerSlider":
-        return SliderWidget(item, integer=True)
-    if type_id == "params.Toggle":
+    """The inline widget a node asks for by its :class:`~engine.widgets.Widget` hint, if any."""
+    node = item.record.node
+    hint = node.widget
+    if hint is Widget.SLIDER:
+        return SliderWidget(item, integer=integer_slider(node))
+    if hint is Widget.TOGGLE:
         return ToggleWidget(item)
-    if type_id == "params.ValueList":
+    if hint is Widget.VALUE_LIST:
         return ValueListWidget(item)
-    if type_id == "params.Panel":
+    if hint is Widget.PANEL:
         return PanelWidget(item)
     return None
 

@@ -28,6 +28,7 @@ from app.gui.formatting import MODIFIER_MARKS, format_item
 from app.gui.icons import node_letters, paint_letter_tile, palette_colour
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.solver import NodeResult
+from engine.widgets import Widget
 
 if TYPE_CHECKING:
     from app.gui.canvas.scene import CanvasScene
@@ -94,7 +95,7 @@ class NodeItem(QGraphicsRectItem):
             ins = list(dict.fromkeys([*self.record.inputs, *(w.target_port for w in into)]))
             outs = list(dict.fromkeys(w.source_port for w in out))
             return [(n, n, "?") for n in ins], [(n, "?") for n in outs]
-        if self.record.type_id == "params.Panel":  # a note: ports without labels, as in Grasshopper
+        if self.is_panel:  # a note: ports without labels, as in Grasshopper
             return [(p.name, "", p.type.name) for p in node.input_ports()], [
                 (p.name, p.type.name) for p in node.output_ports()
             ]
@@ -107,6 +108,11 @@ class NodeItem(QGraphicsRectItem):
             inputs.append((port.name, f"{port.name} {marks}".strip(), port.type.name))
         return inputs, [(p.name, p.type.name) for p in node.output_ports()]
 
+    @property
+    def is_panel(self) -> bool:
+        """A note (the node asks for Widget.PANEL): ports without labels, resized to its text."""
+        return self.record.node.widget is Widget.PANEL
+
     def rebuild(self) -> None:
         """Recompute the layout and ports (after a change to settings, modifiers, label)."""
         self.prepareGeometryChange()
@@ -115,7 +121,7 @@ class NodeItem(QGraphicsRectItem):
         self.layout = compute_layout(
             self.record.title,
             [(name, label) for name, label, _ in inputs],
-            [(name, "" if self.record.type_id == "params.Panel" else name) for name, _ in outputs],
+            [(name, "" if self.is_panel else name) for name, _ in outputs],
             _title_metrics(),
             _port_metrics(),
             widget_size,
@@ -152,7 +158,7 @@ class NodeItem(QGraphicsRectItem):
         return self.ports.get((False, name))
 
     def set_result(self, result: NodeResult | None) -> None:
-        resize = self.widget is not None and self.record.type_id == "params.Panel"
+        resize = self.widget is not None and self.is_panel
         self.result = result
         if resize:
             self.rebuild()

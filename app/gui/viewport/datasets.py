@@ -1,17 +1,10 @@
 """Turn node output values into pyvista datasets, whatever geometry types appear.
 
-Values are recognised by type where the engine knows them (Point, Vector) and by what
-they can do otherwise, so kernel types added later draw without changes here:
-
-- ``trimesh.Trimesh`` → a shaded mesh; with per-vertex or per-face scalars in
-  ``mesh.metadata["scalars"]`` (name in ``"scalar_name"``, optional ``"clim"`` and
-  ``"cmap"``) or explicit vertex colours it is drawn coloured, with a colour bar;
-- anything with ``to_mesh(nu, nv)`` and ``derivatives`` (a surface) → its mesh, plus
-  its rulings as lines when the surface is ruled (developables);
-- anything with ``to_mesh()`` returning a trimesh (a mesh-backed surface) → that mesh;
-- a Line (``start`` and ``end``) → one segment;
-- anything with ``point_at`` (a curve) → a polyline through evenly spaced points;
-- Point → a dot, Vector → an arrow from the origin.
+What a value draws comes from the preview protocol (:func:`nodes.common.preview.preview_of`):
+plain arrays of points, polylines, rulings, vectors and meshes. The viewport never looks
+at a value's class or attributes, so a kernel type added later draws by implementing the
+protocol (or having an adapter registered), without changes here. A mesh with scalars
+(``mesh.metadata["scalars"]``) or vertex colours is drawn coloured, with a colour bar.
 
 Each node's values are merged into one piece per kind so a node costs a few actors.
 Pieces are plain numpy arrays, made on the solver's thread; :func:`dataset` makes the
@@ -27,12 +20,9 @@ from typing import Any
 import numpy as np
 import pyvista as pv
 
-from engine.values import Plane, Point, Vector
+from nodes.common.preview import PreviewGeometry, costly, mesh_scalars, preview_of
 
-SURFACE_GRID = 33
-RULINGS_SHOWN = 17
-CURVE_SAMPLES = 97
-
+__all__ = ["mesh_scalars"]  # also read by the GUI tests: the colours a mesh carries
 
 @dataclass
 class Piece:
@@ -84,7 +74,7 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     found = Collected()
     for value in values:
         try:
-            if memo is not None and _tessellated(value):
+            if memo is not None and costly(value):
                 key = id(value)
                 if key not in memo or memo[key][0] is not value:
                     memo[key] = (value, collect([value]))
@@ -96,121 +86,47 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     return found
 
 
-def _tessellated(value: Any) -> bool:
-    """Values whose drawing costs an evaluation (curves, surfaces), worth remembering."""
-    return hasattr(value, "point_at") or hasattr(value, "to_mesh")
-
-
 def _merge(found: Collected, part: Collected) -> None:
     for name in ("points", "polylines", "rulings", "vectors", "meshes", "coloured", "problems"):
         getattr(found, name).extend(getattr(part, name))
 
 
 def _add(found: Collected, value: Any) -> None:
-    if value is None or isinstance(value, bool | int | float | str):
-        return
-    if isinstance(value, Vector):
-        found.vectors.append(np.asarray(value, dtype=float))
-    elif isinstance(value, Point):
-        found.points.append(np.asarray(value, dtype=float))
-    elif isinstance(value, Plane):
-        found.points.append(np.asarray(value.origin, dtype=float))
-    elif _is_trimesh(value):
-        _add_trimesh(found, value)
-    elif hasattr(value, "to_mesh") and hasattr(value, "derivatives"):
-        direction = ruling_direction(value)
-        # along a straight ruling two rows of vertices are exact: 16 times fewer triangles
-        nu, nv = {"v": (SURFACE_GRID, 2), "u": (2, SURFACE_GRID)}.get(direction, (SURFACE_GRID, SURFACE_GRID))
-        _add_trimesh(found, value.to_mesh(nu, nv))
-        rulings = surface_rulings(value) if direction else None
-        if rulings is not None:
-            found.rulings.extend(rulings)
-    elif hasattr(value, "to_mesh"):
-        _add_trimesh(found, value.to_mesh())
-    elif hasattr(value, "start") and hasattr(value, "end") and type(value).__name__ == "Line":
-        found.polylines.append(np.array([value.start, value.end], dtype=float).reshape(2, 3))
-    elif hasattr(value, "point_at"):
-        found.polylines.append(curve_points(value))
-    elif isinstance(value, np.ndarray) and value.shape[-1:] == (3,):
-        found.points.extend(np.asarray(value, dtype=float).reshape(-1, 3))
+    geometry = preview_of(value)
+    if geometry is not None:
+        _add_geometry(found, geometry)
 
 
-def _is_trimesh(value: Any) -> bool:
-    return type(value).__name__ == "Trimesh" and hasattr(value, "faces") and hasattr(value, "vertices")
+def _add_geometry(found: Collected, geometry: PreviewGeometry) -> None:
+    found.points.extend(np.asarray(p, dtype=float).reshape(-1, 3) for p in geometry.points)
+    found.polylines.extend(np.asarray(c, dtype=float).reshape(-1, 3) for c in geometry.polylines)
+    found.rulings.extend(np.asarray(r, dtype=float).reshape(2, 3) for r in geometry.rulings)
+    found.vectors.extend(np.asarray(v, dtype=float).reshape(3) for v in geometry.vectors)
+    for mesh in geometry.meshes:
+        vertices = np.asarray(mesh.vertices, dtype=float)
+        faces = np.asarray(mesh.faces, dtype=np.int64)
+        if len(vertices) == 0 or len(faces) == 0:
+            continue
+        if mesh.scalars is None:
+            found.meshes.append((vertices, faces, _normals(vertices, faces, mesh.normals)))
+        else:
+            found.coloured.append(Piece(
+                "scalars", vertices, faces=faces, scalars=np.asarray(mesh.scalars),
+                scalar_name=mesh.scalar_name, rgb=mesh.rgb, clim=mesh.clim, cmap=mesh.cmap,
+            ))
 
 
-def _add_trimesh(found: Collected, mesh: Any) -> None:
-    vertices = np.asarray(mesh.vertices, dtype=float)
-    faces = np.asarray(mesh.faces, dtype=np.int64)
-    if len(vertices) == 0 or len(faces) == 0:
-        return
-    coloured = mesh_scalars(mesh)
-    if coloured is None:
-        # the kernel's meshes carry exact normals; trimesh averages face normals otherwise
-        normals = np.asarray(mesh.vertex_normals, dtype=float)
-        found.meshes.append((vertices, faces, normals))
-        return
-    name, data, rgb, clim, cmap = coloured
-    found.coloured.append(
-        Piece("scalars", vertices, faces=faces, scalars=data, scalar_name=name, rgb=rgb, clim=clim, cmap=cmap)
-    )
-
-
-def mesh_scalars(mesh: Any) -> tuple[str, np.ndarray, bool, tuple[float, float] | None, str | None] | None:
-    """``(name, values, rgb, clim, cmap)`` when a mesh carries colours, else None."""
-    metadata = getattr(mesh, "metadata", None) or {}
-    n_vertices, n_faces = len(mesh.vertices), len(mesh.faces)
-    scalars = metadata.get("scalars")
-    if scalars is not None:
-        data = np.asarray(scalars, dtype=float)
-        if data.ndim == 1 and len(data) in (n_vertices, n_faces):
-            name = str(metadata.get("scalar_name") or metadata.get("scalars_name") or "value")
-            clim = metadata.get("clim") or metadata.get("range")
-            clim = (float(clim[0]), float(clim[1])) if clim is not None and len(clim) == 2 else None
-            return name, data, False, clim, metadata.get("cmap")
-    visual = getattr(mesh, "visual", None)
-    if visual is not None and getattr(visual, "kind", None) in ("vertex", "face"):
-        colours = np.asarray(
-            visual.vertex_colors if visual.kind == "vertex" else visual.face_colors, dtype=np.uint8
-        )[:, :3]
-        return "colour", colours, True, None, None
-    return None
-
-
-def ruling_direction(surface: Any) -> str | None:
-    """``"v"`` or ``"u"``, the parameter along which the surface is straight, or None."""
-    if getattr(surface, "ruling_lines", None) is not None:
-        return "v"  # a loft of given rulings (RuledSurface.from_rulings)
-    try:
-        direction = getattr(surface, "ruling_direction", None)
-        direction = direction() if callable(direction) else direction
-    except (ValueError, ArithmeticError, TypeError):
-        return None
-    return direction if direction in ("u", "v") else None
-
-
-def surface_rulings(surface: Any) -> list[np.ndarray] | None:
-    """The surface's rulings as ``(2, 3)`` segments when it is ruled, else None."""
-    lines = getattr(surface, "ruling_lines", None)
-    if lines is not None:
-        lines = np.asarray(lines, dtype=float)
-        if lines.ndim == 3 and lines.shape[1:] == (2, 3):
-            step = max(1, len(lines) // RULINGS_SHOWN)
-            return list(lines[::step])
-    try:
-        return list(np.asarray(surface.rulings(RULINGS_SHOWN), dtype=float))
-    except (ValueError, AttributeError, TypeError):
-        return None
-
-
-def curve_points(curve: Any) -> np.ndarray:
-    """Points along a curve for drawing: a polyline's own vertices, else
-    :data:`CURVE_SAMPLES` evenly spaced parameters in one vectorised evaluation (an
-    adaptive tessellation looks no better at preview size and costs 30 times more)."""
-    vertices = getattr(curve, "points", None)
-    if type(curve).__name__ == "Polyline" and vertices is not None:
-        return np.asarray(vertices, dtype=float).reshape(-1, 3)
-    return np.asarray(curve.point_at(np.linspace(0.0, 1.0, CURVE_SAMPLES)), dtype=float).reshape(-1, 3)
+def _normals(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray | None) -> np.ndarray:
+    """The mesh's unit vertex normals, or the area-weighted average of its face normals."""
+    if normals is not None:
+        return np.asarray(normals, dtype=float)
+    corners = vertices[faces]
+    face_normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    summed = np.zeros_like(vertices)
+    for k in range(3):
+        np.add.at(summed, faces[:, k], face_normals)
+    length = np.linalg.norm(summed, axis=1, keepdims=True)
+    return np.divide(summed, length, out=np.zeros_like(summed), where=length > 0)
 
 
 def _line_cells(chains: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:

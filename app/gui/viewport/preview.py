@@ -14,10 +14,9 @@ from app.gui import theme
 from app.gui.viewport.datasets import Memo, Piece, collect, dataset, move_points, pieces, same_topology
 from engine.graph import Graph
 from engine.solver import NodeResult
+from engine.widgets import Widget
 
 PREFIX = "preview:"
-#: Node types whose outputs repeat another node's data and are never previewed.
-NOT_PREVIEWED = {"params.Panel"}
 
 STYLE = {
     # opaque: translucency costs a depth-sorting pass on every frame; the pieces carry
@@ -84,7 +83,7 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
     return {
         node_id
         for node_id, record in graph.nodes.items()
-        if record.preview and record.enabled and record.type_id not in NOT_PREVIEWED and node_id in results
+        if record.preview and record.enabled and record.node.widget is not Widget.PANEL and node_id in results
     }
 
 
