@@ -17,8 +17,8 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-import nodes.common.values  # noqa: F401  (registers the geometry types a Styled summary describes)
-from engine.types import ValueType, register_type, summarize_value
+import nodes.common.values  # noqa: F401  (a Styled summary describes its geometry by these types)
+from engine.types import ValueType, summarize_value
 from engine.values import Point
 
 
@@ -92,10 +92,10 @@ def _tag_decode(data: dict[str, Any]) -> Tag:
     return Tag(str(data["text"]), Point(x, y, z))
 
 
-STYLED = register_type(ValueType(
+STYLED = ValueType(
     "Styled", (StyledGeometry,), "Geometry with the colour and line width to draw it in.",
     summarize=_styled_summary,
-))
-TAG = register_type(ValueType(
+)
+TAG = ValueType(
     "Tag", (Tag,), "A text shown at a point in the viewport.", encode=_tag_encode, decode=_tag_decode,
-))
+)

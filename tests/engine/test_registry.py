@@ -3,6 +3,7 @@ value types, and third-party plug-ins by entry point."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 import types
@@ -189,6 +190,26 @@ def test_the_ports_of_a_registered_node_type_make_their_value_types_known():
     table = TypeTable()
     Registry(value_types=table).register(Seven)
     assert table.find("Number") is NUMBER
+
+
+def test_a_line_in_a_file_is_read_though_no_geometry_palette_is_loaded(tmp_path):
+    """The geometry types are the library's (nodes/__init__.py): a Line kept on a Panel's
+    input is read and passed on, in a run that loads only the params palette."""
+    line = {"type": "Line", "from": [0, 0, 0], "to": [3, 4, 0]}
+    path = tmp_path / "line.graph"
+    path.write_text(json.dumps({"format": "torsal.graph", "version": 1, "nodes": [
+        {"id": "p", "type": "params.Panel", "inputs": {"Input": {"value": line}}}]}))
+    script = (
+        "import io, contextlib, json\n"
+        "from app.cli import main\n"
+        "out = io.StringIO()\n"
+        "with contextlib.redirect_stdout(out):\n"
+        f"    main(['run', {str(path)!r}, '--json'])\n"
+        "print(json.dumps(json.loads(out.getvalue())['nodes']['p']['outputs']))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
+    (summary,) = json.loads(out.stdout)["Output"]["{0}"]
+    assert summary["type"] == "Line" and summary["length"] == 5.0
 
 
 def test_a_value_in_a_file_is_read_with_the_type_its_palette_declares():
