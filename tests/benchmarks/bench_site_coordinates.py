@@ -26,14 +26,8 @@ REPEATS = 5
 BAR = 2.0
 
 
-#: RulingDevelopable at 1e9 m finds other (and more) rulings on the ZVE roof edge, and
-#: takes 1.9× as long (nodes/geometry/developable/ is being rewritten): not asserted.
-KNOWN = {("zve-roof-edge", FAR)}
-
 CASES = [
-    pytest.param(path, offset, id=f"{path.stem}@{offset[0]:.0e}",
-                 marks=[pytest.mark.xfail(reason="RulingDevelopable at 1e9 m", strict=False)]
-                 if (path.stem, offset) in KNOWN else [])
+    pytest.param(path, offset, id=f"{path.stem}@{offset[0]:.0e}")
     for path in EXAMPLES
     for offset in (SITE, FAR)
 ]
