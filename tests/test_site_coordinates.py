@@ -48,10 +48,6 @@ ROUNDING_ULPS = 32
 
 #: Examples whose moved solve is known to differ, with the reason (code owned elsewhere).
 KNOWN: dict[tuple[str, tuple[float, float, float]], str] = {
-    ("kaohsiung-cut-sheets", SITE): "IsoMapping's adaptive edge sampling (for seams to 0.01 mm) picks its "
-                                    "ruling count from a chord-error estimate that rounding moves far out: "
-                                    "the developments' points differ by 1.4e-9 of the size",
-    ("kaohsiung-cut-sheets", FAR): "as at 1e6 (adaptive edge sampling): 8.3e-7 of the size at 1e9",
     ("spline-approximation", SITE): "the optimised free edge's normals move by 4.6e-9 at 1e6 (after the "
                                     "kernel's cancel/progress wrapping; not yet traced)",
     ("rationalise-roof", SITE): "Rationalise's marching picks strip widths by sampled deviation: an area "
