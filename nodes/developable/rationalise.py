@@ -13,7 +13,9 @@ from nodes.common.convert import sentence
 from nodes.common.geometry_checks import parametric_surface as surface_input
 from nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from nodes.common.values import CURVE, LINE, SURFACE
+from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable.rationalise import rationalise
+from nodes.geometry.developable.ruling import warp_allowance
 
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
@@ -64,8 +66,13 @@ class Rationalise(Node):
     The rulings run where the design bends least and the boundaries across them: the
     boundaries are the design's parameter lines of the family the node picks from the
     surface's normal curvature, or the family running most nearly along Direction when
-    it is given. Starting from one edge, each strip is made as wide as the tolerance
-    allows, measured by the largest distance of a dense grid of its points from the
+    it is given. With Guides, the strips follow your curves instead: one boundary runs
+    along each guide (projected onto the design) and the boundaries between two guides,
+    or a guide and the design's edge, blend from one to the other, as Tween Curves do.
+    Guides must cross the design from edge to edge and stay apart.
+
+    Starting from one edge (and from every guide), each strip is made as wide as the
+    tolerance allows, measured by the largest distance of a dense grid of its points from the
     design. When more than MaxStrips would be needed, the node makes MaxStrips evenly
     spaced strips and warns with the deviation reached.
 
@@ -82,6 +89,10 @@ class Rationalise(Node):
         In("MaxStrips", INTEGER, "M", "Largest number of strips to make.", default=40),
         In("Direction", VECTOR, "D", "Optional: a vector the strips (their boundaries) should run "
            "along; without it the node chooses from the surface's curvature.", optional=True),
+        In("Guides", CURVE, "G", "Optional: curves on the design, each from one edge to the opposite "
+           "one, that the strips follow: a boundary runs along each guide and the boundaries between "
+           "blend from one guide to the next (and to the design's edges). Direction is then unused.",
+           access=LIST, optional=True),
         In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
@@ -101,8 +112,8 @@ class Rationalise(Node):
     )
 
     def solve(
-        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, segments: Any,
-        warp_tolerance: Any,
+        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, guides: list[Any],
+        segments: Any, warp_tolerance: Any,
     ) -> tuple[
         list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str]
     ]:
@@ -117,11 +128,18 @@ class Rationalise(Node):
         if count * (n + 1) > RULING_BUDGET:
             raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "
                             "at once: lower MaxStrips or Segments")
+        curves = [g for g in (guides or []) if g is not None]
+        for i, g in enumerate(curves):
+            if not isinstance(g, Curve):
+                raise NodeError(f"Guides item {i + 1} is a {type(g).__name__}, not a curve")
+        if curves and guide is not None:
+            self.remark("Direction is not used: the strips follow the Guides")
         try:
-            result = rationalise(design, tol, count, guide, segments=n, warp_tolerance=warp_limit,
-                                 progress=self.progress)
+            result = rationalise(design, tol, count, None if curves else guide, segments=n,
+                                 warp_tolerance=warp_limit, progress=self.progress, guides=curves)
         except ValueError as exc:
-            raise NodeError(f"Surface: {sentence(exc)}") from None
+            about = "Guides" if curves and "guide" in str(exc) else "Surface"
+            raise NodeError(f"{about}: {sentence(exc)}") from None
         rulings: list[Any] = []
         warp: list[float] = []
         valid: list[bool] = []
@@ -132,7 +150,7 @@ class Rationalise(Node):
             rulings.extend(lines.rulings)
             w = strip.warp
             warp.extend(w.tolist())
-            ok = np.isfinite(w) & (w <= warp_limit)
+            ok = np.isfinite(w) & (w <= warp_limit + warp_allowance(strip.result.starts, strip.result.ends))
             valid.extend(ok.tolist())
             fans += int(np.count_nonzero(strip.result.fan))
             kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
@@ -156,9 +174,12 @@ class Rationalise(Node):
         else:
             self.warn(f"MaxStrips {count} cannot meet Tolerance {tol:g}: {text}; raise MaxStrips or "
                       "the tolerance")
-        bad = int(np.count_nonzero(~np.asarray(valid)))
+        # fan rulings are flat triangles' edges, not torsal: Valid is false there by
+        # definition and the remark counts them; a torsal ruling that fails is a warning
+        torsal = np.asarray(kinds) == "torsal"
+        bad = int(np.count_nonzero(~np.asarray(valid) & torsal))
         if bad:
-            self.warn(f"{bad} of {len(valid)} rulings have a recomputed warp that is undefined or above "
-                      f"{warp_limit:g} rad (Valid = false)")
+            self.warn(f"{bad} of {int(torsal.sum())} torsal rulings have a recomputed warp that is undefined "
+                      f"or above {warp_limit:g} rad (Valid = false)")
         strips = [s.surface for s in result.strips]
         return strips, list(result.boundaries), rulings, warp, deviation, valid, kinds
