@@ -115,17 +115,18 @@ def test_torus_single_curved_share_is_its_top_and_bottom_bands():
     a, b = tol * R_TORUS / (1 - tol * r_TORUS), tol * R_TORUS / (1 + tol * r_TORUS)
     v1, v2 = math.acos(a), math.acos(-b)
     share = (R_TORUS * (v2 - v1) + r_TORUS * (math.sin(v2) - math.sin(v1))) / (math.pi * R_TORUS)
-    assert v["DevelopableFraction"] == pytest.approx(share, rel=1e-2)
+    assert v["DevelopableFraction"] == pytest.approx(share, rel=2e-3)  # measured 1.0e-3 (an 8 × 8 sampling)
 
 
 def test_developable_fraction_weighs_area_not_parameters():
     # a short cylinder (half the parameters, a sixth of the area) capped by a hemisphere
     _, v = analysed(capsule(), UDensity=10, VDensity=10)
-    assert v["DevelopableFraction"] == pytest.approx(1 / 6, abs=0.01)
+    assert v["DevelopableFraction"] == pytest.approx(1 / 6, abs=0.007)  # measured 0.005 under (10 × 10)
 
 
 @pytest.mark.parametrize("name", ["hypar", "torus", "helicoid"])
-def test_gaussian_curvature_matches_the_closed_form_to_1e_6_at_interior_and_boundary_points(name):
+def test_gaussian_curvature_matches_the_closed_form_to_rounding_at_interior_and_boundary_points(name):
+    """From the exact derivatives: measured 1.5e-14 (torus), 1.0e-15 (hypar, helicoid)."""
     surface, closed_form = {"hypar": (hypar(), hypar_gaussian),
                             "torus": (torus(R_TORUS, r_TORUS), torus_gaussian),
                             "helicoid": (helicoid(), helicoid_gaussian)}[name]
@@ -133,7 +134,7 @@ def test_gaussian_curvature_matches_the_closed_form_to_1e_6_at_interior_and_boun
     points, gaussian = np.asarray(v["Points"]), np.asarray(v["Gaussian"])
     expected = closed_form(points)
     scale = np.maximum(np.abs(expected), 1e-3 * np.abs(expected).max())
-    assert np.max(np.abs(gaussian - expected) / scale) < 1e-6
+    assert np.max(np.abs(gaussian - expected) / scale) < 1e-13
     k1, k2 = np.asarray(v["K1"]), np.asarray(v["K2"])
     assert np.allclose(k1 * k2, gaussian, rtol=1e-12, atol=1e-15)
     assert np.allclose(0.5 * (k1 + k2), v["Mean"], rtol=1e-12, atol=1e-15)
