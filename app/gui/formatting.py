@@ -33,7 +33,7 @@ def format_item(value: Any) -> str:
         return f"Plane at {format_item(value.origin)}"
     value_type = type_of(value)
     name = value_type.name if value_type else type(value).__name__
-    if type(value).__name__ == "Trimesh":
+    if value_type is not None and value_type.name == "Mesh":  # the registered value type, not a class name
         return f"Mesh ({len(value.vertices)} vertices, {len(value.faces)} faces)"
     kind = type(value).__name__
     # Geometry is named, not measured: a length or an area can take milliseconds, and
