@@ -25,6 +25,7 @@ from engine.node import Node, NodeError
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curve_rail import ruled_between
 from nodes.geometry.curves.line import Line
+from nodes.geometry.developable.ruling import warp_allowance
 from nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from nodes.geometry.ruled import RuledSurface
 
@@ -135,7 +136,8 @@ def curve_strip_outputs(
     is the curves', so the warp measured on the surface is the warp reported), the warp
     recomputed from the output rulings with the curves' exact tangents
     (:func:`~nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
-    number within ``tolerance``.
+    number within ``tolerance`` (plus what the ends' rounding alone adds far from the
+    origin, as the solver allows: :func:`~nodes.geometry.developable.ruling.warp_allowance`).
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
     recomputation rejects are counted in a message.
@@ -147,7 +149,8 @@ def curve_strip_outputs(
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t)
     strip = strip_outputs(starts, ends, warp=w, surface=on_curves)
-    valid = np.isfinite(w) & (w <= tolerance)
+    allowance = warp_allowance(np.asarray(starts, dtype=float), np.asarray(ends, dtype=float))
+    valid = np.isfinite(w) & (w <= tolerance + allowance)
     messages = list(strip.messages)
     if claimed is not None:
         refused = np.asarray(claimed, dtype=bool) & ~valid & np.isfinite(w)
