@@ -46,12 +46,12 @@ def lines(result, port: str = "Rulings") -> list:
     return out(result, port)[(0,)]
 
 
-def test_cone_cut_curves_give_rulings_with_warp_below_1e_7_all_valid():
+def test_cone_cut_curves_give_rulings_with_warp_below_1e_11_all_valid():
     chain = cone_graph()
     assert chain.result("strip").state == "ok"
     warp = chain.items("strip", "WarpAngles")
     assert len(warp) == 41
-    assert max(warp) < 1e-7
+    assert max(warp) < 1e-11  # measured 1.9e-12
     assert all(chain.items("strip", "Valid"))
 
 
@@ -62,7 +62,7 @@ def test_cone_cut_curves_give_rulings_along_the_cones_generators():
     starts = np.array([r.start for r in rulings])
     ends = np.array([r.end for r in rulings])
     apex_distance = np.linalg.norm(np.cross(starts, ends), axis=1) / np.linalg.norm(ends - starts, axis=1)
-    assert apex_distance.max() < 1e-8
+    assert apex_distance.max() < 2e-12  # measured 2.2e-13, the curves about 2 from the apex
 
 
 def test_cone_cut_surface_passes_exactly_through_its_rulings():
