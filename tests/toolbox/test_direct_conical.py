@@ -35,12 +35,12 @@ def lines(chain: Chain) -> np.ndarray:
     return np.array([[r.start, r.end] for r in chain.items("cone", "Rulings")])
 
 
-def test_cone_on_a_helix_has_warp_below_1e_10():
+def test_cone_on_a_helix_has_warp_below_1e_14():
     chain = on_helix(Height=2.5, Segments=60)
     warp = chain.items("cone", "WarpAngles")
     assert chain.result("cone").state == "ok"
     assert len(warp) == 61
-    assert max(warp) < 1e-10
+    assert max(warp) < 1e-14  # measured 1.6e-16
 
 
 def test_cone_rulings_end_at_the_apex_when_height_reaches_it():
@@ -87,7 +87,9 @@ def test_full_cone_surface_on_a_circle_lies_on_the_exact_cone():
     surface = chain.item("cone", "Surface")
     u, v = np.random.default_rng(1).random((2, 500))
     p = surface.point_at(u, v)
-    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 3.0 * (1 - p[:, 2] / 4.0)).max() < 1e-6
+    # between its 97 rulings the surface strays from the cone by its cubic interpolation
+    # (measured 1.4e-7, under (5/384)·(2π/96)⁴·r = 7.2e-7 at the base)
+    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 3.0 * (1 - p[:, 2] / 4.0)).max() < 3e-7
     assert np.abs(p[:, 2] - 4.0 * v).max() < 1e-14
 
 

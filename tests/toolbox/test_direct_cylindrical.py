@@ -33,12 +33,12 @@ def lines(chain: Chain) -> np.ndarray:
     return np.array([[r.start, r.end] for r in chain.items("cyl", "Rulings")])
 
 
-def test_cylinder_on_a_helix_has_warp_below_1e_10():
+def test_cylinder_on_a_helix_has_warp_below_1e_14():
     chain = on_helix(Direction=Vector(0.3, -0.2, 1.0), Height=3.0, Segments=60)
     warp = chain.items("cyl", "WarpAngles")
     assert chain.result("cyl").state == "ok"
     assert len(warp) == 61
-    assert max(warp) < 1e-10
+    assert max(warp) < 1e-14  # measured 0
 
 
 def test_cylinder_rulings_are_parallel_to_direction_and_height_long():
@@ -56,7 +56,7 @@ def test_cylinder_rulings_start_on_the_curve_evenly_spaced_by_arc_length():
     assert np.abs(np.linalg.norm(starts[:, :2], axis=1) - 2.0).max() < 1e-12
     # on a helix arc length is proportional to t = z / c
     t = starts[:, 2] / 0.5
-    assert np.abs(t - np.linspace(0.0, 4 * math.pi, 21)).max() < 1e-7
+    assert np.abs(t - np.linspace(0.0, 4 * math.pi, 21)).max() < 1e-12  # measured 3.9e-14
 
 
 def test_negative_height_extrudes_against_direction():
@@ -76,7 +76,9 @@ def test_cylinder_surface_on_a_circle_lies_on_the_exact_cylinder():
     surface = on_circle(radius=2.0, Height=3.0, Segments=96).item("cyl", "Surface")
     u, v = np.random.default_rng(1).random((2, 500))
     p = surface.point_at(u, v)
-    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 2.0).max() < 1e-6
+    # between its 97 rulings the surface strays from the circle by its cubic interpolation
+    # (measured 9.6e-8, under (5/384)·(2π/96)⁴·r = 4.8e-7)
+    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 2.0).max() < 2e-7
     assert np.abs(p[:, 2] - 3.0 * v).max() < 1e-14
 
 

@@ -32,11 +32,11 @@ def helix_point_and_tangent(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 @pytest.mark.parametrize("two_sided", [False, True])
-def test_tangent_developable_of_a_helix_has_warp_below_1e_10(two_sided):
+def test_tangent_developable_of_a_helix_has_warp_below_1e_14(two_sided):
     chain = on_helix(Segments=80, Length=3.0, CuttingLength=0.25, TwoSided=two_sided)
     warp = chain.items("tan", "WarpAngles")
     assert len(warp) == 81
-    assert max(warp) < 1e-10
+    assert max(warp) < 1e-14  # measured 2.0e-15 and 0
 
 
 def test_rulings_run_along_the_exact_tangent_from_cutting_length_to_length():
