@@ -113,7 +113,7 @@ def test_every_strip_lies_within_the_tolerance_of_the_design(name):
 
 
 @pytest.mark.parametrize("name", DESIGNS)
-def test_every_torsal_ruling_has_warp_below_1e_7_by_the_triple_product(name):
+def test_every_torsal_ruling_has_warp_below_1e_12_by_the_triple_product(name):
     field = DESIGNS[name]
     rulings = items(solved(name), "Rulings")
     kinds = items(solved(name), "Kind")
@@ -130,7 +130,7 @@ def test_every_torsal_ruling_has_warp_below_1e_7_by_the_triple_product(name):
 
     n1, n2 = np.cross(b - a, tangent(a)), np.cross(b - a, tangent(b))
     warp = np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2))
-    assert warp.max() < 1e-7
+    assert warp.max() < 1e-12  # measured 3.7e-14 to 6.5e-14
 
 
 @pytest.mark.parametrize("name", DESIGNS)
@@ -153,20 +153,22 @@ def test_neighbouring_strips_share_their_boundary(name):
     assert len(strips) >= 2
     for lower, upper in itertools.pairwise(strips):
         top, bottom = grid(lower)[:, -1], grid(upper)[:, 0]
-        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-9 * SIZE
+        # to rounding (measured at most 5.6e-18 of the size)
+        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-14 * SIZE
         for edge in (top, bottom):
-            assert np.abs(edge[:, 2] - field.f(edge[:, 0], edge[:, 1])).max() <= 1e-9 * SIZE
+            assert np.abs(edge[:, 2] - field.f(edge[:, 0], edge[:, 1])).max() <= 1e-14 * SIZE
         fixed = 1 if np.ptp(top[:, 1]) < np.ptp(top[:, 0]) else 0
-        assert np.abs(np.concatenate([top, bottom])[:, fixed] - top[0, fixed]).max() <= 1e-9 * SIZE
+        assert np.abs(np.concatenate([top, bottom])[:, fixed] - top[0, fixed]).max() <= 1e-14 * SIZE
 
 
 @pytest.mark.parametrize("name", DESIGNS)
-def test_summed_strip_area_is_within_one_percent_of_the_designs(name):
+def test_summed_strip_area_is_within_a_thousandth_of_the_designs(name):
+    """Measured 3.0e-4 to 5.3e-4 under (the strips stay within the tolerance of the design)."""
     field = DESIGNS[name]
     design, _ = dblquad(lambda y, x: np.sqrt(1 + field.fx(x, y) ** 2 + field.fy(x, y) ** 2),
                         -HALF, HALF, -HALF, HALF, epsabs=1e-9)
     strips = sum(grid_area(grid(s, 241, 21)) for s in items(solved(name), "Strips"))
-    assert abs(strips - design) <= 0.01 * design
+    assert abs(strips - design) <= 1e-3 * design
 
 
 @pytest.mark.parametrize("name", DESIGNS)
