@@ -8,6 +8,7 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import DOMAIN, INTEGER, NUMBER
 from engine.values import Domain
 from nodes.common.checks import count, finite, whole
+from nodes.limits import MAX_NUMBERS
 
 
 class Random(Node):
@@ -21,7 +22,8 @@ class Random(Node):
     type_id = "maths.Random"
     inputs = (
         In("Range", DOMAIN, "R", "The interval the numbers fall in.", default=Domain(0.0, 1.0)),
-        In("Number", INTEGER, "N", "How many numbers to make (0 or more).", default=10),
+        In("Number", INTEGER, "N", "How many numbers to make (0 or more).", default=10,
+           min=0, max=MAX_NUMBERS),
         In("Seed", INTEGER, "S", "Any whole number 0 or more; each seed gives its own numbers.",
            default=0),
     )

@@ -8,6 +8,7 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import DOMAIN, INTEGER, NUMBER
 from engine.values import Domain
 from nodes.common.checks import count, finite
+from nodes.limits import MAX_NUMBERS
 
 
 class Series(Node):
@@ -21,7 +22,8 @@ class Series(Node):
     inputs = (
         In("Start", NUMBER, "S", "The first number of the series.", default=0.0),
         In("Step", NUMBER, "N", "The difference between neighbouring numbers.", default=1.0),
-        In("Count", INTEGER, "C", "How many numbers to make (0 or more).", default=10),
+        In("Count", INTEGER, "C", "How many numbers to make (0 or more).", default=10,
+           min=0, max=MAX_NUMBERS),
     )
     outputs = (Out("Series", NUMBER, "S", "The numbers, Start first.", access=LIST),)
 
@@ -42,7 +44,8 @@ class Range(Node):
     inputs = (
         In("Domain", DOMAIN, "D", "The interval to divide, from its start to its end.",
            default=Domain(0.0, 1.0)),
-        In("Steps", INTEGER, "N", "How many equal steps to divide it into (1 or more).", default=10),
+        In("Steps", INTEGER, "N", "How many equal steps to divide it into (1 or more).", default=10,
+           min=1, max=MAX_NUMBERS),
     )
     outputs = (Out("Range", NUMBER, "R", "The Steps + 1 numbers, both ends included.", access=LIST),)
 
