@@ -11,9 +11,9 @@ input and a slider wired into a bounded input is kept within them.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from decimal import Decimal
-from typing import TYPE_CHECKING, Any
+from itertools import chain
+from typing import TYPE_CHECKING
 
 from engine.node import NodeWarning
 
@@ -57,20 +57,14 @@ def refusal(port: In, value: float) -> str | None:
     return None
 
 
-def _numbers(items: Iterable[Any]) -> Iterable[float]:
-    return (v for v in items if isinstance(v, int | float) and not isinstance(v, bool))
-
-
 def within_bounds(tree: DataTree, port: In) -> DataTree:
     """``tree`` unchanged when every number in it lies within ``port``'s bounds; otherwise a
-    :class:`~engine.node.NodeWarning` naming the input and a value outside them
-    (the smallest or the largest of a branch)."""
+    :class:`~engine.node.NodeWarning` naming the input and the smallest (or the largest)
+    value outside them. One pass over the items, however many branches they are in."""
     if port.min is None and port.max is None:
         return tree
-    for branch in tree.branches:
-        numbers = list(_numbers(branch))
-        if not numbers:
-            continue
+    numbers = [v for v in chain.from_iterable(tree.branches) if type(v) is int or type(v) is float]
+    if numbers:
         for value in (min(numbers), max(numbers)):
             message = refusal(port, value)
             if message is not None:
