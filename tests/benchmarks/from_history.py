@@ -70,3 +70,23 @@ def load_package(commit: str, folder: str, modules: tuple[str, ...], parent: str
     for module in modules:
         importlib.import_module(f"{name}.{module}")
     return loaded
+
+
+def extract_tree(commit: str, paths: tuple[str, ...]) -> Path:
+    """The folders and files ``paths`` as they were at ``commit``, in a temporary folder
+    (removed at exit) that a subprocess can run the old version from; skips the
+    benchmark (saying why) where the history is not there."""
+    where = Path(tempfile.mkdtemp(prefix="torsal-tree-"))
+    atexit.register(shutil.rmtree, where, ignore_errors=True)
+    try:
+        archive = subprocess.run(
+            ["git", "-C", str(ROOT), "archive", "--format=tar", commit, *paths],
+            capture_output=True, check=False, timeout=120,
+        )
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        pytest.skip(f"the baseline is read from git history, and git could not run: {exc}")
+    if archive.returncode != 0:
+        reason = archive.stderr.decode(errors="replace").strip()
+        pytest.skip(f"commit {commit} is not in this clone's history: {reason}")
+    subprocess.run(["tar", "-x", "-C", str(where)], input=archive.stdout, check=True, timeout=120)
+    return where
