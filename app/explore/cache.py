@@ -21,9 +21,12 @@ def graph_digest(graph_text: str) -> str:
 
 
 def variant_key(digest: str, values: dict[str, Any], job: Job) -> str:
-    """The key of one variant: the graph, the values, what is collected and the write policy."""
+    """The key of one variant: the graph, the values, what is collected, the write policy
+    and whether it is drawn."""
     text = json.dumps(
-        [digest, values_key(values), [t.name for t in job.targets], job.allow_writes], separators=(",", ":")
+        [digest, values_key(values), [t.name for t in job.targets], job.allow_writes]
+        + (["images"] if job.image_root is not None else []),
+        separators=(",", ":"),
     )
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 

@@ -14,7 +14,8 @@ from app.headless import UsageError
 
 SWEEP_USAGE = (
     "torsal sweep FILE --vary ID=LO:HI:N [--vary ...] [--sampler grid|lhs|sobol --samples N] "
-    "--collect NODE.OUTPUT [--collect ...] --out DIR [--workers N | --scheduler ADDRESS] [--seed S]"
+    "--collect NODE.OUTPUT [--collect ...] --out DIR [--workers N | --scheduler ADDRESS] [--seed S] "
+    "[--images]"
 )
 OPTIMISE_USAGE = (
     "torsal optimise FILE --vary ID=LO:HI [--vary ...] (--minimise | --maximise) NODE.OUTPUT [...] "
@@ -55,6 +56,9 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--seed", type=int, default=0, metavar="S", help="seed of lhs/sobol (default 0)")
     sweep.add_argument("--allow-writes", action="store_true",
                        help="let the graph's file nodes write, variant N into DIR/variants/N only")
+    sweep.add_argument("--images", action="store_true",
+                       help="draw each variant's previewed geometry into DIR/images/N.png and add "
+                            "Design Explorer's img:perspective column")
     _workers(sweep)
     sweep.set_defaults(handler=_sweep)
 
@@ -109,7 +113,8 @@ def _sweep(args: argparse.Namespace) -> int:
     out = _folder(args.out)
     progress = Progress("sweep", len(variants))
     with make_executor(args.workers, args.scheduler) as executor:
-        result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes, progress=progress)
+        result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes, images=args.images,
+                           progress=progress)
     print(f"{args.file}: {len(result.outcomes)} variants — {result.solved} solved, {result.cached} from "
           f"the cache, {result.failed} in error → {result.csv_path}")
     return 1 if result.failed else 0

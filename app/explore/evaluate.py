@@ -30,6 +30,7 @@ class Job:
     targets: tuple[Target, ...]
     allow_writes: bool = False
     write_root: str | None = None  # variant N writes into write_root/NNNNN when allowed
+    image_root: str | None = None  # variant N is drawn into image_root/NNNNN.png (--images)
 
 
 @dataclass
@@ -39,13 +40,19 @@ class Outcome:
     values: dict[str, Any]
     outputs: dict[str, Any] = field(default_factory=dict)
     status: str = OK_STATUS
+    image: str | None = None  #: the picture's file name, when asked for and there was geometry
 
     def to_json(self) -> dict[str, Any]:
-        return {"values": self.values, "outputs": self.outputs, "status": self.status}
+        data = {"values": self.values, "outputs": self.outputs, "status": self.status}
+        if self.image is not None:
+            data["image"] = self.image
+        return data
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> Outcome:
-        return cls(dict(data["values"]), dict(data["outputs"]), str(data["status"]))
+        image = data.get("image")
+        return cls(dict(data["values"]), dict(data["outputs"]), str(data["status"]),
+                   None if image is None else str(image))
 
     @property
     def failed(self) -> bool:
@@ -145,4 +152,11 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
     else:
         plural = "s" if warnings > 1 else ""
         status = OK_STATUS if not warnings else f"ok (warnings in {warnings} node{plural})"
-    return Outcome(values, outputs, status)
+    image = None
+    if job.image_root is not None:
+        from app.explore.images import previewed_values, render
+
+        name = f"{index:05d}.png"
+        if render(previewed_values(graph, solver), Path(job.image_root) / name):
+            image = name
+    return Outcome(values, outputs, status, image)

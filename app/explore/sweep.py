@@ -1,8 +1,10 @@
 """``torsal sweep``: solve many variants and write them as a Design Explorer table.
 
 ``DIR/results.csv`` has one row per variant, in the sampler's order: an ``in:ID`` column
-per varied slider, an ``out:NODE.OUTPUT`` column per collected output and a ``status``
-column (``ok``, or the message of the node in error). The solved variants are also kept
+per varied slider, an ``out:NODE.OUTPUT`` column per collected output, with ``--images``
+an ``img:perspective`` column (the variant's picture, ``images/NNNNN.png`` beside the table:
+see :mod:`app.explore.images`), and a ``status`` column (``ok``, or the message of the node
+in error). The solved variants are also kept
 in ``DIR/cache.jsonl``: a re-run takes them from there, and a killed sweep resumes.
 """
 
@@ -23,6 +25,9 @@ from app.explore.study import Study
 
 RESULTS = "results.csv"
 CACHE = "cache.jsonl"
+IMAGES = "images"
+#: The header of the pictures' column (Design Explorer shows ``img:`` columns as pictures).
+IMAGE_COLUMN = "img:perspective"
 
 
 @dataclass
@@ -46,11 +51,14 @@ def run_sweep(
     out: Path | None = None,
     *,
     allow_writes: bool = False,
+    images: bool = False,
     progress: Progress | None = None,
     on_outcome: Callable[[int, Outcome], None] | None = None,
 ) -> SweepResult:
-    """Solve every variant not in ``out``'s cache, then write ``out/results.csv``."""
-    job = Job(tuple(study.targets), allow_writes, str((out / "variants").resolve()) if out else None)
+    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` (with
+    ``images``, each variant's picture in ``out/images`` and its column in the table)."""
+    job = Job(tuple(study.targets), allow_writes, str((out / "variants").resolve()) if out else None,
+              str((out / IMAGES).resolve()) if out is not None and images else None)
     cache = ResultCache(out / CACHE) if out is not None else None
     digest = graph_digest(study.text)
     keys = [variant_key(digest, values, job) for values in variants]
@@ -81,7 +89,7 @@ def run_sweep(
             cache.close()
     result = SweepResult([o for o in outcomes if o is not None], solved, len(variants) - len(pending))
     if out is not None:
-        result.csv_path = write_table(out / RESULTS, study, result.outcomes)
+        result.csv_path = write_table(out / RESULTS, study, result.outcomes, images=images)
     return result
 
 
@@ -96,22 +104,25 @@ def cell(value: Any) -> str:
     return str(value)
 
 
-def table_rows(study: Study, outcomes: list[Outcome]) -> list[list[str]]:
-    header = [v.column for v in study.variables] + [t.column for t in study.targets] + ["status"]
-    rows = [header]
+def table_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> list[list[str]]:
+    header = [v.column for v in study.variables] + [t.column for t in study.targets]
+    header += [IMAGE_COLUMN] if images else []
+    rows = [[*header, "status"]]
     for outcome in outcomes:
+        picture = [f"{IMAGES}/{outcome.image}" if outcome.image else ""] if images else []
         rows.append(
             [cell(outcome.values.get(v.node_id)) for v in study.variables]
             + [cell(outcome.outputs.get(t.name)) for t in study.targets]
+            + picture
             + [outcome.status]
         )
     return rows
 
 
-def write_table(path: Path, study: Study, outcomes: list[Outcome]) -> Path:
+def write_table(path: Path, study: Study, outcomes: list[Outcome], images: bool = False) -> Path:
     """Write the Design Explorer CSV (atomically: a reader never sees half a table)."""
     temporary = path.with_name(path.name + ".part")
     with temporary.open("w", encoding="utf-8", newline="") as handle:
-        csv.writer(handle).writerows(table_rows(study, outcomes))
+        csv.writer(handle).writerows(table_rows(study, outcomes, images))
     os.replace(temporary, path)
     return path
