@@ -15,6 +15,8 @@ from decimal import Decimal
 from itertools import chain
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from engine.node import NodeWarning
 
 if TYPE_CHECKING:
@@ -63,7 +65,15 @@ def within_bounds(tree: DataTree, port: In) -> DataTree:
     value outside them. One pass over the items, however many branches they are in."""
     if port.min is None and port.max is None:
         return tree
-    numbers = [v for v in chain.from_iterable(tree.branches) if type(v) is int or type(v) is float]
+    lists = [b for b in tree.raw_branches if not isinstance(b, np.ndarray)]
+    numbers = [v for v in chain.from_iterable(lists) if type(v) is int or type(v) is float]
+    for array in tree.raw_branches:  # an array branch by its least and greatest value
+        if isinstance(array, np.ndarray) and array.dtype.kind in "if" and len(array):
+            if array.dtype.kind == "f" and np.isnan(array).any():
+                array = array[~np.isnan(array)]
+                if not len(array):
+                    continue
+            numbers += [array.min().item(), array.max().item()]
     if numbers:
         for value in (min(numbers), max(numbers)):
             message = refusal(port, value)

@@ -1,7 +1,8 @@
 """Data trees: what flows on a wire, as in Grasshopper.
 
 A tree maps *paths* (tuples of non-negative integers, written ``{0;2}``) to *branches*
-(lists of items), kept in path order. A plain value is the tree ``{0}: [value]``.
+(lists of items), kept in path order. A plain value is the tree ``{0}: [value]``. A branch
+of numbers, integers or booleans may be stored as a numpy array (see :class:`DataTree`).
 """
 
 from __future__ import annotations
@@ -9,7 +10,11 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
+import numpy as np
+
 Path = tuple[int, ...]
+#: a branch as a tree stores it: a list of items, or a read-only 1-D numpy array
+Branch = list[Any] | np.ndarray
 
 
 def format_path(path: Path) -> str:
@@ -31,37 +36,69 @@ def parse_path(text: str) -> Path:
     return path
 
 
+def stored(items: Iterable[Any]) -> Branch:
+    """``items`` as a branch is stored: a 1-D array of float64, int64 or bool as it is (made
+    read-only, since trees share their branches), anything else as a new list."""
+    if isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES:
+        if items.flags.writeable:
+            items = items.view()
+            items.flags.writeable = False
+        return items
+    return list(items)
+
+
+def as_list(branch: Branch) -> list[Any]:
+    """A branch as a list of Python values (an array's numbers as ``float``, ``int`` or
+    ``bool``); a list branch is returned as it is."""
+    return branch.tolist() if isinstance(branch, np.ndarray) else branch
+
+
+#: the dtypes a branch is kept in as an array: Number, Integer and Boolean items
+_ARRAY_DTYPES = (np.dtype(np.float64), np.dtype(np.int64), np.dtype(np.bool_))
+
+
 class DataTree:
-    """An ordered mapping from paths to lists of items."""
+    """An ordered mapping from paths to lists of items.
+
+    A branch of numbers, integers or booleans may be held as a 1-D numpy array (a node
+    that returns one from a list output, such as Series, makes one); it is handed out as
+    a list of Python values by :attr:`branches`, :meth:`items`, :meth:`branch` and the
+    other item-wise views, so a node sees the same items either way. The engine reads the
+    arrays themselves through :attr:`raw_branches` and :meth:`raw_items` (casts, bounds,
+    and list inputs declared ``In(..., arrays=True)``), never item by item.
+    """
 
     __slots__ = ("_branches",)
 
-    def __init__(self, branches: dict[Path, list[Any]] | None = None) -> None:
-        self._branches: dict[Path, list[Any]] = {}
+    def __init__(self, branches: dict[Path, Iterable[Any]] | None = None) -> None:
+        self._branches: dict[Path, Branch] = {}
         if branches:
             for path in sorted(branches):
-                self._branches[path] = list(branches[path])
+                self._branches[path] = stored(branches[path])
 
     # -- construction -------------------------------------------------------------
     @classmethod
     def from_value(cls, value: Any) -> DataTree:
-        """A single value becomes ``{0}: [value]``; a list becomes ``{0}: items``."""
+        """A single value becomes ``{0}: [value]``; a list (or a 1-D array) becomes ``{0}: items``."""
         if isinstance(value, DataTree):
             return value
         tree = cls()
-        tree._branches[(0,)] = list(value) if isinstance(value, list) else [value]
+        if isinstance(value, list) or (isinstance(value, np.ndarray) and value.ndim == 1):
+            tree._branches[(0,)] = stored(value)
+        else:
+            tree._branches[(0,)] = [value]
         return tree
 
     @classmethod
-    def from_branches(cls, branches: Iterable[list[Any]], prefix: Path = ()) -> DataTree:
+    def from_branches(cls, branches: Iterable[Iterable[Any]], prefix: Path = ()) -> DataTree:
         """Branches numbered ``{prefix;0}``, ``{prefix;1}`` ... in order."""
         tree = cls()
         for i, items in enumerate(branches):
-            tree._branches[(*prefix, i)] = list(items)
+            tree._branches[(*prefix, i)] = stored(items)
         return tree
 
     @classmethod
-    def _sorted(cls, branches: dict[Path, list[Any]]) -> DataTree:
+    def _sorted(cls, branches: dict[Path, Branch]) -> DataTree:
         tree = cls()
         tree._branches = dict(sorted(branches.items())) if len(branches) > 1 else branches
         return tree
@@ -73,17 +110,27 @@ class DataTree:
 
     @property
     def branches(self) -> list[list[Any]]:
+        """Every branch as a list of items (an array branch converted)."""
+        return [as_list(b) for b in self._branches.values()]
+
+    @property
+    def raw_branches(self) -> list[Branch]:
+        """Every branch as it is stored: a list, or a read-only numpy array."""
         return list(self._branches.values())
 
     def items(self) -> Iterator[tuple[Path, list[Any]]]:
+        return ((p, as_list(b)) for p, b in self._branches.items())
+
+    def raw_items(self) -> Iterator[tuple[Path, Branch]]:
+        """``(path, branch)`` with each branch as it is stored (see :attr:`raw_branches`)."""
         return iter(self._branches.items())
 
     def branch(self, path: Path) -> list[Any]:
-        return self._branches[path]
+        return as_list(self._branches[path])
 
     def all_items(self) -> list[Any]:
         """Every item, branch after branch in path order."""
-        return [item for branch in self._branches.values() for item in branch]
+        return [item for branch in self._branches.values() for item in as_list(branch)]
 
     @property
     def branch_count(self) -> int:
@@ -94,40 +141,70 @@ class DataTree:
         return sum(len(b) for b in self._branches.values())
 
     def is_empty(self) -> bool:
-        return not any(self._branches.values())
+        return all(len(b) == 0 for b in self._branches.values())
 
     def first(self) -> Any:
         """The first item of the first non-empty branch (``None`` if there is none)."""
         for branch in self._branches.values():
-            if branch:
-                return branch[0]
+            if len(branch):
+                return branch[0].item() if isinstance(branch, np.ndarray) else branch[0]
         return None
 
+    def _list_at(self, path: Path) -> list[Any]:
+        """The branch at ``path`` as a list this tree owns, to add to (an array is converted)."""
+        branch = self._branches.get(path)
+        if branch is None:
+            branch = self._branches[path] = []
+        elif isinstance(branch, np.ndarray):
+            branch = self._branches[path] = branch.tolist()
+        return branch
+
     def append(self, path: Path, item: Any) -> None:
-        self._branches.setdefault(path, []).append(item)
+        self._list_at(path).append(item)
 
     def extend(self, path: Path, items: Iterable[Any]) -> None:
-        self._branches.setdefault(path, []).extend(items)
+        """Add ``items`` at the end of branch ``path``; an array into an empty (or an array)
+        branch of the same dtype stays an array."""
+        if isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES:
+            branch = self._branches.get(path)
+            if branch is None or len(branch) == 0:
+                self._branches[path] = stored(items)
+                return
+            if isinstance(branch, np.ndarray) and branch.dtype == items.dtype:
+                self._branches[path] = stored(np.concatenate([branch, items]))
+                return
+            items = items.tolist()
+        self._list_at(path).extend(items)
 
     def map(self, function: Callable[[Any], Any]) -> DataTree:
         """A tree of the same shape with ``function`` applied to every item."""
-        return DataTree._sorted({p: [function(x) for x in b] for p, b in self._branches.items()})
+        return DataTree._sorted({p: [function(x) for x in as_list(b)] for p, b in self._branches.items()})
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, DataTree):
             return NotImplemented
-        return self._branches == other._branches
+        if self._branches.keys() != other._branches.keys():
+            return False
+        for path, mine in self._branches.items():
+            theirs = other._branches[path]
+            if isinstance(mine, np.ndarray) and isinstance(theirs, np.ndarray):
+                if mine.dtype != theirs.dtype or not np.array_equal(
+                        mine, theirs, equal_nan=mine.dtype.kind == "f"):
+                    return False
+            elif as_list(mine) != as_list(theirs):
+                return False
+        return True
 
     def __len__(self) -> int:
         return len(self._branches)
 
     def __repr__(self) -> str:
-        body = ", ".join(f"{format_path(p)}: {b!r}" for p, b in self._branches.items())
+        body = ", ".join(f"{format_path(p)}: {as_list(b)!r}" for p, b in self._branches.items())
         return f"DataTree({body})"
 
     def to_dict(self) -> dict[str, list[Any]]:
         """``{'{0;1}': [...]}`` with the items as they are."""
-        return {format_path(p): list(b) for p, b in self._branches.items()}
+        return {format_path(p): list(as_list(b)) for p, b in self._branches.items()}
 
     # -- modifiers (Grasshopper's graft, flatten, simplify, reverse) -----------------------
     def grafted(self) -> DataTree:
@@ -135,18 +212,23 @@ class DataTree:
 
         An empty branch stays an empty branch at ``{p}`` so no path is lost.
         """
-        out: dict[Path, list[Any]] = {}
+        out: dict[Path, Branch] = {}
         for path, branch in self._branches.items():
-            if not branch:
+            if not len(branch):
                 out[path] = []
-            for i, item in enumerate(branch):
+            for i, item in enumerate(as_list(branch)):
                 out[(*path, i)] = [item]
         return DataTree._sorted(out)
 
     def flattened(self) -> DataTree:
         """All items, in path order, into ``{0}``."""
         tree = DataTree()
-        tree._branches[(0,)] = self.all_items()
+        branches = list(self._branches.values())
+        dtypes = {b.dtype if isinstance(b, np.ndarray) else None for b in branches}
+        if branches and len(dtypes) == 1 and None not in dtypes:  # arrays of one dtype: one array
+            tree._branches[(0,)] = stored(np.concatenate(branches))
+        else:
+            tree._branches[(0,)] = self.all_items()
         return tree
 
     def simplified(self) -> DataTree:
@@ -164,11 +246,11 @@ class DataTree:
             shared += 1
         if len(paths) == 1:
             shared = len(paths[0]) - 1
-        return DataTree._sorted({p[shared:]: list(b) for p, b in self._branches.items()})
+        return DataTree._sorted({p[shared:]: stored(b) for p, b in self._branches.items()})
 
     def reversed(self) -> DataTree:
         """Reverse every branch's list."""
-        return DataTree._sorted({p: b[::-1] for p, b in self._branches.items()})
+        return DataTree._sorted({p: stored(b[::-1]) for p, b in self._branches.items()})
 
 
 MODIFIERS: dict[str, Callable[[DataTree], DataTree]] = {

@@ -97,7 +97,10 @@ class In:
     default and not ``optional`` must receive data. ``multiple`` lets an item-access
     input take several wires (list and tree inputs always may). ``min`` and ``max``
     bound a number input: the solver refuses a value outside them, naming the input
-    (:mod:`engine.bounds`), and front-ends show them.
+    (:mod:`engine.bounds`), and front-ends show them. ``arrays=True`` on a list input:
+    a branch of numbers, integers or booleans arrives as the read-only numpy array the
+    tree holds (no conversion), other branches as lists; a node that says so must treat
+    its list as a sequence (``len``, indexing, ``numpy.asarray``), not call list methods.
     """
 
     name: str
@@ -110,6 +113,7 @@ class In:
     multiple: bool = False
     min: float | None = None
     max: float | None = None
+    arrays: bool = False
 
     @property
     def has_default(self) -> bool:

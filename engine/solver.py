@@ -17,8 +17,10 @@ from dataclasses import dataclass, field
 from itertools import repeat
 from typing import Any
 
+import numpy as np
+
 from engine.bounds import within_bounds
-from engine.datatree import DataTree, Path, apply_modifiers, format_path
+from engine.datatree import Branch, DataTree, Path, apply_modifiers, as_list, format_path
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.node import (
     ITEM,
@@ -34,7 +36,7 @@ from engine.node import (
     NodeWarning,
 )
 from engine.solve_context import SolveContext, solving
-from engine.types import GENERIC, TEXT, CastError, cast, decode_value
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, TEXT, CastError, cast, decode_value
 from engine.writes import WriteAccess
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
@@ -194,18 +196,27 @@ def merge_trees(trees: list[DataTree]) -> DataTree:
         return trees[0]
     merged = DataTree()
     for tree in trees:
-        for path, branch in tree.items():
+        for path, branch in tree.raw_items():
             merged.extend(path, branch)
-    return DataTree(dict(merged.items()))
+    return DataTree(dict(merged.raw_items()))
 
 
 def cast_tree(tree: DataTree, port: In) -> DataTree:
-    """Cast every item of ``tree`` to ``port``'s type (items already right are kept)."""
+    """Cast every item of ``tree`` to ``port``'s type (items already right are kept).
+
+    An array branch is checked by its dtype, and cast as a whole array where the cast is
+    plain (Integer to Number, Number to Integer, ...); list branches item by item.
+    """
     if port.type is GENERIC:
         return tree
     classes = port.type.classes
     needs_cast = False
-    for branch in tree.branches:
+    for branch in tree.raw_branches:
+        if isinstance(branch, np.ndarray):
+            if not array_fits(branch, port):
+                needs_cast = True
+                break
+            continue
         for item in branch:
             if type(item) not in classes:
                 needs_cast = True
@@ -225,7 +236,50 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
         except CastError as exc:
             raise NodeError(f"input {port.name}: {exc}") from None
 
-    return tree.map(convert)
+    out: dict[Path, Any] = {}
+    for path, branch in tree.raw_items():
+        cast_array = cast_array_branch(branch, port) if isinstance(branch, np.ndarray) else None
+        if cast_array is not None:
+            out[path] = cast_array
+        else:
+            out[path] = [convert(item) for item in as_list(branch)]
+    return DataTree(out)
+
+
+#: the dtype an array branch has when its items are of a port's type
+_DTYPE_OF = {
+    NUMBER.name: np.dtype(np.float64), INTEGER.name: np.dtype(np.int64), BOOLEAN.name: np.dtype(np.bool_),
+}
+_INT_LIMIT = 2.0**62  # floats below this round to an int64 exactly
+
+
+def array_fits(array: np.ndarray, port: In) -> bool:
+    """Whether an array branch's items are already of ``port``'s type (as a list's would be)."""
+    dtype = _DTYPE_OF.get(port.type.name)
+    return dtype is not None and array.dtype == dtype
+
+
+def cast_array_branch(array: np.ndarray, port: In) -> np.ndarray | None:
+    """An array branch cast to ``port``'s type as one array, or None to cast item by item
+    (a cast that is not plain, or a value whose message must name it). A NaN is refused
+    as for a list ("... is not a number (NaN)"), never read as 0 or true."""
+    target = _DTYPE_OF.get(port.type.name)
+    if target is None:
+        return None
+    if array.dtype == target:
+        return array
+    kind = array.dtype.kind
+    if kind == "f":
+        if np.isnan(array).any():
+            raise NodeError(f"{port.name} is not a number (NaN)")
+        if target.kind == "b":
+            return array != 0
+        if not (np.abs(array) < _INT_LIMIT).all():  # inf or huge: the item's own message
+            return None
+        return np.rint(array).astype(np.int64)  # round half to even, as round() does
+    if target.kind == "b":
+        return array != 0
+    return array.astype(target)
 
 
 # --------------------------------------------------------------------------- matching
@@ -255,7 +309,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
                 trees[index] = tree = DataTree({(0,): [None]})
         if port.access is not TREE:
             matched.append((port, tree))
-            if single and not (tree.paths == [(0,)] and len(tree.branches[0]) == 1):
+            if single and not (tree.paths == [(0,)] and len(tree.raw_branches[0]) == 1):
                 single = False
         else:
             single = False
@@ -264,13 +318,14 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         _store(node, out_ports, outputs, (0,), [_call(node, trees)], iterated=False)
         return outputs
     if single:
-        args = [t.branches[0][0] if p.access is ITEM else t.branches[0] for p, t in matched]
+        args = [_for_port(t.raw_branches[0], p) for p, t in matched]
+        args = [a[0] if p.access is ITEM else a for (p, _), a in zip(matched, args, strict=True)]
         _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=False)
         return outputs
     if len(matched) > 1:
         _remark_uneven(node, matched)
 
-    branch_lists = [t.branches or [[]] for _, t in matched]
+    branch_lists = [[_for_port(b, p) for b in t.raw_branches] or [[]] for p, t in matched]
     path_lists = [t.paths or [(0,)] for _, t in matched]
     branch_count = max(len(b) for b in branch_lists)
     master = next(i for i, b in enumerate(branch_lists) if len(b) == branch_count)
@@ -343,6 +398,14 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     return outputs
 
 
+def _for_port(branch: Branch, port: In) -> Branch:
+    """A branch as ``port`` receives it: an array as it is for a list input that takes
+    arrays (``In(..., arrays=True)``), otherwise a list of Python values."""
+    if port.arrays and port.access is LIST:
+        return branch
+    return as_list(branch)
+
+
 def _work(node: Node, args: Any) -> int:
     """One call's :meth:`Node.call_work`; a value it cannot count costs 1 (solve refuses it)."""
     try:
@@ -355,7 +418,7 @@ def _too_many_calls(node: Node, matched: list[tuple[In, DataTree]], calls: int, 
     """"UDensity has 200 values: SurfaceAnalysis would run 200 times; …": names the input
     with the most values (or branches, for a node that runs once per branch)."""
     def size(tree: DataTree) -> int:
-        return sum(len(branch) for branch in tree.branches)
+        return tree.item_count
 
     items = [(p, t) for p, t in matched if p.access is ITEM]
     if items:
@@ -440,7 +503,7 @@ def _store(
         else:  # TREE: the node built its own tree
             for value in column:
                 if isinstance(value, DataTree):
-                    for sub_path, branch in value.items():
+                    for sub_path, branch in value.raw_items():
                         tree.extend(sub_path, branch)
 
 
@@ -460,7 +523,7 @@ def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
     items = [(p.name, t) for p, t in matched if p.access is ITEM and not t.is_empty()]
     if len(items) < 2:
         return
-    branch_lists = [(n, t.branches) for n, t in items]  # built once: ``branches`` copies the tree's list
+    branch_lists = [(n, t.raw_branches) for n, t in items]  # built once: ``branches`` copies the tree's list
     for path_index in range(max(t.branch_count for _, t in items)):
         lengths = [(n, len(bl[min(path_index, len(bl) - 1)])) for n, bl in branch_lists]
         longest = max(length for _, length in lengths)

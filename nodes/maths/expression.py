@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+from collections.abc import Sequence
 from functools import lru_cache
 from typing import Any
 
@@ -32,11 +33,13 @@ def _port(name: str, used: bool) -> In:
         name, NUMBER, name,
         f"The values of {name} in the expression: one number or a list, one result per item."
         + ("" if used else " Not used by the expression."),
-        access=LIST, optional=not used,
+        access=LIST, optional=not used, arrays=True,
     )
 
 
-def _as_array(name: str, values: list[Any]) -> np.ndarray:
+def _as_array(name: str, values: Sequence[Any]) -> np.ndarray:
+    if isinstance(values, np.ndarray) and values.dtype == np.float64:
+        return values  # an array branch: used as it is
     try:
         return np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError):  # empty (null) items, from a node that skipped a call
@@ -113,12 +116,12 @@ class Expression(Node):
                 else f"{n} results are not finite numbers (division by zero?)"
             )
 
-    def solve(self, *columns: list[Any]) -> list[float]:
+    def solve(self, *columns: Sequence[Any]) -> np.ndarray:
         compiled, problem, used = self._compile()
         if compiled is None:
             raise NodeError(problem)
         lists = {n: c for n, c in zip(self._variables(), columns, strict=True) if n in used}
-        if any(not values for values in lists.values()):
+        if any(len(values) == 0 for values in lists.values()):
             return []  # a used variable has no items in this branch: nothing to pair
         count = max((len(values) for values in lists.values()), default=1)
         self._remark_uneven(lists, count)
@@ -135,12 +138,14 @@ class Expression(Node):
             result = compiled(**arrays)
         except ExpressionError as exc:
             raise NodeError(str(exc)) from None
-        result = np.broadcast_to(np.asarray(result, dtype=np.float64), (count,))
+        result = np.asarray(result, dtype=np.float64)
+        if result.shape != (count,):  # a formula like '1': one value per item all the same
+            result = np.ascontiguousarray(np.broadcast_to(result, (count,)))
         state = self.run_state
         state["not_finite"] = state.get("not_finite", 0) + int(np.count_nonzero(~np.isfinite(result)))
-        return result.tolist()
+        return result  # an array branch: the tree keeps it as it is
 
-    def _remark_uneven(self, lists: dict[str, list[Any]], count: int) -> None:
+    def _remark_uneven(self, lists: dict[str, Sequence[Any]], count: int) -> None:
         longest = next((n for n, v in lists.items() if len(v) == count), "")
         for name, values in lists.items():
             if 1 < len(values) < count:

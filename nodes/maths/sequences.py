@@ -27,10 +27,10 @@ class Series(Node):
     )
     outputs = (Out("Series", NUMBER, "S", "The numbers, Start first.", access=LIST),)
 
-    def solve(self, start: float, step: float, number: int) -> list[float]:
+    def solve(self, start: float, step: float, number: int) -> np.ndarray:
         start, step = finite("Start", start), finite("Step", step)
         n = count("Count", number)
-        return (start + step * np.arange(n, dtype=np.float64)).tolist()
+        return start + step * np.arange(n, dtype=np.float64)  # kept as an array branch
 
 
 class Range(Node):
