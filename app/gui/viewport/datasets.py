@@ -62,7 +62,7 @@ class Collected:
 
 #: Tessellations already made in one preparing pass, by value identity: a curve that
 #: several nodes pass on (List Item, Move by zero …) is sampled once.
-Memo = dict[int, tuple[Any, Collected]]
+Memo = dict[int, tuple[Any, PreviewGeometry | None]]
 
 
 def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
@@ -75,33 +75,28 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     for value in values:
         try:
             if memo is not None and costly(value):
-                key = id(value)
-                if key not in memo or memo[key][0] is not value:
-                    memo[key] = (value, collect([value]))
-                _merge(found, memo[key][1])
+                entry = memo.get(id(value))
+                if entry is None or entry[0] is not value:
+                    entry = memo[id(value)] = (value, preview_of(value))
+                geometry = entry[1]
             else:
-                _add(found, value)
+                geometry = preview_of(value)
+            if geometry is not None:
+                _add_geometry(found, geometry)
         except Exception as exc:
             found.problems.append(f"{type(value).__name__}: {exc}")
     return found
 
 
-def _merge(found: Collected, part: Collected) -> None:
-    for name in ("points", "polylines", "rulings", "vectors", "meshes", "coloured", "problems"):
-        getattr(found, name).extend(getattr(part, name))
-
-
-def _add(found: Collected, value: Any) -> None:
-    geometry = preview_of(value)
-    if geometry is not None:
-        _add_geometry(found, geometry)
-
-
 def _add_geometry(found: Collected, geometry: PreviewGeometry) -> None:
-    found.points.extend(np.asarray(p, dtype=float).reshape(-1, 3) for p in geometry.points)
-    found.polylines.extend(np.asarray(c, dtype=float).reshape(-1, 3) for c in geometry.polylines)
-    found.rulings.extend(np.asarray(r, dtype=float).reshape(2, 3) for r in geometry.rulings)
-    found.vectors.extend(np.asarray(v, dtype=float).reshape(3) for v in geometry.vectors)
+    if geometry.points:
+        found.points.extend(np.asarray(p, dtype=float).reshape(-1, 3) for p in geometry.points)
+    if geometry.polylines:
+        found.polylines.extend(np.asarray(c, dtype=float).reshape(-1, 3) for c in geometry.polylines)
+    if geometry.rulings:
+        found.rulings.extend(np.asarray(r, dtype=float).reshape(2, 3) for r in geometry.rulings)
+    if geometry.vectors:
+        found.vectors.extend(np.asarray(v, dtype=float).reshape(3) for v in geometry.vectors)
     for mesh in geometry.meshes:
         vertices = np.asarray(mesh.vertices, dtype=float)
         faces = np.asarray(mesh.faces, dtype=np.int64)
