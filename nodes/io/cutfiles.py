@@ -392,7 +392,7 @@ def lay_out(
     same drawing: only those can be "the same outline given twice"; panels of separate
     developments may lie on top of each other in the plane and are still separate parts.
     ``gap`` is the space between parts, ``margin`` the space from the sheet's edges (the
-    gap when None). ``nesting`` is :data:`TRUE_SHAPE` (sparrow, ``budget`` seconds,
+    gap when None). ``nesting`` is :data:`TRUE_SHAPE` (sparrow, ``budget`` nominal seconds,
     ``seed``; ``stop`` and ``report`` as in :func:`~nodes.geometry.nesting.nest`) or
     :data:`SHELF`. ``grain``: parts turn only by 0° or 180°; ``rotate`` False: not at all.
     ``seams`` (:func:`~nodes.io.seams.find_seams`, between flat surfaces among the panels)
@@ -475,6 +475,9 @@ def lay_out(
         except NestingFailed as exc:
             raise FileFailure(f"TrueShape nesting failed: {exc} (Nesting = Shelf still works)") from None
         stopped = nested.stopped
+        if nested.on_the_clock:
+            notes.append("TrueShape nesting ran out of time before its steps (a very busy machine): this "
+                         "layout may differ from run to run")
         nested_cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
         # the shelf layout is instant: keep it when the search did not beat it (rectangles)
         if _stock(shelf_of, shelf_cuts) < _stock(nested.sheet, nested_cuts):

@@ -7,7 +7,7 @@ from typing import Any
 
 from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
-from engine.types import BOOLEAN, NUMBER, TEXT, ValueType, register_type
+from engine.types import BOOLEAN, NUMBER, TEXT, ValueType
 from nodes.common.checks import number
 from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.surface_base import Surface
@@ -43,11 +43,11 @@ def _layout_summary(layout: CutLayout) -> dict[str, Any]:
     }
 
 
-CUT_LAYOUT = register_type(ValueType(
+CUT_LAYOUT = ValueType(
     "CutLayout", (CutLayout,),
     "Flat panels laid out on sheets, in mm: what a cut file holds.",
     summarize=_layout_summary,
-))
+)
 
 
 class ExportCutSheet(Node):
@@ -63,9 +63,11 @@ class ExportCutSheet(Node):
     sheet's edges. Nesting TrueShape nests the parts' true outlines with sparrow,
     the state of the art in irregular strip packing, filling one sheet after the other
     and leaving the last one as short as it can (its offcut goes back to stock); it
-    searches for TimeBudget seconds with the random Seed (the search runs against the
-    clock, so a busy machine may find another layout), and keeps the row layout when
-    that takes less stock. Stop (Esc in the app) keeps the best layout found so far.
+    searches with the random Seed for about TimeBudget seconds of an unloaded machine —
+    the search is counted in steps, not seconds, so the same graph gives the same layout
+    on every run and machine, a busy machine only takes longer (up to ten times the
+    budget and a minute, then it stops with a remark that the layout may differ) — and
+    keeps the row layout when that takes less stock. Stop (Esc in the app) keeps the best layout found so far.
     Nesting Shelf (the default, so graphs made before TrueShape keep their layout)
     places the parts' bounding rectangles in rows, tallest first: instant, more
     sheets. TrueShape turns parts freely (Shelf lays them along the sheet); Grain
@@ -114,7 +116,8 @@ class ExportCutSheet(Node):
            "rectangles in rows: instant).", default=cutfiles.SHELF),
         In("Grain", BOOLEAN, "Gr", "Turn parts only by 0° or 180°, so the grain runs the same way in all.",
            default=False),
-        In("TimeBudget", NUMBER, "T", "Seconds TrueShape nesting searches (at least 1).", default=10.0),
+        In("TimeBudget", NUMBER, "T", "Size of TrueShape nesting's search, in seconds of an unloaded machine "
+           "(at least 1; counted in steps, so the layout repeats).", default=10.0),
         In("Seed", NUMBER, "Sd", "Seed of TrueShape nesting's random search.", default=0),
         In("Reference", BOOLEAN, "Rf", "Also draw the drawn (un-offset) outlines on layer REFERENCE.",
            default=False),

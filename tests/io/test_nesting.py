@@ -282,3 +282,49 @@ def test_true_shape_never_takes_more_stock_than_shelf_packing(panels):
 
     shelf, true = layout("Shelf"), layout("TrueShape")
     assert (true.sheets, true.last_length) <= (shelf.sheets, shelf.last_length + 1e-9)
+
+
+# ------------------------------------------------------------------ repeatability
+
+
+def _nested_once(shapes, budget=2.0):
+    from nodes.geometry import nesting
+
+    nesting._PACKED.clear()  # the cache would answer a repeat without searching
+    return nest(shapes, 1250.0, 1250.0, 10.0, 10.0, budget=budget, seed=3)
+
+
+def test_the_same_parts_and_seed_give_the_same_layout_even_on_a_busy_machine():
+    """The budget is counted in sparrow's steps, not seconds: a run alone and one beside
+    three others that each run a sparrow worker too (so the machine is busy) agree to the bit."""
+    shapes = [np.asarray(p.points[:-1, :2]) * 1000 for p in random_panels(16, seed=4)]
+    alone = _nested_once(shapes)
+    busy: list = []
+    threads = [threading.Thread(target=lambda: busy.append(
+        nest(shapes, 1250.0, 1250.0, 10.0, 10.0, budget=2.0, seed=3 + k))) for k in range(1, 4)]
+    for thread in threads:
+        thread.start()
+    again = _nested_once(shapes)
+    for thread in threads:
+        thread.join()
+    assert not alone.on_the_clock and not again.on_the_clock
+    assert alone.sheets == again.sheets and alone.steps == again.steps
+    np.testing.assert_array_equal(alone.sheet, again.sheet)
+    np.testing.assert_array_equal(alone.angle, again.angle)
+    np.testing.assert_array_equal(alone.shift, again.shift)
+
+
+def test_a_sheet_is_cut_where_the_strip_holds_the_most_part_area():
+    """Three 100 mm squares at x = 0, 300 and 600 along a strip, a 500 mm sheet with a
+    10 mm margin: from 0 the sheet holds the first two (from x = 290 too, but later); a
+    120 mm square at 900 makes the stretches holding the third and it the best, the first
+    of them ending where the big one ends plus the margin: 1020 + 10 - 500 = 530."""
+    from nodes.geometry.nesting import _window
+
+    def squares(*corners_and_sides):
+        return {k: shapely.box(x, 10, x + side, 10 + side) for k, (x, side) in enumerate(corners_and_sides)}
+
+    small = squares((10, 100), (300, 100), (600, 100))
+    assert _window(small, np.array([1e4, 1e4, 1e4]), 500.0, 10.0) == 0.0
+    big = squares((10, 100), (300, 100), (600, 100), (900, 120))
+    assert _window(big, np.array([1e4, 1e4, 1e4, 14400]), 500.0, 10.0) == pytest.approx(530.0)
