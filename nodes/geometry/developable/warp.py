@@ -50,6 +50,8 @@ PARALLEL = 1e-10
 def _mask(value: ArrayLike | None, n: int) -> BoolArray | None:
     if value is None:
         return None
+    if isinstance(value, np.ndarray) and value.dtype == bool and value.shape == (n,):
+        return value  # (the usual case: np.broadcast_to costs more than the rest of a row's test)
     return np.broadcast_to(np.asarray(value, dtype=bool), (n,))
 
 
