@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from engine.datatree import is_array
 from engine.node import NodeWarning
 
 if TYPE_CHECKING:
@@ -65,7 +66,7 @@ def within_bounds(tree: DataTree, port: In) -> DataTree:
     value outside them. One pass over the items, however many branches they are in."""
     if port.min is None and port.max is None:
         return tree
-    lists = [b for b in tree.raw_branches if not isinstance(b, np.ndarray)]
+    lists = [b for b in tree.raw_branches if not is_array(b)]
     numbers = [v for v in chain.from_iterable(lists) if type(v) is int or type(v) is float]
     for array in tree.raw_branches:  # an array branch by its least and greatest value
         if isinstance(array, np.ndarray) and array.dtype.kind in "if" and len(array):

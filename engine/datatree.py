@@ -13,8 +13,49 @@ from typing import Any
 import numpy as np
 
 Path = tuple[int, ...]
-#: a branch as a tree stores it: a list of items, or a read-only 1-D numpy array
-Branch = list[Any] | np.ndarray
+
+
+class Triples:
+    """A branch of points or vectors held as one read-only ``(n, 3)`` float64 array.
+
+    ``item_class`` (:class:`~engine.values.Point` or :class:`~engine.values.Vector`) is
+    what an item is when the branch is read item by item (indexing, ``tolist``).
+    """
+
+    __slots__ = ("array", "item_class")
+
+    def __init__(self, array: np.ndarray, item_class: type) -> None:
+        array = np.asarray(array, dtype=np.float64)
+        if array.ndim != 2 or array.shape[1] != 3:
+            raise ValueError(f"points and vectors are held as an (n, 3) array, not {array.shape}")
+        if array.flags.writeable:
+            array = array.view()
+            array.flags.writeable = False
+        self.array = array
+        self.item_class = item_class
+
+    def __len__(self) -> int:
+        return len(self.array)
+
+    def __getitem__(self, index: Any) -> Any:
+        if isinstance(index, slice):
+            return Triples(self.array[index], self.item_class)
+        return tuple.__new__(self.item_class, self.array[index].tolist())
+
+    def tolist(self) -> list[Any]:
+        """The items as :attr:`item_class` values (three Python floats each)."""
+        make, cls = tuple.__new__, self.item_class
+        return [make(cls, row) for row in self.array.tolist()]
+
+    def same_kind(self, other: object) -> bool:
+        return isinstance(other, Triples) and other.item_class is self.item_class
+
+    def __repr__(self) -> str:
+        return f"Triples({self.item_class.__name__}, {len(self)})"
+
+
+#: a branch as a tree stores it: a list of items, a read-only 1-D numpy array, or Triples
+Branch = list[Any] | np.ndarray | Triples
 
 
 def format_path(path: Path) -> str:
@@ -38,7 +79,10 @@ def parse_path(text: str) -> Path:
 
 def stored(items: Iterable[Any]) -> Branch:
     """``items`` as a branch is stored: a 1-D array of float64, int64 or bool as it is (made
-    read-only, since trees share their branches), anything else as a new list."""
+    read-only, since trees share their branches), points or vectors as :class:`Triples`,
+    anything else as a new list."""
+    if isinstance(items, Triples):
+        return items
     if isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES:
         if items.flags.writeable:
             items = items.view()
@@ -49,8 +93,26 @@ def stored(items: Iterable[Any]) -> Branch:
 
 def as_list(branch: Branch) -> list[Any]:
     """A branch as a list of Python values (an array's numbers as ``float``, ``int`` or
-    ``bool``); a list branch is returned as it is."""
-    return branch.tolist() if isinstance(branch, np.ndarray) else branch
+    ``bool``, points as points); a list branch is returned as it is."""
+    return branch.tolist() if isinstance(branch, np.ndarray | Triples) else branch
+
+
+def is_array(branch: Branch) -> bool:
+    """Whether ``branch`` is held as an array (numbers, or :class:`Triples`)."""
+    return isinstance(branch, np.ndarray | Triples)
+
+
+def same_array_kind(a: Branch, b: Branch) -> bool:
+    """Whether two array branches can be joined into one array (same dtype, or same points)."""
+    if isinstance(a, Triples):
+        return a.same_kind(b)
+    return isinstance(a, np.ndarray) and isinstance(b, np.ndarray) and a.dtype == b.dtype
+
+
+def _joined(branches: list[Branch]) -> Branch:
+    if isinstance(branches[0], Triples):
+        return Triples(np.concatenate([b.array for b in branches]), branches[0].item_class)
+    return stored(np.concatenate(branches))
 
 
 #: the dtypes a branch is kept in as an array: Number, Integer and Boolean items
@@ -147,7 +209,7 @@ class DataTree:
         """The first item of the first non-empty branch (``None`` if there is none)."""
         for branch in self._branches.values():
             if len(branch):
-                return branch[0].item() if isinstance(branch, np.ndarray) else branch[0]
+                return branch[0].item() if isinstance(branch, np.ndarray) else branch[0]  # Triples: a Point
         return None
 
     def _list_at(self, path: Path) -> list[Any]:
@@ -155,7 +217,7 @@ class DataTree:
         branch = self._branches.get(path)
         if branch is None:
             branch = self._branches[path] = []
-        elif isinstance(branch, np.ndarray):
+        elif is_array(branch):
             branch = self._branches[path] = branch.tolist()
         return branch
 
@@ -165,13 +227,14 @@ class DataTree:
     def extend(self, path: Path, items: Iterable[Any]) -> None:
         """Add ``items`` at the end of branch ``path``; an array into an empty (or an array)
         branch of the same dtype stays an array."""
-        if isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES:
+        if isinstance(items, Triples) or (
+                isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES):
             branch = self._branches.get(path)
             if branch is None or len(branch) == 0:
                 self._branches[path] = stored(items)
                 return
-            if isinstance(branch, np.ndarray) and branch.dtype == items.dtype:
-                self._branches[path] = stored(np.concatenate([branch, items]))
+            if same_array_kind(branch, items):
+                self._branches[path] = _joined([branch, items])
                 return
             items = items.tolist()
         self._list_at(path).extend(items)
@@ -190,6 +253,9 @@ class DataTree:
             if isinstance(mine, np.ndarray) and isinstance(theirs, np.ndarray):
                 if mine.dtype != theirs.dtype or not np.array_equal(
                         mine, theirs, equal_nan=mine.dtype.kind == "f"):
+                    return False
+            elif isinstance(mine, Triples) and mine.same_kind(theirs):
+                if not np.array_equal(mine.array, theirs.array, equal_nan=True):
                     return False
             elif as_list(mine) != as_list(theirs):
                 return False
@@ -224,9 +290,8 @@ class DataTree:
         """All items, in path order, into ``{0}``."""
         tree = DataTree()
         branches = list(self._branches.values())
-        dtypes = {b.dtype if isinstance(b, np.ndarray) else None for b in branches}
-        if branches and len(dtypes) == 1 and None not in dtypes:  # arrays of one dtype: one array
-            tree._branches[(0,)] = stored(np.concatenate(branches))
+        if branches and is_array(branches[0]) and all(same_array_kind(branches[0], b) for b in branches):
+            tree._branches[(0,)] = _joined(branches)  # arrays of one kind: one array
         else:
             tree._branches[(0,)] = self.all_items()
         return tree

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from engine.bounds import within_bounds
-from engine.datatree import Branch, DataTree, Path, apply_modifiers, as_list, format_path
+from engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path, is_array
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.node import (
     ITEM,
@@ -36,7 +36,8 @@ from engine.node import (
     NodeWarning,
 )
 from engine.solve_context import SolveContext, solving
-from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, TEXT, CastError, cast, decode_value
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, VECTOR, CastError, cast, decode_value
+from engine.values import Point, Vector
 from engine.writes import WriteAccess
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
@@ -212,7 +213,7 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
     classes = port.type.classes
     needs_cast = False
     for branch in tree.raw_branches:
-        if isinstance(branch, np.ndarray):
+        if is_array(branch):
             if not array_fits(branch, port):
                 needs_cast = True
                 break
@@ -238,7 +239,7 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
 
     out: dict[Path, Any] = {}
     for path, branch in tree.raw_items():
-        cast_array = cast_array_branch(branch, port) if isinstance(branch, np.ndarray) else None
+        cast_array = cast_array_branch(branch, port) if is_array(branch) else None
         if cast_array is not None:
             out[path] = cast_array
         else:
@@ -250,19 +251,26 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
 _DTYPE_OF = {
     NUMBER.name: np.dtype(np.float64), INTEGER.name: np.dtype(np.int64), BOOLEAN.name: np.dtype(np.bool_),
 }
+_TRIPLE_OF = {POINT.name: Point, VECTOR.name: Vector}
 _INT_LIMIT = 2.0**62  # floats below this round to an int64 exactly
 
 
-def array_fits(array: np.ndarray, port: In) -> bool:
+def array_fits(array: np.ndarray | Triples, port: In) -> bool:
     """Whether an array branch's items are already of ``port``'s type (as a list's would be)."""
+    if isinstance(array, Triples):
+        return _TRIPLE_OF.get(port.type.name) is array.item_class
     dtype = _DTYPE_OF.get(port.type.name)
     return dtype is not None and array.dtype == dtype
 
 
-def cast_array_branch(array: np.ndarray, port: In) -> np.ndarray | None:
+def cast_array_branch(array: np.ndarray | Triples, port: In) -> np.ndarray | Triples | None:
     """An array branch cast to ``port``'s type as one array, or None to cast item by item
     (a cast that is not plain, or a value whose message must name it). A NaN is refused
-    as for a list ("... is not a number (NaN)"), never read as 0 or true."""
+    as for a list ("... is not a number (NaN)"), never read as 0 or true. Points into a
+    Vector input (and vectors into a Point input) keep their numbers."""
+    if isinstance(array, Triples):
+        item_class = _TRIPLE_OF.get(port.type.name)
+        return None if item_class is None else Triples(array.array, item_class)
     target = _DTYPE_OF.get(port.type.name)
     if target is None:
         return None
@@ -400,9 +408,10 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
 
 def _for_port(branch: Branch, port: In) -> Branch:
     """A branch as ``port`` receives it: an array as it is for a list input that takes
-    arrays (``In(..., arrays=True)``), otherwise a list of Python values."""
+    arrays (``In(..., arrays=True)``; points and vectors as an (n, 3) array), otherwise a
+    list of Python values."""
     if port.arrays and port.access is LIST:
-        return branch
+        return branch.array if isinstance(branch, Triples) else branch
     return as_list(branch)
 
 
@@ -491,6 +500,8 @@ def _store(
                 column.append(value)
     for port, column in zip(out_ports, columns, strict=True):
         tree = outputs[port.name]
+        if port.access is LIST and port.type.name in _TRIPLE_OF:  # (n, 3) arrays: Triples
+            column = [_as_triples(values, port) for values in column]
         if port.access is ITEM:
             tree.extend(path, column)
         elif port.access is LIST:
@@ -505,6 +516,14 @@ def _store(
                 if isinstance(value, DataTree):
                     for sub_path, branch in value.raw_items():
                         tree.extend(sub_path, branch)
+
+
+def _as_triples(values: Any, port: Any) -> Any:
+    """A node's ``(n, 3)`` float array for a list output of points or vectors, as Triples."""
+    if (isinstance(values, np.ndarray) and values.ndim == 2 and values.shape[1] == 3
+            and values.dtype.kind in "fi"):
+        return Triples(values, _TRIPLE_OF[port.type.name])
+    return values
 
 
 def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:

@@ -29,7 +29,7 @@ class Random(Node):
     )
     outputs = (Out("Random", NUMBER, "R", "The random numbers, in the Range.", access=LIST),)
 
-    def solve(self, domain: Domain, number: int, seed: int) -> list[float]:
+    def solve(self, domain: Domain, number: int, seed: int) -> np.ndarray:
         if domain is None:
             raise NodeWarning("Range is empty (null)")
         low, high = finite("Range start", domain.min), finite("Range end", domain.max)
@@ -38,4 +38,4 @@ class Random(Node):
         if s < 0:
             raise NodeWarning(f"Seed must be 0 or more, not {s}")
         rng = np.random.default_rng(s)
-        return (low + (high - low) * rng.random(n)).tolist()
+        return low + (high - low) * rng.random(n)  # kept as an array branch

@@ -49,11 +49,11 @@ class Range(Node):
     )
     outputs = (Out("Range", NUMBER, "R", "The Steps + 1 numbers, both ends included.", access=LIST),)
 
-    def solve(self, domain: Domain, steps: int) -> list[float]:
+    def solve(self, domain: Domain, steps: int) -> np.ndarray:
         if domain is None:
             raise NodeWarning("Domain is empty (null)")
         low, high = finite("Domain start", domain.min), finite("Domain end", domain.max)
         n = count("Steps", steps, least=1)
         values = np.linspace(low, high, n + 1)
         values[-1] = high  # exactly the end, whatever the rounding
-        return values.tolist()
+        return values  # kept as an array branch

@@ -1,4 +1,4 @@
-"""Branches of numbers, integers and booleans held as numpy arrays (issue 16, item 1).
+"""Branches of numbers, integers, booleans, points and vectors held as numpy arrays (issue 16, item 1).
 
 An array branch is the same data as the list of its items: nodes iterating a tree see
 Python values, trees compare equal, the modifiers and the matching rules give what they
@@ -14,11 +14,12 @@ import numpy as np
 import pytest
 
 from engine.bounds import within_bounds
-from engine.datatree import DataTree, apply_modifiers
+from engine.datatree import DataTree, Triples, apply_modifiers
 from engine.graph import Graph
 from engine.node import ITEM, LIST, In, Node, NodeError, NodeWarning, Out
 from engine.solver import OK, Solver, cast_tree, merge_trees
-from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, summarize_value
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, VECTOR, summarize_value
+from engine.values import Point, Vector
 
 
 def array_tree(*branches: list) -> DataTree:
@@ -250,3 +251,93 @@ def test_an_array_of_numbers_into_an_integer_list_input_arrives_as_integers():
     assert solver.result("take").state == OK
     assert solver.result("take").output("Out").all_items() == [0, 1, 2]
     assert [type(v) for v in solver.result("take").output("Out").all_items()] == [int] * 3
+
+
+# --------------------------------------------------------------------------- points and vectors
+
+class Grid(Node):
+    """Outputs Count points (i, 2i, 3i) as one (n, 3) array."""
+
+    type_id = "test.ArrayPoints"
+    inputs = (In("Count", INTEGER, "C", "How many.", default=3),)
+    outputs = (Out("Points", POINT, "P", "The points.", access=LIST),)
+
+    def solve(self, count: int) -> np.ndarray:
+        return np.arange(count, dtype=np.float64)[:, None] * np.array([1.0, 2.0, 3.0])
+
+
+def points_into(value_type, access=LIST, arrays: bool = False) -> Solver:
+    class Take(Node):
+        type_id = f"test.ArrayTake{value_type.name}{access}{arrays}"
+        inputs = (In("Value", value_type, "V", "What comes in.", access=access, arrays=arrays),)
+        outputs = (Out("Out", GENERIC, "O", "What came in.", access=access),)
+
+        def solve(self, value):
+            Seen.seen.append(value)
+            return value
+
+    Seen.seen = []
+    graph = Graph()
+    graph.add_node(Grid(), "grid")
+    graph.add_node(Take(), "take")
+    graph.connect("grid", "Points", "take", "Value")
+    solver = Solver(graph)
+    solver.solve()
+    return solver
+
+
+def test_an_n_by_3_array_from_a_point_list_output_is_held_as_one_array():
+    (branch,) = points_into(POINT).result("grid").output("Points").raw_branches
+    assert isinstance(branch, Triples) and branch.array.shape == (3, 3)
+
+
+def test_a_point_array_branch_is_read_as_points():
+    items = points_into(POINT).result("grid").output("Points").all_items()
+    assert items == [Point(0, 0, 0), Point(1, 2, 3), Point(2, 4, 6)]
+    assert {type(p) for p in items} == {Point}
+
+
+def test_a_point_list_input_receives_points():
+    points_into(POINT)
+    assert Seen.seen == [[Point(0, 0, 0), Point(1, 2, 3), Point(2, 4, 6)]]
+
+
+def test_a_point_input_that_takes_arrays_receives_the_n_by_3_array():
+    points_into(POINT, arrays=True)
+    (given,) = Seen.seen
+    assert isinstance(given, np.ndarray) and given.tolist() == [[0, 0, 0], [1, 2, 3], [2, 4, 6]]
+
+
+def test_points_into_a_vector_input_become_vectors_with_the_same_numbers():
+    points_into(VECTOR)
+    assert Seen.seen == [[Vector(0, 0, 0), Vector(1, 2, 3), Vector(2, 4, 6)]]
+    assert {type(v) for v in Seen.seen[0]} == {Vector}
+
+
+def test_points_into_a_text_input_are_written_item_by_item():
+    points_into(TEXT, access=ITEM)
+    assert Seen.seen == ["{0, 0, 0}", "{1, 2, 3}", "{2, 4, 6}"]
+
+
+def test_points_into_a_number_input_are_refused_as_a_list_of_points_is():
+    messages = []
+    for tree in (DataTree({(0,): Triples(np.zeros((1, 3)), Point)}), DataTree({(0,): [Point(0, 0, 0)]})):
+        with pytest.raises(NodeError) as caught:
+            cast_tree(tree, port(NUMBER))
+        messages.append(str(caught.value))
+    assert messages[0] == messages[1]
+
+
+@pytest.mark.parametrize(
+    "modifiers", [["graft"], ["flatten"], ["simplify"], ["reverse"], ["graft", "flatten"]]
+)
+def test_modifiers_on_point_arrays_give_what_they_give_on_lists(modifiers):
+    rows = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    arrays = DataTree({(0, 0): Triples(rows, Point), (0, 1): Triples(rows[:1], Point)})
+    lists = DataTree({(0, 0): [Point(1, 2, 3), Point(4, 5, 6)], (0, 1): [Point(1, 2, 3)]})
+    assert apply_modifiers(arrays, modifiers) == apply_modifiers(lists, modifiers)
+
+
+def test_point_items_are_summarised_as_before():
+    (point,) = DataTree({(0,): Triples(np.array([[1.0, 2.5, 3.0]]), Point)}).all_items()
+    assert summarize_value(point) == {"type": "Point", "xyz": [1.0, 2.5, 3.0]}
