@@ -184,7 +184,9 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
     (:mod:`nodes.geometry.sparrow_worker`) that a stop ends at once; the best feasible
     packing it reported by then is kept."""
     job = {
-        "shapes": [[i, shapes[i].tolist()] for i in members], "height": float(height),
+        # to a micrometre: below what sparrow's single precision holds on a sheet, and
+        # rounding noise (a far site) then asks the same job
+        "shapes": [[i, np.round(shapes[i], 3).tolist()] for i in members], "height": float(height),
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
