@@ -345,13 +345,19 @@ def _fan_extent(strip: Strip, s_star: float, t0: float, t1: float) -> tuple[floa
 # -- closing the stretches without a torsal ruling ------------------------------------------------
 
 
-def close_gaps(strip: Strip, t: FloatArray) -> list[tuple[FloatArray, FloatArray]]:
+def close_gaps(
+    strip: Strip, t: FloatArray, fans: list | None = None
+) -> list[tuple[FloatArray, FloatArray]]:
     """Close every run of stations still without a partner (NaN in ``t``) with flat
     triangles (:mod:`.fans`), and the stretches of B beyond the first and the last
     ruling with fans through A's ends.
 
     A stretch of B between two torsal stations that no torsal fan covers (t jumps
-    there: :func:`a_fans` lists it in ``holes``) is closed the same way.
+    there: :func:`a_fans` lists it in ``holes``) is closed the same way. A gap starts
+    where the torsal rulings before it end on B: at the station before it, or at the far
+    end of a torsal fan ``(s*, t_low, t_high)`` through that station (``fans``, those
+    :func:`outside_gaps` keeps), and likewise it ends where those after it begin, so
+    the closing rulings never run back over B (they would cross the fan's).
 
     Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
     """
@@ -372,6 +378,11 @@ def close_gaps(strip: Strip, t: FloatArray) -> list[tuple[FloatArray, FloatArray
         k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
         t_lo = float(t[i0 - 1]) if i0 > 0 else 0.0
         t_hi = float(t[i1 + 1]) if i1 < n - 1 else (float(t[0]) if closed and i0 > 0 else 1.0)
+        for fan in fans or ():  # a torsal fan through the station before (after) the gap
+            if i0 > 0 and fan[0] == strip.s[i0 - 1] and t_lo < fan[2] <= t_hi:
+                t_lo = fan[2]
+            if i1 < n - 1 and fan[0] == strip.s[i1 + 1] and t_lo <= fan[1] < t_hi:
+                t_hi = fan[1]
         if t_hi < t_lo and not closed:
             t_hi = t_lo
         if t_hi < t_lo:  # through the seam of a closed B

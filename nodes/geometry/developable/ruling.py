@@ -248,8 +248,8 @@ def _solve(
     for _ in range(MAX_CHECKS):
         gap = np.isnan(t)
         closed_t = t.copy()
-        added = close_gaps(strip, closed_t)
         kept = outside_gaps(fans, strip.s, gap)
+        added = close_gaps(strip, closed_t, kept)
         s_out, t_out, source, fan = _merge(strip, closed_t, gap, kept, added)
         # the warp of the output, from the curves' exact tangents (NaN where undefined)
         starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
