@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike
 
 from .arclength import LengthTable
 from .array_types import FloatArray
-from .closest import closest_parameters, search_parameters
+from .closest import SearchSamples, closest_parameters, search_parameters, search_samples
 from .roots import roots_in_samples
 from .tessellate import tessellation_parameters
 from .transforms import check_matrix, is_affine
@@ -263,14 +263,21 @@ class Curve(ABC):
         """Samples for closest points, bounds and intersections (see ``closest.py``)."""
         return search_parameters(self)
 
+    @cached_property
+    def _search_samples(self) -> SearchSamples:
+        """The search samples' points, tangents and k-d tree (see ``closest.py``)."""
+        return search_samples(self)
+
     # -- closest point --------------------------------------------------------------------
 
     def closest_point(self, points: ArrayLike) -> ClosestPoints:
         """Closest points on the curve to each of ``points`` (``(n, 3)`` or one point).
 
-        Dense sampling locates each point's nearest stretch of curve, then Newton's
-        method on ``(C − P)·C' = 0``, safeguarded by a bracket, converges to rounding.
-        Always returns arrays (one row per query point).
+        The global minimum of the distance: samples that turn by at most a few degrees
+        apiece bound where it can be (every stretch of curve that could hold it is
+        examined), then Newton's method on ``(C − P)·C' = 0``, safeguarded by a bracket,
+        converges to rounding in each (see ``closest.py``). Always returns arrays (one
+        row per query point).
         """
         p = as_points(points)
         t = closest_parameters(self, p)

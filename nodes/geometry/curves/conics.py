@@ -13,7 +13,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..vectors import WORLD_XY, Plane, as_vector
+from ..array_types import FloatArray
+from ..curve_base import ClosestPoints
+from ..vectors import WORLD_XY, Plane, as_points, as_vector
 from .nurbs import NurbsCurve
 
 
@@ -31,6 +33,48 @@ def _arc_arrays(
     interior = np.repeat(np.arange(1, segments) / segments, 2)
     knots = np.concatenate([[0.0] * 3, interior, [1.0] * 3])
     return points, weights, knots
+
+
+def _parameters_at_angles(angles: FloatArray, sweep: float) -> FloatArray:
+    """The curve parameter ``t`` at angles ``0 ≤ angles ≤ sweep`` from the arc's start.
+
+    On each rational quadratic segment (sweep 2h, local parameter u in [0, 1]) the point
+    at angle φ from the segment's start has tan((φ − h)/2) = tan(h/2)·(2u − 1)."""
+    segments = max(1, math.ceil(sweep / (math.pi / 2) - 1e-9))
+    half = sweep / segments / 2
+    segment = np.clip(np.floor(angles / (2 * half)), 0, segments - 1)
+    phi = angles - segment * 2 * half
+    u = 0.5 + 0.5 * np.tan((phi - half) / 2) / math.tan(half / 2)
+    return (segment + np.clip(u, 0.0, 1.0)) / segments
+
+
+def _closest_on_arc(
+    plane: Plane, radius: float, start_angle: float, sweep: float, points: FloatArray
+) -> ClosestPoints:
+    """Closest points on the arc, in closed form: each query projected onto the plane,
+    then radially onto the circle; a foot outside the arc goes to the nearer end. A query
+    on the axis (every point equally near; to 1e-12 of the radius and height) gets the
+    arc's start; a non-finite one gets t = 0."""
+    local = plane.to_local(points)
+    finite = np.isfinite(local).all(axis=1)
+    x, y = np.where(finite, local[:, 0], 0.0), np.where(finite, local[:, 1], 0.0)
+    # on the axis to rounding (every point of the circle equally near): the start
+    on_axis = np.hypot(x, y) <= 1e-12 * (radius + np.abs(np.where(finite, local[:, 2], 0.0)))
+    angle = np.where(on_axis, 0.0, np.mod(np.arctan2(y, x) - start_angle, 2 * math.pi))
+    inside = angle <= sweep
+    if not inside.all():  # beyond the arc: the nearer end (the start on a tie)
+        ends = plane.point_at(radius * np.cos([start_angle, start_angle + sweep]),
+                              radius * np.sin([start_angle, start_angle + sweep]))
+        to_start = np.linalg.norm(points - ends[0], axis=1)
+        to_end = np.linalg.norm(points - ends[1], axis=1)
+        angle = np.where(inside, angle, np.where(to_end < to_start, sweep, 0.0))
+    angle = np.where(finite, angle, 0.0)
+    t = _parameters_at_angles(angle, sweep)
+    if sweep >= 2 * math.pi:
+        t = np.where(angle >= 2 * math.pi, 0.0, t)
+    at = start_angle + angle
+    closest = plane.point_at(radius * np.cos(at), radius * np.sin(at))
+    return ClosestPoints(t, closest, np.linalg.norm(points - closest, axis=1))
 
 
 def _check_radius(radius: float) -> float:
@@ -80,6 +124,11 @@ class Circle(NurbsCurve):
         """The circumference 2πr, exactly."""
         return 2 * math.pi * self.radius
 
+    def closest_point(self, points: ArrayLike) -> ClosestPoints:
+        """Closest points on the circle, in closed form: each point projected onto the
+        circle's plane, then radially onto the circle (a point on the axis gets the start)."""
+        return _closest_on_arc(self.plane, self.radius, 0.0, 2 * math.pi, as_points(points))
+
     @classmethod
     def from_three_points(cls, a: ArrayLike, b: ArrayLike, c: ArrayLike) -> Circle:
         """The circle through three points, starting at ``a`` and passing ``b`` then ``c``."""
@@ -128,6 +177,12 @@ class Arc(NurbsCurve):
     def length(self) -> float:
         """The arc length r·sweep, exactly."""
         return self.radius * self.sweep
+
+    def closest_point(self, points: ArrayLike) -> ClosestPoints:
+        """Closest points on the arc, in closed form: each point projected onto the arc's
+        plane, then radially onto its circle; where that foot is off the arc, the nearer
+        of the arc's two ends."""
+        return _closest_on_arc(self.plane, self.radius, self.start_angle, self.sweep, as_points(points))
 
     @classmethod
     def from_three_points(cls, start: ArrayLike, through: ArrayLike, end: ArrayLike) -> Arc:
