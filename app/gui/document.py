@@ -166,7 +166,6 @@ class Document(QObject):
 
     def close(self) -> None:
         """Stop the worker (the app is closing): cancel, and wait a little for it. A node
-        that never checks for cancellation is left to finish on its daemon thread."""
-        self.solves.auto = False
-        self.solves.cancel()
-        self.solves.wait(timeout=1.0)
+        that never checks for cancellation is left to finish on its daemon thread, its
+        results going nowhere (:meth:`SolveController.shutdown`)."""
+        self.solves.shutdown(timeout=1.0)

@@ -37,6 +37,12 @@ PARTIAL_INTERVAL = 0.25
 GIL_SWITCH_INTERVAL = 0.0005
 
 
+#: Controllers of closed documents whose worker outlived the close (see
+#: :meth:`SolveController.shutdown`): kept, silenced, for the rest of the process — a Qt
+#: object may only be deleted on its own (the GUI) thread, and this is rare and small.
+_DRAINING: set[SolveController] = set()
+
+
 @dataclass
 class SolveOutcome:
     """What one solve produced: its report and a snapshot of every node's result."""
@@ -135,6 +141,21 @@ class SolveController(QObject):
             self._token.cancel()
             return True
         return False
+
+    def shutdown(self, timeout: float = 1.0) -> None:
+        """Stop for good (the document is closing): cancel, wait up to ``timeout`` s, and
+        if a node that never checks for cancellation keeps the worker running, silence
+        this controller and keep it alive: its Qt object must not be deleted with the
+        document while the worker may still emit through it (a signal of a deleted
+        object, emitted from another thread, aborts the process)."""
+        self.auto = False
+        self.cancel()
+        if self.wait(timeout):
+            return
+        self.prepare = None  # the viewport it drew for is going too
+        self.blockSignals(True)
+        self.setParent(None)  # owned by Python from now on, not by the closing document
+        _DRAINING.add(self)
 
     def wait(self, timeout: float | None = None) -> bool:
         """Block until the worker stops (tests and shutdown); True if it did."""

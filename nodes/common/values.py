@@ -1,6 +1,6 @@
 """The geometry value types: what the kernel's objects are called on wires and in results.
 
-Registered with the engine's type registry when ``nodes`` is imported, so casts such as
+Declared by the library (``VALUE_TYPES`` in ``nodes/__init__.py``), so casts such as
 Line → Curve, Surface → Mesh and Mesh ↔ MeshSurface work on every wire, and ``torsal run
 --json`` describes geometry by its key figures (lengths, areas, bounding boxes). Import
 a type from here to declare a port of it.
@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import trimesh
 
-from engine.types import ValueType, register_cast, register_type
+from engine.types import ValueType, register_cast
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
@@ -96,27 +96,25 @@ def _development_summary(development: Development) -> dict[str, Any]:
     }
 
 
-CURVE = register_type(ValueType("Curve", (Curve,), "A curve, parameterised on [0, 1].",
-                                summarize=_curve_summary))
-LINE = register_type(ValueType(
+CURVE = ValueType("Curve", (Curve,), "A curve, parameterised on [0, 1].", summarize=_curve_summary)
+LINE = ValueType(
     "Line", (Line,), "A straight segment.",
     encode=lambda line: {"type": "Line", "from": _xyz(line.start), "to": _xyz(line.end)},
     decode=_line_decode,
     summarize=_line_summary,
-))
-SURFACE = register_type(ValueType("Surface", (Surface,), "A surface, parameterised on [0, 1]².",
-                                  summarize=_surface_summary))
-MESH = register_type(ValueType("Mesh", (trimesh.Trimesh,), "A triangle mesh.", summarize=_mesh_summary))
-MESH_SURFACE = register_type(ValueType(
+)
+SURFACE = ValueType("Surface", (Surface,), "A surface, parameterised on [0, 1]².", summarize=_surface_summary)
+MESH = ValueType("Mesh", (trimesh.Trimesh,), "A triangle mesh.", summarize=_mesh_summary)
+MESH_SURFACE = ValueType(
     "MeshSurface", (MeshSurface,),
     "A triangle mesh used as a surface: area, closest point and discrete curvature, no (u, v).",
     summarize=_mesh_surface_summary,
-))
-DEVELOPMENT = register_type(ValueType(
+)
+DEVELOPMENT = ValueType(
     "Development", (Development,),
     "A ruled surface unrolled into the XY plane, with the map between the plane and the surface.",
     summarize=_development_summary,
-))
+)
 
 register_cast(SURFACE, MESH, lambda surface: surface.to_mesh())
 register_cast(MESH_SURFACE, MESH, lambda surface: surface.to_mesh())

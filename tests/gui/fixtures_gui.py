@@ -82,6 +82,11 @@ def make_window(qtbot: Any, registry: Registry, folder: Path) -> MainWindow:
 
 
 def close_window(window: MainWindow) -> None:
+    """Close a test's window once its solve has stopped: a test that failed mid-solve must
+    not leave a worker running into the next test (on a loaded machine a solve can
+    outlast the document's one-second wait at close)."""
+    window.doc.solves.cancel()
+    window.doc.solves.wait(30.0)
     window.doc.undo_stack.setClean()
     window.close()
     QApplication.processEvents()

@@ -24,18 +24,20 @@ from app.gui.canvas.wire_item import WireItem
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.solve_controller import SolveOutcome
+from engine.events import (
+    NODE_REDRAWN,
+    GroupEvent,
+    NodeAdded,
+    NodeMoved,
+    NodeRemoved,
+    WireAdded,
+    WireRemoved,
+)
 from engine.graph import GraphEvent, Wire
 from engine.node import LIST, TREE
 
 #: Events that change how a node is drawn (its ports, labels, widget).
-REDRAW_EVENTS = {
-    "setting_changed",
-    "input_changed",
-    "modifiers_changed",
-    "enabled_changed",
-    "preview_changed",
-    "label_changed",
-}
+REDRAW_EVENTS = NODE_REDRAWN
 
 
 class CanvasScene(QGraphicsScene):
@@ -138,30 +140,30 @@ class CanvasScene(QGraphicsScene):
 
     # -- engine events ---------------------------------------------------------------
     def on_graph_event(self, event: GraphEvent) -> None:
-        kind, node_id = event.kind, event.node_id
-        if kind == "node_added":
+        node_id = event.node_id
+        if isinstance(event, NodeAdded):
             self._add_node(node_id)
-        elif kind == "node_removed":
+        elif isinstance(event, NodeRemoved):
             item = self.nodes.pop(node_id, None)
             self._wires_of.pop(node_id, None)
             if item is not None:
                 self._remove_node_item(item)
-        elif kind == "wire_added":
-            self._add_wire(event.data["wire"])
-            self._rewired(event.data["wire"].target)
-        elif kind == "wire_removed":
-            self._remove_wire(event.data["wire"])
-            self._rewired(event.data["wire"].target)
-        elif kind == "node_moved":
+        elif isinstance(event, WireAdded):
+            self._add_wire(event.wire)
+            self._rewired(event.wire.target)
+        elif isinstance(event, WireRemoved):
+            self._remove_wire(event.wire)
+            self._rewired(event.wire.target)
+        elif isinstance(event, NodeMoved):
             item = self.nodes.get(node_id)
-            if item is not None and (item.pos().x(), item.pos().y()) != tuple(event.data["new"]):
+            if item is not None and (item.pos().x(), item.pos().y()) != tuple(event.new):
                 self._syncing_move = True
-                item.setPos(QPointF(*event.data["new"]))
+                item.setPos(QPointF(*event.new))
                 self._syncing_move = False
                 self.node_item_moved(item)
-        elif kind in REDRAW_EVENTS:
+        elif isinstance(event, REDRAW_EVENTS):
             self._refresh_node(node_id)
-        elif kind in ("group_added", "group_removed"):
+        elif isinstance(event, GroupEvent):
             self.refresh_groups()
         self._rect_due = True
         self._finish_timer.start()

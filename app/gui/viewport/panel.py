@@ -19,10 +19,11 @@ from PySide6.QtWidgets import QLabel, QStackedLayout, QToolBar, QVBoxLayout, QWi
 from app.gui import theme
 from app.gui.document import Document
 from app.gui.solve_controller import SolveOutcome
+from engine.events import PREVIEW_CHANGED
 from engine.graph import GraphEvent
 from engine.solver import Solver, SolveReport
 
-REPREVIEW_EVENTS = {"preview_changed", "enabled_changed", "node_removed"}
+REPREVIEW_EVENTS = PREVIEW_CHANGED
 
 
 class ViewportPanel(QWidget):
@@ -127,7 +128,7 @@ class ViewportPanel(QWidget):
 
     # -- updates ---------------------------------------------------------------------
     def _on_graph_event(self, event: GraphEvent) -> None:
-        if event.kind in REPREVIEW_EVENTS:
+        if isinstance(event, REPREVIEW_EVENTS):
             self._refresh_due = True
             self._refresh_timer.start()
 
