@@ -100,6 +100,7 @@ def kaohsiung_cut_sheets() -> None:
            SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
            Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
+    b.wire("strip.Surface", "cut.Strips")  # neighbouring strips' shared edges become seams
     for flat in ("unroll", "model", "cut"):  # the flat parts are for the cutter, not the 3D view
         b.graph.set_preview(flat, False)
     b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
