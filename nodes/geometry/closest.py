@@ -92,26 +92,29 @@ def turning_parameters(curve: Curve, t: FloatArray, max_chord: float, max_turn: 
                        max_points: int = MAX_SAMPLES) -> FloatArray:
     """``t`` subdivided until the tangent at every interval's ends and middle is within
     ``max_turn`` of the interval's chord and no chord is longer than ``max_chord``
-    (intervals shorter than 1e-12 in t are left)."""
+    (intervals shorter than 1e-12 in t are left). Each round measures only the halves
+    of the intervals the last round split."""
     limit = np.cos(max_turn)
-    while len(t) < max_points:
-        a, b = t[:-1], t[1:]
-        middle = 0.5 * (a + b)
-        n = len(a)
+    low, high = t[:-1], t[1:]
+    added = []
+    count = len(t)
+    while len(low) and count < max_points:
+        n = len(low)
+        middle = 0.5 * (low + high)
         # each interval's end tangents from inside it (a kink at a knot is no turn)
-        points, tangents = curve.derivatives(np.concatenate([t, np.nextafter(b, a), middle]), 1)
-        chords = np.diff(points[: n + 1], axis=0)
+        points, tangents = curve.derivatives(np.concatenate([low, np.nextafter(high, low), middle]), 1)
+        chords = points[n : 2 * n] - points[:n]
         worst = np.minimum.reduce([
             _cosine_to_chord(tangents[:n], chords),
-            _cosine_to_chord(tangents[n + 1 : 2 * n + 1], chords),
-            _cosine_to_chord(tangents[2 * n + 1 :], chords),
+            _cosine_to_chord(tangents[n : 2 * n], chords),
+            _cosine_to_chord(tangents[2 * n :], chords),
         ])
         long = np.einsum("ij,ij->i", chords, chords) > max_chord**2
-        split = ((worst < limit) | long) & (b - a > 1e-12)
-        if not split.any():
-            break
-        t = np.sort(np.concatenate([t, middle[split][: max_points - len(t)]]))
-    return t
+        split = np.nonzero(((worst < limit) | long) & (high - low > 1e-12))[0][: max_points - count]
+        added.append(middle[split])
+        count += len(split)
+        low, high = np.concatenate([low[split], middle[split]]), np.concatenate([middle[split], high[split]])
+    return np.sort(np.concatenate([t, *added]))
 
 
 def search_parameters(curve: Curve) -> FloatArray:
