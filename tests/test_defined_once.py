@@ -22,39 +22,8 @@ HOMES = {
     **{name: "nodes/geometry/vec_ops.py" for name in DOT},
 }
 
-#: Copies still to replace by an import: (file, name), with the owner of the file this session.
-KNOWN_COPIES: set[tuple[str, str]] = {
-    # A (ruling speed): nodes/geometry/developable/, rail_tangents.py
-    ("nodes/geometry/developable/candidates.py", "BoolArray"),
-    ("nodes/geometry/developable/candidates.py", "IntArray"),
-    ("nodes/geometry/developable/end_cones.py", "BoolArray"),
-    ("nodes/geometry/developable/end_cones.py", "IntArray"),
-    ("nodes/geometry/developable/fans.py", "BoolArray"),
-    ("nodes/geometry/developable/fans.py", "IntArray"),
-    ("nodes/geometry/developable/isolation.py", "BoolArray"),
-    ("nodes/geometry/developable/isolation.py", "IntArray"),
-    ("nodes/geometry/developable/ruling.py", "BoolArray"),
-    ("nodes/geometry/developable/ruling.py", "IntArray"),
-    ("nodes/geometry/developable/selection.py", "IntArray"),
-    ("nodes/geometry/developable/strip.py", "BoolArray"),
-    ("nodes/geometry/developable/warp.py", "BoolArray"),
-    ("nodes/geometry/rail_tangents.py", "FloatArray"),
-    # B (unrolling): unroll.py and the modules it splits into, triangle_search.py
-    ("nodes/geometry/development_map.py", "FloatArray"),
-    ("nodes/geometry/development_map.py", "IntArray"),
-    ("nodes/geometry/development_map.py", "_dot"),
-    ("nodes/geometry/strip_walk.py", "FloatArray"),
-    ("nodes/geometry/strip_walk.py", "IntArray"),
-    ("nodes/geometry/triangle_search.py", "FloatArray"),
-    ("nodes/geometry/triangle_search.py", "IntArray"),
-    ("nodes/geometry/unroll.py", "FloatArray"),
-    ("nodes/geometry/unroll.py", "IntArray"),
-    ("nodes/geometry/unroll.py", "_dot"),
-    # G (shop sheets): nodes/io/, nesting.py
-    ("nodes/geometry/nesting.py", "FloatArray"),
-    ("nodes/io/cutfiles.py", "FloatArray"),
-    ("nodes/io/seams.py", "FloatArray"),
-}
+#: Copies still to replace by an import: (file, name). None left.
+KNOWN_COPIES: set[tuple[str, str]] = set()
 
 
 def defined_names(tree: ast.Module) -> set[str]:

@@ -18,12 +18,11 @@ import shapely
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
+from nodes.geometry.array_types import FloatArray, IntArray
+from nodes.geometry.vec_ops import dot as _dot
+
 from .strip_walk import StripWalk, strip_triangles
 from .watch import watch_check, watch_progress
-
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
-
 
 #: Distances within this share of the strip's size count as equal when points are
 #: located on the 3D triangles (a point on a shared edge is on both triangles).
@@ -33,10 +32,6 @@ TIE = 1e-9
 #: vertex (a fan's apex, unrolled once per ruling: its images differ by rounding only, and
 #: kept apart they would zigzag across each other).
 REPEATED = 1e-9
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("...i,...i->...", a, b)
 
 
 def rotate_about(points: FloatArray, angle: float, pivot: FloatArray) -> FloatArray:

@@ -58,9 +58,8 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.packing import shelf_pack
-
-FloatArray = NDArray[np.float64]
 
 #: Extra separation asked of sparrow (mm) so single-precision placements still keep
 #: the spacing when checked in double precision.

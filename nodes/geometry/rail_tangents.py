@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import BSpline, make_interp_spline
 
-FloatArray = NDArray[np.float64]
+from nodes.geometry.array_types import FloatArray
 
 #: Chords shorter than this share of a rail's size count as zero (a fan's apex).
 ZERO_CHORD = 1e-12

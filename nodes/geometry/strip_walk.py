@@ -29,8 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
+from nodes.geometry.array_types import FloatArray, IntArray
 
 #: Every STRIDE-th ruling makes the next coarser strip.
 STRIDE = 8

@@ -15,12 +15,9 @@ import itertools
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
-
+from nodes.geometry.array_types import FloatArray, IntArray
 
 #: Most (point, triangle) pairs a block of :meth:`TriangleIndex.candidates` holds.
 _PAIRS = 2_000_000

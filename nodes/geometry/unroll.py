@@ -38,14 +38,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from nodes.geometry.array_types import FloatArray
+from nodes.geometry.vec_ops import dot as _dot
+
 from .area import gauss_legendre_01
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
 
 if TYPE_CHECKING:
     from .surface_base import Surface
 
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
 
 #: Diagonals within this relative margin count as equally long; the first one
 #: (A_{i+1} to B_i) is then taken, so symmetric strips triangulate uniformly.
@@ -57,10 +58,6 @@ EDGE_COLLAPSED = 1e-9
 
 #: Gauss–Legendre points per direction for the area of a bilinear quad.
 QUAD_ORDER = 8
-
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.einsum("...i,...i->...", a, b)
 
 
 def _as_rulings(starts: ArrayLike, ends: ArrayLike) -> tuple[FloatArray, FloatArray]:

@@ -31,8 +31,10 @@ def cross(a: FloatArray, b: FloatArray) -> FloatArray:
 
 
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Row-wise dot product (broadcasting)."""
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+    """Row-wise dot product (broadcasting), of 3-vectors or of plane (2-) vectors."""
+    if a.shape[-1] == 3:
+        return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+    return np.einsum("...i,...i->...", a, b)
 
 
 def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:

@@ -47,6 +47,7 @@ from numpy.typing import NDArray
 from shapely.ops import polylabel
 from shapely.validation import explain_validity
 
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import NurbsCurve, Polyline
 from nodes.geometry.nesting import NestingFailed, nest, place
@@ -56,8 +57,6 @@ from nodes.geometry.surface_base import Surface
 from nodes.io import seams as seam_edges
 from nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
 from nodes.io.seams import Seam, SeamLengths
-
-FloatArray = NDArray[np.float64]
 
 #: Chord tolerance (mm) for curved outlines.
 FLATTEN_MM = 0.01

@@ -18,13 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
+from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import Surface
-
-FloatArray = NDArray[np.float64]
 
 #: Samples per edge for the seam search: coarse points against a fine polyline.
 COARSE, FINE = 41, 4001

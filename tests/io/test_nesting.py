@@ -300,7 +300,7 @@ def test_the_same_parts_and_seed_give_the_same_layout_even_on_a_busy_machine():
     shapes = [np.asarray(p.points[:-1, :2]) * 1000 for p in random_panels(16, seed=4)]
     alone = _nested_once(shapes)
     busy: list = []
-    threads = [threading.Thread(target=lambda: busy.append(
+    threads = [threading.Thread(target=lambda k=k: busy.append(
         nest(shapes, 1250.0, 1250.0, 10.0, 10.0, budget=2.0, seed=3 + k))) for k in range(1, 4)]
     for thread in threads:
         thread.start()

@@ -22,7 +22,8 @@ from bisect import bisect_right
 from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import NDArray
+
+from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, det, dot, extent, norm, position_rounding, unit
@@ -31,9 +32,6 @@ from .isolation import Pieces, isolate
 from .selection import monotone_path
 from .strip import Grid, Strip
 from .warp import in_plane_tangent, warp_angles
-
-BoolArray = NDArray[np.bool_]
-IntArray = NDArray[np.int64]
 
 #: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
 FLAT = 1e-10

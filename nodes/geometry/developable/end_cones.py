@@ -29,16 +29,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
+
+from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
 from .warp import consistently_oriented
-
-IntArray = NDArray[np.int64]
-BoolArray = NDArray[np.bool_]
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
 SAMPLES = 33

@@ -28,15 +28,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from nodes.geometry.array_types import BoolArray, IntArray
+
 from ..curve_base import FloatArray
 from ..vec_ops import cross, det, norm, unit
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .strip import SIDE, Strip
-
-BoolArray = NDArray[np.bool_]
-
-IntArray = NDArray[np.int64]
 
 
 def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArray]:

@@ -61,13 +61,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
+
+from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
 from ..vec_ops import cross, dot, norm
-
-IntArray = NDArray[np.int64]
-BoolArray = NDArray[np.bool_]
 
 #: An uncertain interval narrower than this (in t) is a double root to rounding.
 NARROWEST = 1e-13

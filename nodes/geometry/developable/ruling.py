@@ -91,7 +91,9 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
+
+from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, norm, position_rounding, unit
@@ -101,9 +103,6 @@ from .fans import a_fans, area_share, close_gaps, creased_fans, fan_share, flat_
 from .stations import Spacing
 from .strip import SIDE, Strip
 from .warp import in_plane_tangent, warp_angles
-
-BoolArray = NDArray[np.bool_]
-IntArray = NDArray[np.int64]
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
 MAX_CHECKS = 3

@@ -25,11 +25,10 @@ backward cost. A sequential back-trace is kept for exact ties only.
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
+
+from nodes.geometry.array_types import IntArray
 
 from ..curve_base import FloatArray
-
-IntArray = NDArray[np.int64]
 
 #: Cost per unit of t of stepping backwards (rulings crossing); large but finite.
 BACKWARD_PENALTY = 1e3

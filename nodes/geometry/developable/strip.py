@@ -14,7 +14,8 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import NDArray
+
+from nodes.geometry.array_types import BoolArray
 
 from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
@@ -22,8 +23,6 @@ from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, norm, unit
 from .isolation import IntervalBounds, interval_bounds, third_bound
 from .stations import LengthMap, Spacing, station_parameters
-
-BoolArray = NDArray[np.bool_]
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7

@@ -32,12 +32,12 @@ The same holds at a point the caller knows is on the edge of regression (``apex_
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
+
+from nodes.geometry.array_types import BoolArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, extent, norm, unit
-
-BoolArray = NDArray[np.bool_]
 
 #: Below this share of the strip's size a ruling has no length and a tangent is zero
 #: (the edge stands still there).
