@@ -26,14 +26,16 @@ import enum
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
+# the solve's exceptions, re-exported: nodes import them from here
+from engine.errors import Cancelled as Cancelled
+from engine.errors import NodeError as NodeError
+from engine.errors import NodeWarning as NodeWarning
 from engine.solve_context import SolveContext, active
 from engine.types import ValueType
 from engine.widgets import Widget
-
-if TYPE_CHECKING:
-    from engine.writes import NodeFiles
+from engine.writes import NodeFiles, WriteAccess
 
 
 class Access(enum.Enum):
@@ -53,18 +55,6 @@ class Level(enum.IntEnum):
     REMARK = 0
     WARNING = 1
     ERROR = 2
-
-
-class NodeError(Exception):
-    """Raised by ``solve`` to put the node in error with this message (no traceback)."""
-
-
-class NodeWarning(Exception):
-    """Raised by ``solve`` to skip this call and put the node in warning with this message."""
-
-
-class Cancelled(Exception):
-    """The solve was cancelled (raised by :meth:`CancelToken.check`)."""
 
 
 class CancelToken:
@@ -256,8 +246,6 @@ class Node:
         has no folder and may write nothing."""
         context = self.context()
         if context.files is None:
-            from engine.writes import WriteAccess
-
             context.files = WriteAccess().for_node("")
         return context.files
 

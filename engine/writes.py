@@ -29,7 +29,7 @@ import threading
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath, PureWindowsPath
 
-from engine.node import NodeError
+from engine.errors import NodeError
 
 #: File types a node may never write, whatever the folder (lower case).
 PROTECTED_SUFFIXES = (".graph",)

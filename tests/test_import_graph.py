@@ -14,19 +14,8 @@ import pytest
 
 from tests.import_graph import a_cycle, circles, import_graph
 
-#: Circles still to untangle, each as its set of modules (with the owner of the files).
-KNOWN_CIRCLES: set[frozenset[str]] = {
-    # engine/node.py imports engine.writes inside NodeFiles.writer (engine: D)
-    frozenset({"engine.node", "engine.writes"}),
-    # Curve.to_polyline imports curves.line inside the method; it goes (with this entry)
-    # once nodes/io/cutfiles.py (G) and tests/benchmarks/bench_curves.py (F) call
-    # Polyline.from_curve instead
-    frozenset({
-        "nodes.geometry.curve_base", "nodes.geometry.curves", "nodes.geometry.curves.conics",
-        "nodes.geometry.curves.interpolated", "nodes.geometry.curves.line", "nodes.geometry.curves.nurbs",
-        "nodes.geometry.curves.parametric",
-    }),
-}
+#: Circles still to untangle, each as its set of modules. None left.
+KNOWN_CIRCLES: set[frozenset[str]] = set()
 
 
 @pytest.fixture(scope="module")

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from functools import cached_property
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -28,9 +28,6 @@ from .tessellate import tessellation_parameters
 from .transforms import check_matrix, is_affine
 from .vec_ops import dot
 from .vectors import Plane, as_points, perpendicular, unit
-
-if TYPE_CHECKING:
-    from .curves.line import Polyline
 
 
 class ClosestPoints(NamedTuple):
@@ -314,18 +311,6 @@ class Curve(ABC):
     def tessellate(self, tolerance: float) -> FloatArray:
         """Parameters of a polyline within ``tolerance`` (a distance) of the curve."""
         return tessellation_parameters(self, tolerance)
-
-    def to_polyline(self, tolerance: float) -> Polyline:
-        """A :class:`~.curves.Polyline` within ``tolerance`` of the curve (adaptive).
-
-        The same as ``Polyline.from_curve(curve, tolerance)``, which new code calls: this
-        method imports its subclass's module and so closes an import circle; it goes once
-        its last callers (``nodes/io/cutfiles.py``, ``tests/benchmarks/bench_curves.py``)
-        call that instead.
-        """
-        from .curves.line import Polyline
-
-        return Polyline.from_curve(self, tolerance)
 
 
 # -- generic views (NURBS curves, lines and polylines override them with exact curves) --

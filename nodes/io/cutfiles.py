@@ -181,7 +181,7 @@ def _vertices(curve: Curve, tolerance: float) -> FloatArray:
         return np.asarray(curve.points, dtype=float)
     if isinstance(curve, NurbsCurve) and curve.degree == 1 and not curve.is_rational:
         return np.asarray(curve.control_points, dtype=float)
-    return np.asarray(curve.to_polyline(tolerance).points, dtype=float)
+    return np.asarray(Polyline.from_curve(curve, tolerance).points, dtype=float)
 
 
 def panel_outline(curve: Curve, scale: float) -> FloatArray:

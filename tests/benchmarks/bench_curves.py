@@ -33,7 +33,7 @@ from scipy.integrate import quad
 from scipy.interpolate import BSpline, make_interp_spline
 from scipy.spatial import cKDTree
 
-from nodes.geometry.curves import Circle, InterpolatedCurve, NurbsCurve
+from nodes.geometry.curves import Circle, InterpolatedCurve, NurbsCurve, Polyline
 from tests.benchmarks.timing import ratio_to_baseline
 
 RNG = np.random.default_rng(0)
@@ -328,8 +328,9 @@ def test_bench_tessellation_to_a_micrometre_within_5x_the_cheapest_uniform_sampl
     while high - low > 1:
         middle = (low + high) // 2
         low, high = (middle, high) if deviation(middle) > 1e-6 else (low, middle)
-    ours = len(RATIONAL.to_polyline(1e-6).points)
-    print(f"\n  to_polyline(1e-6): {ours} points; the fewest uniform samples within 1e-6: {high}")
-    timed_against("to_polyline(1e-6), rational cubic NURBS", lambda: RATIONAL.to_polyline(1e-6),
+    ours = len(Polyline.from_curve(RATIONAL, 1e-6).points)
+    print(f"\n  Polyline.from_curve(1e-6): {ours} points; the fewest uniform samples within 1e-6: {high}")
+    timed_against("Polyline.from_curve(1e-6), rational cubic NURBS",
+                  lambda: Polyline.from_curve(RATIONAL, 1e-6),
                   f"{high} uniform samples by scipy",
                   lambda: scipy_derivatives(spline, RATIONAL, np.linspace(0.0, 1.0, high), 0), 5.0)
