@@ -46,6 +46,9 @@ FLAT = {
     "analysis.IsoMapping": ("Development", "Rulings", "Map"),
     "developable.PaperStrip": ("Development",),
     "patching.SurfacePatching": ("PanelsFlat", "DevelopmentBounds", "PatternBounds"),
+    # cut sheets are laid out in mm on the sheet, wherever the 3D strips (Strips, for the
+    # seams) are
+    "io.ExportCutSheet": ("Paths", "Layout", "Cuts", "Sheets", "Usage", "Seams", "SeamDifferences"),
 }
 MOVED_SUFFIX = "__site"
 

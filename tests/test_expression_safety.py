@@ -8,6 +8,7 @@ import builtins
 import os
 import subprocess
 import sys
+import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -141,10 +142,11 @@ _AUDITED = (
     "ctypes.dlopen",
 )
 _audit_log: list[str] | None = None
+_audit_thread: int | None = None  # only the watching thread's events count
 
 
 def _audit(event: str, args: tuple[object, ...]) -> None:
-    if _audit_log is not None and event.startswith(_AUDITED):
+    if _audit_log is not None and event.startswith(_AUDITED) and threading.get_ident() == _audit_thread:
         _audit_log.append(event)
 
 
@@ -161,13 +163,18 @@ BENIGN_LAZY_IMPORTS = frozenset({"linecache", "tokenize", "traceback", "tracemal
 def watching() -> Iterator[list[str]]:
     """Record process spawns, file opens, imports and code execution, by patch and audit.
 
-    Used around just the code under test, so pytest's own work is not recorded.
+    Used around just the code under test, so pytest's own work is not recorded, and on
+    its thread only: a thread another test left running (a dask cluster's event loop
+    importing tornado lazily) is not the code under test.
     """
-    global _audit_log
+    global _audit_log, _audit_thread
     calls: list[str] = []
+    owner = threading.get_ident()
 
     def recorder(name: str, original: Callable[..., Any]) -> Callable[..., Any]:
         def record(*args: Any, **kwargs: Any) -> Any:
+            if threading.get_ident() != owner:
+                return original(*args, **kwargs)
             if name == "__import__" and args and args[0] in BENIGN_LAZY_IMPORTS:
                 return original(*args, **kwargs)  # the warnings machinery formatting a warning
             calls.append(f"__import__ {args[0]}" if name == "__import__" and args else name)
@@ -179,7 +186,7 @@ def watching() -> Iterator[list[str]]:
 
     def compile_only_to_ast(*args: Any, **kwargs: Any) -> Any:
         flags = kwargs.get("flags", args[3] if len(args) > 3 else 0)
-        if not flags & ast.PyCF_ONLY_AST:
+        if not flags & ast.PyCF_ONLY_AST and threading.get_ident() == owner:
             calls.append("compile to code")
         return real_compile(*args, **kwargs)
 
@@ -193,11 +200,11 @@ def watching() -> Iterator[list[str]]:
             for name in names:
                 if hasattr(module, name):
                     patch.setattr(module, name, recorder(name, getattr(module, name)))
-        _audit_log = calls
+        _audit_log, _audit_thread = calls, owner
         try:
             yield calls
         finally:
-            _audit_log = None
+            _audit_log, _audit_thread = None, None
 
 
 def test_watching_sees_a_spawn() -> None:
