@@ -2,8 +2,8 @@
 
 As Grasshopper's Bake puts what the canvas previews into the Rhino document, :func:`bake`
 writes every curve, surface, mesh and point that the given nodes output to one Rhino file,
-through the same writer as ``io.Export3dm`` (:func:`nodes.io.threedm.write_3dm`, whose
-entries come from :func:`~nodes.io.threedm.tree_entries`):
+through the same writer as ``io.Export3dm`` (:func:`nodes.io.formats.threedm.write_3dm`, whose
+entries come from :func:`~nodes.io.formats.threedm.tree_entries`):
 
 - one layer per node, ``Parent::Title``, where Parent names the graph (its file's stem
   in the GUI) and Title is the node's label, or its type's name when it has none. Two
@@ -90,7 +90,7 @@ def bake_entries(
 ) -> tuple[list[Any], dict[str, str], int]:
     """The .3dm entries for the geometry of ``node_ids`` (those with results), their
     layers by node id (only nodes with geometry), and how many other items were left out."""
-    from nodes.io import threedm
+    from nodes.io.formats import threedm
 
     wanted = [n for n in node_ids if n in graph.nodes and n in results]
     geometry: dict[str, list[tuple[str, Any]]] = {}
@@ -136,8 +136,8 @@ def bake(
     Raises :class:`~app.exports.ExportError` when none of the nodes has geometry, or the
     file cannot be written.
     """
-    from nodes.io import threedm
     from nodes.io.common import FileFailure
+    from nodes.io.formats import threedm
 
     node_ids = list(node_ids)
     path = Path(path)

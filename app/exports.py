@@ -54,17 +54,17 @@ def export_tree(tree: DataTree, path: Path, units: str = "m") -> list[Path]:
     suffix = path.suffix.lower()
     try:
         if suffix in (".json", ".csv"):
-            from nodes.io import tables
+            from nodes.io.formats import tables
 
             return [(tables.write_json if suffix == ".json" else tables.write_csv)(tree, path)]
         if suffix == ".3dm":
             return [_export_3dm(tree, path, units)]
         if suffix in (".dxf", ".svg"):
-            from nodes.io import cutfiles
+            from nodes.io.formats import cutfiles
 
             return cutfiles.write_cut_files(_layout(tree, suffix, units), path)
         if suffix in (".obj", ".stl", ".ply", ".glb"):
-            from nodes.io import meshfiles
+            from nodes.io.formats import meshfiles
 
             return [meshfiles.write_mesh(_meshes(tree, suffix), path, units)]
     except FileFailure as exc:
@@ -81,8 +81,8 @@ def _kinds(items: list[Any]) -> str:
 
 
 def _export_3dm(tree: DataTree, path: Path, units: str) -> Path:
-    from nodes.io import cutfiles, threedm
     from nodes.io.common import FileFailure
+    from nodes.io.formats import cutfiles, threedm
 
     items = _items(tree)
     layouts = [item for item in items if isinstance(item, cutfiles.CutLayout)]
@@ -99,7 +99,7 @@ def _export_3dm(tree: DataTree, path: Path, units: str) -> Path:
 def _layout(tree: DataTree, suffix: str, units: str) -> Any:
     from nodes.geometry.curve_base import Curve
     from nodes.geometry.surface_base import Surface
-    from nodes.io import cutfiles
+    from nodes.io.formats import cutfiles
 
     items = _items(tree)
     layouts = [item for item in items if isinstance(item, cutfiles.CutLayout)]

@@ -38,7 +38,7 @@ def file_name(text: str) -> str:
 
 def default_suffix(tree: DataTree) -> str:
     """``.3dm`` for geometry, ``.dxf`` for a cut-sheet layout, ``.csv`` for other data."""
-    from nodes.io.cutfiles import CutLayout
+    from nodes.io.formats.cutfiles import CutLayout
 
     items = [item for item in tree.all_items() if item is not None]
     if any(isinstance(item, CutLayout) for item in items):

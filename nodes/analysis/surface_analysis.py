@@ -13,14 +13,6 @@ from numpy.typing import NDArray
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, POINT, describe
 from nodes.analysis.colours import colour_table, colours
-from nodes.analysis.ruling_trace import (
-    MeshProjector,
-    Projector,
-    SurfaceProjector,
-    distinct_rulings,
-    on_rulings,
-    trace_rulings,
-)
 from nodes.analysis.single_curved import area_fraction, signed_flatness
 from nodes.common.checks import angle, count, finite, given
 from nodes.common.convert import points
@@ -29,6 +21,14 @@ from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
 from nodes.geometry.curves.line import Line
 from nodes.geometry.mesh_surface import MeshSurface
+from nodes.geometry.ruling_trace import (
+    MeshProjector,
+    Projector,
+    SurfaceProjector,
+    distinct_rulings,
+    on_rulings,
+    trace_rulings,
+)
 from nodes.geometry.surface_base import Surface, uv_grid
 from nodes.limits import MAX_DENSITY
 

@@ -14,58 +14,15 @@ from nodes.common.convert import sentence
 from nodes.common.geometry_checks import curve as curve_input
 from nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.common.values import CURVE, LINE, SURFACE
+from nodes.geometry.coincidence import coincident
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
 
-#: Two curves closer than this (relative to their size) everywhere count as one.
-COINCIDENT = 1e-9
-
-
-def _coincident(curve_a: Curve, curve_b: Curve) -> bool:
-    """Whether every sample of A lies on B and every sample of B on A (to rounding)."""
-    if _ends_differ(curve_a, curve_b):
-        return False
-    t = np.linspace(0.0, 1.0, 17)
-    a, b = curve_a.point_at(t), curve_b.point_at(t)
-    size = float(np.linalg.norm(np.ptp(np.vstack([a, b]), axis=0)))
-    if size == 0.0:
-        return True
-    # cheap rejection first: a sample of A far from B's dense polyline settles it
-    if _polyline_gap(a, curve_b.point_at(np.linspace(0.0, 1.0, 257))) > 1e-3 * size:
-        return False
-    gap = max(curve_b.closest_point(a).distances.max(), curve_a.closest_point(b).distances.max())
-    return bool(gap <= COINCIDENT * size)
-
-
-def _ends_differ(curve_a: Curve, curve_b: Curve) -> bool:
-    """The cheapest rejection: a curve given twice has the same ends (either way round),
-    unless both are loops, whose seams may lie anywhere. Ends count as the same within
-    1e-6 of their spread (or when all four coincide)."""
-    ends = np.concatenate([curve_a.end_points, curve_b.end_points])
-    a0, a1, b0, b1 = ends
-    size = float(np.ptp(ends, axis=0).max())
-
-    def near(p: np.ndarray, q: np.ndarray) -> bool:
-        return float(np.abs(p - q).max()) <= 1e-6 * size
-
-    same = (near(a0, b0) and near(a1, b1)) or (near(a0, b1) and near(a1, b0))
-    return not (same or (near(a0, a1) and near(b0, b1)))
-
-
-def _polyline_gap(points: np.ndarray, polyline: np.ndarray) -> float:
-    """The largest distance from ``points`` to the polyline through ``polyline`` (vectorised)."""
-    start, step = polyline[:-1], np.diff(polyline, axis=0)
-    length2 = np.maximum(np.einsum("ij,ij->i", step, step), 1e-300)
-    offset = points[:, None, :] - start[None, :, :]
-    along = np.clip(np.einsum("pkj,kj->pk", offset, step) / length2, 0.0, 1.0)
-    nearest = np.linalg.norm(offset - along[..., None] * step[None], axis=2).min(axis=1)
-    return float(nearest.max())
-
 
 def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
     """The kernel's strip between two checked curves, with its errors as node errors."""
-    if _coincident(curve_a, curve_b):
+    if coincident(curve_a, curve_b):
         raise NodeError(
             "CurveA and CurveB are the same curve, so there is no strip between them: "
             "give two different edges (e.g. a bottom and a top curve)"

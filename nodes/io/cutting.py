@@ -11,9 +11,10 @@ from engine.types import BOOLEAN, NUMBER, TEXT, ValueType
 from nodes.common.checks import number
 from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.surface_base import Surface
-from nodes.io import cutfiles, seams
+from nodes.io import seams
 from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
-from nodes.io.cutfiles import CutLayout
+from nodes.io.formats import cutfiles
+from nodes.io.formats.cutfiles import CutLayout
 
 
 def _nesting(value: Any) -> str:

@@ -7,8 +7,8 @@ from typing import Any
 from engine.datatree import DataTree
 from engine.node import TREE, In, Node, Out
 from engine.types import BOOLEAN, GENERIC, TEXT
-from nodes.io import tables
 from nodes.io.common import file_errors, may_write, write_target
+from nodes.io.formats import tables
 
 
 class ExportCSV(Node):

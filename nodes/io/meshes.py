@@ -8,8 +8,8 @@ from engine.datatree import DataTree
 from engine.node import TREE, In, Node, Out
 from engine.types import BOOLEAN, TEXT
 from nodes.common.values import MESH
-from nodes.io import meshfiles
 from nodes.io.common import file_errors, may_write, read_path, unit_name, write_target
+from nodes.io.formats import meshfiles
 
 
 class ImportMesh(Node):

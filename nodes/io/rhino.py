@@ -1,4 +1,4 @@
-"""Rhino .3dm files: Import3dm and Export3dm (through rhino3dm, see :mod:`nodes.io.threedm`)."""
+"""Rhino .3dm files: Import3dm and Export3dm (through rhino3dm, see :mod:`nodes.io.formats.threedm`)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from engine.datatree import DataTree
 from engine.node import LIST, TREE, In, Node, Out
 from engine.types import BOOLEAN, INTEGER, TEXT
 from nodes.common.values import CURVE, LINE, MESH, SURFACE
-from nodes.io import threedm
 from nodes.io.common import file_errors, may_write, read_path, unit_name, write_target
+from nodes.io.formats import threedm
 
 #: Layer names under the parent layer, one per input of Export3dm.
 LAYERS = {"Curves": "Curves", "Surfaces": "Surfaces", "Rulings": "Rulings", "Panels": "Panels",

@@ -31,7 +31,7 @@ import pytest
 import shapely
 
 from nodes.geometry.curves import Polyline
-from nodes.io import cutfiles
+from nodes.io.formats import cutfiles
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
 #: Seconds of true-shape nesting per part set.

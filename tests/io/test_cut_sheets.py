@@ -16,8 +16,8 @@ from nodes.geometry.curves import Circle, NurbsCurve, Polyline
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.vectors import Plane
-from nodes.io import cutfiles
 from nodes.io.cutting import ExportCutSheet
+from nodes.io.formats import cutfiles
 from tests.io.helpers import polygon_area, random_panels, rectangle
 from tests.nodes.helpers import allowed, out, run, texts, tree
 

@@ -19,8 +19,8 @@ from engine.node import CancelToken
 from engine.solver import OK, Solver
 from nodes.geometry.curves import Circle, Polyline
 from nodes.geometry.nesting import nest, place
-from nodes.io import cutfiles
 from nodes.io.cutting import ExportCutSheet
+from nodes.io.formats import cutfiles
 from tests.io.helpers import random_panels, rectangle
 from tests.nodes.helpers import Source, allowed, out, run, texts, tree
 

@@ -16,7 +16,7 @@ from nodes.geometry.nurbs_surface import Loft, NurbsSurface
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.transforms import rotation
 from nodes.geometry.vectors import Plane
-from nodes.io import threedm
+from nodes.io.formats import threedm
 from nodes.io.rhino import Export3dm, Import3dm
 from tests.io.helpers import rectangle, rhino_points, rhino_surface_points
 from tests.nodes.helpers import allowed, out, run, texts, tree

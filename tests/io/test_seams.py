@@ -12,8 +12,8 @@ import shapely
 
 from engine.solver import OK
 from nodes.geometry.ruled import RuledSurface
-from nodes.io import cutfiles
 from nodes.io.cutting import ExportCutSheet
+from nodes.io.formats import cutfiles
 from nodes.io.seams import TICK_MM, edge_polyline, find_seams, length
 from tests.nodes.helpers import out, run, texts, tree
 

@@ -13,7 +13,7 @@ import shapely
 
 from app.headless import run_file
 from nodes.developable.paper_strip import PaperStrip
-from nodes.io.cutfiles import surface_outline
+from nodes.io.formats.cutfiles import surface_outline
 from tests.toolbox.direct_graphs import Chain
 
 LENGTH, WIDTH, SEGMENTS = 9.0, 1.2, 18

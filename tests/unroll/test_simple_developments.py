@@ -14,7 +14,7 @@ from app.headless import Run, run_file
 from nodes.analysis.iso_mapping import IsoMapping
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_rulings, unroll_surface
-from nodes.io.cutfiles import surface_outline
+from nodes.io.formats.cutfiles import surface_outline
 from tests.nodes.helpers import out, run, tree
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"

@@ -1,5 +1,5 @@
 """Part IDs engraved on cut sheets: letter outlines (DejaVu Sans, from matplotlib's fonts)
-placed inside a panel as large as it allows (used by :mod:`nodes.io.cutfiles`)."""
+placed inside a panel as large as it allows (used by :mod:`nodes.io.formats.cutfiles`)."""
 
 from __future__ import annotations
 

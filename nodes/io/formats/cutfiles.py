@@ -54,7 +54,7 @@ from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
 from nodes.io import seams as seam_edges
 from nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
-from nodes.io.labels import SMALLEST_TEXT_MM, place_label, text_outlines
+from nodes.io.formats.labels import SMALLEST_TEXT_MM, place_label, text_outlines
 from nodes.io.seams import Seam, SeamLengths
 
 #: Chord tolerance (mm) for curved outlines.
@@ -633,7 +633,7 @@ def label_curves(layout: CutLayout, scale: float = 1.0) -> list[list[Polyline]]:
 def layout_entries(layout: CutLayout) -> list[Any]:
     """The layout as .3dm entries (mm): sheets side by side on ``Sheets``, cut contours on
     ``CUT`` named by panel ID (user strings ``PanelID`` and ``Sheet``), letters on ``ENGRAVE``."""
-    from nodes.io.threedm import Entry
+    from nodes.io.formats.threedm import Entry
 
     sheets = sheet_outlines(layout)
     entries = [Entry(rectangle, "Sheets", f"Sheet {i + 1}") for i, rectangle in enumerate(sheets)]
