@@ -17,6 +17,7 @@ from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curves import InterpolatedCurve
 from nodes.geometry.regression import curve_of_regression
+from nodes.limits import MAX_ANALYSIS_SEGMENTS
 
 #: Points of regression all within this share of the surface's size of one point make a
 #: cone: a loft through a cone's rulings, sampled between them, misses its apex slightly.
@@ -78,7 +79,7 @@ class CurveOfRegression(Node):
         In("Deviation", NUMBER, "D", "How far (rad) the curve may turn away from the rulings it "
            "touches and still count, e.g. 0.01.", default=0.01),
         In("Segments", INTEGER, "N", "How many strips between rulings to sample (rulings minus one).",
-           default=100),
+           default=100, min=1, max=MAX_ANALYSIS_SEGMENTS),
     )
     outputs = (
         Out("Curves", CURVE, "C", "The curve of regression, one curve per valid piece.", access=LIST),

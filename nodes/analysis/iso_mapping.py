@@ -15,6 +15,7 @@ from nodes.common.values import DEVELOPMENT, LINE, SURFACE
 from nodes.geometry.curves.line import Line
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_surface
+from nodes.limits import MAX_ANALYSIS_SEGMENTS
 
 #: Above this relative area difference the node says what it may mean.
 AREA_NOTE = 1e-3
@@ -91,7 +92,7 @@ class IsoMapping(Node):
     inputs = (
         In("Surface", SURFACE, "S", "The ruled surface to unroll (its rulings must be straight lines)."),
         In("Segments", INTEGER, "N", "How many strips to cut it into: rulings minus one (1 or more).",
-           default=100),
+           default=100, min=1, max=MAX_ANALYSIS_SEGMENTS),
     )
     outputs = (
         Out("Development", SURFACE, "D", "The unrolled surface in the XY plane: the unrolled triangles' "

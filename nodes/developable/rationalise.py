@@ -26,6 +26,9 @@ RULING_BUDGET = 6_000
 #: The most strips one solve may make.
 STRIP_LIMIT = 256
 
+#: The most station rulings a strip may have, minus one.
+SEGMENT_LIMIT = 1000
+
 
 def _positive(name: str, value: Any) -> float:
     if value is None:
@@ -86,14 +89,16 @@ class Rationalise(Node):
         In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),
         In("Tolerance", NUMBER, "T", "Largest distance of any strip from the design, model units.",
            default=0.02),
-        In("MaxStrips", INTEGER, "M", "Largest number of strips to make.", default=40),
+        In("MaxStrips", INTEGER, "M", "Largest number of strips to make.", default=40, min=1,
+           max=STRIP_LIMIT),
         In("Direction", VECTOR, "D", "Optional: a vector the strips (their boundaries) should run "
            "along; without it the node chooses from the surface's curvature.", optional=True),
         In("Guides", CURVE, "G", "Optional: curves on the design, each from one edge to the opposite "
            "one, that the strips follow: a boundary runs along each guide and the boundaries between "
            "blend from one guide to the next (and to the design's edges). Direction is then unused.",
            access=LIST, optional=True),
-        In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24),
+        In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24, min=1,
+           max=SEGMENT_LIMIT),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
     )
@@ -122,8 +127,8 @@ class Rationalise(Node):
         count = _count(max_strips)
         guide = _direction(direction)
         n = int(segments) if segments is not None else 24
-        if not 1 <= n <= 1000:
-            raise NodeError(f"Segments is {n}: give a whole number from 1 to 1000")
+        if not 1 <= n <= SEGMENT_LIMIT:
+            raise NodeError(f"Segments is {n}: give a whole number from 1 to {SEGMENT_LIMIT}")
         warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
         if count * (n + 1) > RULING_BUDGET:
             raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "

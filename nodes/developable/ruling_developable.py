@@ -18,6 +18,7 @@ from nodes.geometry.coincidence import coincident
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
+from nodes.limits import MAX_SEGMENTS
 
 
 def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
@@ -90,7 +91,8 @@ class RulingDevelopable(Node):
     inputs = (
         In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
         In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
-        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
+           min=1, max=MAX_SEGMENTS),
         In("WarpTolerance", NUMBER, "W",
            "Largest warp angle (rad) a ruling may keep and count as valid: the twist between "
            "the sheet's normals at its two ends. 0.01 rad is invisible on most sheets; for a "

@@ -83,7 +83,8 @@ class SplineApproximation(Node):
            "Rotation of each ruling about the edge tangent, rad: one per ruling (Segments + 1), "
            "a single value for all, or with FixEnds the inner ones. Empty: all 0. When "
            "optimising, the starting angles.", access=LIST, optional=True),
-        In("Segments", INTEGER, "N", "Number of rulings minus one (1 or more).", default=20),
+        In("Segments", INTEGER, "N", "Number of rulings minus one (1 or more).", default=20,
+           min=1, max=MAX_SPLINE_SEGMENTS),
         In("Optimise", BOOLEAN, "O", "Find the angles of least summed warp (returned in BestAngles).",
            default=False),
         In("FixEnds", BOOLEAN, "F", "Keep the first and last rulings at their starting angles.",
