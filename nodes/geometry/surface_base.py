@@ -483,7 +483,27 @@ class Surface(ABC):
         return trimesh.Trimesh(ders[0], grid_triangles(nu, nv), vertex_normals=normals, process=False)
 
 
-class IsoCurve(Curve):
+class CurveOnSurface(Curve):
+    """A curve evaluated through a surface: :meth:`_eval` gives its exact derivatives to
+    order 2 (from the surface's); order 3 (for torsion) is Richardson-extrapolated central
+    differences of the second (~1e-8 relative)."""
+
+    def _eval(self, t: FloatArray, order: int) -> list[FloatArray]:
+        raise NotImplementedError
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        if order < 0 or order > 3:
+            raise ValueError("derivatives of a curve on a surface are available to order 3")
+        ders = self._eval(t, min(order, 2))
+        if order == 3:
+            h = 1e-3
+            d2 = [self._eval(t + k * h, 2)[2] for k in (-2, -1, 1, 2)]
+            ders.append((d2[0] - 8.0 * d2[1] + 8.0 * d2[2] - d2[3]) / (12.0 * h))
+        return ders
+
+
+class IsoCurve(CurveOnSurface):
     """A parameter line of a surface, as a :class:`Curve` on t in [0, 1].
 
     ``direction="u"``: C(t) = S(t, param); ``direction="v"``: C(t) = S(param, t);
@@ -527,16 +547,6 @@ class IsoCurve(Curve):
         inside = np.unique(np.clip(np.asarray(knots, dtype=float), 0.0, 1.0))
         return np.sort(1.0 - inside) if self.reverse else inside
 
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
-        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        if order < 0 or order > 3:
-            raise ValueError("isocurve derivatives are available to order 3")
-        ders = self._eval(t, min(order, 2))
-        if order == 3:
-            h = 1e-3
-            d2 = [self._eval(t + k * h, 2)[2] for k in (-2, -1, 1, 2)]
-            ders.append((d2[0] - 8.0 * d2[1] + 8.0 * d2[2] - d2[3]) / (12.0 * h))
-        return ders
 
 
 class TransformedSurface(Surface):

@@ -27,7 +27,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
-from ..surface_base import IsoCurve, Surface
+from ..surface_base import CurveOnSurface, IsoCurve, Surface
 
 #: Samples of each guide projected onto the design.
 GUIDE_SAMPLES = 65
@@ -41,12 +41,11 @@ APART = 1e-3
 Path = Callable[[FloatArray, int], list[FloatArray]]
 
 
-class SurfaceCurve(Curve):
+class SurfaceCurve(CurveOnSurface):
     """The curve C(t) = S(u(t), v(t)) on a surface, for a path in its parameter square.
 
     Derivatives up to order 2 are exact by the chain rule from the surface's own; order
-    3 uses Richardson-extrapolated central differences of the second (as
-    :class:`~nodes.geometry.surface_base.IsoCurve` does).
+    3 comes from :class:`~nodes.geometry.surface_base.CurveOnSurface`.
     """
 
     def __init__(self, surface: Surface, path: Path, breaks: ArrayLike = (0.0, 1.0)) -> None:
@@ -74,16 +73,6 @@ class SurfaceCurve(Curve):
                        + ders[1] * ddu + ders[2] * ddv)
         return out
 
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
-        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        if order < 0 or order > 3:
-            raise ValueError("curve-on-surface derivatives are available to order 3")
-        ders = self._eval(t, min(order, 2))
-        if order == 3:
-            h = 1e-3
-            d2 = [self._eval(t + k * h, 2)[2] for k in (-2, -1, 1, 2)]
-            ders.append((d2[0] - 8.0 * d2[1] + 8.0 * d2[2] - d2[3]) / (12.0 * h))
-        return ders
 
 
 @dataclass(frozen=True)
