@@ -38,7 +38,9 @@ class Triples:
         return len(self.array)
 
     def __getitem__(self, index: Any) -> Any:
-        if isinstance(index, slice):
+        """One row as a Point or Vector; a slice, or an array of indices or of booleans
+        (as numpy takes them), as Triples of the rows picked."""
+        if isinstance(index, slice | np.ndarray | list):
             return Triples(self.array[index], self.item_class)
         return tuple.__new__(self.item_class, self.array[index].tolist())
 
@@ -100,6 +102,33 @@ def as_list(branch: Branch) -> list[Any]:
 def is_array(branch: Branch) -> bool:
     """Whether ``branch`` is held as an array (numbers, or :class:`Triples`)."""
     return isinstance(branch, np.ndarray | Triples)
+
+
+def item_at(branch: Branch, index: int) -> Any:
+    """The item at ``index`` as a Python value, whatever the branch is held as: an array's
+    number as ``float``, ``int`` or ``bool`` (never a numpy scalar), a row of Triples as a
+    point or vector, a list's item as it is."""
+    item = branch[index]
+    return item.item() if isinstance(item, np.generic) else item
+
+
+def take(branch: Branch, indices: np.ndarray) -> Branch:
+    """The items at ``indices`` (an integer array), in that order, held as ``branch`` is:
+    an array or Triples gives an array or Triples, a list a list."""
+    if is_array(branch):
+        return branch[indices]
+    return [branch[i] for i in indices.tolist()]
+
+
+def concatenated(first: Branch, second: Branch) -> Branch:
+    """Two branches end to end: one array when both are arrays of one kind, else a list."""
+    if len(second) == 0 and is_array(first):
+        return first
+    if len(first) == 0 and is_array(second):
+        return second
+    if is_array(first) and same_array_kind(first, second):
+        return _joined([first, second])
+    return as_list(first) + as_list(second)
 
 
 def same_array_kind(a: Branch, b: Branch) -> bool:

@@ -89,8 +89,12 @@ class In:
     bound a number input: the solver refuses a value outside them, naming the input
     (:mod:`engine.bounds`), and front-ends show them. ``arrays=True`` on a list input:
     a branch of numbers, integers or booleans arrives as the read-only numpy array the
-    tree holds (no conversion), other branches as lists; a node that says so must treat
-    its list as a sequence (``len``, indexing, ``numpy.asarray``), not call list methods.
+    tree holds (no conversion); points or vectors as their ``(n, 3)`` array into a Point
+    or Vector input, as :class:`~engine.datatree.Triples` into any other; other branches
+    (and any branch holding an empty item: arrays hold no nulls) as lists. A node that
+    says so must treat its list as a sequence (``len``, slicing, ``numpy.asarray``, and
+    :func:`~engine.datatree.item_at` for one item, never a numpy scalar), not call list
+    methods.
     """
 
     name: str

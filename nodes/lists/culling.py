@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+import numpy as np
 
+from engine.datatree import Branch, is_array, take
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC
 
@@ -17,16 +18,18 @@ class CullPattern(Node):
 
     type_id = "lists.CullPattern"
     inputs = (
-        In("List", GENERIC, "L", "The list to cull.", access=LIST),
+        In("List", GENERIC, "L", "The list to cull.", access=LIST, arrays=True),
         In("Pattern", BOOLEAN, "P", "True keeps an item, false drops it; repeats along the list.",
-           access=LIST),
+           access=LIST, arrays=True),
     )
     outputs = (Out("List", GENERIC, "L", "The items the pattern keeps.", access=LIST),)
 
-    def solve(self, items: list[Any], pattern: list[bool]) -> list[Any]:
-        if not pattern:
+    def solve(self, items: Branch, pattern: Branch) -> Branch:
+        if not len(pattern):
             raise NodeWarning("The pattern is empty: give at least one true or false")
-        if any(p is None for p in pattern):
+        if not is_array(pattern) and any(p is None for p in pattern):  # an array holds no nulls
             raise NodeWarning("The pattern contains empty (null) items: use true or false")
-        n = len(pattern)
-        return [item for i, item in enumerate(items) if pattern[i % n]]
+        keep = np.resize(np.asarray(pattern, dtype=bool), len(items))  # the pattern repeated
+        if is_array(items):
+            return items[keep]
+        return take(items, np.flatnonzero(keep))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from engine.datatree import Branch, item_at
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER
 from nodes.common.checks import whole
@@ -20,32 +21,32 @@ class ListItem(Node):
 
     type_id = "lists.ListItem"
     inputs = (
-        In("List", GENERIC, "L", "The list to pick from.", access=LIST),
+        In("List", GENERIC, "L", "The list to pick from.", access=LIST, arrays=True),
         In("Index", INTEGER, "i", "Position of the item, 0 for the first.", default=0),
         In("Wrap", BOOLEAN, "W", "Whether positions outside the list wrap around.", default=False),
     )
     outputs = (Out("Item", GENERIC, "i", "The item at Index."),)
 
-    def solve(self, items: list[Any], index: int, wrap: bool) -> Any:
+    def solve(self, items: Branch, index: int, wrap: bool) -> Any:
         i = whole("Index", index)
-        if not items:
+        if not len(items):
             raise NodeWarning("The list is empty: there is no item to pick")
         if wrap:
-            return items[i % len(items)]
+            return item_at(items, i % len(items))
         if not 0 <= i < len(items):
             raise NodeWarning(
                 f"Index {i} is outside the list of {len(items)} items (0 to {len(items) - 1}); "
                 "turn on Wrap to wrap around"
             )
-        return items[i]
+        return item_at(items, i)
 
 
 class ListLength(Node):
     """Count the items in a list: one count per branch of a tree."""
 
     type_id = "lists.ListLength"
-    inputs = (In("List", GENERIC, "L", "The list to count.", access=LIST),)
+    inputs = (In("List", GENERIC, "L", "The list to count.", access=LIST, arrays=True),)
     outputs = (Out("Length", INTEGER, "L", "How many items the list holds, empty ones included."),)
 
-    def solve(self, items: list[Any]) -> int:
+    def solve(self, items: Branch) -> int:
         return len(items)

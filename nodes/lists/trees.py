@@ -56,11 +56,11 @@ class Merge(Node):
     outputs = (Out("Result", GENERIC, "R", "D1 and D2 together, path by path.", access=TREE),)
 
     def solve(self, first: DataTree, second: DataTree) -> DataTree:
-        merged: dict[tuple[int, ...], list] = {}
+        merged = DataTree()
         for tree in (first, second):
-            for path, branch in tree.items():
-                merged.setdefault(path, []).extend(branch)
-        return DataTree(merged)
+            for path, branch in tree.raw_items():  # arrays of one kind join into one array
+                merged.extend(path, branch)
+        return DataTree(dict(merged.raw_items()))  # in path order
 
 
 class Partition(Node):
@@ -88,7 +88,7 @@ class Partition(Node):
         chunks = DataTree()
         # Branches match as for list access: the list's b-th branch takes the sizes'
         # b-th branch, or their last one when there are fewer.
-        for b, (path, items) in enumerate(tree.items()):
+        for b, (path, items) in enumerate(tree.raw_items()):  # an array's chunks stay arrays
             pattern = size_branches[min(b, len(size_branches) - 1)] or [1]
             start = 0
             for i, size in enumerate(cycle(pattern)):
