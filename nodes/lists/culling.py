@@ -29,7 +29,8 @@ class CullPattern(Node):
             raise NodeWarning("The pattern is empty: give at least one true or false")
         if not is_array(pattern) and any(p is None for p in pattern):  # an array holds no nulls
             raise NodeWarning("The pattern contains empty (null) items: use true or false")
-        keep = np.resize(np.asarray(pattern, dtype=bool), len(items))  # the pattern repeated
+        repeats = -(-len(items) // len(pattern))  # the pattern repeated along the list
+        keep = np.tile(np.asarray(pattern, dtype=bool), repeats)[:len(items)]
         if is_array(items):
             return items[keep]
         return take(items, np.flatnonzero(keep))
