@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT
-from nodes.common.checks import count, finite, given
+from nodes.common.checks import finite, given, whole
 from nodes.common.convert import points
 from nodes.common.values import MESH
 from nodes.geometry.array_types import FloatArray
@@ -149,7 +149,8 @@ class BendingCheck(Node):
         In("Units", TEXT, "U", "The model's units (mm, cm, m, in, ft).", default="m"),
         In("ModelScale", NUMBER, "n", "1:n — the model is n times smaller than the built strips' drawing "
            "(1 at full size).", default=1.0),
-        In("Density", INTEGER, "D", "Grid points per direction on each strip (2 or more).", default=24),
+        In("Density", INTEGER, "D", "Grid points per direction on each strip (2 or more).", default=24,
+           min=2, max=MAX_DENSITY),
     )
     outputs = (
         Out("MinRadius", NUMBER, "R", "Each strip's smallest bending radius, mm as cut (inf: flat).",
@@ -172,7 +173,7 @@ class BendingCheck(Node):
         scale = finite("ModelScale", model_scale)
         if not scale > 0:
             raise NodeWarning(f"ModelScale must be positive (1 for full size, 50 for 1:50), not {scale:g}")
-        n = count("Density", density, least=2, limit=MAX_DENSITY)
+        n = whole("Density", density)  # 2 to MAX_DENSITY: the port's bounds
         if not strips:
             raise NodeWarning("There are no strips: wire surfaces into Strips")
         u, v = uv_grid(n, n)

@@ -9,7 +9,7 @@ import trimesh
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, TEXT, describe
-from nodes.common.checks import count, finite, given
+from nodes.common.checks import finite, given, whole
 from nodes.display.plot import new_figure, save, target
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import SurfaceCurvature
@@ -123,9 +123,11 @@ class CurvatureHistogram(Node):
         In("Surface", GENERIC, "S", "The surface, mesh or mesh surface to measure."),
         In("Measure", TEXT, "M",
            "What to count: " + "; ".join(f"{k} — {v}" for k, v in MEASURES.items()) + ".", default="min|k|"),
-        In("UDensity", INTEGER, "U", "Grid points across u (2 or more).", default=24),
-        In("VDensity", INTEGER, "V", "Grid points across v (2 or more).", default=24),
-        In("Bins", INTEGER, "B", "How many bars.", default=20),
+        In("UDensity", INTEGER, "U", "Grid points across u (2 or more).", default=24,
+           min=2, max=MAX_DENSITY),
+        In("VDensity", INTEGER, "V", "Grid points across v (2 or more).", default=24,
+           min=2, max=MAX_DENSITY),
+        In("Bins", INTEGER, "B", "How many bars.", default=20, min=1, max=MAX_BINS),
         In("Tolerance", NUMBER, "Tol", "Optional curvature (1/m) to mark with a line; Summary counts the "
            "points whose value is below it.", optional=True),
         In("Title", TEXT, "T", "The chart's title (empty: the measure's name).", default=""),
@@ -147,9 +149,8 @@ class CurvatureHistogram(Node):
         name = str(measure_name or "min|k|").strip()
         if name not in MEASURES:
             raise NodeWarning(f"Measure must be one of {', '.join(MEASURES)}, not {name!r}")
-        nu = count("UDensity", u_density, least=2, limit=MAX_DENSITY)
-        nv = count("VDensity", v_density, least=2, limit=MAX_DENSITY)
-        n_bins = count("Bins", bins, least=1, limit=MAX_BINS)
+        nu, nv = whole("UDensity", u_density), whole("VDensity", v_density)  # bounded on the ports
+        n_bins = whole("Bins", bins)
         tol = None if tolerance is None else finite("Tolerance", tolerance)
         curvature, size = curvature_samples(target_, nu, nv)
         values = measure(curvature, name)

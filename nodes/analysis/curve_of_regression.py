@@ -9,8 +9,7 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, POINT
 from engine.values import Point
-from nodes.common.checks import analysis_segments as segments
-from nodes.common.checks import angle
+from nodes.common.checks import angle, whole
 from nodes.common.convert import point, points, sentence
 from nodes.common.geometry_checks import ruled_surface
 from nodes.common.values import CURVE, SURFACE
@@ -90,7 +89,7 @@ class CurveOfRegression(Node):
     def solve(self, surface: Any, deviation: Any, count: Any) -> tuple[list[Curve], list[Point]]:
         s = ruled_surface(surface, "CurveOfRegression")
         tolerance = angle("Deviation", deviation, "0.01")
-        n = segments(count)
+        n = whole("Segments", count)  # 1 to MAX_ANALYSIS_SEGMENTS: the port's bounds
         rulings = s.rulings(n + 1)
         try:
             regression = curve_of_regression(rulings[:, 0], rulings[:, 1], tolerance)

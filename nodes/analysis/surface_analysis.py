@@ -14,7 +14,7 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, POINT, describe
 from nodes.analysis.colours import colour_table, colours
 from nodes.analysis.single_curved import area_fraction, signed_flatness
-from nodes.common.checks import angle, count, finite, given
+from nodes.common.checks import angle, finite, given, whole
 from nodes.common.convert import points
 from nodes.common.values import LINE, MESH
 from nodes.geometry.array_types import FloatArray
@@ -238,8 +238,9 @@ class SurfaceAnalysis(Node):
     inputs = (
         In("Surface", GENERIC, "S", "The surface to analyse: any surface, a mesh or a mesh surface."),
         In("UDensity", INTEGER, "U", "Grid points across u (2 or more; a closed direction is not "
-           "sampled twice at its seam).", default=10),
-        In("VDensity", INTEGER, "V", "Grid points across v (2 or more).", default=10),
+           "sampled twice at its seam).", default=10, min=2, max=MAX_DENSITY),
+        In("VDensity", INTEGER, "V", "Grid points across v (2 or more).", default=10,
+           min=2, max=MAX_DENSITY),
         In("Scale", NUMBER, "Sc", "Curvature line length per unit of curvature: |k|·Scale.",
            default=1.0),
         In("CurvatureTolerance", NUMBER, "Kt", "Below this min(|k1|, |k2|), in 1/m, the surface counts "
@@ -281,8 +282,7 @@ class SurfaceAnalysis(Node):
     def solve(self, value: Any, u_density: Any, v_density: Any, scale: Any, curvature_tolerance: Any,
               warp_tolerance: Any) -> tuple[Any, ...]:
         target = _surface(value)
-        nu = count("UDensity", u_density, least=2, limit=MAX_DENSITY)
-        nv = count("VDensity", v_density, least=2, limit=MAX_DENSITY)
+        nu, nv = whole("UDensity", u_density), whole("VDensity", v_density)  # bounded on the ports
         factor = finite("Scale", scale)
         if factor < 0:
             raise NodeWarning(f"Scale must be 0 or more, not {factor:g}: it sets the lines' length per "

@@ -13,7 +13,7 @@ from nodes.common.checks import given, number, whole
 from nodes.common.convert import point, points, vector, vectors
 from nodes.common.values import CURVE
 from nodes.geometry.curve_base import Curve
-from nodes.limits import MAX_DIVISIONS, shown
+from nodes.limits import MAX_DIVISIONS
 
 
 def _curve(value: Any) -> Curve:
@@ -34,7 +34,7 @@ class DivideCurve(Node):
     inputs = (
         In("Curve", CURVE, "C", "The curve to divide."),
         In("Count", INTEGER, "N", "How many equal segments to divide it into (1 or more).",
-           default=10),
+           default=10, min=1, max=MAX_DIVISIONS),
     )
     outputs = (
         Out("Points", POINT, "P", "The division points, from the start.", access=LIST),
@@ -44,13 +44,7 @@ class DivideCurve(Node):
 
     def solve(self, curve: Any, count: Any) -> tuple[list[Point], list[Vector], list[float]]:
         c = _curve(curve)
-        n = whole("Count", count)
-        if n == 0:
-            raise NodeWarning("Count is 0, so the curve is not divided: give 1 segment or more")
-        if n < 0:
-            raise NodeWarning(f"Count must be at least 1, not {shown(n)}")
-        if n > MAX_DIVISIONS:
-            raise NodeWarning(f"Count is {shown(n)}; at most {MAX_DIVISIONS:,} segments can be made at once")
+        n = whole("Count", count)  # 1 to MAX_DIVISIONS: the port's bounds, checked before solve
         if c.length == 0:
             raise NodeWarning("The curve has zero length, so it cannot be divided")
         t = c.divide_by_count(n)

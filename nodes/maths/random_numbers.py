@@ -7,7 +7,7 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import DOMAIN, INTEGER, NUMBER
 from engine.values import Domain
-from nodes.common.checks import count, finite, whole
+from nodes.common.checks import finite, whole
 from nodes.limits import MAX_NUMBERS
 
 
@@ -25,7 +25,7 @@ class Random(Node):
         In("Number", INTEGER, "N", "How many numbers to make (0 or more).", default=10,
            min=0, max=MAX_NUMBERS),
         In("Seed", INTEGER, "S", "Any whole number 0 or more; each seed gives its own numbers.",
-           default=0),
+           default=0, min=0),
     )
     outputs = (Out("Random", NUMBER, "R", "The random numbers, in the Range.", access=LIST),)
 
@@ -33,9 +33,6 @@ class Random(Node):
         if domain is None:
             raise NodeWarning("Range is empty (null)")
         low, high = finite("Range start", domain.min), finite("Range end", domain.max)
-        n = count("Number", number)
-        s = whole("Seed", seed)
-        if s < 0:
-            raise NodeWarning(f"Seed must be 0 or more, not {s}")
+        n, s = whole("Number", number), whole("Seed", seed)  # bounded on the ports
         rng = np.random.default_rng(s)
         return low + (high - low) * rng.random(n)  # kept as an array branch

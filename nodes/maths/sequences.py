@@ -7,7 +7,7 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import DOMAIN, INTEGER, NUMBER
 from engine.values import Domain
-from nodes.common.checks import count, finite
+from nodes.common.checks import finite, whole
 from nodes.limits import MAX_NUMBERS
 
 
@@ -29,7 +29,7 @@ class Series(Node):
 
     def solve(self, start: float, step: float, number: int) -> np.ndarray:
         start, step = finite("Start", start), finite("Step", step)
-        n = count("Count", number)
+        n = whole("Count", number)  # 0 to MAX_NUMBERS: the port's bounds
         return start + step * np.arange(n, dtype=np.float64)  # kept as an array branch
 
 
@@ -53,7 +53,7 @@ class Range(Node):
         if domain is None:
             raise NodeWarning("Domain is empty (null)")
         low, high = finite("Domain start", domain.min), finite("Domain end", domain.max)
-        n = count("Steps", steps, least=1)
+        n = whole("Steps", steps)  # 1 to MAX_NUMBERS: the port's bounds
         values = np.linspace(low, high, n + 1)
         values[-1] = high  # exactly the end, whatever the rounding
         return values  # kept as an array branch

@@ -119,9 +119,8 @@ def _degree(name: str, value: Any) -> int:
 
 
 def _grid_from_list(points: np.ndarray, u_count: int) -> np.ndarray:
-    """A flat list, rows of ``u_count`` along u stacked along v, as an (nu, nv, 3) grid."""
-    if u_count < 2:
-        raise NodeWarning(f"UCount must be at least 2 (points in each row along u), not {u_count}")
+    """A flat list, rows of ``u_count`` (2 or more: the port's bound) along u stacked along v,
+    as an (nu, nv, 3) grid."""
     if len(points) % u_count:
         raise NodeWarning(
             f"UCount is {u_count} but there are {len(points)} points, not a multiple of {u_count}: "
@@ -197,8 +196,8 @@ class NurbsSurface(Node):
     inputs = (
         In("Points", POINT, "P", "The grid: a list read with UCount, or one branch per row.",
            access=TREE),
-        In("UCount", INTEGER, "U", "Points in each row along u; empty when each branch is a row.",
-           optional=True),
+        In("UCount", INTEGER, "U", "Points in each row along u (2 or more); empty when each branch "
+           "is a row.", optional=True, min=2),
         In("DegreeU", INTEGER, "Du", "Degree along u: 3 is cubic, 1 is straight between points.",
            default=3),
         In("DegreeV", INTEGER, "Dv", "Degree along v.", default=3),

@@ -11,17 +11,8 @@ from engine.values import WORLD_XY, Vector
 from nodes.common.checks import direction, number, whole
 from nodes.common.convert import kernel_plane
 from nodes.geometry import transforms
-from nodes.limits import MAX_COPIES, shown
+from nodes.limits import MAX_COPIES
 from nodes.transform.dispatch import SUPPORTED, transform_value
-
-
-def _count(value: Any) -> int:
-    n = whole("Count", value)
-    if n < 1:
-        raise NodeWarning(f"Count must be at least 1, not {shown(n)}")
-    if n > MAX_COPIES:
-        raise NodeWarning(f"Count is {shown(n)}; at most {MAX_COPIES:,} copies can be made at once")
-    return n
 
 
 class Array(Node):
@@ -37,13 +28,14 @@ class Array(Node):
         In("Geometry", GENERIC, "G", f"What to copy: {SUPPORTED}."),
         In("Direction", VECTOR, "D", "The step between neighbouring copies.",
            default=Vector(10.0, 0.0, 0.0)),
-        In("Count", INTEGER, "N", "How many copies, the original included (1 or more).", default=10),
+        In("Count", INTEGER, "N", "How many copies, the original included (1 or more).", default=10,
+           min=1, max=MAX_COPIES),
     )
     outputs = (Out("Geometry", GENERIC, "G", "The copies, the unmoved one first.", access=LIST),)
 
     def solve(self, geometry: Any, step: Any, count: Any) -> list[Any]:
         d = direction("Direction", step)
-        n = _count(count)
+        n = whole("Count", count)  # 1 to MAX_COPIES: the port's bounds
         return [transform_value(geometry, transforms.translation(k * d)) for k in range(n)]
 
 
@@ -60,14 +52,15 @@ class PolarArray(Node):
     inputs = (
         In("Geometry", GENERIC, "G", f"What to copy: {SUPPORTED}."),
         In("Plane", PLANE, "P", "The axis: the plane's normal through its origin.", default=WORLD_XY),
-        In("Count", INTEGER, "N", "How many copies, the original included (1 or more).", default=6),
+        In("Count", INTEGER, "N", "How many copies, the original included (1 or more).", default=6,
+           min=1, max=MAX_COPIES),
         In("Angle", NUMBER, "A", "The angle Count steps add up to, in radians.", default=2 * math.pi),
     )
     outputs = (Out("Geometry", GENERIC, "G", "The copies, the unturned one first.", access=LIST),)
 
     def solve(self, geometry: Any, plane: Any, count: Any, angle: Any) -> list[Any]:
         frame = kernel_plane("Plane", plane)
-        n = _count(count)
+        n = whole("Count", count)  # 1 to MAX_COPIES: the port's bounds
         sweep = number("Angle", angle)
         if sweep == 0:
             raise NodeWarning("Angle is 0, so every copy would sit on the original")

@@ -50,13 +50,13 @@ def test_divided_open_curve_gives_count_plus_one_points_from_start_to_end():
 def test_divide_count_zero_warns():
     result = run(DivideCurve(), Curve=curve(LINE), Count=0)
     assert result.state == "warning"
-    assert texts(result) == ["Count is 0, so the curve is not divided: give 1 segment or more"]
+    assert texts(result) == ["Count must be at least 1, not 0"]
 
 
-def test_divide_negative_count_warns():
+def test_divide_negative_count_warns_and_makes_no_points():
     result = run(DivideCurve(), Curve=curve(LINE), Count=-3)
     assert texts(result) == ["Count must be at least 1, not -3"]
-    assert out(result, "Points") == {(0,): []}
+    assert out(result, "Points") == {}
 
 
 def test_dividing_several_curves_puts_each_in_its_own_branch():

@@ -124,7 +124,7 @@ def test_random_is_the_same_in_a_fresh_python_process():
 
 def test_random_with_negative_seed_warns():
     result = run(Random(), Seed=-3)
-    assert texts(result) == ["Seed must be 0 or more, not -3"]
+    assert texts(result) == ["Seed must be at least 0, not -3"]
 
 
 def test_random_with_negative_number_warns():
