@@ -21,6 +21,7 @@ from app.gui.canvas.group_item import GroupItem
 from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
 from app.gui.canvas.wire_item import WireItem
+from app.gui.canvas.wire_routing import NodeGrid
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.solve_controller import SolveOutcome
@@ -54,6 +55,8 @@ class CanvasScene(QGraphicsScene):
         self.wires: dict[Wire, WireItem] = {}
         self.groups: dict[str, GroupItem] = {}
         self._wires_of: dict[str, dict[Wire, None]] = {}  # node id → its wire items' wires
+        self.grid = NodeGrid()  # node rectangles, for wires to bend around
+        self._moved_boxes: dict[str, QRectF] = {}  # where moved nodes were and went: wires near re-route
         self._highlighted: set[Wire] = set()
         self._syncing_move = False
         self._rect_due = False  # the scene rectangle waits for the end of the edit
@@ -91,6 +94,8 @@ class CanvasScene(QGraphicsScene):
         self.groups.clear()
         self._wires_of.clear()
         self._highlighted.clear()
+        self.grid.clear()
+        self._moved_boxes.clear()
         graph = self.doc.graph
         for record in graph.nodes.values():
             self._add_node(record.id)
@@ -102,6 +107,7 @@ class CanvasScene(QGraphicsScene):
     def _add_node(self, node_id: str) -> NodeItem:
         item = NodeItem(self.doc.graph.nodes[node_id], self.doc.graph)  # laid out once, here
         self.addItem(item)
+        self.grid.set(node_id, item.sceneBoundingRect())
         result = self.doc.result(node_id)
         if result is not None:
             item.set_result(result)
@@ -118,7 +124,7 @@ class CanvasScene(QGraphicsScene):
         out_port, in_port = source.output_port(wire.source_port), target.input_port(wire.target_port)
         if out_port is None or in_port is None:
             return None
-        item = WireItem(wire, out_port, in_port)
+        item = WireItem(wire, out_port, in_port, self.grid)
         item.set_kind(self._wire_kind(wire))
         self.addItem(item)
         self.wires[wire] = item
@@ -146,6 +152,10 @@ class CanvasScene(QGraphicsScene):
         elif isinstance(event, NodeRemoved):
             item = self.nodes.pop(node_id, None)
             self._wires_of.pop(node_id, None)
+            box = self.grid.boxes.get(node_id)
+            self.grid.remove(node_id)
+            if box is not None:  # wires that went round it may go straight now
+                self._moved_boxes[node_id] = QRectF(box[0], box[1], box[2] - box[0], box[3] - box[1])
             if item is not None:
                 self._remove_node_item(item)
         elif isinstance(event, WireAdded):
@@ -190,6 +200,22 @@ class CanvasScene(QGraphicsScene):
         if self._selection_due:
             self._selection_due = False
             self.selectionChanged.emit()
+        if self._moved_boxes:
+            boxes, self._moved_boxes = list(self._moved_boxes.values()), {}
+            self.reroute_near(boxes)
+
+    def reroute_near(self, boxes: list[QRectF]) -> None:
+        """Route again the wires whose course (or straight line) comes near ``boxes``: the
+        places nodes left or moved to, which wires not their own may have to bend around
+        or may now pass straight by. (A node's own wires follow it as it moves.)"""
+        if len(boxes) > 64:  # a bulk edit: every wire
+            for wire_item in self.wires.values():
+                wire_item.update_path()
+            return
+        for wire_item in self.wires.values():
+            reach = wire_item.path().boundingRect()
+            if any(reach.intersects(box) for box in boxes):
+                wire_item.update_path()
 
     def _rewired(self, node_id: str) -> None:
         """A wire into ``node_id`` came or went: only a node drawn from its wires (a
@@ -206,7 +232,16 @@ class CanvasScene(QGraphicsScene):
         self.node_item_moved(item)
 
     def node_item_moved(self, item: NodeItem) -> None:
-        """Keep wires and group boxes attached while an item moves."""
+        """Keep wires and group boxes attached while an item moves; the wires of other
+        nodes near where it was and went are routed again when the edit ends."""
+        old = self.grid.boxes.get(item.node_id)
+        rect = item.sceneBoundingRect()
+        self.grid.set(item.node_id, rect)
+        if old is not None:
+            swept = self._moved_boxes.get(item.node_id)
+            if swept is None:
+                swept = QRectF(old[0], old[1], old[2] - old[0], old[3] - old[1])
+            self._moved_boxes[item.node_id] = swept.united(rect)
         for wire_item in self.wire_items_of(item.node_id):
             wire_item.update_path()
         for group in self.doc.graph.groups:
@@ -248,9 +283,12 @@ class CanvasScene(QGraphicsScene):
             for wire in self._wires_of.get(node_id, ()):
                 if wire.source == node_id:
                     self.wires[wire].set_kind(self._wire_kind(wire))
-        if resized:  # a panel grew or shrank: its wires and group follow
-            for item in self.nodes.values():
-                self.node_item_moved(item)
+        if resized:  # a panel grew or shrank: the wires and groups follow
+            for node_id, item in self.nodes.items():
+                self.grid.set(node_id, item.sceneBoundingRect())
+            for wire_item in self.wires.values():
+                wire_item.update_path()
+            self.refresh_groups()
             self.update_scene_rect()
 
     def _wire_kind(self, wire: Wire) -> str:

@@ -12,6 +12,7 @@ from PySide6.QtWidgets import QGraphicsPathItem
 
 from app.gui import theme
 from app.gui.canvas.layout import PORT_R
+from app.gui.canvas.wire_routing import NodeGrid, plain_path, route
 from engine.graph import Wire
 
 WIDTHS = {"item": 1.3, "list": 3.0, "tree": 2.2}
@@ -19,23 +20,25 @@ WIDTHS = {"item": 1.3, "list": 3.0, "tree": 2.2}
 
 def wire_path(start: QPointF, end: QPointF) -> QPainterPath:
     """A horizontal-tangent cubic from ``start`` to ``end``."""
-    dx = max(40.0, abs(end.x() - start.x()) * 0.5)
-    path = QPainterPath(start)
-    path.cubicTo(QPointF(start.x() + dx, start.y()), QPointF(end.x() - dx, end.y()), end)
-    return path
+    return plain_path(start, end)
 
 
 WIRE_Z = 0.5  # above group boxes (-10) and nodes (0): a wire never hides behind a node it passes
 
 
 class WireItem(QGraphicsPathItem):
-    """One engine wire between two port items, drawn above the nodes (so it never runs
-    hidden behind one it does not connect to); it starts and ends at its ports' rims, so
-    the port dots stay whole."""
+    """One engine wire between two port items. It bends around the nodes it does not
+    connect to (:mod:`~app.gui.canvas.wire_routing`, with the scene's ``grid`` of node
+    rectangles) and is drawn above the nodes, so even where no detour is found it never
+    runs hidden behind one; it starts and ends at its ports' rims, so the port dots stay
+    whole."""
 
-    def __init__(self, wire: Wire, source_port: object, target_port: object) -> None:
+    def __init__(
+        self, wire: Wire, source_port: object, target_port: object, grid: NodeGrid | None = None
+    ) -> None:
         super().__init__()
         self.wire = wire
+        self.grid = grid
         self.source_port = source_port
         self.target_port = target_port
         self.kind = "item"
@@ -47,7 +50,8 @@ class WireItem(QGraphicsPathItem):
 
     def update_path(self) -> None:
         rim = QPointF(PORT_R, 0.0)
-        self.setPath(wire_path(self.source_port.anchor() + rim, self.target_port.anchor() - rim))
+        start, end = self.source_port.anchor() + rim, self.target_port.anchor() - rim
+        self.setPath(route(start, end, self.grid, (self.wire.source, self.wire.target)))
 
     def set_kind(self, kind: str) -> None:
         if kind != self.kind:
