@@ -5,6 +5,11 @@ variants finish, in any order; the caller puts them back in order. Local workers
 ``distributed.LocalCluster`` of single-threaded processes (BLAS limited to one thread by
 dask's worker environment), so a worker that dies is restarted and its variant retried
 by dask, exactly as on a remote cluster.
+
+Variants travel to the workers in chunks of a few (:func:`chunk_size`): each dask task has
+a fixed cost in the scheduler and the client, paid by the same cores the workers solve
+on, and a chunk pays it once for several variants while leaving enough chunks per worker
+that the last ones finish close together.
 """
 
 from __future__ import annotations
@@ -20,6 +25,10 @@ from engine.node import CancelToken
 
 #: how often dask re-runs a variant whose worker died or which raised
 RETRIES = 3
+#: chunks per worker a batch is cut into at least: more balance the end, fewer cost less
+CHUNKS_PER_WORKER = 6
+#: the most variants in one chunk (a dead worker's chunk is solved again whole)
+MAX_CHUNK = 8
 #: the status of a variant that failed on every try: not cached, a re-run tries again
 WORKER_FAILED = "error: the worker failed"
 _BLAS_THREADS = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
@@ -31,6 +40,17 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
+
+
+def chunk_size(variants: int, workers: int) -> int:
+    """How many variants one task carries, for ``variants`` spread over ``workers``."""
+    return max(1, min(MAX_CHUNK, variants // max(1, workers * CHUNKS_PER_WORKER)))
+
+
+def solve_chunk(graph_text: str, chunk: list[tuple[int, dict[str, Any]]], job: Job
+                ) -> list[tuple[int, dict[str, Any]]]:
+    """Solve a chunk of variants one after the other (the task a dask worker runs)."""
+    return [(index, solve_variant(graph_text, values, job, index)) for index, values in chunk]
 
 
 class Executor:
@@ -107,19 +127,29 @@ class DaskExecutor(Executor):
         if key not in self._graph_futures:
             self._graph_futures[key] = self.client.scatter(graph_text, broadcast=True, hash=True)
         graph = self._graph_futures[key]
+        batch = list(batch)
+        size = chunk_size(len(batch), self.worker_count())
         futures = {}
-        for index, values in batch:
-            future = self.client.submit(solve_variant, graph, values, job, index, retries=RETRIES, pure=False)
-            futures[future] = (index, values)
+        for start in range(0, len(batch), size):
+            chunk = batch[start:start + size]
+            future = self.client.submit(solve_chunk, graph, chunk, job, retries=RETRIES, pure=False)
+            futures[future] = chunk
         for future in as_completed(list(futures), loop=self.client.loop):
-            index, values = futures[future]
+            chunk = futures[future]
             try:
-                outcome = future.result()
-            except Exception as exc:  # the variant failed even after dask's retries
-                outcome = {"values": dict(values),
-                           "outputs": {t.name: None for t in job.targets},
-                           "status": f"{WORKER_FAILED}: {type(exc).__name__}: {exc}"}
-            yield index, outcome
+                yield from future.result()
+            except Exception as exc:  # the chunk failed even after dask's retries
+                status = f"{WORKER_FAILED}: {type(exc).__name__}: {exc}"
+                for index, values in chunk:
+                    yield index, {"values": dict(values),
+                                  "outputs": {t.name: None for t in job.targets}, "status": status}
+
+    def worker_count(self) -> int:
+        """The workers the scheduler has now (at least one, as a chunking hint)."""
+        try:
+            return max(1, len(self.client.scheduler_info().get("workers", {})))
+        except (OSError, TimeoutError, KeyError):
+            return 1
 
     def close(self) -> None:
         self.client.close()

@@ -7,9 +7,10 @@ import logging
 import pytest
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def cluster():
-    """Started once for the session, stopped after it; each test gets its address."""
+    """Started once for tests/explore and stopped after them (not left running under the rest
+    of the suite); each test gets its address."""
     from distributed import LocalCluster
 
     local = LocalCluster(
