@@ -24,9 +24,9 @@ import numpy as np
 import trimesh
 from numpy.typing import NDArray
 
-from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
-from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT
-from nodes.common.checks import finite, given, whole
+from engine.node import LIST, In, Node, NodeWarning, Out
+from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, describe
+from nodes.common.checks import finite, whole
 from nodes.common.convert import points
 from nodes.common.values import MESH
 from nodes.geometry.array_types import FloatArray
@@ -168,8 +168,8 @@ class BendingCheck(Node):
         limit, called = material_radius(material)
         try:
             to_mm = unit_scale(unit_name(units), "mm")
-        except FileFailure as exc:
-            raise NodeError(str(exc)) from None
+        except FileFailure as exc:  # "Units 'furlong' is not a length unit ...": one refused value
+            raise NodeWarning(str(exc)) from None
         scale = finite("ModelScale", model_scale)
         if not scale > 0:
             raise NodeWarning(f"ModelScale must be positive (1 for full size, 50 for 1:50), not {scale:g}")
@@ -178,10 +178,15 @@ class BendingCheck(Node):
             raise NodeWarning("There are no strips: wire surfaces into Strips")
         u, v = uv_grid(n, n)
         radii, oks, failing, meshes = [], [], [], []
-        for index, strip in enumerate(strips):
-            surface = given("Strips", strip)
-            if not isinstance(surface, Surface):
-                raise NodeError(f"Strip {index + 1} is not a surface")
+        for index, surface in enumerate(strips):
+            if not isinstance(surface, Surface):  # one refused strip: null outputs for it, the rest checked
+                what = "empty (null)" if surface is None else f"{describe(surface)}, not a surface"
+                self.warn(f"Strip {index + 1} of Strips is {what}: it is not checked and its outputs "
+                          "are null")
+                radii.append(None)
+                oks.append(None)
+                meshes.append(None)
+                continue
             self.check_cancelled()
             radius = bending_radii(surface, u, v) * to_mm / scale
             known = radius[~np.isnan(radius)]
@@ -197,13 +202,15 @@ class BendingCheck(Node):
             mesh.metadata.update({"scalars": np.where(np.isfinite(radius), radius, np.nan),
                                   "scalar_name": "bending radius, mm"})
             meshes.append(mesh)
-        bad = [i + 1 for i, ok in enumerate(oks) if not ok]
+        bad = [i + 1 for i, ok in enumerate(oks) if ok is False]
+        checked = sum(ok is not None for ok in oks)
         if bad:
             listed = ", ".join(map(str, bad[:20])) + (" …" if len(bad) > 20 else "")
-            self.remark(f"{len(bad)} of {len(oks)} strips bend tighter than {called} allows "
+            self.remark(f"{len(bad)} of {checked} strips bend tighter than {called} allows "
                         f"({limit:.0f} mm): strips {listed}")
-        else:
-            self.remark(f"Every strip can be bent from {called} ({limit:.0f} mm)")
+        elif checked:
+            which = "Every strip checked" if checked < len(oks) else "Every strip"
+            self.remark(f"{which} can be bent from {called} ({limit:.0f} mm)")
         return radii, oks, failing, meshes, limit
 
 

@@ -4,18 +4,17 @@ from X, Y, Z expressions."""
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
-from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
+from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, VECTOR
 from engine.values import Domain, Vector
 from nodes.common.checks import ZERO_LENGTH, number, point_list, whole, xyz
 from nodes.common.convert import kernel_errors
+from nodes.common.formulas import formula
 from nodes.common.values import CURVE
-from nodes.expressions import CompiledExpression, ExpressionError, compile_expression
 from nodes.geometry import curves as kernel
 from nodes.geometry.curve_base import Curve
 
@@ -164,14 +163,6 @@ class NurbsCurve(Node):
             return kernel.NurbsCurve(points, degree=k, weights=w, periodic=bool(periodic))
 
 
-@lru_cache(maxsize=256)
-def _compiled(name: str, text: str) -> CompiledExpression:
-    try:
-        return compile_expression(text, ("t",))
-    except ExpressionError as exc:
-        raise NodeError(f"{name}: {exc}") from None
-
-
 class ParametricCurve(Node):
     """A curve from three formulas in t: the point (X(t), Y(t), Z(t)) for t over a Domain.
 
@@ -194,11 +185,7 @@ class ParametricCurve(Node):
     outputs = (Out("Curve", CURVE, "C", "The curve traced by (X, Y, Z) as t runs over the Domain."),)
 
     def solve(self, x: Any, y: Any, z: Any, domain: Any) -> Curve:
-        formulas = []
-        for name, text in (("X", x), ("Y", y), ("Z", z)):
-            if text is None or not str(text).strip():
-                raise NodeWarning(f"{name} is empty: write a formula in t, such as 0")
-            formulas.append(_compiled(name, str(text)))
+        formulas = [formula(name, text, ("t",)) for name, text in (("X", x), ("Y", y), ("Z", z))]
         if domain is None:
             raise NodeWarning("Domain is empty (null)")
         a, b = number("Domain start", domain.min), number("Domain end", domain.max)

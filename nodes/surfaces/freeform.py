@@ -3,19 +3,19 @@ surfaces from point grids, and surfaces from X, Y, Z expressions in u and v."""
 
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
 from engine.datatree import DataTree, Path, format_path
-from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
+from engine.node import LIST, TREE, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, POINT, TEXT
 from engine.values import Domain
 from nodes.common.checks import given, interval, point_list, whole
 from nodes.common.convert import kernel_errors
+from nodes.common.formulas import formula
 from nodes.common.values import CURVE, SURFACE
-from nodes.expressions import CompiledExpression, ExpressionError, compile_expression
+from nodes.expressions import ExpressionError
 from nodes.geometry import nurbs_surface, parametric_surface, ruled
 from nodes.geometry.curvature import DEGENERATE_RATIO
 from nodes.geometry.curve_base import Curve
@@ -244,14 +244,6 @@ class NurbsSurface(Node):
         return surface
 
 
-@lru_cache(maxsize=256)
-def _compiled(name: str, text: str) -> CompiledExpression:
-    try:
-        return compile_expression(text, ("u", "v"))
-    except ExpressionError as exc:
-        raise NodeError(f"{name}: {exc}") from None
-
-
 PROBE = 65
 """Grid of PROBE × PROBE parameters where ParametricSurface checks its formulas give points."""
 
@@ -284,11 +276,7 @@ class ParametricSurface(Node):
     outputs = (Out("Surface", SURFACE, "S", "The surface traced by (X, Y, Z) over both domains."),)
 
     def solve(self, x: Any, y: Any, z: Any, u_domain: Any, v_domain: Any) -> Surface:
-        formulas = []
-        for name, text in (("X", x), ("Y", y), ("Z", z)):
-            if text is None or not str(text).strip():
-                raise NodeWarning(f"{name} is empty: write a formula in u and v, such as 0")
-            formulas.append(_compiled(name, str(text)))
+        formulas = [formula(name, text, ("u", "v")) for name, text in (("X", x), ("Y", y), ("Z", z))]
         u_range, v_range = interval("UDomain", u_domain, "u"), interval("VDomain", v_domain, "v")
         fx, fy, fz = formulas
 
@@ -300,8 +288,8 @@ class ParametricSurface(Node):
         v = v_range[0] + t * (v_range[1] - v_range[0])
         try:
             values = parametric_surface.as_points(function(u, v), len(u))
-        except ExpressionError as exc:
-            raise NodeError(str(exc)) from None
+        except ExpressionError as exc:  # refused when evaluated: the formulas' fault, as one value
+            raise NodeWarning(f"The formulas X, Y, Z cannot be evaluated: {exc}") from None
         bad = ~np.all(np.isfinite(values), axis=1)
         if bad.any():
             k = int(np.argmax(bad))
