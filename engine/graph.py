@@ -130,6 +130,9 @@ class Graph:
         self.units: str = "m"
         self.meta: dict[str, Any] = {}
         self.raw: dict[str, Any] = {}
+        #: cluster definitions by id, shared with the inner graph of every definition
+        #: (see :mod:`engine.cluster`)
+        self.clusters: dict[str, Any] = {}
         self.expired: set[str] = set()
         #: how many nodes have been removed so far (lets a solver forget their results cheaply)
         self.removals = 0
@@ -441,6 +444,68 @@ class Graph:
         self.groups.remove(group)
         self._emit(GroupRemoved, group)
         return group
+
+    # -- clusters (see engine.cluster and engine.cluster_edits) ------------------------
+    def make_cluster(self, node_ids: Iterable[str], name: str = "Cluster", *, node_id: str | None = None,
+                     definition_id: str | None = None) -> str:
+        """Collapse ``node_ids`` into one new cluster node; returns its id (undo: explode it)."""
+        from engine.cluster_edits import make_cluster
+
+        return make_cluster(self, list(node_ids), name, node_id=node_id, definition_id=definition_id)
+
+    def explode_cluster(self, node_id: str) -> list[str]:
+        """Put the cluster ``node_id``'s inner nodes in its place; returns their ids
+        (undo: :meth:`restore_cluster` with what :meth:`cluster_instance` said before)."""
+        from engine.cluster_edits import explode_cluster
+
+        return explode_cluster(self, node_id)
+
+    def cluster_instance(self, node_id: str) -> Any:
+        """What undoing an explode of ``node_id`` needs (take it before exploding)."""
+        from engine.cluster_edits import cluster_instance
+
+        return cluster_instance(self, node_id)
+
+    def restore_cluster(self, info: Any, node_ids: list[str]) -> None:
+        """Undo :meth:`explode_cluster`: remove ``node_ids``, put the cluster back."""
+        from engine.cluster_edits import restore_cluster
+
+        restore_cluster(self, info, node_ids)
+
+    def cluster_definition(self, key: str) -> Any:
+        """The :class:`~engine.cluster.ClusterDefinition` with id ``key`` or of cluster node ``key``."""
+        from engine.cluster_edits import definition_of
+
+        return definition_of(self, key)
+
+    def cluster_graph(self, definition_id: str) -> Graph:
+        """A copy of a definition's inner graph, to edit and commit with :meth:`set_cluster_graph`."""
+        from engine.cluster import clone_graph
+
+        return clone_graph(self.cluster_definition(definition_id).graph)
+
+    def set_cluster_graph(self, definition_id: str, edited: Graph, inputs: list[str] | None = None,
+                          outputs: list[str] | None = None) -> Any:
+        """Commit an edited definition graph: every instance updates (returns a
+        :class:`~engine.cluster.DefinitionChange` to undo it)."""
+        from engine.cluster_edits import set_cluster_graph
+
+        return set_cluster_graph(self, definition_id, edited, inputs, outputs)
+
+    def rename_cluster_port(self, definition_id: str, kind: str, old: str, new: str) -> str:
+        from engine.cluster_edits import rename_cluster_port
+
+        return rename_cluster_port(self, definition_id, kind, old, new)
+
+    def reorder_cluster_ports(self, definition_id: str, kind: str, names: list[str]) -> list[str]:
+        from engine.cluster_edits import reorder_cluster_ports
+
+        return reorder_cluster_ports(self, definition_id, kind, names)
+
+    def rename_cluster(self, definition_id: str, name: str) -> str:
+        from engine.cluster_edits import rename_cluster
+
+        return rename_cluster(self, definition_id, name)
 
     # -- topology -------------------------------------------------------------------
     def expire(self, node_id: str) -> None:

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from engine.bounds import within_bounds
+from engine.cluster import PORT, ClusterDefinition, ClusterInput, ClusterNode, clone_graph
 from engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path, is_array
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.node import (
@@ -81,9 +82,22 @@ class Solver:
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
         self._removals_seen = graph.removals
+        self._clusters: dict[str, ClusterRun] = {}  # cluster node id → its inner solve
 
     def result(self, node_id: str) -> NodeResult:
         return self.results.get(node_id) or NodeResult()
+
+    def cluster_solver(self, node_id: str) -> Solver | None:
+        """The inner solver of the cluster node ``node_id`` (its inner graph is a private
+        copy of the definition's, with this instance's inputs), once it has been solved."""
+        run = self._clusters.get(node_id)
+        return None if run is None else run.solver
+
+    def cluster_inputs(self, node_id: str) -> dict[str, DataTree]:
+        """The trees the cluster node ``node_id`` last received, by inner Input node id
+        (for showing an instance's values while its definition is edited)."""
+        run = self._clusters.get(node_id)
+        return {} if run is None else dict(run.fed)
 
     def solve(self, token: CancelToken | None = None, progress: Progress | None = None,
               node_progress: NodeProgress | None = None) -> SolveReport:
@@ -97,6 +111,8 @@ class Solver:
             self._removals_seen = graph.removals
             for stale in self.results.keys() - graph.nodes.keys():
                 del self.results[stale]
+            for stale in self._clusters.keys() - graph.nodes.keys():
+                del self._clusters[stale]
         # only the expired nodes are visited: sorted by their topological rank
         pending = graph.in_order(graph.expired)
         try:
@@ -128,6 +144,8 @@ class Solver:
             return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
+        if isinstance(node, ClusterNode):
+            return self._solve_cluster(record, node, token, on_progress)
         context = SolveContext(node, token, self.files.for_node(record.id), on_progress)
         messages = context.messages
         outputs: dict[str, DataTree] = {}
@@ -154,6 +172,33 @@ class Solver:
             outputs = _empty_outputs(node)
         return NodeResult(state, messages, seconds, outputs)
 
+    def _solve_cluster(self, record: NodeRecord, node: ClusterNode, token: CancelToken,
+                       on_progress: Callable[[float], None] | None) -> NodeResult:
+        """Solve a cluster instance through its inner graph: only the inner nodes
+        downstream of inputs whose trees changed are solved again."""
+        started = time.perf_counter()
+        definition = node.definition
+        run = self._clusters.get(record.id)
+        if run is None or run.definition is not definition or run.revision != definition.revision:
+            run = self._clusters[record.id] = ClusterRun(definition, self.files)
+        try:
+            trees, _ = self._gather(record)
+        except NodeError as exc:
+            return NodeResult(ERROR, [Message(Level.ERROR, str(exc))], time.perf_counter() - started,
+                              _empty_outputs(node))
+        run.feed(trees)
+        progress = None if on_progress is None else (
+            lambda index, count, _node: on_progress(index / max(count, 1)))
+        if run.solver.solve(token, progress).cancelled:
+            raise Cancelled
+        inner = run.solver
+        outputs = {
+            port.name: inner.result(node_id).output(PORT)
+            for port, node_id in zip(definition.output_ports(), definition.outputs, strict=True)
+        }
+        state, messages = run.summary()
+        return NodeResult(state, messages, time.perf_counter() - started, outputs)
+
     def _gather(self, record: NodeRecord) -> tuple[list[DataTree], list[bool]]:
         """The modified, cast input trees of ``record``, one per input port, and which are wired."""
         trees, wired = [], []
@@ -179,6 +224,61 @@ class Solver:
                 tree = apply_modifiers(tree, state.modifiers)
             trees.append(within_bounds(cast_tree(tree, port), port))
         return trees, wired
+
+
+class ClusterRun:
+    """One cluster instance's inner solve: a private copy of its definition's graph (as
+    of the definition's ``revision``), its solver, and the trees it was last fed."""
+
+    def __init__(self, definition: ClusterDefinition, files: WriteAccess) -> None:
+        self.definition = definition
+        self.revision = definition.revision
+        self.graph = clone_graph(definition.graph)
+        self.solver = Solver(self.graph, files)
+        self.fed: dict[str, DataTree] = {}
+
+    def feed(self, trees: list[DataTree]) -> None:
+        """Give each inner Input node its tree; expire those whose tree changed."""
+        for node_id, tree in zip(self.definition.inputs, trees, strict=True):
+            record = self.graph.nodes.get(node_id)
+            if record is None or not isinstance(record.node, ClusterInput):
+                continue
+            last = self.fed.get(node_id)
+            if last is not None and _same_tree(last, tree):
+                continue
+            self.fed[node_id] = tree
+            record.node.feed = tree
+            self.graph.expire(node_id)
+
+    def summary(self) -> tuple[str, list[Message]]:
+        """The cluster's state (its inner nodes' worst) and its message: the worst inner
+        message, naming its node, with how many more there are."""
+        found: list[tuple[Level, str]] = []
+        graph, results = self.graph, self.solver.results
+        for node_id in graph.order():
+            result = results.get(node_id)
+            if result is None:
+                continue
+            for message in result.messages:
+                found.append((message.level, f"{graph.nodes[node_id].title}: {message.text}"))
+        if not found:
+            return OK, []
+        worst = max(level for level, _ in found)
+        text = next(text for level, text in found if level == worst)
+        others = sum(1 for level, _ in found if level >= Level.WARNING) - (worst >= Level.WARNING)
+        if others:
+            text += f" (and {others} more inside the cluster)"
+        state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
+        return state, [Message(worst, text)]
+
+
+def _same_tree(a: DataTree, b: DataTree) -> bool:
+    if a is b:
+        return True
+    try:
+        return bool(a == b)
+    except Exception:  # items that cannot be compared: treat the tree as new
+        return False
 
 
 def _empty_outputs(node: Node) -> dict[str, DataTree]:
@@ -408,10 +508,11 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
 
 def _for_port(branch: Branch, port: In) -> Branch:
     """A branch as ``port`` receives it: an array as it is for a list input that takes
-    arrays (``In(..., arrays=True)``; points and vectors as an (n, 3) array), otherwise a
-    list of Python values."""
+    arrays (``In(..., arrays=True)``; points and vectors as an (n, 3) array into a Point
+    or Vector input, as Triples into any other, which keeps what its rows are), otherwise
+    a list of Python values."""
     if port.arrays and port.access is LIST:
-        return branch.array if isinstance(branch, Triples) else branch
+        return branch.array if isinstance(branch, Triples) and port.type.name in _TRIPLE_OF else branch
     return as_list(branch)
 
 
