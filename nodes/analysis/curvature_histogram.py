@@ -5,11 +5,11 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import trimesh
 
 from engine.node import LIST, In, Node, NodeWarning, Out
-from engine.types import GENERIC, INTEGER, NUMBER, TEXT, describe
-from nodes.common.checks import finite, given, whole
+from engine.types import GENERIC, INTEGER, NUMBER, TEXT
+from nodes.common.checks import finite, whole
+from nodes.common.geometry_checks import surface_or_mesh
 from nodes.display.plot import new_figure, save, target
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import SurfaceCurvature
@@ -90,17 +90,6 @@ def histogram(values: FloatArray, edges: FloatArray) -> list[int]:
     return np.bincount(index, minlength=len(edges) - 1).astype(int).tolist()
 
 
-def _surface(value: Any) -> Surface | MeshSurface:
-    g = given("Surface", value)
-    if isinstance(g, Surface | MeshSurface):
-        return g
-    if isinstance(g, trimesh.Trimesh):
-        if len(g.faces) == 0:
-            raise NodeWarning("The mesh has no faces, so it has no curvature to count")
-        return MeshSurface(g)
-    raise NodeWarning(f"Surface {describe(g)} is not a surface: give a surface, a mesh or a mesh surface")
-
-
 class CurvatureHistogram(Node):
     """Draw how a surface's curvature is spread: a bar chart of how many grid points
     have each curvature.
@@ -145,7 +134,7 @@ class CurvatureHistogram(Node):
 
     def solve(self, surface: Any, measure_name: Any, u_density: Any, v_density: Any, bins: Any,
               tolerance: Any, title: Any, file: Any) -> tuple[Any, ...]:
-        target_ = _surface(surface)
+        target_ = surface_or_mesh("Surface", surface, "curvature to count")
         name = str(measure_name or "min|k|").strip()
         if name not in MEASURES:
             raise NodeWarning(f"Measure must be one of {', '.join(MEASURES)}, not {name!r}")

@@ -11,11 +11,12 @@ import trimesh
 from numpy.typing import NDArray
 
 from engine.node import LIST, In, Node, NodeWarning, Out
-from engine.types import GENERIC, INTEGER, NUMBER, POINT, describe
+from engine.types import GENERIC, INTEGER, NUMBER, POINT
 from nodes.analysis.colours import colour_table, colours
 from nodes.analysis.single_curved import area_fraction, signed_flatness
-from nodes.common.checks import angle, finite, given, whole
+from nodes.common.checks import angle, finite, whole
 from nodes.common.convert import points
+from nodes.common.geometry_checks import surface_or_mesh
 from nodes.common.values import LINE, MESH
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import DEGENERATE_RATIO, SurfaceCurvature
@@ -184,17 +185,6 @@ def coloured(mesh: trimesh.Trimesh, flatness: FloatArray, tolerance: float) -> t
     return mesh
 
 
-def _surface(value: Any) -> Surface | MeshSurface:
-    g = given("Surface", value)
-    if isinstance(g, Surface | MeshSurface):
-        return g
-    if isinstance(g, trimesh.Trimesh):
-        if len(g.faces) == 0:
-            raise NodeWarning("The mesh has no faces, so it has no surface to analyse")
-        return MeshSurface(g)
-    raise NodeWarning(f"Surface {describe(g)} is not a surface: give a surface, a mesh or a mesh surface")
-
-
 #: What one analysis costs besides its grid, in grid samples (0.15 s at 10 x 10, 0.24 s at
 #: 50 x 50, 3.5 s at 200 x 200 measured on a loaded two-core machine).
 _CALL_SAMPLES = 2_500
@@ -281,7 +271,7 @@ class SurfaceAnalysis(Node):
 
     def solve(self, value: Any, u_density: Any, v_density: Any, scale: Any, curvature_tolerance: Any,
               warp_tolerance: Any) -> tuple[Any, ...]:
-        target = _surface(value)
+        target = surface_or_mesh("Surface", value, "surface to analyse")
         nu, nv = whole("UDensity", u_density), whole("VDensity", v_density)  # bounded on the ports
         factor = finite("Scale", scale)
         if factor < 0:

@@ -41,6 +41,10 @@ from nodes.limits import MAX_ANALYSIS_SEGMENTS, MAX_NUMBERS, MAX_SEGMENTS, shown
 #: Below this length (model units) a direction counts as zero.
 ZERO_LENGTH = 1e-12
 
+#: The highest degree of a spline, a NURBS curve or a NURBS surface (Rhino's limit, and more
+#: than enough).
+MAX_DEGREE = 11
+
 #: How far outside [0, 1] a (u, v) may stray (rounding) before it is refused; it is clamped.
 UV_SLACK = 1e-12
 
@@ -96,6 +100,14 @@ def analysis_segments(value: Any, name: str = "Segments") -> int:
     return segments(value, MAX_ANALYSIS_SEGMENTS, name)
 
 
+def degree(name: str, value: Any) -> int:
+    """A curve's or surface's degree: a whole number from 1 to :data:`MAX_DEGREE`."""
+    n = whole(name, value)
+    if not 1 <= n <= MAX_DEGREE:
+        raise NodeWarning(f"{name} must be from 1 to {MAX_DEGREE}, not {n}")
+    return n
+
+
 def positive(name: str, value: Any) -> float:
     """A finite, positive length in model units (a radius, a width)."""
     x = number(name, value)
@@ -112,24 +124,25 @@ def length(name: str, value: Any) -> float:
     return x
 
 
-def angle(name: str, value: Any, example: str, largest: float = math.pi / 2) -> float:
-    """A positive tolerance angle in radians, at most ``largest``."""
-    x = finite(name, value)
-    if x <= 0:
-        raise NodeWarning(f"{name} must be a positive angle in radians (e.g. {example}), not {x:g}")
-    if x > largest:
-        raise NodeWarning(f"{name} is {x:g} rad; it is an angle in radians, at most {largest:.4g} (π/2)")
+def angle(name: str, value: Any, example: str = "0.01", largest: float | None = math.pi / 2,
+          exact: bool = False) -> float:
+    """A tolerance angle in radians: positive, or with ``exact`` 0 too (0 asks for an exact
+    result); at most ``largest`` (π/2 unless told; None: no greatest)."""
+    if value is None:
+        raise NodeWarning(f"{name} is empty: give an angle in rad, such as {example}")
+    x = float(value)
+    if not (math.isfinite(x) and (x >= 0 if exact else x > 0)):
+        least = "an angle of 0 rad or more" if exact else "a positive angle in radians"
+        raise NodeWarning(f"{name} must be {least}, such as {example}, not {x:g}")
+    if largest is not None and x > largest:
+        quarter = " (π/2)" if largest == math.pi / 2 else ""
+        raise NodeWarning(f"{name} is {x:g} rad; it is an angle in radians, at most {largest:.4g}{quarter}")
     return x
 
 
 def tolerance(name: str, value: Any) -> float:
-    """An angle tolerance in rad: finite and not negative (0 asks for exact)."""
-    if value is None:
-        raise NodeWarning(f"{name} is empty: give an angle in rad, such as 0.01")
-    x = float(value)
-    if not math.isfinite(x) or x < 0:
-        raise NodeWarning(f"{name} must be an angle of 0 rad or more, such as 0.01, not {x:g}")
-    return x
+    """An angle tolerance in rad, 0 (exact) or more, of any size: :func:`angle` with ``exact``."""
+    return angle(name, value, largest=None, exact=True)
 
 
 def edge(name: str, value: Any) -> int:

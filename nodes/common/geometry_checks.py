@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+import trimesh
 
 from engine.node import NodeWarning
 from engine.types import describe
@@ -69,6 +70,19 @@ def parametric_surface(name: str, value: Any) -> Surface:
     if not isinstance(value, Surface):
         raise NodeWarning(f"{name} {describe(value)} is not a surface")
     return value
+
+
+def surface_or_mesh(name: str, value: Any, lacking: str) -> Surface | MeshSurface:
+    """A surface or a mesh surface, or a mesh taken as a mesh surface; a mesh with no faces
+    is refused as having no ``lacking`` ("curvature to count", "surface to analyse")."""
+    g = given(name, value)
+    if isinstance(g, Surface | MeshSurface):
+        return g
+    if isinstance(g, trimesh.Trimesh):
+        if len(g.faces) == 0:
+            raise NodeWarning(f"The mesh has no faces, so it has no {lacking}")
+        return MeshSurface(g)
+    raise NodeWarning(f"{name} {describe(g)} is not a surface: give a surface, a mesh or a mesh surface")
 
 
 def ruled_surface(value: Any, node: str) -> Surface:

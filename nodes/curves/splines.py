@@ -11,7 +11,8 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, VECTOR
 from engine.values import Domain, Vector
-from nodes.common.checks import ZERO_LENGTH, number, point_list, whole, xyz
+from nodes.common.checks import ZERO_LENGTH, number, point_list, xyz
+from nodes.common.checks import degree as degree_input
 from nodes.common.convert import kernel_errors
 from nodes.common.formulas import formula
 from nodes.common.values import CURVE
@@ -20,17 +21,6 @@ from nodes.geometry.curve_base import Curve
 
 FREE_END = Vector(0.0, 0.0, 0.0)
 """Tangent input default: the zero vector leaves that end of the curve free."""
-
-MAX_DEGREE = 11
-"""Highest degree the spline nodes accept (Rhino's limit, and more than enough)."""
-
-
-def _degree(value: Any) -> int:
-    degree = whole("Degree", value)
-    if not 1 <= degree <= MAX_DEGREE:
-        raise NodeWarning(f"Degree must be from 1 to {MAX_DEGREE}, not {degree}")
-    return degree
-
 
 def _no_repeats(points: np.ndarray) -> None:
     """Refuse a vertex equal to the next one: no spline passes through a point twice in a row."""
@@ -87,7 +77,7 @@ class Interpolate(Node):
         self, vertices: list[Any], degree: Any, closed: bool, start: Any, end: Any
     ) -> kernel.InterpolatedCurve | kernel.Line:
         points = point_list("Vertices", vertices)
-        k = _degree(degree)
+        k = degree_input("Degree", degree)
         start_tangent, end_tangent = _tangent("StartTangent", start), _tangent("EndTangent", end)
         tangents = start_tangent is not None or end_tangent is not None
         if closed and tangents:
@@ -143,7 +133,7 @@ class NurbsCurve(Node):
         self, vertices: list[Any], degree: Any, weights: list[Any], periodic: bool
     ) -> kernel.NurbsCurve:
         points = point_list("Vertices", vertices)
-        k = _degree(degree)
+        k = degree_input("Degree", degree)
         if len(points) < k + 1:
             raise NodeWarning(
                 f"A degree-{k} curve needs at least {k + 1} vertices; got {len(points)} "

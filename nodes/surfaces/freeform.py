@@ -11,7 +11,7 @@ from engine.datatree import DataTree, Path, format_path
 from engine.node import LIST, TREE, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, POINT, TEXT
 from engine.values import Domain
-from nodes.common.checks import given, interval, point_list, whole
+from nodes.common.checks import degree, given, interval, point_list, whole
 from nodes.common.convert import kernel_errors
 from nodes.common.formulas import formula
 from nodes.common.values import CURVE, SURFACE
@@ -20,9 +20,6 @@ from nodes.geometry import nurbs_surface, parametric_surface, ruled
 from nodes.geometry.curvature import DEGENERATE_RATIO
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.surface_base import Surface, uv_grid
-
-MAX_DEGREE = 11
-"""Highest degree NurbsSurface accepts (Rhino's limit, as for curves)."""
 
 SAMPLES = 513
 """Points per curve where Loft samples its curves: circles are reproduced to ~1e-8 of their radius
@@ -109,13 +106,6 @@ class RuledSurface(Node):
                 self.remark("CurveA and CurveB run in opposite directions, so the rulings cross: Flip one")
         with kernel_errors():
             return ruled.RuledSurface(a, b)
-
-
-def _degree(name: str, value: Any) -> int:
-    degree = whole(name, value)
-    if not 1 <= degree <= MAX_DEGREE:
-        raise NodeWarning(f"{name} must be from 1 to {MAX_DEGREE}, not {degree}")
-    return degree
 
 
 def _grid_from_list(points: np.ndarray, u_count: int) -> np.ndarray:
@@ -209,7 +199,7 @@ class NurbsSurface(Node):
     def solve(
         self, points: DataTree, u_count: Any, degree_u: Any, degree_v: Any, interpolate: Any
     ) -> DataTree:
-        du, dv = _degree("DegreeU", degree_u), _degree("DegreeV", degree_v)
+        du, dv = degree("DegreeU", degree_u), degree("DegreeV", degree_v)
         count = None if u_count is None else whole("UCount", u_count)
         # Each job is one grid: its output path and its branches (one, or one per row).
         jobs: dict[Path, list[tuple[Path, list[Any]]]] = {}

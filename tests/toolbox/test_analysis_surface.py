@@ -199,7 +199,7 @@ def test_mesh_surface_uses_the_discrete_estimator():
     ({"VDensity": 100_000}, "VDensity is 100,000; at most 500 can be made at once"),
     ({"Scale": -1.0}, "Scale must be 0 or more, not -1: it sets the lines' length per unit of curvature"),
     ({"CurvatureTolerance": 0.0}, "CurvatureTolerance must be positive, in 1/m (e.g. 0.01), not 0"),
-    ({"WarpTolerance": -0.1}, "WarpTolerance must be a positive angle in radians (e.g. 0.01), not -0.1"),
+    ({"WarpTolerance": -0.1}, "WarpTolerance must be a positive angle in radians, such as 0.01, not -0.1"),
 ])
 def test_bad_inputs_warn_with_what_to_change(inputs, message):
     result, _ = analysed(cylinder(1.0, 1.0), **inputs)
