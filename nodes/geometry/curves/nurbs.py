@@ -15,6 +15,7 @@ from scipy.interpolate import BSpline
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
+from ..spline_eval import spline_values
 from ..vec_ops import anchor, extent
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots
@@ -175,7 +176,8 @@ class NurbsCurve(Curve):
         if not self.is_rational:
             return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
         homogeneous = [
-            self._spline(u, nu=k) if k <= self.degree else np.zeros((len(u), 4)) for k in range(order + 1)
+            spline_values(self._spline, u, k) if k <= self.degree else np.zeros((len(u), 4))
+            for k in range(order + 1)
         ]
         w = [h[:, 3:] for h in homogeneous]
         result: list[FloatArray] = []
@@ -209,7 +211,7 @@ class NurbsCurve(Curve):
         (for k = 0 relative to :attr:`anchor`)."""
         if k > self.degree:
             return np.zeros((len(u), 3))
-        value = self._spline(u, nu=k)
+        value = spline_values(self._spline, u, k)
         return value if k == 0 or scale == 1.0 else value * scale**k
 
     def _breakpoints(self) -> FloatArray:
