@@ -201,10 +201,19 @@ def ruled_between(curve_a: Curve, s: ArrayLike, curve_b: Curve, t: ArrayLike) ->
         raise ValueError("a strip needs at least two rulings, one s and one t each")
     u = np.linspace(0.0, 1.0, n)
     rail_a, rail_b = CurveRail(curve_a, u, s), CurveRail(curve_b, u, t)
-    surface = RuledSurface(rail_a, rail_b)
     lines = np.empty((n, 2, 3))
     lines[:, 0] = curve_a.point_at(rail_a._wrapped(rail_a.curve_params))
     lines[:, 1] = curve_b.point_at(rail_b._wrapped(rail_b.curve_params))
+    # the rails' ends are the first and last rulings' (to rounding): closed round u when
+    # both rails return to their start, as RuledSurface judges it from its rails' ends,
+    # without evaluating the rails again (a strip's rails are built on every re-solve)
+    ends = lines[[0, -1, 0, -1], [0, 0, 1, 1]]
+    size = float(np.ptp(ends, axis=0).max()) or 1.0
+    closed_u = bool(
+        np.abs(ends[0] - ends[1]).max() <= 1e-12 * size and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size
+    )
+    surface = RuledSurface.__new__(RuledSurface)
+    surface._setup(rail_a, rail_b, closed_u)
     surface.ruling_parameters = u
     surface.ruling_lines = lines
     return surface
