@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
-from engine.node import In, Node, Out
+import numpy as np
+
+from engine.datatree import Branch
+from engine.node import LIST, In, Node, Out
 from engine.types import NUMBER, POINT
 from engine.values import Point as PointValue
-from nodes.common.checks import finite
+from nodes.params.coordinates import as_float_columns, each_row, paired_count
 
 
 class Point(Node):
@@ -17,11 +20,22 @@ class Point(Node):
 
     type_id = "params.Point"
     inputs = (
-        In("X", NUMBER, "X", "Distance along the X axis, in model units.", default=0.0),
-        In("Y", NUMBER, "Y", "Distance along the Y axis, in model units.", default=0.0),
-        In("Z", NUMBER, "Z", "Height along the Z axis, in model units.", default=0.0),
+        In("X", NUMBER, "X", "Distance along the X axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
+        In("Y", NUMBER, "Y", "Distance along the Y axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
+        In("Z", NUMBER, "Z", "Height along the Z axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
     )
-    outputs = (Out("Point", POINT, "P", "The point at (X, Y, Z)."),)
+    outputs = (Out("Point", POINT, "P", "The point at (X, Y, Z), one for each item of the lists.",
+                   access=LIST),)
 
-    def solve(self, x: float, y: float, z: float) -> PointValue:
-        return PointValue(finite("X", x), finite("Y", y), finite("Z", z))
+    def solve(self, x: Branch, y: Branch, z: Branch) -> np.ndarray | list[PointValue | None]:
+        columns = {"X": x, "Y": y, "Z": z}
+        count = paired_count(self, columns)
+        if count == 0:
+            return []
+        xyz = as_float_columns(columns, count)
+        if xyz is not None:
+            return xyz  # an (n, 3) array: the tree holds it as Triples of points
+        return each_row(self, columns, count, PointValue)

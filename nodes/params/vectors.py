@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
-from engine.node import In, Node, Out
+import numpy as np
+
+from engine.datatree import Branch
+from engine.node import LIST, In, Node, Out
 from engine.types import NUMBER, VECTOR
 from engine.values import Vector as VectorValue
-from nodes.common.checks import finite
+from nodes.params.coordinates import as_float_columns, each_row, paired_count
+
+_ZERO = "The vector has zero length, so it has no direction"
 
 
 class Vector(Node):
@@ -17,17 +22,30 @@ class Vector(Node):
 
     type_id = "params.Vector"
     inputs = (
-        In("X", NUMBER, "X", "Component along the X axis, in model units.", default=0.0),
-        In("Y", NUMBER, "Y", "Component along the Y axis, in model units.", default=0.0),
-        In("Z", NUMBER, "Z", "Component along the Z axis, in model units.", default=0.0),
+        In("X", NUMBER, "X", "Component along the X axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
+        In("Y", NUMBER, "Y", "Component along the Y axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
+        In("Z", NUMBER, "Z", "Component along the Z axis, in model units.", default=0.0,
+           access=LIST, arrays=True),
     )
-    outputs = (Out("Vector", VECTOR, "V", "The vector (X, Y, Z)."),)
+    outputs = (Out("Vector", VECTOR, "V", "The vector (X, Y, Z), one for each item of the lists.",
+                   access=LIST),)
 
-    def solve(self, x: float, y: float, z: float) -> VectorValue:
-        vector = VectorValue(finite("X", x), finite("Y", y), finite("Z", z))
-        if vector.length == 0.0:
-            self.remark("The vector has zero length, so it has no direction")
-        return vector
+    def solve(self, x: Branch, y: Branch, z: Branch) -> np.ndarray | list[VectorValue | None]:
+        columns = {"X": x, "Y": y, "Z": z}
+        count = paired_count(self, columns)
+        if count == 0:
+            return []
+        xyz = as_float_columns(columns, count)
+        if xyz is None:
+            vectors = each_row(self, columns, count, VectorValue)
+            if any(v is not None and v.length == 0.0 for v in vectors):
+                self.remark(_ZERO)
+            return vectors
+        if (xyz == 0.0).all(axis=1).any():
+            self.remark(_ZERO)
+        return xyz  # an (n, 3) array: the tree holds it as Triples of vectors
 
 
 class _Unit(Node):
@@ -35,16 +53,28 @@ class _Unit(Node):
 
     axis = 0  # index of the component Factor goes into
 
-    def solve(self, factor: float) -> VectorValue:
+    def solve(self, factor: Branch) -> np.ndarray | list[VectorValue | None]:
+        columns = {"Factor": factor}
+        count = paired_count(self, columns)
+        if count == 0:
+            return []
+        factors = as_float_columns(columns, count)
+        if factors is None:
+            return each_row(self, columns, count, self._vector)
+        xyz = np.zeros((count, 3))
+        xyz[:, self.axis] = factors[:, 0]
+        return xyz  # an (n, 3) array: the tree holds it as Triples of vectors
+
+    def _vector(self, factor: float) -> VectorValue:
         components = [0.0, 0.0, 0.0]
-        components[self.axis] = finite("Factor", factor)
+        components[self.axis] = factor
         return VectorValue(*components)
 
 
 def _factor(axis: str) -> In:
     return In("Factor", NUMBER, "F",
               f"Length of the vector along {axis}, in model units; negative points backwards.",
-              default=1.0)
+              default=1.0, access=LIST, arrays=True)
 
 
 class UnitX(_Unit):
@@ -53,7 +83,7 @@ class UnitX(_Unit):
     type_id = "params.UnitX"
     axis = 0
     inputs = (_factor("X"),)
-    outputs = (Out("Vector", VECTOR, "V", "The vector (Factor, 0, 0)."),)
+    outputs = (Out("Vector", VECTOR, "V", "The vector (Factor, 0, 0), one for each Factor.", access=LIST),)
 
 
 class UnitY(_Unit):
@@ -62,7 +92,7 @@ class UnitY(_Unit):
     type_id = "params.UnitY"
     axis = 1
     inputs = (_factor("Y"),)
-    outputs = (Out("Vector", VECTOR, "V", "The vector (0, Factor, 0)."),)
+    outputs = (Out("Vector", VECTOR, "V", "The vector (0, Factor, 0), one for each Factor.", access=LIST),)
 
 
 class UnitZ(_Unit):
@@ -71,4 +101,4 @@ class UnitZ(_Unit):
     type_id = "params.UnitZ"
     axis = 2
     inputs = (_factor("Z"),)
-    outputs = (Out("Vector", VECTOR, "V", "The vector (0, 0, Factor)."),)
+    outputs = (Out("Vector", VECTOR, "V", "The vector (0, 0, Factor), one for each Factor.", access=LIST),)
