@@ -11,7 +11,9 @@ same operations on the same array, already built. Each node is timed alone where
 own work is O(n) (Sort, Shift with wrap, Cull Pattern), and the chain Sort → Shift →
 Reverse → Cull Pattern → List Item + List Length as a whole (Reverse is a view in both,
 so alone it would time only the engine's per-node cost). What the nodes compute is
-checked by ``make test`` (``tests/nodes/test_lists_arrays.py``).
+checked by ``make test`` (``tests/nodes/test_lists_arrays.py``). Points too: Series 10⁶ →
+Point → Shift against numpy stacking the (n, 3) array and rolling it
+(``tests/nodes/test_params_arrays.py``).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+from engine.datatree import Triples
 from engine.graph import Graph
 from engine.node import Node
 from engine.solver import Solver
@@ -28,6 +31,8 @@ from nodes.lists.culling import CullPattern
 from nodes.lists.items import ListItem, ListLength
 from nodes.lists.ordering import Reverse, Shift, Sort
 from nodes.maths.random_numbers import Random
+from nodes.maths.sequences import Series
+from nodes.params.points import Point as PointNode
 from tests.benchmarks.timing import ratio_to_baseline
 
 MILLION = 1_000_000
@@ -135,4 +140,35 @@ def test_a_list_node_on_a_million_numbers_is_within_3x_numpy(name):
     )
     (result,) = solver.result("n").outputs[port if name == "Sort" else "List"].raw_branches
     assert isinstance(result, np.ndarray) and np.array_equal(result, numpy_op(x))
+    assert ratio <= 3.0
+
+
+def test_a_million_points_from_series_through_shift_are_within_3x_numpy():
+    """Series 10⁶ → Point (X and Y from it) → Shift: one (n, 3) array made and rolled."""
+    graph = Graph()
+    graph.add_node(Series(), "s")
+    graph.set_input_value("s", "Count", MILLION)
+    graph.add_node(PointNode(), "p")
+    graph.connect("s", "Series", "p", "X")
+    graph.connect("s", "Series", "p", "Y")
+    graph.add_node(Shift(), "shift")
+    graph.connect("p", "Point", "shift", "List")
+    solver = Solver(graph)
+    solver.solve()
+    (x,) = solver.result("s").output("Series").raw_branches
+
+    def resolve() -> None:
+        graph.expire("p")
+        solver.solve()
+
+    def numpy_points() -> list[np.ndarray]:
+        xyz = np.column_stack([x, x, np.zeros(len(x))])
+        return [xyz, np.concatenate([xyz[1:], xyz[:1]])]
+
+    ratio = ratio_to_baseline(
+        "Series 10^6 -> Point -> Shift, re-solve", resolve,
+        "numpy, the (n, 3) array stacked and rolled", numpy_points, 7,
+    )
+    (shifted,) = solver.result("shift").output("List").raw_branches
+    assert isinstance(shifted, Triples) and np.array_equal(shifted.array, numpy_points()[1])
     assert ratio <= 3.0
