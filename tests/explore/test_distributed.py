@@ -71,3 +71,14 @@ def test_local_workers_run_one_thread_each_with_blas_limited_to_one_thread():
                                                                                "OPENBLAS_NUM_THREADS")})
     assert list(threads.values()) == [1]
     assert list(environ.values()) == [{"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}]
+
+
+def test_local_workers_run_without_the_sampling_profiler_or_work_stealing():
+    import dask
+
+    with DaskExecutor(workers=1) as executor:
+        profiling = executor.client.run(lambda: dask.config.get("distributed.worker.profile.enabled"))
+        stealing = executor.client.run_on_scheduler(
+            lambda dask_scheduler: "stealing" in dask_scheduler.extensions)
+    assert list(profiling.values()) == [False]
+    assert stealing is False
