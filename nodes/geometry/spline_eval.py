@@ -2,11 +2,12 @@
 
 A kernel solve evaluates small curves hundreds of times (a ruling strip's edges at a few
 dozen parameters each time), and ``BSpline.__call__`` spends several times longer on
-array-API bookkeeping (``asarray``, device checks, reshapes) than on the evaluation
-itself. :func:`spline_values` calls the evaluation routine ``BSpline.__call__`` ends in,
-with the same arguments, so the values are the same bit for bit; where that routine is
-not there (another scipy), or the spline is periodic (its parameters are wrapped
-first), it calls the spline as usual.
+array-API bookkeeping (``asarray`` and device checks, also on every read of the spline's
+``t`` and ``c``) than on the evaluation itself. :class:`SplineValues` reads the knots and
+coefficients once and calls the evaluation routine ``BSpline.__call__`` ends in, with the
+same arguments, so the values are the same bit for bit. Where that routine is not there
+(another scipy), or the spline is periodic (its parameters are wrapped first) or not a
+real ``(n, k)`` spline along axis 0, it calls the spline as usual.
 """
 
 from __future__ import annotations
@@ -24,19 +25,30 @@ except (ImportError, AttributeError):  # pragma: no cover - another scipy: the p
     _evaluate = None
 
 
+class SplineValues:
+    """``values(u, nu)`` is ``spline(u, nu=nu)`` for one-dimensional ``u``: ``(len(u), k)``."""
+
+    __slots__ = ("coefficients", "degree", "knots", "spline")
+
+    def __init__(self, spline: BSpline) -> None:
+        self.spline = spline
+        c = spline.c
+        direct = (
+            _evaluate is not None and spline.extrapolate is True and spline.axis == 0
+            and c.ndim == 2 and c.dtype == np.float64
+        )
+        self.knots = np.ascontiguousarray(spline.t, dtype=np.float64) if direct else None
+        self.coefficients = np.ascontiguousarray(c) if direct else None
+        self.degree = int(spline.k)
+
+    def __call__(self, u: FloatArray, nu: int = 0) -> FloatArray:
+        if self.knots is None or _evaluate is None:
+            return self.spline(u, nu=nu)
+        x = np.ascontiguousarray(u, dtype=np.float64).reshape(-1)
+        return _evaluate(self.knots, self.coefficients, self.degree, x, nu, True)
+
+
 def spline_values(spline: BSpline, u: FloatArray, nu: int = 0) -> FloatArray:
-    """``spline(u, nu=nu)`` for a spline with real ``(n, k)`` coefficients along axis 0 and
-    one-dimensional ``u``: ``(len(u), k)``."""
-    c = spline.c
-    if (
-        _evaluate is None
-        or spline.extrapolate is not True
-        or spline.axis != 0
-        or c.ndim != 2
-        or c.dtype != np.float64
-        or not c.flags.c_contiguous
-        or not spline.t.flags.c_contiguous
-    ):
-        return spline(u, nu=nu)
-    x = np.ascontiguousarray(u, dtype=np.float64).reshape(-1)
-    return _evaluate(spline.t, c, spline.k, x, nu, True)
+    """``spline(u, nu=nu)`` through :class:`SplineValues` (for a spline evaluated once; keep
+    a :class:`SplineValues` for one evaluated many times)."""
+    return SplineValues(spline)(u, nu)

@@ -15,7 +15,7 @@ from scipy.interpolate import BSpline
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
-from ..spline_eval import spline_values
+from ..spline_eval import SplineValues
 from ..vec_ops import anchor, extent
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots
@@ -121,6 +121,7 @@ class NurbsCurve(Curve):
             degree,
             extrapolate="periodic" if periodic else True,
         )
+        self._values = SplineValues(self._spline)
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
         if periodic:
@@ -176,7 +177,7 @@ class NurbsCurve(Curve):
         if not self.is_rational:
             return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
         homogeneous = [
-            spline_values(self._spline, u, k) if k <= self.degree else np.zeros((len(u), 4))
+            self._values(u, k) if k <= self.degree else np.zeros((len(u), 4))
             for k in range(order + 1)
         ]
         w = [h[:, 3:] for h in homogeneous]
@@ -211,7 +212,7 @@ class NurbsCurve(Curve):
         (for k = 0 relative to :attr:`anchor`)."""
         if k > self.degree:
             return np.zeros((len(u), 3))
-        value = spline_values(self._spline, u, k)
+        value = self._values(u, k)
         return value if k == 0 or scale == 1.0 else value * scale**k
 
     def _breakpoints(self) -> FloatArray:
