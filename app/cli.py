@@ -166,12 +166,18 @@ def _check(args: argparse.Namespace) -> int:
     from engine.solver import MISSING
 
     try:
-        graph, registry = open_graph(args.file)
+        graph, _ = open_graph(args.file)
     except GraphFileError as exc:
         raise UsageError(f"{args.file}: {exc}") from None
-    missing = sorted({r.type_id for r in graph.nodes.values() if r.type_id not in registry})
+    from engine.cluster import reachable_definitions
+    from engine.graph import is_placeholder
+
+    definitions = reachable_definitions(graph)
+    records = [*graph.nodes.values(), *(r for d in definitions for r in d.graph.nodes.values())]
+    missing = sorted({r.type_id for r in records if is_placeholder(r.node)})
+    clusters = f", {len(definitions)} cluster definition{'s' if len(definitions) != 1 else ''}"
     print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
-          f"{len(graph.groups)} groups")
+          f"{len(graph.groups)} groups{clusters if definitions else ''}")
     if missing:
         print(f"torsal: {MISSING} node types (kept as placeholders): {', '.join(missing)}", file=sys.stderr)
     return 0

@@ -5,11 +5,13 @@ API (what a front-end uses; every call is one edit, one undo step)::
     from engine.cluster import ClusterNode, ClusterInput, ClusterOutput, is_cluster
 
     cid = graph.make_cluster(node_ids, name="Panels")    # -> the new cluster node's id
+    did = graph.nodes[cid].node.definition.id            # its definition's id
         # undo: graph.explode_cluster(cid) (puts back the same ids, records, wires, groups)
         # redo: graph.make_cluster(node_ids, name, node_id=cid, definition_id=did)
     info = graph.cluster_instance(cid)                   # capture before exploding (for undo)
     ids = graph.explode_cluster(cid)                     # -> ids of the restored nodes
         # undo: graph.restore_cluster(info, ids)
+    other = graph.add_cluster_instance(did, position=(x, y))   # a second instance (undo: remove it)
     definition = graph.cluster_definition(cid_or_definition_id)    # ClusterDefinition
     graph.clusters                                       # {definition id: ClusterDefinition}
     definition.name, definition.id, definition.input_names(), definition.output_names()
@@ -314,35 +316,73 @@ def containing(clusters: dict[str, ClusterDefinition], definition_id: str) -> se
 def nesting_problem(clusters: dict[str, ClusterDefinition]) -> str | None:
     """A sentence if a definition contains itself or clusters nest deeper than
     :data:`MAX_NESTING`; None when all is well."""
+    return nesting_problem_of({d.id: d.used_definitions() for d in clusters.values()})
+
+
+def nesting_problem_of(uses: dict[str, set[str]]) -> str | None:
+    """:func:`nesting_problem` from ``{definition id: ids of the definitions it uses}``
+    (ids not in ``uses`` are ignored). Walks without recursion."""
     depth: dict[str, int] = {}
-    visiting: list[str] = []
-
-    def visit(def_id: str) -> str | None:
-        if def_id in depth:
-            return None
-        if def_id in visiting:
-            loop = [*visiting[visiting.index(def_id):], def_id]
-            return f"cluster definition {def_id!r} contains itself ({' → '.join(loop)})"
-        visiting.append(def_id)
-        deepest = 0
-        for inner in sorted(clusters[def_id].used_definitions()):
-            if inner not in clusters:
+    for root in sorted(uses):
+        if root in depth:
+            continue
+        path = [root]
+        stack = [iter(sorted(uses[root]))]
+        while stack:
+            child = next(stack[-1], None)
+            if child is None:
+                done = path.pop()
+                stack.pop()
+                depth[done] = 1 + max((depth[c] for c in uses[done] if c in depth), default=0)
+                if depth[done] > MAX_NESTING:
+                    return f"clusters are nested more than {MAX_NESTING} deep (through {done!r})"
                 continue
-            problem = visit(inner)
-            if problem:
-                return problem
-            deepest = max(deepest, depth[inner])
-        visiting.pop()
-        depth[def_id] = deepest + 1
-        if depth[def_id] > MAX_NESTING:
-            return f"clusters are nested more than {MAX_NESTING} deep (through {def_id!r})"
-        return None
-
-    for def_id in sorted(clusters):
-        problem = visit(def_id)
-        if problem:
-            return problem
+            if child not in uses or child in depth:
+                continue
+            if child in path:
+                loop = [*path[path.index(child):], child]
+                return f"cluster definition {child!r} contains itself ({' → '.join(loop)})"
+            path.append(child)
+            stack.append(iter(sorted(uses[child])))
     return None
+
+
+def dependency_order(uses: dict[str, set[str]]) -> list[str]:
+    """Definition ids so that each comes after those it uses (call after
+    :func:`nesting_problem_of` found no loop)."""
+    order: list[str] = []
+    placed: set[str] = set()
+
+    def place(def_id: str) -> None:
+        stack = [(def_id, iter(sorted(uses[def_id])))]
+        while stack:
+            current, children = stack[-1]
+            child = next(children, None)
+            if child is None:
+                stack.pop()
+                if current not in placed:
+                    placed.add(current)
+                    order.append(current)
+            elif child in uses and child not in placed:
+                stack.append((child, iter(sorted(uses[child]))))
+
+    for def_id in sorted(uses):
+        place(def_id)
+    return order
+
+
+def reachable_definitions(graph: Graph) -> list[ClusterDefinition]:
+    """The definitions ``graph``'s clusters use, directly or inside others, sorted by id."""
+    found: dict[str, ClusterDefinition] = {}
+    stack = [r.node.definition for r in graph.nodes.values() if isinstance(r.node, ClusterNode)]
+    while stack:
+        definition = stack.pop()
+        if definition.id in found:
+            continue
+        found[definition.id] = definition
+        stack.extend(r.node.definition for r in definition.graph.nodes.values()
+                     if isinstance(r.node, ClusterNode))
+    return [found[k] for k in sorted(found)]
 
 
 @dataclass

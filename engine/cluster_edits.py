@@ -247,6 +247,18 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     return cluster_id
 
 
+def add_cluster_instance(graph: Graph, definition_id: str, node_id: str | None = None,
+                         position: tuple[float, float] = (0.0, 0.0)) -> str:
+    """Add another instance of a definition (it shares the definition); returns its id.
+    Undo: ``graph.remove_node(id)``."""
+    definition = definition_of(graph, definition_id)
+    if definition.id not in graph.clusters:
+        graph.clusters[definition.id] = definition
+    record = graph.add_node(ClusterNode(definition), node_id or graph.new_id(definition.name),
+                            position=position, type_id=CLUSTER_TYPE)
+    return record.id
+
+
 # --------------------------------------------------------------------------- explode
 
 def cluster_instance(graph: Graph, node_id: str) -> ClusterInstance:

@@ -453,6 +453,13 @@ class Graph:
 
         return make_cluster(self, list(node_ids), name, node_id=node_id, definition_id=definition_id)
 
+    def add_cluster_instance(self, definition_id: str, node_id: str | None = None,
+                             position: tuple[float, float] = (0.0, 0.0)) -> str:
+        """Add another instance of a cluster definition; returns its id (undo: remove it)."""
+        from engine.cluster_edits import add_cluster_instance
+
+        return add_cluster_instance(self, definition_id, node_id, position)
+
     def explode_cluster(self, node_id: str) -> list[str]:
         """Put the cluster ``node_id``'s inner nodes in its place; returns their ids
         (undo: :meth:`restore_cluster` with what :meth:`cluster_instance` said before)."""

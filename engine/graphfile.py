@@ -33,6 +33,18 @@ import msgspec
 from engine import __version__
 from engine.atomic import replace_keeping_backup
 from engine.bounded_read import UnreadableFileError, read_bounded
+from engine.cluster import (
+    CLUSTER_TYPE,
+    INPUT_TYPE,
+    OUTPUT_TYPE,
+    ClusterDefinition,
+    ClusterInput,
+    ClusterNode,
+    ClusterOutput,
+    dependency_order,
+    nesting_problem_of,
+    reachable_definitions,
+)
 from engine.graph import Graph, GraphError, Group, InputState, NodeRecord, PlaceholderNode, Wire
 from engine.registry import Registry
 
@@ -83,12 +95,26 @@ class _Group(msgspec.Struct):
     nodes: list[str] = []
 
 
+class _Cluster(msgspec.Struct):
+    """A cluster definition (see ``docs/graph-format-clusters.md``)."""
+
+    id: Identifier
+    name: str = ""
+    inputs: list[Identifier] = []
+    outputs: list[Identifier] = []
+    anchor: tuple[Coordinate, Coordinate] = (0.0, 0.0)
+    nodes: list[_Node] = []
+    wires: list[_Wire] = []
+    groups: list[_Group] = []
+
+
 class _File(msgspec.Struct):
     format: Literal["torsal.graph"]
     version: int
     nodes: list[_Node]
     wires: list[_Wire] = []
     groups: list[_Group] = []
+    clusters: list[_Cluster] = []
     meta: dict[str, Any] = {}
     units: Literal["mm", "cm", "m", "in", "ft"] = "m"
 
@@ -303,34 +329,117 @@ def _build(data: dict[str, Any], registry: Registry) -> Graph:
     graph.raw = data
     graph.units = data.get("units", "m")
     graph.meta = copy_data(data.get("meta", {}))
+    _build_clusters(data.get("clusters", []), registry, graph)
+    _fill(graph, data, registry)
+    graph.expire_all()
+    return graph
+
+
+def _fill(graph: Graph, data: dict[str, Any], registry: Registry, where: str = "") -> None:
+    """Add the nodes, wires and groups of ``data`` (the file, or one cluster definition)."""
     try:
         for raw in data["nodes"]:
-            graph.add_record(_record(raw, registry))
+            graph.add_record(_record(raw, registry, graph.clusters, where))
         for raw in data.get("wires", []):
             (source, source_port), (target, target_port) = raw["from"], raw["to"]
             wire = Wire(source, source_port, target, target_port, raw=raw)
             if source not in graph.nodes or target not in graph.nodes:
                 missing = source if source not in graph.nodes else target
-                raise GraphFileError(f"wire {wire} refers to a node {missing!r} that is not in the file")
+                place = f"{where}'s graph" if where else "the file"
+                raise GraphFileError(f"{where + ': ' if where else ''}wire {wire} refers to a node "
+                                     f"{missing!r} that is not in {place}")
             graph.connect_wire(wire, check_loops=False)
         graph.order()  # one topological sort finds any loop among the wires
     except GraphError as exc:
-        raise GraphFileError(f"the graph in the file is not valid: {exc}") from None
+        inside = f" ({where})" if where else ""
+        raise GraphFileError(f"the graph in the file is not valid{inside}: {exc}") from None
     for raw in data.get("groups", []):
         members = [n for n in raw.get("nodes", []) if n in graph.nodes]
         graph.groups.append(
             Group(raw["id"], raw.get("title", ""), raw.get("colour", "#d8e4f0"), members, raw=raw)
         )
-    graph.expire_all()
-    return graph
 
 
-def _record(raw: dict[str, Any], registry: Registry) -> NodeRecord:
+def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Graph) -> None:
+    """Build the file's cluster definitions into ``graph.clusters``, each after those it
+    uses; refuse a repeated id, a use of a definition not in the file, a definition
+    containing itself, nesting deeper than :data:`engine.cluster.MAX_NESTING`, and ports
+    that are not the definition's Input and Output nodes."""
+    raw_of: dict[str, dict[str, Any]] = {}
+    for entry in entries:
+        if entry["id"] in raw_of:
+            raise GraphFileError(f"cluster definition {entry['id']!r} appears twice in the file")
+        raw_of[entry["id"]] = entry
+    uses: dict[str, set[str]] = {}
+    for def_id, entry in raw_of.items():
+        uses[def_id] = set()
+        for node in entry.get("nodes", []):
+            if node["type"] == CLUSTER_TYPE:
+                used = _definition_id(node, f"cluster definition {def_id!r}")
+                if used not in raw_of:
+                    raise GraphFileError(
+                        f"cluster definition {def_id!r}: node {node['id']!r} uses cluster definition "
+                        f"{used!r}, which is not in the file")
+                uses[def_id].add(used)
+    problem = nesting_problem_of(uses)
+    if problem:
+        raise GraphFileError(problem)
+    for def_id in dependency_order(uses):
+        entry = raw_of[def_id]
+        where = f"cluster definition {def_id!r}"
+        inner = Graph()
+        inner.clusters = graph.clusters
+        inner.units = graph.units
+        inner.raw = entry
+        _fill(inner, entry, registry, where)
+        ports = {}
+        for kind, cls in (("inputs", ClusterInput), ("outputs", ClusterOutput)):
+            listed = entry.get(kind, [])
+            for node_id in listed:
+                record = inner.nodes.get(node_id)
+                if record is None or not isinstance(record.node, cls):
+                    raise GraphFileError(f"{where}: its {kind} list names {node_id!r}, which is not one of "
+                                         f"its {cls.type_id} nodes")
+            if len(set(listed)) != len(listed):
+                raise GraphFileError(f"{where}: its {kind} list names a node twice")
+            for node_id, record in inner.nodes.items():
+                if isinstance(record.node, cls) and node_id not in listed:
+                    raise GraphFileError(
+                        f"{where}: node {node_id!r} is a {cls.type_id} but not in its {kind} list")
+            ports[kind] = list(listed)
+        x, y = entry.get("anchor", (0.0, 0.0))
+        graph.clusters[def_id] = ClusterDefinition(
+            def_id, entry.get("name", "") or def_id, inner, ports["inputs"], ports["outputs"],
+            anchor=(x, y), raw=entry)
+
+
+def _definition_id(raw: dict[str, Any], where: str) -> str:
+    definition = raw.get("settings", {}).get("definition")
+    if not isinstance(definition, str) or not definition:
+        raise GraphFileError(f"{where}: node {raw['id']!r} is a cluster but names no definition "
+                             "(settings.definition)")
+    return definition
+
+
+def _record(raw: dict[str, Any], registry: Registry, clusters: dict[str, Any] | None = None,
+            where: str = "") -> NodeRecord:
     settings = copy_data(raw.get("settings", {}))
-    cls = registry.get(raw["type"])
+    type_id = raw["type"]
     try:
-        node = cls(settings) if cls is not None else PlaceholderNode(raw["type"], settings)
+        if type_id == CLUSTER_TYPE:
+            definition_id = _definition_id(raw, where or "the file")
+            if clusters is None or definition_id not in clusters:
+                raise GraphFileError(f"{where + ': ' if where else ''}node {raw['id']!r} is a cluster of "
+                                     f"definition {definition_id!r}, which is not in the file")
+            node = ClusterNode(clusters[definition_id], settings)
+        elif type_id in (INPUT_TYPE, OUTPUT_TYPE):
+            node = (ClusterInput if type_id == INPUT_TYPE else ClusterOutput)(settings)
+        else:
+            cls = registry.get(type_id)
+            node = cls(settings) if cls is not None else PlaceholderNode(type_id, settings)
     except (TypeError, ValueError) as exc:
+        if isinstance(exc, GraphFileError):
+            raise
         raise GraphFileError(f"node {raw['id']!r} has unusable settings: {exc}") from None
     inputs = {}
     for name, entry in raw.get("inputs", {}).items():
@@ -363,6 +472,7 @@ def to_data(graph: Graph) -> dict[str, Any]:
     data["nodes"] = [node_data(graph.nodes[node_id]) for node_id in graph.nodes]
     data["wires"] = [wire_data(w) for w in graph.wires]
     data["groups"] = [group_data(g) for g in graph.groups]
+    _put(data, "clusters", [cluster_data(d) for d in reachable_definitions(graph)], [], graph.raw)
     meta = dict(graph.meta)
     if not graph.raw:
         meta.setdefault("description", "")
@@ -409,6 +519,21 @@ def node_data(record: NodeRecord) -> dict[str, Any]:
     _put(data, "inputs", inputs, {}, raw)
     _put(data, "preview", record.preview, True, raw)
     _put(data, "enabled", record.enabled, True, raw)
+    return data
+
+
+def cluster_data(definition: ClusterDefinition) -> dict[str, Any]:
+    """One entry of the ``clusters`` section: the definition's ports, anchor and graph."""
+    raw = definition.raw
+    data = copy_data(raw)
+    data.update(id=definition.id, name=definition.name, inputs=list(definition.inputs),
+                outputs=list(definition.outputs))
+    if tuple(raw.get("anchor", (0.0, 0.0))) != definition.anchor:
+        data["anchor"] = list(definition.anchor)
+    inner = definition.graph
+    data["nodes"] = [node_data(record) for record in inner.nodes.values()]
+    data["wires"] = [wire_data(w) for w in inner.wires]
+    _put(data, "groups", [group_data(g) for g in inner.groups], [], raw)
     return data
 
 

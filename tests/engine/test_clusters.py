@@ -1,0 +1,473 @@
+"""Clusters (issue 12.7): make, explode, edit, solve and save a sub-graph packaged as one node.
+
+Expected outputs come from the un-clustered graph (the graph the cluster was made from,
+solved before clustering) or from closed forms, never from a cluster's own solve.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any, ClassVar
+
+import pytest
+
+from engine.cluster import MAX_NESTING, ClusterNode
+from engine.datatree import DataTree
+from engine.graph import Graph, GraphError
+from engine.graphfile import GraphFileError, dumps, loads, read_graph
+from engine.node import In, Node, Out
+from engine.registry import Registry
+from engine.solver import ERROR, OK, Solver
+from engine.types import NUMBER
+from tests.engine.nodekit import make_registry
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+FIRST_STEPS = EXAMPLES / "first-steps.graph"
+INNER = ["edges", "total", "heights"]  # first-steps' three computing nodes
+
+
+class Counted(Node):
+    """Passes a number through and counts its solves (per node id, in ``solves``)."""
+
+    type_id = "debug.Counted"
+    inputs = (In("X", NUMBER, "X", default=0.0),)
+    outputs = (Out("Y", NUMBER, "Y"),)
+    solves: ClassVar[list[float]] = []
+
+    def solve(self, x: float) -> float:
+        Counted.solves.append(x)
+        return x
+
+
+@pytest.fixture(scope="module")
+def kit() -> Registry:
+    registry = make_registry()
+    registry.register(Counted)
+    return registry
+
+
+@pytest.fixture(scope="module")
+def library() -> Registry:
+    from nodes.catalogue import default_registry
+
+    return default_registry()
+
+
+def solved(graph: Graph) -> Solver:
+    """A new solver that has solved all of ``graph`` (another solver may have solved it before)."""
+    graph.expire_all()
+    solver = Solver(graph)
+    solver.solve()
+    return solver
+
+
+def outputs_of(solver: Solver, node_id: str) -> dict[str, DataTree]:
+    return dict(solver.result(node_id).outputs)
+
+
+def wire_set(graph: Graph) -> set[tuple[str, str, str, str]]:
+    return {(w.source, w.source_port, w.target, w.target_port) for w in graph.wires}
+
+
+def slider(graph: Graph, kit: Registry, node_id: str, value: float) -> None:
+    graph.add_node(kit.create("params.NumberSlider", {"value": value, "max": 100.0}), node_id)
+
+
+def two_adds(kit: Registry) -> Graph:
+    """a, b → sum = Add(a, b) → twice = Add(sum, sum) → shown = Add(twice, 0)."""
+    graph = Graph()
+    slider(graph, kit, "a", 2.0)
+    slider(graph, kit, "b", 3.0)
+    for node_id in ("sum", "twice", "shown"):
+        graph.add_node(kit.create("maths.Add"), node_id)
+    graph.connect("a", "Value", "sum", "A")
+    graph.connect("b", "Value", "sum", "B")
+    graph.connect("sum", "Result", "twice", "A")
+    graph.connect("sum", "Result", "twice", "B")
+    graph.connect("twice", "Result", "shown", "A")
+    return graph
+
+
+def first_steps(library: Registry) -> tuple[Graph, dict[str, dict[str, DataTree]]]:
+    """The first-steps example and every node's outputs solved before any clustering."""
+    graph = read_graph(FIRST_STEPS, library)
+    solver = solved(graph)
+    return graph, {n: outputs_of(solver, n) for n in graph.nodes}
+
+
+# --------------------------------------------------------------------------- make
+
+def test_cluster_of_first_steps_gives_the_expanded_graphs_outputs(library: Registry) -> None:
+    graph, before = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    solver = solved(graph)
+    assert solver.result(cluster).state == OK
+    assert outputs_of(solver, "show_heights") == before["show_heights"]
+    assert outputs_of(solver, "show_total") == before["show_total"]
+    ports = graph.cluster_definition(cluster).output_names()
+    assert [solver.result(cluster).output(p) for p in ports] == [
+        before["heights"]["Result"], before["total"]["Result"]]
+
+
+def test_cluster_of_first_steps_matches_the_closed_form(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    solver = solved(graph)
+    heights, total = (solver.result(cluster).output(p) for p in ("Result", "Result 2"))
+    expected = [2.5 + 0.5 * math.sin(2 * math.pi * (1.2 * i) / 6) for i in range(12)]
+    assert heights.branch(heights.paths[0]) == pytest.approx(expected, abs=1e-12)
+    assert total.all_items() == pytest.approx([14.4], abs=1e-12)
+
+
+def test_cluster_ports_are_the_wires_that_crossed_the_selection(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    definition = graph.cluster_definition(cluster)
+    # width and count each feed two inner inputs: one port per outside source
+    assert definition.input_names() == ["Step", "Count", "a"]
+    assert definition.output_names() == ["Result", "Result 2"]
+    assert wire_set(graph) == {
+        ("width", "Value", cluster, "Step"), ("count", "Value", cluster, "Count"),
+        ("wave", "Value", cluster, "a"),
+        (cluster, "Result", "show_heights", "Input"), (cluster, "Result 2", "show_total", "Input"),
+    }
+
+
+def test_cluster_keeps_inner_settings_and_values(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    expression = graph.nodes["heights"].node.settings["expression"]
+    cluster = graph.make_cluster(INNER, name="Panels")
+    inner = graph.cluster_definition(cluster).graph
+    assert inner.nodes["heights"].node.settings["expression"] == expression
+    assert inner.nodes["edges"].inputs["Start"].value == 0.0
+
+
+def test_a_selection_fed_back_through_outside_nodes_is_refused(kit: Registry) -> None:
+    graph = two_adds(kit)
+    with pytest.raises(GraphError, match="feeds it back"):
+        graph.make_cluster(["sum", "shown"])
+
+
+# --------------------------------------------------------------------------- files
+
+def test_save_load_solve_gives_the_same_outputs(library: Registry) -> None:
+    graph, before = first_steps(library)
+    graph.make_cluster(INNER, name="Panels")
+    text = dumps(graph)
+    reopened = loads(text, library)
+    solver = solved(reopened)
+    assert outputs_of(solver, "show_heights") == before["show_heights"]
+    assert outputs_of(solver, "show_total") == before["show_total"]
+    assert dumps(reopened) == text  # load → save: the same bytes
+
+
+def test_file_stores_each_definition_once(kit: Registry) -> None:
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    graph.add_cluster_instance(graph.nodes[cluster].node.definition.id, "again")
+    data = json.loads(dumps(graph))
+    assert [entry["id"] for entry in data["clusters"]] == ["doublesum"]
+    settings = [n["settings"] for n in data["nodes"] if n["type"] == "cluster.Cluster"]
+    assert settings == [{"definition": "doublesum"}, {"definition": "doublesum"}]
+
+
+def test_a_file_without_clusters_is_written_without_a_clusters_section(library: Registry) -> None:
+    text = FIRST_STEPS.read_text(encoding="utf-8")
+    assert dumps(loads(text, library)) == text
+
+
+def test_headless_run_solves_clusters(library: Registry, tmp_path: Path) -> None:
+    from app.headless import run_file
+
+    graph, before = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    path = tmp_path / "clustered.graph"
+    path.write_text(dumps(graph), encoding="utf-8")
+    result = run_file(path, registry=library).to_json()
+    expected = [round(v, 12) for v in before["heights"]["Result"].all_items()]
+    assert result["ok"]
+    shown = result["nodes"][cluster]["outputs"]["Result"]["{0}"]
+    assert [round(v, 12) for v in shown] == expected
+
+
+# --------------------------------------------------------------------------- explode
+
+def test_explode_restores_the_wiring_and_outputs(library: Registry) -> None:
+    graph, before = first_steps(library)
+    wires = wire_set(graph)
+    positions = {n: r.position for n, r in graph.nodes.items()}
+    cluster = graph.make_cluster(INNER, name="Panels")
+    restored = graph.explode_cluster(cluster)
+    assert sorted(restored) == sorted(INNER)
+    assert wire_set(graph) == wires
+    assert {n: r.position for n, r in graph.nodes.items()} == positions
+    assert graph.clusters == {}
+    solver = solved(graph)
+    assert {n: outputs_of(solver, n) for n in graph.nodes} == before
+
+
+def test_explode_keeps_the_layout_relative_to_a_moved_cluster(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    x, y = graph.nodes[cluster].position
+    graph.move_node(cluster, (x + 100.0, y - 50.0))
+    graph.explode_cluster(cluster)
+    assert graph.nodes["edges"].position == (420.0, -10.0)  # was (320, 40)
+
+
+def test_explode_then_restore_puts_the_cluster_back(kit: Registry) -> None:
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    wires = wire_set(graph)
+    info = graph.cluster_instance(cluster)
+    restored = graph.explode_cluster(cluster)
+    graph.restore_cluster(info, restored)
+    assert wire_set(graph) == wires
+    assert isinstance(graph.nodes[cluster].node, ClusterNode)
+    assert "doublesum" in graph.clusters
+
+
+def test_groups_come_back_after_make_then_explode(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    members = {g.id: set(g.nodes) for g in graph.groups}
+    graph.explode_cluster(graph.make_cluster(INNER, name="Panels"))
+    assert {g.id: set(g.nodes) for g in graph.groups} == members
+
+
+def test_explode_keeps_a_definition_another_instance_uses(kit: Registry) -> None:
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    graph.add_cluster_instance("doublesum", "again")
+    graph.explode_cluster(cluster)
+    assert "doublesum" in graph.clusters
+
+
+# --------------------------------------------------------------------------- instances and editing
+
+def two_instances(kit: Registry) -> tuple[Graph, str, str]:
+    """a, b → cluster (sum, twice) → shown; a second instance fed by c = 10, d = 1."""
+    graph = two_adds(kit)
+    first = graph.make_cluster(["sum", "twice"], name="Double sum")
+    second = graph.add_cluster_instance("doublesum", "again")
+    slider(graph, kit, "c", 10.0)
+    slider(graph, kit, "d", 1.0)
+    graph.connect("c", "Value", second, "A")
+    graph.connect("d", "Value", second, "B")
+    return graph, first, second
+
+
+def test_two_instances_of_one_definition_solve_their_own_inputs(kit: Registry) -> None:
+    graph, first, second = two_instances(kit)
+    solver = solved(graph)
+    assert solver.result(first).output("Result").all_items() == [10.0]  # 2 * (2 + 3)
+    assert solver.result(second).output("Result").all_items() == [22.0]  # 2 * (10 + 1)
+
+
+def test_editing_the_definition_updates_every_instance(kit: Registry) -> None:
+    graph, first, second = two_instances(kit)
+    solver = solved(graph)
+    edited = graph.cluster_graph("doublesum")
+    edited.disconnect(next(w for w in edited.wires_into("twice") if w.target_port == "B"))
+    edited.set_input_value("twice", "B", 100.0)  # twice = sum + 100
+    graph.set_cluster_graph("doublesum", edited)
+    solver.solve()
+    assert solver.result(first).output("Result").all_items() == [105.0]
+    assert solver.result(second).output("Result").all_items() == [111.0]
+    assert solver.result("shown").output("Result").all_items() == [105.0]
+
+
+def test_undoing_a_definition_edit_restores_the_outputs(kit: Registry) -> None:
+    graph, first, _ = two_instances(kit)
+    solver = Solver(graph)
+    edited = graph.cluster_graph("doublesum")
+    edited.remove_node(graph.cluster_definition("doublesum").outputs[0])  # the port's Output node
+    change = graph.set_cluster_graph("doublesum", edited)
+    assert graph.nodes[first].node.output_ports() == ()
+    assert {(w.source, w.target) for w in change.dropped} == {(first, "shown")}
+    graph.set_cluster_graph("doublesum", change.previous, change.previous_inputs, change.previous_outputs)
+    for wire in change.dropped:
+        graph.connect_wire(wire)
+    solver.solve()
+    assert solver.result("shown").output("Result").all_items() == [10.0]
+
+
+def test_renaming_a_port_carries_the_outer_wires(kit: Registry) -> None:
+    graph, first, second = two_instances(kit)
+    graph.rename_cluster_port("doublesum", "input", "A", "First")
+    assert ("a", "Value", first, "First") in wire_set(graph)
+    assert ("c", "Value", second, "First") in wire_set(graph)
+    solver = solved(graph)
+    assert solver.result(second).output("Result").all_items() == [22.0]
+
+
+def test_reordering_ports_changes_only_their_order(kit: Registry) -> None:
+    graph, first, _ = two_instances(kit)
+    old = graph.reorder_cluster_ports("doublesum", "input", ["B", "A"])
+    assert old == ["A", "B"]
+    assert [p.name for p in graph.nodes[first].node.input_ports()] == ["B", "A"]
+    assert ("a", "Value", first, "A") in wire_set(graph)
+
+
+# --------------------------------------------------------------------------- incremental solving
+
+def counted_cluster(kit: Registry) -> tuple[Graph, str]:
+    """x → p, y → q (two Counted nodes) in one cluster; an inner slider k → r (Counted)."""
+    graph = Graph()
+    slider(graph, kit, "x", 1.0)
+    slider(graph, kit, "y", 2.0)
+    slider(graph, kit, "k", 5.0)
+    for node_id in ("p", "q", "r"):
+        graph.add_node(Counted(), node_id)
+    graph.connect("x", "Value", "p", "X")
+    graph.connect("y", "Value", "q", "X")
+    graph.connect("k", "Value", "r", "X")
+    graph.add_node(kit.create("maths.Add"), "after")
+    graph.connect("p", "Y", "after", "A")
+    graph.add_node(kit.create("maths.Add"), "after_r")
+    graph.connect("r", "Y", "after_r", "A")
+    cluster = graph.make_cluster(["p", "q", "k", "r"], name="Counting")
+    return graph, cluster
+
+
+def test_a_changed_cluster_input_re_solves_only_what_depends_on_it(kit: Registry) -> None:
+    graph, cluster = counted_cluster(kit)
+    solver = solved(graph)
+    Counted.solves.clear()
+    graph.set_setting("y", "value", 7.0)
+    solver.solve()
+    assert Counted.solves == [7.0]  # q only; p and r kept their results
+    assert solver.cluster_solver(cluster).graph.nodes  # the instance's own inner graph
+
+
+def test_an_unchanged_input_re_solves_nothing_inside(kit: Registry) -> None:
+    graph, _ = counted_cluster(kit)
+    solver = solved(graph)
+    Counted.solves.clear()
+    graph.set_setting("y", "value", 2.0)  # the same value: the cluster is expired, its input is not new
+    solver.solve()
+    assert Counted.solves == []
+
+
+def test_a_slider_changed_inside_the_definition_re_solves_the_instance(kit: Registry) -> None:
+    graph, _ = counted_cluster(kit)
+    solver = solved(graph)
+    edited = graph.cluster_graph("counting")
+    edited.set_setting("k", "value", 9.0)
+    graph.set_cluster_graph("counting", edited)
+    Counted.solves.clear()
+    solver.solve()
+    assert 9.0 in Counted.solves
+    assert solver.result("after_r").output("Result").all_items() == [9.0]
+
+
+# --------------------------------------------------------------------------- trees and messages
+
+def test_graft_on_a_cluster_port_matches_graft_on_the_inner_input(kit: Registry) -> None:
+    def build() -> Graph:
+        graph = Graph()
+        graph.add_node(kit.create("params.Tree", {"branches": {"{0}": [1, 2, 3], "{1}": [4]}}), "tree")
+        graph.add_node(kit.create("lists.ListLength"), "length")
+        graph.connect("tree", "Tree", "length", "List")
+        graph.add_node(kit.create("trees.BranchCount"), "branches")
+        graph.connect("length", "Length", "branches", "Tree")
+        return graph
+
+    expanded = build()
+    expanded.set_modifiers("length", "List", ["graft"])
+    plain = solved(expanded)
+    clustered = build()
+    cluster = clustered.make_cluster(["length"], name="Lengths")
+    clustered.set_modifiers(cluster, "List", ["graft"])
+    solver = solved(clustered)
+    assert solver.result(cluster).output("Length") == plain.result("length").output("Length")
+    # grafted: one branch per item, each of length 1
+    assert solver.result(cluster).output("Length").to_dict() == {
+        "{0;0}": [1], "{0;1}": [1], "{0;2}": [1], "{1;0}": [1]}
+
+
+def test_an_error_inside_shows_on_the_cluster_naming_the_inner_node(kit: Registry) -> None:
+    graph = Graph()
+    slider(graph, kit, "x", 1.0)
+    graph.add_node(kit.create("debug.Fail"), "broken", label="Broken step")
+    graph.add_node(kit.create("maths.Add"), "fine")
+    graph.connect("x", "Value", "broken", "X")
+    graph.connect("x", "Value", "fine", "A")
+    graph.add_node(kit.create("maths.Add"), "out1")
+    graph.add_node(kit.create("maths.Add"), "out2")
+    graph.connect("broken", "Y", "out1", "A")
+    graph.connect("fine", "Result", "out2", "A")
+    cluster = graph.make_cluster(["broken", "fine"], name="Mixed")
+    solver = solved(graph)
+    result = solver.result(cluster)
+    assert result.state == ERROR
+    assert result.messages[0].text.startswith("Broken step: RuntimeError")
+    assert result.output("Result").all_items() == [1.0]  # the healthy branch still gives its output
+
+
+# --------------------------------------------------------------------------- bad files
+
+def clustered_data(kit: Registry) -> dict[str, Any]:
+    graph = two_adds(kit)
+    graph.make_cluster(["sum", "twice"], name="Double sum")
+    return json.loads(dumps(graph))
+
+
+def refusal(kit: Registry, data: dict[str, Any]) -> str:
+    with pytest.raises(GraphFileError) as caught:
+        loads(json.dumps(data), kit)
+    return str(caught.value)
+
+
+def test_a_missing_definition_is_refused_by_name(kit: Registry) -> None:
+    data = clustered_data(kit)
+    data["clusters"] = []
+    assert "'doublesum', which is not in the file" in refusal(kit, data)
+
+
+def test_a_definition_containing_itself_is_refused(kit: Registry) -> None:
+    data = clustered_data(kit)
+    definition = data["clusters"][0]
+    definition["nodes"].append(
+        {"id": "me", "type": "cluster.Cluster", "settings": {"definition": "doublesum"}})
+    assert "cluster definition 'doublesum' contains itself (doublesum → doublesum)" in refusal(kit, data)
+
+
+def test_definitions_containing_each_other_are_refused(kit: Registry) -> None:
+    data = clustered_data(kit)
+    other = {"id": "other", "name": "Other", "nodes": [
+        {"id": "inner", "type": "cluster.Cluster", "settings": {"definition": "doublesum"}}]}
+    data["clusters"][0]["nodes"].append(
+        {"id": "loop", "type": "cluster.Cluster", "settings": {"definition": "other"}})
+    data["clusters"].append(other)
+    assert "contains itself (doublesum → other → doublesum)" in refusal(kit, data)
+
+
+def test_a_wire_to_a_missing_cluster_port_is_refused(kit: Registry) -> None:
+    data = clustered_data(kit)
+    wire = next(w for w in data["wires"] if w["to"][1] == "A")
+    wire["to"][1] = "Nowhere"
+    assert "Double sum has no input called 'Nowhere'" in refusal(kit, data)
+
+
+def test_a_port_list_naming_a_missing_node_is_refused(kit: Registry) -> None:
+    data = clustered_data(kit)
+    data["clusters"][0]["inputs"].append("ghost")
+    assert "its inputs list names 'ghost'" in refusal(kit, data)
+
+
+def test_clusters_nested_too_deep_are_refused(kit: Registry) -> None:
+    data = clustered_data(kit)
+    chain = [{"id": f"level{i}", "nodes": [
+        {"id": "down", "type": "cluster.Cluster", "settings": {"definition": f"level{i + 1}"}}]}
+        for i in range(MAX_NESTING + 1)]
+    chain.append({"id": f"level{MAX_NESTING + 1}", "nodes": []})
+    data["clusters"].extend(chain)
+    assert f"nested more than {MAX_NESTING} deep" in refusal(kit, data)
+
+
+def test_a_malformed_clusters_section_is_refused_without_a_traceback(kit: Registry) -> None:
+    data = clustered_data(kit)
+    data["clusters"][0]["inputs"] = "not a list"
+    assert "not a valid graph" in refusal(kit, data)
