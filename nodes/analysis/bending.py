@@ -28,10 +28,11 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, describe
 from nodes.common.checks import finite, whole
 from nodes.common.convert import points
+from nodes.common.files import FileFailure
+from nodes.common.units import unit_name, unit_scale
 from nodes.common.values import MESH
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.surface_base import Surface, grid_triangles, uv_grid
-from nodes.io.common import FileFailure, unit_name, unit_scale
 from nodes.limits import MAX_DENSITY
 
 #: |k| below this share of 1/size is no curvature at all (rounding on a plane).

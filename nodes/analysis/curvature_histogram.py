@@ -8,9 +8,9 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import GENERIC, INTEGER, NUMBER, TEXT
+from nodes.common.charts import new_figure, save, target
 from nodes.common.checks import finite, whole
 from nodes.common.geometry_checks import surface_or_mesh
-from nodes.display.plot import new_figure, save, target
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curvature import SurfaceCurvature
 from nodes.geometry.mesh_surface import MeshSurface

@@ -9,9 +9,9 @@ import numpy as np
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER, TEXT, describe
+from nodes.common.charts import new_figure, save, target
 from nodes.common.checks import angle
 from nodes.common.values import LINE
-from nodes.display.plot import new_figure, save, target
 from nodes.geometry.array_types import FloatArray
 from nodes.geometry.curves.line import Line
 

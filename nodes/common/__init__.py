@@ -10,6 +10,11 @@
   strip-making node hands on, and the per-station diagnostics it words;
 - :mod:`nodes.common.preview` — geometry as plain arrays for a viewport (the preview
   protocol).
+- :mod:`nodes.common.files`, :mod:`nodes.common.units` and :mod:`nodes.common.charts` —
+  the write rules and file errors, length units, and the PNG charts that the io, display
+  and analysis palettes share;
+- :mod:`nodes.common.formulas` — formulas given as text inputs (ParametricCurve,
+  ParametricSurface).
 
 A palette folder holds nodes only; a helper two palettes need lives here.
 """
