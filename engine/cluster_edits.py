@@ -31,6 +31,7 @@ from engine.cluster import (
     is_boundary,
     nesting_problem,
     ordered_unique,
+    reachable_definitions,
     used_anywhere,
 )
 from engine.events import SettingChanged
@@ -80,9 +81,11 @@ def _check_closed(graph: Graph, chosen: set[str]) -> None:
 
 
 def _fresh_definition_id(graph: Graph, name: str) -> str:
+    """An id no definition in ``graph.clusters`` or used by ``graph``'s clusters has."""
     stem = "".join(c for c in name.lower() if c.isalnum() or c in "_-") or "cluster"
+    taken = set(graph.clusters) | {d.id for d in reachable_definitions(graph)}
     candidate, n = stem, 2
-    while candidate in graph.clusters:
+    while candidate in taken:
         candidate = f"{stem}{n}"
         n += 1
     return candidate

@@ -537,6 +537,55 @@ def cluster_data(definition: ClusterDefinition) -> dict[str, Any]:
     return data
 
 
+def fragment_clusters(graph: Graph, node_ids: list[str]) -> list[dict[str, Any]]:
+    """The ``clusters`` section a fragment (copy and paste) of ``node_ids`` needs: every
+    definition their clusters use, directly or inside others."""
+    part = Graph()
+    part.nodes = {n: graph.nodes[n] for n in node_ids if n in graph.nodes}
+    return [cluster_data(d) for d in reachable_definitions(part)]
+
+
+def adopt_clusters(graph: Graph, records: list[NodeRecord]) -> None:
+    """Make the clusters among ``records`` (read from a fragment, so with definitions of
+    their own) use ``graph``'s definitions: one with the same id and the same content is
+    shared; one that differs gets a fresh id. Call before adding the records."""
+    holder = Graph()
+    holder.nodes = {r.id: r for r in records}
+    incoming = reachable_definitions(holder)
+    by_id = {d.id: d for d in incoming}
+    chosen: dict[int, ClusterDefinition] = {}  # id() of a fragment's definition → the one to use
+
+    def repoint(node: ClusterNode) -> None:
+        node.definition = chosen[id(node.definition)]
+        node.settings["definition"] = node.definition.id
+
+    for def_id in dependency_order({d.id: d.used_definitions() for d in incoming}):
+        definition = by_id[def_id]
+        for record in definition.graph.nodes.values():
+            if isinstance(record.node, ClusterNode):
+                repoint(record.node)
+        existing = graph.clusters.get(def_id)
+        if existing is not None and _content(existing) == _content(definition):
+            chosen[id(definition)] = existing
+            continue
+        if existing is not None:
+            n = 2
+            while f"{def_id}{n}" in graph.clusters:
+                n += 1
+            definition.id = f"{def_id}{n}"
+        definition.graph.clusters = graph.clusters
+        graph.clusters[definition.id] = definition
+        chosen[id(definition)] = definition
+    for record in records:
+        if isinstance(record.node, ClusterNode):
+            repoint(record.node)
+
+
+def _content(definition: ClusterDefinition) -> dict[str, Any]:
+    data = cluster_data(definition)
+    return {key: data.get(key) for key in ("name", "inputs", "outputs", "nodes", "wires")}
+
+
 def wire_data(wire: Wire) -> dict[str, Any]:
     data = copy.deepcopy(wire.raw)
     data["from"] = [wire.source, wire.source_port]

@@ -471,3 +471,39 @@ def test_a_malformed_clusters_section_is_refused_without_a_traceback(kit: Regist
     data = clustered_data(kit)
     data["clusters"][0]["inputs"] = "not a list"
     assert "not a valid graph" in refusal(kit, data)
+
+
+# --------------------------------------------------------------------------- copy and paste
+
+def fragment_of(graph: Graph, node_ids: list[str]) -> str:
+    from engine.graphfile import FORMAT, VERSION, encode, fragment_clusters, node_data
+
+    nodes = [node_data(graph.nodes[n]) for n in node_ids]
+    return encode({"format": FORMAT, "version": VERSION, "nodes": nodes,
+                   "clusters": fragment_clusters(graph, node_ids)})
+
+
+def test_a_pasted_cluster_shares_the_same_definition(kit: Registry) -> None:
+    from engine.graphfile import adopt_clusters
+
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    pasted = loads(fragment_of(graph, [cluster]), kit).nodes[cluster]
+    pasted.id = "pasted"
+    adopt_clusters(graph, [pasted])
+    graph.add_record(pasted)
+    assert pasted.node.definition is graph.nodes[cluster].node.definition
+
+
+def test_a_pasted_cluster_whose_definition_differs_gets_its_own(kit: Registry) -> None:
+    from engine.graphfile import adopt_clusters
+
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    text = fragment_of(graph, [cluster])
+    graph.rename_cluster_port("doublesum", "input", "A", "First")
+    pasted = loads(text, kit).nodes[cluster]
+    pasted.id = "pasted"
+    adopt_clusters(graph, [pasted])
+    assert pasted.node.definition.id == "doublesum2"
+    assert graph.clusters["doublesum2"] is pasted.node.definition
