@@ -11,10 +11,13 @@ from engine.types import INTEGER, NUMBER, TEXT
 from nodes.common.checks import analysis_segments as segments
 from nodes.common.convert import sentence
 from nodes.common.geometry_checks import ruled_surface
+from nodes.common.placement import placement_frame, placement_inputs
 from nodes.common.values import DEVELOPMENT, LINE, SURFACE
 from nodes.geometry.curves.line import Line
+from nodes.geometry.development_placement import place
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_surface
+from nodes.geometry.vectors import Plane
 from nodes.limits import MAX_ANALYSIS_SEGMENTS
 
 #: Above this relative area difference the node says what it may mean.
@@ -28,19 +31,19 @@ SUBDIVISIONS = 8
 EDGE_TOLERANCE = 1e-7
 
 
-def _flat(points2d: np.ndarray) -> np.ndarray:
-    return np.column_stack([points2d, np.zeros(len(points2d))])
-
-
-def development_surface(development: Development) -> RuledSurface:
+def development_surface(development: Development, frame: Plane | None = None) -> RuledSurface:
     """The development as a flat surface: the loft of every unrolled ruling (the requested
     ones and those between them) with straight edges from one to the next — exactly the
     outline of the unrolled triangles, the polygon a sheet is cut along — whose rulings
     are the requested ones (:attr:`Development.rulings2d`). Its u parameter is the 3D
-    surface's at every unrolled ruling."""
+    surface's at every unrolled ruling. ``frame``: where the development's XY plane is
+    laid (:mod:`nodes.geometry.development_placement`; default: where it was unrolled)."""
     zero = np.zeros((len(development.starts2d), 1))
-    surface = RuledSurface.from_rulings(np.hstack([development.starts2d, zero]),
-                                        np.hstack([development.ends2d, zero]), degree=1)
+    if frame is None:
+        starts, ends = np.hstack([development.starts2d, zero]), np.hstack([development.ends2d, zero])
+    else:
+        starts, ends = place(frame, development.starts2d), place(frame, development.ends2d)
+    surface = RuledSurface.from_rulings(starts, ends, degree=1)
     stride = development.stride
     assert surface.ruling_lines is not None and surface.ruling_parameters is not None
     surface.ruling_lines = surface.ruling_lines[::stride]
@@ -76,6 +79,16 @@ class IsoMapping(Node):
     straight edge, so a sheet cut along it is exactly what was unrolled. The first
     ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
 
+    Placement says where Development and Rulings are shown, so the flat development
+    does not cut through the 3D model: 0 Beside model (the default) lays it flat beside
+    the surface's bounding box in +X, a fifth of the surface's size away, at the height
+    of its lowest point and level with its front (least y); 1 Origin leaves it where it
+    was unrolled; 2 On plane carries that frame onto Plane (the origin to the plane's
+    origin, X and Y along its axes). Wire a value list (0, 1, 2) to choose. Each is a
+    rigid motion: lengths, areas and every figure stay the same. Map stays in the
+    unrolled frame (SurfacePatching has a Placement input of its own: give it the same
+    to lay the panels over this Development).
+
     For a developable surface (cylinder, cone, tangent developable, the output of the
     developable nodes) the unrolling is an isometry: areas agree (AreaError a few 1e-6 at
     100 segments) and a cone becomes a circular sector, a cylinder a rectangle. A
@@ -93,6 +106,7 @@ class IsoMapping(Node):
         In("Surface", SURFACE, "S", "The ruled surface to unroll (its rulings must be straight lines)."),
         In("Segments", INTEGER, "N", "How many strips to cut it into: rulings minus one (1 or more).",
            default=100, min=1, max=MAX_ANALYSIS_SEGMENTS),
+        *placement_inputs("Development and Rulings"),
     )
     outputs = (
         Out("Development", SURFACE, "D", "The unrolled surface in the XY plane: the unrolled triangles' "
@@ -107,10 +121,10 @@ class IsoMapping(Node):
         Out("AreaError", NUMBER, "Ae", "(development area − input area) / input area: ~0 for a "
             "developable surface."),
         Out("Map", DEVELOPMENT, "M", "The development with its map to and from the 3D surface, for "
-            "SurfacePatching."),
+            "SurfacePatching (in the unrolled frame, whatever Placement)."),
     )
 
-    def solve(self, surface: Any, count: Any) -> tuple[Any, ...]:
+    def solve(self, surface: Any, count: Any, placement: Any = 0, plane: Any = None) -> tuple[Any, ...]:
         s = ruled_surface(surface, "IsoMapping")
         n = segments(count)
         try:
@@ -118,6 +132,8 @@ class IsoMapping(Node):
         except ValueError as exc:
             raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
         starts2d, ends2d = development.rulings2d
+        frame = placement_frame(self, placement, plane, np.vstack([development.starts3d, development.ends3d]),
+                                development.bounds)
         if overlaps(development):
             self.warn("The development overlaps itself, so it cannot be cut from one sheet: unroll "
                       "less of the surface (fewer turns) or split it into pieces")
@@ -127,8 +143,8 @@ class IsoMapping(Node):
                         "Segments; a twisted ruled surface has no true development, only its rulings "
                         "keep their lengths")
         return (
-            development_surface(development),
-            Line.many(_flat(starts2d), _flat(ends2d)),
+            development_surface(development, frame),
+            Line.many(place(frame, starts2d), place(frame, ends2d)),
             area_text(development),
             float(development.area_3d),
             float(development.area_2d),

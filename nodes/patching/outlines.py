@@ -54,7 +54,12 @@ def closed_polyline(points2d_or_3d: ArrayLike) -> Polyline:
     return Polyline(p, closed=True)
 
 
+def corners(bounds: ArrayLike) -> np.ndarray:
+    """The corners ``(4, 2)`` of the rectangle ``[xmin, ymin, xmax, ymax]``, counter-clockwise."""
+    x0, y0, x1, y1 = np.asarray(bounds, dtype=float)
+    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+
+
 def rectangle(bounds: ArrayLike) -> Polyline:
     """The closed rectangle ``[xmin, ymin, xmax, ymax]`` in the XY plane, counter-clockwise."""
-    x0, y0, x1, y1 = np.asarray(bounds, dtype=float)
-    return closed_polyline([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+    return closed_polyline(corners(bounds))

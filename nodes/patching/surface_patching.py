@@ -11,13 +11,15 @@ import shapely
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER, TEXT, describe
 from nodes.common.checks import number
+from nodes.common.placement import placement_frame, placement_inputs
 from nodes.common.values import CURVE, DEVELOPMENT, SURFACE
 from nodes.geometry.curves.line import Polyline
+from nodes.geometry.development_placement import place
 from nodes.geometry.patching import Pattern, TooManyPanels, tile_pattern
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.unroll import Development, unroll_surface
 from nodes.limits import MAX_PANELS
-from nodes.patching.outlines import closed_polyline, rectangle, ring
+from nodes.patching.outlines import closed_polyline, corners, ring
 
 #: Segments used to unroll the Surface when no Development is wired.
 UNROLL_SEGMENTS = 48
@@ -88,6 +90,16 @@ class SurfacePatching(Node):
     wired it unrolls the Surface itself (48 segments). Waste is the share of sheet
     cut off: each panel is cut from a sheet the size of its whole pattern panel.
 
+    Placement says where the flat outputs (PatternBounds, DevelopmentBounds,
+    PanelsFlat) are shown, so they do not cut through the 3D model: 0 Beside model (the
+    default) lays the (turned) development's frame flat beside the surface's bounding
+    box in +X, a fifth of its size away, at the height of its lowest point and level
+    with its front (least y); 1 Origin leaves them where the development was unrolled
+    (turned by Rotation); 2 On plane carries that frame onto Plane. Each is a rigid
+    motion: PanelAreas, Waste and the panels' shapes stay the same, and Panels3D do not
+    move. With Rotation 0 and the same Placement as IsoMapping, the flat panels lie
+    on IsoMapping's Development.
+
     At most 20,000 pattern copies are laid over one development (a guard against a
     Scale typo: 1e-9 for 1 asks for billions); the node says so instead of stalling.
     """
@@ -106,6 +118,7 @@ class SurfacePatching(Node):
         In("Scale", NUMBER, "Sc", "Scale factor of the pattern (positive).", default=1.0),
         In("Rotation", NUMBER, "R", "Turn of the development under the pattern, degrees, counter-clockwise.",
            default=0.0),
+        *placement_inputs("PatternBounds, DevelopmentBounds and PanelsFlat"),
     )
     outputs = (
         Out("PatternBounds", CURVE, "Pb", "The scaled tile at the corner of the development's bounds."),
@@ -125,7 +138,7 @@ class SurfacePatching(Node):
     work_unit = "pattern copies"
 
     def call_work(self, surface: Any, development: Any, pattern: list[Any], tile: Any, scale: Any,
-                  rotation: Any) -> int:
+                  rotation: Any, placement: Any = 0, plane: Any = None) -> int:
         """The pattern copies one call lays, over-counted for any Rotation (the square on
         the development's diagonal), before anything is made; at most :data:`MAX_PANELS`
         (a call past that is refused by its own check)."""
@@ -143,7 +156,8 @@ class SurfacePatching(Node):
         return int(min(copies, MAX_PANELS)) + _CALL_COPIES
 
     def solve(self, surface: Any, development: Any, pattern: list[Any], tile: Any, scale: Any,
-              rotation: Any) -> tuple[Polyline, Polyline, list[Polyline], list[Polyline], list[str],
+              rotation: Any, placement: Any = 0,
+              plane: Any = None) -> tuple[Polyline, Polyline, list[Polyline], list[Polyline], list[str],
                                       list[float], float]:
         dev = self._resolve(surface, development)
         polygons, period = self._pattern(pattern, tile)
@@ -171,10 +185,12 @@ class SurfacePatching(Node):
             raise NodeWarning(str(exc).rstrip(".")) from None
         if not patching.panels_flat:
             self.warn("No panel reaches the development: check Scale and the pattern's position")
+        frame = placement_frame(self, placement, plane, np.vstack([dev.starts3d, dev.ends3d]),
+                                patching.development_bounds)
         return (
-            rectangle(patching.pattern_bounds),
-            rectangle(patching.development_bounds),
-            [closed_polyline(p) for p in patching.panels_flat],
+            closed_polyline(place(frame, corners(patching.pattern_bounds))),
+            closed_polyline(place(frame, corners(patching.development_bounds))),
+            [closed_polyline(place(frame, p)) for p in patching.panels_flat],
             [closed_polyline(p) for p in patching.panels_3d],
             _panel_ids(len(patching.panels_flat)),
             patching.areas.tolist(),

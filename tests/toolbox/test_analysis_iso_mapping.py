@@ -24,7 +24,7 @@ R_HELIX, RISE = 2.0, 0.5
 
 
 def unrolled(surface, segments: int = 100):
-    result = run(IsoMapping(), Surface=tree({(0,): [surface]}), Segments=segments)
+    result = run(IsoMapping(), Surface=tree({(0,): [surface]}), Segments=segments, Placement=1)  # origin
     if result.state == "error":
         return result, {}
     lists = {"Rulings"}

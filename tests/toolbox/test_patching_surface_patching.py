@@ -43,7 +43,7 @@ def patched(surface: str = "cone", tile: bool = True, iso: bool = True, bond: di
                   Segments=SEGMENTS)
     chain.wire("curve", "Circle", "surface", "Curve")
     chain.add("bond", StaggeredPattern(), **(bond or {"Width": 0.3, "Height": 0.2, "Offset": 0.15}))
-    chain.add("patch", SurfacePatching(), **values)
+    chain.add("patch", SurfacePatching(), **{"Placement": 1, **values})  # the flat outputs at the origin
     chain.wire("surface", "Surface", "patch", "Surface")
     chain.wire("bond", "Pattern", "patch", "Pattern")
     if tile:
@@ -75,7 +75,7 @@ def again(chain: Chain, rotation: float = 0.0, scale: float = 1.0) -> Chain:
 def sourced(development, pattern, tile=None, surface=None, **values) -> Chain:
     """SurfacePatching fed by Source nodes (kernel objects made elsewhere)."""
     chain = Chain()
-    chain.add("patch", SurfacePatching(), **values)
+    chain.add("patch", SurfacePatching(), **{"Placement": 1, **values})  # the flat outputs at the origin
     for name, items in (("Development", [development]), ("Pattern", list(pattern)), ("Tile", [tile]),
                         ("Surface", [surface])):
         if items and items[0] is not None:

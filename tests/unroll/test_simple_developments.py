@@ -158,7 +158,7 @@ def test_every_kaohsiung_development_surface_outline_is_simple_with_four_corners
 
 def test_iso_mapping_development_is_the_outline_of_the_unrolled_triangles():
     surface, _, _ = fan_heavy_strip()
-    result = run(IsoMapping(), Surface=tree({(0,): [surface]}), Segments=32)
+    result = run(IsoMapping(), Surface=tree({(0,): [surface]}), Segments=32, Placement=1)  # Map frame
     (flat,) = out(result, "Development")[(0,)]
     (development,) = out(result, "Map")[(0,)]
     count = len(development.starts2d)
