@@ -507,3 +507,12 @@ def test_a_pasted_cluster_whose_definition_differs_gets_its_own(kit: Registry) -
     adopt_clusters(graph, [pasted])
     assert pasted.node.definition.id == "doublesum2"
     assert graph.clusters["doublesum2"] is pasted.node.definition
+
+
+# --------------------------------------------------------------------------- the format document
+
+def test_the_format_documents_example_solves_as_it_says(library: Registry) -> None:
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "graph-format-clusters.md").read_text("utf-8")
+    example = doc.split("```json\n", 1)[1].split("```", 1)[0]
+    solver = solved(loads(example, library))
+    assert solver.result("double").output("Result").to_dict() == {"{0}": [10.0]}  # 2 × (2 + 3)
