@@ -60,7 +60,7 @@ class Autosaver(QObject):
         self.graph_path = self.folder / f"autosave-{os.getpid()}.graph"
         self.note_path = self.graph_path.with_suffix(".json")
         self.saves = 0
-        self._saved_index: int | None = None
+        self._saved_index: tuple[int, int] | None = None
         self.timer = QTimer(self)
         self.timer.setInterval(int((interval_s or interval_seconds()) * 1000))
         self.timer.timeout.connect(self.autosave)
@@ -72,11 +72,11 @@ class Autosaver(QObject):
         if not self.doc.dirty:
             self.discard()
             return False
-        index = self.doc.undo_stack.index()
+        index = (len(self.doc.frames), self.doc.undo_stack.index())
         if index == self._saved_index and self.graph_path.exists():
             return False
-        try:
-            write_graph(self.doc.graph, self.graph_path)
+        try:  # the document's own graph (edits inside a cluster not committed yet are not in it)
+            write_graph(self.doc.root_graph, self.graph_path)
         except (GraphFileError, OSError):
             return False
         note = {

@@ -21,7 +21,8 @@ from app.gui.graph_order import (
     restore_node_order,
     restore_wire_order,
 )
-from engine.graph import Graph, Group, NodeRecord, Wire
+from engine.cluster import clone_graph
+from engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 
 SETTING_MERGE_ID = 1001
 
@@ -335,3 +336,139 @@ class EditGroup(GraphCommand):
 
     def revert(self, graph: Graph) -> None:
         self._set(graph, self.old)
+
+
+# -- clusters (see engine.cluster) -------------------------------------------------------
+class ClusterCommand(GraphCommand):
+    """Base of the cluster edits: an edit the engine refuses (:class:`GraphError`) the
+    first time it runs makes the command obsolete (the stack drops it) and its reason
+    is kept in :attr:`failure`."""
+
+    def __init__(self, doc: Document, text: str) -> None:
+        super().__init__(doc, text)
+        self.failure = ""
+        self.done = False
+
+    def redo(self) -> None:
+        try:
+            super().redo()
+        except GraphError as exc:
+            if self.done:
+                raise
+            self.failure = str(exc)
+            self.setObsolete(True)
+            return
+        self.done = True
+
+
+class MakeCluster(ClusterCommand):
+    """Collapse nodes into one cluster node (undo explodes it back to the same ids)."""
+
+    def __init__(self, doc: Document, node_ids: list[str], name: str = "Cluster") -> None:
+        super().__init__(doc, f"Cluster {len(node_ids)} node{'s' * (len(node_ids) != 1)}")
+        self.node_ids, self.name = list(node_ids), name
+        self.cluster_id: str | None = None
+        self.definition_id: str | None = None
+
+    def apply(self, graph: Graph) -> None:
+        if self.cluster_id is None:
+            self.cluster_id = graph.make_cluster(self.node_ids, self.name)
+            self.definition_id = graph.cluster_definition(self.cluster_id).id
+        else:
+            graph.make_cluster(
+                self.node_ids, self.name, node_id=self.cluster_id, definition_id=self.definition_id
+            )
+
+    def revert(self, graph: Graph) -> None:
+        graph.explode_cluster(self.cluster_id)
+
+
+class ExplodeCluster(ClusterCommand):
+    """Put a cluster's inner nodes in its place (undo puts the cluster back)."""
+
+    def __init__(self, doc: Document, cluster_id: str) -> None:
+        super().__init__(doc, "Explode cluster")
+        self.cluster_id = cluster_id
+        self.info: Any = None
+        self.restored: list[str] = []
+
+    def apply(self, graph: Graph) -> None:
+        info = graph.cluster_instance(self.cluster_id)
+        self.restored = graph.explode_cluster(self.cluster_id)
+        self.info = info
+
+    def revert(self, graph: Graph) -> None:
+        graph.restore_cluster(self.info, self.restored)
+
+
+class EditClusterDefinition(ClusterCommand):
+    """Commit a cluster definition edited on the canvas: every instance updates."""
+
+    def __init__(self, doc: Document, definition_id: str, edited: Graph, text: str = "Edit cluster") -> None:
+        super().__init__(doc, text)
+        self.definition_id = definition_id
+        self.edited = edited
+        self.change: Any = None
+
+    def apply(self, graph: Graph) -> None:
+        self.change = graph.set_cluster_graph(self.definition_id, clone_graph(self.edited))
+
+    def revert(self, graph: Graph) -> None:
+        change = self.change
+        graph.set_cluster_graph(
+            self.definition_id, change.previous, change.previous_inputs, change.previous_outputs
+        )
+        for wire in change.dropped:
+            if not graph.has_wire(wire):
+                graph.connect_wire(wire)
+
+
+class RenameClusterPort(ClusterCommand):
+    """Rename an input or output of a cluster definition (outer wires follow)."""
+
+    def __init__(self, doc: Document, definition_id: str, kind: str, old: str, new: str) -> None:
+        super().__init__(doc, f"Rename {kind} {old}")
+        self.definition_id, self.kind, self.old, self.new = definition_id, kind, old, new
+        self.given = new  # the name the definition gave (a repeat gets " 2")
+
+    def _names(self, graph: Graph) -> list[str]:
+        definition = graph.cluster_definition(self.definition_id)
+        return definition.input_names() if self.kind == "input" else definition.output_names()
+
+    def apply(self, graph: Graph) -> None:
+        index = self._names(graph).index(self.old)
+        graph.rename_cluster_port(self.definition_id, self.kind, self.old, self.new)
+        self.given = self._names(graph)[index]
+
+    def revert(self, graph: Graph) -> None:
+        graph.rename_cluster_port(self.definition_id, self.kind, self.given, self.old)
+
+
+class ReorderClusterPorts(ClusterCommand):
+    """Put a cluster definition's inputs or outputs in a new order."""
+
+    def __init__(self, doc: Document, definition_id: str, kind: str, names: list[str]) -> None:
+        super().__init__(doc, f"Reorder {kind}s")
+        self.definition_id, self.kind, self.names = definition_id, kind, list(names)
+        self.old: list[str] = []
+
+    def apply(self, graph: Graph) -> None:
+        self.old = list(graph.reorder_cluster_ports(self.definition_id, self.kind, self.names))
+
+    def revert(self, graph: Graph) -> None:
+        graph.reorder_cluster_ports(self.definition_id, self.kind, self.old)
+
+
+class RenameCluster(ClusterCommand):
+    """Rename a cluster definition (every instance shows the new name)."""
+
+    def __init__(self, doc: Document, definition_id: str, name: str) -> None:
+        super().__init__(doc, "Rename cluster")
+        self.definition_id, self.name = definition_id, name
+        self.old = ""
+
+    def apply(self, graph: Graph) -> None:
+        self.old = graph.rename_cluster(self.definition_id, self.name)
+
+    def revert(self, graph: Graph) -> None:
+        graph.rename_cluster(self.definition_id, self.old)

@@ -10,12 +10,14 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 from PySide6.QtCore import QObject, Signal
-from PySide6.QtGui import QUndoStack
+from PySide6.QtGui import QUndoGroup, QUndoStack
 
 from app.gui.solve_controller import SolveController, SolveOutcome
+from engine.cluster import ClusterInput
 from engine.graph import Graph, GraphEvent
 from engine.graphfile import read_graph, write_graph
 from engine.registry import Registry
@@ -23,8 +25,31 @@ from engine.solver import NodeResult, Solver
 from engine.writes import WriteAccess, WriteRequest
 
 
+@dataclass
+class ClusterFrame:
+    """A graph the canvas left to edit a cluster definition inside it: what coming back
+    restores, and which definition the edits inside go to."""
+
+    graph: Graph
+    solver: Solver
+    undo_stack: QUndoStack
+    results: dict[str, NodeResult]
+    last_outcome: SolveOutcome | None
+    definition_id: str
+    instance_id: str
+    name: str
+
+
 class Document(QObject):
-    """A graph being edited, with its path, dirty state and latest solve results."""
+    """A graph being edited, with its path, dirty state and latest solve results.
+
+    Clusters are edited in place: :meth:`enter_cluster` shows a copy of a cluster's
+    definition (fed with the instance's input data) with an undo history of its own;
+    :meth:`leave_cluster` goes back and commits the edits, if any, to the definition as
+    one undo step of the graph outside ("Edit cluster"), which updates every instance.
+    ``frames`` holds the graphs outside, outermost first; :attr:`undo_group` follows the
+    history of the graph shown (the window's Undo and Redo act on it).
+    """
 
     graph_replaced = Signal()
     graph_changed = Signal(object)  # engine.graph.GraphEvent
@@ -34,12 +59,18 @@ class Document(QObject):
     path_changed = Signal(object)  # Path | None
     #: nodes want to write files and this document has not been asked yet: list[WriteRequest]
     writes_requested = Signal(object)
+    #: the canvas went into or out of a cluster definition (see :attr:`breadcrumb`)
+    context_changed = Signal()
 
     def __init__(self, registry: Registry, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.registry = registry
+        self.undo_group = QUndoGroup(self)
         self.undo_stack = QUndoStack(self)
-        self.undo_stack.cleanChanged.connect(lambda clean: self.dirty_changed.emit(not clean))
+        self.undo_group.addStack(self.undo_stack)
+        self.undo_group.setActiveStack(self.undo_stack)
+        self.undo_group.cleanChanged.connect(lambda _clean: self.dirty_changed.emit(self.dirty))
+        self.frames: list[ClusterFrame] = []
         self.solves = SolveController(self)
         self.solves.finished.connect(self._on_solved)
         self.path: Path | None = None
@@ -57,6 +88,7 @@ class Document(QObject):
     def replace(self, graph: Graph, path: Path | None, *, clean: bool = True) -> None:
         """Show ``graph`` instead of the current one (undo history is cleared)."""
         self.solves.pause()
+        self._drop_frames()
         self._unsubscribe()
         self.graph = graph
         self.writes = WriteAccess(path.parent if path is not None else None)  # a new document: not allowed
@@ -90,6 +122,7 @@ class Document(QObject):
         target = Path(path) if path is not None else self.path
         if target is None:
             raise ValueError("the document has no file yet: give a path")
+        self.leave_to(0)  # a cluster being edited: its edits go into the file too
         write_graph(self.graph, target)
         self.undo_stack.setClean()
         self.set_path(target.resolve())
@@ -125,7 +158,98 @@ class Document(QObject):
 
     @property
     def dirty(self) -> bool:
-        return not self.undo_stack.isClean()
+        return any(not stack.isClean() for stack in self._stacks())
+
+    def _stacks(self) -> list[QUndoStack]:
+        return [*(frame.undo_stack for frame in self.frames), self.undo_stack]
+
+    @property
+    def root_graph(self) -> Graph:
+        """The document's own graph (the outermost, while a cluster is being edited)."""
+        return self.frames[0].graph if self.frames else self.graph
+
+    @property
+    def breadcrumb(self) -> list[str]:
+        """Where the canvas is: ``["Document", "Cluster name", ...]``."""
+        return ["Document", *(frame.name for frame in self.frames)]
+
+    # -- clusters --------------------------------------------------------------------
+    def enter_cluster(self, node_id: str) -> None:
+        """Show cluster node ``node_id``'s definition for editing, its inputs fed with the
+        data that instance received last."""
+        self.solves.pause()
+        outer = self.graph
+        definition = outer.cluster_definition(node_id)
+        edited = outer.cluster_graph(definition.id)
+        for input_id, tree in self.solver.cluster_inputs(node_id).items():
+            record = edited.nodes.get(input_id)
+            if record is not None and isinstance(record.node, ClusterInput):
+                record.node.feed = tree
+                edited.expire(input_id)
+        frame = ClusterFrame(
+            outer, self.solver, self.undo_stack, self.results, self.last_outcome,
+            definition.id, node_id, definition.name or "Cluster",
+        )
+        self.frames.append(frame)
+        stack = QUndoStack(self)
+        self._show(edited, Solver(edited, self.writes), stack, {}, None)
+
+    def leave_cluster(self) -> bool:
+        """Back to the graph outside; edits made inside are committed to the definition as
+        one undo step there. False when the canvas shows the document's own graph."""
+        if not self.frames:
+            return False
+        from app.gui.commands import EditClusterDefinition
+
+        self.solves.pause()
+        frame = self.frames.pop()
+        edited, inner = self.graph, self.undo_stack
+        changed = not inner.isClean()
+        self._show(frame.graph, frame.solver, frame.undo_stack, frame.results, frame.last_outcome)
+        self.undo_group.removeStack(inner)
+        inner.deleteLater()
+        if changed:
+            self.push(EditClusterDefinition(self, frame.definition_id, edited, f"Edit cluster {frame.name}"))
+        return True
+
+    def leave_to(self, depth: int) -> None:
+        """Go back out until ``depth`` clusters are open (0: the document's own graph)."""
+        while len(self.frames) > depth:
+            self.leave_cluster()
+
+    def _show(
+        self,
+        graph: Graph,
+        solver: Solver,
+        stack: QUndoStack,
+        results: dict[str, NodeResult],
+        outcome: SolveOutcome | None,
+    ) -> None:
+        self._unsubscribe()
+        self.graph, self.solver, self.results, self.last_outcome = graph, solver, results, outcome
+        self.solves.set_solver(solver)
+        self._unsubscribe = graph.subscribe(self._relay)
+        if stack not in self.undo_group.stacks():
+            self.undo_group.addStack(stack)
+        self.undo_stack = stack
+        self.undo_group.setActiveStack(stack)
+        self.graph_replaced.emit()
+        self.context_changed.emit()
+        self.dirty_changed.emit(self.dirty)
+        self.solves.request()
+
+    def _drop_frames(self) -> None:
+        """Forget the clusters being edited (a document replaced): back to the root history."""
+        if not self.frames:
+            return
+        root = self.frames[0]
+        for stack in [*(f.undo_stack for f in self.frames[1:]), self.undo_stack]:
+            self.undo_group.removeStack(stack)
+            stack.deleteLater()
+        self.frames.clear()
+        self.undo_stack = root.undo_stack
+        self.undo_group.setActiveStack(root.undo_stack)
+        self.context_changed.emit()
 
     @property
     def title(self) -> str:

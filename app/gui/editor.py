@@ -315,3 +315,72 @@ class Editor(QObject):
 
     def edit_group(self, group_id: str, **changes: Any) -> None:
         self.doc.push(cmd.EditGroup(self.doc, group_id, **changes))
+
+    # -- clusters ----------------------------------------------------------------------
+    def cluster(self, node_ids: Iterable[str], name: str = "Cluster") -> str | None:
+        """Collapse ``node_ids`` into one cluster node (one undo step); its id, or None
+        (with the reason on :attr:`refused`) when the engine refuses."""
+        ids = [n for n in node_ids if n in self.graph.nodes]
+        if not ids:
+            self.refused.emit("Cluster: select the nodes to put in the cluster")
+            return None
+        command = cmd.MakeCluster(self.doc, ids, name)
+        self.doc.push(command)
+        if command.failure:
+            self.refused.emit(f"Cluster: {command.failure}")
+            return None
+        return command.cluster_id
+
+    def explode(self, cluster_id: str) -> list[str]:
+        """Put the cluster's nodes back in its place (one undo step); their ids."""
+        command = cmd.ExplodeCluster(self.doc, cluster_id)
+        self.doc.push(command)
+        if command.failure:
+            self.refused.emit(f"Explode: {command.failure}")
+            return []
+        return command.restored
+
+    def edit_cluster(
+        self,
+        definition_id: str,
+        name: str,
+        inputs: list[tuple[str, str]],
+        outputs: list[tuple[str, str]],
+    ) -> None:
+        """Rename a cluster and rename and reorder its ports, as one undo step.
+
+        ``inputs`` and ``outputs`` are ``(current name, new name)`` pairs in the new order.
+        """
+        definition = self.graph.cluster_definition(definition_id)
+        commands: list[cmd.ClusterCommand] = []
+        if name and name != definition.name:
+            commands.append(cmd.RenameCluster(self.doc, definition_id, name))
+        for kind, pairs, current in (
+            ("input", inputs, definition.input_names()),
+            ("output", outputs, definition.output_names()),
+        ):
+            renames = [(old, new) for old, new in pairs if new and new != old]
+            taken = set(current)
+            later = []
+            for old, new in renames:
+                if new in taken:  # a name a port has now (a swap): first to a name no port has
+                    step = f"{old}\u2060"
+                    commands.append(cmd.RenameClusterPort(self.doc, definition_id, kind, old, step))
+                    later.append(cmd.RenameClusterPort(self.doc, definition_id, kind, step, new))
+                else:
+                    commands.append(cmd.RenameClusterPort(self.doc, definition_id, kind, old, new))
+            commands += later
+            final = [new if new and new != old else old for old, new in pairs]
+            if [old for old, _ in pairs] != current and sorted(current) == sorted(o for o, _ in pairs):
+                commands.append(cmd.ReorderClusterPorts(self.doc, definition_id, kind, final))
+        if not commands:
+            return
+        self.doc.undo_stack.beginMacro("Edit cluster ports")
+        try:
+            for command in commands:
+                self.doc.push(command)
+                if command.failure:
+                    self.refused.emit(f"Cluster ports: {command.failure}")
+                    break
+        finally:
+            self.doc.undo_stack.endMacro()

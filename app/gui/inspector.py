@@ -27,8 +27,10 @@ from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.formatting import format_item
 from engine.bounds import bounds_text
+from engine.cluster import is_cluster
 from engine.datatree import DataTree, format_path
 from engine.graph import Graph, is_placeholder
+from engine.node import Node
 
 MAX_ITEMS_SHOWN = 100
 #: An output item that is a path to one of these is shown as an image on the Plot tab.
@@ -163,7 +165,7 @@ class Inspector(QWidget):
             self.ports.addTopLevelItem(item)
             if tree is not None:
                 self._add_tree(port.name, tree)
-        self.help.setHtml(self._help_html(type(node), is_placeholder(node), record.type_id))
+        self.help.setHtml(self._help_html(node, is_placeholder(node), record.type_id))
         self._show_plot(plot_image(result.outputs if result else None))
 
     def _show_plot(self, path: Path | None) -> None:
@@ -212,12 +214,17 @@ class Inspector(QWidget):
                 top.child(i).setExpanded(True)
 
     @staticmethod
-    def _help_html(cls: type, placeholder: bool, type_id: str) -> str:
+    def _help_html(node: Node, placeholder: bool, type_id: str) -> str:
         if placeholder:
             return f"<p>The node type <b>{type_id}</b> is not installed; its data is kept unchanged.</p>"
-        parts = [f"<h3>{cls.name()}</h3><p><i>{cls.type_id}</i></p>"]
+        cls = type(node)
+        parts = [f"<h3>{html.escape(node.name())}</h3><p><i>{cls.type_id}</i></p>"]
         parts += [f"<p>{html.escape(p)}</p>" for p in cls.help().split("\n\n")]
-        for title, ports in (("Inputs", cls.inputs), ("Outputs", cls.outputs)):
+        if is_cluster(node):
+            parts.append(
+                "<p>Double-click it to edit its definition; right-click for its ports or to explode it.</p>"
+            )
+        for title, ports in (("Inputs", node.input_ports()), ("Outputs", node.output_ports())):
             if ports:
                 rows = "".join(
                     f"<li><b>{p.name}</b> ({p.nickname}, {p.type.name}, {p.access.value}): "

@@ -39,6 +39,7 @@ from app.gui.app_settings import AppSettings, config_dir
 from app.gui.autosave import Autosaver, find_recoveries
 from app.gui.canvas.scene import CanvasScene
 from app.gui.canvas.view import CanvasView
+from app.gui.cluster_widgets import Breadcrumb
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.exporting import bake_previewed, export_output
@@ -91,6 +92,8 @@ class MainWindow(QMainWindow):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.setSpacing(0)
         layout.addWidget(self.palette)
+        self.breadcrumb = Breadcrumb(self.doc)
+        layout.addWidget(self.breadcrumb)
         layout.addWidget(self.view, 1)
         self.setCentralWidget(centre)
 
@@ -127,6 +130,7 @@ class MainWindow(QMainWindow):
         self.scene.export_requested.connect(self.export_output)
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
+        self.doc.context_changed.connect(self._context_changed)
         self.log.node_activated.connect(self.focus_node)
         self.profiler.node_activated.connect(self.focus_node)
         self._tables_timer = QTimer(self)
@@ -140,6 +144,11 @@ class MainWindow(QMainWindow):
         self.actions_by_name: dict[str, QAction] = build_menus(self)
         self._update_title()
         self._help_dialogs: list[QDialog] = []
+
+    def _context_changed(self) -> None:
+        """Into or out of a cluster: the canvas shows a new graph, framed."""
+        self.view.resetTransform()
+        defer(self, lambda: self.view.zoom_to_fit(readable=True))
 
     def _dock(self, title: str, widget: QWidget, area: Qt.DockWidgetArea) -> QDockWidget:
         dock = QDockWidget(title, self)

@@ -26,6 +26,7 @@ CANVAS_ACTIONS = (
     "select_all",
     "group",
     "ungroup",
+    "cluster",
     "enable",
     "preview",
     "zoom_fit",
@@ -79,9 +80,9 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     add(file_menu, "quit", "&Quit", window.close, QKeySequence.StandardKey.Quit)
 
     edit = bar.addMenu("&Edit")
-    undo = window.doc.undo_stack.createUndoAction(window, "&Undo")
+    undo = window.doc.undo_group.createUndoAction(window, "&Undo")
     undo.setShortcut(QKeySequence.StandardKey.Undo)
-    redo = window.doc.undo_stack.createRedoAction(window, "&Redo")
+    redo = window.doc.undo_group.createRedoAction(window, "&Redo")
     redo.setShortcuts([QKeySequence.StandardKey.Redo, QKeySequence("Ctrl+Y")])
     edit.addAction(undo)
     edit.addAction(redo)
@@ -97,6 +98,8 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     edit.addSeparator()
     add(edit, "group", "&Group", window.group_selection, "Ctrl+G")
     add(edit, "ungroup", "U&ngroup", window.ungroup_selection, "Ctrl+Shift+G")
+    add(edit, "cluster", "Cl&uster", window.scene.cluster_selection, "Ctrl+Alt+G",
+        "Collapse the selected nodes into one cluster node")
     align = edit.addMenu("A&lign")
     for how, text in (
         ("left", "Left edges"),

@@ -13,6 +13,7 @@ from PySide6.QtWidgets import QColorDialog, QInputDialog, QMenu
 from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
 from app.gui.graph_order import group_by_id
+from engine.cluster import is_cluster
 from engine.graph import Wire
 from engine.types import CastError, decode_value
 from engine.widgets import Widget
@@ -129,6 +130,12 @@ def node_menu(scene: CanvasScene, node: NodeItem) -> QMenu:
                 f"{port}…", lambda _=False, p=port: scene.export_requested.emit(node.node_id, p)
             )
     menu.addSeparator()
+    if is_cluster(record.node):
+        menu.addAction("Edit cluster", lambda: scene.open_cluster(node.node_id))
+        menu.addAction("Cluster ports…", lambda: scene.edit_cluster_ports(node.node_id))
+        menu.addAction("Explode", lambda: scene.explode_cluster(node.node_id))
+    menu.addAction("Cluster", scene.cluster_selection)
+    menu.addSeparator()
     menu.addAction("Delete", lambda: editor.delete(selected))
     return menu
 
@@ -170,6 +177,11 @@ def canvas_menu(view: CanvasView, scene_pos: QPointF) -> QMenu:
     menu.addAction(
         "Add node…", lambda: view.open_search(scene_pos, view.mapToGlobal(view.mapFromScene(scene_pos)))
     )
+    if view.canvas.doc.frames:  # inside a cluster: its ports are Input and Output nodes
+        position = (scene_pos.x(), scene_pos.y())
+        menu.addAction("Add cluster input", lambda: view.canvas.add_cluster_port("input", position))
+        menu.addAction("Add cluster output", lambda: view.canvas.add_cluster_port("output", position))
+        menu.addSeparator()
     for action in view.actions():
         menu.addAction(action)
     return menu

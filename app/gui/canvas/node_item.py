@@ -26,6 +26,7 @@ from app.gui.canvas.layout import TITLE_H, NodeLayout, compute_layout
 from app.gui.canvas.port_item import PortItem
 from app.gui.formatting import MODIFIER_MARKS, format_item
 from app.gui.icons import node_letters, paint_letter_tile, palette_colour
+from engine.cluster import is_cluster
 from engine.graph import Graph, NodeRecord, is_placeholder
 from engine.solver import NodeResult
 from engine.widgets import Widget
@@ -327,6 +328,9 @@ class NodeItem(QGraphicsRectItem):
 
     def mouseDoubleClickEvent(self, event: QGraphicsSceneMouseEvent) -> None:
         if self._in_widget(event.pos()) and self.widget.double_click(event.pos(), self.layout.widget_rect):
+            return
+        if is_cluster(self.record.node):  # as in Grasshopper: open it for editing
+            self.canvas().open_cluster(self.node_id)
             return
         if event.pos().y() <= TITLE_H:
             self.canvas().rename_node(self.node_id)

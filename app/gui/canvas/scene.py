@@ -22,9 +22,14 @@ from app.gui.canvas.node_item import NodeItem
 from app.gui.canvas.port_item import PortItem
 from app.gui.canvas.wire_item import WireItem
 from app.gui.canvas.wire_routing import NodeGrid
+from app.gui.cluster_widgets import ClusterPortsDialog
+from app.gui.commands import AddNodes
 from app.gui.document import Document
 from app.gui.editor import Editor
+from app.gui.graph_order import fresh_id
+from app.gui.qt_compat import defer
 from app.gui.solve_controller import SolveOutcome
+from engine.cluster import INPUT_TYPE, OUTPUT_TYPE, is_cluster, new_input, new_output
 from engine.events import (
     NODE_REDRAWN,
     GroupEvent,
@@ -34,7 +39,7 @@ from engine.events import (
     WireAdded,
     WireRemoved,
 )
-from engine.graph import GraphEvent, Wire
+from engine.graph import GraphEvent, NodeRecord, Wire
 from engine.node import LIST, TREE
 
 #: Events that change how a node is drawn (its ports, labels, widget).
@@ -68,7 +73,7 @@ class CanvasScene(QGraphicsScene):
         self.setItemIndexMethod(QGraphicsScene.ItemIndexMethod.NoIndex)
         doc.graph_replaced.connect(self.rebuild)
         doc.graph_changed.connect(self.on_graph_event)
-        doc.undo_stack.indexChanged.connect(lambda _index: self.finish_edit())
+        doc.undo_group.indexChanged.connect(lambda _index: self.finish_edit())
         doc.groups_changed.connect(self.refresh_groups)
         doc.results_changed.connect(self.apply_results)
         self.selectionChanged.connect(self._highlight_wires)
@@ -371,6 +376,48 @@ class CanvasScene(QGraphicsScene):
         )
         if ok:
             self.editor.rename(node_id, "" if label == record.node.name() else label)
+
+    # -- clusters --------------------------------------------------------------------
+    def cluster_selection(self) -> str | None:
+        """Collapse the selected nodes into one cluster node (selected afterwards)."""
+        cluster_id = self.editor.cluster(self.selected_node_ids())
+        if cluster_id is not None:
+            self.select_nodes([cluster_id])
+        return cluster_id
+
+    def explode_cluster(self, node_id: str) -> list[str]:
+        """Put a cluster's nodes in its place (selected afterwards)."""
+        ids = self.editor.explode(node_id)
+        self.select_nodes(ids)
+        return ids
+
+    def open_cluster(self, node_id: str) -> None:
+        """Edit cluster ``node_id``'s definition on this canvas (on the next event-loop
+        turn: the scene is rebuilt, and the item asking may be in the middle of an event)."""
+        if node_id in self.doc.graph.nodes and is_cluster(self.doc.graph.nodes[node_id].node):
+            defer(self, lambda: self.doc.enter_cluster(node_id))
+
+    def add_cluster_port(self, kind: str, position: tuple[float, float]) -> str:
+        """Inside a cluster: a new Input or Output node (a new port of the cluster once the
+        edit is committed); its id."""
+        node = new_input() if kind == "input" else new_output()
+        type_id = INPUT_TYPE if kind == "input" else OUTPUT_TYPE
+        label = "Input" if kind == "input" else "Output"
+        node_id = fresh_id(label, set(self.doc.graph.nodes))
+        place = (float(round(position[0])), float(round(position[1])))
+        record = NodeRecord(node_id, node, type_id, label, place)
+        self.doc.push(AddNodes(self.doc, [record], text=f"Add cluster {kind}"))
+        self.select_nodes([node_id])
+        return node_id
+
+    def edit_cluster_ports(self, node_id: str) -> None:
+        """The cluster's name and ports: rename, reorder (one undo step)."""
+        definition = self.doc.graph.cluster_definition(node_id)
+        dialog = ClusterPortsDialog(definition.name, definition.input_names(), definition.output_names())
+        if dialog.exec() == ClusterPortsDialog.DialogCode.Accepted:
+            self.editor.edit_cluster(
+                definition.id, dialog.name.text().strip(), dialog.ports("input"), dialog.ports("output")
+            )
 
     def rename_group(self, group_id: str) -> None:
         """Ask for a group's new title (a double-click on its title bar)."""

@@ -79,7 +79,7 @@ class ViewportPanel(QWidget):
         self._refresh_timer.setSingleShot(True)
         self._refresh_timer.setInterval(0)
         self._refresh_timer.timeout.connect(self._refresh_if_due)
-        doc.undo_stack.indexChanged.connect(lambda _index: self._refresh_if_due())
+        doc.undo_group.indexChanged.connect(lambda _index: self._refresh_if_due())
 
     # -- creation --------------------------------------------------------------------
     def create_plotter(self) -> None:
