@@ -359,6 +359,11 @@ class ClusterCommand(GraphCommand):
             self.setObsolete(True)
             return
         self.done = True
+        self.doc.groups_changed.emit()  # the engine moves nodes in and out of groups unannounced
+
+    def undo(self) -> None:
+        super().undo()
+        self.doc.groups_changed.emit()
 
 
 class MakeCluster(ClusterCommand):

@@ -236,3 +236,10 @@ def test_an_input_added_inside_the_cluster_becomes_a_port_of_the_instance(qtbot,
     assert len(window.doc.graph.cluster_definition(cluster_id).input_names()) == ports_before + 1
     item = window.scene.nodes[cluster_id]
     assert len([key for key in item.ports if key[0]]) == ports_before + 1
+
+
+def test_the_cluster_takes_the_place_of_its_nodes_in_their_group_box(qtbot, first_steps):
+    window = first_steps
+    cluster_id = cluster_through_the_menu(qtbot, window)
+    box = window.scene.groups["layout"].sceneBoundingRect()
+    assert box.contains(window.scene.nodes[cluster_id].sceneBoundingRect())

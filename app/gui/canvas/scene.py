@@ -29,7 +29,7 @@ from app.gui.editor import Editor
 from app.gui.graph_order import fresh_id
 from app.gui.qt_compat import defer
 from app.gui.solve_controller import SolveOutcome
-from engine.cluster import INPUT_TYPE, OUTPUT_TYPE, is_cluster, new_input, new_output
+from engine.cluster import INPUT_TYPE, OUTPUT_TYPE, ClusterInput, ClusterOutput, is_cluster
 from engine.events import (
     NODE_REDRAWN,
     GroupEvent,
@@ -400,7 +400,7 @@ class CanvasScene(QGraphicsScene):
     def add_cluster_port(self, kind: str, position: tuple[float, float]) -> str:
         """Inside a cluster: a new Input or Output node (a new port of the cluster once the
         edit is committed); its id."""
-        node = new_input() if kind == "input" else new_output()
+        node = ClusterInput() if kind == "input" else ClusterOutput()
         type_id = INPUT_TYPE if kind == "input" else OUTPUT_TYPE
         label = "Input" if kind == "input" else "Output"
         node_id = fresh_id(label, set(self.doc.graph.nodes))
