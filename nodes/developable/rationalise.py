@@ -16,6 +16,7 @@ from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable.rationalise import rationalise
 from nodes.geometry.developable.ruling import warp_allowance
+from nodes.geometry.local_frame import LocalFrame
 
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
@@ -139,9 +140,13 @@ class Rationalise(Node):
                 raise NodeError(f"Guides item {i + 1} is a {type(g).__name__}, not a curve")
         if curves and guide is not None:
             self.remark("Direction is not used: the strips follow the Guides")
+        # solved in a frame at the design (at site coordinates its rulings, boundaries and
+        # deviations then round as at the origin); the strips are moved back at the end
+        frame = LocalFrame.around(design)
         try:
-            result = rationalise(design, tol, count, None if curves else guide, segments=n,
-                                 warp_tolerance=warp_limit, progress=self.progress, guides=curves)
+            result = rationalise(frame.to_local(design), tol, count, None if curves else guide, segments=n,
+                                 warp_tolerance=warp_limit, progress=self.progress,
+                                 guides=[frame.to_local(g) for g in curves])
         except ValueError as exc:
             about = "Guides" if curves and "guide" in str(exc) else "Surface"
             raise NodeError(f"{about}: {sentence(exc)}") from None
@@ -151,11 +156,12 @@ class Rationalise(Node):
         kinds: list[str] = []
         fans = 0
         for strip in result.strips:
-            lines = strip_outputs(strip.result.starts, strip.result.ends, warp=strip.warp)
+            starts, ends = (frame.points_to_world(p) for p in (strip.result.starts, strip.result.ends))
+            lines = strip_outputs(starts, ends, warp=strip.warp)
             rulings.extend(lines.rulings)
             w = strip.warp
             warp.extend(w.tolist())
-            ok = np.isfinite(w) & (w <= warp_limit + warp_allowance(strip.result.starts, strip.result.ends))
+            ok = np.isfinite(w) & (w <= warp_limit + warp_allowance(starts, ends))
             valid.extend(ok.tolist())
             fans += int(np.count_nonzero(strip.result.fan))
             kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
@@ -186,5 +192,6 @@ class Rationalise(Node):
         if bad:
             self.warn(f"{bad} of {int(torsal.sum())} torsal rulings have a recomputed warp that is undefined "
                       f"or above {warp_limit:g} rad (Valid = false)")
-        strips = [s.surface for s in result.strips]
-        return strips, list(result.boundaries), rulings, warp, deviation, valid, kinds
+        strips = [frame.to_world(s.surface) for s in result.strips]
+        boundaries = [frame.to_world(b) for b in result.boundaries]
+        return strips, boundaries, rulings, warp, deviation, valid, kinds

@@ -3,6 +3,7 @@ developable by rotating its rulings about one fixed edge."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -16,6 +17,7 @@ from nodes.common.geometry_checks import parametric_surface as surface_input
 from nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from nodes.common.values import CURVE, LINE, SURFACE
 from nodes.geometry.approximation import MAX_OPTIMISED, Approximation, approximate, station_rulings
+from nodes.geometry.local_frame import LocalFrame
 from nodes.limits import MAX_SPLINE_SEGMENTS
 
 #: Above this largest warp (rad) after optimising, the node says the strip is still warped.
@@ -117,14 +119,20 @@ class SplineApproximation(Node):
         optimise, fix_ends = bool(optimise), bool(fix_ends)
         if optimise and n + 1 > MAX_OPTIMISED:
             raise NodeError(f"Segments is {n}: optimising takes at most {MAX_OPTIMISED - 1} segments")
+        # solved in a frame at the surface (site coordinates round there as at the origin);
+        # only the rulings' ends are moved back
+        frame = LocalFrame.around(s)
         try:
-            stations = station_rulings(s, c, n)
+            stations = station_rulings(frame.to_local(s), frame.to_local(c), n)
         except ValueError as exc:
             raise NodeError(sentence(exc)) from None
         start = _angles(angles or [], n + 1, fix_ends)
         result = approximate(
             stations, start, optimise, fix_ends, check=self.check_cancelled, progress=self.progress
         )
+        if not frame.is_world:
+            result = replace(result, starts=frame.points_to_world(result.starts),
+                             ends=frame.points_to_world(result.ends))
         if optimise:
             self._report(result, fix_ends)
         strip = strip_outputs(result.starts, result.ends, warp=result.warp)

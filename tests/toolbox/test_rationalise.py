@@ -25,6 +25,7 @@ from engine.values import Vector
 from nodes.developable.rationalise import Rationalise
 from nodes.geometry.mesh_surface import MeshSurface
 from nodes.geometry.parametric_surface import ParametricSurface
+from nodes.geometry.transforms import translation
 from tests.nodes.helpers import out, run, texts, tree
 
 TOL = 0.02
@@ -338,3 +339,27 @@ def test_too_many_rulings_at_once_are_refused_naming_maxstrips_and_segments():
                  Segments=200)
     assert result.state == "error"
     assert any("MaxStrips 200" in t and "Segments" in t for t in texts(result))
+
+
+def test_a_design_1e9_m_out_gives_the_strips_at_the_origin_moved_to_one_rounding():
+    """The saddle moved by 1e9 m (as transform.Move moves it) is solved in a frame at the
+    design: rulings, boundaries and strips are the origin's moved, to the half ulp
+    (6e-8 m) of moving them back, and the deviations and warps are the origin's exactly.
+    Solved in world coordinates the rulings' ends moved by 280 ulps (3.3e-5 m) and the
+    warps by 2.7e-6 rad (measured)."""
+    far_away = np.full(3, 1e9)
+    half_ulp = 0.5 * np.spacing(1e9) * 1.01
+    near = solved("saddle")
+    moved = SADDLE.surface().transformed(translation(far_away))
+    far = run(Rationalise(), Surface=tree({(0,): [moved]}), Tolerance=TOL, MaxStrips=40)
+    ends_near = np.array([[line.start, line.end] for line in items(near, "Rulings")])
+    ends_far = np.array([[line.start, line.end] for line in items(far, "Rulings")])
+    assert ends_far.shape == ends_near.shape
+    assert np.abs(ends_far - far_away - ends_near).max() <= half_ulp
+    assert items(far, "Deviation") == items(near, "Deviation")
+    assert items(far, "WarpAngles") == items(near, "WarpAngles")
+    t = np.linspace(0.0, 1.0, 9)
+    for boundary_far, boundary_near in zip(items(far, "Boundaries"), items(near, "Boundaries"), strict=True):
+        assert np.abs(boundary_far.point_at(t) - far_away - boundary_near.point_at(t)).max() <= half_ulp
+    for strip_far, strip_near in zip(items(far, "Strips"), items(near, "Strips"), strict=True):
+        assert np.abs(strip_far.point_at(t, t) - far_away - strip_near.point_at(t, t)).max() <= 2 * half_ulp

@@ -27,6 +27,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
+from ..local_frame import Mover, register
 from ..surface_base import CurveOnSurface, IsoCurve, Surface
 
 #: Samples of each guide projected onto the design.
@@ -73,6 +74,11 @@ class SurfaceCurve(CurveOnSurface):
                        + ders[1] * ddu + ders[2] * ddv)
         return out
 
+
+@register(SurfaceCurve)
+def _moved(curve: SurfaceCurve, move: Mover) -> SurfaceCurve:
+    """The same path on the moved surface (see :mod:`..local_frame`)."""
+    return SurfaceCurve(move(curve.surface), curve.path, curve.breaks)
 
 
 @dataclass(frozen=True)
