@@ -18,6 +18,7 @@ from nodes.geometry.coincidence import coincident
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
+from nodes.geometry.vec_ops import extent, norm
 from nodes.limits import MAX_SEGMENTS
 
 
@@ -37,10 +38,9 @@ def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float)
 def _tips(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
     """The first and last rulings where they have zero length (to rounding): the curves
     meet there and the strip tapers to a point."""
-    lengths = np.linalg.norm(ends - starts, axis=1)
-    size = float(np.ptp(np.vstack([starts, ends]), axis=0).max()) or 1.0
-    tip = np.zeros(len(lengths), dtype=bool)
-    tip[[0, -1]] = lengths[[0, -1]] <= 1e-12 * size
+    size = float(extent(np.concatenate([starts, ends])).max()) or 1.0
+    tip = np.zeros(len(starts), dtype=bool)
+    tip[[0, -1]] = norm(ends[[0, -1]] - starts[[0, -1]]) <= 1e-12 * size
     return tip
 
 

@@ -9,18 +9,16 @@ development is simple. Two counterexamples were found, both strips whose rulings
 - a torsal fan through A's vertex ran over the whole of the straight B and the flat
   triangles after it ran back over B from the station's own partner; they now start
   where the fan ends (kept as an example below, and its own test);
-- not yet fixed: two curves in one plane (the whole strip is one planar piece): the
-  planar pieces' fans are drawn before the stations between them get their partners,
-  so a fan over the whole of B is followed by a station whose partner runs back (the
-  xfail test below). IsoMapping then warns that the development overlaps itself, which
-  is true of that strip; RulingDevelopable does not warn.
+- two curves in one plane (the whole strip is one planar piece): the planar pieces'
+  fans were drawn before the stations between them got their partners, so a fan over
+  the whole of B was followed by a station whose partner ran back; the stations get
+  their partners first now (its own test below).
 The random examples are drawn from a fixed seed (``derandomize``), so the suite does not
-fail by chance on the second case; ``--hypothesis-seed`` with ``derandomize`` off explores more."""
+fail by chance; ``--hypothesis-seed`` with ``derandomize`` off explores more."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 import shapely
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
@@ -78,8 +76,6 @@ def test_the_flat_triangles_after_a_fan_over_all_of_b_start_where_the_fan_ends()
     assert abs(development.area_error) < 1e-6  # measured 8.5e-8 (the rails' chords)
 
 
-@pytest.mark.xfail(strict=True, reason="planar pieces: a fan over all of B, then a station partner "
-                   "running back (nodes/geometry/developable/fans.py flat_fans, before near_partners)")
 def test_two_curves_in_one_plane_make_a_strip_that_unrolls_in_one_sheet():
     a = curve([(0.0, 0.0), (0.0, 0.25), (0.0, 0.0)], 1.0, 0.0, 0.0)
     b = curve([(0.0, 0.0), (0.0, 0.0), (0.0, -0.21875)], 0.625, 0.0, 0.5)

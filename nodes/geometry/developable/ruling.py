@@ -62,7 +62,8 @@ Algorithm (all stations at once)
    are added through A(s*) at about the station spacing.
 7. Stations with no consistently oriented root get the plain loft's partner (in arc
    length between their neighbours' partners) or else the least-warped sample of B
-   there, if its warp is within ``warp_tolerance``. The others admit no torsal ruling:
+   there, if its warp is within ``warp_tolerance`` (before the planar pieces of step 6
+   are drawn, so that a piece's fans end at the next station's partner). The others admit no torsal ruling:
    each run of them is closed by flat triangles between the two stretches of A and B
    (:mod:`.fans`), and so are the ends of B beyond the first and last ruling and any
    stretch of B that t jumps over with no torsal fan to cover it. Their rulings are
@@ -239,9 +240,12 @@ def _solve(
     t = np.full(n, np.nan)
     slope = np.zeros(n)
     t[has], slope[has] = good.t[chosen[has]], good.slope[chosen[has]]
+    # stations without a partner get one first, so that a planar piece's fans end where the
+    # next station's partner is (two curves in one plane: otherwise a fan over all of B, then
+    # a partner running back)
+    near_partners(strip, t)
     fans, planar = flat_fans(strip, t, chosen, good)
     regular = has & ~planar
-    near_partners(strip, t)
     fans += a_fans(strip, t, slope, regular)
 
     for _ in range(MAX_CHECKS):
