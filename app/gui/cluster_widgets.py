@@ -58,13 +58,15 @@ class Breadcrumb(QWidget):
             button.setText(name)
             button.setAutoRaise(True)
             last = depth == len(names) - 1
-            button.setEnabled(not last)
-            if last:
+            if last:  # where the canvas is: bold, and a click goes nowhere
                 font = button.font()
                 font.setBold(True)
                 button.setFont(font)
-            button.setToolTip("" if last else f"Back to {name} (the edits inside are kept)")
-            button.clicked.connect(lambda _=False, d=depth: self.doc.leave_to(d))
+                button.setToolTip("The cluster shown (its edits go to every instance when you go back)")
+            else:
+                button.setToolTip(f"Back to {name} (the edits inside are kept)")
+            if not last:
+                button.clicked.connect(lambda _=False, d=depth: self.doc.leave_to(d))
             self.row.addWidget(button)
             self.crumbs.append(button)
         self.row.addStretch(1)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QMimeData, QPoint, Qt, QTimer
+from PySide6.QtCore import QMimeData, QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -21,6 +21,7 @@ from PySide6.QtGui import (
     QKeyEvent,
     QPainter,
     QPixmap,
+    QTransform,
 )
 from PySide6.QtWidgets import (
     QDialog,
@@ -130,6 +131,7 @@ class MainWindow(QMainWindow):
         self.scene.export_requested.connect(self.export_output)
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
+        self._outer_views: list[tuple[QTransform, QPointF]] = []  # the view outside each open cluster
         self.doc.context_changed.connect(self._context_changed)
         self.log.node_activated.connect(self.focus_node)
         self.profiler.node_activated.connect(self.focus_node)
@@ -146,9 +148,22 @@ class MainWindow(QMainWindow):
         self._help_dialogs: list[QDialog] = []
 
     def _context_changed(self) -> None:
-        """Into or out of a cluster: the canvas shows a new graph, framed."""
-        self.view.resetTransform()
-        defer(self, lambda: self.view.zoom_to_fit(readable=True))
+        """Into a cluster: the canvas shows its definition, framed; back out: the view is
+        where it was before going in."""
+        depth = len(self.doc.frames)
+        if depth > len(self._outer_views):
+            centre = self.view.mapToScene(self.view.viewport().rect().center())
+            self._outer_views.append((self.view.transform(), centre))
+            self.view.resetTransform()
+            defer(self, lambda: self.view.zoom_to_fit(readable=True))
+            return
+        saved = None
+        while len(self._outer_views) > depth:
+            saved = self._outer_views.pop()
+        if saved is not None:
+            transform, centre = saved
+            self.view.setTransform(transform)
+            self.view.centerOn(centre)
 
     def _dock(self, title: str, widget: QWidget, area: Qt.DockWidgetArea) -> QDockWidget:
         dock = QDockWidget(title, self)

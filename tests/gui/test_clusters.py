@@ -243,3 +243,36 @@ def test_the_cluster_takes_the_place_of_its_nodes_in_their_group_box(qtbot, firs
     cluster_id = cluster_through_the_menu(qtbot, window)
     box = window.scene.groups["layout"].sceneBoundingRect()
     assert box.contains(window.scene.nodes[cluster_id].sceneBoundingRect())
+
+
+def open_cluster_by_double_click(qtbot: Any, window: Any, cluster_id: str) -> None:
+    double_click(window, title_point(window, cluster_id))
+    qtbot.waitUntil(lambda: len(window.doc.frames) == 1, timeout=3000)
+    wait_solved(qtbot, window)
+
+
+def test_saving_inside_a_cluster_goes_back_out_and_saves_the_edits_made_inside(qtbot, first_steps, tmp_path):
+    window = first_steps
+    cluster_id = cluster_through_the_menu(qtbot, window)
+    open_cluster_by_double_click(qtbot, window, cluster_id)
+    window.editor.set_settings("total", {"expression": "3*w*n"}, text="Edit expression")
+    path = tmp_path / "edited.graph"
+    assert window.save_as(path)
+    assert not window.doc.frames and not window.doc.dirty
+    (definition,) = json.loads(path.read_text(encoding="utf-8"))["clusters"]
+    total = next(n for n in definition["nodes"] if n["id"] == "total")
+    assert total["settings"]["expression"] == "3*w*n"
+
+
+def test_going_back_out_of_a_cluster_shows_the_canvas_where_it_was(qtbot, first_steps):
+    window = first_steps
+    cluster_id = cluster_through_the_menu(qtbot, window)
+    window.view.zoom_by(1.6)
+    zoom, centre = window.view.zoom(), window.view.mapToScene(window.view.viewport().rect().center())
+    open_cluster_by_double_click(qtbot, window, cluster_id)
+    qtbot.wait(50)
+    QTest.mouseClick(window.breadcrumb.crumbs[0], Qt.MouseButton.LeftButton)
+    qtbot.wait(50)
+    assert window.view.zoom() == pytest.approx(zoom)
+    back = window.view.mapToScene(window.view.viewport().rect().center())
+    assert abs(back.x() - centre.x()) < 2 and abs(back.y() - centre.y()) < 2
