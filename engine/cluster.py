@@ -23,6 +23,8 @@ API (what a front-end uses; every call is one edit, one undo step)::
     old_order = graph.reorder_cluster_ports(definition_id, "output", ["B", "A"])
     graph.rename_cluster(definition_id, "New name")      # -> old name
     solver.cluster_solver(cid)                           # the inner Solver of one instance (or None)
+    feed_inputs(editable, solver.cluster_inputs(cid))    # show an instance's values while editing
+    fragment_clusters(graph, ids) / adopt_clusters(graph, records)   # engine.graphfile: copy, paste
 
 Inside a definition's graph the ports are nodes: one :class:`ClusterInput` per input
 (``cluster.Input``, no inputs, one tree output ``Value``) and one :class:`ClusterOutput`
@@ -53,8 +55,9 @@ the worst state of its inner nodes, shows that worst message naming the inner no
 ("Panel heights: ..."), and keeps the outputs the inner graph produced.
 
 The cluster types are not in the node catalogue: :mod:`engine.graphfile` builds them,
-and front-ends make them with :meth:`Graph.make_cluster` (and :func:`new_input` /
-:func:`new_output` for a port added while editing).
+and front-ends make them with :meth:`Graph.make_cluster` (and, for a port added while
+editing a definition, ``edited.add_node(ClusterInput(), label="Width")`` or
+``ClusterOutput()``).
 """
 
 from __future__ import annotations
@@ -65,7 +68,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from engine.datatree import DataTree
-from engine.node import TREE, In, Node, NodeError, Out, Setting
+from engine.node import TREE, In, Node, NodeError, Out
 from engine.types import GENERIC, ValueType
 
 if TYPE_CHECKING:
@@ -78,6 +81,10 @@ BUILTIN_TYPES = (CLUSTER_TYPE, INPUT_TYPE, OUTPUT_TYPE)
 #: How deeply clusters may sit inside clusters (a file nesting deeper is refused).
 MAX_NESTING = 16
 PORT = "Value"  # the one port of a boundary node
+#: The most nodes a file's clusters may expand to (each instance solves its own copy of
+#: its definition, so a small file nesting many instances could otherwise ask for
+#: millions of solves).
+MAX_EXPANDED_NODES = 200_000
 
 
 class ClusterInput(Node):
@@ -204,7 +211,8 @@ class ClusterNode(Node):
     inner graph (see the module docstring)."""
 
     type_id = CLUSTER_TYPE
-    settings_spec = (Setting("definition", str, "", "The id of the cluster definition this node uses."),)
+    # ``settings["definition"]`` names the definition in the file; it has no Setting entry,
+    # so an inspector does not offer it for editing (``definition`` is the object itself)
 
     def __init__(self, definition: ClusterDefinition, settings: dict[str, Any] | None = None) -> None:
         super().__init__({**(settings or {}), "definition": definition.id})
@@ -233,13 +241,15 @@ def is_boundary(node: Node) -> bool:
     return isinstance(node, ClusterInput | ClusterOutput)
 
 
-def new_input(label: str = "Input") -> ClusterInput:
-    """A new input port node for a definition being edited (label it with the port name)."""
-    return ClusterInput()
-
-
-def new_output(label: str = "Output") -> ClusterOutput:
-    return ClusterOutput()
+def feed_inputs(graph: Graph, trees: dict[str, DataTree]) -> None:
+    """Give the Input nodes of ``graph`` (a definition's copy being edited) the trees an
+    instance receives (``solver.cluster_inputs(cluster_id)``), so the editor shows that
+    instance's values. A committed definition never keeps them."""
+    for node_id, tree in trees.items():
+        record = graph.nodes.get(node_id)
+        if record is not None and isinstance(record.node, ClusterInput):
+            record.node.feed = tree
+            graph.expire(node_id)
 
 
 # --------------------------------------------------------------------------- copies

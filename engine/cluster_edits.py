@@ -10,6 +10,7 @@ instance whose ports may have changed (the canvas redraws a node on it).
 
 from __future__ import annotations
 
+import copy
 from typing import TYPE_CHECKING
 
 from engine.cluster import (
@@ -37,7 +38,7 @@ from engine.cluster import (
 from engine.events import SettingChanged
 
 if TYPE_CHECKING:
-    from engine.graph import Graph, NodeRecord, Wire
+    from engine.graph import Graph, InputState, NodeRecord, Wire
 
 #: how far the boundary nodes sit left and right of the inner nodes, and apart
 _MARGIN_X, _STEP_Y = 260.0, 90.0
@@ -297,8 +298,8 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
     position), wired as the cluster was; remove the cluster node, and its definition when
     nothing else uses it. Returns the new nodes' ids (their inner ids where free).
 
-    Modifiers set on a cluster input (graft...) move onto the inner input it feeds when
-    that input takes nothing else; a value set on an unwired cluster input is not carried.
+    Modifiers set on a cluster input (graft...), and the value of an unwired one, move onto
+    the inner inputs it feeds that take nothing else.
     """
     from engine.graph import GraphError, Wire
 
@@ -348,20 +349,25 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
             ends.extend(Wire(s, p, wire.target, wire.target_port) for s, p in sources(inner_wire))
         replaced[wire] = ends
         late.extend(ends)
-    # a cluster input's modifiers go onto the inner input it alone feeds
-    modifiers: dict[tuple[str, str], list[str]] = {}
+    # a cluster input's modifiers, and its value when unwired, go onto the inner inputs it
+    # alone feeds
+    carried: dict[tuple[str, str], tuple[InputState, bool]] = {}
     for name, state in record.inputs.items():
         boundary = definition.port_nodes("input").get(name)
-        if not state.modifiers or boundary not in inner.nodes:
+        unwired_value = state.has_value and not outer_in.get(name)
+        if not (state.modifiers or unwired_value) or boundary not in inner.nodes:
             continue
         for inner_wire in inner.wires_from(boundary):
-            if len(inner.wires_into(inner_wire.target, inner_wire.target_port)) == 1:
-                modifiers[(mapping[inner_wire.target], inner_wire.target_port)] = list(state.modifiers)
+            if inner_wire.target in mapping and len(
+                    inner.wires_into(inner_wire.target, inner_wire.target_port)) == 1:
+                carried[(mapping[inner_wire.target], inner_wire.target_port)] = (state, unwired_value)
     for clone in new_records:
-        for (target, port), mods in modifiers.items():
+        for (target, port), (state, unwired_value) in carried.items():
             if target == clone.id:
-                state = clone.input_state(port)
-                state.modifiers = [*mods, *state.modifiers]
+                mine = clone.input_state(port)
+                mine.modifiers = [*state.modifiers, *mine.modifiers]
+                if unwired_value:
+                    mine.value, mine.has_value = copy.deepcopy(state.value), True
     feeding_orders = _port_orders(graph, outgoing, replaced)
     cluster_groups = [g for g in graph.groups if node_id in g.nodes]
     info = cluster_instance(graph, node_id)

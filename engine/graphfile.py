@@ -36,6 +36,7 @@ from engine.bounded_read import UnreadableFileError, read_bounded
 from engine.cluster import (
     CLUSTER_TYPE,
     INPUT_TYPE,
+    MAX_EXPANDED_NODES,
     OUTPUT_TYPE,
     ClusterDefinition,
     ClusterInput,
@@ -329,7 +330,7 @@ def _build(data: dict[str, Any], registry: Registry) -> Graph:
     graph.raw = data
     graph.units = data.get("units", "m")
     graph.meta = copy_data(data.get("meta", {}))
-    _build_clusters(data.get("clusters", []), registry, graph)
+    _build_clusters(data.get("clusters", []), registry, graph, data["nodes"])
     _fill(graph, data, registry)
     graph.expire_all()
     return graph
@@ -360,7 +361,8 @@ def _fill(graph: Graph, data: dict[str, Any], registry: Registry, where: str = "
         )
 
 
-def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Graph) -> None:
+def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Graph,
+                    top_nodes: list[dict[str, Any]]) -> None:
     """Build the file's cluster definitions into ``graph.clusters``, each after those it
     uses; refuse a repeated id, a use of a definition not in the file, a definition
     containing itself, nesting deeper than :data:`engine.cluster.MAX_NESTING`, and ports
@@ -384,7 +386,9 @@ def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Gr
     problem = nesting_problem_of(uses)
     if problem:
         raise GraphFileError(problem)
-    for def_id in dependency_order(uses):
+    order = dependency_order(uses)
+    _check_expansion(raw_of, order, top_nodes)
+    for def_id in order:
         entry = raw_of[def_id]
         where = f"cluster definition {def_id!r}"
         inner = Graph()
@@ -411,6 +415,28 @@ def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Gr
         graph.clusters[def_id] = ClusterDefinition(
             def_id, entry.get("name", "") or def_id, inner, ports["inputs"], ports["outputs"],
             anchor=(x, y), raw=entry)
+
+
+def _check_expansion(raw_of: dict[str, dict[str, Any]], order: list[str],
+                     top_nodes: list[dict[str, Any]]) -> None:
+    """Refuse clusters that would expand to more than :data:`MAX_EXPANDED_NODES` nodes."""
+    size: dict[str, int] = {}
+
+    def expanded(nodes: list[dict[str, Any]]) -> int:
+        total = 0
+        for node in nodes:
+            used = node.get("settings", {}).get("definition")
+            if node["type"] == CLUSTER_TYPE and isinstance(used, str):
+                total += size.get(used, 0)
+            else:
+                total += 1
+        return min(total, MAX_EXPANDED_NODES + 1)
+
+    for def_id in order:
+        size[def_id] = expanded(raw_of[def_id].get("nodes", []))
+    if expanded(top_nodes) > MAX_EXPANDED_NODES or any(n > MAX_EXPANDED_NODES for n in size.values()):
+        raise GraphFileError(f"the file's clusters expand to more than {MAX_EXPANDED_NODES:,} nodes "
+                             "(instances inside instances multiply); Torsal does not solve that many")
 
 
 def _definition_id(raw: dict[str, Any], where: str) -> str:

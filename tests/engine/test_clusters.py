@@ -516,3 +516,28 @@ def test_the_format_documents_example_solves_as_it_says(library: Registry) -> No
     example = doc.split("```json\n", 1)[1].split("```", 1)[0]
     solver = solved(loads(example, library))
     assert solver.result("double").output("Result").to_dict() == {"{0}": [10.0]}  # 2 × (2 + 3)
+
+
+def test_instances_multiplying_past_the_node_limit_are_refused(kit: Registry) -> None:
+    data = clustered_data(kit)  # "doublesum": 5 nodes; each level holds 20 of the one below
+    for level in range(1, 5):
+        below = "doublesum" if level == 1 else f"many{level - 1}"
+        nodes = [{"id": f"n{i}", "type": "cluster.Cluster", "settings": {"definition": below}}
+                 for i in range(20)]
+        data["clusters"].append({"id": f"many{level}", "nodes": nodes})
+    data["nodes"].append({"id": "top", "type": "cluster.Cluster", "settings": {"definition": "many4"}})
+    assert "expand to more than 200,000 nodes" in refusal(kit, data)  # 5 × 20⁴ = 800,000
+
+
+def test_explode_carries_a_cluster_ports_graft_onto_the_inner_input(kit: Registry) -> None:
+    graph = Graph()
+    graph.add_node(kit.create("params.Tree", {"branches": {"{0}": [1, 2, 3]}}), "tree")
+    graph.add_node(kit.create("lists.ListLength"), "length")
+    graph.add_node(kit.create("trees.BranchCount"), "branches")
+    graph.connect("tree", "Tree", "length", "List")
+    graph.connect("length", "Length", "branches", "Tree")
+    cluster = graph.make_cluster(["length"], name="Lengths")
+    graph.set_modifiers(cluster, "List", ["graft"])
+    graph.explode_cluster(cluster)
+    assert graph.nodes["length"].inputs["List"].modifiers == ["graft"]
+    assert solved(graph).result("branches").output("Count").all_items() == [3]
