@@ -6,7 +6,6 @@ import math
 from typing import Any
 
 import numpy as np
-import shapely
 
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import NUMBER, TEXT, describe
@@ -16,6 +15,7 @@ from nodes.common.values import CURVE, DEVELOPMENT, SURFACE
 from nodes.geometry.curves.line import Polyline
 from nodes.geometry.development_placement import place
 from nodes.geometry.patching import Pattern, TooManyPanels, tile_pattern
+from nodes.geometry.pattern_cover import pattern_cover
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.unroll import Development, unroll_surface
 from nodes.limits import MAX_PANELS
@@ -242,15 +242,12 @@ class SurfacePatching(Node):
 
     def _check_cover(self, rings: list[np.ndarray], period: np.ndarray) -> None:
         """Remark on gaps, warn on overlaps, comparing the panels' area with the tile's."""
-        polys = shapely.polygons(rings) if len({len(r) for r in rings}) == 1 else [
-            shapely.Polygon(r) for r in rings]
-        panels = float(np.sum(shapely.area(polys)))
-        tile = float((period[2] - period[0]) * (period[3] - period[1]))
-        if panels < tile * (1 - 1e-9):
+        cover = pattern_cover(rings, period)
+        if cover.gaps:
             self.remark(
-                f"The pattern covers {panels / tile:.0%} of its tile, so the tiling leaves gaps "
+                f"The pattern covers {cover.share:.0%} of its tile, so the tiling leaves gaps "
                 "(a running bond overhangs its tile: wire StaggeredPattern's Tile into Tile)"
             )
-        elif panels > tile * (1 + 1e-9):
-            self.warn(f"The pattern's panels add up to {panels / tile:.0%} of its tile, so repeated "
+        elif cover.overlaps:
+            self.warn(f"The pattern's panels add up to {cover.share:.0%} of its tile, so repeated "
                       "panels overlap: give a larger Tile or smaller panels")
