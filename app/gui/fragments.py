@@ -1,9 +1,10 @@
 """Copy and paste as ``.graph`` fragments: JSON text any Torsal window can read.
 
 A fragment is a small, complete graph file (same format, same validation) holding the
-copied nodes and the wires between them. Pasting reads it with the engine's file
-module (so a pasted fragment is only ever *parsed*), gives the nodes fresh ids and
-moves them by an offset.
+copied nodes, the wires between them and the definitions of the clusters among them.
+Pasting reads it with the engine's file module (so a pasted fragment is only ever
+*parsed*), gives the nodes fresh ids and moves them by an offset; a pasted cluster
+shares the graph's definition when it has the same one.
 """
 
 from __future__ import annotations
@@ -12,7 +13,16 @@ import dataclasses
 
 from app.gui.graph_order import fresh_id
 from engine.graph import Graph, NodeRecord, Wire
-from engine.graphfile import FORMAT, VERSION, encode, loads, node_data, wire_data
+from engine.graphfile import (
+    FORMAT,
+    VERSION,
+    adopt_clusters,
+    encode,
+    fragment_clusters,
+    loads,
+    node_data,
+    wire_data,
+)
 from engine.registry import Registry
 
 MIME_TYPE = "application/x-torsal-graph"
@@ -31,6 +41,9 @@ def copy_fragment(graph: Graph, node_ids: list[str]) -> str:
         "groups": [],
         "meta": {"fragment": True},
     }
+    clusters = fragment_clusters(graph, chosen)  # the definitions its clusters use go with it
+    if clusters:
+        data["clusters"] = clusters
     return encode(data)
 
 
@@ -72,6 +85,7 @@ def paste_fragment(
         Wire(renamed[w.source], w.source_port, renamed[w.target], w.target_port, raw=w.raw)
         for w in fragment.wires
     ]
+    adopt_clusters(graph, records)  # a definition the graph has already is shared, not doubled
     return records, wires
 
 

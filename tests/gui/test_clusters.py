@@ -276,3 +276,19 @@ def test_going_back_out_of_a_cluster_shows_the_canvas_where_it_was(qtbot, first_
     assert window.view.zoom() == pytest.approx(zoom)
     back = window.view.mapToScene(window.view.viewport().rect().center())
     assert abs(back.x() - centre.x()) < 2 and abs(back.y() - centre.y()) < 2
+
+
+def test_copy_and_paste_of_a_cluster_shares_its_definition(qtbot, first_steps):
+    window = first_steps
+    cluster_id = cluster_through_the_menu(qtbot, window)
+    definitions = set(window.doc.graph.clusters)
+    window.view.setFocus()
+    QTest.keyClick(window.view.viewport(), Qt.Key.Key_C, CTRL)
+    QTest.keyClick(window.view.viewport(), Qt.Key.Key_V, CTRL)
+    clusters = [n for n, r in window.doc.graph.nodes.items() if is_cluster(r.node)]
+    assert len(clusters) == 2
+    pasted = next(n for n in clusters if n != cluster_id)
+    same = window.doc.graph.cluster_definition(pasted) is window.doc.graph.cluster_definition(cluster_id)
+    assert same and set(window.doc.graph.clusters) == definitions
+    original, copy = window.scene.nodes[cluster_id], window.scene.nodes[pasted]
+    assert set(copy.ports) == set(original.ports)
