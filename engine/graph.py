@@ -134,6 +134,10 @@ class Graph:
         #: (see :mod:`engine.cluster`)
         self.clusters: dict[str, Any] = {}
         self.expired: set[str] = set()
+        #: the expired nodes that were themselves edited (the rest are expired only because
+        #: something upstream was): the solver may keep the result of a node that is not
+        #: here when everything re-solved upstream of it gave the very same outputs
+        self.touched: set[str] = set()
         #: how many nodes have been removed so far (lets a solver forget their results cheaply)
         self.removals = 0
         self._listeners: list[Listener] = []
@@ -201,6 +205,7 @@ class Graph:
             if self._order is not None:
                 self._order.append(record.id)
         self.expired.add(record.id)
+        self.touched.add(record.id)
         self._emit(NodeAdded, record.id)
         return record
 
@@ -215,6 +220,7 @@ class Graph:
         self.expire(node_id)
         del self.nodes[node_id]
         self.expired.discard(node_id)
+        self.touched.discard(node_id)
         self._into.pop(node_id, None)
         self._from.pop(node_id, None)
         if self._rank is not None:
@@ -521,6 +527,7 @@ class Graph:
         stack = [node_id]
         expired = self.expired
         expired.add(node_id)
+        self.touched.add(node_id)
         while stack:
             for wire in out.get(stack.pop(), ()):
                 target = wire.target
@@ -530,6 +537,7 @@ class Graph:
 
     def expire_all(self) -> None:
         self.expired.update(self.nodes)
+        self.touched.update(self.nodes)
 
     def upstream(self, node_id: str) -> set[str]:
         """Every node whose output reaches ``node_id`` (not including it)."""

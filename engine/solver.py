@@ -87,6 +87,12 @@ class Solver:
     def result(self, node_id: str) -> NodeResult:
         return self.results.get(node_id) or NodeResult()
 
+    def _fed_the_same(self, node_id: str, visited: set[str], same: set[str]) -> bool:
+        """Whether every node visited this solve that feeds ``node_id`` gave the very outputs
+        it had (a cluster whose changed input did not reach the outputs ``node_id`` takes...)."""
+        sources = {w.source for w in self.graph.wires_into(node_id)} & visited
+        return bool(sources) and sources <= same
+
     def cluster_solver(self, node_id: str) -> Solver | None:
         """The inner solver of the cluster node ``node_id`` (its inner graph is a private
         copy of the definition's, with this instance's inputs), once it has been solved."""
@@ -115,20 +121,36 @@ class Solver:
                 del self._clusters[stale]
         # only the expired nodes are visited: sorted by their topological rank
         pending = graph.in_order(graph.expired)
+        touched = graph.touched
+        same: set[str] = set()  # visited this solve and gave the very outputs they had
+        visited: set[str] = set()
+        index = 0
         try:
             for index, node_id in enumerate(pending):
                 token.check()
-                if progress is not None:
-                    progress(index, len(pending), node_id)
-                on_progress = None if node_progress is None else (
-                    lambda fraction, node_id=node_id: node_progress(node_id, fraction))
-                self.results[node_id] = self._solve_node(graph.nodes[node_id], token, on_progress)
+                if same and node_id not in touched and node_id in self.results and self._fed_the_same(
+                        node_id, visited, same):
+                    same.add(node_id)  # nothing it takes has changed: its result stands
+                else:
+                    if progress is not None:
+                        progress(index, len(pending), node_id)
+                    on_progress = None if node_progress is None else (
+                        lambda fraction, node_id=node_id: node_progress(node_id, fraction))
+                    record = graph.nodes[node_id]
+                    before = self.results.get(node_id)
+                    result = self.results[node_id] = self._solve_node(record, token, on_progress)
+                    if isinstance(record.node, ClusterNode) and _same_outputs(before, result):
+                        same.add(node_id)
+                    report.solved.append(node_id)
+                visited.add(node_id)
                 graph.expired.discard(node_id)
-                report.solved.append(node_id)
+                touched.discard(node_id)
         except Cancelled:
             report.cancelled = True
+            touched.update(pending[index:])  # what is left is solved in full next time
         if not graph.expired:  # a set keeps its largest table, and iterating it costs that
             graph.expired.clear()
+            touched.clear()
         report.seconds = time.perf_counter() - start
         return report
 
@@ -270,6 +292,12 @@ class ClusterRun:
             text += f" (and {others} more inside the cluster)"
         state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
         return state, [Message(worst, text)]
+
+
+def _same_outputs(before: NodeResult | None, after: NodeResult) -> bool:
+    """Whether ``after`` holds the very output trees ``before`` did (the same objects)."""
+    return (before is not None and before.outputs.keys() == after.outputs.keys()
+            and all(after.outputs[p] is tree for p, tree in before.outputs.items()))
 
 
 def _same_tree(a: DataTree, b: DataTree) -> bool:

@@ -541,3 +541,25 @@ def test_explode_carries_a_cluster_ports_graft_onto_the_inner_input(kit: Registr
     graph.explode_cluster(cluster)
     assert graph.nodes["length"].inputs["List"].modifiers == ["graft"]
     assert solved(graph).result("branches").output("Count").all_items() == [3]
+
+
+def test_nodes_after_a_cluster_output_that_did_not_change_are_not_solved_again(kit: Registry) -> None:
+    graph, _ = counted_cluster(kit)
+    graph.add_node(Counted(), "p_after")
+    graph.connect("after", "Result", "p_after", "X")  # after ← the cluster's p output, unchanged below
+    solver = solved(graph)
+    Counted.solves.clear()
+    graph.set_setting("y", "value", 7.0)  # reaches q inside, which feeds no output
+    report = solver.solve()
+    assert Counted.solves == [7.0]
+    assert "after" not in report.solved and "p_after" not in report.solved
+    assert solver.result("p_after").output("Y").all_items() == [1.0]
+
+
+def test_a_cluster_output_that_changed_re_solves_what_it_feeds(kit: Registry) -> None:
+    graph, _ = counted_cluster(kit)
+    solver = solved(graph)
+    graph.set_setting("x", "value", 4.0)
+    report = solver.solve()
+    assert "after" in report.solved
+    assert solver.result("after").output("Result").all_items() == [4.0]
