@@ -9,14 +9,15 @@ A cancel is seen at the token's next check, so what it costs is the wait for tha
 plus the hand-over between threads. Both are measured in the run:
 
 * **Cancelling the bumpy-NURBS area** (Area on a 48 × 48 bicubic net, seconds of work)
-  from another thread, median of five, timed from when the cancel is due, against the two baselines it is made of, measured
-  in the same run: the kernel's gap between checks (its 90th percentile over 1.5 s of
-  work, by a recording token, see :mod:`tests.benchmarks.check_gaps`; the longest gap
-  would let one stall of the machine excuse anything) plus the median delay of cancelling
-  a node that does nothing but check ("cancelling nothing": the threads' hand-over). The
-  ratio must stay under 1.5: nothing but the wait for the next check delays a cancel. The bar itself,
-  0.2 s, is asserted as well: it is what a designer waits, an absolute by nature, and the
-  50 ms rule below leaves it a fourfold margin against a loaded machine.
+  from another thread, median of five, timed from when the cancel is due, against the two
+  baselines it is made of, measured in the same run: the kernel's gap between checks (its
+  90th percentile over 1.5 s of work, by a recording token, see
+  :mod:`tests.benchmarks.check_gaps`; the longest gap would let one stall of the machine
+  excuse anything) plus the median delay of cancelling a node that does nothing but check
+  ("cancelling nothing": the threads' hand-over). The ratio must stay under 1.5: nothing
+  but the wait for the next check delays a cancel. The bar itself, 0.2 s, is asserted as
+  well: it is what a designer waits, an absolute by nature, and the 50 ms rule below
+  leaves it a fourfold margin against a loaded machine.
 * **The longest gap between checks** in a sample of long kernels (the area; RulingDevelopable
   at 2,000 stations and over Kaohsiung's strips; SurfacePatching; the nesting of cut
   sheets), against a reference block of work timed in the same run: sorting 2·10⁶ numbers
