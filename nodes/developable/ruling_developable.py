@@ -19,6 +19,7 @@ from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
 from nodes.geometry.vec_ops import extent, norm
+from nodes.geometry.watch import watched
 from nodes.limits import MAX_SEGMENTS
 
 
@@ -123,9 +124,12 @@ class RulingDevelopable(Node):
         n = segments_input(segments)
         tol = tolerance_input("WarpTolerance", tolerance)
         limit = fan_limit_input(fan_limit)
-        result = solve_strip(a, b, n, tol)
+        self.check_cancelled()
+        with watched(self.check_cancelled):  # the kernel looks at the token between its steps
+            result = solve_strip(a, b, n, tol)
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+        self.check_cancelled()
         if result.message:
             if result.creased_share > limit:
                 hint = better_pairing(a, b, n, tol, result)

@@ -98,6 +98,7 @@ from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, norm, position_rounding, unit
+from ..watch import watch_check
 from .candidates import ROOT, Candidates, choose, near_partners
 from .end_cones import Rulings, smooth_ends
 from .fans import a_fans, area_share, close_gaps, creased_fans, fan_share, flat_fans, outside_gaps
@@ -231,11 +232,15 @@ def ruling_developable(
 def _solve(
     curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
 ) -> RulingResult:
-    """One solve of :func:`ruling_developable` as the module docstring describes it."""
+    """One solve of :func:`ruling_developable` as the module docstring describes it. Between
+    its steps it calls the enclosing :func:`~..watch.watched` block's check, if any (a
+    2,000-station solve takes tens of milliseconds: Esc is seen within one step)."""
+    check = watch_check() or _unwatched
     strip = Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
     n = len(strip.s)
-
+    check()
     chosen, good = choose(strip)
+    check()
     has = chosen >= 0
     t = np.full(n, np.nan)
     slope = np.zeros(n)
@@ -247,6 +252,7 @@ def _solve(
     fans, planar = flat_fans(strip, t, chosen, good)
     regular = has & ~planar
     fans += a_fans(strip, t, slope, regular)
+    check()
 
     for _ in range(MAX_CHECKS):
         gap = np.isnan(t)
@@ -261,12 +267,14 @@ def _solve(
             valid = warp <= tolerance + warp_allowance(starts, ends)  # NaN is never valid
         # a station ruling taken as torsal that fails the check is a gap after all
         failed = source[(source >= 0) & ~fan & ~valid]
+        check()
         if len(failed) == 0:
             break
         t[failed] = np.nan
     # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
     # the curve's end point, where that ruling exists (see .end_cones)
     smoothed = smooth_ends(curve_a, curve_b, Rulings(s_out, t_out, source, fan))
+    check()
     if len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out):
         starts2, ends2, signed2 = _measured(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
         with np.errstate(invalid="ignore"):
@@ -283,6 +291,10 @@ def _solve(
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share, creased
     )
+
+def _unwatched() -> None:
+    """The check outside a :func:`~..watch.watched` block: nothing to look at."""
+
 
 def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
     """What the rounding of the rulings' end points alone adds to a warp measured from
