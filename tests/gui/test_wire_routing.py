@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from PySide6.QtCore import QPointF, QRectF
+from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtTest import QTest
 
 from app.gui.canvas.wire_routing import NodeGrid, route
 from engine.graph import Graph
@@ -89,3 +90,16 @@ def test_on_the_canvas_a_wire_bends_round_an_unrelated_node_and_straightens_when
     window.doc.undo_stack.undo()
     qtbot.waitUntil(lambda: wire.path().elementCount() > 4, timeout=3000)
     assert not crosses(wire.path(), scene.nodes["between"].sceneBoundingRect())
+
+
+def test_deleting_the_node_a_wire_went_round_makes_it_the_plain_curve_again(qtbot, window, registry):
+    window.doc.replace(crossing_graph(registry), None)
+    wait_solved(qtbot, window)
+    (wire,) = window.scene.wires.values()
+    assert wire.path().elementCount() > 4
+    title = window.scene.nodes["between"].mapToScene(QPointF(20, 8))
+    QTest.mouseClick(window.view.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
+                     view_point(window, title))
+    QTest.keyClick(window.view.viewport(), Qt.Key.Key_Delete)
+    assert "between" not in window.doc.graph.nodes
+    qtbot.waitUntil(lambda: wire.path().elementCount() == 4, timeout=3000)

@@ -62,6 +62,7 @@ class CanvasScene(QGraphicsScene):
         self._wires_of: dict[str, dict[Wire, None]] = {}  # node id → its wire items' wires
         self.grid = NodeGrid()  # node rectangles, for wires to bend around
         self._moved_boxes: dict[str, QRectF] = {}  # where moved nodes were and went: wires near re-route
+        self._removed_boxes: list[QRectF] = []  # where removed nodes were: detours near re-route
         self._highlighted: set[Wire] = set()
         self._syncing_move = False
         self._rect_due = False  # the scene rectangle waits for the end of the edit
@@ -101,6 +102,7 @@ class CanvasScene(QGraphicsScene):
         self._highlighted.clear()
         self.grid.clear()
         self._moved_boxes.clear()
+        self._removed_boxes.clear()
         graph = self.doc.graph
         for record in graph.nodes.values():
             self._add_node(record.id)
@@ -160,7 +162,7 @@ class CanvasScene(QGraphicsScene):
             box = self.grid.boxes.get(node_id)
             self.grid.remove(node_id)
             if box is not None:  # wires that went round it may go straight now
-                self._moved_boxes[node_id] = QRectF(box[0], box[1], box[2] - box[0], box[3] - box[1])
+                self._removed_boxes.append(QRectF(box[0], box[1], box[2] - box[0], box[3] - box[1]))
             if item is not None:
                 self._remove_node_item(item)
         elif isinstance(event, WireAdded):
@@ -208,17 +210,27 @@ class CanvasScene(QGraphicsScene):
         if self._moved_boxes:
             boxes, self._moved_boxes = list(self._moved_boxes.values()), {}
             self.reroute_near(boxes)
+        if self._removed_boxes:
+            boxes, self._removed_boxes = self._removed_boxes, []
+            self.reroute_near(boxes, detours_only=True)
 
-    def reroute_near(self, boxes: list[QRectF]) -> None:
-        """Route again the wires whose course (or straight line) comes near ``boxes``: the
-        places nodes left or moved to, which wires not their own may have to bend around
-        or may now pass straight by. (A node's own wires follow it as it moves.)"""
-        if len(boxes) > 64:  # a bulk edit: every wire
-            for wire_item in self.wires.values():
-                wire_item.update_path()
-            return
+    def reroute_near(self, boxes: list[QRectF], detours_only: bool = False) -> None:
+        """Route again the wires whose course comes near ``boxes``: the places nodes moved
+        from and to, which wires not their own may have to bend around or may now pass
+        straight by (a node's own wires follow it as it moves). With ``detours_only`` (the
+        places of removed nodes, which no wire has to bend around now) only the wires that
+        make a detour are looked at: deleting a thousand nodes costs no re-routing of the
+        rest."""
+        if len(boxes) > 64:  # a bulk edit: one box round them all
+            union = QRectF(boxes[0])
+            for box in boxes[1:]:
+                union = union.united(box)
+            boxes = [union]
         for wire_item in self.wires.values():
-            reach = wire_item.path().boundingRect()
+            path = wire_item.path()
+            if detours_only and path.elementCount() <= 4:  # a plain curve: nothing to undo
+                continue
+            reach = path.boundingRect()
             if any(reach.intersects(box) for box in boxes):
                 wire_item.update_path()
 
