@@ -292,3 +292,23 @@ def test_copy_and_paste_of_a_cluster_shares_its_definition(qtbot, first_steps):
     assert same and set(window.doc.graph.clusters) == definitions
     original, copy = window.scene.nodes[cluster_id], window.scene.nodes[pasted]
     assert set(copy.ports) == set(original.ports)
+
+
+def test_a_cluster_made_inside_a_cluster_nests_and_the_outer_result_stays(qtbot, first_steps):
+    window = first_steps
+    cluster_id = cluster_through_the_menu(qtbot, window)
+    expected = total_out_of(window, cluster_id)
+    open_cluster_by_double_click(qtbot, window, cluster_id)
+    window.scene.select_nodes(["total"])
+    QTest.keyClick(window.view.viewport(), Qt.Key.Key_G, CTRL | Qt.KeyboardModifier.AltModifier)
+    inner = [n for n, r in window.doc.graph.nodes.items() if is_cluster(r.node)]
+    assert len(inner) == 1
+    double_click(window, title_point(window, inner[0]))
+    qtbot.waitUntil(lambda: len(window.doc.frames) == 2, timeout=3000)
+    assert [b.text() for b in window.breadcrumb.crumbs] == ["Document", "Cluster", "Cluster"]
+    QTest.mouseClick(window.breadcrumb.crumbs[0], Qt.MouseButton.LeftButton)
+    assert not window.doc.frames
+    wait_solved(qtbot, window)
+    assert total_out_of(window, cluster_id) == pytest.approx(expected)
+    definition = window.doc.graph.cluster_definition(cluster_id)
+    assert any(is_cluster(r.node) for r in definition.graph.nodes.values())
