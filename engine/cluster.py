@@ -40,6 +40,8 @@ A :class:`ClusterNode` (``cluster.Cluster``) refers to its definition by id (its
 setting, ``definition``); several instances share one definition object. Its ports are
 tree-access ports, so the inner graph sees the very trees (paths, branches) the expanded
 graph would; modifiers set on a cluster port (graft...) apply before the tree goes in.
+A cluster input neither wired nor given a value is left out of the instance's inner copy,
+so the inner inputs it feeds use their own values or defaults, as in the expanded graph.
 An input port's type is the type of the inner ports it feeds when they agree (else
 Generic); an output's the type of the inner output wired to it.
 

@@ -22,7 +22,7 @@ import numpy as np
 from engine.bounds import within_bounds
 from engine.cluster import PORT, ClusterDefinition, ClusterInput, ClusterNode, clone_graph
 from engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path, is_array
-from engine.graph import Graph, NodeRecord, is_placeholder
+from engine.graph import Graph, NodeRecord, Wire, is_placeholder
 from engine.node import (
     ITEM,
     LIST,
@@ -204,11 +204,15 @@ class Solver:
         if run is None or run.definition is not definition or run.revision != definition.revision:
             run = self._clusters[record.id] = ClusterRun(definition, self.files)
         try:
-            trees, _ = self._gather(record)
+            trees, wired = self._gather(record)
         except NodeError as exc:
             return NodeResult(ERROR, [Message(Level.ERROR, str(exc))], time.perf_counter() - started,
                               _empty_outputs(node))
-        run.feed(trees)
+        present = [
+            is_wired or (port.name in record.inputs and record.inputs[port.name].has_value)
+            for port, is_wired in zip(node.input_ports(), wired, strict=True)
+        ]
+        run.feed(trees, present)
         progress = None if on_progress is None else (
             lambda index, count, _node: on_progress(index / max(count, 1)))
         if run.solver.solve(token, progress).cancelled:
@@ -258,13 +262,27 @@ class ClusterRun:
         self.graph = clone_graph(definition.graph)
         self.solver = Solver(self.graph, files)
         self.fed: dict[str, DataTree] = {}
+        self.cut: dict[str, list[Wire]] = {}  # an absent input's wires, taken out of the copy
 
-    def feed(self, trees: list[DataTree]) -> None:
-        """Give each inner Input node its tree; expire those whose tree changed."""
-        for node_id, tree in zip(self.definition.inputs, trees, strict=True):
-            record = self.graph.nodes.get(node_id)
+    def feed(self, trees: list[DataTree], present: list[bool]) -> None:
+        """Give each inner Input node its tree; expire those whose tree changed. An input
+        that is neither wired nor given a value is *absent*: its wires are taken out of the
+        private copy, so the inner inputs it fed use their own values or defaults, as in
+        the expanded graph (and go back when it is wired again)."""
+        graph = self.graph
+        for node_id, tree, here in zip(self.definition.inputs, trees, present, strict=True):
+            record = graph.nodes.get(node_id)
             if record is None or not isinstance(record.node, ClusterInput):
                 continue
+            if not here:
+                if node_id not in self.cut:
+                    self.cut[node_id] = graph.wires_from(node_id)
+                    for wire in self.cut[node_id]:
+                        graph.disconnect(wire)
+                self.fed.pop(node_id, None)
+                continue
+            for wire in self.cut.pop(node_id, ()):
+                graph.connect_wire(wire)
             last = self.fed.get(node_id)
             if last is not None and _same_tree(last, tree):
                 continue

@@ -563,3 +563,16 @@ def test_a_cluster_output_that_changed_re_solves_what_it_feeds(kit: Registry) ->
     report = solver.solve()
     assert "after" in report.solved
     assert solver.result("after").output("Result").all_items() == [4.0]
+
+
+def test_an_unwired_cluster_input_leaves_the_inner_inputs_to_their_defaults(kit: Registry) -> None:
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
+    solver = solved(graph)
+    graph.disconnect(next(w for w in graph.wires_into(cluster) if w.target_port == "B"))
+    solver.solve()
+    assert solver.result(cluster).state == OK
+    assert solver.result(cluster).output("Result").all_items() == [4.0]  # 2 × (2 + B's default 0)
+    graph.connect("b", "Value", cluster, "B")
+    solver.solve()
+    assert solver.result(cluster).output("Result").all_items() == [10.0]
