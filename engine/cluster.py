@@ -221,6 +221,9 @@ class ClusterNode(Node):
         self.definition = definition
         #: groups each node was in when clustered (explode puts them back; not saved)
         self.origin_groups: dict[str, list[str]] = {}
+        self.origin_members: dict[str, list[str]] = {}  # those groups' members, in order
+        #: the graph's node ids and wires, in order, when this cluster was made
+        self.origin_order: tuple[list[str], list[Any]] | None = None
 
     def name(self) -> str:  # type: ignore[override]
         return self.definition.name or "Cluster"
@@ -264,7 +267,7 @@ def clone_node(node: Node) -> Node:
     if isinstance(twin, ClusterInput):
         twin.feed = DataTree()
     if isinstance(twin, ClusterNode):
-        twin.origin_groups = {}
+        twin.origin_groups, twin.origin_members, twin.origin_order = {}, {}, None
     return twin
 
 

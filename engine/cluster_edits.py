@@ -186,6 +186,8 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     groups_of = {n: [g.id for g in graph.groups if n in g.nodes] for n in ids}
     inside_groups = [g for g in graph.groups if g.nodes and set(g.nodes) <= chosen]
     shared_groups = [g for g in graph.groups if g not in inside_groups and chosen & set(g.nodes)]
+    members_before = {g.id: list(g.nodes) for g in shared_groups}
+    nodes_before, wires_before = list(graph.nodes), graph.wires
 
     # -- the change: nothing above has touched the graph
     graph.remove_many(ids)
@@ -248,6 +250,8 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     for group in shared_groups:
         group.nodes.append(cluster_id)
     node.origin_groups = {n: [g for g in groups_of[n] if g in kept_groups] for n in ids}
+    node.origin_members = members_before
+    node.origin_order = (nodes_before, wires_before)
     return cluster_id
 
 
@@ -403,9 +407,46 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
         for group in targets:
             if new_id not in group.nodes:
                 group.nodes.append(new_id)
+    if node.origin_order is not None:  # undoing a make_cluster: the file's order comes back too
+        _restore_order(graph, node.origin_order, mapping)
+    for group in graph.groups:  # members back in the order they had before clustering
+        before = node.origin_members.get(group.id)
+        if before is not None:
+            rank = {mapping.get(m, m): i for i, m in enumerate(before)}
+            group.nodes.sort(key=lambda m: rank.get(m, len(rank)))
     if not used_anywhere(graph, definition.id):
         graph.clusters.pop(definition.id, None)
     return [mapping[r.id] for r in body]
+
+
+def _restore_order(graph: Graph, before: tuple[list[str], list[Wire]], mapping: dict[str, str]) -> None:
+    """Put nodes and wires back in the order they had before clustering (those added since
+    go last); wires are reconnected only from the first one out of place."""
+    from engine.graph import Wire
+
+    nodes, wires = before
+    rank = {mapping.get(n, n): i for i, n in enumerate(nodes)}
+    order = sorted(graph.nodes, key=lambda n: rank.get(n, len(rank)))
+    if order != list(graph.nodes):
+        records = dict(graph.nodes)
+        graph.nodes.clear()
+        graph.nodes.update((n, records[n]) for n in order)
+        graph._order = None
+
+    def renamed(wire: Wire) -> Wire:
+        return Wire(mapping.get(wire.source, wire.source), wire.source_port,
+                    mapping.get(wire.target, wire.target), wire.target_port)
+
+    wire_rank = {renamed(w): i for i, w in enumerate(wires)}
+    current = graph.wires
+    wanted = sorted(current, key=lambda w: wire_rank.get(w, len(wire_rank)))
+    first = next((i for i, (a, b) in enumerate(zip(current, wanted, strict=True)) if a is not b), None)
+    if first is None:
+        return
+    for wire in current[first:]:
+        graph.disconnect(wire)
+    for wire in wanted[first:]:
+        graph.connect_wire(wire)
 
 
 def restore_cluster(graph: Graph, info: ClusterInstance, node_ids: list[str]) -> None:
