@@ -410,6 +410,8 @@ class ClusterInstance:
     definition: ClusterDefinition
     groups: list[Group]
     group_ids: list[str] = field(default_factory=list)  # every group of the graph then
+    order: tuple[list[str], list[Wire]] = ([], [])  # the graph's nodes and wires, in order
+    members: dict[str, list[str]] = field(default_factory=dict)  # ``groups``' members, in order
 
 
 @dataclass

@@ -273,9 +273,9 @@ def cluster_instance(graph: Graph, node_id: str) -> ClusterInstance:
     """What :func:`restore_cluster` needs to undo :func:`explode_cluster` of ``node_id``."""
     record = _cluster_record(graph, node_id)
     wires = _touching(graph, [node_id])
-    return ClusterInstance(record, wires, record.node.definition,
-                           [g for g in graph.groups if node_id in g.nodes],
-                           [g.id for g in graph.groups])
+    groups = [g for g in graph.groups if node_id in g.nodes]
+    return ClusterInstance(record, wires, record.node.definition, groups, [g.id for g in graph.groups],
+                           (list(graph.nodes), graph.wires), {g.id: list(g.nodes) for g in groups})
 
 
 def _cluster_record(graph: Graph, node_id: str) -> NodeRecord:
@@ -456,10 +456,13 @@ def restore_cluster(graph: Graph, info: ClusterInstance, node_ids: list[str]) ->
         if group.id not in info.group_ids:
             graph.remove_group(group.id)
     graph.clusters.setdefault(info.definition.id, info.definition)
-    graph.add_many([info.record], [w for w in info.wires])
+    graph.add_many([info.record], list(info.wires))
+    _restore_order(graph, info.order, {})
     for group in info.groups:
         if group in graph.groups and info.record.id not in group.nodes:
             group.nodes.append(info.record.id)
+        rank = {m: i for i, m in enumerate(info.members.get(group.id, []))}
+        group.nodes.sort(key=lambda m: rank.get(m, len(rank)))
 
 
 # --------------------------------------------------------------------------- definitions

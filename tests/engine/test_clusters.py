@@ -236,6 +236,16 @@ def test_explode_then_restore_puts_the_cluster_back(kit: Registry) -> None:
     assert "doublesum" in graph.clusters
 
 
+def test_explode_then_restore_gives_back_the_same_file(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    cluster = graph.make_cluster(INNER, name="Panels")
+    graph.move_node(cluster, (500.0, 500.0))  # explode now moves the nodes: no memory of the make
+    text = dumps(graph)
+    info = graph.cluster_instance(cluster)
+    graph.restore_cluster(info, graph.explode_cluster(cluster))
+    assert dumps(graph) == text
+
+
 def test_groups_come_back_after_make_then_explode(library: Registry) -> None:
     graph, _ = first_steps(library)
     members = {g.id: list(g.nodes) for g in graph.groups}
@@ -307,6 +317,29 @@ def test_renaming_a_port_carries_the_outer_wires(kit: Registry) -> None:
     assert ("c", "Value", second, "First") in wire_set(graph)
     solver = solved(graph)
     assert solver.result(second).output("Result").all_items() == [22.0]
+
+
+def test_a_definition_edit_that_would_contain_itself_is_refused(kit: Registry) -> None:
+    graph, first, _ = two_instances(kit)
+    edited = graph.cluster_graph("doublesum")
+    edited.add_cluster_instance("doublesum", "inside")
+    with pytest.raises(GraphError, match="contains itself"):
+        graph.set_cluster_graph("doublesum", edited)
+    assert "inside" not in graph.cluster_definition("doublesum").graph.nodes
+    assert solved(graph).result(first).output("Result").all_items() == [10.0]
+
+
+def test_a_cluster_made_inside_a_definition_nests(kit: Registry) -> None:
+    graph, first, second = two_instances(kit)
+    edited = graph.cluster_graph("doublesum")
+    edited.make_cluster(["twice"], name="Doubler")
+    graph.set_cluster_graph("doublesum", edited)
+    assert set(graph.clusters) == {"doublesum", "doubler"}
+    solver = solved(graph)
+    assert solver.result(first).output("Result").all_items() == [10.0]
+    assert solver.result(second).output("Result").all_items() == [22.0]
+    reopened = solved(loads(dumps(graph), kit))
+    assert reopened.result(second).output("Result").all_items() == [22.0]
 
 
 def test_reordering_ports_changes_only_their_order(kit: Registry) -> None:
