@@ -75,7 +75,7 @@ class Run:
 
 
 def open_graph(path: str | Path, registry: Registry | None = None) -> tuple[Graph, Registry]:
-    registry = registry or default_registry()
+    registry = registry if registry is not None else default_registry()  # `or` would load every palette
     return read_graph(path, registry), registry
 
 
