@@ -165,3 +165,14 @@ def test_patching_beside_model_lays_the_panels_on_iso_mappings_development(panel
     patch_shift = panel_points(beside) - panel_points(origin)
     assert np.ptp(iso_shift, axis=0).max() <= 2e-15 * SIZE
     assert np.abs(patch_shift - iso_shift[0]).max() <= 2e-15 * SIZE
+
+
+def test_a_plane_with_parallel_axes_is_refused_naming_the_plane():
+    chain = graph(ON_PLANE, Plane(Point(0.0, 0.0, 0.0), Vector(1.0, 0.0, 0.0), Vector(2.0, 0.0, 0.0)))
+    assert any("Plane's X and Y axes are parallel" in t for t in chain.texts("iso"))
+
+
+def test_a_placement_out_of_range_is_refused_naming_the_input():
+    chain = graph(3)
+    assert chain.result("iso").state == "warning" and chain.items("iso", "Development") == []
+    assert any(t.startswith("Placement is 3") for t in chain.texts("iso"))
