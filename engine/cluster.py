@@ -362,6 +362,36 @@ def nesting_problem_of(uses: dict[str, set[str]]) -> str | None:
     return None
 
 
+def expanded_size(graph: Graph) -> int:
+    """How many nodes ``graph`` would have with every cluster expanded (instances inside
+    instances multiply), counted only to one past :data:`MAX_EXPANDED_NODES`."""
+    size: dict[int, int] = {}
+
+    def of(nodes: Iterable[NodeRecord]) -> int:
+        total = 0
+        for record in nodes:
+            node = record.node
+            if isinstance(node, ClusterNode):
+                key = id(node.definition)
+                if key not in size:
+                    size[key] = MAX_EXPANDED_NODES + 1  # a loop (refused elsewhere) counts as too many
+                    size[key] = of(node.definition.graph.nodes.values())
+                total += size[key]
+            else:
+                total += 1
+            if total > MAX_EXPANDED_NODES:
+                return MAX_EXPANDED_NODES + 1
+        return total
+
+    return of(graph.nodes.values())
+
+
+def definition_depth(definition: ClusterDefinition) -> int:
+    """1 for a definition holding no clusters, one more per level of clusters inside."""
+    inner = [r.node.definition for r in definition.graph.nodes.values() if isinstance(r.node, ClusterNode)]
+    return 1 + max((definition_depth(d) for d in {id(d): d for d in inner}.values()), default=0)
+
+
 def dependency_order(uses: dict[str, set[str]]) -> list[str]:
     """Definition ids so that each comes after those it uses (call after
     :func:`nesting_problem_of` found no loop)."""

@@ -16,6 +16,8 @@ from typing import TYPE_CHECKING
 from engine.cluster import (
     CLUSTER_TYPE,
     INPUT_TYPE,
+    MAX_EXPANDED_NODES,
+    MAX_NESTING,
     OUTPUT_TYPE,
     PORT,
     ClusterDefinition,
@@ -28,6 +30,8 @@ from engine.cluster import (
     clone_graph,
     clone_record,
     containing,
+    definition_depth,
+    expanded_size,
     instances,
     is_boundary,
     nesting_problem,
@@ -154,6 +158,10 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     if definition_id is not None and definition_id in graph.clusters:
         raise _error(f"there is already a cluster definition with id {definition_id!r}")
     _check_closed(graph, chosen)
+    inner_depth = max((definition_depth(r.node.definition) for r in records
+                       if isinstance(r.node, ClusterNode)), default=0)
+    if inner_depth + 1 > MAX_NESTING:
+        raise _error(f"clusters may nest {MAX_NESTING} deep; this one would nest {inner_depth + 1} deep")
 
     touching = _touching(graph, ids)
     incoming = [w for w in touching if w.source not in chosen]
@@ -264,6 +272,10 @@ def add_cluster_instance(graph: Graph, definition_id: str, node_id: str | None =
         graph.clusters[definition.id] = definition
     record = graph.add_node(ClusterNode(definition), node_id or graph.new_id(definition.name),
                             position=position, type_id=CLUSTER_TYPE)
+    if expanded_size(graph) > MAX_EXPANDED_NODES:
+        graph.remove_node(record.id)
+        raise _error(f"with another {definition.name!r} the graph would expand to more than "
+                     f"{MAX_EXPANDED_NODES:,} nodes (a file Torsal refuses to open)")
     return record.id
 
 
@@ -519,6 +531,9 @@ def _commit(graph: Graph, definition: ClusterDefinition, new: Graph, inputs: lis
     definition.graph, definition.inputs, definition.outputs = new, list(inputs), list(outputs)
     definition.refresh()
     problem = nesting_problem(graph.clusters)
+    if not problem and expanded_size(graph) > MAX_EXPANDED_NODES:
+        problem = (f"the graph would expand to more than {MAX_EXPANDED_NODES:,} nodes "
+                   "(a file Torsal refuses to open)")
     if problem:
         definition.graph, definition.inputs, definition.outputs = saved
         definition.refresh()

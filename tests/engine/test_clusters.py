@@ -616,3 +616,28 @@ def test_an_unwired_cluster_input_leaves_the_inner_inputs_to_their_defaults(kit:
     graph.connect("b", "Value", cluster, "B")
     solver.solve()
     assert solver.result(cluster).output("Result").all_items() == [10.0]
+
+
+def test_clustering_a_cluster_past_the_nesting_limit_is_refused(kit: Registry) -> None:
+    graph = two_adds(kit)
+    node = graph.make_cluster(["sum"], name="Level")
+    for _ in range(MAX_NESTING - 1):
+        node = graph.make_cluster([node], name="Level")
+    with pytest.raises(GraphError, match=f"nest {MAX_NESTING} deep"):
+        graph.make_cluster([node], name="Level")
+    assert solved(graph).result("shown").output("Result").all_items() == [10.0]
+
+
+def test_an_instance_that_would_expand_the_graph_past_the_limit_is_refused(kit: Registry) -> None:
+    graph = two_adds(kit)
+    cluster = graph.make_cluster(["sum", "twice"], name="Double sum")  # 5 nodes inside
+    edited = graph.cluster_graph("doublesum")
+    for i in range(1000):
+        edited.add_node(kit.create("maths.Add"), f"pad{i}")
+    graph.set_cluster_graph("doublesum", edited)
+    block = graph.make_cluster([cluster], name="Block")
+    for i in range(197):  # 198 blocks of 1,008 nodes (1,005 inside Double sum) and a, b, shown: 199,587
+        graph.add_cluster_instance("block", f"b{i}")
+    with pytest.raises(GraphError, match="more than 200,000 nodes"):
+        graph.add_cluster_instance("block", "one_too_many")
+    assert "one_too_many" not in graph.nodes and block in graph.nodes
