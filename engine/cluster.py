@@ -224,6 +224,7 @@ class ClusterNode(Node):
         self.origin_members: dict[str, list[str]] = {}  # those groups' members, in order
         #: the graph's node ids and wires, in order, when this cluster was made
         self.origin_order: tuple[list[str], list[Any]] | None = None
+        self.origin_group_order: list[str] = []  # and its groups' ids
 
     def name(self) -> str:  # type: ignore[override]
         return self.definition.name or "Cluster"
@@ -268,6 +269,7 @@ def clone_node(node: Node) -> Node:
         twin.feed = DataTree()
     if isinstance(twin, ClusterNode):
         twin.origin_groups, twin.origin_members, twin.origin_order = {}, {}, None
+        twin.origin_group_order = []
     return twin
 
 

@@ -171,15 +171,15 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     def position(node_id: str) -> tuple[float, float]:
         return graph.nodes[node_id].position
 
-    in_keys = ordered_unique(f"{w.source}\0{w.source_port}" for w in incoming)
-    first_in = {k: next(w for w in incoming if f"{w.source}\0{w.source_port}" == k) for k in in_keys}
+    in_keys = ordered_unique((w.source, w.source_port) for w in incoming)
+    first_in = {k: next(w for w in incoming if (w.source, w.source_port) == k) for k in in_keys}
     in_keys.sort(key=lambda k: (position(first_in[k].source)[1], position(first_in[k].source)[0],
                                 order_of[first_in[k]]))
-    out_keys = ordered_unique(f"{w.source}\0{w.source_port}" for w in outgoing)
-    first_out = {k: next(w for w in outgoing if f"{w.source}\0{w.source_port}" == k) for k in out_keys}
+    out_keys = ordered_unique((w.source, w.source_port) for w in outgoing)
+    first_out = {k: next(w for w in outgoing if (w.source, w.source_port) == k) for k in out_keys}
 
-    def out_place(key: str) -> tuple[float, float, int]:
-        targets = [w for w in outgoing if f"{w.source}\0{w.source_port}" == key]
+    def out_place(key: tuple[str, str]) -> tuple[float, float, int]:
+        targets = [w for w in outgoing if (w.source, w.source_port) == key]
         top = min(targets, key=lambda w: (position(w.target)[1], position(w.target)[0]))
         return (position(top.target)[1], position(top.target)[0], order_of[first_out[key]])
 
@@ -195,7 +195,7 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     inside_groups = [g for g in graph.groups if g.nodes and set(g.nodes) <= chosen]
     shared_groups = [g for g in graph.groups if g not in inside_groups and chosen & set(g.nodes)]
     members_before = {g.id: list(g.nodes) for g in shared_groups}
-    nodes_before, wires_before = list(graph.nodes), graph.wires
+    nodes_before, wires_before, groups_before = list(graph.nodes), graph.wires, [g.id for g in graph.groups]
 
     # -- the change: nothing above has touched the graph
     graph.remove_many(ids)
@@ -204,21 +204,21 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     inner.units = graph.units
     for record in records:
         inner.add_record(record)
-    in_ids: dict[str, str] = {}
+    in_ids: dict[tuple[str, str], str] = {}  # (outside source node, port) → its Input node
     for index, (key, port_name) in enumerate(zip(in_keys, in_names, strict=True)):
         place = (min(xs) - _MARGIN_X, min(ys) + index * _STEP_Y)
         boundary = inner.add_node(ClusterInput(), inner.new_id(f"input_{port_name}"), label=port_name,
                                   position=place, type_id=INPUT_TYPE)
         in_ids[key] = boundary.id
-    out_ids: dict[str, str] = {}
+    out_ids: dict[tuple[str, str], str] = {}  # (inner source node, port) → its Output node
     for index, (key, port_name) in enumerate(zip(out_keys, out_names, strict=True)):
         place = (max(xs) + _MARGIN_X, min(ys) + index * _STEP_Y)
         boundary = inner.add_node(ClusterOutput(), inner.new_id(f"output_{port_name}"), label=port_name,
                                   position=place, type_id=OUTPUT_TYPE)
         out_ids[key] = boundary.id
-    wired_out: set[str] = set()
+    wired_out: set[tuple[str, str]] = set()
     for wire in touching:
-        key = f"{wire.source}\0{wire.source_port}"
+        key = (wire.source, wire.source_port)
         if wire.source in chosen and wire.target in chosen:
             inner.connect_wire(wire, check_loops=False)
         elif wire.source not in chosen:
@@ -242,9 +242,9 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     in_name = dict(zip(in_keys, in_names, strict=True))
     out_name = dict(zip(out_keys, out_names, strict=True))
     replaced: dict[Wire, list[Wire]] = {}
-    connected: set[str] = set()
+    connected: set[tuple[str, str]] = set()
     for wire in touching:
-        key = f"{wire.source}\0{wire.source_port}"
+        key = (wire.source, wire.source_port)
         if wire.source not in chosen and key not in connected:
             connected.add(key)
             graph.connect_wire(Wire(wire.source, wire.source_port, cluster_id, in_name[key]))
@@ -260,6 +260,7 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     node.origin_groups = {n: [g for g in groups_of[n] if g in kept_groups] for n in ids}
     node.origin_members = members_before
     node.origin_order = (nodes_before, wires_before)
+    node.origin_group_order = groups_before
     return cluster_id
 
 
@@ -401,6 +402,8 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
         if all(r.id in graph.nodes for r in new_records):
             graph.remove_many([r.id for r in new_records])
         graph.add_many([info.record], info.wires)
+        for group in cluster_groups:
+            group.nodes.append(node_id)
         raise
     _restore_orders(graph, feeding_orders)
     from engine.graph import Group
@@ -421,6 +424,8 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
                 group.nodes.append(new_id)
     if node.origin_order is not None:  # undoing a make_cluster: the file's order comes back too
         _restore_order(graph, node.origin_order, mapping)
+        group_rank = {g: i for i, g in enumerate(node.origin_group_order)}
+        graph.groups.sort(key=lambda g: group_rank.get(g.id, len(group_rank)))
     for group in graph.groups:  # members back in the order they had before clustering
         before = node.origin_members.get(group.id)
         if before is not None:

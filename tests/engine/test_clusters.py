@@ -215,6 +215,13 @@ def test_make_then_explode_gives_back_the_same_file(library: Registry) -> None:
     assert dumps(graph) == text
 
 
+def test_make_then_explode_gives_back_a_group_taken_inside(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    text = dumps(graph)
+    graph.explode_cluster(graph.make_cluster(["width", "count", "wave"], name="Inputs"))  # the Inputs group
+    assert dumps(graph) == text
+
+
 def test_explode_keeps_the_layout_relative_to_a_moved_cluster(library: Registry) -> None:
     graph, _ = first_steps(library)
     cluster = graph.make_cluster(INNER, name="Panels")
