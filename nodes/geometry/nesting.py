@@ -11,7 +11,11 @@ too, so :func:`nest` fills them one at a time ("pack, cut, re-pack"):
    one at a time, while the set stays below about the density the strip reached: the
    sheet's set plus one candidate is packed again, and the candidate stays when that
    strip ends within the sheet;
-4. what is left goes to the next sheet, from step 1. The last sheet is the strip of
+4. swaps, smallest part on the sheet first: the largest part left over that is larger
+   but keeps the sheet's part area within what the strip's density would put on a sheet
+   takes its place when the set so changed still fits the sheet (packed again as in 3). More area
+   on the full sheet leaves less for the next, so the last one ends shorter;
+5. what is left goes to the next sheet, from step 1. The last sheet is the strip of
    what remains, as short as sparrow makes it, packed again with further seeds while
    the budget lasts (the shortest is kept: its offcut goes back to stock).
 
@@ -334,7 +338,10 @@ def nest(
         return {i: shapely.Polygon(place(centred[i], a, np.add(t, lift))) for i, (a, t) in packing.items()}
 
     usable = room_length * (height - 2 * margin)
-    open_room = shapely.box(margin, margin, math.inf, height - margin)
+    # a strip of every part, however loosely packed, ends well before this (a finite box:
+    # shapely cannot tell what an infinite one covers when a part touches its edge)
+    far = width + 2 * sum(float(np.ptp(c, axis=0).max()) + 2 * spacing for c in centred)
+    open_room = shapely.box(margin, margin, far, height - margin).buffer(1e-9, join_style="mitre")
 
     def length(packing: dict[int, tuple[float, tuple[float, float]]]) -> float:
         """How far a packing of every part left reaches; infinite when one is missing or
@@ -384,13 +391,13 @@ def nest(
                                and polygons[i].bounds[2] > margin), key=lambda i: -area[i])
             others = sorted((i for i in remaining if i not in chosen and i not in crossing),
                             key=lambda i: -area[i])
-            free = SHEET_DENSITY * density * (room_length + 2 * spacing) * strip_height - sum(
-                area[i] for i in chosen)
+            full = density * (room_length + 2 * spacing) * strip_height  # part area at the strip's density
+            free = SHEET_DENSITY * full - sum(area[i] for i in chosen)
             for candidate in crossing + others:
                 rest = sum(area[i] for i in remaining if i not in chosen)
                 # the next sheet is likely the last: keep a share of the budget for it
                 reserve = LAST_RESERVE * run.steps if rest <= LAST_SHEET * usable else 0.0
-                trial_steps = min(run.left() - reserve, round(run.steps * TRIAL_SHARE))
+                trial_steps = round(min(run.left() - reserve, run.steps * TRIAL_SHARE))
                 if run.stopped or trial_steps < FEWEST_TRIAL or not chosen:
                     break
                 if area[candidate] > free:
@@ -408,6 +415,30 @@ def nest(
                 if len(_valid(trial_polygons, room, spacing)) == len(members):
                     chosen = trial
                     free -= area[candidate]
+            # swaps: the largest part left for the smallest on the sheet, while the sheet stays
+            # no denser than the strip was (the leftovers' sheet gets shorter)
+            for out in sorted(chosen, key=lambda i: (area[i], i)):
+                room_for = full - sum(area[i] for i in chosen) + area[out]
+                left_over = [i for i in remaining if i not in chosen and area[out] < area[i] <= room_for]
+                if not left_over:
+                    continue
+                swap_in = max(left_over, key=lambda i: (area[i], -i))
+                rest = sum(area[i] for i in remaining if i not in chosen) - area[swap_in] + area[out]
+                reserve = LAST_RESERVE * run.steps if rest <= LAST_SHEET * usable else 0.0
+                trial_steps = round(min(run.left() - reserve, run.steps * TRIAL_SHARE))
+                if run.stopped or trial_steps < FEWEST_TRIAL:
+                    break
+                members = [*(i for i in chosen if i != out), swap_in]
+                trial = _strip(centred, members, strip_height, spacing, orientations,
+                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
+                attempt_seed += 1
+                if trial is None or len(trial) != len(members):
+                    continue
+                trial_polygons = polygons_of(trial)
+                if max(p.bounds[2] for p in trial_polygons.values()) > width - margin:
+                    continue
+                if len(_valid(trial_polygons, room, spacing)) == len(members):
+                    chosen = trial
         if not chosen:  # sparrow spread even the first part past the sheet: place one alone
             largest = max(remaining, key=lambda i: area[i])
             alone = _strip(centred, [largest], strip_height, spacing, orientations, FEWEST,

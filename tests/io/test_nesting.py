@@ -328,3 +328,26 @@ def test_a_sheet_is_cut_where_the_strip_holds_the_most_part_area():
     assert _window(small, np.array([1e4, 1e4, 1e4]), 500.0, 10.0) == 0.0
     big = squares((10, 100), (300, 100), (600, 100), (900, 120))
     assert _window(big, np.array([1e4, 1e4, 1e4, 14400]), 500.0, 10.0) == pytest.approx(530.0)
+
+
+def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monkeypatch):
+    """With a stand-in for sparrow that lays the parts in a row in the order asked, 1 mm
+    apart: full-height bars 200, 100, 180, 150 and 110 mm wide on a sheet with 500 mm of
+    room. The strip's best sheet-long stretch holds 200 + 100 + 180; swapping the 100 for
+    the 110 still fits (200 + 180 + 110 + 2 gaps = 492) and puts more on the sheet (the 150
+    would too, but it would make the sheet denser than the strip was)."""
+    from nodes.geometry import nesting
+
+    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1):
+        budget.used += 10
+        placed, x = {}, spacing
+        for i in members:
+            w = float(np.ptp(shapes[i][:, 0]))
+            placed[i] = (0.0, (x + w / 2, height / 2))
+            x += w + spacing
+        return placed
+
+    monkeypatch.setattr(nesting, "_strip", row)
+    bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 100, 180, 150, 110)]
+    nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0)
+    assert nested.sheet.tolist() == [0, 1, 0, 1, 0]
