@@ -7,7 +7,7 @@ Run alone with::
 
 Three part sets, on 2500 × 1250 mm sheets, 10 mm gap and margin:
 
-* the Kaohsiung strips (kaohsiung-cut-sheets.graph, 1:50), 14 long curved strips;
+* the Kaohsiung strips (kaohsiung-cut-sheets.graph, 1:50), 18 long curved strips;
 * the development-and-panels panels (110 running-bond panels, 1:1);
 * 50 random developable strips: developed conical strips (annular sectors) of random
   radius, width and angle.
@@ -15,8 +15,8 @@ Three part sets, on 2500 × 1250 mm sheets, 10 mm gap and margin:
 For each: sheets used, material usage (parts' area over the sheets' area, the last sheet
 counted only up to where its parts reach, measured from the DXF files written), and the
 time. Bars: true-shape nesting never needs more sheets, and its usage is at least
-:data:`USAGE_RATIO` times the shelf packing's on each set; on the Kaohsiung strips the
-issue's bar, usage ≥ 70 %.
+:data:`USAGE_RATIO` times the shelf packing's on each set; and the issue's bar on the
+example itself, run as shipped but for ``--set cut.Nesting=TrueShape``: usage ≥ 70 %.
 """
 
 from __future__ import annotations
@@ -34,8 +34,8 @@ from nodes.geometry.curves import Polyline
 from nodes.io.formats import cutfiles
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
-#: Seconds of true-shape nesting per part set.
-BUDGET = {"kaohsiung": 30.0, "panels": 20.0, "random strips": 30.0}
+#: Seconds of true-shape nesting per part set (the Kaohsiung strips: the example graph's TimeBudget).
+BUDGET = {"kaohsiung": 45.0, "panels": 20.0, "random strips": 30.0}
 #: True-shape usage over shelf usage, at least, per set (the panels are mostly rectangles,
 #: which shelf packing already packs well).
 USAGE_RATIO = {"kaohsiung": 1.3, "panels": 1.0, "random strips": 1.1}
@@ -94,7 +94,7 @@ def _usage_from_files(files: list[Path], width: float, height: float) -> tuple[f
 def _lay_out(items, units, nesting, folder: Path, budget: float):  # type: ignore[no-untyped-def]
     started = time.perf_counter()
     layout = cutfiles.lay_out(items, width=2500.0, height=1250.0, gap=10.0, units=units, nesting=nesting,
-                              budget=budget, seed=1, text_height=0.0)
+                              budget=budget, seed=0, text_height=0.0)
     seconds = time.perf_counter() - started
     files = cutfiles.write_cut_files(layout, folder / f"{nesting}.dxf")
     usage, sheets = _usage_from_files(files, 2500.0, 1250.0)
@@ -114,8 +114,28 @@ def test_true_shape_nesting_uses_no_more_sheets_and_more_of_them_than_shelf_pack
     assert true[0] >= USAGE_RATIO[name] * shelf[0]
 
 
-def test_kaohsiung_strips_use_at_least_70_percent_of_the_stock(tmp_path):
-    items, units = kaohsiung()
-    usage, sheets, seconds = _lay_out(items, units, cutfiles.TRUE_SHAPE, tmp_path, BUDGET["kaohsiung"])
-    print(f"\nKaohsiung strips, true shape: {sheets} sheets, usage {usage:.1%} in {seconds:.1f} s")
+def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_70_percent_of_the_stock(tmp_path, capsys):
+    """The issue's bar on the example itself: ``torsal run kaohsiung-cut-sheets.graph --set
+    cut.Nesting=TrueShape`` as a user types it, with the graph's own Seed and TimeBudget
+    (the example ships with Nesting = Shelf, which ignores both: TrueShape at the budget
+    that reaches the bar takes a minute or more, too slow to open the example in the app
+    or to solve it in the test suite). Usage measured from the DXF files ``--json`` says
+    were written."""
+    import json
+
+    from app.cli import main
+
+    started = time.perf_counter()
+    assert main(["run", str(EXAMPLES / "kaohsiung-cut-sheets.graph"), "--set", "cut.Nesting=TrueShape",
+                 "--export", f"cut.Layout={tmp_path / 'roof.dxf'}", "--json"]) == 0
+    seconds = time.perf_counter() - started
+    data = json.loads(capsys.readouterr().out)
+    files = [Path(p) for p in data["exported"]]
+    assert files and all(f.exists() for f in files)
+    (layout,) = data["nodes"]["cut"]["outputs"]["Layout"]["{0}"]
+    assert layout["nesting"] == cutfiles.TRUE_SHAPE
+    usage, sheets = _usage_from_files(files, 2500.0, 1250.0)
+    with capsys.disabled():
+        print(f"\nkaohsiung-cut-sheets, Nesting = TrueShape: {sheets} sheets, usage {usage:.1%} "
+              f"(from the DXF files), run {seconds:.1f} s")
     assert usage >= 0.70
