@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from engine.node import Node, NodeError
+from engine.node import Node, NodeWarning
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curve_rail import ruled_between
 from nodes.geometry.curves.line import Line
@@ -89,6 +89,7 @@ def strip_outputs(
     apex_a: ArrayLike | None = None,
     apex_b: ArrayLike | None = None,
     surface: RuledSurface | None = None,
+    source: str = "the inputs",
 ) -> StripOutputs:
     """Loft ``(n, 3)`` ruling ends into a ruled surface, with lines and warp angles.
 
@@ -98,13 +99,22 @@ def strip_outputs(
     it uses the edge polylines' tangents (second-order accurate in the ruling spacing).
     A caller that has the warp angles already passes ``warp``. NaN warps stay NaN and
     add a message.
+
+    Rulings that make no strip (fewer than two, a point that is not a finite number, no
+    surface through them) are one item refused: a :class:`~engine.node.NodeWarning` naming
+    ``source`` (the inputs the rulings were made from, as the node's user knows them), so
+    this call's outputs are null and the node's other items are still made.
     """
     a = np.asarray(starts, dtype=float)
     b = np.asarray(ends, dtype=float)
     if len(a) < 2:
-        raise NodeError("A strip needs at least two rulings: set Segments to 1 or more.")
+        raise NodeWarning(
+            f"A strip needs at least two rulings; {source} gave {len(a)}: set Segments to 1 or more"
+        )
     if not (np.isfinite(a).all() and np.isfinite(b).all()):
-        raise NodeError("Some rulings have points that are not finite numbers: check the inputs for NaN.")
+        raise NodeWarning(
+            f"Some rulings have points that are not finite numbers: check {source} for NaN"
+        )
     if warp is not None:
         w = np.asarray(warp, dtype=float)
     elif tangents_a is not None and tangents_b is not None:
@@ -115,7 +125,7 @@ def strip_outputs(
         try:
             surface = RuledSurface.from_rulings(a, b)
         except ValueError as exc:
-            raise NodeError(f"The rulings do not make a surface: {exc}") from None
+            raise NodeWarning(f"The rulings from {source} do not make a surface: {exc}") from None
     message = undefined_message(w)
     return StripOutputs(surface, Line.many(a, b), w.tolist(), messages=(message,) if message else ())
 
@@ -129,6 +139,7 @@ def curve_strip_outputs(
     ends: ArrayLike,
     tolerance: float,
     claimed: ArrayLike | None = None,
+    source: str = "CurveA and CurveB",
 ) -> StripOutputs:
     """The outputs of a strip between two curves whose rulings run from ``A(s)`` to ``B(t)``:
     the Surface whose edges run on the two curves through those rulings
@@ -140,7 +151,8 @@ def curve_strip_outputs(
     origin, as the solver allows: :func:`~nodes.geometry.developable.ruling.warp_allowance`).
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
-    recomputation rejects are counted in a message.
+    recomputation rejects are counted in a message. ``source`` names the inputs the curves
+    come from in the warnings of :func:`strip_outputs`.
     """
     w = curve_warp(curve_a, curve_b, s, t, starts, ends)
     # edges on the curves themselves, so neighbouring strips meet exactly; parameters that
@@ -148,7 +160,7 @@ def curve_strip_outputs(
     on_curves = None
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t)
-    strip = strip_outputs(starts, ends, warp=w, surface=on_curves)
+    strip = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
     allowance = warp_allowance(np.asarray(starts, dtype=float), np.asarray(ends, dtype=float))
     valid = np.isfinite(w) & (w <= tolerance + allowance)
     messages = list(strip.messages)

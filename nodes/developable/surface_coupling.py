@@ -5,11 +5,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from engine.node import LIST, In, Node, NodeError, Out
+from engine.node import LIST, In, Node, Out
 from engine.types import INTEGER, NUMBER
 from nodes.common.checks import edge as edge_input
 from nodes.common.checks import segments as segments_input
-from nodes.common.convert import sentence
+from nodes.common.convert import kernel_errors
 from nodes.common.geometry_checks import parametric_surface as surface_input
 from nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from nodes.common.values import CURVE, LINE, SURFACE
@@ -45,7 +45,9 @@ class SurfaceCoupling(Node):
     Otherwise some rulings cannot be made torsal: the node warns with their count;
     then move or turn a patch so that its edge ruling and tangent plane suit the other.
     Both edges must be straight, and for a smooth join both should be torsal rulings
-    of developable patches; a double-curved patch is warned about.
+    of developable patches; a double-curved patch is warned about. A pair of patches that
+    cannot be joined (a curved edge, edges that share a corner) is warned about and gets
+    null outputs; the other pairs are still joined.
     """
 
     type_id = "developable.SurfaceCoupling"
@@ -74,10 +76,8 @@ class SurfaceCoupling(Node):
         a, b = surface_input("SurfaceA", surface_a), surface_input("SurfaceB", surface_b)
         ea, eb = edge_input("EdgeA", edge_a), edge_input("EdgeB", edge_b)
         n = segments_input(segments, limit=MAX_COUPLING_SEGMENTS)
-        try:
+        with kernel_errors():  # a pair that cannot be coupled: a warning, and this pair's outputs are null
             coupling = couple(a, ea, b, eb)
-        except ValueError as exc:
-            raise NodeError(sentence(exc)) from None
         for name, edge, number in (("SurfaceA", coupling.edge_a, ea), ("SurfaceB", coupling.edge_b, eb)):
             if edge.warp > EDGE_WARP:
                 self.warn(
@@ -94,7 +94,7 @@ class SurfaceCoupling(Node):
             self.warn(f"Connecting surface: {result.message}")
         strip = curve_strip_outputs(
             coupling.curve_a, coupling.curve_b, result.s, result.t, result.starts, result.ends,
-            WARP_TOLERANCE, result.valid,
+            WARP_TOLERANCE, result.valid, source="SurfaceA and SurfaceB",
         )
         strip.report(self)
         return coupling.curve_a, coupling.curve_b, strip.surface, strip.rulings, strip.warp

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from itertools import cycle
 
-from engine.datatree import DataTree
-from engine.node import TREE, In, Node, NodeError, Out
+import numpy as np
+
+from engine.datatree import DataTree, format_path
+from engine.node import TREE, In, Node, Out
 from engine.types import GENERIC, INTEGER
 
 
@@ -68,7 +70,9 @@ class Partition(Node):
 
     {0}: [a, b, c, d, e] with Size 2 gives {0;0}: [a, b], {0;1}: [c, d], {0;2}: [e].
     Several sizes are used in turn ([1, 2] gives chunks of 1, 2, 1, 2 … items). Sizes
-    match the list's branches as usual: a tree of sizes gives each branch its own.
+    match the list's branches as usual: a tree of sizes gives each branch its own. A
+    list whose sizes include one below 1 or an empty one is not cut (it gets one empty
+    branch {p;0}) and the node warns naming Size; the other lists are cut.
     """
 
     type_id = "lists.Partition"
@@ -81,15 +85,19 @@ class Partition(Node):
 
     def solve(self, tree: DataTree, sizes: DataTree) -> DataTree:
         size_branches = sizes.branches or [[1]]
-        for branch in size_branches:
-            for size in branch:
-                if size is None or size < 1:
-                    raise NodeError(f"Size must be at least 1, not {size}")
+        size_paths = sizes.paths or [(0,)]
+        refused = [self._refusal(branch, path, len(size_branches) > 1)
+                   for branch, path in zip(size_branches, size_paths, strict=True)]
         chunks = DataTree()
         # Branches match as for list access: the list's b-th branch takes the sizes'
         # b-th branch, or their last one when there are fewer.
         for b, (path, items) in enumerate(tree.raw_items()):  # an array's chunks stay arrays
-            pattern = size_branches[min(b, len(size_branches) - 1)] or [1]
+            which = min(b, len(size_branches) - 1)
+            if refused[which]:  # a size it cannot cut by: this list gets no chunks, the others do
+                self.warn(refused[which])
+                chunks.extend((*path, 0), [])
+                continue
+            pattern = size_branches[which] or [1]
             start = 0
             for i, size in enumerate(cycle(pattern)):
                 if start >= len(items):
@@ -97,3 +105,16 @@ class Partition(Node):
                 chunks.extend((*path, i), items[start:start + size])
                 start += size
         return chunks
+
+    @staticmethod
+    def _refusal(sizes: list | np.ndarray, path: tuple[int, ...], several: bool) -> str:
+        """The warning refusing a branch of sizes ("" when every size is 1 or more)."""
+        where = f" (Size branch {format_path(path)})" if several else ""
+        if isinstance(sizes, np.ndarray):  # an array has no nulls: its least size tells
+            sizes = [sizes.min()] if len(sizes) and sizes.min() < 1 else []
+        for size in sizes:
+            if size is None:
+                return f"Size has an empty (null) item{where}: the list it cuts gets no chunks"
+            if size < 1:
+                return f"Size must be at least 1, not {size}{where}: the list it cuts gets no chunks"
+        return ""

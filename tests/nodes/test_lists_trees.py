@@ -42,7 +42,8 @@ def test_partition_keeps_each_branch_under_its_own_path():
     assert out(result) == {(0, 0): [1, 2], (0, 1): [3], (1, 0): [4, 5]}
 
 
-def test_partition_with_size_zero_is_an_error():
+def test_partition_with_size_zero_warns_and_leaves_the_list_uncut():
     result = run(Partition(), List=[1, 2, 3], Size=0)
-    assert result.state == "error"
-    assert texts(result) == ["Size must be at least 1, not 0"]
+    assert result.state == "warning"
+    assert texts(result) == ["Size must be at least 1, not 0: the list it cuts gets no chunks"]
+    assert out(result) == {(0, 0): []}

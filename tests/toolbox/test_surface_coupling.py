@@ -176,9 +176,9 @@ def test_edges_are_paired_bottom_to_bottom_whichever_way_edge_b_runs(strip_b, ed
 # -- inputs that cannot work ---------------------------------------------------------------
 
 
-def test_a_curved_edge_is_an_error_asking_for_a_straight_one():
+def test_a_curved_edge_is_a_warning_asking_for_a_straight_one():
     result = couple(edge_a=0)
-    assert result.state == "error"
+    assert result.state == "warning"
     (message,) = texts(result)
     assert message.startswith("Edge 0 of SurfaceA is not straight (it bows ")
     assert message.endswith("couple along a straight edge, a ruling of the patch")
@@ -190,11 +190,11 @@ def test_an_edge_number_out_of_range_is_a_warning_listing_the_numbers():
     assert texts(result) == ["EdgeB is 4: edges are numbered 0 (v = 0), 1 (u = 1), 2 (v = 1) and 3 (u = 0)"]
 
 
-def test_patches_that_already_touch_are_an_error():
+def test_patches_that_already_touch_are_a_warning():
     a = flat_strip([-2.0, -2.0, 0.0], [-1.0, -1.0, 0.0])
     b = RuledSurface(Line([-1, -1, 0], [0, -2, 0]), Line([-1, -1, 1], [0, -2, 1]))
     result = couple(a, b, 1, 3)
-    assert result.state == "error"
+    assert result.state == "warning"
     assert texts(result) == ["The two edges share a corner: there is no gap for a connecting surface"]
 
 
