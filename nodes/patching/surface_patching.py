@@ -146,7 +146,7 @@ class SurfacePatching(Node):
             return _CALL_COPIES
         rings = [ring("Pattern", curve)[0] for curve in pattern]
         corners = ring("Tile", tile)[0] if tile is not None else np.vstack(rings)
-        with np.errstate(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # Scale 0: solve refuses it
             size = np.ptp(corners[:, :2], axis=0) * float(scale)
             xmin, ymin, xmax, ymax = _development(development).bounds
             reach = math.hypot(xmax - xmin, ymax - ymin)
