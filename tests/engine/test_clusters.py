@@ -648,3 +648,31 @@ def test_an_instance_that_would_expand_the_graph_past_the_limit_is_refused(kit: 
     with pytest.raises(GraphError, match="more than 200,000 nodes"):
         graph.add_cluster_instance("block", "one_too_many")
     assert "one_too_many" not in graph.nodes and block in graph.nodes
+
+
+# --------------------------------------------------------------------------- examples
+
+def summaries(solver: Solver, node_id: str) -> str:
+    """A node's outputs as the JSON ``torsal run`` prints (geometry compared by its summary)."""
+    from engine.types import summarize_value
+
+    outputs = solver.result(node_id).outputs
+    data = {port: {path: [summarize_value(v) for v in items] for path, items in tree.to_dict().items()}
+            for port, tree in outputs.items()}
+    return json.dumps(data, sort_keys=True, default=str)
+
+
+@pytest.mark.parametrize("example", ["guggenheim-ny", "zve-roof-edge"])
+def test_clustering_the_middle_of_an_example_leaves_every_other_output_as_it_was(
+        library: Registry, example: str) -> None:
+    graph = read_graph(EXAMPLES / f"{example}.graph", library)
+    solver = solved(graph)
+    before = {n: summaries(solver, n) for n in graph.nodes}
+    order = graph.order()
+    third = len(order) // 3
+    cluster = graph.make_cluster(order[third:2 * third + 1], name="Middle")
+    definition = graph.cluster_definition(cluster)
+    assert definition.inputs and definition.outputs
+    reopened = solved(loads(dumps(graph), library))
+    outside = [n for n in reopened.graph.nodes if n != cluster]
+    assert {n: summaries(reopened, n) for n in outside} == {n: before[n] for n in outside}
