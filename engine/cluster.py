@@ -17,10 +17,13 @@ API (what a front-end uses; every call is one edit, one undo step)::
     definition.name, definition.id, definition.input_names(), definition.output_names()
     editable = graph.cluster_graph(definition_id)        # a copy of the inner Graph to edit
     change = graph.set_cluster_graph(definition_id, editable)   # commit: every instance updates
-        # undo: graph.set_cluster_graph(definition_id, change.previous), then reconnect
-        # change.dropped (outer wires to ports that vanished)
+        # undo: graph.set_cluster_graph(definition_id, change.previous, change.previous_inputs,
+        #       change.previous_outputs), then reconnect change.dropped (outer wires to ports
+        #       that vanished)
     old = graph.rename_cluster_port(definition_id, "input", "Step", "Width")   # undo: swap names
-    old_order = graph.reorder_cluster_ports(definition_id, "output", ["B", "A"])
+        # (a port's name is its boundary node's label: renaming the node in an edited copy
+        # and committing it does the same)
+    old_order = graph.reorder_cluster_ports(definition_id, "output", ["B", "A"])   # undo: old_order
     graph.rename_cluster(definition_id, "New name")      # -> old name
     solver.cluster_solver(cid)                           # the inner Solver of one instance (or None)
     feed_inputs(editable, solver.cluster_inputs(cid))    # show an instance's values while editing
@@ -36,8 +39,14 @@ rename it, delete it) edits the ports; :meth:`Graph.set_cluster_graph` carries t
 every instance (outer wires follow a renamed port; wires to a vanished port are dropped
 and returned).
 
-A :class:`ClusterNode` (``cluster.Cluster``) refers to its definition by id (its one
-setting, ``definition``); several instances share one definition object. Its ports are
+Edits that change an instance's ports tell listeners with ``SettingChanged(instance,
+"definition", id, id)`` (the canvas redraws the node); the rest are the usual node and
+wire events. Edits the file could not hold are refused with :class:`GraphError`: a
+definition containing itself, nesting past :data:`MAX_NESTING`, or clusters expanding
+past :data:`MAX_EXPANDED_NODES` nodes.
+
+A :class:`ClusterNode` (``cluster.Cluster``) refers to its definition by id (its
+``settings["definition"]``); several instances share one definition object. Its ports are
 tree-access ports, so the inner graph sees the very trees (paths, branches) the expanded
 graph would; modifiers set on a cluster port (graft...) apply before the tree goes in.
 A cluster input neither wired nor given a value is left out of the instance's inner copy,
@@ -54,7 +63,8 @@ definition's graph with its own inner solver, so an instance re-solves only the 
 nodes downstream of the inputs whose trees changed; a committed definition (its
 ``revision`` moves on) rebuilds the copy and solves it afresh. The cluster node ends in
 the worst state of its inner nodes, shows that worst message naming the inner node
-("Panel heights: ..."), and keeps the outputs the inner graph produced.
+("Panel heights: ..."), and keeps the outputs the inner graph produced. Outside, a node
+fed only by cluster outputs that came out as the very same trees keeps its result.
 
 The cluster types are not in the node catalogue: :mod:`engine.graphfile` builds them,
 and front-ends make them with :meth:`Graph.make_cluster` (and, for a port added while
