@@ -1,0 +1,40 @@
+"""BendingCheck looks at the cancel token within a strip, between blocks of grid points
+(counted, not timed: the 50 ms figure is in tests/benchmarks/bench_cancel.py)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from engine.node import Cancelled
+from nodes.analysis.bending import CHECK_BLOCK, BendingCheck, bending_radii
+from nodes.geometry.parametric_surface import cylinder
+from nodes.geometry.surface_base import uv_grid
+from nodes.geometry.watch import watched
+
+
+def test_bending_radii_checks_once_a_block_of_grid_points():
+    calls = []
+    u, v = uv_grid(100, 100)
+    with watched(lambda: calls.append(1)):
+        radii = bending_radii(cylinder(radius=0.35, height=2.0), u, v)
+    assert len(calls) == math.ceil(100 * 100 / CHECK_BLOCK)
+    assert np.allclose(radii, 0.35, rtol=1e-12)  # blocks change nothing: r everywhere
+
+
+def test_a_cancel_during_one_dense_strip_stops_the_node_before_the_strip_is_done():
+    node = BendingCheck()
+    looks = []
+
+    def check():  # the token is cancelled at its third look, inside the first strip
+        looks.append(1)
+        if len(looks) == 3:
+            node.token.cancel()
+        node.token.check()
+
+    node.check_cancelled = check
+    with pytest.raises(Cancelled):
+        node.solve([cylinder(radius=0.5, height=1.0)], "Steel 1.5 mm", "m", 1.0, 100)
+    assert len(looks) == 3
