@@ -346,7 +346,7 @@ def _fill(graph: Graph, data: dict[str, Any], registry: Registry, where: str = "
             wire = Wire(source, source_port, target, target_port, raw=raw)
             if source not in graph.nodes or target not in graph.nodes:
                 missing = source if source not in graph.nodes else target
-                place = f"{where}'s graph" if where else "the file"
+                place = "the definition" if where else "the file"
                 raise GraphFileError(f"{where + ': ' if where else ''}wire {wire} refers to a node "
                                      f"{missing!r} that is not in {place}")
             graph.connect_wire(wire, check_loops=False)

@@ -676,3 +676,11 @@ def test_clustering_the_middle_of_an_example_leaves_every_other_output_as_it_was
     reopened = solved(loads(dumps(graph), library))
     outside = [n for n in reopened.graph.nodes if n != cluster]
     assert {n: summaries(reopened, n) for n in outside} == {n: before[n] for n in outside}
+
+
+def test_a_wire_inside_a_definition_to_a_missing_node_is_refused_naming_the_definition(kit: Registry) -> None:
+    data = clustered_data(kit)
+    data["clusters"][0]["wires"][0]["to"][0] = "ghost"
+    assert refusal(kit, data).startswith(
+        "cluster definition 'doublesum': wire input_a.Value → ghost.A refers to a node 'ghost' "
+        "that is not in the definition")
