@@ -684,3 +684,14 @@ def test_a_wire_inside_a_definition_to_a_missing_node_is_refused_naming_the_defi
     assert refusal(kit, data).startswith(
         "cluster definition 'doublesum': wire input_a.Value → ghost.A refers to a node 'ghost' "
         "that is not in the definition")
+
+
+def test_exploding_a_second_instance_gives_its_nodes_fresh_ids(kit: Registry) -> None:
+    graph, first, second = two_instances(kit)
+    graph.explode_cluster(first)
+    restored = graph.explode_cluster(second)
+    assert restored == ["sum2", "twice2"]
+    assert {("c", "Value", "sum2", "A"), ("d", "Value", "sum2", "B"), ("sum2", "Result", "twice2", "A"),
+            ("sum2", "Result", "twice2", "B")} <= wire_set(graph)
+    assert solved(graph).result("twice2").output("Result").all_items() == [22.0]
+    assert graph.clusters == {}
