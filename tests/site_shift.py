@@ -50,9 +50,32 @@ FLAT = {
     # seams) are
     "io.ExportCutSheet": ("Paths", "Layout", "Cuts", "Sheets", "Usage", "Seams", "SeamDifferences"),
 }
+#: Of those, the outputs a Placement input lays beside the model (0, the default) or on a
+#: stored Plane (2, whose origin the shift moves): they move with the model unless
+#: Placement is 1 (Origin) or 2 with no Plane (the world XY plane).
+PLACED = {
+    "analysis.IsoMapping": ("Development", "Rulings"),
+    "patching.SurfacePatching": ("PanelsFlat", "DevelopmentBounds", "PatternBounds"),
+}
 MOVED_SUFFIX = "__site"
 
 SAMPLES = np.linspace(0.0, 1.0, 9)
+
+
+def _laid_flat(record: Any) -> tuple[str, ...]:
+    """The outputs of a node that stay flat about the origin, whatever its input's position."""
+    names = FLAT.get(record.type_id, ())
+    if record.type_id not in PLACED:
+        return names
+
+    def stored(port: str, default: Any) -> Any:
+        state = record.inputs.get(port)
+        return state.value if state is not None and state.has_value else default
+
+    placement = stored("Placement", 0)
+    if placement == 1 or (placement == 2 and stored("Plane", None) is None):
+        return names
+    return tuple(name for name in names if name not in PLACED[record.type_id])
 
 
 def moving_outputs(graph: Graph) -> tuple[set[tuple[str, str]], set[str]]:
@@ -75,7 +98,7 @@ def moving_outputs(graph: Graph) -> tuple[set[tuple[str, str]], set[str]]:
         holds_points = any(state.has_value and _shift_data(state.value, (1.0, 1.0, 1.0)) != state.value
                            for state in record.inputs.values())
         for port in record.node.output_ports():
-            if port.name in FLAT.get(record.type_id, ()):
+            if port.name in _laid_flat(record):
                 flat_ports.add((node_id, port.name))
             elif moved_in or holds_points or port.name in SOURCES.get(record.type_id, ()):
                 moving.add((node_id, port.name))
