@@ -284,7 +284,7 @@ def clone_node(node: Node) -> Node:
 
 
 def clone_record(record: NodeRecord, node_id: str | None = None) -> NodeRecord:
-    from engine.graph import InputState, NodeRecord
+    from engine.graph_records import InputState, NodeRecord
 
     inputs = {
         name: InputState(copy.deepcopy(s.value), s.has_value, list(s.modifiers), copy.deepcopy(s.raw))
@@ -298,9 +298,9 @@ def clone_record(record: NodeRecord, node_id: str | None = None) -> NodeRecord:
 
 def clone_graph(graph: Graph) -> Graph:
     """A copy of ``graph`` (nodes, wires, groups) sharing its cluster definitions."""
-    from engine.graph import Graph, Group, Wire
+    from engine.graph_records import Group, Wire
 
-    twin = Graph()
+    twin = type(graph)()
     twin.clusters = graph.clusters
     twin.units, twin.meta, twin.raw = graph.units, copy.deepcopy(graph.meta), copy.deepcopy(graph.raw)
     for record in graph.nodes.values():

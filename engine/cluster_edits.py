@@ -49,7 +49,7 @@ _MARGIN_X, _STEP_Y = 260.0, 90.0
 
 
 def _error(text: str) -> Exception:
-    from engine.graph import GraphError
+    from engine.graph_records import GraphError
 
     return GraphError(text)
 
@@ -142,7 +142,7 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     anchor); groups wholly inside the selection go inside; the cluster joins the groups
     the selection shared with other nodes.
     """
-    from engine.graph import Graph, Wire
+    from engine.graph_records import Wire
 
     ids = ordered_unique(node_ids)
     if not ids:
@@ -199,7 +199,7 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
 
     # -- the change: nothing above has touched the graph
     graph.remove_many(ids)
-    inner = Graph()
+    inner = type(graph)()
     inner.clusters = graph.clusters
     inner.units = graph.units
     for record in records:
@@ -318,7 +318,7 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
     Modifiers set on a cluster input (graft...), and the value of an unwired one, move onto
     the inner inputs it feeds that take nothing else.
     """
-    from engine.graph import GraphError, Wire
+    from engine.graph_records import GraphError, Wire
 
     record = _cluster_record(graph, node_id)
     node: ClusterNode = record.node  # type: ignore[assignment]
@@ -406,7 +406,7 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
             group.nodes.append(node_id)
         raise
     _restore_orders(graph, feeding_orders)
-    from engine.graph import Group
+    from engine.graph_records import Group
 
     for group in inner.groups:
         members = [mapping[n] for n in group.nodes if n in mapping]
@@ -439,7 +439,7 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
 def _restore_order(graph: Graph, before: tuple[list[str], list[Wire]], mapping: dict[str, str]) -> None:
     """Put nodes and wires back in the order they had before clustering (those added since
     go last); wires are reconnected only from the first one out of place."""
-    from engine.graph import Wire
+    from engine.graph_records import Wire
 
     nodes, wires = before
     rank = {mapping.get(n, n): i for i, n in enumerate(nodes)}
@@ -528,7 +528,7 @@ def _commit(graph: Graph, definition: ClusterDefinition, new: Graph, inputs: lis
             outputs: list[str]) -> list[Wire]:
     """Replace ``definition``'s graph and ports; carry renamed ports to every instance's
     wires and values, drop wires to vanished ports (returned), and expire the instances."""
-    from engine.graph import GraphError, Wire
+    from engine.graph_records import GraphError, Wire
 
     old_in = dict(zip(definition.inputs, definition.input_names(), strict=True))
     old_out = dict(zip(definition.outputs, definition.output_names(), strict=True))

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
 from typing import Any
 
 from engine.datatree import MODIFIERS
@@ -37,86 +36,15 @@ from engine.events import (
     WireAdded,
     WireRemoved,
 )
+from engine.graph_records import (  # the records, exported here under their usual home
+    GraphError,
+    Group,
+    InputState,  # noqa: F401 - exported
+    NodeRecord,
+    Wire,
+)
 from engine.node import Node
 from engine.types import can_cast
-
-
-class GraphError(ValueError):
-    """An edit that would make the graph invalid (the message says why)."""
-
-
-@dataclass(frozen=True)
-class Wire:
-    """A connection from an output port to an input port (``raw``: its object in the file)."""
-
-    source: str
-    source_port: str
-    target: str
-    target_port: str
-    raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
-
-    def __post_init__(self) -> None:  # a wire is looked up in several indexes: hash it once
-        ends = (self.source, self.source_port, self.target, self.target_port)
-        object.__setattr__(self, "_hash", hash(ends))
-
-    def __hash__(self) -> int:
-        return self._hash
-
-    def __str__(self) -> str:
-        return f"{self.source}.{self.source_port} → {self.target}.{self.target_port}"
-
-
-@dataclass
-class InputState:
-    """What an input keeps besides its wires: a persistent value and modifiers.
-
-    ``value`` is JSON data (see :func:`engine.types.encode_value`) or ``None`` when unset.
-    """
-
-    value: Any = None
-    has_value: bool = False
-    modifiers: list[str] = field(default_factory=list)
-    raw: dict[str, Any] = field(default_factory=dict)
-
-
-@dataclass
-class NodeRecord:
-    """One node in a graph: its behaviour object plus what the document keeps about it.
-
-    ``raw`` is the node's object as read from a file (empty for new nodes): fields the
-    app does not know are written back from it unchanged.
-    """
-
-    id: str
-    node: Node
-    type_id: str
-    label: str = ""
-    position: tuple[float, float] = (0.0, 0.0)
-    inputs: dict[str, InputState] = field(default_factory=dict)
-    preview: bool = True
-    enabled: bool = True
-    raw: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def title(self) -> str:
-        """The label, or the node type's name; shortened for messages and the canvas."""
-        text = self.label or self.node.name()
-        return text if len(text) <= 60 else text[:59] + "…"
-
-    def input_state(self, port: str) -> InputState:
-        return self.inputs.setdefault(port, InputState())
-
-
-@dataclass
-class Group:
-    """A coloured, titled box around some nodes (layout only; it never affects solving)."""
-
-    id: str
-    title: str = ""
-    colour: str = "#d8e4f0"
-    nodes: list[str] = field(default_factory=list)
-    raw: dict[str, Any] = field(default_factory=dict)
-
 
 Listener = Callable[[GraphEvent], None]
 
