@@ -16,6 +16,7 @@ from engine.graph import Graph
 from engine.graphfile import write_graph
 from engine.solver import Solver
 from nodes.lists.trees import Partition
+from nodes.maths.expression import Expression
 from nodes.params.sliders import IntegerSlider
 from tests.explore.graphs import formula_graph
 
@@ -47,16 +48,18 @@ def test_the_table_has_one_row_per_grid_point_in_order(plane, tmp_path):
 def test_a_variant_in_error_is_recorded_and_the_sweep_goes_on(tmp_path):
     graph = Graph()
     graph.add_node(IntegerSlider({"min": 0, "max": 3, "value": 1}), "n")
+    graph.add_node(Expression({"expression": "x / x"}), "size")  # NaN at n = 0: no whole-number Size
     graph.add_node(Partition(), "part")
+    graph.connect("n", "Value", "size", "x")
     graph.connect("n", "Value", "part", "List")
-    graph.connect("n", "Value", "part", "Size")
+    graph.connect("size", "Result", "part", "Size")
     write_graph(graph, tmp_path / "chunks.graph")
     study = open_study(tmp_path / "chunks.graph", ["n=0:3:4"], ["part.Chunks:count"], steps=True)
     result = run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "out")
     rows = read_table(tmp_path / "out" / RESULTS)
     assert [r[0] for r in rows[1:]] == ["0", "1", "2", "3"]
     assert rows[1][1] == ""  # no value, not the count 0 of an empty output (the list [n] has 1 item)
-    assert rows[1][2] == "error: Partition [part]: Size must be at least 1, not 0"
+    assert rows[1][2] == "error: Partition [part]: Size is not a number (NaN)"
     assert [r[1] for r in rows[2:]] == ["1", "1", "1"] and [r[2] for r in rows[2:]] == ["ok", "ok", "ok"]
     assert result.failed == 1
 
