@@ -17,6 +17,7 @@ from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable.rationalise import rationalise
 from nodes.geometry.developable.ruling import warp_allowance
 from nodes.geometry.local_frame import LocalFrame
+from nodes.geometry.watch import watched
 
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
@@ -144,9 +145,10 @@ class Rationalise(Node):
         # deviations then round as at the origin); the strips are moved back at the end
         frame = LocalFrame.around(design)
         try:
-            result = rationalise(frame.to_local(design), tol, count, None if curves else guide, segments=n,
-                                 warp_tolerance=warp_limit, progress=self.progress,
-                                 guides=[frame.to_local(g) for g in curves])
+            with watched(self.check_cancelled, self.progress):
+                result = rationalise(frame.to_local(design), tol, count, None if curves else guide,
+                                     segments=n, warp_tolerance=warp_limit, progress=self.progress,
+                                     guides=[frame.to_local(g) for g in curves])
         except ValueError as exc:
             about = "Guides" if curves and "guide" in str(exc) else "Surface"
             raise NodeError(f"{about}: {sentence(exc)}") from None

@@ -53,6 +53,7 @@ from .curvature import (
 )
 from .curve_base import Curve
 from .vec_ops import anchor, dot, extent, position_rounding
+from .watch import watch_check
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
 #: an apex, a collapsed edge) normals and curvature are taken this step (in
@@ -320,7 +321,10 @@ class Surface(ABC):
     ) -> tuple[FloatArray, FloatArray]:
         u, v = u.copy(), v.copy()
         active = np.arange(len(u))
+        check = watch_check()
         for _ in range(max_iter):
+            if check:
+                check()
             if active.size == 0:
                 break
             ua, va, pa = u[active], v[active], query[active]

@@ -190,8 +190,7 @@ KERNELS = [
                  marks=_not_checking("engineer C", "IsoMapping (one call)", strict=False)),
     pytest.param(_example("rationalise-roof", "cut"), id="nesting-cut-sheets",
                  marks=_not_checking("engineer G", "ExportCutSheet's layout (font load, label poles)")),
-    pytest.param(_example("rationalise-roof", "strips"), id="rationalise-roof",
-                 marks=_not_checking("engineer E", "Rationalise")),
+    pytest.param(_example("rationalise-roof", "strips"), id="rationalise-roof"),
 ]
 
 #: Runs of a kernel's gap measurement at most: a missing check shows in every run, a stall

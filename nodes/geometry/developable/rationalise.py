@@ -47,6 +47,7 @@ from nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from nodes.geometry.developable.warp import curve_warp
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.surface_base import Surface, uv_grid
+from nodes.geometry.watch import watch_check
 
 #: The boundaries of a rationalisation: a curve on the design for every level in [0, 1].
 Boundaries = IsoBoundaries | GuidedBoundaries
@@ -134,6 +135,9 @@ def strip_between(
     warp_tolerance: float = 1e-7,
 ) -> Strip:
     """The strip between the boundaries at levels ``lo`` and ``hi``, with its warp and deviation."""
+    check = watch_check()
+    if check:
+        check()
     a, b = boundaries.at(lo), boundaries.at(hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
     surface = ruled_between(a, result.s, b, result.t)
