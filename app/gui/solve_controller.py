@@ -25,6 +25,12 @@ from engine.node import CancelToken
 from engine.solver import NodeResult, Solver, SolveReport
 
 PROGRESS_INTERVAL = 0.05  # seconds between progress signals from the worker
+#: The status bar shows its progress bar once a solve has run this long (seconds). The
+#: worker sends no progress before then (from one interval before, so the bar has a value
+#: when it appears): a slider drag's stream of short solves then wakes the GUI thread for
+#: nothing it would show, and each wake-up is a GIL hand-over that stalls the solve (on
+#: a loaded machine the GUI thread may wait for a CPU while it holds the GIL).
+PROGRESS_AFTER = 0.5
 #: Steps of the progress bar per node, so a long node's own progress moves it.
 STEPS = 1000
 #: A solve running longer than this shows what it has so far (``partial``), and again at
@@ -183,7 +189,8 @@ class SolveController(QObject):
 
     def _run(self, solver: Solver, token: CancelToken, generation: int) -> None:
         started = time.perf_counter()
-        last_progress, last_partial = [0.0], [started]
+        # no progress signal before PROGRESS_AFTER (less one interval) into the solve
+        last_progress, last_partial = [started + PROGRESS_AFTER - 2 * PROGRESS_INTERVAL], [started]
         done: list[str] = []  # nodes solved so far in this solve
         shown = [0]  # how many of them the last partial outcome carried
         current: list[str | None] = [None]

@@ -7,9 +7,9 @@ import time
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QLabel, QProgressBar, QStatusBar, QWidget
 
-from app.gui.solve_controller import SolveOutcome
+from app.gui.solve_controller import PROGRESS_AFTER, SolveOutcome
 
-PROGRESS_AFTER_MS = 500
+PROGRESS_AFTER_MS = round(1000 * PROGRESS_AFTER)
 
 
 class SolveStatus(QStatusBar):

@@ -127,12 +127,16 @@ def _normals(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray | None
 def _line_cells(chains: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Points and VTK line cells for several polylines."""
     points = np.concatenate(chains)
-    lengths = np.array([len(c) for c in chains])
-    starts = np.concatenate([[0], np.cumsum(lengths)[:-1]])
-    cells = np.concatenate(
-        [np.concatenate([[n], np.arange(s, s + n)]) for s, n in zip(starts, lengths, strict=True)]
-    )
-    return points, cells.astype(np.int64)
+    lengths = np.fromiter((len(c) for c in chains), dtype=np.int64, count=len(chains))
+    # each chain's cell is its count then its point indices: the indices run on from one
+    # chain to the next, and the counts sit just before each chain's first index
+    heads = np.cumsum(lengths + 1) - (lengths + 1)
+    cells = np.empty(len(points) + len(chains), dtype=np.int64)
+    cells[heads] = lengths
+    body = np.ones(len(cells), dtype=bool)
+    body[heads] = False
+    cells[body] = np.arange(len(points), dtype=np.int64)
+    return points, cells
 
 
 ARROW_SIDES = 8
