@@ -28,6 +28,13 @@ from .watch import watch_check, watch_progress
 #: located on the 3D triangles (a point on a shared edge is on both triangles).
 TIE = 1e-9
 
+#: Points carried onto the strip between two looks at the cancel token (≈ 2 ms a block).
+MAP_BLOCK = 1024
+
+#: Segments tested for crossings between two looks at the cancel token (≈ 5 ms a block:
+#: the walk that places their ends costs ten times the point location above).
+CROSSING_BLOCK = 256
+
 #: Consecutive outline points closer than this share of the development's size are one
 #: vertex (a fan's apex, unrolled once per ruling: its images differ by rounding only, and
 #: kept apart they would zigzag across each other).
@@ -184,9 +191,17 @@ class DevelopmentMap:
         return np.column_stack([1.0 - v - w, v, w])
 
     def to_3d(self, points2d: ArrayLike) -> FloatArray:
-        """Points of the development carried onto the 3D strip, ``(k, 3)``."""
-        tri, bary = self.locate(points2d)
-        return np.einsum("kj,kjd->kd", bary, self.vertices3d[self.triangles[tri]])
+        """Points of the development carried onto the 3D strip, ``(k, 3)`` (in blocks of
+        :data:`MAP_BLOCK` points, with a look at the cancel token before each, see :mod:`.watch`)."""
+        pts = np.asarray(points2d, dtype=float).reshape(-1, 2)
+        check = watch_check()
+        blocks = [np.empty((0, 3))]
+        for start in range(0, len(pts), MAP_BLOCK):
+            if check:
+                check()
+            tri, bary = self.locate(pts[start:start + MAP_BLOCK])
+            blocks.append(np.einsum("kj,kjd->kd", bary, self.vertices3d[self.triangles[tri]]))
+        return np.vstack(blocks)
 
     # ------------------------------------------------------------- surface → plane
 
@@ -389,7 +404,22 @@ class DevelopmentMap:
 
     def _crossings(self, p0: FloatArray, d: FloatArray) -> tuple[IntArray, FloatArray]:
         """Where segments ``p0 → p0 + d`` cross a ruling or diagonal: pairs (segment,
-        parameter along it), ends excluded.
+        parameter along it), ends excluded; in blocks of :data:`CROSSING_BLOCK` segments,
+        with a look at the cancel token before each (see :mod:`.watch`)."""
+        check = watch_check()
+        seg_parts: list[IntArray] = [np.empty(0, dtype=np.int64)]
+        par_parts: list[FloatArray] = [np.empty(0)]
+        for start in range(0, len(p0), CROSSING_BLOCK):
+            if check:
+                check()
+            stop = start + CROSSING_BLOCK
+            seg, par = self._block_crossings(p0[start:stop], d[start:stop])
+            seg_parts.append(seg + start)
+            par_parts.append(par)
+        return np.concatenate(seg_parts), np.concatenate(par_parts)
+
+    def _block_crossings(self, p0: FloatArray, d: FloatArray) -> tuple[IntArray, FloatArray]:
+        """:meth:`_crossings` for one block of segments.
 
         A segment that lies in a development which does not overlap itself crosses exactly
         the edges between the chain positions of its two ends, each once (two straight
@@ -475,12 +505,19 @@ class DevelopmentMap:
             hit_seg, t = self._crossings(p0, d)
             seg.append(hit_seg)
             param.append(t)
+        # the sort and the new points each cost about a block of crossings (≈ 10 ms for
+        # 70,000 points): a look at the cancel token before each (see :mod:`.watch`)
+        check = watch_check()
+        if check:
+            check()
         seg_all, par_all = np.concatenate(seg), np.concatenate(param)
         # every polyline's own last vertex closes it: key (its last point's index, 0)
         last = np.cumsum(counts) - 1
         key = np.concatenate([inner[seg_all], last])
         par = np.concatenate([par_all, np.zeros(len(last))])
         order = np.lexsort((par, key))
+        if check:
+            check()
         key, par = key[order], par[order]
         closing = np.zeros(len(key), dtype=bool)
         closing[len(par_all):] = True

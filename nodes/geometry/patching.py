@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike
 
 from .array_types import FloatArray, IntArray
 from .unroll import Development
+from .watch import watch_check
 
 #: Clipped pieces smaller than this share of their whole panel (or of the development,
 #: when the panel is larger than it) are slivers from edges that merely touch the
@@ -184,6 +185,23 @@ def development_polygon(development: Development) -> shapely.Geometry:
     return poly if poly.is_valid else shapely.make_valid(poly)
 
 
+#: Pattern copies clipped to the outline between two looks at the cancel token (each
+#: costs ≈ 0.2 ms against an outline of 3,000 points: ≈ 6 ms a block).
+CLIP_BLOCK = 32
+
+
+def _clipped(geoms: np.ndarray, outline: shapely.Geometry) -> np.ndarray:
+    """Each copy cut to the outline, in blocks of :data:`CLIP_BLOCK` with a look at the
+    cancel token before each (see :mod:`.watch`)."""
+    check = watch_check()
+    blocks = []
+    for start in range(0, len(geoms), CLIP_BLOCK):
+        if check:
+            check()
+        blocks.append(shapely.intersection(geoms[start:start + CLIP_BLOCK], outline))
+    return np.concatenate(blocks) if blocks else np.empty(0, dtype=object)
+
+
 def tile_pattern(
     pattern: Pattern | Sequence[ArrayLike],
     development: Development,
@@ -242,7 +260,7 @@ def tile_pattern(
     tiles_all, which_all = np.concatenate(tiles)[order], np.concatenate(which)[order]
     full_all = np.concatenate(full)[order]
 
-    clipped = shapely.intersection(geoms_all, outline)
+    clipped = _clipped(geoms_all, outline)
     parts, owner = shapely.get_parts(clipped, return_index=True)
     polygons = shapely.get_type_id(parts) == shapely.GeometryType.POLYGON.value
     parts, owner = parts[polygons], owner[polygons]
