@@ -15,43 +15,16 @@ Every file written replaces the old one atomically and keeps it as ``<name>.bak`
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from engine.atomic import replace_keeping_backup
 from engine.node import Node, NodeError
+from nodes.common.files import FileFailure, may_write, replacing, writable, write_target
+from nodes.common.units import METRES, unit_name, unit_scale
 
-#: Length of one unit in metres.
-METRES: dict[str, float] = {"mm": 0.001, "cm": 0.01, "m": 1.0, "in": 0.0254, "ft": 0.3048}
-
-_SYNONYMS = {
-    "millimeter": "mm", "millimeters": "mm", "millimetre": "mm", "millimetres": "mm",
-    "centimeter": "cm", "centimeters": "cm", "centimetre": "cm", "centimetres": "cm",
-    "meter": "m", "meters": "m", "metre": "m", "metres": "m",
-    "inch": "in", "inches": "in", '"': "in",
-    "foot": "ft", "feet": "ft", "'": "ft",
-}
-
-
-class FileFailure(ValueError):
-    """A file that cannot be read or written; the message is one plain sentence."""
-
-
-def unit_name(text: str | None, what: str = "Units") -> str:
-    """The canonical name (``mm``, ``cm``, ``m``, ``in``, ``ft``) of a unit, or FileFailure."""
-    key = (text or "").strip().lower()
-    key = _SYNONYMS.get(key, key)
-    if key not in METRES:
-        raise FileFailure(
-            f"{what} {text!r} is not a length unit Torsal knows: use mm, cm, m, in or ft"
-        )
-    return key
-
-
-def unit_scale(source: str, target: str) -> float:
-    """The factor that turns lengths in ``source`` units into ``target`` units."""
-    return METRES[unit_name(source)] / METRES[unit_name(target)]
+__all__ = ["METRES", "FileFailure", "file_errors", "may_write", "numbered", "read_path", "readable",
+           "replacing", "resolve", "unit_name", "unit_scale", "writable", "write_target"]
 
 
 def resolve(path: str | os.PathLike[str] | None, what: str = "Path", folder: Path | None = None) -> Path:
@@ -71,42 +44,6 @@ def read_path(node: Node, path: object, what: str = "Path") -> Path:
     return resolve(None if path is None else str(path), what, node.files.folder)
 
 
-def write_target(node: Node, path: object, what: str = "Path") -> Path:
-    """The file ``node`` is asked to write, inside the graph's folder, or a NodeError that
-    says why not (outside the folder, ``~``, an absolute path, a ``.graph`` file)."""
-    return node.files.target(path, what)
-
-
-def may_write(node: Node, paths: Sequence[Path]) -> bool:
-    """Whether ``node`` may write ``paths`` now; if the user has not allowed this graph to
-    write files, the node warns (naming the files) and the request waits for consent."""
-    if node.files.permit(tuple(paths)):
-        return True
-    folder = node.files.folder
-    names = ", ".join(_shown(p, folder) for p in paths)
-    node.warn(
-        f"Nothing written to {names}: this graph writes files only with your consent "
-        "(torsal run --allow-writes; in the app, answer Allow when it asks)"
-    )
-    return False
-
-
-def _shown(path: Path, folder: Path | None) -> str:
-    try:
-        return str(path.relative_to(os.path.realpath(folder))) if folder is not None else str(path)
-    except ValueError:
-        return str(path)
-
-
-def replacing(path: Path, write: Callable[[Path], object]) -> Path:
-    """Write ``path`` through ``write(temporary)`` and swap it in atomically, keeping the
-    file it replaces as ``<name>.bak``; an OS error becomes a FileFailure naming ``path``."""
-    try:
-        return replace_keeping_backup(path, write)
-    except OSError as exc:
-        raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None
-
-
 def readable(path: Path, kind: str) -> Path:
     """``path`` if it is a non-empty file, else a FileFailure saying what is wrong."""
     if not path.exists():
@@ -115,17 +52,6 @@ def readable(path: Path, kind: str) -> Path:
         raise FileFailure(f"{path} is a folder, not a {kind} file")
     if path.stat().st_size == 0:
         raise FileFailure(f"{path} is empty (0 bytes), so it holds no {kind} data")
-    return path
-
-
-def writable(path: Path) -> Path:
-    """``path`` with its folder created, or a FileFailure (a folder in the way, no permission)."""
-    if path.is_dir():
-        raise FileFailure(f"{path} is a folder: give a file name")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise FileFailure(f"Cannot create the folder {path.parent}: {exc.strerror or exc}") from None
     return path
 
 
