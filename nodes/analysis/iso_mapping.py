@@ -18,6 +18,7 @@ from nodes.geometry.development_placement import place
 from nodes.geometry.ruled import RuledSurface
 from nodes.geometry.unroll import Development, unroll_surface
 from nodes.geometry.vectors import Plane
+from nodes.geometry.watch import watched
 from nodes.limits import MAX_ANALYSIS_SEGMENTS
 
 #: Above this relative area difference the node says what it may mean.
@@ -128,12 +129,14 @@ class IsoMapping(Node):
         s = ruled_surface(surface, "IsoMapping")
         n = segments(count)
         try:
-            development = unroll_surface(s, n, SUBDIVISIONS, EDGE_TOLERANCE)
+            with watched(self.check_cancelled, self.progress):
+                development = unroll_surface(s, n, SUBDIVISIONS, EDGE_TOLERANCE)
         except ValueError as exc:
             raise NodeWarning(f"The surface cannot be unrolled: {sentence(exc)}") from None
         starts2d, ends2d = development.rulings2d
         frame = placement_frame(self, placement, plane, np.vstack([development.starts3d, development.ends3d]),
                                 development.bounds)
+        self.check_cancelled()
         if overlaps(development):
             self.warn("The development overlaps itself, so it cannot be cut from one sheet: unroll "
                       "less of the surface (fewer turns) or split it into pieces")

@@ -25,9 +25,8 @@ plus the hand-over between threads. Both are measured in the run:
   quiet, 90 ms under a load of 12 on its 2 cores), so "a kernel does no more work between
   two checks than that sort" stands for the 50 ms on any machine and any load. The best of
   up to three runs counts: a kernel that does not check is over in every run, a stall of
-  the shared machine in one. Kernels that do not check yet are xfails naming their owner:
-  strict where the gap is far over (they must lose the mark once they check), not strict
-  for one IsoMapping call at 2,000 segments, 1-2 times the mark (50-130 ms).
+  the shared machine in one. Kernels that do not check yet are strict xfails naming their
+  owner (they must lose the mark once they check).
 """
 
 from __future__ import annotations
@@ -185,8 +184,7 @@ KERNELS = [
     pytest.param(_bending_graph, id="bending-check-density-200"),
     pytest.param(_ruling_graph, id="ruling-developable-2000-stations"),
     pytest.param(_example("development-and-panels", "patching"), id="surface-patching"),
-    pytest.param(_iso_mapping_graph, id="iso-mapping-2000-segments",
-                 marks=_not_checking("engineer C", "IsoMapping (one call)", strict=False)),
+    pytest.param(_iso_mapping_graph, id="iso-mapping-2000-segments"),
     pytest.param(_example("rationalise-roof", "cut"), id="nesting-cut-sheets",
                  marks=_not_checking("engineer G", "ExportCutSheet's layout (font load, label poles)")),
     pytest.param(_example("rationalise-roof", "strips"), id="rationalise-roof"),
