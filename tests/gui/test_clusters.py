@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtTest import QTest
-from PySide6.QtWidgets import QApplication, QDialogButtonBox, QListWidget, QPushButton
+from PySide6.QtWidgets import QApplication, QDialogButtonBox, QLineEdit, QListWidget, QPushButton
 
 from app.gui.cluster_widgets import ClusterPortsDialog
 from app.headless import run_file
@@ -170,20 +170,28 @@ def total_out_of(window: Any, cluster_id: str) -> float:
     return window.doc.results[cluster_id].outputs[wire.source_port].first()
 
 
-def answer_ports_dialog(actions: list[Any]) -> QTimer:
-    """When the ports dialog opens: run ``actions`` on it (each takes the dialog), then OK."""
+def answer_ports_dialog(actions: list[Any]) -> list[BaseException]:
+    """When the ports dialog opens: run ``actions`` on it (each takes the dialog), then OK
+    (Cancel if one failed: the dialog never stays open). What failed is in the list returned."""
+    failures: list[BaseException] = []
 
     def poll() -> None:
         dialog = QApplication.activeModalWidget()
         if not isinstance(dialog, ClusterPortsDialog):
             QTimer.singleShot(20, poll)
             return
-        for action in actions:
-            action(dialog)
-        ok = dialog.findChild(QDialogButtonBox).button(QDialogButtonBox.StandardButton.Ok)
-        QTest.mouseClick(ok, Qt.MouseButton.LeftButton)
+        button = QDialogButtonBox.StandardButton.Ok
+        try:
+            for action in actions:
+                action(dialog)
+        except BaseException as exc:  # reported by the test, once the dialog has closed
+            failures.append(exc)
+            button = QDialogButtonBox.StandardButton.Cancel
+        finally:
+            QTest.mouseClick(dialog.findChild(QDialogButtonBox).button(button), Qt.MouseButton.LeftButton)
 
     QTimer.singleShot(20, poll)
+    return failures
 
 
 def test_the_ports_dialog_renames_and_reorders_the_cluster_inputs_in_one_undo_step(qtbot, first_steps):
@@ -193,18 +201,28 @@ def test_the_ports_dialog_renames_and_reorders_the_cluster_inputs_in_one_undo_st
     before = definition.input_names()
     assert len(before) >= 2
 
-    def rename_first(dialog: ClusterPortsDialog) -> None:
+    def rename_first(dialog: ClusterPortsDialog) -> None:  # double-click the name, type, Enter
         box = dialog.findChild(QListWidget, "inputs")
-        box.item(0).setText("Bay width")  # what the in-place editor leaves when Enter is pressed
+        centre = box.visualItemRect(box.item(0)).center()
+        QTest.mouseClick(box.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+        QTest.mouseDClick(box.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+        editor = box.findChild(QLineEdit)  # the in-place editor the double-click opened
+        assert editor is not None and editor.isVisible()
+        editor.selectAll()
+        QTest.keyClicks(editor, "Bay width")
+        QTest.keyClick(editor, Qt.Key.Key_Return)
+        QApplication.processEvents()  # the item view commits the edit on the next turn
+        assert box.item(0).text() == "Bay width"
 
     def move_first_down(dialog: ClusterPortsDialog) -> None:
         box = dialog.findChild(QListWidget, "inputs")
         box.setCurrentRow(0)
         QTest.mouseClick(dialog.findChild(QPushButton, "input_down"), Qt.MouseButton.LeftButton)
 
-    answer_ports_dialog([rename_first, move_first_down])
+    failures = answer_ports_dialog([rename_first, move_first_down])
     count = window.doc.undo_stack.count()
     right_click(window, title_point(window, cluster_id), pick="Cluster ports…")
+    assert not failures, failures
     names = window.doc.graph.cluster_definition(cluster_id).input_names()
     assert names[:2] == [before[1], "Bay width"]
     assert window.doc.undo_stack.count() == count + 1
