@@ -13,16 +13,22 @@ Run alone with::
   the same edit of the same graph (today's example, 28 strips) by the version of Torsal
   at the start of issue 10 (commit 1353a06, read from git history:
   :mod:`tests.benchmarks.from_history`): a fixed amount of the solver's kind of work, and
-  the same work on both sides (that version's own example had 20 strips, and its
-  re-solve of them, 31–35 ms on the quiet machine, was the baseline before: today's graph
-  has 1.4 times the strips, so that baseline asked today's code for 1.4 times the work in
-  the same time). The bar is on the ratio of the
-  GUI's frame interval (solving today's roof, previewing, drawing, answering the mouse)
-  to it: at most 100 ms / 35 ms = 2.86, the limit as it was set against the 20-strip
-  re-solve (kept, not loosened: against the 28-strip re-solve it holds at about 7
-  updates a second on the quiet machine, not 10). When other jobs slow the machine both
-  times grow together and the printed rate falls with them. Today's headless re-solve is
-  printed beside it (the share of the frame the solve takes).
+  the same work on both sides. The bar is on the ratio of the GUI's frame interval
+  (solving today's roof, previewing, drawing, answering the mouse) to it, and the limit
+  says "10 updates a second on the quiet machine": 100 ms over that re-solve's time on
+  the quiet machine, :data:`QUIET_SOLVE_S`. Measured on 2 December 2026 (engineer K; the
+  2-core machine is shared, so 22 runs of 15-20 re-solves each, each the median of its
+  re-solves as here, with the 1-minute load noted): run medians 25.1-121 ms as the load
+  went between 1.6 and 4.8; the quietest runs' medians 25.1, 25.4, 26.2, 26.8 ms, the
+  fastest single re-solve 23.1 ms.
+  So 25 ms, and the limit is 100 ms / 25 ms = 4.0: a frame at most 4 times the
+  reference's re-solve is 100 ms or less when the reference takes its quiet 25 ms. (The
+  limit before, 2.86, was 100 ms over 35 ms, the reference's re-solve of its own
+  20-strip example on the machine of issue 10; on this machine and today's graph it
+  asked for 71 ms frames, 14 updates a second, not the bar's 10.) When other jobs slow
+  the machine both times grow together and the printed rate falls with them; the best
+  of :data:`DRAGS` triples is kept. Today's headless re-solve is printed beside it (the
+  share of the frame the solve takes).
 
 The functional side of each (the window appears, the loop ticks, Esc cancels, every
 solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui``.
@@ -58,10 +64,11 @@ ESC_LIMIT_S = 0.5
 RATE_LIMIT = 10.0
 #: The version whose headless re-solve of today's Kaohsiung example is the drag's baseline.
 REFERENCE_COMMIT = "1353a06"
-#: That version's re-solve of its own (20-strip) example on this machine when quiet, which
-#: set the limit (issue 10's start, measured then: 31–35 ms).
-QUIET_SOLVE_S = 0.035
-FRAME_RATIO_LIMIT = (1 / RATE_LIMIT) / QUIET_SOLVE_S  # 2.86, kept as it was set
+#: That version's re-solve of today's (28-strip) Kaohsiung example on this machine when
+#: quiet: the median of its quietest runs (25.1-26.2 ms on 2 December 2026, see above).
+QUIET_SOLVE_S = 0.025
+#: 10 updates a second when the reference takes its quiet time: 100 ms / 25 ms = 4.0.
+FRAME_RATIO_LIMIT = (1 / RATE_LIMIT) / QUIET_SOLVE_S
 DRAGS = 3  # the best of three 2 s drags (the machine is shared and noisy)
 
 
