@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from engine.node import LIST, In, Node, NodeError, Out
+from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
 from nodes.common.checks import tolerance as tolerance_input
 from nodes.common.convert import sentence
@@ -34,19 +34,19 @@ SEGMENT_LIMIT = 1000
 
 def _positive(name: str, value: Any) -> float:
     if value is None:
-        raise NodeError(f"{name} is empty: give the largest distance from the design, in model units")
+        raise NodeWarning(f"{name} is empty: give the largest distance from the design, in model units")
     x = float(value)
     if not (np.isfinite(x) and x > 0.0):
-        raise NodeError(f"{name} must be a positive distance in model units, not {x:g}")
+        raise NodeWarning(f"{name} must be a positive distance in model units, not {x:g}")
     return x
 
 
 def _count(value: Any) -> int:
     if value is None:
-        raise NodeError("MaxStrips is empty: give the largest number of strips, such as 40")
+        raise NodeWarning("MaxStrips is empty: give the largest number of strips, such as 40")
     n = int(value)
     if not 1 <= n <= STRIP_LIMIT:
-        raise NodeError(f"MaxStrips is {n}: give a whole number from 1 to {STRIP_LIMIT}")
+        raise NodeWarning(f"MaxStrips is {n}: give a whole number from 1 to {STRIP_LIMIT}")
     return n
 
 
@@ -55,7 +55,7 @@ def _direction(value: Any) -> np.ndarray | None:
         return None
     d = np.asarray(value, dtype=float).ravel()
     if d.shape != (3,) or not np.isfinite(d).all() or not np.linalg.norm(d) > 0.0:
-        raise NodeError("Direction must be a non-zero vector along which the strips should run")
+        raise NodeWarning("Direction must be a non-zero vector along which the strips should run")
     return d
 
 
@@ -130,15 +130,15 @@ class Rationalise(Node):
         guide = _direction(direction)
         n = int(segments) if segments is not None else 24
         if not 1 <= n <= SEGMENT_LIMIT:
-            raise NodeError(f"Segments is {n}: give a whole number from 1 to {SEGMENT_LIMIT}")
+            raise NodeWarning(f"Segments is {n}: give a whole number from 1 to {SEGMENT_LIMIT}")
         warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
         if count * (n + 1) > RULING_BUDGET:
             raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "
                             "at once: lower MaxStrips or Segments")
+        for i, g in enumerate(guides or []):  # numbered as in the list, empty items counted
+            if g is not None and not isinstance(g, Curve):
+                raise NodeWarning(f"Guides item {i + 1} is a {type(g).__name__}, not a curve")
         curves = [g for g in (guides or []) if g is not None]
-        for i, g in enumerate(curves):
-            if not isinstance(g, Curve):
-                raise NodeError(f"Guides item {i + 1} is a {type(g).__name__}, not a curve")
         if curves and guide is not None:
             self.remark("Direction is not used: the strips follow the Guides")
         # solved in a frame at the design (at site coordinates its rulings, boundaries and
@@ -151,7 +151,7 @@ class Rationalise(Node):
                                      guides=[frame.to_local(g) for g in curves])
         except ValueError as exc:
             about = "Guides" if curves and "guide" in str(exc) else "Surface"
-            raise NodeError(f"{about}: {sentence(exc)}") from None
+            raise NodeWarning(f"{about}: {sentence(exc)}") from None
         rulings: list[Any] = []
         warp: list[float] = []
         valid: list[bool] = []

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from engine.node import LIST, In, Node, NodeError, Out
+from engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from engine.types import BOOLEAN, INTEGER, NUMBER, VECTOR
 from nodes.common.checks import segments as segments_input
 from nodes.common.convert import sentence, vectors
@@ -32,7 +32,7 @@ def _angles(values: list[Any], rulings: int, fix_ends: bool) -> np.ndarray | Non
         return None
     a = np.asarray([float(v) for v in given])
     if not np.all(np.isfinite(a)):
-        raise NodeError("Angles contains a value that is not a finite number")
+        raise NodeWarning("Angles contains a value that is not a finite number")
     if len(a) == rulings:
         return a
     if len(a) == 1:
@@ -40,7 +40,7 @@ def _angles(values: list[Any], rulings: int, fix_ends: bool) -> np.ndarray | Non
     if fix_ends and len(a) == rulings - 2:
         return np.concatenate([[0.0], a, [0.0]])
     inner = f", or {rulings - 2} for the inner rulings with FixEnds on" if rulings > 2 else ""
-    raise NodeError(
+    raise NodeWarning(
         f"Angles has {len(a)} values: give one per ruling (Segments + 1 = {rulings}){inner}, "
         "or a single angle for all"
     )
@@ -125,7 +125,7 @@ class SplineApproximation(Node):
         try:
             stations = station_rulings(frame.to_local(s), frame.to_local(c), n)
         except ValueError as exc:
-            raise NodeError(sentence(exc)) from None
+            raise NodeWarning(sentence(exc)) from None
         start = _angles(angles or [], n + 1, fix_ends)
         result = approximate(
             stations, start, optimise, fix_ends, check=self.check_cancelled, progress=self.progress

@@ -206,7 +206,7 @@ def test_a_surface_closed_across_the_strips_asks_to_be_cut():
                              (0, 2 * np.pi), (0, 10))
     result = run(Rationalise(), Surface=tree({(0,): [tube]}), Tolerance=TOL, MaxStrips=40,
                  Direction=Vector(0.0, 0.0, 1.0))
-    assert result.state == "error"
+    assert result.state == "warning"
     assert any("cut it open" in t for t in texts(result))
 
 

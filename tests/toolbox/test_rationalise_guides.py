@@ -140,7 +140,7 @@ def test_a_guide_that_stops_short_of_the_edges_is_refused_naming_guides():
     curve, _ = guide_on(DOME, wiggle, -HALF, 0.0)
     result = run(Rationalise(), Surface=tree({(0,): [DOME.surface()]}), Tolerance=TOL, MaxStrips=40,
                  Guides=tree({(0,): [curve]}))
-    assert result.state == "error"
+    assert result.state == "warning"
     assert any(t.startswith("Guides:") and "edge to edge" in t for t in texts(result))
 
 
@@ -148,5 +148,5 @@ def test_crossing_guides_are_refused_naming_them():
     curves = [guide_on(DOME, lambda y: 0.4 * y)[0], guide_on(DOME, lambda y: -0.4 * y)[0]]
     result = run(Rationalise(), Surface=tree({(0,): [DOME.surface()]}), Tolerance=TOL, MaxStrips=40,
                  Guides=tree({(0,): curves}))
-    assert result.state == "error"
+    assert result.state == "warning"
     assert any("guides 1 and 2 cross" in t for t in texts(result)), texts(result)
