@@ -11,6 +11,7 @@ from engine.types import BOOLEAN, NUMBER, TEXT, ValueType
 from nodes.common.checks import number
 from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.surface_base import Surface
+from nodes.geometry.watch import watched
 from nodes.io import seams
 from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
 from nodes.io.formats import cutfiles
@@ -190,17 +191,18 @@ class ExportCutSheet(Node):
             raise NodeError(f"TickSpacing must be 0 or a positive length in mm, not {spacing:g}")
         with file_errors():
             model_units = unit_name(units)
-            layout = cutfiles.lay_out(
-                curves, names,
-                width=number("SheetWidth", width), height=number("SheetHeight", height),
-                gap=number("Gap", gap), kerf=number("Kerf", kerf),
-                text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
-                sources=sources, margin=None if margin is None else number("Margin", margin),
-                nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
-                seed=_seed(seed), reference=bool(reference),
-                stop=lambda: self.token.cancelled, report=self.progress,
-                seams=found, tick_spacing=spacing,
-            )
+            with watched(self.check_cancelled, self.progress):
+                layout = cutfiles.lay_out(
+                    curves, names,
+                    width=number("SheetWidth", width), height=number("SheetHeight", height),
+                    gap=number("Gap", gap), kerf=number("Kerf", kerf),
+                    text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
+                    sources=sources, margin=None if margin is None else number("Margin", margin),
+                    nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
+                    seed=_seed(seed), reference=bool(reference),
+                    stop=lambda: self.token.cancelled, report=self.progress,
+                    seams=found, tick_spacing=spacing,
+                )
             files = []
             if write:
                 target = write_target(self, path)

@@ -52,6 +52,7 @@ from nodes.geometry.nesting import NestingFailed, nest, place
 from nodes.geometry.offset2d import offset_polygon
 from nodes.geometry.packing import DoesNotFit, shelf_pack
 from nodes.geometry.surface_base import Surface
+from nodes.geometry.watch import watch_check, watch_progress, watched
 from nodes.io import seams as seam_edges
 from nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
 from nodes.io.formats.labels import SMALLEST_TEXT_MM, place_label, text_outlines
@@ -376,7 +377,10 @@ def lay_out(
     started = time.perf_counter()
     scale = unit_scale(units, "mm")
     outlines = []
+    check = watch_check()
     for curve, name in zip(curves, names, strict=True):
+        if check:  # a surface's outline takes ~10 ms
+            check()
         if curve is None:
             raise PanelProblem(f"Panel {name} is empty (null)")
         try:
@@ -443,14 +447,21 @@ def lay_out(
         def move(i: int, points: FloatArray) -> FloatArray:
             return _turn(points, turns[i]) - lows[i] + corners[i]
     parts = []
-    marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move, notes)
-    for i, name in enumerate(names):
-        label, size = place_label(name, drawn[i], text_height)
-        if text_height > 0 and not label:
-            notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: not engraved")
-        tick_list, seam_glyphs = marks.get(i, ([], []))
-        parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
-                          tuple(seam_glyphs)))
+    if stopped:  # Esc stopped the search: its best layout is kept, so it is engraved to the end
+        check = None
+    with watched(check, watch_progress()):
+        marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move,
+                                     notes)
+        for i, name in enumerate(names):
+            if check:  # a label may take tens of ms (its pole of inaccessibility, the font's first load)
+                check()
+            label, size = place_label(name, drawn[i], text_height)
+            if text_height > 0 and not label:
+                notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: "
+                             "not engraved")
+            tick_list, seam_glyphs = marks.get(i, ([], []))
+            parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
+                              tuple(seam_glyphs)))
     if stopped:
         notes.append("Nesting was stopped: this is the best layout found by then")
     return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),

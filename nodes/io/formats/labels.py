@@ -3,26 +3,79 @@ placed inside a panel as large as it allows (used by :mod:`nodes.io.formats.cutf
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import threading
+from concurrent.futures import Future, wait
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import shapely
 from shapely.ops import polylabel
 
 from nodes.geometry.array_types import FloatArray
+from nodes.geometry.watch import watch_check
+from nodes.io.common import FileFailure
 
 #: Smallest engraving (cap height, mm) tried before a label is declared not to fit.
 SMALLEST_TEXT_MM = 2.0
+#: Where DejaVu Sans lies in the matplotlib package (found without importing matplotlib).
+FONT_IN_MATPLOTLIB = Path("mpl-data") / "fonts" / "ttf" / "DejaVuSans.ttf"
+#: Seconds between looks at the cancel token while the font loads (see :func:`_font`).
+LOOK_EVERY = 0.01
 
-@cache
-def _font():  # type: ignore[no-untyped-def]
-    import matplotlib
+
+def font_file() -> Path:
+    """DejaVu Sans as matplotlib ships it, found without importing matplotlib (0.1-0.5 s)."""
+    spec = importlib.util.find_spec("matplotlib")
+    if spec is not None and spec.origin is not None:
+        path = Path(spec.origin).parent / FONT_IN_MATPLOTLIB
+        if path.is_file():
+            return path
+    raise FileFailure("The engraving font (DejaVu Sans, shipped with matplotlib) is not installed: install "
+                      "matplotlib, or set TextHeight to 0 to export without engraved IDs")
+
+
+def _load_font() -> Any:
     from ezdxf.fonts.ttfonts import TTFontRenderer
     from fontTools.ttLib import TTFont
 
-    return TTFontRenderer(TTFont(Path(matplotlib.get_data_path()) / "fonts" / "ttf" / "DejaVuSans.ttf"))
+    return TTFontRenderer(TTFont(font_file()))
+
+
+_LOADING_LOCK = threading.Lock()
+
+
+@cache
+def _loading() -> Future[Any]:
+    """The font, loading on a thread of its own (once a process)."""
+    future: Future[Any] = Future()
+
+    def load() -> None:
+        try:
+            future.set_result(_load_font())
+        except BaseException as exc:  # handed to the caller by future.result()
+            future.set_exception(exc)
+
+    threading.Thread(target=load, name="torsal-engraving-font", daemon=True).start()
+    return future
+
+
+def _font() -> Any:
+    """ezdxf's TrueType renderer of DejaVu Sans. The first call imports ezdxf and parses the
+    font (0.2-0.7 s, one call that cannot look at the cancel token), so that work runs on a
+    thread of its own while this one looks at the token every :data:`LOOK_EVERY` s: Esc
+    stops a node during it (the load goes on and serves the next call)."""
+    with _LOADING_LOCK:
+        future = _loading()
+    check = watch_check()
+    if check is not None:
+        while not future.done():
+            check()
+            wait([future], timeout=LOOK_EVERY)
+    return future.result()
 
 
 @cache
@@ -50,11 +103,14 @@ def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[Floa
     every = np.vstack(glyphs)
     low, high = every.min(axis=0), every.max(axis=0)
     polygon = shapely.Polygon(panel)
-    pole = polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area)))
-    centres = [np.asarray(polygon.centroid.coords[0]), np.asarray(pole.coords[0])]
+    centroid = np.asarray(polygon.centroid.coords[0])
+    pole: FloatArray | None = None  # found the first time the centroid does not do (~40 ms a panel)
     size = min(float(height), float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= SMALLEST_TEXT_MM:
-        for centre in centres:
+        for centre in (centroid, pole):
+            if centre is None:
+                found = polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area)))
+                centre = pole = np.asarray(found.coords[0])
             corner = centre - (low + high) / 2 * size
             box = shapely.box(*(corner + low * size), *(corner + high * size))
             if polygon.contains(box.buffer(0.1 * size)):
