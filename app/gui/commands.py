@@ -10,11 +10,10 @@ back exactly what was there, in the same order, and a saved file gets the same b
 from __future__ import annotations
 
 import copy
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6.QtGui import QUndoCommand
 
-from app.gui.document import Document
 from app.gui.graph_order import (
     group_by_id,
     restore_group_order,
@@ -23,6 +22,9 @@ from app.gui.graph_order import (
 )
 from engine.cluster import clone_graph
 from engine.graph import Graph, GraphError, Group, NodeRecord, Wire
+
+if TYPE_CHECKING:  # the document imports these commands (to commit a cluster edit)
+    from app.gui.document import Document
 
 SETTING_MERGE_ID = 1001
 
