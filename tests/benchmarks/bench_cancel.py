@@ -185,8 +185,7 @@ KERNELS = [
     pytest.param(_ruling_graph, id="ruling-developable-2000-stations"),
     pytest.param(_example("development-and-panels", "patching"), id="surface-patching"),
     pytest.param(_iso_mapping_graph, id="iso-mapping-2000-segments"),
-    pytest.param(_example("rationalise-roof", "cut"), id="nesting-cut-sheets",
-                 marks=_not_checking("engineer G", "ExportCutSheet's layout (font load, label poles)")),
+    pytest.param(_example("rationalise-roof", "cut"), id="nesting-cut-sheets"),
     pytest.param(_example("rationalise-roof", "strips"), id="rationalise-roof"),
 ]
 
