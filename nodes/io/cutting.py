@@ -6,7 +6,7 @@ import math
 from typing import Any
 
 from engine.datatree import DataTree
-from engine.node import LIST, TREE, In, Node, NodeError, NodeWarning, Out
+from engine.node import LIST, TREE, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, NUMBER, TEXT, ValueType
 from nodes.common.checks import number
 from nodes.common.values import CURVE, SURFACE
@@ -23,13 +23,13 @@ def _nesting(value: Any) -> str:
     for name in cutfiles.NESTINGS:
         if text == name.lower():
             return name
-    raise NodeError(f"Nesting is {value!r}: use {' or '.join(cutfiles.NESTINGS)}")
+    raise NodeWarning(f"Nesting is {value!r}: use {' or '.join(cutfiles.NESTINGS)}")
 
 
 def _seed(value: Any) -> int:
     seed = number("Seed", value)
     if not (math.isfinite(seed) and seed == int(seed) and 0 <= seed < 2**63):
-        raise NodeError(f"Seed must be a whole number from 0, not {seed:g}")
+        raise NodeWarning(f"Seed must be a whole number from 0, not {seed:g}")
     return int(seed)
 
 
@@ -176,19 +176,25 @@ class ExportCutSheet(Node):
                               "into Surfaces")
         names = None if ids.is_empty() else [None if i is None else str(i) for i in ids.all_items()]
         if names is not None and None in names:
-            raise NodeError(f"PanelIDs has an empty (null) item at position {names.index(None) + 1}")
+            raise NodeWarning(f"PanelIDs has an empty (null) item at position {names.index(None) + 1}: give "
+                              "every panel an ID, or leave PanelIDs unwired for P-001 …")
         found: list[seams.Seam] = []
         if not strips.is_empty():
             solids = strips.all_items()
-            if len(solids) != len(surfaces.all_items()) or any(not isinstance(x, Surface) for x in solids):
-                raise NodeError(f"Strips has {len(solids)} items for {len(surfaces.all_items())} Surfaces: "
-                                "give the 3D strip of each development, in the same order")
+            if len(solids) != len(surfaces.all_items()):
+                raise NodeWarning(f"Strips has {len(solids)} items for {len(surfaces.all_items())} Surfaces: "
+                                  "give the 3D strip of each development, in the same order")
+            wrong = next((k for k, x in enumerate(solids) if not isinstance(x, Surface)), None)
+            if wrong is not None:
+                what = "empty (null)" if solids[wrong] is None else "not a surface"
+                raise NodeWarning(f"Strips item {wrong + 1} is {what}: give the 3D strip of each "
+                                  "development, in the same order")
             offset = len(panels.all_items())
             found = [seams.Seam(f.id, f.a + offset, f.edge_a, f.b + offset, f.edge_b, f.reversed)
                      for f in seams.find_seams(solids)]
         spacing = number("TickSpacing", tick_spacing)
         if not (math.isfinite(spacing) and spacing >= 0):
-            raise NodeError(f"TickSpacing must be 0 or a positive length in mm, not {spacing:g}")
+            raise NodeWarning(f"TickSpacing must be 0 or a positive length in mm, not {spacing:g}")
         with file_errors():
             model_units = unit_name(units)
             with watched(self.check_cancelled, self.progress):

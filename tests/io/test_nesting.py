@@ -232,7 +232,7 @@ def test_svg_has_the_sheet_border_and_reference_groups(tmp_path):
         ({"Margin": 700.0}, "A margin of 700 mm on each side leaves no room"),
     ],
 )
-def test_bad_nesting_settings_are_errors_naming_the_input(settings, needle):
+def test_bad_nesting_settings_are_refused_naming_the_input(settings, needle):
     result = run(ExportCutSheet(), Panels=tree({(0,): [rectangle(0, 0, 1, 0.5)]}),
                  **{"Nesting": "TrueShape", **settings})
     assert needle in texts(result)[0]

@@ -111,12 +111,6 @@ def test_the_seams_are_engraved_in_the_dxf(tmp_path):
     assert sum(1 for e in engraved if not e.closed) == 18  # the ticks, open polylines
 
 
-def test_strips_that_do_not_match_the_surfaces_are_an_error():
-    strips = [band(0.0, 0.3), band(0.3, 0.5)]
-    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips[:1]}))
-    assert "Strips has 1 items for 2 Surfaces" in texts(result)[0]
-
-
 @functools.cache
 def kaohsiung():
     from app.headless import run_file
