@@ -26,9 +26,10 @@ Run alone with::
   limit before, 2.86, was 100 ms over 35 ms, the reference's re-solve of its own
   20-strip example on the machine of issue 10; on this machine and today's graph it
   asked for 71 ms frames, 14 updates a second, not the bar's 10.) When other jobs slow
-  the machine both times grow together and the printed rate falls with them; the best
-  of :data:`DRAGS` triples is kept. Today's headless re-solve is printed beside it (the
-  share of the frame the solve takes).
+  the machine both times grow together and the printed rate falls with them; of
+  :data:`DRAGS` rounds (a reference run, today's headless re-solve, a drag) the fastest
+  drag is held against the quickest reference run, each side's quietest moment. Today's
+  headless re-solve is printed beside it (the share of the frame the solve takes).
 
 The functional side of each (the window appears, the loop ticks, Esc cancels, every
 solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui``.
@@ -139,7 +140,7 @@ def reference_resolve_seconds(tree, repeats: int = 7) -> float:
 
 def test_dragging_the_kaohsiung_slider_updates_the_viewport_at_least_10_times_a_second(qtbot, window):
     tree = extract_tree(REFERENCE_COMMIT, ("app", "engine", "nodes"))
-    # triples measured back to back (the machine's load drifts): the reference re-solve,
+    # rounds measured back to back (the machine's load drifts): the reference re-solve,
     # today's headless re-solve, a drag
     runs = []
     for _ in range(DRAGS):
@@ -151,13 +152,17 @@ def test_dragging_the_kaohsiung_slider_updates_the_viewport_at_least_10_times_a_
             f"{drag.line('kaohsiung-stadium.graph')}; headless re-solve {today * 1000:.0f} ms, "
             f"the reference's {reference * 1000:.0f} ms"
         )
-    reference, today, best = min(runs, key=lambda run: 1 / run[2].rate / run[0])
+    # each side at its quickest in the run (the quietest moment the machine gave it): a
+    # reference run slowed by a spike of load cannot excuse a slow drag
+    reference = min(run[0] for run in runs)
+    today = min(run[1] for run in runs)
+    best = max((run[2] for run in runs), key=lambda drag: drag.rate)
     ratio = 1 / best.rate / reference
     print(
-        f"best: {best.rate:.1f} updates/s against the reference re-solve of {reference * 1000:.0f} ms "
-        f"({REFERENCE_COMMIT} on the same graph): the frame interval is {ratio:.2f}× the reference "
-        f"(limit {FRAME_RATIO_LIMIT:.2f}); today's headless re-solve is {today / reference:.2f}× the "
-        f"reference; fastest drag {max(d.rate for _, _, d in runs):.1f}/s"
+        f"best: {best.rate:.1f} updates/s (the fastest drag) against the quickest reference re-solve "
+        f"of {reference * 1000:.0f} ms ({REFERENCE_COMMIT} on the same graph): the frame interval is "
+        f"{ratio:.2f}× the reference (limit {FRAME_RATIO_LIMIT:.2f}); today's quickest headless "
+        f"re-solve is {today / reference:.2f}× the reference"
     )
     assert ratio <= FRAME_RATIO_LIMIT
 
