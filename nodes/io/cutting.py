@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from engine.datatree import DataTree
@@ -13,7 +15,7 @@ from nodes.common.values import CURVE, SURFACE
 from nodes.geometry.surface_base import Surface
 from nodes.geometry.watch import watched
 from nodes.io import seams
-from nodes.io.common import file_errors, may_write, unit_name, unit_scale, write_target
+from nodes.io.common import FileFailure, file_errors, may_write, unit_name, unit_scale, write_target
 from nodes.io.formats import cutfiles
 from nodes.io.formats.cutfiles import CutLayout
 
@@ -43,6 +45,16 @@ def _layout_summary(layout: CutLayout) -> dict[str, Any]:
         "stock_usage": round(layout.stock_usage, 6),
         "nesting": layout.nesting,
     }
+
+
+@contextmanager
+def refused_settings() -> Iterator[None]:
+    """A setting lay_out refuses (one input value: SheetWidth, Gap, Kerf …) becomes a warning
+    naming it, as nodes/common/checks.py has it; other failures stay what they are."""
+    try:
+        yield
+    except cutfiles.SettingProblem as exc:
+        raise NodeWarning(str(exc).rstrip(".")) from None
 
 
 CUT_LAYOUT = ValueType(
@@ -195,9 +207,12 @@ class ExportCutSheet(Node):
         spacing = number("TickSpacing", tick_spacing)
         if not (math.isfinite(spacing) and spacing >= 0):
             raise NodeWarning(f"TickSpacing must be 0 or a positive length in mm, not {spacing:g}")
-        with file_errors():
+        try:
             model_units = unit_name(units)
-            with watched(self.check_cancelled, self.progress):
+        except FileFailure as exc:  # one input value: refused, as checks.py has it
+            raise NodeWarning(str(exc)) from None
+        with file_errors():
+            with refused_settings(), watched(self.check_cancelled, self.progress):
                 layout = cutfiles.lay_out(
                     curves, names,
                     width=number("SheetWidth", width), height=number("SheetHeight", height),

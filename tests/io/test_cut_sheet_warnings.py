@@ -1,6 +1,7 @@
 """A value ExportCutSheet refuses is a warning naming the input, its outputs empty and
 nothing written (the rule of nodes/common/checks.py); files that cannot be written and
-panels the pre-export check refuses stay errors (tests/io/test_cut_sheets.py)."""
+panels the pre-export check refuses stay errors, as the node's description says
+(tests/io/test_cut_sheets.py)."""
 
 from __future__ import annotations
 
@@ -29,6 +30,12 @@ def _refused(tmp_path, **inputs):
         ({"TickSpacing": -5.0}, "TickSpacing must be 0 or a positive length in mm, not -5"),
         ({"Seed": 1.5}, "Seed must be a whole number from 0, not 1.5"),
         ({"Nesting": "Best"}, "Nesting is 'Best': use TrueShape or Shelf"),
+        ({"SheetWidth": -1.0}, "SheetWidth must be a positive length in mm, not -1"),
+        ({"Gap": 700.0}, "A gap of 700 mm on each side leaves no room on a 2500 × 1250 mm sheet"),
+        ({"Kerf": -1.0}, "Kerf must be zero or a positive width in mm, not -1"),
+        ({"TextHeight": -2.0}, "TextHeight must be zero or a positive height in mm, not -2"),
+        ({"Nesting": "TrueShape", "TimeBudget": 0.0}, "TimeBudget must be between 1 and 3600 s, not 0"),
+        ({"Units": "parsec"}, "Units 'parsec' is not a length unit"),
     ],
 )
 def test_a_refused_setting_is_a_warning_naming_it(tmp_path, inputs, needle):

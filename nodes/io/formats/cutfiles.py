@@ -87,6 +87,10 @@ class PanelProblem(FileFailure):
     """A panel the pre-export check refuses; the message names it."""
 
 
+class SettingProblem(FileFailure):
+    """A setting (sheet size, gap, kerf …) :func:`lay_out` refuses; the message names it."""
+
+
 @dataclass(frozen=True)
 class Part:
     """One panel placed on a sheet; coordinates in mm on that sheet."""
@@ -346,27 +350,27 @@ def lay_out(
     are engraved on both parts with their ID and ticks every ``tick_spacing`` mm.
     """
     edge = gap if margin is None else margin
-    for name, value in (("Sheet width", width), ("Sheet height", height)):
+    for name, value in (("SheetWidth", width), ("SheetHeight", height)):
         if not (math.isfinite(value) and value > 0):
-            raise FileFailure(f"{name} must be a positive length in mm, not {value:g}")
+            raise SettingProblem(f"{name} must be a positive length in mm, not {value:g}")
     for name, value in (("Gap", gap), ("Margin", edge)):
         if not (math.isfinite(value) and value >= 0):
-            raise FileFailure(f"{name} must be zero or a positive length in mm, not {value:g}")
+            raise SettingProblem(f"{name} must be zero or a positive length in mm, not {value:g}")
     if not (math.isfinite(kerf) and kerf >= 0):
-        raise FileFailure(f"Kerf must be zero or a positive width in mm, not {kerf:g}")
+        raise SettingProblem(f"Kerf must be zero or a positive width in mm, not {kerf:g}")
     if kerf >= min(width, height):
-        raise FileFailure(f"A kerf of {kerf:g} mm is wider than the {width:g} × {height:g} mm sheet")
+        raise SettingProblem(f"A kerf of {kerf:g} mm is wider than the {width:g} × {height:g} mm sheet")
     if not (math.isfinite(text_height) and text_height >= 0):
-        raise FileFailure(f"TextHeight must be zero or a positive height in mm, not {text_height:g}")
+        raise SettingProblem(f"TextHeight must be zero or a positive height in mm, not {text_height:g}")
     if 2 * edge >= min(width, height):
         what = "gap" if margin is None else "margin"
-        raise FileFailure(
+        raise SettingProblem(
             f"A {what} of {edge:g} mm on each side leaves no room on a {width:g} × {height:g} mm sheet"
         )
     if nesting not in NESTINGS:
-        raise FileFailure(f"Nesting is {nesting!r}: use {' or '.join(NESTINGS)}")
+        raise SettingProblem(f"Nesting is {nesting!r}: use {' or '.join(NESTINGS)}")
     if nesting == TRUE_SHAPE and not (math.isfinite(budget) and 0 < budget <= MAX_BUDGET):
-        raise FileFailure(f"TimeBudget must be between 1 and {MAX_BUDGET:g} s, not {budget:g}")
+        raise SettingProblem(f"TimeBudget must be between 1 and {MAX_BUDGET:g} s, not {budget:g}")
     if not curves:
         raise FileFailure("There are no panels to lay out")
     names = [f"P-{i:03d}" for i in range(1, len(curves) + 1)] if ids is None else [str(i) for i in ids]
