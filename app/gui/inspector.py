@@ -84,7 +84,11 @@ class Inspector(QWidget):
         self.plot = QLabel()
         self.plot.setObjectName("inspector:plot")
         self.plot.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        self.plot_area = QScrollArea()
+        # A child of the inspector even while no tab shows it: Qt deletes it with the window.
+        # Parentless, it was deleted by Python's garbage collector, on whichever thread
+        # collected the inspector's reference cycles (a solver's worker thread too).
+        self.plot_area = QScrollArea(self)
+        self.plot_area.hide()
         self.plot_area.setWidget(self.plot)
         self.plot_area.setWidgetResizable(True)
         self.plot_path: Path | None = None
