@@ -20,6 +20,7 @@ from nodes.common.files import FileFailure
 from nodes.geometry.watch import watched
 from nodes.io.cutting import ExportCutSheet
 from nodes.io.formats import cutfiles, labels
+from tests.cancelling import cancel_at_look
 from tests.io.helpers import random_panels
 from tests.nodes.helpers import tree
 
@@ -49,15 +50,7 @@ def test_lay_out_looks_once_before_each_outline_and_once_before_each_label(font_
 
 def test_a_cancel_from_the_layout_stops_the_node_at_that_look(font_loaded):
     node = ExportCutSheet()
-    looks = []
-
-    def check() -> None:  # cancelled at its 8th look: the third label (after 6 outlines)
-        looks.append(1)
-        if len(looks) == 8:
-            node.token.cancel()
-        node.token.check()
-
-    node.check_cancelled = check
+    looks = cancel_at_look(node, 8)  # cancelled at its 8th look: the third label (after 6 outlines)
     with pytest.raises(Cancelled):
         _solve(node, random_panels(6, seed=1))
     assert len(looks) == 8

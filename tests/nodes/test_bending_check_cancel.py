@@ -13,6 +13,7 @@ from nodes.analysis.bending import CHECK_BLOCK, BendingCheck, bending_radii
 from nodes.geometry.parametric_surface import cylinder
 from nodes.geometry.surface_base import uv_grid
 from nodes.geometry.watch import watched
+from tests.cancelling import cancel_at_look
 
 
 def test_bending_radii_checks_once_a_block_of_grid_points():
@@ -26,15 +27,7 @@ def test_bending_radii_checks_once_a_block_of_grid_points():
 
 def test_a_cancel_during_one_dense_strip_stops_the_node_before_the_strip_is_done():
     node = BendingCheck()
-    looks = []
-
-    def check():  # the token is cancelled at its third look, inside the first strip
-        looks.append(1)
-        if len(looks) == 3:
-            node.token.cancel()
-        node.token.check()
-
-    node.check_cancelled = check
+    looks = cancel_at_look(node, 3)  # the token is cancelled inside the kernel
     with pytest.raises(Cancelled):
         node.solve([cylinder(radius=0.5, height=1.0)], "Steel 1.5 mm", "m", 1.0, 100)
     assert len(looks) == 3

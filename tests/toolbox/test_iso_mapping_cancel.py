@@ -12,6 +12,7 @@ from nodes.analysis.iso_mapping import IsoMapping
 from nodes.geometry.parametric_surface import cone
 from nodes.geometry.unroll import unroll_rulings
 from nodes.geometry.watch import watched
+from tests.cancelling import cancel_at_look
 
 
 class Stop(Exception):
@@ -43,15 +44,7 @@ def test_a_check_that_raises_stops_laying_the_strip_down():
 
 def test_a_cancel_during_one_unrolling_stops_the_node_before_it_is_done():
     node = IsoMapping()
-    looks = []
-
-    def check():  # the token is cancelled at its third look, inside the unrolling
-        looks.append(1)
-        if len(looks) == 3:
-            node.token.cancel()
-        node.token.check()
-
-    node.check_cancelled = check
+    looks = cancel_at_look(node, 3)  # the token is cancelled inside the kernel
     with pytest.raises(Cancelled):
         node.solve(cone(radius=1.0, height=2.0), 100, 1)
     assert len(looks) == 3

@@ -16,6 +16,7 @@ from nodes.geometry.parametric_surface import cylinder
 from nodes.geometry.unroll import unroll_surface
 from nodes.geometry.watch import watched
 from nodes.patching.surface_patching import SurfacePatching
+from tests.cancelling import cancel_at_look
 
 RADIUS, HEIGHT = 1.0, 2.0
 
@@ -56,15 +57,7 @@ def square(x0: float, y0: float, size: float) -> Polyline:
 
 def test_a_cancel_during_the_tiling_stops_the_node_before_its_panels_are_made(development):
     node = SurfacePatching()
-    looks = []
-
-    def check():  # the token is cancelled at its third look, inside the kernel
-        looks.append(1)
-        if len(looks) == 3:
-            node.token.cancel()
-        node.token.check()
-
-    node.check_cancelled = check
+    looks = cancel_at_look(node, 3)  # the token is cancelled inside the kernel
     with pytest.raises(Cancelled):
         node.solve(None, development, [square(0.0, 0.0, 0.1)], square(0.0, 0.0, 0.1), 1.0, 0.0, 1)
     assert len(looks) == 3

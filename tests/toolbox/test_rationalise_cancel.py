@@ -11,6 +11,7 @@ from engine.node import Cancelled
 from nodes.developable.rationalise import Rationalise
 from nodes.geometry.parametric_surface import ParametricSurface
 from nodes.geometry.watch import watched
+from tests.cancelling import cancel_at_look
 
 
 class Stop(Exception):
@@ -40,15 +41,7 @@ def test_a_check_that_raises_stops_the_closest_point_search():
 
 def test_a_cancel_during_one_design_stops_the_node_before_its_strips_are_done():
     node = Rationalise()
-    looks = []
-
-    def check():  # the token is cancelled at its third look, inside the kernel
-        looks.append(1)
-        if len(looks) == 3:
-            node.token.cancel()
-        node.token.check()
-
-    node.check_cancelled = check
+    looks = cancel_at_look(node, 3)  # the token is cancelled inside the kernel
     with pytest.raises(Cancelled):
         node.solve(saddle(), 0.02, 40, None, [], 8, 1e-7)
     assert len(looks) == 3
