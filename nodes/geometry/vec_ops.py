@@ -18,6 +18,11 @@ import numpy as np
 
 from .array_types import FloatArray
 
+try:  # what np.einsum calls without ``optimize`` (the same values), less its Python wrapper
+    from numpy._core._multiarray_umath import c_einsum as _einsum
+except ImportError:  # pragma: no cover - another numpy: the public call
+    _einsum = np.einsum
+
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise cross product (broadcasting)."""
@@ -34,7 +39,7 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise dot product (broadcasting), of 3-vectors or of plane (2-) vectors."""
     if a.shape[-1] == 3:
         return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
-    return np.einsum("...i,...i->...", a, b)
+    return _einsum("...i,...i->...", a, b)
 
 
 def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
@@ -48,7 +53,7 @@ def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
 
 def norm(a: FloatArray) -> FloatArray:
     """Row-wise Euclidean length."""
-    return np.sqrt(np.einsum("...i,...i->...", a, a))
+    return np.sqrt(_einsum("...i,...i->...", a, a))
 
 
 def unit(a: FloatArray) -> FloatArray:

@@ -176,17 +176,22 @@ class NurbsCurve(Curve):
         u, scale = self._knot_parameters(t)
         if not self.is_rational:
             return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
-        homogeneous = [
-            self._values(u, k) if k <= self.degree else np.zeros((len(u), 4))
-            for k in range(order + 1)
-        ]
+        values, degree = self._values, self.degree
+        homogeneous = [values(u, k) if k <= degree else np.zeros((len(u), 4)) for k in range(order + 1)]
         w = [h[:, 3:] for h in homogeneous]
-        result: list[FloatArray] = []
-        for k in range(order + 1):
-            numerator = homogeneous[k][:, :3].copy()
-            for i in range(1, k + 1):
-                numerator -= comb(k, i) * w[i] * result[k - i]
-            result.append(numerator / w[0])
+        w0 = w[0]
+        result: list[FloatArray] = [homogeneous[0][:, :3] / w0]
+        for k in range(1, order + 1):
+            # (a binomial coefficient of 1 multiplies exactly: it is left out)
+            numerator = homogeneous[k][:, :3] - w[1] * result[k - 1] if k == 1 else (
+                homogeneous[k][:, :3] - (k * w[1]) * result[k - 1]
+            )
+            for i in range(2, k + 1):
+                factor = comb(k, i)
+                numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
+            result.append(numerator / w0)
+        if scale == 1.0:  # (a factor of 1 changes no bit)
+            return result
         return [c * scale**k for k, c in enumerate(result)]
 
     def derivative_at(self, t: ArrayLike, order: int = 1) -> FloatArray:
