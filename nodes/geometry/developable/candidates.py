@@ -80,14 +80,22 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> 
     # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
     rounding = max(position_rounding(a0), position_rounding(b0))
     flat_scale = (FLAT * size + rounding) * speed_b
-    block = max(1, 40_000 // right.shape[1])
+    # blocks of at most 16,000 samples: each block's arrays (125 KiB at most) come from the
+    # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
+    block = max(1, 16_000 // m)
+    rows_in_block = min(block, n)
+    f_buffer, size_buffer = np.empty((2, rows_in_block, m))
+    sign_buffer = np.empty((rows_in_block, m), dtype=bool)
+    low_buffer = np.empty((rows_in_block, m - 1))
     found: list[tuple[IntArray, ...]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
-        f = left[first : first + block] @ right
-        negative = np.signbit(f)
-        size_f = np.abs(f)
-        look = (negative[:, :-1] != negative[:, 1:]) | (np.minimum(size_f[:, :-1], size_f[:, 1:]) <= reach)
+        here = min(block, n - first)
+        f = np.matmul(left[first : first + block], right, out=f_buffer[:here])
+        negative = np.signbit(f, out=sign_buffer[:here])
+        size_f = np.abs(f, out=size_buffer[:here])
+        lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
+        look = (negative[:, :-1] != negative[:, 1:]) | (lower <= reach)
         maybe = np.flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
