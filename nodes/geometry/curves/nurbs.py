@@ -176,28 +176,37 @@ class NurbsCurve(Curve):
         u, scale = self._knot_parameters(t)
         if not self.is_rational:
             return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
-        values, degree = self._values, self.degree
-        homogeneous = [values(u, k) if k <= degree else np.zeros((len(u), 4)) for k in range(order + 1)]
-        w = [h[:, 3:] for h in homogeneous]
+        # the quotient rule on coordinate rows (4, n) rather than on (n, 4) points: every
+        # operation then runs along contiguous rows, not n times over 3 coordinates
+        values, degree, n = self._values, self.degree, len(u)
+        rows = np.zeros((order + 1, 4, n))
+        for k in range(min(order, degree) + 1):
+            rows[k] = values(u, k).T
+        w = rows[:, 3]
         w0 = w[0]
-        result: list[FloatArray] = [homogeneous[0][:, :3] / w0]
+        result: list[FloatArray] = [rows[0, :3] / w0]
         for k in range(1, order + 1):
             # (a binomial coefficient of 1 multiplies exactly: it is left out)
-            numerator = homogeneous[k][:, :3] - w[1] * result[k - 1] if k == 1 else (
-                homogeneous[k][:, :3] - (k * w[1]) * result[k - 1]
-            )
+            numerator = rows[k, :3] - (w[1] if k == 1 else k * w[1]) * result[k - 1]
             for i in range(2, k + 1):
                 factor = comb(k, i)
                 numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
             result.append(numerator / w0)
-        if scale == 1.0:  # (a factor of 1 changes no bit)
-            return result
-        return [c * scale**k for k, c in enumerate(result)]
+        if scale != 1.0:  # (a factor of 1 changes no bit)
+            result = [c * scale**k for k, c in enumerate(result)]
+        points = np.empty((order + 1, n, 3))
+        for k, c in enumerate(result):
+            points[k] = c.T
+        return list(points)
 
     def derivative_at(self, t: ArrayLike, order: int = 1) -> FloatArray:
         """The ``order``-th derivative alone; a polynomial curve evaluates no lower order."""
         if self.is_rational:
-            return super().derivative_at(t, order)
+            if order == 0:
+                return super().derivative_at(t, order)
+            scalar = np.ndim(t) == 0
+            d = self.local_derivatives(np.atleast_1d(np.asarray(t, dtype=float)), order)[order]
+            return d[0] if scalar else d  # (derivatives() would only move the points)
         u, scale = self._knot_parameters(t)
         d = self._polynomial_derivative(u, order, scale)
         if order == 0:

@@ -84,7 +84,7 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> 
     # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
     block = max(1, 16_000 // m)
     rows_in_block = min(block, n)
-    f_buffer, size_buffer = np.empty((2, rows_in_block, m))
+    f_buffer, size_buffer = np.empty((rows_in_block, m)), np.empty((rows_in_block, m))
     sign_buffer = np.empty((rows_in_block, m), dtype=bool)
     low_buffer = np.empty((rows_in_block, m - 1))
     found: list[tuple[IntArray, ...]] = []
