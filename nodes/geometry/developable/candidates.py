@@ -55,7 +55,9 @@ class _Brackets:
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
-def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> _Brackets:
+def _brackets(
+    a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray, size: float | None = None
+) -> _Brackets:
     """Intervals where f = det[B_j − A_i, Â'_i, B'_j] (unit tangent of A) changes sign or
     may reach zero — |f| at an end within ``reach`` (see :mod:`.isolation`) — over all
     station–sample pairs.
@@ -69,13 +71,14 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray) -> 
     """
     b0, b1 = grid.points, grid.tangents
     n, m = len(a0), len(b0)
-    size = float(norm(extent(np.concatenate([a0, b0]))))  # the diagonal of the bounding box
+    if size is None:  # the diagonal of the bounding box
+        size = float(norm(extent(np.concatenate([a0, b0]))))
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
     left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
     right = np.empty((6, m))
     right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
-    speed_b = norm(b1)
+    speed_b = grid.speeds
     # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
     # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
     rounding = max(position_rounding(a0), position_rounding(b0))
@@ -191,7 +194,7 @@ def find_candidates(
     units = unit(a1)
     diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
     bounds = grid.interval_bounds(diameter)
-    found = _brackets(a0, units, grid, bounds.reach)
+    found = _brackets(a0, units, grid, bounds.reach, diameter)
     rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
@@ -259,7 +262,9 @@ def find_candidates(
     f, f_t = np.empty((2, len(root_rows)))
     speed_a, size_a = norm(a1), norm(a0)
 
-    def evaluate(x: FloatArray, index: IntArray, i: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def evaluate(
+        x: FloatArray, index: IntArray | slice, i: IntArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
         plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
         value, slope = dot(plane, c1), dot(plane, c2)
@@ -267,6 +272,8 @@ def find_candidates(
         return value, slope, rounding_scale(size_a[i], c0, speed_a[i], c1)
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        if len(index) == k:  # all of them (the first step): a slice writes without gathering
+            return evaluate(x, slice(0, k), rows)
         return evaluate(x, index, rows[index])
 
     if k:

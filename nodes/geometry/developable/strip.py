@@ -57,12 +57,17 @@ class Grid:
     left_second: FloatArray  #: B'' and B''' as seen from the left (they differ at knots)
     left_third: FloatArray
 
+    @cached_property
+    def speeds(self) -> FloatArray:
+        """|B'| at every sample."""
+        return norm(self.tangents)
+
     def interval_bounds(self, diameter: float) -> IntervalBounds:
         """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
         the zero-width intervals between the two sides of a corner get reach −1 (never
         looked at: a sign change there is a corner root)."""
         width = self.at[1:] - self.at[:-1]
-        speed = norm(self.tangents)
+        speed = self.speeds
         second = norm(self.second)
         left_second = second if self.left_second is self.second else norm(self.left_second)
         bounds = interval_bounds(
@@ -94,17 +99,16 @@ def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
     # from the left, a smooth breakpoint shows its left-hand derivatives
     left = np.arange(m)
     left[at_break[~kink]] = m + np.flatnonzero(~kink)
-    if not len(kinks):
-        right = np.arange(m)
-        t_all, at, pair = t, t, np.zeros(m - 1, dtype=bool)
-    else:
-        # a corner gets two samples: its left copy just before its right copy
-        index = at_break[kink]
-        right = np.insert(np.arange(m), index, m + np.flatnonzero(kink))
-        left = np.insert(left, index, m + np.flatnonzero(kink))
-        t_all = np.insert(t, index, kinks)
-        at = np.insert(t, index, kinks - SIDE)
-        pair = np.diff(t_all) == 0
+    if not len(kinks):  # the samples themselves, on the right (views: no copies)
+        on_right = points[:m], tangents[:m], second[:m], third[:m]
+        return Grid(t, t, np.zeros(m - 1, dtype=bool), *on_right, second[left], third[left]), kinks
+    # a corner gets two samples: its left copy just before its right copy
+    index = at_break[kink]
+    right = np.insert(np.arange(m), index, m + np.flatnonzero(kink))
+    left = np.insert(left, index, m + np.flatnonzero(kink))
+    t_all = np.insert(t, index, kinks)
+    at = np.insert(t, index, kinks - SIDE)
+    pair = np.diff(t_all) == 0
     on_right = points[right], tangents[right], second[right], third[right]
     grid = Grid(t_all, at, pair, *on_right, second[left], third[left])
     return grid, kinks
