@@ -179,9 +179,10 @@ class NurbsCurve(Curve):
         # the quotient rule on coordinate rows (4, n) rather than on (n, 4) points: every
         # operation then runs along contiguous rows, not n times over 3 coordinates
         values, degree, n = self._values, self.degree, len(u)
-        rows = np.zeros((order + 1, 4, n))
+        rows = np.empty((order + 1, 4, n))
         for k in range(min(order, degree) + 1):
             rows[k] = values(u, k).T
+        rows[degree + 1 :] = 0.0  # (the derivatives above the degree)
         w = rows[:, 3]
         w0 = w[0]
         result: list[FloatArray] = [rows[0, :3] / w0]
