@@ -48,6 +48,18 @@ class SplineValues:
         return _evaluate(self.knots, self.coefficients, self.degree, x, nu, True)
 
 
+    def rows(self, u: FloatArray, orders: int, out: FloatArray) -> None:
+        """``out[k] = spline(u, nu=k).T`` for k below ``orders``: ``out`` is ``(≥ orders, k, len(u))``
+        (``u`` converted once for all of them)."""
+        if self.knots is None or _evaluate is None:
+            for k in range(orders):
+                out[k] = self.spline(u, nu=k).T
+            return
+        x = np.ascontiguousarray(u, dtype=np.float64).reshape(-1)
+        for k in range(orders):
+            out[k] = _evaluate(self.knots, self.coefficients, self.degree, x, k, True).T
+
+
 def spline_values(spline: BSpline, u: FloatArray, nu: int = 0) -> FloatArray:
     """``spline(u, nu=nu)`` through :class:`SplineValues` (for a spline evaluated once; keep
     a :class:`SplineValues` for one evaluated many times)."""

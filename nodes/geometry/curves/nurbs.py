@@ -180,8 +180,7 @@ class NurbsCurve(Curve):
         # operation then runs along contiguous rows, not n times over 3 coordinates
         values, degree, n = self._values, self.degree, len(u)
         rows = np.empty((order + 1, 4, n))
-        for k in range(min(order, degree) + 1):
-            rows[k] = values(u, k).T
+        values.rows(u, min(order, degree) + 1, rows)
         rows[degree + 1 :] = 0.0  # (the derivatives above the degree)
         w = rows[:, 3]
         w0 = w[0]
