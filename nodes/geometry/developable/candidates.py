@@ -236,10 +236,11 @@ def find_candidates(
         c = cols[index]
         return replace(
             pieces.take(index),
-            speed0=norm(grid.tangents[c]),
-            speed1=norm(grid.tangents[c + 1]),
-            second0=norm(grid.second[c]),
-            second1=norm(grid.left_second[c + 1]),
+            # (a row's length is the same computed alone or among others)
+            speed0=grid.speeds[c],
+            speed1=grid.speeds[c + 1],
+            second0=grid.second_lengths[c],
+            second1=grid.left_second_lengths[c + 1],
             bound3=bounds.third[c],
             r0=length_low[index],
             r1=length_high[index],

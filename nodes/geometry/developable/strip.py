@@ -62,14 +62,23 @@ class Grid:
         """|B'| at every sample."""
         return norm(self.tangents)
 
+    @cached_property
+    def second_lengths(self) -> FloatArray:
+        """|B''| at every sample."""
+        return norm(self.second)
+
+    @cached_property
+    def left_second_lengths(self) -> FloatArray:
+        """|B''| at every sample as seen from the left."""
+        return self.second_lengths if self.left_second is self.second else norm(self.left_second)
+
     def interval_bounds(self, diameter: float) -> IntervalBounds:
         """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
         the zero-width intervals between the two sides of a corner get reach −1 (never
         looked at: a sign change there is a corner root)."""
         width = self.at[1:] - self.at[:-1]
         speed = self.speeds
-        second = norm(self.second)
-        left_second = second if self.left_second is self.second else norm(self.left_second)
+        second, left_second = self.second_lengths, self.left_second_lengths
         bounds = interval_bounds(
             width,
             (speed[:-1], speed[1:]),
