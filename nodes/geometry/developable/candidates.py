@@ -298,7 +298,7 @@ def find_candidates(
         root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
     )
     if len(corner_rows) == 0 and not flat.any():
-        return candidates.subset(np.lexsort((candidates.t, candidates.row)))
+        return _in_order(candidates)
 
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
     corner_points = grid.points[corner_cols + 1]
@@ -329,7 +329,16 @@ def find_candidates(
     both = Candidates(
         *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
     )
-    return both.subset(np.lexsort((both.t, both.row)))
+    return _in_order(both)
+
+
+def _in_order(c: Candidates) -> Candidates:
+    """The candidates sorted by station, then t (stably); as they are when already so (the
+    refined roots usually are: their brackets come in that order)."""
+    step = c.row[1:] - c.row[:-1]
+    if ((step > 0) | ((step == 0) & (c.t[1:] >= c.t[:-1]))).all():
+        return c
+    return c.subset(np.lexsort((c.t, c.row)))
 
 
 def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
