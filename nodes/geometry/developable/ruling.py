@@ -285,8 +285,11 @@ def _solve(
             s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
             starts, ends, signed, valid = starts2, ends2, signed2, valid2
             warp = np.abs(signed)
-    share = fan_share(starts, ends, fan)
-    creased = area_share(starts, ends, creased_fans(starts, ends, fan))
+    if fan.any():
+        share = fan_share(starts, ends, fan)
+        creased = area_share(starts, ends, creased_fans(starts, ends, fan))
+    else:  # (what both give without fans: no piece counts)
+        share = creased = 0.0
     message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share, creased)
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share, creased
