@@ -60,21 +60,23 @@ def refine_roots(
         for _ in range(max_iterations):
             if len(active) == 0:
                 break
-            xa = x[active]
+            # all of them (the first step): a slice reads and writes them without gathering
+            at = slice(None) if len(active) == len(x) else active
+            xa = x[at].copy()
             f, df, scale = function(xa, active)
             zero = np.abs(f) <= ZERO * scale
             if zero.all():  # the usual end: every start or step was on its root, to rounding
                 break
-            on_low_side = np.sign(f) == low_sign[active]
-            lo = np.where(on_low_side, xa, low[active])
-            hi = np.where(on_low_side | (f == 0), high[active], xa)
-            low[active], high[active] = lo, hi
+            on_low_side = np.sign(f) == low_sign[at]
+            lo = np.where(on_low_side, xa, low[at])
+            hi = np.where(on_low_side | (f == 0), high[at], xa)
+            low[at], high[at] = lo, hi
             newton = xa - f / df
             inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
             step_to = np.where(inside, newton, 0.5 * (lo + hi))
             tiny = np.maximum(STEP * np.maximum(np.abs(xa), 1e-300), xtol)
             done = zero | (inside & (np.abs(newton - xa) <= tiny)) | (hi - lo <= tiny)
-            x[active] = np.where(zero, xa, step_to)
+            x[at] = np.where(zero, xa, step_to)
             active = active[~done]
     return x
 
