@@ -49,6 +49,18 @@ def delete(window: MainWindow) -> None:
     QApplication.processEvents()
 
 
+def test_a_deleted_window_leaves_no_wrapper_of_the_viewports_gl_surface(
+    qtbot, registry, config_folder, no_collection
+):
+    window = shown_window(qtbot, registry, config_folder)
+    close_window(window)
+    delete(window)
+    del window
+    # names only: printing a stale wrapper reads freed memory
+    names = [type(w).__name__ for w in shiboken6.getAllValidWrappers()]
+    assert "QOffscreenSurface" not in names
+
+
 def test_the_inspectors_plot_area_is_deleted_with_its_window_by_qt(
     qtbot, registry, config_folder, no_collection
 ):

@@ -124,6 +124,13 @@ class ViewportPanel(QWidget):
     def close_plotter(self) -> None:
         if self.plotter is not None:
             self.plotter.close()
+            # pyvistaqt keeps Python wrappers of its GL context's QOffscreenSurface, which Qt
+            # deletes with the widget without PySide knowing. Until the interactor was garbage
+            # collected, a new Qt object at that address came back to Python as that stale
+            # wrapper (a segfault or "'QOffscreenSurface' object has no attribute ..." later).
+            forget = getattr(self.plotter, "_forget_context", None)
+            if forget is not None:
+                forget()
             self.plotter = None
 
     # -- updates ---------------------------------------------------------------------
