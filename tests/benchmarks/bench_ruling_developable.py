@@ -171,14 +171,21 @@ def test_200_stations_certified_are_20_times_faster_than_the_directed_search():
     print_table(
         "RulingDevelopable vs the thesis's directed search (5000 candidates)", [("conic sections", result)]
     )
-    # best of each, interleaved in one run: a 1 ms solve timed right after a 30 ms one
-    # starts with cold caches, which the median of pair ratios would charge to it
-    rounds = timed_rounds(
-        [lambda: ruling_developable(pair.a, pair.b, 199), lambda: directed_search(pair.a, pair.b, 199)], 21
-    )
-    ours, brute = (min(times) for times in zip(*rounds, strict=True))
+    # best of each, interleaved in one run, each timed call right after one untimed call of
+    # its own: a 1 ms solve timed right after the 30 ms search runs from caches the search
+    # refilled (measured: 1.6-2.0 ms against 1.1 ms warm), a cost of the bench's order of
+    # calls that the best of each does not remove; the cold figure is printed beside it
+    def solve():
+        return ruling_developable(pair.a, pair.b, 199)
+
+    def search():
+        return directed_search(pair.a, pair.b, 199)
+
+    ours, brute = (min(times) for times in zip(*timed_rounds([solve, search], 21, warm=1), strict=True))
+    cold = min(times[0] for times in timed_rounds([solve, search], 21))
     ratio = ours / brute
-    print(f"\ncertified search {duration(ours)}, brute force {duration(brute)} (best of 21, interleaved)")
+    print(f"\ncertified search {duration(ours)} (timed after the search: {duration(cold)}, "
+          f"{brute / cold:.0f}×), brute force {duration(brute)} (best of 21, interleaved)")
     print(f"200 stations: {1 / ratio:.0f}× faster than the directed search with {CANDIDATES} candidates")
     assert ratio <= 1 / 20
     assert result["ours_error"] < 1e-12

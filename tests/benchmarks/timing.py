@@ -14,12 +14,15 @@ import time
 from collections.abc import Callable
 
 
-def timed_rounds(functions: list[Callable[[], object]], repeats: int) -> list[list[float]]:
+def timed_rounds(functions: list[Callable[[], object]], repeats: int, warm: int = 0) -> list[list[float]]:
     """Wall times in seconds, ``[round][function]``, of ``repeats`` rounds.
 
     Each function is called once untimed first (caches, lazy imports); then every round
     calls all of them in turn. As in :mod:`timeit`, the garbage collector is paused while
-    a call is timed: when it runs depends on what came before, which is noise here.
+    a call is timed: when it runs depends on what came before, which is noise here. With
+    ``warm``, each timed call follows that many untimed calls of the same function, so no
+    function is timed in the caches another one left (a 1 ms solve timed right after a 30 ms
+    one runs from a refilled L2: a cost of the order of the calls, not of the function).
     """
     for function in functions:
         function()
@@ -27,6 +30,8 @@ def timed_rounds(functions: list[Callable[[], object]], repeats: int) -> list[li
     for _ in range(repeats):
         times = []
         for function in functions:
+            for _ in range(warm):
+                function()
             gc.disable()
             try:
                 start = time.perf_counter()
