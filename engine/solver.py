@@ -9,7 +9,6 @@ messages and solve time. An exception in one node never stops the others.
 
 from __future__ import annotations
 
-import math
 import time
 import traceback
 from collections.abc import Callable
@@ -20,8 +19,15 @@ from typing import Any
 import numpy as np
 
 from engine.bounds import within_bounds
+from engine.casting import (  # noqa: F401 - also exported here, where callers found them
+    TRIPLE_OF,
+    array_fits,
+    cast_array_branch,
+    cast_tree,
+    merge_trees,
+)
 from engine.cluster import PORT, ClusterDefinition, ClusterInput, ClusterNode, clone_graph
-from engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path, is_array
+from engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path
 from engine.graph import Graph, NodeRecord, Wire, is_placeholder
 from engine.node import (
     ITEM,
@@ -37,8 +43,7 @@ from engine.node import (
     NodeWarning,
 )
 from engine.solve_context import SolveContext, solving
-from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, VECTOR, CastError, cast, decode_value
-from engine.values import Point, Vector
+from engine.types import CastError, decode_value
 from engine.writes import WriteAccess
 
 OK, WARNING, ERROR, DISABLED, MISSING = "ok", "warning", "error", "disabled", "missing"
@@ -337,105 +342,6 @@ def _describe_exception(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}{where}"
 
 
-def merge_trees(trees: list[DataTree]) -> DataTree:
-    """Several wires into one input: branches with the same path are concatenated."""
-    if len(trees) == 1:
-        return trees[0]
-    merged = DataTree()
-    for tree in trees:
-        for path, branch in tree.raw_items():
-            merged.extend(path, branch)
-    return DataTree(dict(merged.raw_items()))
-
-
-def cast_tree(tree: DataTree, port: In) -> DataTree:
-    """Cast every item of ``tree`` to ``port``'s type (items already right are kept).
-
-    An array branch is checked by its dtype, and cast as a whole array where the cast is
-    plain (Integer to Number, Number to Integer, ...); list branches item by item.
-    """
-    if port.type is GENERIC:
-        return tree
-    classes = port.type.classes
-    needs_cast = False
-    for branch in tree.raw_branches:
-        if is_array(branch):
-            if not array_fits(branch, port):
-                needs_cast = True
-                break
-            continue
-        for item in branch:
-            if type(item) not in classes:
-                needs_cast = True
-                break
-        if needs_cast:
-            break
-    if not needs_cast:
-        return tree
-
-    def convert(item: Any) -> Any:
-        if item is None:
-            return None
-        if isinstance(item, float) and math.isnan(item) and port.type is not TEXT:
-            raise NodeError(f"{port.name} is not a number (NaN)")  # not "empty", and never 0 or True
-        try:
-            return cast(item, port.type)
-        except CastError as exc:
-            raise NodeError(f"input {port.name}: {exc}") from None
-
-    out: dict[Path, Any] = {}
-    for path, branch in tree.raw_items():
-        cast_array = cast_array_branch(branch, port) if is_array(branch) else None
-        if cast_array is not None:
-            out[path] = cast_array
-        else:
-            out[path] = [convert(item) for item in as_list(branch)]
-    return DataTree(out)
-
-
-#: the dtype an array branch has when its items are of a port's type
-_DTYPE_OF = {
-    NUMBER.name: np.dtype(np.float64), INTEGER.name: np.dtype(np.int64), BOOLEAN.name: np.dtype(np.bool_),
-}
-_TRIPLE_OF = {POINT.name: Point, VECTOR.name: Vector}
-_INT_LIMIT = 2.0**62  # floats below this round to an int64 exactly
-
-
-def array_fits(array: np.ndarray | Triples, port: In) -> bool:
-    """Whether an array branch's items are already of ``port``'s type (as a list's would be)."""
-    if isinstance(array, Triples):
-        return _TRIPLE_OF.get(port.type.name) is array.item_class
-    dtype = _DTYPE_OF.get(port.type.name)
-    return dtype is not None and array.dtype == dtype
-
-
-def cast_array_branch(array: np.ndarray | Triples, port: In) -> np.ndarray | Triples | None:
-    """An array branch cast to ``port``'s type as one array, or None to cast item by item
-    (a cast that is not plain, or a value whose message must name it). A NaN is refused
-    as for a list ("... is not a number (NaN)"), never read as 0 or true. Points into a
-    Vector input (and vectors into a Point input) keep their numbers."""
-    if isinstance(array, Triples):
-        item_class = _TRIPLE_OF.get(port.type.name)
-        return None if item_class is None else Triples(array.array, item_class)
-    target = _DTYPE_OF.get(port.type.name)
-    if target is None:
-        return None
-    if array.dtype == target:
-        return array
-    kind = array.dtype.kind
-    if kind == "f":
-        if np.isnan(array).any():
-            raise NodeError(f"{port.name} is not a number (NaN)")
-        if target.kind == "b":
-            return array != 0
-        if not (np.abs(array) < _INT_LIMIT).all():  # inf or huge: the item's own message
-            return None
-        return np.rint(array).astype(np.int64)  # round half to even, as round() does
-    if target.kind == "b":
-        return array != 0
-    return array.astype(target)
-
-
 # --------------------------------------------------------------------------- matching
 
 def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> dict[str, DataTree]:
@@ -558,7 +464,7 @@ def _for_port(branch: Branch, port: In) -> Branch:
     or Vector input, as Triples into any other, which keeps what its rows are), otherwise
     a list of Python values."""
     if port.arrays and port.access is LIST:
-        return branch.array if isinstance(branch, Triples) and port.type.name in _TRIPLE_OF else branch
+        return branch.array if isinstance(branch, Triples) and port.type.name in TRIPLE_OF else branch
     return as_list(branch)
 
 
@@ -664,7 +570,7 @@ def _store(
                 column.append(value)
     for port, column in zip(out_ports, columns, strict=True):
         tree = outputs[port.name]
-        if port.access is LIST and port.type.name in _TRIPLE_OF:  # (n, 3) arrays: Triples
+        if port.access is LIST and port.type.name in TRIPLE_OF:  # (n, 3) arrays: Triples
             column = [_as_triples(values, port) for values in column]
         if port.access is ITEM:
             tree.extend(path, column)
@@ -686,7 +592,7 @@ def _as_triples(values: Any, port: Any) -> Any:
     """A node's ``(n, 3)`` float array for a list output of points or vectors, as Triples."""
     if (isinstance(values, np.ndarray) and values.ndim == 2 and values.shape[1] == 3
             and values.dtype.kind in "fi"):
-        return Triples(values, _TRIPLE_OF[port.type.name])
+        return Triples(values, TRIPLE_OF[port.type.name])
     return values
 
 
