@@ -393,6 +393,21 @@ def nest(
                             key=lambda i: -area[i])
             full = density * (room_length + 2 * spacing) * strip_height  # part area at the strip's density
             free = SHEET_DENSITY * full - sum(area[i] for i in chosen)
+
+            def fitted(members: list[int], trial_steps: int) -> dict | None:
+                """``members`` packed onto the sheet by one sparrow trial, or None if they
+                do not all fit inside it (less its margin, ``spacing`` apart)."""
+                nonlocal attempt_seed
+                trial = _strip(centred, members, strip_height, spacing, orientations,
+                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
+                attempt_seed += 1
+                if trial is None or len(trial) != len(members):
+                    return None
+                trial_polygons = polygons_of(trial)
+                if max(p.bounds[2] for p in trial_polygons.values()) > width - margin:
+                    return None
+                return trial if len(_valid(trial_polygons, room, spacing)) == len(members) else None
+
             for candidate in crossing + others:
                 rest = sum(area[i] for i in remaining if i not in chosen)
                 # the next sheet is likely the last: keep a share of the budget for it
@@ -402,17 +417,8 @@ def nest(
                     break
                 if area[candidate] > free:
                     continue
-                members = [*chosen, candidate]
-                trial = _strip(centred, members, strip_height, spacing, orientations,
-                               trial_steps, attempt_seed, run,
-                               enough=room_length + 2 * spacing)
-                attempt_seed += 1
-                if trial is None or len(trial) != len(members):
-                    continue
-                trial_polygons = polygons_of(trial)
-                if max(p.bounds[2] for p in trial_polygons.values()) > width - margin:
-                    continue
-                if len(_valid(trial_polygons, room, spacing)) == len(members):
+                trial = fitted([*chosen, candidate], trial_steps)
+                if trial is not None:
                     chosen = trial
                     free -= area[candidate]
             # swaps: the largest part left for the smallest on the sheet, while the sheet stays
@@ -428,16 +434,8 @@ def nest(
                 trial_steps = round(min(run.left() - reserve, run.steps * TRIAL_SHARE))
                 if run.stopped or trial_steps < FEWEST_TRIAL:
                     break
-                members = [*(i for i in chosen if i != out), swap_in]
-                trial = _strip(centred, members, strip_height, spacing, orientations,
-                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
-                attempt_seed += 1
-                if trial is None or len(trial) != len(members):
-                    continue
-                trial_polygons = polygons_of(trial)
-                if max(p.bounds[2] for p in trial_polygons.values()) > width - margin:
-                    continue
-                if len(_valid(trial_polygons, room, spacing)) == len(members):
+                trial = fitted([*(i for i in chosen if i != out), swap_in], trial_steps)
+                if trial is not None:
                     chosen = trial
         if not chosen:  # sparrow spread even the first part past the sheet: place one alone
             largest = max(remaining, key=lambda i: area[i])
