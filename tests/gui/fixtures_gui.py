@@ -241,3 +241,18 @@ def stop_menu_catchers() -> Iterator[None]:
     while (popup := QApplication.activePopupWidget()) is not None:  # none may outlive its test
         popup.close()
         QApplication.processEvents()
+
+
+@pytest.fixture
+def first_steps(qtbot, window):
+    """The window with the first-steps example open and solved."""
+    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
+    wait_solved(qtbot, window)
+    qtbot.wait(50)
+    return window
+
+
+def title_point(window: MainWindow, node_id: str) -> QPoint:
+    """The point of the view on node ``node_id``'s title bar."""
+    item = window.scene.nodes[node_id]
+    return view_point(window, item.mapToScene(QPointF(item.size()[0] / 2, 8)))

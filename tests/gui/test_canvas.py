@@ -16,15 +16,7 @@ from app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListW
 from app.gui.fuzzy import build_entries, search
 from app.gui.icons import node_letters
 from engine.graphfile import loads
-from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, double_click, drag, port_point, view_point, wait_solved
-
-
-@pytest.fixture
-def first_steps(qtbot, window):
-    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
-    wait_solved(qtbot, window)
-    qtbot.wait(50)
-    return window
+from tests.gui.fixtures_gui import FIXTURES, double_click, drag, port_point, view_point, wait_solved
 
 
 def node_centre(window, node_id: str) -> QPoint:

@@ -5,17 +5,7 @@ from __future__ import annotations
 
 import itertools
 
-import pytest
-
 from app.gui.canvas.port_item import HIT_R
-from tests.gui.fixtures_gui import EXAMPLES, wait_solved
-
-
-@pytest.fixture
-def first_steps(qtbot, window):
-    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
-    wait_solved(qtbot, window)
-    return window
 
 
 def test_wires_draw_above_group_boxes_and_nodes(first_steps):

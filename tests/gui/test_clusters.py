@@ -17,24 +17,19 @@ from PySide6.QtWidgets import QApplication, QDialogButtonBox, QLineEdit, QListWi
 from app.gui.cluster_widgets import ClusterPortsDialog
 from app.headless import run_file
 from engine.cluster import is_cluster
-from tests.gui.fixtures_gui import EXAMPLES, double_click, drag, right_click, view_point, wait_solved
+from tests.gui.fixtures_gui import (
+    EXAMPLES,
+    double_click,
+    drag,
+    right_click,
+    title_point,
+    view_point,
+    wait_solved,
+)
 
 CTRL = Qt.KeyboardModifier.ControlModifier
 INNER = {"edges", "total", "heights"}  # the Series and the two Expressions of first-steps
 OUTSIDE = ("width", "count", "wave", "show_heights", "show_total")
-
-
-@pytest.fixture
-def first_steps(qtbot, window):
-    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
-    wait_solved(qtbot, window)
-    qtbot.wait(50)
-    return window
-
-
-def title_point(window: Any, node_id: str) -> QPoint:
-    item = window.scene.nodes[node_id]
-    return view_point(window, item.mapToScene(QPointF(item.size()[0] / 2, 8)))
 
 
 def select_inner_nodes(window: Any) -> None:

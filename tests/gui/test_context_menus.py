@@ -5,30 +5,23 @@ from __future__ import annotations
 
 from typing import Any
 
-import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
 from PySide6.QtGui import QContextMenuEvent
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QInputDialog
 
 from app.gui.canvas.wire_item import WireItem
-from tests.gui.fixtures_gui import EXAMPLES, MenuCatcher, port_point, right_click, view_point, wait_solved
+from tests.gui.fixtures_gui import (
+    MenuCatcher,
+    port_point,
+    right_click,
+    title_point,
+    view_point,
+    wait_solved,
+)
 
 RIGHT = Qt.MouseButton.RightButton
 NONE = Qt.KeyboardModifier.NoModifier
-
-
-@pytest.fixture
-def first_steps(qtbot, window):
-    assert window.open_file(EXAMPLES / "first-steps.graph", ask=False)
-    wait_solved(qtbot, window)
-    qtbot.wait(50)
-    return window
-
-
-def title_point(window: Any, node_id: str) -> QPoint:
-    item = window.scene.nodes[node_id]
-    return view_point(window, item.mapToScene(QPointF(item.size()[0] / 2, 8)))
 
 
 def wire_point(window: Any, source: str, target: str, target_port: str) -> QPoint:
