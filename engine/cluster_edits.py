@@ -239,6 +239,10 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     node = ClusterNode(definition)
     cluster_id = node_id or graph.new_id(name)
     graph.add_node(node, cluster_id, position=centre, type_id=CLUSTER_TYPE)
+    # the cluster takes its first node's place in the node order (and the file's)
+    first = min(nodes_before.index(n) for n in ids)
+    _reorder_nodes(graph, [*(n for n in nodes_before[:first]), cluster_id,
+                           *(n for n in nodes_before[first:] if n not in chosen)])
     in_name = dict(zip(in_keys, in_names, strict=True))
     out_name = dict(zip(out_keys, out_names, strict=True))
     replaced: dict[Wire, list[Wire]] = {}
@@ -255,8 +259,10 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     _restore_orders(graph, {key: [new for old in wires for new in replaced.get(old, [old])]
                             for key, wires in feeding_orders.items()})
     kept_groups = {g.id for g in shared_groups}
-    for group in shared_groups:
-        group.nodes.append(cluster_id)
+    for group in shared_groups:  # in each group, the cluster takes its first member's place
+        before = members_before[group.id]
+        first = min(before.index(n) for n in chosen if n in before)
+        group.nodes.insert(len([n for n in before[:first] if n not in chosen]), cluster_id)
     node.origin_groups = {n: [g for g in groups_of[n] if g in kept_groups] for n in ids}
     node.origin_members = members_before
     node.origin_order = (nodes_before, wires_before)
@@ -388,6 +394,8 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
     feeding_orders = _port_orders(graph, outgoing, replaced)
     cluster_groups = [g for g in graph.groups if node_id in g.nodes]
     info = cluster_instance(graph, node_id)
+    nodes_before = list(graph.nodes)
+    members_before = {g.id: list(g.nodes) for g in cluster_groups}
 
     graph.remove_node(node_id)
     try:
@@ -426,8 +434,14 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
         _restore_order(graph, node.origin_order, mapping)
         group_rank = {g: i for i, g in enumerate(node.origin_group_order)}
         graph.groups.sort(key=lambda g: group_rank.get(g.id, len(group_rank)))
+    else:  # the inner nodes stand where the cluster stood in the node order (and the file's)
+        _reorder_nodes(graph, [m for n in nodes_before
+                               for m in ([mapping[r.id] for r in body] if n == node_id else [n])])
     for group in graph.groups:  # members back in the order they had before clustering
         before = node.origin_members.get(group.id)
+        if before is None and group.id in members_before:  # the inner nodes where the cluster was
+            before = [m for n in members_before[group.id]
+                      for m in ([r.id for r in body] if n == node_id else [n])]
         if before is not None:
             rank = {mapping.get(m, m): i for i, m in enumerate(before)}
             group.nodes.sort(key=lambda m: rank.get(m, len(rank)))
@@ -436,19 +450,25 @@ def explode_cluster(graph: Graph, node_id: str) -> list[str]:
     return [mapping[r.id] for r in body]
 
 
-def _restore_order(graph: Graph, before: tuple[list[str], list[Wire]], mapping: dict[str, str]) -> None:
-    """Put nodes and wires back in the order they had before clustering (those added since
-    go last); wires are reconnected only from the first one out of place."""
-    from engine.graph_records import Wire
-
-    nodes, wires = before
-    rank = {mapping.get(n, n): i for i, n in enumerate(nodes)}
+def _reorder_nodes(graph: Graph, nodes: list[str]) -> None:
+    """Put the graph's nodes in the order of ``nodes`` (those not named go last, in their
+    order); the node order is the file's, it never changes the solve."""
+    rank = {n: i for i, n in enumerate(nodes)}
     order = sorted(graph.nodes, key=lambda n: rank.get(n, len(rank)))
     if order != list(graph.nodes):
         records = dict(graph.nodes)
         graph.nodes.clear()
         graph.nodes.update((n, records[n]) for n in order)
         graph._order = None
+
+
+def _restore_order(graph: Graph, before: tuple[list[str], list[Wire]], mapping: dict[str, str]) -> None:
+    """Put nodes and wires back in the order they had before clustering (those added since
+    go last); wires are reconnected only from the first one out of place."""
+    from engine.graph_records import Wire
+
+    nodes, wires = before
+    _reorder_nodes(graph, [mapping.get(n, n) for n in nodes])
 
     def renamed(wire: Wire) -> Wire:
         return Wire(mapping.get(wire.source, wire.source), wire.source_port,

@@ -268,6 +268,36 @@ def test_explode_keeps_a_definition_another_instance_uses(kit: Registry) -> None
     assert "doublesum" in graph.clusters
 
 
+def test_save_reload_explode_save_gives_back_the_shipped_file(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    graph.make_cluster(INNER, name="Panels")
+    reloaded = loads(dumps(graph), library)  # no memory of the make: explode works from the file
+    reloaded.explode_cluster("panels")
+    assert dumps(reloaded) == FIRST_STEPS.read_text(encoding="utf-8")
+
+
+def test_a_saved_cluster_stands_in_its_first_nodes_place(library: Registry) -> None:
+    graph, _ = first_steps(library)
+    graph.make_cluster(INNER, name="Panels")
+    data = json.loads(dumps(graph))
+    nodes = [n["id"] for n in data["nodes"]]
+    assert nodes == ["width", "count", "wave", "panels", "show_heights", "show_total"]
+    layout = next(g for g in data["groups"] if g["id"] == "layout")
+    assert layout["nodes"] == ["panels", "show_heights", "show_total"]
+
+
+def test_explode_of_a_loaded_cluster_puts_its_nodes_where_it_stands_in_the_file(kit: Registry) -> None:
+    graph = two_adds(kit)
+    graph.make_cluster(["sum", "twice"], name="Double sum")
+    data = json.loads(dumps(graph))
+    data["nodes"].sort(key=lambda n: n["id"] != "doublesum")  # the cluster first in the file
+    reloaded = loads(json.dumps(data), kit)
+    reloaded.explode_cluster("doublesum")
+    saved = json.loads(dumps(reloaded))
+    assert [n["id"] for n in saved["nodes"]] == ["sum", "twice", "a", "b", "shown"]
+    assert "clusters" not in saved
+
+
 # --------------------------------------------------------------------------- instances and editing
 
 def two_instances(kit: Registry) -> tuple[Graph, str, str]:
