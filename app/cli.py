@@ -2,6 +2,8 @@
 
     torsal run FILE.graph [--set ID=VALUE ...] [--json] [--out DIR] [--export ID.PORT=PATH ...]
                [--allow-writes]
+        (--set CLUSTER/ID=VALUE sets a node inside a cluster: CLUSTER is an instance's id or its
+        definition's id; the definition is shared, so every instance of it gets the value)
     torsal check FILE.graph
     torsal nodes [--json]
     torsal sweep FILE.graph --vary ID=LO:HI:N ... --collect NODE.OUTPUT ... --out DIR  (see app/explore)
@@ -53,7 +55,9 @@ def _parser() -> argparse.ArgumentParser:
     run = commands.add_parser("run", help="solve a .graph file and report its results")
     run.add_argument("file", type=Path, help="the .graph file")
     run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
-                     help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48)")
+                     help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48); "
+                     "inside a cluster, CLUSTER/ID=VALUE (CLUSTER: an instance's or its definition's id; "
+                     "deeper: A/B/ID): it changes the definition, so every instance of it")
     run.add_argument("--json", action="store_true", help="print the results as one JSON object")
     run.add_argument("--verbose", "-v", action="store_true",
                      help="also print how long each node took (slowest first)")
@@ -102,6 +106,8 @@ def _run(args: argparse.Namespace) -> int:
             raise UsageError(f"--out {args.out}: cannot create that folder ({exc.strerror or exc})") from None
     run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out,
                    node_progress=_progress_line() if sys.stderr.isatty() else None)
+    for note in run.notes:
+        print(f"torsal: note: {note}", file=sys.stderr)
     for request in args.export:
         target, sep, destination = request.partition("=")
         node_id, dot, port = target.partition(".")

@@ -34,6 +34,8 @@ class Run:
     registry: Registry = field(repr=False, default_factory=Registry)
     #: the files ``--export`` wrote, in order
     exported: list[Path] = field(default_factory=list)
+    #: remarks on the ``--set`` assignments (one reaching every instance of a cluster...)
+    notes: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -96,11 +98,68 @@ def parse_assignment(text: str) -> tuple[str, str | None, Any]:
     return node_id, port or None, value
 
 
-def apply_assignment(graph: Graph, text: str) -> None:
-    """Apply one ``--set``: a node's ``value`` setting, or an input's persistent value."""
-    node_id, port, value = parse_assignment(text)
-    if node_id not in graph.nodes:
-        raise UsageError(f"--set {text}: there is no node with id {node_id!r}")
+@dataclass
+class Target:
+    """Where one ``--set`` lands: a node of ``graph`` (the file's graph, or the inner graph
+    of the cluster definition ``definition``, shared by every instance of it)."""
+
+    graph: Graph
+    node_id: str
+    path: str  # as the user wrote it: ``panels/width``
+    definition: Any = None  # a ClusterDefinition, or None at the top level
+    port: str | None = None  # the input set, or None for the node's value setting
+
+
+def resolve_target(graph: Graph, node_path: str, text: str) -> Target:
+    """The node a ``--set`` names: ``ID`` at the top level, or ``CLUSTER/ID`` (and deeper,
+    ``CLUSTER/INNER_CLUSTER/ID``) inside a cluster, each step an instance's node id or a
+    definition's id."""
+    if node_path in graph.nodes or "/" not in node_path:
+        if node_path not in graph.nodes:
+            raise UsageError(f"--set {text}: there is no node with id {node_path!r}")
+        return Target(graph, node_path, node_path)
+    from engine.cluster import ClusterNode
+
+    *steps, inner_id = node_path.split("/")
+    current, definition, walked = graph, None, []
+    for step in steps:
+        walked.append(step)
+        record = current.nodes.get(step)
+        if record is not None and isinstance(record.node, ClusterNode):
+            definition = record.node.definition
+        elif step in graph.clusters:
+            definition = graph.clusters[step]
+        else:
+            place = f"inside {'/'.join(walked[:-1])}" if walked[:-1] else "at the top level"
+            raise UsageError(f"--set {text}: there is no cluster or cluster definition {step!r} {place}")
+        current = definition.graph
+    if inner_id not in current.nodes:
+        names = ", ".join(sorted(current.nodes)) or "none"
+        raise UsageError(f"--set {text}: cluster definition {definition.id!r} ({definition.name}) has no "
+                         f"node {inner_id!r} (its nodes: {names})")
+    return Target(current, inner_id, node_path, definition)
+
+
+def apply_assignment(graph: Graph, text: str) -> Target:
+    """Apply one ``--set``: a node's ``value`` setting, or an input's persistent value.
+
+    ``CLUSTER/ID=VALUE`` sets a node inside a cluster's definition; the definition is
+    shared, so every instance of it changes (as editing a definition on the canvas does).
+    Returns where it landed.
+    """
+    node_path, port, value = parse_assignment(text)
+    target = resolve_target(graph, node_path, text)
+    target.port = port
+    if target.definition is None:
+        _assign(graph, target.node_id, port, value, text)
+        return target
+    edited = graph.cluster_graph(target.definition.id)
+    _assign(edited, target.node_id, port, value, text)
+    graph.set_cluster_graph(target.definition.id, edited)
+    return target
+
+
+def _assign(graph: Graph, node_id: str, port: str | None, value: Any, text: str) -> None:
     record = graph.nodes[node_id]
     if port is None:
         if "value" not in record.node.settings:
@@ -119,6 +178,22 @@ def apply_assignment(graph: Graph, text: str) -> None:
         sources = " and ".join(f"{w.source}.{w.source_port}" for w in feeding)
         raise UsageError(f"--set {text}: {node_id}.{port} is wired from {sources}: set the source")
     graph.set_input_value(node_id, port, value)
+
+
+def shared_note(graph: Graph, target: Target) -> str | None:
+    """A sentence when a ``--set`` inside a definition changes more than the instance named
+    (the definition is shared by all its instances); None otherwise."""
+    if target.definition is None:
+        return None
+    from engine.cluster import instances
+
+    definition = target.definition
+    users = [*instances(graph, definition.id),
+             *(f"{d.id}/{n}" for d in graph.clusters.values() for n in instances(d.graph, definition.id))]
+    if len(users) < 2:
+        return None
+    return (f"--set {target.path} changes cluster definition {definition.id!r} ({definition.name}), "
+            f"shared by {len(users)} instances ({', '.join(users)}): all of them get the new value")
 
 
 def run_file(
@@ -140,15 +215,31 @@ def run_file(
         graph, registry = open_graph(path, registry)
     except GraphFileError as exc:
         raise UsageError(f"{path}: {exc}") from None
+    notes: list[str] = []
+    inside: dict[tuple[str, str, str | None], Target] = {}  # (definition, inner node, port) → --set
     try:
         for assignment in assignments:
-            apply_assignment(graph, assignment)
+            target = apply_assignment(graph, assignment)
+            if target.definition is None:
+                continue
+            key = (target.definition.id, target.node_id, target.port)
+            earlier = inside.get(key)
+            if earlier is not None and earlier.path != target.path:
+                raise UsageError(
+                    f"--set {assignment} and --set {earlier.path}=… reach the same node "
+                    f"{target.node_id!r} of "
+                    f"cluster definition {target.definition.id!r}, which every instance shares: "
+                    "a definition's nodes have one value for all its instances (set it once)")
+            inside[key] = target
+            note = shared_note(graph, target)
+            if note is not None:
+                notes.append(note)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
     folder = write_folder if write_folder is not None else Path(path).resolve().parent
     solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes))
     report = solver.solve(node_progress=node_progress)
-    return Run(Path(path), graph, solver, report, registry)
+    return Run(Path(path), graph, solver, report, registry, notes=notes)
 
 
 def summary(run: Run) -> str:
