@@ -7,6 +7,10 @@ is called, with one sentence naming the input (Segments 0: "Segments must be at 
 once"). The node is put in warning and makes nothing, as for any input a check refuses.
 The same declaration is what a front-end shows: the inspector lists the bounds of each
 input and a slider wired into a bounded input is kept within them.
+
+An input that is a value list declares ``choices`` (its numbers and their names): any
+other value is refused with the choices ("Placement is 5, not one of its choices: 0
+Beside model, 1 Origin, 2 On plane"), not with a count's wording.
 """
 
 from __future__ import annotations
@@ -37,8 +41,16 @@ def _text(value: float) -> str:
     return shown(value) if isinstance(value, int) else f"{value:g}"
 
 
+def choices_text(port: In) -> str:
+    """A value list's choices as messages show them: "0 Beside model, 1 Origin"."""
+    return ", ".join(f"{value} {name}" for value, name in port.choices)
+
+
 def bounds_text(port: In) -> str:
-    """The bounds as the inspector shows them ("1 to 100,000", "0 or more"), or ""."""
+    """The bounds as the inspector shows them ("1 to 100,000", "0 or more", a value
+    list's "0 Beside model, 1 Origin"), or ""."""
+    if port.choices:
+        return choices_text(port)
     low, high = port.min, port.max
     if low is not None and high is not None:
         return f"{_text(low)} to {_text(high)}"
@@ -51,6 +63,10 @@ def bounds_text(port: In) -> str:
 
 def refusal(port: In, value: float) -> str | None:
     """The sentence refusing ``value`` for ``port``, or None when it is within the bounds."""
+    if port.choices:
+        if any(value == choice for choice, _ in port.choices):
+            return None
+        return f"{port.name} is {_text(value)}, not one of its choices: {choices_text(port)}"
     if port.min is not None and value < port.min:
         return f"{port.name} must be at least {_text(port.min)}, not {_text(value)}"
     if port.max is not None and value > port.max:
@@ -64,7 +80,7 @@ def within_bounds(tree: DataTree, port: In) -> DataTree:
     """``tree`` unchanged when every number in it lies within ``port``'s bounds; otherwise a
     :class:`~engine.node.NodeWarning` naming the input and the smallest (or the largest)
     value outside them. One pass over the items, however many branches they are in."""
-    if port.min is None and port.max is None:
+    if port.min is None and port.max is None and not port.choices:
         return tree
     lists = [b for b in tree.raw_branches if not is_array(b)]
     numbers = [v for v in chain.from_iterable(lists) if type(v) is int or type(v) is float]
@@ -80,4 +96,14 @@ def within_bounds(tree: DataTree, port: In) -> DataTree:
             message = refusal(port, value)
             if message is not None:
                 raise NodeWarning(message)
+    if port.choices:  # between the least and the greatest there may be values that are no choice
+        allowed = np.array([value for value, _ in port.choices], dtype=float)
+        values = np.asarray(numbers, dtype=float)
+        for array in tree.raw_branches:
+            if isinstance(array, np.ndarray) and array.dtype.kind in "if" and len(array):
+                kept = array[~np.isnan(array)] if array.dtype.kind == "f" else array
+                values = np.concatenate([values, kept])
+        outside = values[~np.isin(values, allowed)]
+        if len(outside):
+            raise NodeWarning(refusal(port, outside[0].item()) or "")
     return tree

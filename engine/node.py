@@ -87,7 +87,8 @@ class In:
     default and not ``optional`` must receive data. ``multiple`` lets an item-access
     input take several wires (list and tree inputs always may). ``min`` and ``max``
     bound a number input: the solver refuses a value outside them, naming the input
-    (:mod:`engine.bounds`), and front-ends show them. ``arrays=True`` on a list input:
+    (:mod:`engine.bounds`), and front-ends show them; ``choices`` make a whole-number
+    input a value list (its numbers and their names), refused likewise. ``arrays=True`` on a list input:
     a branch of numbers, integers or booleans arrives as the read-only numpy array the
     tree holds (no conversion); points or vectors as their ``(n, 3)`` array into a Point
     or Vector input, as :class:`~engine.datatree.Triples` into any other; other branches
@@ -108,6 +109,9 @@ class In:
     min: float | None = None
     max: float | None = None
     arrays: bool = False
+    #: a value list's choices, ``((0, "Beside model"), (1, "Origin"), ...)``: the solver
+    #: refuses any other value, naming the input and the choices
+    choices: tuple[tuple[int, str], ...] = ()
 
     @property
     def has_default(self) -> bool:
