@@ -165,7 +165,7 @@ class SliderWidget(InlineWidget):
         if value == self.drag_value:
             return
         self.drag_value = value
-        self.item.update()
+        self.item.update_widget()
         self.editor.drag_setting(self.item.node_id, "value", value, self._drag_key)
 
     def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:

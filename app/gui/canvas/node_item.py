@@ -63,6 +63,8 @@ class NodeItem(QGraphicsRectItem):
             QGraphicsItem.GraphicsItemFlag.ItemIsMovable
             | QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
             | QGraphicsItem.GraphicsItemFlag.ItemSendsGeometryChanges
+            # paint() learns the part to draw (option.exposedRect): see update_widget
+            | QGraphicsItem.GraphicsItemFlag.ItemUsesExtendedStyleOption
         )
         self.setAcceptHoverEvents(True)
         # Painted once into a pixmap and reused: repaints (scrolling, a wire moving over it)
@@ -114,8 +116,10 @@ class NodeItem(QGraphicsRectItem):
         """A note (the node asks for Widget.PANEL): ports without labels, resized to its text."""
         return self.record.node.widget is Widget.PANEL
 
-    def rebuild(self) -> None:
-        """Recompute the layout and ports (after a change to settings, modifiers, label)."""
+    def rebuild(self) -> bool:
+        """Recompute the layout and ports (after a change to settings, modifiers, label).
+        True if the node's outline or any of its ports moved (its wires must follow)."""
+        before = self._geometry()
         self.prepareGeometryChange()
         inputs, outputs = self.port_names()
         widget_size = self.widget.size() if self.widget is not None else None
@@ -146,6 +150,21 @@ class NodeItem(QGraphicsRectItem):
             port.set_has_value(bool(state and state.has_value))
         self.setRect(self.layout.rect)
         self.update()
+        return self._geometry() != before
+
+    def _geometry(self) -> tuple[object, ...]:
+        """The node's rectangle and where each of its ports is (what its wires attach to)."""
+        rect = self.rect()
+        ports = tuple((key, id(port), port.pos().x(), port.pos().y()) for key, port in self.ports.items())
+        return (rect.x(), rect.y(), rect.width(), rect.height(), ports)
+
+    def update_widget(self) -> None:
+        """Draw the inline widget again, and only it: a slider drag moves the handle on
+        every mouse move, and the rest of the node stays as it is in the item's cache."""
+        if self.layout is not None and self.layout.widget_rect is not None:
+            self.update(self.layout.widget_rect)
+        else:
+            self.update()
 
     def drawn_from_wires(self) -> bool:
         """Whether the wires into this node change how it is drawn: a placeholder's ports
@@ -159,12 +178,22 @@ class NodeItem(QGraphicsRectItem):
         return self.ports.get((False, name))
 
     def set_result(self, result: NodeResult | None) -> None:
+        """Show ``result``: repainted only if it changes what is drawn (a slider drag gives
+        every node downstream a new result each solve, mostly in the same state)."""
         resize = self.widget is not None and self.is_panel
+        before = self.drawn_state()
         self.result = result
         if resize:
             self.rebuild()
-        else:
+        elif self.drawn_state() != before:
             self.update()
+
+    def drawn_state(self) -> tuple[str, str]:
+        """What of the result the node draws: its state (the body colour) and the worst
+        level of its messages (the balloon)."""
+        messages = self.result.messages if self.result is not None else ()
+        worst = max(m.level for m in messages).name if messages else ""
+        return self.state, worst
 
     def size(self) -> tuple[float, float]:
         return (self.layout.width, self.layout.height)
@@ -225,6 +254,14 @@ class NodeItem(QGraphicsRectItem):
         if self.state == "disabled":
             painter.setOpacity(0.55)
         body = self.body_colour()
+        around = layout.widget_rect.adjusted(-2, -2, 2, 2) if layout.widget_rect is not None else None
+        if self.widget is not None and around is not None and around.contains(option.exposedRect):
+            # only the inline widget is to be drawn again (a slider's handle moved, see
+            # update_widget): in and just around its rectangle the node is its body colour
+            # (the port labels and the title bar are further away) and the widget
+            painter.fillRect(around, body)
+            self.widget.paint(painter, layout.widget_rect)
+            return
         outline = QPen(
             theme.SELECTED_OUTLINE if self.isSelected() else theme.NODE_OUTLINE,
             2.0 if self.isSelected() else 1.0,
