@@ -63,6 +63,8 @@ class CanvasScene(QGraphicsScene):
         self.grid = NodeGrid()  # node rectangles, for wires to bend around
         self._moved_boxes: dict[str, QRectF] = {}  # where moved nodes were and went: wires near re-route
         self._removed_boxes: list[QRectF] = []  # where removed nodes were: detours near re-route
+        self._added_boxes: list[QRectF] = []  # where nodes were added (pasted...): wires there re-route
+        self._routed_since_added: set[Wire] = set()  # wires made after the last node added: routed
         self._highlighted: set[Wire] = set()
         self._syncing_move = False
         self._rect_due = False  # the scene rectangle waits for the end of the edit
@@ -103,6 +105,8 @@ class CanvasScene(QGraphicsScene):
         self.grid.clear()
         self._moved_boxes.clear()
         self._removed_boxes.clear()
+        self._added_boxes.clear()
+        self._routed_since_added.clear()
         graph = self.doc.graph
         for record in graph.nodes.values():
             self._add_node(record.id)
@@ -155,7 +159,8 @@ class CanvasScene(QGraphicsScene):
     def on_graph_event(self, event: GraphEvent) -> None:
         node_id = event.node_id
         if isinstance(event, NodeAdded):
-            self._add_node(node_id)
+            self._added_boxes.append(self._add_node(node_id).sceneBoundingRect())
+            self._routed_since_added.clear()
         elif isinstance(event, NodeRemoved):
             item = self.nodes.pop(node_id, None)
             self._wires_of.pop(node_id, None)
@@ -167,6 +172,8 @@ class CanvasScene(QGraphicsScene):
                 self._remove_node_item(item)
         elif isinstance(event, WireAdded):
             self._add_wire(event.wire)
+            if self._added_boxes:
+                self._routed_since_added.add(event.wire)
             self._rewired(event.wire.target)
         elif isinstance(event, WireRemoved):
             self._remove_wire(event.wire)
@@ -210,23 +217,30 @@ class CanvasScene(QGraphicsScene):
         if self._moved_boxes:
             boxes, self._moved_boxes = list(self._moved_boxes.values()), {}
             self.reroute_near(boxes)
+        if self._added_boxes:  # a node pasted or placed on a wire: the wire goes round it
+            boxes, self._added_boxes = self._added_boxes, []
+            routed, self._routed_since_added = self._routed_since_added, set()
+            self.reroute_near(boxes, skip=routed)  # a paste's own wires were routed with its nodes there
         if self._removed_boxes:
             boxes, self._removed_boxes = self._removed_boxes, []
             self.reroute_near(boxes, detours_only=True)
 
-    def reroute_near(self, boxes: list[QRectF], detours_only: bool = False) -> None:
+    def reroute_near(self, boxes: list[QRectF], detours_only: bool = False,
+                     skip: set[Wire] | frozenset[Wire] = frozenset()) -> None:
         """Route again the wires whose course comes near ``boxes``: the places nodes moved
-        from and to, which wires not their own may have to bend around or may now pass
-        straight by (a node's own wires follow it as it moves). With ``detours_only`` (the
+        from and to or were added at, which wires not their own may have to bend around or
+        may now pass straight by (a node's own wires follow it as it moves). With ``detours_only`` (the
         places of removed nodes, which no wire has to bend around now) only the wires that
         make a detour are looked at: deleting a thousand nodes costs no re-routing of the
-        rest."""
+        rest. Wires in ``skip`` are left as they are."""
         if len(boxes) > 64:  # a bulk edit: one box round them all
             union = QRectF(boxes[0])
             for box in boxes[1:]:
                 union = union.united(box)
             boxes = [union]
-        for wire_item in self.wires.values():
+        for wire, wire_item in self.wires.items():
+            if wire in skip:
+                continue
             path = wire_item.path()
             if detours_only and path.elementCount() <= 4:  # a plain curve: nothing to undo
                 continue
@@ -245,8 +259,8 @@ class CanvasScene(QGraphicsScene):
         item = self.nodes.get(node_id) if node_id else None
         if item is None:
             return
-        item.rebuild()
-        self.node_item_moved(item)
+        if item.rebuild():  # a slider's new value moves nothing: its wires stay as routed
+            self.node_item_moved(item)
 
     def node_item_moved(self, item: NodeItem) -> None:
         """Keep wires and group boxes attached while an item moves; the wires of other
