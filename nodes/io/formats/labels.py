@@ -3,6 +3,7 @@ placed inside a panel as large as it allows (used by :mod:`nodes.io.formats.cutf
 
 from __future__ import annotations
 
+import gc
 import importlib.util
 import math
 import threading
@@ -45,6 +46,27 @@ def _load_font() -> Any:
     return TTFontRenderer(TTFont(font_file()))
 
 
+def _load_font_quietly() -> Any:
+    """:func:`_load_font` without the full garbage collection it would set off.
+
+    Importing ezdxf and parsing the font make ~50,000 objects that live as long as the
+    process (modules, classes, glyph tables), four times the heap of a fresh process:
+    enough to set off a full collection in the middle of the load, 70-350 ms that hold
+    the interpreter lock, so no other thread (a node looking at its cancel token, the
+    canvas) runs meanwhile. So the collector waits during the load, and the objects it
+    made then go to the collector's permanent generation (:func:`gc.freeze`), which no
+    later collection walks. The price: whatever was cyclic garbage at that moment stays
+    (once a process, a fraction of a second's worth)."""
+    paused = gc.isenabled()
+    gc.disable()
+    try:
+        return _load_font()
+    finally:
+        gc.freeze()
+        if paused:
+            gc.enable()
+
+
 _LOADING_LOCK = threading.Lock()
 
 
@@ -55,7 +77,7 @@ def _loading() -> Future[Any]:
 
     def load() -> None:
         try:
-            future.set_result(_load_font())
+            future.set_result(_load_font_quietly())
         except BaseException as exc:  # handed to the caller by future.result()
             future.set_exception(exc)
 
