@@ -48,6 +48,14 @@ class SplineValues:
         return _evaluate(self.knots, self.coefficients, self.degree, x, nu, True)
 
 
+    def orders(self, u: FloatArray, orders: int) -> list[FloatArray]:
+        """``[spline(u, nu=k) for k in range(orders)]``, ``u`` converted once for all of them."""
+        if self.knots is None or _evaluate is None:
+            return [self.spline(u, nu=k) for k in range(orders)]
+        x = np.ascontiguousarray(u, dtype=np.float64).reshape(-1)
+        knots, coefficients, degree = self.knots, self.coefficients, self.degree
+        return [_evaluate(knots, coefficients, degree, x, k, True) for k in range(orders)]
+
     def rows(self, u: FloatArray, orders: int, out: FloatArray) -> None:
         """``out[k] = spline(u, nu=k).T`` for k below ``orders``: ``out`` is ``(≥ orders, k, len(u))``
         (``u`` converted once for all of them)."""

@@ -24,31 +24,32 @@ except ImportError:  # pragma: no cover - another numpy: the public call
     _einsum = np.einsum
 
 
+#: Coordinates of the two products of each component of a cross product:
+#: (a × b)_k = a[_FIRST[k]]·b[_SECOND[k]] − a[_FIRST[k + 3]]·b[_SECOND[k + 3]].
+_FIRST = np.array([1, 2, 0, 2, 0, 1])
+_SECOND = np.array([2, 0, 1, 1, 2, 0])
+
+
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Row-wise cross product (broadcasting)."""
-    out = np.empty(a.shape if a.shape == b.shape else np.broadcast(a, b).shape)
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    np.subtract(a1 * b2, a2 * b1, out=out[..., 0])
-    np.subtract(a2 * b0, a0 * b2, out=out[..., 1])
-    np.subtract(a0 * b1, a1 * b0, out=out[..., 2])
-    return out
+    """Row-wise cross product (broadcasting): each component a_i·b_j − a_j·b_i, both
+    products of all three components in one multiplication."""
+    products = a[..., _FIRST] * b[..., _SECOND]
+    out = np.empty((*products.shape[:-1], 3))  # (C order: numpy would lay it out by columns)
+    return np.subtract(products[..., :3], products[..., 3:], out=out)
 
 
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise dot product (broadcasting), of 3-vectors or of plane (2-) vectors."""
-    if a.shape[-1] == 3:
-        return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+    if a.shape[-1] == 3:  # (a0·b0 + a1·b1) + a2·b2, the products in one multiplication
+        products = a * b
+        return products[..., 0] + products[..., 1] + products[..., 2]
     return _einsum("...i,...i->...", a, b)
 
 
 def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
     """Row-wise determinant det[r, u, v] = r · (u × v) (broadcasting)."""
-    return (
-        r[..., 0] * (u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1])
-        + r[..., 1] * (u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2])
-        + r[..., 2] * (u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0])
-    )
+    products = r * cross(u, v)
+    return products[..., 0] + products[..., 1] + products[..., 2]
 
 
 def norm(a: FloatArray) -> FloatArray:

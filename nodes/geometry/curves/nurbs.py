@@ -175,7 +175,12 @@ class NurbsCurve(Curve):
         the world position: the rounding is relative to the curve's size)."""
         u, scale = self._knot_parameters(t)
         if not self.is_rational:
-            return [self._polynomial_derivative(u, k, scale) for k in range(order + 1)]
+            # every order at once (u converted once), zeros above the degree
+            result = self._values.orders(u, min(order, self.degree) + 1)
+            if scale != 1.0:  # (a factor of 1 changes no bit)
+                result[1:] = [c * scale**k for k, c in enumerate(result[1:], start=1)]
+            result.extend(np.zeros((len(u), 3)) for _ in range(order - self.degree))
+            return result
         # the quotient rule on coordinate rows (4, n) rather than on (n, 4) points: every
         # operation then runs along contiguous rows, not n times over 3 coordinates
         values, degree, n = self._values, self.degree, len(u)

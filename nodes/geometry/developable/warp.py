@@ -31,6 +31,8 @@ The same holds at a point the caller knows is on the edge of regression (``apex_
 
 from __future__ import annotations
 
+from math import isfinite
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -55,6 +57,19 @@ def _mask(value: ArrayLike | None, n: int) -> BoolArray | None:
     return np.broadcast_to(np.asarray(value, dtype=bool), (n,))
 
 
+def _size(start: FloatArray, end: FloatArray) -> float:
+    """The diagonal of the bounding box of the finite ones of the points ``start`` and ``end``."""
+    if not len(start):
+        return 0.0
+    columns = np.concatenate([start.T, end.T], axis=1)  # (3, 2n): contiguous rows to reduce
+    size = float(norm(columns.max(axis=1) - columns.min(axis=1)))
+    if isfinite(size):  # (a NaN or an infinite coordinate would not leave it finite)
+        return size
+    points = np.concatenate([start, end])
+    points = points[np.isfinite(points).all(axis=1)]
+    return float(norm(extent(points))) if len(points) else 0.0
+
+
 def _normals(
     starts: ArrayLike,
     ends: ArrayLike,
@@ -63,34 +78,31 @@ def _normals(
     apex_a: ArrayLike | None,
     apex_b: ArrayLike | None,
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """:func:`end_normals` and the rulings' lengths."""
+    """:func:`end_normals` and the rulings' lengths (both ends' normals computed as one
+    ``(2, n, 3)`` array)."""
     start = np.asarray(starts, dtype=float).reshape(-1, 3)
     end = np.asarray(ends, dtype=float).reshape(-1, 3)
     ruling = end - start
+    n = len(ruling)
     ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
     tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
-    n = len(ruling)
-    points = np.concatenate([start, end])
-    finite = np.isfinite(points)
-    if not finite.all():
-        points = points[finite.all(axis=1)]
-    size = float(norm(extent(points))) if len(points) else 0.0
+    tangents = np.concatenate([ta, tb]).reshape(2, n, 3)
+    size = _size(start, end)
     length = norm(ruling)
-    speed_a, speed_b = norm(ta), norm(tb)
-    still_a, still_b = speed_a <= ZERO * size, speed_b <= ZERO * size
+    speeds = norm(tangents)
+    still = speeds <= ZERO * size  # (still_a, still_b)
     mask_a, mask_b = _mask(apex_a, n), _mask(apex_b, n)
     if mask_a is not None:
-        still_a = still_a | mask_a
+        still[0] |= mask_a
     if mask_b is not None:
-        still_b = still_b | mask_b
-    n1 = cross(ruling, ta / np.where(speed_a > 0, speed_a, 1.0)[:, None])
-    n2 = cross(ruling, tb / np.where(speed_b > 0, speed_b, 1.0)[:, None])
-    parallel = PARALLEL * length
-    has1 = norm(n1) > parallel
-    has2 = norm(n2) > parallel
-    defined = (length > ZERO * size) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
-    if still_a.any() or still_b.any():
-        n1, n2 = np.where(still_a[:, None], n2, n1), np.where(still_b[:, None], n1, n2)
+        still[1] |= mask_b
+    normals = cross(ruling, tangents / np.where(speeds > 0, speeds, 1.0)[..., None])
+    has = norm(normals) > PARALLEL * length
+    usable = has | still
+    defined = (length > ZERO * size) & usable[0] & usable[1] & ~(still[0] & still[1])
+    n1, n2 = normals[0], normals[1]
+    if still.any():
+        n1, n2 = np.where(still[0][:, None], n2, n1), np.where(still[1][:, None], n1, n2)
     if not defined.all():
         n1[~defined] = np.nan
         n2[~defined] = np.nan
@@ -164,21 +176,17 @@ def consistently_oriented(
     and point to the same side, ``|warp_angles(..., signed=True)| < π/2`` (the rules of
     :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays."""
     ruling = ends - starts
-    points = np.concatenate([starts, ends])
-    finite = np.isfinite(points)
-    if not finite.all():
-        points = points[finite.all(axis=1)]
-    size = float(norm(extent(points))) if len(points) else 0.0
-    zero = (ZERO * size) ** 2
-    rr, aa, bb = dot(ruling, ruling), dot(tangents_a, tangents_a), dot(tangents_b, tangents_b)
-    n1, n2 = cross(ruling, tangents_a), cross(ruling, tangents_b)
+    n = len(ruling)
+    zero = (ZERO * _size(starts, ends)) ** 2
+    tangents = np.concatenate([tangents_a, tangents_b]).reshape(2, n, 3)  # both ends at once
+    rr, tt = dot(ruling, ruling), dot(tangents, tangents)
+    normals = cross(ruling, tangents)
     # |R × T̂| > PARALLEL·|R|, squared and times |T|²
-    has1 = dot(n1, n1) > PARALLEL**2 * rr * aa
-    has2 = dot(n2, n2) > PARALLEL**2 * rr * bb
-    still_a, still_b = aa <= zero, bb <= zero
-    defined = (rr > zero) & (has1 | still_a) & (has2 | still_b) & ~(still_a & still_b)
+    has = dot(normals, normals) > PARALLEL**2 * rr * tt
+    still = tt <= zero
+    defined = (rr > zero) & (has[0] | still[0]) & (has[1] | still[1]) & ~(still[0] & still[1])
     # a standing end takes the other end's normal: then N1·N2 = |N|² > 0
-    return defined & ((dot(n1, n2) > 0) | still_a | still_b)
+    return defined & ((dot(normals[0], normals[1]) > 0) | still[0] | still[1])
 
 
 def edge_tangents(points: ArrayLike) -> FloatArray:
