@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -11,8 +12,10 @@ from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import INTEGER, NUMBER
 from nodes.common import checks as check
 from nodes.common.checks import number
+from nodes.common.placement import NAMES, ORIGIN, placement_frame, placement_inputs
 from nodes.common.values import LINE, SURFACE
 from nodes.geometry.curves.line import Line
+from nodes.geometry.development_placement import WORLD_XY, place
 from nodes.geometry.paper_strip import face_warp, paper_strip
 from nodes.geometry.ruled import RuledSurface
 from nodes.limits import MAX_SEGMENTS
@@ -48,11 +51,14 @@ class PaperStrip(Node):
 
     Every face is planar by construction, and Surface is exactly these faces: flat
     quads with straight edges between the fold lines. So the strip unrolls exactly:
-    Development is the same faces laid flat in the XY plane (first ruling from the
-    origin up +Y, the strip running towards +X) — cut a sheet along its outline and it
+    Development is the same faces laid flat — cut a sheet along its outline and it
     folds into Surface, every face's edges and angles kept. IsoMapping reproduces it
-    with no area error. WarpAngles are measured on the faces (the turn of the tangent
-    plane along each ruling, rad in [0, π]): 0 to rounding.
+    with no area error. Placement says where Development lies: 1 at the origin (the
+    default: first ruling from the origin up +Y, the strip running towards +X, where
+    IsoMapping with Placement 1 lays its development of Surface), 0 beside the strip
+    (in +X, flat at its lowest point, as IsoMapping's default), 2 on Plane; a rigid
+    motion, no length or area changes. WarpAngles are measured on the faces (the turn
+    of the tangent plane along each ruling, rad in [0, π]): 0 to rounding.
 
     Warns when neighbouring rulings cross inside the strip (the IsoAngle leans them
     too far for the segment length): raise IsoAngle towards π/2, narrow the strip or
@@ -72,6 +78,10 @@ class PaperStrip(Node):
            default=0.2, access=LIST),
         In("Segments", INTEGER, "S", "Number of flat quads (rulings minus one, 1 or more).",
            default=24, min=1, max=MAX_SEGMENTS),
+        # at the origin by default, unlike IsoMapping's: the strip is built from the origin, and
+        # files made before Placement existed keep their Development where it was
+        dataclasses.replace(placement_inputs("Development")[0], default=ORIGIN, choices=tuple(NAMES.items())),
+        placement_inputs("Development")[1],
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The bent strip: its flat quads between the fold lines."),
@@ -82,7 +92,8 @@ class PaperStrip(Node):
             "Turn of the tangent plane along each ruling, rad in [0, π] (0: flat faces).", access=LIST),
     )
 
-    def solve(self, length: Any, width: Any, iso_angle: list[Any], curvature: list[Any], segments: Any
+    def solve(self, length: Any, width: Any, iso_angle: list[Any], curvature: list[Any], segments: Any,
+              placement: Any = ORIGIN, plane: Any = None
               ) -> tuple[RuledSurface, list[Line], RuledSurface, list[float]]:
         total = check.positive("Length", length)
         wide = check.positive("Width", width)
@@ -105,8 +116,14 @@ class PaperStrip(Node):
         if worst > PLANAR:
             self.warn(f"A face is off plane by {worst:.2g} of its size (rounding at this scale?)")
         surface = RuledSurface.from_rulings(strip.starts, strip.ends, degree=1)
-        flat = np.zeros((len(strip.starts2d), 1))
-        development = RuledSurface.from_rulings(np.hstack([strip.starts2d, flat]),
-                                                np.hstack([strip.ends2d, flat]), degree=1)
+        flat2d = np.vstack([strip.starts2d, strip.ends2d])
+        frame = placement_frame(self, placement, plane, np.vstack([strip.starts, strip.ends]),
+                                [*flat2d.min(axis=0), *flat2d.max(axis=0)])
+        if frame is WORLD_XY:  # in its own frame, as the strip was unfolded
+            flat = np.zeros((len(strip.starts2d), 1))
+            starts, ends = np.hstack([strip.starts2d, flat]), np.hstack([strip.ends2d, flat])
+        else:
+            starts, ends = place(frame, strip.starts2d), place(frame, strip.ends2d)
+        development = RuledSurface.from_rulings(starts, ends, degree=1)
         warp = face_warp(strip.starts, strip.ends).tolist()
         return surface, Line.many(strip.starts, strip.ends), development, warp
