@@ -30,12 +30,15 @@ class Editor(QObject):
     """High-level edits of a :class:`Document`'s graph."""
 
     refused = Signal(str)  # why an edit was not made
+    drag_ended = Signal()  # a slider drag (see :meth:`new_drag`) was let go
 
     def __init__(self, doc: Document, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.doc = doc
         self._pending_drag: tuple[str, str, Any, object] | None = None
         self._drag_counter = 0
+        #: a slider is being dragged (from :meth:`new_drag` to :meth:`end_drag`)
+        self.dragging = False
         doc.results_changed.connect(lambda _outcome: self._flush_drag())
 
     @property
@@ -131,6 +134,7 @@ class Editor(QObject):
     def new_drag(self) -> object:
         """A key that merges the setting changes of one slider drag into one undo step."""
         self._drag_counter += 1
+        self.dragging = True
         return ("drag", self._drag_counter)
 
     def drag_setting(self, node_id: str, name: str, value: Any, drag_key: object) -> None:
@@ -146,6 +150,8 @@ class Editor(QObject):
     def end_drag(self) -> None:
         """The drag is over: its last value is applied now (cancelling an older solve)."""
         self._flush_drag()
+        self.dragging = False
+        self.drag_ended.emit()
 
     def _flush_drag(self) -> None:
         if self._pending_drag is None:

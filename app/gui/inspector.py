@@ -59,6 +59,7 @@ class Inspector(QWidget):
         self.editor = editor
         self.node_id: str | None = None
         self._filling = False
+        self._empty = False  # the tables are empty and the header asks for a node
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         self.header = QLabel("Select a node to inspect it.")
@@ -112,6 +113,9 @@ class Inspector(QWidget):
         graph = self.doc.graph
         if self.node_id not in graph.nodes:
             self.node_id = None
+        if self.node_id is None and self._empty:
+            return  # nothing selected, and nothing shown: a solve has nothing to change here
+        self._empty = self.node_id is None
         self._filling = True
         try:
             self._fill(graph)

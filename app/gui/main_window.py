@@ -60,6 +60,10 @@ from engine.graphfile import GraphFileError
 from engine.registry import Registry
 
 FILE_FILTER = "Torsal graphs (*.graph);;All files (*)"
+#: The message log and profiler are refilled at most this often (ms) while solves stream
+#: in, and at most this often while a slider is being dragged.
+TABLES_INTERVAL_MS = 200
+DRAG_TABLES_INTERVAL_MS = 1000
 
 
 class MainWindow(QMainWindow):
@@ -137,9 +141,10 @@ class MainWindow(QMainWindow):
         self.profiler.node_activated.connect(self.focus_node)
         self._tables_timer = QTimer(self)
         self._tables_timer.setSingleShot(True)
-        self._tables_timer.setInterval(200)
         self._tables_timer.timeout.connect(self._tables_due)
+        self.editor.drag_ended.connect(self._drag_ended)
         self._tables_stale = False
+        self._log_fitted = -1  # the Messages dock was last fitted to this fill of the log
         self._profiler_stale = False  # the profiler is refilled only while it is shown
         self._attention_pending = False  # a file just opened: show its first troubled node
         self.profiler_dock.visibilityChanged.connect(self._profiler_shown)
@@ -362,18 +367,27 @@ class MainWindow(QMainWindow):
         if outcome.error:
             self.report(outcome.error, "error")
         # The message log and profiler are tables: refilled at once, then at most ~5 times
-        # a second, so a slider drag's stream of solves is not slowed by them.
+        # a second (once a second while a slider is dragged, and again when it is let go),
+        # so a slider drag's stream of solves is not slowed by them.
         if self._tables_timer.isActive():
             self._tables_stale = True
         else:
             self._fill_tables()
-            self._tables_timer.start()
+            self._tables_timer.start(DRAG_TABLES_INTERVAL_MS if self.editor.dragging else TABLES_INTERVAL_MS)
+
+    def _drag_ended(self) -> None:
+        """A slider was let go: the tables show the drag's last solve now, and the solve of
+        its last value (if one follows) as soon as it comes."""
+        self._tables_timer.stop()
+        self._tables_due()
 
     def _fit_log_dock(self) -> None:
         """Grow the Messages dock until it shows every message (up to ten rows; never shrunk,
         so a dock the user made taller stays so)."""
+        self._log_fitted = -1
         if self.log_dock.isFloating() or not self.log_dock.isVisible():
             return
+        self._log_fitted = self.log.fills
         wanted = self.log.wanted_height()
         if self.log.viewport().height() < wanted - self.log.header().height() - 6:
             title = self.log_dock.height() - self.log.height()
@@ -395,7 +409,8 @@ class MainWindow(QMainWindow):
         outcome = self.doc.last_outcome
         if outcome is not None:
             self.log.show_solve(outcome, self.doc.graph)
-            self._fit_log_dock()
+            if self.log.fills != self._log_fitted:
+                self._fit_log_dock()
             # a dock behind another's tab counts as visible, but shows nothing
             self._profiler_stale = not self.profiler.isVisible() or self.profiler.visibleRegion().isEmpty()
             if not self._profiler_stale:

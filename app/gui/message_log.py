@@ -32,9 +32,13 @@ class MessageLog(QTreeWidget):
         self.setWordWrap(False)
         self.app_messages: list[tuple[str, str, str]] = []
         self.node_rows: list[tuple[str, str, str, str]] = []
+        self.fills = 0  # how many times the rows were rebuilt
         self.itemActivated.connect(self._activated)
 
-    def show_solve(self, outcome: SolveOutcome, graph: Graph) -> None:
+    def show_solve(self, outcome: SolveOutcome, graph: Graph) -> bool:
+        """Show the messages of ``outcome``'s nodes; the rows are rebuilt only if they
+        differ from those shown (a slider drag's solves mostly say the same). True if
+        they did."""
         rows = []
         for node_id, record in graph.nodes.items():
             result = outcome.results.get(node_id)
@@ -42,8 +46,11 @@ class MessageLog(QTreeWidget):
                 continue
             for message in result.messages:
                 rows.append((message.level.name.lower(), node_id, record.title, message.text))
+        if rows == self.node_rows:
+            return False
         self.node_rows = rows
         self._fill()
+        return True
 
     def clear_messages(self) -> None:
         """Forget every row (File ▸ New: the last document's messages do not belong to the new one)."""
@@ -63,6 +70,7 @@ class MessageLog(QTreeWidget):
         self._fill()
 
     def _fill(self) -> None:
+        self.fills += 1
         self.clear()
         order = {"error": 0, "warning": 1, "remark": 2}
         for level, node_id, title, text in sorted(self.node_rows, key=lambda r: order.get(r[0], 3)):

@@ -52,16 +52,25 @@ class SolveStatus(QStatusBar):
         self.progress.hide()
         report = outcome.report
         ms = report.seconds * 1000
-        if outcome.error:
-            self.solve_label.setText(f"Solve failed: {outcome.error}")
-        elif report.cancelled:
-            self.solve_label.setText(f"Solve cancelled after {ms:.0f} ms ({len(report.solved)} nodes solved)")
+        if outcome.error or report.cancelled:
+            self.solve_label.setMinimumWidth(0)
+            if outcome.error:
+                self.solve_label.setText(f"Solve failed: {outcome.error}")
+            else:
+                self.solve_label.setText(
+                    f"Solve cancelled after {ms:.0f} ms ({len(report.solved)} nodes solved)"
+                )
         else:
             self.solve_label.setText(f"Solved {len(report.solved)} nodes in {ms:.1f} ms")
+            # the label keeps the widest width it has needed since: a time one digit longer
+            # or shorter does not lay the status bar (and the window's edge) out again
+            wanted = self.solve_label.sizeHint().width()
+            if wanted > self.solve_label.minimumWidth():
+                self.solve_label.setMinimumWidth(wanted)
         warnings, errors = outcome.count("warning"), outcome.count("error")
         self.counts_label.setText(
             f"⚠ {warnings} warning{'s' * (warnings != 1)}   ✖ {errors} error{'s' * (errors != 1)}"
         )
-        self.counts_label.setStyleSheet(
-            "color: #c0281f;" if errors else ("color: #b06800;" if warnings else "")
-        )
+        style = "color: #c0281f;" if errors else ("color: #b06800;" if warnings else "")
+        if style != self.counts_label.styleSheet():  # restyling costs a polish and a repaint
+            self.counts_label.setStyleSheet(style)

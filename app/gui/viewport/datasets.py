@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 import pyvista as pv
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from nodes.common.preview import PreviewGeometry, costly, mesh_scalars, preview_of
 
@@ -73,6 +74,8 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     """
     found = Collected()
     for value in values:
+        if value is None or isinstance(value, bool | int | float | str):
+            continue  # not geometry (a node's angles, flags, kinds): nothing to draw or remember
         try:
             if memo is not None and costly(value):
                 entry = memo.get(id(value))
@@ -210,15 +213,17 @@ def face_cells(faces: np.ndarray) -> np.ndarray:
 
 def dataset(piece: Piece) -> pv.PolyData:
     """The pyvista dataset of a piece. GUI thread only: VTK objects made on the solver's
-    thread can deadlock against a render (VTK's locks and the GIL taken in opposite order)."""
+    thread can deadlock against a render (VTK's locks and the GIL taken in opposite order).
+    Its points and normals are its own copies (:func:`move_points` writes into them)."""
+    points = np.array(piece.points, dtype=float)
     if piece.faces is not None:
-        poly = pv.PolyData(piece.points, face_cells(piece.faces), lines=piece.lines)
+        poly = pv.PolyData(points, face_cells(piece.faces), lines=piece.lines)
         if piece.normals is not None:
-            poly.point_data.active_normals = piece.normals
+            poly.point_data.active_normals = np.array(piece.normals, dtype=float)
     elif piece.lines is not None:
-        poly = pv.PolyData(piece.points, lines=piece.lines)
+        poly = pv.PolyData(points, lines=piece.lines)
     else:
-        poly = pv.PolyData(piece.points)
+        poly = pv.PolyData(points)
     if piece.scalars is not None:
         target = poly.point_data if len(piece.scalars) == poly.n_points else poly.cell_data
         target[piece.scalar_name or "value"] = piece.scalars
@@ -236,7 +241,27 @@ def same_topology(piece: Piece, other: Piece) -> bool:
 
 
 def move_points(poly: pv.PolyData, piece: Piece) -> None:
-    """Give ``poly`` (made from a piece of the same topology) the points of ``piece``."""
-    poly.points = np.asarray(piece.points, dtype=float)
+    """Give ``poly`` (made from a piece of the same topology) the points of ``piece``:
+    copied into its point (and normal) arrays in place, which makes no new VTK objects
+    (a slider drag moves every strip's points on every solve)."""
+    points = poly.GetPoints()
+    if points is None or not _overwrite(points.GetData(), piece.points):
+        poly.points = np.asarray(piece.points, dtype=float)
+    else:
+        points.Modified()
     if piece.normals is not None:
-        poly.point_data.active_normals = piece.normals
+        normals = poly.GetPointData().GetNormals()
+        if normals is None or not _overwrite(normals, piece.normals):
+            poly.point_data.active_normals = piece.normals
+    poly.Modified()
+
+
+def _overwrite(array: Any, values: np.ndarray) -> bool:
+    """Copy ``values`` into the VTK ``array`` of the same shape; False if the shapes differ."""
+    target = vtk_to_numpy(array)
+    values = np.asarray(values)
+    if target.shape != values.shape:
+        return False
+    target[...] = values
+    array.Modified()
+    return True

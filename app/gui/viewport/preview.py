@@ -122,6 +122,7 @@ class Preview:
         self.problems: dict[str, list[str]] = {}
         self.bar_users: dict[str, set[str]] = {}  # colour-bar title -> nodes that use it
         self.bar_keys: dict[str, tuple[Any, str]] = {}  # colour-bar title -> (range, colour map)
+        self._bounds: tuple[np.ndarray | None] | None = None  # bounds() until the actors change
 
     def update(
         self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
@@ -132,6 +133,7 @@ class Preview:
         whose result has moved on since) has its datasets made here.
         """
         changed = False
+        self._bounds = None
         wanted = previewed(graph, results)
         for node_id in [n for n in self.nodes if n not in wanted]:
             self._remove(node_id)
@@ -172,6 +174,7 @@ class Preview:
         return True
 
     def _add(self, node_id: str, ready: Prepared) -> None:
+        self._bounds = None
         entry = NodeActors(ready.result)
         for index, piece in enumerate(ready.pieces):
             name = f"{PREFIX}{node_id}:{piece.kind}:{index}"
@@ -239,6 +242,7 @@ class Preview:
         return title
 
     def _remove(self, node_id: str) -> None:
+        self._bounds = None
         entry = self.nodes.pop(node_id, None)
         if entry is None:
             return
@@ -283,7 +287,13 @@ class Preview:
         return [n for entry in self.nodes.values() for n in entry.names]
 
     def bounds(self) -> np.ndarray | None:
-        """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of every preview actor, or None."""
+        """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of every preview actor, or None
+        (measured once per change of the actors: a refresh asks several times)."""
+        if self._bounds is None:
+            self._bounds = (self._measure_bounds(),)
+        return self._bounds[0]
+
+    def _measure_bounds(self) -> np.ndarray | None:
         boxes = []
         for actor in (a for entry in self.nodes.values() for a in entry.actors.values()):
             if actor.GetVisibility():

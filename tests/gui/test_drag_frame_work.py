@@ -1,0 +1,210 @@
+"""What the GUI does per solve and per mouse move of a slider drag, kept small: tables
+and items are redrawn only when what they show changed, and a drag repaints only its
+slider (the frame-rate bar itself is in tests/benchmarks/bench_gui.py)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from PySide6.QtCore import QPoint, QPointF, QRectF, Qt
+from PySide6.QtGui import QImage
+from PySide6.QtTest import QTest
+
+from app.gui.viewport.datasets import Piece, dataset, move_points
+from tests.gui.fixtures_gui import EXAMPLES, view_point, wait_solved
+
+NONE = Qt.KeyboardModifier.NoModifier
+LEFT = Qt.MouseButton.LeftButton
+
+
+def bad_slider(qtbot, window) -> str:
+    """A slider whose min is above its max: an error message that does not name its value."""
+    node_id = window.editor.add_node("params.NumberSlider", (0.0, 0.0), settings={"min": 2.0, "max": 1.0})
+    wait_solved(qtbot, window)
+    window._fill_tables()
+    return node_id
+
+
+def test_the_message_log_is_not_rebuilt_when_a_solve_says_the_same(qtbot, window):
+    node_id = bad_slider(qtbot, window)
+    fills, rows = window.log.fills, list(window.log.node_rows)
+    window.editor.set_setting(node_id, "value", 1.5)  # solved again: the same error
+    wait_solved(qtbot, window)
+    window._fill_tables()
+    assert window.log.node_rows == rows
+    assert window.log.fills == fills
+    assert window.log.topLevelItemCount() == len(rows)
+
+
+def test_the_message_log_is_rebuilt_when_a_solve_says_something_else(qtbot, window):
+    node_id = bad_slider(qtbot, window)
+    fills = window.log.fills
+    window.editor.set_setting(node_id, "min", 0.0)  # now valid: the error is gone
+    wait_solved(qtbot, window)
+    window._fill_tables()
+    assert window.log.fills == fills + 1
+    assert not any(row[1] == node_id for row in window.log.node_rows)
+
+
+def slider_handle(window, node_id: str) -> tuple[QPoint, int, int]:
+    """Where the slider's handle is on screen, and the left and right ends of its track."""
+    item = window.scene.nodes[node_id]
+    window.view.centerOn(item)
+    rect = item.layout.widget_rect
+    track = item.widget.track(rect)
+    y = rect.center().y()
+    start = view_point(window, item.mapToScene(QPointF(item.widget.handle_x(rect), y)))
+    left = view_point(window, item.mapToScene(QPointF(track.left() + 2, y))).x()
+    right = view_point(window, item.mapToScene(QPointF(track.right() - 2, y))).x()
+    return start, left, right
+
+
+def node_image(window, node_id: str) -> QImage:
+    """The canvas's pixels where the node is."""
+    item = window.scene.nodes[node_id]
+    rect = window.view.mapFromScene(item.sceneBoundingRect()).boundingRect()
+    return window.view.viewport().grab(rect).toImage()
+
+
+def pixels(image: QImage) -> np.ndarray:
+    """The image's RGB values as integers, ``(height, width, 3)``."""
+    image = image.convertToFormat(QImage.Format.Format_RGB888)
+    rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
+    return rows[:, : 3 * image.width()].reshape(image.height(), image.width(), 3).astype(int)
+
+
+def test_after_a_slider_drag_the_message_log_shows_the_last_solves_messages(qtbot, window):
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    start, left, right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    solves = []
+    window.doc.results_changed.connect(solves.append)
+    fills = window.log.fills
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    x, began = start.x(), time.perf_counter()
+    while time.perf_counter() - began < 1.5:
+        x = max(left, min(right, x - 3))
+        QTest.mouseMove(viewport, QPoint(x, start.y()))
+        qtbot.wait(15)
+    filled_while_dragging = window.log.fills - fills
+    QTest.mouseRelease(viewport, LEFT, NONE, QPoint(x, start.y()))
+    wait_solved(qtbot, window)
+    qtbot.waitUntil(lambda: not window._tables_timer.isActive(), timeout=3000)
+    # the strips' messages say how much of each is closed by flat triangles: they change
+    # with every solve, and the log is refilled about once a second while dragging
+    assert len(solves) >= 2  # solved while dragging, and after
+    assert filled_while_dragging <= 2
+    outcome = window.doc.last_outcome
+    expected = sorted(
+        (m.level.name.lower(), n, m.text) for n, r in outcome.results.items() for m in r.messages
+    )
+    assert sorted((level, node, text) for level, node, _title, text in window.log.node_rows) == expected
+    items = [window.log.topLevelItem(i) for i in range(window.log.topLevelItemCount())]
+    shown = sorted(item.text(2) for item in items if item.data(0, Qt.ItemDataRole.UserRole))  # node rows
+    assert shown == sorted(text for _level, _node, text in expected)
+
+
+def test_a_node_whose_state_a_solve_leaves_as_it_was_is_not_repainted(qtbot, window):
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    item = window.scene.nodes["edge_curves"]
+    state = item.drawn_state()
+    updates = []
+    item.update = lambda *args: updates.append(args)  # the item's own repaint requests
+    window.editor.set_setting("scale", "value", 0.66)
+    wait_solved(qtbot, window)
+    assert item.result is window.doc.results["edge_curves"]  # a new result, in the same state
+    assert item.drawn_state() == state
+    assert updates == []
+
+
+def test_a_node_whose_state_changes_is_repainted(qtbot, window):
+    node_id = bad_slider(qtbot, window)
+    item = window.scene.nodes[node_id]
+    updates = []
+    item.update = lambda *args: updates.append(args)
+    window.editor.set_setting(node_id, "min", 0.0)
+    wait_solved(qtbot, window)
+    assert item.state == "ok"
+    assert updates
+
+
+def test_dragging_a_slider_repaints_only_the_slider_and_draws_the_node_as_a_full_repaint(qtbot, window):
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    item = window.scene.nodes["scale"]
+    exposed: list[QRectF] = []
+    paint = type(item).paint
+
+    def recording(painter, option, widget=None):
+        exposed.append(QRectF(option.exposedRect))
+        paint(item, painter, option, widget)
+
+    item.paint = recording
+    start, left, _right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    applied = []  # the drag's values the graph took (each redraws the whole node once)
+    window.doc.graph_changed.connect(lambda event: event.node_id == "scale" and applied.append(event))
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    qtbot.wait(50)
+    exposed.clear()
+    for step in range(1, 6):
+        QTest.mouseMove(viewport, QPoint(max(left, start.x() - 6 * step), start.y()))
+        qtbot.wait(20)
+    moved = node_image(window, "scale")
+    around = item.layout.widget_rect.adjusted(-2, -2, 2, 2)
+    partial = [rect for rect in exposed if around.contains(rect)]
+    assert partial
+    assert len(exposed) - len(partial) <= len(applied)
+    item.update()  # the whole node painted again, as it is
+    qtbot.wait(50)
+    full = node_image(window, "scale")
+    # the same picture, but for antialiased edge pixels a level or two apart (2 measured)
+    assert np.abs(pixels(full) - pixels(moved)).max() <= 4
+    QTest.mouseRelease(viewport, LEFT, NONE, QPoint(max(left, start.x() - 30), start.y()))
+    wait_solved(qtbot, window)
+
+
+def test_a_sliders_new_value_leaves_its_wires_as_they_were_routed(qtbot, window):
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    wires = window.scene.wire_items_of("scale")
+    assert wires
+    rerouted = []
+    for wire in wires:
+        wire.update_path = lambda wire=wire: rerouted.append(wire)
+    window.editor.set_setting("scale", "value", 0.66)
+    wait_solved(qtbot, window)
+    assert window.scene.nodes["scale"].widget.text() == "0.66"
+    assert rerouted == []
+
+
+def test_a_solve_with_no_node_selected_leaves_the_inspector_as_it_is(qtbot, window, monkeypatch):
+    node_id = bad_slider(qtbot, window)
+    window.scene.clearSelection()
+    qtbot.wait(10)
+    fills = []
+    monkeypatch.setattr(window.inspector, "_fill", lambda graph: fills.append(graph))
+    window.editor.set_setting(node_id, "value", 1.5)
+    wait_solved(qtbot, window)
+    assert fills == []
+    assert window.inspector.ports.topLevelItemCount() == 0
+    assert window.inspector.settings.rowCount() == 0
+
+
+def test_moving_points_writes_into_the_datasets_own_arrays():
+    faces = np.array([[0, 1, 2], [1, 3, 2]])
+    normals = np.tile([0.0, 0.0, 1.0], (4, 1))
+    points = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    poly = dataset(Piece("surfaces", points, faces=faces, normals=normals))
+    vtk_points, vtk_normals = poly.GetPoints().GetData(), poly.GetPointData().GetNormals()
+    tilted = np.column_stack([np.zeros(4), -np.ones(4), np.ones(4)]) / np.sqrt(2)
+    raised = points + np.array([0.0, 0.0, 5.0])
+    move_points(poly, Piece("surfaces", raised, faces=faces, normals=tilted))
+    assert poly.GetPoints().GetData() is vtk_points  # the same VTK arrays, new values
+    assert poly.GetPointData().GetNormals() is vtk_normals
+    np.testing.assert_array_equal(poly.points, raised)
+    np.testing.assert_array_equal(poly.point_data.active_normals, tilted)
+    assert poly.bounds[4] == 5.0  # VTK sees the change (the bounds are measured again)
