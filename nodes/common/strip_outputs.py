@@ -154,14 +154,16 @@ def curve_strip_outputs(
     recomputation rejects are counted in a message. ``source`` names the inputs the curves
     come from in the warnings of :func:`strip_outputs`.
     """
+    starts, ends = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
     w = curve_warp(curve_a, curve_b, s, t, starts, ends)
     # edges on the curves themselves, so neighbouring strips meet exactly; parameters that
-    # do not run one way keep the loft through the rulings
+    # do not run one way keep the loft through the rulings (the rulings' ends are the
+    # curves' points at s and t: the rails take them rather than evaluate them again)
     on_curves = None
     with suppress(ValueError):
-        on_curves = ruled_between(curve_a, s, curve_b, t)
+        on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
     strip = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
-    allowance = warp_allowance(np.asarray(starts, dtype=float), np.asarray(ends, dtype=float))
+    allowance = warp_allowance(starts, ends)
     valid = np.isfinite(w) & (w <= tolerance + allowance)
     messages = list(strip.messages)
     if claimed is not None:

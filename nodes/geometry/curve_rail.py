@@ -34,7 +34,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .curve_base import Curve, FloatArray
+from .curves import Line, NurbsCurve, Polyline
 from .ruled import RuledSurface
+
+#: Curves whose points do not depend on which other parameters, or which derivatives, are
+#: evaluated with them (each point is computed alone, the same way at every order), so a
+#: point from one evaluation is the point another would give, bit for bit.
+POINTWISE = (NurbsCurve, Line, Polyline)
 
 
 def unwrap_cyclic(t: FloatArray) -> FloatArray:
@@ -58,24 +64,23 @@ class Pace:
     """
 
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
-        h = u[1:] - u[:-1]
-        m = (p[1:] - p[:-1]) / h
-        slopes = np.empty(len(p))
-        if len(p) == 2:
-            slopes[:] = m[0]
-        else:
-            sign = np.sign(m)
-            flat = (sign[1:] != sign[:-1]) | (m[1:] == 0) | (m[:-1] == 0)
-            w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                harmonic = (w1 + w2) / (w1 / m[:-1] + w2 / m[1:])
-            slopes[1:-1] = np.where(flat, 0.0, harmonic)
-            slopes[0] = _end_slope(h[0], h[1], m[0], m[1])
-            slopes[-1] = _end_slope(h[-1], h[-2], m[-1], m[-2])
-        # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
-        bend = (slopes[:-1] + slopes[1:] - 2.0 * m) / h
+        self._set(u, *_coefficients(u, p))
+
+    @classmethod
+    def each(cls, u: FloatArray, p: FloatArray) -> list[Pace]:
+        """One interpolant per row of ``p`` ``(k, n)``, all through the same ``u``, their
+        coefficients computed together (each row's are those :class:`Pace` gives it alone)."""
+        coefficients = _coefficients(u, p)
+        paces = []
+        for row in range(len(p)):
+            pace = cls.__new__(cls)
+            pace._set(u, *(c[row] for c in coefficients))
+            paces.append(pace)
+        return paces
+
+    def _set(self, u: FloatArray, c3: FloatArray, c2: FloatArray, c1: FloatArray, c0: FloatArray) -> None:
         self.u = u
-        self.c3, self.c2, self.c1, self.c0 = bend / h, (m - slopes[:-1]) / h - bend, slopes[:-1], p[:-1]
+        self.c3, self.c2, self.c1, self.c0 = c3, c2, c1, c0
 
     def __call__(self, x: FloatArray, nu: int = 0) -> FloatArray:
         """The interpolant's ``nu``-th derivative at ``x``."""
@@ -97,6 +102,29 @@ class Pace:
         return out
 
 
+def _coefficients(u: FloatArray, p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """PCHIP's cubics through ``(u_i, p_i)`` (``p`` one row, or several rows through the same
+    ``u``): per piece on [u_i, u_i+1], in z = u − u_i, ((c3·z + c2)·z + c1)·z + c0."""
+    h = u[1:] - u[:-1]
+    m = (p[..., 1:] - p[..., :-1]) / h
+    slopes = np.empty(p.shape)
+    if p.shape[-1] == 2:
+        slopes[...] = m[..., :1]
+    else:
+        sign = np.sign(m)
+        flat = (sign[..., 1:] != sign[..., :-1]) | (m[..., 1:] == 0) | (m[..., :-1] == 0)
+        w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            harmonic = (w1 + w2) / (w1 / m[..., :-1] + w2 / m[..., 1:])
+        slopes[..., 1:-1] = np.where(flat, 0.0, harmonic)
+        for row in np.ndindex(p.shape[:-1]):
+            mr = m[row]
+            slopes[(*row, 0)] = _end_slope(h[0], h[1], mr[0], mr[1])
+            slopes[(*row, -1)] = _end_slope(h[-1], h[-2], mr[-1], mr[-2])
+    bend = (slopes[..., :-1] + slopes[..., 1:] - 2.0 * m) / h
+    return bend / h, (m - slopes[..., :-1]) / h - bend, slopes[..., :-1], p[..., :-1]
+
+
 def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
     """PCHIP's slope at an end: the one-sided three-point estimate, kept monotone."""
     d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
@@ -112,7 +140,9 @@ class CurveRail(Curve):
     ``(u_i, p_i)`` (``params`` → ``curve_params``, non-decreasing). Exact derivatives to
     order 3 by the chain rule."""
 
-    def __init__(self, curve: Curve, params: ArrayLike, curve_params: ArrayLike) -> None:
+    def __init__(
+        self, curve: Curve, params: ArrayLike, curve_params: ArrayLike, pace: Pace | None = None
+    ) -> None:
         u = np.asarray(params, dtype=float)
         p = np.asarray(curve_params, dtype=float)
         if curve.closed:
@@ -121,7 +151,8 @@ class CurveRail(Curve):
             raise ValueError("a curve rail needs increasing u and non-decreasing curve parameters")
         self.curve = curve
         self.params, self.curve_params = u, p
-        self._pace = Pace(u, p)
+        # (``pace``: the interpolant through (u, p), built by a caller that built several at once)
+        self._pace = Pace(u, p) if pace is None else pace
         self.closed = False  # the rail covers the stretch of the curve between its rulings
 
     def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
@@ -183,10 +214,19 @@ class CurveRail(Curve):
         return f"CurveRail({self.curve!r}, {len(self.params)} rulings)"
 
 
-def ruled_between(curve_a: Curve, s: ArrayLike, curve_b: Curve, t: ArrayLike) -> RuledSurface:
+def ruled_between(
+    curve_a: Curve,
+    s: ArrayLike,
+    curve_b: Curve,
+    t: ArrayLike,
+    points: tuple[FloatArray, FloatArray] | None = None,
+) -> RuledSurface:
     """The ruled surface whose rulings are A(s_i) → B(t_i) at u_i = i/(n − 1) and whose
     edges run on A and B (see the module). ``s`` and ``t`` are non-decreasing (``t`` may
     run on through B's seam when B is closed, as RulingDevelopable's partners do).
+    ``points`` are A(s) and B(t) where the caller has them from the curves' own
+    evaluation (a curve of :data:`POINTWISE` types only: they are used where the rails'
+    parameters are ``s`` and ``t`` themselves, and the curves evaluated again elsewhere).
 
     >>> from nodes.geometry.curves import Line
     >>> a, b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [2, 1, 0])
@@ -200,10 +240,19 @@ def ruled_between(curve_a: Curve, s: ArrayLike, curve_b: Curve, t: ArrayLike) ->
     if n < 2 or len(t) != n:
         raise ValueError("a strip needs at least two rulings, one s and one t each")
     u = np.linspace(0.0, 1.0, n)
-    rail_a, rail_b = CurveRail(curve_a, u, s), CurveRail(curve_b, u, t)
+    # both rails' paces at once (their coefficients are those each would get alone)
+    p_a = unwrap_cyclic(s) if curve_a.closed else s
+    p_b = unwrap_cyclic(t) if curve_b.closed else t
+    pace_a = pace_b = None
+    if p_a.shape == p_b.shape == (n,):
+        pace_a, pace_b = Pace.each(u, np.stack([p_a, p_b]))
+    rail_a, rail_b = CurveRail(curve_a, u, s, pace_a), CurveRail(curve_b, u, t, pace_b)
     lines = np.empty((n, 2, 3))
-    lines[:, 0] = curve_a.point_at(rail_a._wrapped(rail_a.curve_params))
-    lines[:, 1] = curve_b.point_at(rail_b._wrapped(rail_b.curve_params))
+    for side, (curve, rail) in enumerate(((curve_a, rail_a), (curve_b, rail_b))):
+        at = rail._wrapped(rail.curve_params)
+        given = points[side] if points is not None and isinstance(curve, POINTWISE) else None
+        same = given is not None and np.array_equal(at, s if side == 0 else t)
+        lines[:, side] = given if same else curve.point_at(at)
     # the rails' ends are the first and last rulings' (to rounding): closed round u when
     # both rails return to their start, as RuledSurface judges it from its rails' ends,
     # without evaluating the rails again (a strip's rails are built on every re-solve)

@@ -196,8 +196,11 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
             return p, dp, q[rows] + offset, dq[rows]
         return q[rows], dq[rows], p + offset, dp
 
-    def coplanarity(rows: IntArray, p: FloatArray, dp: FloatArray, ddp: FloatArray, flip: BoolArray):
-        """g, its slope in the run's parameter, its rounding scale and the rulings."""
+    def coplanarity(
+        rows: IntArray, p: FloatArray, dp: FloatArray, ddp: FloatArray, flip: BoolArray, scaled: bool = True
+    ):
+        """g, its slope in the run's parameter, its rounding scale (None unless ``scaled``)
+        and the rulings."""
         a, da, b, db = pencil(rows, p, dp)
         r = b - a
         if moving_a:  # g' = det[R, A'', B'] (det[−A', A', B'] vanishes)
@@ -207,10 +210,11 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
             plane = cross(r, da)
             g, slope = dot(plane, db), dot(plane, ddp)
         slope = np.where(flip, -slope, slope)  # d/dx = −d/du on a run read backwards
-        return g, slope, rounding_scale(norm(a), b, norm(da), db), (a, da, b, db)
+        scale = rounding_scale(norm(a), b, norm(da), db) if scaled else None
+        return g, slope, scale, (a, da, b, db)
 
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        g, slope, _, (a, da, b, db) = coplanarity(rows, p, dp, ddp, flip)
+        g, slope, _, (a, da, b, db) = coplanarity(rows, p, dp, ddp, flip, scaled=False)
         oriented = consistently_oriented(a, b, da, db).reshape(x.shape)
     g, slope = g.reshape(x.shape), slope.reshape(x.shape)
     usable = wide & np.isfinite(g).all(axis=1)

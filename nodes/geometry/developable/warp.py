@@ -339,8 +339,8 @@ def curve_warp(
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
     ruling = b - a
-    ta = curve_a.derivatives(s, 1)[1]
-    tb = curve_b.derivatives(t, 1)[1]
+    ta = curve_a.derivative_at(s, 1)  # (the tangents alone: a polynomial curve skips the points)
+    tb = curve_b.derivative_at(t, 1)
     corner_a, left_a, right_a = _corner_sides(curve_a, s)
     corner_b, left_b, right_b = _corner_sides(curve_b, t)
     if corner_a.any():
@@ -349,9 +349,7 @@ def curve_warp(
     if corner_b.any():
         tb = tb.copy()
         tb[corner_b] = in_plane_tangent(ruling[corner_b], ta[corner_b], left_b[corner_b], right_b[corner_b])
-    points = np.concatenate([a, b])
-    finite = points[np.isfinite(points).all(axis=1)]
-    size = float(norm(np.ptp(finite, axis=0))) if len(finite) else 0.0
+    size = _size(a, b)
     apex_a, apex_b = _interior_of_fan(a, size), _interior_of_fan(b, size)
     warp = warp_angles(a, b, ta, tb, signed, apex_a=apex_a, apex_b=apex_b)
     # at a corner whose chosen tangent runs along the ruling (a fan's edge on a side of
