@@ -498,11 +498,9 @@ def to_data(graph: Graph) -> dict[str, Any]:
     data["nodes"] = [node_data(graph.nodes[node_id]) for node_id in graph.nodes]
     data["wires"] = [wire_data(w) for w in graph.wires]
     data["groups"] = [group_data(g) for g in graph.groups]
-    clusters = [cluster_data(d) for d in reachable_definitions(graph)]
-    if clusters:  # a file whose last cluster was exploded has no empty list left over
+    data.pop("clusters", None)  # a file whose last cluster was exploded keeps no empty list
+    if clusters := [cluster_data(d) for d in reachable_definitions(graph)]:
         data["clusters"] = clusters
-    else:
-        data.pop("clusters", None)
     meta = dict(graph.meta)
     if not graph.raw:
         meta.setdefault("description", "")

@@ -108,7 +108,8 @@ def test_the_help_tells_how_to_reach_a_slider_in_a_cluster():
 
 
 def test_the_command_sets_a_slider_in_a_cluster_as_a_ci_user_would(two_instances):
-    done = subprocess.run([sys.executable, "-m", "app.cli", "run", str(two_instances), "--set", "panels/count=3",
-                           "--json"], capture_output=True, text=True, cwd=ROOT, timeout=120)
+    command = [sys.executable, "-m", "app.cli", "run", str(two_instances), "--set", "panels/count=3",
+               "--json"]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert done.returncode == 0, done.stderr
     assert single(json.loads(done.stdout), "show_total2") == [pytest.approx(WIDTH * 3)]

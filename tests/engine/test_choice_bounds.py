@@ -29,7 +29,8 @@ class Sparse(Node):
     """Test-only node: a value list whose numbers have a gap."""
 
     type_id = "test.Sparse"
-    inputs = (In("Mode", INTEGER, "M", "Mode.", default=1, min=1, max=5, choices=((1, "Fast"), (5, "Exact"))),)
+    inputs = (In("Mode", INTEGER, "M", "Mode.", default=1, min=1, max=5,
+                 choices=((1, "Fast"), (5, "Exact"))),)
     outputs = (Out("Same", INTEGER, "S", "The mode."),)
 
     def solve(self, mode: int) -> int:
