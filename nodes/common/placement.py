@@ -37,7 +37,7 @@ def placement_inputs(what: str) -> tuple[In, In]:
         In("Placement", INTEGER, "Pl",
            f"Where {what} lie: 0 beside the model (in +X, flat at its lowest point), 1 at the origin, "
            "2 on Plane. A rigid motion: no length or area changes.",
-           default=BESIDE_MODEL, min=BESIDE_MODEL, max=ON_PLANE),
+           default=BESIDE_MODEL, min=BESIDE_MODEL, max=ON_PLANE, choices=tuple(NAMES.items())),
         In("Plane", PLANE, "Pn", "The plane to lay them on when Placement is 2 (On plane).", optional=True),
     )
 
