@@ -97,4 +97,7 @@ def position_rounding(points: FloatArray) -> float:
     point, say) cannot be smaller than this; tests of such a gap against a tolerance
     relative to the object's size add it, or they never pass far from the origin.
     """
-    return POSITION_ULPS * float(np.finfo(float).eps) * float(np.abs(points).max(initial=0.0))
+    return POSITION_ULPS * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0))
+
+
+_EPS = float(np.finfo(float).eps)

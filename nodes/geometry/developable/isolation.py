@@ -164,6 +164,10 @@ class Pieces:
         """The pieces ``keep`` (a mask or indices); B-data not filled in stays empty."""
         return Pieces(*(_part(getattr(self, name), keep) for name in _PIECE_FIELDS))
 
+    def brackets(self, keep: BoolArray | IntArray) -> tuple[FloatArray, ...]:
+        """Row, ends, f and f' at both ends of the pieces ``keep``: what a bracket keeps."""
+        return tuple(v[keep] for v in (self.row, self.x0, self.x1, self.f0, self.f1, self.d0, self.d1))
+
 
 def _part(values: FloatArray, keep: BoolArray | IntArray) -> FloatArray:
     return values if len(values) == 0 else values[keep]
@@ -252,16 +256,15 @@ def isolate(
     for level in range(MAX_LEVELS):
         budget -= len(pieces.row)
         if budget < 0:  # as when the levels run out (below): what still changes sign is kept
-            b = pieces.take(np.signbit(pieces.f0) != np.signbit(pieces.f1))
-            found.append((b.row, b.x0, b.x1, b.f0, b.f1, b.d0, b.d1))
+            found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
             break
         bracket, touching, uncertain = _judge(pieces, curvature)
         if bracket.any():
-            b = pieces.take(bracket)
-            found.append((b.row, b.x0, b.x1, b.f0, b.f1, b.d0, b.d1))
+            found.append(pieces.brackets(bracket))
         if touching.any():
-            t = pieces.take(touching)
-            doubles.append((t.row, np.where(np.abs(t.f0) <= np.abs(t.f1), t.x0, t.x1)))
+            p = pieces
+            row, x0, x1, f0, f1 = (v[touching] for v in (p.row, p.x0, p.x1, p.f0, p.f1))
+            doubles.append((row, np.where(np.abs(f0) <= np.abs(f1), x0, x1)))
         if not uncertain.any():
             break
         if level == 0 and ends is not None:
@@ -272,8 +275,7 @@ def isolate(
         pieces = pieces.take(uncertain)
         pieces, curvature = _split(pieces, evaluate, a0, a1)
     else:  # levels exhausted (never on curves within the guarantee): keep what changes sign
-        b = pieces.take(np.signbit(pieces.f0) != np.signbit(pieces.f1))
-        found.append((b.row, b.x0, b.x1, b.f0, b.f1, b.d0, b.d1))
+        found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
     empty_i, empty_f = np.empty(0, dtype=np.int64), np.empty(0)
     if found:
         rows, low, high, f_low, f_high, d_low, d_high = (np.concatenate(x) for x in zip(*found, strict=True))
