@@ -30,6 +30,7 @@ class Editor(QObject):
     """High-level edits of a :class:`Document`'s graph."""
 
     refused = Signal(str)  # why an edit was not made
+    drag_started = Signal()  # a slider is being dragged (see :meth:`new_drag`)
     drag_ended = Signal()  # a slider drag (see :meth:`new_drag`) was let go
 
     def __init__(self, doc: Document, parent: QObject | None = None) -> None:
@@ -134,7 +135,9 @@ class Editor(QObject):
     def new_drag(self) -> object:
         """A key that merges the setting changes of one slider drag into one undo step."""
         self._drag_counter += 1
-        self.dragging = True
+        if not self.dragging:
+            self.dragging = True
+            self.drag_started.emit()
         return ("drag", self._drag_counter)
 
     def drag_setting(self, node_id: str, name: str, value: Any, drag_key: object) -> None:
@@ -150,8 +153,9 @@ class Editor(QObject):
     def end_drag(self) -> None:
         """The drag is over: its last value is applied now (cancelling an older solve)."""
         self._flush_drag()
-        self.dragging = False
-        self.drag_ended.emit()
+        if self.dragging:
+            self.dragging = False
+            self.drag_ended.emit()
 
     def _flush_drag(self) -> None:
         if self._pending_drag is None:

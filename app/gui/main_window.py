@@ -41,6 +41,7 @@ from app.gui.autosave import Autosaver, find_recoveries
 from app.gui.canvas.scene import CanvasScene
 from app.gui.canvas.view import CanvasView
 from app.gui.cluster_widgets import Breadcrumb
+from app.gui.collections_policy import FullCollectionsHeld
 from app.gui.document import Document
 from app.gui.editor import Editor
 from app.gui.exporting import bake_previewed, export_output
@@ -143,6 +144,11 @@ class MainWindow(QMainWindow):
         self._tables_timer.setSingleShot(True)
         self._tables_timer.timeout.connect(self._tables_due)
         self.editor.drag_ended.connect(self._drag_ended)
+        # no full garbage collection (a pause of a frame or two) while a slider is dragged
+        self._collections = FullCollectionsHeld()
+        self.editor.drag_started.connect(self._collections.hold)
+        self.editor.drag_ended.connect(self._collections.release)
+        self.destroyed.connect(self._collections.release)
         self._tables_stale = False
         self._log_fitted = -1  # the Messages dock was last fitted to this fill of the log
         self._profiler_stale = False  # the profiler is refilled only while it is shown

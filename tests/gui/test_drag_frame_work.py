@@ -208,3 +208,34 @@ def test_moving_points_writes_into_the_datasets_own_arrays():
     np.testing.assert_array_equal(poly.points, raised)
     np.testing.assert_array_equal(poly.point_data.active_normals, tilted)
     assert poly.bounds[4] == 5.0  # VTK sees the change (the bounds are measured again)
+
+
+def test_no_full_garbage_collection_runs_while_a_slider_is_dragged_and_they_run_again_after(qtbot, window):
+    import gc
+
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    before = gc.get_threshold()
+    start, left, _right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    full = []
+
+    def watch(phase, info):
+        if phase == "start" and info["generation"] == 2:
+            full.append(info)
+
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    gc.callbacks.append(watch)
+    try:
+        for step in range(1, 40):  # each middle collection counts towards a full one (10 by default)
+            QTest.mouseMove(viewport, QPoint(max(left, start.x() - 2 * step), start.y()))
+            gc.collect(1)
+            qtbot.wait(5)
+    finally:
+        gc.callbacks.remove(watch)
+    held = gc.get_threshold()
+    QTest.mouseRelease(viewport, LEFT, NONE, QPoint(max(left, start.x() - 80), start.y()))
+    wait_solved(qtbot, window)
+    assert full == []
+    assert held[2] > 10_000 and held[:2] == before[:2]
+    assert gc.get_threshold() == before

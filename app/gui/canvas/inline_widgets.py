@@ -30,6 +30,9 @@ if TYPE_CHECKING:
 
 HANDLE_W = 9.0
 VALUE_W = 52.0
+_OUTLINE_PEN = QPen(theme.NODE_OUTLINE, 1.0)
+_TICK_PEN = QPen(QColor("#8a8a8a"), 1.0)
+_WHITE = QColor("white")
 
 
 class InlineWidget:
@@ -119,30 +122,33 @@ class SliderWidget(InlineWidget):
 
     # -- painting --------------------------------------------------------------------
     def paint(self, painter: QPainter, rect: QRectF) -> None:
-        track = self.track(rect)
-        y = track.center().y()
-        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+        # painted on every mouse move of a drag: the bounds and track are worked out once
+        low, high = self.bounds()
+        left, top, width, height = rect.left(), rect.top(), rect.width(), rect.height()
+        track_left, track_w = left + HANDLE_W / 2, width - VALUE_W - HANDLE_W
+        y = top + height / 2
+        painter.setPen(_OUTLINE_PEN)
         painter.setBrush(theme.WIDGET_TRACK)
-        painter.drawRoundedRect(QRectF(track.left() - HANDLE_W / 2, y - 3, track.width() + HANDLE_W, 6), 3, 3)
+        painter.drawRoundedRect(QRectF(left, y - 3, track_w + HANDLE_W, 6), 3, 3)
         if self.integer:  # ticks for whole numbers, when they fit
-            low, high = self.bounds()
             steps = int(high - low)
             if 0 < steps <= 40:
-                painter.setPen(QPen(QColor("#8a8a8a"), 1.0))
+                painter.setPen(_TICK_PEN)
                 for i in range(steps + 1):
-                    x = track.left() + track.width() * i / steps
+                    x = track_left + track_w * i / steps
                     painter.drawLine(QPointF(x, y + 4), QPointF(x, y + 7))
-        x = self.handle_x(rect)
-        painter.setPen(QPen(theme.NODE_OUTLINE, 1.0))
+                painter.setPen(_OUTLINE_PEN)
+        value = self.value()
+        x = track_left + min(1.0, max(0.0, (value - low) / (high - low))) * track_w
         painter.setBrush(theme.WIDGET_HANDLE if self.drag_value is None else theme.WIRE_DRAG)
-        painter.drawRoundedRect(QRectF(x - HANDLE_W / 2, rect.top() + 2, HANDLE_W, rect.height() - 4), 2, 2)
-        box = QRectF(rect.right() - VALUE_W + 4, rect.top() + 2, VALUE_W - 4, rect.height() - 4)
-        painter.setBrush(QColor("white"))
-        painter.drawRoundedRect(box, 3, 3)
+        painter.drawRoundedRect(QRectF(x - HANDLE_W / 2, top + 2, HANDLE_W, height - 4), 2, 2)
+        box_left = left + width - VALUE_W + 4
+        painter.setBrush(_WHITE)
+        painter.drawRoundedRect(QRectF(box_left, top + 2, VALUE_W - 4, height - 4), 3, 3)
         painter.setPen(theme.NODE_TEXT)
         painter.setFont(self.item.port_font)
         painter.drawText(
-            box.adjusted(2, 0, -3, 0),
+            QRectF(box_left + 2, top + 2, VALUE_W - 9, height - 4),
             Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
             self.text(),
         )
