@@ -35,7 +35,8 @@ from numpy.typing import ArrayLike
 
 from .curve_base import Curve, FloatArray
 from .curves import Line, NurbsCurve, Polyline
-from .ruled import RuledSurface
+from .ruled import RuledSurface, _uniform
+from .vec_ops import extent
 
 #: Curves whose points do not depend on which other parameters, or which derivatives, are
 #: evaluated with them (each point is computed alone, the same way at every order), so a
@@ -47,7 +48,7 @@ def unwrap_cyclic(t: FloatArray) -> FloatArray:
     """Parameters on a closed curve made non-decreasing by adding a turn after each drop
     of more than half the parameter range (the seam)."""
     t = np.asarray(t, dtype=float)
-    drops = np.diff(t) < -0.5
+    drops = t[1:] - t[:-1] < -0.5  # (np.diff, without its set-up)
     return t + np.concatenate([[0.0], np.cumsum(drops)])
 
 
@@ -64,23 +65,24 @@ class Pace:
     """
 
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
-        self._set(u, *_coefficients(u, p))
-
-    @classmethod
-    def each(cls, u: FloatArray, p: FloatArray) -> list[Pace]:
-        """One interpolant per row of ``p`` ``(k, n)``, all through the same ``u``, their
-        coefficients computed together (each row's are those :class:`Pace` gives it alone)."""
-        coefficients = _coefficients(u, p)
-        paces = []
-        for row in range(len(p)):
-            pace = cls.__new__(cls)
-            pace._set(u, *(c[row] for c in coefficients))
-            paces.append(pace)
-        return paces
-
-    def _set(self, u: FloatArray, c3: FloatArray, c2: FloatArray, c1: FloatArray, c0: FloatArray) -> None:
+        h = u[1:] - u[:-1]
+        m = (p[1:] - p[:-1]) / h
+        slopes = np.empty(len(p))
+        if len(p) == 2:
+            slopes[:] = m[0]
+        else:
+            sign = np.sign(m)
+            flat = (sign[1:] != sign[:-1]) | (m[1:] == 0) | (m[:-1] == 0)
+            w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                harmonic = (w1 + w2) / (w1 / m[:-1] + w2 / m[1:])
+            slopes[1:-1] = np.where(flat, 0.0, harmonic)
+            slopes[0] = _end_slope(h[0], h[1], m[0], m[1])
+            slopes[-1] = _end_slope(h[-1], h[-2], m[-1], m[-2])
+        # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
+        bend = (slopes[:-1] + slopes[1:] - 2.0 * m) / h
         self.u = u
-        self.c3, self.c2, self.c1, self.c0 = c3, c2, c1, c0
+        self.c3, self.c2, self.c1, self.c0 = bend / h, (m - slopes[:-1]) / h - bend, slopes[:-1], p[:-1]
 
     def __call__(self, x: FloatArray, nu: int = 0) -> FloatArray:
         """The interpolant's ``nu``-th derivative at ``x``."""
@@ -102,29 +104,6 @@ class Pace:
         return out
 
 
-def _coefficients(u: FloatArray, p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """PCHIP's cubics through ``(u_i, p_i)`` (``p`` one row, or several rows through the same
-    ``u``): per piece on [u_i, u_i+1], in z = u − u_i, ((c3·z + c2)·z + c1)·z + c0."""
-    h = u[1:] - u[:-1]
-    m = (p[..., 1:] - p[..., :-1]) / h
-    slopes = np.empty(p.shape)
-    if p.shape[-1] == 2:
-        slopes[...] = m[..., :1]
-    else:
-        sign = np.sign(m)
-        flat = (sign[..., 1:] != sign[..., :-1]) | (m[..., 1:] == 0) | (m[..., :-1] == 0)
-        w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            harmonic = (w1 + w2) / (w1 / m[..., :-1] + w2 / m[..., 1:])
-        slopes[..., 1:-1] = np.where(flat, 0.0, harmonic)
-        for row in np.ndindex(p.shape[:-1]):
-            mr = m[row]
-            slopes[(*row, 0)] = _end_slope(h[0], h[1], mr[0], mr[1])
-            slopes[(*row, -1)] = _end_slope(h[-1], h[-2], mr[-1], mr[-2])
-    bend = (slopes[..., :-1] + slopes[..., 1:] - 2.0 * m) / h
-    return bend / h, (m - slopes[..., :-1]) / h - bend, slopes[..., :-1], p[..., :-1]
-
-
 def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
     """PCHIP's slope at an end: the one-sided three-point estimate, kept monotone."""
     d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
@@ -140,19 +119,16 @@ class CurveRail(Curve):
     ``(u_i, p_i)`` (``params`` → ``curve_params``, non-decreasing). Exact derivatives to
     order 3 by the chain rule."""
 
-    def __init__(
-        self, curve: Curve, params: ArrayLike, curve_params: ArrayLike, pace: Pace | None = None
-    ) -> None:
+    def __init__(self, curve: Curve, params: ArrayLike, curve_params: ArrayLike) -> None:
         u = np.asarray(params, dtype=float)
         p = np.asarray(curve_params, dtype=float)
         if curve.closed:
             p = unwrap_cyclic(p)
-        if len(u) < 2 or u.shape != p.shape or np.any(np.diff(u) <= 0) or np.any(np.diff(p) < 0):
+        if len(u) < 2 or u.shape != p.shape or (u[1:] - u[:-1] <= 0).any() or (p[1:] - p[:-1] < 0).any():
             raise ValueError("a curve rail needs increasing u and non-decreasing curve parameters")
         self.curve = curve
         self.params, self.curve_params = u, p
-        # (``pace``: the interpolant through (u, p), built by a caller that built several at once)
-        self._pace = Pace(u, p) if pace is None else pace
+        self._pace = Pace(u, p)
         self.closed = False  # the rail covers the stretch of the curve between its rulings
 
     def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
@@ -239,14 +215,8 @@ def ruled_between(
     n = len(s)
     if n < 2 or len(t) != n:
         raise ValueError("a strip needs at least two rulings, one s and one t each")
-    u = np.linspace(0.0, 1.0, n)
-    # both rails' paces at once (their coefficients are those each would get alone)
-    p_a = unwrap_cyclic(s) if curve_a.closed else s
-    p_b = unwrap_cyclic(t) if curve_b.closed else t
-    pace_a = pace_b = None
-    if p_a.shape == p_b.shape == (n,):
-        pace_a, pace_b = Pace.each(u, np.stack([p_a, p_b]))
-    rail_a, rail_b = CurveRail(curve_a, u, s, pace_a), CurveRail(curve_b, u, t, pace_b)
+    u = _uniform(n)  # (np.linspace(0, 1, n), bit for bit)
+    rail_a, rail_b = CurveRail(curve_a, u, s), CurveRail(curve_b, u, t)
     lines = np.empty((n, 2, 3))
     for side, (curve, rail) in enumerate(((curve_a, rail_a), (curve_b, rail_b))):
         at = rail._wrapped(rail.curve_params)
@@ -257,7 +227,7 @@ def ruled_between(
     # both rails return to their start, as RuledSurface judges it from its rails' ends,
     # without evaluating the rails again (a strip's rails are built on every re-solve)
     ends = lines[[0, -1, 0, -1], [0, 0, 1, 1]]
-    size = float(np.ptp(ends, axis=0).max()) or 1.0
+    size = float(extent(ends).max()) or 1.0
     closed_u = bool(
         np.abs(ends[0] - ends[1]).max() <= 1e-12 * size and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size
     )

@@ -90,9 +90,9 @@ def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     cones: dict[bool, tuple[bool, float]] = {}
     others = []
     for run, root in zip(runs, through_b, strict=True):
-        if root is not None and not np.any(run.stations & (run.s > root) & (run.s < run.sk)):
+        if root is not None and not (run.stations & (run.s > root) & (run.s < run.sk)).any():
             cones[run.reverse] = (False, root)
-        elif not np.any(run.stations & (run.s > run.s0)):
+        elif not (run.stations & (run.s > run.s0)).any():
             others.append(run)  # else the cone through A(s0) could not cover the run's stations
     if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
         for run, root in zip(others, _roots(curve_a, curve_b, others, moving_a=False), strict=True):
@@ -130,7 +130,7 @@ def _run(r: Rulings, reverse: bool) -> _Run | None:
     if k == 0:
         return None
     s0, t0 = r.s[0], r.t[0]
-    if np.all(r.s[: k + 1] == s0) or np.all(r.t[: k + 1] == t0):
+    if (r.s[: k + 1] == s0).all() or (r.t[: k + 1] == t0).all():
         return None  # already one cone
     ends = float(s0), float(t0), float(r.s[k]), float(r.t[k])
     return _Run(k, reverse, *ends, r.s[:k], r.t[:k], r.source[:k])

@@ -32,6 +32,7 @@ from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
 from ..vec_ops import cross, det, norm, unit
+from ..vec_ops import extent as box_extent
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .strip import SIDE, Strip
@@ -88,7 +89,7 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
     creased = np.zeros(len(in_fan), dtype=bool)
     if not in_fan.any():
         return creased
-    size = float(np.ptp(np.concatenate([starts, ends]), axis=0).max()) or 1.0
+    size = float(box_extent(np.concatenate([starts, ends])).max()) or 1.0
     same_start = norm(starts[1:] - starts[:-1]) <= 1e-12 * size
     same_end = norm(ends[1:] - ends[:-1]) <= 1e-12 * size
     edges = np.flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))

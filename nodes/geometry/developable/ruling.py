@@ -335,7 +335,8 @@ def _merge(
     s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
     order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
     repeat = np.zeros(len(order), dtype=bool)
-    repeat[1:] = (np.diff(s_all[order]) <= 1e-14) & (np.diff(t_all[order]) <= 1e-14)
+    s_sorted, t_sorted = s_all[order], t_all[order]
+    repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (t_sorted[1:] - t_sorted[:-1] <= 1e-14)
     # of two equal rulings keep the station (an added ruling sorts after its equal station)
     later_station = np.flatnonzero(repeat & (order < n))
     order[later_station - 1] = order[later_station]

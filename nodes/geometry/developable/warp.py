@@ -311,7 +311,7 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
 
 def _interior_of_fan(points: FloatArray, size: float) -> BoolArray:
     """Rows whose point is shared with both neighbouring rows: inside a fan through it."""
-    same = norm(np.diff(points, axis=0)) <= ZERO * size
+    same = norm(points[1:] - points[:-1]) <= ZERO * size
     inside = np.zeros(len(points), dtype=bool)
     inside[1:-1] = same[:-1] & same[1:]
     return inside
