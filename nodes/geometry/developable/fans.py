@@ -108,6 +108,18 @@ def area_share(starts: FloatArray, ends: FloatArray, pieces: NDArray[np.bool_]) 
     return float(areas[pieces].sum() / total)
 
 
+def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> tuple[float, float]:
+    """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
+    :func:`creased_fans`), from one measurement of the pieces' areas."""
+    areas = patch_areas(starts, ends)
+    total = float(areas.sum())
+    creased = creased_fans(starts, ends, fan)
+    if not total > 0:
+        return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
+    in_fan = fan[:-1] | fan[1:]
+    return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
+
+
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
     """The share of the strip's area in pieces next to a fan ruling (0 to 1)."""
     areas = patch_areas(starts, ends)

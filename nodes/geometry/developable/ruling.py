@@ -101,7 +101,7 @@ from ..vec_ops import cross, norm, position_rounding, unit
 from ..watch import watch_check
 from .candidates import ROOT, Candidates, choose, near_partners
 from .end_cones import Rulings, smooth_ends
-from .fans import a_fans, area_share, close_gaps, creased_fans, fan_share, flat_fans, outside_gaps
+from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
 from .stations import Spacing
 from .strip import SIDE, Strip
 from .warp import in_plane_tangent, warp_angles
@@ -286,8 +286,7 @@ def _solve(
             starts, ends, signed, valid = starts2, ends2, signed2, valid2
             warp = np.abs(signed)
     if fan.any():
-        share = fan_share(starts, ends, fan)
-        creased = area_share(starts, ends, creased_fans(starts, ends, fan))
+        share, creased = fan_shares(starts, ends, fan)
     else:  # (what both give without fans: no piece counts)
         share = creased = 0.0
     message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share, creased)
