@@ -52,6 +52,11 @@ def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
     return products[..., 0] + products[..., 1] + products[..., 2]
 
 
+def flatnonzero(a: FloatArray) -> FloatArray:
+    """``np.flatnonzero(a)`` for an array: the indices of its non-zero items, flattened."""
+    return a.ravel().nonzero()[0]
+
+
 def norm(a: FloatArray) -> FloatArray:
     """Row-wise Euclidean length."""
     return np.sqrt(_einsum("...i,...i->...", a, a))

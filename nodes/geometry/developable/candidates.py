@@ -26,7 +26,7 @@ import numpy as np
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import _einsum, cross, det, dot, extent, norm, position_rounding, unit
+from ..vec_ops import _einsum, cross, det, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import Pieces, isolate
 from .selection import monotone_path
@@ -99,7 +99,7 @@ def _brackets(
         size_f = np.abs(f, out=size_buffer[:here])
         lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
         look = (negative[:, :-1] != negative[:, 1:]) | (lower <= reach)
-        maybe = np.flatnonzero(size_f <= flat_scale)
+        maybe = flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
             exact = maybe[size_f.flat[maybe] <= (FLAT * norm(b0[c] - a0[r + first]) + rounding) * speed_b[c]]
@@ -108,7 +108,7 @@ def _brackets(
                 zero.flat[exact] = True
                 look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
-        r, c = np.divmod(np.flatnonzero(look), m - 1)
+        r, c = np.divmod(flatnonzero(look), m - 1)
         found.append((r + first, c, f[r, c], f[r, c + 1]))
     joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
@@ -346,7 +346,7 @@ def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
     # drop duplicates (a flat end that is also a root) and keep at most MAX_CANDIDATES
     first = np.ones(len(c.row), dtype=bool)
     first[1:] = (c.row[1:] != c.row[:-1]) | (c.t[1:] - c.t[:-1] > 1e-13)
-    keep = np.flatnonzero(first)
+    keep = flatnonzero(first)
     rows = c.row[keep]
     column = np.arange(len(rows)) - np.searchsorted(rows, rows, side="left")
     fits = column < MAX_CANDIDATES
@@ -387,8 +387,8 @@ def _neighbours(partnered: BoolArray) -> tuple[IntArray, IntArray]:
     """The stations with a partner, and where each other station falls among them: ``i``
     such that its nearest partnered neighbours are ``stations[i − 1]`` and ``stations[i]``
     (there is none before it when i = 0, none after it when i = len(stations))."""
-    stations = np.flatnonzero(partnered)
-    return stations, np.searchsorted(stations, np.flatnonzero(~partnered))
+    stations = flatnonzero(partnered)
+    return stations, np.searchsorted(stations, flatnonzero(~partnered))
 
 
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
@@ -403,7 +403,7 @@ def choose(strip: Strip) -> tuple[IntArray, Candidates]:
         chosen[good.row] = np.arange(len(good.row))
         return chosen, good
     t_pad, slope_pad, index_pad = _pad(good, n)
-    rows = np.flatnonzero(~np.isnan(t_pad).all(axis=1))
+    rows = flatnonzero(~np.isnan(t_pad).all(axis=1))
     if len(rows):
         s = strip.s[rows]
         pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
@@ -420,7 +420,7 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     within it, else the least-warped sample of B. The others stay NaN, to be closed
     by fans."""
     gap = np.isnan(t)
-    missing = np.flatnonzero(gap)
+    missing = flatnonzero(gap)
     if len(missing) == 0:
         return
     partnered, window = _neighbours(~gap)

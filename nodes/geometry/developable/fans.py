@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
-from ..vec_ops import cross, det, norm, unit
+from ..vec_ops import cross, det, flatnonzero, norm, unit
 from ..vec_ops import extent as box_extent
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
@@ -92,7 +92,7 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
     size = float(box_extent(np.concatenate([starts, ends])).max()) or 1.0
     same_start = norm(starts[1:] - starts[:-1]) <= 1e-12 * size
     same_end = norm(ends[1:] - ends[:-1]) <= 1e-12 * size
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))
+    edges = flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))
     for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
         one_apex = same_start[first:stop].all() or same_end[first:stop].all()
         creased[first:stop] = not one_apex
@@ -150,8 +150,8 @@ def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -
     high = np.where(is_flat, good.high[chosen], np.nan)
     # consecutive flat stations whose flat intervals overlap form one planar piece
     joins = is_flat[1:] & is_flat[:-1] & (low[1:] <= high[:-1]) & (low[:-1] <= high[1:])
-    begins = np.flatnonzero(is_flat & ~np.concatenate([[False], joins]))
-    finishes = np.flatnonzero(is_flat & ~np.concatenate([joins, [False]]))
+    begins = flatnonzero(is_flat & ~np.concatenate([[False], joins]))
+    finishes = flatnonzero(is_flat & ~np.concatenate([joins, [False]]))
     for i0, i1 in zip(begins, finishes, strict=True):  # one pass per planar piece (few)
         t_in = low[i0] if i0 == 0 or np.isnan(t[i0 - 1]) else max(low[i0], t[i0 - 1])
         t_out = high[i1] if i1 == n - 1 or np.isnan(t[i1 + 1]) else min(high[i1], t[i1 + 1])
@@ -272,7 +272,7 @@ def a_fans(
     dt = t[1:] - t[:-1]
     predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
     jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
-    pairs = np.flatnonzero(jump)
+    pairs = flatnonzero(jump)
     if len(pairs) == 0:
         return []
     # a hole, if no torsal fan covers it, only where the step is over twice both neighbouring
@@ -287,7 +287,7 @@ def a_fans(
     f_left = det(bm0 - strip.a0[pairs], strip.a1[pairs], bm1)
     f_right = det(bm0 - strip.a0[pairs + 1], strip.a1[pairs + 1], bm1)
     apex = np.full(len(pairs), np.nan)
-    which = np.flatnonzero(f_left * f_right < 0)
+    which = flatnonzero(f_left * f_right < 0)
     if len(which):
 
         def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -382,8 +382,8 @@ def close_gaps(
         a, b = zigzag(strip.station_lengths[i : i + 2], strip.length_b(tb))
         inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
         added.append((strip.s[i + a[inner]], tb[b[inner]]))
-    begins = np.flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
-    finishes = np.flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+    begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
+    finishes = flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
     closed = strip.curve_b.closed
     for i0, i1 in zip(begins, finishes, strict=True):  # one pass per gap (few)
         k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
@@ -432,8 +432,8 @@ def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
     if not fans or not gap.any():
         return fans
     n = len(s)
-    begins = np.flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
-    finishes = np.flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+    begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
+    finishes = flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
     low, high = s[np.maximum(begins - 1, 0)], s[np.minimum(finishes + 1, n - 1)]
     through_gap = s[gap]
     return [

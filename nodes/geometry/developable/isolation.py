@@ -65,7 +65,7 @@ import numpy as np
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
-from ..vec_ops import cross, dot, norm
+from ..vec_ops import cross, dot, flatnonzero, norm
 
 #: An uncertain interval narrower than this (in t) is a double root to rounding.
 NARROWEST = 1e-13
@@ -269,7 +269,7 @@ def isolate(
             break
         if level == 0 and ends is not None:
             # judge again with the bound from the rulings' own lengths before splitting
-            pieces = ends(pieces, np.flatnonzero(uncertain))
+            pieces = ends(pieces, flatnonzero(uncertain))
             curvature = _curvature(pieces)
             continue
         pieces = pieces.take(uncertain)

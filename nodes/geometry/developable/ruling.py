@@ -97,7 +97,7 @@ from numpy.typing import ArrayLike
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, norm, position_rounding, unit
+from ..vec_ops import cross, flatnonzero, norm, position_rounding, unit
 from ..watch import watch_check
 from .candidates import ROOT, Candidates, choose, near_partners
 from .end_cones import Rulings, smooth_ends
@@ -305,8 +305,7 @@ def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
     (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
     length = norm(ends - starts)
     rounding = max(position_rounding(starts), position_rounding(ends))
-    with np.errstate(divide="ignore"):
-        return rounding / np.where(length > 0.0, length, np.inf)
+    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
 def _merge(
@@ -337,7 +336,7 @@ def _merge(
     s_sorted, t_sorted = s_all[order], t_all[order]
     repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (t_sorted[1:] - t_sorted[:-1] <= 1e-14)
     # of two equal rulings keep the station (an added ruling sorts after its equal station)
-    later_station = np.flatnonzero(repeat & (order < n))
+    later_station = flatnonzero(repeat & (order < n))
     order[later_station - 1] = order[later_station]
     order = order[~repeat]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]

@@ -20,7 +20,7 @@ from nodes.geometry.array_types import BoolArray
 from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
-from ..vec_ops import cross, dot, norm, unit
+from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .isolation import IntervalBounds, interval_bounds, third_bound
 from .stations import LengthMap, Spacing, station_parameters
 
@@ -112,14 +112,14 @@ def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
     kinks = breaks[kink]
     # from the left, a smooth breakpoint shows its left-hand derivatives
     left = np.arange(m)
-    left[at_break[~kink]] = m + np.flatnonzero(~kink)
+    left[at_break[~kink]] = m + flatnonzero(~kink)
     if not len(kinks):  # the samples themselves, on the right (views: no copies)
         on_right = points[:m], tangents[:m], second[:m], third[:m]
         return Grid(t, t, np.zeros(m - 1, dtype=bool), *on_right, second[left], third[left]), kinks
     # a corner gets two samples: its left copy just before its right copy
     index = at_break[kink]
-    right = np.insert(np.arange(m), index, m + np.flatnonzero(kink))
-    left = np.insert(left, index, m + np.flatnonzero(kink))
+    right = np.insert(np.arange(m), index, m + flatnonzero(kink))
+    left = np.insert(left, index, m + flatnonzero(kink))
     t_all = np.insert(t, index, kinks)
     at = np.insert(t, index, kinks - SIDE)
     pair = np.diff(t_all) == 0

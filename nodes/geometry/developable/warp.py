@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike
 from nodes.geometry.array_types import BoolArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, dot, extent, norm, unit
+from ..vec_ops import cross, dot, extent, flatnonzero, norm, unit
 
 #: Below this share of the strip's size a ruling has no length and a tangent is zero
 #: (the edge stands still there).
@@ -303,7 +303,7 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
     d = curve.derivatives(np.concatenate([below, above]), 1)[1]
     lt, rt = unit(d[: len(b)]), unit(d[len(b) :])
     jump = np.arctan2(norm(cross(lt, rt)), dot(lt, rt)) > CORNER_ANGLE
-    rows = np.flatnonzero(near)
+    rows = flatnonzero(near)
     corner[rows] = jump
     left[rows], right[rows] = lt, rt
     return corner, left, right
@@ -355,7 +355,7 @@ def curve_warp(
     # at a corner whose chosen tangent runs along the ruling (a fan's edge on a side of
     # the corner), any other direction of the corner's cone is a tangent too: take the
     # one-sided tangents there and keep the least warp that is defined
-    retry = np.flatnonzero(np.isnan(warp) & (corner_a | corner_b))
+    retry = flatnonzero(np.isnan(warp) & (corner_a | corner_b))
     if len(retry):
         options_a = (ta[retry], np.where(corner_a[retry, None], left_a[retry], ta[retry]),
                      np.where(corner_a[retry, None], right_a[retry], ta[retry]))
