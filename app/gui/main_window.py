@@ -378,14 +378,19 @@ class MainWindow(QMainWindow):
         if self._tables_timer.isActive():
             self._tables_stale = True
         else:
-            self._fill_tables()
-            self._tables_timer.start(DRAG_TABLES_INTERVAL_MS if self.editor.dragging else TABLES_INTERVAL_MS)
+            self._fill_tables_and_wait()
+
+    def _fill_tables_and_wait(self) -> None:
+        """Fill the tables now, and not again before the interval is over."""
+        self._fill_tables()
+        self._tables_timer.start(DRAG_TABLES_INTERVAL_MS if self.editor.dragging else TABLES_INTERVAL_MS)
 
     def _drag_ended(self) -> None:
         """A slider was let go: the tables show the drag's last solve now, and the solve of
         its last value (if one follows) as soon as it comes."""
         self._tables_timer.stop()
-        self._tables_due()
+        if self._tables_stale:
+            self._fill_tables()
 
     def _fit_log_dock(self) -> None:
         """Grow the Messages dock until it shows every message (up to ten rows; never shrunk,
@@ -408,7 +413,7 @@ class MainWindow(QMainWindow):
 
     def _tables_due(self) -> None:
         if self._tables_stale:
-            self._fill_tables()
+            self._fill_tables_and_wait()
 
     def _fill_tables(self) -> None:
         self._tables_stale = False

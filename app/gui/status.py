@@ -10,6 +10,7 @@ from PySide6.QtWidgets import QLabel, QProgressBar, QStatusBar, QWidget
 from app.gui.solve_controller import PROGRESS_AFTER, SolveOutcome
 
 PROGRESS_AFTER_MS = round(1000 * PROGRESS_AFTER)
+QWIDGETSIZE_MAX = (1 << 24) - 1  # Qt's largest widget size (no maximum)
 
 
 class SolveStatus(QStatusBar):
@@ -53,7 +54,8 @@ class SolveStatus(QStatusBar):
         report = outcome.report
         ms = report.seconds * 1000
         if outcome.error or report.cancelled:
-            self.solve_label.setMinimumWidth(0)
+            self.solve_label.setMinimumSize(0, 0)
+            self.solve_label.setMaximumSize(QWIDGETSIZE_MAX, QWIDGETSIZE_MAX)
             if outcome.error:
                 self.solve_label.setText(f"Solve failed: {outcome.error}")
             else:
@@ -62,11 +64,12 @@ class SolveStatus(QStatusBar):
                 )
         else:
             self.solve_label.setText(f"Solved {len(report.solved)} nodes in {ms:.1f} ms")
-            # the label keeps the widest width it has needed since: a time one digit longer
-            # or shorter does not lay the status bar (and the window's edge) out again
-            wanted = self.solve_label.sizeHint().width()
-            if wanted > self.solve_label.minimumWidth():
-                self.solve_label.setMinimumWidth(wanted)
+            # the label keeps a fixed size, the largest it has needed since: a new time does
+            # not lay the status bar (and with it the window) out again, as a label that may
+            # change size does on every new text
+            wanted, size = self.solve_label.sizeHint(), self.solve_label.minimumSize()
+            if wanted.width() > size.width() or wanted.height() != size.height():
+                self.solve_label.setFixedSize(max(wanted.width(), size.width()), wanted.height())
         warnings, errors = outcome.count("warning"), outcome.count("error")
         self.counts_label.setText(
             f"⚠ {warnings} warning{'s' * (warnings != 1)}   ✖ {errors} error{'s' * (errors != 1)}"

@@ -239,3 +239,17 @@ def test_no_full_garbage_collection_runs_while_a_slider_is_dragged_and_they_run_
     assert full == []
     assert held[2] > 10_000 and held[:2] == before[:2]
     assert gc.get_threshold() == before
+
+
+def test_the_status_bars_solve_time_keeps_its_size_so_the_window_is_not_laid_out_again(qtbot, window):
+    node_id = bad_slider(qtbot, window)
+    label = window.status.solve_label
+    sizes = []
+    for value in (1.2, 1.4, 1.6):
+        window.editor.set_setting(node_id, "value", value)
+        wait_solved(qtbot, window)
+        assert label.text().startswith("Solved ")
+        sizes.append((label.minimumWidth(), label.maximumWidth()))
+        assert label.width() >= label.sizeHint().width()  # the whole text shows
+    assert all(low == high for low, high in sizes)  # fixed: a new text asks for no new layout
+    assert [low for low, _ in sizes] == sorted(low for low, _ in sizes)  # it only ever grows
