@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QPixmap
 from PySide6.QtWidgets import (
     QLabel,
@@ -33,6 +33,8 @@ from engine.graph import Graph, is_placeholder
 from engine.node import Node
 
 MAX_ITEMS_SHOWN = 100
+#: While a slider is dragged, a selected node is shown again at most this often (ms).
+DRAG_REFRESH_MS = 1000
 #: An output item that is a path to one of these is shown as an image on the Plot tab.
 IMAGE_SUFFIXES = (".png",)
 
@@ -99,7 +101,15 @@ class Inspector(QWidget):
         self.tabs.addTab(self.data, "Data")
         self.tabs.addTab(self.help, "Help")
         doc.graph_changed.connect(lambda event: self.refresh() if event.node_id == self.node_id else None)
-        doc.results_changed.connect(lambda _outcome: self.refresh())
+        doc.results_changed.connect(self._solved)
+        # while a slider is dragged a selected node's tables are refilled once a second (a
+        # strip's take a few ms, on every solve), and at once when the slider is let go
+        self._due = False
+        self._held = QTimer(self)
+        self._held.setSingleShot(True)
+        self._held.setInterval(DRAG_REFRESH_MS)
+        self._held.timeout.connect(self._refresh_if_due)
+        editor.drag_ended.connect(self._drag_ended)
         doc.graph_replaced.connect(lambda: self.show_node(None))
 
     def show_node(self, node_id: str | None) -> None:
@@ -109,7 +119,25 @@ class Inspector(QWidget):
         if changed and self.plot_path is not None:
             self.tabs.setCurrentWidget(self.plot_area)
 
+    def _solved(self, _outcome: object) -> None:
+        if self._held.isActive():
+            self._due = True
+            return
+        self.refresh()
+        if self.editor.dragging and self.node_id is not None:
+            self._held.start()
+
+    def _refresh_if_due(self) -> None:
+        if self._due:
+            self._solved(None)
+
+    def _drag_ended(self) -> None:
+        self._held.stop()
+        if self._due:
+            self.refresh()
+
     def refresh(self) -> None:
+        self._due = False
         graph = self.doc.graph
         if self.node_id not in graph.nodes:
             self.node_id = None

@@ -253,3 +253,29 @@ def test_the_status_bars_solve_time_keeps_its_size_so_the_window_is_not_laid_out
         assert label.width() >= label.sizeHint().width()  # the whole text shows
     assert all(low == high for low, high in sizes)  # fixed: a new text asks for no new layout
     assert [low for low, _ in sizes] == sorted(low for low, _ in sizes)  # it only ever grows
+
+
+def test_a_selected_node_is_shown_once_a_second_while_dragging_and_as_solved_after(qtbot, window):
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    window.scene.select_nodes(["strip"])
+    qtbot.wait(20)
+    start, left, right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    refreshes, solves = [], []
+    fill = window.inspector._fill
+    window.inspector._fill = lambda graph: (refreshes.append(time.perf_counter()), fill(graph))
+    window.doc.results_changed.connect(solves.append)
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    x, began = start.x(), time.perf_counter()
+    while time.perf_counter() - began < 1.5:
+        x = max(left, min(right, x - 3))
+        QTest.mouseMove(viewport, QPoint(x, start.y()))
+        qtbot.wait(15)
+    during = len(refreshes)
+    QTest.mouseRelease(viewport, LEFT, NONE, QPoint(x, start.y()))
+    wait_solved(qtbot, window)
+    assert window.scene.selected_node_ids() == ["strip"]  # the drag did not change the selection
+    assert during <= 2
+    seconds = f"{window.doc.results['strip'].seconds * 1000:.2f} ms"
+    assert seconds in window.inspector.header.text()  # the last solve's time, after the drag
