@@ -86,17 +86,25 @@ def _normals(
     n = len(ruling)
     ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
     tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
-    tangents = np.concatenate([ta, tb]).reshape(2, n, 3)
     size = _size(start, end)
     length = norm(ruling)
-    speeds = norm(tangents)
+    if ta.shape == tb.shape == ruling.shape:
+        tangents = np.concatenate([ta, tb]).reshape(2, n, 3)
+        speeds = norm(tangents)
+        units = tangents / np.where(speeds > 0, speeds, 1.0)[..., None]
+    else:  # one tangent for all rulings: its length as measured alone (einsum rounds a lone row its own way)
+        speed_a, speed_b = norm(ta), norm(tb)
+        unit_a = ta / np.where(speed_a > 0, speed_a, 1.0)[:, None]
+        unit_b = tb / np.where(speed_b > 0, speed_b, 1.0)[:, None]
+        units = np.stack([np.broadcast_to(unit_a, ruling.shape), np.broadcast_to(unit_b, ruling.shape)])
+        speeds = np.stack([np.broadcast_to(speed_a, (n,)), np.broadcast_to(speed_b, (n,))])
     still = speeds <= ZERO * size  # (still_a, still_b)
     mask_a, mask_b = _mask(apex_a, n), _mask(apex_b, n)
     if mask_a is not None:
         still[0] |= mask_a
     if mask_b is not None:
         still[1] |= mask_b
-    normals = cross(ruling, tangents / np.where(speeds > 0, speeds, 1.0)[..., None])
+    normals = cross(ruling, units)
     has = norm(normals) > PARALLEL * length
     usable = has | still
     defined = (length > ZERO * size) & usable[0] & usable[1] & ~(still[0] & still[1])
@@ -178,6 +186,9 @@ def consistently_oriented(
     ruling = ends - starts
     n = len(ruling)
     zero = (ZERO * _size(starts, ends)) ** 2
+    if tangents_a.shape != ruling.shape or tangents_b.shape != ruling.shape:  # (broadcast ones)
+        tangents_a = np.broadcast_to(tangents_a, ruling.shape)
+        tangents_b = np.broadcast_to(tangents_b, ruling.shape)
     tangents = np.concatenate([tangents_a, tangents_b]).reshape(2, n, 3)  # both ends at once
     rr, tt = dot(ruling, ruling), dot(tangents, tangents)
     normals = cross(ruling, tangents)
