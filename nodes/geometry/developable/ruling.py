@@ -357,22 +357,28 @@ def _measured(
     rows = source[station]
     if len(rows) == k:  # no added rulings
         starts, ta = strip.a0[rows], strip.a1[rows]
-    else:
+    else:  # (index arrays, found once: masks would be searched again at every use)
+        at, away = flatnonzero(station), flatnonzero(~station)
         starts, ta = np.empty((2, k, 3))
-        starts[station], ta[station] = strip.a0[rows], strip.a1[rows]
-        starts[~station], ta[~station] = strip.curve_a.derivatives(s[~station], 1)
-    # B where a station's chosen root still stands (a flat end or corner is re-evaluated)
+        starts[at], ta[at] = strip.a0[rows], strip.a1[rows]
+        starts[away], ta[away] = strip.curve_a.derivatives(s[away], 1)
+    # B where a station's chosen root still stands (a flat end or corner is re-evaluated);
+    # ``chosen`` holds −1 (none) or a candidate's index
     root = np.full(k, -1)
-    picked = chosen[rows]
-    root[station] = np.where(picked >= 0, picked, -1)
-    kept = root >= 0
-    kept[kept] = (good.t[root[kept]] == t[kept]) & (good.kind[root[kept]] == ROOT)
-    if kept.all():
-        ends, tb = good.points[root], good.tangents[root]
+    root[station] = chosen[rows]
+    candidate = flatnonzero(root >= 0)
+    picked = root[candidate]
+    stands = (good.t[picked] == t[candidate]) & (good.kind[picked] == ROOT)
+    kept, kept_root = candidate[stands], picked[stands]
+    if len(kept) == k:
+        ends, tb = good.points[kept_root], good.tangents[kept_root]
     else:
         ends, tb = np.empty((2, k, 3))
-        ends[kept], tb[kept] = good.points[root[kept]], good.tangents[root[kept]]
-        ends[~kept], tb[~kept] = strip.curve_b.derivatives(t[~kept], 1)
+        ends[kept], tb[kept] = good.points[kept_root], good.tangents[kept_root]
+        again = np.ones(k, dtype=bool)
+        again[kept] = False
+        lost = flatnonzero(again)
+        ends[lost], tb[lost] = strip.curve_b.derivatives(t[lost], 1)
     ruling = ends - starts
     if len(strip.kinks_b):
         at_b = np.isin(t, strip.kinks_b)
