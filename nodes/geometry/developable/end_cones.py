@@ -223,9 +223,13 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
     run_of, j = np.nonzero(change)
     if len(run_of) == 0:
         return found
-    x0, x1 = x[run_of, j], x[run_of, j + 1]
-    g0, g1 = g[run_of, j], g[run_of, j + 1]
-    start = cubic_start(x0, x1, g0, g1, slope[run_of, j], slope[run_of, j + 1])
+    # the samples before and after each sign change, as flat indices of the (runs, SAMPLES) arrays
+    before = run_of * SAMPLES + j
+    after = before + 1
+    xs, gs, slopes = x.reshape(-1), g.reshape(-1), slope.reshape(-1)
+    x0, x1 = xs[before], xs[after]
+    g0, g1 = gs[before], gs[after]
+    start = cubic_start(x0, x1, g0, g1, slopes[before], slopes[after])
     roots = np.empty(len(run_of))
     at_root = np.empty((4, len(run_of), 3))
 
