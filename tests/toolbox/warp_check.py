@@ -6,7 +6,8 @@ normal vectors N1 = R × T1 and N2 = R × T2. Here it comes from the triple prod
 (N1 × N2 = R·det[R, T1, T2], so |N1 × N2| = |R|·|det|) and Lagrange's identity
 (N1·N2 = |R|²(T1·T2) − (R·T1)(R·T2)), not from the normals themselves. Undefined (NaN):
 a ruling of zero length, or one along an edge tangent (|R × T| ≤ 1e-9·|R||T|). Inside a
-fan (an end shared with both neighbouring rulings) the end takes the other end's plane.
+fan (an end shared with every neighbouring ruling: both inside, the one neighbour of the
+first and last rulings) the end takes the other end's plane.
 """
 
 from __future__ import annotations
@@ -46,11 +47,14 @@ def warp(a: np.ndarray, b: np.ndarray, ta: np.ndarray, tb: np.ndarray,
 
 
 def shared_both_sides(points: np.ndarray) -> np.ndarray:
-    """Rows whose point equals both neighbours' (the inside of a fan through it)."""
+    """Rows whose point equals every neighbour's (in a fan through it)."""
     size = float(np.linalg.norm(np.ptp(points, axis=0))) or 1.0
     same = np.linalg.norm(np.diff(points, axis=0), axis=1) <= 1e-12 * size
     inside = np.zeros(len(points), bool)
     inside[1:-1] = same[:-1] & same[1:]
+    if len(same):
+        inside[0] |= same[0]
+        inside[-1] |= same[-1]
     return inside
 
 

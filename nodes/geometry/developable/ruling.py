@@ -75,7 +75,10 @@ Algorithm (all stations at once)
    of the rulings' end points alone can add to it far from the origin (their positions'
    rounding over the ruling's length: nothing at the origin, 3e-6 rad for a 1.3 m ruling
    at 1e9 m; see :func:`warp_allowance`). A station taken as
-   torsal that fails the check joins the fans and the strip is closed again.
+   torsal that fails the check joins the fans and the strip is closed again. A fan that
+   turns back over itself between two of its rulings (in a plane: over a stretch of a
+   curve its apex does not see whole) gets a ruling at the turn, which runs along the
+   curve: its warp is undefined and it is not valid (:func:`_fan_folds`).
 9. A closed B whose seam is away from the strip's start is solved again from A(0)'s
    partner, so that t can run once round B through its seam.
 
@@ -104,7 +107,7 @@ from .end_cones import Rulings, smooth_ends
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
 from .stations import Spacing
 from .strip import SIDE, Strip
-from .warp import in_plane_tangent, warp_angles
+from .warp import PARALLEL, in_plane_tangent, warp_angles
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
 MAX_CHECKS = 3
@@ -285,6 +288,13 @@ def _solve(
             s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
             starts, ends, signed, valid = starts2, ends2, signed2, valid2
             warp = np.abs(signed)
+    folded = _fan_folds(strip, s_out, t_out, starts)
+    if len(folded[0]):
+        s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
+        starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
+        warp = np.abs(signed)
+        with np.errstate(invalid="ignore"):
+            valid = warp <= tolerance + warp_allowance(starts, ends)
     if fan.any():
         share, creased = fan_shares(starts, ends, fan)
     else:  # (what both give without fans: no piece counts)
@@ -348,7 +358,7 @@ def _measured(
     the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
     (NaN where no normal is defined), with the tangent at a corner taken in the plane
     of the ruling where the corner straddles it (:func:`_corner_tangent`), and an end
-    shared with both neighbouring rulings (the apex of a fan of flat triangles)
+    shared with every neighbouring ruling (the apex of a fan of flat triangles)
     taking the other end's plane. Nothing of the solve enters but the curves'
     evaluations at those very parameters (a station's, a refined root's), which are
     reused rather than repeated. Returns starts, ends and the signed warp."""
@@ -410,11 +420,84 @@ def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, rig
     return tangent
 
 
+def _fan_folds(
+    strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray
+) -> tuple[IntArray, FloatArray, FloatArray]:
+    """Where a fan folds back on itself between two of its rulings: the piece, and the
+    parameters (s, t) of the ruling at the fold.
+
+    In a fan through a point P (consecutive rulings sharing an end) the sheet's normal
+    is N(x) = (C(x) − P) × C'(x), C the curve the rulings move along. It turns smoothly
+    while the rulings sweep on; where a ruling runs along C's tangent N passes through
+    zero and the sheet turns back over itself (in a plane: a fan over a stretch of C that
+    P does not see whole). Neither ruling of the piece shows it, each measures its own
+    plane; so where N at the piece's two ends points to opposite sides, the ruling where
+    N·N(start) = 0 is found by bisection and, if N vanishes there (within
+    :data:`.warp.PARALLEL`: a true fold, not a fast turn of a curved cone), returned, to
+    be added: its warp is undefined (NaN) and it is not valid.
+    """
+    apex_a = s[1:] == s[:-1]
+    apex_b = (t[1:] == t[:-1]) & ~apex_a
+    pieces = np.flatnonzero(apex_a | apex_b)
+    empty = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
+    if len(pieces) == 0:
+        return empty
+    on_b = apex_a[pieces]  # the rulings move along B; else along A
+    low = np.where(on_b, t[pieces], s[pieces])
+    high = np.where(on_b, t[pieces + 1], s[pieces + 1])
+    apex = np.where(on_b[:, None], starts[pieces], strip.curve_b.point_at(t[pieces]))
+
+    def normal(x: FloatArray) -> tuple[FloatArray, FloatArray]:
+        point, tangent = np.empty((2, len(x), 3))
+        for curve, rows in ((strip.curve_b, on_b), (strip.curve_a, ~on_b)):
+            if rows.any():
+                point[rows], tangent[rows] = curve.derivatives(x[rows], 1)
+        ruling = point - apex
+        return cross(ruling, unit(tangent)), ruling
+
+    inside = np.minimum(SIDE, 0.5 * (high - low))  # one-sided: beside a corner, its piece's side
+    first, _ = normal(low + inside)
+    last, _ = normal(high - inside)
+    flips = np.flatnonzero(np.einsum("ij,ij->i", first, last) < 0.0)
+    if len(flips) == 0:
+        return empty
+    pieces, on_b, apex, first = pieces[flips], on_b[flips], apex[flips], first[flips]
+    lo, hi = low[flips] + inside[flips], high[flips] - inside[flips]
+    for _ in range(60):  # bisection on N(x)·N(start): halves the bracket to rounding
+        mid = 0.5 * (lo + hi)
+        n, _ = normal(mid)
+        same = np.einsum("ij,ij->i", n, first) > 0.0
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    x = 0.5 * (lo + hi)
+    n, ruling = normal(x)
+    fold = norm(n) <= PARALLEL * norm(ruling)
+    pieces, x, on_b = pieces[fold], x[fold], on_b[fold]
+    return pieces, np.where(on_b, s[pieces], x), np.where(on_b, x, t[pieces])
+
+
+def _with_folds(
+    s: FloatArray, t: FloatArray, source: IntArray, fan: BoolArray, pieces: IntArray, s_add: FloatArray,
+    t_add: FloatArray,
+) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
+    """The rulings with one added inside each piece in ``pieces`` at (s_add, t_add)."""
+    at = pieces + 1
+    return (
+        np.insert(s, at, s_add),
+        np.insert(t, at, t_add),
+        np.insert(source, at, -1),
+        np.insert(fan, at, fan[pieces] | fan[pieces + 1]),
+    )
+
+
 def _fan_apex(parameters: FloatArray) -> BoolArray:
-    """Rulings whose end is shared with both neighbouring rulings: the apex of a fan."""
+    """Rulings whose end is shared with every neighbouring ruling (both inside the strip,
+    the one neighbour of its first and last rulings): the apex of a fan."""
     same = parameters[1:] == parameters[:-1]
     apex = np.zeros(len(parameters), dtype=bool)
     apex[1:-1] = same[:-1] & same[1:]
+    if len(same):  # the first and last rulings have one neighbour each
+        apex[0] |= same[0]
+        apex[-1] |= same[-1]
     return apex
 
 

@@ -24,7 +24,10 @@ the input. One degenerate end is defined, by the geometry: where an edge *stands
 triangles through one point (a cone's apex, a flat fan closing a strip) — the sheet next
 to the ruling is the fan's triangles, whose plane contains the ruling and the *other*
 edge's tangent. That end's normal is the other end's, so a fan ruling's warp is 0 (its
-triangles are flat) when the other end has a normal, and NaN when it does not.
+triangles are flat) when the other end has a normal, and NaN when it does not. The first
+and last rulings of a strip have one neighbour: an end they share with it is a fan's apex
+too (the sheet beside them is that fan; the curve's tangent there belongs to no sheet next
+to them).
 The same holds at a point the caller knows is on the edge of regression (``apex_a``,
 ``apex_b``; a tangent developable's curve, where the ruling runs along the tangent).
 """
@@ -324,10 +327,14 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
 
 
 def _interior_of_fan(points: FloatArray, size: float) -> BoolArray:
-    """Rows whose point is shared with both neighbouring rows: inside a fan through it."""
+    """Rows whose point is shared with every neighbouring row (both inside, the one
+    neighbour of the first and last rows): in a fan through it."""
     same = norm(points[1:] - points[:-1]) <= ZERO * size
     inside = np.zeros(len(points), dtype=bool)
     inside[1:-1] = same[:-1] & same[1:]
+    if len(same):  # the first and last rulings have one neighbour each
+        inside[0] |= same[0]
+        inside[-1] |= same[-1]
     return inside
 
 
@@ -345,7 +352,7 @@ def curve_warp(
     straddles that plane (:func:`in_plane_tangent`: a cone through the corner), and where
     that tangent runs along the ruling, the one-sided tangent that gives the least
     defined warp (every direction of the corner's cone touches it). A ruling
-    inside a fan (its end shared with both neighbouring rulings) is measured in the
+    inside a fan (its end shared with every neighbouring ruling) is measured in the
     plane of the fan's triangles (the curve's tangent at the fan's apex plays no part).
     """
     s = np.asarray(s, dtype=float).reshape(-1)
