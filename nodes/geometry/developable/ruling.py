@@ -288,7 +288,7 @@ def _solve(
             s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
             starts, ends, signed, valid = starts2, ends2, signed2, valid2
             warp = np.abs(signed)
-    folded = _fan_folds(strip, s_out, t_out, starts)
+    folded = _fan_folds(strip, s_out, t_out, starts, ends, np.isnan(warp))
     if len(folded[0]):
         s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
         starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
@@ -421,7 +421,7 @@ def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, rig
 
 
 def _fan_folds(
-    strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray
+    strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray, undefined: BoolArray
 ) -> tuple[IntArray, FloatArray, FloatArray]:
     """Where a fan folds back on itself between two of its rulings: the piece, and the
     parameters (s, t) of the ruling at the fold.
@@ -438,38 +438,45 @@ def _fan_folds(
     """
     apex_a = s[1:] == s[:-1]
     apex_b = (t[1:] == t[:-1]) & ~apex_a
-    pieces = np.flatnonzero(apex_a | apex_b)
+    # (a piece next to a ruling with no warp, of no length or along the curve, has no
+    # normal there to compare: that ruling is not valid itself)
+    pieces = np.flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:])
     empty = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
     if len(pieces) == 0:
         return empty
     on_b = apex_a[pieces]  # the rulings move along B; else along A
     low = np.where(on_b, t[pieces], s[pieces])
     high = np.where(on_b, t[pieces + 1], s[pieces + 1])
-    apex = np.where(on_b[:, None], starts[pieces], strip.curve_b.point_at(t[pieces]))
+    apex = np.where(on_b[:, None], starts[pieces], ends[pieces])
 
-    def normal(x: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def normal(x: FloatArray, on_b: BoolArray, apex: FloatArray) -> tuple[FloatArray, FloatArray]:
         point, tangent = np.empty((2, len(x), 3))
         for curve, rows in ((strip.curve_b, on_b), (strip.curve_a, ~on_b)):
-            if rows.any():
+            if rows.all():
+                point, tangent = curve.derivatives(x, 1)
+            elif rows.any():
                 point[rows], tangent[rows] = curve.derivatives(x[rows], 1)
         ruling = point - apex
         return cross(ruling, unit(tangent)), ruling
 
     inside = np.minimum(SIDE, 0.5 * (high - low))  # one-sided: beside a corner, its piece's side
-    first, _ = normal(low + inside)
-    last, _ = normal(high - inside)
-    flips = np.flatnonzero(np.einsum("ij,ij->i", first, last) < 0.0)
+    k = len(pieces)
+    ends_x = np.concatenate([low + inside, high - inside])  # both ends of every piece at once
+    both, both_rulings = normal(ends_x, np.tile(on_b, 2), np.tile(apex, (2, 1)))
+    has = norm(both) > PARALLEL * norm(both_rulings)
+    first, last = both[:k], both[k:]
+    flips = np.flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
     if len(flips) == 0:
         return empty
     pieces, on_b, apex, first = pieces[flips], on_b[flips], apex[flips], first[flips]
     lo, hi = low[flips] + inside[flips], high[flips] - inside[flips]
     for _ in range(60):  # bisection on N(x)·N(start): halves the bracket to rounding
         mid = 0.5 * (lo + hi)
-        n, _ = normal(mid)
+        n, _ = normal(mid, on_b, apex)
         same = np.einsum("ij,ij->i", n, first) > 0.0
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     x = 0.5 * (lo + hi)
-    n, ruling = normal(x)
+    n, ruling = normal(x, on_b, apex)
     fold = norm(n) <= PARALLEL * norm(ruling)
     pieces, x, on_b = pieces[fold], x[fold], on_b[fold]
     return pieces, np.where(on_b, s[pieces], x), np.where(on_b, x, t[pieces])
