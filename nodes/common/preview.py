@@ -12,6 +12,12 @@ so a new kind of geometry draws by offering its arrays in one of two ways:
   points, vectors and planes (so kernel files need not know about drawing). Adapters are
   found through the class's bases: a new curve class draws as a sampled curve.
 
+A class whose values come by the hundred (a strip's rulings) may also register an adapter
+for many values at once, :func:`register_preview_many`: :func:`preview_of_many` then
+draws a run of them in one pass, exactly as :func:`preview_of` would one by one. A
+geometry's ``polylines`` or ``rulings`` may be one ``(k, n, 3)`` array (k chains of n
+points each): that too is a sequence of ``(n, 3)`` chains.
+
 Example::
 
     class Helix:
@@ -65,7 +71,8 @@ class PreviewGeometry:
     """What one value draws, as plain arrays: ``points`` ``(n, 3)`` each, ``polylines``
     ``(k, 3)`` each (curves), ``rulings`` ``(2, 3)`` each (the straight lines over a ruled
     surface), ``vectors`` ``(3,)`` each (arrows from the origin) and ``meshes``. Each is a
-    sequence (a tuple or a list); empty by default."""
+    sequence (a tuple, a list, or for chains of one length an ``(m, k, 3)`` array); empty
+    by default."""
 
     points: Sequence[np.ndarray] = ()
     polylines: Sequence[np.ndarray] = ()
@@ -83,7 +90,9 @@ class Previewable(Protocol):
 
 
 Adapter = Callable[[Any], PreviewGeometry]
+ManyAdapter = Callable[[Sequence[Any]], PreviewGeometry]
 _ADAPTERS: dict[type, Adapter] = {}
+_MANY: dict[type, ManyAdapter] = {}
 
 
 def register_preview(cls: type) -> Callable[[Adapter], Adapter]:
@@ -92,6 +101,25 @@ def register_preview(cls: type) -> Callable[[Adapter], Adapter]:
         _ADAPTERS[cls] = fn
         return fn
     return decorate
+
+
+def register_preview_many(cls: type) -> Callable[[ManyAdapter], ManyAdapter]:
+    """Decorator: ``fn(values) -> PreviewGeometry`` draws a run of values of exactly ``cls``
+    in one pass (what :func:`preview_of` draws for each, in order, merged)."""
+    def decorate(fn: ManyAdapter) -> ManyAdapter:
+        _MANY[cls] = fn
+        return fn
+    return decorate
+
+
+def draws_many(cls: type) -> bool:
+    """Whether values of exactly ``cls`` are drawn by the run (see :func:`preview_of_many`)."""
+    return cls in _MANY
+
+
+def preview_of_many(values: Sequence[Any]) -> PreviewGeometry:
+    """The arrays that draw ``values``, all of one class for which :func:`draws_many`."""
+    return _MANY[type(values[0])](values)
 
 
 def preview_of(value: Any) -> PreviewGeometry | None:
@@ -191,18 +219,19 @@ def ruling_direction(surface: Surface) -> str | None:
     return direction if direction in ("u", "v") else None
 
 
-def surface_rulings(surface: Surface) -> list[np.ndarray] | None:
-    """The surface's rulings as ``(2, 3)`` segments when it is ruled, else None."""
+def surface_rulings(surface: Surface) -> np.ndarray | None:
+    """The surface's rulings as ``(k, 2, 3)`` segments when it is ruled, else None."""
     lines = getattr(surface, "ruling_lines", None)
     if lines is not None:
         lines = np.asarray(lines, dtype=float)
         if lines.ndim == 3 and lines.shape[1:] == (2, 3):
             step = max(1, len(lines) // RULINGS_SHOWN)
-            return list(lines[::step])
+            return lines[::step]
     try:
-        return list(np.asarray(surface.rulings(RULINGS_SHOWN), dtype=float))
+        lines = np.asarray(surface.rulings(RULINGS_SHOWN), dtype=float)
     except (ValueError, AttributeError, TypeError):
         return None
+    return lines.reshape(-1, 2, 3)
 
 
 @register_preview(Surface)
@@ -210,9 +239,13 @@ def _surface(surface: Surface) -> PreviewGeometry:
     direction = ruling_direction(surface)
     # along a straight ruling two rows of vertices are exact: 16 times fewer triangles
     nu, nv = {"v": (SURFACE_GRID, 2), "u": (2, SURFACE_GRID)}.get(direction, (SURFACE_GRID, SURFACE_GRID))
-    found = _trimesh(surface.to_mesh(nu, nv))
+    if type(surface).to_mesh is Surface.to_mesh:  # its mesh's arrays, without making the mesh
+        vertices, faces, normals = surface.mesh_arrays(nu, nv)
+        meshes = [PreviewMesh(vertices, faces, normals)]
+    else:  # a surface meshing itself its own way
+        meshes = _trimesh(surface.to_mesh(nu, nv)).meshes
     rulings = surface_rulings(surface) if direction else None
-    return PreviewGeometry(meshes=found.meshes, rulings=rulings or ())
+    return PreviewGeometry(meshes=meshes, rulings=() if rulings is None else rulings)
 
 
 @register_preview(MeshSurface)
@@ -223,6 +256,15 @@ def _mesh_surface(surface: MeshSurface) -> PreviewGeometry:
 @register_preview(Line)
 def _line(line: Line) -> PreviewGeometry:
     return PreviewGeometry(polylines=[np.array([line.start, line.end], dtype=float).reshape(2, 3)])
+
+
+@register_preview_many(Line)
+def _lines(lines: Sequence[Line]) -> PreviewGeometry:
+    """A run of lines as one ``(k, 2, 3)`` array of chains (a strip's hundreds of rulings)."""
+    ends = np.empty((len(lines), 2, 3))
+    ends[:, 0] = [line.start for line in lines]
+    ends[:, 1] = [line.end for line in lines]
+    return PreviewGeometry(polylines=ends)
 
 
 @register_preview(Polyline)

@@ -52,7 +52,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
-from .vec_ops import anchor, dot, extent, position_rounding
+from .vec_ops import anchor, cross, dot, extent, position_rounding
 from .watch import watch_check
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
@@ -74,6 +74,15 @@ def uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
     """
     uu, vv = np.meshgrid(np.linspace(0.0, 1.0, nu), np.linspace(0.0, 1.0, nv), indexing="ij")
     return uu.ravel(), vv.ravel()
+
+
+@functools.lru_cache(maxsize=32)
+def _uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
+    """:func:`uv_grid`, made once per size (read-only)."""
+    grid = uv_grid(nu, nv)
+    for axis in grid:
+        axis.flags.writeable = False
+    return grid
 
 
 @functools.lru_cache(maxsize=32)
@@ -479,12 +488,38 @@ class Surface(ABC):
         surfaces are not welded (the grid stays intact); triangles are oriented
         with the surface normal, which is stored as the vertex normals.
         """
+        points, faces, normals = self.mesh_arrays(nu, nv)
+        return trimesh.Trimesh(points, faces.copy(), vertex_normals=normals, process=False)
+
+    def mesh_arrays(self, nu: int = 33, nv: int = 33) -> tuple[FloatArray, np.ndarray, FloatArray]:
+        """:meth:`to_mesh` as plain arrays, for drawing: the ``(nu·nv, 3)`` points, the
+        triangles (shared and read-only: the same array for every surface on this grid)
+        and the unit normals (:meth:`normal_at`'s) on the grid of :func:`uv_grid`, without
+        the cost of a mesh object."""
         if nu < 2 or nv < 2:
             raise ValueError("to_mesh needs at least 2 × 2 vertices")
-        gu, gv = uv_grid(nu, nv)
-        ders = self._regular_derivatives(gu, gv, 1)  # points stay exact; only tangents are nudged
-        normals = unit_normal(ders[1], ders[2])
-        return trimesh.Trimesh(ders[0], grid_triangles(nu, nv), vertex_normals=normals, process=False)
+        gu, gv = _uv_grid(nu, nv)
+        ders = self.derivatives(gu.copy(), gv.copy(), 1)
+        return ders[0], _grid_triangles(nu, nv), self._grid_normals(gu, gv, ders[1], ders[2])
+
+    def _grid_normals(self, u: FloatArray, v: FloatArray, su: FloatArray, sv: FloatArray) -> FloatArray:
+        """:meth:`normal_at` at (u, v) from the derivatives there (points where the normal
+        degenerates re-taken a step inwards, as :meth:`_regular_derivatives` does), with
+        one cross product where ``normal_at`` takes two."""
+        normal = cross(su, sv)
+        length = np.sqrt(dot(normal, normal))
+        bad = ~(length > DEGENERATE_RATIO * (dot(su, su) + dot(sv, sv)))
+        if bad.any():
+            ub, vb = u[bad], v[bad]
+            nudged_u = ub + np.where(ub < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            nudged_v = vb + np.where(vb < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
+            fixed = self.derivatives(nudged_u, nudged_v, 1)
+            retaken = cross(fixed[1], fixed[2])
+            normal[bad] = retaken
+            length[bad] = np.sqrt(dot(retaken, retaken))
+        length = length[:, None]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(length > 0.0, normal / length, np.nan)
 
 
 class CurveOnSurface(Curve):

@@ -8,11 +8,16 @@ protocol (or having an adapter registered), without changes here. A mesh with sc
 
 Each node's values are merged into one piece per kind so a node costs a few actors.
 Pieces are plain numpy arrays, made on the solver's thread; :func:`dataset` makes the
-VTK objects, on the GUI thread.
+VTK objects, on the GUI thread. A slider drag prepares the same node's pieces many times
+a second with only the points moving, so what does not move is made once: a run of
+lines is drawn in one pass (:func:`nodes.common.preview.preview_of_many`), and the cells
+of merged grids and chains are kept by their shapes (the same read-only array each
+time, which :func:`same_topology` recognises at once).
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,7 +26,14 @@ import numpy as np
 import pyvista as pv
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from nodes.common.preview import PreviewGeometry, costly, mesh_scalars, preview_of
+from nodes.common.preview import (
+    PreviewGeometry,
+    costly,
+    draws_many,
+    mesh_scalars,
+    preview_of,
+    preview_of_many,
+)
 
 __all__ = ["mesh_scalars"]  # also read by the GUI tests: the colours a mesh carries
 
@@ -50,7 +62,8 @@ class Piece:
 
 @dataclass
 class Collected:
-    """A node's geometry sorted by kind, before merging."""
+    """A node's geometry sorted by kind, before merging. Chains (``polylines``,
+    ``rulings``) are ``(n, 3)`` arrays, or ``(k, n, 3)`` blocks of k chains of n points."""
 
     points: list[np.ndarray] = field(default_factory=list)
     polylines: list[np.ndarray] = field(default_factory=list)
@@ -73,32 +86,72 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     tessellation of a curve or surface met before.
     """
     found = Collected()
+    run: list[Any] = []  # consecutive values of one class drawn together (lines)
     for value in values:
-        if value is None or isinstance(value, bool | int | float | str):
+        kind = type(value)
+        if kind in _PLAIN or value is None or isinstance(value, bool | int | float | str):
             continue  # not geometry (a node's angles, flags, kinds): nothing to draw or remember
-        try:
-            if memo is not None and costly(value):
-                entry = memo.get(id(value))
-                if entry is None or entry[0] is not value:
-                    entry = memo[id(value)] = (value, preview_of(value))
-                geometry = entry[1]
-            else:
-                geometry = preview_of(value)
-            if geometry is not None:
-                _add_geometry(found, geometry)
-        except Exception as exc:
-            found.problems.append(f"{type(value).__name__}: {exc}")
+        if run and kind is not type(run[0]):
+            _add_run(found, run, memo)
+            run = []
+        if draws_many(kind):
+            run.append(value)
+        else:
+            _add_value(found, value, memo)
+    if run:
+        _add_run(found, run, memo)
     return found
 
 
+#: Classes of values that are never geometry, found by one set lookup.
+_PLAIN = frozenset({bool, int, float, str, np.float64, np.int64, np.bool_})
+
+
+def _add_run(found: Collected, run: list[Any], memo: Memo | None) -> None:
+    """Values of one class drawn in one pass; one by one if the pass fails (so that the
+    problem names the value)."""
+    try:
+        geometry = preview_of_many(run)
+    except Exception:
+        for value in run:
+            _add_value(found, value, memo)
+        return
+    _add_geometry(found, geometry)
+
+
+def _add_value(found: Collected, value: Any, memo: Memo | None) -> None:
+    try:
+        if memo is not None and costly(value):
+            entry = memo.get(id(value))
+            if entry is None or entry[0] is not value:
+                entry = memo[id(value)] = (value, preview_of(value))
+            geometry = entry[1]
+        else:
+            geometry = preview_of(value)
+        if geometry is not None:
+            _add_geometry(found, geometry)
+    except Exception as exc:
+        found.problems.append(f"{type(value).__name__}: {exc}")
+
+
+def _chains(chains: Any, size: int | None) -> list[np.ndarray]:
+    """A geometry's ``polylines`` or ``rulings`` as arrays: one ``(k, n, 3)`` block for an
+    array of chains, else one ``(n, 3)`` array per chain (``size`` points each if given)."""
+    if isinstance(chains, np.ndarray) and chains.ndim == 3 and chains.shape[2] == 3:
+        if size is not None and chains.shape[1] != size:
+            raise ValueError(f"cannot reshape chains of {chains.shape[1]} points into ({size}, 3)")
+        return [np.asarray(chains, dtype=float)]
+    return [np.asarray(c, dtype=float).reshape(-1 if size is None else size, 3) for c in chains]
+
+
 def _add_geometry(found: Collected, geometry: PreviewGeometry) -> None:
-    if geometry.points:
+    if len(geometry.points):
         found.points.extend(np.asarray(p, dtype=float).reshape(-1, 3) for p in geometry.points)
-    if geometry.polylines:
-        found.polylines.extend(np.asarray(c, dtype=float).reshape(-1, 3) for c in geometry.polylines)
-    if geometry.rulings:
-        found.rulings.extend(np.asarray(r, dtype=float).reshape(2, 3) for r in geometry.rulings)
-    if geometry.vectors:
+    if len(geometry.polylines):
+        found.polylines.extend(_chains(geometry.polylines, None))
+    if len(geometry.rulings):
+        found.rulings.extend(_chains(geometry.rulings, 2))
+    if len(geometry.vectors):
         found.vectors.extend(np.asarray(v, dtype=float).reshape(3) for v in geometry.vectors)
     for mesh in geometry.meshes:
         vertices = np.asarray(mesh.vertices, dtype=float)
@@ -128,18 +181,34 @@ def _normals(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray | None
 
 
 def _line_cells(chains: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """Points and VTK line cells for several polylines."""
-    points = np.concatenate(chains)
-    lengths = np.fromiter((len(c) for c in chains), dtype=np.int64, count=len(chains))
+    """Points and VTK line cells for several polylines: ``(n, 3)`` chains, or ``(k, n, 3)``
+    blocks of k chains of n points. The cells are kept by the chains' lengths (read-only)."""
+    shapes: list[list[int]] = []  # [chains, points each], runs of one length merged
+    for chain in chains:
+        count, length = (1, len(chain)) if chain.ndim == 2 else chain.shape[:2]
+        if shapes and shapes[-1][1] == length:
+            shapes[-1][0] += count
+        else:
+            shapes.append([count, length])
+    points = np.concatenate([c if c.ndim == 2 else c.reshape(-1, 3) for c in chains])
+    return points, _cells_for(tuple((count, length) for count, length in shapes))
+
+
+@functools.lru_cache(maxsize=64)
+def _cells_for(shapes: tuple[tuple[int, int], ...]) -> np.ndarray:
+    """VTK line cells for blocks of ``k`` chains of ``n`` points, ``(k, n)`` each."""
+    counts, lengths = np.array(shapes, dtype=np.int64).reshape(-1, 2).T
+    lengths = np.repeat(lengths, counts)
     # each chain's cell is its count then its point indices: the indices run on from one
     # chain to the next, and the counts sit just before each chain's first index
     heads = np.cumsum(lengths + 1) - (lengths + 1)
-    cells = np.empty(len(points) + len(chains), dtype=np.int64)
+    cells = np.empty(int(lengths.sum()) + len(lengths), dtype=np.int64)
     cells[heads] = lengths
     body = np.ones(len(cells), dtype=bool)
     body[heads] = False
-    cells[body] = np.arange(len(points), dtype=np.int64)
-    return points, cells
+    cells[body] = np.arange(len(cells) - len(lengths), dtype=np.int64)
+    cells.flags.writeable = False
+    return cells
 
 
 ARROW_SIDES = 8
@@ -185,10 +254,9 @@ def pieces(found: Collected) -> list[Piece]:
     out: list[Piece] = []
     if found.meshes:
         vertices, faces, normals = zip(*found.meshes, strict=True)
-        offsets = np.cumsum([0] + [len(v) for v in vertices[:-1]])
-        faces = np.concatenate([f + o for f, o in zip(faces, offsets, strict=True)])
         out.append(
-            Piece("surfaces", np.concatenate(vertices), faces=faces, normals=np.concatenate(normals))
+            Piece("surfaces", np.concatenate(vertices), faces=_merged_faces(vertices, faces),
+                  normals=np.concatenate(normals))
         )
     for kind, chains in (("rulings", found.rulings), ("curves", found.polylines)):
         if chains:
@@ -206,6 +274,32 @@ def pieces(found: Collected) -> list[Piece]:
     return out
 
 
+def _merged_faces(vertices: tuple[np.ndarray, ...], faces: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The triangles of meshes put one after the other (each mesh's indices moved on by
+    the vertices before it). Meshes that all share one read-only triangle array (grids of
+    one size) get the same read-only merged array for as long as they come."""
+    template, count = faces[0], len(vertices[0])
+    if not template.flags.writeable and all(
+        f is template and len(v) == count for f, v in zip(faces, vertices, strict=True)
+    ):
+        key = (id(template), count, len(faces))
+        kept = _MERGED.get(key)
+        if kept is None or kept[0] is not template:
+            if len(_MERGED) >= 64:
+                _MERGED.clear()
+            offsets = count * np.arange(len(faces), dtype=np.int64)
+            merged = (template[None] + offsets[:, None, None]).reshape(-1, 3)
+            merged.flags.writeable = False
+            kept = _MERGED[key] = (template, merged)
+        return kept[1]
+    offsets = np.cumsum([0] + [len(v) for v in vertices[:-1]])
+    return np.concatenate([f + o for f, o in zip(faces, offsets, strict=True)])
+
+
+#: Merged triangles of grids, by (their triangles' identity, vertices per grid, grids).
+_MERGED: dict[tuple[int, int, int], tuple[np.ndarray, np.ndarray]] = {}
+
+
 def face_cells(faces: np.ndarray) -> np.ndarray:
     """VTK's flat cell array ``[3, a, b, c, 3, …]`` for triangles."""
     return np.hstack([np.full((len(faces), 1), 3, dtype=np.int64), faces]).ravel()
@@ -216,12 +310,13 @@ def dataset(piece: Piece) -> pv.PolyData:
     thread can deadlock against a render (VTK's locks and the GIL taken in opposite order).
     Its points and normals are its own copies (:func:`move_points` writes into them)."""
     points = np.array(piece.points, dtype=float)
+    lines = None if piece.lines is None else np.array(piece.lines, dtype=np.int64)  # (cells may be shared)
     if piece.faces is not None:
-        poly = pv.PolyData(points, face_cells(piece.faces), lines=piece.lines)
+        poly = pv.PolyData(points, face_cells(piece.faces), lines=lines)
         if piece.normals is not None:
             poly.point_data.active_normals = np.array(piece.normals, dtype=float)
-    elif piece.lines is not None:
-        poly = pv.PolyData(points, lines=piece.lines)
+    elif lines is not None:
+        poly = pv.PolyData(points, lines=lines)
     else:
         poly = pv.PolyData(points)
     if piece.scalars is not None:
@@ -235,7 +330,9 @@ def same_topology(piece: Piece, other: Piece) -> bool:
     if piece.kind != other.kind or len(piece.points) != len(other.points):
         return False
     for mine, theirs in ((piece.faces, other.faces), (piece.lines, other.lines)):
-        if (mine is None) != (theirs is None) or (mine is not None and not np.array_equal(mine, theirs)):
+        if mine is theirs:  # (cells kept by their shapes: the same array again)
+            continue
+        if mine is None or theirs is None or not np.array_equal(mine, theirs):
             return False
     return (piece.normals is None) == (other.normals is None)
 
