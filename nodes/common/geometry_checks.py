@@ -36,6 +36,8 @@ def has_no_length(curve: Curve) -> bool:
     rounding), or its length is not a positive number. A zero-length line, a spline or
     NURBS curve through one point, an expression curve that does not move."""
     start, end = curve.end_points
+    if np.abs(end - start).max() > _ROUNDING * max(np.abs(start).max(), np.abs(end).max()):
+        return False  # ends apart: not a point (only a closed curve or a point needs samples)
     points = curve.point_at(_SAMPLES)
     if not np.isfinite(points).all():
         return not curve.length > 0
