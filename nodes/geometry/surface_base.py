@@ -77,9 +77,14 @@ def uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
 
 
 @functools.lru_cache(maxsize=32)
-def _uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray]:
-    """:func:`uv_grid`, made once per size (read-only)."""
-    grid = uv_grid(nu, nv)
+def _uv_grid(nu: int, nv: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """:func:`uv_grid` and each of its points a step inwards (where a degenerate normal is
+    re-taken, see :meth:`Surface._regular_derivatives`), made once per size (read-only)."""
+    u, v = uv_grid(nu, nv)
+    grid = (
+        u, v, u + np.where(u < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE),
+        v + np.where(v < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE),
+    )
     for axis in grid:
         axis.flags.writeable = False
     return grid
@@ -498,28 +503,28 @@ class Surface(ABC):
         the cost of a mesh object."""
         if nu < 2 or nv < 2:
             raise ValueError("to_mesh needs at least 2 × 2 vertices")
-        gu, gv = _uv_grid(nu, nv)
-        ders = self.derivatives(gu.copy(), gv.copy(), 1)
-        return ders[0], _grid_triangles(nu, nv), self._grid_normals(gu, gv, ders[1], ders[2])
+        grid = _uv_grid(nu, nv)
+        ders = self.derivatives(grid[0].copy(), grid[1].copy(), 1)
+        return ders[0], _grid_triangles(nu, nv), self._grid_normals(grid, ders[1], ders[2])
 
-    def _grid_normals(self, u: FloatArray, v: FloatArray, su: FloatArray, sv: FloatArray) -> FloatArray:
-        """:meth:`normal_at` at (u, v) from the derivatives there (points where the normal
-        degenerates re-taken a step inwards, as :meth:`_regular_derivatives` does), with
-        one cross product where ``normal_at`` takes two."""
+    def _grid_normals(self, grid: tuple[FloatArray, ...], su: FloatArray, sv: FloatArray) -> FloatArray:
+        """:meth:`normal_at` on a grid of :func:`_uv_grid` from the derivatives there
+        (points where the normal degenerates re-taken a step inwards, as
+        :meth:`_regular_derivatives` does), with one cross product where ``normal_at``
+        takes two."""
         normal = cross(su, sv)
         length = np.sqrt(dot(normal, normal))
         bad = ~(length > DEGENERATE_RATIO * (dot(su, su) + dot(sv, sv)))
         if bad.any():
-            ub, vb = u[bad], v[bad]
-            nudged_u = ub + np.where(ub < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
-            nudged_v = vb + np.where(vb < 0.5, DEGENERATE_NUDGE, -DEGENERATE_NUDGE)
-            fixed = self.derivatives(nudged_u, nudged_v, 1)
+            fixed = self.derivatives(grid[2][bad], grid[3][bad], 1)
             retaken = cross(fixed[1], fixed[2])
             normal[bad] = retaken
             length[bad] = np.sqrt(dot(retaken, retaken))
-        length = length[:, None]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.where(length > 0.0, normal / length, np.nan)
+        found = length > 0.0
+        np.divide(normal, length[:, None], out=normal, where=found[:, None])
+        if not found.all():
+            normal[~found] = np.nan  # (no normal, as normal_at says)
+        return normal
 
 
 class CurveOnSurface(Curve):

@@ -89,7 +89,7 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     run: list[Any] = []  # consecutive values of one class drawn together (lines)
     for value in values:
         kind = type(value)
-        if kind in _PLAIN or value is None or isinstance(value, bool | int | float | str):
+        if kind in PLAIN_TYPES or isinstance(value, bool | int | float | str):
             continue  # not geometry (a node's angles, flags, kinds): nothing to draw or remember
         if run and kind is not type(run[0]):
             _add_run(found, run, memo)
@@ -103,8 +103,8 @@ def collect(values: Iterable[Any], memo: Memo | None = None) -> Collected:
     return found
 
 
-#: Classes of values that are never geometry, found by one set lookup.
-_PLAIN = frozenset({bool, int, float, str, np.float64, np.int64, np.bool_})
+#: Classes of values that are never geometry (nothing to draw), found by one set lookup.
+PLAIN_TYPES = frozenset({type(None), bool, int, float, str, np.float64, np.int64, np.bool_})
 
 
 def _add_run(found: Collected, run: list[Any], memo: Memo | None) -> None:

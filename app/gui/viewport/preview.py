@@ -11,7 +11,16 @@ import numpy as np
 import pyvista as pv
 
 from app.gui import theme
-from app.gui.viewport.datasets import Memo, Piece, collect, dataset, move_points, pieces, same_topology
+from app.gui.viewport.datasets import (
+    PLAIN_TYPES,
+    Memo,
+    Piece,
+    collect,
+    dataset,
+    move_points,
+    pieces,
+    same_topology,
+)
 from engine.graph import Graph
 from engine.solver import NodeResult
 from engine.widgets import Widget
@@ -90,8 +99,11 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
 def prepare(result: NodeResult, outputs: Collection[str], memo: Memo | None = None) -> Prepared:
     """The datasets for one node's result, from the ``outputs`` it draws — no plotter
     needed: safe off the GUI thread."""
-    trees = (tree for port, tree in result.outputs.items() if port in outputs)
-    found = collect((v for tree in trees for v in tree.all_items()), memo)
+    drawn = (tree.all_items() for port, tree in result.outputs.items() if port in outputs)
+    # outputs of numbers, flags or texts only (a strip's warps, Valid, kinds) are passed
+    # over whole: one type check of all their items in C, not one Python step each
+    items = [values for values in drawn if not PLAIN_TYPES.issuperset(map(type, values))]
+    found = collect((v for values in items for v in values), memo)
     return Prepared(result, pieces(found), found.problems)
 
 
