@@ -276,7 +276,10 @@ def curve_points(curve: Curve) -> np.ndarray:
     """:data:`CURVE_SAMPLES` points at evenly spaced parameters, in one vectorised
     evaluation (an adaptive tessellation looks no better at preview size and costs 30
     times more)."""
-    return np.asarray(curve.point_at(np.linspace(0.0, 1.0, CURVE_SAMPLES)), dtype=float).reshape(-1, 3)
+    return np.asarray(curve.point_at(_CURVE_PARAMETERS.copy()), dtype=float).reshape(-1, 3)
+
+
+_CURVE_PARAMETERS = np.linspace(0.0, 1.0, CURVE_SAMPLES)  # (copied for each curve: a copy costs less)
 
 
 @register_preview(Curve)
