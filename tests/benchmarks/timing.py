@@ -64,3 +64,28 @@ def duration(seconds: float) -> str:
     if seconds < 1.0:
         return f"{seconds * 1e3:.2f} ms"
     return f"{seconds:.2f} s"
+
+
+#: Cross products in :func:`check_interval_block`: ≈ 50 ms on the quiet 2-core machine of
+#: 2 December 2026 (medians 50.1–53.7 ms at load 0.4–0.8; 12.5 µs a call).
+CHECK_INTERVAL_CALLS = 4000
+
+
+def check_interval_block(repeats: int = 5) -> float:
+    """Seconds of the most work a long kernel may do between two looks at its cancel token,
+    the "50 ms" of issue 16 on whatever machine and load this runs: the median of
+    ``repeats`` blocks of :data:`CHECK_INTERVAL_CALLS` cross products of a 13-point strip's
+    ``(13, 3)`` rows through ``np.cross`` — Python and small numpy calls, the kernels' own
+    kind of work. (Sorting 2·10⁶ numbers stood in for it before; numpy sorts with AVX-512
+    where the processor has it, 4× faster than on the machine it was set on, so it asked
+    12 ms between checks there.)"""
+    import numpy as np
+
+    rows = np.random.default_rng(1).random((13, 3))
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for _ in range(CHECK_INTERVAL_CALLS):
+            np.cross(rows, rows)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
