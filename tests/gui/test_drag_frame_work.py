@@ -279,3 +279,31 @@ def test_a_selected_node_is_shown_once_a_second_while_dragging_and_as_solved_aft
     assert during <= 2
     seconds = f"{window.doc.results['strip'].seconds * 1000:.2f} ms"
     assert seconds in window.inspector.header.text()  # the last solve's time, after the drag
+
+
+def test_a_slider_drag_ends_when_a_menu_takes_the_mouse_before_the_release(qtbot, window):
+    import gc
+
+    from PySide6.QtWidgets import QMenu
+
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    before = gc.get_threshold()
+    start, left, _right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    for step in range(1, 6):
+        QTest.mouseMove(viewport, QPoint(max(left, start.x() - 4 * step), start.y()))
+        qtbot.wait(5)
+    assert window.editor.dragging
+    menu = QMenu(window)  # a popup opens mid-drag and the button is let go over it
+    menu.addAction("Something")
+    menu.popup(viewport.mapToGlobal(start + QPoint(0, 40)))
+    qtbot.waitExposed(menu)
+    QTest.mouseRelease(menu, LEFT, NONE, QPoint(5, 5))
+    menu.close()
+    QTest.mouseMove(viewport, start + QPoint(30, 60))  # back over the canvas, button up
+    wait_solved(qtbot, window)
+    assert not window.editor.dragging
+    assert gc.get_threshold() == before
+    assert window.doc.undo_stack.undoText() == "Set value"  # the drag's one step, closed

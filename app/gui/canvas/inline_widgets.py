@@ -61,7 +61,7 @@ class InlineWidget:
     def move(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
         """Called while a press this widget took is dragged."""
 
-    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent | None) -> None:
         """Called when a press this widget took ends."""
 
     def double_click(self, pos: QPointF, rect: QRectF) -> bool:
@@ -174,7 +174,7 @@ class SliderWidget(InlineWidget):
         self.item.update_widget()
         self.editor.drag_setting(self.item.node_id, "value", value, self._drag_key)
 
-    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent) -> None:
+    def release(self, pos: QPointF, rect: QRectF, event: QGraphicsSceneMouseEvent | None) -> None:
         self.editor.end_drag()
         self.drag_value = None
         self.item.update()

@@ -363,6 +363,12 @@ class NodeItem(QGraphicsRectItem):
             return
         super().mouseReleaseEvent(event)
 
+    def end_widget_press(self) -> None:
+        """End a press the node's widget took (a slider drag), as its release would."""
+        if self._widget_grab:
+            self._widget_grab = False
+            self.widget.release(QPointF(), self.layout.widget_rect, None)
+
     def mouseDoubleClickEvent(self, event: QGraphicsSceneMouseEvent) -> None:
         if self._in_widget(event.pos()) and self.widget.double_click(event.pos(), self.layout.widget_rect):
             return

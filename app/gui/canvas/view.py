@@ -201,6 +201,11 @@ class CanvasView(QGraphicsView):
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
         self._last_mouse = pos
+        if self.canvas.editor.dragging and not event.buttons() & Qt.MouseButton.LeftButton:
+            # the button went up where the canvas never saw it (over a popup that took the
+            # mouse): the slider's press ends as its release would have ended it
+            for item in self.canvas.nodes.values():
+                item.end_widget_press()
         if self._pan_start is not None:
             delta = pos - self._pan_start
             if self._panned or delta.manhattanLength() > PAN_THRESHOLD:
