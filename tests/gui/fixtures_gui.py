@@ -118,6 +118,19 @@ def view_point(window: MainWindow, scene_pos: QPointF) -> QPoint:
     return window.view.mapFromScene(scene_pos)
 
 
+def slider_handle(window: MainWindow, node_id: str) -> tuple[QPoint, int, int]:
+    """Where the slider's handle is on screen, and the left and right ends of its track."""
+    item = window.scene.nodes[node_id]
+    window.view.centerOn(item)
+    rect = item.layout.widget_rect
+    track = item.widget.track(rect)
+    y = rect.center().y()
+    start = view_point(window, item.mapToScene(QPointF(item.widget.handle_x(rect), y)))
+    left = view_point(window, item.mapToScene(QPointF(track.left() + 2, y))).x()
+    right = view_point(window, item.mapToScene(QPointF(track.right() - 2, y))).x()
+    return start, left, right
+
+
 def port_point(window: MainWindow, node_id: str, port: str, is_input: bool) -> QPoint:
     item = window.scene.nodes[node_id]
     port_item = item.input_port(port) if is_input else item.output_port(port)

@@ -4,15 +4,17 @@ slider (the frame-rate bar itself is in tests/benchmarks/bench_gui.py)."""
 
 from __future__ import annotations
 
+import gc
 import time
 
 import numpy as np
-from PySide6.QtCore import QPoint, QPointF, QRectF, Qt
+from PySide6.QtCore import QPoint, QRectF, Qt
 from PySide6.QtGui import QImage
 from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QMenu
 
 from app.gui.viewport.datasets import Piece, dataset, move_points
-from tests.gui.fixtures_gui import EXAMPLES, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, slider_handle, wait_solved
 
 NONE = Qt.KeyboardModifier.NoModifier
 LEFT = Qt.MouseButton.LeftButton
@@ -24,6 +26,13 @@ def bad_slider(qtbot, window) -> str:
     wait_solved(qtbot, window)
     window._fill_tables()
     return node_id
+
+
+def kaohsiung_slider(qtbot, window) -> tuple[QPoint, int, int]:
+    """Open the Kaohsiung example; where its 'scale' slider's handle and track ends are."""
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    return slider_handle(window, "scale")
 
 
 def test_the_message_log_is_not_rebuilt_when_a_solve_says_the_same(qtbot, window):
@@ -47,19 +56,6 @@ def test_the_message_log_is_rebuilt_when_a_solve_says_something_else(qtbot, wind
     assert not any(row[1] == node_id for row in window.log.node_rows)
 
 
-def slider_handle(window, node_id: str) -> tuple[QPoint, int, int]:
-    """Where the slider's handle is on screen, and the left and right ends of its track."""
-    item = window.scene.nodes[node_id]
-    window.view.centerOn(item)
-    rect = item.layout.widget_rect
-    track = item.widget.track(rect)
-    y = rect.center().y()
-    start = view_point(window, item.mapToScene(QPointF(item.widget.handle_x(rect), y)))
-    left = view_point(window, item.mapToScene(QPointF(track.left() + 2, y))).x()
-    right = view_point(window, item.mapToScene(QPointF(track.right() - 2, y))).x()
-    return start, left, right
-
-
 def node_image(window, node_id: str) -> QImage:
     """The canvas's pixels where the node is."""
     item = window.scene.nodes[node_id]
@@ -75,9 +71,7 @@ def pixels(image: QImage) -> np.ndarray:
 
 
 def test_after_a_slider_drag_the_message_log_shows_the_last_solves_messages(qtbot, window):
-    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
-    wait_solved(qtbot, window)
-    start, left, right = slider_handle(window, "scale")
+    start, left, right = kaohsiung_slider(qtbot, window)
     viewport = window.view.viewport()
     solves = []
     window.doc.results_changed.connect(solves.append)
@@ -211,12 +205,8 @@ def test_moving_points_writes_into_the_datasets_own_arrays():
 
 
 def test_no_full_garbage_collection_runs_while_a_slider_is_dragged_and_they_run_again_after(qtbot, window):
-    import gc
-
-    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
-    wait_solved(qtbot, window)
+    start, left, _right = kaohsiung_slider(qtbot, window)
     before = gc.get_threshold()
-    start, left, _right = slider_handle(window, "scale")
     viewport = window.view.viewport()
     full = []
 
@@ -256,11 +246,9 @@ def test_the_status_bars_solve_time_keeps_its_size_so_the_window_is_not_laid_out
 
 
 def test_a_selected_node_is_shown_once_a_second_while_dragging_and_as_solved_after(qtbot, window):
-    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
-    wait_solved(qtbot, window)
+    start, left, right = kaohsiung_slider(qtbot, window)
     window.scene.select_nodes(["strip"])
     qtbot.wait(20)
-    start, left, right = slider_handle(window, "scale")
     viewport = window.view.viewport()
     refreshes, solves = [], []
     fill = window.inspector._fill
@@ -282,14 +270,8 @@ def test_a_selected_node_is_shown_once_a_second_while_dragging_and_as_solved_aft
 
 
 def test_a_slider_drag_ends_when_a_menu_takes_the_mouse_before_the_release(qtbot, window):
-    import gc
-
-    from PySide6.QtWidgets import QMenu
-
-    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
-    wait_solved(qtbot, window)
+    start, left, _right = kaohsiung_slider(qtbot, window)
     before = gc.get_threshold()
-    start, left, _right = slider_handle(window, "scale")
     viewport = window.view.viewport()
     QTest.mousePress(viewport, LEFT, NONE, start)
     for step in range(1, 6):

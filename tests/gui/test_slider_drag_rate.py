@@ -13,10 +13,10 @@ import re
 import time
 from dataclasses import dataclass
 
-from PySide6.QtCore import QPoint, QPointF, Qt
+from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, slider_handle, wait_solved
 
 DRAG_SECONDS = 2.0
 
@@ -67,14 +67,7 @@ def drag_main_slider(qtbot, window, path) -> Drag:
     assert window.open_file(path, ask=False)
     wait_solved(qtbot, window)
     slider_id = main_slider(window.doc.graph)
-    item = window.scene.nodes[slider_id]
-    window.view.centerOn(item)
-    rect = item.layout.widget_rect
-    track = item.widget.track(rect)
-    y = rect.center().y()
-    start = view_point(window, item.mapToScene(QPointF(item.widget.handle_x(rect), y)))
-    left = view_point(window, item.mapToScene(QPointF(track.left() + 2, y))).x()
-    right = view_point(window, item.mapToScene(QPointF(track.right() - 2, y))).x()
+    start, left, right = slider_handle(window, slider_id)
     viewport = window.view.viewport()
     value_before = window.doc.graph.nodes[slider_id].node.settings["value"]
     solves: list[float] = []
