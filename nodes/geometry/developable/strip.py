@@ -24,11 +24,6 @@ from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .isolation import IntervalBounds, interval_bounds, third_bound
 from .stations import LengthMap, Spacing, station_parameters
 
-try:  # what np.interp calls for real values (the same values), less its Python wrapper
-    from numpy._core.multiarray import interp as _interp
-except ImportError:  # pragma: no cover - another numpy: the public call
-    _interp = np.interp
-
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
 #: Parameter offset for one-sided evaluation beside a corner.
@@ -160,11 +155,11 @@ class Strip:
         """Arc length along B to each ``t``, as the length of the polyline through B's samples
         (exact on straight pieces, within ~1e-5 elsewhere: ample for placing the plain loft's
         rulings at invalid stations and a fan's rulings at about the station spacing)."""
-        return _interp(t, self.grid.t, self.chords_b, None, None)
+        return np.interp(t, self.grid.t, self.chords_b)
 
     def parameter_b(self, length: FloatArray) -> FloatArray:
         """The inverse of :meth:`length_b`."""
-        return _interp(length, self.chords_b, self.grid.t, None, None)
+        return np.interp(length, self.chords_b, self.grid.t)
 
     @cached_property
     def chords_b(self) -> FloatArray:
@@ -197,22 +192,7 @@ class Strip:
         # must not ask for billions); and at least the fan's two bounding rulings
         wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
         count = max(2, int(np.ceil(min(wanted, self.segments + 1) - 1e-9)) + 1)
-        t = self.parameter_b(_linspace(lb[0], lb[1], count))
+        t = self.parameter_b(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t)
 
-
-def _linspace(start: float, stop: float, count: int) -> FloatArray:
-    """``np.linspace(start, stop, count)`` for two numbers and ``count >= 2``, bit for bit (the
-    same steps in the same order), without its general set-up (a strip places a few fans)."""
-    delta = stop - start
-    y = np.arange(count, dtype=float)
-    step = delta / (count - 1)
-    if step == 0:  # (as numpy does for denormal steps)
-        y /= count - 1
-        y *= delta
-    else:
-        y *= step
-    y += start
-    y[-1] = stop
-    return y
