@@ -33,7 +33,7 @@ import numpy as np
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, dot, norm
+from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
 from .warp import consistently_oriented
@@ -71,18 +71,15 @@ class _Run:
     t: FloatArray
     source: IntArray
 
-    @property
-    def stations(self) -> BoolArray:
-        return self.source >= 0
-
 
 def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     """``rulings`` with each end's run of fans made one cone where that is possible (see
     the module). Not for a closed B, whose partners may run through its seam. Rulings
-    away from the ends keep their parameters bit for bit."""
+    away from the ends keep their parameters bit for bit (and ``rulings`` itself comes
+    back where neither end changes)."""
     if curve_b.closed or rulings.fan.all() or not rulings.fan.any():
         return rulings
-    runs = [run for run in (_run(rulings, False), _run(rulings.reversed(), True)) if run is not None]
+    runs = [run for run in (_run(rulings, False), _run(rulings, True)) if run is not None]
     if not runs:
         return rulings
     # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); both ends at once
@@ -90,71 +87,79 @@ def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     cones: dict[bool, tuple[bool, float]] = {}
     others = []
     for run, root in zip(runs, through_b, strict=True):
-        if root is not None and not (run.stations & (run.s > root) & (run.s < run.sk)).any():
+        stations = run.source >= 0
+        if root is not None and not (stations & (run.s > root) & (run.s < run.sk)).any():
             cones[run.reverse] = (False, root)
-        elif not (run.stations & (run.s > run.s0)).any():
+        elif not (stations & (run.s > run.s0)).any():
             others.append(run)  # else the cone through A(s0) could not cover the run's stations
     if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
         for run, root in zip(others, _roots(curve_a, curve_b, others, moving_a=False), strict=True):
             if root is not None:
                 cones[run.reverse] = (True, root)
-    head = next((run for run in runs if not run.reverse), None)
-    if head is not None and False in cones:
-        cone, k, source_k = _cone(head, *cones[False], int(rulings.source[head.k]))
-        rest = rulings.source[k:].copy()
-        rest[0] = source_k
-        rulings = Rulings(
-            np.concatenate([cone.s, rulings.s[k:]]), np.concatenate([cone.t, rulings.t[k:]]),
-            np.concatenate([cone.source, rest]), np.concatenate([cone.fan, rulings.fan[k:]]),
-        )
-    tail = next((run for run in runs if run.reverse), None)
-    if tail is not None and True in cones:
+    if not cones:
+        return rulings
+    # the rulings between the ends' runs stay; the first (last) of them is the torsal
+    # ruling the head's (tail's) cone joins, and may become that cone's station
+    n = len(rulings.s)
+    head = next((run for run in runs if not run.reverse and False in cones), None)
+    tail = next((run for run in runs if run.reverse and True in cones), None)
+    first, stop = (head.k if head else 0), (n - tail.k if tail else n)
+    source = rulings.source[first:stop].copy()
+    pieces = [Rulings(rulings.s[first:stop], rulings.t[first:stop], source, rulings.fan[first:stop])]
+    if head is not None:
+        cone, source[0] = _cone(head, *cones[False], int(source[0]))
+        pieces.insert(0, cone)
+    if tail is not None:
         # (the head's cone leaves the tail's run as it was, but may have given the first
         # torsal ruling, if it is also the last, a station)
-        cone, k, source_k = _cone(tail, *cones[True], int(rulings.source[-1 - tail.k]))
-        end = cone.reversed()
-        m = len(rulings.s) - k  # rulings[m:] are replaced by the cone, rulings[m - 1] gets source_k
-        rest = rulings.source[:m].copy()
-        rest[-1] = source_k
-        rulings = Rulings(
-            np.concatenate([rulings.s[:m], end.s]), np.concatenate([rulings.t[:m], end.t]),
-            np.concatenate([rest, end.source]), np.concatenate([rulings.fan[:m], end.fan]),
-        )
-    return rulings
+        cone, source[-1] = _cone(tail, *cones[True], int(source[-1]))
+        pieces.append(cone.reversed())
+    columns = zip(*((piece.s, piece.t, piece.source, piece.fan) for piece in pieces), strict=True)
+    return Rulings(*(np.concatenate(column) for column in columns))
 
 
 def _run(r: Rulings, reverse: bool) -> _Run | None:
-    """The run of fans before the first torsal ruling, or None where there is none or it
-    is one cone already."""
-    k = int(np.argmin(r.fan))  # the first torsal ruling
+    """The run of fans before the first torsal ruling (from the strip's end, in the reversed
+    rulings' parameters 1 − s and 1 − t, when ``reverse``), or None where there is none or
+    it is one cone already."""
+    k = int(r.fan[::-1].argmin() if reverse else r.fan.argmin())  # the first torsal ruling
     if k == 0:
         return None
-    s0, t0 = r.s[0], r.t[0]
-    if (r.s[: k + 1] == s0).all() or (r.t[: k + 1] == t0).all():
-        return None  # already one cone
-    ends = float(s0), float(t0), float(r.s[k]), float(r.t[k])
-    return _Run(k, reverse, *ends, r.s[:k], r.t[:k], r.source[:k])
-
-
-def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulings, int, int]:
-    """The rulings that replace the run (a cone's rulings and the torsal ruling through the
-    curve's end point ``root``), with ``k`` and the station index the first torsal ruling
-    carries from then on (``source_k`` now)."""
-    stations = run.stations
-    if not through_a:
-        keep = (run.s < root) & stations  # the stations the cone through B(t0) covers
-        head_s = np.append(run.s[keep], root)
-        head_t = np.full(len(head_s), run.t0)
+    if reverse:  # the first k + 1 of the reversed rulings
+        s, t, source = 1.0 - r.s[-1 - k :][::-1], 1.0 - r.t[-1 - k :][::-1], r.source[-k:][::-1]
     else:
-        keep = (run.t < root) & (run.s == run.s0)  # the cone through A(s0) over B[t0, t*]
-        head_s = np.append(run.s[keep], run.s0)
-        head_t = np.append(run.t[keep], root)
-    head_source = np.append(run.source[keep], -1).astype(np.int64)
-    dropped = set(run.source[stations].tolist()) - set(run.source[keep].tolist())
+        s, t, source = r.s[: k + 1], r.t[: k + 1], r.source[:k]
+    s0, t0 = s[0], t[0]
+    if (s == s0).all() or (t == t0).all():
+        return None  # already one cone
+    return _Run(k, reverse, float(s0), float(t0), float(s[k]), float(t[k]), s[:k], t[:k], source)
+
+
+def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulings, int]:
+    """The rulings that replace the run (a cone's rulings and the torsal ruling through the
+    curve's end point ``root``), and the station index the first torsal ruling carries
+    from then on (``source_k`` now)."""
+    stations = run.source >= 0
+    if not through_a:  # the stations the cone through B(t0) covers, then A(root) → B(t0)
+        keep = flatnonzero((run.s < root) & stations)
+        torsal = root, run.t0
+    else:  # the cone through A(s0) over B[t0, t*], then A(s0) → B(root)
+        keep = flatnonzero((run.t < root) & (run.s == run.s0))
+        torsal = run.s0, root
+    m = len(keep)
+    head = np.empty((2, m + 1))
+    head[0, :m] = run.s[keep]
+    head[1, :m] = run.t[keep] if through_a else run.t0
+    head[:, m] = torsal
+    head_source = np.empty(m + 1, dtype=np.int64)
+    head_source[:m] = kept = run.source[keep]
+    head_source[m] = -1
+    dropped = set(run.source[stations].tolist()) - set(kept.tolist())
     if dropped and source_k < 0:  # a fan ruling of the station at the first torsal ruling's s
         source_k = min(dropped)
-    head_fan = np.append(np.ones(int(keep.sum()), dtype=bool), False)
-    return Rulings(head_s, head_t, head_source, head_fan), run.k, source_k
+    head_fan = np.ones(m + 1, dtype=bool)
+    head_fan[m] = False
+    return Rulings(head[0], head[1], head_source, head_fan), source_k
 
 
 def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> list[float | None]:

@@ -247,7 +247,8 @@ def _solve(
     has = chosen >= 0
     t = np.full(n, np.nan)
     slope = np.zeros(n)
-    t[has], slope[has] = good.t[chosen[has]], good.slope[chosen[has]]
+    partner = chosen[has]
+    t[has], slope[has] = good.t[partner], good.slope[partner]
     # stations without a partner get one first, so that a planar piece's fans end where the
     # next station's partner is (two curves in one plane: otherwise a fan over all of B, then
     # a partner running back)
@@ -264,10 +265,7 @@ def _solve(
         added = close_gaps(strip, closed_t, kept)
         s_out, t_out, source, fan = _merge(strip, closed_t, gap, kept, added)
         # the warp of the output, from the curves' exact tangents (NaN where undefined)
-        starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
-        warp = np.abs(signed)
-        with np.errstate(invalid="ignore"):
-            valid = warp <= tolerance + warp_allowance(starts, ends)  # NaN is never valid
+        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
         # a station ruling taken as torsal that fails the check is a gap after all
         failed = source[(source >= 0) & ~fan & ~valid]
         check()
@@ -276,36 +274,46 @@ def _solve(
         t[failed] = np.nan
     # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
     # the curve's end point, where that ruling exists (see .end_cones)
-    smoothed = smooth_ends(curve_a, curve_b, Rulings(s_out, t_out, source, fan))
+    rulings = Rulings(s_out, t_out, source, fan)
+    smoothed = smooth_ends(curve_a, curve_b, rulings)
     check()
-    if len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out):
-        starts2, ends2, signed2 = _measured(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
-        with np.errstate(invalid="ignore"):
-            valid2 = np.abs(signed2) <= tolerance + warp_allowance(starts2, ends2)
+    if smoothed is not rulings and (len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out)):
+        again = _checked(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
+        valid2 = again[4]
         torsal = ~smoothed.fan
         kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
         if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
             s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
-            starts, ends, signed, valid = starts2, ends2, signed2, valid2
-            warp = np.abs(signed)
+            starts, ends, signed, warp, valid = again
     folded = _fan_folds(strip, s_out, t_out, starts, ends, np.isnan(warp))
     if len(folded[0]):
         s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
-        starts, ends, signed = _measured(strip, s_out, t_out, source, chosen, good)
-        warp = np.abs(signed)
-        with np.errstate(invalid="ignore"):
-            valid = warp <= tolerance + warp_allowance(starts, ends)
+        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
     if fan.any():
         share, creased = fan_shares(starts, ends, fan)
     else:  # (what both give without fans: no piece counts)
         share = creased = 0.0
-    message = _message(int(np.count_nonzero(fan[source >= 0])), n, tolerance, share, creased)
+    station = source >= 0
+    message = _message(int(np.count_nonzero(fan[station])), n, tolerance, share, creased)
     return RulingResult(
-        s_out, t_out, starts, ends, warp, signed, valid, message, source >= 0, fan, share, creased
+        s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased
     )
 
 def _unwatched() -> None:
     """The check outside a :func:`~..watch.watched` block: nothing to look at."""
+
+
+def _checked(
+    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray]:
+    """The rulings' check (step 8): :func:`_measured`'s starts, ends and signed warp, the
+    warp and whether it is within the tolerance plus :func:`warp_allowance` (never where
+    it is NaN)."""
+    starts, ends, signed, ruling = _measured(strip, s, t, source, chosen, good)
+    warp = np.abs(signed)
+    with np.errstate(invalid="ignore"):
+        valid = warp <= strip.tolerance + _allowance(starts, ends, ruling)  # NaN is never valid
+    return starts, ends, signed, warp, valid
 
 
 def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
@@ -316,6 +324,14 @@ def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
     length = norm(ends - starts)
     rounding = max(position_rounding(starts), position_rounding(ends))
     return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
+
+
+def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> FloatArray:
+    """:func:`warp_allowance` of the rulings with the rulings ``ends − starts`` already at
+    hand (:func:`_measured` returns them)."""
+    length = norm(ruling)
+    rounding = max(position_rounding(starts), position_rounding(ends))
+    return rounding / np.where(length > 0.0, length, np.inf)
 
 
 def _merge(
@@ -353,7 +369,7 @@ def _merge(
 
 def _measured(
     strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
-) -> tuple[FloatArray, FloatArray, FloatArray]:
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The output rulings A(s) → B(t) and their signed warp, measured from the curves:
     the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
     (NaN where no normal is defined), with the tangent at a corner taken in the plane
@@ -361,23 +377,24 @@ def _measured(
     shared with every neighbouring ruling (the apex of a fan of flat triangles)
     taking the other end's plane. Nothing of the solve enters but the curves'
     evaluations at those very parameters (a station's, a refined root's), which are
-    reused rather than repeated. Returns starts, ends and the signed warp."""
+    reused rather than repeated. Returns starts, ends, the signed warp and the rulings
+    ``ends − starts`` (for :func:`_allowance`)."""
     k = len(s)
     station = source >= 0
-    rows = source[station]
+    at = flatnonzero(station)  # (index arrays, found once: masks would be searched again at every use)
+    rows = source[at]
     if len(rows) == k:  # no added rulings
         starts, ta = strip.a0[rows], strip.a1[rows]
-    else:  # (index arrays, found once: masks would be searched again at every use)
-        at, away = flatnonzero(station), flatnonzero(~station)
+    else:
+        away = flatnonzero(~station)
         starts, ta = np.empty((2, k, 3))
         starts[at], ta[at] = strip.a0[rows], strip.a1[rows]
         starts[away], ta[away] = strip.curve_a.derivatives(s[away], 1)
     # B where a station's chosen root still stands (a flat end or corner is re-evaluated);
     # ``chosen`` holds −1 (none) or a candidate's index
-    root = np.full(k, -1)
-    root[station] = chosen[rows]
-    candidate = flatnonzero(root >= 0)
-    picked = root[candidate]
+    picked = chosen[rows]
+    has = picked >= 0
+    candidate, picked = at[has], picked[has]
     stands = (good.t[picked] == t[candidate]) & (good.kind[picked] == ROOT)
     kept, kept_root = candidate[stands], picked[stands]
     if len(kept) == k:
@@ -402,7 +419,7 @@ def _measured(
             sides = strip.curve_a.derivatives(around, 1)[1]
             ta[at_a] = _corner_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
     signed = warp_angles(starts, ends, ta, tb, signed=True, apex_a=_fan_apex(s), apex_b=_fan_apex(t))
-    return starts, ends, signed
+    return starts, ends, signed, ruling
 
 def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
     """The tangent of a curve at a corner for rulings ending there: the in-plane blend of
@@ -462,7 +479,7 @@ def _fan_folds(
     inside = np.minimum(SIDE, 0.5 * (high - low))  # one-sided: beside a corner, its piece's side
     k = len(pieces)
     ends_x = np.concatenate([low + inside, high - inside])  # both ends of every piece at once
-    both, both_rulings = normal(ends_x, np.tile(on_b, 2), np.tile(apex, (2, 1)))
+    both, both_rulings = normal(ends_x, np.concatenate([on_b, on_b]), np.concatenate([apex, apex]))
     has = norm(both) > PARALLEL * norm(both_rulings)
     first, last = both[:k], both[k:]
     flips = np.flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
