@@ -40,6 +40,7 @@ from .warp import consistently_oriented
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
 SAMPLES = 33
+_STEPS = np.arange(SAMPLES)  # (the samples' steps from the start of their interval)
 
 
 @dataclass(frozen=True)
@@ -178,16 +179,17 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
     moving, still = (curve_a, curve_b) if moving_a else (curve_b, curve_a)
     offset = curve_b.anchor - curve_a.anchor
     reverse = np.array([run.reverse for run in runs])
-    fixed = np.array([run.t0 if moving_a else run.s0 for run in runs])
-    low = np.array([run.s0 if moving_a else run.t0 for run in runs])
-    high = np.array([run.sk if moving_a else run.tk for run in runs])
+    # per run, the fixed end's parameter and the moving end's interval
+    fixed, low, high = np.array(
+        [(run.t0, run.s0, run.sk) if moving_a else (run.s0, run.t0, run.tk) for run in runs]
+    ).T
     found: list[float | None] = [None] * len(runs)
     wide = high > low
     if not wide.any():
         return found
     q, dq = still.local_derivatives(np.where(reverse, 1.0 - fixed, fixed), 1)
     # (runs, SAMPLES), in each run's parameters, as np.linspace places them
-    x = low[:, None] + ((high - low) / (SAMPLES - 1))[:, None] * np.arange(SAMPLES)
+    x = low[:, None] + ((high - low) / (SAMPLES - 1))[:, None] * _STEPS
     x[:, -1] = high
     flip = np.repeat(reverse, SAMPLES)
     u = x.reshape(-1)

@@ -437,6 +437,10 @@ def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, rig
     return tangent
 
 
+#: :func:`_fan_folds` where no fan folds (empty, never written to).
+_NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
+
+
 def _fan_folds(
     strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray, undefined: BoolArray
 ) -> tuple[IntArray, FloatArray, FloatArray]:
@@ -457,10 +461,9 @@ def _fan_folds(
     apex_b = (t[1:] == t[:-1]) & ~apex_a
     # (a piece next to a ruling with no warp, of no length or along the curve, has no
     # normal there to compare: that ruling is not valid itself)
-    pieces = np.flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:])
-    empty = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
+    pieces = flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:])
     if len(pieces) == 0:
-        return empty
+        return _NO_FOLDS
     on_b = apex_a[pieces]  # the rulings move along B; else along A
     low = np.where(on_b, t[pieces], s[pieces])
     high = np.where(on_b, t[pieces + 1], s[pieces + 1])
@@ -482,9 +485,9 @@ def _fan_folds(
     both, both_rulings = normal(ends_x, np.concatenate([on_b, on_b]), np.concatenate([apex, apex]))
     has = norm(both) > PARALLEL * norm(both_rulings)
     first, last = both[:k], both[k:]
-    flips = np.flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
+    flips = flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
     if len(flips) == 0:
-        return empty
+        return _NO_FOLDS
     pieces, on_b, apex, first = pieces[flips], on_b[flips], apex[flips], first[flips]
     lo, hi = low[flips] + inside[flips], high[flips] - inside[flips]
     for _ in range(60):  # bisection on N(x)·N(start): halves the bracket to rounding
