@@ -321,9 +321,7 @@ def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
     them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
     the origin; at site coordinates the ends are known to an ulp of their coordinates
     (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
-    length = norm(ends - starts)
-    rounding = max(position_rounding(starts), position_rounding(ends))
-    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
+    return _allowance(starts, ends, ends - starts)
 
 
 def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> FloatArray:
@@ -331,7 +329,7 @@ def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> Floa
     hand (:func:`_measured` returns them)."""
     length = norm(ruling)
     rounding = max(position_rounding(starts), position_rounding(ends))
-    return rounding / np.where(length > 0.0, length, np.inf)
+    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
 def _merge(
