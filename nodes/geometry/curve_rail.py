@@ -31,6 +31,7 @@ rest of the rail.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -67,19 +68,19 @@ class Pace:
     """
 
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
-        c3, c2, c1, c0 = _pchip(u[1:] - u[:-1], p[None], (p[1:] - p[:-1])[None])
+        c3, c2, c1, c0 = _pchip(_Steps(u), p[None], (p[1:] - p[:-1])[None])
         self.u, self.c3, self.c2, self.c1, self.c0 = u, c3[0], c2[0], c1[0], c0[0]
 
     @classmethod
-    def _rows(cls, u: FloatArray, h: FloatArray, p: FloatArray, dp: FloatArray) -> list[Pace]:
-        """One interpolant per row of ``p`` ``(k, n)``, all at the same ``u`` (steps ``h``,
-        chords ``dp``), fitted in one pass: the rows' coefficients are the ones each would
-        get alone (every step is elementwise)."""
-        c3, c2, c1, c0 = _pchip(h, p, dp)
+    def _rows(cls, steps: _Steps, p: FloatArray, dp: FloatArray) -> list[Pace]:
+        """One interpolant per row of ``p`` ``(k, n)``, all at the same parameters
+        (``steps``; chords ``dp``), fitted in one pass: the rows' coefficients are the ones
+        each would get alone (every step is elementwise)."""
+        c3, c2, c1, c0 = _pchip(steps, p, dp)
         paces = []
         for row in range(len(p)):
             pace = cls.__new__(cls)
-            pace.u, pace.c3, pace.c2, pace.c1, pace.c0 = u, c3[row], c2[row], c1[row], c0[row]
+            pace.u, pace.c3, pace.c2, pace.c1, pace.c0 = steps.u, c3[row], c2[row], c1[row], c0[row]
             paces.append(pace)
         return paces
 
@@ -103,24 +104,51 @@ class Pace:
         return out
 
 
+class _Steps:
+    """What PCHIP takes of the parameters ``u`` alone, the same for every interpolant at
+    them: the steps ``h``, whether they are all positive (none is 0 or less: a NaN is
+    let through, as the check it stands for did), and for three or more points the
+    weights of the inner slopes' harmonic mean and the end steps."""
+
+    def __init__(self, u: FloatArray) -> None:
+        h = u[1:] - u[:-1]
+        self.u, self.h = u, h
+        self.increasing = not (h <= 0.0).any()
+        if len(u) > 2:
+            self.w1, self.w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+            self.w_sum = self.w1 + self.w2
+            self.first, self.last = h[:2].tolist(), h[-1:-3:-1].tolist()  # (h0, h1), (h_last, h_next)
+
+    @staticmethod
+    @lru_cache(maxsize=64)
+    def uniform(n: int) -> _Steps:
+        """The steps of the ``n`` ≥ 2 evenly spaced parameters :func:`_uniform`, made once
+        per count (every strip's rails have them), read-only."""
+        steps = _Steps(_uniform(n))
+        for array in vars(steps).values():
+            if isinstance(array, np.ndarray):
+                array.setflags(write=False)
+        return steps
+
+
 def _pchip(
-    h: FloatArray, p: FloatArray, dp: FloatArray
+    steps: _Steps, p: FloatArray, dp: FloatArray
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The PCHIP cubics' coefficients (c3, c2, c1, c0) on the pieces between the points of
-    each row of ``p`` ``(k, n)`` (one interpolant per row, all at the same parameters), whose
-    steps are ``h`` and chords ``dp = p[:, 1:] − p[:, :-1]``: see :class:`Pace`."""
+    each row of ``p`` ``(k, n)`` (one interpolant per row, all at the parameters of
+    ``steps``), whose chords are ``dp = p[:, 1:] − p[:, :-1]``: see :class:`Pace`."""
+    h = steps.h
     m = dp / h
     slopes = np.empty(p.shape)
     if p.shape[1] == 2:
         slopes[:] = m
     else:
-        w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
         with np.errstate(divide="ignore", invalid="ignore"):
-            harmonic = (w1 + w2) / (w1 / m[:, :-1] + w2 / m[:, 1:])
+            harmonic = steps.w_sum / (steps.w1 / m[:, :-1] + steps.w2 / m[:, 1:])
         sign = np.sign(m)
         # 0 where the neighbouring chords' slopes differ in sign or one is 0 (or NaN)
         slopes[:, 1:-1] = np.where(sign[:, 1:] * sign[:, :-1] > 0, harmonic, 0.0)
-        (h0, h1), (h_last, h_next) = h[:2].tolist(), h[-1:-3:-1].tolist()
+        (h0, h1), (h_last, h_next) = steps.first, steps.last
         for row, chords in zip(slopes, m.tolist(), strict=True):
             row[0] = _end_slope(h0, h1, chords[0], chords[1])
             row[-1] = _end_slope(h_last, h_next, chords[-1], chords[-2])
@@ -171,23 +199,22 @@ class CurveRail(Curve):
 
     @classmethod
     def _pair(
-        cls, curve_a: Curve, s: FloatArray, curve_b: Curve, t: FloatArray, u: FloatArray
+        cls, curve_a: Curve, s: FloatArray, curve_b: Curve, t: FloatArray, steps: _Steps
     ) -> tuple[tuple[CurveRail, CurveRail], bool]:
         """``CurveRail(curve_a, u, s)`` and ``CurveRail(curve_b, u, t)`` (``s``, ``t`` and
-        ``u`` ``(n,)`` arrays, ``n`` ≥ 2), their checks and paces made in one pass for both;
-        and whether both rails' parameters are non-decreasing numbers (no NaN), which the
-        checks alone do not say."""
+        ``u = steps.u`` ``(n,)`` arrays, ``n`` ≥ 2), their checks and paces made in one pass
+        for both; and whether both rails' parameters are non-decreasing numbers (no NaN),
+        which the checks alone do not say."""
         rows = [unwrap_cyclic(q) if curve.closed else q for curve, q in ((curve_a, s), (curve_b, t))]
         p = np.concatenate(rows).reshape(2, -1)
-        h = u[1:] - u[:-1]
         dp = p[:, 1:] - p[:, :-1]
         rising = bool(dp.min() >= 0.0)  # (false where a NaN is)
-        if h.min() <= 0.0 or (not rising and (dp < 0.0).any()):
+        if not steps.increasing or (not rising and (dp < 0.0).any()):
             raise ValueError(_UNPACED)
         rails = []
-        for curve, row, pace in zip((curve_a, curve_b), p, Pace._rows(u, h, p, dp), strict=True):
+        for curve, row, pace in zip((curve_a, curve_b), p, Pace._rows(steps, p, dp), strict=True):
             rail = cls.__new__(cls)
-            rail._set(curve, u, row, pace)
+            rail._set(curve, steps.u, row, pace)
             rails.append(rail)
         return (rails[0], rails[1]), rising
 
@@ -277,8 +304,9 @@ def ruled_between(
         raise ValueError("a strip needs at least two rulings, one s and one t each")
     if s.shape != (n,) or t.shape != (n,):
         raise ValueError(_UNPACED)
-    u = _uniform(n)  # (np.linspace(0, 1, n), bit for bit)
-    (rail_a, rail_b), rising = CurveRail._pair(curve_a, s, curve_b, t, u)
+    steps = _Steps.uniform(n)  # at u = np.linspace(0, 1, n), bit for bit (read-only, shared)
+    u = steps.u
+    (rail_a, rail_b), rising = CurveRail._pair(curve_a, s, curve_b, t, steps)
     lines = np.empty((n, 2, 3))
     for side, (curve, rail, given) in enumerate(((curve_a, rail_a, s), (curve_b, rail_b, t))):
         if points is None or not isinstance(curve, POINTWISE):
@@ -296,11 +324,10 @@ def ruled_between(
     # the rails' ends are the first and last rulings' (to rounding): closed round u when
     # both rails return to their start, as RuledSurface judges it from its rails' ends,
     # without evaluating the rails again (a strip's rails are built on every re-solve)
-    ends = lines[[0, -1, 0, -1], [0, 0, 1, 1]]
+    ends = lines[:: n - 1].reshape(4, 3)  # A(s0), B(t0), A(s_last), B(t_last)
     size = float(extent(ends).max()) or 1.0
-    closed_u = bool(
-        np.abs(ends[0] - ends[1]).max() <= 1e-12 * size and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size
-    )
+    gap_a, gap_b = np.abs(ends[:2] - ends[2:]).max(axis=1).tolist()
+    closed_u = gap_a <= 1e-12 * size and gap_b <= 1e-12 * size
     surface = RuledSurface.__new__(RuledSurface)
     surface._setup(rail_a, rail_b, closed_u)
     surface.ruling_parameters = u
