@@ -68,7 +68,7 @@ def _size(start: FloatArray, end: FloatArray) -> float:
     if not len(start):
         return 0.0
     columns = np.concatenate([start.T, end.T], axis=1)  # (3, 2n): contiguous rows to reduce
-    size = float(norm(columns.max(axis=1) - columns.min(axis=1)))
+    size = float(norm(np.maximum.reduce(columns, axis=1) - np.minimum.reduce(columns, axis=1)))
     if isfinite(size):  # (a NaN or an infinite coordinate would not leave it finite)
         return size
     points = np.concatenate([start, end])
@@ -115,17 +115,16 @@ def _normals(
         still[1] |= mask_b
     normals = cross(ruling, units)
     has = norm(normals) > PARALLEL * length
-    n1, n2 = normals[0], normals[1]
     if still.any():
         usable = has | still
         defined = (length > ZERO * size) & usable[0] & usable[1] & ~(still[0] & still[1])
-        n1, n2 = np.where(still[0][:, None], n2, n1), np.where(still[1][:, None], n1, n2)
-    else:  # (the usual case: every end has its own normal or none)
+        # a standing end takes the other end's normal (both ends at once: the pair swapped)
+        normals = np.where(still[..., None], normals[::-1], normals)
+    else:  # (no end stands: each has its own normal or none)
         defined = (length > ZERO * size) & has[0] & has[1]
     if not defined.all():
-        n1[~defined] = np.nan
-        n2[~defined] = np.nan
-    return n1, n2, ruling, length
+        normals[:, ~defined] = np.nan
+    return normals[0], normals[1], ruling, length
 
 
 def end_normals(
