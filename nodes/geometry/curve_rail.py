@@ -25,7 +25,8 @@ from 0) is unwrapped before interpolating and wrapped back when evaluated.
 σ is scipy's ``PchipInterpolator`` (Fritsch–Carlson slopes, Moler's one-sided three-point
 ends, extrapolating with the end pieces), written out in :class:`Pace`: a strip's rails
 are built on every re-solve, and the general interpolator's set-up costs more than the
-rest of the rail.
+rest of the rail. :func:`ruled_between` fits both rails' paces in one pass, at ruling
+parameters whose steps are made once per ruling count.
 """
 
 from __future__ import annotations
@@ -106,14 +107,13 @@ class Pace:
 
 class _Steps:
     """What PCHIP takes of the parameters ``u`` alone, the same for every interpolant at
-    them: the steps ``h``, whether they are all positive (none is 0 or less: a NaN is
-    let through, as the check it stands for did), and for three or more points the
-    weights of the inner slopes' harmonic mean and the end steps."""
+    them: the steps ``h`` and, for three or more points, the weights of the inner slopes'
+    harmonic mean and the end steps."""
 
     def __init__(self, u: FloatArray) -> None:
         h = u[1:] - u[:-1]
         self.u, self.h = u, h
-        self.increasing = not (h <= 0.0).any()
+        self.increasing: bool | None = None  # (known for the uniform ones)
         if len(u) > 2:
             self.w1, self.w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
             self.w_sum = self.w1 + self.w2
@@ -123,8 +123,10 @@ class _Steps:
     @lru_cache(maxsize=64)
     def uniform(n: int) -> _Steps:
         """The steps of the ``n`` ≥ 2 evenly spaced parameters :func:`_uniform`, made once
-        per count (every strip's rails have them), read-only."""
+        per count (every strip's rails have them), read-only; with ``increasing``, whether
+        no step is 0 or less (the check of :class:`CurveRail`)."""
         steps = _Steps(_uniform(n))
+        steps.increasing = not (steps.h <= 0.0).any()
         for array in vars(steps).values():
             if isinstance(array, np.ndarray):
                 array.setflags(write=False)
@@ -209,7 +211,7 @@ class CurveRail(Curve):
         p = np.concatenate(rows).reshape(2, -1)
         dp = p[:, 1:] - p[:, :-1]
         rising = bool(dp.min() >= 0.0)  # (false where a NaN is)
-        if not steps.increasing or (not rising and (dp < 0.0).any()):
+        if not steps.increasing or (not rising and (dp < 0.0).any()):  # (steps: _Steps.uniform)
             raise ValueError(_UNPACED)
         rails = []
         for curve, row, pace in zip((curve_a, curve_b), p, Pace._rows(steps, p, dp), strict=True):
