@@ -35,8 +35,10 @@ def has_no_length(curve: Curve) -> bool:
     """Whether ``curve`` is a single point: its ends and samples all coincide (to
     rounding), or its length is not a positive number. A zero-length line, a spline or
     NURBS curve through one point, an expression curve that does not move."""
-    start, end = curve.end_points
-    if np.abs(end - start).max() > _ROUNDING * max(np.abs(start).max(), np.abs(end).max()):
+    ends = curve.end_points
+    start, end = ends
+    # (a NaN in the ends makes the gap NaN, which is never above: on to the samples)
+    if np.abs(end - start).max() > _ROUNDING * np.abs(ends).max():
         return False  # ends apart: not a point (only a closed curve or a point needs samples)
     points = curve.point_at(_SAMPLES)
     if not np.isfinite(points).all():

@@ -16,12 +16,13 @@ recomputed from the output rulings and found within the tolerance.
 from __future__ import annotations
 
 from contextlib import suppress
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from engine.node import Node, NodeWarning
+from nodes.geometry.array_types import BoolArray, FloatArray
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.curve_rail import ruled_between
 from nodes.geometry.curves.line import Line
@@ -50,6 +51,8 @@ class StripOutputs:
     warp: list[float]
     valid: list[bool] | None = None
     messages: tuple[str, ...] = ()
+    #: Where ``warp`` is NaN, when the maker had it at hand (else :meth:`report` finds it).
+    undefined: BoolArray | None = field(default=None, repr=False, compare=False)
 
     def as_tuple(self) -> tuple[RuledSurface, list[Line], list[float]]:
         return self.surface, self.rulings, self.warp
@@ -60,7 +63,9 @@ class StripOutputs:
         warned about, saying that the warp is undefined there)."""
         for text in self.messages:
             if text.startswith(_UNDEFINED) and explained is not None:
-                nan = np.isnan(np.asarray(self.warp, dtype=float))
+                nan = self.undefined
+                if nan is None:
+                    nan = np.isnan(np.asarray(self.warp, dtype=float))
                 if not (nan & ~np.asarray(explained, dtype=bool)).any():
                     continue
             node.warn(text)
@@ -68,11 +73,15 @@ class StripOutputs:
 
 def undefined_message(warp: ArrayLike) -> str | None:
     """The warning for NaN warps: how many, the first, and why; None when there are none."""
-    w = np.asarray(warp, dtype=float)
+    return _undefined(np.asarray(warp, dtype=float))[1]
+
+
+def _undefined(w: FloatArray) -> tuple[BoolArray, str | None]:
+    """Where the warps ``w`` are NaN, and :func:`undefined_message`."""
     bad = np.isnan(w)
     if not bad.any():
-        return None
-    return (
+        return bad, None
+    return bad, (
         f"{_UNDEFINED} {int(bad.sum())} of {w.size} rulings (first: ruling "
         f"{int(np.argmax(bad))}): a ruling there has zero length or runs along an edge's tangent, "
         "so the sheet has no tangent plane to measure"
@@ -105,6 +114,23 @@ def strip_outputs(
     ``source`` (the inputs the rulings were made from, as the node's user knows them), so
     this call's outputs are null and the node's other items are still made.
     """
+    a, b = _checked(starts, ends, source)
+    if warp is not None:
+        w = np.asarray(warp, dtype=float)
+    elif tangents_a is not None and tangents_b is not None:
+        w = warp_angles(a, b, tangents_a, tangents_b, apex_a=apex_a, apex_b=apex_b)
+    else:
+        w = warp_of_rulings(a, b)
+    if surface is None:  # (a caller with a better surface through these rulings passes it)
+        surface = _loft(a, b, source)
+    undefined, message = _undefined(w)
+    messages = (message,) if message else ()
+    return StripOutputs(surface, _lines(a, b), w.tolist(), messages=messages, undefined=undefined)
+
+
+def _checked(starts: ArrayLike, ends: ArrayLike, source: str) -> tuple[FloatArray, FloatArray]:
+    """The ruling ends as float arrays; refused (a :class:`~engine.node.NodeWarning` naming
+    ``source``) when they make no strip: fewer than two, or a point that is not finite."""
     a = np.asarray(starts, dtype=float)
     b = np.asarray(ends, dtype=float)
     if len(a) < 2:
@@ -115,19 +141,21 @@ def strip_outputs(
         raise NodeWarning(
             f"Some rulings have points that are not finite numbers: check {source} for NaN"
         )
-    if warp is not None:
-        w = np.asarray(warp, dtype=float)
-    elif tangents_a is not None and tangents_b is not None:
-        w = warp_angles(a, b, tangents_a, tangents_b, apex_a=apex_a, apex_b=apex_b)
-    else:
-        w = warp_of_rulings(a, b)
-    if surface is None:  # (a caller with a better surface through these rulings passes it)
-        try:
-            surface = RuledSurface.from_rulings(a, b)
-        except ValueError as exc:
-            raise NodeWarning(f"The rulings from {source} do not make a surface: {exc}") from None
-    message = undefined_message(w)
-    return StripOutputs(surface, Line.many(a, b), w.tolist(), messages=(message,) if message else ())
+    return a, b
+
+
+def _loft(a: FloatArray, b: FloatArray, source: str) -> RuledSurface:
+    """The loft through the rulings (:meth:`RuledSurface.from_rulings`), or the warning why not."""
+    try:
+        return RuledSurface.from_rulings(a, b)
+    except ValueError as exc:
+        raise NodeWarning(f"The rulings from {source} do not make a surface: {exc}") from None
+
+
+def _lines(a: FloatArray, b: FloatArray) -> list[Line]:
+    """The rulings as lines, from ends :func:`_checked` has passed (finite; ``(n, 3)`` unless a
+    surface came with them, when :meth:`Line.many` takes whatever shape they have)."""
+    return Line._of_rows(a, b) if a.shape == b.shape and a.shape[1:] == (3,) else Line.many(a, b)
 
 
 def curve_strip_outputs(
@@ -162,19 +190,25 @@ def curve_strip_outputs(
     on_curves = None
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
-    strip = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
-    allowance = warp_allowance(starts, ends)
-    valid = np.isfinite(w) & (w <= tolerance + allowance)
-    messages = list(strip.messages)
+    # (as strip_outputs(starts, ends, warp=w, surface=on_curves, source=source), in one go)
+    a, b = _checked(starts, ends, source)
+    surface = on_curves if on_curves is not None else _loft(a, b, source)
+    undefined, message = _undefined(w)
+    defined = ~undefined  # (w is finite where it is not NaN: an angle from atan2)
+    valid = w <= tolerance  # (False where NaN)
+    if (valid != defined).any():  # some defined warp is above the tolerance: does rounding allow it?
+        valid = defined & (w <= tolerance + warp_allowance(starts, ends))
+    messages = [message] if message else []
     if claimed is not None:
-        refused = np.asarray(claimed, dtype=bool) & ~valid & np.isfinite(w)
+        refused = np.asarray(claimed, dtype=bool) & ~valid & defined
         if refused.any():
             messages.append(
                 f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
                 f"{tolerance:g} rad (largest {float(w[refused].max()):.3g} rad, first: ruling "
                 f"{int(np.argmax(refused))}): they are marked Valid = false"
             )
-    return StripOutputs(strip.surface, strip.rulings, strip.warp, valid.tolist(), tuple(messages))
+    rulings = _lines(a, b)
+    return StripOutputs(surface, rulings, w.tolist(), valid.tolist(), tuple(messages), undefined=undefined)
 
 
 def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:

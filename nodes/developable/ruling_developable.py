@@ -18,7 +18,7 @@ from nodes.geometry.coincidence import coincident
 from nodes.geometry.curve_base import Curve
 from nodes.geometry.developable import RulingResult, ruling_developable
 from nodes.geometry.developable.alternatives import better_pairing
-from nodes.geometry.vec_ops import extent, norm
+from nodes.geometry.vec_ops import norm
 from nodes.geometry.watch import watched
 from nodes.limits import MAX_SEGMENTS
 
@@ -39,9 +39,11 @@ def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float)
 def _tips(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
     """The first and last rulings where they have zero length (to rounding): the curves
     meet there and the strip tapers to a point."""
-    size = float(extent(np.concatenate([starts, ends])).max()) or 1.0
+    columns = np.concatenate([starts.T, ends.T], axis=1)  # (3, 2n): as extent() reduces them
+    size = float((columns.max(axis=1) - columns.min(axis=1)).max()) or 1.0
     tip = np.zeros(len(starts), dtype=bool)
-    tip[[0, -1]] = norm(ends[[0, -1]] - starts[[0, -1]]) <= 1e-12 * size
+    first_last = slice(None, None, max(len(starts) - 1, 1))
+    tip[first_last] = norm(ends[first_last] - starts[first_last]) <= 1e-12 * size
     return tip
 
 
@@ -150,5 +152,5 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = np.where(result.fan, "fan", "torsal").tolist()
+        kinds = ["fan" if fan else "torsal" for fan in result.fan.tolist()]
         return strip.surface, strip.rulings, strip.warp, strip.valid, kinds

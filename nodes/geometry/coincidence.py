@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from nodes.geometry.curve_base import Curve
+from nodes.geometry.vec_ops import extent
 
 #: Two curves closer than this (relative to their size) everywhere count as one.
 COINCIDENT = 1e-9
@@ -30,15 +31,19 @@ def _ends_differ(curve_a: Curve, curve_b: Curve) -> bool:
     """The cheapest rejection: a curve given twice has the same ends (either way round),
     unless both are loops, whose seams may lie anywhere. Ends count as the same within
     1e-6 of their spread (or when all four coincide)."""
-    ends = np.concatenate([curve_a.end_points, curve_b.end_points])
-    a0, a1, b0, b1 = ends
-    size = float(np.ptp(ends, axis=0).max())
+    ends = np.concatenate([curve_a.end_points, curve_b.end_points])  # a0, a1, b0, b1
+    size = float(extent(ends).max())
+    # the largest coordinate gap of each pair, all six at once
+    a0b0, a1b1, a0b1, a1b0, a0a1, b0b1 = (
+        np.abs(ends[_FIRST] - ends[_SECOND]).max(axis=1) <= 1e-6 * size
+    ).tolist()
+    same = (a0b0 and a1b1) or (a0b1 and a1b0)
+    return not (same or (a0a1 and b0b1))
 
-    def near(p: np.ndarray, q: np.ndarray) -> bool:
-        return float(np.abs(p - q).max()) <= 1e-6 * size
 
-    same = (near(a0, b0) and near(a1, b1)) or (near(a0, b1) and near(a1, b0))
-    return not (same or (near(a0, a1) and near(b0, b1)))
+#: The pairs of end points :func:`_ends_differ` compares (rows of a0, a1, b0, b1):
+#: a0–b0, a1–b1, a0–b1, a1–b0, a0–a1, b0–b1.
+_FIRST, _SECOND = np.array([0, 1, 0, 1, 0, 2]), np.array([2, 3, 3, 2, 1, 3])
 
 
 def _polyline_gap(points: np.ndarray, polyline: np.ndarray) -> float:

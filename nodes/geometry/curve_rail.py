@@ -25,10 +25,14 @@ from 0) is unwrapped before interpolating and wrapped back when evaluated.
 σ is scipy's ``PchipInterpolator`` (Fritsch–Carlson slopes, Moler's one-sided three-point
 ends, extrapolating with the end pieces), written out in :class:`Pace`: a strip's rails
 are built on every re-solve, and the general interpolator's set-up costs more than the
-rest of the rail.
+rest of the rail. :func:`ruled_between` fits both rails' paces in one pass, at ruling
+parameters whose steps are made once per ruling count.
 """
 
 from __future__ import annotations
+
+import math
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -65,24 +69,21 @@ class Pace:
     """
 
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
-        h = u[1:] - u[:-1]
-        m = (p[1:] - p[:-1]) / h
-        slopes = np.empty(len(p))
-        if len(p) == 2:
-            slopes[:] = m[0]
-        else:
-            sign = np.sign(m)
-            flat = (sign[1:] != sign[:-1]) | (m[1:] == 0) | (m[:-1] == 0)
-            w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                harmonic = (w1 + w2) / (w1 / m[:-1] + w2 / m[1:])
-            slopes[1:-1] = np.where(flat, 0.0, harmonic)
-            slopes[0] = _end_slope(h[0], h[1], m[0], m[1])
-            slopes[-1] = _end_slope(h[-1], h[-2], m[-1], m[-2])
-        # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
-        bend = (slopes[:-1] + slopes[1:] - 2.0 * m) / h
-        self.u = u
-        self.c3, self.c2, self.c1, self.c0 = bend / h, (m - slopes[:-1]) / h - bend, slopes[:-1], p[:-1]
+        c3, c2, c1, c0 = _pchip(_Steps(u), p[None], (p[1:] - p[:-1])[None])
+        self.u, self.c3, self.c2, self.c1, self.c0 = u, c3[0], c2[0], c1[0], c0[0]
+
+    @classmethod
+    def _rows(cls, steps: _Steps, p: FloatArray, dp: FloatArray) -> list[Pace]:
+        """One interpolant per row of ``p`` ``(k, n)``, all at the same parameters
+        (``steps``; chords ``dp``), fitted in one pass: the rows' coefficients are the ones
+        each would get alone (every step is elementwise)."""
+        c3, c2, c1, c0 = _pchip(steps, p, dp)
+        paces = []
+        for row in range(len(p)):
+            pace = cls.__new__(cls)
+            pace.u, pace.c3, pace.c2, pace.c1, pace.c0 = steps.u, c3[row], c2[row], c1[row], c0[row]
+            paces.append(pace)
+        return paces
 
     def __call__(self, x: FloatArray, nu: int = 0) -> FloatArray:
         """The interpolant's ``nu``-th derivative at ``x``."""
@@ -104,14 +105,78 @@ class Pace:
         return out
 
 
+class _Steps:
+    """What PCHIP takes of the parameters ``u`` alone, the same for every interpolant at
+    them: the steps ``h`` and, for three or more points, the weights of the inner slopes'
+    harmonic mean and the end steps."""
+
+    def __init__(self, u: FloatArray) -> None:
+        h = u[1:] - u[:-1]
+        self.u, self.h = u, h
+        self.increasing: bool | None = None  # (known for the uniform ones)
+        if len(u) > 2:
+            self.w1, self.w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+            self.w_sum = self.w1 + self.w2
+            self.first, self.last = h[:2].tolist(), h[-1:-3:-1].tolist()  # (h0, h1), (h_last, h_next)
+
+    @staticmethod
+    @lru_cache(maxsize=64)
+    def uniform(n: int) -> _Steps:
+        """The steps of the ``n`` ≥ 2 evenly spaced parameters :func:`_uniform`, made once
+        per count (every strip's rails have them), read-only; with ``increasing``, whether
+        no step is 0 or less (the check of :class:`CurveRail`)."""
+        steps = _Steps(_uniform(n))
+        steps.increasing = not (steps.h <= 0.0).any()
+        for array in vars(steps).values():
+            if isinstance(array, np.ndarray):
+                array.setflags(write=False)
+        return steps
+
+
+def _pchip(
+    steps: _Steps, p: FloatArray, dp: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The PCHIP cubics' coefficients (c3, c2, c1, c0) on the pieces between the points of
+    each row of ``p`` ``(k, n)`` (one interpolant per row, all at the parameters of
+    ``steps``), whose chords are ``dp = p[:, 1:] − p[:, :-1]``: see :class:`Pace`."""
+    h = steps.h
+    m = dp / h
+    slopes = np.empty(p.shape)
+    if p.shape[1] == 2:
+        slopes[:] = m
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            harmonic = steps.w_sum / (steps.w1 / m[:, :-1] + steps.w2 / m[:, 1:])
+        sign = np.sign(m)
+        # 0 where the neighbouring chords' slopes differ in sign or one is 0 (or NaN)
+        slopes[:, 1:-1] = np.where(sign[:, 1:] * sign[:, :-1] > 0, harmonic, 0.0)
+        (h0, h1), (h_last, h_next) = steps.first, steps.last
+        for row, chords in zip(slopes, m.tolist(), strict=True):
+            row[0] = _end_slope(h0, h1, chords[0], chords[1])
+            row[-1] = _end_slope(h_last, h_next, chords[-1], chords[-2])
+    # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
+    starts = slopes[:, :-1]
+    bend = (starts + slopes[:, 1:] - 2.0 * m) / h
+    return bend / h, (m - starts) / h - bend, starts, p[:, :-1]
+
+
 def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
-    """PCHIP's slope at an end: the one-sided three-point estimate, kept monotone."""
+    """PCHIP's slope at an end, from the end step and chord slope (``h0``, ``m0``) and the
+    next ones (``h1``, ``m1``): the one-sided three-point estimate, kept monotone."""
     d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-    if np.sign(d) != np.sign(m0):
+    if _sign(d) != _sign(m0):
         return 0.0
-    if np.sign(m0) != np.sign(m1) and abs(d) > 3.0 * abs(m0):
+    if _sign(m0) != _sign(m1) and abs(d) > 3.0 * abs(m0):
         return 3.0 * m0
-    return float(d)
+    return d
+
+
+def _sign(x: float) -> float:
+    """``np.sign`` of a float: −1, 0 or 1, and NaN (unequal to every sign) for NaN."""
+    return math.nan if x != x else (x > 0) - (x < 0)
+
+
+_UNPACED = "a curve rail needs increasing u and non-decreasing curve parameters"
 
 
 class CurveRail(Curve):
@@ -125,11 +190,35 @@ class CurveRail(Curve):
         if curve.closed:
             p = unwrap_cyclic(p)
         if len(u) < 2 or u.shape != p.shape or (u[1:] - u[:-1] <= 0).any() or (p[1:] - p[:-1] < 0).any():
-            raise ValueError("a curve rail needs increasing u and non-decreasing curve parameters")
+            raise ValueError(_UNPACED)
+        self._set(curve, u, p, Pace(u, p))
+
+    def _set(self, curve: Curve, u: FloatArray, p: FloatArray, pace: Pace) -> None:
         self.curve = curve
         self.params, self.curve_params = u, p
-        self._pace = Pace(u, p)
+        self._pace = pace
         self.closed = False  # the rail covers the stretch of the curve between its rulings
+
+    @classmethod
+    def _pair(
+        cls, curve_a: Curve, s: FloatArray, curve_b: Curve, t: FloatArray, steps: _Steps
+    ) -> tuple[tuple[CurveRail, CurveRail], bool]:
+        """``CurveRail(curve_a, u, s)`` and ``CurveRail(curve_b, u, t)`` (``s``, ``t`` and
+        ``u = steps.u`` ``(n,)`` arrays, ``n`` ≥ 2), their checks and paces made in one pass
+        for both; and whether both rails' parameters are non-decreasing numbers (no NaN),
+        which the checks alone do not say."""
+        rows = [unwrap_cyclic(q) if curve.closed else q for curve, q in ((curve_a, s), (curve_b, t))]
+        p = np.concatenate(rows).reshape(2, -1)
+        dp = p[:, 1:] - p[:, :-1]
+        rising = bool(dp.min() >= 0.0)  # (false where a NaN is)
+        if not steps.increasing or (not rising and (dp < 0.0).any()):  # (steps: _Steps.uniform)
+            raise ValueError(_UNPACED)
+        rails = []
+        for curve, row, pace in zip((curve_a, curve_b), p, Pace._rows(steps, p, dp), strict=True):
+            rail = cls.__new__(cls)
+            rail._set(curve, steps.u, row, pace)
+            rails.append(rail)
+        return (rails[0], rails[1]), rising
 
     def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
         return self._pace.derivatives(u, order)
@@ -215,22 +304,32 @@ def ruled_between(
     n = len(s)
     if n < 2 or len(t) != n:
         raise ValueError("a strip needs at least two rulings, one s and one t each")
-    u = _uniform(n)  # (np.linspace(0, 1, n), bit for bit)
-    rail_a, rail_b = CurveRail(curve_a, u, s), CurveRail(curve_b, u, t)
+    if s.shape != (n,) or t.shape != (n,):
+        raise ValueError(_UNPACED)
+    steps = _Steps.uniform(n)  # at u = np.linspace(0, 1, n), bit for bit (read-only, shared)
+    u = steps.u
+    (rail_a, rail_b), rising = CurveRail._pair(curve_a, s, curve_b, t, steps)
     lines = np.empty((n, 2, 3))
-    for side, (curve, rail) in enumerate(((curve_a, rail_a), (curve_b, rail_b))):
-        at = rail._wrapped(rail.curve_params)
-        given = points[side] if points is not None and isinstance(curve, POINTWISE) else None
-        same = given is not None and np.array_equal(at, s if side == 0 else t)
-        lines[:, side] = given if same else curve.point_at(at)
+    for side, (curve, rail, given) in enumerate(((curve_a, rail_a, s), (curve_b, rail_b, t))):
+        if points is None or not isinstance(curve, POINTWISE):
+            lines[:, side] = curve.point_at(rail._wrapped(rail.curve_params))
+            continue
+        p = rail.curve_params
+        # the rail runs through the given points where its parameters are the given ones:
+        # rising numbers in [0, 1] on an open curve are (nothing to unwrap or clip)
+        if not (rising and not curve.closed and p[0] >= 0.0 and p[-1] <= 1.0):
+            at = rail._wrapped(p)
+            if not np.array_equal(at, given):
+                lines[:, side] = curve.point_at(at)
+                continue
+        lines[:, side] = points[side]
     # the rails' ends are the first and last rulings' (to rounding): closed round u when
     # both rails return to their start, as RuledSurface judges it from its rails' ends,
     # without evaluating the rails again (a strip's rails are built on every re-solve)
-    ends = lines[[0, -1, 0, -1], [0, 0, 1, 1]]
+    ends = lines[:: n - 1].reshape(4, 3)  # A(s0), B(t0), A(s_last), B(t_last)
     size = float(extent(ends).max()) or 1.0
-    closed_u = bool(
-        np.abs(ends[0] - ends[1]).max() <= 1e-12 * size and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size
-    )
+    gap_a, gap_b = np.abs(ends[:2] - ends[2:]).max(axis=1).tolist()
+    closed_u = gap_a <= 1e-12 * size and gap_b <= 1e-12 * size
     surface = RuledSurface.__new__(RuledSurface)
     surface._setup(rail_a, rail_b, closed_u)
     surface.ruling_parameters = u

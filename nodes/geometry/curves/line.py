@@ -43,11 +43,18 @@ class Line(Curve):
         >>> [line.end.tolist() for line in Line.many([[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0]])]
         [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]
         """
-        a, b = as_points(starts).copy(), as_points(ends).copy()
+        a, b = as_points(starts), as_points(ends)
         if a.shape != b.shape:
             raise ValueError(f"Expected as many line ends as starts; got {len(b)} and {len(a)}.")
         if not (np.isfinite(a).all() and np.isfinite(b).all()):
             raise ValueError("A line's end points must have finite coordinates.")
+        return cls._of_rows(a, b)
+
+    @classmethod
+    def _of_rows(cls, starts: FloatArray, ends: FloatArray) -> list[Line]:
+        """:meth:`many` for ``(n, 3)`` float arrays of one shape whose coordinates the
+        caller has checked are finite (the lines keep read-only copies)."""
+        a, b = starts.copy(), ends.copy()
         a.setflags(write=False)
         b.setflags(write=False)
         lines = []

@@ -68,7 +68,7 @@ def _size(start: FloatArray, end: FloatArray) -> float:
     if not len(start):
         return 0.0
     columns = np.concatenate([start.T, end.T], axis=1)  # (3, 2n): contiguous rows to reduce
-    size = float(norm(columns.max(axis=1) - columns.min(axis=1)))
+    size = float(norm(np.maximum.reduce(columns, axis=1) - np.minimum.reduce(columns, axis=1)))
     if isfinite(size):  # (a NaN or an infinite coordinate would not leave it finite)
         return size
     points = np.concatenate([start, end])
@@ -83,22 +83,25 @@ def _normals(
     tangents_b: ArrayLike,
     apex_a: ArrayLike | None,
     apex_b: ArrayLike | None,
+    size: float | None = None,
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """:func:`end_normals` and the rulings' lengths (both ends' normals computed as one
-    ``(2, n, 3)`` array)."""
+    ``(2, n, 3)`` array); ``size`` is :func:`_size` of the ends where the caller has it."""
     start = np.asarray(starts, dtype=float).reshape(-1, 3)
     end = np.asarray(ends, dtype=float).reshape(-1, 3)
     ruling = end - start
     n = len(ruling)
     ta = np.asarray(tangents_a, dtype=float).reshape(-1, 3)
     tb = np.asarray(tangents_b, dtype=float).reshape(-1, 3)
-    size = _size(start, end)
-    length = norm(ruling)
-    if ta.shape == tb.shape == ruling.shape:
-        tangents = np.concatenate([ta, tb]).reshape(2, n, 3)
-        speeds = norm(tangents)
+    if size is None:
+        size = _size(start, end)
+    if ta.shape == tb.shape == ruling.shape:  # the lengths of the rulings and tangents at once
+        vectors = np.concatenate([ruling, ta, tb]).reshape(3, n, 3)
+        lengths = norm(vectors)
+        length, speeds, tangents = lengths[0], lengths[1:], vectors[1:]
         units = tangents / np.where(speeds > 0, speeds, 1.0)[..., None]
     else:  # one tangent for all rulings: its length as measured alone (einsum rounds a lone row its own way)
+        length = norm(ruling)
         speed_a, speed_b = norm(ta), norm(tb)
         unit_a = ta / np.where(speed_a > 0, speed_a, 1.0)[:, None]
         unit_b = tb / np.where(speed_b > 0, speed_b, 1.0)[:, None]
@@ -112,15 +115,16 @@ def _normals(
         still[1] |= mask_b
     normals = cross(ruling, units)
     has = norm(normals) > PARALLEL * length
-    usable = has | still
-    defined = (length > ZERO * size) & usable[0] & usable[1] & ~(still[0] & still[1])
-    n1, n2 = normals[0], normals[1]
     if still.any():
-        n1, n2 = np.where(still[0][:, None], n2, n1), np.where(still[1][:, None], n1, n2)
+        usable = has | still
+        defined = (length > ZERO * size) & usable[0] & usable[1] & ~(still[0] & still[1])
+        # a standing end takes the other end's normal (both ends at once: the pair swapped)
+        normals = np.where(still[..., None], normals[::-1], normals)
+    else:  # (no end stands: each has its own normal or none)
+        defined = (length > ZERO * size) & has[0] & has[1]
     if not defined.all():
-        n1[~defined] = np.nan
-        n2[~defined] = np.nan
-    return n1, n2, ruling, length
+        normals[:, ~defined] = np.nan
+    return normals[0], normals[1], ruling, length
 
 
 def end_normals(
@@ -175,7 +179,14 @@ def warp_angles(
     >>> warp_angles([[0, 0, 0]], [[0, 1, 0]], [[1, 0, 0]], [[-1, 0, 0]]).round(6).tolist()
     [3.141593]
     """
-    n1, n2, ruling, length = _normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b)
+    return _angles(*_normals(starts, ends, tangents_a, tangents_b, apex_a, apex_b), signed)
+
+
+def _angles(
+    n1: FloatArray, n2: FloatArray, ruling: FloatArray, length: FloatArray, signed: bool
+) -> FloatArray:
+    """The warp angles from the end normals, rulings and lengths of :func:`_normals`
+    (:func:`warp_angles`)."""
     normal_cross = cross(n1, n2)
     normal_dot = dot(n1, n2)
     if signed:
@@ -195,15 +206,19 @@ def consistently_oriented(
     if tangents_a.shape != ruling.shape or tangents_b.shape != ruling.shape:  # (broadcast ones)
         tangents_a = np.broadcast_to(tangents_a, ruling.shape)
         tangents_b = np.broadcast_to(tangents_b, ruling.shape)
-    tangents = np.concatenate([tangents_a, tangents_b]).reshape(2, n, 3)  # both ends at once
-    rr, tt = dot(ruling, ruling), dot(tangents, tangents)
+    vectors = np.concatenate([ruling, tangents_a, tangents_b]).reshape(3, n, 3)  # both ends at once
+    squares = dot(vectors, vectors)
+    rr, tt, tangents = squares[0], squares[1:], vectors[1:]
     normals = cross(ruling, tangents)
     # |R × T̂| > PARALLEL·|R|, squared and times |T|²
     has = dot(normals, normals) > PARALLEL**2 * rr * tt
     still = tt <= zero
+    facing = dot(normals[0], normals[1]) > 0
+    if not still.any():  # (the usual case)
+        return (rr > zero) & has[0] & has[1] & facing
     defined = (rr > zero) & (has[0] | still[0]) & (has[1] | still[1]) & ~(still[0] & still[1])
     # a standing end takes the other end's normal: then N1·N2 = |N|² > 0
-    return defined & ((dot(normals[0], normals[1]) > 0) | still[0] | still[1])
+    return defined & (facing | still[0] | still[1])
 
 
 def edge_tangents(points: ArrayLike) -> FloatArray:
@@ -285,19 +300,22 @@ _SIDE = 1e-11
 _AT_BREAK = 1e-10
 
 
-def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, FloatArray]:
+def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, FloatArray] | None:
     """Which parameters ``t`` sit on a corner of ``curve`` (a breakpoint where the unit
-    tangent jumps), and the one-sided tangents there (left, right; undefined elsewhere)."""
+    tangent jumps), and the one-sided tangents there (left, right; undefined elsewhere);
+    None when the curve has no breakpoint inside (and no seam), so no corner."""
     breaks = np.asarray(curve._breakpoints(), dtype=float)
+    if len(breaks) == 2 and breaks[0] <= 0.0 and breaks[1] >= 1.0 and not curve.closed:
+        return None  # (one smooth span, the usual case: nothing inside)
     inner = breaks[(breaks > 0.0) & (breaks < 1.0)]
     if curve.closed:
         inner = np.concatenate([inner, [0.0]])
+    if not len(inner):
+        return None
     n = len(t)
     left = np.zeros((n, 3))
     right = np.zeros((n, 3))
     corner = np.zeros(n, dtype=bool)
-    if not len(inner):
-        return corner, left, right
     inner = np.sort(inner)
     # the nearest breakpoint of each parameter: one of its two neighbours in the sorted list
     above = np.clip(np.searchsorted(inner, t), 0, len(inner) - 1)
@@ -326,15 +344,16 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
     return corner, left, right
 
 
-def _interior_of_fan(points: FloatArray, size: float) -> BoolArray:
+def _interior_of_fans(points: FloatArray, size: float) -> BoolArray:
     """Rows whose point is shared with every neighbouring row (both inside, the one
-    neighbour of the first and last rows): in a fan through it."""
-    same = norm(points[1:] - points[:-1]) <= ZERO * size
-    inside = np.zeros(len(points), dtype=bool)
-    inside[1:-1] = same[:-1] & same[1:]
-    if len(same):  # the first and last rulings have one neighbour each
-        inside[0] |= same[0]
-        inside[-1] |= same[-1]
+    neighbour of the first and last rows): in a fan through it. ``points`` ``(k, n, 3)``:
+    ``k`` edges' points (both ends of the rulings at once), a ``(k, n)`` mask."""
+    same = norm(points[:, 1:] - points[:, :-1]) <= ZERO * size
+    inside = np.zeros(points.shape[:2], dtype=bool)
+    inside[:, 1:-1] = same[:, :-1] & same[:, 1:]
+    if same.shape[1]:  # the first and last rulings have one neighbour each
+        inside[:, 0] |= same[:, 0]
+        inside[:, -1] |= same[:, -1]
     return inside
 
 
@@ -359,20 +378,27 @@ def curve_warp(
     t = np.asarray(t, dtype=float).reshape(-1)
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
-    ruling = b - a
     ta = curve_a.derivative_at(s, 1)  # (the tangents alone: a polynomial curve skips the points)
     tb = curve_b.derivative_at(t, 1)
-    corner_a, left_a, right_a = _corner_sides(curve_a, s)
-    corner_b, left_b, right_b = _corner_sides(curve_b, t)
+    sides_a, sides_b = _corner_sides(curve_a, s), _corner_sides(curve_b, t)
+    size = _size(a, b)
+    if a.shape == b.shape:  # both edges' fans at once
+        apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size)
+    else:
+        apex_a, apex_b = _interior_of_fans(a[None], size)[0], _interior_of_fans(b[None], size)[0]
+    if sides_a is None and sides_b is None:  # (smooth curves: no corner to look at)
+        return _angles(*_normals(a, b, ta, tb, apex_a, apex_b, size), signed)
+    n = len(s)
+    no_corner = np.zeros(n, dtype=bool), np.zeros((n, 3)), np.zeros((n, 3))
+    (corner_a, left_a, right_a), (corner_b, left_b, right_b) = sides_a or no_corner, sides_b or no_corner
+    ruling = b - a
     if corner_a.any():
         ta = ta.copy()
         ta[corner_a] = in_plane_tangent(ruling[corner_a], tb[corner_a], left_a[corner_a], right_a[corner_a])
     if corner_b.any():
         tb = tb.copy()
         tb[corner_b] = in_plane_tangent(ruling[corner_b], ta[corner_b], left_b[corner_b], right_b[corner_b])
-    size = _size(a, b)
-    apex_a, apex_b = _interior_of_fan(a, size), _interior_of_fan(b, size)
-    warp = warp_angles(a, b, ta, tb, signed, apex_a=apex_a, apex_b=apex_b)
+    warp = _angles(*_normals(a, b, ta, tb, apex_a, apex_b, size), signed)
     # at a corner whose chosen tangent runs along the ruling (a fan's edge on a side of
     # the corner), any other direction of the corner's cone is a tangent too: take the
     # one-sided tangents there and keep the least warp that is defined
