@@ -109,7 +109,7 @@ class InterpolatedCurve(NurbsCurve):
             if len(p) == k + 1:  # one polynomial span: a small Bernstein system
                 self._set_points(p, u)
                 control = _bezier_through(local, u) + origin
-                self._setup(control, None, np.repeat([0.0, 1.0], k + 1), k, closed)
+                self._setup(control, None, _bezier_knots(k), k, closed)
                 return
             spline = make_interp_spline(u, local, k=k)
         self._set_points(p, u)
@@ -130,6 +130,14 @@ def _bezier_through(points: np.ndarray, u: np.ndarray) -> np.ndarray:
     j, binomial = _bernstein_terms(len(points) - 1)
     basis = binomial * u[:, None] ** j * (1.0 - u[:, None]) ** j[::-1]
     return np.linalg.solve(basis, points)
+
+
+@lru_cache(maxsize=16)
+def _bezier_knots(k: int) -> np.ndarray:
+    """The knots of a degree-k Bézier curve on [0, 1], read-only (shared by the curves of that degree)."""
+    knots = np.repeat([0.0, 1.0], k + 1)
+    knots.setflags(write=False)
+    return knots
 
 
 @lru_cache(maxsize=16)
