@@ -24,20 +24,20 @@ except ImportError:  # pragma: no cover - another numpy: the public call
     _einsum = np.einsum
 
 
-#: Coordinates of the two products of each component of a cross product:
-#: (a × b)_k = a[_FIRST[k]]·b[_SECOND[k]] − a[_FIRST[k + 3]]·b[_SECOND[k + 3]].
-_FIRST = np.array([1, 2, 0, 2, 0, 1])
-_SECOND = np.array([2, 0, 1, 1, 2, 0])
+#: The coordinates after and before each one:
+#: (a × b)_k = a[_NEXT[k]]·b[_PREVIOUS[k]] − a[_PREVIOUS[k]]·b[_NEXT[k]].
+_NEXT = np.array([1, 2, 0])
+_PREVIOUS = np.array([2, 0, 1])
 
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Row-wise cross product (broadcasting): each component a_i·b_j − a_j·b_i, both
-    products of all three components in one multiplication (``np.cross``'s values, bit
-    for bit). ``take`` gathers the coordinates as indexing with ``[..., _FIRST]`` would,
-    a few times faster on small arrays."""
-    products = a.take(_FIRST, axis=-1) * b.take(_SECOND, axis=-1)
-    out = np.empty((*products.shape[:-1], 3))  # (C order: numpy would lay it out by columns)
-    return np.subtract(products[..., :3], products[..., 3:], out=out)
+    """Row-wise cross product (broadcasting): each component a_i·b_j − a_j·b_i, the three
+    first products in one multiplication and the three second in another (``np.cross``'s
+    values, bit for bit). ``take`` gathers coordinates into new C-ordered arrays, a few
+    times faster than indexing with an index array, and the subtraction then runs on two
+    whole arrays of the same shape (not on the strided halves of one)."""
+    first = a.take(_NEXT, axis=-1) * b.take(_PREVIOUS, axis=-1)
+    return first - a.take(_PREVIOUS, axis=-1) * b.take(_NEXT, axis=-1)
 
 
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
