@@ -24,9 +24,10 @@ from .arclength import LengthTable
 from .array_types import FloatArray
 from .closest import SearchSamples, closest_parameters, search_parameters, search_samples
 from .roots import roots_in_samples
+from .spline_eval import evaluation_parameters
 from .tessellate import tessellation_parameters
 from .transforms import check_matrix, is_affine
-from .vec_ops import dot
+from .vec_ops import cross, dot, linalg_norm
 from .vectors import Plane, as_points, perpendicular, unit
 
 
@@ -49,7 +50,7 @@ class Frames(NamedTuple):
 
 def _parameters(t: ArrayLike) -> tuple[FloatArray, bool]:
     """``t`` as a 1-D float array, and whether it was a scalar."""
-    return np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1), np.ndim(t) == 0
+    return evaluation_parameters(t), np.ndim(t) == 0
 
 
 class Curve(ABC):
@@ -144,8 +145,8 @@ class Curve(ABC):
         is used, its limit; where both vanish the tangent is the zero vector."""
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
-        speed = np.linalg.norm(d1, axis=1)
-        scale = np.maximum(np.linalg.norm(d2, axis=1), 1e-300)
+        speed = linalg_norm(d1)
+        scale = np.maximum(linalg_norm(d2), 1e-300)
         stationary = speed <= 1e-12 * scale
         tangent = unit(np.where(stationary[:, None], d2, d1))
         return tangent[0] if scalar else tangent
@@ -156,25 +157,27 @@ class Curve(ABC):
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
         speed2 = dot(d1, d1)
-        safe = np.where(speed2 > 0, speed2, 1.0)
+        moving = speed2 > 0
+        safe = np.where(moving, speed2, 1.0)
         normal_part = d2 - (dot(d2, d1) / safe)[:, None] * d1
-        k = np.where(speed2[:, None] > 0, normal_part / safe[:, None], 0.0)
+        k = np.where(moving[:, None], normal_part / safe[:, None], 0.0)
         return k[0] if scalar else k
 
     def curvature_at(self, t: ArrayLike) -> FloatArray:
         """Curvature κ = |C' × C''| / |C'|³ (1 / radius of the osculating circle)."""
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
-        speed = np.linalg.norm(d1, axis=1)
-        safe = np.where(speed > 0, speed, 1.0)
-        kappa = np.where(speed > 0, np.linalg.norm(np.cross(d1, d2), axis=1) / safe**3, 0.0)
+        speed = linalg_norm(d1)
+        moving = speed > 0
+        safe = np.where(moving, speed, 1.0)
+        kappa = np.where(moving, linalg_norm(cross(d1, d2)) / safe**3, 0.0)
         return kappa[0] if scalar else kappa
 
     def torsion_at(self, t: ArrayLike) -> FloatArray:
         """Torsion τ = (C' × C'')·C''' / |C' × C''|², 0 where the curvature vanishes."""
         ts, scalar = _parameters(t)
         _, d1, d2, d3 = self.derivatives(ts, 3)
-        b = np.cross(d1, d2)
+        b = cross(d1, d2)
         bb = dot(b, b)
         # the torsion is undefined on straight stretches; report 0 rather than noise
         straight = bb <= 1e-24 * dot(d1, d1) ** 3
@@ -191,11 +194,11 @@ class Curve(ABC):
         origins, d1, d2 = self.derivatives(ts, 2)
         tangents = self.tangent_at(ts)
         # straight where C'' is parallel to C' (sine of their angle below 1e-12) or zero
-        cross = np.linalg.norm(np.cross(d1, d2), axis=1)
-        flat = cross <= 1e-12 * np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1)
-        flat |= cross == 0
+        sine_area = linalg_norm(cross(d1, d2))
+        flat = sine_area <= 1e-12 * linalg_norm(d1) * linalg_norm(d2)
+        flat |= sine_area == 0
         normals = np.where(flat[:, None], perpendicular(tangents), unit(self.curvature_vector_at(ts)))
-        return Frames(origins, tangents, normals, np.cross(tangents, normals))
+        return Frames(origins, tangents, normals, cross(tangents, normals))
 
     def plane_at(self, t: float) -> Plane:
         """The Frenet frame at one parameter as a :class:`~.vectors.Plane`

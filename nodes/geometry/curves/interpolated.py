@@ -22,9 +22,19 @@ def chord_length_parameters(points: ArrayLike) -> np.ndarray:
 
 def _chord_parameters(steps: np.ndarray) -> np.ndarray:
     """:func:`chord_length_parameters` from the steps between consecutive points."""
-    cumulative = np.empty(len(steps) + 1)
+    return _cumulative_parameters(_chord_lengths(steps))
+
+
+def _chord_lengths(steps: np.ndarray) -> np.ndarray:
+    """The lengths of the steps between consecutive points."""
+    return np.sqrt(np.add.reduce(steps * steps, axis=1))
+
+
+def _cumulative_parameters(lengths: np.ndarray) -> np.ndarray:
+    """Parameters from 0 to 1 proportional to the running sum of ``lengths``."""
+    cumulative = np.empty(len(lengths) + 1)
     cumulative[0] = 0.0
-    np.cumsum(np.sqrt(np.add.reduce(steps * steps, axis=1)), out=cumulative[1:])
+    np.cumsum(lengths, out=cumulative[1:])
     return cumulative / cumulative[-1]
 
 
@@ -77,11 +87,14 @@ class InterpolatedCurve(NurbsCurve):
         elif len(p) < 2:
             raise ValueError(f"An interpolating curve needs at least 2 points; got {len(p)}.")
         steps = p[1:] - p[:-1]
-        if (steps == 0).all(axis=1).any():
+        lengths = _chord_lengths(steps)
+        # a step with every coordinate 0 has length 0: only where one has (or one too short
+        # to square) are the coordinates themselves tested
+        if not np.minimum.reduce(lengths) > 0.0 and (steps == 0).all(axis=1).any():
             raise ValueError(
                 "Two consecutive points coincide; the curve cannot pass through one point twice in a row."
             )
-        u = _chord_parameters(steps)
+        u = _cumulative_parameters(lengths)
         # solved on the points relative to their box's centre: the spline's coefficients
         # are then as accurate far from the origin as at it (see vec_ops.anchor)
         origin = anchor(p)
@@ -109,7 +122,7 @@ class InterpolatedCurve(NurbsCurve):
             if len(p) == k + 1:  # one polynomial span: a small Bernstein system
                 self._set_points(p, u)
                 control = _bezier_through(local, u) + origin
-                self._setup(control, None, np.repeat([0.0, 1.0], k + 1), k, closed)
+                self._setup(control, None, _bezier_knots(k), k, closed)
                 return
             spline = make_interp_spline(u, local, k=k)
         self._set_points(p, u)
@@ -127,16 +140,28 @@ def _bezier_through(points: np.ndarray, u: np.ndarray) -> np.ndarray:
     ``u`` (from 0 to 1): what ``make_interp_spline`` gives when there are no interior
     knots, without its overhead (a tenth of a millisecond per curve, which a slider
     rebuilding dozens of short edge curves pays on every solve)."""
-    j, binomial = _bernstein_terms(len(points) - 1)
-    basis = binomial * u[:, None] ** j * (1.0 - u[:, None]) ** j[::-1]
+    j, j_reversed, binomial = _bernstein_terms(len(points) - 1)
+    column = u[:, None]
+    basis = binomial * column**j * (1.0 - column) ** j_reversed
     return np.linalg.solve(basis, points)
 
 
 @lru_cache(maxsize=16)
-def _bernstein_terms(k: int) -> tuple[np.ndarray, np.ndarray]:
-    """The exponents 0 … k and the binomial coefficients C(k, j) of the degree-k Bernstein basis."""
-    j = np.arange(k + 1)
+def _bezier_knots(k: int) -> np.ndarray:
+    """The knots of a degree-k Bézier curve on [0, 1], read-only (shared by the curves of that degree)."""
+    knots = np.repeat([0.0, 1.0], k + 1)
+    knots.setflags(write=False)
+    return knots
+
+
+@lru_cache(maxsize=16)
+def _bernstein_terms(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The exponents 0 … k and k … 0 and the binomial coefficients C(k, j) of the degree-k
+    Bernstein basis, read-only. The exponents are floats: ``power`` runs on doubles either
+    way (integer exponents are cast to them first), so the values are the same, uncast."""
+    j = np.arange(k + 1.0)
+    j_reversed = j[::-1].copy()
     binomial = np.array([comb(k, i) for i in range(k + 1)], dtype=float)
-    j.setflags(write=False)
-    binomial.setflags(write=False)
-    return j, binomial
+    for array in (j, j_reversed, binomial):
+        array.setflags(write=False)
+    return j, j_reversed, binomial

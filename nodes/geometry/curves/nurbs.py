@@ -7,6 +7,7 @@ derivatives of the quotient (the generalised quotient rule) are written here.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from math import comb, sqrt
 
 import numpy as np
@@ -15,10 +16,18 @@ from scipy.interpolate import BSpline
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
-from ..spline_eval import SplineValues
-from ..vec_ops import anchor, extent
+from ..spline_eval import SplineValues, evaluation_parameters
+from ..vec_ops import bounds
 from ..vectors import as_points
 from .knots import check_knots, clamped_uniform_knots, periodic_knots
+
+
+@lru_cache(maxsize=64)
+def _unit_weights(count: int) -> FloatArray:
+    """``count`` weights of 1, read-only (one array shared by the polynomial curves of that size)."""
+    weights = np.ones(count)
+    weights.setflags(write=False)
+    return weights
 
 
 class NurbsCurve(Curve):
@@ -101,33 +110,39 @@ class NurbsCurve(Curve):
         self.degree: int = degree
         self.knots: FloatArray = knots
         self.control_points: FloatArray = points
-        self.weights: FloatArray = np.ones(len(points)) if weights is None else weights
+        self.weights: FloatArray = _unit_weights(len(points)) if weights is None else weights
         self.is_rational: bool = weights is not None
         self.periodic: bool = periodic
         count = len(points)
-        self.domain = (float(knots[degree]), float(knots[count]))
+        a, b = self.domain = (float(knots[degree]), float(knots[count]))
+        # u = a + (b − a)·t, spared on most curves (u is t: a unit domain changes no bit)
+        self._unit_domain = a == 0.0 and b == 1.0
+        self._offset, self._scale = a, b - a
         # the spline runs on control points relative to their box's centre (kept in
         # _anchor): derivatives, lengths and areas then round relative to the curve's
         # size, wherever it sits; only positions add the anchor back
-        self._anchor: FloatArray = anchor(points)
+        low, high = bounds(points)
+        self._anchor: FloatArray = 0.5 * (high + low)  # (vec_ops.anchor, from the same bounds)
         self._anchor.setflags(write=False)
+        # one point adds the anchor as a (1, 3) row: numpy adds arrays of one shape without
+        # setting up a broadcast, three times faster on a small array (the same sums)
+        self._anchor_row: FloatArray = self._anchor[None, :]
         local = points - self._anchor
         coefficients = local if weights is None else np.column_stack([local * weights[:, None], weights])
         # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve; the
         # knots and coefficients are checked already (construct_fast skips scipy's checks)
+        knots = np.ascontiguousarray(knots, dtype=float)
+        coefficients = np.ascontiguousarray(coefficients, dtype=float)
         self._spline = BSpline.construct_fast(
-            np.ascontiguousarray(knots, dtype=float),
-            np.ascontiguousarray(coefficients, dtype=float),
-            degree,
-            extrapolate="periodic" if periodic else True,
+            knots, coefficients, degree, extrapolate="periodic" if periodic else True
         )
-        self._values = SplineValues(self._spline)
+        self._values = SplineValues(self._spline, knots, coefficients)
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
         if periodic:
             self.closed = True
         else:
-            span = extent(points).max()
+            span = (high - low).max()  # (vec_ops.extent)
             gap = self.end_points[0] - self.end_points[1]
             self.closed = bool(sqrt(gap.dot(gap)) <= 1e-12 * max(span, 1.0))  # as np.linalg.norm(gap)
 
@@ -162,7 +177,8 @@ class NurbsCurve(Curve):
         ``(b − a)`` for the map ``u = a + (b − a)·t``.
         """
         result = self.local_derivatives(t, order)
-        result[0] = result[0] + self._anchor
+        points = result[0]  # (a new array: the anchor is added in place, the same sums)
+        points += self._anchor_row if len(points) == 1 else self._anchor
         return result
 
     @property
@@ -174,16 +190,18 @@ class NurbsCurve(Curve):
         """:meth:`derivatives` with the points relative to :attr:`anchor` (not rounded to
         the world position: the rounding is relative to the curve's size)."""
         u, scale = self._knot_parameters(t)
+        degree = self.degree
         if not self.is_rational:
             # every order at once (u converted once), zeros above the degree
-            result = self._values.orders(u, min(order, self.degree) + 1)
+            result = self._values.orders_of(u, (order if order < degree else degree) + 1)
             if scale != 1.0:  # (a factor of 1 changes no bit)
                 result[1:] = [c * scale**k for k, c in enumerate(result[1:], start=1)]
-            result.extend(np.zeros((len(u), 3)) for _ in range(order - self.degree))
+            if order > degree:
+                result.extend(np.zeros((len(u), 3)) for _ in range(order - degree))
             return result
         # the quotient rule on coordinate rows (4, n) rather than on (n, 4) points: every
         # operation then runs along contiguous rows, not n times over 3 coordinates
-        values, degree, n = self._values, self.degree, len(u)
+        values, n = self._values, len(u)
         rows = np.empty((order + 1, 4, n))
         values.rows(u, min(order, degree) + 1, rows)
         rows[degree + 1 :] = 0.0  # (the derivatives above the degree)
@@ -204,6 +222,11 @@ class NurbsCurve(Curve):
             points[k] = c.T
         return list(points)
 
+    def point_at(self, t: ArrayLike) -> FloatArray:
+        """Points at parameters ``t``: ``(n, 3)`` for an array, ``(3,)`` for a scalar
+        (:meth:`derivative_at` of order 0: for a polynomial curve no list of orders)."""
+        return self.derivative_at(t, 0)
+
     def derivative_at(self, t: ArrayLike, order: int = 1) -> FloatArray:
         """The ``order``-th derivative alone; a polynomial curve evaluates no lower order."""
         if self.is_rational:
@@ -215,23 +238,23 @@ class NurbsCurve(Curve):
         u, scale = self._knot_parameters(t)
         d = self._polynomial_derivative(u, order, scale)
         if order == 0:
-            d = d + self._anchor
+            d += self._anchor_row if len(d) == 1 else self._anchor  # (as in derivatives)
         return d[0] if np.ndim(t) == 0 else d
 
     def _knot_parameters(self, t: ArrayLike) -> tuple[FloatArray, float]:
-        """Knot parameters ``u = a + (b − a)·t`` for ``t``, and ``b − a``."""
-        t = np.asarray(t, dtype=float).reshape(-1)
-        a, b = self.domain
-        if a == 0.0 and b == 1.0:  # most curves (u is t: spare the two passes over it)
+        """Knot parameters ``u = a + (b − a)·t`` for ``t``, and ``b − a``; ``u`` is a 1-D
+        contiguous float64 array (what the spline evaluation takes as it is)."""
+        t = evaluation_parameters(t)
+        if self._unit_domain:  # most curves (u is t: spare the two passes over it)
             return t, 1.0
-        return a + (b - a) * t, b - a
+        return self._offset + self._scale * t, self._scale
 
     def _polynomial_derivative(self, u: FloatArray, k: int, scale: float) -> FloatArray:
         """``C⁽ᵏ⁾`` of a polynomial (non-rational) curve at knot parameters ``u``, per unit t
         (for k = 0 relative to :attr:`anchor`)."""
         if k > self.degree:
             return np.zeros((len(u), 3))
-        value = self._values(u, k)
+        value = self._values.value_of(u, k)
         return value if k == 0 or scale == 1.0 else value * scale**k
 
     def _breakpoints(self) -> FloatArray:
