@@ -13,7 +13,7 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from itertools import repeat
+from itertools import chain, repeat
 from typing import Any
 
 import numpy as np
@@ -447,6 +447,17 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
                 f"{work:,} {node.work_unit} in all, at most {node.max_work:,} (the work of "
                 f"{node.max_work / max(work / calls, 1):,.0f} such runs)",
             ))
+
+    if iterated and type(node).solve_many is not Node.solve_many and plan:
+        plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines
+        node.check_cancelled()
+        results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
+        if results is not None:  # each branch's rows' results, in order
+            end = 0
+            for path, rows, _ in plan:
+                start, end = end, end + len(rows)
+                _store(node, out_ports, outputs, path, results[start:end], iterated=sub_branches)
+            return outputs
 
     for path, rows, is_rows in plan:
         node.check_cancelled()
