@@ -282,8 +282,9 @@ class Node:
         branch iterated). It must give each row the very values ``solve`` gives it, bit for
         bit, and say nothing: for any row it cannot vouch for (a value ``solve`` would refuse
         or clamp, a kind of geometry whose evaluation is not row by row) it returns None, so
-        the messages come from ``solve`` as always. (The solver calls this only on node
-        types that override it.)"""
+        the messages come from ``solve`` as always. It checks the token between its pieces of
+        work (``self.token.check()``) as a long solve does: the solver checks it only before.
+        (The solver calls this only on node types that override it.)"""
         return None
 
     def call_work(self, *args: Any) -> int:

@@ -101,13 +101,17 @@ class EvaluateCurve(Node):
             rows_of.setdefault(id(curve), []).append(row)
         results: list[Any] = [None] * len(parameters)
         make = tuple.__new__  # (the rows are Python floats already: Point() would convert them again)
-        for rows in rows_of.values():
-            c = curves[rows[0]]
-            t = np.array([parameters[row] for row in rows])
-            at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
-                     c.curvature_vector_at(t).tolist(), strict=True)
-            for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
-                results[row] = (make(Point, p), make(Vector, tangent), k, make(Vector, kv))
+        token = self.token
+        for rows_of_curve in rows_of.values():
+            c = curves[rows_of_curve[0]]
+            for start in range(0, len(rows_of_curve), _AT_ONCE):
+                token.check()
+                rows = rows_of_curve[start:start + _AT_ONCE]
+                t = np.array([parameters[row] for row in rows])
+                at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
+                         c.curvature_vector_at(t).tolist(), strict=True)
+                for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
+                    results[row] = (make(Point, p), make(Vector, tangent), k, make(Vector, kv))
         return results
 
 
@@ -116,6 +120,8 @@ class EvaluateCurve(Node):
 #: them all at once. Not TransformedCurve: its (n, 3) @ (3, 3) product takes another BLAS
 #: kernel for one row than for several, a last bit apart.
 _ROW_BY_ROW = frozenset({NurbsCurve, InterpolatedCurve, Circle, Arc, Line, Polyline})
+#: The most parameters of a curve evaluated at once (a few ms): the token is checked between.
+_AT_ONCE = 4096
 
 
 class CurveLength(Node):

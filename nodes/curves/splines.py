@@ -132,11 +132,16 @@ class Interpolate(Node):
         if points.shape[1:] != (count, 3) or not np.isfinite(points).all() or (
                 points[:, 1:] == points[:, :-1]).all(axis=2).any():
             return None
+        token = self.token
+        curves = []
         try:
-            return [kernel.InterpolatedCurve(p, closed=False, start_tangent=None, end_tangent=None, degree=k)
-                    for p, k in zip(points, degrees, strict=True)]
+            for p, k in zip(points, degrees, strict=True):
+                token.check()  # (a spline through many vertices takes a while)
+                curves.append(kernel.InterpolatedCurve(
+                    p, closed=False, start_tangent=None, end_tangent=None, degree=k))
         except ValueError:  # the kernel refuses one: solve says why
             return None
+        return curves
 
 
 class NurbsCurve(Node):

@@ -6,12 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from engine.graph import Graph
 from engine.node import Node
 from engine.values import Point
 from nodes.curves.analysis import _ROW_BY_ROW, EvaluateCurve
 from nodes.geometry import curves as kernel
 from nodes.geometry.vectors import Plane
-from tests.nodes.helpers import out, run, tree
+from tests.benchmarks.check_gaps import check_gaps
+from tests.nodes.helpers import Source, out, run, tree
 
 RNG = np.random.default_rng(7)
 CONTROL = RNG.normal(size=(7, 3)) * 30 + 500.0
@@ -82,3 +84,13 @@ def test_a_solve_through_the_graph_matches_the_calls_row_by_row():
         assert out(batched, port) == out(plain, port)
     grafted = run(EvaluateCurve(), modifiers={"Parameter": ["graft"]}, Curve=curves, Parameter=ts)
     assert list(out(grafted, "Point")) == [(0, 0), (0, 1), (0, 2), (1, 0), (1, 1), (1, 2)]
+
+
+def test_many_parameters_are_evaluated_in_pieces_with_the_token_checked_between():
+    graph = Graph()
+    graph.add_node(Source(tree({(0,): [CURVES["nurbs"]]})), "curve")
+    graph.add_node(Source(tree({(0,): np.linspace(0, 1, 10_000)})), "t")
+    graph.add_node(EvaluateCurve(), "eval")
+    graph.connect("curve", "Tree", "eval", "Curve")
+    graph.connect("t", "Tree", "eval", "Parameter")
+    assert check_gaps(graph)["eval"].checks >= 3  # 4,096 at once

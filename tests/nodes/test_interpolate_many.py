@@ -8,10 +8,12 @@ import math
 import numpy as np
 import pytest
 
+from engine.graph import Graph
 from engine.node import Node
 from engine.values import Point, Vector
 from nodes.curves.splines import FREE_END, Interpolate
-from tests.nodes.helpers import out, run, tree
+from tests.benchmarks.check_gaps import check_gaps
+from tests.nodes.helpers import Source, out, run, tree
 
 RNG = np.random.default_rng(3)
 
@@ -80,3 +82,11 @@ def test_a_solve_through_the_graph_matches_the_calls_row_by_row():
     batched, plain = run(Interpolate(), Vertices=vertices), run(RowByRow(), Vertices=vertices)
     assert batched.messages and [m.text for m in batched.messages] == [m.text for m in plain.messages]
     assert out(batched, "Curve")[(0, 2)] == [None]
+
+
+def test_the_token_is_checked_before_each_spline():
+    graph = Graph()
+    graph.add_node(Source(tree({(0, i): row for i, row in enumerate(_rows(20, 5))})), "v")
+    graph.add_node(Interpolate(), "curves")
+    graph.connect("v", "Tree", "curves", "Vertices")
+    assert check_gaps(graph)["curves"].checks >= 20
