@@ -396,10 +396,8 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     slot_of_port = [i for i, p in enumerate(in_ports) if p.access is not TREE]
     no_tree_inputs = len(slot_of_port) == len(in_ports)
     # list outputs go to {p;i} when any branch makes several calls, so depths never mix
-    sub_branches = iterated and any(
-        max(len(bl[min(b, len(bl) - 1)]) for bl in (branch_lists[i] for i in item_slots)) > 1
-        for b in range(branch_count)
-    )
+    # (each item input's branches are all read by some branch of the longest)
+    sub_branches = iterated and any(max(map(len, branch_lists[i])) > 1 for i in item_slots)
 
     # plan every call first, so the budget is checked before the first one is made
     plan: list[tuple[Path, Any, bool]] = []  # (path, args of one call or rows of calls, is rows)
@@ -569,16 +567,15 @@ def _store(
     an item-access node makes several calls, so a single call (one curve divided)
     keeps the path ``{p}`` as in Grasshopper, and depths never mix within a solve.
     """
-    if len(out_ports) == 1:
-        columns = [results]
+    width = len(out_ports)
+    if width == 1:
+        columns: list[Any] = [results]
     else:
-        columns = [[] for _ in out_ports]
-        for result in results:
-            values = result if result is not None else (None,) * len(out_ports)
-            if not isinstance(values, tuple) or len(values) != len(out_ports):
-                raise NodeError(f"{type(node).__name__}.solve must return {len(out_ports)} values")
-            for column, value in zip(columns, values, strict=True):
-                column.append(value)
+        blank = (None,) * width  # a call that made nothing: None on every output
+        rows = [blank if result is None else result for result in results]
+        if not all(isinstance(row, tuple) and len(row) == width for row in rows):
+            raise NodeError(f"{type(node).__name__}.solve must return {width} values")
+        columns = list(zip(*rows, strict=True)) if rows else [() for _ in out_ports]
     for port, column in zip(out_ports, columns, strict=True):
         tree = outputs[port.name]
         if port.access is LIST and port.type.name in TRIPLE_OF:  # (n, 3) arrays: Triples
@@ -624,6 +621,8 @@ def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
     if len(items) < 2:
         return
     branch_lists = [(n, t.raw_branches) for n, t in items]  # built once: ``branches`` copies the tree's list
+    if sum(max(map(len, bl)) > 1 for _, bl in branch_lists) < 2:
+        return  # an item is reused only between two inputs that both have several in a branch
     for path_index in range(max(t.branch_count for _, t in items)):
         lengths = [(n, len(bl[min(path_index, len(bl) - 1)])) for n, bl in branch_lists]
         longest = max(length for _, length in lengths)
