@@ -375,12 +375,12 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
             single = False
 
     if not matched:  # no inputs, or only tree inputs: one call
-        _store(node, out_ports, outputs, (0,), [_call(node, trees)], iterated=False)
+        _store(node, out_ports, outputs, [((0,), [_call(node, trees)])], iterated=False)
         return outputs
     if single:
         args = [_for_port(t.raw_branches[0], p) for p, t in matched]
         args = [a[0] if p.access is ITEM else a for (p, _), a in zip(matched, args, strict=True)]
-        _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=False)
+        _store(node, out_ports, outputs, [((0,), [_call(node, args)])], iterated=False)
         return outputs
     if len(matched) > 1:
         _remark_uneven(node, matched)
@@ -451,19 +451,19 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         node.check_cancelled()
         results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
         if results is not None:  # each branch's rows' results, in order
-            end = 0
+            groups, start = [], 0
             for path, rows, _ in plan:
-                start, end = end, end + len(rows)
-                _store(node, out_ports, outputs, path, results[start:end], iterated=sub_branches)
+                groups.append((path, results[start:start + len(rows)]))
+                start += len(rows)
+            _store(node, out_ports, outputs, groups, iterated=sub_branches)
             return outputs
 
     for path, rows, is_rows in plan:
         node.check_cancelled()
         if not is_rows:
-            _store(node, out_ports, outputs, path, [_call(node, rows)], iterated=False)
+            _store(node, out_ports, outputs, [(path, [_call(node, rows)])], iterated=False)
             continue
-        results = _call_rows(node, rows)
-        _store(node, out_ports, outputs, path, results, iterated=sub_branches)
+        _store(node, out_ports, outputs, [(path, _call_rows(node, rows))], iterated=sub_branches)
     return outputs
 
 
@@ -556,11 +556,11 @@ def _store(
     node: Node,
     out_ports: tuple[Any, ...],
     outputs: dict[str, DataTree],
-    path: Path,
-    results: list[Any],
+    groups: list[tuple[Path, list[Any]]],
     iterated: bool,
 ) -> None:
-    """Place one branch iteration's results in the output trees.
+    """Place branch iterations' results in the output trees: ``groups`` holds each
+    iteration's path and its calls' results, in order.
 
     With ``iterated``, each call's list goes to its own branch ``{p;i}``; otherwise
     lists are appended to ``{p}``. The caller sets ``iterated`` when some branch of
@@ -569,31 +569,36 @@ def _store(
     """
     width = len(out_ports)
     if width == 1:
-        columns: list[Any] = [results]
-    else:
+        split = [(path, [results]) for path, results in groups]
+    else:  # each iteration's results as one column per output
         blank = (None,) * width  # a call that made nothing: None on every output
-        rows = [blank if result is None else result for result in results]
-        if not all(isinstance(row, tuple) and len(row) == width for row in rows):
-            raise NodeError(f"{type(node).__name__}.solve must return {width} values")
-        columns = list(zip(*rows, strict=True)) if rows else [() for _ in out_ports]
-    for port, column in zip(out_ports, columns, strict=True):
+        split = []
+        for path, results in groups:
+            rows = [blank if result is None else result for result in results]
+            if not all(isinstance(row, tuple) and len(row) == width for row in rows):
+                raise NodeError(f"{type(node).__name__}.solve must return {width} values")
+            split.append((path, list(zip(*rows, strict=True)) if rows else [() for _ in out_ports]))
+    for index, port in enumerate(out_ports):
         tree = outputs[port.name]
-        if port.access is LIST and port.type.name in TRIPLE_OF:  # (n, 3) arrays: Triples
-            column = [_as_triples(values, port) for values in column]
-        if port.access is ITEM:
-            tree.extend(path, column)
-        elif port.access is LIST:
-            if iterated:
-                for i, values in enumerate(column):
-                    tree.extend((*path, i), [] if values is None else values)
-            else:
-                for values in column:
-                    tree.extend(path, [] if values is None else values)
-        else:  # TREE: the node built its own tree
-            for value in column:
-                if isinstance(value, DataTree):
-                    for sub_path, branch in value.raw_items():
-                        tree.extend(sub_path, branch)
+        triples = port.access is LIST and port.type.name in TRIPLE_OF  # (n, 3) arrays: Triples
+        for path, columns in split:
+            column = columns[index]
+            if triples:
+                column = [_as_triples(values, port) for values in column]
+            if port.access is ITEM:
+                tree.extend(path, column)
+            elif port.access is LIST:
+                if iterated:
+                    for i, values in enumerate(column):
+                        tree.extend((*path, i), [] if values is None else values)
+                else:
+                    for values in column:
+                        tree.extend(path, [] if values is None else values)
+            else:  # TREE: the node built its own tree
+                for value in column:
+                    if isinstance(value, DataTree):
+                        for sub_path, branch in value.raw_items():
+                            tree.extend(sub_path, branch)
 
 
 def _as_triples(values: Any, port: Any) -> Any:
