@@ -402,35 +402,38 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     # plan every call first, so the budget is checked before the first one is made
     plan: list[tuple[Path, Any, bool]] = []  # (path, args of one call or rows of calls, is rows)
     calls = 0
-    for b in range(branch_count):
-        branches = [bl[min(b, len(bl) - 1)] for bl in branch_lists]
-        path = path_lists[master][b]
-        if not iterated:
+    # each input's branch for every branch of the longest tree (a shorter tree's last one reused)
+    per_branch = zip(*(bl + [bl[-1]] * (branch_count - len(bl)) for bl in branch_lists), strict=True)
+    paths = path_lists[master]
+    if not iterated:
+        for path, branches in zip(paths, per_branch, strict=True):
             args = list(template)
             for slot, port_index in enumerate(slot_of_port):
                 args[port_index] = branches[slot]
             plan.append((path, args, False))
             calls += 1
-            continue
-        lengths = [len(branches[i]) for i in item_slots]
-        if min(lengths) == 0:
-            continue
-        count = max(lengths)
-        columns: list[Any] = []
-        for slot, port_index in enumerate(slot_of_port):
-            branch = branches[slot]
-            if matched[slot][0].access is LIST:
-                columns.append((port_index, repeat(branch, count)))
-            elif len(branch) == count:
-                columns.append((port_index, branch))
+    else:
+        # the calls a branch makes: its longest item list (none when one is empty)
+        lengths = [[len(branch) for branch in branch_lists[i]] for i in item_slots]
+        lengths = [ls + [ls[-1]] * (branch_count - len(ls)) for ls in lengths]
+        counts = list(map(max, *lengths)) if len(lengths) > 1 else lengths[0]
+        fewest = list(map(min, *lengths)) if len(lengths) > 1 else lengths[0]
+        listed = [p.access is LIST for p, _ in matched]
+        for path, branches, count, least in zip(paths, per_branch, counts, fewest, strict=True):
+            if least == 0:
+                continue
+            columns: list[Any] = [
+                repeat(branch, count) if is_list else branch if len(branch) == count
+                else branch + [branch[-1]] * (count - len(branch))
+                for branch, is_list in zip(branches, listed, strict=True)
+            ]
+            if no_tree_inputs:
+                arg_rows: Any = zip(*columns, strict=False)
             else:
-                columns.append((port_index, branch + [branch[-1]] * (count - len(branch))))
-        if no_tree_inputs:
-            arg_rows: Any = zip(*(c[1] for c in columns), strict=False)
-        else:
-            arg_rows = (_fill(template, columns, row) for row in zip(*(c[1] for c in columns), strict=False))
-        plan.append((path, arg_rows, True))
-        calls += count
+                placed = list(zip(slot_of_port, columns, strict=True))
+                arg_rows = (_fill(template, placed, row) for row in zip(*columns, strict=False))
+            plan.append((path, arg_rows, True))
+            calls += count
     if calls > node.max_calls:
         raise NodeError(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
     if node.max_work is not None:
