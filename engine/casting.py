@@ -45,7 +45,7 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
                 break
             continue
         for item in branch:
-            if type(item) not in classes:
+            if type(item) not in classes and not _kept(item, classes):
                 needs_cast = True
                 break
         if needs_cast:
@@ -71,6 +71,14 @@ def cast_tree(tree: DataTree, port: In) -> DataTree:
         else:
             out[path] = [convert(item) for item in as_list(branch)]
     return DataTree(out)
+
+
+def _kept(item: Any, classes: tuple[type, ...]) -> bool:
+    """Whether the cast would hand ``item`` back as it is although its class is not one of
+    ``classes`` but a subclass (a NurbsCurve into a Curve input): then the tree needs no copy.
+    Not a bool (True is an int, yet a Boolean into an Integer input is converted) nor a float
+    (a numpy float is a float, and the cast refuses it when it is NaN)."""
+    return isinstance(item, classes) and not isinstance(item, bool | float)
 
 
 #: the dtype an array branch has when its items are of a port's type

@@ -256,6 +256,9 @@ class DataTree:
     def extend(self, path: Path, items: Iterable[Any]) -> None:
         """Add ``items`` at the end of branch ``path``; an array into an empty (or an array)
         branch of the same dtype stays an array."""
+        if path not in self._branches:  # a new branch: the items as a tree stores them
+            self._branches[path] = stored(items)
+            return
         if isinstance(items, Triples) or (
                 isinstance(items, np.ndarray) and items.ndim == 1 and items.dtype in _ARRAY_DTYPES):
             branch = self._branches.get(path)

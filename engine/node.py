@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import enum
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -271,6 +271,21 @@ class Node:
     # -- behaviour --------------------------------------------------------------------
     def solve(self, *args: Any) -> Any:
         raise NotImplementedError(f"{type(self).__name__} does not define solve()")
+
+    def solve_many(self, *columns: Sequence[Any]) -> list[Any] | None:
+        """All the calls of one solve at once, for a node whose calls vectorise: the list of
+        what ``solve`` would return for each row of ``columns`` (one sequence per input, in
+        port order, each as long as the number of calls, the rows of every branch one after
+        the other), or None to have ``solve`` called row by row as usual.
+
+        The solver asks only nodes that define it, and only for item-access calls (every
+        branch iterated). It must give each row the very values ``solve`` gives it, bit for
+        bit, and say nothing: for any row it cannot vouch for (a value ``solve`` would refuse
+        or clamp, a kind of geometry whose evaluation is not row by row) it returns None, so
+        the messages come from ``solve`` as always. It checks the token between its pieces of
+        work (``self.token.check()``) as a long solve does: the solver checks it only before.
+        (The solver calls this only on node types that override it.)"""
+        return None
 
     def call_work(self, *args: Any) -> int:
         """How much work one call of ``solve`` with these arguments asks for, counted

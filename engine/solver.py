@@ -13,7 +13,7 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from itertools import repeat
+from itertools import chain, repeat
 from typing import Any
 
 import numpy as np
@@ -375,12 +375,12 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
             single = False
 
     if not matched:  # no inputs, or only tree inputs: one call
-        _store(node, out_ports, outputs, (0,), [_call(node, trees)], iterated=False)
+        _store(node, out_ports, outputs, [((0,), [_call(node, trees)])], iterated=False)
         return outputs
     if single:
         args = [_for_port(t.raw_branches[0], p) for p, t in matched]
         args = [a[0] if p.access is ITEM else a for (p, _), a in zip(matched, args, strict=True)]
-        _store(node, out_ports, outputs, (0,), [_call(node, args)], iterated=False)
+        _store(node, out_ports, outputs, [((0,), [_call(node, args)])], iterated=False)
         return outputs
     if len(matched) > 1:
         _remark_uneven(node, matched)
@@ -396,43 +396,44 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     slot_of_port = [i for i, p in enumerate(in_ports) if p.access is not TREE]
     no_tree_inputs = len(slot_of_port) == len(in_ports)
     # list outputs go to {p;i} when any branch makes several calls, so depths never mix
-    sub_branches = iterated and any(
-        max(len(bl[min(b, len(bl) - 1)]) for bl in (branch_lists[i] for i in item_slots)) > 1
-        for b in range(branch_count)
-    )
+    # (each item input's branches are all read by some branch of the longest)
+    sub_branches = iterated and any(max(map(len, branch_lists[i])) > 1 for i in item_slots)
 
     # plan every call first, so the budget is checked before the first one is made
     plan: list[tuple[Path, Any, bool]] = []  # (path, args of one call or rows of calls, is rows)
     calls = 0
-    for b in range(branch_count):
-        branches = [bl[min(b, len(bl) - 1)] for bl in branch_lists]
-        path = path_lists[master][b]
-        if not iterated:
+    # each input's branch for every branch of the longest tree (a shorter tree's last one reused)
+    per_branch = zip(*(bl + [bl[-1]] * (branch_count - len(bl)) for bl in branch_lists), strict=True)
+    paths = path_lists[master]
+    if not iterated:
+        for path, branches in zip(paths, per_branch, strict=True):
             args = list(template)
             for slot, port_index in enumerate(slot_of_port):
                 args[port_index] = branches[slot]
             plan.append((path, args, False))
             calls += 1
-            continue
-        lengths = [len(branches[i]) for i in item_slots]
-        if min(lengths) == 0:
-            continue
-        count = max(lengths)
-        columns: list[Any] = []
-        for slot, port_index in enumerate(slot_of_port):
-            branch = branches[slot]
-            if matched[slot][0].access is LIST:
-                columns.append((port_index, repeat(branch, count)))
-            elif len(branch) == count:
-                columns.append((port_index, branch))
+    else:
+        # the calls a branch makes: its longest item list (none when one is empty)
+        lengths = [[len(branch) for branch in branch_lists[i]] for i in item_slots]
+        lengths = [ls + [ls[-1]] * (branch_count - len(ls)) for ls in lengths]
+        counts = list(map(max, *lengths)) if len(lengths) > 1 else lengths[0]
+        fewest = list(map(min, *lengths)) if len(lengths) > 1 else lengths[0]
+        listed = [p.access is LIST for p, _ in matched]
+        for path, branches, count, least in zip(paths, per_branch, counts, fewest, strict=True):
+            if least == 0:
+                continue
+            columns: list[Any] = [
+                repeat(branch, count) if is_list else branch if len(branch) == count
+                else branch + [branch[-1]] * (count - len(branch))
+                for branch, is_list in zip(branches, listed, strict=True)
+            ]
+            if no_tree_inputs:
+                arg_rows: Any = zip(*columns, strict=False)
             else:
-                columns.append((port_index, branch + [branch[-1]] * (count - len(branch))))
-        if no_tree_inputs:
-            arg_rows: Any = zip(*(c[1] for c in columns), strict=False)
-        else:
-            arg_rows = (_fill(template, columns, row) for row in zip(*(c[1] for c in columns), strict=False))
-        plan.append((path, arg_rows, True))
-        calls += count
+                placed = list(zip(slot_of_port, columns, strict=True))
+                arg_rows = (_fill(template, placed, row) for row in zip(*columns, strict=False))
+            plan.append((path, arg_rows, True))
+            calls += count
     if calls > node.max_calls:
         raise NodeError(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
     if node.max_work is not None:
@@ -448,13 +449,24 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
                 f"{node.max_work / max(work / calls, 1):,.0f} such runs)",
             ))
 
+    if iterated and type(node).solve_many is not Node.solve_many and plan:
+        plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines
+        node.check_cancelled()
+        results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
+        if results is not None:  # each branch's rows' results, in order
+            groups, start = [], 0
+            for path, rows, _ in plan:
+                groups.append((path, results[start:start + len(rows)]))
+                start += len(rows)
+            _store(node, out_ports, outputs, groups, iterated=sub_branches)
+            return outputs
+
     for path, rows, is_rows in plan:
         node.check_cancelled()
         if not is_rows:
-            _store(node, out_ports, outputs, path, [_call(node, rows)], iterated=False)
+            _store(node, out_ports, outputs, [(path, [_call(node, rows)])], iterated=False)
             continue
-        results = _call_rows(node, rows)
-        _store(node, out_ports, outputs, path, results, iterated=sub_branches)
+        _store(node, out_ports, outputs, [(path, _call_rows(node, rows))], iterated=sub_branches)
     return outputs
 
 
@@ -547,45 +559,49 @@ def _store(
     node: Node,
     out_ports: tuple[Any, ...],
     outputs: dict[str, DataTree],
-    path: Path,
-    results: list[Any],
+    groups: list[tuple[Path, list[Any]]],
     iterated: bool,
 ) -> None:
-    """Place one branch iteration's results in the output trees.
+    """Place branch iterations' results in the output trees: ``groups`` holds each
+    iteration's path and its calls' results, in order.
 
     With ``iterated``, each call's list goes to its own branch ``{p;i}``; otherwise
     lists are appended to ``{p}``. The caller sets ``iterated`` when some branch of
     an item-access node makes several calls, so a single call (one curve divided)
     keeps the path ``{p}`` as in Grasshopper, and depths never mix within a solve.
     """
-    if len(out_ports) == 1:
-        columns = [results]
-    else:
-        columns = [[] for _ in out_ports]
-        for result in results:
-            values = result if result is not None else (None,) * len(out_ports)
-            if not isinstance(values, tuple) or len(values) != len(out_ports):
-                raise NodeError(f"{type(node).__name__}.solve must return {len(out_ports)} values")
-            for column, value in zip(columns, values, strict=True):
-                column.append(value)
-    for port, column in zip(out_ports, columns, strict=True):
+    width = len(out_ports)
+    if width == 1:
+        split = [(path, [results]) for path, results in groups]
+    else:  # each iteration's results as one column per output
+        blank = (None,) * width  # a call that made nothing: None on every output
+        split = []
+        for path, results in groups:
+            rows = [blank if result is None else result for result in results]
+            if not all(isinstance(row, tuple) and len(row) == width for row in rows):
+                raise NodeError(f"{type(node).__name__}.solve must return {width} values")
+            split.append((path, list(zip(*rows, strict=True)) if rows else [() for _ in out_ports]))
+    for index, port in enumerate(out_ports):
         tree = outputs[port.name]
-        if port.access is LIST and port.type.name in TRIPLE_OF:  # (n, 3) arrays: Triples
-            column = [_as_triples(values, port) for values in column]
-        if port.access is ITEM:
-            tree.extend(path, column)
-        elif port.access is LIST:
-            if iterated:
-                for i, values in enumerate(column):
-                    tree.extend((*path, i), [] if values is None else values)
-            else:
-                for values in column:
-                    tree.extend(path, [] if values is None else values)
-        else:  # TREE: the node built its own tree
-            for value in column:
-                if isinstance(value, DataTree):
-                    for sub_path, branch in value.raw_items():
-                        tree.extend(sub_path, branch)
+        triples = port.access is LIST and port.type.name in TRIPLE_OF  # (n, 3) arrays: Triples
+        for path, columns in split:
+            column = columns[index]
+            if triples:
+                column = [_as_triples(values, port) for values in column]
+            if port.access is ITEM:
+                tree.extend(path, column)
+            elif port.access is LIST:
+                if iterated:
+                    for i, values in enumerate(column):
+                        tree.extend((*path, i), [] if values is None else values)
+                else:
+                    for values in column:
+                        tree.extend(path, [] if values is None else values)
+            else:  # TREE: the node built its own tree
+                for value in column:
+                    if isinstance(value, DataTree):
+                        for sub_path, branch in value.raw_items():
+                            tree.extend(sub_path, branch)
 
 
 def _as_triples(values: Any, port: Any) -> Any:
@@ -613,6 +629,8 @@ def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
     if len(items) < 2:
         return
     branch_lists = [(n, t.raw_branches) for n, t in items]  # built once: ``branches`` copies the tree's list
+    if sum(max(map(len, bl)) > 1 for _, bl in branch_lists) < 2:
+        return  # an item is reused only between two inputs that both have several in a branch
     for path_index in range(max(t.branch_count for _, t in items)):
         lengths = [(n, len(bl[min(path_index, len(bl) - 1)])) for n, bl in branch_lists]
         longest = max(length for _, length in lengths)

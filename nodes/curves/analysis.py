@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -13,6 +14,7 @@ from nodes.common.checks import given, number, whole
 from nodes.common.convert import point, points, vector, vectors
 from nodes.common.values import CURVE
 from nodes.geometry.curve_base import Curve
+from nodes.geometry.curves import Arc, Circle, InterpolatedCurve, Line, NurbsCurve, Polyline
 from nodes.limits import MAX_DIVISIONS
 
 
@@ -85,6 +87,41 @@ class EvaluateCurve(Node):
             float(c.curvature_at(t)),
             vector(c.curvature_vector_at(t)),
         )
+
+
+    def solve_many(self, curves: Sequence[Any], parameters: Sequence[Any]) -> list[Any] | None:
+        """Every call at once, one evaluation per curve of all its parameters: the values
+        of :meth:`solve`, bit for bit, since the kinds of curve taken here evaluate each
+        parameter on its own (a curve of another kind, or a parameter :meth:`solve` would
+        refuse or clamp, leaves the calls to :meth:`solve`)."""
+        rows_of: dict[int, list[int]] = {}
+        for row, (curve, t) in enumerate(zip(curves, parameters, strict=True)):
+            if type(curve) not in _ROW_BY_ROW or type(t) is not float or not 0.0 <= t <= 1.0:
+                return None
+            rows_of.setdefault(id(curve), []).append(row)
+        results: list[Any] = [None] * len(parameters)
+        make = tuple.__new__  # (the rows are Python floats already: Point() would convert them again)
+        token = self.token
+        for rows_of_curve in rows_of.values():
+            c = curves[rows_of_curve[0]]
+            for start in range(0, len(rows_of_curve), _AT_ONCE):
+                token.check()
+                rows = rows_of_curve[start:start + _AT_ONCE]
+                t = np.array([parameters[row] for row in rows])
+                at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
+                         c.curvature_vector_at(t).tolist(), strict=True)
+                for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
+                    results[row] = (make(Point, p), make(Vector, tangent), k, make(Vector, kv))
+        return results
+
+
+#: The kinds of curve whose evaluation at an array of parameters gives each one the very
+#: bits it gets alone (de Boor per point, element-wise arithmetic): EvaluateCurve evaluates
+#: them all at once. Not TransformedCurve: its (n, 3) @ (3, 3) product takes another BLAS
+#: kernel for one row than for several, a last bit apart.
+_ROW_BY_ROW = frozenset({NurbsCurve, InterpolatedCurve, Circle, Arc, Line, Polyline})
+#: The most parameters of a curve evaluated at once (a few ms): the token is checked between.
+_AT_ONCE = 4096
 
 
 class CurveLength(Node):

@@ -4,6 +4,7 @@ from X, Y, Z expressions."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -11,7 +12,7 @@ import numpy as np
 from engine.node import LIST, In, Node, NodeWarning, Out
 from engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, VECTOR
 from engine.values import Domain, Vector
-from nodes.common.checks import ZERO_LENGTH, number, point_list, xyz
+from nodes.common.checks import MAX_DEGREE, ZERO_LENGTH, number, point_list, xyz
 from nodes.common.checks import degree as degree_input
 from nodes.common.convert import kernel_errors
 from nodes.common.formulas import formula
@@ -33,9 +34,14 @@ def _no_repeats(points: np.ndarray) -> None:
         )
 
 
+def _free(value: Any) -> bool:
+    """Whether an end tangent is the default free end (no arrays made)."""
+    return value is None or (isinstance(value, tuple) and value == FREE_END)
+
+
 def _tangent(name: str, value: Any) -> np.ndarray | None:
     """An end tangent, or None for a free end (the zero vector)."""
-    if value is None or (isinstance(value, tuple) and value == FREE_END):  # the default: no arrays
+    if _free(value):
         return None
     array = xyz(name, value)
     return None if float(np.linalg.norm(array)) <= ZERO_LENGTH else array
@@ -105,6 +111,37 @@ class Interpolate(Node):
                 points, closed=bool(closed), start_tangent=start_tangent, end_tangent=end_tangent,
                 degree=k,
             )
+
+
+    def solve_many(self, vertices: Sequence[Any], degrees: Sequence[Any], closed: Sequence[Any],
+                   starts: Sequence[Any], ends: Sequence[Any]) -> list[Any] | None:
+        """Every call at once when all are open curves with free ends through as many
+        vertices each: the vertices checked as one array (finite, no point twice in a row,
+        enough for the degree), then a spline per call as :meth:`solve` makes it. Any call
+        :meth:`solve` would warn about or make otherwise leaves them all to it."""
+        count = len(vertices[0])
+        if any(len(v) != count for v in vertices) or any(
+                type(k) is not int or not 1 <= k <= min(MAX_DEGREE, count - 1) for k in degrees):
+            return None
+        if any(c is not False for c in closed) or not all(map(_free, starts)) or not all(map(_free, ends)):
+            return None
+        try:
+            points = np.asarray(vertices, dtype=float)  # (calls, count, 3)
+        except (TypeError, ValueError):  # a null among the points
+            return None
+        if points.shape[1:] != (count, 3) or not np.isfinite(points).all() or (
+                points[:, 1:] == points[:, :-1]).all(axis=2).any():
+            return None
+        token = self.token
+        curves = []
+        try:
+            for p, k in zip(points, degrees, strict=True):
+                token.check()  # (a spline through many vertices takes a while)
+                curves.append(kernel.InterpolatedCurve(
+                    p, closed=False, start_tangent=None, end_tangent=None, degree=k))
+        except ValueError:  # the kernel refuses one: solve says why
+            return None
+        return curves
 
 
 class NurbsCurve(Node):
