@@ -10,8 +10,10 @@ rulings and the plain loft's partners) and picks the parameters of a fan's rulin
 
 from __future__ import annotations
 
+import struct
 from dataclasses import dataclass
 from functools import cached_property
+from math import ceil
 
 import numpy as np
 
@@ -148,6 +150,11 @@ class Strip:
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
         self.holes: list[int] = []
+        #: :meth:`gap_lengths` found so far, by the bits of their ends
+        self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+        #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
+        #: its stations and the bits of its ends on B
+        self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
         if not self.chords_b[-1] > 0:
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
 
@@ -184,14 +191,30 @@ class Strip:
         corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
         return np.unique(np.concatenate([t, corners])) if len(corners) else t
 
+    def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
+        """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
+        of B: each round of the solve's check closes the same gaps again."""
+        key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
+        found = self._gaps.get(key)
+        if found is None:
+            tb = self.gap_parameters(t_low, t_high)
+            lb = self.length_b(tb)
+            tb.setflags(write=False)
+            lb.setflags(write=False)
+            found = self._gaps[key] = (tb, lb)
+        return found
+
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B for a fan's rulings, at about the station spacing along A."""
         spacing = self.map_a.total / self.segments
-        lb = self.length_b(np.array([t_low, t_high]))
+        ends = np.array([t_low, t_high])
+        lb = self.length_b(ends)
         # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
         # must not ask for billions); and at least the fan's two bounding rulings
         wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
-        count = max(2, int(np.ceil(min(wanted, self.segments + 1) - 1e-9)) + 1)
+        count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
+        if count == 2:  # the bounding rulings alone (the ends set below are all there is)
+            return np.maximum.accumulate(ends)
         t = self.parameter_b(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t)
