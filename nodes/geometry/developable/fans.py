@@ -89,14 +89,21 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
     of triangles over a stretch with no torsal ruling) folds at every change of apex:
     those are the pieces that need the designer. Returns one flag per piece.
     """
-    in_fan = fan[:-1] | fan[1:]
+    return _creased(starts, ends, fan[:-1] | fan[1:])
+
+
+def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
+    """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
     creased = np.zeros(len(in_fan), dtype=bool)
     if not in_fan.any():
         return creased
-    size = float(box_extent(np.concatenate([starts, ends])).max()) or 1.0
-    same_start = norm(starts[1:] - starts[:-1]) <= 1e-12 * size
-    same_end = norm(ends[1:] - ends[:-1]) <= 1e-12 * size
-    edges = flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))
+    both = np.stack([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
+    size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
+    same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
+    # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
+    padded = np.zeros(len(in_fan) + 2, dtype=bool)
+    padded[1:-1] = in_fan
+    edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
         one_apex = same_start[first:stop].all() or same_end[first:stop].all()
         creased[first:stop] = not one_apex
@@ -117,10 +124,10 @@ def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> 
     :func:`creased_fans`), from one measurement of the pieces' areas."""
     areas = patch_areas(starts, ends)
     total = float(areas.sum())
-    creased = creased_fans(starts, ends, fan)
+    in_fan = fan[:-1] | fan[1:]
+    creased = _creased(starts, ends, in_fan)
     if not total > 0:
         return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
-    in_fan = fan[:-1] | fan[1:]
     return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
 
 
