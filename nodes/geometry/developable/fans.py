@@ -151,10 +151,12 @@ def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -
     of A, and a mask of the stations of planar pieces.
     """
     n = len(t)
-    has = chosen >= 0
     is_flat = np.zeros(n, dtype=bool)
-    is_flat[has] = good.kind[chosen[has]] == FLAT_END
     fans: list[tuple[float, float, float]] = []
+    if not (good.kind == FLAT_END).any():  # (no flat run among the candidates at all)
+        return fans, is_flat
+    has = chosen >= 0
+    is_flat[has] = good.kind[chosen[has]] == FLAT_END
     if not is_flat.any():
         return fans, is_flat
     low = np.where(is_flat, good.low[chosen], np.nan)
@@ -360,9 +362,10 @@ def _fan_extent(strip: Strip, s_star: float, t0: float, t1: float) -> tuple[floa
         r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
     scale = norm(r) * norm(b1)
     scale = np.where(scale > 0, scale, 1.0)
-    g_left, g_right = det(r, np.stack([unit(sides[0]), unit(sides[1])])[:, None], b1) / scale
+    g = det(r, unit(sides)[:, None], b1) / scale  # (2, m): with A's tangent from the left, the right
     # torsal: flat (B straight there), or between the two one-sided tangents of a corner
-    torsal_all = (np.abs(g_left) <= 1e-9) | (np.abs(g_right) <= 1e-9) | (g_left * g_right < 0)
+    flat = np.abs(g) <= 1e-9
+    torsal_all = flat[0] | flat[1] | (g[0] * g[1] < 0)
     torsal = torsal_all[: len(ts)]
     if at_kink is not None:
         torsal[at_kink] |= torsal_all[len(ts) :]

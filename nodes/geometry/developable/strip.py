@@ -188,6 +188,8 @@ class Strip:
         """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
         every corner of B between them."""
         t = self.fan_parameters(t_low, t_high)
+        if not len(self.kinks_b):
+            return t
         corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
         return np.unique(np.concatenate([t, corners])) if len(corners) else t
 
