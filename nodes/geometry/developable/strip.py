@@ -81,13 +81,11 @@ class Grid:
         width = self.at[1:] - self.at[:-1]
         speed = self.speeds
         second, left_second = self.second_lengths, self.left_second_lengths
-        bounds = interval_bounds(
-            width,
-            (speed[:-1], speed[1:]),
-            (second[:-1], left_second[1:]),
-            third_bound(self.third[:-1], self.left_third[1:]),
-            diameter,
-        )
+        if not self.third.any() and (self.left_third is self.third or not self.left_third.any()):
+            b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
+        else:
+            b3 = third_bound(self.third[:-1], self.left_third[1:])
+        bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
         bounds.reach[self.pair] = -1.0
         return bounds
 
@@ -187,11 +185,15 @@ class Strip:
     def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
         every corner of B between them."""
-        t = self.fan_parameters(t_low, t_high)
+        return self._gap(t_low, t_high)[0]
+
+    def _gap(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`gap_parameters`, and their :meth:`length_b` where :meth:`_fan` has them."""
+        t, lengths = self._fan(t_low, t_high)
         if not len(self.kinks_b):
-            return t
+            return t, lengths
         corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
-        return np.unique(np.concatenate([t, corners])) if len(corners) else t
+        return (np.unique(np.concatenate([t, corners])), None) if len(corners) else (t, lengths)
 
     def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
         """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
@@ -199,8 +201,9 @@ class Strip:
         key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
         found = self._gaps.get(key)
         if found is None:
-            tb = self.gap_parameters(t_low, t_high)
-            lb = self.length_b(tb)
+            tb, lb = self._gap(t_low, t_high)
+            if lb is None:
+                lb = self.length_b(tb)
             tb.setflags(write=False)
             lb.setflags(write=False)
             found = self._gaps[key] = (tb, lb)
@@ -208,6 +211,11 @@ class Strip:
 
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B for a fan's rulings, at about the station spacing along A."""
+        return self._fan(t_low, t_high)[0]
+
+    def _fan(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`fan_parameters`, and their :meth:`length_b` when they are the two ends alone
+        (measured already to count the rulings; None otherwise)."""
         spacing = self.map_a.total / self.segments
         ends = np.array([t_low, t_high])
         lb = self.length_b(ends)
@@ -216,8 +224,9 @@ class Strip:
         wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
         count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
         if count == 2:  # the bounding rulings alone (the ends set below are all there is)
-            return np.maximum.accumulate(ends)
+            # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+            return np.maximum.accumulate(ends), (lb if t_high >= t_low else None)
         t = self.parameter_b(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
-        return np.maximum.accumulate(t)
+        return np.maximum.accumulate(t), None
 
