@@ -97,7 +97,7 @@ def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArr
     creased = np.zeros(len(in_fan), dtype=bool)
     if not in_fan.any():
         return creased
-    both = np.stack([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
+    both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
     size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
     same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
     # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
@@ -304,7 +304,7 @@ def a_fans(
             r0, r1 = (b0, b1) if len(index) == len(which) else (b0[index], b1[index])
             r = r0 - c0
             # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes), in one det
-            f, f_s = det(r, np.stack([c1, c2]), r1)
+            f, f_s = det(r, np.array([c1, c2]), r1)
             return f, f_s, rounding_scale(norm(c0), r0, norm(c1), r1)
 
         low, high = s[pairs[which]], s[pairs[which] + 1]
