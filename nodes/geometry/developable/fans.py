@@ -56,8 +56,8 @@ def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArr
     # step to whichever next vertex comes first, A's before B's at a tie
     steps = along_b[np.lexsort((along_b, keys))]
     ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
-    np.cumsum(~steps, out=ij[0, 1:])
-    np.cumsum(steps, out=ij[1, 1:])
+    np.add.accumulate(~steps, dtype=np.int64, out=ij[0, 1:])  # (np.cumsum, without its wrapper)
+    np.add.accumulate(steps, dtype=np.int64, out=ij[1, 1:])
     return ij[0], ij[1]
 
 
@@ -95,7 +95,7 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
 def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
     """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
     creased = np.zeros(len(in_fan), dtype=bool)
-    if not in_fan.any():
+    if not np.count_nonzero(in_fan):
         return creased
     both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
     size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
@@ -105,7 +105,9 @@ def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArr
     padded[1:-1] = in_fan
     edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
-        one_apex = same_start[first:stop].all() or same_end[first:stop].all()
+        one_apex = np.count_nonzero(same_start[first:stop]) == stop - first or (
+            np.count_nonzero(same_end[first:stop]) == stop - first
+        )
         creased[first:stop] = not one_apex
     return creased
 
@@ -153,11 +155,11 @@ def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -
     n = len(t)
     is_flat = np.zeros(n, dtype=bool)
     fans: list[tuple[float, float, float]] = []
-    if not (good.kind == FLAT_END).any():  # (no flat run among the candidates at all)
+    if not np.count_nonzero(good.kind == FLAT_END):  # (no flat run among the candidates at all)
         return fans, is_flat
     has = chosen >= 0
     is_flat[has] = good.kind[chosen[has]] == FLAT_END
-    if not is_flat.any():
+    if not np.count_nonzero(is_flat):
         return fans, is_flat
     low = np.where(is_flat, good.low[chosen], np.nan)
     high = np.where(is_flat, good.high[chosen], np.nan)
@@ -456,7 +458,8 @@ def _closing(
     i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb)
     # the first ruling from each gap station is its station ruling (i runs through every
     # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
-    own = np.ones(len(i), dtype=bool)
+    own = np.empty(len(i), dtype=bool)
+    own[0] = True
     own[1:] = i[1:] != i[:-1]
     own &= (i >= i0 - k0) & (i <= i1 - k0)
     partners = tb[j[own]]
@@ -466,7 +469,7 @@ def _closing(
     if i1 < n - 1:
         extra[-1] = False  # and after it
     added = None
-    if extra.any():
+    if np.count_nonzero(extra):
         added = (strip.s[k0 + i[extra]], tb[j[extra]])
         for array in added:
             array.setflags(write=False)
@@ -476,7 +479,7 @@ def _closing(
 def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
     """The torsal fans ``(s*, t_low, t_high)`` whose apex is neither inside a gap's stretch
     of A (from the torsal station before the gap to the one after it) nor a gap station."""
-    if not fans or not gap.any():
+    if not fans or not np.count_nonzero(gap):
         return fans
     n = len(s)
     begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))

@@ -81,10 +81,11 @@ class Grid:
         width = self.at[1:] - self.at[:-1]
         speed = self.speeds
         second, left_second = self.second_lengths, self.left_second_lengths
-        if not self.third.any() and (self.left_third is self.third or not self.left_third.any()):
+        third, left_third = self.third, self.left_third
+        if not np.count_nonzero(third) and (left_third is third or not np.count_nonzero(left_third)):
             b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
         else:
-            b3 = third_bound(self.third[:-1], self.left_third[1:])
+            b3 = third_bound(third[:-1], left_third[1:])
         bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
         bounds.reach[self.pair] = -1.0
         return bounds
@@ -172,7 +173,7 @@ class Strip:
         points = self.grid.points
         chords = np.empty(len(points))
         chords[0] = 0.0
-        np.cumsum(norm(points[1:] - points[:-1]), out=chords[1:])
+        np.add.accumulate(norm(points[1:] - points[:-1]), out=chords[1:])  # (np.cumsum, without its wrapper)
         return chords
 
     @cached_property
