@@ -298,7 +298,7 @@ def a_fans(
     apex = np.full(len(pairs), np.nan)
     which = flatnonzero(f_left * f_right < 0)
     if len(which):
-        # B and its speed at each bracket's t_mid: the same on every iteration
+        # B and B' at each bracket's t_mid, gathered once: the same on every iteration
         b0, b1 = bm0[which], bm1[which]
 
         def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -364,7 +364,7 @@ def _fan_extent(strip: Strip, s_star: float, t0: float, t1: float) -> tuple[floa
         r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
     scale = norm(r) * norm(b1)
     scale = np.where(scale > 0, scale, 1.0)
-    g = det(r, unit(sides)[:, None], b1) / scale  # (2, m): with A's tangent from the left, the right
+    g = det(r, unit(sides)[:, None], b1) / scale  # rows: with A's tangent from the left, from the right
     # torsal: flat (B straight there), or between the two one-sided tangents of a corner
     flat = np.abs(g) <= 1e-9
     torsal_all = flat[0] | flat[1] | (g[0] * g[1] < 0)
