@@ -125,12 +125,12 @@ def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> 
     """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
     :func:`creased_fans`), from one measurement of the pieces' areas."""
     areas = patch_areas(starts, ends)
-    total = float(areas.sum())
+    total = float(np.add.reduce(areas))  # (ndarray.sum's own reduction, without its wrapper)
     in_fan = fan[:-1] | fan[1:]
     creased = _creased(starts, ends, in_fan)
     if not total > 0:
         return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
-    return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
+    return float(np.add.reduce(areas[in_fan]) / total), float(np.add.reduce(areas[creased]) / total)
 
 
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
