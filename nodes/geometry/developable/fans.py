@@ -25,6 +25,9 @@ length*, so the triangles are about as wide on both curves and no ruling crosses
 
 from __future__ import annotations
 
+import struct
+from math import isnan
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -49,12 +52,13 @@ def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArr
     """
     fa, fb = _fractions(length_a), _fractions(length_b)
     keys = np.concatenate([fa[1:], fb[1:]])
-    along_b = np.concatenate([np.zeros(len(fa) - 1, dtype=bool), np.ones(len(fb) - 1, dtype=bool)])
+    along_b = np.arange(len(keys)) >= len(fa) - 1
     # step to whichever next vertex comes first, A's before B's at a tie
     steps = along_b[np.lexsort((along_b, keys))]
-    i = np.concatenate([[0], np.cumsum(~steps)])
-    j = np.concatenate([[0], np.cumsum(steps)])
-    return i.astype(np.int64), j.astype(np.int64)
+    ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
+    np.add.accumulate(~steps, dtype=np.int64, out=ij[0, 1:])  # (np.cumsum, without its wrapper)
+    np.add.accumulate(steps, dtype=np.int64, out=ij[1, 1:])
+    return ij[0], ij[1]
 
 
 def _fractions(length: FloatArray) -> FloatArray:
@@ -85,16 +89,25 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
     of triangles over a stretch with no torsal ruling) folds at every change of apex:
     those are the pieces that need the designer. Returns one flag per piece.
     """
-    in_fan = fan[:-1] | fan[1:]
+    return _creased(starts, ends, fan[:-1] | fan[1:])
+
+
+def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
+    """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
     creased = np.zeros(len(in_fan), dtype=bool)
-    if not in_fan.any():
+    if not np.count_nonzero(in_fan):
         return creased
-    size = float(box_extent(np.concatenate([starts, ends])).max()) or 1.0
-    same_start = norm(starts[1:] - starts[:-1]) <= 1e-12 * size
-    same_end = norm(ends[1:] - ends[:-1]) <= 1e-12 * size
-    edges = flatnonzero(np.diff(np.concatenate([[0], in_fan.astype(np.int8), [0]])))
+    both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
+    size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
+    same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
+    # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
+    padded = np.zeros(len(in_fan) + 2, dtype=bool)
+    padded[1:-1] = in_fan
+    edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
-        one_apex = same_start[first:stop].all() or same_end[first:stop].all()
+        one_apex = np.count_nonzero(same_start[first:stop]) == stop - first or (
+            np.count_nonzero(same_end[first:stop]) == stop - first
+        )
         creased[first:stop] = not one_apex
     return creased
 
@@ -112,12 +125,12 @@ def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> 
     """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
     :func:`creased_fans`), from one measurement of the pieces' areas."""
     areas = patch_areas(starts, ends)
-    total = float(areas.sum())
-    creased = creased_fans(starts, ends, fan)
+    total = float(np.add.reduce(areas))  # (ndarray.sum's own reduction, without its wrapper)
+    in_fan = fan[:-1] | fan[1:]
+    creased = _creased(starts, ends, in_fan)
     if not total > 0:
         return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
-    in_fan = fan[:-1] | fan[1:]
-    return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
+    return float(np.add.reduce(areas[in_fan]) / total), float(np.add.reduce(areas[creased]) / total)
 
 
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
@@ -140,11 +153,13 @@ def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -
     of A, and a mask of the stations of planar pieces.
     """
     n = len(t)
-    has = chosen >= 0
     is_flat = np.zeros(n, dtype=bool)
-    is_flat[has] = good.kind[chosen[has]] == FLAT_END
     fans: list[tuple[float, float, float]] = []
-    if not is_flat.any():
+    if not np.count_nonzero(good.kind == FLAT_END):  # (no flat run among the candidates at all)
+        return fans, is_flat
+    has = chosen >= 0
+    is_flat[has] = good.kind[chosen[has]] == FLAT_END
+    if not np.count_nonzero(is_flat):
         return fans, is_flat
     low = np.where(is_flat, good.low[chosen], np.nan)
     high = np.where(is_flat, good.high[chosen], np.nan)
@@ -275,31 +290,24 @@ def a_fans(
     pairs = flatnonzero(jump)
     if len(pairs) == 0:
         return []
-    # a hole, if no torsal fan covers it, only where the step is over twice both neighbouring
-    # ones (the slope is a poor guide where f_t vanishes, as at an inflection)
-    before = np.concatenate([[np.nan], dt[:-1]])
-    after = np.concatenate([dt[1:], [np.nan]])
-    neighbours = np.fmax(before, after)
-    with np.errstate(invalid="ignore"):
-        dwarfs = dt > 2.0 * neighbours  # (never with no neighbour to compare)
     t_mid = 0.5 * (t[pairs] + t[pairs + 1])
     bm0, bm1 = strip.curve_b.derivatives(t_mid, 1)
-    f_left = det(bm0 - strip.a0[pairs], strip.a1[pairs], bm1)
-    f_right = det(bm0 - strip.a0[pairs + 1], strip.a1[pairs + 1], bm1)
+    # f at both stations of every pair at once: rows (i, i + 1)
+    both = pairs + _NEXT
+    f_left, f_right = det(bm0 - strip.a0[both], strip.a1[both], bm1)
     apex = np.full(len(pairs), np.nan)
     which = flatnonzero(f_left * f_right < 0)
     if len(which):
+        # B and B' at each bracket's t_mid, gathered once: the same on every iteration
+        b0, b1 = bm0[which], bm1[which]
 
         def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
             c0, c1, c2 = strip.curve_a.derivatives(x, 2)
-            k = which[index]
-            r = bm0[k] - c0
-            # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes)
-            return (
-                det(r, c1, bm1[k]),
-                det(r, c2, bm1[k]),
-                rounding_scale(norm(c0), bm0[k], norm(c1), bm1[k]),
-            )
+            r0, r1 = (b0, b1) if len(index) == len(which) else (b0[index], b1[index])
+            r = r0 - c0
+            # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes), in one det
+            f, f_s = det(r, np.array([c1, c2]), r1)
+            return f, f_s, rounding_scale(norm(c0), r0, norm(c1), r1)
 
         low, high = s[pairs[which]], s[pairs[which] + 1]
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
@@ -309,42 +317,61 @@ def a_fans(
                 nearest = exact[np.argmin(np.abs(apex[:, None] - exact[None, :]), axis=1)]
                 apex = np.where(np.abs(apex - nearest) <= 1e-12, nearest, apex)
     fans = []
-    for k, i in enumerate(pairs):  # one pass per possible fan (rare)
-        s_star = float(apex[k])
-        if np.isnan(s_star):
+    for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
+        if isnan(s_star):
             inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
             if len(inside) == 0:
-                if dwarfs[i]:
-                    strip.holes.append(int(i))
+                if _dwarfs(dt, i):
+                    strip.holes.append(i)
                 continue
             s_star = float(inside[0])
         extent = _fan_extent(strip, s_star, float(t[i]), float(t[i + 1]))
         if extent is not None:
             fans.append((s_star, *extent))
-        elif dwarfs[i]:
-            strip.holes.append(int(i))
+        elif _dwarfs(dt, i):
+            strip.holes.append(i)
     return fans
+
+
+#: Offsets of the two stations of a pair (i, i + 1), as rows.
+_NEXT = np.array([[0], [1]])
+
+
+def _dwarfs(dt: FloatArray, i: int) -> bool:
+    """Whether the step ``dt[i]`` is over twice both its neighbours (the larger of them,
+    where there are two; never with none to compare): only then is a jump of t that no
+    torsal fan covers a hole (the slope is a poor guide where f_t vanishes, as at an
+    inflection). NaN neighbours (next to a station without a partner) do not count."""
+    neighbours = [float(dt[k]) for k in (i - 1, i + 1) if 0 <= k < len(dt) and not isnan(dt[k])]
+    return bool(neighbours) and bool(dt[i] > 2.0 * max(neighbours))
 
 def _fan_extent(strip: Strip, s_star: float, t0: float, t1: float) -> tuple[float, float] | None:
     """The stretch of B inside [t0, t1] over which rulings from A(s*) are torsal."""
-    c0 = strip.curve_a.point_at(s_star)
-    sides = strip.curve_a.derivatives(np.clip([s_star - SIDE, s_star + SIDE], 0.0, 1.0), 1)[1]
+    # A(s*) and A's tangents on either side of it, in one evaluation
+    around = [s_star, min(max(s_star - SIDE, 0.0), 1.0), min(max(s_star + SIDE, 0.0), 1.0)]
+    a0, a1 = strip.curve_a.derivatives(np.array(around), 1)
+    c0, sides = a0[0], a1[1:]
     window = (strip.grid.t >= t0) & (strip.grid.t <= t1)
     ts = np.unique(np.concatenate([[t0, t1], strip.grid.t[window]]))
     # at a corner of B the stretch may end with the tangent from either side
-    at_kink = np.isin(ts, strip.kinks_b)
-    b0, b1 = strip.curve_b.derivatives(np.concatenate([ts, ts[at_kink] - SIDE]), 1)
-    r = b0 - c0
-    r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
+    at_kink = np.isin(ts, strip.kinks_b) if len(strip.kinks_b) else None
+    if at_kink is None:  # (B has no corners)
+        b0, b1 = strip.curve_b.derivatives(ts, 1)
+        r = b0 - c0
+    else:
+        b0, b1 = strip.curve_b.derivatives(np.concatenate([ts, ts[at_kink] - SIDE]), 1)
+        r = b0 - c0
+        r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
     scale = norm(r) * norm(b1)
     scale = np.where(scale > 0, scale, 1.0)
-    g_left = det(r, unit(sides[0]), b1) / scale
-    g_right = det(r, unit(sides[1]), b1) / scale
+    g = det(r, unit(sides)[:, None], b1) / scale  # rows: with A's tangent from the left, from the right
     # torsal: flat (B straight there), or between the two one-sided tangents of a corner
-    torsal_all = (np.abs(g_left) <= 1e-9) | (np.abs(g_right) <= 1e-9) | (g_left * g_right < 0)
+    flat = np.abs(g) <= 1e-9
+    torsal_all = flat[0] | flat[1] | (g[0] * g[1] < 0)
     torsal = torsal_all[: len(ts)]
-    torsal[at_kink] |= torsal_all[len(ts) :]
-    if torsal.sum() < 2:
+    if at_kink is not None:
+        torsal[at_kink] |= torsal_all[len(ts) :]
+    if np.count_nonzero(torsal) < 2:
         return None
     first = int(np.argmax(torsal))
     last = len(ts) - 1 - int(np.argmax(torsal[::-1]))
@@ -378,15 +405,17 @@ def close_gaps(
     for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
         if gap[i] or gap[i + 1]:
             continue  # closed with the gap around it
-        tb = strip.gap_parameters(float(t[i]), float(t[i + 1]))
-        a, b = zigzag(strip.station_lengths[i : i + 2], strip.length_b(tb))
+        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb)
         inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
         added.append((strip.s[i + a[inner]], tb[b[inner]]))
-    begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
-    finishes = flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+    # the runs of gap stations: where ``gap`` padded with False on both sides changes
+    padded = np.zeros(n + 2, dtype=bool)
+    padded[1:-1] = gap
+    edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     closed = strip.curve_b.closed
-    for i0, i1 in zip(begins, finishes, strict=True):  # one pass per gap (few)
-        k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
+    for i0, stop in zip(edges[::2], edges[1::2], strict=True):  # one pass per gap (few)
+        i1 = stop - 1
         t_lo = float(t[i0 - 1]) if i0 > 0 else 0.0
         t_hi = float(t[i1 + 1]) if i1 < n - 1 else (float(t[0]) if closed and i0 > 0 else 1.0)
         for fan in fans or ():  # a torsal fan through the station before (after) the gap
@@ -396,40 +425,61 @@ def close_gaps(
                 t_hi = fan[1]
         if t_hi < t_lo and not closed:
             t_hi = t_lo
-        if t_hi < t_lo:  # through the seam of a closed B
-            before, after = strip.gap_parameters(t_lo, 1.0), strip.gap_parameters(0.0, t_hi)[1:]
-            tb = np.concatenate([before, after])
-            lb = np.concatenate([strip.length_b(before), strip.length_b(after) + strip.chords_b[-1]])
-        else:
-            tb = strip.gap_parameters(t_lo, t_hi)
-            lb = strip.length_b(tb)
-        i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb)
-        station = k0 + i
-        # the first ruling from each gap station is its station ruling; the rest are added
-        first = np.ones(len(i), dtype=bool)
-        first[1:] = i[1:] != i[:-1]
-        is_gap = (station >= i0) & (station <= i1)
-        t[station[first & is_gap]] = tb[j[first & is_gap]]
-        extra = ~(first & is_gap)
-        if i0 > 0:
-            extra[0] = False  # the torsal ruling before the gap
-        if i1 < n - 1:
-            extra[-1] = False  # and after it
-        if extra.any():
-            added.append((strip.s[station[extra]], tb[j[extra]]))
+        key = (i0, i1, struct.pack("2d", t_lo, t_hi))
+        closing = strip.closings.get(key)
+        if closing is None:
+            closing = strip.closings[key] = _closing(strip, i0, i1, t_lo, t_hi)
+        t[i0 : i1 + 1], extra = closing
+        if extra is not None:
+            added.append(extra)
     if not closed:
         if t[0] > 0.0:
-            tb = strip.gap_parameters(0.0, float(t[0]))[:-1]
+            tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
             added.append((np.zeros(len(tb)), tb))
         if t[-1] < 1.0:
-            tb = strip.gap_parameters(float(t[-1]), 1.0)[1:]
+            tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
             added.append((np.ones(len(tb)), tb))
     return added
+
+def _closing(
+    strip: Strip, i0: int, i1: int, t_lo: float, t_hi: float
+) -> tuple[FloatArray, tuple[FloatArray, FloatArray] | None]:
+    """The flat triangles closing the gap stations ``i0..i1`` between B(t_lo) and B(t_hi)
+    (:func:`close_gaps`): the gap stations' partners, and the added rulings ``(s, t)``
+    (None if there are none), read-only."""
+    n = len(strip.s)
+    k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
+    if t_hi < t_lo:  # through the seam of a closed B
+        (before, lb_before), (after, lb_after) = strip.gap_lengths(t_lo, 1.0), strip.gap_lengths(0.0, t_hi)
+        tb = np.concatenate([before, after[1:]])
+        lb = np.concatenate([lb_before, lb_after[1:] + strip.chords_b[-1]])
+    else:
+        tb, lb = strip.gap_lengths(t_lo, t_hi)
+    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb)
+    # the first ruling from each gap station is its station ruling (i runs through every
+    # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
+    own = np.empty(len(i), dtype=bool)
+    own[0] = True
+    own[1:] = i[1:] != i[:-1]
+    own &= (i >= i0 - k0) & (i <= i1 - k0)
+    partners = tb[j[own]]
+    extra = ~own
+    if i0 > 0:
+        extra[0] = False  # the torsal ruling before the gap
+    if i1 < n - 1:
+        extra[-1] = False  # and after it
+    added = None
+    if np.count_nonzero(extra):
+        added = (strip.s[k0 + i[extra]], tb[j[extra]])
+        for array in added:
+            array.setflags(write=False)
+    return partners, added
+
 
 def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
     """The torsal fans ``(s*, t_low, t_high)`` whose apex is neither inside a gap's stretch
     of A (from the torsal station before the gap to the one after it) nor a gap station."""
-    if not fans or not gap.any():
+    if not fans or not np.count_nonzero(gap):
         return fans
     n = len(s)
     begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))

@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 from scipy.special import roots_legendre
 
 from ..curve_base import FloatArray
+from ..vec_ops import dot
 
 if TYPE_CHECKING:
     from ..curve_base import Curve
@@ -77,7 +78,7 @@ class LengthMap:
         layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
         nodes, gauss, half, last, at = layout(breaks, int(intervals))
         d1 = curve.derivative_at(at, 1)
-        speeds = np.sqrt(np.add.reduce(d1 * d1, axis=-1))
+        speeds = np.sqrt(dot(d1, d1))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
         g, m = len(gauss), len(nodes)
         pieces = half * (speeds[:g].reshape(-1, 4) @ _WEIGHTS)
         end_speeds = speeds[g + 1 : g + m].copy()
@@ -85,7 +86,7 @@ class LengthMap:
         self.nodes: FloatArray = nodes
         self.lengths: FloatArray = np.empty(m)
         self.lengths[0] = 0.0
-        np.cumsum(pieces, out=self.lengths[1:])
+        np.add.accumulate(pieces, out=self.lengths[1:])  # (np.cumsum, without its wrapper)
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
         self.start_speeds: FloatArray = speeds[g : g + m - 1]
         self.end_speeds: FloatArray = end_speeds

@@ -10,8 +10,10 @@ rulings and the plain loft's partners) and picks the parameters of a fan's rulin
 
 from __future__ import annotations
 
+import struct
 from dataclasses import dataclass
 from functools import cached_property
+from math import ceil
 
 import numpy as np
 
@@ -79,13 +81,12 @@ class Grid:
         width = self.at[1:] - self.at[:-1]
         speed = self.speeds
         second, left_second = self.second_lengths, self.left_second_lengths
-        bounds = interval_bounds(
-            width,
-            (speed[:-1], speed[1:]),
-            (second[:-1], left_second[1:]),
-            third_bound(self.third[:-1], self.left_third[1:]),
-            diameter,
-        )
+        third, left_third = self.third, self.left_third
+        if not np.count_nonzero(third) and (left_third is third or not np.count_nonzero(left_third)):
+            b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
+        else:
+            b3 = third_bound(third[:-1], left_third[1:])
+        bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
         bounds.reach[self.pair] = -1.0
         return bounds
 
@@ -148,6 +149,11 @@ class Strip:
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
         self.holes: list[int] = []
+        #: :meth:`gap_lengths` found so far, by the bits of their ends
+        self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+        #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
+        #: its stations and the bits of its ends on B
+        self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
         if not self.chords_b[-1] > 0:
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
 
@@ -167,7 +173,7 @@ class Strip:
         points = self.grid.points
         chords = np.empty(len(points))
         chords[0] = 0.0
-        np.cumsum(norm(points[1:] - points[:-1]), out=chords[1:])
+        np.add.accumulate(norm(points[1:] - points[:-1]), out=chords[1:])  # (np.cumsum, without its wrapper)
         return chords
 
     @cached_property
@@ -180,19 +186,48 @@ class Strip:
     def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
         every corner of B between them."""
-        t = self.fan_parameters(t_low, t_high)
+        return self._gap(t_low, t_high)[0]
+
+    def _gap(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`gap_parameters`, and their :meth:`length_b` where :meth:`_fan` has them."""
+        t, lengths = self._fan(t_low, t_high)
+        if not len(self.kinks_b):
+            return t, lengths
         corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
-        return np.unique(np.concatenate([t, corners])) if len(corners) else t
+        return (np.unique(np.concatenate([t, corners])), None) if len(corners) else (t, lengths)
+
+    def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
+        """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
+        of B: each round of the solve's check closes the same gaps again."""
+        key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
+        found = self._gaps.get(key)
+        if found is None:
+            tb, lb = self._gap(t_low, t_high)
+            if lb is None:
+                lb = self.length_b(tb)
+            tb.setflags(write=False)
+            lb.setflags(write=False)
+            found = self._gaps[key] = (tb, lb)
+        return found
 
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B for a fan's rulings, at about the station spacing along A."""
+        return self._fan(t_low, t_high)[0]
+
+    def _fan(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`fan_parameters`, and their :meth:`length_b` when they are the two ends alone
+        (measured already to count the rulings; None otherwise)."""
         spacing = self.map_a.total / self.segments
-        lb = self.length_b(np.array([t_low, t_high]))
+        ends = np.array([t_low, t_high])
+        lb = self.length_b(ends)
         # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
         # must not ask for billions); and at least the fan's two bounding rulings
         wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
-        count = max(2, int(np.ceil(min(wanted, self.segments + 1) - 1e-9)) + 1)
+        count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
+        if count == 2:  # the bounding rulings alone (the ends set below are all there is)
+            # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+            return np.maximum.accumulate(ends), (lb if t_high >= t_low else None)
         t = self.parameter_b(np.linspace(lb[0], lb[1], count))
         t[0], t[-1] = t_low, t_high
-        return np.maximum.accumulate(t)
+        return np.maximum.accumulate(t), None
 
