@@ -28,7 +28,7 @@ from nodes.geometry.array_types import BoolArray, IntArray
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import _einsum, cross, det, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
-from .isolation import Pieces, isolate
+from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
 from .strip import Grid, Strip
 from .warp import in_plane_tangent, warp_angles
@@ -46,20 +46,23 @@ ROOT, CORNER, FLAT_END = 0, 1, 2
 class _Brackets:
     """Sample intervals worth a closer look: where the determinant of station ``rows``
     changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
-    its values there), and the samples where it is zero."""
+    its values there, and the rulings B − A to both ends and their lengths), and the
+    samples where it is zero."""
 
     rows: IntArray
     cols: IntArray
     f_low: FloatArray
     f_high: FloatArray
+    r_low: FloatArray  #: (k, 3) B(t_cols) − A(s_rows)
+    r_high: FloatArray  #: (k, 3) B(t_cols+1) − A(s_rows)
+    length_low: FloatArray  #: |r_low|
+    length_high: FloatArray
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
-def _brackets(
-    a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray, size: float | None = None
-) -> _Brackets:
-    """Intervals where f = det[B_j − A_i, Â'_i, B'_j] (unit tangent of A) changes sign or
-    may reach zero — |f| at an end within ``reach`` (see :mod:`.isolation`) — over all
+def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float) -> _Brackets:
+    """Intervals where f = det[B_j − A_i, Â', B'_j] (unit tangent of A) changes sign or
+    may reach zero — |f| at an end within the reach of :mod:`.isolation` — over all
     station–sample pairs.
 
     By the cyclic symmetry of the triple product,
@@ -68,11 +71,14 @@ def _brackets(
     small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
+
+    An interval passes a first sift with the bounds' reach (from the diameter ``size`` of
+    both curves) and then a second with the reach from its own two rulings (the longer of
+    |B_j − A_i| and |B_j+1 − A_i| in place of the diameter); a sign change always passes.
+    The rulings and their lengths are what the kept intervals carry on.
     """
     b0, b1 = grid.points, grid.tangents
     n, m = len(a0), len(b0)
-    if size is None:  # the diagonal of the bounding box
-        size = float(norm(extent(np.concatenate([a0, b0]))))
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
     left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
@@ -90,7 +96,7 @@ def _brackets(
     f_buffer, size_buffer = np.empty((rows_in_block, m)), np.empty((rows_in_block, m))
     sign_buffer = np.empty((rows_in_block, m), dtype=bool)
     low_buffer = np.empty((rows_in_block, m - 1))
-    found: list[tuple[IntArray, ...]] = []
+    found: list[tuple[FloatArray, ...]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
         here = min(block, n - first)
@@ -98,7 +104,8 @@ def _brackets(
         negative = np.signbit(f, out=sign_buffer[:here])
         size_f = np.abs(f, out=size_buffer[:here])
         lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
-        look = (negative[:, :-1] != negative[:, 1:]) | (lower <= reach)
+        change = negative[:, :-1] != negative[:, 1:]
+        look = change | (lower <= bounds.reach)
         maybe = flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
@@ -108,8 +115,18 @@ def _brackets(
                 zero.flat[exact] = True
                 look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
-        r, c = np.divmod(flatnonzero(look), m - 1)
-        found.append((r + first, c, f[r, c], f[r, c + 1]))
+        index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
+        r, c = np.divmod(index, m - 1)
+        # sift again with the rulings' own lengths in place of the diameter
+        station, c_next = a0[r + first], c + 1
+        r_low, r_high = b0[c] - station, b0[c_next] - station
+        length_low, length_high = norm(r_low), norm(r_high)
+        reach = bounds.slope[c] * (np.maximum(length_low, length_high) + bounds.chord[c])
+        keep = change.ravel()[index] | (lower.ravel()[index] <= reach)
+        r, c, at = r[keep], c[keep], index[keep] + r[keep]  # at: (r, c) in f
+        f_flat = f.ravel()
+        rulings = r_low[keep], r_high[keep], length_low[keep], length_high[keep]
+        found.append((r + first, c, f_flat[at], f_flat[at + 1], *rulings))
     joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
     return _Brackets(*joined, zero_flat)
@@ -194,14 +211,16 @@ def find_candidates(
     units = unit(a1)
     diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
     bounds = grid.interval_bounds(diameter)
-    found = _brackets(a0, units, grid, bounds.reach, diameter)
+    found = _brackets(a0, units, grid, bounds, diameter)
     rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
+    r_low, r_high, length_low, length_high = found.r_low, found.r_high, found.length_low, found.length_high
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
-        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+        kept = (x[keep] for x in (rows, cols, f_low, f_high, r_low, r_high, length_low, length_high))
+        rows, cols, f_low, f_high, r_low, r_high, length_low, length_high = kept
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -214,33 +233,24 @@ def find_candidates(
         run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
 
-    # sift again with the rulings' own lengths in place of the diameter (a sign change
-    # is always kept), then judge what is left, subdividing where a root pair may hide
-    r_low = grid.points[cols] - a0[rows]
-    r_high = grid.points[cols + 1] - a0[rows]
-    length_low, length_high = norm(r_low), norm(r_high)
-    reach = bounds.slope[cols] * (np.maximum(length_low, length_high) + bounds.chord[cols])
-    keep = (np.signbit(f_low) != np.signbit(f_high)) | (np.minimum(np.abs(f_low), np.abs(f_high)) <= reach)
-    if not keep.all():
-        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
-        r_low, r_high = r_low[keep], r_high[keep]
-        length_low, length_high = length_low[keep], length_high[keep]
-    # f' there is det[R, Â', B''] = B'' · (R × Â'), gathered for these intervals only
+    # judge what the sift left (it used the rulings' own lengths), subdividing where a
+    # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
+    cols_next = cols + 1
     ua = units[rows]
     d_low = dot(cross(r_low, ua), grid.second[cols])
-    d_high = dot(cross(r_high, ua), grid.left_second[cols + 1])
+    d_high = dot(cross(r_high, ua), grid.left_second[cols_next])
     none = np.empty(0)
-    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 7))
+    first = Pieces(rows, grid.at[cols], grid.at[cols_next], f_low, f_high, d_low, d_high, *([none] * 7))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
-        c = cols[index]
+        c, c_next = cols[index], cols_next[index]
         return replace(
             pieces.take(index),
             # (a row's length is the same computed alone or among others)
             speed0=grid.speeds[c],
-            speed1=grid.speeds[c + 1],
+            speed1=grid.speeds[c_next],
             second0=grid.second_lengths[c],
-            second1=grid.left_second_lengths[c + 1],
+            second1=grid.left_second_lengths[c_next],
             bound3=bounds.third[c],
             r0=length_low[index],
             r1=length_high[index],
@@ -251,8 +261,11 @@ def find_candidates(
 
     isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, ends)
     rows = isolated.rows
-    point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
-    point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+    if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
+        point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
+        point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+    else:
+        point_rows, point_t = isolated.double_rows, isolated.double_t
 
     # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
     # each bracket's last evaluation (at its root, to rounding) is kept for what follows
@@ -261,41 +274,40 @@ def find_candidates(
     root_t = np.concatenate([np.empty(k), point_t]) if len(point_rows) else np.empty(k)
     b0, b1 = np.empty((2, len(root_rows), 3))
     f, f_t = np.empty((2, len(root_rows)))
-    speed_a, size_a = norm(a1), norm(a0)
+    # the stations of the roots, gathered once for every evaluation and what follows
+    a0_root, a1_root = a0[root_rows], a1[root_rows]
+    speed_a, size_a = norm(a1)[root_rows], norm(a0)[root_rows]
 
-    def evaluate(
-        x: FloatArray, index: IntArray | slice, i: IntArray
-    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
-        plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
+        plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
         value, slope = dot(plane, c1), dot(plane, c2)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
-        return value, slope, rounding_scale(size_a[i], c0, speed_a[i], c1)
+        return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        if len(index) == k:  # all of them (the first step): a slice writes without gathering
-            return evaluate(x, slice(0, k), rows)
-        return evaluate(x, index, rows[index])
+        # all of them (the first step): a slice reads and writes without gathering
+        return evaluate(x, slice(0, k) if len(index) == k else index)
 
     if k:
         i = isolated
         start = cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
         refine_roots(coplanarity, i.low, i.high, i.f_low, start)
     if len(point_rows):
-        evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)
+        evaluate(root_t[k:], slice(k, None))
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch
-    r = b0 - a0[root_rows]
+    r = b0 - a0_root
     f_s = det(r, a2[root_rows], b1)
     slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
-    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a[root_rows] ** 2
+    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a**2
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
     candidates = Candidates(
-        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1_root, b1, rr, aa, bb)
     )
     if len(corner_rows) == 0 and not flat.any():
         return _in_order(candidates)
@@ -435,10 +447,11 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     b_lo, b_hi = strip.length_b(np.concatenate([lo, hi])).reshape(2, -1)
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
-    loft_warp = warp_angles(strip.a0[missing], points, strip.a1[missing], tangents)
+    a0, a1 = strip.a0[missing], strip.a1[missing]
+    loft_warp = warp_angles(a0, points, a1, tangents)
     # else the least angle between the end normals among B's samples in the window
     grid = strip.grid
-    angle = normal_angles(strip.a0[missing], strip.a1[missing], grid.points, grid.tangents)
+    angle = normal_angles(a0, a1, grid.points, grid.tangents)
     inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
     angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
     best = np.argmin(angle, axis=1)

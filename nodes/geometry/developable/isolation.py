@@ -277,7 +277,9 @@ def isolate(
     else:  # levels exhausted (never on curves within the guarantee): keep what changes sign
         found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
     empty_i, empty_f = np.empty(0, dtype=np.int64), np.empty(0)
-    if found:
+    if len(found) == 1:  # the usual case: all were judged at once
+        rows, low, high, f_low, f_high, d_low, d_high = found[0]
+    elif found:
         rows, low, high, f_low, f_high, d_low, d_high = (np.concatenate(x) for x in zip(*found, strict=True))
     else:
         rows, low, high, f_low, f_high, d_low, d_high = empty_i, *([empty_f] * 6)
