@@ -47,17 +47,19 @@ class _Brackets:
     """Sample intervals worth a closer look: where the determinant of station ``rows``
     changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
     its values there, and the rulings B − A to both ends and their lengths), and the
-    samples where it is zero."""
+    samples where it is zero. The values at the two ends are the two rows of ``f``,
+    ``rulings`` and ``lengths``."""
 
     rows: IntArray
     cols: IntArray
-    f_low: FloatArray
-    f_high: FloatArray
-    r_low: FloatArray  #: (k, 3) B(t_cols) − A(s_rows)
-    r_high: FloatArray  #: (k, 3) B(t_cols+1) − A(s_rows)
-    length_low: FloatArray  #: |r_low|
-    length_high: FloatArray
+    f: FloatArray  #: (2, k) f at samples ``cols`` and ``cols + 1``
+    rulings: FloatArray  #: (2, k, 3) B − A there
+    lengths: FloatArray  #: (2, k) their lengths
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
+
+
+#: Offsets of an interval's two ends from its first sample, as a column.
+_ENDS = np.array([[0], [1]])
 
 
 def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float) -> _Brackets:
@@ -117,17 +119,19 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds
                 zeros.append(exact + first * m)
         index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
         r, c = np.divmod(index, m - 1)
-        # sift again with the rulings' own lengths in place of the diameter
-        station, c_next = a0[r + first], c + 1
-        r_low, r_high = b0[c] - station, b0[c_next] - station
-        length_low, length_high = norm(r_low), norm(r_high)
-        reach = bounds.slope[c] * (np.maximum(length_low, length_high) + bounds.chord[c])
+        # sift again with the rulings' own lengths in place of the diameter; the rulings to
+        # both ends at once, (2, k, 3), as their lengths and f there
+        rulings = b0[c + _ENDS] - a0[r + first]
+        lengths = norm(rulings)
+        reach = bounds.slope[c] * (np.maximum(lengths[0], lengths[1]) + bounds.chord[c])
         keep = change.ravel()[index] | (lower.ravel()[index] <= reach)
-        r, c, at = r[keep], c[keep], index[keep] + r[keep]  # at: (r, c) in f
-        f_flat = f.ravel()
-        rulings = r_low[keep], r_high[keep], length_low[keep], length_high[keep]
-        found.append((r + first, c, f_flat[at], f_flat[at + 1], *rulings))
-    joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
+        r = r[keep]
+        at = index[keep] + r + _ENDS  # (r, c) and (r, c + 1) in f
+        found.append((r + first, c[keep], f.ravel()[at], rulings[:, keep], lengths[:, keep]))
+    if len(found) == 1:
+        joined = found[0]
+    else:  # (the ends' values along their second axis)
+        joined = [np.concatenate(x, axis=0 if x[0].ndim == 1 else 1) for x in zip(*found, strict=True)]
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
     return _Brackets(*joined, zero_flat)
 
@@ -212,15 +216,14 @@ def find_candidates(
     diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
     bounds = grid.interval_bounds(diameter)
     found = _brackets(a0, units, grid, bounds, diameter)
-    rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
-    r_low, r_high, length_low, length_high = found.r_low, found.r_high, found.length_low, found.length_high
+    rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
-        kept = (x[keep] for x in (rows, cols, f_low, f_high, r_low, r_high, length_low, length_high))
-        rows, cols, f_low, f_high, r_low, r_high, length_low, length_high = kept
+        rows, cols = rows[keep], cols[keep]
+        f_ends, rulings, lengths = f_ends[:, keep], rulings[:, keep], lengths[:, keep]
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -235,12 +238,13 @@ def find_candidates(
 
     # judge what the sift left (it used the rulings' own lengths), subdividing where a
     # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
+    # (at both ends at once, B'' at the far end as seen from the left)
     cols_next = cols + 1
-    ua = units[rows]
-    d_low = dot(cross(r_low, ua), grid.second[cols])
-    d_high = dot(cross(r_high, ua), grid.left_second[cols_next])
+    seconds = np.stack([grid.second[cols], grid.left_second[cols_next]])
+    d_ends = dot(cross(rulings, units[rows]), seconds)
     none = np.empty(0)
-    first = Pieces(rows, grid.at[cols], grid.at[cols_next], f_low, f_high, d_low, d_high, *([none] * 7))
+    f_low, f_high = f_ends
+    first = Pieces(rows, grid.at[cols], grid.at[cols_next], f_low, f_high, *d_ends, *([none] * 7))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
         c, c_next = cols[index], cols_next[index]
@@ -252,8 +256,8 @@ def find_candidates(
             second0=grid.second_lengths[c],
             second1=grid.left_second_lengths[c_next],
             bound3=bounds.third[c],
-            r0=length_low[index],
-            r1=length_high[index],
+            r0=lengths[0, index],
+            r1=lengths[1, index],
         )
 
     def evaluate_b(x: FloatArray) -> list[FloatArray]:
