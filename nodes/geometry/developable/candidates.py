@@ -399,14 +399,6 @@ def _longest_monotone(t: FloatArray) -> BoolArray:
     return keep
 
 
-def _neighbours(partnered: BoolArray) -> tuple[IntArray, IntArray]:
-    """The stations with a partner, and where each other station falls among them: ``i``
-    such that its nearest partnered neighbours are ``stations[i − 1]`` and ``stations[i]``
-    (there is none before it when i = 0, none after it when i = len(stations))."""
-    stations = flatnonzero(partnered)
-    return stations, np.searchsorted(stations, flatnonzero(~partnered))
-
-
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
     """The chosen candidate per station (−1 where none) and the consistently oriented
     candidates."""
@@ -439,16 +431,19 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     missing = flatnonzero(gap)
     if len(missing) == 0:
         return
-    partnered, window = _neighbours(~gap)
-    # the neighbours' partners, padded with B's ends: [window] is the one before, [window + 1] after
-    padded = np.concatenate([[0.0], t[partnered], [1.0]])
-    lo, hi = padded[window], padded[window + 1]
+    # where each station without a partner falls among those with one: the partners of its
+    # two neighbours (padded with B's ends where there is none before or after it) and
+    # their arc lengths along A (padded with A's ends), one row for each neighbour
+    partnered = flatnonzero(~gap)
+    neighbours = np.searchsorted(partnered, missing) + _ENDS
+    t_window = np.concatenate([[0.0], t[partnered], [1.0]])[neighbours]
+    lo, hi = t_window
     length_a = strip.station_lengths
-    padded = np.concatenate([[0.0], length_a[partnered], [strip.map_a.total]])
-    a_lo, a_hi = padded[window], padded[window + 1]
+    a_lo, a_hi = np.concatenate([[0.0], length_a[partnered], [strip.map_a.total]])[neighbours]
     span = a_hi - a_lo
-    fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
-    b_lo, b_hi = strip.length_b(np.concatenate([lo, hi])).reshape(2, -1)
+    spans = span > 0
+    fraction = np.where(spans, (length_a[missing] - a_lo) / np.where(spans, span, 1.0), 0.0)
+    b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
     a0, a1 = strip.a0[missing], strip.a1[missing]
@@ -459,7 +454,7 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
     angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
     best = np.argmin(angle, axis=1)
-    sample_ok = angle[np.arange(len(missing)), best] <= strip.tolerance
+    sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
     with np.errstate(invalid="ignore"):
         loft_ok = loft_warp <= strip.tolerance
     t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t[best], np.nan))

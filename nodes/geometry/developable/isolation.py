@@ -124,11 +124,12 @@ def certified_empty(
     sign = np.where(f0 < 0, -1.0, 1.0)
     g0, g1, e0, e1 = sign * f0, sign * f1, sign * e0, sign * e1
     denominator = m + e1 - e0
+    half_m = 0.5 * m
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = (g0 - g1 + e1 + 0.5 * m) / denominator
+        u = (g0 - g1 + e1 + half_m) / denominator
     inside = (u >= 0.0) & (u <= 1.0) & (denominator != 0)
-    low = g0 + u * (e0 - 0.5 * m * u)
-    return (g0 > 0) & (g1 > 0) & ~(inside & ~(low > 0))
+    low = g0 + u * (e0 - half_m * u)
+    return (g0 > 0) & (g1 > 0) & (~inside | (low > 0))
 
 
 def certified_single(
@@ -166,7 +167,8 @@ class Pieces:
 
     def brackets(self, keep: BoolArray | IntArray) -> tuple[FloatArray, ...]:
         """Row, ends, f and f' at both ends of the pieces ``keep``: what a bracket keeps."""
-        return tuple(v[keep] for v in (self.row, self.x0, self.x1, self.f0, self.f1, self.d0, self.d1))
+        ends = self.x0[keep], self.x1[keep], self.f0[keep], self.f1[keep], self.d0[keep], self.d1[keep]
+        return (self.row[keep], *ends)
 
 
 def _part(values: FloatArray, keep: BoolArray | IntArray) -> FloatArray:
@@ -226,9 +228,9 @@ def _judge(p: Pieces, curvature: FloatArray) -> tuple[BoolArray, BoolArray, Bool
     change = np.signbit(p.f0) != np.signbit(p.f1)
     narrow = h <= NARROWEST
     bracket = change & (narrow | certified_single(p.f0, p.f1, e0, e1, curvature))
-    open_ = ~change & ~certified_empty(p.f0, p.f1, e0, e1, curvature)
+    open_ = ~(change | certified_empty(p.f0, p.f1, e0, e1, curvature))
     touching = open_ & narrow
-    return bracket, touching, (change | open_) & ~bracket & ~touching
+    return bracket, touching, (change | open_) & ~(bracket | touching)
 
 
 def isolate(
@@ -276,13 +278,12 @@ def isolate(
         pieces, curvature = _split(pieces, evaluate, a0, a1)
     else:  # levels exhausted (never on curves within the guarantee): keep what changes sign
         found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
-    empty_i, empty_f = np.empty(0, dtype=np.int64), np.empty(0)
     if len(found) == 1:  # the usual case: all were judged at once
         rows, low, high, f_low, f_high, d_low, d_high = found[0]
     elif found:
         rows, low, high, f_low, f_high, d_low, d_high = (np.concatenate(x) for x in zip(*found, strict=True))
     else:
-        rows, low, high, f_low, f_high, d_low, d_high = empty_i, *([empty_f] * 6)
+        rows, low, high, f_low, f_high, d_low, d_high = np.empty(0, dtype=np.int64), *([np.empty(0)] * 6)
     if doubles:
         double_rows, double_t = (np.concatenate(x) for x in zip(*doubles, strict=True))
         # a touching point on a split is found from both sides: keep it once
@@ -292,7 +293,7 @@ def isolate(
         again[1:] = (double_rows[1:] == double_rows[:-1]) & (double_t[1:] - double_t[:-1] <= NARROWEST)
         double_rows, double_t = double_rows[~again], double_t[~again]
     else:
-        double_rows, double_t = empty_i, empty_f
+        double_rows, double_t = np.empty(0, dtype=np.int64), np.empty(0)
     return Isolated(rows, low, high, f_low, f_high, d_low, d_high, double_rows, double_t)
 
 
