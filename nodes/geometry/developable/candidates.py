@@ -26,7 +26,7 @@ import numpy as np
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import _einsum, cross, det, dot, extent, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import _einsum, cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
@@ -62,7 +62,9 @@ class _Brackets:
 _ENDS = np.array([[0], [1]])
 
 
-def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float) -> _Brackets:
+def _brackets(
+    a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float, positions: FloatArray
+) -> _Brackets:
     """Intervals where f = det[B_j − A_i, Â', B'_j] (unit tangent of A) changes sign or
     may reach zero — |f| at an end within the reach of :mod:`.isolation` — over all
     station–sample pairs.
@@ -77,19 +79,21 @@ def _brackets(a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds
     An interval passes a first sift with the bounds' reach (from the diameter ``size`` of
     both curves) and then a second with the reach from its own two rulings (the longer of
     |B_j − A_i| and |B_j+1 − A_i| in place of the diameter); a sign change always passes.
-    The rulings and their lengths are what the kept intervals carry on.
+    The rulings and their lengths are what the kept intervals carry on. ``positions`` are
+    A's and B's points, ``a0`` and ``grid.points`` one after the other.
     """
     b0, b1 = grid.points, grid.tangents
     n, m = len(a0), len(b0)
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
-    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
+    moments = cross(np.concatenate([units, b1]), positions - centre)  # (both curves' at once)
+    left = np.concatenate([units, moments[:n]], axis=1)
     right = np.empty((6, m))
-    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
+    right[:3], right[3:] = moments[n:].T, b1.T
     speed_b = grid.speeds
     # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
     # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
-    rounding = max(position_rounding(a0), position_rounding(b0))
+    rounding = position_rounding(positions)
     flat_scale = (FLAT * size + rounding) * speed_b
     # blocks of at most 16,000 samples: each block's arrays (125 KiB at most) come from the
     # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
@@ -164,25 +168,16 @@ def rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1: 
 
 
 def _oriented(
-    r: FloatArray,
-    ta: FloatArray,
-    tb: FloatArray,
-    rr: FloatArray | None = None,
-    aa: FloatArray | None = None,
-    bb: FloatArray | None = None,
+    rr: FloatArray, aa: FloatArray, bb: FloatArray, ra: FloatArray, rb: FloatArray, ab: FloatArray
 ) -> BoolArray:
-    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes).
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes), from
+    |R|², |A'|², |B'|², R·A', R·B' and A'·B'.
 
     N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
-    ``rr``, ``aa``, ``bb`` are |R|², |A'|², |B'|² when the caller has them.
     """
-    rr = dot(r, r) if rr is None else rr
-    aa = dot(ta, ta) if aa is None else aa
-    bb = dot(tb, tb) if bb is None else bb
-    ra, rb = dot(r, ta), dot(r, tb)
     n1n1 = np.maximum(rr * aa - ra * ra, 0.0)
     n2n2 = np.maximum(rr * bb - rb * rb, 0.0)
-    return rr * dot(ta, tb) - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
+    return rr * ab - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
 
 
 @dataclass
@@ -213,9 +208,10 @@ def find_candidates(
     with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
     m = len(grid.t)
     units = unit(a1)
-    diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
+    positions = np.concatenate([a0, grid.points])
+    diameter = float(norm(extent(positions)))
     bounds = grid.interval_bounds(diameter)
-    found = _brackets(a0, units, grid, bounds, diameter)
+    found = _brackets(a0, units, grid, bounds, diameter, positions)
     rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
     if grid.pair.any():
@@ -285,7 +281,7 @@ def find_candidates(
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
         plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
-        value, slope = dot(plane, c1), dot(plane, c2)
+        value, slope = dot(plane, np.stack([c1, c2]))  # (both products in one)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
         return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
 
@@ -301,17 +297,20 @@ def find_candidates(
         evaluate(root_t[k:], slice(k, None))
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch
+    # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
+    # once: each is the same sum of the same products)
     r = b0 - a0_root
-    f_s = det(r, a2[root_rows], b1)
+    left = np.stack([r, b1, r, r, a1_root, r])
+    rr, bb, ra, rb, ab, f_s = dot(left, np.stack([r, b1, a1_root, b1, b1, cross(a2[root_rows], b1)]))
+    aa = speed_a**2
     slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
-    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a**2
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
     candidates = Candidates(
-        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1_root, b1, rr, aa, bb)
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(rr, aa, bb, ra, rb, ab)
     )
     if len(corner_rows) == 0 and not flat.any():
         return _in_order(candidates)
@@ -330,6 +329,7 @@ def find_candidates(
     extra_rows = np.concatenate([corner_rows, flat_rows])
     extra_points = np.concatenate([corner_points, grid.points[flat_cols]])
     extra_tangents = np.concatenate([corner_tangents, grid.tangents[flat_cols]])
+    r, ta, tb = extra_points - a0[extra_rows], a1[extra_rows], extra_tangents
     corner_nan = np.full(len(corner_rows), np.nan)
     extra = Candidates(
         extra_rows,
@@ -340,7 +340,7 @@ def find_candidates(
         np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
         extra_points,
         extra_tangents,
-        _oriented(extra_points - a0[extra_rows], a1[extra_rows], extra_tangents),
+        _oriented(*dot(np.stack([r, ta, tb, r, r, ta]), np.stack([r, ta, tb, ta, tb, tb]))),
     )
     both = Candidates(
         *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
