@@ -236,7 +236,7 @@ def find_candidates(
     # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
     # (at both ends at once, B'' at the far end as seen from the left)
     cols_next = cols + 1
-    seconds = np.stack([grid.second[cols], grid.left_second[cols_next]])
+    seconds = np.array([grid.second[cols], grid.left_second[cols_next]])
     d_ends = dot(cross(rulings, units[rows]), seconds)
     none = np.empty(0)
     f_low, f_high = f_ends
@@ -281,7 +281,7 @@ def find_candidates(
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
         plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
-        value, slope = dot(plane, np.stack([c1, c2]))  # (both products in one)
+        value, slope = dot(plane, np.array([c1, c2]))  # (both products in one)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
         return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
 
@@ -300,8 +300,8 @@ def find_candidates(
     # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
     # once: each is the same sum of the same products)
     r = b0 - a0_root
-    left = np.stack([r, b1, r, r, a1_root, r])
-    rr, bb, ra, rb, ab, f_s = dot(left, np.stack([r, b1, a1_root, b1, b1, cross(a2[root_rows], b1)]))
+    left = np.array([r, b1, r, r, a1_root, r])
+    rr, bb, ra, rb, ab, f_s = dot(left, np.array([r, b1, a1_root, b1, b1, cross(a2[root_rows], b1)]))
     aa = speed_a**2
     slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
@@ -340,7 +340,7 @@ def find_candidates(
         np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
         extra_points,
         extra_tangents,
-        _oriented(*dot(np.stack([r, ta, tb, r, r, ta]), np.stack([r, ta, tb, ta, tb, tb]))),
+        _oriented(*dot(np.array([r, ta, tb, r, r, ta]), np.array([r, ta, tb, ta, tb, tb]))),
     )
     both = Candidates(
         *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)

@@ -109,11 +109,13 @@ def interval_bounds(
     ``b3`` is β3 (:func:`third_bound`). ``length`` bounds |B − A| at the two ends (the
     diameter of both curves, or the larger of the two rulings' lengths).
     """
-    b2 = np.maximum(second[0], second[1]) + 0.5 * width * b3
-    b1 = np.maximum(speed[0], speed[1]) + 0.5 * width * b2
-    reach_r = length + 0.5 * width * b1  # |B − A| anywhere inside
+    half = 0.5 * width
+    b2 = np.maximum(second[0], second[1]) + half * b3
+    slope = half * b2
+    b1 = np.maximum(speed[0], speed[1]) + slope
+    chord = half * b1
+    reach_r = length + chord  # |B − A| anywhere inside
     curvature = width * width * (b1 * b2 + reach_r * b3)
-    slope, chord = 0.5 * width * b2, 0.5 * width * b1
     return IntervalBounds(curvature, slope * reach_r, b3, slope, chord)
 
 
