@@ -276,7 +276,7 @@ def find_candidates(
     f, f_t = np.empty((2, len(root_rows)))
     # the stations of the roots, gathered once for every evaluation and what follows
     a0_root, a1_root = a0[root_rows], a1[root_rows]
-    speed_a, size_a = norm(a1)[root_rows], norm(a0)[root_rows]
+    speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
 
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
