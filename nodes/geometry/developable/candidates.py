@@ -125,13 +125,15 @@ def _brackets(
         r, c = np.divmod(index, m - 1)
         # sift again with the rulings' own lengths in place of the diameter; the rulings to
         # both ends at once, (2, k, 3), as their lengths and f there
-        rulings = b0[c + _ENDS] - a0[r + first]
+        # (take gathers rows several times faster than indexing does)
+        rulings = b0.take(c + _ENDS, axis=0) - a0.take(r + first, axis=0)
         lengths = norm(rulings)
-        reach = bounds.slope[c] * (np.maximum(lengths[0], lengths[1]) + bounds.chord[c])
-        keep = change.ravel()[index] | (lower.ravel()[index] <= reach)
+        reach = bounds.slope.take(c) * (np.maximum(lengths[0], lengths[1]) + bounds.chord.take(c))
+        keep = change.take(index) | (lower.take(index) <= reach)
         r = r[keep]
         at = index[keep] + r + _ENDS  # (r, c) and (r, c + 1) in f
-        found.append((r + first, c[keep], f.ravel()[at], rulings[:, keep], lengths[:, keep]))
+        kept = f.take(at), rulings.compress(keep, axis=1), lengths.compress(keep, axis=1)
+        found.append((r + first, c[keep], *kept))
     if len(found) == 1:
         joined = found[0]
     else:  # (the ends' values along their second axis)
@@ -236,11 +238,11 @@ def find_candidates(
     # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
     # (at both ends at once, B'' at the far end as seen from the left)
     cols_next = cols + 1
-    seconds = np.array([grid.second[cols], grid.left_second[cols_next]])
-    d_ends = dot(cross(rulings, units[rows]), seconds)
+    seconds = np.array([grid.second.take(cols, axis=0), grid.left_second.take(cols_next, axis=0)])
+    d_ends = dot(cross(rulings, units.take(rows, axis=0)), seconds)
     none = np.empty(0)
     f_low, f_high = f_ends
-    first = Pieces(rows, grid.at[cols], grid.at[cols_next], f_low, f_high, *d_ends, *([none] * 7))
+    first = Pieces(rows, grid.at.take(cols), grid.at.take(cols_next), f_low, f_high, *d_ends, *([none] * 7))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
         c, c_next = cols[index], cols_next[index]
@@ -259,7 +261,7 @@ def find_candidates(
     def evaluate_b(x: FloatArray) -> list[FloatArray]:
         return curve_b.derivatives(x, 2)
 
-    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, ends)
+    isolated = isolate(first, bounds.curvature.take(cols), evaluate_b, a0, units, ends)
     rows = isolated.rows
     if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
         point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
@@ -275,7 +277,7 @@ def find_candidates(
     b0, b1 = np.empty((2, len(root_rows), 3))
     f, f_t = np.empty((2, len(root_rows)))
     # the stations of the roots, gathered once for every evaluation and what follows
-    a0_root, a1_root = a0[root_rows], a1[root_rows]
+    a0_root, a1_root = a0.take(root_rows, axis=0), a1.take(root_rows, axis=0)
     speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
 
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -300,8 +302,9 @@ def find_candidates(
     # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
     # once: each is the same sum of the same products)
     r = b0 - a0_root
-    left = np.array([r, b1, r, r, a1_root, r])
-    rr, bb, ra, rb, ab, f_s = dot(left, np.array([r, b1, a1_root, b1, b1, cross(a2[root_rows], b1)]))
+    lefts = np.array([r, b1, r, r, a1_root, r])
+    rights = np.array([r, b1, a1_root, b1, b1, cross(a2.take(root_rows, axis=0), b1)])
+    rr, bb, ra, rb, ab, f_s = dot(lefts, rights)
     aa = speed_a**2
     slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
@@ -436,17 +439,17 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     # their arc lengths along A (padded with A's ends), one row for each neighbour
     partnered = flatnonzero(~gap)
     neighbours = np.searchsorted(partnered, missing) + _ENDS
-    t_window = np.concatenate([[0.0], t[partnered], [1.0]])[neighbours]
+    t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
     lo, hi = t_window
     length_a = strip.station_lengths
-    a_lo, a_hi = np.concatenate([[0.0], length_a[partnered], [strip.map_a.total]])[neighbours]
+    a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
     span = a_hi - a_lo
     spans = span > 0
-    fraction = np.where(spans, (length_a[missing] - a_lo) / np.where(spans, span, 1.0), 0.0)
+    fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
     b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
-    a0, a1 = strip.a0[missing], strip.a1[missing]
+    a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
     loft_warp = warp_angles(a0, points, a1, tangents)
     # else the least angle between the end normals among B's samples in the window
     grid = strip.grid
@@ -457,7 +460,7 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
     with np.errstate(invalid="ignore"):
         loft_ok = loft_warp <= strip.tolerance
-    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t[best], np.nan))
+    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])
