@@ -197,7 +197,9 @@ class Candidates:
     oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
 
     def subset(self, keep: BoolArray | IntArray) -> Candidates:
-        return Candidates(*(getattr(self, name)[keep] for name in _FIELDS))
+        """The candidates ``keep`` (a mask or indices), in that order."""
+        index = flatnonzero(keep) if keep.dtype == bool else keep
+        return Candidates(*(getattr(self, name).take(index, axis=0) for name in _FIELDS))
 
 
 _FIELDS = tuple(Candidates.__dataclass_fields__)
