@@ -124,8 +124,8 @@ def _brackets(
         index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
         r, c = np.divmod(index, m - 1)
         # sift again with the rulings' own lengths in place of the diameter; the rulings to
-        # both ends at once, (2, k, 3), as their lengths and f there
-        # (take gathers rows several times faster than indexing does)
+        # both ends at once, (2, k, 3), as their lengths and f there (take gathers rows
+        # several times faster than indexing does)
         rulings = b0.take(c + _ENDS, axis=0) - a0.take(r + first, axis=0)
         lengths = norm(rulings)
         reach = bounds.slope.take(c) * (np.maximum(lengths[0], lengths[1]) + bounds.chord.take(c))
