@@ -48,14 +48,13 @@ def refine_roots(
     bisection onto jumps (a root of a discontinuous ``f`` is the jump). A step or
     bracket below ``xtol`` (absolute, besides the relative :data:`STEP`) also stops.
     """
-    low = np.array(low, dtype=float)  # copies: the brackets shrink in place
-    high = np.array(high, dtype=float)
-    low_sign = np.sign(np.asarray(f_low, dtype=float))
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
     if start is None:
         x = 0.5 * (low + high)
     else:  # (np.clip is slow on small arrays)
         x = np.minimum(np.maximum(np.asarray(start, dtype=float), low), high)
     active = np.arange(len(x))
+    low_sign = None  # the brackets are copied (they shrink in place) once a step needs them
     with np.errstate(divide="ignore", invalid="ignore"):
         for _ in range(max_iterations):
             if len(active) == 0:
@@ -67,6 +66,9 @@ def refine_roots(
             zero = np.abs(f) <= ZERO * scale
             if zero.all():  # the usual end: every start or step was on its root, to rounding
                 break
+            if low_sign is None:
+                low, high = low.copy(), high.copy()
+                low_sign = np.sign(np.asarray(f_low, dtype=float))
             on_low_side = np.sign(f) == low_sign[at]
             lo = np.where(on_low_side, xa, low[at])
             hi = np.where(on_low_side | (f == 0), high[at], xa)

@@ -26,9 +26,9 @@ import numpy as np
 from nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import _einsum, cross, det, dot, extent, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import _einsum, cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
-from .isolation import Pieces, isolate
+from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
 from .strip import Grid, Strip
 from .warp import in_plane_tangent, warp_angles
@@ -46,20 +46,27 @@ ROOT, CORNER, FLAT_END = 0, 1, 2
 class _Brackets:
     """Sample intervals worth a closer look: where the determinant of station ``rows``
     changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
-    its values there), and the samples where it is zero."""
+    its values there, and the rulings B − A to both ends and their lengths), and the
+    samples where it is zero. The values at the two ends are the two rows of ``f``,
+    ``rulings`` and ``lengths``."""
 
     rows: IntArray
     cols: IntArray
-    f_low: FloatArray
-    f_high: FloatArray
+    f: FloatArray  #: (2, k) f at samples ``cols`` and ``cols + 1``
+    rulings: FloatArray  #: (2, k, 3) B − A there
+    lengths: FloatArray  #: (2, k) their lengths
     zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
 
 
+#: Offsets of an interval's two ends from its first sample, as a column.
+_ENDS = np.array([[0], [1]])
+
+
 def _brackets(
-    a0: FloatArray, a1: FloatArray, grid: Grid, reach: FloatArray, size: float | None = None
+    a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float, positions: FloatArray
 ) -> _Brackets:
-    """Intervals where f = det[B_j − A_i, Â'_i, B'_j] (unit tangent of A) changes sign or
-    may reach zero — |f| at an end within ``reach`` (see :mod:`.isolation`) — over all
+    """Intervals where f = det[B_j − A_i, Â', B'_j] (unit tangent of A) changes sign or
+    may reach zero — |f| at an end within the reach of :mod:`.isolation` — over all
     station–sample pairs.
 
     By the cyclic symmetry of the triple product,
@@ -68,20 +75,25 @@ def _brackets(
     small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
     thread (threads cost more than they save on a product this thin, and stall when the
     machine is busy) and lets every block reuse the memory of the last.
+
+    An interval passes a first sift with the bounds' reach (from the diameter ``size`` of
+    both curves) and then a second with the reach from its own two rulings (the longer of
+    |B_j − A_i| and |B_j+1 − A_i| in place of the diameter); a sign change always passes.
+    The rulings and their lengths are what the kept intervals carry on. ``positions`` are
+    A's and B's points, ``a0`` and ``grid.points`` one after the other.
     """
     b0, b1 = grid.points, grid.tangents
     n, m = len(a0), len(b0)
-    if size is None:  # the diagonal of the bounding box
-        size = float(norm(extent(np.concatenate([a0, b0]))))
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
-    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
+    moments = cross(np.concatenate([units, b1]), positions - centre)  # (both curves' at once)
+    left = np.concatenate([units, moments[:n]], axis=1)
     right = np.empty((6, m))
-    right[:3], right[3:] = cross(b1, b0 - centre).T, b1.T
+    right[:3], right[3:] = moments[n:].T, b1.T
     speed_b = grid.speeds
     # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
     # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
-    rounding = max(position_rounding(a0), position_rounding(b0))
+    rounding = position_rounding(positions)
     flat_scale = (FLAT * size + rounding) * speed_b
     # blocks of at most 16,000 samples: each block's arrays (125 KiB at most) come from the
     # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
@@ -90,7 +102,7 @@ def _brackets(
     f_buffer, size_buffer = np.empty((rows_in_block, m)), np.empty((rows_in_block, m))
     sign_buffer = np.empty((rows_in_block, m), dtype=bool)
     low_buffer = np.empty((rows_in_block, m - 1))
-    found: list[tuple[IntArray, ...]] = []
+    found: list[tuple[FloatArray, ...]] = []
     zeros: list[IntArray] = []
     for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
         here = min(block, n - first)
@@ -98,7 +110,8 @@ def _brackets(
         negative = np.signbit(f, out=sign_buffer[:here])
         size_f = np.abs(f, out=size_buffer[:here])
         lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
-        look = (negative[:, :-1] != negative[:, 1:]) | (lower <= reach)
+        change = negative[:, :-1] != negative[:, 1:]
+        look = change | (lower <= bounds.reach)
         maybe = flatnonzero(size_f <= flat_scale)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, m)
@@ -108,9 +121,23 @@ def _brackets(
                 zero.flat[exact] = True
                 look &= ~(zero[:, :-1] | zero[:, 1:])
                 zeros.append(exact + first * m)
-        r, c = np.divmod(flatnonzero(look), m - 1)
-        found.append((r + first, c, f[r, c], f[r, c + 1]))
-    joined = found[0] if len(found) == 1 else [np.concatenate(x) for x in zip(*found, strict=True)]
+        index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
+        r, c = np.divmod(index, m - 1)
+        # sift again with the rulings' own lengths in place of the diameter; the rulings to
+        # both ends at once, (2, k, 3), as their lengths and f there (take gathers rows
+        # several times faster than indexing does)
+        rulings = b0.take(c + _ENDS, axis=0) - a0.take(r + first, axis=0)
+        lengths = norm(rulings)
+        reach = bounds.slope.take(c) * (np.maximum(lengths[0], lengths[1]) + bounds.chord.take(c))
+        keep = change.take(index) | (lower.take(index) <= reach)
+        r = r[keep]
+        at = index[keep] + r + _ENDS  # (r, c) and (r, c + 1) in f
+        kept = f.take(at), rulings.compress(keep, axis=1), lengths.compress(keep, axis=1)
+        found.append((r + first, c[keep], *kept))
+    if len(found) == 1:
+        joined = found[0]
+    else:  # (the ends' values along their second axis)
+        joined = [np.concatenate(x, axis=0 if x[0].ndim == 1 else 1) for x in zip(*found, strict=True)]
     zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
     return _Brackets(*joined, zero_flat)
 
@@ -143,25 +170,16 @@ def rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1: 
 
 
 def _oriented(
-    r: FloatArray,
-    ta: FloatArray,
-    tb: FloatArray,
-    rr: FloatArray | None = None,
-    aa: FloatArray | None = None,
-    bb: FloatArray | None = None,
+    rr: FloatArray, aa: FloatArray, bb: FloatArray, ra: FloatArray, rb: FloatArray, ab: FloatArray
 ) -> BoolArray:
-    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes).
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes), from
+    |R|², |A'|², |B'|², R·A', R·B' and A'·B'.
 
     N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
-    ``rr``, ``aa``, ``bb`` are |R|², |A'|², |B'|² when the caller has them.
     """
-    rr = dot(r, r) if rr is None else rr
-    aa = dot(ta, ta) if aa is None else aa
-    bb = dot(tb, tb) if bb is None else bb
-    ra, rb = dot(r, ta), dot(r, tb)
     n1n1 = np.maximum(rr * aa - ra * ra, 0.0)
     n2n2 = np.maximum(rr * bb - rb * rb, 0.0)
-    return rr * dot(ta, tb) - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
+    return rr * ab - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
 
 
 @dataclass
@@ -179,7 +197,9 @@ class Candidates:
     oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
 
     def subset(self, keep: BoolArray | IntArray) -> Candidates:
-        return Candidates(*(getattr(self, name)[keep] for name in _FIELDS))
+        """The candidates ``keep`` (a mask or indices), in that order."""
+        index = flatnonzero(keep) if keep.dtype == bool else keep
+        return Candidates(*(getattr(self, name).take(index, axis=0) for name in _FIELDS))
 
 
 _FIELDS = tuple(Candidates.__dataclass_fields__)
@@ -192,16 +212,18 @@ def find_candidates(
     with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
     m = len(grid.t)
     units = unit(a1)
-    diameter = float(norm(extent(np.concatenate([a0, grid.points]))))
+    positions = np.concatenate([a0, grid.points])
+    diameter = float(norm(extent(positions)))
     bounds = grid.interval_bounds(diameter)
-    found = _brackets(a0, units, grid, bounds.reach, diameter)
-    rows, cols, f_low, f_high = found.rows, found.cols, found.f_low, found.f_high
+    found = _brackets(a0, units, grid, bounds, diameter, positions)
+    rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
-    if grid.pair.any():
+    if np.count_nonzero(grid.pair):  # (a third of what .any() costs on a short mask)
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
-        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
+        rows, cols = rows[keep], cols[keep]
+        f_ends, rulings, lengths = f_ends[:, keep], rulings[:, keep], lengths[:, keep]
     if len(found.zeros):
         # runs of zero samples along a row: a run of positive extent is flat (its two ends
         # are candidates), a single zero sample is a root
@@ -214,45 +236,40 @@ def find_candidates(
         run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
 
-    # sift again with the rulings' own lengths in place of the diameter (a sign change
-    # is always kept), then judge what is left, subdividing where a root pair may hide
-    r_low = grid.points[cols] - a0[rows]
-    r_high = grid.points[cols + 1] - a0[rows]
-    length_low, length_high = norm(r_low), norm(r_high)
-    reach = bounds.slope[cols] * (np.maximum(length_low, length_high) + bounds.chord[cols])
-    keep = (np.signbit(f_low) != np.signbit(f_high)) | (np.minimum(np.abs(f_low), np.abs(f_high)) <= reach)
-    if not keep.all():
-        rows, cols, f_low, f_high = rows[keep], cols[keep], f_low[keep], f_high[keep]
-        r_low, r_high = r_low[keep], r_high[keep]
-        length_low, length_high = length_low[keep], length_high[keep]
-    # f' there is det[R, Â', B''] = B'' · (R × Â'), gathered for these intervals only
-    ua = units[rows]
-    d_low = dot(cross(r_low, ua), grid.second[cols])
-    d_high = dot(cross(r_high, ua), grid.left_second[cols + 1])
+    # judge what the sift left (it used the rulings' own lengths), subdividing where a
+    # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
+    # (at both ends at once, B'' at the far end as seen from the left)
+    cols_next = cols + 1
+    seconds = np.array([grid.second.take(cols, axis=0), grid.left_second.take(cols_next, axis=0)])
+    d_ends = dot(cross(rulings, units.take(rows, axis=0)), seconds)
     none = np.empty(0)
-    first = Pieces(rows, grid.at[cols], grid.at[cols + 1], f_low, f_high, d_low, d_high, *([none] * 7))
+    f_low, f_high = f_ends
+    first = Pieces(rows, grid.at.take(cols), grid.at.take(cols_next), f_low, f_high, *d_ends, *([none] * 7))
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
-        c = cols[index]
+        c, c_next = cols[index], cols_next[index]
         return replace(
             pieces.take(index),
             # (a row's length is the same computed alone or among others)
             speed0=grid.speeds[c],
-            speed1=grid.speeds[c + 1],
+            speed1=grid.speeds[c_next],
             second0=grid.second_lengths[c],
-            second1=grid.left_second_lengths[c + 1],
+            second1=grid.left_second_lengths[c_next],
             bound3=bounds.third[c],
-            r0=length_low[index],
-            r1=length_high[index],
+            r0=lengths[0, index],
+            r1=lengths[1, index],
         )
 
     def evaluate_b(x: FloatArray) -> list[FloatArray]:
         return curve_b.derivatives(x, 2)
 
-    isolated = isolate(first, bounds.curvature[cols], evaluate_b, a0, units, ends)
+    isolated = isolate(first, bounds.curvature.take(cols), evaluate_b, a0, units, ends)
     rows = isolated.rows
-    point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
-    point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+    if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
+        point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
+        point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+    else:
+        point_rows, point_t = isolated.double_rows, isolated.double_t
 
     # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
     # each bracket's last evaluation (at its root, to rounding) is kept for what follows
@@ -261,43 +278,46 @@ def find_candidates(
     root_t = np.concatenate([np.empty(k), point_t]) if len(point_rows) else np.empty(k)
     b0, b1 = np.empty((2, len(root_rows), 3))
     f, f_t = np.empty((2, len(root_rows)))
-    speed_a, size_a = norm(a1), norm(a0)
+    # the stations of the roots, gathered once for every evaluation and what follows
+    a0_root, a1_root = a0.take(root_rows, axis=0), a1.take(root_rows, axis=0)
+    speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
 
-    def evaluate(
-        x: FloatArray, index: IntArray | slice, i: IntArray
-    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = curve_b.derivatives(x, 2)
-        plane = cross(c0 - a0[i], a1[i])  # det[R, A', X] = X · (R × A')
-        value, slope = dot(plane, c1), dot(plane, c2)
+        plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
+        value, slope = dot(plane, np.array([c1, c2]))  # (both products in one)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
-        return value, slope, rounding_scale(size_a[i], c0, speed_a[i], c1)
+        return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
 
     def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        if len(index) == k:  # all of them (the first step): a slice writes without gathering
-            return evaluate(x, slice(0, k), rows)
-        return evaluate(x, index, rows[index])
+        # all of them (the first step): a slice reads and writes without gathering
+        return evaluate(x, slice(0, k) if len(index) == k else index)
 
     if k:
         i = isolated
         start = cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
         refine_roots(coplanarity, i.low, i.high, i.f_low, start)
     if len(point_rows):
-        evaluate(root_t[k:], np.arange(k, len(root_rows)), point_rows)
+        evaluate(root_t[k:], slice(k, None))
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch
-    r = b0 - a0[root_rows]
-    f_s = det(r, a2[root_rows], b1)
+    # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
+    # once: each is the same sum of the same products)
+    r = b0 - a0_root
+    lefts = np.array([r, b1, r, r, a1_root, r])
+    rights = np.array([r, b1, a1_root, b1, b1, cross(a2.take(root_rows, axis=0), b1)])
+    rr, bb, ra, rb, ab, f_s = dot(lefts, rights)
+    aa = speed_a**2
     slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
-    rr, bb, aa = dot(r, r), dot(b1, b1), speed_a[root_rows] ** 2
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
     nan = np.full(len(root_rows), np.nan)
     candidates = Candidates(
-        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(r, a1[root_rows], b1, rr, aa, bb)
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(rr, aa, bb, ra, rb, ab)
     )
-    if len(corner_rows) == 0 and not flat.any():
+    if len(corner_rows) == 0 and not np.count_nonzero(flat):
         return _in_order(candidates)
 
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
@@ -314,6 +334,7 @@ def find_candidates(
     extra_rows = np.concatenate([corner_rows, flat_rows])
     extra_points = np.concatenate([corner_points, grid.points[flat_cols]])
     extra_tangents = np.concatenate([corner_tangents, grid.tangents[flat_cols]])
+    r, ta, tb = extra_points - a0[extra_rows], a1[extra_rows], extra_tangents
     corner_nan = np.full(len(corner_rows), np.nan)
     extra = Candidates(
         extra_rows,
@@ -324,7 +345,7 @@ def find_candidates(
         np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
         extra_points,
         extra_tangents,
-        _oriented(extra_points - a0[extra_rows], a1[extra_rows], extra_tangents),
+        _oriented(*dot(np.array([r, ta, tb, r, r, ta]), np.array([r, ta, tb, ta, tb, tb]))),
     )
     both = Candidates(
         *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
@@ -383,14 +404,6 @@ def _longest_monotone(t: FloatArray) -> BoolArray:
     return keep
 
 
-def _neighbours(partnered: BoolArray) -> tuple[IntArray, IntArray]:
-    """The stations with a partner, and where each other station falls among them: ``i``
-    such that its nearest partnered neighbours are ``stations[i − 1]`` and ``stations[i]``
-    (there is none before it when i = 0, none after it when i = len(stations))."""
-    stations = flatnonzero(partnered)
-    return stations, np.searchsorted(stations, flatnonzero(~partnered))
-
-
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
     """The chosen candidate per station (−1 where none) and the consistently oriented
     candidates."""
@@ -423,29 +436,33 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     missing = flatnonzero(gap)
     if len(missing) == 0:
         return
-    partnered, window = _neighbours(~gap)
-    # the neighbours' partners, padded with B's ends: [window] is the one before, [window + 1] after
-    padded = np.concatenate([[0.0], t[partnered], [1.0]])
-    lo, hi = padded[window], padded[window + 1]
+    # where each station without a partner falls among those with one: the partners of its
+    # two neighbours (padded with B's ends where there is none before or after it) and
+    # their arc lengths along A (padded with A's ends), one row for each neighbour
+    partnered = flatnonzero(~gap)
+    neighbours = np.searchsorted(partnered, missing) + _ENDS
+    t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
+    lo, hi = t_window
     length_a = strip.station_lengths
-    padded = np.concatenate([[0.0], length_a[partnered], [strip.map_a.total]])
-    a_lo, a_hi = padded[window], padded[window + 1]
+    a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
     span = a_hi - a_lo
-    fraction = np.where(span > 0, (length_a[missing] - a_lo) / np.where(span > 0, span, 1.0), 0.0)
-    b_lo, b_hi = strip.length_b(np.concatenate([lo, hi])).reshape(2, -1)
+    spans = span > 0
+    fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
+    b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
-    loft_warp = warp_angles(strip.a0[missing], points, strip.a1[missing], tangents)
+    a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
+    loft_warp = warp_angles(a0, points, a1, tangents)
     # else the least angle between the end normals among B's samples in the window
     grid = strip.grid
-    angle = normal_angles(strip.a0[missing], strip.a1[missing], grid.points, grid.tangents)
+    angle = normal_angles(a0, a1, grid.points, grid.tangents)
     inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
     angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
     best = np.argmin(angle, axis=1)
-    sample_ok = angle[np.arange(len(missing)), best] <= strip.tolerance
+    sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
     with np.errstate(invalid="ignore"):
         loft_ok = loft_warp <= strip.tolerance
-    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t[best], np.nan))
+    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])
