@@ -81,13 +81,13 @@ def extent(points: FloatArray) -> FloatArray:
     """Per-coordinate spread (max − min) of ``(n, 3)`` points: ``np.ptp(points, axis=0)``, bit
     for bit, several times faster on small arrays (reducing the rows of an (n, 3) array
     strides across it; its transposed copy reduces along contiguous rows)."""
-    columns = np.ascontiguousarray(points.T)
-    return columns.max(axis=1) - columns.min(axis=1)
+    low, high = bounds(points)
+    return high - low
 
 
 def bounds(points: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Per-coordinate ``(min, max)`` of ``(n, k)`` points, from one transposed copy: what
-    :func:`extent` and :func:`anchor` are made of, for a caller that needs both."""
+    """Per-coordinate ``(min, max)`` of ``(n, k)`` points, from one transposed copy (reducing
+    along contiguous rows): what :func:`extent` and :func:`anchor` are made of."""
     columns = np.ascontiguousarray(points.T)
     return columns.min(axis=1), columns.max(axis=1)
 
@@ -102,8 +102,8 @@ def anchor(points: FloatArray) -> FloatArray:
     curve at the origin. ``points - anchor(points)`` is exact where the extent is small
     against the coordinates (Sterbenz), so the local coordinates lose nothing.
     """
-    columns = np.ascontiguousarray(points.T)
-    return 0.5 * (columns.max(axis=1) + columns.min(axis=1))
+    low, high = bounds(points)
+    return 0.5 * (high + low)
 
 
 #: Ulps of the largest coordinate that a difference of computed positions may be off by.
