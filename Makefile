@@ -10,7 +10,7 @@ BIN    := $(VENV)/bin
 RUN_STAMP  := $(VENV)/.installed-run
 TEST_STAMP := $(VENV)/.installed-test
 CONSTRAINTS := constraints.txt
-EXAMPLE ?= resources/examples/kaohsiung-stadium.graph
+EXAMPLE ?= torsal/resources/examples/kaohsiung-stadium.graph
 
 # What Qt 6's xcb plugin, VTK's OpenGL and Xvfb need on a bare Debian 12.
 SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontconfig1 \

@@ -3,7 +3,7 @@ looks at the token inside its kernel and stops there."""
 
 from __future__ import annotations
 
-from engine.node import Node
+from torsal.engine.node import Node
 
 
 def cancel_at_look(node: Node, look: int) -> list[int]:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 #: The top-level packages whose imports are walked.
-PACKAGES = ("engine", "nodes", "app", "tools")
+PACKAGES = ("torsal", "tools")
 
 
 def module_name(path: Path, root: Path = ROOT) -> str:

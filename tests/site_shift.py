@@ -19,17 +19,17 @@ from typing import Any
 import numpy as np
 import trimesh
 
-from engine import graphfile
-from engine.graph import Graph
-from engine.solver import ERROR, Solver
-from engine.types import encode_value
-from engine.values import Plane, Point, Vector
-from nodes.catalogue import default_registry
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.surface_base import Surface
+from torsal.engine import graphfile
+from torsal.engine.graph import Graph
+from torsal.engine.solver import ERROR, Solver
+from torsal.engine.types import encode_value
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.catalogue import default_registry
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.surface_base import Surface
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = sorted((ROOT / "resources" / "examples").glob("*.graph"))
+EXAMPLES = sorted((ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
 REGISTRY = default_registry(plugins=False)
 
 SITE = (1e6, 2e6, 300.0)  # a national-grid site, in metres

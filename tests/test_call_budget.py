@@ -1,7 +1,7 @@
 """A list input multiplies a node's calls: the solver bounds them before the first call.
 
-Caps on inputs limit one call of ``solve``; :attr:`engine.node.Node.max_calls` and
-:attr:`~engine.node.Node.max_work` limit what a list of values (or of branches) turns
+Caps on inputs limit one call of ``solve``; :attr:`torsal.engine.node.Node.max_calls` and
+:attr:`~torsal.engine.node.Node.max_work` limit what a list of values (or of branches) turns
 them into, with a message naming the input that drives the count.
 """
 
@@ -11,12 +11,12 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from engine.node import LIST, MAX_CALLS, In, Node, NodeWarning, Out
-from engine.types import INTEGER, NUMBER
-from nodes.analysis.surface_analysis import SurfaceAnalysis
-from nodes.geometry.parametric_surface import cylinder
-from nodes.limits import MAX_NUMBERS
 from tests.nodes.helpers import out, run, tree
+from torsal.engine.node import LIST, MAX_CALLS, In, Node, NodeWarning, Out
+from torsal.engine.types import INTEGER, NUMBER
+from torsal.nodes.analysis.surface_analysis import SurfaceAnalysis
+from torsal.nodes.geometry.parametric_surface import cylinder
+from torsal.nodes.limits import MAX_NUMBERS
 
 
 class Counted(Node):
@@ -127,8 +127,8 @@ def test_surface_analysis_of_a_few_strips_at_the_default_density_runs():
 
 
 def _patching_inputs(scales: list[float]) -> dict[str, Any]:
-    from nodes.geometry.curves.line import Polyline
-    from nodes.geometry.unroll import unroll_surface
+    from torsal.nodes.geometry.curves.line import Polyline
+    from torsal.nodes.geometry.unroll import unroll_surface
 
     surface = cylinder(1.0, 2.0)
     panel = Polyline(np.array([[0, 0, 0], [0.3, 0, 0], [0.3, 0.2, 0], [0, 0.2, 0], [0, 0, 0]], dtype=float))
@@ -137,7 +137,7 @@ def _patching_inputs(scales: list[float]) -> dict[str, Any]:
 
 
 def test_surface_patching_over_200_small_scales_is_refused_at_once_naming_scale():
-    from nodes.patching.surface_patching import SurfacePatching
+    from torsal.nodes.patching.surface_patching import SurfacePatching
 
     result = run(SurfacePatching(), **_patching_inputs([0.1 + 0.001 * i for i in range(200)]))
     assert result.state == "error"
@@ -146,7 +146,7 @@ def test_surface_patching_over_200_small_scales_is_refused_at_once_naming_scale(
 
 
 def test_surface_patching_at_two_scales_runs():
-    from nodes.patching.surface_patching import SurfacePatching
+    from torsal.nodes.patching.surface_patching import SurfacePatching
 
     result = run(SurfacePatching(), **_patching_inputs([1.0, 2.0]))
     assert result.state == "ok"

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import shapely
 
-from app.headless import Run, run_file
-from engine.solver import ERROR
+from torsal.app.headless import Run, run_file
+from torsal.engine.solver import ERROR
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parent.parent / "torsal" / "resources" / "examples"
 
 
 def solved(name: str, *assignments: str) -> Run:
@@ -208,7 +208,7 @@ def test_kaohsiung_cut_sheets_export_headless_as_dxf_svg_and_3dm(tmp_path, monke
     import ezdxf
     import rhino3dm
 
-    from app.cli import main
+    from torsal.app.cli import main
 
     monkeypatch.chdir(tmp_path)
     graph = str(EXAMPLES / "kaohsiung-cut-sheets.graph")

@@ -11,11 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from app.cli import main
+from torsal.app.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLE = ROOT / "resources" / "examples" / "first-steps.graph"
-TORSAL = [sys.executable, "-m", "app.cli"]
+EXAMPLE = ROOT / "torsal" / "resources" / "examples" / "first-steps.graph"
+TORSAL = [sys.executable, "-m", "torsal.app.cli"]
 
 
 def run_json(capsys, *args: str) -> tuple[int, dict]:

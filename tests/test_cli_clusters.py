@@ -16,12 +16,12 @@ from pathlib import Path
 
 import pytest
 
-from app.cli import main
-from engine.graphfile import read_graph, write_graph
-from nodes.catalogue import default_registry
+from torsal.app.cli import main
+from torsal.engine.graphfile import read_graph, write_graph
+from torsal.nodes.catalogue import default_registry
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLE = ROOT / "resources" / "examples" / "first-steps.graph"
+EXAMPLE = ROOT / "torsal" / "resources" / "examples" / "first-steps.graph"
 WIDTH, COUNT, WAVE = 1.2, 12, 0.5  # first-steps' slider values
 
 
@@ -102,13 +102,13 @@ def test_a_path_that_reaches_nothing_exits_2_naming_it(two_instances, capsys, as
 
 
 def test_the_help_tells_how_to_reach_a_slider_in_a_cluster():
-    done = subprocess.run([sys.executable, "-m", "app.cli", "run", "--help"], capture_output=True, text=True,
-                          cwd=ROOT, check=True, timeout=60)
+    done = subprocess.run([sys.executable, "-m", "torsal.app.cli", "run", "--help"], capture_output=True,
+                          text=True, cwd=ROOT, check=True, timeout=60)
     assert "CLUSTER/ID=VALUE" in " ".join(done.stdout.split())
 
 
 def test_the_command_sets_a_slider_in_a_cluster_as_a_ci_user_would(two_instances):
-    command = [sys.executable, "-m", "app.cli", "run", str(two_instances), "--set", "panels/count=3",
+    command = [sys.executable, "-m", "torsal.app.cli", "run", str(two_instances), "--set", "panels/count=3",
                "--json"]
     done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert done.returncode == 0, done.stderr

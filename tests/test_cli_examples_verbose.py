@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from app.cli import main
+from torsal.app.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = ROOT / "resources" / "examples"
+EXAMPLES = ROOT / "torsal" / "resources" / "examples"
 FIRST_STEPS = EXAMPLES / "first-steps.graph"
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-GRAPH = ROOT / "resources" / "examples" / "kaohsiung-cut-sheets.graph"
+GRAPH = ROOT / "torsal" / "resources" / "examples" / "kaohsiung-cut-sheets.graph"
 NESTING = ["--set", "cut.Nesting=TrueShape", "--set", "cut.TimeBudget=2"]
 
 pytest.importorskip("spyrrow")
@@ -34,7 +34,7 @@ def read_all(fd: int) -> str:
 def test_run_in_a_pseudo_terminal_prints_the_nesting_progress():
     leader, follower = pty.openpty()
     done = subprocess.run(
-        [sys.executable, "-m", "app.cli", "run", str(GRAPH), *NESTING],
+        [sys.executable, "-m", "torsal.app.cli", "run", str(GRAPH), *NESTING],
         stdout=subprocess.PIPE, stderr=follower, cwd=ROOT, timeout=300, check=False,
     )
     os.close(follower)
@@ -48,7 +48,7 @@ def test_run_in_a_pseudo_terminal_prints_the_nesting_progress():
 
 def test_piped_stderr_gets_no_progress_line():
     done = subprocess.run(
-        [sys.executable, "-m", "app.cli", "run", str(GRAPH), *NESTING],
+        [sys.executable, "-m", "torsal.app.cli", "run", str(GRAPH), *NESTING],
         capture_output=True, text=True, cwd=ROOT, timeout=300, check=False,
     )
     assert done.returncode == 0, done.stderr

@@ -18,8 +18,8 @@ from tests.import_graph import PACKAGES, ROOT
 ALIASES = ("FloatArray", "IntArray", "BoolArray")
 DOT = ("dot", "_dot")
 HOMES = {
-    **{name: "nodes/geometry/array_types.py" for name in ALIASES},
-    **{name: "nodes/geometry/vec_ops.py" for name in DOT},
+    **{name: "torsal/nodes/geometry/array_types.py" for name in ALIASES},
+    **{name: "torsal/nodes/geometry/vec_ops.py" for name in DOT},
 }
 
 #: Copies still to replace by an import: (file, name). None left.
@@ -86,7 +86,7 @@ def test_every_known_copy_is_still_there(definitions):
         ("BoolArray = IntArray = NDArray[np.bool_]\n", {"BoolArray", "IntArray"}),
         ("def f():\n    def _dot(a, b):\n        return a @ b\n", {"_dot"}),
         ("_dot = lambda a, b: (a * b).sum(-1)\n", {"_dot"}),
-        ("from nodes.geometry.array_types import FloatArray\nx: FloatArray\n", set()),
+        ("from torsal.nodes.geometry.array_types import FloatArray\nx: FloatArray\n", set()),
         ("def products(a, b):\n    dot = a @ b\n    return dot\n", set()),
     ],
     ids=["assignment", "annotated", "chained", "nested-def", "lambda", "import-and-annotation", "result"],

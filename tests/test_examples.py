@@ -6,12 +6,12 @@ from pathlib import Path
 
 import pytest
 
-from engine import graphfile
-from engine.solver import ERROR, Solver
-from nodes.catalogue import default_registry
+from torsal.engine import graphfile
+from torsal.engine.solver import ERROR, Solver
+from torsal.nodes.catalogue import default_registry
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = sorted((ROOT / "resources" / "examples").glob("*.graph"))
+EXAMPLES = sorted((ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
 FIXTURES = sorted((ROOT / "tests" / "fixtures").glob("*.graph"))
 REGISTRY = default_registry(plugins=False)
 
@@ -41,7 +41,7 @@ def test_there_are_examples_to_check():
 def test_example_results_summarise_as_json(path: Path):
     """What ``torsal run FILE --json`` prints: every value summarised (a surface by its
     area, which once sent strips with fans of rulings to the slow generic cubature)."""
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
     run = run_file(path)
     summary = run.to_json()
@@ -50,9 +50,9 @@ def test_example_results_summarise_as_json(path: Path):
 
 def test_kaohsiung_strip_areas_in_the_json_match_a_fine_mesh_of_each_strip():
 
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
-    run = run_file(ROOT / "resources" / "examples" / "kaohsiung-stadium.graph")
+    run = run_file(ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph")
     listed = run.to_json()["nodes"]["strip"]["outputs"]["Surface"]
     areas = [item["area"] for branch in listed.values() for item in branch]
     strips = run.solver.results["strip"].outputs["Surface"].all_items()

@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-import nodes.expressions as expressions_module
-from nodes.expressions import (
+import torsal.nodes.expressions as expressions_module
+from torsal.nodes.expressions import (
     ExpressionError,
     compile_expression,
 )

@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from nodes.expressions import (
+from torsal.nodes.expressions import (
     MAX_DEPTH,
     MAX_LENGTH,
     MAX_NODES,

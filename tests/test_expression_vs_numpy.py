@@ -10,7 +10,7 @@ import numpy as np
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from nodes.expressions import (
+from torsal.nodes.expressions import (
     ExpressionError,
     compile_expression,
 )

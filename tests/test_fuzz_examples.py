@@ -1,6 +1,6 @@
 """Structure-aware fuzzing of the shipped examples (tools/fuzz_graphs.py).
 
-Mutants of every graph in resources/examples — node types swapped, values of the wrong
+Mutants of every graph in torsal/resources/examples — node types swapped, values of the wrong
 kind, huge and non-finite numbers, deep nesting, duplicate ids, wires to missing ports,
 cycles, unknown types, shuffled wires, crossed slider bounds — are loaded and solved in
 guarded worker processes. Each is refused with a GraphFileError or solves with every

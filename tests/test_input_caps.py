@@ -19,17 +19,17 @@ from collections import defaultdict
 
 import pytest
 
-from engine.values import Vector
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.catalogue import default_registry
-from nodes.curves.primitives import Circle
-from nodes.developable.cylindrical import CylindricalSurface
-from nodes.geometry.patching import TooManyPanels, staggered_pattern, tile_pattern
-from nodes.limits import MAX_PANELS
-from nodes.patching.staggered import StaggeredPattern
-from nodes.patching.surface_patching import SurfacePatching
 from tests.toolbox.direct_graphs import Chain
 from tools.fuzz_inputs import HOSTILE, InputCase, sweep
+from torsal.engine.values import Vector
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.catalogue import default_registry
+from torsal.nodes.curves.primitives import Circle
+from torsal.nodes.developable.cylindrical import CylindricalSurface
+from torsal.nodes.geometry.patching import TooManyPanels, staggered_pattern, tile_pattern
+from torsal.nodes.limits import MAX_PANELS
+from torsal.nodes.patching.staggered import StaggeredPattern
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 # Guards, not benchmarks: the slowest case takes about 1.2 s (a Plot drawn with
 # matplotlib on a loaded machine) and the largest about 31 MB (the same Plot).

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = sorted(p.name for p in (ROOT / "resources" / "examples").glob("*.graph"))
+EXAMPLES = sorted(p.name for p in (ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
 INSTALL_LINE = "pip install 'torsal[gui]'"
 
 
@@ -35,7 +35,14 @@ def wheel(tmp_path_factory) -> Path:
 def test_the_wheel_contains_every_example_graph(wheel):
     names = set(zipfile.ZipFile(wheel).namelist())
     assert EXAMPLES
-    assert {f"resources/examples/{name}" for name in EXAMPLES} <= names
+    assert {f"torsal/resources/examples/{name}" for name in EXAMPLES} <= names
+
+
+def test_the_wheel_installs_one_namespace(wheel):
+    """Everything lives under ``torsal``: no generic top-level ``app``, ``engine``, ``nodes``
+    or ``resources`` package to shadow (or be shadowed by) someone else's."""
+    tops = {name.split("/")[0] for name in zipfile.ZipFile(wheel).namelist()}
+    assert {top for top in tops if not top.endswith(".dist-info")} == {"torsal"}
 
 
 def test_the_wheel_carries_the_mit_license(wheel):
@@ -51,9 +58,9 @@ def test_torsal_examples_lists_the_examples_from_an_installed_wheel(wheel, tmp_p
     done = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "--quiet", "--target",
                            str(site), str(wheel)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-3000:]
-    script = ("import sys, app\n"
-              f"assert app.__file__.startswith({str(site)!r}), app.__file__\n"
-              "from app.cli import main\n"
+    script = ("import sys, torsal\n"
+              f"assert torsal.__file__.startswith({str(site)!r}), torsal.__file__\n"
+              "from torsal.app.cli import main\n"
               "sys.exit(main(['examples']))\n")
     env = {**os.environ, "PYTHONPATH": str(site)}
     listed = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=tmp_path,
@@ -65,7 +72,7 @@ def test_torsal_examples_lists_the_examples_from_an_installed_wheel(wheel, tmp_p
 def test_torsal_gui_without_pyside6_exits_2_with_the_install_line(tmp_path):
     script = ("import sys\n"
               "sys.modules['PySide6'] = None  # as if PySide6 were not installed\n"
-              "from app.cli import main\n"
+              "from torsal.app.cli import main\n"
               "sys.exit(main(['gui', '--example', 'first-steps']))\n")
     env = {**os.environ, "DISPLAY": os.environ.get("DISPLAY") or ":99"}
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=ROOT, env=env,
@@ -77,7 +84,7 @@ def test_torsal_gui_without_pyside6_exits_2_with_the_install_line(tmp_path):
 
 def test_torsal_gui_opens_an_example_by_name_headless_without_a_display(tmp_path):
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
-    done = subprocess.run([sys.executable, "-m", "app.cli", "gui", "--example", "first-steps"],
+    done = subprocess.run([sys.executable, "-m", "torsal.app.cli", "gui", "--example", "first-steps"],
                           capture_output=True, text=True, cwd=ROOT, env=env, timeout=120)
     assert done.returncode == 0, done.stderr
     assert "first-steps.graph: solved 8 nodes" in done.stdout

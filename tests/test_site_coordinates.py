@@ -28,7 +28,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine import graphfile
 from tests.site_shift import (
     EXAMPLES,
     FAR,
@@ -40,6 +39,7 @@ from tests.site_shift import (
     shifted,
     solve,
 )
+from torsal.engine import graphfile
 
 #: Relative accuracy asked of the moved model.
 BOUND = 1e-9
@@ -128,7 +128,7 @@ def _check_warps(origin, moved, node_id: str, offset: tuple[float, float, float]
     twice that. On the Möbius band (h = 0.13 m, L = 0.6 m) that is 3.9e-6 rad; the solve
     moves it by 9.6e-7. And the moved angles are exactly those the same ends give at
     the origin (moved back, which is exact): the warp adds no error of its own."""
-    from nodes.geometry.developable.warp import warp_of_rulings
+    from torsal.nodes.geometry.developable.warp import warp_of_rulings
 
     a, b = _ends(origin, node_id)
     a_far, b_far = _ends(moved, node_id)
@@ -234,7 +234,7 @@ def _horseshoe(offset: tuple[float, float, float]) -> np.ndarray:
 def test_a_curve_at_site_coordinates_measures_its_length_with_the_same_work_as_at_the_origin():
     """The length table refines as at the origin (its intervals are counted, not timed):
     from 1e5 m it once refined to 200,000 intervals, 2–3 s per curve."""
-    from nodes.geometry.curves.interpolated import InterpolatedCurve
+    from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
 
     at_origin = InterpolatedCurve(_horseshoe((0.0, 0.0, 0.0)))
     for offset in ((1e5, 0.0, 0.0), SITE, FAR):
@@ -247,10 +247,10 @@ def test_a_curve_at_site_coordinates_measures_its_length_with_the_same_work_as_a
 def test_a_loft_at_site_coordinates_has_the_area_of_the_loft_at_the_origin():
     """The ruled surface between a polyline and a circle, integrated about its rails'
     anchors: the same area (and the centroid moved) wherever it sits."""
-    from nodes.geometry.curves.conics import Circle
-    from nodes.geometry.curves.line import Polyline
-    from nodes.geometry.ruled import RuledSurface
-    from nodes.geometry.vectors import Plane as KernelPlane
+    from torsal.nodes.geometry.curves.conics import Circle
+    from torsal.nodes.geometry.curves.line import Polyline
+    from torsal.nodes.geometry.ruled import RuledSurface
+    from torsal.nodes.geometry.vectors import Plane as KernelPlane
 
     def loft(offset: np.ndarray) -> RuledSurface:
         rail = Polyline(_horseshoe(tuple(np.add(offset, (0.0, 0.0, 10.0)))))
@@ -270,7 +270,7 @@ def _wavy_grid(offset: tuple[float, float, float]) -> np.ndarray:
 
 
 def test_a_nurbs_surface_at_site_coordinates_has_the_area_of_the_one_at_the_origin():
-    from nodes.geometry.nurbs_surface import NurbsSurface
+    from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 
     area = NurbsSurface.from_points(_wavy_grid((0.0, 0.0, 0.0))).area()
     for offset in (SITE, FAR):
@@ -281,9 +281,9 @@ def test_a_nurbs_surface_at_site_coordinates_has_the_area_of_the_one_at_the_orig
 def test_a_curve_crosses_a_plane_at_site_coordinates_where_it_does_at_the_origin():
     """One crossing of a wave with the plane x = 2 through its middle, found at the same
     parameter wherever the two sit (the distances are measured from the curve's anchor)."""
-    from nodes.geometry.curves.interpolated import InterpolatedCurve
-    from nodes.geometry.intersections import curve_plane_intersections
-    from nodes.geometry.vectors import Plane as KernelPlane
+    from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
+    from torsal.nodes.geometry.intersections import curve_plane_intersections
+    from torsal.nodes.geometry.vectors import Plane as KernelPlane
 
     wave = np.array([[0, 0, 0], [1, 1, 0], [2, -1, 0], [3, 0.5, 0], [4, 0, 0]], dtype=float)
 
@@ -302,7 +302,7 @@ def test_a_curve_given_by_a_function_at_site_coordinates_stops_refining_at_its_r
     """Its derivatives are finite differences of positions rounded to 1e-11 m at 1e5 m:
     the length table stops where halving no longer helps (it went on to 735,541 entries
     and 100 s), and the length is as accurate as that rounding allows."""
-    from nodes.geometry.curves.parametric import ParametricCurve
+    from torsal.nodes.geometry.curves.parametric import ParametricCurve
 
     def helix(offset: float) -> ParametricCurve:
         return ParametricCurve(
@@ -327,7 +327,7 @@ def test_a_surface_given_by_a_function_at_site_coordinates_measures_its_area_to_
     within it of ∫∫ √(1 + u² + v²) by scipy's dblquad."""
     from scipy.integrate import dblquad
 
-    from nodes.geometry.parametric_surface import ParametricSurface
+    from torsal.nodes.geometry.parametric_surface import ParametricSurface
 
     def hypar(offset: float) -> ParametricSurface:
         def place(u, v):

@@ -1,4 +1,4 @@
-"""Write the example graphs in ``resources/examples/`` through the engine's own API.
+"""Write the example graphs in ``torsal/resources/examples/`` through the engine's own API.
 
 Run ``.venv/bin/python tools/build_examples.py [NAME ...]`` after changing a node's
 ports; the files are data and are committed, this script only documents how they were
@@ -13,11 +13,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from engine.graph import Graph, Group
-from engine.graphfile import write_graph
-from nodes.catalogue import default_registry
+from torsal.engine.graph import Graph, Group
+from torsal.engine.graphfile import write_graph
+from torsal.nodes.catalogue import default_registry
 
-OUT = Path(__file__).resolve().parent.parent / "resources" / "examples"
+OUT = Path(__file__).resolve().parent.parent / "torsal" / "resources" / "examples"
 REGISTRY = default_registry(plugins=False)
 COLUMN, ROW = 260.0, 110.0
 

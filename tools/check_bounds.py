@@ -28,7 +28,7 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("engine", "nodes", "app")
+PACKAGES = ("torsal.engine", "torsal.nodes", "torsal.app")
 
 _IMPORT_ALL = r"""
 import importlib, pkgutil, sys, traceback
@@ -39,7 +39,7 @@ for top in {packages!r}:
     package = importlib.import_module(top)
     names = [top] + [m.name for m in pkgutil.walk_packages(package.__path__, top + ".")]
     for name in names:
-        if skip_gui and name.startswith("app.gui"):
+        if skip_gui and name.startswith("torsal.app.gui"):
             continue
         count += 1
         try:
@@ -99,14 +99,14 @@ def check(folder: Path, gui: bool = False) -> int:
     # From a folder outside the checkout, so the modules come from the installed wheel.
     failures += bool(_step("import every module", [str(python), "-c", code], cwd=folder).returncode)
     torsal = folder / "venv" / "bin" / "torsal"
-    for example in sorted((ROOT / "resources" / "examples").glob("*.graph")):
+    for example in sorted((ROOT / "torsal" / "resources" / "examples").glob("*.graph")):
         run = _step(f"torsal run {example.name}", [str(torsal), "run", str(example)], cwd=folder)
         failures += run.returncode not in (0,)
     exports = {"first-steps": ["heights.Result=heights.csv", "heights.Result=heights.json"],
                "textbook-ruled-surfaces": ["cylinder.Surface=cylinder.3dm", "helicoid.Surface=helicoid.obj"],
                "kaohsiung-cut-sheets": ["cut.Layout=roof.dxf", "cut.Layout=roof.svg"]}
     for name, requests in exports.items():
-        command = [str(torsal), "run", str(ROOT / "resources" / "examples" / f"{name}.graph")]
+        command = [str(torsal), "run", str(ROOT / "torsal" / "resources" / "examples" / f"{name}.graph")]
         for request in requests:
             command += ["--export", request.replace("=", f"={folder}/", 1)]
         run = _step(f"torsal run {name} --export …", command, cwd=folder)

@@ -17,9 +17,9 @@ change what it *means*, the way a hostile or corrupted file would:
 - ``wire_shuffle``: a wire is removed, duplicated, reversed or given bogus modifiers;
 - ``slider_bounds``: a slider's min, max and value are crossed or made huge.
 
-Each mutant applies one to three mutations to an example from ``resources/examples`` and
+Each mutant applies one to three mutations to an example from ``torsal/resources/examples`` and
 is loaded and solved in a guarded worker (tools/fuzz_pool.py). The rule: a file is
-refused with a :class:`~engine.graphfile.GraphFileError`, or it loads and every node
+refused with a :class:`~torsal.engine.graphfile.GraphFileError`, or it loads and every node
 ends with a state and messages — no exception a node did not mean, no run over
 ``seconds``, no peak memory over ``memory``. Mutants are made from a seed, so a run is
 reproducible; a failing mutant is written to ``--out`` to be run again with
@@ -43,7 +43,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parent.parent / "torsal" / "resources" / "examples"
 
 #: The kinds of mutation, those that keep a file loadable listed twice (cycles, duplicate
 #: ids and missing ports are always refused on load, so they need fewer draws).
@@ -103,7 +103,7 @@ def examples() -> dict[str, str]:
 
 @cache
 def _type_ids() -> tuple[str, ...]:
-    from nodes.catalogue import default_registry
+    from torsal.nodes.catalogue import default_registry
 
     return tuple(cls.type_id for cls in default_registry(plugins=False))
 
@@ -167,7 +167,7 @@ def _deep(rng: random.Random) -> Raw:
 def _fitting_types(data: dict, node: dict) -> list[str]:
     """Other node types with every port ``node``'s wires use (so the file still loads and
     the swapped node is solved with data meant for another)."""
-    from nodes.catalogue import default_registry
+    from torsal.nodes.catalogue import default_registry
 
     ins = {w["to"][1] for w in data.get("wires", []) if w["to"][0] == node.get("id")}
     outs = {w["from"][1] for w in data.get("wires", []) if w["from"][0] == node.get("id")}
@@ -320,10 +320,10 @@ def make(mutant: Mutant) -> tuple[str, list[str]]:
 
 def run_mutant(mutant: Mutant) -> dict[str, Any]:
     """Load and solve ``mutant``, describe its outputs, then save it (in a guarded worker)."""
-    from engine import graphfile
-    from engine.graphfile import GraphFileError
-    from nodes.catalogue import default_registry
     from tools.fuzz_pool import solve_guarded
+    from torsal.engine import graphfile
+    from torsal.engine.graphfile import GraphFileError
+    from torsal.nodes.catalogue import default_registry
 
     text, _ = make(mutant)
     try:

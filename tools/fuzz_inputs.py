@@ -46,7 +46,7 @@ class InputCase:
 
 def cases() -> list[InputCase]:
     """Every node type's numeric inputs and settings, each with every hostile value."""
-    from nodes.catalogue import default_registry
+    from torsal.nodes.catalogue import default_registry
 
     found = []
     for cls in default_registry(plugins=False):
@@ -63,10 +63,10 @@ def cases() -> list[InputCase]:
 @cache
 def _supplies() -> dict[str, Any]:
     """Small valid values to wire into inputs that have no default (made by the nodes)."""
-    from engine.graph import Graph
-    from engine.solver import Solver
-    from engine.values import Point
-    from nodes.catalogue import default_registry
+    from torsal.engine.graph import Graph
+    from torsal.engine.solver import Solver
+    from torsal.engine.values import Point
+    from torsal.nodes.catalogue import default_registry
 
     registry = default_registry(plugins=False)
     graph = Graph()
@@ -101,7 +101,7 @@ def _supplies() -> dict[str, Any]:
 
     import trimesh
 
-    from engine.values import Plane, Vector
+    from torsal.engine.values import Plane, Vector
 
     curve = first("a", "Curve")
     surface = first("strip", "Surface")
@@ -165,8 +165,8 @@ def _supply_for(type_id: str, port: Any) -> Any:
 
 
 def _supply_node(value: Any, type_name: str, access: Any) -> Any:
-    from engine.node import Node, Out
-    from engine.types import get_type
+    from torsal.engine.node import Node, Out
+    from torsal.engine.types import get_type
 
     class Supply(Node):
         type_id = "fuzz.Supply"
@@ -180,9 +180,9 @@ def _supply_node(value: Any, type_name: str, access: Any) -> Any:
 
 def build(case: InputCase) -> tuple[Any, str]:
     """The one-node graph of ``case`` (with its supplies wired in) and the node's id."""
-    from engine.graph import Graph
-    from engine.node import ITEM, LIST
-    from nodes.catalogue import default_registry
+    from torsal.engine.graph import Graph
+    from torsal.engine.node import ITEM, LIST
+    from torsal.nodes.catalogue import default_registry
 
     registry = default_registry(plugins=False)
     graph = Graph()
@@ -235,7 +235,7 @@ def sweep(workers: int = 2, seconds: float = 10.0, memory_bytes: int = 1 << 30,
 
 def at_caps() -> list[InputCase]:
     """Every capped input at its cap (from nodes/limits.py): the cap itself must be safe."""
-    from nodes import limits
+    from torsal.nodes import limits
 
     capped = [  # (cap, inputs): several caps have equal values
         (limits.MAX_RULINGS, [(f"developable.{name}", "Segments") for name in (

@@ -141,11 +141,11 @@ def init_worker(memory_bytes: int, cwd: str | None, preload: tuple[str, ...]) ->
 
     for module in preload:
         importlib.import_module(module)
-    import engine.solver
+    import torsal.engine.solver
 
-    if not getattr(engine.solver._describe_exception, "_guarded", False):
-        engine.solver._describe_exception = _record_exception(engine.solver._describe_exception)
-        engine.solver._describe_exception._guarded = True  # type: ignore[attr-defined]
+    if not getattr(torsal.engine.solver._describe_exception, "_guarded", False):
+        torsal.engine.solver._describe_exception = _record_exception(torsal.engine.solver._describe_exception)
+        torsal.engine.solver._describe_exception._guarded = True  # type: ignore[attr-defined]
     if cwd:
         os.chdir(cwd)
     if memory_bytes > 0:
@@ -197,7 +197,7 @@ class GuardedPool:
     """
 
     def __init__(self, workers: int = 2, memory_bytes: int = 1 << 30, seconds: float = 20.0,
-                 cwd: str | None = None, preload: Iterable[str] = ("nodes.catalogue",)) -> None:
+                 cwd: str | None = None, preload: Iterable[str] = ("torsal.nodes.catalogue",)) -> None:
         self.workers = max(1, workers)
         self.memory_bytes = memory_bytes
         self.seconds = seconds
@@ -256,7 +256,7 @@ class GuardedPool:
 def node_modules() -> tuple[str, ...]:
     """The modules of every installed node type, for a pool to import once before forking
     its workers (so a case's time is its own, not the first import of its palette's)."""
-    from nodes.catalogue import default_registry
+    from torsal.nodes.catalogue import default_registry
 
     return tuple(sorted({cls.__module__ for cls in default_registry(plugins=False)}))
 
@@ -272,8 +272,8 @@ def solve_guarded(graph: Any, summarize: bool = False) -> dict[str, Any]:
     """
     import json
 
-    from engine.solver import Solver
-    from engine.types import summarize_value
+    from torsal.engine.solver import Solver
+    from torsal.engine.types import summarize_value
 
     solver = Solver(graph)
     report = solver.solve()

@@ -22,12 +22,12 @@ from __future__ import annotations
 import math
 import time
 
-from nodes.geometry.curves import Circle
-from nodes.geometry.nurbs_surface import Loft
-from nodes.geometry.surface_base import Surface
-from nodes.geometry.vectors import Plane
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.developable.test_ruled_area import circle_loft, simpson_area, twisted_loft
+from torsal.nodes.geometry.curves import Circle
+from torsal.nodes.geometry.nurbs_surface import Loft
+from torsal.nodes.geometry.surface_base import Surface
+from torsal.nodes.geometry.vectors import Plane
 
 #: The accuracy test both rules must pass: relative error against the true area.
 ACCURACY = 1e-6

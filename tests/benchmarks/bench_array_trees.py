@@ -19,11 +19,11 @@ from collections.abc import Callable
 
 import numpy as np
 
-from engine.graph import Graph
-from engine.solver import Solver
-from nodes.maths.expression import Expression
-from nodes.maths.sequences import Series
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.maths.sequences import Series
 
 MILLION = 1_000_000
 #: the five formulas, each fed by the one before; y is 0.5 throughout

@@ -43,24 +43,24 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.datatree import DataTree
-from engine.graph import Graph
-from engine.graphfile import read_graph
-from engine.node import Cancelled, Node
-from engine.solver import Solver
-from nodes.analysis.bending import BendingCheck
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.catalogue import default_registry
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.surfaces.analysis import Area
 from tests.benchmarks.check_gaps import RecordingToken, check_gaps
 from tests.benchmarks.timing import check_interval_block, duration
 from tests.developable.surfaces import PAIRS
 from tests.geometry.test_area_knot_grid import bumpy_net
 from tests.nodes.helpers import Source
+from torsal.engine.datatree import DataTree
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import read_graph
+from torsal.engine.node import Cancelled, Node
+from torsal.engine.solver import Solver
+from torsal.nodes.analysis.bending import BendingCheck
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.catalogue import default_registry
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.surfaces.analysis import Area
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 
 
 class CheckingOnly(Node):

@@ -30,8 +30,8 @@ FRESH = """
 import gc, json, statistics, threading, time
 from pathlib import Path
 import numpy as np
-from engine.graphfile import read_graph
-from nodes.catalogue import default_registry
+from torsal.engine.graphfile import read_graph
+from torsal.nodes.catalogue import default_registry
 from tests.benchmarks.check_gaps import check_gaps
 
 full = []
@@ -42,7 +42,7 @@ def watch(phase, info):
     elif info["generation"] == 2:
         full.append(time.perf_counter() - start["t"])
 gc.callbacks.append(watch)
-graph = read_graph(Path("resources/examples/rationalise-roof.graph"), default_registry(plugins=False))
+graph = read_graph(Path("torsal/resources/examples/rationalise-roof.graph"), default_registry(plugins=False))
 gaps = check_gaps(graph, stop_after=3.0)["cut"]
 from tests.benchmarks.timing import check_interval_block
 block = check_interval_block()

@@ -39,12 +39,12 @@ import pyvista as pv  # noqa: E402
 import trimesh  # noqa: E402
 from scipy.interpolate import NdBSpline  # noqa: E402
 
-from nodes.geometry.curvature import vertex_areas  # noqa: E402
-from nodes.geometry.mesh_surface import MeshSurface  # noqa: E402
-from nodes.geometry.nurbs_surface import NurbsSurface  # noqa: E402
-from nodes.geometry.parametric_surface import ParametricSurface, torus  # noqa: E402
-from nodes.geometry.surface_base import Surface  # noqa: E402
 from tests.benchmarks.timing import ratio_to_baseline  # noqa: E402
+from torsal.nodes.geometry.curvature import vertex_areas  # noqa: E402
+from torsal.nodes.geometry.mesh_surface import MeshSurface  # noqa: E402
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface  # noqa: E402
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, torus  # noqa: E402
+from torsal.nodes.geometry.surface_base import Surface  # noqa: E402
 
 N = 200
 REPEATS = 7

@@ -33,8 +33,8 @@ from scipy.integrate import quad
 from scipy.interpolate import BSpline, make_interp_spline
 from scipy.spatial import cKDTree
 
-from nodes.geometry.curves import Circle, InterpolatedCurve, NurbsCurve, Polyline
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.nodes.geometry.curves import Circle, InterpolatedCurve, NurbsCurve, Polyline
 
 RNG = np.random.default_rng(0)
 MILLION = np.linspace(0.0, 1.0, 1_000_000)

@@ -23,17 +23,17 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from engine.datatree import Triples
-from engine.graph import Graph
-from engine.node import Node
-from engine.solver import Solver
-from nodes.lists.culling import CullPattern
-from nodes.lists.items import ListItem, ListLength
-from nodes.lists.ordering import Reverse, Shift, Sort
-from nodes.maths.random_numbers import Random
-from nodes.maths.sequences import Series
-from nodes.params.points import Point as PointNode
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.engine.datatree import Triples
+from torsal.engine.graph import Graph
+from torsal.engine.node import Node
+from torsal.engine.solver import Solver
+from torsal.nodes.lists.culling import CullPattern
+from torsal.nodes.lists.items import ListItem, ListLength
+from torsal.nodes.lists.ordering import Reverse, Shift, Sort
+from torsal.nodes.maths.random_numbers import Random
+from torsal.nodes.maths.sequences import Series
+from torsal.nodes.params.points import Point as PointNode
 
 MILLION = 1_000_000
 PATTERN = [True, False, True]

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from nodes.geometry.unroll import unroll_rulings
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.unroll.test_development_map_index import cone_to_apex
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 
 def _points(m, count: int, seed: int) -> np.ndarray:

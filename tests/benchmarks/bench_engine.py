@@ -15,11 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.graph import Graph
-from engine.node import In, Node, Out, Setting
-from engine.solver import Solver
-from engine.types import GENERIC, NUMBER
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.engine.graph import Graph
+from torsal.engine.node import In, Node, Out, Setting
+from torsal.engine.solver import Solver
+from torsal.engine.types import GENERIC, NUMBER
 
 ROOT = Path(__file__).resolve().parents[2]
 REPEATS = 7

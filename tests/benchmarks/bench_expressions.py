@@ -16,12 +16,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.graph import Graph
-from engine.solver import Solver
-from nodes.expressions import ExpressionError, compile_expression
-from nodes.maths.expression import Expression
-from nodes.maths.sequences import Series
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.nodes.expressions import ExpressionError, compile_expression
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.maths.sequences import Series
 
 MILLION = 1_000_000
 

@@ -22,11 +22,11 @@ The bars, each a ratio to a baseline measured in the same run (see
 
 from __future__ import annotations
 
-from engine import graphfile
-from engine.graph import Graph
-from engine.solver import Solver
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.engine.nodekit import make_registry
+from torsal.engine import graphfile
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
 
 REGISTRY = make_registry()
 SIDE = 100  # the lattice is SIDE × SIDE nodes

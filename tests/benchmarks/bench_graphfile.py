@@ -29,10 +29,10 @@ from pathlib import Path
 
 import pytest
 
-from engine import graphfile
-from engine.solver import Solver
 from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
 from tests.engine.nodekit import make_registry
+from torsal.engine import graphfile
+from torsal.engine.solver import Solver
 
 REGISTRY = make_registry()
 
@@ -154,7 +154,7 @@ def test_a_file_of_1e308_tokens_loads_within_3x_of_one_of_short_numbers(short, b
 
 
 ROOT = Path(__file__).resolve().parents[2]
-CHECK = [sys.executable, "-m", "app.cli", "check"]
+CHECK = [sys.executable, "-m", "torsal.app.cli", "check"]
 
 
 def check(path: Path | str, expected_code: int) -> None:
@@ -166,7 +166,7 @@ def check(path: Path | str, expected_code: int) -> None:
 def test_torsal_check_refuses_a_device_a_fifo_and_a_folder_as_fast_as_it_checks_a_small_file(tmp_path):
     fifo = tmp_path / "pipe.graph"
     os.mkfifo(fifo)
-    example = ROOT / "resources" / "examples" / "first-steps.graph"
+    example = ROOT / "torsal" / "resources" / "examples" / "first-steps.graph"
     refusals = {"/dev/zero": "/dev/zero", "a FIFO": fifo, "a folder": tmp_path}
     functions = [lambda: check(example, 0)] + [lambda p=p: check(p, 2) for p in refusals.values()]
     rounds = timed_rounds(functions, 3)

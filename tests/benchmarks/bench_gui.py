@@ -51,13 +51,13 @@ if REASON:
     pytest.skip(REASON, allow_module_level=True)
 
 
-from app.headless import run_file  # noqa: E402
 from tests.benchmarks.from_history import extract_tree  # noqa: E402
 from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
 from tests.gui.fixtures_gui import EXAMPLES, FIXTURES  # noqa: E402
 from tests.gui.test_live_solving import press_escape, start_long_solve, watch_event_loop  # noqa: E402
 from tests.gui.test_slider_drag_rate import drag_main_slider  # noqa: E402
 from tests.gui.test_startup import start_app  # noqa: E402
+from torsal.app.headless import run_file  # noqa: E402
 
 START_LIMIT_S = 3.0
 LOOP_LIMIT_MS = 100.0
@@ -112,7 +112,7 @@ def headless_resolve_seconds(repeats: int = 7) -> float:
 _REFERENCE_SOLVE = """
 import statistics, sys, time
 sys.path.insert(0, sys.argv[1])
-from app.headless import run_file
+from torsal.app.headless import run_file
 run = run_file(sys.argv[3])
 times = []
 for index in range(int(sys.argv[2]) + 1):

@@ -33,12 +33,12 @@ if REASON:
 
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
-from engine.graph import Graph  # noqa: E402
-from engine.graphfile import write_graph  # noqa: E402
-from engine.registry import Registry  # noqa: E402
 from tests.benchmarks.timing import duration  # noqa: E402
 from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
 from tests.gui.fixtures_gui import wait_solved  # noqa: E402
+from torsal.engine.graph import Graph  # noqa: E402
+from torsal.engine.graphfile import write_graph  # noqa: E402
+from torsal.engine.registry import Registry  # noqa: E402
 
 NODES = 10_000
 PASTED = 1_000

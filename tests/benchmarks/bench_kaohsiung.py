@@ -17,12 +17,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from app.headless import run_file
-from nodes.geometry.curves import NurbsCurve
-from nodes.geometry.developable import ruling_developable
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.app.headless import run_file
+from torsal.nodes.geometry.curves import NurbsCurve
+from torsal.nodes.geometry.developable import ruling_developable
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-stadium.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "kaohsiung-stadium.graph"
+)
 #: Measured 1.07–1.24× (135–146 ms against 99–123 ms, on a loaded machine).
 BAR = 2.0
 

@@ -27,15 +27,15 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from nodes.geometry.closest import nearest_sample
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.geometry.roots import safeguarded_newton
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.geometry.test_area_knot_grid import bumpy_net, reference_area
 from tests.geometry.test_nearest_sample import helix_samples
 from tests.geometry.test_roots import cubic_problems
 from tests.geometry.test_triangle_search import queries, thin_strip
+from torsal.nodes.geometry.closest import nearest_sample
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.roots import safeguarded_newton
 
 
 def test_bumpy_nurbs_surface_area_within_5x_a_dense_scipy_gauss_product():

@@ -30,10 +30,10 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.geometry.curves import Polyline
-from nodes.io.formats import cutfiles
+from torsal.nodes.geometry.curves import Polyline
+from torsal.nodes.io.formats import cutfiles
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 #: Seconds of true-shape nesting per part set (the Kaohsiung strips: the example graph's TimeBudget).
 BUDGET = {"kaohsiung": 45.0, "panels": 20.0, "random strips": 30.0}
 #: True-shape usage over shelf usage, at least, per set (the panels are mostly rectangles,
@@ -43,7 +43,7 @@ ROWS: list[str] = []
 
 
 def _example_items(name: str, node: str, port: str) -> tuple[list, str]:
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
     run = run_file(EXAMPLES / name)
     items = run.solver.result(node).outputs[port].all_items() if node in run.solver.results else []
@@ -123,7 +123,7 @@ def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_70_percent_of_the_s
     were written."""
     import json
 
-    from app.cli import main
+    from torsal.app.cli import main
 
     started = time.perf_counter()
     assert main(["run", str(EXAMPLES / "kaohsiung-cut-sheets.graph"), "--set", "cut.Nesting=TrueShape",

@@ -21,9 +21,9 @@ import time
 import numpy as np
 import pytest
 
-from nodes.geometry.developable.guided import IsoBoundaries
-from nodes.geometry.developable.rationalise import boundary_family, rationalise, strip_between
 from tests.toolbox.test_rationalise import DESIGNS, kaohsiung_roof
+from torsal.nodes.geometry.developable.guided import IsoBoundaries
+from torsal.nodes.geometry.developable.rationalise import boundary_family, rationalise, strip_between
 
 TOLERANCES = (0.01, 0.02, 0.05)
 

@@ -29,11 +29,11 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.developable import ruling_developable, station_parameters
 from tests.benchmarks.from_history import load_package
 from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
 from tests.developable.surfaces import PAIRS, Pair
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable import ruling_developable, station_parameters
 
 CANDIDATES = 5000
 #: Candidates per station in each finer pass of the refined brute force, across four

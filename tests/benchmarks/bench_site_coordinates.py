@@ -18,9 +18,9 @@ from pathlib import Path
 
 import pytest
 
-from engine import graphfile
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.site_shift import EXAMPLES, FAR, REGISTRY, SITE, shifted, solve
+from torsal.engine import graphfile
 
 REPEATS = 5
 BAR = 2.0

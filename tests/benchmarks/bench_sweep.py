@@ -23,15 +23,17 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from app.explore.executors import DaskExecutor
-from app.explore.samplers import grid
-from app.explore.study import open_study
-from app.explore.sweep import run_sweep
-from app.headless import open_graph
-from engine.solver import Solver
 from tests.benchmarks.timing import duration
+from torsal.app.explore.executors import DaskExecutor
+from torsal.app.explore.samplers import grid
+from torsal.app.explore.study import open_study
+from torsal.app.explore.sweep import run_sweep
+from torsal.app.headless import open_graph
+from torsal.engine.solver import Solver
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-stadium.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "kaohsiung-stadium.graph"
+)
 VARY = ["shift=0:4:5", "scale=0.4:0.95:40"]
 COLLECT = ["strips.Result", "strip.Valid:mean"]
 

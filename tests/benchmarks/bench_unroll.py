@@ -23,11 +23,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from nodes.geometry.paper_strip import paper_strip
-from nodes.geometry.unroll import unroll_rulings
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.toolbox.test_development_locate import helix_tangent, inside_points
 from tests.unroll.test_unroll_rulings import helix_tangent_rulings
+from torsal.nodes.geometry.paper_strip import paper_strip
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 
 def test_ten_thousand_rulings_unroll_within_25x_numpy_measuring_their_triangles():

@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.values import Vector
-from nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 from tests.benchmarks.timing import ratio_to_baseline
 from tests.toolbox.test_analysis_vectors import numpy_reference
+from torsal.engine.values import Vector
+from torsal.nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 
 MILLION = 1_000_000
 

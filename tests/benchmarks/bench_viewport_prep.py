@@ -18,15 +18,17 @@ from pathlib import Path
 
 import numpy as np
 
-from app.gui.viewport.preview import prepare_solved
-from app.headless import run_file
-from nodes.common.preview import CURVE_SAMPLES, SURFACE_GRID
-from nodes.geometry.curvature import DEGENERATE_RATIO
-from nodes.geometry.surface_base import DEGENERATE_NUDGE, uv_grid
-from nodes.geometry.vec_ops import cross, dot
 from tests.benchmarks.timing import ratio_to_baseline
+from torsal.app.gui.viewport.preview import prepare_solved
+from torsal.app.headless import run_file
+from torsal.nodes.common.preview import CURVE_SAMPLES, SURFACE_GRID
+from torsal.nodes.geometry.curvature import DEGENERATE_RATIO
+from torsal.nodes.geometry.surface_base import DEGENERATE_NUDGE, uv_grid
+from torsal.nodes.geometry.vec_ops import cross, dot
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-stadium.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "kaohsiung-stadium.graph"
+)
 #: Measured 1.53–1.59× (5.3–7.7 ms against 3.3–4.8 ms, load 1.5; the code before issue 16's
 #: preview work: 3.4–3.6×, 11.5 ms).
 BAR = 2.0

@@ -13,9 +13,9 @@ import time
 from dataclasses import dataclass
 from itertools import pairwise
 
-from engine.graph import Graph
-from engine.node import CancelToken
-from engine.solver import Solver
+from torsal.engine.graph import Graph
+from torsal.engine.node import CancelToken
+from torsal.engine.solver import Solver
 
 
 class RecordingToken(CancelToken):

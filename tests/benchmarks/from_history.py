@@ -45,7 +45,7 @@ def git_show(commit: str, path: str) -> str:
 def load_package(commit: str, folder: str, modules: tuple[str, ...], parent: str, name: str) -> ModuleType:
     """The modules ``folder/<module>.py`` as they were at ``commit``, as the package ``name``.
 
-    ``parent`` is the dotted package the folder's modules were in (``nodes.geometry`` for
+    ``parent`` is the dotted package the folder's modules were in (``torsal.nodes.geometry`` for
     ``nodes/geometry/developable``): their imports from it (``from ..x import``) are
     taken from today's ``parent.x``; their imports of each other stay within ``name``.
     """

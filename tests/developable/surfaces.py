@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from nodes.geometry.curves import NurbsCurve, ParametricCurve
+from torsal.nodes.geometry.curves import NurbsCurve, ParametricCurve
 
 Array = np.ndarray
 
@@ -234,8 +234,8 @@ def _projection(normal, offset: float) -> Array:
 
 def conic_sections_pair(sweep: float = 2.4) -> Pair:
     """Two tilted plane sections of the cone of half-angle CONE_ALPHA over ``sweep``."""
-    from nodes.geometry.curves import Arc
-    from nodes.geometry.vectors import Plane
+    from torsal.nodes.geometry.curves import Arc
+    from torsal.nodes.geometry.vectors import Plane
 
     tan = math.tan(CONE_ALPHA)
     circle_a = Arc(Plane.from_normal([0, 0, 1], [0, 0, 1]), tan, 0.0, sweep)

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import InterpolatedCurve, Line, ParametricCurve
-from nodes.geometry.developable import (
+from torsal.nodes.geometry.curves import InterpolatedCurve, Line, ParametricCurve
+from torsal.nodes.geometry.developable import (
     cone_rulings,
     cylinder_rulings,
     tangent_developable_rulings,

@@ -11,10 +11,10 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.geometry.curves import InterpolatedCurve
 from tests.nodes.helpers import out, run, tree
 from tests.toolbox import warp_check
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.geometry.curves import InterpolatedCurve
 
 
 def planar(heights: list[float], stretch: float = 1.0, shift: float = 0.0,

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Line, Polyline
-from nodes.geometry.developable import ruling_developable
+from torsal.nodes.geometry.curves import Line, Polyline
+from torsal.nodes.geometry.developable import ruling_developable
 
 from .strips import strip_triangles
 

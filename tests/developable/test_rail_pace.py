@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import PchipInterpolator
 
-from nodes.geometry.curve_rail import Pace
+from torsal.nodes.geometry.curve_rail import Pace
 
 
 def _cases() -> list[tuple[np.ndarray, np.ndarray]]:

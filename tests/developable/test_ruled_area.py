@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 from scipy.integrate import simpson
 
-from nodes.geometry.curves import Circle
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.surface_base import Surface
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curves import Circle
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.surface_base import Surface
+from torsal.nodes.geometry.vectors import Plane
 
 
 def circle_loft(radius: float, height: float, rulings: int, sweep: float = 2 * math.pi) -> RuledSurface:
@@ -96,7 +96,7 @@ RULING_CASES = ["generic", "developable kink inside", "kink at an end", "near-cy
 def test_integrals_along_a_ruling_match_quadrature_across_the_kink(case):
     from scipy.integrate import quad
 
-    from nodes.geometry.ruled import ruling_integrals
+    from torsal.nodes.geometry.ruled import ruling_integrals
 
     rng = np.random.default_rng(RULING_CASES.index(case))
     c0 = rng.normal(size=(6, 3))
@@ -126,7 +126,7 @@ def test_a_cone_whose_apex_crosses_the_strips_edge_is_integrated_span_by_span(mo
     area element's kink enters the strip halfway round and the integrand in u is only C¹
     there. Area: √2 ∫ (1/2 + sign(s)·s²/2) dθ = π/√2 over the turn, exactly (the s² terms
     cancel by symmetry). No fallback to the generic cubature is allowed."""
-    from nodes.geometry.curves import ParametricCurve
+    from torsal.nodes.geometry.curves import ParametricCurve
 
     def circle(u):
         return np.column_stack([np.cos(u), np.sin(u), np.ones_like(u)])

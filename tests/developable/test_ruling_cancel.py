@@ -2,9 +2,9 @@
 
 import pytest
 
-from nodes.geometry.developable import ruling_developable
-from nodes.geometry.watch import watched
 from tests.developable.surfaces import PAIRS
+from torsal.nodes.geometry.developable import ruling_developable
+from torsal.nodes.geometry.watch import watched
 
 
 class Stop(Exception):

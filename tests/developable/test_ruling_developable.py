@@ -14,10 +14,10 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Arc, Circle, Line, Polyline
-from nodes.geometry.developable import ruling_developable
-from nodes.geometry.developable.alternatives import better_pairing
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curves import Arc, Circle, Line, Polyline
+from torsal.nodes.geometry.developable import ruling_developable
+from torsal.nodes.geometry.developable.alternatives import better_pairing
+from torsal.nodes.geometry.vectors import Plane
 
 from . import surfaces
 from .strips import hausdorff, strip_triangles

@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Arc, InterpolatedCurve, Polyline
-from nodes.geometry.developable import LengthMap, station_parameters
-from nodes.geometry.developable.brackets import refine_roots
-from nodes.geometry.developable.isolation import Pieces, certified_empty, certified_single, isolate
-from nodes.geometry.developable.selection import monotone_path
+from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Polyline
+from torsal.nodes.geometry.developable import LengthMap, station_parameters
+from torsal.nodes.geometry.developable.brackets import refine_roots
+from torsal.nodes.geometry.developable.isolation import Pieces, certified_empty, certified_single, isolate
+from torsal.nodes.geometry.developable.selection import monotone_path
 
 CURVE = InterpolatedCurve([[0, 0, 0], [1, 2, 0.5], [3, 1, -0.5], [4, 3, 0.2], [6, 2, 0]])
 

@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.geometry.developable import ruling_developable
-from nodes.geometry.developable.fans import fan_share, patch_areas, zigzag
-from nodes.geometry.unroll import unroll_rulings
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.geometry.developable import ruling_developable
+from torsal.nodes.geometry.developable.fans import fan_share, patch_areas, zigzag
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 from . import surfaces
 

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import InterpolatedCurve
-from nodes.geometry.developable import cylinder_rulings, in_plane_tangent, warp_angles, warp_of_rulings
-from nodes.geometry.developable.warp import consistently_oriented
+from torsal.nodes.geometry.curves import InterpolatedCurve
+from torsal.nodes.geometry.developable import cylinder_rulings, in_plane_tangent, warp_angles, warp_of_rulings
+from torsal.nodes.geometry.developable.warp import consistently_oriented
 
 
 def test_warp_is_the_angle_between_the_end_normals():
@@ -148,8 +148,8 @@ def test_curve_warp_at_a_corner_uses_the_side_whose_tangent_does_not_run_along_t
     """A ruling from the corner of A = (0,0,0)–(1,0,0)–(1,1,0) along A's first side to the
     line B at x = 2 (tangent y): the side along x gives no normal, the side along y gives
     the plane z = 0, which holds B's tangent too, so the warp is 0."""
-    from nodes.geometry.curves import Line, Polyline
-    from nodes.geometry.developable.warp import curve_warp
+    from torsal.nodes.geometry.curves import Line, Polyline
+    from torsal.nodes.geometry.developable.warp import curve_warp
 
     a = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0]])
     b = Line([2, 0, 0], [2, 2, 0])
@@ -158,8 +158,8 @@ def test_curve_warp_at_a_corner_uses_the_side_whose_tangent_does_not_run_along_t
 
 
 def test_curve_warp_is_that_of_the_curves_tangents_away_from_corners():
-    from nodes.geometry.curves import Line
-    from nodes.geometry.developable.warp import curve_warp
+    from torsal.nodes.geometry.curves import Line
+    from torsal.nodes.geometry.developable.warp import curve_warp
 
     half = 2.0  # the hyperbolic paraboloid's ruling along x = 0, from y = −L to L
     a, b = Line([-1, -half, half], [1, -half, -half]), Line([-1, half, -half], [1, half, half])
@@ -172,8 +172,8 @@ def test_curve_warp_sees_the_corner_at_the_seam_of_a_closed_polyline(seam):
     """The unit square's corner (0, 0, 0) is its seam: tangents (0, −1, 0) before it and
     (1, 0, 0) after. The plane of the ruling to (−1, −1, 1) and B's tangent (1, −1, 0) has
     normal (1, 1, 2), which separates them: a cone through the corner, warp 0."""
-    from nodes.geometry.curves import Line, Polyline
-    from nodes.geometry.developable.warp import curve_warp
+    from torsal.nodes.geometry.curves import Line, Polyline
+    from torsal.nodes.geometry.developable.warp import curve_warp
 
     square = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], closed=True)
     b = Line([-1.5, -0.5, 1], [-0.5, -1.5, 1])

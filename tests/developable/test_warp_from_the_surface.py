@@ -10,12 +10,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from app.headless import run_file
-from nodes.developable.ruling_developable import RulingDevelopable
 from tests.developable import surfaces
 from tests.nodes.helpers import run, tree
+from torsal.app.headless import run_file
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 
 
 def surface_warp(surface, u: np.ndarray) -> np.ndarray:

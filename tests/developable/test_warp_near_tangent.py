@@ -9,8 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.developable import warp_angles
-from nodes.geometry.developable.warp import consistently_oriented
+from torsal.nodes.geometry.developable import warp_angles
+from torsal.nodes.geometry.developable.warp import consistently_oriented
 
 
 def _tilted(theta: float, phi: float) -> np.ndarray:

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from engine.registry import Registry
 from tests.engine.nodekit import make_registry
+from torsal.engine.registry import Registry
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 

@@ -8,10 +8,10 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from engine import graphfile
+from torsal.engine import graphfile
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 SPEC = Path(__file__).resolve().parents[3] / "shared" / "spec" / "graph-format.md"
 
 ENGINE_FIXTURES = sorted(FIXTURES.glob("engine-*.graph"))  # written for the nodekit registry

@@ -15,10 +15,10 @@ from collections import Counter
 from pathlib import Path
 from typing import Any, ClassVar
 
-from engine import graphfile
-from engine.graphfile import GraphFileError, NewerVersionError
-from engine.solver import Solver
 from tests.engine.nodekit import make_registry
+from torsal.engine import graphfile
+from torsal.engine.graphfile import GraphFileError, NewerVersionError
+from torsal.engine.solver import Solver
 
 REGISTRY = make_registry()
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"

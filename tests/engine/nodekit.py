@@ -9,11 +9,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from engine.datatree import DataTree, parse_path
-from engine.node import LIST, TREE, In, Node, NodeError, Out, Setting
-from engine.registry import Registry
-from engine.types import GENERIC, INTEGER, NUMBER, POINT
-from engine.values import Point
+from torsal.engine.datatree import DataTree, parse_path
+from torsal.engine.node import LIST, TREE, In, Node, NodeError, Out, Setting
+from torsal.engine.registry import Registry
+from torsal.engine.types import GENERIC, INTEGER, NUMBER, POINT
+from torsal.engine.values import Point
 
 
 class NumberSlider(Node):

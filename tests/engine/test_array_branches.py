@@ -13,13 +13,13 @@ from typing import ClassVar
 import numpy as np
 import pytest
 
-from engine.bounds import within_bounds
-from engine.datatree import DataTree, Triples, apply_modifiers
-from engine.graph import Graph
-from engine.node import ITEM, LIST, In, Node, NodeError, NodeWarning, Out
-from engine.solver import OK, Solver, cast_tree, merge_trees
-from engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, VECTOR, summarize_value
-from engine.values import Point, Vector
+from torsal.engine.bounds import within_bounds
+from torsal.engine.datatree import DataTree, Triples, apply_modifiers
+from torsal.engine.graph import Graph
+from torsal.engine.node import ITEM, LIST, In, Node, NodeError, NodeWarning, Out
+from torsal.engine.solver import OK, Solver, cast_tree, merge_trees
+from torsal.engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER, POINT, TEXT, VECTOR, summarize_value
+from torsal.engine.values import Point, Vector
 
 
 def array_tree(*branches: list) -> DataTree:

@@ -1,4 +1,4 @@
-"""``engine.atomic``: replacing a file atomically while keeping the old one as ``.bak``."""
+"""``torsal.engine.atomic``: replacing a file atomically while keeping the old one as ``.bak``."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from engine import atomic
-from engine.atomic import backup_path, remove_stale_temporaries, replace_keeping_backup
+from torsal.engine import atomic
+from torsal.engine.atomic import backup_path, remove_stale_temporaries, replace_keeping_backup
 
 
 def writer(text: str):

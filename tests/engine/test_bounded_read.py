@@ -1,4 +1,4 @@
-"""``engine.bounded_read``: only regular files are read, and never more than the limit."""
+"""``torsal.engine.bounded_read``: only regular files are read, and never more than the limit."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from engine import bounded_read
-from engine.bounded_read import UnreadableFileError, kind_of, read_bounded
+from torsal.engine import bounded_read
+from torsal.engine.bounded_read import UnreadableFileError, kind_of, read_bounded
 
 pytestmark = pytest.mark.timeout(20)  # a FIFO opened by mistake would wait forever
 

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import time
 
-from engine.graph import Graph
-from engine.node import In, Node, Out
-from engine.types import NUMBER
 from tests.benchmarks.check_gaps import check_gaps
+from torsal.engine.graph import Graph
+from torsal.engine.node import In, Node, Out
+from torsal.engine.types import NUMBER
 
 
 class Slow(Node):

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.bounds import bounds_text
-from engine.node import In, Node, Out
-from engine.types import INTEGER
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.bounds import bounds_text
+from torsal.engine.node import In, Node, Out
+from torsal.engine.types import INTEGER
 
 PLACES = ((0, "Beside model"), (1, "Origin"), (2, "On plane"))
 PLACES_TEXT = "0 Beside model, 1 Origin, 2 On plane"

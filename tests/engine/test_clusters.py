@@ -13,17 +13,17 @@ from typing import Any, ClassVar
 
 import pytest
 
-from engine.cluster import MAX_NESTING, ClusterNode
-from engine.datatree import DataTree
-from engine.graph import Graph, GraphError
-from engine.graphfile import GraphFileError, dumps, loads, read_graph
-from engine.node import In, Node, Out
-from engine.registry import Registry
-from engine.solver import ERROR, OK, Solver
-from engine.types import NUMBER
 from tests.engine.nodekit import make_registry
+from torsal.engine.cluster import MAX_NESTING, ClusterNode
+from torsal.engine.datatree import DataTree
+from torsal.engine.graph import Graph, GraphError
+from torsal.engine.graphfile import GraphFileError, dumps, loads, read_graph
+from torsal.engine.node import In, Node, Out
+from torsal.engine.registry import Registry
+from torsal.engine.solver import ERROR, OK, Solver
+from torsal.engine.types import NUMBER
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 FIRST_STEPS = EXAMPLES / "first-steps.graph"
 INNER = ["edges", "total", "heights"]  # first-steps' three computing nodes
 
@@ -50,7 +50,7 @@ def kit() -> Registry:
 
 @pytest.fixture(scope="module")
 def library() -> Registry:
-    from nodes.catalogue import default_registry
+    from torsal.nodes.catalogue import default_registry
 
     return default_registry()
 
@@ -179,7 +179,7 @@ def test_a_file_without_clusters_is_written_without_a_clusters_section(library: 
 
 
 def test_headless_run_solves_clusters(library: Registry, tmp_path: Path) -> None:
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
     graph, before = first_steps(library)
     cluster = graph.make_cluster(INNER, name="Panels")
@@ -553,7 +553,7 @@ def test_a_malformed_clusters_section_is_refused_without_a_traceback(kit: Regist
 # --------------------------------------------------------------------------- copy and paste
 
 def fragment_of(graph: Graph, node_ids: list[str]) -> str:
-    from engine.graphfile import FORMAT, VERSION, encode, fragment_clusters, node_data
+    from torsal.engine.graphfile import FORMAT, VERSION, encode, fragment_clusters, node_data
 
     nodes = [node_data(graph.nodes[n]) for n in node_ids]
     return encode({"format": FORMAT, "version": VERSION, "nodes": nodes,
@@ -561,7 +561,7 @@ def fragment_of(graph: Graph, node_ids: list[str]) -> str:
 
 
 def test_a_pasted_cluster_shares_the_same_definition(kit: Registry) -> None:
-    from engine.graphfile import adopt_clusters
+    from torsal.engine.graphfile import adopt_clusters
 
     graph = two_adds(kit)
     cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
@@ -573,7 +573,7 @@ def test_a_pasted_cluster_shares_the_same_definition(kit: Registry) -> None:
 
 
 def test_a_pasted_cluster_whose_definition_differs_gets_its_own(kit: Registry) -> None:
-    from engine.graphfile import adopt_clusters
+    from torsal.engine.graphfile import adopt_clusters
 
     graph = two_adds(kit)
     cluster = graph.make_cluster(["sum", "twice"], name="Double sum")
@@ -684,7 +684,7 @@ def test_an_instance_that_would_expand_the_graph_past_the_limit_is_refused(kit: 
 
 def summaries(solver: Solver, node_id: str) -> str:
     """A node's outputs as the JSON ``torsal run`` prints (geometry compared by its summary)."""
-    from engine.types import summarize_value
+    from torsal.engine.types import summarize_value
 
     outputs = solver.result(node_id).outputs
     data = {port: {path: [summarize_value(v) for v in items] for path, items in tree.to_dict().items()}

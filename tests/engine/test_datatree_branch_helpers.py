@@ -1,11 +1,11 @@
-"""The helpers list nodes use on a branch held as a list, an array or Triples (engine.datatree)."""
+"""The helpers list nodes use on a branch held as a list, an array or Triples (torsal.engine.datatree)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from engine.datatree import Triples, concatenated, item_at, take
-from engine.values import Point, Vector
+from torsal.engine.datatree import Triples, concatenated, item_at, take
+from torsal.engine.values import Point, Vector
 
 
 def points(*rows: tuple[float, float, float]) -> Triples:

@@ -1,7 +1,7 @@
 """The graph's incremental indexes, and its bulk edits.
 
 The graph keeps the wires into and out of each node and a topological rank of every
-node up to date edit by edit (see :mod:`engine.graph`). After any sequence of edits
+node up to date edit by edit (see :mod:`torsal.engine.graph`). After any sequence of edits
 they must say what a rebuild from the wire list says; the bulk edits ``add_many`` and
 ``remove_many`` must emit exactly the events of the single edits they stand for.
 """
@@ -15,11 +15,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.graph import Graph, GraphError, Group, NodeRecord, Wire
-from engine.node import In, Node, Out, Setting
-from engine.solver import Solver
-from engine.types import NUMBER
 from tests.engine.nodekit import Add
+from torsal.engine.graph import Graph, GraphError, Group, NodeRecord, Wire
+from torsal.engine.node import In, Node, Out, Setting
+from torsal.engine.solver import Solver
+from torsal.engine.types import NUMBER
 
 
 class Ports(Node):

@@ -10,11 +10,11 @@ import os
 
 import pytest
 
-from engine import graphfile
-from engine.graphfile import GraphFileError, NewerVersionError
 from tests.engine.graphfile_files import (
     calls_made,
 )
+from torsal.engine import graphfile
+from torsal.engine.graphfile import GraphFileError, NewerVersionError
 
 # --------------------------------------------------------------------------- bounded reading
 

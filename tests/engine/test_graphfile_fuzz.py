@@ -27,7 +27,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import graphfile
 from tests.engine.graph_file_strategies import (
     HYPOTHESIS,
     canonical_files,
@@ -52,6 +51,7 @@ from tests.engine.graphfile_fuzz_harness import (
     timed,
 )
 from tests.engine.hostile_graph_files import SPECIAL_FILES
+from torsal.engine import graphfile
 
 # --------------------------------------------------------------------------- deterministic
 

@@ -8,12 +8,12 @@ import json
 
 import pytest
 
-from engine import graphfile
-from engine.graph import PlaceholderNode
-from engine.graphfile import MAX_DEPTH, GraphFileError
-from engine.solver import Solver
 from tests.engine.graphfile_fuzz_harness import REGISTRY, deep_array
 from tests.engine.hostile_graph_files import HEAD, SPECIAL_FILES
+from torsal.engine import graphfile
+from torsal.engine.graph import PlaceholderNode
+from torsal.engine.graphfile import MAX_DEPTH, GraphFileError
+from torsal.engine.solver import Solver
 
 
 def test_cycle_and_dangling_wire_messages_say_what_is_wrong():

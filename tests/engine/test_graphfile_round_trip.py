@@ -11,10 +11,6 @@ import re
 
 import pytest
 
-from engine import graphfile
-from engine.graph import Graph, PlaceholderNode
-from engine.registry import Registry
-from engine.solver import Solver
 from tests.engine.graphfile_files import (
     ALL_EXAMPLES,
     ALL_FIXTURES,
@@ -25,6 +21,10 @@ from tests.engine.graphfile_files import (
     read,
 )
 from tests.engine.nodekit import Add, ListLength, NumberSlider
+from torsal.engine import graphfile
+from torsal.engine.graph import Graph, PlaceholderNode
+from torsal.engine.registry import Registry
+from torsal.engine.solver import Solver
 
 # --------------------------------------------------------------------------- round trip
 

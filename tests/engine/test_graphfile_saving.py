@@ -9,12 +9,12 @@ import os
 
 import pytest
 
-from engine import graphfile
-from engine.graphfile import GraphFileError
 from tests.engine.graphfile_files import (
     no_temporaries,
     read,
 )
+from torsal.engine import graphfile
+from torsal.engine.graphfile import GraphFileError
 
 # --------------------------------------------------------------------------- saving
 

@@ -10,13 +10,13 @@ import os
 
 import pytest
 
-from engine import graphfile
-from engine.graph import Graph
-from engine.graphfile import GraphFileError, NewerVersionError
-from engine.solver import Solver
 from tests.engine.graphfile_files import (
     read,
 )
+from torsal.engine import graphfile
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import GraphFileError, NewerVersionError
+from torsal.engine.solver import Solver
 
 # --------------------------------------------------------------------------- versions
 

@@ -13,9 +13,6 @@ from typing import Any
 
 import pytest
 
-from engine.graph import Graph
-from engine.node import Level, Message, Node
-from engine.solver import Solver
 from tests.engine.nodekit import (
     Add,
     AddRequired,
@@ -26,6 +23,9 @@ from tests.engine.nodekit import (
     Sum3,
     TreeSource,
 )
+from torsal.engine.graph import Graph
+from torsal.engine.node import Level, Message, Node
+from torsal.engine.solver import Solver
 
 Tree = dict[str, list[Any]]
 

@@ -9,10 +9,10 @@ import math
 
 import pytest
 
-from engine.graph import Graph
-from engine.node import In, Node, Out, Setting
-from engine.solver import ERROR, OK, Solver
-from engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, CastError, cast
+from torsal.engine.graph import Graph
+from torsal.engine.node import In, Node, Out, Setting
+from torsal.engine.solver import ERROR, OK, Solver
+from torsal.engine.types import BOOLEAN, DOMAIN, INTEGER, NUMBER, POINT, TEXT, CastError, cast
 
 
 class Constant(Node):

@@ -11,11 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from engine import registry as registry_module
-from engine.node import Node, Out
-from engine.registry import Registry
-from engine.types import NUMBER, TypeTable, ValueType
-from nodes.catalogue import default_registry
+from torsal.engine import registry as registry_module
+from torsal.engine.node import Node, Out
+from torsal.engine.registry import Registry
+from torsal.engine.types import NUMBER, TypeTable, ValueType
+from torsal.nodes.catalogue import default_registry
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -66,16 +66,17 @@ def test_type_ids_must_be_palette_dot_name():
 def test_every_catalogue_module_holds_only_its_own_palette():
     registry = default_registry(plugins=False)
     for cls in registry:
-        module_palette = cls.__module__.split(".")[1]
+        module_palette = cls.__module__.split(".")[2]
         assert cls.palette() == module_palette, cls.type_id
-    assert all(cls.__module__.startswith("nodes.") and cls.__module__.count(".") == 2 for cls in registry)
+    modules = {cls.__module__ for cls in registry}
+    assert all(name.startswith("torsal.nodes.") and name.count(".") == 3 for name in modules)
 
 
 def test_every_module_with_node_types_is_declared_by_its_palette():
     """A node module left out of its palette's NODE_TYPES would vanish from the app."""
     declared = {name for names in default_registry(plugins=False)._lazy.values() for name in names}
     holding = set()
-    for path in (ROOT / "nodes").glob("*/*.py"):
+    for path in (ROOT / "torsal" / "nodes").glob("*/*.py"):
         if 'type_id = "' in path.read_text(encoding="utf-8"):
             holding.add(".".join(path.relative_to(ROOT).with_suffix("").parts))
     assert holding == declared
@@ -84,10 +85,10 @@ def test_every_module_with_node_types_is_declared_by_its_palette():
 def test_finding_the_palettes_imports_no_node_module():
     script = (
         "import sys\n"
-        "from nodes.catalogue import default_registry\n"
+        "from torsal.nodes.catalogue import default_registry\n"
         "registry = default_registry(plugins=False)\n"
-        "print(len(registry.palettes()), sorted(m for m in sys.modules if m.count('.') == 2 "
-        "and m.startswith('nodes.')))\n"
+        "print(len(registry.palettes()), sorted(m for m in sys.modules if m.count('.') == 3 "
+        "and m.startswith('torsal.nodes.')))\n"
     )
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
     assert out.stdout.split(maxsplit=1) == ["11", "[]\n"]
@@ -97,7 +98,7 @@ def test_a_run_of_sliders_and_expressions_imports_no_geometry_library():
     fixture = ROOT / "tests" / "fixtures" / "twenty-nodes.graph"
     script = (
         "import sys, io, contextlib\n"
-        "from app.cli import main\n"
+        "from torsal.app.cli import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         f"    assert main(['run', {str(fixture)!r}]) == 0\n"
         "print(sorted({m.split('.')[0] for m in sys.modules} & {'trimesh', 'shapely', 'matplotlib'}))\n"
@@ -201,7 +202,7 @@ def test_a_line_in_a_file_is_read_though_no_geometry_palette_is_loaded(tmp_path)
         {"id": "p", "type": "params.Panel", "inputs": {"Input": {"value": line}}}]}))
     script = (
         "import io, contextlib, json\n"
-        "from app.cli import main\n"
+        "from torsal.app.cli import main\n"
         "out = io.StringIO()\n"
         "with contextlib.redirect_stdout(out):\n"
         f"    main(['run', {str(path)!r}, '--json'])\n"
@@ -216,8 +217,8 @@ def test_a_value_in_a_file_is_read_with_the_type_its_palette_declares():
     """A Tag is a display value type: reading one needs no display node in the graph."""
     script = (
         "import sys\n"
-        "from nodes.catalogue import default_registry\n"
-        "from engine.types import decode_value\n"
+        "from torsal.nodes.catalogue import default_registry\n"
+        "from torsal.engine.types import decode_value\n"
         "default_registry(plugins=False)\n"
         "tag = decode_value({'type': 'Tag', 'text': 'north', 'location': [1, 2, 3]})\n"
         "print(type(tag).__name__, tag.text)\n"

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from engine import graphfile
-from engine.atomic import backup_path
-from engine.graph import Graph
+from torsal.engine import graphfile
+from torsal.engine.atomic import backup_path
+from torsal.engine.graph import Graph
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 KILLS = 150

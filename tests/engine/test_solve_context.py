@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import threading
 
-from engine.graph import Graph
-from engine.node import In, Node, Out
-from engine.solver import WARNING, Solver
-from engine.types import NUMBER
 from tests.engine.test_solver import Constant
+from torsal.engine.graph import Graph
+from torsal.engine.node import In, Node, Out
+from torsal.engine.solver import WARNING, Solver
+from torsal.engine.types import NUMBER
 
 
 class Shared(Node):

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from engine.datatree import DataTree
-from engine.node import LIST, In, Node, NodeWarning, Out
-from engine.solver import run_node
-from engine.types import NUMBER
+from torsal.engine.datatree import DataTree
+from torsal.engine.node import LIST, In, Node, NodeWarning, Out
+from torsal.engine.solver import run_node
+from torsal.engine.types import NUMBER
 
 
 class Halve(Node):

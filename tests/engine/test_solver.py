@@ -9,12 +9,12 @@ from typing import ClassVar
 
 import pytest
 
-from engine import solver as solver_module
-from engine.events import NodeAdded, NodeMoved, NodeRemoved, SettingChanged, WireAdded, WireRemoved
-from engine.graph import Graph, GraphError
-from engine.node import LIST, CancelToken, In, Node, NodeError, Out, Setting
-from engine.solver import DISABLED, ERROR, OK, WARNING, Solver
-from engine.types import NUMBER
+from torsal.engine import solver as solver_module
+from torsal.engine.events import NodeAdded, NodeMoved, NodeRemoved, SettingChanged, WireAdded, WireRemoved
+from torsal.engine.graph import Graph, GraphError
+from torsal.engine.node import LIST, CancelToken, In, Node, NodeError, Out, Setting
+from torsal.engine.solver import DISABLED, ERROR, OK, WARNING, Solver
+from torsal.engine.types import NUMBER
 
 
 class Constant(Node):
@@ -297,7 +297,7 @@ def test_a_wire_that_closes_a_loop_is_refused():
 
 
 def test_a_wire_between_incompatible_types_is_refused():
-    from engine.types import POINT
+    from torsal.engine.types import POINT
 
     class Where(Node):
         type_id = "test.Where"
@@ -356,8 +356,8 @@ def test_removed_nodes_leave_no_result_behind():
 
 
 def test_a_setting_that_removes_a_port_unplugs_its_wires_so_the_file_still_opens():
-    from engine import graphfile
-    from nodes.catalogue import default_registry
+    from torsal.engine import graphfile
+    from torsal.nodes.catalogue import default_registry
 
     registry = default_registry(plugins=False)
     graph = Graph()

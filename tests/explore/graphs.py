@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from nodes.maths.expression import Expression
-from nodes.params.sliders import IntegerSlider, NumberSlider
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.params.sliders import IntegerSlider, NumberSlider
 
 
 def formula_graph(

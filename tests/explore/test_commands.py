@@ -7,8 +7,8 @@ import json
 
 import pytest
 
-from app.cli import main
 from tests.explore.graphs import formula_graph
+from torsal.app.cli import main
 
 
 @pytest.fixture
@@ -76,8 +76,8 @@ def test_the_torsal_command_starts_its_own_local_workers(bowl, tmp_path):
 
     out = tmp_path / "o"
     done = subprocess.run(
-        [sys.executable, "-m", "app.cli", "sweep", str(bowl), "--vary", "x=0:1:3", "--collect", "f.Result",
-         "--out", str(out), "--workers", "1"],
+        [sys.executable, "-m", "torsal.app.cli", "sweep", str(bowl), "--vary", "x=0:1:3",
+         "--collect", "f.Result", "--out", str(out), "--workers", "1"],
         capture_output=True, text=True, timeout=180,
     )
     assert done.returncode == 0, done.stderr

@@ -8,13 +8,15 @@ from pathlib import Path
 
 import pytest
 
-from app.explore.executors import DaskExecutor, InlineExecutor
-from app.explore.samplers import grid
-from app.explore.study import open_study
-from app.explore.sweep import RESULTS, run_sweep
 from tests.explore.graphs import formula_graph
+from torsal.app.explore.executors import DaskExecutor, InlineExecutor
+from torsal.app.explore.samplers import grid
+from torsal.app.explore.study import open_study
+from torsal.app.explore.sweep import RESULTS, run_sweep
 
-KAOHSIUNG = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-stadium.graph"
+KAOHSIUNG = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "kaohsiung-stadium.graph"
+)
 pytestmark = pytest.mark.timeout(180)
 
 
@@ -52,7 +54,7 @@ def test_killing_a_worker_mid_sweep_loses_no_row(cluster, tmp_path):
 
 
 def test_an_optimisation_on_the_cluster_makes_the_same_evaluations_as_one_in_this_process(cluster, tmp_path):
-    from app.explore.optimise import optimise
+    from torsal.app.explore.optimise import optimise
 
     path = formula_graph(tmp_path / "bowl.graph", {"x": (-5, 5, 4), "y": (-5, 5, -3)},
                          {"f": "(x - 1.3)**2 + 2*(y + 0.7)**2"})

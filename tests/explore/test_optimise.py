@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from pymoo.indicators.hv import HV
 
-from app.explore.executors import InlineExecutor
-from app.explore.optimise import dominates, optimise
-from app.explore.study import open_study
 from tests.explore.graphs import formula_graph
+from torsal.app.explore.executors import InlineExecutor
+from torsal.app.explore.optimise import dominates, optimise
+from torsal.app.explore.study import open_study
 
 
 @pytest.fixture

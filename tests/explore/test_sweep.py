@@ -8,17 +8,17 @@ import itertools
 import numpy as np
 import pytest
 
-from app.explore.executors import InlineExecutor
-from app.explore.samplers import grid, sample
-from app.explore.study import open_study
-from app.explore.sweep import CACHE, RESULTS, run_sweep
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from engine.solver import Solver
-from nodes.lists.trees import Partition
-from nodes.maths.expression import Expression
-from nodes.params.sliders import IntegerSlider
 from tests.explore.graphs import formula_graph
+from torsal.app.explore.executors import InlineExecutor
+from torsal.app.explore.samplers import grid, sample
+from torsal.app.explore.study import open_study
+from torsal.app.explore.sweep import CACHE, RESULTS, run_sweep
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.engine.solver import Solver
+from torsal.nodes.lists.trees import Partition
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.params.sliders import IntegerSlider
 
 
 @pytest.fixture
@@ -111,7 +111,7 @@ def test_the_same_seed_draws_the_same_sobol_samples(plane):
 
 
 def export_graph(folder):
-    from nodes.io.data import ExportCSV
+    from torsal.nodes.io.data import ExportCSV
 
     graph = Graph()
     graph.add_node(IntegerSlider({"min": 0, "max": 3, "value": 1}), "n")

@@ -8,15 +8,15 @@ import numpy as np
 import pytest
 from matplotlib.image import imread
 
-from app.explore.executors import InlineExecutor
-from app.explore.images import SIZE
-from app.explore.samplers import grid
-from app.explore.study import open_study
-from app.explore.sweep import IMAGE_COLUMN, RESULTS, run_sweep
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from nodes.catalogue import default_registry
 from tests.explore.graphs import formula_graph
+from torsal.app.explore.executors import InlineExecutor
+from torsal.app.explore.images import SIZE
+from torsal.app.explore.samplers import grid
+from torsal.app.explore.study import open_study
+from torsal.app.explore.sweep import IMAGE_COLUMN, RESULTS, run_sweep
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.nodes.catalogue import default_registry
 
 REGISTRY = default_registry(plugins=False)
 

@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 from scipy.interpolate import NdBSpline
 
-from engine.node import Cancelled
-from nodes.geometry.area import integrate_unit_square, watched
-from nodes.geometry.nurbs_surface import NurbsSurface, clamped_knots
-from nodes.surfaces.analysis import Area
+from torsal.engine.node import Cancelled
+from torsal.nodes.geometry.area import integrate_unit_square, watched
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface, clamped_knots
+from torsal.nodes.surfaces.analysis import Area
 
 
 def bumpy_net(n: int, seed: int = 7) -> np.ndarray:

@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.curves import Arc, Circle
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves import Arc, Circle
+from torsal.nodes.geometry.vectors import Plane
 
 PLANE = Plane.from_normal([3.0, -2.0, 1.5], [1.0, 2.0, 2.0])
 QUERIES = np.random.default_rng(7).uniform(-6, 6, (2000, 3)) + PLANE.origin

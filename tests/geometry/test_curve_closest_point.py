@@ -13,7 +13,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 from scipy.spatial import cKDTree
 
-from nodes.geometry.curves import NurbsCurve
+from torsal.nodes.geometry.curves import NurbsCurve
 
 
 def random_rational_cubic() -> NurbsCurve:

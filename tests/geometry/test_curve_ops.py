@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.curves import (
+from torsal.nodes.geometry.curves import (
     Circle,
     InterpolatedCurve,
     Line,
@@ -20,8 +20,8 @@ from nodes.geometry.curves import (
     ReversedCurve,
     TransformedCurve,
 )
-from nodes.geometry.transforms import apply_transform, rotation, scaling, translation
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.transforms import apply_transform, rotation, scaling, translation
+from torsal.nodes.geometry.vectors import Plane
 
 TILTED = Plane.from_axes([1.0, -2.0, 0.5], [1, 1, 0], [0, 1, 1])
 T = np.linspace(0, 1, 201)

@@ -1,4 +1,4 @@
-"""Ruled surfaces whose edges run on the given curves (nodes.geometry.curve_rail)."""
+"""Ruled surfaces whose edges run on the given curves (torsal.nodes.geometry.curve_rail)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curve_rail import CurveRail, ruled_between, unwrap_cyclic
-from nodes.geometry.curves.conics import Arc, Circle
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curve_rail import CurveRail, ruled_between, unwrap_cyclic
+from torsal.nodes.geometry.curves.conics import Arc, Circle
+from torsal.nodes.geometry.vectors import Plane
 
 
 def frustum_arcs(sweep: float = math.pi) -> tuple[Arc, Arc]:

@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import InterpolatedCurve, NurbsCurve
-from nodes.geometry.spline_eval import evaluation_parameters
-from nodes.geometry.vec_ops import anchor, bounds, cross, extent, linalg_norm
+from torsal.nodes.geometry.curves import InterpolatedCurve, NurbsCurve
+from torsal.nodes.geometry.spline_eval import evaluation_parameters
+from torsal.nodes.geometry.vec_ops import anchor, bounds, cross, extent, linalg_norm
 
 
 def same(a: np.ndarray, b: np.ndarray) -> bool:

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.curves import InterpolatedCurve, NurbsCurve, chord_length_parameters
+from torsal.nodes.geometry.curves import InterpolatedCurve, NurbsCurve, chord_length_parameters
 
 
 def random_points(seed: int, count: int) -> np.ndarray:

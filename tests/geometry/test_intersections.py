@@ -9,14 +9,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.curves import Circle, Line, ParametricCurve
-from nodes.geometry.intersections import (
+from torsal.nodes.geometry.curves import Circle, Line, ParametricCurve
+from torsal.nodes.geometry.intersections import (
     curve_plane_intersections,
     line_line_closest_points,
     line_plane_intersection,
     plane_plane_intersection,
 )
-from nodes.geometry.vectors import WORLD_XY, WORLD_YZ, Plane
+from torsal.nodes.geometry.vectors import WORLD_XY, WORLD_YZ, Plane
 
 TILTED = Plane.from_axes([1.0, -2.0, 0.5], [1, 1, 0], [0, 1, 1])
 

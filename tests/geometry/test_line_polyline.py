@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Line, NurbsCurve, Polyline
-from nodes.geometry.transforms import apply_transform, rotation
+from torsal.nodes.geometry.curves import Line, NurbsCurve, Polyline
+from torsal.nodes.geometry.transforms import apply_transform, rotation
 
 RNG = np.random.default_rng(8)
 

@@ -12,20 +12,20 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curve_base import ReversedCurve, TransformedCurve
-from nodes.geometry.curve_rail import CurveRail, ruled_between
-from nodes.geometry.curves.conics import Arc, Circle
-from nodes.geometry.curves.interpolated import InterpolatedCurve
-from nodes.geometry.curves.line import Line, Polyline
-from nodes.geometry.curves.nurbs import NurbsCurve
-from nodes.geometry.developable.guided import SurfaceCurve
-from nodes.geometry.local_frame import NEAR, LocalFrame, frame_origin, translated
-from nodes.geometry.nurbs_surface import Loft, NurbsSurface
-from nodes.geometry.parametric_surface import ParametricSurface
-from nodes.geometry.ruled import RuledSurface, SplineRail
-from nodes.geometry.surface_base import IsoCurve, TransformedSurface
-from nodes.geometry.transforms import translation
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curve_base import ReversedCurve, TransformedCurve
+from torsal.nodes.geometry.curve_rail import CurveRail, ruled_between
+from torsal.nodes.geometry.curves.conics import Arc, Circle
+from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
+from torsal.nodes.geometry.curves.line import Line, Polyline
+from torsal.nodes.geometry.curves.nurbs import NurbsCurve
+from torsal.nodes.geometry.developable.guided import SurfaceCurve
+from torsal.nodes.geometry.local_frame import NEAR, LocalFrame, frame_origin, translated
+from torsal.nodes.geometry.nurbs_surface import Loft, NurbsSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface
+from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
+from torsal.nodes.geometry.surface_base import IsoCurve, TransformedSurface
+from torsal.nodes.geometry.transforms import translation
+from torsal.nodes.geometry.vectors import Plane
 
 FAR = np.array([1e9, 1e9, 1e9])
 WAVE = np.array([[0, 0, 0], [3, 0.5, 0], [6, 0, 1], [9, -0.5, 0], [12, 0, 0.5]], dtype=float)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.distance import cdist
 
-from nodes.geometry.closest import nearest_sample
+from torsal.nodes.geometry.closest import nearest_sample
 
 
 def helix_samples(count: int, offset: float = 0.0) -> np.ndarray:

@@ -9,9 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.curves import Arc, Circle, NurbsCurve
-from nodes.geometry.transforms import apply_transform, rotation, translation
-from nodes.geometry.vectors import WORLD_XY, Plane
+from torsal.nodes.geometry.curves import Arc, Circle, NurbsCurve
+from torsal.nodes.geometry.transforms import apply_transform, rotation, translation
+from torsal.nodes.geometry.vectors import WORLD_XY, Plane
 
 T = np.linspace(0.0, 1.0, 10_000)
 TILTED = Plane.from_axes([1.0, -2.0, 0.5], [1, 1, 0], [0, 1, 1])

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from nodes.geometry.curves import Circle
-from nodes.geometry.nurbs_surface import Loft, NurbsSurface
-from nodes.geometry.vectors import Plane
+from torsal.nodes.geometry.curves import Circle
+from torsal.nodes.geometry.nurbs_surface import Loft, NurbsSurface
+from torsal.nodes.geometry.vectors import Plane
 
 
 def test_bilinear_patch_area_matches_the_closed_form_of_a_flat_rectangle():

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import InterpolatedCurve, ParametricCurve
+from torsal.nodes.geometry.curves import InterpolatedCurve, ParametricCurve
 
 R, C = 2.0, 0.5
 TURNS = 3

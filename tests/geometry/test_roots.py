@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from nodes.geometry.roots import refine_roots, safeguarded_newton
+from torsal.nodes.geometry.roots import refine_roots, safeguarded_newton
 
 
 def cardano(c: np.ndarray) -> np.ndarray:

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import BSpline
 
-from nodes.geometry.spline_eval import spline_values
+from torsal.nodes.geometry.spline_eval import spline_values
 
 
 @pytest.mark.parametrize("degree", [1, 2, 3, 5])

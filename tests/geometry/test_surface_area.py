@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import trimesh
 
-from nodes.geometry.area import integrate_unit_square
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.geometry.parametric_surface import ParametricSurface, cone, sphere, torus
+from torsal.nodes.geometry.area import integrate_unit_square
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cone, sphere, torus
 
 
 def test_sphere_area_is_four_pi_r_squared():
@@ -105,9 +105,9 @@ def test_mesh_surface_area_is_the_sum_of_triangle_areas():
 
 
 def test_a_moved_and_scaled_surface_keeps_its_own_integrator_and_scales_its_area_by_k_squared(monkeypatch):
-    from nodes.geometry.ruled import RuledSurface
-    from nodes.geometry.surface_base import Surface
-    from nodes.geometry.transforms import rotation, scaling, translation
+    from torsal.nodes.geometry.ruled import RuledSurface
+    from torsal.nodes.geometry.surface_base import Surface
+    from torsal.nodes.geometry.transforms import rotation, scaling, translation
 
     # a cone frustum between two circles as a ruled surface: lateral area π(r1 + r2)·slant
     angle = np.linspace(0.0, 2 * np.pi, 65)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere, torus
-from nodes.geometry.surface_base import IsoCurve, TransformedSurface, uv_grid
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere, torus
+from torsal.nodes.geometry.surface_base import IsoCurve, TransformedSurface, uv_grid
 
 
 def saddle():

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere, torus
-from nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere, torus
+from torsal.nodes.geometry.ruled import RuledSurface
 
 TOL = 1e-9
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curvature import normal_curvature, principal_curvatures
-from nodes.geometry.parametric_surface import ParametricSurface, cone, cylinder, sphere, torus
+from torsal.nodes.geometry.curvature import normal_curvature, principal_curvatures
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cone, cylinder, sphere, torus
 
 RTOL = 1e-6
 

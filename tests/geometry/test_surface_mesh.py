@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import trimesh
 
-from nodes.geometry.curvature import vertex_areas
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.parametric_surface import torus
+from torsal.nodes.geometry.curvature import vertex_areas
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.parametric_surface import torus
 
 
 def welded_torus(big, small, nu, nv):

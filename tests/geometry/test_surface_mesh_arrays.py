@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.parametric_surface import cone, sphere
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.surface_base import grid_triangles, uv_grid
+from torsal.nodes.geometry.parametric_surface import cone, sphere
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.surface_base import grid_triangles, uv_grid
 
 
 def fan_strip() -> RuledSurface:

@@ -8,7 +8,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from scipy.interpolate import BSpline
 
-from nodes.geometry.nurbs_surface import (
+from torsal.nodes.geometry.nurbs_surface import (
     Loft,
     NurbsSurface,
     SpanBasis,
@@ -16,7 +16,7 @@ from nodes.geometry.nurbs_surface import (
     clamped_knots,
     find_spans,
 )
-from nodes.geometry.parametric_surface import ParametricSurface, cylinder
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cylinder
 
 SQRT_HALF = np.sqrt(0.5)
 
@@ -62,7 +62,7 @@ def test_grid_interpolation_passes_through_every_point():
     grid = np.stack([x, y, np.sin(x) * np.cos(y) + 0.1 * rng.normal(size=x.shape)], axis=2)
     for du, dv in [(3, 3), (2, 3), (1, 2), (5, 5)]:
         surface = NurbsSurface.from_points(grid, du, dv)
-        from nodes.geometry.nurbs_surface import chord_parameters
+        from torsal.nodes.geometry.nurbs_surface import chord_parameters
 
         pu, pv = chord_parameters(grid, 0), chord_parameters(grid, 1)
         uu, vv = np.meshgrid(pu, pv, indexing="ij")

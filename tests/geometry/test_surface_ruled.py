@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.curves import Line
-from nodes.geometry.nurbs_surface import NurbsSurface
-from nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere
-from nodes.geometry.ruled import RuledSurface, SplineRail
+from torsal.nodes.geometry.curves import Line
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere
+from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
 
 
 def random_rulings(count, seed=0):

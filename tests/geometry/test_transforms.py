@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.transforms import (
+from torsal.nodes.geometry.transforms import (
     apply_to_vectors,
     apply_transform,
     change_of_basis,
@@ -22,7 +22,7 @@ from nodes.geometry.transforms import (
     transform_plane,
     translation,
 )
-from nodes.geometry.vectors import WORLD_XY, Plane
+from torsal.nodes.geometry.vectors import WORLD_XY, Plane
 
 POINTS = np.random.default_rng(1).normal(size=(50, 3)) * 10
 finite = st.floats(-50, 50, allow_nan=False)

@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.triangle_search import TriangleIndex
-from nodes.geometry.unroll import unroll_rulings
 from tests.toolbox.test_development_locate import helix_tangent
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.triangle_search import TriangleIndex
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 
 def thin_strip(n: int = 400, width: float = 0.02, offset: float = 0.0) -> trimesh.Trimesh:

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodes.geometry.vectors import (
+from torsal.nodes.geometry.vectors import (
     WORLD_XY,
     WORLD_YZ,
     WORLD_ZX,

@@ -12,7 +12,7 @@ from PySide6.QtWidgets import QApplication
 
 def main() -> None:
     app = QApplication(sys.argv[:1])
-    from app.gui.main_window import MainWindow
+    from torsal.app.gui.main_window import MainWindow
 
     window = MainWindow()  # TORSAL_CONFIG_DIR and TORSAL_AUTOSAVE_SECONDS come from the test
     window.show()

@@ -13,13 +13,13 @@ from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QMenu, QMessageBox
 
-from app.gui.main_window import MainWindow
-from engine.registry import Registry
 from tests.gui.showcase_nodes import showcase_registry
+from torsal.app.gui.main_window import MainWindow
+from torsal.engine.registry import Registry
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
-EXAMPLES = ROOT / "resources" / "examples"
+EXAMPLES = ROOT / "torsal" / "resources" / "examples"
 FIXTURES = HERE / "fixtures"
 SCREENSHOTS = HERE / "screenshots"
 SOLVE_TIMEOUT_MS = 20000

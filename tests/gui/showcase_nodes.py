@@ -10,14 +10,14 @@ import time
 import numpy as np
 import trimesh
 
-from engine.node import LIST, In, Node, Out
-from engine.registry import Registry
-from engine.types import NUMBER
-from nodes.catalogue import default_registry
-from nodes.common.values import CURVE, LINE, MESH, SURFACE
-from nodes.geometry.curves.line import Line
-from nodes.geometry.curves.parametric import ParametricCurve
-from nodes.geometry.parametric_surface import ParametricSurface
+from torsal.engine.node import LIST, In, Node, Out
+from torsal.engine.registry import Registry
+from torsal.engine.types import NUMBER
+from torsal.nodes.catalogue import default_registry
+from torsal.nodes.common.values import CURVE, LINE, MESH, SURFACE
+from torsal.nodes.geometry.curves.line import Line
+from torsal.nodes.geometry.curves.parametric import ParametricCurve
+from torsal.nodes.geometry.parametric_surface import ParametricSurface
 
 
 class Helix(Node):

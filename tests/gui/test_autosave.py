@@ -9,9 +9,9 @@ import threading
 
 from PySide6.QtWidgets import QMessageBox
 
-from app.gui.autosave import find_recoveries
-from app.gui.main_window import MainWindow
 from tests.gui.fixtures_gui import EXAMPLES, HERE, ROOT, close_window, copy_fixture, wait_solved
+from torsal.app.gui.autosave import find_recoveries
+from torsal.app.gui.main_window import MainWindow
 
 
 def run_and_kill_after_autosave(path, config_folder) -> None:

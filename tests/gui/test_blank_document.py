@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import json
 
-import app.gui.main
-from app.cli import main
+import torsal.app.gui.main
 from tests.gui.fixtures_gui import EXAMPLES, wait_solved
+from torsal.app.cli import main
 
 
 def test_torsal_gui_with_no_file_launches_on_no_file(monkeypatch):
     launched = []
-    monkeypatch.setattr(app.gui.main, "launch", lambda path=None: launched.append(path) or 0)
+    monkeypatch.setattr(torsal.app.gui.main, "launch", lambda path=None: launched.append(path) or 0)
     monkeypatch.setenv("DISPLAY", ":99")
     assert main(["gui"]) == 0
     assert launched == [None]
@@ -25,7 +25,7 @@ def test_a_window_started_on_no_file_is_untitled_and_its_canvas_empty(window):
 
 def test_the_makefile_runs_the_app_on_the_flagship_explicitly():
     text = (EXAMPLES.parent.parent / "Makefile").read_text(encoding="utf-8")
-    assert "EXAMPLE ?= resources/examples/kaohsiung-stadium.graph" in text
+    assert "EXAMPLE ?= torsal/resources/examples/kaohsiung-stadium.graph" in text
     assert "torsal gui $(EXAMPLE)" in text
 
 

@@ -8,9 +8,9 @@ import sys
 
 from PySide6.QtCore import QPoint, QPointF
 
-from app.gui.canvas.inline_widgets import SliderWidget
-from engine.types import summarize_value
 from tests.gui.fixtures_gui import ROOT, drag, place_by_search, port_point, view_point, wait_solved
+from torsal.app.gui.canvas.inline_widgets import SliderWidget
+from torsal.engine.types import summarize_value
 
 
 def gui_outputs(window) -> dict:
@@ -78,7 +78,7 @@ def test_graph_built_with_search_wires_and_slider_drag_solves_the_same_headless(
     assert window.save_as(path)
     assert not window.doc.dirty
     run = subprocess.run(
-        [sys.executable, "-m", "app.cli", "run", str(path), "--json"],
+        [sys.executable, "-m", "torsal.app.cli", "run", str(path), "--json"],
         cwd=ROOT,
         capture_output=True,
         text=True,

@@ -11,12 +11,12 @@ from PySide6.QtGui import QGuiApplication, QWheelEvent
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QInputDialog
 
-from app.gui.canvas import inline_widgets, slider_dialog
-from app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListWidget
-from app.gui.fuzzy import build_entries, search
-from app.gui.icons import node_letters
-from engine.graphfile import loads
 from tests.gui.fixtures_gui import FIXTURES, double_click, drag, port_point, view_point, wait_solved
+from torsal.app.gui.canvas import inline_widgets, slider_dialog
+from torsal.app.gui.canvas.inline_widgets import SliderWidget, ToggleWidget, ValueListWidget
+from torsal.app.gui.fuzzy import build_entries, search
+from torsal.app.gui.icons import node_letters
+from torsal.engine.graphfile import loads
 
 
 def node_centre(window, node_id: str) -> QPoint:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import itertools
 
-from app.gui.canvas.port_item import HIT_R
+from torsal.app.gui.canvas.port_item import HIT_R
 
 
 def test_wires_draw_above_group_boxes_and_nodes(first_steps):

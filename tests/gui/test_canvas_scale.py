@@ -11,12 +11,12 @@ from hypothesis import strategies as st
 from PySide6.QtCore import QEvent
 from PySide6.QtWidgets import QGraphicsSceneHelpEvent
 
-from app.gui.canvas.node_item import NodeItem
-from app.gui.fragments import fresh_ids
-from app.gui.graph_order import fresh_id
-from engine.graph import Graph, NodeRecord, PlaceholderNode
-from engine.graphfile import write_graph
 from tests.gui.fixtures_gui import EXAMPLES, wait_solved
+from torsal.app.gui.canvas.node_item import NodeItem
+from torsal.app.gui.fragments import fresh_ids
+from torsal.app.gui.graph_order import fresh_id
+from torsal.engine.graph import Graph, NodeRecord, PlaceholderNode
+from torsal.engine.graphfile import write_graph
 
 NODES = 5_000
 

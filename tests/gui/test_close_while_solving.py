@@ -15,10 +15,10 @@ import pytest
 from PySide6.QtCore import QEvent
 from PySide6.QtWidgets import QApplication
 
-from engine.node import Node, Out
-from engine.types import NUMBER
-from nodes.catalogue import default_registry
 from tests.gui.fixtures_gui import make_window, wait_solved
+from torsal.engine.node import Node, Out
+from torsal.engine.types import NUMBER
+from torsal.nodes.catalogue import default_registry
 
 SECONDS = 2.5
 

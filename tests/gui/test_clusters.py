@@ -14,9 +14,6 @@ from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QDialogButtonBox, QLineEdit, QListWidget, QPushButton
 
-from app.gui.cluster_widgets import ClusterPortsDialog
-from app.headless import run_file
-from engine.cluster import is_cluster
 from tests.gui.fixtures_gui import (
     EXAMPLES,
     double_click,
@@ -26,6 +23,9 @@ from tests.gui.fixtures_gui import (
     view_point,
     wait_solved,
 )
+from torsal.app.gui.cluster_widgets import ClusterPortsDialog
+from torsal.app.headless import run_file
+from torsal.engine.cluster import is_cluster
 
 CTRL = Qt.KeyboardModifier.ControlModifier
 INNER = {"edges", "total", "heights"}  # the Series and the two Expressions of first-steps

@@ -10,7 +10,6 @@ from PySide6.QtGui import QContextMenuEvent
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QInputDialog
 
-from app.gui.canvas.wire_item import WireItem
 from tests.gui.fixtures_gui import (
     MenuCatcher,
     port_point,
@@ -19,6 +18,7 @@ from tests.gui.fixtures_gui import (
     view_point,
     wait_solved,
 )
+from torsal.app.gui.canvas.wire_item import WireItem
 
 RIGHT = Qt.MouseButton.RightButton
 NONE = Qt.KeyboardModifier.NoModifier

@@ -10,18 +10,18 @@ import numpy as np
 import pytest
 from PySide6.QtCore import QPointF
 
-from app.gui.canvas.inline_widgets import SliderWidget
-from app.gui.canvas.slider_dialog import SliderDialog, WiredBounds
-from app.gui.viewport.datasets import collect, pieces
-from engine.node import In, Node, Out, Setting
-from engine.types import GENERIC, INTEGER, NUMBER
-from engine.widgets import Widget
-from nodes.common.preview import PreviewGeometry
 from tests.gui.fixtures_gui import close_window, drag, make_window, view_point, wait_solved
 from tests.gui.showcase_nodes import showcase_registry
+from torsal.app.gui.canvas.inline_widgets import SliderWidget
+from torsal.app.gui.canvas.slider_dialog import SliderDialog, WiredBounds
+from torsal.app.gui.viewport.datasets import collect, pieces
+from torsal.engine.node import In, Node, Out, Setting
+from torsal.engine.types import GENERIC, INTEGER, NUMBER
+from torsal.engine.widgets import Widget
+from torsal.nodes.common.preview import PreviewGeometry
 
 ROOT = Path(__file__).resolve().parents[2]
-GUI = ROOT / "app" / "gui"
+GUI = ROOT / "torsal" / "app" / "gui"
 #: The palette and the search are the GUI's catalogue of node types: they may name them.
 CATALOGUE = {GUI / "palette.py", GUI / "search_popup.py", GUI / "fuzzy.py"}
 TYPE_STRING = re.compile(r"""["'](?:[a-z]+)\.[A-Z][A-Za-z0-9]*["']""")

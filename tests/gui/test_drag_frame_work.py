@@ -13,8 +13,8 @@ from PySide6.QtGui import QImage
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMenu
 
-from app.gui.viewport.datasets import Piece, dataset, move_points
 from tests.gui.fixtures_gui import EXAMPLES, slider_handle, wait_solved
+from torsal.app.gui.viewport.datasets import Piece, dataset, move_points
 
 NONE = Qt.KeyboardModifier.NoModifier
 LEFT = Qt.MouseButton.LeftButton

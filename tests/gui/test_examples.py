@@ -9,11 +9,11 @@ import pytest
 import trimesh
 from PySide6.QtGui import QImage
 
-from app.gui.viewport.datasets import mesh_scalars
-from engine.values import Plane, Point, Vector
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.surface_base import Surface
 from tests.gui.fixtures_gui import EXAMPLES, FIXTURES, SCREENSHOTS, wait_solved
+from torsal.app.gui.viewport.datasets import mesh_scalars
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.surface_base import Surface
 
 SOLVE_BUDGET_MS = 30000
 CASES = [*sorted(EXAMPLES.glob("*.graph")), FIXTURES / "showcase.graph"]

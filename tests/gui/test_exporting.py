@@ -13,10 +13,10 @@ from PySide6.QtGui import QColor, QKeySequence
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QColorDialog, QFileDialog, QMenu
 
-from app.gui.canvas.view import CanvasView
 from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, port_point, view_point, wait_solved
 from tests.gui.fixtures_gui import right_click as right_click_menu
 from tests.io.helpers import rhino_points, rhino_surface_points
+from torsal.app.gui.canvas.view import CanvasView
 
 
 class SaveDialog:

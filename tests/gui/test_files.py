@@ -9,8 +9,8 @@ from PySide6.QtCore import QMimeData, QPointF, Qt, QUrl
 from PySide6.QtGui import QDragEnterEvent, QDropEvent
 from PySide6.QtWidgets import QMessageBox
 
-from engine.graphfile import dumps
 from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, wait_solved
+from torsal.engine.graphfile import dumps
 
 
 @pytest.fixture

@@ -6,12 +6,12 @@ from PySide6.QtCore import QPointF, Qt
 from PySide6.QtGui import QImage
 from PySide6.QtTest import QTest
 
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from engine.types import encode_value
-from nodes.display.plot import Plot
-from nodes.params.panel import Panel
 from tests.gui.fixtures_gui import view_point, wait_solved
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.engine.types import encode_value
+from torsal.nodes.display.plot import Plot
+from torsal.nodes.params.panel import Panel
 
 
 def plot_graph(folder):

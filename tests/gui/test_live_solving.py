@@ -11,9 +11,9 @@ import time
 from PySide6.QtCore import QElapsedTimer, Qt, QTimer
 from PySide6.QtTest import QTest
 
-from engine.graph import Graph
-from engine.graphfile import write_graph
 from tests.gui.fixtures_gui import wait_solved
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
 
 
 def slow_graph(registry, path, seconds: float = 10.0):

@@ -15,8 +15,8 @@ import sys
 import pytest
 from PySide6.QtWidgets import QApplication
 
-from app.gui import qt_compat
 from tests.gui.fixtures_gui import EXAMPLES, wait_solved
+from torsal.app.gui import qt_compat
 
 REPAINTS = 40
 SECONDS_PER_CENTURY = 100 * 365.25 * 24 * 3600

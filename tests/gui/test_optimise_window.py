@@ -11,7 +11,7 @@ from PySide6.QtTest import QTest
 
 from tests.gui.fixtures_gui import wait_solved
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 
 
 def open_window(qtbot, window):

@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-from app.gui.palette import Palette
-from engine.registry import Registry
+from torsal.app.gui.palette import Palette
+from torsal.engine.registry import Registry
 
 
 def lazy_registry() -> Registry:
     registry = Registry()
-    registry.register_lazy("params", "nodes.params.sliders")
-    registry.register_lazy("maths", "nodes.maths.expression")
+    registry.register_lazy("params", "torsal.nodes.params.sliders")
+    registry.register_lazy("maths", "torsal.nodes.maths.expression")
     return registry
 
 

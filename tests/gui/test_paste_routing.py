@@ -7,8 +7,8 @@ from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtGui import QCursor
 from PySide6.QtTest import QTest
 
-from engine.graph import Graph
 from tests.gui.fixtures_gui import view_point, wait_solved
+from torsal.engine.graph import Graph
 
 CTRL = Qt.KeyboardModifier.ControlModifier
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 from PySide6.QtCore import QPoint, QPointF, Qt
 from PySide6.QtTest import QTest
 
-from app.gui.fuzzy import build_entries, search
 from tests.gui.fixtures_gui import place_by_search
+from torsal.app.gui.fuzzy import build_entries, search
 
 
 def typed(qtbot, window, query: str) -> list[str]:

@@ -117,7 +117,7 @@ def test_dragging_the_kaohsiung_slider_shows_every_solve_while_dragging(qtbot, w
     if not path.exists():
         import pytest
 
-        pytest.skip("the Kaohsiung example is not in resources/examples")
+        pytest.skip("the Kaohsiung example is not in torsal/resources/examples")
     drag = drag_main_slider(qtbot, window, path)
     print("\n" + drag.line(path.name))
     assert len(drag.solves) >= 3  # it solved again and again while dragging (and each

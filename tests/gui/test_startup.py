@@ -24,7 +24,7 @@ def start_app(config_folder: Path) -> dict[str, float]:
     )
     began = time.time()
     child = subprocess.Popen(
-        [sys.executable, "-m", "app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
+        [sys.executable, "-m", "torsal.app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
         cwd=ROOT,
         env=env,
         stdout=subprocess.DEVNULL,

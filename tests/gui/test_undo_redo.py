@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import random
 
-from app.gui.main_window import MainWindow
-from engine.graph import Wire
 from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, wait_solved
+from torsal.app.gui.main_window import MainWindow
+from torsal.engine.graph import Wire
 
 NEW_TYPES = [
     "params.NumberSlider",

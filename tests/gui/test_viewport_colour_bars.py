@@ -29,7 +29,7 @@ def test_two_analyses_of_the_same_quantity_share_one_colour_bar_until_both_are_g
 
 
 def test_a_colour_bar_title_spells_absolute_values_out_as_vtk_drops_the_bars():
-    from app.gui.viewport.preview import ascii_title
+    from torsal.app.gui.viewport.preview import ascii_title
 
     assert ascii_title("min(|k1|, |k2|), 1/m") == "min(abs(k1), abs(k2)), 1/m"
     assert ascii_title("max |κ| · r²") == "max abs(k) * r^2"

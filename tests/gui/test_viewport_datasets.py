@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from app.gui.viewport.datasets import (
+from torsal.app.gui.viewport.datasets import (
     ARROW_HEAD,
     ARROW_RADIUS,
     ARROW_SIDES,
@@ -16,8 +16,8 @@ from app.gui.viewport.datasets import (
     pieces,
     same_topology,
 )
-from engine.values import Vector
-from nodes.geometry.curves import Line
+from torsal.engine.values import Vector
+from torsal.nodes.geometry.curves import Line
 
 
 def test_an_arrow_runs_from_the_origin_to_its_vector_with_a_cone_head():

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from app.gui.viewport.datasets import _line_cells
+from torsal.app.gui.viewport.datasets import _line_cells
 
 
 def test_chains_of_3_2_and_4_points_give_their_counts_then_consecutive_indices():

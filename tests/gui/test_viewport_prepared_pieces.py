@@ -10,12 +10,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from app.gui.viewport import datasets
-from app.gui.viewport.datasets import Piece, arrows, collect, pieces, same_topology
-from app.gui.viewport.preview import drawn_outputs, prepare, prepare_solved, previewed
-from app.headless import run_file
-from nodes.common import preview as protocol
-from nodes.common.preview import (
+from torsal.app.gui.viewport import datasets
+from torsal.app.gui.viewport.datasets import Piece, arrows, collect, pieces, same_topology
+from torsal.app.gui.viewport.preview import drawn_outputs, prepare, prepare_solved, previewed
+from torsal.app.headless import run_file
+from torsal.nodes.common import preview as protocol
+from torsal.nodes.common.preview import (
     CURVE_SAMPLES,
     RULINGS_SHOWN,
     SURFACE_GRID,
@@ -23,12 +23,12 @@ from nodes.common.preview import (
     preview_of,
     ruling_direction,
 )
-from nodes.geometry.curve_base import Curve
-from nodes.geometry.curves.line import Line, Polyline
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.surface_base import Surface, grid_triangles, uv_grid
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves.line import Line, Polyline
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.surface_base import Surface, grid_triangles, uv_grid
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 
 
 def one_by_one(values) -> list[Piece]:

@@ -17,8 +17,8 @@ import shiboken6
 from PySide6.QtCore import QEvent
 from PySide6.QtWidgets import QApplication
 
-from app.gui.main_window import MainWindow
 from tests.gui.fixtures_gui import close_window, wait_solved
+from torsal.app.gui.main_window import MainWindow
 
 
 @pytest.fixture

@@ -5,9 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtTest import QTest
 
-from app.gui.canvas.wire_routing import NodeGrid, route
-from engine.graph import Graph
 from tests.gui.fixtures_gui import drag, view_point, wait_solved
+from torsal.app.gui.canvas.wire_routing import NodeGrid, route
+from torsal.engine.graph import Graph
 
 
 def points_on(path, count: int = 400) -> list[QPointF]:

@@ -13,11 +13,11 @@ from PySide6.QtCore import Qt, QTimer
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QMessageBox
 
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from nodes.io.data import ExportCSV
-from nodes.params.panel import Panel
 from tests.gui.fixtures_gui import wait_solved
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.nodes.io.data import ExportCSV
+from torsal.nodes.params.panel import Panel
 
 
 def exporting_graph(folder: Path, target: str) -> Path:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import rhino3dm as rh
 
-from nodes.geometry.curves import Polyline
+from torsal.nodes.geometry.curves import Polyline
 
 
 def rectangle(x: float, y: float, w: float, h: float, z: float = 0.0) -> Polyline:

@@ -1,4 +1,4 @@
-"""Bake (app.bake): the geometry of chosen nodes into one .3dm, one layer per node, headless."""
+"""Bake (torsal.app.bake): the geometry of chosen nodes into one .3dm, one layer per node, headless."""
 
 from __future__ import annotations
 
@@ -8,12 +8,14 @@ import numpy as np
 import pytest
 import rhino3dm as rh
 
-from app.bake import bake, bake_entries, layer_name, node_layers
-from app.exports import FILE_TYPES, FORMATS, ExportError
-from app.headless import run_file
 from tests.io.helpers import rhino_points, rhino_surface_points
+from torsal.app.bake import bake, bake_entries, layer_name, node_layers
+from torsal.app.exports import FILE_TYPES, FORMATS, ExportError
+from torsal.app.headless import run_file
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "textbook-ruled-surfaces.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "textbook-ruled-surfaces.graph"
+)
 BAKED = ["cylinder", "helicoid", "cylinder_c_points", "cylinder_c_x"]  # the last makes only numbers
 
 

@@ -11,10 +11,10 @@ import pytest
 import rhino3dm as rh
 import trimesh
 
-from app.cli import main
-from app.exports import ExportError, export_tree
-from engine.datatree import DataTree
 from tests.io.helpers import polygon_area
+from torsal.app.cli import main
+from torsal.app.exports import ExportError, export_tree
+from torsal.engine.datatree import DataTree
 
 PANEL = [[0, 0, 0], [0.6, 0, 0], [0.5, 0.3, 0], [0.05, 0.25, 0]]  # 8 fit on one sheet
 
@@ -112,7 +112,7 @@ def test_export_of_the_wrong_kind_exits_2_with_a_message(graph, capsys, request_
 
 
 def test_export_tree_reports_a_bad_panel_as_an_export_error(tmp_path):
-    from nodes.geometry.curves import Polyline
+    from torsal.nodes.geometry.curves import Polyline
 
     open_curve = Polyline([[0, 0, 0], [1, 0, 0], [1, 1, 0]])
     with pytest.raises(ExportError, match="Panel P-001 is open"):

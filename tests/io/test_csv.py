@@ -5,11 +5,11 @@ from __future__ import annotations
 import csv
 import json
 
-from engine.solver import ERROR, OK
-from engine.values import Point
-from nodes.io.data import ExportCSV
 from tests.io.helpers import rectangle
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.engine.solver import ERROR, OK
+from torsal.engine.values import Point
+from torsal.nodes.io.data import ExportCSV
 
 
 def test_csv_has_one_row_per_item_with_path_and_index(tmp_path):

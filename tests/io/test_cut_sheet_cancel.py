@@ -14,15 +14,15 @@ import pytest
 import shapely
 from shapely.ops import polylabel
 
-from engine.datatree import DataTree
-from engine.node import Cancelled
-from nodes.common.files import FileFailure
-from nodes.geometry.watch import watched
-from nodes.io.cutting import ExportCutSheet
-from nodes.io.formats import cutfiles, labels
 from tests.cancelling import cancel_at_look
 from tests.io.helpers import random_panels
 from tests.nodes.helpers import tree
+from torsal.engine.datatree import DataTree
+from torsal.engine.node import Cancelled
+from torsal.nodes.common.files import FileFailure
+from torsal.nodes.geometry.watch import watched
+from torsal.nodes.io.cutting import ExportCutSheet
+from torsal.nodes.io.formats import cutfiles, labels
 
 
 class Stop(Exception):
@@ -90,7 +90,7 @@ def test_a_label_that_does_not_fit_at_the_centroid_is_centred_on_the_pole_of_ina
 
 
 def test_the_font_is_found_in_matplotlib_without_importing_it():
-    code = ("import sys; from nodes.io.formats.labels import font_file; "
+    code = ("import sys; from torsal.nodes.io.formats.labels import font_file; "
             "print(font_file()); print('matplotlib' in sys.modules)")
     found, imported = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                      check=True).stdout.split()

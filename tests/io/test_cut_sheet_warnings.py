@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import pytest
 
-from engine.solver import WARNING
-from nodes.io.cutting import ExportCutSheet
 from tests.io.helpers import rectangle
 from tests.io.test_seams import band
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.engine.solver import WARNING
+from torsal.nodes.io.cutting import ExportCutSheet
 
 PANELS = [rectangle(0, 0, 1, 0.5), rectangle(2, 0, 1, 0.5)]
 

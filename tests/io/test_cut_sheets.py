@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 import shapely
 
-from engine.solver import ERROR, OK
-from nodes.geometry.curves import Circle, NurbsCurve, Polyline
-from nodes.geometry.offset2d import offset_polygon
-from nodes.geometry.packing import DoesNotFit, shelf_pack
-from nodes.geometry.vectors import Plane
-from nodes.io.cutting import ExportCutSheet
-from nodes.io.formats import cutfiles
 from tests.io.helpers import polygon_area, random_panels, rectangle
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.engine.solver import ERROR, OK
+from torsal.nodes.geometry.curves import Circle, NurbsCurve, Polyline
+from torsal.nodes.geometry.offset2d import offset_polygon
+from torsal.nodes.geometry.packing import DoesNotFit, shelf_pack
+from torsal.nodes.geometry.vectors import Plane
+from torsal.nodes.io.cutting import ExportCutSheet
+from torsal.nodes.io.formats import cutfiles
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -151,8 +151,8 @@ def test_degree_1_nurbs_panels_keep_their_exact_corners(tmp_path):
 
 
 def test_a_development_surface_is_cut_along_its_boundary(tmp_path):
-    from nodes.analysis.iso_mapping import IsoMapping
-    from nodes.geometry.ruled import RuledSurface
+    from torsal.nodes.analysis.iso_mapping import IsoMapping
+    from torsal.nodes.geometry.ruled import RuledSurface
 
     theta = np.linspace(0.0, 2.0, 9)
     ring = np.column_stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)])
@@ -329,8 +329,8 @@ def test_shelf_packing_refuses_a_part_larger_than_the_sheet():
 def test_a_flat_annulus_outline_stays_within_its_relative_tolerance_and_a_few_thousand_points(radius):
     # a flat half annulus between two concentric arcs: its outline points lie on the two
     # circles exactly; a 1e12 m one (a fuzzed site) must not be sampled to 0.01 mm
-    from nodes.geometry.curves import Arc
-    from nodes.geometry.ruled import RuledSurface
+    from torsal.nodes.geometry.curves import Arc
+    from torsal.nodes.geometry.ruled import RuledSurface
 
     outer = Arc(radius=2.0 * radius, start_angle=0.0, end_angle=math.pi)
     inner = Arc(radius=radius, start_angle=0.0, end_angle=math.pi)

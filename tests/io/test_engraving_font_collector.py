@@ -17,7 +17,7 @@ import gc, json, sys, threading
 full = []
 gc.callbacks.append(lambda phase, info: full.append(threading.current_thread().name)
                     if phase == "start" and info["generation"] == 2 else None)
-from nodes.io.formats.labels import text_outlines
+from torsal.nodes.io.formats.labels import text_outlines
 if sys.argv[1] == "disabled":
     gc.disable()
 before = len(full)

@@ -7,10 +7,10 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
-from engine.solver import ERROR, OK
-from nodes.geometry import parametric_surface
-from nodes.io.meshes import ExportMesh, ImportMesh
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.engine.solver import ERROR, OK
+from torsal.nodes.geometry import parametric_surface
+from torsal.nodes.io.meshes import ExportMesh, ImportMesh
 
 FORMATS = ["obj", "stl", "ply", "glb"]
 PRECISION = {"obj": 1e-13, "stl": 1e-6, "ply": 1e-6, "glb": 1e-6}  # STL, PLY, GLB: single precision

@@ -14,15 +14,15 @@ import numpy as np
 import pytest
 import shapely
 
-from engine.graph import Graph
-from engine.node import CancelToken
-from engine.solver import OK, Solver
-from nodes.geometry.curves import Circle, Polyline
-from nodes.geometry.nesting import nest, place
-from nodes.io.cutting import ExportCutSheet
-from nodes.io.formats import cutfiles
 from tests.io.helpers import random_panels, rectangle
 from tests.nodes.helpers import Source, allowed, out, run, texts, tree
+from torsal.engine.graph import Graph
+from torsal.engine.node import CancelToken
+from torsal.engine.solver import OK, Solver
+from torsal.nodes.geometry.curves import Circle, Polyline
+from torsal.nodes.geometry.nesting import nest, place
+from torsal.nodes.io.cutting import ExportCutSheet
+from torsal.nodes.io.formats import cutfiles
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -256,7 +256,7 @@ def test_layout_area_is_kept_under_true_shape_nesting(tmp_path):
 def test_a_failing_nesting_engine_is_an_error_saying_so(monkeypatch):
     import subprocess
 
-    from nodes.geometry import nesting
+    from torsal.nodes.geometry import nesting
 
     real = subprocess.Popen
 
@@ -288,7 +288,7 @@ def test_true_shape_never_takes_more_stock_than_shelf_packing(panels):
 
 
 def _nested_once(shapes, budget=2.0):
-    from nodes.geometry import nesting
+    from torsal.nodes.geometry import nesting
 
     nesting._PACKED.clear()  # the cache would answer a repeat without searching
     return nest(shapes, 1250.0, 1250.0, 10.0, 10.0, budget=budget, seed=3)
@@ -319,7 +319,7 @@ def test_a_sheet_is_cut_where_the_strip_holds_the_most_part_area():
     10 mm margin: from 0 the sheet holds the first two (from x = 290 too, but later); a
     120 mm square at 900 makes the stretches holding the third and it the best, the first
     of them ending where the big one ends plus the margin: 1020 + 10 - 500 = 530."""
-    from nodes.geometry.nesting import _window
+    from torsal.nodes.geometry.nesting import _window
 
     def squares(*corners_and_sides):
         return {k: shapely.box(x, 10, x + side, 10 + side) for k, (x, side) in enumerate(corners_and_sides)}
@@ -336,7 +336,7 @@ def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monk
     room. The strip's best sheet-long stretch holds 200 + 100 + 180; swapping the 100 for
     the 110 still fits (200 + 180 + 110 + 2 gaps = 492) and puts more on the sheet (the 150
     would too, but it would make the sheet denser than the strip was)."""
-    from nodes.geometry import nesting
+    from torsal.nodes.geometry import nesting
 
     def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1):
         budget.used += 10

@@ -9,17 +9,17 @@ import pytest
 import rhino3dm as rh
 import trimesh
 
-from engine.solver import ERROR, OK
-from nodes.geometry import parametric_surface
-from nodes.geometry.curves import Arc, Circle, InterpolatedCurve, Line, NurbsCurve, Polyline
-from nodes.geometry.nurbs_surface import Loft, NurbsSurface
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.transforms import rotation
-from nodes.geometry.vectors import Plane
-from nodes.io.formats import threedm
-from nodes.io.rhino import Export3dm, Import3dm
 from tests.io.helpers import rectangle, rhino_points, rhino_surface_points
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.engine.solver import ERROR, OK
+from torsal.nodes.geometry import parametric_surface
+from torsal.nodes.geometry.curves import Arc, Circle, InterpolatedCurve, Line, NurbsCurve, Polyline
+from torsal.nodes.geometry.nurbs_surface import Loft, NurbsSurface
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.transforms import rotation
+from torsal.nodes.geometry.vectors import Plane
+from torsal.nodes.io.formats import threedm
+from torsal.nodes.io.rhino import Export3dm, Import3dm
 
 RNG = np.random.default_rng(2024)
 UP = np.array([0.0, 0.0, 2.0])

@@ -10,14 +10,16 @@ import numpy as np
 import pytest
 import shapely
 
-from engine.solver import OK
-from nodes.geometry.ruled import RuledSurface
-from nodes.io.cutting import ExportCutSheet
-from nodes.io.formats import cutfiles
-from nodes.io.seams import TICK_MM, edge_polyline, find_seams, length
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.solver import OK
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.io.cutting import ExportCutSheet
+from torsal.nodes.io.formats import cutfiles
+from torsal.nodes.io.seams import TICK_MM, edge_polyline, find_seams, length
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "kaohsiung-cut-sheets.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / (
+    "kaohsiung-cut-sheets.graph"
+)
 
 
 def band(y0: float, y1: float, length: float = 1.0, bend: float = 0.0) -> RuledSurface:
@@ -113,7 +115,7 @@ def test_the_seams_are_engraved_in_the_dxf(tmp_path):
 
 @functools.cache
 def kaohsiung():
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
     solved = run_file(EXAMPLE)
     strips = solved.solver.result("strip").outputs["Surface"].all_items()
@@ -148,7 +150,7 @@ def test_kaohsiung_seams_are_as_long_flat_as_the_shared_curve_in_3d():
 
     from scipy.integrate import fixed_quad
 
-    from app.headless import run_file
+    from torsal.app.headless import run_file
 
     solved = run_file(EXAMPLE)
     strips = solved.solver.result("strip").outputs["Surface"].all_items()

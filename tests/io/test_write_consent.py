@@ -15,11 +15,11 @@ from pathlib import Path
 
 import pytest
 
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from engine.writes import WriteAccess, WriteRefused
-from nodes.io.data import ExportCSV
-from nodes.params.panel import Panel
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.engine.writes import WriteAccess, WriteRefused
+from torsal.nodes.io.data import ExportCSV
+from torsal.nodes.params.panel import Panel
 
 PAYLOAD = "echo pwned"
 
@@ -40,7 +40,7 @@ def hostile_graph(folder: Path, target: str, name: str = "hostile.graph") -> Pat
 def torsal(*args: str | Path, home: Path) -> subprocess.CompletedProcess[str]:
     env = {**os.environ, "HOME": str(home)}
     return subprocess.run(
-        [sys.executable, "-m", "app.cli", *map(str, args)], capture_output=True, text=True, env=env,
+        [sys.executable, "-m", "torsal.app.cli", *map(str, args)], capture_output=True, text=True, env=env,
         cwd=Path(__file__).resolve().parents[2], timeout=120,
     )
 
@@ -159,7 +159,7 @@ def test_requests_wait_for_consent_with_their_node_and_paths(tmp_path):
 
 
 def plot_graph(folder: Path, file: str) -> Path:
-    from nodes.display.plot import Plot
+    from torsal.nodes.display.plot import Plot
 
     graph = Graph()
     graph.add_node(Panel({"text": "1\n3\n2"}), "values")

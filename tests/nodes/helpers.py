@@ -5,12 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from engine.datatree import DataTree
-from engine.graph import Graph
-from engine.node import TREE, Node, Out
-from engine.solver import NodeResult, Solver
-from engine.types import GENERIC, encode_value
-from engine.writes import WriteAccess
+from torsal.engine.datatree import DataTree
+from torsal.engine.graph import Graph
+from torsal.engine.node import TREE, Node, Out
+from torsal.engine.solver import NodeResult, Solver
+from torsal.engine.types import GENERIC, encode_value
+from torsal.engine.writes import WriteAccess
 
 
 class Source(Node):

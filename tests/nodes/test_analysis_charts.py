@@ -7,11 +7,11 @@ from pathlib import Path
 
 import numpy as np
 
-from nodes.analysis.curvature_histogram import CurvatureHistogram
-from nodes.analysis.warp_chart import WarpChart
-from nodes.geometry.curves.line import Line
-from nodes.surfaces.primitives import Cylinder
 from tests.nodes.helpers import allowed, out, run, texts, tree
+from torsal.nodes.analysis.curvature_histogram import CurvatureHistogram
+from torsal.nodes.analysis.warp_chart import WarpChart
+from torsal.nodes.geometry.curves.line import Line
+from torsal.nodes.surfaces.primitives import Cylinder
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 RADIUS = 2.0

@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from engine.node import Cancelled
-from nodes.analysis.bending import CHECK_BLOCK, BendingCheck, bending_radii
-from nodes.geometry.parametric_surface import cylinder
-from nodes.geometry.surface_base import uv_grid
-from nodes.geometry.watch import watched
 from tests.cancelling import cancel_at_look
+from torsal.engine.node import Cancelled
+from torsal.nodes.analysis.bending import CHECK_BLOCK, BendingCheck, bending_radii
+from torsal.nodes.geometry.parametric_surface import cylinder
+from torsal.nodes.geometry.surface_base import uv_grid
+from torsal.nodes.geometry.watch import watched
 
 
 def test_bending_radii_checks_once_a_block_of_grid_points():

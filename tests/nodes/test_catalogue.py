@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from nodes.catalogue import default_registry
+from torsal.nodes.catalogue import default_registry
 
 REGISTRY = default_registry(plugins=False)
 NODE_CLASSES = list(REGISTRY)
@@ -37,7 +37,7 @@ def test_node_has_a_docstring(cls):
 def test_type_id_is_palette_dot_class_name_and_palette_is_the_module_folder(cls):
     palette, name = cls.type_id.split(".")
     assert name == cls.__name__
-    assert cls.__module__.split(".")[1] == palette
+    assert cls.__module__.split(".")[2] == palette
 
 
 @pytest.mark.parametrize("cls", NODE_CLASSES, ids=ids)

@@ -1,4 +1,4 @@
-"""nodes.common.checks.angle: the one check of a tolerance angle, positive or (exact) 0 and up."""
+"""torsal.nodes.common.checks.angle: the one check of a tolerance angle, positive or (exact) 0 and up."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from engine.node import NodeWarning
-from nodes.common.checks import angle, tolerance
+from torsal.engine.node import NodeWarning
+from torsal.nodes.common.checks import angle, tolerance
 
 
 def test_a_positive_angle_up_to_a_quarter_turn_passes():

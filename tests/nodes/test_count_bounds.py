@@ -5,20 +5,20 @@ from __future__ import annotations
 
 import pytest
 
-from engine.node import Node
-from engine.values import Point
-from nodes.analysis.bending import BendingCheck
-from nodes.analysis.curvature_histogram import MAX_BINS, CurvatureHistogram
-from nodes.analysis.curve_of_regression import CurveOfRegression
-from nodes.analysis.surface_analysis import SurfaceAnalysis
-from nodes.curves.analysis import DivideCurve
-from nodes.geometry.curves import Line
-from nodes.limits import MAX_ANALYSIS_SEGMENTS, MAX_COPIES, MAX_DENSITY, MAX_DIVISIONS, MAX_NUMBERS
-from nodes.maths.random_numbers import Random
-from nodes.maths.sequences import Range, Series
-from nodes.surfaces.freeform import NurbsSurface
-from nodes.transform.arrays import Array, PolarArray
 from tests.nodes.helpers import run, texts, tree
+from torsal.engine.node import Node
+from torsal.engine.values import Point
+from torsal.nodes.analysis.bending import BendingCheck
+from torsal.nodes.analysis.curvature_histogram import MAX_BINS, CurvatureHistogram
+from torsal.nodes.analysis.curve_of_regression import CurveOfRegression
+from torsal.nodes.analysis.surface_analysis import SurfaceAnalysis
+from torsal.nodes.curves.analysis import DivideCurve
+from torsal.nodes.geometry.curves import Line
+from torsal.nodes.limits import MAX_ANALYSIS_SEGMENTS, MAX_COPIES, MAX_DENSITY, MAX_DIVISIONS, MAX_NUMBERS
+from torsal.nodes.maths.random_numbers import Random
+from torsal.nodes.maths.sequences import Range, Series
+from torsal.nodes.surfaces.freeform import NurbsSurface
+from torsal.nodes.transform.arrays import Array, PolarArray
 
 LINE = Line([0.0, 0.0, 0.0], [3.0, 4.0, 0.0])
 

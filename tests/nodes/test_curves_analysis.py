@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from engine.graph import Graph
-from engine.solver import Solver
-from engine.values import Domain, Point, Vector
-from nodes.curves.analysis import CurveLength, DivideCurve, EndPoints, EvaluateCurve, Flip
-from nodes.curves.primitives import Arc, Circle, Line
-from nodes.geometry import curves as kernel
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.engine.values import Domain, Point, Vector
+from torsal.nodes.curves.analysis import CurveLength, DivideCurve, EndPoints, EvaluateCurve, Flip
+from torsal.nodes.curves.primitives import Arc, Circle, Line
+from torsal.nodes.geometry import curves as kernel
 
 CIRCLE = kernel.Circle(radius=2.0)
 LINE = kernel.Line([0, 0, 0], [3, 4, 0])

@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Domain, Plane, Point, Vector
-from nodes.curves.offset import Offset
-from nodes.curves.splines import ParametricCurve
-from nodes.geometry import curves as kernel
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Domain, Plane, Point, Vector
+from torsal.nodes.curves.offset import Offset
+from torsal.nodes.curves.splines import ParametricCurve
+from torsal.nodes.geometry import curves as kernel
 
 SAMPLES = np.linspace(0.0, 1.0, 10_001)
 

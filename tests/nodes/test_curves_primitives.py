@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Domain, Plane, Point, Vector
-from nodes.curves.primitives import Arc, Circle, Line, Polyline
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Domain, Plane, Point, Vector
+from torsal.nodes.curves.primitives import Arc, Circle, Line, Polyline
 
 
 def only(result, port=None):

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Domain, Point, Vector
-from nodes.curves.splines import Interpolate, NurbsCurve, ParametricCurve
 from tests.nodes.helpers import out, run, texts
+from torsal.engine.values import Domain, Point, Vector
+from torsal.nodes.curves.splines import Interpolate, NurbsCurve, ParametricCurve
 
 ZIGZAG = [Point(0, 0, 0), Point(1, 2, 0), Point(3, 1, 1), Point(4, 3, 0), Point(6, 0, 2)]
 

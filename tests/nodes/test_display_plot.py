@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from nodes.display.plot import Plot
 from tests.nodes.helpers import allowed, out, run, texts
+from torsal.nodes.display.plot import Plot
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 WARP_ANGLES = [0.0, 1.5, 3.0, 2.0, 4.5, 1.0]

@@ -6,13 +6,13 @@ import json
 
 import pytest
 
-from engine.types import decode_value, encode_value, summarize_value
-from engine.values import Point
-from nodes.display.hints import StyledGeometry, Tag, parse_colour
-from nodes.display.preview import Preview
-from nodes.display.preview import Tag as TagNode
-from nodes.geometry import curves as kernel
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.types import decode_value, encode_value, summarize_value
+from torsal.engine.values import Point
+from torsal.nodes.display.hints import StyledGeometry, Tag, parse_colour
+from torsal.nodes.display.preview import Preview
+from torsal.nodes.display.preview import Tag as TagNode
+from torsal.nodes.geometry import curves as kernel
 
 LINE = kernel.Line([0, 0, 0], [1, 0, 0])
 

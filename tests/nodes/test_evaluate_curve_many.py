@@ -6,14 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.graph import Graph
-from engine.node import Node
-from engine.values import Point
-from nodes.curves.analysis import _ROW_BY_ROW, EvaluateCurve
-from nodes.geometry import curves as kernel
-from nodes.geometry.vectors import Plane
 from tests.benchmarks.check_gaps import check_gaps
 from tests.nodes.helpers import Source, out, run, tree
+from torsal.engine.graph import Graph
+from torsal.engine.node import Node
+from torsal.engine.values import Point
+from torsal.nodes.curves.analysis import _ROW_BY_ROW, EvaluateCurve
+from torsal.nodes.geometry import curves as kernel
+from torsal.nodes.geometry.vectors import Plane
 
 RNG = np.random.default_rng(7)
 CONTROL = RNG.normal(size=(7, 3)) * 30 + 500.0

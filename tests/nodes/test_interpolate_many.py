@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from engine.graph import Graph
-from engine.node import Node
-from engine.values import Point, Vector
-from nodes.curves.splines import FREE_END, Interpolate
 from tests.benchmarks.check_gaps import check_gaps
 from tests.nodes.helpers import Source, out, run, tree
+from torsal.engine.graph import Graph
+from torsal.engine.node import Node
+from torsal.engine.values import Point, Vector
+from torsal.nodes.curves.splines import FREE_END, Interpolate
 
 RNG = np.random.default_rng(3)
 

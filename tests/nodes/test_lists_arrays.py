@@ -12,13 +12,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from engine.datatree import DataTree, Triples, is_array
-from engine.values import Point
-from nodes.lists.culling import CullPattern
-from nodes.lists.items import ListItem, ListLength
-from nodes.lists.ordering import Reverse, Shift, Sort
-from nodes.lists.trees import Merge, Partition
 from tests.nodes.helpers import run
+from torsal.engine.datatree import DataTree, Triples, is_array
+from torsal.engine.values import Point
+from torsal.nodes.lists.culling import CullPattern
+from torsal.nodes.lists.items import ListItem, ListLength
+from torsal.nodes.lists.ordering import Reverse, Shift, Sort
+from torsal.nodes.lists.trees import Merge, Partition
 
 NUMBERS = [3.0, 1.0, 4.0, 1.5, 5.0]
 POINTS = [Point(0.0, 0.0, 0.0), Point(1.0, 0.0, 0.0), Point(1.0, 2.0, 0.0), Point(0.0, 2.0, 3.0)]

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from nodes.lists.items import ListItem, ListLength
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.lists.items import ListItem, ListLength
 
 
 def test_list_item_picks_by_position_from_zero():

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from nodes.lists.culling import CullPattern
-from nodes.lists.ordering import Reverse, Shift, Sort
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.lists.culling import CullPattern
+from torsal.nodes.lists.ordering import Reverse, Shift, Sort
 
 
 def items(result, port=None) -> list:

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from nodes.lists.trees import Flatten, Graft, Merge, Partition
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.lists.trees import Flatten, Graft, Merge, Partition
 
 
 def test_flatten_puts_all_items_in_branch_zero_in_path_order():

@@ -6,14 +6,14 @@ import math
 
 import numpy as np
 
-from engine import graphfile
-from engine.graph import Graph
-from engine.registry import Registry
-from engine.solver import Solver
-from nodes.expressions import CompiledExpression
-from nodes.maths.expression import Expression
-from nodes.maths.sequences import Series
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine import graphfile
+from torsal.engine.graph import Graph
+from torsal.engine.registry import Registry
+from torsal.engine.solver import Solver
+from torsal.nodes.expressions import CompiledExpression
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.maths.sequences import Series
 
 
 def expression(text: str, variables: list[str] | None = None) -> Expression:

@@ -7,11 +7,11 @@ import subprocess
 import sys
 from pathlib import Path
 
-from engine.values import Domain
-from nodes.maths.domains import Domain as DomainNode
-from nodes.maths.random_numbers import Random
-from nodes.maths.sequences import Range, Series
 from tests.nodes.helpers import out, run, texts
+from torsal.engine.values import Domain
+from torsal.nodes.maths.domains import Domain as DomainNode
+from torsal.nodes.maths.random_numbers import Random
+from torsal.nodes.maths.sequences import Range, Series
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -109,8 +109,8 @@ def test_random_with_another_seed_gives_other_numbers():
 def test_random_is_the_same_in_a_fresh_python_process():
     script = (
         "import json\n"
-        "from engine.values import Domain\n"
-        "from nodes.maths.random_numbers import Random\n"
+        "from torsal.engine.values import Domain\n"
+        "from torsal.nodes.maths.random_numbers import Random\n"
         "from tests.nodes.helpers import run\n"
         "r = run(Random(), Range=Domain(0, 10), Number=4, Seed=7)\n"
         "print(json.dumps(r.output('Random').all_items()))\n"

@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Point
-from nodes.analysis.bending import BendingCheck
-from nodes.curves.splines import ParametricCurve
-from nodes.geometry.parametric_surface import cylinder
-from nodes.surfaces.freeform import ParametricSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Point
+from torsal.nodes.analysis.bending import BendingCheck
+from torsal.nodes.curves.splines import ParametricCurve
+from torsal.nodes.geometry.parametric_surface import cylinder
+from torsal.nodes.surfaces.freeform import ParametricSurface
 
 
 def test_a_strip_that_is_not_a_surface_warns_and_gets_null_outputs_while_the_others_are_checked():

@@ -7,14 +7,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.node import LIST, In, Node, NodeWarning, Out
-from engine.types import GENERIC, NUMBER
-from nodes.common.strip_outputs import strip_outputs
-from nodes.developable.surface_coupling import SurfaceCoupling
-from nodes.geometry.curves import Line
-from nodes.geometry.ruled import RuledSurface
-from nodes.lists.trees import Partition
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.node import LIST, In, Node, NodeWarning, Out
+from torsal.engine.types import GENERIC, NUMBER
+from torsal.nodes.common.strip_outputs import strip_outputs
+from torsal.nodes.developable.surface_coupling import SurfaceCoupling
+from torsal.nodes.geometry.curves import Line
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.lists.trees import Partition
 
 # -- Partition ------------------------------------------------------------------------------
 

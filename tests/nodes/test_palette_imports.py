@@ -11,7 +11,8 @@ SHARED = {"common", "geometry"}
 
 def _palette(module: str) -> str | None:
     parts = module.split(".")
-    return parts[1] if parts[0] == "nodes" and len(parts) > 2 and parts[1] not in SHARED else None
+    in_nodes = parts[:2] == ["torsal", "nodes"] and len(parts) > 3
+    return parts[2] if in_nodes and parts[2] not in SHARED else None
 
 
 def test_no_palette_imports_another_palette():
@@ -26,7 +27,7 @@ def test_no_palette_imports_another_palette():
 
 
 def test_a_module_of_a_palette_is_told_from_shared_and_kernel_modules():
-    assert _palette("nodes.analysis.bending") == "analysis"
-    assert _palette("nodes.common.files") is None
-    assert _palette("nodes.geometry.curves.line") is None
-    assert _palette("nodes.limits") is None
+    assert _palette("torsal.nodes.analysis.bending") == "analysis"
+    assert _palette("torsal.nodes.common.files") is None
+    assert _palette("torsal.nodes.geometry.curves.line") is None
+    assert _palette("torsal.nodes.limits") is None

@@ -14,9 +14,9 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Plane, Point, Vector
-from nodes.developable.paper_strip import PaperStrip
 from tests.nodes.helpers import out, run, texts
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.developable.paper_strip import PaperStrip
 
 FLAT = {"Length": 5.0, "Width": 2.0, "IsoAngle": [math.pi / 2], "Curvature": [0.0], "Segments": 4}
 BENT = {"Length": 6.0, "Width": 0.6, "IsoAngle": [1.5], "Curvature": [0.1, 0.25, -0.1, 0.3], "Segments": 12}

@@ -11,18 +11,18 @@ import json
 
 import numpy as np
 
-from app.cli import main
-from engine.datatree import DataTree, Triples
-from engine.graph import Graph
-from engine.graphfile import write_graph
-from engine.solver import Solver
-from engine.values import Point, Vector
-from nodes.lists.ordering import Shift
-from nodes.maths.sequences import Series
-from nodes.params.points import Point as PointNode
-from nodes.params.vectors import UnitZ
-from nodes.params.vectors import Vector as VectorNode
 from tests.nodes.helpers import out, run, texts
+from torsal.app.cli import main
+from torsal.engine.datatree import DataTree, Triples
+from torsal.engine.graph import Graph
+from torsal.engine.graphfile import write_graph
+from torsal.engine.solver import Solver
+from torsal.engine.values import Point, Vector
+from torsal.nodes.lists.ordering import Shift
+from torsal.nodes.maths.sequences import Series
+from torsal.nodes.params.points import Point as PointNode
+from torsal.nodes.params.vectors import UnitZ
+from torsal.nodes.params.vectors import Vector as VectorNode
 
 
 def numbers(*values: float) -> DataTree:

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from engine.values import Point
-from nodes.maths.expression import Expression
-from nodes.params.panel import Panel
-from nodes.params.value_list import ValueList
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Point
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.params.panel import Panel
+from torsal.nodes.params.value_list import ValueList
 
 
 def test_unwired_panel_gives_one_text_item_per_line():
@@ -27,8 +27,8 @@ def test_wired_panel_passes_the_tree_unchanged():
 
 
 def test_panel_lines_feed_a_number_input():
-    from engine.graph import Graph
-    from engine.solver import Solver
+    from torsal.engine.graph import Graph
+    from torsal.engine.solver import Solver
 
     graph = Graph()
     graph.add_node(Panel({"text": "1\n2\n3"}), "panel")

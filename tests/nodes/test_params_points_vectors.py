@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from engine.values import Point, Vector
-from nodes.params.points import Point as PointNode
-from nodes.params.vectors import UnitX, UnitY, UnitZ
-from nodes.params.vectors import Vector as VectorNode
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Point, Vector
+from torsal.nodes.params.points import Point as PointNode
+from torsal.nodes.params.vectors import UnitX, UnitY, UnitZ
+from torsal.nodes.params.vectors import Vector as VectorNode
 
 
 def test_point_defaults_to_the_origin():

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from nodes.params.sliders import IntegerSlider, NumberSlider, Toggle
 from tests.nodes.helpers import out, run, texts
+from torsal.nodes.params.sliders import IntegerSlider, NumberSlider, Toggle
 
 
 def test_number_slider_defaults_to_half_between_0_and_1_with_2_decimals():

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from engine.bounds import refusal
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.patching.surface_patching import SurfacePatching
+from torsal.engine.bounds import refusal
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 CHOICES = "0 Beside model, 1 Origin, 2 On plane"
 

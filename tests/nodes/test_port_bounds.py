@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from engine.bounds import bounds_text
-from engine.node import In, Node, Out
-from engine.types import INTEGER, NUMBER
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.bounds import bounds_text
+from torsal.engine.node import In, Node, Out
+from torsal.engine.types import INTEGER, NUMBER
 
 
 class Strips(Node):
@@ -66,10 +66,10 @@ def test_bounds_read_as_the_inspector_shows_them():
 
 
 def test_a_developable_refuses_segments_outside_its_port_bounds_before_any_ruling_is_made():
-    from engine.values import Vector
-    from nodes.developable.cylindrical import CylindricalSurface
-    from nodes.geometry.curves import Line
-    from nodes.limits import MAX_SEGMENTS
+    from torsal.engine.values import Vector
+    from torsal.nodes.developable.cylindrical import CylindricalSurface
+    from torsal.nodes.geometry.curves import Line
+    from torsal.nodes.limits import MAX_SEGMENTS
 
     port = next(p for p in CylindricalSurface.inputs if p.name == "Segments")
     assert (port.min, port.max) == (1, MAX_SEGMENTS)

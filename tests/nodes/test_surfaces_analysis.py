@@ -8,16 +8,16 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.values import Plane, Point, Vector
-from nodes.geometry import curves as kernel
-from nodes.geometry import parametric_surface
-from nodes.geometry.mesh_surface import MeshSurface as KernelMeshSurface
-from nodes.geometry.nurbs_surface import NurbsSurface as KernelNurbsSurface
-from nodes.geometry.vectors import Plane as KernelPlane
-from nodes.surfaces.analysis import Area, EvaluateSurface, Isocurve, SurfaceCurvature, SurfaceEdges
-from nodes.surfaces.freeform import NurbsSurface
-from nodes.surfaces.mesh import MeshSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.geometry import curves as kernel
+from torsal.nodes.geometry import parametric_surface
+from torsal.nodes.geometry.mesh_surface import MeshSurface as KernelMeshSurface
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface as KernelNurbsSurface
+from torsal.nodes.geometry.vectors import Plane as KernelPlane
+from torsal.nodes.surfaces.analysis import Area, EvaluateSurface, Isocurve, SurfaceCurvature, SurfaceEdges
+from torsal.nodes.surfaces.freeform import NurbsSurface
+from torsal.nodes.surfaces.mesh import MeshSurface
 
 UNIT_SQUARE = [Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(1, 1, 0)]
 SPHERE = parametric_surface.sphere(2.0, (1.0, -1.0, 0.5))

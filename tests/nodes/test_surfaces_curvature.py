@@ -16,14 +16,14 @@ import math
 import numpy as np
 import pytest
 
-from engine.datatree import DataTree
-from engine.graph import Graph
-from engine.solver import Solver
-from engine.types import encode_value
-from engine.values import Domain, Point
-from nodes.surfaces.analysis import Area, EvaluateSurface, SurfaceCurvature
-from nodes.surfaces.freeform import ParametricSurface
 from tests.nodes.helpers import Source
+from torsal.engine.datatree import DataTree
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.engine.types import encode_value
+from torsal.engine.values import Domain, Point
+from torsal.nodes.surfaces.analysis import Area, EvaluateSurface, SurfaceCurvature
+from torsal.nodes.surfaces.freeform import ParametricSurface
 
 REL = 1e-6
 

@@ -5,16 +5,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.graph import Graph
-from engine.solver import Solver
-from engine.types import encode_value
-from engine.values import Domain, Point
-from nodes.curves.primitives import Circle
-from nodes.geometry import curves as kernel
-from nodes.geometry.vectors import Plane as KernelPlane
-from nodes.surfaces.analysis import Area, Isocurve
-from nodes.surfaces.freeform import Loft, NurbsSurface, ParametricSurface, RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.engine.types import encode_value
+from torsal.engine.values import Domain, Point
+from torsal.nodes.curves.primitives import Circle
+from torsal.nodes.geometry import curves as kernel
+from torsal.nodes.geometry.vectors import Plane as KernelPlane
+from torsal.nodes.surfaces.analysis import Area, Isocurve
+from torsal.nodes.surfaces.freeform import Loft, NurbsSurface, ParametricSurface, RuledSurface
 
 
 def only(result, port=None):

@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from engine.graph import Graph
-from engine.solver import Solver
-from engine.types import encode_value
-from engine.values import Plane, Point, Vector
-from nodes.surfaces.analysis import Area, SurfaceCurvature
-from nodes.surfaces.primitives import Cone, Cylinder, Sphere, Torus
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.graph import Graph
+from torsal.engine.solver import Solver
+from torsal.engine.types import encode_value
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.surfaces.analysis import Area, SurfaceCurvature
+from torsal.nodes.surfaces.primitives import Cone, Cylinder, Sphere, Torus
 
 #: A tilted plane: origin (1, 2, 3), normal (0, −0.6, 0.8).
 TILTED = Plane(Point(1, 2, 3), Vector(1, 0, 0), Vector(0, 0.8, 0.6))

@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Plane, Point, Vector
-from nodes.geometry import curves as kernel
-from nodes.transform.arrays import Array, PolarArray
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.geometry import curves as kernel
+from torsal.nodes.transform.arrays import Array, PolarArray
 
 
 def copies(result, path=(0,)):

@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 import trimesh
 
-from engine.values import WORLD_XY, Plane, Point, Vector
-from nodes.geometry import curves as kernel
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.parametric_surface import sphere
-from nodes.transform.euclidean import Mirror, Move, Orient, Rotate, Scale, ScaleNonUniform
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import WORLD_XY, Plane, Point, Vector
+from torsal.nodes.geometry import curves as kernel
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.parametric_surface import sphere
+from torsal.nodes.transform.euclidean import Mirror, Move, Orient, Rotate, Scale, ScaleNonUniform
 
 T = np.linspace(0.0, 1.0, 101)
 LINE = kernel.Line([1, 0, 0], [3, 0, 0])

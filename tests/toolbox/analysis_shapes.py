@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 
-from nodes.geometry.curves import ParametricCurve
-from nodes.geometry.developable import cylinder_rulings, tangent_developable_rulings
-from nodes.geometry.parametric_surface import ParametricSurface
-from nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.curves import ParametricCurve
+from torsal.nodes.geometry.developable import cylinder_rulings, tangent_developable_rulings
+from torsal.nodes.geometry.parametric_surface import ParametricSurface
+from torsal.nodes.geometry.ruled import RuledSurface
 
 
 def _z(x: np.ndarray) -> np.ndarray:

@@ -10,13 +10,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from engine.graph import Graph
-from engine.node import Node
-from engine.solver import NodeResult, Solver
-from engine.types import encode_value
-from engine.values import Domain
-from nodes.curves.splines import ParametricCurve
 from tests.nodes.helpers import Source, tree
+from torsal.engine.graph import Graph
+from torsal.engine.node import Node
+from torsal.engine.solver import NodeResult, Solver
+from torsal.engine.types import encode_value
+from torsal.engine.values import Domain
+from torsal.nodes.curves.splines import ParametricCurve
 
 
 class Chain:

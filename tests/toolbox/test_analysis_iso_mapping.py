@@ -8,15 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from engine.types import summarize_value
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.developable.tangent import TangentDevelopable
-from nodes.geometry.parametric_surface import cone, cylinder, sphere
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.unroll import Development
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.analysis_shapes import hypar, tangent_developable
 from tests.toolbox.direct_graphs import Chain, helix
+from torsal.engine.types import summarize_value
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.developable.tangent import TangentDevelopable
+from torsal.nodes.geometry.parametric_surface import cone, cylinder, sphere
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.unroll import Development
 
 R_CONE, H_CONE = 1.0, 2.0
 R_CYL, H_CYL = 1.5, 2.0

@@ -9,18 +9,18 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from engine.values import Point
-from nodes.analysis.curve_of_regression import CurveOfRegression
-from nodes.developable.conical import ConicalSurface
-from nodes.developable.tangent import TangentDevelopable
-from nodes.geometry.curves import Circle
-from nodes.geometry.developable import cone_rulings
-from nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere
-from nodes.geometry.ruled import RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.analysis_shapes import hypar
 from tests.toolbox.analysis_shapes import tangent_developable as kernel_tangent_developable
 from tests.toolbox.direct_graphs import Chain, helix
+from torsal.engine.values import Point
+from torsal.nodes.analysis.curve_of_regression import CurveOfRegression
+from torsal.nodes.developable.conical import ConicalSurface
+from torsal.nodes.developable.tangent import TangentDevelopable
+from torsal.nodes.geometry.curves import Circle
+from torsal.nodes.geometry.developable import cone_rulings
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cylinder, sphere
+from torsal.nodes.geometry.ruled import RuledSurface
 
 R_HELIX, RISE, TURNS = 2.0, 0.5, 1.5
 

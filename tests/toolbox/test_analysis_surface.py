@@ -8,11 +8,6 @@ import math
 import numpy as np
 import pytest
 
-from nodes.analysis.colours import STOPS
-from nodes.analysis.surface_analysis import SurfaceAnalysis
-from nodes.geometry.curves import Circle
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.parametric_surface import cone, cylinder, torus
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.analysis_shapes import (
     capsule,
@@ -22,6 +17,11 @@ from tests.toolbox.analysis_shapes import (
     hypar_gaussian,
     tilted_cylinder,
 )
+from torsal.nodes.analysis.colours import STOPS
+from torsal.nodes.analysis.surface_analysis import SurfaceAnalysis
+from torsal.nodes.geometry.curves import Circle
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.parametric_surface import cone, cylinder, torus
 
 R_CYL, H_CYL = 1.5, 2.0
 R_TORUS, r_TORUS = 2.0, 0.5

@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from engine.values import Vector
-from nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Vector
+from torsal.nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 
 MILLION = 1_000_000
 

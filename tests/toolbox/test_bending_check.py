@@ -8,11 +8,11 @@ import math
 import numpy as np
 import pytest
 
-from engine.solver import OK
-from nodes.analysis.bending import MATERIALS, BendingCheck, bending_radii
-from nodes.geometry.parametric_surface import cone, cylinder
-from nodes.geometry.ruled import RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.solver import OK
+from torsal.nodes.analysis.bending import MATERIALS, BendingCheck, bending_radii
+from torsal.nodes.geometry.parametric_surface import cone, cylinder
+from torsal.nodes.geometry.ruled import RuledSurface
 
 
 def check(strips, **inputs):

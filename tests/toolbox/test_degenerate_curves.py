@@ -10,17 +10,17 @@ from __future__ import annotations
 
 import pytest
 
-from engine.values import Domain, Point, Vector
-from nodes.curves.primitives import Line, Polyline
-from nodes.curves.splines import Interpolate, ParametricCurve
-from nodes.developable.conical import ConicalSurface
-from nodes.developable.cylindrical import CylindricalSurface
-from nodes.developable.parametric_ruled import ParametricRuledSurface
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.developable.spline_approximation import SplineApproximation
-from nodes.developable.tangent import TangentDevelopable
-from nodes.surfaces.freeform import Loft
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.values import Domain, Point, Vector
+from torsal.nodes.curves.primitives import Line, Polyline
+from torsal.nodes.curves.splines import Interpolate, ParametricCurve
+from torsal.nodes.developable.conical import ConicalSurface
+from torsal.nodes.developable.cylindrical import CylindricalSurface
+from torsal.nodes.developable.parametric_ruled import ParametricRuledSurface
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.developable.spline_approximation import SplineApproximation
+from torsal.nodes.developable.tangent import TangentDevelopable
+from torsal.nodes.surfaces.freeform import Loft
 
 P = Point(1.0, 2.0, 3.0)
 

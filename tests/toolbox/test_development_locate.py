@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.unroll import unroll_rulings
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 
 def cylinder(n: int = 60) -> tuple[np.ndarray, np.ndarray]:

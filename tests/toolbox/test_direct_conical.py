@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Point
-from nodes.curves.primitives import Circle
-from nodes.developable.conical import ConicalSurface
 from tests.toolbox.direct_graphs import Chain, helix
+from torsal.engine.values import Point
+from torsal.nodes.curves.primitives import Circle
+from torsal.nodes.developable.conical import ConicalSurface
 
 APEX = np.array([0.5, -0.3, 6.0])
 

@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Point, Vector
-from nodes.curves.primitives import Circle, Line
-from nodes.developable.cylindrical import CylindricalSurface
 from tests.toolbox.direct_graphs import Chain, helix
+from torsal.engine.values import Point, Vector
+from torsal.nodes.curves.primitives import Circle, Line
+from torsal.nodes.developable.cylindrical import CylindricalSurface
 
 
 def cylinder_of(curve_node, curve_port: str, **values) -> Chain:

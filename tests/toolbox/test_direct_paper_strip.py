@@ -9,8 +9,8 @@ import pytest
 import shapely
 import trimesh
 
-from nodes.developable.paper_strip import PaperStrip
 from tests.toolbox.direct_graphs import Chain
+from torsal.nodes.developable.paper_strip import PaperStrip
 
 #: A strip that bends and twists, differently in every segment.
 ISO = [1.45, 1.5, 1.55, 1.4, 1.48]

@@ -12,14 +12,14 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Domain, Point, Vector
-from nodes.curves.primitives import Circle
-from nodes.developable.parametric_ruled import ParametricRuledSurface
-from nodes.maths.expression import Expression
-from nodes.maths.sequences import Range
-from nodes.params.points import Point as PointNode
-from nodes.params.vectors import Vector as VectorNode
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.values import Domain, Point, Vector
+from torsal.nodes.curves.primitives import Circle
+from torsal.nodes.developable.parametric_ruled import ParametricRuledSurface
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.maths.sequences import Range
+from torsal.nodes.params.points import Point as PointNode
+from torsal.nodes.params.vectors import Vector as VectorNode
 
 STEPS = 48
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.values import Point
-from nodes.curves.primitives import Line, Polyline
-from nodes.developable.tangent import TangentDevelopable
 from tests.toolbox.direct_graphs import Chain, helix
+from torsal.engine.values import Point
+from torsal.nodes.curves.primitives import Line, Polyline
+from torsal.nodes.developable.tangent import TangentDevelopable
 
 R, C = 2.0, 0.5  # helix (R cos t, R sin t, C t)
 

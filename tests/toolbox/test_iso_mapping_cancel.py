@@ -7,12 +7,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.node import Cancelled
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.geometry.parametric_surface import cone
-from nodes.geometry.unroll import unroll_rulings
-from nodes.geometry.watch import watched
 from tests.cancelling import cancel_at_look
+from torsal.engine.node import Cancelled
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.geometry.parametric_surface import cone
+from torsal.nodes.geometry.unroll import unroll_rulings
+from torsal.nodes.geometry.watch import watched
 
 
 class Stop(Exception):

@@ -7,14 +7,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.node import Cancelled
-from nodes.analysis.surface_analysis import SurfaceAnalysis, _curvature
-from nodes.geometry.approximation import approximate, station_rulings
-from nodes.geometry.parametric_surface import torus
-from nodes.geometry.unroll import unroll_rulings
-from nodes.geometry.watch import watched
 from tests.toolbox.test_development_locate import helix_tangent
 from tests.toolbox.test_spline_approximation import twisted_strip
+from torsal.engine.node import Cancelled
+from torsal.nodes.analysis.surface_analysis import SurfaceAnalysis, _curvature
+from torsal.nodes.geometry.approximation import approximate, station_rulings
+from torsal.nodes.geometry.parametric_surface import torus
+from torsal.nodes.geometry.unroll import unroll_rulings
+from torsal.nodes.geometry.watch import watched
 
 
 def analyse(node: SurfaceAnalysis, density: int) -> tuple:

@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 import shapely
 
-from app.headless import run_file
-from nodes.developable.paper_strip import PaperStrip
-from nodes.io.formats.cutfiles import surface_outline
 from tests.toolbox.direct_graphs import Chain
+from torsal.app.headless import run_file
+from torsal.nodes.developable.paper_strip import PaperStrip
+from torsal.nodes.io.formats.cutfiles import surface_outline
 
 LENGTH, WIDTH, SEGMENTS = 9.0, 1.2, 18
 ISO = 1.35  # rad, every segment: each face is the same trapezoid-like quad
 CURVATURE = [0.3, -0.2, 0.45, 0.1, -0.35, 0.25]  # per segment (the last repeats): bent both ways
-EXAMPLE = Path(__file__).resolve().parents[2] / "resources" / "examples" / "paper-strip.graph"
+EXAMPLE = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples" / "paper-strip.graph"
 
 
 def face_in_its_plane() -> np.ndarray:

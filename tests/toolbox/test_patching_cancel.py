@@ -9,14 +9,14 @@ import math
 import numpy as np
 import pytest
 
-from engine.node import Cancelled
-from nodes.geometry.curves.line import Polyline
-from nodes.geometry.development_map import CROSSING_BLOCK, MAP_BLOCK
-from nodes.geometry.parametric_surface import cylinder
-from nodes.geometry.unroll import unroll_surface
-from nodes.geometry.watch import watched
-from nodes.patching.surface_patching import SurfacePatching
 from tests.cancelling import cancel_at_look
+from torsal.engine.node import Cancelled
+from torsal.nodes.geometry.curves.line import Polyline
+from torsal.nodes.geometry.development_map import CROSSING_BLOCK, MAP_BLOCK
+from torsal.nodes.geometry.parametric_surface import cylinder
+from torsal.nodes.geometry.unroll import unroll_surface
+from torsal.nodes.geometry.watch import watched
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 RADIUS, HEIGHT = 1.0, 2.0
 

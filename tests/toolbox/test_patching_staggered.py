@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.patching.staggered import StaggeredPattern
 from tests.toolbox.direct_graphs import Chain
+from torsal.nodes.patching.staggered import StaggeredPattern
 
 
 def pattern(**values) -> Chain:

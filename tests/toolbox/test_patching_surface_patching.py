@@ -12,19 +12,19 @@ import numpy as np
 import pytest
 import shapely
 
-from engine.graph import GraphError
-from engine.values import Point, Vector
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.curves.primitives import Circle, Line
-from nodes.developable.conical import ConicalSurface
-from nodes.developable.cylindrical import CylindricalSurface
-from nodes.geometry.curves.line import Line as KernelLine
-from nodes.geometry.curves.line import Polyline
-from nodes.geometry.parametric_surface import cylinder as cylinder_surface
-from nodes.geometry.parametric_surface import sphere
-from nodes.patching.staggered import StaggeredPattern
-from nodes.patching.surface_patching import SurfacePatching
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.graph import GraphError
+from torsal.engine.values import Point, Vector
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.curves.primitives import Circle, Line
+from torsal.nodes.developable.conical import ConicalSurface
+from torsal.nodes.developable.cylindrical import CylindricalSurface
+from torsal.nodes.geometry.curves.line import Line as KernelLine
+from torsal.nodes.geometry.curves.line import Polyline
+from torsal.nodes.geometry.parametric_surface import cylinder as cylinder_surface
+from torsal.nodes.geometry.parametric_surface import sphere
+from torsal.nodes.patching.staggered import StaggeredPattern
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 SEGMENTS = 48
 

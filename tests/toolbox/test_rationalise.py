@@ -21,12 +21,12 @@ import trimesh
 from scipy.integrate import dblquad
 from scipy.spatial import cKDTree
 
-from engine.values import Vector
-from nodes.developable.rationalise import Rationalise
-from nodes.geometry.mesh_surface import MeshSurface
-from nodes.geometry.parametric_surface import ParametricSurface
-from nodes.geometry.transforms import translation
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Vector
+from torsal.nodes.developable.rationalise import Rationalise
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface
+from torsal.nodes.geometry.transforms import translation
 
 TOL = 0.02
 SIZE = 10.0
@@ -218,8 +218,8 @@ def test_a_mesh_surface_is_refused_naming_the_input():
 
 
 def test_strips_exported_to_3dm_read_back_as_nurbs_of_degree_1_across_the_rulings(tmp_path):
-    from app.exports import export_tree
-    from engine.datatree import DataTree
+    from torsal.app.exports import export_tree
+    from torsal.engine.datatree import DataTree
 
     strips = items(solved("wave"), "Strips")
     path = export_tree(DataTree.from_branches([strips]), tmp_path / "r.3dm")[0]
@@ -237,8 +237,8 @@ def test_strips_exported_to_3dm_read_back_as_nurbs_of_degree_1_across_the_ruling
 def kaohsiung_roof():
     """The Kaohsiung roof of the example as one surface: a loft through its horseshoe base
     curve, that curve 14 m up and that copy scaled by 0.72 about (0, 0, 28)."""
-    from nodes.geometry.curves import InterpolatedCurve
-    from nodes.geometry.nurbs_surface import Loft
+    from torsal.nodes.geometry.curves import InterpolatedCurve
+    from torsal.nodes.geometry.nurbs_surface import Loft
 
     angles = np.radians(np.arange(40, 321, 35))
     base = np.column_stack([60 * np.cos(angles), 42 * np.sin(angles), np.zeros(len(angles))])
@@ -326,7 +326,7 @@ def test_direction_makes_the_boundaries_run_along_it():
 
 
 def test_progress_rises_to_one_as_the_strips_cover_the_design():
-    from nodes.geometry.developable.rationalise import rationalise
+    from torsal.nodes.geometry.developable.rationalise import rationalise
 
     seen: list[float] = []
     result = rationalise(DOME.surface(), 0.05, 40, progress=seen.append)

@@ -7,11 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.node import Cancelled
-from nodes.developable.rationalise import Rationalise
-from nodes.geometry.parametric_surface import ParametricSurface
-from nodes.geometry.watch import watched
 from tests.cancelling import cancel_at_look
+from torsal.engine.node import Cancelled
+from torsal.nodes.developable.rationalise import Rationalise
+from torsal.nodes.geometry.parametric_surface import ParametricSurface
+from torsal.nodes.geometry.watch import watched
 
 
 class Stop(Exception):

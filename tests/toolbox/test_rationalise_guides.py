@@ -15,10 +15,10 @@ import pytest
 from scipy.interpolate import CubicSpline
 from scipy.spatial import cKDTree
 
-from nodes.developable.rationalise import Rationalise
-from nodes.geometry.curves import InterpolatedCurve
 from tests.nodes.helpers import run, texts, tree
 from tests.toolbox.test_rationalise import DOME, HALF, SIZE, TOL, WAVE, distance_to, grid, items
+from torsal.nodes.developable.rationalise import Rationalise
+from torsal.nodes.geometry.curves import InterpolatedCurve
 
 
 def guide_on(field, across_of, start: float = -HALF, end: float = HALF, count: int = 201, along: int = 1):

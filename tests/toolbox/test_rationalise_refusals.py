@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import pytest
 
-from engine.node import NodeWarning
-from engine.values import Vector
-from nodes.developable.rationalise import Rationalise
-from nodes.developable.spline_approximation import SplineApproximation
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.test_rationalise import DOME
 from tests.toolbox.test_spline_approximation import twisted_strip
+from torsal.engine.node import NodeWarning
+from torsal.engine.values import Vector
+from torsal.nodes.developable.rationalise import Rationalise
+from torsal.nodes.developable.spline_approximation import SplineApproximation
 
 #: Loose enough for three strips on the dome: each good item solves in a fraction of a second.
 LOOSE = 0.3

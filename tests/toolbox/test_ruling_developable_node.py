@@ -7,12 +7,12 @@ import math
 
 import numpy as np
 
-from engine.values import Domain
-from nodes.curves.splines import ParametricCurve
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.geometry.curves import Line
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.values import Domain
+from torsal.nodes.curves.splines import ParametricCurve
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.geometry.curves import Line
 
 #: Cone with its apex at the origin, axis z, half-angle 0.5 rad: w·(sin α cos u, sin α sin u, cos α).
 SIN, COS = math.sin(0.5), math.cos(0.5)

@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from nodes.developable.spline_approximation import SplineApproximation
-from nodes.geometry.curves import Arc, Line, ParametricCurve
-from nodes.geometry.curves.nurbs import NurbsCurve
-from nodes.geometry.parametric_surface import sphere
-from nodes.geometry.ruled import RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.developable.spline_approximation import SplineApproximation
+from torsal.nodes.geometry.curves import Arc, Line, ParametricCurve
+from torsal.nodes.geometry.curves.nurbs import NurbsCurve
+from torsal.nodes.geometry.parametric_surface import sphere
+from torsal.nodes.geometry.ruled import RuledSurface
 
 
 def _curve(function, first, second) -> ParametricCurve:
@@ -284,7 +284,7 @@ def test_zero_segments_is_a_warning():
 def test_a_ruling_turned_onto_the_edge_tangent_has_undefined_warp_not_zero():
     """Ruling 1 lies along the fixed edge's tangent: R × k = 0, so that end has no plane;
     its warp and the summed Fitness are NaN, the others are numbers."""
-    from nodes.geometry.approximation import StationRulings, approximate
+    from torsal.nodes.geometry.approximation import StationRulings, approximate
 
     n = 3
     x = np.array([0.0, 1.0, 2.0])

@@ -19,10 +19,10 @@ import math
 import numpy as np
 import pytest
 
-from nodes.developable.surface_coupling import SurfaceCoupling
-from nodes.geometry.curves import Line, ParametricCurve
-from nodes.geometry.ruled import RuledSurface
 from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.developable.surface_coupling import SurfaceCoupling
+from torsal.nodes.geometry.curves import Line, ParametricCurve
+from torsal.nodes.geometry.ruled import RuledSurface
 
 
 def ellipse_arc(

@@ -16,15 +16,15 @@ import math
 import numpy as np
 import pytest
 
-from engine.values import Domain, Point
-from nodes.curves.primitives import Line
-from nodes.developable.parametric_ruled import ParametricRuledSurface
-from nodes.developable.spline_approximation import SplineApproximation
-from nodes.maths.expression import Expression
-from nodes.maths.sequences import Range
-from nodes.params.points import Point as PointNode
-from nodes.params.vectors import Vector as VectorNode
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.values import Domain, Point
+from torsal.nodes.curves.primitives import Line
+from torsal.nodes.developable.parametric_ruled import ParametricRuledSurface
+from torsal.nodes.developable.spline_approximation import SplineApproximation
+from torsal.nodes.maths.expression import Expression
+from torsal.nodes.maths.sequences import Range
+from torsal.nodes.params.points import Point as PointNode
+from torsal.nodes.params.vectors import Vector as VectorNode
 
 HALF_LENGTHS = [0.5, 1.0, 2.0, 5.0]
 

@@ -25,20 +25,20 @@ import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
-from engine import graphfile
-from engine.solver import Solver
-from engine.values import Point, Vector
-from nodes.catalogue import default_registry
-from nodes.developable.conical import ConicalSurface
-from nodes.developable.cylindrical import CylindricalSurface
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.developable.tangent import TangentDevelopable
-from nodes.geometry.curves import InterpolatedCurve
 from tests.nodes.helpers import out, run, tree
 from tests.toolbox import warp_check
+from torsal.engine import graphfile
+from torsal.engine.solver import Solver
+from torsal.engine.values import Point, Vector
+from torsal.nodes.catalogue import default_registry
+from torsal.nodes.developable.conical import ConicalSurface
+from torsal.nodes.developable.cylindrical import CylindricalSurface
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.developable.tangent import TangentDevelopable
+from torsal.nodes.geometry.curves import InterpolatedCurve
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = sorted((ROOT / "resources" / "examples").glob("*.graph"))
+EXAMPLES = sorted((ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
 REGISTRY = default_registry(plugins=False)
 #: Largest difference between a node's warp and the recomputed one, rad, where both use
 #: exact tangents (measured: ~1e-15) and where one side differences numerically (~1e-8).

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from nodes.geometry.regression import closest_points_of_lines, curve_of_regression
+from torsal.nodes.geometry.regression import closest_points_of_lines, curve_of_regression
 
 R, H = 2.0, 0.5  # helix (R cos t, R sin t, H t)
 
@@ -122,8 +122,8 @@ def test_closest_points_of_two_crossing_lines_are_their_intersection():
 
 
 def test_regression_of_the_kernels_tangent_developable_reproduces_its_curve():
-    from nodes.geometry.curves import ParametricCurve
-    from nodes.geometry.developable import tangent_developable_rulings
+    from torsal.nodes.geometry.curves import ParametricCurve
+    from torsal.nodes.geometry.developable import tangent_developable_rulings
 
     curve = ParametricCurve(helix, (0.0, 2.0 * np.pi))
     rulings = tangent_developable_rulings(curve, 200, length=3.0, cutting_length=0.2)
@@ -133,9 +133,9 @@ def test_regression_of_the_kernels_tangent_developable_reproduces_its_curve():
 
 
 def test_the_kernels_cone_unrolls_and_gives_its_apex():
-    from nodes.geometry.curves import ParametricCurve
-    from nodes.geometry.developable import cone_rulings
-    from nodes.geometry.unroll import unroll_rulings
+    from torsal.nodes.geometry.curves import ParametricCurve
+    from torsal.nodes.geometry.developable import cone_rulings
+    from torsal.nodes.geometry.unroll import unroll_rulings
 
     apex = np.array([0.0, 0.0, math.sqrt(3.0)])
     base = ParametricCurve(lambda u: np.column_stack([np.cos(u), np.sin(u), 0 * u]), (0.0, np.pi))

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.unroll import unroll_rulings
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 R, H, N = 1.0, 2.0, 40  # a full cylinder of N chords
 CHORD = 2.0 * R * math.sin(math.pi / N)

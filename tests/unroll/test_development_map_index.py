@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.geometry.unroll import unroll_rulings
 from tests.toolbox.test_development_locate import helix_tangent
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 RNG = np.random.default_rng(3)
 

@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 from scipy.spatial.distance import pdist
 
-from engine.values import Plane, Point, Vector
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.geometry.parametric_surface import cone
-from nodes.patching.staggered import StaggeredPattern
-from nodes.patching.surface_patching import SurfacePatching
 from tests.toolbox.direct_graphs import Chain
+from torsal.engine.values import Plane, Point, Vector
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.geometry.parametric_surface import cone
+from torsal.nodes.patching.staggered import StaggeredPattern
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 R, H = 2.0, 3.0
 CENTRE = np.array([3.0, -1.0, 1.5])

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from nodes.geometry.paper_strip import paper_strip, quad_planarity
-from nodes.geometry.unroll import unroll_rulings
+from torsal.nodes.geometry.paper_strip import paper_strip, quad_planarity
+from torsal.nodes.geometry.unroll import unroll_rulings
 
 RNG = np.random.default_rng(11)
 

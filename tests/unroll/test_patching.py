@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.geometry.parametric_surface import cone
-from nodes.geometry.patching import Pattern, staggered_pattern, tile_pattern
-from nodes.geometry.unroll import unroll_rulings, unroll_surface
+from torsal.nodes.geometry.parametric_surface import cone
+from torsal.nodes.geometry.patching import Pattern, staggered_pattern, tile_pattern
+from torsal.nodes.geometry.unroll import unroll_rulings, unroll_surface
 
 R, H, N = 1.0, 2.0, 48
 

@@ -1,4 +1,4 @@
-"""nodes.geometry.pattern_cover: ring areas against shapely, the cover of a tile against
+"""torsal.nodes.geometry.pattern_cover: ring areas against shapely, the cover of a tile against
 closed forms, and SurfacePatching's messages from it."""
 
 from __future__ import annotations
@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 import shapely
 
-from nodes.geometry.curves.line import Polyline
-from nodes.geometry.parametric_surface import cone
-from nodes.geometry.pattern_cover import pattern_cover, ring_areas
-from nodes.patching.surface_patching import SurfacePatching
 from tests.toolbox.direct_graphs import Chain
+from torsal.nodes.geometry.curves.line import Polyline
+from torsal.nodes.geometry.parametric_surface import cone
+from torsal.nodes.geometry.pattern_cover import pattern_cover, ring_areas
+from torsal.nodes.patching.surface_patching import SurfacePatching
 
 
 def star(rng: np.random.Generator, corners: int) -> np.ndarray:

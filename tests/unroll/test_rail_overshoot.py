@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import make_interp_spline
 
-from nodes.geometry.rail_tangents import bezier_spline
-from nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.rail_tangents import bezier_spline
+from torsal.nodes.geometry.ruled import RuledSurface
 
 U = np.linspace(0.0, 1.0, 4001)
 

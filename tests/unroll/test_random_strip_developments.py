@@ -23,10 +23,10 @@ import shapely
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.developable.ruling_developable import RulingDevelopable
-from nodes.geometry.curves import InterpolatedCurve
 from tests.nodes.helpers import out, run, tree
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.developable.ruling_developable import RulingDevelopable
+from torsal.nodes.geometry.curves import InterpolatedCurve
 
 offset = st.floats(-0.3, 0.3, allow_nan=False, allow_infinity=False)
 wiggles = st.lists(st.tuples(offset, offset), min_size=3, max_size=6)

@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 import shapely
 
-from app.headless import Run, run_file
-from nodes.analysis.iso_mapping import IsoMapping
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.unroll import Development, unroll_rulings, unroll_surface
-from nodes.io.formats.cutfiles import surface_outline
 from tests.nodes.helpers import out, run, tree
+from torsal.app.headless import Run, run_file
+from torsal.nodes.analysis.iso_mapping import IsoMapping
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.unroll import Development, unroll_rulings, unroll_surface
+from torsal.nodes.io.formats.cutfiles import surface_outline
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "resources" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
 #: A turn between consecutive outline edges above this is a corner.
 CORNER_DEG = 25.0
 

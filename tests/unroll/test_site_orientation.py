@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nodes.geometry.ruled import RuledSurface
-from nodes.geometry.unroll import unroll_surface
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.unroll import unroll_surface
 
 SIZE = 140.0
 APEX = np.array([3.0, -2.0, 1.0])

@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from nodes.geometry.parametric_surface import ParametricSurface, cone, cylinder, sphere
-from nodes.geometry.unroll import bilinear_quad_areas, unroll_rulings, unroll_surface
+from torsal.nodes.geometry.parametric_surface import ParametricSurface, cone, cylinder, sphere
+from torsal.nodes.geometry.unroll import bilinear_quad_areas, unroll_rulings, unroll_surface
 
 R_CYL, H_CYL = 1.5, 2.0
 R_CONE, H_CONE = 1.0, math.sqrt(3.0)  # slant L = 2, so the sector angle 2πr/L is π

@@ -1,2 +1,0 @@
-"""The example graphs (``*.graph``): found through :mod:`app.examples`, written by
-tools/build_examples.py."""

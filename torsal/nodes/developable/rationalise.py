@@ -1,0 +1,199 @@
+"""developable.Rationalise: a freeform design as developable strips within a tolerance."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from torsal.engine.node import LIST, In, Node, NodeError, NodeWarning, Out
+from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
+from torsal.nodes.common.checks import tolerance as tolerance_input
+from torsal.nodes.common.convert import sentence
+from torsal.nodes.common.geometry_checks import parametric_surface as surface_input
+from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
+from torsal.nodes.common.values import CURVE, LINE, SURFACE
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable.rationalise import rationalise
+from torsal.nodes.geometry.developable.ruling import warp_allowance
+from torsal.nodes.geometry.local_frame import LocalFrame
+from torsal.nodes.geometry.watch import watched
+
+#: Share of a strip's area in creased fans above which the node warns.
+CREASED = 0.1
+
+#: The most rulings (MaxStrips × (Segments + 1)) one solve may make.
+RULING_BUDGET = 6_000
+
+#: The most strips one solve may make.
+STRIP_LIMIT = 256
+
+#: The most station rulings a strip may have, minus one.
+SEGMENT_LIMIT = 1000
+
+
+def _positive(name: str, value: Any) -> float:
+    if value is None:
+        raise NodeWarning(f"{name} is empty: give the largest distance from the design, in model units")
+    x = float(value)
+    if not (np.isfinite(x) and x > 0.0):
+        raise NodeWarning(f"{name} must be a positive distance in model units, not {x:g}")
+    return x
+
+
+def _count(value: Any) -> int:
+    if value is None:
+        raise NodeWarning("MaxStrips is empty: give the largest number of strips, such as 40")
+    n = int(value)
+    if not 1 <= n <= STRIP_LIMIT:
+        raise NodeWarning(f"MaxStrips is {n}: give a whole number from 1 to {STRIP_LIMIT}")
+    return n
+
+
+def _direction(value: Any) -> np.ndarray | None:
+    if value is None:
+        return None
+    d = np.asarray(value, dtype=float).ravel()
+    if d.shape != (3,) or not np.isfinite(d).all() or not np.linalg.norm(d) > 0.0:
+        raise NodeWarning("Direction must be a non-zero vector along which the strips should run")
+    return d
+
+
+class Rationalise(Node):
+    """Cover a freeform design with developable strips, each within Tolerance of it.
+
+    The strips run side by side across the design. Each is a developable sheet between
+    two boundary curves lying on the design, with straight torsal rulings from one to
+    the other (flat triangles only where no torsal ruling exists), so it bends from a
+    flat sheet without stretching. Neighbouring strips share their boundary curve
+    exactly, so they meet without gaps or steps.
+
+    The rulings run where the design bends least and the boundaries across them: the
+    boundaries are the design's parameter lines of the family the node picks from the
+    surface's normal curvature, or the family running most nearly along Direction when
+    it is given. With Guides, the strips follow your curves instead: one boundary runs
+    along each guide (projected onto the design) and the boundaries between two guides,
+    or a guide and the design's edge, blend from one to the other, as Tween Curves do.
+    Guides must cross the design from edge to edge and stay apart.
+
+    Starting from one edge (and from every guide), each strip is made as wide as the
+    tolerance allows, measured by the largest distance of a dense grid of its points from the
+    design. When more than MaxStrips would be needed, the node makes MaxStrips evenly
+    spaced strips and warns with the deviation reached.
+
+    An already developable design, such as a cylinder patch, comes back as one strip
+    or a few. A design closed across the strips (a full tube around) must be cut open
+    first. Mesh surfaces have no parameter lines and are refused.
+    """
+
+    type_id = "developable.Rationalise"
+    inputs = (
+        In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),
+        In("Tolerance", NUMBER, "T", "Largest distance of any strip from the design, model units.",
+           default=0.02),
+        In("MaxStrips", INTEGER, "M", "Largest number of strips to make.", default=40, min=1,
+           max=STRIP_LIMIT),
+        In("Direction", VECTOR, "D", "Optional: a vector the strips (their boundaries) should run "
+           "along; without it the node chooses from the surface's curvature.", optional=True),
+        In("Guides", CURVE, "G", "Optional: curves on the design, each from one edge to the opposite "
+           "one, that the strips follow: a boundary runs along each guide and the boundaries between "
+           "blend from one guide to the next (and to the design's edges). Direction is then unused.",
+           access=LIST, optional=True),
+        In("Segments", INTEGER, "N", "Station rulings per strip minus one.", default=24, min=1,
+           max=SEGMENT_LIMIT),
+        In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
+           "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
+    )
+    outputs = (
+        Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
+        Out("Boundaries", CURVE, "B", "The boundary curves on the design: strip i lies between "
+            "boundaries i and i + 1, which it shares exactly with its neighbours.", access=LIST),
+        Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
+            "rulings and the boundary curves' tangents.", access=LIST),
+        Out("Deviation", NUMBER, "E", "Largest distance of each strip from the design.", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Per ruling, as Rulings: the recomputed warp is a number within "
+            "WarpTolerance.", access=LIST),
+        Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
+            "triangles that close a strip where no torsal ruling exists.", access=LIST),
+    )
+
+    def solve(
+        self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, guides: list[Any],
+        segments: Any, warp_tolerance: Any,
+    ) -> tuple[
+        list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str]
+    ]:
+        design = surface_input("Surface", surface)
+        tol = _positive("Tolerance", tolerance)
+        count = _count(max_strips)
+        guide = _direction(direction)
+        n = int(segments) if segments is not None else 24
+        if not 1 <= n <= SEGMENT_LIMIT:
+            raise NodeWarning(f"Segments is {n}: give a whole number from 1 to {SEGMENT_LIMIT}")
+        warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
+        if count * (n + 1) > RULING_BUDGET:
+            raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "
+                            "at once: lower MaxStrips or Segments")
+        for i, g in enumerate(guides or []):  # numbered as in the list, empty items counted
+            if g is not None and not isinstance(g, Curve):
+                raise NodeWarning(f"Guides item {i + 1} is a {type(g).__name__}, not a curve")
+        curves = [g for g in (guides or []) if g is not None]
+        if curves and guide is not None:
+            self.remark("Direction is not used: the strips follow the Guides")
+        # solved in a frame at the design (at site coordinates its rulings, boundaries and
+        # deviations then round as at the origin); the strips are moved back at the end
+        frame = LocalFrame.around(design)
+        try:
+            with watched(self.check_cancelled, self.progress):
+                result = rationalise(frame.to_local(design), tol, count, None if curves else guide,
+                                     segments=n, warp_tolerance=warp_limit, progress=self.progress,
+                                     guides=[frame.to_local(g) for g in curves])
+        except ValueError as exc:
+            about = "Guides" if curves and "guide" in str(exc) else "Surface"
+            raise NodeWarning(f"{about}: {sentence(exc)}") from None
+        rulings: list[Any] = []
+        warp: list[float] = []
+        valid: list[bool] = []
+        kinds: list[str] = []
+        fans = 0
+        for strip in result.strips:
+            starts, ends = (frame.points_to_world(p) for p in (strip.result.starts, strip.result.ends))
+            lines = strip_outputs(starts, ends, warp=strip.warp)
+            rulings.extend(lines.rulings)
+            w = strip.warp
+            warp.extend(w.tolist())
+            ok = np.isfinite(w) & (w <= warp_limit + warp_allowance(starts, ends))
+            valid.extend(ok.tolist())
+            fans += int(np.count_nonzero(strip.result.fan))
+            kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
+        deviation = [s.deviation for s in result.strips]
+        worst = max(deviation)
+        text = (f"{len(result.strips)} strips, worst deviation {worst:.4g} (tolerance {tol:g}); "
+                f"boundaries along {result.family}")
+        if fans:
+            text += f"; {fans} rulings in flat fans"
+        creased = [i + 1 for i, strip in enumerate(result.strips) if strip.result.creased_share > CREASED]
+        if creased:
+            shown_strips = ", ".join(map(str, creased[:8])) + (" …" if len(creased) > 8 else "")
+            self.warn(
+                f"{len(creased)} of {len(result.strips)} strips are mostly flat triangles that crease the "
+                f"sheet (strips {shown_strips}): between those boundaries no smooth torsal strip exists "
+                "(the design's parameter lines there are close to its straight asymptotic lines, as on a "
+                "hyperbolic paraboloid); the strips are still developable and within the tolerance"
+            )
+        if result.within:
+            self.remark(text)
+        else:
+            self.warn(f"MaxStrips {count} cannot meet Tolerance {tol:g}: {text}; raise MaxStrips or "
+                      "the tolerance")
+        # fan rulings are flat triangles' edges, not torsal: Valid is false there by
+        # definition and the remark counts them; a torsal ruling that fails is a warning
+        torsal = np.asarray(kinds) == "torsal"
+        bad = int(np.count_nonzero(~np.asarray(valid) & torsal))
+        if bad:
+            self.warn(f"{bad} of {int(torsal.sum())} torsal rulings have a recomputed warp that is undefined "
+                      f"or above {warp_limit:g} rad (Valid = false)")
+        strips = [frame.to_world(s.surface) for s in result.strips]
+        boundaries = [frame.to_world(b) for b in result.boundaries]
+        return strips, boundaries, rulings, warp, deviation, valid, kinds

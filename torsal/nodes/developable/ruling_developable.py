@@ -1,0 +1,156 @@
+"""developable.RulingDevelopable: the developable strip between two space curves."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from torsal.engine.node import LIST, In, Node, NodeError, Out
+from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, TEXT
+from torsal.nodes.common.checks import segments as segments_input
+from torsal.nodes.common.checks import tolerance as tolerance_input
+from torsal.nodes.common.convert import sentence
+from torsal.nodes.common.geometry_checks import curve as curve_input
+from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
+from torsal.nodes.common.values import CURVE, LINE, SURFACE
+from torsal.nodes.geometry.coincidence import coincident
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable import RulingResult, ruling_developable
+from torsal.nodes.geometry.developable.alternatives import better_pairing
+from torsal.nodes.geometry.vec_ops import norm
+from torsal.nodes.geometry.watch import watched
+from torsal.nodes.limits import MAX_SEGMENTS
+
+
+def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
+    """The kernel's strip between two checked curves, with its errors as node errors."""
+    if coincident(curve_a, curve_b):
+        raise NodeError(
+            "CurveA and CurveB are the same curve, so there is no strip between them: "
+            "give two different edges (e.g. a bottom and a top curve)"
+        )
+    try:
+        return ruling_developable(curve_a, curve_b, segments, tolerance)
+    except ValueError as exc:
+        raise NodeError(sentence(exc)) from None
+
+
+def _tips(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """The first and last rulings where they have zero length (to rounding): the curves
+    meet there and the strip tapers to a point."""
+    columns = np.concatenate([starts.T, ends.T], axis=1)  # (3, 2n): as extent() reduces them
+    size = float((columns.max(axis=1) - columns.min(axis=1)).max()) or 1.0
+    tip = np.zeros(len(starts), dtype=bool)
+    first_last = slice(None, None, max(len(starts) - 1, 1))
+    tip[first_last] = norm(ends[first_last] - starts[first_last]) <= 1e-12 * size
+    return tip
+
+
+def fan_limit_input(value: Any) -> float:
+    """FanLimit: a share of the strip's area, from 0 to 1."""
+    if value is None:
+        raise NodeError("FanLimit is empty: give a share of the strip's area from 0 to 1, such as 0.1")
+    x = float(value)
+    if not (0.0 <= x <= 1.0):
+        raise NodeError(f"FanLimit must be a share of the strip's area from 0 to 1, such as 0.1, not {x:g}")
+    return x
+
+
+class RulingDevelopable(Node):
+    """The developable surface between two curves: find, for each point of CurveA, the
+    ruling to CurveB along which the sheet has one tangent plane.
+
+    Segments + 1 stations are spaced evenly along CurveA (by length). For each, the
+    ruling to CurveB is *torsal*: the ruling and the two curves' tangents at its ends
+    lie in one plane, so a flat sheet bent along it fits without twisting (warp 0).
+    Every such partner on CurveB is found (the search is certified: two candidates
+    close together are never missed between samples), solved to machine precision,
+    and rulings never cross. Where the two curves bound a flat piece (two straight
+    segments at an angle, like the middle of the ZVE roof edge) the strip is drawn as
+    triangles: fans of rulings through single points, added to the station rulings.
+
+    Where no torsal ruling exists over a stretch (the curves there bound no
+    developable), the strip is closed by flat triangles, each with two corners on one
+    curve and one on the other, so the Surface still spans both curves from end to
+    end, stays developable (it unrolls exactly) and has no holes. Those rulings are
+    marked Kind = "fan" and the node reports their share of the strip's area.
+
+    At the strip's ends, where the curves' end points have no torsal partner (the
+    usual case when both edges end on a rim), the end is closed by one cone through
+    the end point of a curve, joined to the torsal rulings at the torsal ruling through
+    that very point: the sheet stays smooth there (no fold) and exactly developable,
+    so this is reported, never warned about. Fans that need apexes on both curves
+    fold the sheet at every change of apex: the node warns when those take more than
+    FanLimit of the area, and names swapping the curves or reversing CurveB only when
+    it has solved that alternative and found it needs fewer of them.
+
+    Valid is true where a ruling's warp, recomputed from the output (its end points
+    and the curves' exact tangents there), is within WarpTolerance — never where the
+    warp is undefined (a ruling of zero length or along a tangent).
+    """
+
+    type_id = "developable.RulingDevelopable"
+    inputs = (
+        In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
+        In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
+        In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
+           min=1, max=MAX_SEGMENTS),
+        In("WarpTolerance", NUMBER, "W",
+           "Largest warp angle (rad) a ruling may keep and count as valid: the twist between "
+           "the sheet's normals at its two ends. 0.01 rad is invisible on most sheets; for a "
+           "material allowed k rad/m over rulings about L m long, use k·L.", default=0.01),
+        In("FanLimit", NUMBER, "F",
+           "Largest share of the strip's area (0 to 1) that may be closed by creased fans of flat "
+           "triangles without a warning; 0.1 = 10 %. Smooth cones through one point never warn.",
+           default=0.1),
+    )
+    outputs = (
+        Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
+        Out("Rulings", LINE, "R", "The rulings from CurveA to CurveB, in order along the strip.",
+            access=LIST),
+        Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Recomputed from the output rulings and the "
+            "curves' tangents.", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Whether each ruling's recomputed warp is a number within "
+            "WarpTolerance.", access=LIST),
+        Out("Kind", TEXT, "K",
+            'Per ruling: "torsal" for a ruling of the developable through both curves, "fan" for '
+            "a ruling of the flat triangles that close the strip where no torsal ruling exists.",
+            access=LIST),
+    )
+
+    def solve(
+        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any
+    ) -> tuple[Any, list[Any], list[float], list[bool], list[str]]:
+        a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
+        n = segments_input(segments)
+        tol = tolerance_input("WarpTolerance", tolerance)
+        limit = fan_limit_input(fan_limit)
+        self.check_cancelled()
+        with watched(self.check_cancelled):  # the kernel looks at the token between its steps
+            result = solve_strip(a, b, n, tol)
+        # Valid from the warp recomputed from the output rulings and the curves' tangents
+        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+        self.check_cancelled()
+        if result.message:
+            if result.creased_share > limit:
+                hint = better_pairing(a, b, n, tol, result)
+                text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
+                self.warn(f"{text}; {hint}" if hint else text)
+            else:
+                self.remark(result.message)
+        tip = _tips(result.starts, result.ends)
+        if tip.any():
+            ends = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
+            self.remark(f"the strip tapers to a point at its {ends} (the curves meet there): the "
+                        "warp of that zero-length ruling is undefined, so it is not Valid")
+        # a fan ruling's or a tip's undefined warp is no news
+        strip.report(self, explained=result.fan | tip)
+        torsal_fans = int(np.count_nonzero(~result.stations & ~result.fan))
+        if torsal_fans:
+            self.remark(
+                f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
+                "single points (the flat triangles of the strip)"
+            )
+        kinds = ["fan" if fan else "torsal" for fan in result.fan.tolist()]
+        return strip.surface, strip.rulings, strip.warp, strip.valid, kinds

@@ -1,0 +1,487 @@
+"""The partner search: every candidate partner on B of every station on A, and the choice.
+
+For each station s on A the torsal partners are the roots t of
+f_s(t) = det[B(t) − A(s), A'(s), B'(t)] (see :mod:`.ruling` for the geometry). This
+module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
+
+- :func:`find_candidates` — brackets from one thin matrix product of f over all
+  station–sample pairs (:func:`_brackets`), judged and split by the certified isolation
+  (:mod:`.isolation`) until each holds provably no root, one simple root or a double
+  root, refined to rounding (:mod:`.brackets`); plus the roots at corners of B and the
+  ends of flat runs. Each candidate carries its branch slope dt/ds and whether its
+  normals are consistently oriented.
+- :func:`choose` — one consistently oriented candidate per station with t never
+  decreasing (:mod:`.selection`).
+- :func:`near_partners` — for stations left without one, a partner whose warp is
+  within the tolerance (the plain loft's or the least-warped sample of B), if any.
+"""
+
+from __future__ import annotations
+
+from bisect import bisect_right
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from torsal.nodes.geometry.array_types import BoolArray, IntArray
+
+from ..curve_base import Curve, FloatArray
+from ..vec_ops import _einsum, cross, dot, extent, flatnonzero, norm, position_rounding, unit
+from .brackets import refine_roots
+from .isolation import IntervalBounds, Pieces, isolate
+from .selection import monotone_path
+from .strip import Grid, Strip
+from .warp import in_plane_tangent, warp_angles
+
+#: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
+FLAT = 1e-10
+#: Most candidates kept per station for the selection.
+MAX_CANDIDATES = 8
+
+#: What a candidate is: a refined root of f, a root at a corner of B, an end of a flat run.
+ROOT, CORNER, FLAT_END = 0, 1, 2
+
+
+@dataclass
+class _Brackets:
+    """Sample intervals worth a closer look: where the determinant of station ``rows``
+    changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
+    its values there, and the rulings B − A to both ends and their lengths), and the
+    samples where it is zero. The values at the two ends are the two rows of ``f``,
+    ``rulings`` and ``lengths``."""
+
+    rows: IntArray
+    cols: IntArray
+    f: FloatArray  #: (2, k) f at samples ``cols`` and ``cols + 1``
+    rulings: FloatArray  #: (2, k, 3) B − A there
+    lengths: FloatArray  #: (2, k) their lengths
+    zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
+
+
+#: Offsets of an interval's two ends from its first sample, as a column.
+_ENDS = np.array([[0], [1]])
+
+
+def _brackets(
+    a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float, positions: FloatArray
+) -> _Brackets:
+    """Intervals where f = det[B_j − A_i, Â', B'_j] (unit tangent of A) changes sign or
+    may reach zero — |f| at an end within the reach of :mod:`.isolation` — over all
+    station–sample pairs.
+
+    By the cyclic symmetry of the triple product,
+    ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
+    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
+    small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
+    thread (threads cost more than they save on a product this thin, and stall when the
+    machine is busy) and lets every block reuse the memory of the last.
+
+    An interval passes a first sift with the bounds' reach (from the diameter ``size`` of
+    both curves) and then a second with the reach from its own two rulings (the longer of
+    |B_j − A_i| and |B_j+1 − A_i| in place of the diameter); a sign change always passes.
+    The rulings and their lengths are what the kept intervals carry on. ``positions`` are
+    A's and B's points, ``a0`` and ``grid.points`` one after the other.
+    """
+    b0, b1 = grid.points, grid.tangents
+    n, m = len(a0), len(b0)
+    centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
+    units = unit(a1)
+    moments = cross(np.concatenate([units, b1]), positions - centre)  # (both curves' at once)
+    left = np.concatenate([units, moments[:n]], axis=1)
+    right = np.empty((6, m))
+    right[:3], right[3:] = moments[n:].T, b1.T
+    speed_b = grid.speeds
+    # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
+    # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
+    rounding = position_rounding(positions)
+    flat_scale = (FLAT * size + rounding) * speed_b
+    # blocks of at most 16,000 samples: each block's arrays (125 KiB at most) come from the
+    # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
+    block = max(1, 16_000 // m)
+    rows_in_block = min(block, n)
+    f_buffer, size_buffer = np.empty((rows_in_block, m)), np.empty((rows_in_block, m))
+    sign_buffer = np.empty((rows_in_block, m), dtype=bool)
+    low_buffer = np.empty((rows_in_block, m - 1))
+    found: list[tuple[FloatArray, ...]] = []
+    zeros: list[IntArray] = []
+    for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
+        here = min(block, n - first)
+        f = np.matmul(left[first : first + block], right, out=f_buffer[:here])
+        negative = np.signbit(f, out=sign_buffer[:here])
+        size_f = np.abs(f, out=size_buffer[:here])
+        lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
+        change = negative[:, :-1] != negative[:, 1:]
+        look = change | (lower <= bounds.reach)
+        maybe = flatnonzero(size_f <= flat_scale)
+        if len(maybe):  # rare: test the candidates against their own ruling length
+            r, c = np.divmod(maybe, m)
+            exact = maybe[size_f.flat[maybe] <= (FLAT * norm(b0[c] - a0[r + first]) + rounding) * speed_b[c]]
+            if len(exact):
+                zero = np.zeros(f.shape, dtype=bool)
+                zero.flat[exact] = True
+                look &= ~(zero[:, :-1] | zero[:, 1:])
+                zeros.append(exact + first * m)
+        index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
+        r, c = np.divmod(index, m - 1)
+        # sift again with the rulings' own lengths in place of the diameter; the rulings to
+        # both ends at once, (2, k, 3), as their lengths and f there (take gathers rows
+        # several times faster than indexing does)
+        rulings = b0.take(c + _ENDS, axis=0) - a0.take(r + first, axis=0)
+        lengths = norm(rulings)
+        reach = bounds.slope.take(c) * (np.maximum(lengths[0], lengths[1]) + bounds.chord.take(c))
+        keep = change.take(index) | (lower.take(index) <= reach)
+        r = r[keep]
+        at = index[keep] + r + _ENDS  # (r, c) and (r, c + 1) in f
+        kept = f.take(at), rulings.compress(keep, axis=1), lengths.compress(keep, axis=1)
+        found.append((r + first, c[keep], *kept))
+    if len(found) == 1:
+        joined = found[0]
+    else:  # (the ends' values along their second axis)
+        joined = [np.concatenate(x, axis=0 if x[0].ndim == 1 else 1) for x in zip(*found, strict=True)]
+    zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
+    return _Brackets(*joined, zero_flat)
+
+
+def cubic_start(
+    x0: FloatArray, x1: FloatArray, f0: FloatArray, f1: FloatArray, d0: FloatArray, d1: FloatArray
+) -> FloatArray:
+    """A first guess for each bracket's root, good to O(h⁴): the root of the cubic that
+    matches f and f' at both ends of the bracket (two Newton steps on that cubic from
+    the secant's root), so that one Newton step on f reaches rounding."""
+    h = x1 - x0
+    d0, d1 = d0 * h, d1 * h  # slopes in the bracket's unit coordinate
+    rise = f1 - f0
+    # the cubic f0 + u·(d0 + u·(c2 + u·c3)) and its slope d0 + u·(2·c2 + 3·c3·u)
+    c2 = 3.0 * rise - 2.0 * d0 - d1
+    c3 = d0 + d1 - 2.0 * rise
+    c2_twice, c3_thrice = 2.0 * c2, 3.0 * c3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.minimum(np.maximum(-f0 / rise, 0.0), 1.0)  # (np.clip is slow on small arrays)
+        for _ in range(2):
+            step = (f0 + u * (d0 + u * (c2 + u * c3))) / (d0 + u * (c2_twice + u * c3_thrice))
+            u = np.where(np.isfinite(step), np.minimum(np.maximum(u - step, 0.0), 1.0), u)
+    return x0 + u * h
+
+
+def rounding_scale(size_a: FloatArray, b0: FloatArray, speed_a: FloatArray, b1: FloatArray) -> FloatArray:
+    """Size of the rounding error of det[B − A, A', B'] from |A|, B, |A'|, B': positions are
+    rounded relative to their own magnitude, not to the ruling's length."""
+    return (size_a + norm(b0)) * speed_a * norm(b1)
+
+
+def _oriented(
+    rr: FloatArray, aa: FloatArray, bb: FloatArray, ra: FloatArray, rb: FloatArray, ab: FloatArray
+) -> BoolArray:
+    """Whether N1 = R × A' and N2 = R × B' point to the same side (or one vanishes), from
+    |R|², |A'|², |B'|², R·A', R·B' and A'·B'.
+
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') and |N|² = |R|²|T|² − (R·T)² (Lagrange's identity).
+    """
+    n1n1 = np.maximum(rr * aa - ra * ra, 0.0)
+    n2n2 = np.maximum(rr * bb - rb * rb, 0.0)
+    return rr * ab - ra * rb >= -1e-9 * np.sqrt(n1n1 * n2n2)
+
+
+@dataclass
+class Candidates:
+    """Candidate partners, one entry each, sorted by station then t."""
+
+    row: IntArray
+    t: FloatArray
+    kind: IntArray
+    slope: FloatArray  #: dt/ds of the branch (0 at corners and flat ends)
+    low: FloatArray  #: flat run extent (NaN for roots and corners)
+    high: FloatArray
+    points: FloatArray  #: (k, 3) B(t)
+    tangents: FloatArray  #: (k, 3) tangent of B there (the in-plane one at a corner)
+    oriented: BoolArray  #: normals point to the same side (signed warp ~0, not ~π)
+
+    def subset(self, keep: BoolArray | IntArray) -> Candidates:
+        """The candidates ``keep`` (a mask or indices), in that order."""
+        index = flatnonzero(keep) if keep.dtype == bool else keep
+        return Candidates(*(getattr(self, name).take(index, axis=0) for name in _FIELDS))
+
+
+_FIELDS = tuple(Candidates.__dataclass_fields__)
+
+
+def find_candidates(
+    curve_b: Curve, grid: Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray
+) -> Candidates:
+    """All candidate partners of all stations: refined roots (every root of f, isolated
+    with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
+    m = len(grid.t)
+    units = unit(a1)
+    positions = np.concatenate([a0, grid.points])
+    diameter = float(norm(extent(positions)))
+    bounds = grid.interval_bounds(diameter)
+    found = _brackets(a0, units, grid, bounds, diameter, positions)
+    rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
+    corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
+    if np.count_nonzero(grid.pair):  # (a third of what .any() costs on a short mask)
+        at_corner = grid.pair[cols]
+        corner_rows, corner_cols = rows[at_corner], cols[at_corner]
+        keep = ~at_corner
+        rows, cols = rows[keep], cols[keep]
+        f_ends, rulings, lengths = f_ends[:, keep], rulings[:, keep], lengths[:, keep]
+    if len(found.zeros):
+        # runs of zero samples along a row: a run of positive extent is flat (its two ends
+        # are candidates), a single zero sample is a root
+        z = found.zeros
+        run_start = np.ones(len(z), dtype=bool)
+        run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
+        run_end = np.ones(len(z), dtype=bool)
+        run_end[:-1] = run_start[1:]
+        run_rows, run_first = np.divmod(z[run_start], m)
+        run_last = z[run_end] % m
+    flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
+
+    # judge what the sift left (it used the rulings' own lengths), subdividing where a
+    # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
+    # (at both ends at once, B'' at the far end as seen from the left)
+    cols_next = cols + 1
+    seconds = np.array([grid.second.take(cols, axis=0), grid.left_second.take(cols_next, axis=0)])
+    d_ends = dot(cross(rulings, units.take(rows, axis=0)), seconds)
+    none = np.empty(0)
+    f_low, f_high = f_ends
+    first = Pieces(rows, grid.at.take(cols), grid.at.take(cols_next), f_low, f_high, *d_ends, *([none] * 7))
+
+    def ends(pieces: Pieces, index: IntArray) -> Pieces:
+        c, c_next = cols[index], cols_next[index]
+        return replace(
+            pieces.take(index),
+            # (a row's length is the same computed alone or among others)
+            speed0=grid.speeds[c],
+            speed1=grid.speeds[c_next],
+            second0=grid.second_lengths[c],
+            second1=grid.left_second_lengths[c_next],
+            bound3=bounds.third[c],
+            r0=lengths[0, index],
+            r1=lengths[1, index],
+        )
+
+    def evaluate_b(x: FloatArray) -> list[FloatArray]:
+        return curve_b.derivatives(x, 2)
+
+    isolated = isolate(first, bounds.curvature.take(cols), evaluate_b, a0, units, ends)
+    rows = isolated.rows
+    if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
+        point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
+        point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+    else:
+        point_rows, point_t = isolated.double_rows, isolated.double_t
+
+    # refine every bracket at once: Newton with f_t = det[R, A', B''], bisection fallback;
+    # each bracket's last evaluation (at its root, to rounding) is kept for what follows
+    root_rows = np.concatenate([rows, point_rows]) if len(point_rows) else rows
+    k = len(rows)
+    root_t = np.concatenate([np.empty(k), point_t]) if len(point_rows) else np.empty(k)
+    b0, b1 = np.empty((2, len(root_rows), 3))
+    f, f_t = np.empty((2, len(root_rows)))
+    # the stations of the roots, gathered once for every evaluation and what follows
+    a0_root, a1_root = a0.take(root_rows, axis=0), a1.take(root_rows, axis=0)
+    speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
+
+    def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
+        c0, c1, c2 = curve_b.derivatives(x, 2)
+        plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
+        value, slope = dot(plane, np.array([c1, c2]))  # (both products in one)
+        root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
+        return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
+
+    def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        # all of them (the first step): a slice reads and writes without gathering
+        return evaluate(x, slice(0, k) if len(index) == k else index)
+
+    if k:
+        i = isolated
+        start = cubic_start(i.low, i.high, i.f_low, i.f_high, i.d_low, i.d_high)
+        refine_roots(coplanarity, i.low, i.high, i.f_low, start)
+    if len(point_rows):
+        evaluate(root_t[k:], slice(k, None))
+
+    # the slope dt/ds = −f_s/f_t of each smooth root's branch
+    # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
+    # once: each is the same sum of the same products)
+    r = b0 - a0_root
+    lefts = np.array([r, b1, r, r, a1_root, r])
+    rights = np.array([r, b1, a1_root, b1, b1, cross(a2.take(root_rows, axis=0), b1)])
+    rr, bb, ra, rb, ab, f_s = dot(lefts, rights)
+    aa = speed_a**2
+    slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    # converged onto a jump of B' that is not a flagged corner: f is far from zero there
+    jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
+    kind = np.where(jumped, CORNER, ROOT)
+    slope[jumped] = 0.0
+    nan = np.full(len(root_rows), np.nan)
+    candidates = Candidates(
+        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(rr, aa, bb, ra, rb, ab)
+    )
+    if len(corner_rows) == 0 and not np.count_nonzero(flat):
+        return _in_order(candidates)
+
+    # roots at corners of B: the tangent plane turns about the corner (a cone through it)
+    corner_points = grid.points[corner_cols + 1]
+    corner_tangents = in_plane_tangent(
+        corner_points - a0[corner_rows],
+        a1[corner_rows],
+        grid.tangents[corner_cols],
+        grid.tangents[corner_cols + 1],
+    )
+    # the two ends of every flat run
+    flat_rows = np.repeat(run_rows[flat], 2)
+    flat_cols = np.column_stack([run_first[flat], run_last[flat]]).reshape(-1)
+    extra_rows = np.concatenate([corner_rows, flat_rows])
+    extra_points = np.concatenate([corner_points, grid.points[flat_cols]])
+    extra_tangents = np.concatenate([corner_tangents, grid.tangents[flat_cols]])
+    r, ta, tb = extra_points - a0[extra_rows], a1[extra_rows], extra_tangents
+    corner_nan = np.full(len(corner_rows), np.nan)
+    extra = Candidates(
+        extra_rows,
+        np.concatenate([grid.t[corner_cols], grid.t[flat_cols]]),
+        np.concatenate([np.full(len(corner_rows), CORNER), np.full(len(flat_rows), FLAT_END)]),
+        np.zeros(len(extra_rows)),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_first[flat]], 2)]),
+        np.concatenate([corner_nan, np.repeat(grid.t[run_last[flat]], 2)]),
+        extra_points,
+        extra_tangents,
+        _oriented(*dot(np.array([r, ta, tb, r, r, ta]), np.array([r, ta, tb, ta, tb, tb]))),
+    )
+    both = Candidates(
+        *(np.concatenate([getattr(candidates, name), getattr(extra, name)]) for name in _FIELDS)
+    )
+    return _in_order(both)
+
+
+def _in_order(c: Candidates) -> Candidates:
+    """The candidates sorted by station, then t (stably); as they are when already so (the
+    refined roots usually are: their brackets come in that order)."""
+    step = c.row[1:] - c.row[:-1]
+    if ((step > 0) | ((step == 0) & (c.t[1:] >= c.t[:-1]))).all():
+        return c
+    return c.subset(np.lexsort((c.t, c.row)))
+
+
+def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
+    """Candidates as ``(n, K)`` arrays (NaN padded) and the index of each cell's candidate."""
+    # drop duplicates (a flat end that is also a root) and keep at most MAX_CANDIDATES
+    first = np.ones(len(c.row), dtype=bool)
+    first[1:] = (c.row[1:] != c.row[:-1]) | (c.t[1:] - c.t[:-1] > 1e-13)
+    keep = flatnonzero(first)
+    rows = c.row[keep]
+    column = np.arange(len(rows)) - np.searchsorted(rows, rows, side="left")
+    fits = column < MAX_CANDIDATES
+    keep, rows, column = keep[fits], rows[fits], column[fits]
+    k = max(int(column.max(initial=-1)) + 1, 1)
+    t = np.full((n, k), np.nan)
+    slope = np.full((n, k), np.nan)
+    index = np.full((n, k), -1, dtype=np.int64)
+    t[rows, column] = c.t[keep]
+    slope[rows, column] = c.slope[keep]
+    index[rows, column] = keep
+    return t, slope, index
+
+
+def _longest_monotone(t: FloatArray) -> BoolArray:
+    """Mask of a longest non-decreasing subsequence (patience sorting)."""
+    tails: list[float] = []
+    tail_index: list[int] = []
+    parent = np.full(len(t), -1, dtype=np.int64)
+    for i, x in enumerate(t.tolist()):  # fallback only: when the selection had to step back
+        j = bisect_right(tails, x)
+        if j == len(tails):
+            tails.append(x)
+            tail_index.append(i)
+        else:
+            tails[j] = x
+            tail_index[j] = i
+        parent[i] = tail_index[j - 1] if j > 0 else -1
+    keep = np.zeros(len(t), dtype=bool)
+    i = tail_index[-1] if tail_index else -1
+    while i >= 0:
+        keep[i] = True
+        i = parent[i]
+    return keep
+
+
+def choose(strip: Strip) -> tuple[IntArray, Candidates]:
+    """The chosen candidate per station (−1 where none) and the consistently oriented
+    candidates."""
+    n = len(strip.s)
+    found = find_candidates(strip.curve_b, strip.grid, strip.a0, strip.a1, strip.a2)
+    good = found if found.oriented.all() else found.subset(found.oriented)
+    chosen = np.full(n, -1, dtype=np.int64)
+    if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
+        # at most one candidate per station, in order along B: nothing to choose
+        chosen[good.row] = np.arange(len(good.row))
+        return chosen, good
+    t_pad, slope_pad, index_pad = _pad(good, n)
+    rows = flatnonzero(~np.isnan(t_pad).all(axis=1))
+    if len(rows):
+        s = strip.s[rows]
+        pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
+        chosen[rows] = index_pad[rows, pick]
+        t = good.t[chosen[rows]]
+        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
+            chosen[rows[~_longest_monotone(t)]] = -1
+    return chosen, good
+
+def near_partners(strip: Strip, t: FloatArray) -> None:
+    """Give every station without a partner one whose warp is within the tolerance
+    (the strip is torsal to within it there), if it has one between its neighbours'
+    partners: the plain loft's (in arc length between those neighbours) if that is
+    within it, else the least-warped sample of B. The others stay NaN, to be closed
+    by fans."""
+    gap = np.isnan(t)
+    missing = flatnonzero(gap)
+    if len(missing) == 0:
+        return
+    # where each station without a partner falls among those with one: the partners of its
+    # two neighbours (padded with B's ends where there is none before or after it) and
+    # their arc lengths along A (padded with A's ends), one row for each neighbour
+    partnered = flatnonzero(~gap)
+    neighbours = np.searchsorted(partnered, missing) + _ENDS
+    t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
+    lo, hi = t_window
+    length_a = strip.station_lengths
+    a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
+    span = a_hi - a_lo
+    spans = span > 0
+    fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
+    b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
+    loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
+    points, tangents = strip.curve_b.derivatives(loft, 1)
+    a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
+    loft_warp = warp_angles(a0, points, a1, tangents)
+    # else the least angle between the end normals among B's samples in the window
+    grid = strip.grid
+    angle = normal_angles(a0, a1, grid.points, grid.tangents)
+    inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
+    angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
+    best = np.argmin(angle, axis=1)
+    sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
+    with np.errstate(invalid="ignore"):
+        loft_ok = loft_warp <= strip.tolerance
+    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
+    # consecutive stations in one window may have picked samples out of order
+    known = ~np.isnan(t)
+    t[known] = np.maximum.accumulate(t[known])
+
+def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) -> FloatArray:
+    """The angle (0 to π) between N1 = R × A'_i and N2 = R × B'_j with R = B_j − A_i, for
+    every i and j: ``(len(a), len(b))``.
+
+    All of it comes from (i, j) matrix products: |R|², R·A', R·B' and A'·B' give
+    N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's identity), and N1 × N2 = R·det[R, A', B']
+    with det[R, A', B'] = A'·(B' × B) − (A × A')·B'. Coordinates are taken about a
+    common centre, as in :func:`_brackets`.
+    """
+    centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
+    a, b = a - centre, b - centre
+    aa, bb = _einsum("ij,ij->i", a, a), _einsum("ij,ij->i", b, b)
+    rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
+    ra = ta @ b.T - _einsum("ij,ij->i", a, ta)[:, None]
+    rb = _einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
+    triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
+    return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
+

@@ -1,0 +1,491 @@
+"""Fans: the triangles of a strip where its rulings pass through single points, and their share.
+
+Three kinds of fan arise in a strip between curves A and B (steps 6–7 of :mod:`.ruling`):
+
+- *Planar pieces* (:func:`flat_fans`): where the chosen partners lie in a flat run the
+  strip is planar and any pairing is developable; it is drawn as two triangles split along
+  the shorter diagonal, or, where its edges have corners, cut into fans from the corners
+  (:func:`strip_triangulation`).
+- *Torsal fans through a point of A* (:func:`a_fans`): where t jumps between two stations
+  (B straight and A curved, or a corner of A), rulings from one point A(s*) to a stretch
+  of B, each of them torsal.
+- *Closing triangles* (:func:`close_gaps`): over a run of stations on A without a torsal
+  partner on B, the strip is bounded by the torsal rulings on either side (or by the
+  curves' ends) and by the two stretches of A and B in between. That piece is closed by
+  a strip of triangles, each with two corners on one curve and one on the other — a
+  sequence of fans through single points, as the planar middle of the ZVE roof edge is
+  made. Three points are always coplanar, so every triangle is flat and the strip stays
+  developable (it unrolls exactly); what it gives up is tangency to the curves, so its
+  rulings are flagged, not counted as torsal.
+
+The closing triangles follow the two stretches in step (:func:`zigzag`): the next ruling
+advances along the curve whose next vertex is nearer in *fraction of its stretch's
+length*, so the triangles are about as wide on both curves and no ruling crosses another.
+"""
+
+from __future__ import annotations
+
+import struct
+from math import isnan
+
+import numpy as np
+from numpy.typing import NDArray
+
+from torsal.nodes.geometry.array_types import BoolArray, IntArray
+
+from ..curve_base import FloatArray
+from ..vec_ops import cross, det, flatnonzero, norm, unit
+from ..vec_ops import extent as box_extent
+from .brackets import refine_roots
+from .candidates import FLAT_END, Candidates, rounding_scale
+from .strip import SIDE, Strip
+
+
+def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArray]:
+    """Vertex indices ``(i, j)`` of the rulings of the triangle strip between a chain of
+    points on A at arc lengths ``length_a`` (non-decreasing) and one on B at
+    ``length_b``: from (0, 0) to (last, last), each step advancing along one chain.
+
+    >>> i, j = zigzag(np.array([0.0, 1.0, 2.0]), np.array([0.0, 3.0, 4.0]))
+    >>> i.tolist(), j.tolist()
+    ([0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
+    """
+    fa, fb = _fractions(length_a), _fractions(length_b)
+    keys = np.concatenate([fa[1:], fb[1:]])
+    along_b = np.arange(len(keys)) >= len(fa) - 1
+    # step to whichever next vertex comes first, A's before B's at a tie
+    steps = along_b[np.lexsort((along_b, keys))]
+    ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
+    np.add.accumulate(~steps, dtype=np.int64, out=ij[0, 1:])  # (np.cumsum, without its wrapper)
+    np.add.accumulate(steps, dtype=np.int64, out=ij[1, 1:])
+    return ij[0], ij[1]
+
+
+def _fractions(length: FloatArray) -> FloatArray:
+    """Arc lengths as fractions of the chain's length (even steps if it has none)."""
+    span = float(length[-1] - length[0])
+    if len(length) < 2 or not span > 0:
+        return np.linspace(0.0, 1.0, len(length))
+    return (length - length[0]) / span
+
+
+def patch_areas(starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """Area of each piece of strip between consecutive rulings ``(starts[k], ends[k])`` and
+    ``(starts[k+1], ends[k+1])``: half the cross product of the quad's diagonals, exact
+    for a flat quad and for a triangle (two rulings sharing an end)."""
+    diagonal = ends[1:] - starts[:-1]
+    other = ends[:-1] - starts[1:]
+    return 0.5 * norm(cross(diagonal, other))
+
+
+def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """Which pieces between consecutive rulings belong to a fan that creases the sheet.
+
+    A run of fan pieces whose rulings all pass through one point (a cone through a single
+    point of A or of B, like the triangle that closes a strip's end where the curves' ends
+    admit no torsal ruling) meets the torsal rulings on either side in their own tangent
+    planes — both contain the ruling and the moving curve's tangent — so the sheet stays
+    smooth (G1) and exactly developable. A run that needs apexes on both curves (a zigzag
+    of triangles over a stretch with no torsal ruling) folds at every change of apex:
+    those are the pieces that need the designer. Returns one flag per piece.
+    """
+    return _creased(starts, ends, fan[:-1] | fan[1:])
+
+
+def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
+    """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
+    creased = np.zeros(len(in_fan), dtype=bool)
+    if not np.count_nonzero(in_fan):
+        return creased
+    both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
+    size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
+    same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
+    # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
+    padded = np.zeros(len(in_fan) + 2, dtype=bool)
+    padded[1:-1] = in_fan
+    edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
+    for first, stop in zip(edges[::2], edges[1::2], strict=True):  # runs of fan pieces
+        one_apex = np.count_nonzero(same_start[first:stop]) == stop - first or (
+            np.count_nonzero(same_end[first:stop]) == stop - first
+        )
+        creased[first:stop] = not one_apex
+    return creased
+
+
+def area_share(starts: FloatArray, ends: FloatArray, pieces: NDArray[np.bool_]) -> float:
+    """The share of the strip's area in the flagged ``pieces`` (0 to 1)."""
+    areas = patch_areas(starts, ends)
+    total = float(areas.sum())
+    if not total > 0:
+        return 0.0 if not pieces.any() else 1.0
+    return float(areas[pieces].sum() / total)
+
+
+def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> tuple[float, float]:
+    """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
+    :func:`creased_fans`), from one measurement of the pieces' areas."""
+    areas = patch_areas(starts, ends)
+    total = float(np.add.reduce(areas))  # (ndarray.sum's own reduction, without its wrapper)
+    in_fan = fan[:-1] | fan[1:]
+    creased = _creased(starts, ends, in_fan)
+    if not total > 0:
+        return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
+    return float(np.add.reduce(areas[in_fan]) / total), float(np.add.reduce(areas[creased]) / total)
+
+
+def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
+    """The share of the strip's area in pieces next to a fan ruling (0 to 1)."""
+    areas = patch_areas(starts, ends)
+    total = float(areas.sum())
+    if not total > 0:
+        return 0.0 if not fan.any() else 1.0
+    in_fan = fan[:-1] | fan[1:]
+    return float(areas[in_fan].sum() / total)
+
+
+# -- planar pieces ------------------------------------------------------------------------------
+
+
+def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -> tuple[list, BoolArray]:
+    """Two triangles for every run of stations inside one planar piece.
+
+    Rewrites ``t`` there and returns the fans ``(s*, t_low, t_high)`` through a point
+    of A, and a mask of the stations of planar pieces.
+    """
+    n = len(t)
+    is_flat = np.zeros(n, dtype=bool)
+    fans: list[tuple[float, float, float]] = []
+    if not np.count_nonzero(good.kind == FLAT_END):  # (no flat run among the candidates at all)
+        return fans, is_flat
+    has = chosen >= 0
+    is_flat[has] = good.kind[chosen[has]] == FLAT_END
+    if not np.count_nonzero(is_flat):
+        return fans, is_flat
+    low = np.where(is_flat, good.low[chosen], np.nan)
+    high = np.where(is_flat, good.high[chosen], np.nan)
+    # consecutive flat stations whose flat intervals overlap form one planar piece
+    joins = is_flat[1:] & is_flat[:-1] & (low[1:] <= high[:-1]) & (low[:-1] <= high[1:])
+    begins = flatnonzero(is_flat & ~np.concatenate([[False], joins]))
+    finishes = flatnonzero(is_flat & ~np.concatenate([joins, [False]]))
+    for i0, i1 in zip(begins, finishes, strict=True):  # one pass per planar piece (few)
+        t_in = low[i0] if i0 == 0 or np.isnan(t[i0 - 1]) else max(low[i0], t[i0 - 1])
+        t_out = high[i1] if i1 == n - 1 or np.isnan(t[i1 + 1]) else min(high[i1], t[i1 + 1])
+        t_out = max(t_out, t_in)
+        corners_a = strip.kinks_a[(strip.kinks_a > strip.s[i0]) & (strip.kinks_a < strip.s[i1])]
+        corners_b = strip.kinks_b[(strip.kinks_b > t_in) & (strip.kinks_b < t_out)]
+        if len(corners_a) or len(corners_b):  # a polygon, not a quad
+            fans += _polygon_fans(strip, t, i0, i1, corners_a, t_in, corners_b, t_out)
+            continue
+        b_in, b_out = strip.curve_b.point_at(np.array([t_in, t_out]))
+        # the shorter diagonal: a fan through B(t_in) then one through A(s_i1), or a fan
+        # through A(s_i0) then one through B(t_out)
+        if norm(strip.a0[i1] - b_in) <= norm(strip.a0[i0] - b_out):
+            t[i0 : i1 + 1] = t_in
+            fans.append((float(strip.s[i1]), float(t_in), float(t_out)))
+        else:
+            t[i0 : i1 + 1] = t_out
+            fans.append((float(strip.s[i0]), float(t_in), float(t_out)))
+    return fans, is_flat
+
+def _polygon_fans(
+    strip: Strip,
+    t: FloatArray,
+    i0: int,
+    i1: int,
+    corners_a: FloatArray,
+    t_in: float,
+    corners_b: FloatArray,
+    t_out: float,
+) -> list[tuple[float, float, float]]:
+    """Fans for a planar piece whose edges have corners: a polygon, cut into triangles
+    that each join an edge of one curve (between corners) to a corner of the other.
+
+    Rewrites ``t`` for stations ``i0..i1`` (each takes the corner of B its triangle
+    leans on) and returns the fans through corners of A; see :func:`strip_triangulation`.
+    """
+    sa = np.concatenate([[strip.s[i0]], corners_a, [strip.s[i1]]])
+    tb = np.concatenate([[t_in], corners_b, [t_out]])
+    stations = strip.s[i0 : i1 + 1]
+    piece = t[i0 : i1 + 1]
+    fans = []
+    i = j = 0
+    for along_a in strip_triangulation(strip.curve_a.point_at(sa), strip.curve_b.point_at(tb)):
+        if along_a:  # triangle A_i A_i+1 B_j: the stations between lean on B_j
+            piece[(stations >= sa[i]) & (stations <= sa[i + 1])] = tb[j]
+            i += 1
+        else:  # triangle A_i B_j B_j+1: a fan through A_i
+            fans.append((float(sa[i]), float(tb[j]), float(tb[j + 1])))
+            j += 1
+    return fans
+
+def strip_triangulation(a: FloatArray, b: FloatArray) -> list[bool]:
+    """Triangles for the planar polygon a[0] … a[-1], b[-1] … b[0] whose every diagonal
+    joins a vertex of chain ``a`` to one of chain ``b``: the moves, True to advance along
+    ``a`` (triangle a_i a_i+1 b_j), False along ``b`` (triangle a_i b_j b_j+1).
+
+    Each step takes the shorter new diagonal among the moves whose triangle turns the way
+    the polygon does and whose diagonal crosses no edge of the polygon (so a chain that
+    bends towards the other, as a V, is fanned from its corner instead of being cut off).
+    """
+    polygon = np.concatenate([a, b[::-1]])
+    # the polygon's normal (Newell) and two axes of its plane, for signed areas and crossings
+    normal = cross(polygon, np.roll(polygon, -1, axis=0)).sum(axis=0)
+    normal = normal / max(float(norm(normal)), 1e-300)
+    x_axis = unit(polygon[np.argmax(norm(polygon - polygon[0]))] - polygon[0])
+    flat = np.column_stack([polygon @ x_axis, polygon @ cross(normal, x_axis)])
+    fa, fb = flat[: len(a)], flat[len(a) :][::-1]
+    size = float(np.ptp(flat, axis=0).max()) or 1.0
+    edges = np.stack([flat, np.roll(flat, -1, axis=0)], axis=1)
+
+    def area(p: FloatArray, q: FloatArray, r: FloatArray) -> float:
+        return float((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+
+    def crosses(p: FloatArray, q: FloatArray) -> bool:
+        """Whether segment pq properly crosses an edge of the polygon (shared ends do not count)."""
+        e0, e1 = edges[:, 0], edges[:, 1]
+        d = q - p
+        side0 = d[0] * (e0[:, 1] - p[1]) - d[1] * (e0[:, 0] - p[0])
+        side1 = d[0] * (e1[:, 1] - p[1]) - d[1] * (e1[:, 0] - p[0])
+        e = e1 - e0
+        side_p = e[:, 0] * (p[1] - e0[:, 1]) - e[:, 1] * (p[0] - e0[:, 0])
+        side_q = e[:, 0] * (q[1] - e0[:, 1]) - e[:, 1] * (q[0] - e0[:, 0])
+        tiny = 1e-12 * size * size
+        return bool(np.any((side0 * side1 < -tiny * tiny) & (side_p * side_q < -tiny * tiny)))
+
+    moves: list[bool] = []
+    i = j = 0
+    while i < len(a) - 1 or j < len(b) - 1:
+        options = []  # (invalid, diagonal length, move)
+        if i < len(a) - 1:
+            diagonal = (fa[i + 1], fb[j])
+            bad = area(fa[i], fa[i + 1], fb[j]) <= 1e-12 * size * size or crosses(*diagonal)
+            options.append((bad, float(np.hypot(*(diagonal[1] - diagonal[0]))), True))
+        if j < len(b) - 1:
+            diagonal = (fa[i], fb[j + 1])
+            bad = area(fa[i], fb[j + 1], fb[j]) <= 1e-12 * size * size or crosses(*diagonal)
+            options.append((bad, float(np.hypot(*(diagonal[1] - diagonal[0]))), False))
+        move = min(options)[2]
+        moves.append(move)
+        i, j = (i + 1, j) if move else (i, j + 1)
+    return moves
+
+
+# -- fans through a point of A -------------------------------------------------------------------
+
+
+def a_fans(
+    strip: Strip, t: FloatArray, slope: FloatArray, regular: BoolArray
+) -> list[tuple[float, float, float]]:
+    """Fans through single points of A, found where t jumps between two stations.
+
+    Along one branch t steps by about Δs·(mean slope); a much larger step means the
+    strip's path in the (s, t) square runs vertically in between: a fan of rulings
+    from one point A(s*) to a stretch of B (a triangle on a straight piece of B, or a
+    cone at a corner of A). s* solves f(s, t_mid) = 0 for s, or is the corner of A.
+    """
+    s = strip.s
+    dt = t[1:] - t[:-1]
+    predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
+    jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
+    pairs = flatnonzero(jump)
+    if len(pairs) == 0:
+        return []
+    t_mid = 0.5 * (t[pairs] + t[pairs + 1])
+    bm0, bm1 = strip.curve_b.derivatives(t_mid, 1)
+    # f at both stations of every pair at once: rows (i, i + 1)
+    both = pairs + _NEXT
+    f_left, f_right = det(bm0 - strip.a0[both], strip.a1[both], bm1)
+    apex = np.full(len(pairs), np.nan)
+    which = flatnonzero(f_left * f_right < 0)
+    if len(which):
+        # B and B' at each bracket's t_mid, gathered once: the same on every iteration
+        b0, b1 = bm0[which], bm1[which]
+
+        def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+            c0, c1, c2 = strip.curve_a.derivatives(x, 2)
+            r0, r1 = (b0, b1) if len(index) == len(which) else (b0[index], b1[index])
+            r = r0 - c0
+            # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes), in one det
+            f, f_s = det(r, np.array([c1, c2]), r1)
+            return f, f_s, rounding_scale(norm(c0), r0, norm(c1), r1)
+
+        low, high = s[pairs[which]], s[pairs[which] + 1]
+        apex[which] = refine_roots(coplanarity, low, high, f_left[which])
+        # a root that converged onto a corner of A (a jump of f) or onto a station is that point
+        for exact in (strip.kinks_a, s):
+            if len(exact):
+                nearest = exact[np.argmin(np.abs(apex[:, None] - exact[None, :]), axis=1)]
+                apex = np.where(np.abs(apex - nearest) <= 1e-12, nearest, apex)
+    fans = []
+    for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
+        if isnan(s_star):
+            inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
+            if len(inside) == 0:
+                if _dwarfs(dt, i):
+                    strip.holes.append(i)
+                continue
+            s_star = float(inside[0])
+        extent = _fan_extent(strip, s_star, float(t[i]), float(t[i + 1]))
+        if extent is not None:
+            fans.append((s_star, *extent))
+        elif _dwarfs(dt, i):
+            strip.holes.append(i)
+    return fans
+
+
+#: Offsets of the two stations of a pair (i, i + 1), as rows.
+_NEXT = np.array([[0], [1]])
+
+
+def _dwarfs(dt: FloatArray, i: int) -> bool:
+    """Whether the step ``dt[i]`` is over twice both its neighbours (the larger of them,
+    where there are two; never with none to compare): only then is a jump of t that no
+    torsal fan covers a hole (the slope is a poor guide where f_t vanishes, as at an
+    inflection). NaN neighbours (next to a station without a partner) do not count."""
+    neighbours = [float(dt[k]) for k in (i - 1, i + 1) if 0 <= k < len(dt) and not isnan(dt[k])]
+    return bool(neighbours) and bool(dt[i] > 2.0 * max(neighbours))
+
+def _fan_extent(strip: Strip, s_star: float, t0: float, t1: float) -> tuple[float, float] | None:
+    """The stretch of B inside [t0, t1] over which rulings from A(s*) are torsal."""
+    # A(s*) and A's tangents on either side of it, in one evaluation
+    around = [s_star, min(max(s_star - SIDE, 0.0), 1.0), min(max(s_star + SIDE, 0.0), 1.0)]
+    a0, a1 = strip.curve_a.derivatives(np.array(around), 1)
+    c0, sides = a0[0], a1[1:]
+    window = (strip.grid.t >= t0) & (strip.grid.t <= t1)
+    ts = np.unique(np.concatenate([[t0, t1], strip.grid.t[window]]))
+    # at a corner of B the stretch may end with the tangent from either side
+    at_kink = np.isin(ts, strip.kinks_b) if len(strip.kinks_b) else None
+    if at_kink is None:  # (B has no corners)
+        b0, b1 = strip.curve_b.derivatives(ts, 1)
+        r = b0 - c0
+    else:
+        b0, b1 = strip.curve_b.derivatives(np.concatenate([ts, ts[at_kink] - SIDE]), 1)
+        r = b0 - c0
+        r = np.concatenate([r[: len(ts)], r[: len(ts)][at_kink]])
+    scale = norm(r) * norm(b1)
+    scale = np.where(scale > 0, scale, 1.0)
+    g = det(r, unit(sides)[:, None], b1) / scale  # rows: with A's tangent from the left, from the right
+    # torsal: flat (B straight there), or between the two one-sided tangents of a corner
+    flat = np.abs(g) <= 1e-9
+    torsal_all = flat[0] | flat[1] | (g[0] * g[1] < 0)
+    torsal = torsal_all[: len(ts)]
+    if at_kink is not None:
+        torsal[at_kink] |= torsal_all[len(ts) :]
+    if np.count_nonzero(torsal) < 2:
+        return None
+    first = int(np.argmax(torsal))
+    last = len(ts) - 1 - int(np.argmax(torsal[::-1]))
+    if not torsal[first : last + 1].all() or ts[last] <= ts[first]:
+        return None
+    return float(ts[first]), float(ts[last])
+
+
+# -- closing the stretches without a torsal ruling ------------------------------------------------
+
+
+def close_gaps(
+    strip: Strip, t: FloatArray, fans: list | None = None
+) -> list[tuple[FloatArray, FloatArray]]:
+    """Close every run of stations still without a partner (NaN in ``t``) with flat
+    triangles (:mod:`.fans`), and the stretches of B beyond the first and the last
+    ruling with fans through A's ends.
+
+    A stretch of B between two torsal stations that no torsal fan covers (t jumps
+    there: :func:`a_fans` lists it in ``holes``) is closed the same way. A gap starts
+    where the torsal rulings before it end on B: at the station before it, or at the far
+    end of a torsal fan ``(s*, t_low, t_high)`` through that station (``fans``, those
+    :func:`outside_gaps` keeps), and likewise it ends where those after it begin, so
+    the closing rulings never run back over B (they would cross the fan's).
+
+    Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
+    """
+    n = len(t)
+    gap = np.isnan(t)
+    added: list[tuple[FloatArray, FloatArray]] = []
+    for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
+        if gap[i] or gap[i + 1]:
+            continue  # closed with the gap around it
+        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb)
+        inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
+        added.append((strip.s[i + a[inner]], tb[b[inner]]))
+    # the runs of gap stations: where ``gap`` padded with False on both sides changes
+    padded = np.zeros(n + 2, dtype=bool)
+    padded[1:-1] = gap
+    edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
+    closed = strip.curve_b.closed
+    for i0, stop in zip(edges[::2], edges[1::2], strict=True):  # one pass per gap (few)
+        i1 = stop - 1
+        t_lo = float(t[i0 - 1]) if i0 > 0 else 0.0
+        t_hi = float(t[i1 + 1]) if i1 < n - 1 else (float(t[0]) if closed and i0 > 0 else 1.0)
+        for fan in fans or ():  # a torsal fan through the station before (after) the gap
+            if i0 > 0 and fan[0] == strip.s[i0 - 1] and t_lo < fan[2] <= t_hi:
+                t_lo = fan[2]
+            if i1 < n - 1 and fan[0] == strip.s[i1 + 1] and t_lo <= fan[1] < t_hi:
+                t_hi = fan[1]
+        if t_hi < t_lo and not closed:
+            t_hi = t_lo
+        key = (i0, i1, struct.pack("2d", t_lo, t_hi))
+        closing = strip.closings.get(key)
+        if closing is None:
+            closing = strip.closings[key] = _closing(strip, i0, i1, t_lo, t_hi)
+        t[i0 : i1 + 1], extra = closing
+        if extra is not None:
+            added.append(extra)
+    if not closed:
+        if t[0] > 0.0:
+            tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
+            added.append((np.zeros(len(tb)), tb))
+        if t[-1] < 1.0:
+            tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
+            added.append((np.ones(len(tb)), tb))
+    return added
+
+def _closing(
+    strip: Strip, i0: int, i1: int, t_lo: float, t_hi: float
+) -> tuple[FloatArray, tuple[FloatArray, FloatArray] | None]:
+    """The flat triangles closing the gap stations ``i0..i1`` between B(t_lo) and B(t_hi)
+    (:func:`close_gaps`): the gap stations' partners, and the added rulings ``(s, t)``
+    (None if there are none), read-only."""
+    n = len(strip.s)
+    k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
+    if t_hi < t_lo:  # through the seam of a closed B
+        (before, lb_before), (after, lb_after) = strip.gap_lengths(t_lo, 1.0), strip.gap_lengths(0.0, t_hi)
+        tb = np.concatenate([before, after[1:]])
+        lb = np.concatenate([lb_before, lb_after[1:] + strip.chords_b[-1]])
+    else:
+        tb, lb = strip.gap_lengths(t_lo, t_hi)
+    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb)
+    # the first ruling from each gap station is its station ruling (i runs through every
+    # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
+    own = np.empty(len(i), dtype=bool)
+    own[0] = True
+    own[1:] = i[1:] != i[:-1]
+    own &= (i >= i0 - k0) & (i <= i1 - k0)
+    partners = tb[j[own]]
+    extra = ~own
+    if i0 > 0:
+        extra[0] = False  # the torsal ruling before the gap
+    if i1 < n - 1:
+        extra[-1] = False  # and after it
+    added = None
+    if np.count_nonzero(extra):
+        added = (strip.s[k0 + i[extra]], tb[j[extra]])
+        for array in added:
+            array.setflags(write=False)
+    return partners, added
+
+
+def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
+    """The torsal fans ``(s*, t_low, t_high)`` whose apex is neither inside a gap's stretch
+    of A (from the torsal station before the gap to the one after it) nor a gap station."""
+    if not fans or not np.count_nonzero(gap):
+        return fans
+    n = len(s)
+    begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))
+    finishes = flatnonzero(gap & ~np.concatenate([gap[1:], [False]]))
+    low, high = s[np.maximum(begins - 1, 0)], s[np.minimum(finishes + 1, n - 1)]
+    through_gap = s[gap]
+    return [
+        fan for fan in fans if not (np.any((low < fan[0]) & (fan[0] < high)) or np.any(through_gap == fan[0]))
+    ]

@@ -1,0 +1,547 @@
+"""The developable strip between two space curves: solving for its rulings.
+
+Geometry
+--------
+A developable surface has one tangent plane along each ruling. If the strip is bounded
+by curves A(s) and B(t) and a ruling joins A(s) to B(t), both curves are tangent to the
+surface at the ruling's ends, so the ruling R = B(t) − A(s) and the two tangents A'(s),
+B'(t) lie in one plane (the ruling is *torsal*)::
+
+    f_s(t) = det[B(t) − A(s), A'(s), B'(t)] = 0.
+
+For each station s on A this is one equation in t. Its roots are the candidate
+partners. A root is kept only if its normals are *consistently oriented* (see
+:mod:`.warp`: with both curves running the same way and rulings that do not cross, the
+sheet's normals N1 = R × A' and N2 = R × B' point to the same side, so the signed warp
+is ~0, not ~π), and one root per station is chosen so that t never decreases.
+
+The orientation test is what tells the strip from impostors. Along a branch of roots
+with slope dt/ds, the sheet's normal at B is (dt/ds)·(B' × R), so flipped normals mean
+either t running backwards (a sheet folded through itself: the rulings cross) or the
+edge of regression (the sheet's cusp) lying between the two curves. In particular the
+determinant vanishes wherever A'(s) ∥ B'(t), whatever the ruling: when the tangents
+point the *same* way that root is a genuine torsal ruling (two curves in parallel
+planes are joined exactly there); when they point *opposite* ways the normals are
+opposite and the root is rejected (for two coaxial circles, the double cone through
+their common centre instead of the frustum between them). Flipped roots on a
+decreasing branch are what a curve B running the other way produces, and the message
+then says to reverse B.
+
+Algorithm (all stations at once)
+--------------------------------
+1. Stations: ``Segments + 1`` parameters on A, evenly spaced in arc length
+   (:mod:`.stations`).
+2. Sampling: B is sampled on every smooth span, with both one-sided values at its
+   corners, and the whole ``stations × samples`` matrix of f and of f_t is one thin
+   matrix product (see :func:`.candidates._brackets`).
+3. Certified isolation (:mod:`.isolation`): every sample interval where f changes sign
+   or comes within reach of zero is judged with a bound on f_tt from B's derivatives,
+   and split until each piece provably holds no root, exactly one simple root (a
+   bracket), or a double root to rounding. So no root of f is missed between samples —
+   not two roots close together at an inflection of a section, nor where A' and B'
+   become parallel, nor at a curve's end (the guarantee and its one assumption are in
+   that module). *Flat runs*, where f is zero on consecutive samples (A and B coplanar
+   there, e.g. two straight pieces in one plane), contribute their two ends instead; a
+   sign change across a corner of B is a root at the corner (the rulings fan through
+   it: a cone).
+4. Refinement: every bracket is refined to machine precision at once, by Newton's
+   method kept inside the brackets (:mod:`.brackets`) with f_t = det[R, A', B''],
+   starting from the root of the cubic that matches f and f_t at the bracket's ends —
+   usually two evaluations of B in all.
+5. Selection: the monotone dynamic programme of :mod:`.selection` follows one branch of
+   roots, predicting each step from the branch slope dt/ds = −f_s/f_t, with
+   f_s = det[R, A'', B'].
+6. Planar pieces: where the chosen partners lie in a flat run the strip is planar and
+   any pairing is developable; it is drawn as two triangles (a fan of rulings through a
+   point of B, then a fan through a point of A), split along the shorter diagonal; a
+   piece whose edges have corners is a polygon, cut into such fans from the corners
+   along diagonals that stay inside it (:func:`.fans.strip_triangulation`). Fans
+   through a point of A also arise where B is straight and A curved (the ZVE roof: a
+   triangle leaning on a straight edge) or at a corner of A: there t jumps between two
+   neighbouring stations, the fan's apex s* is found by solving f for s, and rulings
+   are added through A(s*) at about the station spacing.
+7. Stations with no consistently oriented root get the plain loft's partner (in arc
+   length between their neighbours' partners) or else the least-warped sample of B
+   there, if its warp is within ``warp_tolerance`` (before the planar pieces of step 6
+   are drawn, so that a piece's fans end at the next station's partner). The others admit no torsal ruling:
+   each run of them is closed by flat triangles between the two stretches of A and B
+   (:mod:`.fans`), and so are the ends of B beyond the first and last ruling and any
+   stretch of B that t jumps over with no torsal fan to cover it. Their rulings are
+   flagged (``fan``), the strip has no holes and stays developable (every triangle is
+   flat), and the message gives the share of the strip's area they take.
+8. Check: every output ruling's warp is measured from the curves at its (s, t) — end
+   points and exact tangents, :func:`.warp.warp_angles`, NaN where no normal is defined
+   — and ``valid`` is that warp within the tolerance (never NaN), plus what the rounding
+   of the rulings' end points alone can add to it far from the origin (their positions'
+   rounding over the ruling's length: nothing at the origin, 3e-6 rad for a 1.3 m ruling
+   at 1e9 m; see :func:`warp_allowance`). A station taken as
+   torsal that fails the check joins the fans and the strip is closed again. A fan that
+   turns back over itself between two of its rulings (in a plane: over a stretch of a
+   curve its apex does not see whole) gets a ruling at the turn, which runs along the
+   curve: its warp is undefined and it is not valid (:func:`_fan_folds`).
+9. A closed B whose seam is away from the strip's start is solved again from A(0)'s
+   partner, so that t can run once round B through its seam.
+
+Where the steps live
+--------------------
+:mod:`.strip` holds what one solve shares (stations on A, samples of B: steps 1–2),
+:mod:`.candidates` the partner search (steps 2–5 and the near partners of step 7),
+:mod:`.fans` every fan and closing triangle (steps 6–7), :mod:`.end_cones` the smooth
+end cones; this module runs the steps, assembles the rulings and checks them (step 8).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from torsal.nodes.geometry.array_types import BoolArray, IntArray
+
+from ..curve_base import Curve, FloatArray
+from ..vec_ops import cross, flatnonzero, norm, position_rounding, unit
+from ..watch import watch_check
+from .candidates import ROOT, Candidates, choose, near_partners
+from .end_cones import Rulings, smooth_ends
+from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
+from .stations import Spacing
+from .strip import SIDE, Strip
+from .warp import PARALLEL, in_plane_tangent, warp_angles
+
+#: Most rounds of checking the torsal rulings and closing the stations that fail.
+MAX_CHECKS = 3
+
+
+@dataclass(frozen=True)
+class RulingResult:
+    """The rulings of a developable strip between curves A and B, in order along the strip.
+
+    Rulings run from ``A(s)`` to ``B(t)``. There is one per station on A (``Segments + 1``
+    of them, marked in ``stations``) plus the rulings of any fan through a single point of
+    A (a planar triangle), which repeat that point's s, and of the flat triangles that
+    close the strip where no torsal ruling exists (marked in ``fan``, with the stations
+    there); so ``len(s) >= Segments + 1``.
+    Neither ``s`` nor ``t`` ever decreases, so rulings do not cross — except that on a
+    closed curve B, t increases *cyclically*: from the strip's start it runs up to 1,
+    wraps through B's seam to 0 and rises again.
+    """
+
+    s: FloatArray  #: parameters on curve A, in [0, 1]
+    t: FloatArray  #: partner parameters on curve B, in [0, 1]
+    starts: FloatArray  #: (n, 3) points A(s)
+    ends: FloatArray  #: (n, 3) points B(t)
+    #: warp angle per ruling, rad, in [0, π]: the angle between the end normals R × A'
+    #: and R × B', recomputed from the output (NaN where a normal is not defined)
+    warp: FloatArray
+    signed_warp: FloatArray  #: angle from N1 to N2 about the ruling, rad, in (−π, π] (or NaN)
+    valid: BoolArray  #: the recomputed warp is within the tolerance (never where it is NaN)
+    message: str | None  #: how much of the strip is closed by flat triangles, or None
+    stations: BoolArray  #: True for the Segments + 1 station rulings, False for added fan rulings
+    #: True for the rulings of the flat triangles that close the strip where no torsal
+    #: ruling exists (gap stations and the rulings added there), False for torsal ones
+    fan: BoolArray
+    fan_share: float  #: share of the strip's area in those triangles, 0 to 1
+    #: share of the area in fans that crease the sheet (apexes on both curves, see
+    #: :func:`.fans.creased_fans`); a single cone closing a strip's end is smooth and not counted
+    creased_share: float = 0.0
+
+    @property
+    def max_warp(self) -> float:
+        """Largest warp angle, rad."""
+        return float(self.warp.max(initial=0.0))
+
+class _Rotated(Curve):
+    """A closed curve started from parameter ``shift`` instead of its seam: C((t + shift) mod 1)."""
+
+    closed = True
+
+    def __init__(self, curve: Curve, shift: float) -> None:
+        self.curve, self.shift = curve, float(shift)
+
+    def original(self, t: FloatArray) -> FloatArray:
+        """The wrapped curve's parameter for parameters ``t`` of this one."""
+        u = np.asarray(t, dtype=float) + self.shift
+        return np.where(u >= 1.0, u - 1.0, u)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        return self.curve.derivatives(self.original(np.atleast_1d(np.asarray(t, dtype=float))), order)
+
+    def _breakpoints(self) -> FloatArray:
+        moved = self.curve._breakpoints() - self.shift
+        return np.unique(np.concatenate([[0.0, 1.0], np.where(moved < 0, moved + 1.0, moved)]))
+
+def ruling_developable(
+    curve_a: Curve,
+    curve_b: Curve,
+    segments: int,
+    warp_tolerance: float = 0.01,
+    *,
+    spacing: Spacing = "length",
+    samples: int = 128,
+) -> RulingResult:
+    """The developable strip between two curves, as rulings from A to B.
+
+    Args:
+        curve_a: the base curve; ``segments + 1`` stations are placed along it.
+        curve_b: the partner curve. Both should run the same way (from the same end of
+            the strip); otherwise almost no ruling is torsal and the strip is mostly flat
+            triangles (:func:`.alternatives.better_pairing` says whether reversing B helps).
+        segments: number of rulings minus one (at least 1).
+        warp_tolerance: largest warp angle (rad) a ruling may have and count as valid,
+            e.g. 0.01; for a sheet allowed a warp factor of k rad/m over rulings about
+            L long, k·L.
+        spacing: ``"length"`` (default) spaces the stations evenly in arc length along A,
+            ``"parameter"`` evenly in its parameter.
+        samples: how many samples of B start the root isolation (at least this many and
+            two per smooth span of B); roots closer together are separated by subdivision,
+            so more samples only trade matrix work for fewer subdivisions.
+
+    Returns:
+        A :class:`RulingResult`. On curves cut from a developable the rulings are the true
+        ones to rounding (partner error ~1e-14, warp ~1e-14 rad).
+
+    See the module docstring for the geometry and the algorithm. Two coplanar segments
+    bound a planar quad, drawn as two triangles: a fan through B(0) from the three
+    stations, then a fan through A(1) whose rulings are about as far apart on B (B is
+    √10 long, the stations 1 apart; a fan gets at most one ruling per station, so three
+    steps of B/3):
+
+    >>> from torsal.nodes.geometry.curves import Line
+    >>> r = ruling_developable(Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [3, 2, 0]), 2)
+    >>> r.s.tolist(), r.t.round(3).tolist(), r.message
+    ([0.0, 0.5, 1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.333, 0.667, 1.0], None)
+    """
+    if int(segments) != segments or segments < 1:
+        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
+    tolerance = float(warp_tolerance)
+    if not (np.isfinite(tolerance) and tolerance >= 0):
+        raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
+    samples = max(int(samples), 8)
+    result = _solve(curve_a, curve_b, int(segments), tolerance, spacing, samples)
+    if curve_b.closed and result.fan.any():
+        # B's seam may sit away from where the strip starts: restart B at A(0)'s partner
+        # (or, when A is closed too, at the partner of its end, the same point)
+        station = result.t[result.stations]
+        torsal = (result.valid & ~result.fan)[result.stations]
+        shift = station[0] if torsal[0] else station[-1] if curve_a.closed and torsal[-1] else None
+        if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
+            rotated = _Rotated(curve_b, shift)
+            again = _solve(curve_a, rotated, int(segments), tolerance, spacing, samples)
+            if again.fan_share < result.fan_share:
+                return replace(again, t=rotated.original(again.t))
+    return result
+
+def _solve(
+    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
+) -> RulingResult:
+    """One solve of :func:`ruling_developable` as the module docstring describes it. Between
+    its steps it calls the enclosing :func:`~..watch.watched` block's check, if any (a
+    2,000-station solve takes tens of milliseconds: Esc is seen within one step)."""
+    check = watch_check() or _unwatched
+    strip = Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
+    n = len(strip.s)
+    check()
+    chosen, good = choose(strip)
+    check()
+    has = chosen >= 0
+    t = np.full(n, np.nan)
+    slope = np.zeros(n)
+    partner = chosen[has]
+    t[has], slope[has] = good.t[partner], good.slope[partner]
+    # stations without a partner get one first, so that a planar piece's fans end where the
+    # next station's partner is (two curves in one plane: otherwise a fan over all of B, then
+    # a partner running back)
+    near_partners(strip, t)
+    fans, planar = flat_fans(strip, t, chosen, good)
+    regular = has & ~planar
+    fans += a_fans(strip, t, slope, regular)
+    check()
+
+    for _ in range(MAX_CHECKS):
+        gap = np.isnan(t)
+        closed_t = t.copy()
+        kept = outside_gaps(fans, strip.s, gap)
+        added = close_gaps(strip, closed_t, kept)
+        s_out, t_out, source, fan = _merge(strip, closed_t, gap, kept, added)
+        # the warp of the output, from the curves' exact tangents (NaN where undefined)
+        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
+        # a station ruling taken as torsal that fails the check is a gap after all
+        failed = source[(source >= 0) & ~fan & ~valid]
+        check()
+        if len(failed) == 0:
+            break
+        t[failed] = np.nan
+    # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
+    # the curve's end point, where that ruling exists (see .end_cones)
+    rulings = Rulings(s_out, t_out, source, fan)
+    smoothed = smooth_ends(curve_a, curve_b, rulings)
+    check()
+    if smoothed is not rulings and (len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out)):
+        again = _checked(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
+        valid2 = again[4]
+        torsal = ~smoothed.fan
+        kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
+        if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
+            s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
+            starts, ends, signed, warp, valid = again
+    folded = _fan_folds(strip, s_out, t_out, starts, ends, np.isnan(warp))
+    if len(folded[0]):
+        s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
+        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
+    if fan.any():
+        share, creased = fan_shares(starts, ends, fan)
+    else:  # (what both give without fans: no piece counts)
+        share = creased = 0.0
+    station = source >= 0
+    message = _message(int(np.count_nonzero(fan[station])), n, tolerance, share, creased)
+    return RulingResult(
+        s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased
+    )
+
+def _unwatched() -> None:
+    """The check outside a :func:`~..watch.watched` block: nothing to look at."""
+
+
+def _checked(
+    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray]:
+    """The rulings' check (step 8): :func:`_measured`'s starts, ends and signed warp, the
+    warp and whether it is within the tolerance plus :func:`warp_allowance` (never where
+    it is NaN)."""
+    starts, ends, signed, ruling = _measured(strip, s, t, source, chosen, good)
+    warp = np.abs(signed)
+    with np.errstate(invalid="ignore"):
+        valid = warp <= strip.tolerance + _allowance(starts, ends, ruling)  # NaN is never valid
+    return starts, ends, signed, warp, valid
+
+
+def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """What the rounding of the rulings' end points alone adds to a warp measured from
+    them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
+    the origin; at site coordinates the ends are known to an ulp of their coordinates
+    (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
+    return _allowance(starts, ends, ends - starts)
+
+
+def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> FloatArray:
+    """:func:`warp_allowance` of the rulings with the rulings ``ends − starts`` already at
+    hand (:func:`_measured` returns them)."""
+    length = norm(ruling)
+    rounding = max(position_rounding(starts), position_rounding(ends))
+    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
+
+
+def _merge(
+    strip: Strip, t: FloatArray, gap: BoolArray, fans: list, added: list[tuple[FloatArray, FloatArray]]
+) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
+    """All rulings ordered along the strip: the stations, every torsal fan's rulings
+    ``(s*, t_low, t_high)`` and the rulings ``added`` to close gaps.
+
+    Returns s, t, per ruling the station it is (−1 for an added ruling) and whether
+    it closes a gap (the gap stations ``gap`` and the ``added`` rulings).
+    """
+    n = len(strip.s)
+    if not fans and not added:
+        return strip.s, t, np.arange(n), gap.copy()
+    s_parts, t_parts, gap_parts = [strip.s], [t], [gap]
+    for s_star, t_low, t_high in fans:
+        ts = strip.fan_parameters(t_low, t_high)
+        s_parts.append(np.full(len(ts), s_star))
+        t_parts.append(ts)
+        gap_parts.append(np.zeros(len(ts), dtype=bool))
+    for s_add, t_add in added:
+        s_parts.append(s_add)
+        t_parts.append(t_add)
+        gap_parts.append(np.ones(len(s_add), dtype=bool))
+    s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
+    order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
+    repeat = np.zeros(len(order), dtype=bool)
+    s_sorted, t_sorted = s_all[order], t_all[order]
+    repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (t_sorted[1:] - t_sorted[:-1] <= 1e-14)
+    # of two equal rulings keep the station (an added ruling sorts after its equal station)
+    later_station = flatnonzero(repeat & (order < n))
+    order[later_station - 1] = order[later_station]
+    order = order[~repeat]
+    return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
+
+def _measured(
+    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The output rulings A(s) → B(t) and their signed warp, measured from the curves:
+    the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
+    (NaN where no normal is defined), with the tangent at a corner taken in the plane
+    of the ruling where the corner straddles it (:func:`_corner_tangent`), and an end
+    shared with every neighbouring ruling (the apex of a fan of flat triangles)
+    taking the other end's plane. Nothing of the solve enters but the curves'
+    evaluations at those very parameters (a station's, a refined root's), which are
+    reused rather than repeated. Returns starts, ends, the signed warp and the rulings
+    ``ends − starts`` (for :func:`_allowance`)."""
+    k = len(s)
+    station = source >= 0
+    at = flatnonzero(station)  # (index arrays, found once: masks would be searched again at every use)
+    rows = source[at]
+    if len(rows) == k:  # no added rulings
+        starts, ta = strip.a0[rows], strip.a1[rows]
+    else:
+        away = flatnonzero(~station)
+        starts, ta = np.empty((2, k, 3))
+        starts[at], ta[at] = strip.a0[rows], strip.a1[rows]
+        starts[away], ta[away] = strip.curve_a.derivatives(s[away], 1)
+    # B where a station's chosen root still stands (a flat end or corner is re-evaluated);
+    # ``chosen`` holds −1 (none) or a candidate's index
+    picked = chosen[rows]
+    has = picked >= 0
+    candidate, picked = at[has], picked[has]
+    stands = (good.t[picked] == t[candidate]) & (good.kind[picked] == ROOT)
+    kept, kept_root = candidate[stands], picked[stands]
+    if len(kept) == k:
+        ends, tb = good.points[kept_root], good.tangents[kept_root]
+    else:
+        ends, tb = np.empty((2, k, 3))
+        ends[kept], tb[kept] = good.points[kept_root], good.tangents[kept_root]
+        again = np.ones(k, dtype=bool)
+        again[kept] = False
+        lost = flatnonzero(again)
+        ends[lost], tb[lost] = strip.curve_b.derivatives(t[lost], 1)
+    ruling = ends - starts
+    if len(strip.kinks_b):
+        at_b = np.isin(t, strip.kinks_b)
+        if at_b.any():
+            left = strip.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
+            tb[at_b] = _corner_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
+    if len(strip.kinks_a):
+        at_a = np.min(np.abs(s[:, None] - strip.kinks_a[None, :]), axis=1) <= 1e-12
+        if at_a.any():
+            around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
+            sides = strip.curve_a.derivatives(around, 1)[1]
+            ta[at_a] = _corner_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
+    signed = warp_angles(starts, ends, ta, tb, signed=True, apex_a=_fan_apex(s), apex_b=_fan_apex(t))
+    return starts, ends, signed, ruling
+
+def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
+    """The tangent of a curve at a corner for rulings ending there: the in-plane blend of
+    :func:`.warp.in_plane_tangent`, or, where that runs along the ruling (no normal), the
+    one-sided tangent that gives a defined normal with the smaller warp."""
+    tangent = in_plane_tangent(ruling, other, left, right)
+    along = norm(cross(ruling, tangent)) <= 1e-10 * norm(ruling)
+    if along.any():
+        r, o = ruling[along], other[along]
+        sides = unit(left[along]), unit(right[along])
+        zero = np.zeros_like(r)
+        warps = [warp_angles(zero, r, o, side) for side in sides]
+        pick_left = ~np.isnan(warps[0]) & (np.isnan(warps[1]) | (warps[0] <= warps[1]))
+        tangent[along] = np.where(pick_left[:, None], sides[0], sides[1])
+    return tangent
+
+
+#: :func:`_fan_folds` where no fan folds (empty, never written to).
+_NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
+
+
+def _fan_folds(
+    strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray, undefined: BoolArray
+) -> tuple[IntArray, FloatArray, FloatArray]:
+    """Where a fan folds back on itself between two of its rulings: the piece, and the
+    parameters (s, t) of the ruling at the fold.
+
+    In a fan through a point P (consecutive rulings sharing an end) the sheet's normal
+    is N(x) = (C(x) − P) × C'(x), C the curve the rulings move along. It turns smoothly
+    while the rulings sweep on; where a ruling runs along C's tangent N passes through
+    zero and the sheet turns back over itself (in a plane: a fan over a stretch of C that
+    P does not see whole). Neither ruling of the piece shows it, each measures its own
+    plane; so where N at the piece's two ends points to opposite sides, the ruling where
+    N·N(start) = 0 is found by bisection and, if N vanishes there (within
+    :data:`.warp.PARALLEL`: a true fold, not a fast turn of a curved cone), returned, to
+    be added: its warp is undefined (NaN) and it is not valid.
+    """
+    apex_a = s[1:] == s[:-1]
+    apex_b = (t[1:] == t[:-1]) & ~apex_a
+    # (a piece next to a ruling with no warp, of no length or along the curve, has no
+    # normal there to compare: that ruling is not valid itself)
+    pieces = flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:])
+    if len(pieces) == 0:
+        return _NO_FOLDS
+    on_b = apex_a[pieces]  # the rulings move along B; else along A
+    low = np.where(on_b, t[pieces], s[pieces])
+    high = np.where(on_b, t[pieces + 1], s[pieces + 1])
+    apex = np.where(on_b[:, None], starts[pieces], ends[pieces])
+
+    def normal(x: FloatArray, on_b: BoolArray, apex: FloatArray) -> tuple[FloatArray, FloatArray]:
+        point, tangent = np.empty((2, len(x), 3))
+        for curve, rows in ((strip.curve_b, on_b), (strip.curve_a, ~on_b)):
+            if rows.all():
+                point, tangent = curve.derivatives(x, 1)
+            elif rows.any():
+                point[rows], tangent[rows] = curve.derivatives(x[rows], 1)
+        ruling = point - apex
+        return cross(ruling, unit(tangent)), ruling
+
+    inside = np.minimum(SIDE, 0.5 * (high - low))  # one-sided: beside a corner, its piece's side
+    k = len(pieces)
+    ends_x = np.concatenate([low + inside, high - inside])  # both ends of every piece at once
+    both, both_rulings = normal(ends_x, np.concatenate([on_b, on_b]), np.concatenate([apex, apex]))
+    has = norm(both) > PARALLEL * norm(both_rulings)
+    first, last = both[:k], both[k:]
+    flips = flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
+    if len(flips) == 0:
+        return _NO_FOLDS
+    pieces, on_b, apex, first = pieces[flips], on_b[flips], apex[flips], first[flips]
+    lo, hi = low[flips] + inside[flips], high[flips] - inside[flips]
+    for _ in range(60):  # bisection on N(x)·N(start): halves the bracket to rounding
+        mid = 0.5 * (lo + hi)
+        n, _ = normal(mid, on_b, apex)
+        same = np.einsum("ij,ij->i", n, first) > 0.0
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    x = 0.5 * (lo + hi)
+    n, ruling = normal(x, on_b, apex)
+    fold = norm(n) <= PARALLEL * norm(ruling)
+    pieces, x, on_b = pieces[fold], x[fold], on_b[fold]
+    return pieces, np.where(on_b, s[pieces], x), np.where(on_b, x, t[pieces])
+
+
+def _with_folds(
+    s: FloatArray, t: FloatArray, source: IntArray, fan: BoolArray, pieces: IntArray, s_add: FloatArray,
+    t_add: FloatArray,
+) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
+    """The rulings with one added inside each piece in ``pieces`` at (s_add, t_add)."""
+    at = pieces + 1
+    return (
+        np.insert(s, at, s_add),
+        np.insert(t, at, t_add),
+        np.insert(source, at, -1),
+        np.insert(fan, at, fan[pieces] | fan[pieces + 1]),
+    )
+
+
+def _fan_apex(parameters: FloatArray) -> BoolArray:
+    """Rulings whose end is shared with every neighbouring ruling (both inside the strip,
+    the one neighbour of its first and last rulings): the apex of a fan."""
+    same = parameters[1:] == parameters[:-1]
+    apex = np.zeros(len(parameters), dtype=bool)
+    apex[1:-1] = same[:-1] & same[1:]
+    if len(same):  # the first and last rulings have one neighbour each
+        apex[0] |= same[0]
+        apex[-1] |= same[-1]
+    return apex
+
+
+def _message(fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0) -> str | None:
+    """How much of the strip had to be closed by flat triangles; None when none."""
+    if fan_stations == 0 and share == 0.0:
+        return None
+    area = f"{100 * share:.3g} % of the strip's area"
+    if creased == 0.0:
+        where = f"at {fan_stations} of {n} stations" if fan_stations else "beyond the last torsal ruling"
+        return (
+            f"closed by smooth cones through single points of the curves {where}, where no ruling "
+            f"tangent to both curves exists ({area}; the sheet stays smooth and developable)"
+        )
+    if creased < share:
+        area = f"{area}, {100 * creased:.3g} % in creased fans"
+    if fan_stations == 0:
+        return f"no torsal ruling reaches part of curve B: it is closed by flat triangles ({area})"
+    return (
+        f"no torsal ruling within {tolerance:g} rad at {fan_stations} of {n} stations: "
+        f"closed by flat triangles ({area})"
+    )

@@ -1,0 +1,103 @@
+"""Choosing one partner per station so that rulings never cross: a monotone dynamic programme.
+
+Each station i on edge A has a few candidate partners ``t[i, k]`` on edge B (roots of
+the coplanarity condition), each with the slope ``dt/ds`` of the branch of solutions it
+lies on. A strip's rulings are one *branch* followed from station to station, with t
+never decreasing (a decreasing t means crossing rulings). The cost of stepping from
+candidate k at station i to candidate l at station i + 1 is how far the step misses
+the branch's own prediction::
+
+    | t[i+1, l] − t[i, k] − Δs·(slope[i, k] + slope[i+1, l]) / 2 |
+
+which is O(Δs³) along one branch and about the size of the jump between branches. A
+step backwards costs a large multiple of its size (so a path always exists; the caller
+drops any station it still steps back at), and the two ends add ``end_weight`` times
+``t_first + (1 − t_last)``, which prefers, between equally smooth branches, the one that
+spans edge B from end to end.
+
+The minimum-cost path is a (min, +) matrix product chain ``v0 ⊗ C0 ⊗ C1 ⊗ … ⊗ end``.
+Matrix products are associative, so all prefix and suffix products are computed by a
+parallel (Hillis–Steele) scan in ⌈log2 n⌉ vectorised steps instead of a loop over the
+stations; the optimal candidate at every station is then the one minimising forward +
+backward cost. A sequential back-trace is kept for exact ties only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from torsal.nodes.geometry.array_types import IntArray
+
+from ..curve_base import FloatArray
+
+#: Cost per unit of t of stepping backwards (rulings crossing); large but finite.
+BACKWARD_PENALTY = 1e3
+
+
+def _minplus(x: FloatArray, y: FloatArray) -> FloatArray:
+    """(min, +) product of stacks of square matrices: ``z[..., a, c] = min_b x[a, b] + y[b, c]``.
+
+    Written as K whole-stack steps (K, the number of candidates, is small): numpy's
+    reduction over a short middle axis is many times slower.
+    """
+    z = x[..., :, :1] + y[..., :1, :]
+    for b in range(1, x.shape[-1]):
+        np.minimum(z, x[..., :, b : b + 1] + y[..., b : b + 1, :], out=z)
+    return z
+
+
+def step_costs(t: FloatArray, slope: FloatArray, ds: FloatArray) -> FloatArray:
+    """Costs ``(n−1, K, K)`` of stepping from candidate k at station i to l at station i + 1.
+
+    ``t`` and ``slope`` are ``(n, K)`` with NaN for missing candidates; ``ds`` ``(n−1,)``.
+    """
+    step = t[1:, None, :] - t[:-1, :, None]
+    predicted = 0.5 * ds[:, None, None] * (slope[:-1, :, None] + slope[1:, None, :])
+    cost = np.abs(step - predicted)
+    cost = np.where(step < -1e-12, BACKWARD_PENALTY * (1.0 - step), cost)
+    return np.where(np.isnan(cost), np.inf, cost)
+
+
+def monotone_path(t: FloatArray, slope: FloatArray, ds: FloatArray, end_weight: float = 0.1) -> IntArray:
+    """Index of the chosen candidate at each station, minimising the summed step costs.
+
+    Every station must have at least one candidate (a finite ``t[i, k]``); missing ones
+    are NaN. Returns an ``(n,)`` array of column indices into ``t``.
+    """
+    n, k = t.shape
+    start = np.where(np.isnan(t[0]), np.inf, end_weight * t[0])
+    end = np.where(np.isnan(t[-1]), np.inf, end_weight * (1.0 - t[-1]))
+    if n == 1:
+        return np.array([int(np.argmin(start + end))])
+    if k == 1:
+        return np.zeros(n, dtype=np.int64)
+    costs = step_costs(t, slope, ds)
+    prefix = costs.copy()
+    suffix = costs.copy()
+    d = 1
+    while d < n - 1:
+        # prefix[i] becomes costs[i−2d+1 .. i] composed; suffix[i] costs[i .. i+2d−1]
+        prefix[d:] = _minplus(prefix[:-d], prefix[d:])
+        suffix[:-d] = _minplus(suffix[:-d], suffix[d:])
+        d *= 2
+    forward = np.vstack([start, np.min(start[None, :, None] + prefix, axis=1)])
+    backward = np.vstack([np.min(suffix + end[None, None, :], axis=2), end])
+    total = forward + backward
+    choice = np.argmin(total, axis=1)
+    # consistent unless two paths tie exactly: then trace back sequentially
+    rows = np.arange(n - 1)
+    along = forward[rows, choice[:-1]] + costs[rows, choice[:-1], choice[1:]] + backward[rows + 1, choice[1:]]
+    best = total[0, choice[0]]
+    if np.all(np.abs(along - best) <= 1e-9 * max(1.0, abs(best))):
+        return choice
+    return _trace_back(forward, costs, end)
+
+
+def _trace_back(forward: FloatArray, costs: FloatArray, end: FloatArray) -> IntArray:
+    """Classic Viterbi back-trace from the forward costs (used only on exact ties)."""
+    n = len(forward)
+    choice = np.empty(n, dtype=np.int64)
+    choice[-1] = int(np.argmin(forward[-1] + end))
+    for i in range(n - 2, -1, -1):  # ties only: rare, and each step is one small vector
+        choice[i] = int(np.argmin(forward[i] + costs[i][:, choice[i + 1]]))
+    return choice

@@ -1,0 +1,233 @@
+"""The state one solve of the strip between two curves shares: stations on A, samples of B.
+
+:class:`Strip` holds the stations on curve A (evenly spaced in arc length or in
+parameter, :mod:`.stations`), A and its first two derivatives there and A's corners, and
+the samples of curve B (:class:`Grid`) that start the partner search
+(:mod:`.candidates`): B on every smooth span, with both one-sided values at its corners,
+and its first three derivatives. It also measures lengths along B (for placing a fan's
+rulings and the plain loft's partners) and picks the parameters of a fan's rulings on B.
+"""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from functools import cached_property
+from math import ceil
+
+import numpy as np
+
+from torsal.nodes.geometry.array_types import BoolArray
+
+from ..closest import sample_parameters
+from ..curve_base import Curve, FloatArray
+from ..curves import Line, NurbsCurve, Polyline
+from ..vec_ops import cross, dot, flatnonzero, norm, unit
+from .isolation import IntervalBounds, interval_bounds, third_bound
+from .stations import LengthMap, Spacing, station_parameters
+
+#: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
+CORNER_ANGLE = 1e-7
+#: Parameter offset for one-sided evaluation beside a corner.
+SIDE = 1e-11
+
+
+def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
+    """Whether the unit tangent turns by more than CORNER_ANGLE from ``left`` to ``right``."""
+    left, right = unit(left), unit(right)
+    return np.arctan2(norm(cross(left, right)), dot(left, right)) > CORNER_ANGLE
+
+
+def _is_linear(curve: Curve) -> bool:
+    return isinstance(curve, Line | Polyline) or (
+        isinstance(curve, NurbsCurve) and curve.degree == 1 and not curve.is_rational
+    )
+
+
+@dataclass
+class Grid:
+    """Samples of curve B: nominal parameters, where they are evaluated (a corner's first
+    copy just before it), and B and its first three derivatives there."""
+
+    t: FloatArray
+    at: FloatArray
+    pair: BoolArray  #: (m−1,) samples j and j+1 are the two sides of one corner
+    points: FloatArray
+    tangents: FloatArray
+    second: FloatArray  #: B'' there
+    third: FloatArray  #: B''' there
+    left_second: FloatArray  #: B'' and B''' as seen from the left (they differ at knots)
+    left_third: FloatArray
+
+    @cached_property
+    def speeds(self) -> FloatArray:
+        """|B'| at every sample."""
+        return norm(self.tangents)
+
+    @cached_property
+    def second_lengths(self) -> FloatArray:
+        """|B''| at every sample."""
+        return norm(self.second)
+
+    @cached_property
+    def left_second_lengths(self) -> FloatArray:
+        """|B''| at every sample as seen from the left."""
+        return self.second_lengths if self.left_second is self.second else norm(self.left_second)
+
+    def interval_bounds(self, diameter: float) -> IntervalBounds:
+        """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
+        the zero-width intervals between the two sides of a corner get reach −1 (never
+        looked at: a sign change there is a corner root)."""
+        width = self.at[1:] - self.at[:-1]
+        speed = self.speeds
+        second, left_second = self.second_lengths, self.left_second_lengths
+        third, left_third = self.third, self.left_third
+        if not np.count_nonzero(third) and (left_third is third or not np.count_nonzero(left_third)):
+            b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
+        else:
+            b3 = third_bound(third[:-1], left_third[1:])
+        bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
+        bounds.reach[self.pair] = -1.0
+        return bounds
+
+
+def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
+    """Samples of B (a straight span needs only its ends: f is linear in t there) and its
+    corners, found and sampled on both sides in the same evaluation."""
+    t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
+    breaks = curve._breakpoints()[1:-1]
+    m = len(t)
+    if not len(breaks):  # one smooth span
+        points, tangents, second, third = curve.derivatives(t, 3)
+        smooth = Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, third, second, third)
+        return smooth, breaks
+    points, tangents, second, third = curve.derivatives(np.concatenate([t, breaks - SIDE]), 3)
+    # samples include every breakpoint; compare each with its left neighbour's tangent
+    at_break = np.searchsorted(t, breaks)
+    kink = _jumps(tangents[m:], tangents[at_break])
+    kinks = breaks[kink]
+    # from the left, a smooth breakpoint shows its left-hand derivatives
+    left = np.arange(m)
+    left[at_break[~kink]] = m + flatnonzero(~kink)
+    if not len(kinks):  # the samples themselves, on the right (views: no copies)
+        on_right = points[:m], tangents[:m], second[:m], third[:m]
+        return Grid(t, t, np.zeros(m - 1, dtype=bool), *on_right, second[left], third[left]), kinks
+    # a corner gets two samples: its left copy just before its right copy
+    index = at_break[kink]
+    right = np.insert(np.arange(m), index, m + flatnonzero(kink))
+    left = np.insert(left, index, m + flatnonzero(kink))
+    t_all = np.insert(t, index, kinks)
+    at = np.insert(t, index, kinks - SIDE)
+    pair = np.diff(t_all) == 0
+    on_right = points[right], tangents[right], second[right], third[right]
+    grid = Grid(t_all, at, pair, *on_right, second[left], third[left])
+    return grid, kinks
+
+
+class Strip:
+    """One solve of :func:`.ruling.ruling_developable`: the state its steps share."""
+
+    def __init__(
+        self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
+    ) -> None:
+        self.curve_a, self.curve_b = curve_a, curve_b
+        self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
+        self.map_a = LengthMap(curve_a)
+        if not self.map_a.total > 0:
+            raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
+        self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
+        n = len(self.s)
+        breaks = curve_a._breakpoints()[1:-1]
+        if len(breaks):
+            a0, a1, a2 = curve_a.derivatives(np.concatenate([self.s, breaks - SIDE, breaks + SIDE]), 2)
+            self.a0, self.a1, self.a2 = a0[:n], a1[:n], a2[:n]
+            self.kinks_a = breaks[_jumps(a1[n : n + len(breaks)], a1[n + len(breaks) :])]
+        else:  # one smooth span: no corners
+            self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
+            self.kinks_a = breaks
+        self.grid, self.kinks_b = sample_grid(curve_b, samples)
+        #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
+        #: torsal fan covers (set by :func:`.fans.a_fans`)
+        self.holes: list[int] = []
+        #: :meth:`gap_lengths` found so far, by the bits of their ends
+        self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+        #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
+        #: its stations and the bits of its ends on B
+        self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
+        if not self.chords_b[-1] > 0:
+            raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
+
+    def length_b(self, t: FloatArray) -> FloatArray:
+        """Arc length along B to each ``t``, as the length of the polyline through B's samples
+        (exact on straight pieces, within ~1e-5 elsewhere: ample for placing the plain loft's
+        rulings at invalid stations and a fan's rulings at about the station spacing)."""
+        return np.interp(t, self.grid.t, self.chords_b)
+
+    def parameter_b(self, length: FloatArray) -> FloatArray:
+        """The inverse of :meth:`length_b`."""
+        return np.interp(length, self.chords_b, self.grid.t)
+
+    @cached_property
+    def chords_b(self) -> FloatArray:
+        """Arc length along the polyline through B's samples to each sample."""
+        points = self.grid.points
+        chords = np.empty(len(points))
+        chords[0] = 0.0
+        np.add.accumulate(norm(points[1:] - points[:-1]), out=chords[1:])  # (np.cumsum, without its wrapper)
+        return chords
+
+    @cached_property
+    def station_lengths(self) -> FloatArray:
+        """Arc length along A to each station."""
+        if self.spacing == "length":
+            return np.arange(len(self.s)) * (self.map_a.total / (len(self.s) - 1))
+        return self.map_a.length_at(self.s)
+
+    def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
+        """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
+        every corner of B between them."""
+        return self._gap(t_low, t_high)[0]
+
+    def _gap(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`gap_parameters`, and their :meth:`length_b` where :meth:`_fan` has them."""
+        t, lengths = self._fan(t_low, t_high)
+        if not len(self.kinks_b):
+            return t, lengths
+        corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
+        return (np.unique(np.concatenate([t, corners])), None) if len(corners) else (t, lengths)
+
+    def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
+        """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
+        of B: each round of the solve's check closes the same gaps again."""
+        key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
+        found = self._gaps.get(key)
+        if found is None:
+            tb, lb = self._gap(t_low, t_high)
+            if lb is None:
+                lb = self.length_b(tb)
+            tb.setflags(write=False)
+            lb.setflags(write=False)
+            found = self._gaps[key] = (tb, lb)
+        return found
+
+    def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
+        """Parameters on B for a fan's rulings, at about the station spacing along A."""
+        return self._fan(t_low, t_high)[0]
+
+    def _fan(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
+        """:meth:`fan_parameters`, and their :meth:`length_b` when they are the two ends alone
+        (measured already to count the rulings; None otherwise)."""
+        spacing = self.map_a.total / self.segments
+        ends = np.array([t_low, t_high])
+        lb = self.length_b(ends)
+        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
+        # must not ask for billions); and at least the fan's two bounding rulings
+        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
+        count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
+        if count == 2:  # the bounding rulings alone (the ends set below are all there is)
+            # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+            return np.maximum.accumulate(ends), (lb if t_high >= t_low else None)
+        t = self.parameter_b(np.linspace(lb[0], lb[1], count))
+        t[0], t[-1] = t_low, t_high
+        return np.maximum.accumulate(t), None
+

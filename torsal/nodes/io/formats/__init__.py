@@ -1,0 +1,11 @@
+"""File formats: the writers and readers behind the io palette's nodes, engine-free.
+
+- :mod:`.cutfiles` — cut sheets (DXF, SVG): panel outlines, nesting onto sheets, labels
+  (:mod:`.labels`) and seam marks;
+- :mod:`.threedm` — Rhino ``.3dm`` through rhino3dm;
+- :mod:`.meshfiles` — OBJ, STL, PLY and GLB through trimesh;
+- :mod:`.tables` — data trees as CSV and JSON.
+
+The nodes that use them (``io.ExportCutSheet``, ``io.Export3dm`` …) live in
+:mod:`torsal.nodes.io`; these modules know nothing of the engine's nodes.
+"""

@@ -1,0 +1,537 @@
+"""Rhino ``.3dm`` files through rhino3dm: kernel geometry to openNURBS and back.
+
+Writing (:func:`write_3dm`): every curve goes out as a NURBS curve and every surface as
+a NURBS surface whose parameterisation is Torsal's own (t in [0, 1] maps linearly onto
+the Rhino domain), so evaluating the Rhino object at the same parameter gives the same
+point. The forms are exact where the kernel object is a B-spline already — NURBS curves
+and surfaces, lines, polylines, circles, arcs, interpolated curves, reversed or moved
+copies of them, ruled surfaces between such rails (degree 1 across the rulings) — and
+otherwise a cubic interpolation on a grid of Torsal's parameters, refined until it is
+within :data:`APPROXIMATION` of the object's size or has 4097 points along a curve,
+257 × 257 on a surface (the deviation is reported: ~5e-9 of the size for a sphere).
+Files are written in the Rhino 7 format, which Rhino 7 and 8 both open.
+
+Reading (:func:`read_3dm`): curves, surfaces (NURBS, planes, revolutions, extrusions,
+the faces of breps; trims are ignored) and meshes, with their layer paths and object
+names, scaled from the file's units to the model's.
+
+rhino3dm's control points are homogeneous ``(w·x, w·y, w·z, w)`` and its knot vectors
+have the ``n + p − 1`` knots of the openNURBS convention (the kernel's full vectors
+without their first and last knot).
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import itertools
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import rhino3dm as rh
+import trimesh
+from scipy.interpolate import make_interp_spline, make_lsq_spline
+
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves import Line, NurbsCurve, Polyline, ReversedCurve, TransformedCurve
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.nurbs_surface import NurbsSurface, interpolate_grid
+from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
+from torsal.nodes.geometry.surface_base import Surface, TransformedSurface
+from torsal.nodes.io.common import FileFailure, readable, replacing, unit_name, writable
+
+#: Relative accuracy (of the object's size) an interpolated NURBS form aims for.
+APPROXIMATION = 1e-9
+
+#: The file format version written: Rhino 7, which Rhino 7 and 8 both read.
+RHINO_VERSION = 7
+
+#: The first bytes of every .3dm file.
+MAGIC = b"3D Geometry File Format "
+
+UNIT_SYSTEMS: dict[str, rh.UnitSystem] = {
+    "mm": rh.UnitSystem.Millimeters,
+    "cm": rh.UnitSystem.Centimeters,
+    "m": rh.UnitSystem.Meters,
+    "in": rh.UnitSystem.Inches,
+    "ft": rh.UnitSystem.Feet,
+}
+
+
+# ------------------------------------------------------------------ kernel → NURBS forms
+
+
+@dataclass(frozen=True)
+class NurbsForm:
+    """A NURBS stand-in for a kernel object and how far it strays (0 when exact)."""
+
+    nurbs: NurbsCurve | NurbsSurface
+    deviation: float = 0.0
+
+
+def _size(points: np.ndarray) -> float:
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    return float(np.ptp(points, axis=0).max()) or 1.0
+
+
+def curve_form(curve: Curve) -> NurbsForm:
+    """A NURBS curve with the same parameterisation as ``curve`` (t in [0, 1] onto its domain)."""
+    if isinstance(curve, NurbsCurve):
+        return NurbsForm(curve)
+    if isinstance(curve, Line | Polyline):
+        return NurbsForm(curve.to_nurbs())
+    if isinstance(curve, ReversedCurve):
+        inner = curve_form(curve.curve)
+        return NurbsForm(inner.nurbs.reversed(), inner.deviation)  # type: ignore[union-attr]
+    if isinstance(curve, TransformedCurve):
+        inner = curve_form(curve.curve)
+        return NurbsForm(inner.nurbs.transformed(curve.matrix), inner.deviation)  # type: ignore[union-attr]
+    if isinstance(curve, SplineRail):
+        spline = curve.spline
+        count = len(spline.t) - spline.k - 1
+        return NurbsForm(NurbsCurve.from_arrays(np.asarray(spline.c)[:count], spline.t, spline.k))
+    return _interpolated_curve(curve)
+
+
+def _interpolated_curve(curve: Curve, start: int = 33, limit: int = 4097) -> NurbsForm:
+    """Cubic interpolation of ``curve`` at evenly spaced t, doubled until close enough."""
+    count = start
+    while True:
+        t = np.linspace(0.0, 1.0, count)
+        points = curve.point_at(t)
+        closed = bool(curve.closed) and count >= 4
+        if closed:
+            points[-1] = points[0]
+        spline = make_interp_spline(t, points, k=3, bc_type="periodic" if closed else None)
+        size = _size(points)
+        middle = (t[:-1] + t[1:]) / 2
+        deviation = float(np.linalg.norm(spline(middle) - curve.point_at(middle), axis=1).max())
+        if deviation <= APPROXIMATION * size or count >= limit:
+            n = len(spline.t) - spline.k - 1
+            nurbs = NurbsCurve.from_arrays(np.asarray(spline.c)[:n], spline.t, spline.k)
+            return NurbsForm(nurbs, deviation)
+        count = 2 * count - 1
+
+
+def surface_form(surface: Surface) -> NurbsForm:
+    """A NURBS surface with the same (u, v) parameterisation as ``surface``."""
+    if isinstance(surface, NurbsSurface):
+        return NurbsForm(surface)
+    if isinstance(surface, TransformedSurface):
+        inner = surface_form(surface.surface)
+        nurbs: NurbsSurface = inner.nurbs  # type: ignore[assignment]
+        m = surface.matrix
+        moved = nurbs.control_points @ m[:3, :3].T + m[:3, 3]
+        return NurbsForm(
+            NurbsSurface(moved, nurbs.degree_u, nurbs.degree_v, nurbs.knots_u, nurbs.knots_v, nurbs.weights),
+            inner.deviation,
+        )
+    if isinstance(surface, RuledSurface):
+        return _ruled_form(surface)
+    return _interpolated_surface(surface, ruled=surface.ruling_direction == "v")
+
+
+def _ruled_form(surface: RuledSurface) -> NurbsForm:
+    """Degree 1 across the rulings: the two rails' control points are the net's two columns."""
+    a, b = curve_form(surface.curve_a), curve_form(surface.curve_b)
+    rail_a, rail_b = a.nurbs, b.nurbs
+    assert isinstance(rail_a, NurbsCurve) and isinstance(rail_b, NurbsCurve)
+    compatible = (
+        rail_a.degree == rail_b.degree
+        and rail_a.knots.shape == rail_b.knots.shape
+        and np.allclose(rail_a.knots, rail_b.knots, rtol=0, atol=1e-14)
+        and rail_a.domain == (0.0, 1.0) == rail_b.domain
+    )
+    if not compatible:
+        common = _common_rails(rail_a, rail_b)
+        if common is None:  # rational rails with different weights: resample both
+            return _interpolated_surface(surface, ruled=True)
+        rail_a, rail_b = common
+    net = np.stack([rail_a.control_points, rail_b.control_points], axis=1)
+    weights = None
+    if rail_a.is_rational or rail_b.is_rational:
+        weights = np.stack([rail_a.weights, rail_b.weights], axis=1)
+    nurbs = NurbsSurface(net, rail_a.degree, 1, rail_a.knots, [0.0, 0.0, 1.0, 1.0], weights)
+    return NurbsForm(nurbs, max(a.deviation, b.deviation))
+
+
+def _common_rails(a: NurbsCurve, b: NurbsCurve) -> tuple[NurbsCurve, NurbsCurve] | None:
+    """Both polynomial rails in one spline space (the higher degree, every knot of either
+    with the multiplicity that keeps its continuity), on t in [0, 1]: exact, by a least
+    squares fit in that space (it holds both curves, so the fit reproduces them). None
+    for rational rails, or if the fit is not exact to rounding."""
+    if a.is_rational or b.is_rational:
+        return None
+    degree = max(a.degree, b.degree)
+    multiplicity: dict[float, int] = {}
+    for rail in (a, b):
+        lo, hi = rail.domain
+        inside = (rail.knots[rail.degree + 1 : len(rail.control_points)] - lo) / (hi - lo)
+        values, counts = np.unique(np.round(inside, 14), return_counts=True)
+        for value, count in zip(values.tolist(), counts.tolist(), strict=True):
+            need = count + degree - rail.degree
+            multiplicity[value] = max(multiplicity.get(value, 0), need)
+    interior = [k for k, m in sorted(multiplicity.items()) for _ in range(min(m, degree))]
+    knots = np.concatenate([np.zeros(degree + 1), interior, np.ones(degree + 1)])
+    breaks = np.unique(knots)
+    spans = itertools.pairwise(breaks)
+    t = np.unique(np.concatenate([np.linspace(lo, hi, 2 * degree + 3) for lo, hi in spans]))
+    rails = []
+    for rail in (a, b):
+        points = rail.point_at(t)
+        spline = make_lsq_spline(t, points, knots, degree)
+        if np.abs(spline(t) - points).max() > 1e-12 * _size(points):
+            return None
+        rails.append(NurbsCurve.from_arrays(spline.c, knots, degree))
+    return rails[0], rails[1]
+
+
+def _interpolated_surface(
+    surface: Surface, ruled: bool = False, start: int = 17, limit: int = 257
+) -> NurbsForm:
+    """Cubic interpolation on an evenly spaced (u, v) grid (linear in v when ``ruled``)."""
+    count = start
+    while True:
+        nv = 2 if ruled else count
+        u, v = np.linspace(0.0, 1.0, count), np.linspace(0.0, 1.0, nv)
+        uu, vv = np.meshgrid(u, v, indexing="ij")
+        grid = surface.point_at(uu.ravel(), vv.ravel()).reshape(count, nv, 3)
+        # not periodic even when closed: scipy's periodic interpolation solves column by
+        # column (~7 s for 257 × 257), and not-a-knot ends converge as fast
+        control, knots_u, knots_v, du, dv = interpolate_grid(grid, 3, 1 if ruled else 3, u, v)
+        nurbs = NurbsSurface(control, du, dv, knots_u, knots_v)
+        mu = (u[:-1] + u[1:]) / 2
+        mv = np.linspace(0.0, 1.0, 5) if ruled else (v[:-1] + v[1:]) / 2
+        su, sv = np.meshgrid(mu, mv, indexing="ij")
+        gap = nurbs.point_at(su.ravel(), sv.ravel()) - surface.point_at(su.ravel(), sv.ravel())
+        deviation = float(np.linalg.norm(gap, axis=1).max())
+        if deviation <= APPROXIMATION * _size(grid) or count >= limit:
+            return NurbsForm(nurbs, deviation)
+        count = 2 * count - 1
+
+
+# ------------------------------------------------------------------ NURBS ↔ rhino3dm
+
+
+def rhino_curve(curve: NurbsCurve) -> rh.NurbsCurve:
+    """The rhino3dm NURBS curve with ``curve``'s control points, weights and knots."""
+    points = curve.control_points
+    weights = curve.weights
+    out = rh.NurbsCurve(3, bool(curve.is_rational), curve.degree + 1, len(points))
+    homogeneous = np.column_stack([points * weights[:, None], weights]).tolist()
+    for i, (x, y, z, w) in enumerate(homogeneous):
+        out.Points[i] = rh.Point4d(x, y, z, w)
+    for i, knot in enumerate(np.asarray(curve.knots, dtype=float)[1:-1].tolist()):
+        out.Knots[i] = knot
+    return out
+
+
+def rhino_surface(surface: NurbsSurface) -> rh.NurbsSurface:
+    """The rhino3dm NURBS surface with ``surface``'s net, weights and (normalised) knots."""
+    points = surface.control_points
+    weights = surface.weights
+    nu, nv = points.shape[:2]
+    out = rh.NurbsSurface.Create(
+        3, bool(surface.is_rational), surface.degree_u + 1, surface.degree_v + 1, nu, nv
+    )
+    homogeneous = np.concatenate([points * weights[..., None], weights[..., None]], axis=2)
+    for i, row in enumerate(homogeneous.tolist()):
+        for j, (x, y, z, w) in enumerate(row):
+            out.Points[(i, j)] = rh.Point4d(x, y, z, w)
+    for i, knot in enumerate(np.asarray(surface.knots_u)[1:-1].tolist()):
+        out.KnotsU[i] = knot
+    for i, knot in enumerate(np.asarray(surface.knots_v)[1:-1].tolist()):
+        out.KnotsV[i] = knot
+    return out
+
+
+def rhino_mesh(mesh: trimesh.Trimesh) -> rh.Mesh:
+    out = rh.Mesh()
+    out.Vertices.UseDoublePrecisionVertices = True
+    for x, y, z in np.asarray(mesh.vertices, dtype=float).tolist():
+        out.Vertices.Add(x, y, z)
+    for a, b, c in np.asarray(mesh.faces, dtype=int).tolist():
+        out.Faces.AddFace(a, b, c)
+    return out
+
+
+def _full_knots(knots: Sequence[float]) -> np.ndarray:
+    k = np.asarray(knots, dtype=float)
+    return np.concatenate([k[:1], k, k[-1:]])
+
+
+def kernel_curve(curve: rh.Curve, scale: float = 1.0) -> Curve:
+    """A rhino3dm curve as a kernel curve: lines and polylines as such, the rest as NURBS."""
+    if isinstance(curve, rh.LineCurve):
+        a, b = curve.PointAtStart, curve.PointAtEnd
+        return Line(np.array([a.X, a.Y, a.Z]) * scale, np.array([b.X, b.Y, b.Z]) * scale)
+    if isinstance(curve, rh.PolylineCurve):
+        points = np.array([[p.X, p.Y, p.Z] for p in (curve.Point(i) for i in range(curve.PointCount))])
+        return Polyline(points * scale, closed=bool(curve.IsClosed))
+    nurbs = curve if isinstance(curve, rh.NurbsCurve) else curve.ToNurbsCurve()
+    if nurbs is None:
+        raise FileFailure(f"A {type(curve).__name__} has no NURBS form")
+    cells = [nurbs.Points[i] for i in range(len(nurbs.Points))]
+    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in cells])
+    weights = homogeneous[:, 3]
+    points = homogeneous[:, :3] / weights[:, None] * scale
+    knots = _full_knots(nurbs.Knots.ToList())
+    return NurbsCurve(points, nurbs.Degree, knots, weights if nurbs.IsRational else None)
+
+
+def kernel_surface(surface: Any, scale: float = 1.0) -> NurbsSurface:
+    """A rhino3dm surface (any kind with a NURBS form) as a kernel NURBS surface."""
+    nurbs = surface if isinstance(surface, rh.NurbsSurface) else surface.ToNurbsSurface()
+    if nurbs is None:
+        raise FileFailure(f"A {type(surface).__name__} has no NURBS form")
+    nu, nv = nurbs.Points.CountU, nurbs.Points.CountV
+    cells = [nurbs.Points.GetControlPoint(i, j) for i in range(nu) for j in range(nv)]
+    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in cells]).reshape(nu, nv, 4)
+    weights = homogeneous[..., 3]
+    points = homogeneous[..., :3] / weights[..., None] * scale
+    return NurbsSurface(
+        points,
+        nurbs.OrderU - 1,
+        nurbs.OrderV - 1,
+        _full_knots(nurbs.KnotsU.ToList()),
+        _full_knots(nurbs.KnotsV.ToList()),
+        weights if nurbs.IsRational else None,
+    )
+
+
+def kernel_mesh(mesh: rh.Mesh, scale: float = 1.0) -> trimesh.Trimesh:
+    """A rhino3dm mesh as a trimesh mesh (quads split along their first diagonal)."""
+    vertices = np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()], dtype=float) * scale
+    faces = np.array([mesh.Faces[i] for i in range(mesh.Faces.Count)], dtype=np.int64).reshape(-1, 4)
+    quads = faces[:, 2] != faces[:, 3]
+    triangles = np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]])
+    return trimesh.Trimesh(vertices, triangles, process=False)
+
+
+# ------------------------------------------------------------------ reading
+
+
+@dataclass
+class Imported:
+    """What :func:`read_3dm` found, in file order, each with its layer path and name."""
+
+    units: str  #: the file's units ("mm" …, "none" for a unitless file)
+    scale: float  #: factor applied to the file's lengths
+    curves: list[tuple[Curve, str, str]] = field(default_factory=list)
+    surfaces: list[tuple[NurbsSurface, str, str]] = field(default_factory=list)
+    meshes: list[tuple[trimesh.Trimesh, str, str]] = field(default_factory=list)
+    skipped: dict[str, int] = field(default_factory=dict)  #: object kinds not imported, counted
+    trimmed: int = 0  #: brep faces or capped extrusions whose trims/caps were left out
+
+
+def open_3dm(path: Path) -> rh.File3dm:
+    """The parsed file, or a FileFailure that says whether it is missing, empty, not a .3dm
+    or damaged."""
+    readable(path, "Rhino .3dm")
+    with path.open("rb") as stream:
+        head = stream.read(len(MAGIC))
+    if head != MAGIC:
+        raise FileFailure(f"{path.name} is not a Rhino .3dm file (it does not start like one)")
+    model = rh.File3dm.Read(str(path))
+    if model is None:
+        raise FileFailure(f"{path.name} is damaged or truncated: rhino3dm could not read it")
+    return model
+
+
+def file_units(model: rh.File3dm) -> str | None:
+    """The file's unit as a Torsal unit name, None for "no units", or a FileFailure."""
+    system = model.Settings.ModelUnitSystem
+    if system.name == "None":
+        return None
+    for name, value in UNIT_SYSTEMS.items():
+        if system == value:
+            return name
+    if system.name in ("CustomUnits", "Unset"):
+        raise FileFailure(
+            f"The file's units are {system.name}, which Torsal cannot convert: "
+            "set standard units in Rhino (File ▸ Properties ▸ Units) and save again"
+        )
+    return system.name  # another standard unit (feet, microns ...): converted by rhino3dm
+
+
+def _scale(model: rh.File3dm, units: str) -> tuple[str, float]:
+    found = file_units(model)
+    if found is None:
+        return "none", 1.0
+    system = UNIT_SYSTEMS.get(found) or getattr(rh.UnitSystem, found)
+    return found, float(rh.UnitSystem.UnitScale(system, UNIT_SYSTEMS[unit_name(units)]))
+
+
+def _layer_paths(model: rh.File3dm) -> dict[int, str]:
+    return {layer.Index: layer.FullPath for layer in model.Layers}
+
+
+def layer_matches(path: str, patterns: Sequence[str]) -> bool:
+    """Whether a layer path is picked by any pattern: its full path or its own name, case
+    insensitive, ``*`` and ``?`` as wildcards; a parent layer picks its sublayers."""
+    if not patterns:
+        return True
+    full = path.lower()
+    name = full.rsplit("::", 1)[-1]
+    for pattern in patterns:
+        p = pattern.strip().lower()
+        if fnmatch.fnmatchcase(full, p) or fnmatch.fnmatchcase(name, p) or full.startswith(p + "::"):
+            return True
+    return False
+
+
+def read_3dm(path: Path, units: str = "m", layers: Sequence[str] = ()) -> Imported:
+    """Curves, surfaces and meshes of a .3dm file, scaled into ``units``.
+
+    ``layers`` filters by layer (see :func:`layer_matches`); empty means all layers.
+    """
+    model = open_3dm(path)
+    found, scale = _scale(model, units)
+    names = _layer_paths(model)
+    result = Imported(found, scale)
+    for obj in model.Objects:
+        geometry, attributes = obj.Geometry, obj.Attributes
+        layer = names.get(attributes.LayerIndex, "")
+        if not layer_matches(layer, layers):
+            continue
+        name = attributes.Name or ""
+        try:
+            _take(result, geometry, layer, name, scale)
+        except (ValueError, FloatingPointError):  # a degenerate object: counted, not fatal
+            kind = f"invalid {type(geometry).__name__}"
+            result.skipped[kind] = result.skipped.get(kind, 0) + 1
+    return result
+
+
+def _take(result: Imported, geometry: Any, layer: str, name: str, scale: float) -> None:
+    """Convert one object and file it under curves, surfaces or meshes (or skipped)."""
+    if isinstance(geometry, rh.Curve):
+        result.curves.append((kernel_curve(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Brep):
+        faces = geometry.Faces
+        result.trimmed += len(faces)
+        for i in range(len(faces)):
+            result.surfaces.append((kernel_surface(faces[i], scale), layer, name))
+    elif isinstance(geometry, rh.Extrusion):
+        if geometry.IsCappedAtBottom or geometry.IsCappedAtTop:
+            result.trimmed += 1
+        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Surface):
+        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
+    elif isinstance(geometry, rh.Mesh):
+        result.meshes.append((kernel_mesh(geometry, scale), layer, name))
+    else:
+        kind = type(geometry).__name__
+        result.skipped[kind] = result.skipped.get(kind, 0) + 1
+
+
+# ------------------------------------------------------------------ writing
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One object to write: kernel geometry, its layer path (``a::b``), name and user strings."""
+
+    geometry: Any
+    layer: str
+    name: str = ""
+    strings: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass
+class Written:
+    path: Path
+    objects: int
+    deviation: float  #: the largest distance of an interpolated NURBS form from its object
+
+
+def _layer_index(model: rh.File3dm, cache: dict[str, int], path: str, colour: tuple | None) -> int:
+    if path in cache:
+        return cache[path]
+    parent, _, name = path.rpartition("::")
+    layer = rh.Layer()
+    layer.Name = name or "Default"
+    if parent:
+        layer.ParentLayerId = model.Layers.FindIndex(_layer_index(model, cache, parent, None)).Id
+    if colour is not None:
+        layer.Color = colour
+    cache[path] = model.Layers.Add(layer)
+    return cache[path]
+
+
+def _geometry(value: Any) -> tuple[Any, float]:
+    """The rhino3dm object for a kernel value, and the deviation of its NURBS form."""
+    if isinstance(value, MeshSurface):
+        return rhino_mesh(value.mesh), 0.0
+    if isinstance(value, trimesh.Trimesh):
+        return rhino_mesh(value), 0.0
+    if isinstance(value, Curve):
+        form = curve_form(value)
+        return rhino_curve(form.nurbs), form.deviation  # type: ignore[arg-type]
+    if isinstance(value, Surface):
+        form = surface_form(value)
+        return rhino_surface(form.nurbs), form.deviation  # type: ignore[arg-type]
+    array = np.asarray(value, dtype=float) if isinstance(value, tuple) else None
+    if array is not None and array.shape == (3,):
+        return rh.Point(rh.Point3d(*array.tolist())), 0.0
+    raise FileFailure(f"A {type(value).__name__} cannot be written to a .3dm file")
+
+
+def write_3dm(
+    path: Path,
+    entries: Iterable[Entry],
+    units: str = "m",
+    colours: dict[str, tuple[int, int, int, int]] | None = None,
+) -> Written:
+    """Write ``entries`` to ``path`` in the Rhino 7 format, with the file's units set."""
+    model = rh.File3dm()
+    model.Settings.ModelUnitSystem = UNIT_SYSTEMS[unit_name(units)]
+    model.ApplicationName = "Torsal"
+    layers: dict[str, int] = {}
+    count, deviation = 0, 0.0
+    for entry in entries:
+        geometry, off = _geometry(entry.geometry)
+        deviation = max(deviation, off)
+        attributes = rh.ObjectAttributes()
+        attributes.LayerIndex = _layer_index(model, layers, entry.layer, (colours or {}).get(entry.layer))
+        if entry.name:
+            attributes.Name = entry.name
+        for key, value in entry.strings:
+            attributes.SetUserString(key, value)
+        model.Objects.Add(geometry, attributes)
+        count += 1
+    writable(path)
+
+    def write(temporary: Path) -> None:
+        if not model.Write(str(temporary), RHINO_VERSION):
+            raise FileFailure(f"Cannot write {path}: rhino3dm refused (is the folder writable?)")
+
+    replacing(path, write)
+    return Written(path, count, deviation)
+
+
+def tree_entries(
+    tree: Any, layer: str, kind: str, names: Sequence[str] | None = None, name_key: str = ""
+) -> list[Entry]:
+    """The items of a data tree as entries on ``layer``, named ``kind 1``, ``kind 2`` … (or by
+    ``names``, also stored as the user string ``name_key``), each with its tree path and
+    index as the user strings ``TorsalPath`` and ``TorsalIndex``. Empty items are skipped."""
+    from torsal.engine.datatree import format_path
+
+    entries = []
+    number = 0
+    for path, items in tree.items():
+        for index, item in enumerate(items):
+            if item is None:
+                continue
+            strings = [("TorsalPath", format_path(path)), ("TorsalIndex", str(index))]
+            name = f"{kind} {number + 1}"
+            if names is not None and number < len(names) and names[number] is not None:
+                name = str(names[number])
+                if name_key:
+                    strings.append((name_key, name))
+            entries.append(Entry(item, layer, name, tuple(strings)))
+            number += 1
+    return entries
