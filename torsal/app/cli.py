@@ -35,6 +35,10 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        if args.command in _LOADING_NODES:
+            from torsal.app.plugins import report_problems
+
+            report_problems()  # a broken plug-in, or one refused, is said by every command, once
         return args.handler(args)
     except UsageError as exc:
         print(f"torsal: {exc}", file=sys.stderr)
@@ -44,6 +48,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except BrokenPipeError:
         return 0
+
+
+#: The commands that load node types (and so plug-ins).
+_LOADING_NODES = frozenset({"run", "check", "nodes", "sweep", "optimise", "gui"})
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -182,7 +190,6 @@ def _check(args: argparse.Namespace) -> int:
     from torsal.app.examples import choose
     from torsal.app.headless import open_graph
     from torsal.engine.graphfile import GraphFileError
-    from torsal.engine.solver import MISSING
 
     args.file = choose(args.file, args.example, "check")
     try:
@@ -190,25 +197,18 @@ def _check(args: argparse.Namespace) -> int:
     except GraphFileError as exc:
         raise UsageError(f"{args.file}: {exc}") from None
     from torsal.engine.cluster import reachable_definitions
-    from torsal.engine.graph import is_placeholder
 
-    definitions = reachable_definitions(graph)
-    records = [*graph.nodes.values(), *(r for d in definitions for r in d.graph.nodes.values())]
-    missing = sorted({r.type_id for r in records if is_placeholder(r.node)})
+    definitions = reachable_definitions(graph)  # a type not installed was refused by open_graph (exit 2)
     clusters = f", {len(definitions)} cluster definition{'s' if len(definitions) != 1 else ''}"
     print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
           f"{len(graph.groups)} groups{clusters if definitions else ''}")
-    if missing:
-        print(f"torsal: {MISSING} node types (kept as placeholders): {', '.join(missing)}", file=sys.stderr)
     return 0
 
 
 def _nodes(args: argparse.Namespace) -> int:
     from torsal.nodes.catalogue import default_registry
 
-    registry = default_registry()
-    for problem in registry.problems:
-        print(f"torsal: {problem}", file=sys.stderr)
+    registry = default_registry()  # its problems were reported by main
     if args.json:
         print(json.dumps([cls.catalogue_entry() for cls in registry], indent=2))
         return 0

@@ -77,8 +77,13 @@ class Run:
 
 
 def open_graph(path: str | Path, registry: Registry | None = None) -> tuple[Graph, Registry]:
+    """The graph in ``path``; :class:`UsageError` when it needs node types not installed."""
+    from torsal.app.plugins import refuse_missing
+
     registry = registry if registry is not None else default_registry()  # `or` would load every palette
-    return read_graph(path, registry), registry
+    graph = read_graph(path, registry)
+    refuse_missing(graph, path)
+    return graph, registry
 
 
 def parse_assignment(text: str) -> tuple[str, str | None, Any]:
