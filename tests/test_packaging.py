@@ -1,5 +1,5 @@
-"""Packaging: what the wheel carries, what `make run` installs, `torsal gui` without Qt,
-and (opt-in, slow) the declared lower bounds."""
+"""Packaging: what the wheel and the sdist carry (checked by twine and check-wheel-contents),
+what `make run` installs, `torsal gui` without Qt, and (opt-in, slow) the declared lower bounds."""
 
 from __future__ import annotations
 
@@ -18,18 +18,66 @@ CHECKOUT_INSTALL = "-m pip install -c constraints.txt '.[gui]'"
 
 
 @pytest.fixture(scope="module")
-def wheel(tmp_path_factory) -> Path:
-    """The wheel `pip wheel .` builds from this checkout (about 20 s)."""
-    folder = tmp_path_factory.mktemp("wheel")
+def dists(tmp_path_factory) -> tuple[Path, Path]:
+    """The sdist `python -m build` makes of this checkout, and the wheel it builds from that
+    sdist (so the sdist is complete enough to build from); about 20 s."""
+    folder = tmp_path_factory.mktemp("dist")
     source = folder / "src"
     # A copy without the checkout's build leftovers, as a clean clone would be.
     shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(
-        ".venv", ".git", "build", "*.egg-info", "__pycache__", ".pytest_cache", ".ruff_cache", "tests"))
-    done = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w", str(folder),
-                           str(source)], capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-3000:]
-    (built,) = folder.glob("torsal-*.whl")
-    return built
+        ".venv", ".git", "build", "dist", "*.egg-info", "__pycache__", ".pytest_cache", ".ruff_cache",
+        ".hypothesis"))
+    done = subprocess.run([sys.executable, "-m", "build", "--outdir", str(folder), str(source)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-3000:]
+    (wheel_file,) = folder.glob("torsal-*.whl")
+    (sdist_file,) = folder.glob("torsal-*.tar.gz")
+    return wheel_file, sdist_file
+
+
+@pytest.fixture(scope="module")
+def wheel(dists) -> Path:
+    return dists[0]
+
+
+def test_the_sdist_holds_every_file_of_the_repository(dists):
+    """tests, docs, tools, examples, constraints.txt, the Makefile: everything git tracks but
+    its own files and CI's entry point, so the sdist builds and tests as a clone does."""
+    import tarfile
+
+    listed = subprocess.run(["git", "-C", str(ROOT), "ls-files"], capture_output=True, text=True, timeout=60)
+    if shutil.which("git") is None or listed.returncode != 0:
+        pytest.skip("not a git checkout: nothing to compare the sdist with")
+    tracked = {name for name in listed.stdout.splitlines() if (ROOT / name).is_file()}
+    tracked -= {".gitignore", ".ci/run"}
+    with tarfile.open(dists[1]) as archive:
+        held = {name.split("/", 1)[1] for name in archive.getnames() if "/" in name}
+    assert tracked - held == set()
+    assert {"constraints.txt", "Makefile", "docs/plugins.md", "examples/plugin/pyproject.toml",
+            "tests/test_packaging.py"} <= held
+
+
+def test_twine_check_passes_on_the_wheel_and_the_sdist(dists):
+    done = subprocess.run([sys.executable, "-m", "twine", "check", "--strict", *map(str, dists)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert done.stdout.count("PASSED") == 2
+
+
+def test_check_wheel_contents_passes(wheel):
+    done = subprocess.run([sys.executable, "-m", "check_wheel_contents", str(wheel)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert done.stdout.strip().endswith(": OK")
+
+
+def test_the_metadata_has_classifiers_keywords_and_the_readme(wheel):
+    names = zipfile.ZipFile(wheel).namelist()
+    (metadata,) = [n for n in names if n.endswith(".dist-info/METADATA")]
+    text = zipfile.ZipFile(wheel).read(metadata).decode()
+    assert "Classifier: Programming Language :: Python :: 3.11" in text
+    assert "Keywords: developable surfaces" in text
+    assert "Description-Content-Type: text/markdown" in text
 
 
 def test_the_wheel_contains_every_example_graph(wheel):
