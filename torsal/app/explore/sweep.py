@@ -1,10 +1,11 @@
-"""``torsal sweep``: solve many variants and write them as a Design Explorer table.
+"""``torsal sweep``: solve many variants and write them as tables.
 
 ``DIR/results.csv`` has one row per variant, in the sampler's order: an ``in:ID`` column
 per varied slider, an ``out:NODE.OUTPUT`` column per collected output, with ``--images``
-an ``img:perspective`` column (the variant's picture, ``images/NNNNN.png`` beside the table:
+an ``img:perspective`` column (the variant's picture, ``NNNNN.png`` beside the table:
 see :mod:`torsal.app.explore.images`), and a ``status`` column (``ok``, or the message of the node
-in error). The solved variants are also kept
+in error). ``DIR/data.csv`` is the same for Design Explorer: the designs that solved, without
+the status (:mod:`torsal.app.explore.design_explorer`). The solved variants are also kept
 in ``DIR/cache.jsonl``: a re-run takes them from there, and a killed sweep resumes.
 """
 
@@ -18,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.cache import ResultCache, graph_digest, variant_key
+from torsal.app.explore.design_explorer import DATA, write_data
 from torsal.app.explore.evaluate import Job, Outcome
 from torsal.app.explore.executors import WORKER_FAILED, Executor
 from torsal.app.explore.progress import Progress
@@ -25,7 +27,6 @@ from torsal.app.explore.study import Study
 
 RESULTS = "results.csv"
 CACHE = "cache.jsonl"
-IMAGES = "images"
 #: The header of the pictures' column (Design Explorer shows ``img:`` columns as pictures).
 IMAGE_COLUMN = "img:perspective"
 
@@ -55,10 +56,11 @@ def run_sweep(
     progress: Progress | None = None,
     on_outcome: Callable[[int, Outcome], None] | None = None,
 ) -> SweepResult:
-    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` (with
-    ``images``, each variant's picture in ``out/images`` and its column in the table)."""
+    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` and
+    ``out/data.csv`` (with ``images``, each variant's picture beside them and its column in
+    the tables: Design Explorer finds pictures beside its ``data.csv``)."""
     job = Job(tuple(study.targets), allow_writes, str((out / "variants").resolve()) if out else None,
-              str((out / IMAGES).resolve()) if out is not None and images else None)
+              str(out.resolve()) if out is not None and images else None)
     cache = ResultCache(out / CACHE) if out is not None else None
     digest = graph_digest(study.text)
     keys = [variant_key(digest, values, job) for values in variants]
@@ -90,6 +92,7 @@ def run_sweep(
     result = SweepResult([o for o in outcomes if o is not None], solved, len(variants) - len(pending))
     if out is not None:
         result.csv_path = write_table(out / RESULTS, study, result.outcomes, images=images)
+        write_data(out / DATA, study, result.outcomes, images=images)
     return result
 
 
@@ -109,7 +112,7 @@ def table_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> l
     header += [IMAGE_COLUMN] if images else []
     rows = [[*header, "status"]]
     for outcome in outcomes:
-        picture = [f"{IMAGES}/{outcome.image}" if outcome.image else ""] if images else []
+        picture = [outcome.image or ""] if images else []
         rows.append(
             [cell(outcome.values.get(v.node_id)) for v in study.variables]
             + [cell(outcome.outputs.get(t.name)) for t in study.targets]
