@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from torsal.app.plugins import missing_types
 from torsal.engine.graph import Graph, GraphError
 from torsal.engine.graphfile import GraphFileError, read_graph
 from torsal.engine.registry import Registry
@@ -76,10 +77,17 @@ class Run:
         }
 
 
+def refuse_missing(graph: Graph, path: Path | str) -> None:
+    """Raise :class:`UsageError` (exit code 2) when ``graph`` needs node types that are not
+    installed, naming each, its nodes and the plug-in package the file says provides it."""
+    missing = missing_types(graph)
+    if missing:
+        sentences = "; ".join(m.sentence() for m in missing)
+        raise UsageError(f"{path}: needs node types not installed here: {sentences}")
+
+
 def open_graph(path: str | Path, registry: Registry | None = None) -> tuple[Graph, Registry]:
     """The graph in ``path``; :class:`UsageError` when it needs node types not installed."""
-    from torsal.app.plugins import refuse_missing
-
     registry = registry if registry is not None else default_registry()  # `or` would load every palette
     graph = read_graph(path, registry)
     refuse_missing(graph, path)

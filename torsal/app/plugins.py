@@ -12,10 +12,8 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TextIO
 
-from torsal.app.headless import UsageError
 from torsal.engine.cluster import reachable_definitions
 from torsal.engine.graph import Graph, is_placeholder
 
@@ -53,14 +51,6 @@ def missing_types(graph: Graph) -> list[MissingType]:
                     packages.add(named)
     return [MissingType(type_id, " or ".join(sorted(packages)) or None, tuple(nodes))
             for type_id, (packages, nodes) in sorted(found.items())]
-
-
-def refuse_missing(graph: Graph, path: Path | str) -> None:
-    """Raise :class:`UsageError` (exit code 2) when ``graph`` needs node types not installed."""
-    missing = missing_types(graph)
-    if missing:
-        sentences = "; ".join(m.sentence() for m in missing)
-        raise UsageError(f"{path}: needs node types not installed here: {sentences}")
 
 
 def problems() -> list[str]:

@@ -24,7 +24,9 @@ from __future__ import annotations
 
 import csv
 import os
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from torsal.app.explore.evaluate import Outcome
 from torsal.app.explore.study import Study
@@ -34,10 +36,10 @@ DATA = "data.csv"
 IMAGE = "img"
 
 
-def data_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> list[list[str]]:
-    """The header and the rows of the designs that solved, as :func:`write_data` writes them."""
-    from torsal.app.explore.sweep import cell
-
+def data_rows(study: Study, outcomes: list[Outcome], cell: Callable[[Any], str], images: bool = False
+              ) -> list[list[str]]:
+    """The header and the rows of the designs that solved, each value written by ``cell`` (the
+    sweep's own cell format, as in ``results.csv``)."""
     header = [v.column for v in study.variables] + [t.column for t in study.targets]
     rows = [header + ([IMAGE] if images else [])]
     for outcome in outcomes:
@@ -50,10 +52,11 @@ def data_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> li
     return rows
 
 
-def write_data(path: Path, study: Study, outcomes: list[Outcome], images: bool = False) -> Path:
+def write_data(path: Path, study: Study, outcomes: list[Outcome], cell: Callable[[Any], str],
+               images: bool = False) -> Path:
     """Write Design Explorer's ``data.csv`` (atomically)."""
     temporary = path.with_name(path.name + ".part")
     with temporary.open("w", encoding="utf-8", newline="") as handle:
-        csv.writer(handle).writerows(data_rows(study, outcomes, images))
+        csv.writer(handle).writerows(data_rows(study, outcomes, cell, images))
     os.replace(temporary, path)
     return path

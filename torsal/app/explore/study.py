@@ -6,8 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from torsal.app.explore.variables import Target, Variable, parse_target, parse_vary
-from torsal.app.headless import UsageError
-from torsal.app.plugins import refuse_missing
+from torsal.app.headless import UsageError, refuse_missing
 from torsal.engine.graph import Graph
 from torsal.engine.graphfile import GraphFileError, loads, read_file
 

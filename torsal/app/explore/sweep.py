@@ -92,7 +92,7 @@ def run_sweep(
     result = SweepResult([o for o in outcomes if o is not None], solved, len(variants) - len(pending))
     if out is not None:
         result.csv_path = write_table(out / RESULTS, study, result.outcomes, images=images)
-        write_data(out / DATA, study, result.outcomes, images=images)
+        write_data(out / DATA, study, result.outcomes, cell, images=images)
     return result
 
 
