@@ -98,6 +98,29 @@ def test_a_sweep_on_local_dask_workers_solves_the_plugin_there(waves, graph, tmp
         assert float(row["out:wave.Height"]) == pytest.approx(expected, abs=1e-12)
 
 
+def test_workers_without_the_plugin_report_it_and_cache_nothing(waves, graph, tmp_path):
+    """A cluster whose workers lack the plug-in (started here, without it on their path): each
+    variant fails naming the package, and is not cached, so a re-run once it is installed solves."""
+    import logging
+
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster:
+        out = tmp_path / "sweep"
+        done = torsal(tmp_path, "sweep", str(graph), "--vary", "x=0:1:2", "--collect", "wave.Height",
+                      "--out", str(out), "--scheduler", cluster.scheduler_address, plugins=(waves,))
+    assert done.returncode == 1, done.stderr[-3000:]
+    with (out / "results.csv").open(newline="", encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    assert len(rows) == 2
+    for row in rows:
+        assert row["out:wave.Height"] == ""
+        assert row["status"].startswith("error: the worker failed")
+        assert "'waves.Wave'" in row["status"] and "pip install torsal-waves" in row["status"]
+    assert not (out / "cache.jsonl").exists() or (out / "cache.jsonl").read_text() == ""
+
+
 @pytest.mark.parametrize("command", ["run", "check"])
 def test_without_the_plugin_a_graph_needing_it_exits_2_naming_type_and_package(graph, tmp_path, command):
     done = torsal(tmp_path, command, str(graph))
