@@ -15,10 +15,8 @@ import pytest
 from tests.import_graph import a_cycle, circles, import_graph
 
 #: Circles still to untangle, each as its set of modules: the GUI helpers that name the
-#: window, document or view they serve by its class, and the graph's cluster methods.
+#: window, document or view they serve by its class.
 KNOWN_CIRCLES: set[frozenset[str]] = {
-    frozenset({"torsal.engine.cluster", "torsal.engine.cluster_edits", "torsal.engine.events",
-               "torsal.engine.graph"}),
     frozenset({"torsal.app.gui.commands", "torsal.app.gui.document"}),
     frozenset({"torsal.app.gui.canvas.inline_widgets", "torsal.app.gui.canvas.node_item",
                "torsal.app.gui.canvas.scene"}),
