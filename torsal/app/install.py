@@ -9,6 +9,7 @@ A wheel's files sit in site-packages, with no such folder around them.
 
 from __future__ import annotations
 
+import json
 import shlex
 import sys
 import tomllib
@@ -38,6 +39,18 @@ def checkout() -> Path | None:
     return root
 
 
+def _editable(root: Path) -> bool:
+    """Whether the installed ``torsal`` is an editable install of the checkout ``root``
+    (``make run``'s ``pip install -e``): pip's record of where it came from says so."""
+    try:
+        record = json.loads(distribution(DISTRIBUTION).read_text("direct_url.json") or "{}")
+    except (PackageNotFoundError, ValueError):
+        return False
+    url = record.get("url", "") if isinstance(record, dict) else ""
+    editable = isinstance(record, dict) and bool(record.get("dir_info", {}).get("editable"))
+    return editable and url.startswith("file://") and Path(url[len("file://"):]).resolve() == root
+
+
 def _pip() -> str:
     """``pip`` of the interpreter running Torsal (a bare ``pip`` may belong to another one)."""
     return f"{shlex.quote(sys.executable)} -m pip"
@@ -60,13 +73,15 @@ def extra_requirements(extra: str) -> list[str]:
 def install_command(extra: str = "gui") -> str:
     """The command that installs ``extra``'s packages for the way this Torsal was installed.
 
-    From a checkout: the project with the extra, pinned by its constraints, run in the checkout.
+    From a checkout: the project with the extra, pinned by its constraints, run in the checkout
+    (editable, ``-e``, when Torsal is installed editable from it, as ``make run`` does).
     From a wheel (Torsal is not on the package index, so ``torsal[gui]`` cannot be resolved
     there): the extra's own requirements, as the wheel's metadata declares them.
     """
     root = checkout()
     if root is not None:
-        return f"cd {shlex.quote(str(root))} && {_pip()} install -c constraints.txt '.[{extra}]'"
+        editable = "-e " if _editable(root) else ""
+        return f"cd {shlex.quote(str(root))} && {_pip()} install -c constraints.txt {editable}'.[{extra}]'"
     requirements = extra_requirements(extra)
     if not requirements:  # metadata unreadable: name the packages pyproject.toml declares for the app
         requirements = ["PySide6-Essentials>=6.9", "pyvista>=0.45", "pyvistaqt>=0.11"]
