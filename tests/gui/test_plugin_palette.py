@@ -10,7 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 
 from tests.gui.fixtures_gui import close_window, make_window, wait_solved
-from tests.plugin_install import EXAMPLE, install
+from tests.plugin_install import EXAMPLE, install, write_plugin
 from torsal.nodes.catalogue import default_registry
 
 
@@ -41,5 +41,18 @@ def test_the_example_plugin_is_in_the_palette_and_places_a_working_node(qtbot, w
         result = window.doc.solver.result(node_id)
         assert result.state == "ok"
         assert result.outputs["Height"].to_dict() == {"{0}": [0.0]}  # sin(2π · 0): X defaults to 0
+    finally:
+        close_window(window)
+
+
+def test_a_broken_plugin_is_in_the_message_log(qtbot, tmp_path, config_folder, monkeypatch):
+    broken = "raise RuntimeError('oops')\n"
+    source = write_plugin(tmp_path / "broken", "torsal-broken", "torsal_broken", broken)
+    monkeypatch.syspath_prepend(str(install([source], tmp_path / "site")))
+    importlib.invalidate_caches()
+    window = make_window(qtbot, default_registry(), config_folder)
+    try:
+        logged = [text for _, level, text in window.log.app_messages if level == "warning"]
+        assert len(logged) == 1 and "'torsal-broken'" in logged[0] and "oops" in logged[0]
     finally:
         close_window(window)

@@ -189,6 +189,8 @@ class MainWindow(QMainWindow):
         session, the file."""
         self.viewport.create_plotter()
         self.palette.populate()
+        for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
+            self.report(problem[:1].upper() + problem[1:], "warning")
         if offer_recovery and self.offer_recovery():
             return
         if path is not None:
