@@ -19,7 +19,6 @@ import numpy as np
 
 from torsal.engine.graph import Graph
 from torsal.engine.solver import ERROR, Solver
-from torsal.engine.widgets import Widget
 
 #: Picture size in pixels (width, height).
 SIZE = (640, 480)
@@ -40,7 +39,7 @@ def previewed_values(graph: Graph, solver: Solver) -> list[Any]:
     with preview on that are not in error (panels show text, not geometry)."""
     values: list[Any] = []
     for node_id, record in graph.nodes.items():
-        if not (record.preview and record.enabled) or record.node.widget is Widget.PANEL:
+        if not record.shows_geometry:
             continue
         result = solver.result(node_id)
         if result.state == ERROR:
