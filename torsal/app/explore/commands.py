@@ -116,9 +116,12 @@ def _sweep(args: argparse.Namespace) -> int:
     variants = sample(study.variables, args.sampler, args.samples or 0, args.seed)
     out = _folder(args.out)
     progress = Progress("sweep", len(variants))
-    with make_executor(args.workers, args.scheduler) as executor:
-        result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes, images=args.images,
-                           progress=progress)
+    try:
+        with make_executor(args.workers, args.scheduler) as executor:
+            result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes,
+                               images=args.images, progress=progress)
+    except OSError as exc:  # a read-only or full --out, a link planted in it: one line, exit 2
+        raise UsageError(f"--out {out.path}: {exc.strerror or exc}") from None
     for note in result.notes:
         print(f"torsal: note: {note}", file=sys.stderr)
     print(f"{args.file}: {len(result.outcomes)} variants — {result.solved} solved, {result.cached} from "
