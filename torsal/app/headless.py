@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from torsal.app.plugins import missing_types
 from torsal.engine.cluster_edits import cluster_graph, set_cluster_graph
 from torsal.engine.graph import Graph, GraphError
 from torsal.engine.graphfile import GraphFileError, read_graph
@@ -78,9 +79,21 @@ class Run:
         }
 
 
+def refuse_missing(graph: Graph, path: Path | str) -> None:
+    """Raise :class:`UsageError` (exit code 2) when ``graph`` needs node types that are not
+    installed, naming each, its nodes and the plug-in package the file says provides it."""
+    missing = missing_types(graph)
+    if missing:
+        sentences = "; ".join(m.sentence() for m in missing)
+        raise UsageError(f"{path}: needs node types not installed here: {sentences}")
+
+
 def open_graph(path: str | Path, registry: Registry | None = None) -> tuple[Graph, Registry]:
+    """The graph in ``path``; :class:`UsageError` when it needs node types not installed."""
     registry = registry if registry is not None else default_registry()  # `or` would load every palette
-    return read_graph(path, registry), registry
+    graph = read_graph(path, registry)
+    refuse_missing(graph, path)
+    return graph, registry
 
 
 def parse_assignment(text: str) -> tuple[str, str | None, Any]:

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.variables import Target
+from torsal.app.plugins import missing_types
 from torsal.engine.graphfile import GraphFileError, loads
 from torsal.engine.node import CancelToken
 from torsal.engine.registry import Registry
@@ -115,6 +116,9 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
         graph = loads(graph_text, _registry())
     except GraphFileError as exc:
         return Outcome(values, {t.name: None for t in job.targets}, f"error: the graph cannot be read: {exc}")
+    missing = missing_types(graph)
+    if missing:  # a worker without a plug-in the sender has: raised, so dask tries another worker
+        raise LookupError("this worker cannot solve the graph: " + "; ".join(m.sentence() for m in missing))
     for node_id, value in values.items():
         graph.set_setting(node_id, "value", value)
     access = WriteAccess()

@@ -115,6 +115,6 @@ def render(values: list[Any], path: Path, size: tuple[int, int] = SIZE) -> bool:
     axes.set_box_aspect(tuple(span / span.max()), zoom=1.0)
     picture = io.BytesIO()
     figure.savefig(picture, format="png", facecolor="white")
-    # DIR/images/N.png, DIR resolved once by the command: written without following a link
-    write_file(path, picture.getvalue(), base=path.parent.parent, backup=False)
+    # DIR/N.png beside the tables, DIR resolved once by the command: no link followed
+    write_file(path, picture.getvalue(), base=path.parent, backup=False)
     return True
