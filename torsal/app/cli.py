@@ -115,16 +115,11 @@ def _run(args: argparse.Namespace) -> int:
     from torsal.app.examples import choose
     from torsal.app.exports import ExportError, export_tree
     from torsal.app.headless import run_file, summary
+    from torsal.app.results_folder import out_folder, write_results
 
     args.file = choose(args.file, args.example, "run")
-    if args.out is not None:
-        if args.out.exists() and not args.out.is_dir():
-            raise UsageError(f"--out {args.out} is a file, not a folder: give a folder for the results")
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"--out {args.out}: cannot create that folder ({exc.strerror or exc})") from None
-    run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out,
+    out = out_folder(args.out) if args.out is not None else None  # resolved once; a link is refused
+    run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=out,
                    node_progress=_progress_line() if sys.stderr.isatty() else None)
     for note in run.notes:
         print(f"torsal: note: {note}", file=sys.stderr)
@@ -147,12 +142,8 @@ def _run(args: argparse.Namespace) -> int:
             for file in written:
                 print(f"wrote {file}")
     data = run.to_json() if (args.out or args.json) else None
-    if args.out:
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-            (args.out / "results.json").write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
-        except OSError as exc:
-            raise UsageError(f"--out {args.out}: {exc}") from None
+    if out is not None:
+        write_results(out, "results.json", json.dumps(data, indent=2) + "\n")
     if args.json:
         print(json.dumps(data, indent=2))
     else:

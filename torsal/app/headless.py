@@ -17,6 +17,7 @@ from torsal.engine.graphfile import GraphFileError, read_graph
 from torsal.engine.registry import Registry
 from torsal.engine.solver import ERROR, MISSING, OK, WARNING, NodeProgress, Solver, SolveReport
 from torsal.engine.types import summarize_value
+from torsal.engine.write_path import OutFolder
 from torsal.engine.writes import WriteAccess
 from torsal.nodes.catalogue import default_registry
 
@@ -216,7 +217,7 @@ def run_file(
     registry: Registry | None = None,
     *,
     allow_writes: bool = False,
-    write_folder: Path | None = None,
+    write_folder: Path | OutFolder | None = None,
     node_progress: NodeProgress | None = None,
 ) -> Run:
     """Open, adjust with ``--set`` assignments, and solve a graph file.
@@ -250,8 +251,12 @@ def run_file(
                 notes.append(note)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
-    folder = write_folder if write_folder is not None else Path(path).resolve().parent
-    solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes))
+    if isinstance(write_folder, OutFolder) and write_folder.identity is not None:
+        access = WriteAccess.held(write_folder.path, write_folder.identity, allowed=allow_writes)
+    else:
+        folder = Path(write_folder) if write_folder is not None else Path(path).resolve().parent
+        access = WriteAccess(folder.resolve(), allowed=allow_writes)
+    solver = Solver(graph, access)
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)
 

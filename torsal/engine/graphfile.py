@@ -677,11 +677,7 @@ def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
     if path.exists():
         _refuse_if_newer(path)
 
-    def write(temporary: Path) -> None:
-        with open(temporary, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-
-    replace_keeping_backup(path, write)
+    replace_keeping_backup(path, text.encode("utf-8"))
 
 
 def _refuse_if_newer(path: Path) -> None:

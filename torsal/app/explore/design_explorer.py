@@ -23,13 +23,14 @@ with its status.
 from __future__ import annotations
 
 import csv
-import os
+import io
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.evaluate import Outcome
 from torsal.app.explore.study import Study
+from torsal.engine.write_path import OutFolder
 
 DATA = "data.csv"
 #: Design Explorer's picture column.
@@ -52,11 +53,9 @@ def data_rows(study: Study, outcomes: list[Outcome], cell: Callable[[Any], str],
     return rows
 
 
-def write_data(path: Path, study: Study, outcomes: list[Outcome], cell: Callable[[Any], str],
+def write_data(folder: OutFolder, study: Study, outcomes: list[Outcome], cell: Callable[[Any], str],
                images: bool = False) -> Path:
-    """Write Design Explorer's ``data.csv`` (atomically)."""
-    temporary = path.with_name(path.name + ".part")
-    with temporary.open("w", encoding="utf-8", newline="") as handle:
-        csv.writer(handle).writerows(data_rows(study, outcomes, cell, images))
-    os.replace(temporary, path)
-    return path
+    """Write Design Explorer's ``data.csv`` in ``folder`` (atomically, through the one write path)."""
+    text = io.StringIO(newline="")
+    csv.writer(text).writerows(data_rows(study, outcomes, cell, images))
+    return folder.write(DATA, text.getvalue())

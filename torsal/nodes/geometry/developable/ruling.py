@@ -99,6 +99,7 @@ from numpy.typing import ArrayLike
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
+from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, position_rounding, unit
 from ..watch import watch_check
@@ -212,8 +213,7 @@ def ruling_developable(
     >>> r.s.tolist(), r.t.round(3).tolist(), r.message
     ([0.0, 0.5, 1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.333, 0.667, 1.0], None)
     """
-    if int(segments) != segments or segments < 1:
-        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
+    segments = segment_count(segments)
     tolerance = float(warp_tolerance)
     if not (np.isfinite(tolerance) and tolerance >= 0):
         raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
