@@ -29,15 +29,21 @@ def _at(point: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:.6g}" for x in point) + ")"
 
 
-def fold_report(starts: ArrayLike, ends: ArrayLike, crease_angle: ArrayLike, sharp: float) -> FoldReport:
+def fold_report(
+    starts: ArrayLike, ends: ArrayLike, crease_angle: ArrayLike, sharp: float, origin: ArrayLike | None = None
+) -> FoldReport:
     """Creases of the strip whose angle (rad, NaN never) exceeds ``sharp``, and the pairs of its
-    triangles that cross, with the message naming how many and the first of each."""
+    triangles that cross, with the message naming how many and the first of each. The rulings
+    may be given in a frame anchored at the model whose ``origin`` is this (the points and the
+    message are then in world coordinates)."""
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
     angle = np.asarray(crease_angle, dtype=float)
     sharp_rows = np.flatnonzero(angle > sharp)
-    middles = 0.5 * (a[sharp_rows] + b[sharp_rows])
+    shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=float)
+    middles = 0.5 * (a[sharp_rows] + b[sharp_rows]) + shift
     crossed = crossings(a, b)
+    crossed_at = crossed.points + shift
     parts = []
     if len(sharp_rows):
         parts.append(
@@ -47,10 +53,10 @@ def fold_report(starts: ArrayLike, ends: ArrayLike, crease_angle: ArrayLike, sha
     if len(crossed):
         parts.append(
             f"{len(crossed)} pairs of its triangles cross each other (first: between rulings "
-            f"{int(crossed.first[0])} and {int(crossed.second[0]) + 1}, at {_at(crossed.points[0])})"
+            f"{int(crossed.first[0])} and {int(crossed.second[0]) + 1}, at {_at(crossed_at[0])})"
         )
     message = None
     if parts:
         message = "the sheet folds: " + "; ".join(parts) + ". Folds gives where"
-    points = as_points(np.concatenate([middles, crossed.points])) if parts else []
+    points = as_points(np.concatenate([middles, crossed_at])) if parts else []
     return FoldReport(message, points, len(sharp_rows), len(crossed))

@@ -18,9 +18,11 @@ from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
+from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
@@ -153,6 +155,10 @@ class RulingDevelopable(Node):
         limit = fan_limit_input(fan_limit)
         sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
         self.check_cancelled()
+        # solved, checked and measured in a frame anchored at the curves, as at the world
+        # origin (site coordinates round only when the outputs are moved back)
+        frame = LocalFrame.around(a, b)
+        a, b = frame.to_local(a), frame.to_local(b)
         with watched(self.check_cancelled):  # the kernel looks at the token between its steps
             result = solve_strip(a, b, n, tol)
         # Valid from the warp recomputed from the output rulings and the curves' tangents
@@ -179,8 +185,12 @@ class RulingDevelopable(Node):
                 "single points (the flat triangles of the strip)"
             )
         kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
         if folds.message:
             self.warn(folds.message)
-        return (strip.surface, strip.rulings, strip.warp, kinds.valid.tolist(), kinds.kind,
-                kinds.torsal_share, folds.points)
+        surface, rulings = strip.surface, strip.rulings
+        if not frame.is_world:
+            surface = frame.to_world(surface)
+            rulings = Line.many(frame.points_to_world(result.starts), frame.points_to_world(result.ends))
+        valid = kinds.valid.tolist()
+        return surface, rulings, strip.warp, valid, kinds.kind, kinds.torsal_share, folds.points
