@@ -92,6 +92,7 @@ end cones; this module runs the steps, assembles the rulings and checks them (st
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -212,89 +213,184 @@ def ruling_developable(
     >>> r.s.tolist(), r.t.round(3).tolist(), r.message
     ([0.0, 0.5, 1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.333, 0.667, 1.0], None)
     """
+    job = (curve_a, curve_b, segments, warp_tolerance)
+    result = ruling_developables([job], spacing=spacing, samples=samples)[0]
+    if isinstance(result, ValueError):
+        raise result
+    return result
+
+
+def ruling_developables(
+    jobs: Sequence[tuple[Curve, Curve, int, float]],
+    *,
+    spacing: Spacing = "length",
+    samples: int = 128,
+) -> list[RulingResult | ValueError]:
+    """:func:`ruling_developable` of every ``(curve_a, curve_b, segments, warp_tolerance)``
+    of ``jobs``, solved side by side: each step of the solve runs once for all the strips
+    (their stations and rulings one after another in the same arrays), so a node with many
+    strips pays each step's fixed cost once rather than once per strip. Each strip's result
+    is the one it gets alone, bit for bit; a job the solve refuses gets its ValueError in
+    its place."""
+    samples = max(int(samples), 8)
+    results: list[RulingResult | ValueError] = []
+    strips: list[Strip] = []
+    for curve_a, curve_b, segments, warp_tolerance in jobs:
+        try:
+            strips.append(_strip(curve_a, curve_b, segments, warp_tolerance, spacing, samples))
+            results.append(None)  # type: ignore[arg-type]  (filled in below)
+        except ValueError as exc:
+            results.append(exc)
+    solved = iter(_solve_all(strips))
+    results = [result if result is not None else next(solved) for result in results]
+    # a closed B whose seam sits away from where the strip starts: restart B at A(0)'s
+    # partner (or, when A is closed too, at the partner of its end, the same point)
+    again: list[tuple[int, _Rotated]] = []
+    for index, (result, (curve_a, curve_b, _, _)) in enumerate(zip(results, jobs, strict=True)):
+        if isinstance(result, ValueError) or not (curve_b.closed and result.fan.any()):
+            continue
+        station = result.t[result.stations]
+        torsal = (result.valid & ~result.fan)[result.stations]
+        shift = station[0] if torsal[0] else station[-1] if curve_a.closed and torsal[-1] else None
+        if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
+            again.append((index, _Rotated(curve_b, shift)))
+    if again:
+        rotated_strips = []
+        for index, rotated in again:
+            curve_a, _, segments, warp_tolerance = jobs[index]
+            rotated_strips.append(_strip(curve_a, rotated, segments, warp_tolerance, spacing, samples))
+        for (index, rotated), other in zip(again, _solve_all(rotated_strips), strict=True):
+            if other.fan_share < results[index].fan_share:  # type: ignore[union-attr]
+                results[index] = replace(other, t=rotated.original(other.t))
+    return results
+
+
+def _strip(
+    curve_a: Curve, curve_b: Curve, segments: int, warp_tolerance: float, spacing: Spacing, samples: int
+) -> Strip:
+    """The checked arguments of one strip, as the :class:`Strip` its solve starts from."""
     if int(segments) != segments or segments < 1:
         raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
     tolerance = float(warp_tolerance)
     if not (np.isfinite(tolerance) and tolerance >= 0):
         raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
-    samples = max(int(samples), 8)
-    result = _solve(curve_a, curve_b, int(segments), tolerance, spacing, samples)
-    if curve_b.closed and result.fan.any():
-        # B's seam may sit away from where the strip starts: restart B at A(0)'s partner
-        # (or, when A is closed too, at the partner of its end, the same point)
-        station = result.t[result.stations]
-        torsal = (result.valid & ~result.fan)[result.stations]
-        shift = station[0] if torsal[0] else station[-1] if curve_a.closed and torsal[-1] else None
-        if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
-            rotated = _Rotated(curve_b, shift)
-            again = _solve(curve_a, rotated, int(segments), tolerance, spacing, samples)
-            if again.fan_share < result.fan_share:
-                return replace(again, t=rotated.original(again.t))
-    return result
+    return Strip(curve_a, curve_b, int(segments), tolerance, spacing, samples)
 
-def _solve(
-    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
-) -> RulingResult:
-    """One solve of :func:`ruling_developable` as the module docstring describes it. Between
-    its steps it calls the enclosing :func:`~..watch.watched` block's check, if any (a
-    2,000-station solve takes tens of milliseconds: Esc is seen within one step)."""
+
+@dataclass
+class _Solve:
+    """One strip's state between the steps of :func:`_solve_all`."""
+
+    strip: Strip
+    chosen: IntArray  #: the chosen candidate per station (−1 where none)
+    good: Candidates  #: the consistently oriented candidates
+    t: FloatArray  #: the partner per station (NaN where none)
+    fans: list  #: the torsal fans ``(s*, t_low, t_high)``
+    #: the rulings s, t, source, fan (:func:`_merge`) and their check (:func:`_checked`)
+    rulings: tuple[FloatArray, FloatArray, IntArray, BoolArray] | None = None
+    checked: tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray] | None = None
+
+
+def _solve_all(strips: list[Strip]) -> list[RulingResult]:
+    """One solve of :func:`ruling_developable` as the module docstring describes it, for
+    every strip of ``strips`` step by step. Between its steps it calls the enclosing
+    :func:`~..watch.watched` block's check, if any (a 2,000-station solve takes tens of
+    milliseconds: Esc is seen within one step)."""
     check = watch_check() or _unwatched
-    strip = Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
-    n = len(strip.s)
     check()
-    chosen, good = choose(strip)
-    check()
-    has = chosen >= 0
-    t = np.full(n, np.nan)
-    slope = np.zeros(n)
-    partner = chosen[has]
-    t[has], slope[has] = good.t[partner], good.slope[partner]
-    # stations without a partner get one first, so that a planar piece's fans end where the
-    # next station's partner is (two curves in one plane: otherwise a fan over all of B, then
-    # a partner running back)
-    near_partners(strip, t)
-    fans, planar = flat_fans(strip, t, chosen, good)
-    regular = has & ~planar
-    fans += a_fans(strip, t, slope, regular)
+    solves = []
+    for strip in strips:
+        n = len(strip.s)
+        chosen, good = choose(strip)
+        check()
+        has = chosen >= 0
+        t = np.full(n, np.nan)
+        slope = np.zeros(n)
+        partner = chosen[has]
+        t[has], slope[has] = good.t[partner], good.slope[partner]
+        # stations without a partner get one first, so that a planar piece's fans end where
+        # the next station's partner is (two curves in one plane: otherwise a fan over all
+        # of B, then a partner running back)
+        near_partners(strip, t)
+        fans, planar = flat_fans(strip, t, chosen, good)
+        regular = has & ~planar
+        fans += a_fans(strip, t, slope, regular)
+        solves.append(_Solve(strip, chosen, good, t, fans))
     check()
 
+    # the check (step 8), round by round for the strips some of whose stations failed it
+    open_ = solves
     for _ in range(MAX_CHECKS):
-        gap = np.isnan(t)
-        closed_t = t.copy()
-        kept = outside_gaps(fans, strip.s, gap)
-        added = close_gaps(strip, closed_t, kept)
-        s_out, t_out, source, fan = _merge(strip, closed_t, gap, kept, added)
-        # the warp of the output, from the curves' exact tangents (NaN where undefined)
-        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
-        # a station ruling taken as torsal that fails the check is a gap after all
-        failed = source[(source >= 0) & ~fan & ~valid]
+        for solve in open_:
+            strip, t = solve.strip, solve.t
+            gap = np.isnan(t)
+            closed_t = t.copy()
+            kept = outside_gaps(solve.fans, strip.s, gap)
+            added = close_gaps(strip, closed_t, kept)
+            solve.rulings = _merge(strip, closed_t, gap, kept, added)
+        _check_all(open_)
         check()
-        if len(failed) == 0:
+        still = []
+        for solve in open_:
+            source, fan = solve.rulings[2], solve.rulings[3]
+            # a station ruling taken as torsal that fails the check is a gap after all
+            failed = source[(source >= 0) & ~fan & ~solve.checked[4]]
+            if len(failed):
+                solve.t[failed] = np.nan
+                still.append(solve)
+        if not still:
             break
-        t[failed] = np.nan
+        open_ = still
     # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
     # the curve's end point, where that ruling exists (see .end_cones)
-    rulings = Rulings(s_out, t_out, source, fan)
-    smoothed = smooth_ends(curve_a, curve_b, rulings)
+    smoothed = []
+    for solve in solves:
+        s_out, t_out, source, fan = solve.rulings
+        rulings = Rulings(s_out, t_out, source, fan)
+        smooth = smooth_ends(solve.strip.curve_a, solve.strip.curve_b, rulings)
+        if smooth is not rulings and (len(smooth.s) != len(s_out) or not np.array_equal(smooth.s, s_out)):
+            smoothed.append((solve, smooth))
     check()
-    if smoothed is not rulings and (len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out)):
-        again = _checked(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
-        valid2 = again[4]
-        torsal = ~smoothed.fan
-        kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
-        if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
-            s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
-            starts, ends, signed, warp, valid = again
-    folded = _fan_folds(strip, s_out, t_out, starts, ends, np.isnan(warp))
-    if len(folded[0]):
-        s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
-        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
+    if smoothed:
+        again = [replace(solve, rulings=(r.s, r.t, r.source, r.fan)) for solve, r in smoothed]
+        _check_all(again)
+        for (solve, smooth), other in zip(smoothed, again, strict=True):
+            valid, fan, valid2 = solve.checked[4], solve.rulings[3], other.checked[4]
+            torsal = ~smooth.fan
+            kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
+            if kept_torsal and valid2[torsal & (smooth.source < 0)].all():
+                solve.rulings, solve.checked = other.rulings, other.checked
+    folded = []
+    for solve in solves:
+        s_out, t_out, source, fan = solve.rulings
+        starts, ends, _, warp, _ = solve.checked
+        folds = _fan_folds(solve.strip, s_out, t_out, starts, ends, np.isnan(warp))
+        if len(folds[0]):
+            solve.rulings = _with_folds(s_out, t_out, source, fan, *folds)
+            folded.append(solve)
+    if folded:
+        _check_all(folded)
+    return [_result(solve) for solve in solves]
+
+
+def _check_all(solves: list[_Solve]) -> None:
+    """:func:`_checked` of every strip's rulings."""
+    for solve in solves:
+        s, t, source, _ = solve.rulings
+        solve.checked = _checked(solve.strip, s, t, source, solve.chosen, solve.good)
+
+
+def _result(solve: _Solve) -> RulingResult:
+    """The strip's result from its checked rulings: the share of its area in fans, and the message."""
+    s_out, t_out, source, fan = solve.rulings
+    starts, ends, signed, warp, valid = solve.checked
     if fan.any():
         share, creased = fan_shares(starts, ends, fan)
     else:  # (what both give without fans: no piece counts)
         share = creased = 0.0
     station = source >= 0
-    message = _message(int(np.count_nonzero(fan[station])), n, tolerance, share, creased)
+    strip = solve.strip
+    message = _message(int(np.count_nonzero(fan[station])), len(strip.s), strip.tolerance, share, creased)
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased
     )
