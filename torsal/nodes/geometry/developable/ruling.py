@@ -101,14 +101,16 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
-from .candidates import ROOT, Candidates, choose, near_partners
+from .candidates import Candidates, choose, near_partners
 from .end_cones import Rulings, smooth_ends
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
+from .measure import check_rulings
+from .measure import warp_allowance as warp_allowance  # (its home before .measure)
 from .stations import Spacing
 from .strip import SIDE, Strip
-from .warp import PARALLEL, in_plane_tangent, warp_angles
+from .warp import PARALLEL
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
 MAX_CHECKS = 3
@@ -374,10 +376,10 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
 
 
 def _check_all(solves: list[_Solve]) -> None:
-    """:func:`_checked` of every strip's rulings."""
-    for solve in solves:
-        s, t, source, _ = solve.rulings
-        solve.checked = _checked(solve.strip, s, t, source, solve.chosen, solve.good)
+    """The check of every strip's rulings, all at once (:func:`.measure.check_rulings`)."""
+    rulings = [(solve.strip, *solve.rulings[:3], solve.chosen, solve.good) for solve in solves]
+    for solve, checked in zip(solves, check_rulings(rulings), strict=True):
+        solve.checked = checked
 
 
 def _result(solve: _Solve) -> RulingResult:
@@ -397,35 +399,6 @@ def _result(solve: _Solve) -> RulingResult:
 
 def _unwatched() -> None:
     """The check outside a :func:`~..watch.watched` block: nothing to look at."""
-
-
-def _checked(
-    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray]:
-    """The rulings' check (step 8): :func:`_measured`'s starts, ends and signed warp, the
-    warp and whether it is within the tolerance plus :func:`warp_allowance` (never where
-    it is NaN)."""
-    starts, ends, signed, ruling = _measured(strip, s, t, source, chosen, good)
-    warp = np.abs(signed)
-    with np.errstate(invalid="ignore"):
-        valid = warp <= strip.tolerance + _allowance(starts, ends, ruling)  # NaN is never valid
-    return starts, ends, signed, warp, valid
-
-
-def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """What the rounding of the rulings' end points alone adds to a warp measured from
-    them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
-    the origin; at site coordinates the ends are known to an ulp of their coordinates
-    (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
-    return _allowance(starts, ends, ends - starts)
-
-
-def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> FloatArray:
-    """:func:`warp_allowance` of the rulings with the rulings ``ends − starts`` already at
-    hand (:func:`_measured` returns them)."""
-    length = norm(ruling)
-    rounding = max(position_rounding(starts), position_rounding(ends))
-    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
 def _merge(
@@ -460,76 +433,6 @@ def _merge(
     order[later_station - 1] = order[later_station]
     order = order[~repeat]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
-
-def _measured(
-    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """The output rulings A(s) → B(t) and their signed warp, measured from the curves:
-    the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
-    (NaN where no normal is defined), with the tangent at a corner taken in the plane
-    of the ruling where the corner straddles it (:func:`_corner_tangent`), and an end
-    shared with every neighbouring ruling (the apex of a fan of flat triangles)
-    taking the other end's plane. Nothing of the solve enters but the curves'
-    evaluations at those very parameters (a station's, a refined root's), which are
-    reused rather than repeated. Returns starts, ends, the signed warp and the rulings
-    ``ends − starts`` (for :func:`_allowance`)."""
-    k = len(s)
-    station = source >= 0
-    at = flatnonzero(station)  # (index arrays, found once: masks would be searched again at every use)
-    rows = source[at]
-    if len(rows) == k:  # no added rulings
-        starts, ta = strip.a0[rows], strip.a1[rows]
-    else:
-        away = flatnonzero(~station)
-        starts, ta = np.empty((2, k, 3))
-        starts[at], ta[at] = strip.a0[rows], strip.a1[rows]
-        starts[away], ta[away] = strip.curve_a.derivatives(s[away], 1)
-    # B where a station's chosen root still stands (a flat end or corner is re-evaluated);
-    # ``chosen`` holds −1 (none) or a candidate's index
-    picked = chosen[rows]
-    has = picked >= 0
-    candidate, picked = at[has], picked[has]
-    stands = (good.t[picked] == t[candidate]) & (good.kind[picked] == ROOT)
-    kept, kept_root = candidate[stands], picked[stands]
-    if len(kept) == k:
-        ends, tb = good.points[kept_root], good.tangents[kept_root]
-    else:
-        ends, tb = np.empty((2, k, 3))
-        ends[kept], tb[kept] = good.points[kept_root], good.tangents[kept_root]
-        again = np.ones(k, dtype=bool)
-        again[kept] = False
-        lost = flatnonzero(again)
-        ends[lost], tb[lost] = strip.curve_b.derivatives(t[lost], 1)
-    ruling = ends - starts
-    if len(strip.kinks_b):
-        at_b = np.isin(t, strip.kinks_b)
-        if at_b.any():
-            left = strip.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
-            tb[at_b] = _corner_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
-    if len(strip.kinks_a):
-        at_a = np.min(np.abs(s[:, None] - strip.kinks_a[None, :]), axis=1) <= 1e-12
-        if at_a.any():
-            around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
-            sides = strip.curve_a.derivatives(around, 1)[1]
-            ta[at_a] = _corner_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
-    signed = warp_angles(starts, ends, ta, tb, signed=True, apex_a=_fan_apex(s), apex_b=_fan_apex(t))
-    return starts, ends, signed, ruling
-
-def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
-    """The tangent of a curve at a corner for rulings ending there: the in-plane blend of
-    :func:`.warp.in_plane_tangent`, or, where that runs along the ruling (no normal), the
-    one-sided tangent that gives a defined normal with the smaller warp."""
-    tangent = in_plane_tangent(ruling, other, left, right)
-    along = norm(cross(ruling, tangent)) <= 1e-10 * norm(ruling)
-    if along.any():
-        r, o = ruling[along], other[along]
-        sides = unit(left[along]), unit(right[along])
-        zero = np.zeros_like(r)
-        warps = [warp_angles(zero, r, o, side) for side in sides]
-        pick_left = ~np.isnan(warps[0]) & (np.isnan(warps[1]) | (warps[0] <= warps[1]))
-        tangent[along] = np.where(pick_left[:, None], sides[0], sides[1])
-    return tangent
-
 
 #: :func:`_fan_folds` where no fan folds (empty, never written to).
 _NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
@@ -608,18 +511,6 @@ def _with_folds(
         np.insert(source, at, -1),
         np.insert(fan, at, fan[pieces] | fan[pieces + 1]),
     )
-
-
-def _fan_apex(parameters: FloatArray) -> BoolArray:
-    """Rulings whose end is shared with every neighbouring ruling (both inside the strip,
-    the one neighbour of its first and last rulings): the apex of a fan."""
-    same = parameters[1:] == parameters[:-1]
-    apex = np.zeros(len(parameters), dtype=bool)
-    apex[1:-1] = same[:-1] & same[1:]
-    if len(same):  # the first and last rulings have one neighbour each
-        apex[0] |= same[0]
-        apex[-1] |= same[-1]
-    return apex
 
 
 def _message(fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0) -> str | None:
