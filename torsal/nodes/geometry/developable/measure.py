@@ -20,9 +20,9 @@ import numpy as np
 from ..array_types import BoolArray, FloatArray, IntArray
 from ..vec_ops import _EPS, POSITION_ULPS, cross, flatnonzero, norm, position_rounding, unit
 from .candidates import ROOT, Candidates
-from .stack import Stack, evaluate_each
+from .stack import Stack, evaluate_each, sizes
 from .strip import SIDE, Strip
-from .warp import _angles, _normals, _size, in_plane_tangent, warp_angles
+from .warp import _angles, _normals, in_plane_tangent, warp_angles
 
 #: One strip's rulings to check: the strip, s, t, per ruling its station (−1 for an added
 #: ruling), and the station's chosen candidate (−1 for none) among ``good``.
@@ -124,20 +124,9 @@ def measured(
     for (strip, *_), low, high in zip(strips, stack.starts.tolist(), stack.offsets[1:].tolist(), strict=True):
         if len(strip.kinks_a) or len(strip.kinks_b):  # (views: the corners' tangents written in place)
             _corners(strip, s[low:high], t[low:high], ruling[low:high], ta[low:high], tb[low:high])
-    size = _sizes(stack, starts, ends)
+    size = sizes(stack, starts, ends)
     normals = _normals(starts, ends, ta, tb, _fan_apex(s, stack), _fan_apex(t, stack), stack.repeat(size))
     return starts, ends, _angles(*normals, signed=True), ruling
-
-
-def _sizes(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """:func:`.warp._size` of each strip's rulings: the diagonal of the box of their ends."""
-    high = np.maximum(stack.reduce_max(starts), stack.reduce_max(ends))
-    low = np.minimum(stack.reduce_min(starts), stack.reduce_min(ends))
-    size = norm(high - low)
-    for i in flatnonzero(~np.isfinite(size)):  # a NaN or infinite coordinate: the finite ones'
-        low_row, high_row = stack.offsets[i], stack.offsets[i + 1]
-        size[i] = _size(starts[low_row:high_row], ends[low_row:high_row])
-    return size
 
 
 def _corners(

@@ -104,7 +104,7 @@ from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose, near_partners
-from .end_cones import Rulings, smooth_ends
+from .end_cones import Rulings, smooth_all
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
 from .measure import warp_allowance as warp_allowance  # (its home before .measure)
@@ -345,11 +345,12 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
         open_ = still
     # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
     # the curve's end point, where that ruling exists (see .end_cones)
+    given = [Rulings(*solve.rulings) for solve in solves]
     smoothed = []
-    for solve in solves:
-        s_out, t_out, source, fan = solve.rulings
-        rulings = Rulings(s_out, t_out, source, fan)
-        smooth = smooth_ends(solve.strip.curve_a, solve.strip.curve_b, rulings)
+    curves = [(solve.strip.curve_a, solve.strip.curve_b) for solve in solves]
+    ends = smooth_all([(*pair, r) for pair, r in zip(curves, given, strict=True)])
+    for solve, rulings, smooth in zip(solves, given, ends, strict=True):
+        s_out = rulings.s
         if smooth is not rulings and (len(smooth.s) != len(s_out) or not np.array_equal(smooth.s, s_out)):
             smoothed.append((solve, smooth))
     check()
