@@ -300,6 +300,8 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     milliseconds: Esc is seen within one step)."""
     check = watch_check() or _unwatched
     check()
+    if not strips:
+        return []
     solves = []
     for strip in strips:
         n = len(strip.s)
