@@ -103,7 +103,7 @@ from torsal.nodes.geometry.array_types import BoolArray, IntArray
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
-from .candidates import Candidates, choose, near_partners
+from .candidates import Candidates, choose_all, near_partners
 from .end_cones import Rulings, smooth_all
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
@@ -303,10 +303,10 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     if not strips:
         return []
     solves = []
-    for strip in strips:
+    choices = choose_all(strips)
+    check()
+    for strip, (chosen, good) in zip(strips, choices, strict=True):
         n = len(strip.s)
-        chosen, good = choose(strip)
-        check()
         has = chosen >= 0
         t = np.full(n, np.nan)
         slope = np.zeros(n)
