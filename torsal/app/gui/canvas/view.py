@@ -6,9 +6,15 @@ takes it; double-click empty canvas to search; wheel zooms about the cursor; mid
 right drag pans (a right-click without a drag opens the menu of what is under the cursor:
 a port, a node, a group, the canvas); left drag on empty canvas selects with a box;
 Alt-drag duplicates.
+
+Selection, as in Grasshopper, for a click on a node and for a box alike: a plain click or
+box replaces the selection, Shift adds to it, Ctrl removes from it, Ctrl+Shift toggles.
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from PySide6.QtCore import QMimeData, QPoint, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import (
@@ -45,6 +51,44 @@ PAN_THRESHOLD = 4
 WIRE_REACH = 4.0  # view pixels either side of a wire that a right-click still finds it
 
 
+def selection_operation(modifiers: Qt.KeyboardModifier) -> str:
+    """What a click or box with ``modifiers`` does to the selection: "replace", "add",
+    "remove" or "toggle" (Grasshopper's Shift, Ctrl and Ctrl+Shift)."""
+    shift = bool(modifiers & Qt.KeyboardModifier.ShiftModifier)
+    ctrl = bool(modifiers & Qt.KeyboardModifier.ControlModifier)
+    if shift and ctrl:
+        return "toggle"
+    if shift:
+        return "add"
+    if ctrl:
+        return "remove"
+    return "replace"
+
+
+def _combine(operation: str, before: set[QGraphicsItem], touched: set[QGraphicsItem]) -> set[QGraphicsItem]:
+    if operation == "add":
+        return before | touched
+    if operation == "remove":
+        return before - touched
+    if operation == "toggle":
+        return before ^ touched
+    return set(touched)
+
+
+def _without_modifiers(event: QMouseEvent) -> QMouseEvent:
+    """The same mouse event with no keyboard modifiers (Qt's own Ctrl-toggles rule must not
+    run: the view applies Grasshopper's)."""
+    return QMouseEvent(
+        event.type(),
+        event.position(),
+        event.scenePosition(),
+        event.globalPosition(),
+        event.button(),
+        event.buttons(),
+        Qt.KeyboardModifier.NoModifier,
+    )
+
+
 class CanvasView(QGraphicsView):
     """Shows a :class:`CanvasScene` and turns mouse gestures into edits."""
 
@@ -75,6 +119,10 @@ class CanvasView(QGraphicsView):
         self._place_at = QPointF()
         self._last_mouse: QPoint | None = None
         self._menu_on_release = False
+        # a Shift/Ctrl click or box in progress: the operation, the selection before it, and
+        # (for a click) the selection it made, restored after Qt's own release handling
+        self._selecting: tuple[str, set[QGraphicsItem]] | None = None
+        self._click_selection: set[QGraphicsItem] | None = None
         self.viewport().setMouseTracking(True)  # the Menu key opens the menu under the mouse
         popup.chosen.connect(self._place_chosen)
         popup.dismissed.connect(self._forget_pending_wire)
@@ -196,7 +244,71 @@ class CanvasView(QGraphicsView):
                 self._start_alt_drag(node, self.mapToScene(pos))
                 event.accept()
                 return
+            operation = selection_operation(event.modifiers())
+            if operation != "replace":
+                self._modified_press(event, node, operation)
+                return
         super().mousePressEvent(event)
+
+    def _modified_press(self, event: QMouseEvent, node: NodeItem | None, operation: str) -> None:
+        """A Shift/Ctrl press: on a node it changes that node's selection (and a drag then
+        moves what is selected); on empty canvas it begins a box with that operation."""
+        before = set(self.canvas.selectedItems())
+        if node is None:
+            self._selecting = (operation, before)
+            with self._quiet_selection():  # Qt starts its box, clearing the selection
+                super().mousePressEvent(_without_modifiers(event))
+            self._apply_selection(before, announce=True)
+            return
+        wanted = _combine(operation, before, {node})
+        self._apply_selection(wanted)
+        self._click_selection = wanted
+        if node in wanted:  # a drag from here moves the selection
+            super().mousePressEvent(_without_modifiers(event))
+        event.accept()
+
+    @contextmanager
+    def _quiet_selection(self) -> Iterator[None]:
+        """Qt's own selection changes inside are not announced (the view announces its own)."""
+        blocked = self.canvas.blockSignals(True)
+        try:
+            yield
+        finally:
+            self.canvas.blockSignals(blocked)
+
+    def _apply_selection(self, items: set[QGraphicsItem], announce: bool = False) -> None:
+        """Select exactly ``items`` with one ``selectionChanged`` (none when nothing changes,
+        unless ``announce``: Qt changed it quietly just before)."""
+        if set(self.canvas.selectedItems()) == items and not announce:
+            return
+        blocked = self.canvas.blockSignals(True)
+        try:
+            for item in self.canvas.selectedItems():
+                if item not in items:
+                    item.setSelected(False)
+            for item in items:
+                if item.scene() is self.canvas:
+                    item.setSelected(True)
+        finally:
+            self.canvas.blockSignals(blocked)
+        self.canvas.selectionChanged.emit()
+
+    def _band_selection(self, announce: bool = False) -> None:
+        """While a Shift/Ctrl box is dragged: what it touches combined with what was selected."""
+        if self._selecting is None:
+            return
+        operation, before = self._selecting
+        band = self.rubberBandRect()
+        touched: set[QGraphicsItem] = set()
+        if not band.isNull():
+            area = self.mapToScene(band)
+            mode = self.rubberBandSelectionMode()
+            touched = {
+                item
+                for item in self.canvas.items(area, mode)
+                if item.flags() & QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
+            }
+        self._apply_selection(_combine(operation, before, touched), announce)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
@@ -225,6 +337,14 @@ class CanvasView(QGraphicsView):
                 item.setPos(origin + delta)
             event.accept()
             return
+        if self._selecting is not None:
+            with self._quiet_selection():  # Qt's box replaces the selection: ours follows
+                super().mouseMoveEvent(_without_modifiers(event))
+            self._band_selection(announce=True)
+            return
+        if self._click_selection is not None:
+            super().mouseMoveEvent(_without_modifiers(event))
+            return
         super().mouseMoveEvent(event)
 
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
@@ -249,6 +369,21 @@ class CanvasView(QGraphicsView):
             self.canvas.commit_moves()
             self.canvas.doc.undo_stack.endMacro()
             event.accept()
+            return
+        if event.button() == Qt.MouseButton.LeftButton and (
+            self._selecting is not None or self._click_selection is not None
+        ):
+            self._band_selection()
+            wanted = self._click_selection if self._click_selection is not None else None
+            if wanted is None and self._selecting is not None:
+                wanted = set(self.canvas.selectedItems())
+            self._selecting = None
+            self._click_selection = None
+            with self._quiet_selection():  # Qt's release of a still click selects only it
+                super().mouseReleaseEvent(_without_modifiers(event))
+            if wanted is not None:
+                self._apply_selection(wanted, announce=True)
+            self.canvas.commit_moves()
             return
         super().mouseReleaseEvent(event)
         if event.button() == Qt.MouseButton.LeftButton:
