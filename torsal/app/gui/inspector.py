@@ -254,7 +254,7 @@ class Inspector(QWidget):
         if placeholder:
             return f"<p>The node type <b>{type_id}</b> is not installed; its data is kept unchanged.</p>"
         cls = type(node)
-        parts = [f"<h3>{html.escape(node.name())}</h3><p><i>{cls.type_id}</i></p>"]
+        parts = [f"<h3>{html.escape(node.display_name())}</h3><p><i>{cls.type_id}</i></p>"]
         parts += [f"<p>{html.escape(p)}</p>" for p in cls.help().split("\n\n")]
         if is_cluster(node):
             parts.append(

@@ -276,7 +276,7 @@ class MainWindow(QMainWindow):
         self.report(f"Opened {path}")
         self._attention_pending = True
         self.view.resetTransform()
-        defer(self, lambda: self.view.zoom_to_fit(readable=True))
+        defer(self, self.view.frame_opened)
         return True
 
     def save(self) -> bool:
@@ -449,7 +449,7 @@ class MainWindow(QMainWindow):
         self.inspector.show_node(node_id)
         dialog = QDialog(self)
         record = self.doc.graph.nodes[node_id]
-        dialog.setWindowTitle(f"Help — {record.node.name()}")
+        dialog.setWindowTitle(f"Help — {record.node.display_name()}")
         browser = QTextBrowser()
         browser.setHtml(self.inspector.help.toHtml())
         layout = QVBoxLayout(dialog)

@@ -36,17 +36,21 @@ from torsal.app.gui import theme
 from torsal.app.gui.canvas import context_menus
 from torsal.app.gui.canvas.group_item import GroupItem
 from torsal.app.gui.canvas.node_item import NodeItem
+from torsal.app.gui.canvas.opening_focus import focus_regions
 from torsal.app.gui.canvas.port_item import PortItem
 from torsal.app.gui.canvas.scene import CanvasScene
 from torsal.app.gui.canvas.wire_item import DragWire, WireItem
 from torsal.app.gui.fuzzy import Entry
 from torsal.app.gui.search_popup import SearchPopup
+from torsal.app.gui.theme import palette_order
+from torsal.app.gui.wire_ranking import rank_for_wire
 from torsal.engine.types import can_cast, get_type
 
 NODE_MIME = "application/x-torsal-node-type"
 ZOOM_STEP = 1.15
 ZOOM_RANGE = (0.15, 4.0)
 READABLE_ZOOM = 0.75  # below this the 8-point labels cannot be read
+OPENING_ZOOM = 0.6  # an opened file is shown whole only when it can be read at this zoom
 PAN_THRESHOLD = 4
 WIRE_REACH = 4.0  # view pixels either side of a wire that a right-click still finds it
 
@@ -173,6 +177,49 @@ class CanvasView(QGraphicsView):
             )
         else:
             self.centerOn(rect.center())
+
+    def frame_opened(self) -> None:
+        """Frame a file just opened: the whole graph when it can be read at
+        :data:`OPENING_ZOOM` or more, otherwise the widest region around its last (most
+        downstream) previewed nodes that can (:func:`~.opening_focus.focus_regions`), and
+        at worst the last node itself at that zoom."""
+        rect = self.canvas.items_rect()
+        if rect.isNull():
+            return
+        zoom, margin = self._fit(rect)
+        if zoom >= OPENING_ZOOM:
+            self._show(margin, min(zoom, 1.25))
+            return
+        x_of = {n: item.pos().x() for n, item in self.canvas.nodes.items()}
+        regions = focus_regions(self.canvas.doc.graph, x_of)
+        boxes = [self._nodes_rect(region) for region in regions]
+        boxes = [box for box in boxes if not box.isNull()]
+        for box in boxes:
+            zoom, margin = self._fit(box)
+            if zoom >= OPENING_ZOOM:
+                self._show(margin, min(zoom, 1.0))
+                return
+        self._show(boxes[-1] if boxes else rect, OPENING_ZOOM)
+
+    def _nodes_rect(self, node_ids: set[str]) -> QRectF:
+        rect = QRectF()
+        for node_id in node_ids:
+            item = self.canvas.nodes.get(node_id)
+            if item is not None:
+                rect = rect.united(item.sceneBoundingRect())
+        return rect
+
+    def _fit(self, rect: QRectF) -> tuple[float, QRectF]:
+        """The zoom that shows ``rect`` with a margin, and that margin rectangle."""
+        margin = rect.adjusted(-30, -30, 30, 30)
+        view = self.viewport().rect()
+        zoom = min(view.width() / max(margin.width(), 1.0), view.height() / max(margin.height(), 1.0))
+        return zoom, margin
+
+    def _show(self, rect: QRectF, zoom: float) -> None:
+        self.resetTransform()
+        self.scale(zoom, zoom)
+        self.centerOn(rect.center())
 
     def _port_at(self, view_pos: QPoint) -> PortItem | None:
         for item in self.items(view_pos):
@@ -491,8 +538,8 @@ class CanvasView(QGraphicsView):
         if end is None:
             if self.itemAt(pos) is None or isinstance(self.itemAt(pos), GroupItem):
                 self._pending_wire = start
-                accept, note = self._type_filter(start)
-                self.open_search(self.mapToScene(pos), global_pos, accept, note)
+                accept, note, rank = self._type_filter(start)
+                self.open_search(self.mapToScene(pos), global_pos, accept, note, rank)
             return
         if end.is_input == start.is_input or end.node_id == start.node_id:
             return
@@ -504,32 +551,40 @@ class CanvasView(QGraphicsView):
             mode = "remove"
         self.canvas.editor.connect(out_port.node_id, out_port.name, in_port.node_id, in_port.name, mode)
 
-    def _type_filter(self, port: PortItem) -> tuple[object, str]:
+    def _type_filter(self, port: PortItem) -> tuple[object, str, object]:
+        """Which nodes a wire dropped from ``port`` may meet, the popup's note, and their
+        ranking (the likeliest first: :mod:`torsal.app.gui.wire_ranking`)."""
         try:
             value_type = get_type(port.type_name)
         except KeyError:
-            return None, ""
+            return None, "", None
+        rank = rank_for_wire(value_type, port.is_output, self.popup.registry, palette_order)
         if port.is_output:
 
             def accept(entry: Entry) -> bool:
                 return any(can_cast(value_type, p.type) for p in entry.cls.inputs)
 
-            return accept, f"Nodes that take {value_type.name}"
+            return accept, f"Nodes that take {value_type.name}", rank
 
         def accept_source(entry: Entry) -> bool:
             return any(can_cast(p.type, value_type) for p in entry.cls.outputs)
 
-        return accept_source, f"Nodes that give {value_type.name}"
+        return accept_source, f"Nodes that give {value_type.name}", rank
 
     def _forget_pending_wire(self) -> None:
         self._pending_wire = None
 
     # -- search and placing ------------------------------------------------------------
     def open_search(
-        self, scene_pos: QPointF, global_pos: QPoint, accept: object = None, note: str = ""
+        self,
+        scene_pos: QPointF,
+        global_pos: QPoint,
+        accept: object = None,
+        note: str = "",
+        rank: object = None,
     ) -> None:
         self._place_at = scene_pos
-        self.popup.open_at(global_pos, accept, note)
+        self.popup.open_at(global_pos, accept, note, rank)
 
     def _place_chosen(self, type_id: str, settings: dict | None = None) -> None:
         pending, self._pending_wire = self._pending_wire, None
