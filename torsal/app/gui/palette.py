@@ -100,6 +100,13 @@ class Palette(QTabWidget):
         for index in range(self.count()):
             self._fill(index)
 
+    def refresh_icons(self) -> None:
+        """Draw every button's icon again (nicknames instead of icons turned on or off)."""
+        for button in self.findChildren(NodeButton):
+            cls = self.registry.get(button.type_id)
+            if cls is not None:
+                button.setIcon(node_icon(cls, ICON_SIZE))
+
     def _fill(self, index: int) -> None:
         if not self.populated or not 0 <= index < len(self.tab_palettes):
             return

@@ -25,7 +25,7 @@ from torsal.app.gui.canvas.inline_widgets import InlineWidget, widget_for
 from torsal.app.gui.canvas.layout import TITLE_H, NodeLayout, compute_layout
 from torsal.app.gui.canvas.port_item import PortItem
 from torsal.app.gui.formatting import MODIFIER_MARKS, format_item
-from torsal.app.gui.icons import node_letters, paint_letter_tile, palette_colour
+from torsal.app.gui.icons import paint_node_icon
 from torsal.engine.cluster import is_cluster
 from torsal.engine.graph import Graph, NodeRecord, is_placeholder
 from torsal.engine.solver import NodeResult
@@ -302,10 +302,8 @@ class NodeItem(QGraphicsRectItem):
                 slot.label_rect, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, slot.text
             )
         if layout.icon_rect is not None:
-            cls = type(self.record.node)
-            palette = self.record.type_id.partition(".")[0]
-            letters = node_letters(cls) if not is_placeholder(self.record.node) else "?"
-            paint_letter_tile(painter, layout.icon_rect, letters, palette_colour(palette))
+            node = self.record.node
+            paint_node_icon(painter, layout.icon_rect, type(node), is_placeholder(node))
         if self.widget is not None and layout.widget_rect is not None:
             self.widget.paint(painter, layout.widget_rect)
         self._paint_badge(painter)
