@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from torsal.engine.cluster_edits import cluster_graph, set_cluster_graph
 from torsal.engine.graph import Graph, GraphError
 from torsal.engine.graphfile import GraphFileError, read_graph
 from torsal.engine.registry import Registry
@@ -153,9 +154,9 @@ def apply_assignment(graph: Graph, text: str) -> Target:
     if target.definition is None:
         _assign(graph, target.node_id, port, value, text)
         return target
-    edited = graph.cluster_graph(target.definition.id)
+    edited = cluster_graph(graph, target.definition.id)
     _assign(edited, target.node_id, port, value, text)
-    graph.set_cluster_graph(target.definition.id, edited)
+    set_cluster_graph(graph, target.definition.id, edited)
     return target
 
 

@@ -1,4 +1,4 @@
-"""Reading and writing ``.graph`` files (see ``shared/spec/graph-format.md``).
+"""Reading and writing ``.graph`` files (see ``docs/graph-format.md``).
 
 A ``.graph`` file is JSON data and is only ever *parsed*: nothing in it is executed.
 The shape is checked with msgspec; what a schema cannot say (unique ids, wires that

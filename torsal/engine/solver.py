@@ -2,7 +2,7 @@
 
 Each node's inputs are gathered from its wires' cached output trees (or from its
 persistent values and defaults), modified, cast to the port types and *matched* the
-Grasshopper way (see ``shared/spec/data-trees.md``); ``solve`` is then called once per
+Grasshopper way (see ``docs/data-trees.md``); ``solve`` is then called once per
 match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or ``missing`` with its
 messages and solve time. An exception in one node never stops the others.
 """
