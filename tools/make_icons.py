@@ -66,7 +66,7 @@ def circle(cx: float, cy: float, r: float, c: str = INK, w: float = 1.6, fill: s
     return f'<circle cx="{cx}" cy="{cy}" r="{r}" {paint}/>'
 
 
-def dot(cx: float, cy: float, r: float = 1.7, c: str = INK) -> str:
+def spot(cx: float, cy: float, r: float = 1.7, c: str = INK) -> str:
     return f'<circle cx="{cx}" cy="{cy}" r="{r}" fill="{c}" stroke="none"/>'
 
 
@@ -132,8 +132,8 @@ GLYPHS: dict[str, str] = {
     + text(17, 9, "3", 6.5),
     "params.Panel": rect(4, 4, 16, 16, INK, 1.4, SOFT, 1.5)
     + "".join(line(7, y, 17, y, INK, 1.2) for y in (9, 12.5, 16)),
-    "params.Point": line(12, 5, 12, 19, INK, 1) + line(5, 12, 19, 12, INK, 1) + dot(12, 12, 3, ACCENT),
-    "params.Toggle": rect(3.5, 8, 17, 8, INK, 1.4, SOFT, 4) + dot(16.5, 12, 3, ACCENT),
+    "params.Point": line(12, 5, 12, 19, INK, 1) + line(5, 12, 19, 12, INK, 1) + spot(12, 12, 3, ACCENT),
+    "params.Toggle": rect(3.5, 8, 17, 8, INK, 1.4, SOFT, 4) + spot(16.5, 12, 3, ACCENT),
     "params.UnitX": arrow(4, 15, 20, 15) + text(8, 11, "X", 8),
     "params.UnitY": arrow(5, 18, 18, 7) + text(7, 10, "Y", 8),
     "params.UnitZ": arrow(12, 21, 12, 4) + text(18, 16, "Z", 8),
@@ -142,7 +142,7 @@ GLYPHS: dict[str, str] = {
     + line(7, 12.5, 13, 12.5, INK, 1.2)
     + line(7, 16, 13, 16, INK, 1.2)
     + poly([(15, 8), (17, 10), (19, 8)], INK, 1.2),
-    "params.Vector": dot(5, 19, 2) + arrow(5, 19, 19, 5, ACCENT, 1.8),
+    "params.Vector": spot(5, 19, 2) + arrow(5, 19, 19, 5, ACCENT, 1.8),
     "params.XYPlane": poly(FLAT, INK, 1.4, SOFT, True) + text(12, 14.8, "XY", 6.5),
     "params.XZPlane": rect(5, 4, 14, 13, INK, 1.4, SOFT)
     + text(12, 13, "XZ", 6.5)
@@ -152,17 +152,17 @@ GLYPHS: dict[str, str] = {
     "params.ConstructPlane": poly(FLAT, INK, 1.2, SOFT, True)
     + arrow(9, 13, 17, 13, ACCENT, 1.6)
     + arrow(9, 13, 12, 8.5, ACCENT, 1.6)
-    + dot(9, 13, 1.5),
+    + spot(9, 13, 1.5),
     "params.DeconstructPlane": poly([(3, 20), (11, 20), (15, 16), (7, 16)], INK, 1.1, SOFT, True)
     + arrow(13, 11, 20, 11, ACCENT, 1.4)
     + arrow(13, 11, 16, 5, ACCENT, 1.4)
     + arrow(6, 11, 6, 3, ACCENT, 1.4),
     "params.PlaneNormal": poly(FLAT, INK, 1.3, SOFT, True) + arrow(12, 13, 12, 2.5, ACCENT, 1.8),
     "params.PlaneThreePoints": poly(FLAT, INK, 1.2, SOFT, True)
-    + dot(3.5, 16, 2, ACCENT)
-    + dot(15, 16, 2, ACCENT)
-    + dot(20.5, 10, 2, ACCENT),
-    "params.DeconstructPoint": dot(15, 8, 2.6, ACCENT)
+    + spot(3.5, 16, 2, ACCENT)
+    + spot(15, 16, 2, ACCENT)
+    + spot(20.5, 10, 2, ACCENT),
+    "params.DeconstructPoint": spot(15, 8, 2.6, ACCENT)
     + line(15, 8, 15, 20, INK, 1, "2,1.5")
     + line(15, 8, 3, 8, INK, 1, "2,1.5")
     + line(3, 20, 21, 20, INK, 1.2)
@@ -175,28 +175,32 @@ GLYPHS: dict[str, str] = {
     "maths.DeconstructDomain": line(7, 12, 17, 12, INK, 1, "2,1.5")
     + path("M5,8 L3,8 L3,16 L5,16", ACCENT)
     + path("M19,8 L21,8 L21,16 L19,16", ACCENT)
-    + dot(7, 12, 1.6)
-    + dot(17, 12, 1.6),
+    + spot(7, 12, 1.6)
+    + spot(17, 12, 1.6),
     "maths.Expression": text(12, 16, "f(x)", 8.5),
     "maths.Random": rect(5, 5, 14, 14, INK, 1.4, SOFT, 2.5)
-    + dot(8.5, 8.5, 1.5)
-    + dot(15.5, 8.5, 1.5)
-    + dot(12, 12, 1.5)
-    + dot(8.5, 15.5, 1.5)
-    + dot(15.5, 15.5, 1.5),
+    + spot(8.5, 8.5, 1.5)
+    + spot(15.5, 8.5, 1.5)
+    + spot(12, 12, 1.5)
+    + spot(8.5, 15.5, 1.5)
+    + spot(15.5, 15.5, 1.5),
     "maths.Range": line(4, 14, 20, 14)
     + "".join(line(x, 10, x, 18, INK, 1.2) for x in (4, 8, 12, 16, 20))
     + path("M4,7 L20,7", ACCENT, 1.2),
-    "maths.Series": dot(5, 18) + dot(9.5, 14.5) + dot(14, 11) + dot(18.5, 7.5) + arrow(4, 21, 21, 21, INK, 1),
+    "maths.Series": spot(5, 18)
+    + spot(9.5, 14.5)
+    + spot(14, 11)
+    + spot(18.5, 7.5)
+    + arrow(4, 21, 21, 21, INK, 1),
     "maths.Remap": line(8, 6, 16, 6, INK, 1.8)
     + line(3, 18, 21, 18, ACCENT, 1.8)
     + line(8, 6, 3, 18, INK, 0.9, "1.5,1.5")
     + line(16, 6, 21, 18, INK, 0.9, "1.5,1.5")
     + line(12, 6, 12, 18, INK, 0.9, "1.5,1.5"),
-    "maths.Bounds": dot(6, 12, 1.4)
-    + dot(10, 12, 1.4)
-    + dot(12.5, 12, 1.4)
-    + dot(18, 12, 1.4)
+    "maths.Bounds": spot(6, 12, 1.4)
+    + spot(10, 12, 1.4)
+    + spot(12.5, 12, 1.4)
+    + spot(18, 12, 1.4)
     + path("M5,7 L3,7 L3,17 L5,17", ACCENT)
     + path("M19,7 L21,7 L21,17 L19,17", ACCENT),
     # -- lists: bars, one per item -------------------------------------------------------
@@ -245,38 +249,38 @@ GLYPHS: dict[str, str] = {
     + line(4, 20, 17, 20, INK, 2)
     + arrow(20, 4, 20, 20, ACCENT, 1.3),
     # -- curves: one thick curve, and what the node does to it ---------------------------
-    "curves.Line": line(4, 19, 20, 5, INK, 2) + dot(4, 19, 1.8) + dot(20, 5, 1.8),
+    "curves.Line": line(4, 19, 20, 5, INK, 2) + spot(4, 19, 1.8) + spot(20, 5, 1.8),
     "curves.Polyline": poly([(3, 18), (8, 7), (13, 15), (20, 5)], INK, 1.8)
-    + dot(3, 18, 1.5)
-    + dot(8, 7, 1.5)
-    + dot(13, 15, 1.5)
-    + dot(20, 5, 1.5),
-    "curves.Circle": circle(12, 12, 7.5, INK, 2) + dot(12, 12, 1.4),
+    + spot(3, 18, 1.5)
+    + spot(8, 7, 1.5)
+    + spot(13, 15, 1.5)
+    + spot(20, 5, 1.5),
+    "curves.Circle": circle(12, 12, 7.5, INK, 2) + spot(12, 12, 1.4),
     "curves.Arc": path("M4.5,16 A8,8 0 0 1 19.5,16", INK, 2)
-    + dot(12, 16, 1.3)
+    + spot(12, 16, 1.3)
     + line(12, 16, 4.5, 16, INK, 0.8, "1.5,1.2"),
     "curves.Interpolate": path(CURVE, INK, 1.8)
-    + dot(4, 17, 1.8, ACCENT)
-    + dot(9.3, 11.2, 1.8, ACCENT)
-    + dot(14.8, 13.2, 1.8, ACCENT)
-    + dot(20, 8, 1.8, ACCENT),
+    + spot(4, 17, 1.8, ACCENT)
+    + spot(9.3, 11.2, 1.8, ACCENT)
+    + spot(14.8, 13.2, 1.8, ACCENT)
+    + spot(20, 8, 1.8, ACCENT),
     "curves.NurbsCurve": poly([(4, 17), (8, 5), (14, 21), (20, 8)], INK, 0.9)
     + path(CURVE, ACCENT, 1.8)
-    + dot(8, 5, 1.5)
-    + dot(14, 21, 1.5),
+    + spot(8, 5, 1.5)
+    + spot(14, 21, 1.5),
     "curves.ParametricCurve": path("M3,14 C6,6 9,6 12,14 C15,22 18,22 21,14", INK, 1.8)
     + text(19.5, 8, "t", 8, ACCENT),
     "curves.DivideCurve": path(CURVE, INK, 1.6)
-    + "".join(dot(x, y, 1.8, ACCENT) for x, y in ((4, 17), (7.5, 12), (11.5, 12.8), (16, 13.4), (20, 8))),
+    + "".join(spot(x, y, 1.8, ACCENT) for x, y in ((4, 17), (7.5, 12), (11.5, 12.8), (16, 13.4), (20, 8))),
     "curves.EvaluateCurve": path(CURVE, INK, 1.6)
     + arrow(11.5, 12.8, 18, 16.5, ACCENT, 1.4)
-    + dot(11.5, 12.8, 2.2, ACCENT),
+    + spot(11.5, 12.8, 2.2, ACCENT),
     "curves.CurveLength": path(CURVE, INK, 1.6)
     + line(4, 21, 20, 21, ACCENT, 1.1)
     + line(4, 19.5, 4, 22.5, ACCENT, 1.1)
     + line(20, 19.5, 20, 22.5, ACCENT, 1.1)
     + text(18.5, 6, "L", 7, ACCENT),
-    "curves.EndPoints": path(CURVE, INK, 1.6) + dot(4, 17, 2.6, ACCENT) + dot(20, 8, 2.6, ACCENT),
+    "curves.EndPoints": path(CURVE, INK, 1.6) + spot(4, 17, 2.6, ACCENT) + spot(20, 8, 2.6, ACCENT),
     "curves.Flip": path(CURVE, INK, 1.6) + poly([(7.5, 18), (4, 17), (5, 13.5)], ACCENT, 1.6),
     "curves.Offset": path("M3,15 C8,5 14,19 21,7", INK, 1.6) + path("M3,20 C8,10 14,24 21,12", ACCENT, 1.6),
     "curves.CurveFrame": path(CURVE, INK, 1.5)
@@ -299,15 +303,15 @@ GLYPHS: dict[str, str] = {
         for x, y1, y2 in ((3, 6, 19), (8, 4.3, 17.3), (13, 5.6, 18.6), (18, 6.2, 19.2))
     ),
     "surfaces.NurbsSurface": path(PATCH, INK, 1.2, SOFT)
-    + "".join(dot(x, y, 1.3, ACCENT) for x in (5, 12, 19) for y in (8, 13, 18)),
+    + "".join(spot(x, y, 1.3, ACCENT) for x in (5, 12, 19) for y in (8, 13, 18)),
     "surfaces.ParametricSurface": path(PATCH, INK, 1.4, SOFT) + text(12, 15.5, "uv", 7.5, ACCENT),
     "surfaces.MeshSurface": poly([(4, 19), (12, 4), (20, 19)], INK, 1.4, SOFT, True)
     + line(8, 11.5, 16, 11.5, INK, 1)
     + line(8, 11.5, 12, 19, INK, 1)
     + line(16, 11.5, 12, 19, INK, 1)
-    + dot(12, 4, 1.3)
-    + dot(4, 19, 1.3)
-    + dot(20, 19, 1.3),
+    + spot(12, 4, 1.3)
+    + spot(4, 19, 1.3)
+    + spot(20, 19, 1.3),
     "surfaces.Sphere": circle(12, 12, 8.5, INK, 1.6, SOFT)
     + path("M3.5,12 A8.5,3 0 0 0 20.5,12", INK, 1)
     + path("M3.5,12 A8.5,3 0 0 1 20.5,12", INK, 0.8, "none", "1.5,1.2"),
@@ -319,7 +323,7 @@ GLYPHS: dict[str, str] = {
     + path("M8,12 C10,14 14,14 16,12 M9,12.8 C10.5,10.8 13.5,10.8 15,12.8", INK, 1.2),
     "surfaces.EvaluateSurface": path(PATCH, INK, 1.3, SOFT)
     + arrow(12, 13.5, 12, 2.5, ACCENT, 1.5)
-    + dot(12, 13.5, 2, ACCENT),
+    + spot(12, 13.5, 2, ACCENT),
     "surfaces.Isocurve": path(PATCH, INK, 1.3, SOFT)
     + path("M12,8.2 C12.5,12 11.5,15 12,18.8", ACCENT, 2)
     + path("M4,14 C9,11.5 15,15 20,12.5", ACCENT, 1, "none", "1.5,1.2"),
@@ -327,10 +331,10 @@ GLYPHS: dict[str, str] = {
     + path("M6,15 C9,10 15,10 18,15", ACCENT, 1.6)
     + path("M10,8 C7,11 7,15 10,19", ACCENT, 1.6),
     "surfaces.SurfaceEdges": path(PATCH, ACCENT, 2.2)
-    + dot(4, 9, 1.6)
-    + dot(20, 7, 1.6)
-    + dot(20, 18, 1.6)
-    + dot(4, 19, 1.6),
+    + spot(4, 9, 1.6)
+    + spot(20, 7, 1.6)
+    + spot(20, 18, 1.6)
+    + spot(4, 19, 1.6),
     "surfaces.Area": path(PATCH, INK, 1.3, "#ffffffaa") + text(12, 16.2, "A", 8, "#335f5a"),
     "surfaces.BoundingBox": path(
         "M4,8 L14,8 L14,20 L4,20 Z M4,8 L9,4 L19,4 L14,8 M19,4 L19,16 L14,20", INK, 1.2
@@ -338,7 +342,7 @@ GLYPHS: dict[str, str] = {
     + circle(9.5, 14, 3.8, ACCENT, 1.5),
     "surfaces.Volume": path("M4,8 L14,8 L14,20 L4,20 Z", INK, 1.3, "#ffffff88")
     + path("M4,8 L9,4 L19,4 L14,8 M19,4 L19,16 L14,20", INK, 1.3, "#ffffff44")
-    + dot(9, 14, 2.2, ACCENT),
+    + spot(9, 14, 2.2, ACCENT),
     # -- transform: a shape and the motion ------------------------------------------------
     "transform.Move": rect(3, 13, 7, 7, INK, 1.2, "none")
     + rect(14, 4, 7, 7, INK, 1.4, SOFT)
@@ -362,7 +366,7 @@ GLYPHS: dict[str, str] = {
     + rect(9.3, 9, 5.5, 6, INK, 1.3)
     + rect(16, 9, 5.5, 6, ACCENT, 1.3)
     + arrow(3, 19.5, 20, 19.5, INK, 1),
-    "transform.PolarArray": dot(12, 12, 1.3)
+    "transform.PolarArray": spot(12, 12, 1.3)
     + "".join(
         rect(x - 2, y - 2, 4, 4, ACCENT if i == 0 else INK, 1.2)
         for i, (x, y) in enumerate(((12, 4.5), (19, 9.5), (16.5, 18), (7.5, 18), (5, 9.5)))
@@ -408,7 +412,7 @@ GLYPHS: dict[str, str] = {
     "developable.ConicalSurface": strip_rulings(
         [(12, 3), (12, 3), (12, 3), (12, 3), (12, 3)], [(3, 19), (7, 21), (12, 21.5), (17, 21), (21, 19)]
     )
-    + dot(12, 3, 2, ACCENT),
+    + spot(12, 3, 2, ACCENT),
     "developable.TangentDevelopable": path("M3,19 C8,17 13,12 20,4", ACCENT, 2)
     + line(5.5, 18, 13, 13.5, INK, 1)
     + line(9, 16, 17, 9.5, INK, 1)
@@ -461,7 +465,7 @@ GLYPHS: dict[str, str] = {
     + poly([(4, 17), (8, 11), (12, 14), (16, 6), (20, 9)], ACCENT, 1.6),
     "display.Tag": path("M3,8 L15,8 L20,12 L15,16 L3,16 Z", INK, 1.4, SOFT)
     + text(9, 14.5, "Aa", 6.5)
-    + dot(20, 12, 1.3, ACCENT),
+    + spot(20, 12, 1.3, ACCENT),
     # -- io: a page and which way it goes -------------------------------------------------------
     "io.Export3dm": page() + text(9.5, 12, "3dm", 5.5) + out_arrow(),
     "io.Import3dm": page() + text(9.5, 12, "3dm", 5.5) + in_arrow(),
