@@ -87,6 +87,7 @@ class Rationalise(Node):
     """
 
     type_id = "developable.Rationalise"
+    nickname, aliases = "Rat", ("rationalize", "developable strips", "panelise", "panelize")
     inputs = (
         In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),
         In("Tolerance", NUMBER, "T", "Largest distance of any strip from the design, model units.",
