@@ -236,8 +236,9 @@ def run_file(
                 notes.append(note)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
-    folder = write_folder if write_folder is not None else Path(path).resolve().parent
-    solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes))
+    home = Path(path).resolve().parent  # files the graph reads are found from here, with or without --out
+    folder = write_folder if write_folder is not None else home
+    solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes, read_folder=home))
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)
 

@@ -31,6 +31,7 @@ class Job:
     allow_writes: bool = False
     write_root: str | None = None  # variant N writes into write_root/NNNNN when allowed
     image_root: str | None = None  # variant N is drawn into image_root/NNNNN.png (--images)
+    read_root: str | None = None  # the graph's folder: files its nodes read are found from here
 
 
 @dataclass
@@ -120,7 +121,9 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
     if job.allow_writes and job.write_root is not None:
         folder = Path(job.write_root) / f"{index:05d}"
         folder.mkdir(parents=True, exist_ok=True)
-    solver = Solver(graph, WriteAccess(folder, allowed=job.allow_writes and folder is not None))
+    home = Path(job.read_root) if job.read_root is not None else None
+    access = WriteAccess(folder, allowed=job.allow_writes and folder is not None, read_folder=home)
+    solver = Solver(graph, access)
     if solver.solve(token).cancelled:
         raise Stopped
     notes: list[str] = []

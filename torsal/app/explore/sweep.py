@@ -58,7 +58,8 @@ def run_sweep(
     """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` (with
     ``images``, each variant's picture in ``out/images`` and its column in the table)."""
     job = Job(tuple(study.targets), allow_writes, str((out / "variants").resolve()) if out else None,
-              str((out / IMAGES).resolve()) if out is not None and images else None)
+              str((out / IMAGES).resolve()) if out is not None and images else None,
+              str(Path(study.path).resolve().parent))
     cache = ResultCache(out / CACHE) if out is not None else None
     digest = graph_digest(study.text)
     keys = [variant_key(digest, values, job) for values in variants]
