@@ -69,6 +69,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
                      help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), "
                      ".obj/.stl/.ply/.glb")
+    run.add_argument("--preview", action="store_true",
+                     help="with --export of cut sheets (.dxf/.svg), also write a PNG of each sheet beside it")
     run.set_defaults(handler=_run)
 
     check = commands.add_parser("check", help="parse and validate a .graph file without solving")
@@ -119,7 +121,8 @@ def _run(args: argparse.Namespace) -> int:
         if port not in result.outputs:
             raise UsageError(f"--export {request}: {node_id!r} has no output {port!r}")
         try:
-            written = export_tree(result.outputs[port], Path(destination), units=run.graph.units)
+            written = export_tree(result.outputs[port], Path(destination), units=run.graph.units,
+                                  preview=args.preview)
         except (ExportError, OSError) as exc:
             raise UsageError(f"--export {request}: {exc}") from None
         run.exported += written
