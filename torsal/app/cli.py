@@ -106,8 +106,11 @@ def _run(args: argparse.Namespace) -> int:
             args.out.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise UsageError(f"--out {args.out}: cannot create that folder ({exc.strerror or exc})") from None
-    run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out,
-                   node_progress=_progress_line() if sys.stderr.isatty() else None)
+    from torsal.app.progress import reporting
+
+    with reporting(sys.stderr) as node_progress:  # rich's line on a terminal, else a heartbeat
+        run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out,
+                       node_progress=node_progress)
     for note in run.notes:
         print(f"torsal: note: {note}", file=sys.stderr)
     for request in args.export:
@@ -153,20 +156,6 @@ def _timings(run: Run) -> str:
     lines += [f"  {result.seconds * 1000:10.3f} ms  {result.state:8s} {node_id}  ({type_id})"
               for result, node_id, type_id in rows]
     return "\n".join(lines)
-
-
-def _progress_line():  # type: ignore[no-untyped-def]
-    """A callback that keeps one line on stderr up to date: ``node 42 %``."""
-    shown = [""]
-
-    def show(node_id: str, fraction: float) -> None:
-        text = f"{node_id} {100 * fraction:3.0f} %"
-        if text != shown[0]:
-            end = "\n" if fraction >= 1 else ""
-            print(f"\r{text}", end=end, file=sys.stderr, flush=True)
-            shown[0] = text
-
-    return show
 
 
 def _check(args: argparse.Namespace) -> int:
