@@ -456,11 +456,11 @@ def lay_out(
         for i, name in enumerate(names):
             if check:  # a label may take tens of ms (its pole of inaccessibility, the font's first load)
                 check()
-            label, size = place_label(name, drawn[i], text_height)
+            tick_list, seam_glyphs = marks.get(i, ([], []))
+            label, size = place_label(name, drawn[i], text_height, engraved(tick_list, seam_glyphs))
             if text_height > 0 and not label:
                 notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: "
                              "not engraved")
-            tick_list, seam_glyphs = marks.get(i, ([], []))
             parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
                               tuple(seam_glyphs)))
     if stopped:
@@ -478,9 +478,12 @@ def _stock(sheet_of: NDArray[np.intp], cuts: Sequence[FloatArray]) -> tuple[int,
 
 
 def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, notes):  # type: ignore[no-untyped-def]
-    """Per part index, (ticks, seam-ID outlines) as laid out; and each seam's lengths."""
+    """Per part index, (ticks, seam-ID outlines) as laid out; and each seam's lengths. Every
+    tick is placed first, then the seams' IDs, each clear of the ticks and IDs already on
+    its part (moved along the edge or smaller, :func:`~torsal.nodes.io.seams.seam_label`)."""
     marks: dict[int, tuple[list[FloatArray], list[FloatArray]]] = {}
     lengths: list[SeamLengths] = []
+    sides_of = []
     for seam in seams:
         sides = []
         for index, edge_index in ((seam.a, seam.edge_a), (seam.b, seam.edge_b)):
@@ -495,19 +498,33 @@ def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, 
         (a, edge_a), (b, edge_b) = sides
         lengths.append(SeamLengths(seam.id, names[a], names[b], seam_edges.length(edge_a),
                                    seam_edges.length(edge_b)))
-        glyphs = text_outlines(seam.id)
-        for index, flat, reverse in ((a, edge_a, False), (b, edge_b, seam.reversed)):
-            placed = move(index, flat)
-            ticks, letters = marks.setdefault(index, ([], []))
+        placed = [(a, move(a, edge_a), False), (b, move(b, edge_b), seam.reversed)]
+        sides_of.append((seam, placed))
+        for index, edge, reverse in placed:
+            ticks, _ = marks.setdefault(index, ([], []))
             try:
-                ticks += seam_edges.ticks(placed, drawn[index], spacing, reverse)
+                ticks += seam_edges.ticks(edge, drawn[index], spacing, reverse)
             except ValueError as exc:
                 raise FileFailure(f"Seam {seam.id}: {exc}") from None
-            label = seam_edges.seam_label(seam.id, placed, drawn[index], 0.6 * text_height, glyphs)
+    for seam, placed in sides_of:
+        glyphs = text_outlines(seam.id)
+        for index, edge, _ in placed:
+            ticks, letters = marks[index]
+            label = seam_edges.seam_label(seam.id, edge, drawn[index], 0.6 * text_height, glyphs,
+                                          engraved(ticks, letters))
             if text_height > 0 and not label:
                 notes.append(f"Seam {seam.id}'s ID does not fit beside its edge on panel {names[index]}")
             letters += label
     return marks, lengths
+
+
+def engraved(ticks: Sequence[FloatArray], letters: Sequence[FloatArray]) -> shapely.Geometry | None:
+    """What is already engraved on a part, for a label to keep clear of: its ticks, and the
+    envelope of its letters."""
+    shapes = [shapely.LineString(t) for t in ticks]
+    if letters:
+        shapes.append(shapely.MultiPoint(np.vstack(letters)).envelope)
+    return shapely.GeometryCollection(shapes) if shapes else None
 
 
 # ------------------------------------------------------------------ writers
