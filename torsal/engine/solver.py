@@ -454,8 +454,11 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     if iterated and type(node).solve_many is not Node.solve_many and plan:
         plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines
         node.check_cancelled()
+        said = len(node.messages)
         results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
-        if results is not None:  # each branch's rows' results, in order
+        if results is None:  # declined: what it said is forgotten, solve says it row by row
+            del node.messages[said:]
+        else:  # each branch's rows' results, in order (with the rows' messages said in order)
             groups, start = [], 0
             for path, rows, _ in plan:
                 groups.append((path, results[start:start + len(rows)]))

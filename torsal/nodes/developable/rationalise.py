@@ -14,8 +14,8 @@ from torsal.nodes.common.geometry_checks import parametric_surface as surface_in
 from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable.measure import warp_allowance
 from torsal.nodes.geometry.developable.rationalise import rationalise
-from torsal.nodes.geometry.developable.ruling import warp_allowance
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.watch import watched
 
