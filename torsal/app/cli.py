@@ -189,11 +189,16 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _nodes(args: argparse.Namespace) -> int:
+    from torsal.engine.registry import provider
     from torsal.nodes.catalogue import default_registry
 
     registry = default_registry()  # its problems were reported by main
-    if args.json:
-        print(json.dumps([cls.catalogue_entry() for cls in registry], indent=2))
+    if args.json:  # a plug-in's types say which package provides them
+        entries = [cls.catalogue_entry() for cls in registry]
+        for cls, entry in zip(registry, entries, strict=True):
+            if provider(cls):
+                entry["plugin"] = provider(cls)
+        print(json.dumps(entries, indent=2))
         return 0
     for cls in registry:
         summary_line = cls.help().splitlines()[0] if cls.help() else ""
