@@ -59,3 +59,8 @@ MAX_DENSITY = 500
 #: development-and-panels example), each panel clipped and mapped onto the surface; a
 #: Scale of 1e-9 asked for 3.3 billion (23.8 GiB).
 MAX_PANELS = 20_000
+
+#: Bytes of a mesh file ImportMesh reads, and of each file it names (an OBJ's material
+#: library, a glTF's buffers): 200 MB is about 4 million triangles of binary STL. A
+#: larger file is refused before it is read (a 1 GB mesh took 2.1–3.2 GB and 21 s).
+MAX_MESH_FILE_BYTES = 200 * 2**20
