@@ -20,6 +20,8 @@ import pytest
 from torsal.app.cli import main
 from torsal.app.explore import option_bounds
 from torsal.app.explore.executors import InlineExecutor
+from torsal.engine.node import In, Node, Out
+from torsal.engine.types import NUMBER
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "torsal" / "resources" / "examples" / "first-steps.graph"
 SWEEP = ["sweep", str(EXAMPLE), "--vary", "width=1:2:3", "--collect", "total.Result"]
@@ -199,3 +201,86 @@ def test_a_sweep_on_a_full_out_exits_2_with_one_line(tmp_path, capsys, monkeypat
     monkeypatch.setattr(os, "fsync", no_space)
     err = one_line_exit_2(capsys, [*SWEEP, "--out", str(tmp_path / "o")])
     assert "No space left on device" in err
+
+
+# --------------------------------------------------------------------------- call budgets
+
+def point(*xyz: float) -> dict:
+    return {"type": "Point", "xyz": [float(c) for c in xyz]}
+
+
+def warp_series_graph(path: Path, count: int) -> Path:
+    """Two lines into RulingDevelopable, its WarpTolerance fed by a Series of ``count``."""
+    from torsal.engine.graph import Graph
+    from torsal.engine.graphfile import write_graph
+    from torsal.nodes.catalogue import default_registry
+
+    registry = default_registry()
+    graph = Graph()
+    lines = (("a", point(0, 0, 0), point(10, 0, 0)), ("b", point(0, 3, 1), point(10, 4, 2)))
+    for node_id, start, end in lines:
+        graph.add_node(registry.get("curves.Line")(), node_id)
+        graph.set_input_value(node_id, "Start", start)
+        graph.set_input_value(node_id, "End", end)
+    graph.add_node(registry.get("maths.Series")(), "tol")
+    for port, value in (("Start", 0.001), ("Step", 1e-9), ("Count", count)):
+        graph.set_input_value("tol", port, value)
+    graph.add_node(registry.get("developable.RulingDevelopable")(), "strip")
+    graph.connect("a", "Line", "strip", "CurveA")
+    graph.connect("b", "Line", "strip", "CurveB")
+    graph.connect("tol", "Series", "strip", "WarpTolerance")
+    write_graph(graph, path)
+    return path
+
+
+def test_check_refuses_a_million_strip_solves_in_under_a_second(tmp_path, capsys):
+    """The issue's 12 KB graph: a Series of 1,000,000 into WarpTolerance (~80 min of solves)."""
+    small = warp_series_graph(tmp_path / "small.graph", 3)
+    assert main(["check", str(small)]) == 0  # imports warmed; three strips are fine
+    assert "calls of the solve's 5,000,000" in capsys.readouterr().out
+    bomb = warp_series_graph(tmp_path / "million.graph", 1_000_000)
+    started = time.perf_counter()
+    err = one_line_exit_2(capsys, ["check", str(bomb)])
+    assert time.perf_counter() - started < 1.0
+    assert "strip: WarpTolerance has 1,000,000 values: RulingDevelopable would run 1,000,000 times; " \
+           "at most 2,000 at once" in err
+
+
+def test_run_refuses_the_million_strip_solves_naming_node_and_input(tmp_path):
+    from torsal.app.headless import run_file
+
+    run = run_file(warp_series_graph(tmp_path / "million.graph", 1_000_000))
+    assert run.exit_code == 1
+    (message,) = run.solver.result("strip").messages
+    assert message.text.startswith("WarpTolerance has 1,000,000 values: RulingDevelopable would run")
+
+
+class Doubled(Node):
+    """Twice a number, one call per item."""
+
+    type_id = "test.Doubled"
+    inputs = (In("x", NUMBER, "x", "A number."),)
+    outputs = (Out("Result", NUMBER, "R", "Twice x."),)
+
+    def solve(self, x: float) -> float:
+        return 2 * x
+
+
+def test_the_solves_total_budget_names_the_node_that_passes_it():
+    from torsal.engine.call_budget import SolveBudget
+    from torsal.engine.graph import Graph
+    from torsal.engine.solver import ERROR, Solver
+    from torsal.nodes.maths.sequences import Series
+
+    graph = Graph()
+    graph.add_node(Series(), "numbers")
+    graph.set_input_value("numbers", "Count", 40)
+    graph.add_node(Doubled(), "twice")
+    graph.connect("numbers", "Series", "twice", "x")
+    solver = Solver(graph, budget=SolveBudget(limit=30))
+    solver.solve()
+    assert solver.result("twice").state == ERROR
+    (text,) = [m.text for m in solver.result("twice").messages]
+    assert text.startswith("x has 40 values: Doubled would run 40 times")
+    assert "budget of 30 calls in all" in text
+    assert solver.refused == [("twice", text)]

@@ -173,8 +173,15 @@ def _check(args: argparse.Namespace) -> int:
     records = [*graph.nodes.values(), *(r for d in definitions for r in d.graph.nodes.values())]
     missing = sorted({r.type_id for r in records if is_placeholder(r.node)})
     clusters = f", {len(definitions)} cluster definition{'s' if len(definitions) != 1 else ''}"
+    from torsal.app.budget_check import check_budget
+
+    budget = check_budget(graph)  # the calls a solve would make, counted without the long work
+    for refusal in budget.refusals:
+        print(f"torsal: {args.file}: too many calls: {refusal}", file=sys.stderr)
+    if budget.refusals:
+        return 2
     print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
-          f"{len(graph.groups)} groups{clusters if definitions else ''}")
+          f"{len(graph.groups)} groups{clusters if definitions else ''}; {budget.summary()}")
     if missing:
         print(f"torsal: {MISSING} node types (kept as placeholders): {', '.join(missing)}", file=sys.stderr)
     return 0

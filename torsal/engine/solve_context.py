@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from torsal.engine.call_budget import SolveBudget
     from torsal.engine.node import CancelToken, Message, Node
     from torsal.engine.writes import NodeFiles
 
@@ -39,6 +40,10 @@ class SolveContext:
     on_progress: Callable[[float], None] | None = None
     messages: list[Message] = field(default_factory=list)
     state: dict[str, Any] = field(default_factory=dict)
+    #: the solve's count of calls (:mod:`torsal.engine.call_budget`); None: not counted
+    budget: SolveBudget | None = None
+    #: a dry solve (``torsal check``): heavy nodes are planned and checked, not run
+    dry: bool = False
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from torsal.engine.bounds import within_bounds
+from torsal.engine.call_budget import BudgetExceeded, SolveBudget, is_heavy
 from torsal.engine.casting import (  # noqa: F401 - also exported here, where callers found them
     TRIPLE_OF,
     array_fits,
@@ -42,7 +43,7 @@ from torsal.engine.node import (
     NodeError,
     NodeWarning,
 )
-from torsal.engine.solve_context import SolveContext, solving
+from torsal.engine.solve_context import SolveContext, active, solving
 from torsal.engine.types import CastError, decode_value
 from torsal.engine.writes import WriteAccess
 
@@ -81,11 +82,16 @@ class SolveReport:
 class Solver:
     """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
 
-    def __init__(self, graph: Graph, files: WriteAccess | None = None) -> None:
+    def __init__(self, graph: Graph, files: WriteAccess | None = None, *, dry: bool = False,
+                 budget: SolveBudget | None = None) -> None:
         self.graph = graph
         self.results: dict[str, NodeResult] = {}
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
+        #: the calls of a solve, every node together (a cluster's solver shares its parent's)
+        self.budget, self._own_budget = budget or SolveBudget(), budget is None
+        self.dry = dry  # torsal check: heavy nodes planned and checked, not run
+        self.refused: list[tuple[str, str]] = []  # (node id, message) of budget refusals
         self._removals_seen = graph.removals
         self._clusters: dict[str, ClusterRun] = {}  # cluster node id → its inner solve
 
@@ -118,6 +124,9 @@ class Solver:
         token = token or CancelToken()
         report = SolveReport()
         start = time.perf_counter()
+        if self._own_budget:
+            self.budget.reset()
+        self.refused.clear()
         if graph.removals != self._removals_seen:  # forget removed nodes' results
             self._removals_seen = graph.removals
             for stale in self.results.keys() - graph.nodes.keys():
@@ -173,7 +182,8 @@ class Solver:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
         if isinstance(node, ClusterNode):
             return self._solve_cluster(record, node, token, on_progress)
-        context = SolveContext(node, token, self.files.for_node(record.id), on_progress)
+        context = SolveContext(node, token, self.files.for_node(record.id), on_progress,
+                               budget=self.budget, dry=self.dry)
         messages = context.messages
         outputs: dict[str, DataTree] = {}
         with solving(context):
@@ -186,6 +196,8 @@ class Solver:
                 raise
             except NodeError as exc:
                 messages.append(Message(Level.ERROR, str(exc)))
+                if isinstance(exc, BudgetExceeded):
+                    self.refused.append((record.id, str(exc)))
             except NodeWarning as exc:
                 messages.append(Message(Level.WARNING, str(exc)))
             except Exception as exc:  # a bug in a node must not stop the rest of the graph
@@ -207,7 +219,7 @@ class Solver:
         definition = node.definition
         run = self._clusters.get(record.id)
         if run is None or run.definition is not definition or run.revision != definition.revision:
-            run = self._clusters[record.id] = ClusterRun(definition, self.files)
+            run = self._clusters[record.id] = ClusterRun(definition, self.files, self)
         try:
             trees, wired = self._gather(record)
         except NodeError as exc:
@@ -261,11 +273,13 @@ class ClusterRun:
     """One cluster instance's inner solve: a private copy of its definition's graph (as
     of the definition's ``revision``), its solver, and the trees it was last fed."""
 
-    def __init__(self, definition: ClusterDefinition, files: WriteAccess) -> None:
+    def __init__(self, definition: ClusterDefinition, files: WriteAccess, parent: Solver | None = None
+                 ) -> None:
         self.definition = definition
         self.revision = definition.revision
         self.graph = clone_graph(definition.graph)
-        self.solver = Solver(self.graph, files)
+        self.solver = Solver(self.graph, files, dry=parent.dry if parent else False,
+                             budget=parent.budget if parent else None)
         self.fed: dict[str, DataTree] = {}
         self.cut: dict[str, list[Wire]] = {}  # an absent input's wires, taken out of the copy
 
@@ -374,6 +388,12 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         else:
             single = False
 
+    if not matched or single:  # one call: counted, and skipped by a dry solve of a heavy node
+        context = active()
+        if context is not None and context.budget is not None:
+            context.budget.spend(1, lambda: f"{node.name()} would run once")
+        if context is not None and context.dry and is_heavy(node):
+            return outputs
     if not matched:  # no inputs, or only tree inputs: one call
         _store(node, out_ports, outputs, [((0,), [_call(node, trees)])], iterated=False)
         return outputs
@@ -435,7 +455,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
             plan.append((path, arg_rows, True))
             calls += count
     if calls > node.max_calls:
-        raise NodeError(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
+        raise BudgetExceeded(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
     if node.max_work is not None:
         plan = [(path, list(rows) if is_rows else rows, is_rows) for path, rows, is_rows in plan]
         work = sum(
@@ -443,11 +463,17 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
             for _, rows, is_rows in plan
         )
         if work > node.max_work:
-            raise NodeError(_too_many_calls(
+            raise BudgetExceeded(_too_many_calls(
                 node, matched, calls,
                 f"{work:,} {node.work_unit} in all, at most {node.max_work:,} (the work of "
                 f"{node.max_work / max(work / calls, 1):,.0f} such runs)",
             ))
+
+    context = active()
+    if context is not None and context.budget is not None:
+        context.budget.spend(calls, lambda: _too_many_calls(node, matched, calls, "counted in the solve"))
+    if context is not None and context.dry and is_heavy(node):
+        return outputs  # planned and within its budget: a dry solve stops here
 
     if iterated and type(node).solve_many is not Node.solve_many and plan:
         plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines

@@ -20,7 +20,7 @@ from torsal.nodes.geometry.developable import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
-from torsal.nodes.limits import MAX_SEGMENTS
+from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
 
 
 def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
@@ -118,6 +118,14 @@ class RulingDevelopable(Node):
             "a ruling of the flat triangles that close the strip where no torsal ruling exists.",
             access=LIST),
     )
+
+    # a list of values multiplies the strips solved: bounded before the first (docs in limits)
+    max_calls = MAX_STRIP_SOLVES
+    max_work = MAX_STRIP_RULINGS
+    work_unit = "rulings"
+
+    def call_work(self, curve_a: Any, curve_b: Any, segments: Any, *rest: Any) -> int:
+        return segments + 1 if isinstance(segments, int) and 1 <= segments <= MAX_SEGMENTS else 1
 
     def solve(
         self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any

@@ -1,0 +1,63 @@
+"""``torsal check``'s count of the calls a solve would make, found without the long work.
+
+The graph is solved *dry* (:mod:`torsal.engine.call_budget`): every node is planned and
+its calls counted against its own budget and the solve's; the nodes that declared a
+budget of their own (strip solvers, analyses) stop there instead of running, so a graph
+that asks RulingDevelopable for a million strips is refused in well under a second. The
+cheap nodes upstream run for real, since their outputs are what multiplies the calls; a
+dry solve that takes longer than :data:`CHECK_SECONDS` stops and says how far it got.
+Nothing is written: the dry solve has no consent to write files.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from torsal.engine.call_budget import MAX_SOLVE_CALLS
+from torsal.engine.cluster import ClusterNode
+from torsal.engine.graph import Graph
+from torsal.engine.node import CancelToken
+from torsal.engine.solver import Solver
+from torsal.engine.writes import WriteAccess
+
+CHECK_SECONDS = 5.0
+
+
+@dataclass
+class BudgetReport:
+    """What a dry solve found: the refusals (``node path: message``), the calls counted
+    and whether it stopped at :data:`CHECK_SECONDS`."""
+
+    refusals: list[str]
+    calls: int
+    stopped: bool
+
+    def summary(self) -> str:
+        counted = f"{self.calls:,} calls of the solve's {MAX_SOLVE_CALLS:,}"
+        return counted + (f" (counted for the nodes solved in {CHECK_SECONDS:g} s)" if self.stopped else "")
+
+
+def check_budget(graph: Graph) -> BudgetReport:
+    """Solve ``graph`` dry and report the calls it would make and the nodes refused."""
+    solver = Solver(graph, WriteAccess(), dry=True)
+    token = CancelToken()
+    timer = threading.Timer(CHECK_SECONDS, token.cancel)
+    timer.daemon = True
+    timer.start()
+    try:
+        report = solver.solve(token)
+    finally:
+        timer.cancel()
+    return BudgetReport(list(_refusals(solver, "")), solver.budget.used, report.cancelled)
+
+
+def _refusals(solver: Solver, prefix: str) -> Iterator[str]:
+    for node_id, text in solver.refused:
+        yield f"{prefix}{node_id}: {text}"
+    for node_id, record in solver.graph.nodes.items():
+        if isinstance(record.node, ClusterNode):
+            inner = solver.cluster_solver(node_id)
+            if inner is not None:
+                yield from _refusals(inner, f"{prefix}{node_id}/")
