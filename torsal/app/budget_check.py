@@ -1,12 +1,15 @@
 """``torsal check``'s count of the calls a solve would make, found without the long work.
 
 The graph is solved *dry* (:mod:`torsal.engine.call_budget`): every node is planned and
-its calls counted against its own budget and the solve's; the nodes that declared a
-budget of their own (strip solvers, analyses) stop there instead of running, so a graph
-that asks RulingDevelopable for a million strips is refused in well under a second. The
-cheap nodes upstream run for real, since their outputs are what multiplies the calls; a
-dry solve that takes longer than :data:`CHECK_SECONDS` stops and says how far it got.
-Nothing is written: the dry solve has no consent to write files.
+its calls counted against its own budget and the solve's. The nodes that declared a
+budget of their own (strip solvers, analyses) and those of the palettes whose nodes do
+the long work or touch files (:data:`SKIPPED_PALETTES`: developable, analysis,
+patching, io, display) stop there instead of running, so a graph that asks
+RulingDevelopable for a million strips is refused in well under a second. The nodes that
+make the lists (params, maths, lists, curves, surfaces, transform) run for real, since
+their outputs are what multiplies the calls downstream; a node fed by a skipped one gets
+nothing, so its calls are counted by ``run`` only. A dry solve that takes longer than
+:data:`CHECK_SECONDS` stops and says how far it got. Nothing is written.
 """
 
 from __future__ import annotations
@@ -15,14 +18,21 @@ import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from torsal.engine.call_budget import MAX_SOLVE_CALLS
+from torsal.engine.call_budget import MAX_SOLVE_CALLS, is_heavy
 from torsal.engine.cluster import ClusterNode
 from torsal.engine.graph import Graph
-from torsal.engine.node import CancelToken
+from torsal.engine.node import CancelToken, Node
 from torsal.engine.solver import Solver
 from torsal.engine.writes import WriteAccess
 
 CHECK_SECONDS = 5.0
+#: Palettes whose nodes a dry solve plans but does not run: the long work and the files.
+SKIPPED_PALETTES = ("developable", "analysis", "patching", "io", "display")
+
+
+def skipped(node: Node) -> bool:
+    """Whether a dry solve plans ``node`` without running it."""
+    return is_heavy(node) or node.type_id.split(".", 1)[0] in SKIPPED_PALETTES
 
 
 @dataclass
@@ -41,7 +51,7 @@ class BudgetReport:
 
 def check_budget(graph: Graph) -> BudgetReport:
     """Solve ``graph`` dry and report the calls it would make and the nodes refused."""
-    solver = Solver(graph, WriteAccess(), dry=True)
+    solver = Solver(graph, WriteAccess(), dry=skipped)
     token = CancelToken()
     timer = threading.Timer(CHECK_SECONDS, token.cancel)
     timer.daemon = True

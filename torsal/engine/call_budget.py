@@ -11,8 +11,9 @@ the input that multiplied it, when the plan passes
   instances' inner nodes included), kept in a :class:`SolveBudget`.
 
 Such a refusal is a :class:`BudgetExceeded` (a node error). ``torsal check`` finds them
-without the long work: it solves in *dry* mode, where the nodes that declared a budget of
-their own (:func:`is_heavy`) are planned and checked but not run.
+without the long work: it solves *dry* (``Solver(graph, dry=skip)``), where the nodes
+``skip`` names — those that declared a budget of their own (:func:`is_heavy`), and what
+the front-end knows to be slow — are planned and checked but not run.
 """
 
 from __future__ import annotations
@@ -58,8 +59,7 @@ class SolveBudget:
 
 
 def is_heavy(node: Node) -> bool:
-    """Whether ``node`` declared a budget of its own (its calls are costly): skipped, once
-    planned and checked, in a dry solve."""
+    """Whether ``node`` declared a budget of its own (its calls are costly)."""
     from torsal.engine.node import MAX_CALLS
 
     return node.max_calls < MAX_CALLS or node.max_work is not None

@@ -42,8 +42,8 @@ class SolveContext:
     state: dict[str, Any] = field(default_factory=dict)
     #: the solve's count of calls (:mod:`torsal.engine.call_budget`); None: not counted
     budget: SolveBudget | None = None
-    #: a dry solve (``torsal check``): heavy nodes are planned and checked, not run
-    dry: bool = False
+    #: a dry solve (``torsal check``): the nodes this says are planned and checked, not run
+    dry: Callable[[Node], bool] | None = None
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from torsal.engine.bounds import within_bounds
-from torsal.engine.call_budget import BudgetExceeded, SolveBudget, is_heavy
+from torsal.engine.call_budget import BudgetExceeded, SolveBudget
 from torsal.engine.casting import (  # noqa: F401 - also exported here, where callers found them
     TRIPLE_OF,
     array_fits,
@@ -82,15 +82,15 @@ class SolveReport:
 class Solver:
     """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
 
-    def __init__(self, graph: Graph, files: WriteAccess | None = None, *, dry: bool = False,
-                 budget: SolveBudget | None = None) -> None:
+    def __init__(self, graph: Graph, files: WriteAccess | None = None, *,
+                 dry: Callable[[Node], bool] | None = None, budget: SolveBudget | None = None) -> None:
         self.graph = graph
         self.results: dict[str, NodeResult] = {}
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
         #: the calls of a solve, every node together (a cluster's solver shares its parent's)
         self.budget, self._own_budget = budget or SolveBudget(), budget is None
-        self.dry = dry  # torsal check: heavy nodes planned and checked, not run
+        self.dry = dry  # torsal check: the nodes it names are planned and checked, not run
         self.refused: list[tuple[str, str]] = []  # (node id, message) of budget refusals
         self._removals_seen = graph.removals
         self._clusters: dict[str, ClusterRun] = {}  # cluster node id → its inner solve
@@ -278,7 +278,7 @@ class ClusterRun:
         self.definition = definition
         self.revision = definition.revision
         self.graph = clone_graph(definition.graph)
-        self.solver = Solver(self.graph, files, dry=parent.dry if parent else False,
+        self.solver = Solver(self.graph, files, dry=parent.dry if parent else None,
                              budget=parent.budget if parent else None)
         self.fed: dict[str, DataTree] = {}
         self.cut: dict[str, list[Wire]] = {}  # an absent input's wires, taken out of the copy
@@ -392,7 +392,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
         context = active()
         if context is not None and context.budget is not None:
             context.budget.spend(1, lambda: f"{node.name()} would run once")
-        if context is not None and context.dry and is_heavy(node):
+        if context is not None and context.dry is not None and context.dry(node):
             return outputs
     if not matched:  # no inputs, or only tree inputs: one call
         _store(node, out_ports, outputs, [((0,), [_call(node, trees)])], iterated=False)
@@ -472,7 +472,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     context = active()
     if context is not None and context.budget is not None:
         context.budget.spend(calls, lambda: _too_many_calls(node, matched, calls, "counted in the solve"))
-    if context is not None and context.dry and is_heavy(node):
+    if context is not None and context.dry is not None and context.dry(node):
         return outputs  # planned and within its budget: a dry solve stops here
 
     if iterated and type(node).solve_many is not Node.solve_many and plan:
