@@ -47,6 +47,15 @@ def path(name: str) -> Path:
                       backup=False)
 
 
+def choose(file: Path | None, example: str | None, command: str) -> Path:
+    """The graph a command works on: its FILE argument or the example ``--example NAME`` names."""
+    if file is not None and example is not None:
+        raise UsageError("give either a FILE or --example NAME, not both")
+    if file is None and example is None:
+        raise UsageError(f"torsal {command} needs a FILE.graph or --example NAME (see torsal examples)")
+    return file if file is not None else path(example or "")
+
+
 def description(name: str) -> str:
     """The example's one-line description (its ``meta.description``), or ``""``."""
     try:

@@ -2,7 +2,7 @@
 
 Each node's inputs are gathered from its wires' cached output trees (or from its
 persistent values and defaults), modified, cast to the port types and *matched* the
-Grasshopper way (see ``shared/spec/data-trees.md``); ``solve`` is then called once per
+Grasshopper way (see ``docs/data-trees.md``); ``solve`` is then called once per
 match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or ``missing`` with its
 messages and solve time. An exception in one node never stops the others.
 """
@@ -176,7 +176,9 @@ class Solver:
         node = record.node
         started = time.perf_counter()
         if is_placeholder(node):
-            text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
+            package = record.raw.get("plugin")  # the plug-in the file says provides it
+            source = f" (it comes from the plug-in package {package!r})" if isinstance(package, str) else ""
+            text = f"node type {record.type_id!r} is not installed{source}; its data is kept as it is"
             return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
@@ -478,8 +480,11 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     if iterated and type(node).solve_many is not Node.solve_many and plan:
         plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines
         node.check_cancelled()
+        said = len(node.messages)
         results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
-        if results is not None:  # each branch's rows' results, in order
+        if results is None:  # declined: what it said is forgotten, solve says it row by row
+            del node.messages[said:]
+        else:  # each branch's rows' results, in order (with the rows' messages said in order)
             groups, start = [], 0
             for path, rows, _ in plan:
                 groups.append((path, results[start:start + len(rows)]))

@@ -56,13 +56,14 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--samples", type=int, metavar="N", help="how many variants lhs/sobol draw")
     sweep.add_argument("--collect", action="append", default=[], metavar="NODE.OUTPUT",
                        help="an output to record (NODE.OUTPUT:mean|sum|min|max|count for several items)")
-    sweep.add_argument("--out", type=Path, metavar="DIR", help="folder for results.csv and the cache")
+    sweep.add_argument("--out", type=Path, metavar="DIR",
+                       help="folder for results.csv, Design Explorer's data.csv and the cache")
     sweep.add_argument("--seed", type=int, default=0, metavar="S", help="seed of lhs/sobol (default 0)")
     sweep.add_argument("--allow-writes", action="store_true",
                        help="let the graph's file nodes write, variant N into DIR/variants/N only")
     sweep.add_argument("--images", action="store_true",
-                       help="draw each variant's previewed geometry into DIR/images/N.png and add "
-                            "Design Explorer's img:perspective column")
+                       help="draw each variant's previewed geometry into DIR/N.png and add "
+                            "Design Explorer's img column")
     _workers(sweep)
     sweep.set_defaults(handler=_sweep)
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.variables import Target
+from torsal.app.plugins import missing_types
 from torsal.engine.graphfile import GraphFileError, loads
 from torsal.engine.node import CancelToken
 from torsal.engine.registry import Registry
@@ -32,6 +33,7 @@ class Job:
     allow_writes: bool = False
     write_root: str | None = None  # variant N writes into write_root/NNNNN when allowed
     image_root: str | None = None  # variant N is drawn into image_root/NNNNN.png (--images)
+    read_root: str | None = None  # the graph's folder: files its nodes read are found from here
 
 
 @dataclass
@@ -115,6 +117,9 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
         graph = loads(graph_text, _registry())
     except GraphFileError as exc:
         return Outcome(values, {t.name: None for t in job.targets}, f"error: the graph cannot be read: {exc}")
+    missing = missing_types(graph)
+    if missing:  # a worker without a plug-in the sender has: raised, so dask tries another worker
+        raise LookupError("this worker cannot solve the graph: " + "; ".join(m.sentence() for m in missing))
     for node_id, value in values.items():
         graph.set_setting(node_id, "value", value)
     access = WriteAccess()
@@ -129,6 +134,8 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
         access = WriteAccess.held(root / parts[1], identity, allowed=True)
     elif job.write_root is not None:  # no consent: the paths are still checked, then the node warns
         access = WriteAccess(Path(job.write_root) / f"{index:05d}", allowed=False)
+    # files the graph reads are found from its own folder, wherever variants write
+    access.read_folder = Path(job.read_root) if job.read_root is not None else None
     solver = Solver(graph, access)
     if solver.solve(token).cancelled:
         raise Stopped

@@ -20,7 +20,6 @@ import numpy as np
 
 from torsal.engine.graph import Graph
 from torsal.engine.solver import ERROR, Solver
-from torsal.engine.widgets import Widget
 from torsal.engine.write_path import write_file
 
 #: Picture size in pixels (width, height).
@@ -42,7 +41,7 @@ def previewed_values(graph: Graph, solver: Solver) -> list[Any]:
     with preview on that are not in error (panels show text, not geometry)."""
     values: list[Any] = []
     for node_id, record in graph.nodes.items():
-        if not (record.preview and record.enabled) or record.node.widget is Widget.PANEL:
+        if not record.shows_geometry:
             continue
         result = solver.result(node_id)
         if result.state == ERROR:
@@ -116,6 +115,6 @@ def render(values: list[Any], path: Path, size: tuple[int, int] = SIZE) -> bool:
     axes.set_box_aspect(tuple(span / span.max()), zoom=1.0)
     picture = io.BytesIO()
     figure.savefig(picture, format="png", facecolor="white")
-    # DIR/images/N.png, DIR resolved once by the command: written without following a link
-    write_file(path, picture.getvalue(), base=path.parent.parent, backup=False)
+    # DIR/N.png beside the tables, DIR resolved once by the command: no link followed
+    write_file(path, picture.getvalue(), base=path.parent, backup=False)
     return True

@@ -1,15 +1,16 @@
-"""``torsal sweep``: solve many variants and write them as a Design Explorer table.
+"""``torsal sweep``: solve many variants and write them as tables.
 
 ``DIR/results.csv`` has one row per variant, in the sampler's order: an ``in:ID`` column
 per varied slider, an ``out:NODE.OUTPUT`` column per collected output, with ``--images``
-an ``img:perspective`` column (the variant's picture, ``images/NNNNN.png`` beside the table:
+an ``img:perspective`` column (the variant's picture, ``NNNNN.png`` beside the table:
 see :mod:`torsal.app.explore.images`), and a ``status`` column (``ok``, or the message of the node
-in error). The solved variants are also kept
-in ``DIR/cache.jsonl``: a re-run takes them from there, and a killed sweep resumes (only
-lines this user's Torsal signed for this graph are used: :mod:`torsal.app.explore.cache`).
-Every file goes through the one write path (:mod:`torsal.engine.write_path`): ``DIR`` is
-resolved once and nothing in it is written through a link. Text cells that a spreadsheet
-would run as a formula are escaped (:func:`cell`).
+in error). ``DIR/data.csv`` is the same for Design Explorer: the designs that solved, without
+the status (:mod:`torsal.app.explore.design_explorer`); with ``--images`` the pictures lie
+beside both tables. The solved variants are also kept in ``DIR/cache.jsonl``: a re-run takes
+them from there, and a killed sweep resumes (only lines this user's Torsal signed for this
+graph are used: :mod:`torsal.app.explore.cache`). Every file goes through the one write path
+(:mod:`torsal.engine.write_path`): ``DIR`` is resolved once and nothing in it is written
+through a link. Text cells that a spreadsheet would run as a formula are escaped (:func:`cell`).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.cache import ResultCache, graph_digest, variant_key
+from torsal.app.explore.design_explorer import write_data
 from torsal.app.explore.evaluate import Job, Outcome
 from torsal.app.explore.executors import WORKER_FAILED, Executor
 from torsal.app.explore.progress import Progress
@@ -30,7 +32,6 @@ from torsal.engine.write_path import OutFolder
 
 RESULTS = "results.csv"
 CACHE = "cache.jsonl"
-IMAGES = "images"
 #: The header of the pictures' column (Design Explorer shows ``img:`` columns as pictures).
 IMAGE_COLUMN = "img:perspective"
 
@@ -61,11 +62,13 @@ def run_sweep(
     progress: Progress | None = None,
     on_outcome: Callable[[int, Outcome], None] | None = None,
 ) -> SweepResult:
-    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` (with
-    ``images``, each variant's picture in ``out/images`` and its column in the table)."""
+    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` and
+    ``out/data.csv`` (with ``images``, each variant's picture beside them and its column in
+    the tables: Design Explorer finds pictures beside its ``data.csv``)."""
     folder = out if isinstance(out, OutFolder) or out is None else OutFolder.resolve(out)
     job = Job(tuple(study.targets), allow_writes, str(folder / "variants") if folder else None,
-              str(folder / IMAGES) if folder is not None and images else None)
+              str(folder.path) if folder is not None and images else None,
+              str(Path(study.path).resolve().parent))
     digest = graph_digest(study.text)
     cache = ResultCache(folder, CACHE, digest) if folder is not None else None
     notes = []
@@ -102,6 +105,7 @@ def run_sweep(
                          notes=notes)
     if folder is not None:
         result.csv_path = write_table(folder, RESULTS, study, result.outcomes, images=images)
+        write_data(folder, study, result.outcomes, cell, images=images)
     return result
 
 
@@ -134,7 +138,7 @@ def table_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> l
     header += [IMAGE_COLUMN] if images else []
     rows = [[*header, "status"]]
     for outcome in outcomes:
-        picture = [f"{IMAGES}/{outcome.image}" if outcome.image else ""] if images else []
+        picture = [outcome.image or ""] if images else []
         rows.append(
             [cell(outcome.values.get(v.node_id)) for v in study.variables]
             + [cell(outcome.outputs.get(t.name)) for t in study.targets]
