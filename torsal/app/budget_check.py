@@ -18,16 +18,21 @@ import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from torsal.engine.call_budget import MAX_SOLVE_CALLS, is_heavy
+from torsal.engine.call_budget import MAX_SOLVE_CALLS
 from torsal.engine.cluster import ClusterNode
 from torsal.engine.graph import Graph
-from torsal.engine.node import CancelToken, Node
+from torsal.engine.node import MAX_CALLS, CancelToken, Node
 from torsal.engine.solver import Solver
 from torsal.engine.writes import WriteAccess
 
 CHECK_SECONDS = 5.0
 #: Palettes whose nodes a dry solve plans but does not run: the long work and the files.
 SKIPPED_PALETTES = ("developable", "analysis", "patching", "io", "display")
+
+
+def is_heavy(node: Node) -> bool:
+    """Whether ``node`` declared a budget of its own (its calls are costly)."""
+    return node.max_calls < MAX_CALLS or node.max_work is not None
 
 
 def skipped(node: Node) -> bool:

@@ -12,8 +12,8 @@ the input that multiplied it, when the plan passes
 
 Such a refusal is a :class:`BudgetExceeded` (a node error). ``torsal check`` finds them
 without the long work: it solves *dry* (``Solver(graph, dry=skip)``), where the nodes
-``skip`` names — those that declared a budget of their own (:func:`is_heavy`), and what
-the front-end knows to be slow — are planned and checked but not run.
+``skip`` names — those that declared a budget of their own, and what the front-end knows
+to be slow — are planned and checked but not run.
 """
 
 from __future__ import annotations
@@ -21,12 +21,8 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 from torsal.engine.errors import NodeError
-
-if TYPE_CHECKING:
-    from torsal.engine.node import Node
 
 #: Calls of ``solve`` in one solve, every node together (the flagship makes ~10,000).
 MAX_SOLVE_CALLS = 5_000_000
@@ -56,10 +52,3 @@ class SolveBudget:
     def reset(self) -> None:
         with self._lock:
             self.used = 0
-
-
-def is_heavy(node: Node) -> bool:
-    """Whether ``node`` declared a budget of its own (its calls are costly)."""
-    from torsal.engine.node import MAX_CALLS
-
-    return node.max_calls < MAX_CALLS or node.max_work is not None

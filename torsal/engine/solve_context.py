@@ -23,7 +23,6 @@ from torsal.engine.messages import CancelToken, Message
 
 if TYPE_CHECKING:
     from torsal.engine.call_budget import SolveBudget
-    from torsal.engine.node import Node
     from torsal.engine.writes import NodeFiles
 
 
@@ -47,7 +46,7 @@ class SolveContext:
     #: the solve's count of calls (:mod:`torsal.engine.call_budget`); None: not counted
     budget: SolveBudget | None = None
     #: a dry solve (``torsal check``): the nodes this says are planned and checked, not run
-    dry: Callable[[Node], bool] | None = None
+    dry: Callable[[Any], bool] | None = None  # given the node
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

@@ -34,7 +34,6 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath, PureWindowsPath
 
 from torsal.engine.errors import NodeError
-from torsal.engine.solve_context import active
 from torsal.engine.write_path import folder_identity
 
 #: File types a node may never write, whatever the folder (lower case).
@@ -211,12 +210,12 @@ class NodeFiles:
                                "a graph never writes into .git, .hg or other dot-folders, nor dot-files")
         return path
 
-    def permit(self, paths: list[Path] | tuple[Path, ...]) -> bool:
-        """Whether the user allows this document to write; if not, the request is kept."""
+    def permit(self, paths: list[Path] | tuple[Path, ...], solve: object = None) -> bool:
+        """Whether the user allows this document to write; if not, the request is kept.
+        ``solve`` (the solve's cancel token) says which solve claims ``paths``."""
         if self.access.allowed:
             self.access._forget(self.node_id)
-            context = active()
-            self.access.claim(self.node_id, tuple(paths), context.token if context is not None else None)
+            self.access.claim(self.node_id, tuple(paths), solve)
             return True
         self.access._record(WriteRequest(self.node_id, tuple(paths)))
         return False
