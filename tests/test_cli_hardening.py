@@ -284,3 +284,19 @@ def test_the_solves_total_budget_names_the_node_that_passes_it():
     assert text.startswith("x has 40 values: Doubled would run 40 times")
     assert "budget of 30 calls in all" in text
     assert solver.refused == [("twice", text)]
+
+
+def test_optimise_on_a_full_out_exits_2_with_one_line(tmp_path, capsys, monkeypatch, inline):
+    real_fsync = os.fsync
+
+    def no_space(handle):
+        if os.path.isdir(f"/proc/self/fd/{handle}"):
+            return real_fsync(handle)
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(os, "fsync", no_space)
+    argv = ["optimise", str(EXAMPLE), "--vary", "width=1:2", "--minimise", "total.Result", "--budget", "4",
+            "--out", str(tmp_path / "o")]
+    err = one_line_exit_2(capsys, argv)
+    assert "cannot write" in err or "No space left on device" in err
+    assert list((tmp_path / "o").iterdir()) == []
