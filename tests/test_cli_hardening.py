@@ -300,3 +300,19 @@ def test_optimise_on_a_full_out_exits_2_with_one_line(tmp_path, capsys, monkeypa
     err = one_line_exit_2(capsys, argv)
     assert "cannot write" in err or "No space left on device" in err
     assert list((tmp_path / "o").iterdir()) == []
+
+
+def test_rationalise_fed_a_list_of_60_tolerances_is_refused_before_any_work():
+    from tests.nodes.helpers import run, tree
+    from torsal.engine.solver import ERROR
+    from torsal.nodes.developable.rationalise import Rationalise
+    from torsal.nodes.geometry.parametric_surface import cylinder
+    from torsal.nodes.limits import MAX_RATIONALISE_CALLS
+
+    started = time.perf_counter()
+    result = run(Rationalise(), Surface=tree({(0,): [cylinder(1.0, 2.0)]}),
+                 Tolerance=tree({(0,): [0.01 + 0.001 * i for i in range(60)]}))
+    assert time.perf_counter() - started < 1.0  # one design takes seconds
+    assert result.state == ERROR
+    assert result.messages[0].text == (f"Tolerance has 60 values: Rationalise would run 60 times; "
+                                       f"at most {MAX_RATIONALISE_CALLS:,} at once")
