@@ -122,8 +122,10 @@ class WriteAccess:
             for path in paths:
                 self._claims[path] = node_id
 
-    def for_node(self, node_id: str) -> NodeFiles:
-        return NodeFiles(self, node_id)
+    def for_node(self, node_id: str, solve: object = None) -> NodeFiles:
+        """The files of node ``node_id`` in the solve ``solve`` (its cancel token: what two
+        nodes of one solve write is told apart from what the next solve writes)."""
+        return NodeFiles(self, node_id, solve)
 
     def pending(self) -> list[WriteRequest]:
         """The requests made while writes were not allowed, in the order they came."""
@@ -149,6 +151,7 @@ class NodeFiles:
 
     access: WriteAccess
     node_id: str
+    solve: object = None
 
     @property
     def folder(self) -> Path | None:
@@ -210,12 +213,11 @@ class NodeFiles:
                                "a graph never writes into .git, .hg or other dot-folders, nor dot-files")
         return path
 
-    def permit(self, paths: list[Path] | tuple[Path, ...], solve: object = None) -> bool:
-        """Whether the user allows this document to write; if not, the request is kept.
-        ``solve`` (the solve's cancel token) says which solve claims ``paths``."""
+    def permit(self, paths: list[Path] | tuple[Path, ...]) -> bool:
+        """Whether the user allows this document to write; if not, the request is kept."""
         if self.access.allowed:
             self.access._forget(self.node_id)
-            self.access.claim(self.node_id, tuple(paths), solve)
+            self.access.claim(self.node_id, tuple(paths), self.solve)
             return True
         self.access._record(WriteRequest(self.node_id, tuple(paths)))
         return False

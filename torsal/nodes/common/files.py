@@ -34,7 +34,7 @@ def write_target(node: Node, path: object, what: str = "Path") -> Path:
 def may_write(node: Node, paths: Sequence[Path]) -> bool:
     """Whether ``node`` may write ``paths`` now; if the user has not allowed this graph to
     write files, the node warns (naming the files) and the request waits for consent."""
-    if node.files.permit(tuple(paths), node.token):
+    if node.files.permit(tuple(paths)):
         return True
     folder = node.files.folder
     names = ", ".join(_shown(p, folder) for p in paths)
