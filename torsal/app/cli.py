@@ -183,8 +183,15 @@ def _check(args: argparse.Namespace) -> int:
 
     definitions = reachable_definitions(graph)  # a type not installed was refused by open_graph (exit 2)
     clusters = f", {len(definitions)} cluster definition{'s' if len(definitions) != 1 else ''}"
+    from torsal.app.budget_check import check_budget
+
+    budget = check_budget(graph)  # the calls a solve would make, counted without the long work
+    for refusal in budget.refusals:
+        print(f"torsal: {args.file}: too many calls: {refusal}", file=sys.stderr)
+    if budget.refusals:
+        return 2
     print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
-          f"{len(graph.groups)} groups{clusters if definitions else ''}")
+          f"{len(graph.groups)} groups{clusters if definitions else ''}; {budget.summary()}")
     return 0
 
 

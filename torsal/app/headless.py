@@ -110,7 +110,30 @@ def parse_assignment(text: str) -> tuple[str, str | None, Any]:
         value = json.loads(raw)
     except ValueError:
         value = raw
+    except RecursionError:
+        value = None  # refused just below, as too deep
+    if (value is None and raw.strip() != "null") or _depth(value) > MAX_SET_DEPTH:
+        raise UsageError(f"--set {node_id}: the value nests lists or objects more than {MAX_SET_DEPTH} "
+                         "deep; a value holds data trees of a few levels")
     return node_id, port or None, value
+
+
+#: How deep lists and objects in a ``--set`` value may nest (a data tree needs a few levels).
+MAX_SET_DEPTH = 32
+
+
+def _depth(value: Any) -> int:
+    """How deep lists and dicts nest in ``value`` (walked without recursion)."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, list | dict):
+            level += 1
+            deepest = max(deepest, level)
+            if deepest > MAX_SET_DEPTH:
+                return deepest
+            stack.extend((child, level) for child in (item.values() if isinstance(item, dict) else item))
+    return deepest
 
 
 @dataclass

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from torsal.engine.bounds import within_bounds
+from torsal.engine.call_budget import BudgetExceeded, SolveBudget
 from torsal.engine.casting import (  # noqa: F401 - also exported here, where callers found them
     TRIPLE_OF,
     array_fits,
@@ -74,11 +75,16 @@ class SolveReport:
 class Solver:
     """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
 
-    def __init__(self, graph: Graph, files: WriteAccess | None = None) -> None:
+    def __init__(self, graph: Graph, files: WriteAccess | None = None, *,
+                 dry: Callable[[Node], bool] | None = None, budget: SolveBudget | None = None) -> None:
         self.graph = graph
         self.results: dict[str, NodeResult] = {}
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
+        #: the calls of a solve, every node together (a cluster's solver shares its parent's)
+        self.budget, self._own_budget = budget or SolveBudget(), budget is None
+        self.dry = dry  # torsal check: the nodes it names are planned and checked, not run
+        self.refused: list[tuple[str, str]] = []  # (node id, message) of budget refusals
         self._removals_seen = graph.removals
         self._clusters: dict[str, ClusterRun] = {}  # cluster node id → its inner solve
 
@@ -111,6 +117,9 @@ class Solver:
         token = token or CancelToken()
         report = SolveReport()
         start = time.perf_counter()
+        if self._own_budget:
+            self.budget.reset()
+        self.refused.clear()
         if graph.removals != self._removals_seen:  # forget removed nodes' results
             self._removals_seen = graph.removals
             for stale in self.results.keys() - graph.nodes.keys():
@@ -168,7 +177,8 @@ class Solver:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
         if isinstance(node, ClusterNode):
             return self._solve_cluster(record, node, token, on_progress)
-        context = SolveContext(node, token, self.files.for_node(record.id, token), on_progress)
+        context = SolveContext(node, token, self.files.for_node(record.id, token), on_progress,
+                               budget=self.budget, dry=self.dry)
         messages = context.messages
         outputs: dict[str, DataTree] = {}
         with solving(context):
@@ -181,6 +191,8 @@ class Solver:
                 raise
             except NodeError as exc:
                 messages.append(Message(Level.ERROR, str(exc)))
+                if isinstance(exc, BudgetExceeded):
+                    self.refused.append((record.id, str(exc)))
             except NodeWarning as exc:
                 messages.append(Message(Level.WARNING, str(exc)))
             except Exception as exc:  # a bug in a node must not stop the rest of the graph
@@ -202,7 +214,7 @@ class Solver:
         definition = node.definition
         run = self._clusters.get(record.id)
         if run is None or run.definition is not definition or run.revision != definition.revision:
-            run = self._clusters[record.id] = ClusterRun(definition, self.files)
+            run = self._clusters[record.id] = ClusterRun(definition, self.files, self)
         try:
             trees, wired = self._gather(record)
         except NodeError as exc:
@@ -256,11 +268,13 @@ class ClusterRun:
     """One cluster instance's inner solve: a private copy of its definition's graph (as
     of the definition's ``revision``), its solver, and the trees it was last fed."""
 
-    def __init__(self, definition: ClusterDefinition, files: WriteAccess) -> None:
+    def __init__(self, definition: ClusterDefinition, files: WriteAccess, parent: Solver | None = None
+                 ) -> None:
         self.definition = definition
         self.revision = definition.revision
         self.graph = clone_graph(definition.graph)
-        self.solver = Solver(self.graph, files)
+        self.solver = Solver(self.graph, files, dry=parent.dry if parent else None,
+                             budget=parent.budget if parent else None)
         self.fed: dict[str, DataTree] = {}
         self.cut: dict[str, list[Wire]] = {}  # an absent input's wires, taken out of the copy
 

@@ -20,6 +20,7 @@ from torsal.nodes.geometry.developable.rationalise import rationalise
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.surface_base import uv_grid
 from torsal.nodes.geometry.watch import watched
+from torsal.nodes.limits import MAX_RATIONALISE_CALLS
 
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
@@ -104,6 +105,7 @@ class Rationalise(Node):
     """
 
     type_id = "developable.Rationalise"
+    max_calls = MAX_RATIONALISE_CALLS  # a list of values multiplies the designs solved (limits.py)
     nickname, aliases = "Rat", ("rationalize", "developable strips", "panelise", "panelize")
     inputs = (
         In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),

@@ -26,7 +26,7 @@ from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
-from torsal.nodes.limits import MAX_SEGMENTS
+from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
 
 
 class _Row(NamedTuple):
@@ -181,6 +181,14 @@ class RulingDevelopable(Node):
         Out("Folds", POINT, "F", "Where the sheet creases by more than CreaseAngle (the middle of the "
             "ruling), then where its triangles cross each other.", access=LIST),
     )
+
+    # a list of values multiplies the strips solved: bounded before the first (docs in limits)
+    max_calls = MAX_STRIP_SOLVES
+    max_work = MAX_STRIP_RULINGS
+    work_unit = "rulings"
+
+    def call_work(self, curve_a: Any, curve_b: Any, segments: Any, *rest: Any) -> int:
+        return segments + 1 if isinstance(segments, int) and 1 <= segments <= MAX_SEGMENTS else 1
 
     def solve(
         self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
