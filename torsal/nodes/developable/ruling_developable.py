@@ -23,7 +23,7 @@ from torsal.nodes.geometry.developable import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.local_frame import LocalFrame
-from torsal.nodes.geometry.vec_ops import norm
+from torsal.nodes.geometry.vec_ops import norm, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
 
@@ -159,22 +159,27 @@ class RulingDevelopable(Node):
         # origin (site coordinates round only when the outputs are moved back)
         frame = LocalFrame.around(a, b)
         a, b = frame.to_local(a), frame.to_local(b)
-        with watched(self.check_cancelled):  # the kernel looks at the token between its steps
+        # (its inputs were rounded at their world coordinates: tests that allow for the
+        # rounding of positions allow for that, as a solve there would)
+        with watched(self.check_cancelled), rounding_of(frame.origin):  # (the kernel looks at the token)
             result = solve_strip(a, b, n, tol)
-        # Valid from the warp recomputed from the output rulings and the curves' tangents
-        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+            # Valid from the warp recomputed from the output rulings and the curves' tangents
+            s, t, starts, ends = result.s, result.t, result.starts, result.ends
+            strip = curve_strip_outputs(a, b, s, t, starts, ends, tol, result.valid)
+            kinds = ruling_kinds(a, b, s, t, starts, ends, tol, strip.warp)
         self.check_cancelled()
         if result.message:
             if result.creased_share > limit:
-                hint = better_pairing(a, b, n, tol, result)
+                with rounding_of(frame.origin):
+                    hint = better_pairing(a, b, n, tol, result)
                 text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
                 self.warn(f"{text}; {hint}" if hint else text)
             else:
                 self.remark(result.message)
         tip = _tips(result.starts, result.ends)
         if tip.any():
-            ends = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
-            self.remark(f"the strip tapers to a point at its {ends} (the curves meet there): the "
+            where = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
+            self.remark(f"the strip tapers to a point at its {where} (the curves meet there): the "
                         "warp of that zero-length ruling is undefined, so it is not Valid")
         # a fan ruling's or a tip's undefined warp is no news
         strip.report(self, explained=result.fan | tip)
@@ -184,7 +189,6 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
         folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
         if folds.message:
             self.warn(folds.message)
