@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from torsal.engine.node import LIST, In, Node, NodeError, Out
+from torsal.engine.node import LIST, In, Node, NodeError, NodeWarning, Out
 from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, POINT, TEXT
 from torsal.nodes.common.checks import angle as angle_input
 from torsal.nodes.common.checks import segments as segments_input
@@ -19,7 +20,7 @@ from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
-from torsal.nodes.geometry.developable import RulingResult, ruling_developable
+from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.local_frame import LocalFrame
@@ -28,13 +29,47 @@ from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
 
 
-def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
-    """The kernel's strip between two checked curves, with its errors as node errors."""
+class _Row(NamedTuple):
+    """One call's checked inputs, its curves moved into a frame anchored at them (solved,
+    checked and measured there as at the world origin; site coordinates round only when
+    the outputs are moved back)."""
+
+    a: Curve
+    b: Curve
+    segments: int
+    tolerance: float
+    fan_limit: float
+    crease_angle: float
+    frame: LocalFrame
+
+
+def _arguments(
+    curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
+) -> _Row:
+    """One call's checked inputs: the curves (never one curve twice), Segments,
+    WarpTolerance, FanLimit and CreaseAngle."""
+    a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
+    n = segments_input(segments)
+    tol = tolerance_input("WarpTolerance", tolerance)
+    limit = fan_limit_input(fan_limit)
+    sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
+    _distinct(a, b)
+    frame = LocalFrame.around(a, b)
+    return _Row(frame.to_local(a), frame.to_local(b), n, tol, limit, sharp, frame)
+
+
+def _distinct(curve_a: Curve, curve_b: Curve) -> None:
+    """Refuses one curve given as both edges."""
     if coincident(curve_a, curve_b):
         raise NodeError(
             "CurveA and CurveB are the same curve, so there is no strip between them: "
             "give two different edges (e.g. a bottom and a top curve)"
         )
+
+
+def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
+    """The kernel's strip between two checked curves, with its errors as node errors."""
+    _distinct(curve_a, curve_b)
     try:
         return ruling_developable(curve_a, curve_b, segments, tolerance)
     except ValueError as exc:
@@ -111,6 +146,7 @@ class RulingDevelopable(Node):
     """
 
     type_id = "developable.RulingDevelopable"
+    nickname, aliases = "RDev", ("ruling", "developable", "developable loft", "Edge Surface")
     inputs = (
         In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
         In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
@@ -149,21 +185,62 @@ class RulingDevelopable(Node):
     def solve(
         self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
-        n = segments_input(segments)
-        tol = tolerance_input("WarpTolerance", tolerance)
-        limit = fan_limit_input(fan_limit)
-        sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
+        row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
         self.check_cancelled()
-        # solved, checked and measured in a frame anchored at the curves, as at the world
-        # origin (site coordinates round only when the outputs are moved back)
-        frame = LocalFrame.around(a, b)
-        a, b = frame.to_local(a), frame.to_local(b)
-        # (its inputs were rounded at their world coordinates: tests that allow for the
-        # rounding of positions allow for that, as a solve there would)
-        with watched(self.check_cancelled), rounding_of(frame.origin):  # (the kernel looks at the token)
-            result = solve_strip(a, b, n, tol)
-            # Valid from the warp recomputed from the output rulings and the curves' tangents
+        # (the inputs were rounded at their world coordinates: the kernel's tests that allow
+        # for the rounding of positions allow for that, as a solve there would)
+        with watched(self.check_cancelled), rounding_of(row.frame.origin):  # (the kernel looks at the token)
+            result = ruling_developables([(row.a, row.b, row.segments, row.tolerance)])[0]
+        if isinstance(result, ValueError):
+            raise NodeError(sentence(result))
+        return self._outputs(row, result)
+
+    def solve_many(self, *columns: Sequence[Any]) -> list[Any] | None:
+        """Every strip of the solve at once (:func:`ruling_developables`: each step of the
+        kernel runs once for all of them), with each row's outputs and messages as
+        :meth:`solve` gives them."""
+        rows: list[_Row | NodeWarning] = []
+        stop: Exception | None = None  # what ends the solve at a row, after the rows before it
+        for row in zip(*columns, strict=True):
+            try:
+                rows.append(_arguments(*row))
+            except NodeWarning as exc:  # that row is refused, the others are made
+                rows.append(exc)
+            except Exception as exc:  # (solve raises it at that row, after the rows before)
+                stop = exc
+                break
+        jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
+        self.check_cancelled()
+        # (one rounding allowance for the batch: that of the strip farthest out, in practice
+        # every strip of one model sits at the same site)
+        far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
+        with watched(self.check_cancelled), rounding_of(far):
+            solved = iter(ruling_developables(jobs))
+        outputs: list[Any] = []
+        for row in rows:
+            if isinstance(row, NodeWarning):
+                self.refuse_row(row)
+                outputs.append(None)
+                continue
+            result = next(solved)
+            if isinstance(result, ValueError):
+                raise NodeError(sentence(result))
+            try:
+                outputs.append(self._outputs(row, result))
+            except NodeWarning as exc:
+                self.refuse_row(exc)
+                outputs.append(None)
+        if stop is not None:
+            raise stop
+        return outputs
+
+    def _outputs(
+        self, row: _Row, result: RulingResult
+    ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
+        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        a, b, n, tol, limit, sharp, frame = row
+        # Valid from the warp recomputed from the output rulings and the curves' tangents
+        with rounding_of(frame.origin):
             s, t, starts, ends = result.s, result.t, result.starts, result.ends
             strip = curve_strip_outputs(a, b, s, t, starts, ends, tol, result.valid)
             kinds = ruling_kinds(a, b, s, t, starts, ends, tol, strip.warp)

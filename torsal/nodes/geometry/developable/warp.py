@@ -195,14 +195,20 @@ def _angles(
 
 
 def consistently_oriented(
-    starts: FloatArray, ends: FloatArray, tangents_a: FloatArray, tangents_b: FloatArray
+    starts: FloatArray,
+    ends: FloatArray,
+    tangents_a: FloatArray,
+    tangents_b: FloatArray,
+    size: FloatArray | float | None = None,
 ) -> BoolArray:
     """Where the signed warp is a number within (−π/2, π/2): the end normals are defined
     and point to the same side, ``|warp_angles(..., signed=True)| < π/2`` (the rules of
-    :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays."""
+    :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays.
+    ``size`` is the size lengths are zero against (per row, for rows of several strips),
+    else that of all the rows: the diagonal of the box of their ends."""
     ruling = ends - starts
     n = len(ruling)
-    zero = (ZERO * _size(starts, ends)) ** 2
+    zero = (ZERO * (_size(starts, ends) if size is None else size)) ** 2
     if tangents_a.shape != ruling.shape or tangents_b.shape != ruling.shape:  # (broadcast ones)
         tangents_a = np.broadcast_to(tangents_a, ruling.shape)
         tangents_b = np.broadcast_to(tangents_b, ruling.shape)
