@@ -24,6 +24,7 @@ from torsal.nodes.geometry.developable import RulingResult, ruling_developable, 
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.local_frame import LocalFrame
+from torsal.nodes.geometry.strip_crossings import Crossings, crossings_of
 from torsal.nodes.geometry.vec_ops import norm, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
@@ -215,7 +216,11 @@ class RulingDevelopable(Node):
         # every strip of one model sits at the same site)
         far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
         with watched(self.check_cancelled), rounding_of(far):
-            solved = iter(ruling_developables(jobs))
+            results = ruling_developables(jobs)
+        # where each strip's triangles cross, all strips' tested at once
+        made = [r for r in results if not isinstance(r, ValueError)]
+        crossed = iter(crossings_of([(r.starts, r.ends) for r in made]))
+        solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
             if isinstance(row, NodeWarning):
@@ -226,7 +231,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result))
+                outputs.append(self._outputs(row, result, next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -235,9 +240,10 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, row: _Row, result: RulingResult
+        self, row: _Row, result: RulingResult, crossed: Crossings | None = None
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        """The outputs of one strip from the kernel's result, and what the node says of it
+        (``crossed``: where its triangles cross, when the caller has found it)."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
@@ -266,7 +272,7 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)
         surface, rulings = strip.surface, strip.rulings
