@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from torsal.engine.values import Point
 from torsal.nodes.common.convert import points as as_points
-from torsal.nodes.geometry.strip_crossings import crossings
+from torsal.nodes.geometry.strip_crossings import Crossings, crossings
 
 
 @dataclass(frozen=True)
@@ -30,19 +30,26 @@ def _at(point: np.ndarray) -> str:
 
 
 def fold_report(
-    starts: ArrayLike, ends: ArrayLike, crease_angle: ArrayLike, sharp: float, origin: ArrayLike | None = None
+    starts: ArrayLike,
+    ends: ArrayLike,
+    crease_angle: ArrayLike,
+    sharp: float,
+    origin: ArrayLike | None = None,
+    crossed: Crossings | None = None,
 ) -> FoldReport:
     """Creases of the strip whose angle (rad, NaN never) exceeds ``sharp``, and the pairs of its
     triangles that cross, with the message naming how many and the first of each. The rulings
     may be given in a frame anchored at the model whose ``origin`` is this (the points and the
-    message are then in world coordinates)."""
+    message are then in world coordinates). ``crossed``: :func:`crossings` of these rulings,
+    when the caller has found it (with other strips')."""
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
     angle = np.asarray(crease_angle, dtype=float)
     sharp_rows = np.flatnonzero(angle > sharp)
     shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=float)
     middles = 0.5 * (a[sharp_rows] + b[sharp_rows]) + shift
-    crossed = crossings(a, b)
+    if crossed is None:
+        crossed = crossings(a, b)
     crossed_at = crossed.points + shift
     parts = []
     if len(sharp_rows):

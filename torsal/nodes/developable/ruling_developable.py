@@ -24,7 +24,8 @@ from torsal.nodes.geometry.developable import RulingResult, ruling_developable, 
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.local_frame import LocalFrame
-from torsal.nodes.geometry.vec_ops import norm
+from torsal.nodes.geometry.strip_crossings import Crossings, crossings_of
+from torsal.nodes.geometry.vec_ops import norm, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
 
@@ -195,7 +196,9 @@ class RulingDevelopable(Node):
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
         row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
         self.check_cancelled()
-        with watched(self.check_cancelled):  # the kernel looks at the token between its steps
+        # (the inputs were rounded at their world coordinates: the kernel's tests that allow
+        # for the rounding of positions allow for that, as a solve there would)
+        with watched(self.check_cancelled), rounding_of(row.frame.origin):  # (the kernel looks at the token)
             result = ruling_developables([(row.a, row.b, row.segments, row.tolerance)])[0]
         if isinstance(result, ValueError):
             raise NodeError(sentence(result))
@@ -217,8 +220,15 @@ class RulingDevelopable(Node):
                 break
         jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
         self.check_cancelled()
-        with watched(self.check_cancelled):
-            solved = iter(ruling_developables(jobs))
+        # (one rounding allowance for the batch: that of the strip farthest out, in practice
+        # every strip of one model sits at the same site)
+        far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
+        with watched(self.check_cancelled), rounding_of(far):
+            results = ruling_developables(jobs)
+        # where each strip's triangles cross, all strips' tested at once
+        made = [r for r in results if not isinstance(r, ValueError)]
+        crossed = iter(crossings_of([(r.starts, r.ends) for r in made]))
+        solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
             if isinstance(row, NodeWarning):
@@ -229,7 +239,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result))
+                outputs.append(self._outputs(row, result, next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -238,24 +248,29 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, row: _Row, result: RulingResult
+        self, row: _Row, result: RulingResult, crossed: Crossings | None = None
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        """The outputs of one strip from the kernel's result, and what the node says of it
+        (``crossed``: where its triangles cross, when the caller has found it)."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
-        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+        with rounding_of(frame.origin):
+            s, t, starts, ends = result.s, result.t, result.starts, result.ends
+            strip = curve_strip_outputs(a, b, s, t, starts, ends, tol, result.valid)
+            kinds = ruling_kinds(a, b, s, t, starts, ends, tol, strip.warp)
         self.check_cancelled()
         if result.message:
             if result.creased_share > limit:
-                hint = better_pairing(a, b, n, tol, result)
+                with rounding_of(frame.origin):
+                    hint = better_pairing(a, b, n, tol, result)
                 text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
                 self.warn(f"{text}; {hint}" if hint else text)
             else:
                 self.remark(result.message)
         tip = _tips(result.starts, result.ends)
         if tip.any():
-            ends = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
-            self.remark(f"the strip tapers to a point at its {ends} (the curves meet there): the "
+            where = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
+            self.remark(f"the strip tapers to a point at its {where} (the curves meet there): the "
                         "warp of that zero-length ruling is undefined, so it is not Valid")
         # a fan ruling's or a tip's undefined warp is no news
         strip.report(self, explained=result.fan | tip)
@@ -265,8 +280,7 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)
         surface, rulings = strip.surface, strip.rulings

@@ -44,96 +44,165 @@ class Crossings:
         return len(self.first)
 
 
-def strip_triangles(starts: FloatArray, ends: FloatArray) -> tuple[FloatArray, IntArray, IntArray]:
+def strip_triangles(
+    starts: FloatArray, ends: FloatArray, owner: IntArray | None = None
+) -> tuple[FloatArray, IntArray, IntArray]:
     """The strip's triangles: corners ``(m, 3, 3)``, the corners' vertex numbers ``(m, 3)``
-    (one number per distinct point: a fan's apex is one vertex) and each triangle's piece."""
+    (one number per point of each edge, a run of rulings sharing an end — a fan's apex —
+    sharing its number) and each triangle's piece (its first ruling's row). ``owner``
+    numbers the strip of each row, for rulings of several strips one after the other:
+    no piece joins two strips."""
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
     n = len(a)
-    points = np.concatenate([a, b])
-    size = float(norm(points.max(axis=0) - points.min(axis=0))) if n else 0.0
-    grid = np.round((points - points.min(axis=0)) / (size * 1e-12 or 1.0))
-    _, vertex = np.unique(grid, axis=0, return_inverse=True)
-    vertex = vertex.reshape(-1)
-    va, vb = vertex[:n], vertex[n:]
+    if owner is None:
+        owner = np.zeros(n, dtype=np.int64)
+    joined = owner[1:] == owner[:-1]
+    # each strip's size (the ends' box), for what counts as the same point
+    size = np.zeros(int(owner.max(initial=-1)) + 1)
+    if n:
+        low = np.full((len(size), 3), np.inf)
+        high = np.full((len(size), 3), -np.inf)
+        np.minimum.at(low, owner, np.minimum(a, b))
+        np.maximum.at(high, owner, np.maximum(a, b))
+        size = norm(high - low)
+    tol = 1e-12 * size[owner[:-1]] if n else np.empty(0)
+    same_a = (norm(a[1:] - a[:-1]) <= tol) & joined
+    same_b = (norm(b[1:] - b[:-1]) <= tol) & joined
+    va = np.concatenate([[0], np.cumsum(~same_a)])
+    vb = np.concatenate([[0], np.cumsum(~same_b)]) + int(va[-1]) + 1
     i = np.arange(n - 1)
     p0, p1, q0, q1 = va[:-1], va[1:], vb[:-1], vb[1:]
-    fan_a = p0 == p1  # apex on A: the triangle A_i, B_i, B_i+1
-    fan_b = (q0 == q1) & ~fan_a
-    quad = ~fan_a & ~fan_b
-    # a quad is cut along its shorter diagonal
-    short = norm(b[1:] - a[:-1]) <= norm(a[1:] - b[:-1])
-    rows = []
-    rows.append((i[fan_a], np.stack([p0, q0, q1], axis=1)[fan_a]))
-    rows.append((i[fan_b], np.stack([p0, q0, p1], axis=1)[fan_b]))
-    qs = quad & short  # diagonal A_i → B_i+1
-    rows.append((i[qs], np.stack([p0, q0, q1], axis=1)[qs]))
-    rows.append((i[qs], np.stack([p0, q1, p1], axis=1)[qs]))
-    ql = quad & ~short  # diagonal B_i → A_i+1
-    rows.append((i[ql], np.stack([p0, q0, p1], axis=1)[ql]))
-    rows.append((i[ql], np.stack([p1, q0, q1], axis=1)[ql]))
-    piece = np.concatenate([r[0] for r in rows]).astype(np.int64)
-    ids = np.concatenate([r[1] for r in rows]).astype(np.int64).reshape(-1, 3)
-    unique_points = np.empty((int(vertex.max(initial=-1)) + 1, 3))
-    unique_points[vertex] = points
-    return unique_points[ids], ids, piece
+    fan_a = same_a  # apex on A: the triangle A_i, B_i, B_i+1
+    fan_b = same_b & ~fan_a
+    quad = ~fan_a & ~fan_b & joined
+    short = norm(b[1:] - a[:-1]) <= norm(a[1:] - b[:-1])  # a quad is cut along its shorter diagonal
+    qs, ql = quad & short, quad & ~short
+    corners_of = (  # (rows, its three corners) of each triangle, by sort of piece
+        (fan_a, (p0, q0, q1)), (fan_b, (p0, q0, p1)), (qs, (p0, q0, q1)), (qs, (p0, q1, p1)),
+        (ql, (p0, q0, p1)), (ql, (p1, q0, q1)),
+    )
+    piece = np.concatenate([i[rows] for rows, _ in corners_of]).astype(np.int64)
+    ids = np.concatenate([np.stack(v, axis=1)[rows] for rows, v in corners_of]).astype(np.int64)
+    ids = ids.reshape(-1, 3)
+    vertices = np.empty((int(vb[-1]) + 1, 3))
+    vertices[va], vertices[vb] = a, b
+    return vertices[ids], ids, piece
+
+
+_NONE = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
+
+#: Below this many triangles every pair is looked at; above, only those a k-d tree finds near.
+_ALL_PAIRS = 400
 
 
 def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
     """Pairs of the strip's triangles (:func:`strip_triangles`) that cross each other."""
-    corners, ids, piece = strip_triangles(starts, ends)
-    empty = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
-    if len(corners) < 2:
-        return empty
+    return crossings_of([(starts, ends)])[0]
+
+
+def crossings_of(strips: list[tuple[FloatArray, FloatArray]]) -> list[Crossings]:
+    """:func:`crossings` of each strip ``(starts, ends)``, all tested at once (each strip's
+    triangles only against its own: the fixed costs of the tests are paid once)."""
+    rows_per = np.array([len(np.asarray(a).reshape(-1, 3)) for a, _ in strips], dtype=np.int64)
+    if not len(strips) or not rows_per.sum():
+        return [_NONE for _ in strips]
+    owner_rows = np.repeat(np.arange(len(strips)), rows_per)
+    corners, ids, piece_all = strip_triangles(
+        np.concatenate([np.asarray(a, dtype=float).reshape(-1, 3) for a, _ in strips]),
+        np.concatenate([np.asarray(b, dtype=float).reshape(-1, 3) for _, b in strips]),
+        owner_rows,
+    )
+    order = np.argsort(owner_rows[piece_all], kind="stable")  # triangles strip by strip
+    corners, ids, piece_all = corners[order], ids[order], piece_all[order]
+    strip_of = owner_rows[piece_all]
+    piece = piece_all - np.concatenate([[0], np.cumsum(rows_per)])[strip_of]  # row within its strip
+    counts = np.bincount(strip_of, minlength=len(strips)).astype(np.int64)
+    first = np.concatenate([[0], np.cumsum(counts)])
+    parts = range(len(strips))
     low, high = corners.min(axis=1), corners.max(axis=1)
-    size = float(norm(high.max(axis=0) - low.min(axis=0)))
-    eps = TOUCH * size
+    box_low = np.full((len(strips), 3), np.inf)
+    box_high = np.full((len(strips), 3), -np.inf)
+    np.minimum.at(box_low, strip_of, low)
+    np.maximum.at(box_high, strip_of, high)
+    eps = TOUCH * np.where(counts > 0, norm(np.where(counts[:, None] > 0, box_high - box_low, 0.0)), 0.0)
     centre, half = 0.5 * (low + high), 0.5 * (high - low)
-    tree = cKDTree(centre)
-    reach = 2.0 * float(half.max())
-    found: list[tuple[IntArray, IntArray, FloatArray]] = []
-    for start in range(0, len(corners), _BLOCK):
-        rows = np.arange(start, min(start + _BLOCK, len(corners)))
-        near = tree.query_ball_point(centre[rows], reach, p=np.inf)
-        counts = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
-        if not counts.sum():
+    pairs: list[tuple[IntArray, IntArray]] = []
+    for k in range(len(parts)):
+        m = int(counts[k])
+        if m < 2:
             continue
-        i = np.repeat(rows, counts)
-        j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
-        keep = j > i
+        if m <= _ALL_PAIRS:
+            i, j = np.triu_indices(m, 1)
+            pairs.append((i + first[k], j + first[k]))
+            continue
+        rows_k = slice(first[k], first[k + 1])
+        tree = cKDTree(centre[rows_k])
+        reach = 2.0 * float(half[rows_k].max())
+        for start in range(0, m, _BLOCK):
+            rows = np.arange(start, min(start + _BLOCK, m))
+            near = tree.query_ball_point(centre[rows_k][rows], reach, p=np.inf)
+            lengths = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
+            if not lengths.sum():
+                continue
+            i = np.repeat(rows, lengths)
+            j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
+            later = j > i
+            pairs.append((i[later] + first[k], j[later] + first[k]))
+    found_i, found_j, found_x = [], [], []
+    if pairs:  # (all strips' pairs tested at once)
+        pairs = [(np.concatenate([i for i, _ in pairs]), np.concatenate([j for _, j in pairs]))]
+    for i, j in pairs:
+        i, j = np.asarray(i, dtype=np.int64), np.asarray(j, dtype=np.int64)
+        e = eps[strip_of[i]]
+        keep = (np.abs(centre[i] - centre[j]) <= half[i] + half[j] + e[:, None]).all(axis=1)
         i, j = i[keep], j[keep]
-        overlap = (np.abs(centre[i] - centre[j]) <= half[i] + half[j] + eps).all(axis=1)
-        i, j = i[overlap], j[overlap]
+        # neighbours along the strip share an edge (two corners): no edge of either is free
+        shared = (ids[i, :, None] == ids[j, None, :]).any(axis=2).sum(axis=1)
+        i, j = i[shared < 2], j[shared < 2]
         if len(i):
-            hit, point = _pairs_cross(corners, ids, i, j, eps)
-            found.append((i[hit], j[hit], point[hit]))
-    if not found:
-        return empty
-    i, j, points = (np.concatenate(parts) for parts in zip(*found, strict=True))
-    return Crossings(piece[i], piece[j], points)
+            hit, point = _pairs_cross(corners, ids, i, j, eps[strip_of[i]])
+            found_i.append(i[hit])
+            found_j.append(j[hit])
+            found_x.append(point[hit])
+    if found_i:
+        i, j, x = np.concatenate(found_i), np.concatenate(found_j), np.concatenate(found_x)
+    else:
+        i = j = np.empty(0, np.int64)
+        x = np.empty((0, 3))
+    owner = strip_of[i]
+    return [Crossings(piece[i[owner == k]], piece[j[owner == k]], x[owner == k]) for k in parts]
 
 
 def _pairs_cross(
-    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: float
+    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
-    """Whether each pair (triangle i, triangle j) crosses, and a point where it does."""
-    hit = np.zeros(len(i), dtype=bool)
-    point = np.full((len(i), 3), np.nan)
-    for one, other in ((i, j), (j, i)):
-        for k in range(3):
-            m = (k + 1) % 3
-            # an edge touching the other triangle at a shared corner is not tested
-            shared = (ids[one, k, None] == ids[other]) | (ids[one, m, None] == ids[other])
-            free = ~shared.any(axis=1)
-            h, x = _segment_through(corners[one, k], corners[one, m], corners[other], eps)
-            new = free & h & ~hit
-            point[new] = x[new]
-            hit |= free & h
-    return hit, point
+    """Whether each pair (triangle i, triangle j) crosses, and a point where it does: the
+    three edges of each against the other, all six at once."""
+    k = len(i)
+    one = np.concatenate([i, j])  # the triangle whose edges are tested, against the other's inside
+    other = np.concatenate([j, i])
+    start = np.array([0, 1, 2])
+    stop = np.array([1, 2, 0])
+    # (edge e of triangle ``one``): rows ordered edge-major, (3, 2k)
+    p = corners[one][:, start].transpose(1, 0, 2).reshape(-1, 3)
+    q = corners[one][:, stop].transpose(1, 0, 2).reshape(-1, 3)
+    tri = np.tile(corners[other], (3, 1, 1))
+    ends_ids = np.stack([ids[one][:, start].T.reshape(-1), ids[one][:, stop].T.reshape(-1)], axis=1)
+    others = np.tile(ids[other], (3, 1))
+    # an edge touching the other triangle at a shared corner is not tested
+    free = ~(ends_ids[:, :, None] == others[:, None, :]).any(axis=(1, 2))
+    h, x = _segment_through(p, q, tri, np.tile(eps, 6))
+    h &= free
+    h = h.reshape(6, k)  # (edge of i or j, pair)
+    x = x.reshape(6, k, 3)
+    hit = h.any(axis=0)
+    first = np.argmax(h, axis=0)
+    return hit, x[first, np.arange(k)]
 
 
 def _segment_through(
-    p: FloatArray, q: FloatArray, tri: FloatArray, eps: float
+    p: FloatArray, q: FloatArray, tri: FloatArray, eps: FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
     """Whether segments ``p → q`` pass through the inside of triangles ``tri`` (``(k, 3, 3)``)
     more than ``eps`` from their edges and the segments' ends, and where."""
