@@ -19,6 +19,7 @@ from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
+from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
@@ -167,6 +168,13 @@ class RulingDevelopable(Node):
         self.check_cancelled()
         with watched(self.check_cancelled):
             solved = iter(ruling_developables(jobs))
+        results = list(solved)
+        # every strip's warp recomputed from its output rulings at once
+        made = [(row, result) for row, result in zip(
+            (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
+        ) if not isinstance(result, ValueError)]
+        warps = iter(curve_warps([(row[0], row[1], r.s, r.t, r.starts, r.ends) for row, r in made]))
+        solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
             if isinstance(row, NodeWarning):
@@ -177,7 +185,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(*row, result))
+                outputs.append(self._outputs(*row, result, next(warps)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -186,11 +194,15 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, a: Curve, b: Curve, n: int, tol: float, limit: float, result: RulingResult
+        self, a: Curve, b: Curve, n: int, tol: float, limit: float, result: RulingResult,
+        warp: np.ndarray | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str]]:
-        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        """The outputs of one strip from the kernel's result (and its recomputed ``warp``,
+        where it is at hand), and what the node says of it."""
         # Valid from the warp recomputed from the output rulings and the curves' tangents
-        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+        strip = curve_strip_outputs(
+            a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp
+        )
         self.check_cancelled()
         if result.message:
             if result.creased_share > limit:

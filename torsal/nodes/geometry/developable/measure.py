@@ -20,9 +20,9 @@ import numpy as np
 from ..array_types import BoolArray, FloatArray, IntArray
 from ..vec_ops import _EPS, POSITION_ULPS, cross, flatnonzero, norm, position_rounding, unit
 from .candidates import ROOT, Candidates
-from .stack import Stack, evaluate_each, sizes
+from .stack import Stack, evaluate_each
 from .strip import SIDE, Strip
-from .warp import _angles, _normals, in_plane_tangent, warp_angles
+from .warp import _angles, _normals, in_plane_tangent, sizes, warp_angles
 
 #: One strip's rulings to check: the strip, s, t, per ruling its station (−1 for an added
 #: ruling), and the station's chosen candidate (−1 for none) among ``good``.

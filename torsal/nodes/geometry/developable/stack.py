@@ -18,8 +18,6 @@ import numpy as np
 
 from ..array_types import FloatArray, IntArray
 from ..curve_base import Curve
-from ..vec_ops import flatnonzero, norm
-from .warp import _size
 
 
 class Stack:
@@ -87,19 +85,3 @@ def evaluate_each(
             out[:, low:high] = evaluate(x[low:high], order)
     return list(out)
 
-
-def sizes(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """:func:`.warp._size` of each strip's rows of ``starts`` and ``ends``: the diagonal of
-    the bounding box of their finite points (0 for a strip without rows)."""
-    size = np.zeros(len(stack))
-    rows = flatnonzero(stack.counts > 0)
-    if len(rows) == 0:
-        return size
-    first = stack.starts[rows]  # (reduceat over the strips that have rows)
-    high = np.maximum(np.maximum.reduceat(starts, first, axis=0), np.maximum.reduceat(ends, first, axis=0))
-    low = np.minimum(np.minimum.reduceat(starts, first, axis=0), np.minimum.reduceat(ends, first, axis=0))
-    size[rows] = norm(high - low)
-    for i in flatnonzero(~np.isfinite(size)):  # a NaN or infinite coordinate: the finite ones'
-        low_row, high_row = stack.offsets[i], stack.offsets[i + 1]
-        size[i] = _size(starts[low_row:high_row], ends[low_row:high_row])
-    return size
