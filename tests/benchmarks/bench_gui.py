@@ -110,9 +110,12 @@ def headless_resolve_seconds(repeats: int = 7) -> float:
 
 
 _REFERENCE_SOLVE = """
-import statistics, sys, time
+import os, statistics, sys, time
 sys.path.insert(0, sys.argv[1])
-from torsal.app.headless import run_file
+if os.path.isdir(os.path.join(sys.argv[1], "torsal")):
+    from torsal.app.headless import run_file
+else:  # (before commit 6f94a22 the packages were top-level: app, engine, nodes)
+    from app.headless import run_file
 run = run_file(sys.argv[3])
 times = []
 for index in range(int(sys.argv[2]) + 1):
@@ -133,7 +136,7 @@ def reference_resolve_seconds(tree, repeats: int = 7) -> float:
     graph = EXAMPLES / "kaohsiung-stadium.graph"
     done = subprocess.run(
         [sys.executable, "-c", _REFERENCE_SOLVE, str(tree), str(repeats), str(graph)],
-        capture_output=True, text=True, check=True, timeout=300,
+        capture_output=True, text=True, check=True, timeout=300, cwd=tree,  # (not today's torsal)
     )
     return float(done.stdout.split()[-1])
 

@@ -103,7 +103,7 @@ from torsal.nodes.geometry.array_types import BoolArray, IntArray
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
-from .candidates import Candidates, choose_all, near_partners
+from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
@@ -305,6 +305,7 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     solves = []
     choices = choose_all(strips)
     check()
+    partners = []
     for strip, (chosen, good) in zip(strips, choices, strict=True):
         n = len(strip.s)
         has = chosen >= 0
@@ -312,10 +313,12 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
         slope = np.zeros(n)
         partner = chosen[has]
         t[has], slope[has] = good.t[partner], good.slope[partner]
-        # stations without a partner get one first, so that a planar piece's fans end where
-        # the next station's partner is (two curves in one plane: otherwise a fan over all
-        # of B, then a partner running back)
-        near_partners(strip, t)
+        partners.append((t, slope, has))
+    # stations without a partner get one first, so that a planar piece's fans end where
+    # the next station's partner is (two curves in one plane: otherwise a fan over all of
+    # B, then a partner running back)
+    near_partners_all(strips, [t for t, _, _ in partners])
+    for strip, (chosen, good), (t, slope, has) in zip(strips, choices, partners, strict=True):
         fans, planar = flat_fans(strip, t, chosen, good)
         regular = has & ~planar
         fans += a_fans(strip, t, slope, regular)
