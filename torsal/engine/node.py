@@ -23,7 +23,6 @@ something and go on it calls :meth:`Node.remark` or :meth:`Node.warn`.
 from __future__ import annotations
 
 import enum
-import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -32,6 +31,9 @@ from typing import Any, ClassVar
 from torsal.engine.errors import Cancelled as Cancelled
 from torsal.engine.errors import NodeError as NodeError
 from torsal.engine.errors import NodeWarning as NodeWarning
+from torsal.engine.messages import CancelToken as CancelToken
+from torsal.engine.messages import Level as Level
+from torsal.engine.messages import Message as Message
 from torsal.engine.solve_context import SolveContext, active
 from torsal.engine.types import ValueType
 from torsal.engine.widgets import Widget
@@ -47,33 +49,6 @@ class Access(enum.Enum):
 
 
 ITEM, LIST, TREE = Access.ITEM, Access.LIST, Access.TREE
-
-
-class Level(enum.IntEnum):
-    """Message levels, in increasing severity."""
-
-    REMARK = 0
-    WARNING = 1
-    ERROR = 2
-
-
-class CancelToken:
-    """Shared between a front-end and a running solve; long nodes call :meth:`check`."""
-
-    def __init__(self) -> None:
-        self._event = threading.Event()
-
-    def cancel(self) -> None:
-        self._event.set()
-
-    @property
-    def cancelled(self) -> bool:
-        return self._event.is_set()
-
-    def check(self) -> None:
-        """Raise :class:`Cancelled` if the solve has been cancelled."""
-        if self._event.is_set():
-            raise Cancelled
 
 
 _NO_DEFAULT = object()
@@ -150,15 +125,6 @@ class Setting:
     kind: type
     default: Any
     description: str = ""
-
-
-@dataclass(frozen=True)
-class Message:
-    level: Level
-    text: str
-
-    def to_json(self) -> dict[str, str]:
-        return {"level": self.level.name.lower(), "text": self.text}
 
 
 #: The most calls of ``solve`` one solve of a node makes (item access over long lists, or

@@ -2,7 +2,7 @@
 
 Each node's inputs are gathered from its wires' cached output trees (or from its
 persistent values and defaults), modified, cast to the port types and *matched* the
-Grasshopper way (see ``shared/spec/data-trees.md``); ``solve`` is then called once per
+Grasshopper way (see ``docs/data-trees.md``); ``solve`` is then called once per
 match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or ``missing`` with its
 messages and solve time. An exception in one node never stops the others.
 """
@@ -167,7 +167,9 @@ class Solver:
         node = record.node
         started = time.perf_counter()
         if is_placeholder(node):
-            text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
+            package = record.raw.get("plugin")  # the plug-in the file says provides it
+            source = f" (it comes from the plug-in package {package!r})" if isinstance(package, str) else ""
+            text = f"node type {record.type_id!r} is not installed{source}; its data is kept as it is"
             return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))

@@ -28,7 +28,7 @@ import numpy as np
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import _einsum, cross, dot, extent, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
@@ -616,10 +616,10 @@ def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) 
     """
     centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
     a, b = a - centre, b - centre
-    aa, bb = _einsum("ij,ij->i", a, a), _einsum("ij,ij->i", b, b)
+    aa, bb = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
     rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
-    ra = ta @ b.T - _einsum("ij,ij->i", a, ta)[:, None]
-    rb = _einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
+    ra = ta @ b.T - np.einsum("ij,ij->i", a, ta)[:, None]
+    rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
     triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
     return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
 

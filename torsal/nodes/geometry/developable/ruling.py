@@ -100,6 +100,7 @@ from numpy.typing import ArrayLike
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
+from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
@@ -271,8 +272,7 @@ def _strip(
     curve_a: Curve, curve_b: Curve, segments: int, warp_tolerance: float, spacing: Spacing, samples: int
 ) -> Strip:
     """The checked arguments of one strip, as the :class:`Strip` its solve starts from."""
-    if int(segments) != segments or segments < 1:
-        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
+    segments = segment_count(segments)
     tolerance = float(warp_tolerance)
     if not (np.isfinite(tolerance) and tolerance >= 0):
         raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")

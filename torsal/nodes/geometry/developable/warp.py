@@ -396,6 +396,7 @@ def _interior_of_fans(points: FloatArray, size: float | FloatArray, stack: Stack
 def curve_warp(
     curve_a: Curve, curve_b: Curve, s: ArrayLike, t: ArrayLike, starts: ArrayLike, ends: ArrayLike,
     signed: bool = False,
+    fans: bool = True,
 ) -> FloatArray:
     """Warp angles (as :func:`warp_angles`, [0, π] or signed, NaN where undefined) of the
     rulings ``starts[i] → ends[i]`` of a strip between two curves, in order along it,
@@ -408,7 +409,9 @@ def curve_warp(
     that tangent runs along the ruling, the one-sided tangent that gives the least
     defined warp (every direction of the corner's cone touches it). A ruling
     inside a fan (its end shared with every neighbouring ruling) is measured in the
-    plane of the fan's triangles (the curve's tangent at the fan's apex plays no part).
+    plane of the fan's triangles (the curve's tangent at the fan's apex plays no part);
+    with ``fans=False`` it is measured with both curves' tangents there too (how far the
+    ruling is from torsal, whatever sheet lies beside it: see :mod:`.kinds`).
     """
     s = np.asarray(s, dtype=float).reshape(-1)
     t = np.asarray(t, dtype=float).reshape(-1)
@@ -418,7 +421,9 @@ def curve_warp(
     tb = curve_b.derivative_at(t, 1)
     sides_a, sides_b = _corner_sides(curve_a, s), _corner_sides(curve_b, t)
     size = _size(a, b)
-    if a.shape == b.shape:  # both edges' fans at once
+    if not fans:
+        apex_a = apex_b = np.zeros(len(a), dtype=bool)
+    elif a.shape == b.shape:  # both edges' fans at once
         apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size)
     else:
         apex_a, apex_b = _interior_of_fans(a[None], size)[0], _interior_of_fans(b[None], size)[0]
