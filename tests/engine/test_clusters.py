@@ -127,7 +127,8 @@ def test_cluster_of_first_steps_matches_the_closed_form(library: Registry) -> No
     graph, _ = first_steps(library)
     cluster = make_cluster(graph, INNER, name="Panels")
     solver = solved(graph)
-    heights, total = (solver.result(cluster).output(p) for p in ("Result", "Result 2"))
+    names = ("Panel heights Result", "Total length Result")
+    heights, total = (solver.result(cluster).output(p) for p in names)
     expected = [2.5 + 0.5 * math.sin(2 * math.pi * (1.2 * i) / 6) for i in range(12)]
     assert heights.branch(heights.paths[0]) == pytest.approx(expected, abs=1e-12)
     assert total.all_items() == pytest.approx([14.4], abs=1e-12)
@@ -139,11 +140,13 @@ def test_cluster_ports_are_the_wires_that_crossed_the_selection(library: Registr
     definition = definition_of(graph, cluster)
     # width and count each feed two inner inputs: one port per outside source
     assert definition.input_names() == ["Step", "Count", "a"]
-    assert definition.output_names() == ["Result", "Result 2"]
+    # two inner outputs called Result: each is named after its node, as the designer labelled it
+    assert definition.output_names() == ["Panel heights Result", "Total length Result"]
     assert wire_set(graph) == {
         ("width", "Value", cluster, "Step"), ("count", "Value", cluster, "Count"),
         ("wave", "Value", cluster, "a"),
-        (cluster, "Result", "show_heights", "Input"), (cluster, "Result 2", "show_total", "Input"),
+        (cluster, "Panel heights Result", "show_heights", "Input"),
+        (cluster, "Total length Result", "show_total", "Input"),
     }
 
 
@@ -200,7 +203,7 @@ def test_headless_run_solves_clusters(library: Registry, tmp_path: Path) -> None
     result = run_file(path, registry=library).to_json()
     expected = [round(v, 12) for v in before["heights"]["Result"].all_items()]
     assert result["ok"]
-    shown = result["nodes"][cluster]["outputs"]["Result"]["{0}"]
+    shown = result["nodes"][cluster]["outputs"]["Panel heights Result"]["{0}"]
     assert [round(v, 12) for v in shown] == expected
 
 

@@ -34,13 +34,15 @@ OUTSIDE = ("width", "count", "wave", "show_heights", "show_total")
 
 
 def select_inner_nodes(window: Any) -> None:
-    """A box round Series and Total, then a Ctrl-click on Heights' title."""
+    """A box round Series and Total, then a Shift-click on Heights' title (Shift adds, as in
+    Grasshopper)."""
     scene = window.scene
     top_left = scene.nodes["edges"].sceneBoundingRect().topLeft() - QPointF(8, 8)
     bottom_right = scene.nodes["total"].sceneBoundingRect().bottomRight() + QPointF(8, 8)
     drag(window, view_point(window, top_left), view_point(window, bottom_right))
     assert set(scene.selected_node_ids()) == {"edges", "total"}
-    QTest.mouseClick(window.view.viewport(), Qt.MouseButton.LeftButton, CTRL, title_point(window, "heights"))
+    shift = Qt.KeyboardModifier.ShiftModifier
+    QTest.mouseClick(window.view.viewport(), Qt.MouseButton.LeftButton, shift, title_point(window, "heights"))
     assert set(scene.selected_node_ids()) == INNER
 
 

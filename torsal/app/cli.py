@@ -80,6 +80,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
                      help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), "
                      ".obj/.stl/.ply/.glb")
+    run.add_argument("--preview", action="store_true",
+                     help="with --export of cut sheets (.dxf/.svg), also write a PNG of each sheet beside it")
     run.set_defaults(handler=_run)
 
     check = commands.add_parser("check", help="parse and validate a .graph file without solving")
@@ -119,8 +121,11 @@ def _run(args: argparse.Namespace) -> int:
 
     args.file = choose(args.file, args.example, "run")
     out = out_folder(args.out) if args.out is not None else None  # resolved once; a link is refused
-    run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=out,
-                   node_progress=_progress_line() if sys.stderr.isatty() else None)
+    from torsal.app.progress import reporting
+
+    with reporting(sys.stderr) as node_progress:  # rich's line on a terminal, else a heartbeat
+        run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=out,
+                       node_progress=node_progress)
     for note in run.notes:
         print(f"torsal: note: {note}", file=sys.stderr)
     for request in args.export:
@@ -134,7 +139,8 @@ def _run(args: argparse.Namespace) -> int:
         if port not in result.outputs:
             raise UsageError(f"--export {request}: {node_id!r} has no output {port!r}")
         try:
-            written = export_tree(result.outputs[port], Path(destination), units=run.graph.units)
+            written = export_tree(result.outputs[port], Path(destination), units=run.graph.units,
+                                  preview=args.preview)
         except (ExportError, OSError) as exc:
             raise UsageError(f"--export {request}: {exc}") from None
         run.exported += written
@@ -161,20 +167,6 @@ def _timings(run: Run) -> str:
     lines += [f"  {result.seconds * 1000:10.3f} ms  {result.state:8s} {node_id}  ({type_id})"
               for result, node_id, type_id in rows]
     return "\n".join(lines)
-
-
-def _progress_line():  # type: ignore[no-untyped-def]
-    """A callback that keeps one line on stderr up to date: ``node 42 %``."""
-    shown = [""]
-
-    def show(node_id: str, fraction: float) -> None:
-        text = f"{node_id} {100 * fraction:3.0f} %"
-        if text != shown[0]:
-            end = "\n" if fraction >= 1 else ""
-            print(f"\r{text}", end=end, file=sys.stderr, flush=True)
-            shown[0] = text
-
-    return show
 
 
 def _check(args: argparse.Namespace) -> int:

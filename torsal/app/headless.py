@@ -251,11 +251,13 @@ def run_file(
                 notes.append(note)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
+    home = Path(path).resolve().parent  # files the graph reads are found from here, with or without --out
     if isinstance(write_folder, OutFolder) and write_folder.identity is not None:
         access = WriteAccess.held(write_folder.path, write_folder.identity, allowed=allow_writes)
+        access.read_folder = home
     else:
-        folder = Path(write_folder) if write_folder is not None else Path(path).resolve().parent
-        access = WriteAccess(folder.resolve(), allowed=allow_writes)
+        folder = Path(write_folder) if write_folder is not None else home
+        access = WriteAccess(folder.resolve(), allowed=allow_writes, read_folder=home)
     solver = Solver(graph, access)
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)

@@ -123,6 +123,24 @@ def _restore_orders(graph: Graph, orders: dict[tuple[str, str], list[Wire]]) -> 
             graph.connect_wire(wire)
 
 
+def _exposed_names(graph: Graph, ports: list[tuple[str, str]]) -> list[str]:
+    """The names of a new cluster's ports, after the inner ports they expose: the port's
+    own name ("Factor") when no other port of that side shares it, else the inner node's
+    title before it ("Copied up Geometry", "Scaled inwards Geometry"), so two outputs are
+    never "Geometry" and "Geometry 2". Renamed later in the cluster's ports dialog."""
+    counts: dict[str, int] = {}
+    for _node, port in ports:
+        counts[port] = counts.get(port, 0) + 1
+    names = []
+    for node_id, port in ports:
+        if counts[port] == 1:
+            names.append(port)
+            continue
+        title = graph.nodes[node_id].title
+        names.append(port if title == port else f"{title} {port}")
+    return _unique_names(names)
+
+
 def ordered_unique_wires(wires: list[Wire]) -> list[Wire]:
     return list(dict.fromkeys(wires))
 
@@ -184,8 +202,8 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
         return (position(top.target)[1], position(top.target)[0], order_of[first_out[key]])
 
     out_keys.sort(key=out_place)
-    in_names = _unique_names([first_in[k].target_port for k in in_keys])
-    out_names = _unique_names([first_out[k].source_port for k in out_keys])
+    in_names = _exposed_names(graph, [(first_in[k].target, first_in[k].target_port) for k in in_keys])
+    out_names = _exposed_names(graph, [(k[0], k[1]) for k in out_keys])
 
     xs = [r.position[0] for r in records]
     ys = [r.position[1] for r in records]

@@ -72,8 +72,8 @@ class NodeRecord:
 
     @property
     def title(self) -> str:
-        """The label, or the node type's name; shortened for messages and the canvas."""
-        text = self.label or self.node.name()
+        """The label, or the node type's name as words; shortened for messages and the canvas."""
+        text = self.label or self.node.display_name()
         return text if len(text) <= 60 else text[:59] + "…"
 
     def input_state(self, port: str) -> InputState:

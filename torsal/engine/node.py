@@ -23,6 +23,7 @@ something and go on it calls :meth:`Node.remark` or :meth:`Node.warn`.
 from __future__ import annotations
 
 import enum
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -49,6 +50,15 @@ class Access(enum.Enum):
 
 
 ITEM, LIST, TREE = Access.ITEM, Access.LIST, Access.TREE
+
+
+_WORD_BREAK = re.compile(r"(?<=[a-z])(?=[A-Z0-9])|(?<=[A-Z])(?=[A-Z][a-z])|(?<=[0-9])(?=[A-Z])")
+
+
+def words(name: str) -> str:
+    """A CamelCase type name as words: ``DivideCurve`` → "Divide Curve", ``XYPlane`` →
+    "XY Plane", ``Export3dm`` → "Export 3dm" (a name with spaces is left as it is)."""
+    return name if " " in name else _WORD_BREAK.sub(" ", name)
 
 
 _NO_DEFAULT = object()
@@ -141,6 +151,11 @@ class Node:
     outputs: ClassVar[tuple[Out, ...]] = ()
     settings_spec: ClassVar[tuple[Setting, ...]] = ()
     icon: ClassVar[str] = ""
+    #: A short name for the canvas and search, as Grasshopper's nicknames ("Pt", "Div").
+    nickname: ClassVar[str] = ""
+    #: Other names a designer may type for this node: Grasshopper's name for the same
+    #: thing first ("Construct Point"), then plain words ("unroll", "flat pattern").
+    aliases: ClassVar[tuple[str, ...]] = ()
     #: How a front-end lets a designer set this node by hand (:mod:`torsal.engine.widgets`), if at all.
     widget: ClassVar[Widget | None] = None
     #: The most calls of ``solve`` in one solve of this node (the solver refuses more
@@ -305,6 +320,10 @@ class Node:
     @classmethod
     def name(cls) -> str:
         return cls.type_id.split(".", 1)[-1]
+
+    def display_name(self) -> str:
+        """The name as words, for a node's title: ``DivideCurve`` → "Divide Curve"."""
+        return words(self.name())
 
     @classmethod
     def help(cls) -> str:

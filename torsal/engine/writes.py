@@ -61,12 +61,15 @@ class WriteAccess:
 
     ``folder`` is the write folder (relative paths start there); ``None`` for a graph
     that has no file yet, which may write nothing. ``allowed`` is the user's consent.
+    ``read_folder`` is where a file a node *reads* is looked for: the graph's own folder,
+    which ``--out`` does not change (``None``: the write folder).
     """
 
     folder: Path | None = None
     allowed: bool = False
     requests: dict[str, WriteRequest] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
+    read_folder: Path | None = None
     _identity: tuple[Path, tuple[int, int] | None] | None = field(default=None, repr=False, compare=False)
     _claims: dict[Path, str] = field(default_factory=dict, repr=False, compare=False)
     _claims_solve: object = field(default=None, repr=False, compare=False)
@@ -151,6 +154,12 @@ class NodeFiles:
     @property
     def folder(self) -> Path | None:
         return self.access.folder
+
+    @property
+    def read_folder(self) -> Path | None:
+        """Where a relative path a node reads starts: the graph's folder, even with ``--out``."""
+        access = self.access
+        return access.read_folder if access.read_folder is not None else access.folder
 
     def target(self, text: object, what: str = "Path") -> Path:
         """The absolute file ``text`` names inside the write folder, or :class:`WriteRefused`.

@@ -33,6 +33,7 @@ class Job:
     allow_writes: bool = False
     write_root: str | None = None  # variant N writes into write_root/NNNNN when allowed
     image_root: str | None = None  # variant N is drawn into image_root/NNNNN.png (--images)
+    read_root: str | None = None  # the graph's folder: files its nodes read are found from here
 
 
 @dataclass
@@ -131,6 +132,8 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
             return Outcome(values, {t.name: None for t in job.targets},
                            f"error: cannot make the variant's folder: {exc.strerror or exc}")
         access = WriteAccess.held(root / parts[1], identity, allowed=True)
+    # files the graph reads are found from its own folder, wherever variants write
+    access.read_folder = Path(job.read_root) if job.read_root is not None else None
     solver = Solver(graph, access)
     if solver.solve(token).cancelled:
         raise Stopped

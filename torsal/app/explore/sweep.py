@@ -67,7 +67,8 @@ def run_sweep(
     the tables: Design Explorer finds pictures beside its ``data.csv``)."""
     folder = out if isinstance(out, OutFolder) or out is None else OutFolder.resolve(out)
     job = Job(tuple(study.targets), allow_writes, str(folder / "variants") if folder else None,
-              str(folder.path) if folder is not None and images else None)
+              str(folder.path) if folder is not None and images else None,
+              str(Path(study.path).resolve().parent))
     digest = graph_digest(study.text)
     cache = ResultCache(folder, CACHE, digest) if folder is not None else None
     notes = []

@@ -46,6 +46,7 @@ from torsal.app.gui.document import Document
 from torsal.app.gui.editor import Editor
 from torsal.app.gui.exporting import bake_previewed, export_output
 from torsal.app.gui.fragments import MIME_TYPE, looks_like_fragment
+from torsal.app.gui.icons import set_show_nicknames
 from torsal.app.gui.inspector import Inspector
 from torsal.app.gui.message_log import MessageLog
 from torsal.app.gui.palette import Palette
@@ -80,6 +81,7 @@ class MainWindow(QMainWindow):
         self.registry = registry
         self.folder = settings_folder or config_dir()
         self.settings = AppSettings(self.folder)
+        set_show_nicknames(self.settings.show_nicknames())
         self.doc = Document(registry, self)
         self.editor = Editor(self.doc, self)
         self.autosaver = Autosaver(self.doc, self.folder, parent=self)
@@ -279,7 +281,7 @@ class MainWindow(QMainWindow):
         self.report(f"Opened {path}")
         self._attention_pending = True
         self.view.resetTransform()
-        defer(self, lambda: self.view.zoom_to_fit(readable=True))
+        defer(self, self.view.frame_opened)
         return True
 
     def save(self) -> bool:
@@ -340,6 +342,14 @@ class MainWindow(QMainWindow):
         self.autosaver.discard()
         self.viewport.close_plotter()
         event.accept()
+
+    def set_show_nicknames(self, show: bool) -> None:
+        """Nicknames on tiles instead of the node icons, in the palette, search and nodes."""
+        self.settings.set_show_nicknames(show)
+        set_show_nicknames(show)
+        self.palette.refresh_icons()
+        for item in self.scene.nodes.values():
+            item.update()
 
     # -- messages --------------------------------------------------------------------
     def report(self, text: str, level: str = "info") -> None:
@@ -452,7 +462,7 @@ class MainWindow(QMainWindow):
         self.inspector.show_node(node_id)
         dialog = QDialog(self)
         record = self.doc.graph.nodes[node_id]
-        dialog.setWindowTitle(f"Help — {record.node.name()}")
+        dialog.setWindowTitle(f"Help — {record.node.display_name()}")
         browser = QTextBrowser()
         browser.setHtml(self.inspector.help.toHtml())
         layout = QVBoxLayout(dialog)

@@ -107,6 +107,7 @@ class IsoMapping(Node):
     """
 
     type_id = "analysis.IsoMapping"
+    nickname, aliases = "Unroll", ("Unroll Surface", "unfold", "flatten", "development", "flat pattern")
     inputs = (
         In("Surface", SURFACE, "S", "The ruled surface to unroll (its rulings must be straight lines)."),
         In("Segments", INTEGER, "N", "How many strips to cut it into: rulings minus one (1 or more).",

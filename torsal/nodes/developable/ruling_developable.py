@@ -147,6 +147,7 @@ class RulingDevelopable(Node):
     """
 
     type_id = "developable.RulingDevelopable"
+    nickname, aliases = "RDev", ("ruling", "developable", "developable loft", "Edge Surface")
     inputs = (
         In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
         In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
