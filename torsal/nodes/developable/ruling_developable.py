@@ -14,7 +14,7 @@ from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
-from torsal.nodes.common.strip_folds import fold_report
+from torsal.nodes.common.strip_folds import fold_report, strips_crossings
 from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
@@ -25,6 +25,7 @@ from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.developable.kinds import ruling_kinds
 from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
+from torsal.nodes.geometry.strip_crossings import Crossings
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
@@ -218,6 +219,8 @@ class RulingDevelopable(Node):
             (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
         ) if not isinstance(result, ValueError)]
         warps = iter(curve_warps([(row.a, row.b, r.s, r.t, r.starts, r.ends) for row, r in made]))
+        # and where each strip's sheet passes through itself
+        crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
         solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
@@ -229,7 +232,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result, next(warps)))
+                outputs.append(self._outputs(row, result, next(warps), next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -238,10 +241,14 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, row: _Row, result: RulingResult, warp: np.ndarray | None = None
+        self,
+        row: _Row,
+        result: RulingResult,
+        warp: np.ndarray | None = None,
+        crossed: Crossings | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result (and its recomputed ``warp``,
-        where it is at hand), and what the node says of it."""
+        """The outputs of one strip from the kernel's result (and its recomputed ``warp`` and
+        self-crossings, where they are at hand), and what the node says of it."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(
@@ -269,7 +276,7 @@ class RulingDevelopable(Node):
                 "single points (the flat triangles of the strip)"
             )
         kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)
         surface, rulings = strip.surface, strip.rulings
