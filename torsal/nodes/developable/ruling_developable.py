@@ -22,7 +22,7 @@ from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
-from torsal.nodes.geometry.developable.kinds import ruling_kinds
+from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
 from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.strip_crossings import Crossings
@@ -218,9 +218,18 @@ class RulingDevelopable(Node):
         made = [(row, result) for row, result in zip(
             (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
         ) if not isinstance(result, ValueError)]
-        warps = iter(curve_warps([(row.a, row.b, r.s, r.t, r.starts, r.ends) for row, r in made]))
-        # and where each strip's sheet passes through itself
+        warps = curve_warps([(row.a, row.b, r.s, r.t, r.starts, r.ends) for row, r in made])
+        # what each ruling is, and where each strip's sheet passes through itself (of the
+        # strips whose rulings make a strip: the others are refused by their outputs)
+        whole = [len(r.starts) >= 2 and bool(np.isfinite(r.starts).all() and np.isfinite(r.ends).all())
+                 for _, r in made]
+        judged = iter(ruling_kinds_all([
+            (row.a, row.b, r.s, r.t, r.starts, r.ends, row.tolerance, warp)
+            for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok
+        ]))
+        kinds = [next(judged) if ok else None for ok in whole]
         crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
+        warps_and_kinds = iter(zip(warps, kinds, strict=True))
         solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
@@ -232,7 +241,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result, next(warps), next(crossed)))
+                outputs.append(self._outputs(row, result, *next(warps_and_kinds), next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -245,10 +254,12 @@ class RulingDevelopable(Node):
         row: _Row,
         result: RulingResult,
         warp: np.ndarray | None = None,
+        kinds: RulingKinds | None = None,
         crossed: Crossings | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result (and its recomputed ``warp`` and
-        self-crossings, where they are at hand), and what the node says of it."""
+        """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
+        rulings' ``kinds`` and its self-crossings, where they are at hand), and what the node
+        says of it."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(
@@ -275,7 +286,8 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
+        if kinds is None:
+            kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
         folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)

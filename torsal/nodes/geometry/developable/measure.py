@@ -38,7 +38,7 @@ def check_rulings(strips: Sequence[Rulings]) -> list[Checked]:
     stack = Stack.of([s for _, s, _, _, _, _ in strips])
     starts, ends, signed, ruling = measured(strips, stack)
     warp = np.abs(signed)
-    rounding = _rounding(stack, starts, ends)
+    rounding = rounding_of(stack, starts, ends)
     tolerance = np.array([strip.tolerance for strip, *_ in strips])
     with np.errstate(invalid="ignore"):  # NaN is never valid
         valid = warp <= stack.repeat(tolerance) + _allowance(stack.repeat(rounding), ruling)
@@ -61,7 +61,7 @@ def _allowance(rounding: FloatArray | float, ruling: FloatArray) -> FloatArray:
     return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
-def _rounding(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
+def rounding_of(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
     """The larger :func:`~..vec_ops.position_rounding` of each strip's ``starts`` and ``ends``
     (as ``max`` picks it: the first unless the second is larger)."""
     of_starts, of_ends = (

@@ -462,10 +462,11 @@ def curve_warp(
 
 def curve_warps(
     strips: Sequence[tuple[Curve, Curve, FloatArray, FloatArray, FloatArray, FloatArray]],
+    fans: bool = True,
 ) -> list[FloatArray]:
-    """:func:`curve_warp` of every strip ``(curve_a, curve_b, s, t, starts, ends)``: the
-    rulings of the strips between smooth curves measured at once (each strip's size and
-    fans its own), the others strip by strip."""
+    """:func:`curve_warp` of every strip ``(curve_a, curve_b, s, t, starts, ends)`` (and
+    ``fans``): the rulings of the strips between smooth curves measured at once (each
+    strip's size and fans its own), the others strip by strip."""
     warps: list[FloatArray | None] = [None] * len(strips)
     smooth: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
     for index, (curve_a, curve_b, s, t, starts, ends) in enumerate(strips):
@@ -475,14 +476,17 @@ def curve_warps(
         b = np.asarray(ends, dtype=float).reshape(-1, 3)
         corners = _corner_sides(curve_a, s) is not None or _corner_sides(curve_b, t) is not None
         if corners or a.shape != b.shape:
-            warps[index] = curve_warp(curve_a, curve_b, s, t, a, b)
+            warps[index] = curve_warp(curve_a, curve_b, s, t, a, b, fans=fans)
         else:  # (the tangents alone: a polynomial curve skips the points)
             smooth.append((index, a, b, curve_a.derivative_at(s, 1), curve_b.derivative_at(t, 1)))
     if smooth:
         a, b, ta, tb = (np.concatenate([row[i] for row in smooth]) for i in range(1, 5))
         stack = Stack.of([row[1] for row in smooth])
         size = stack.repeat(sizes(stack, a, b))
-        apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size, stack)
+        if fans:
+            apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size, stack)
+        else:
+            apex_a = apex_b = np.zeros(len(a), dtype=bool)
         joined = _angles(*_normals(a, b, ta, tb, apex_a, apex_b, size), False)
         for (index, *_), warp in zip(smooth, stack.split(joined), strict=True):
             warps[index] = warp
