@@ -175,7 +175,9 @@ def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Cross
     apart_by = 2.0 * float(reach.max()) + 1.0
     tree = cKDTree(np.column_stack([centre, strip_of * apart_by]))
     found: list[tuple[IntArray, IntArray, FloatArray]] = []
-    for i, j in _near_pairs(tree, float(reach.max())):
+    # (there are no pairs across strips: at most each strip's pairs of triangles)
+    most = int(np.sum(counts[tested] * (counts[tested] - 1) // 2))
+    for i, j in _near_pairs(tree, float(reach.max()), most):
         own = strip_of[i]
         # pairs within that strip's reach whose boxes overlap
         apart = np.abs(centre[i] - centre[j])
@@ -202,11 +204,12 @@ def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Cross
 _MOST_PAIRS = 1 << 20
 
 
-def _near_pairs(tree: cKDTree, reach: float) -> Iterator[tuple[IntArray, IntArray]]:
+def _near_pairs(tree: cKDTree, reach: float, most: int) -> Iterator[tuple[IntArray, IntArray]]:
     """The pairs ``i < j`` of the tree's points within ``reach`` of each other (the greatest
-    coordinate difference), ordered by i then j: all at once when there are few, else the
-    pairs of :data:`_BLOCK` points at a time (so a long strip never holds all of them)."""
-    if tree.count_neighbors(tree, reach, p=np.inf) <= _MOST_PAIRS:
+    coordinate difference), ordered by i then j: all at once when there can be few (at most
+    ``most``), else the pairs of :data:`_BLOCK` points at a time (so a long strip never
+    holds all of them)."""
+    if most <= _MOST_PAIRS:
         pairs = tree.query_pairs(reach, p=np.inf, output_type="ndarray")
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         yield pairs[order, 0].astype(np.int64), pairs[order, 1].astype(np.int64)

@@ -13,6 +13,7 @@ curves are evaluated strip by strip (each strip has its own two curves):
 from __future__ import annotations
 
 from collections.abc import Sequence
+from itertools import pairwise
 
 import numpy as np
 
@@ -55,7 +56,8 @@ class Stack:
 
     def split(self, array: np.ndarray) -> list[np.ndarray]:
         """A stacked array as one array per strip (views)."""
-        return np.split(array, self.offsets[1:-1])
+        bounds = self.offsets.tolist()
+        return [array[low:high] for low, high in pairwise(bounds)]
 
     def groups(self, rows: IntArray) -> IntArray:
         """For increasing row indices ``rows``, where each strip's ones start and end among
