@@ -27,12 +27,12 @@ import numpy as np
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
-from ..curve_base import Curve, FloatArray
+from ..curve_base import FloatArray
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
-from .stack import Stack, evaluate_each
+from .stack import Stack, evaluate_rows
 from .strip import Grid, Strip
 from .warp import _angles, _normals, in_plane_tangent, sizes
 
@@ -395,19 +395,6 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
 #: filled in by :func:`_piece_ends` where a piece is judged again).
 _PIECE_NAMES = tuple(Pieces.__dataclass_fields__)
 _BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
-
-
-def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:
-    """Curve ``strip_of[i]``'s points and derivatives up to ``order`` at ``x[i]``, each
-    curve evaluated once at its own parameters (:func:`.stack.evaluate_each`)."""
-    if len(curves) == 1:
-        return curves[0].derivatives(x, order)
-    by_strip = np.argsort(strip_of, kind="stable")
-    bounds = np.searchsorted(strip_of[by_strip], np.arange(len(curves) + 1))
-    grouped = evaluate_each(curves, x[by_strip], bounds, order)
-    out = np.empty((order + 1, len(x), 3))
-    out[:, by_strip] = grouped
-    return list(out)
 
 
 def _with_extras(found: _Found, candidates: Candidates) -> Candidates:

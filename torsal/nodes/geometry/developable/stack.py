@@ -87,3 +87,15 @@ def evaluate_each(
             out[:, low:high] = evaluate(x[low:high], order)
     return list(out)
 
+
+def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:
+    """Curve ``strip_of[i]``'s points and derivatives up to ``order`` at ``x[i]``, the rows
+    in any order: each curve evaluated once at its own parameters (:func:`evaluate_each`)."""
+    if len(curves) == 1:
+        return curves[0].derivatives(x, order)
+    by_strip = np.argsort(strip_of, kind="stable")
+    bounds = np.searchsorted(strip_of[by_strip], np.arange(len(curves) + 1))
+    grouped = evaluate_each(curves, x[by_strip], bounds, order)
+    out = np.empty((order + 1, len(x), 3))
+    out[:, by_strip] = grouped
+    return list(out)
