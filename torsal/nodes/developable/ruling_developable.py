@@ -14,7 +14,7 @@ from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
-from torsal.nodes.common.strip_folds import fold_report
+from torsal.nodes.common.strip_folds import fold_report, strips_crossings
 from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
@@ -22,9 +22,10 @@ from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
-from torsal.nodes.geometry.developable.kinds import ruling_kinds
+from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
+from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
-from torsal.nodes.geometry.strip_crossings import Crossings, crossings_of
+from torsal.nodes.geometry.strip_crossings import Crossings
 from torsal.nodes.geometry.vec_ops import norm, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
@@ -225,9 +226,22 @@ class RulingDevelopable(Node):
         far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
         with watched(self.check_cancelled), rounding_of(far):
             results = ruling_developables(jobs)
-        # where each strip's triangles cross, all strips' tested at once
-        made = [r for r in results if not isinstance(r, ValueError)]
-        crossed = iter(crossings_of([(r.starts, r.ends) for r in made]))
+            # every strip's warp recomputed from its output rulings at once
+            made = [(row, result) for row, result in zip(
+                (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
+            ) if not isinstance(result, ValueError)]
+            warps = curve_warps([(row.a, row.b, r.s, r.t, r.starts, r.ends) for row, r in made])
+            # what each ruling is, and where each strip's sheet passes through itself (of the
+            # strips whose rulings make a strip: the others are refused by their outputs)
+            whole = [len(r.starts) >= 2 and bool(np.isfinite(r.starts).all() and np.isfinite(r.ends).all())
+                     for _, r in made]
+            judged = iter(ruling_kinds_all([
+                (row.a, row.b, r.s, r.t, r.starts, r.ends, row.tolerance, warp)
+                for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok
+            ]))
+            kinds = [next(judged) if ok else None for ok in whole]
+        crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
+        warps_and_kinds = iter(zip(warps, kinds, strict=True))
         solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
@@ -239,7 +253,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result, next(crossed)))
+                outputs.append(self._outputs(row, result, *next(warps_and_kinds), next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -248,16 +262,24 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, row: _Row, result: RulingResult, crossed: Crossings | None = None
+        self,
+        row: _Row,
+        result: RulingResult,
+        warp: np.ndarray | None = None,
+        kinds: RulingKinds | None = None,
+        crossed: Crossings | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result, and what the node says of it
-        (``crossed``: where its triangles cross, when the caller has found it)."""
+        """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
+        rulings' ``kinds`` and its self-crossings, where they are at hand), and what the node
+        says of it."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
-            s, t, starts, ends = result.s, result.t, result.starts, result.ends
-            strip = curve_strip_outputs(a, b, s, t, starts, ends, tol, result.valid)
-            kinds = ruling_kinds(a, b, s, t, starts, ends, tol, strip.warp)
+            strip = curve_strip_outputs(
+                a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp
+            )
+            if kinds is None:
+                kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
         self.check_cancelled()
         if result.message:
             if result.creased_share > limit:

@@ -18,13 +18,14 @@ within ``1e-9`` of the strip's size does not count as crossing.
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from .array_types import FloatArray, IntArray
-from .vec_ops import cross, dot, norm
+from .vec_ops import cross, dot, flatnonzero, norm
 
 #: Touching within this share of the strip's size is not crossing.
 TOUCH = 1e-9
@@ -44,165 +45,206 @@ class Crossings:
         return len(self.first)
 
 
-def strip_triangles(
-    starts: FloatArray, ends: FloatArray, owner: IntArray | None = None
-) -> tuple[FloatArray, IntArray, IntArray]:
+def strip_triangles(starts: FloatArray, ends: FloatArray) -> tuple[FloatArray, IntArray, IntArray]:
     """The strip's triangles: corners ``(m, 3, 3)``, the corners' vertex numbers ``(m, 3)``
-    (one number per point of each edge, a run of rulings sharing an end — a fan's apex —
-    sharing its number) and each triangle's piece (its first ruling's row). ``owner``
-    numbers the strip of each row, for rulings of several strips one after the other:
-    no piece joins two strips."""
-    a = np.asarray(starts, dtype=float).reshape(-1, 3)
-    b = np.asarray(ends, dtype=float).reshape(-1, 3)
-    n = len(a)
-    if owner is None:
-        owner = np.zeros(n, dtype=np.int64)
-    joined = owner[1:] == owner[:-1]
-    # each strip's size (the ends' box), for what counts as the same point
-    size = np.zeros(int(owner.max(initial=-1)) + 1)
-    if n:
-        low = np.full((len(size), 3), np.inf)
-        high = np.full((len(size), 3), -np.inf)
-        np.minimum.at(low, owner, np.minimum(a, b))
-        np.maximum.at(high, owner, np.maximum(a, b))
-        size = norm(high - low)
-    tol = 1e-12 * size[owner[:-1]] if n else np.empty(0)
-    same_a = (norm(a[1:] - a[:-1]) <= tol) & joined
-    same_b = (norm(b[1:] - b[:-1]) <= tol) & joined
-    va = np.concatenate([[0], np.cumsum(~same_a)])
-    vb = np.concatenate([[0], np.cumsum(~same_b)]) + int(va[-1]) + 1
-    i = np.arange(n - 1)
-    p0, p1, q0, q1 = va[:-1], va[1:], vb[:-1], vb[1:]
-    fan_a = same_a  # apex on A: the triangle A_i, B_i, B_i+1
-    fan_b = same_b & ~fan_a
-    quad = ~fan_a & ~fan_b & joined
-    short = norm(b[1:] - a[:-1]) <= norm(a[1:] - b[:-1])  # a quad is cut along its shorter diagonal
-    qs, ql = quad & short, quad & ~short
-    corners_of = (  # (rows, its three corners) of each triangle, by sort of piece
-        (fan_a, (p0, q0, q1)), (fan_b, (p0, q0, p1)), (qs, (p0, q0, q1)), (qs, (p0, q1, p1)),
-        (ql, (p0, q0, p1)), (ql, (p1, q0, q1)),
-    )
-    piece = np.concatenate([i[rows] for rows, _ in corners_of]).astype(np.int64)
-    ids = np.concatenate([np.stack(v, axis=1)[rows] for rows, v in corners_of]).astype(np.int64)
-    ids = ids.reshape(-1, 3)
-    vertices = np.empty((int(vb[-1]) + 1, 3))
-    vertices[va], vertices[vb] = a, b
-    return vertices[ids], ids, piece
+    (one number per distinct point: a fan's apex is one vertex) and each triangle's piece."""
+    corners, ids, piece, _ = _triangles([(starts, ends)])
+    return corners, ids, piece
 
 
-_NONE = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
-
-#: Below this many triangles every pair is looked at; above, only those a k-d tree finds near.
-_ALL_PAIRS = 400
+def _triangles(
+    strips: Sequence[tuple[FloatArray, FloatArray]],
+) -> tuple[FloatArray, IntArray, IntArray, IntArray]:
+    """:func:`strip_triangles` of every strip at once, strip after strip (each strip's in the
+    order it has alone; vertex numbers distinct across strips), and each triangle's strip."""
+    a_all = [np.asarray(starts, dtype=float).reshape(-1, 3) for starts, _ in strips]
+    b_all = [np.asarray(ends, dtype=float).reshape(-1, 3) for _, ends in strips]
+    n = np.array([len(a) for a in a_all], dtype=np.int64)
+    a, b = np.concatenate(a_all), np.concatenate(b_all)
+    # each strip's points: its starts then its ends (as the strip alone lists them)
+    points = np.concatenate([np.concatenate([x, y]) for x, y in zip(a_all, b_all, strict=True)])
+    rows = 2 * n
+    has = rows > 0
+    first = (np.cumsum(rows) - rows)[has]
+    low = np.zeros((len(strips), 3))
+    size = np.zeros(len(strips))
+    if len(first):
+        low[has] = np.minimum.reduceat(points, first, axis=0)
+        size[has] = norm(np.maximum.reduceat(points, first, axis=0) - low[has])
+    step = np.where(size * 1e-12 != 0, size * 1e-12, 1.0)  # (size·1e-12 or 1)
+    strip_of_point = np.repeat(np.arange(len(strips)), rows)
+    grid = np.round((points - low[strip_of_point]) / step[strip_of_point, None])
+    # one vertex number per distinct point of a strip (the strip first: numbers run strip by strip)
+    _, vertex = np.unique(np.column_stack([strip_of_point, grid]), axis=0, return_inverse=True)
+    vertex = vertex.reshape(-1)
+    start_of = np.cumsum(rows) - rows  # (each strip's first point)
+    ruling = np.arange(len(a))
+    strip_of_ruling = np.repeat(np.arange(len(strips)), n)
+    point_a = start_of[strip_of_ruling] + (ruling - (np.cumsum(n) - n)[strip_of_ruling])
+    va, vb = vertex[point_a], vertex[point_a + n[strip_of_ruling]]
+    # the pieces between consecutive rulings of one strip
+    inner = flatnonzero(strip_of_ruling[1:] == strip_of_ruling[:-1])
+    i = inner - (np.cumsum(n) - n)[strip_of_ruling[inner]]  # (each piece's number in its strip)
+    p0, p1, q0, q1 = va[inner], va[inner + 1], vb[inner], vb[inner + 1]
+    fan_a = p0 == p1  # apex on A: the triangle A_i, B_i, B_i+1
+    fan_b = (q0 == q1) & ~fan_a
+    quad = ~fan_a & ~fan_b
+    # a quad is cut along its shorter diagonal
+    short = norm(b[inner + 1] - a[inner]) <= norm(a[inner + 1] - b[inner])
+    own = strip_of_ruling[inner]
+    parts = []
+    parts.append((i[fan_a], np.stack([p0, q0, q1], axis=1)[fan_a], own[fan_a]))
+    parts.append((i[fan_b], np.stack([p0, q0, p1], axis=1)[fan_b], own[fan_b]))
+    qs = quad & short  # diagonal A_i → B_i+1
+    parts.append((i[qs], np.stack([p0, q0, q1], axis=1)[qs], own[qs]))
+    parts.append((i[qs], np.stack([p0, q1, p1], axis=1)[qs], own[qs]))
+    ql = quad & ~short  # diagonal B_i → A_i+1
+    parts.append((i[ql], np.stack([p0, q0, p1], axis=1)[ql], own[ql]))
+    parts.append((i[ql], np.stack([p1, q0, q1], axis=1)[ql], own[ql]))
+    piece = np.concatenate([part[0] for part in parts]).astype(np.int64)
+    ids = np.concatenate([part[1] for part in parts]).astype(np.int64).reshape(-1, 3)
+    strip_of = np.concatenate([part[2] for part in parts]).astype(np.int64)
+    order = np.argsort(strip_of, kind="stable")  # strip after strip, each in its own order
+    unique_points = np.empty((int(vertex.max(initial=-1)) + 1, 3))
+    unique_points[vertex] = points
+    ids = ids[order]
+    return unique_points[ids], ids, piece[order], strip_of[order]
 
 
 def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
     """Pairs of the strip's triangles (:func:`strip_triangles`) that cross each other."""
-    return crossings_of([(starts, ends)])[0]
-
-
-def crossings_of(strips: list[tuple[FloatArray, FloatArray]]) -> list[Crossings]:
-    """:func:`crossings` of each strip ``(starts, ends)``, all tested at once (each strip's
-    triangles only against its own: the fixed costs of the tests are paid once)."""
-    rows_per = np.array([len(np.asarray(a).reshape(-1, 3)) for a, _ in strips], dtype=np.int64)
-    if not len(strips) or not rows_per.sum():
-        return [_NONE for _ in strips]
-    owner_rows = np.repeat(np.arange(len(strips)), rows_per)
-    corners, ids, piece_all = strip_triangles(
-        np.concatenate([np.asarray(a, dtype=float).reshape(-1, 3) for a, _ in strips]),
-        np.concatenate([np.asarray(b, dtype=float).reshape(-1, 3) for _, b in strips]),
-        owner_rows,
-    )
-    order = np.argsort(owner_rows[piece_all], kind="stable")  # triangles strip by strip
-    corners, ids, piece_all = corners[order], ids[order], piece_all[order]
-    strip_of = owner_rows[piece_all]
-    piece = piece_all - np.concatenate([[0], np.cumsum(rows_per)])[strip_of]  # row within its strip
-    counts = np.bincount(strip_of, minlength=len(strips)).astype(np.int64)
-    first = np.concatenate([[0], np.cumsum(counts)])
-    parts = range(len(strips))
+    corners, ids, piece = strip_triangles(starts, ends)
+    empty = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
+    if len(corners) < 2:
+        return empty
     low, high = corners.min(axis=1), corners.max(axis=1)
-    box_low = np.full((len(strips), 3), np.inf)
-    box_high = np.full((len(strips), 3), -np.inf)
-    np.minimum.at(box_low, strip_of, low)
-    np.maximum.at(box_high, strip_of, high)
-    eps = TOUCH * np.where(counts > 0, norm(np.where(counts[:, None] > 0, box_high - box_low, 0.0)), 0.0)
+    size = float(norm(high.max(axis=0) - low.min(axis=0)))
+    eps = TOUCH * size
     centre, half = 0.5 * (low + high), 0.5 * (high - low)
-    pairs: list[tuple[IntArray, IntArray]] = []
-    for k in range(len(parts)):
-        m = int(counts[k])
-        if m < 2:
+    tree = cKDTree(centre)
+    reach = 2.0 * float(half.max())
+    found: list[tuple[IntArray, IntArray, FloatArray]] = []
+    for start in range(0, len(corners), _BLOCK):
+        rows = np.arange(start, min(start + _BLOCK, len(corners)))
+        near = tree.query_ball_point(centre[rows], reach, p=np.inf)
+        counts = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
+        if not counts.sum():
             continue
-        if m <= _ALL_PAIRS:
-            i, j = np.triu_indices(m, 1)
-            pairs.append((i + first[k], j + first[k]))
-            continue
-        rows_k = slice(first[k], first[k + 1])
-        tree = cKDTree(centre[rows_k])
-        reach = 2.0 * float(half[rows_k].max())
-        for start in range(0, m, _BLOCK):
-            rows = np.arange(start, min(start + _BLOCK, m))
-            near = tree.query_ball_point(centre[rows_k][rows], reach, p=np.inf)
-            lengths = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
-            if not lengths.sum():
-                continue
-            i = np.repeat(rows, lengths)
-            j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
-            later = j > i
-            pairs.append((i[later] + first[k], j[later] + first[k]))
-    found_i, found_j, found_x = [], [], []
-    if pairs:  # (all strips' pairs tested at once)
-        pairs = [(np.concatenate([i for i, _ in pairs]), np.concatenate([j for _, j in pairs]))]
-    for i, j in pairs:
-        i, j = np.asarray(i, dtype=np.int64), np.asarray(j, dtype=np.int64)
-        e = eps[strip_of[i]]
-        keep = (np.abs(centre[i] - centre[j]) <= half[i] + half[j] + e[:, None]).all(axis=1)
+        i = np.repeat(rows, counts)
+        j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
+        keep = j > i
         i, j = i[keep], j[keep]
-        # neighbours along the strip share an edge (two corners): no edge of either is free
-        shared = (ids[i, :, None] == ids[j, None, :]).any(axis=2).sum(axis=1)
-        i, j = i[shared < 2], j[shared < 2]
+        overlap = (np.abs(centre[i] - centre[j]) <= half[i] + half[j] + eps).all(axis=1)
+        i, j = i[overlap], j[overlap]
         if len(i):
-            hit, point = _pairs_cross(corners, ids, i, j, eps[strip_of[i]])
-            found_i.append(i[hit])
-            found_j.append(j[hit])
-            found_x.append(point[hit])
-    if found_i:
-        i, j, x = np.concatenate(found_i), np.concatenate(found_j), np.concatenate(found_x)
-    else:
-        i = j = np.empty(0, np.int64)
-        x = np.empty((0, 3))
-    owner = strip_of[i]
-    return [Crossings(piece[i[owner == k]], piece[j[owner == k]], x[owner == k]) for k in parts]
+            hit, point = _pairs_cross(corners, ids, i, j, eps)
+            found.append((i[hit], j[hit], point[hit]))
+    if not found:
+        return empty
+    i, j, points = (np.concatenate(parts) for parts in zip(*found, strict=True))
+    return Crossings(piece[i], piece[j], points)
+
+
+def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Crossings]:
+    """:func:`crossings` of every strip ``(starts, ends)``: each strip's triangles its own
+    (:func:`strip_triangles`), their candidate pairs found in one k-d tree of all strips'
+    boxes (pairs within a strip only, each strip's reach and touching margin its own) and
+    tested at once. Each strip's pairs come in the order :func:`crossings` gives them."""
+    empty = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
+    results = [empty] * len(strips)
+    if not strips:
+        return results
+    corners, ids, piece, strip_of = _triangles(strips)
+    counts = np.bincount(strip_of, minlength=len(strips))
+    tested = flatnonzero(counts >= 2)  # (a strip of fewer than two triangles cannot cross)
+    if len(tested) == 0:
+        return results
+    if len(tested) < len(strips):
+        keep = np.isin(strip_of, tested)
+        corners, ids, piece = corners[keep], ids[keep], piece[keep]
+    strip_of = np.repeat(np.arange(len(tested)), counts[tested])
+    offsets = np.concatenate([[0], np.cumsum(counts[tested])])
+    low, high = corners.min(axis=1), corners.max(axis=1)
+    first = offsets[:-1]
+    size = norm(np.maximum.reduceat(high, first, axis=0) - np.minimum.reduceat(low, first, axis=0))
+    eps = TOUCH * size
+    centre, half = 0.5 * (low + high), 0.5 * (high - low)
+    reach = 2.0 * np.maximum.reduceat(half, first, axis=0).max(axis=1)
+    # one tree of every strip's boxes, the strips set apart along a fourth axis further than
+    # any reach, so that a search finds the boxes of the searching triangle's strip alone
+    apart_by = 2.0 * float(reach.max()) + 1.0
+    tree = cKDTree(np.column_stack([centre, strip_of * apart_by]))
+    found: list[tuple[IntArray, IntArray, FloatArray]] = []
+    # (there are no pairs across strips: at most each strip's pairs of triangles)
+    most = int(np.sum(counts[tested] * (counts[tested] - 1) // 2))
+    for i, j in _near_pairs(tree, float(reach.max()), most):
+        own = strip_of[i]
+        # pairs within that strip's reach whose boxes overlap
+        apart = np.abs(centre[i] - centre[j])
+        keep = (apart.max(axis=1) <= reach[own]) & (apart <= half[i] + half[j] + eps[own, None]).all(axis=1)
+        i, j, own = i[keep], j[keep], own[keep]
+        if len(i):
+            hit, point = _pairs_cross(corners, ids, i, j, eps[own])
+            found.append((i[hit], j[hit], point[hit]))
+    if not found:
+        return results
+    i, j, points = (np.concatenate(parts) for parts in zip(*found, strict=True))
+    own = strip_of[i]
+    order = np.argsort(own, kind="stable")  # (each strip's pairs in the order of its own search)
+    bounds = np.searchsorted(own[order], np.arange(len(tested) + 1)).tolist()
+    spans = zip(tested.tolist(), bounds[:-1], bounds[1:], offsets[:-1].tolist(), strict=True)
+    for k, low_row, high_row, _ in spans:
+        if high_row > low_row:
+            rows = order[low_row:high_row]
+            results[k] = Crossings(piece[i[rows]], piece[j[rows]], points[rows])
+    return results
+
+
+#: Most candidate pairs searched at once (else in blocks of :data:`_BLOCK` triangles).
+_MOST_PAIRS = 1 << 20
+
+
+def _near_pairs(tree: cKDTree, reach: float, most: int) -> Iterator[tuple[IntArray, IntArray]]:
+    """The pairs ``i < j`` of the tree's points within ``reach`` of each other (the greatest
+    coordinate difference), ordered by i then j: all at once when there can be few (at most
+    ``most``), else the pairs of :data:`_BLOCK` points at a time (so a long strip never
+    holds all of them)."""
+    if most <= _MOST_PAIRS:
+        pairs = tree.query_pairs(reach, p=np.inf, output_type="ndarray")
+        order = np.lexsort((pairs[:, 1], pairs[:, 0]))
+        yield pairs[order, 0].astype(np.int64), pairs[order, 1].astype(np.int64)
+        return
+    for start in range(0, tree.n, _BLOCK):
+        rows = np.arange(start, min(start + _BLOCK, tree.n))
+        near = tree.query_ball_point(tree.data[rows], reach, p=np.inf)  # (each sorted)
+        counts = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
+        i = np.repeat(rows, counts)
+        j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
+        keep = j > i
+        yield i[keep], j[keep]
 
 
 def _pairs_cross(
-    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: FloatArray
+    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
-    """Whether each pair (triangle i, triangle j) crosses, and a point where it does: the
-    three edges of each against the other, all six at once."""
-    k = len(i)
-    one = np.concatenate([i, j])  # the triangle whose edges are tested, against the other's inside
-    other = np.concatenate([j, i])
-    start = np.array([0, 1, 2])
-    stop = np.array([1, 2, 0])
-    # (edge e of triangle ``one``): rows ordered edge-major, (3, 2k)
-    p = corners[one][:, start].transpose(1, 0, 2).reshape(-1, 3)
-    q = corners[one][:, stop].transpose(1, 0, 2).reshape(-1, 3)
-    tri = np.tile(corners[other], (3, 1, 1))
-    ends_ids = np.stack([ids[one][:, start].T.reshape(-1), ids[one][:, stop].T.reshape(-1)], axis=1)
-    others = np.tile(ids[other], (3, 1))
-    # an edge touching the other triangle at a shared corner is not tested
-    free = ~(ends_ids[:, :, None] == others[:, None, :]).any(axis=(1, 2))
-    h, x = _segment_through(p, q, tri, np.tile(eps, 6))
-    h &= free
-    h = h.reshape(6, k)  # (edge of i or j, pair)
-    x = x.reshape(6, k, 3)
-    hit = h.any(axis=0)
-    first = np.argmax(h, axis=0)
-    return hit, x[first, np.arange(k)]
+    """Whether each pair (triangle i, triangle j) crosses, and a point where it does."""
+    hit = np.zeros(len(i), dtype=bool)
+    point = np.full((len(i), 3), np.nan)
+    for one, other in ((i, j), (j, i)):
+        for k in range(3):
+            m = (k + 1) % 3
+            # an edge touching the other triangle at a shared corner is not tested
+            shared = (ids[one, k, None] == ids[other]) | (ids[one, m, None] == ids[other])
+            free = ~shared.any(axis=1)
+            h, x = _segment_through(corners[one, k], corners[one, m], corners[other], eps)
+            new = free & h & ~hit
+            point[new] = x[new]
+            hit |= free & h
+    return hit, point
 
 
 def _segment_through(
-    p: FloatArray, q: FloatArray, tri: FloatArray, eps: FloatArray
+    p: FloatArray, q: FloatArray, tri: FloatArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
     """Whether segments ``p → q`` pass through the inside of triangles ``tri`` (``(k, 3, 3)``)
     more than ``eps`` from their edges and the segments' ends, and where."""
