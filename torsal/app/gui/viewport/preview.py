@@ -11,6 +11,7 @@ import numpy as np
 import pyvista as pv
 
 from torsal.app.gui import theme
+from torsal.app.gui.viewport.coloured import replace_coloured
 from torsal.app.gui.viewport.datasets import (
     PLAIN_TYPES,
     Memo,
@@ -135,6 +136,7 @@ class Preview:
         self.bar_users: dict[str, set[str]] = {}  # colour-bar title -> nodes that use it
         self.bar_keys: dict[str, tuple[Any, str]] = {}  # colour-bar title -> (range, colour map)
         self._bounds: tuple[np.ndarray | None] | None = None  # bounds() until the actors change
+        self.hidden: set[str] = set()  # nodes whose surfaces a colour map replaces
 
     def update(
         self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
@@ -166,6 +168,8 @@ class Preview:
                 self._remove(node_id)
                 self._add(node_id, ready)
             changed = True
+        if changed:  # a colour map replaces the surface it colours (viewport/coloured.py)
+            self.hidden = replace_coloured(graph, self.nodes)
         return changed
 
     def _update_in_place(self, entry: NodeActors, ready: Prepared) -> bool:
