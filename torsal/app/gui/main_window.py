@@ -136,6 +136,7 @@ class MainWindow(QMainWindow):
         self.scene.selectionChanged.connect(self._selection_changed)
         self.scene.help_requested.connect(self.show_help)
         self.scene.export_requested.connect(self.export_output)
+        self.scene.bake_requested.connect(lambda node_ids: bake_previewed(self, node_ids=node_ids))
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
         self._outer_views: list[tuple[QTransform, QPointF]] = []  # the view outside each open cluster

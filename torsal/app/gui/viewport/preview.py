@@ -242,19 +242,20 @@ class Preview:
             return title
         self.bar_keys[title] = key
         row = len(self.plotter.scalar_bars)
-        self.plotter.add_scalar_bar(
+        bar = self.plotter.add_scalar_bar(
             title=title,
             mapper=actor.mapper,
             vertical=False,
-            n_labels=5,
+            n_labels=2,  # the two ends: a middle tick label would lie under the centred title
             fmt="%.3g",
             title_font_size=11,
             label_font_size=10,
             width=0.45,
-            height=0.07,
+            height=0.1,
             position_x=0.52,
-            position_y=0.03 + 0.12 * row,
+            position_y=0.03 + 0.14 * row,
         )
+        bar.SetTextPositionToPrecedeScalarBar()  # the end labels and the title under the bar
         return title
 
     def _remove(self, node_id: str) -> None:
