@@ -16,7 +16,6 @@ from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox
 
 from torsal.app.bake import DEFAULT_PARENT, Baked, bake, bake_entries, is_geometry, nothing_to_bake
 from torsal.app.exports import FILE_TYPES, ExportError, export_tree
-from torsal.app.gui.viewport.preview import previewed
 from torsal.engine.datatree import DataTree
 
 if TYPE_CHECKING:
@@ -114,6 +113,8 @@ def bake_previewed(window: MainWindow, path: Path | None = None, node_ids: list[
                    ) -> Baked | None:
     """Write the geometry of every previewed node — or of ``node_ids`` only (a node's own
     Bake…, previewed or not, as Grasshopper's) — into one .3dm (asked for unless ``path``)."""
+    from torsal.app.gui.viewport.preview import previewed  # pyvista: not before the first frame
+
     doc = window.doc
     reason = _not_ready(window)
     if node_ids is None:

@@ -188,16 +188,21 @@ class MainWindow(QMainWindow):
 
     # -- start-up --------------------------------------------------------------------
     def start(self, path: Path | None = None, offer_recovery: bool = True) -> None:
-        """After the window is shown: the 3D viewport, the palette, recovery of a crashed
-        session, the file."""
-        self.viewport.create_plotter()
+        """After the window is shown: the palette, recovery of a crashed session, the file,
+        then the 3D viewport. The file's solve starts at once on the worker thread, so it
+        runs while pyvista is imported and VTK set up (a second or more), not after."""
         self.palette.populate()
-        if offer_recovery and self.offer_recovery():
-            return
-        if path is not None:
-            self.open_file(path, ask=False)
-        else:
-            self.doc.solves.request()
+        try:
+            if offer_recovery and self.offer_recovery():
+                return
+            if path is not None:
+                self.open_file(path, ask=False)
+                if not self.doc.solves.idle():
+                    self.doc.solves.solve_now()
+            else:
+                self.doc.solves.request()
+        finally:
+            self.viewport.create_plotter()
 
     def offer_recovery(self) -> bool:
         """Ask whether to restore an autosave a crashed session left; True if restored."""
