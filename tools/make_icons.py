@@ -124,6 +124,17 @@ def in_arrow() -> str:
 
 
 GLYPHS: dict[str, str] = {
+    "params.VectorTwoPoints": spot(4, 18, 2.2) + spot(20, 6, 2.2) + arrow(5.5, 17, 18, 7.5, ACCENT, 1.8),
+    "params.Distance": spot(4, 12, 2.2)
+    + spot(20, 12, 2.2)
+    + line(4, 17, 20, 17, ACCENT, 1.2)
+    + line(4, 15, 4, 19, ACCENT, 1.2)
+    + line(20, 15, 20, 19, ACCENT, 1.2)
+    + text(12, 9, "d", 7),
+    "curves.CurveClosestPoint": path(CURVE, INK, 1.6)
+    + spot(17, 20, 2, INK)
+    + line(17, 20, 14.8, 13.2, ACCENT, 1.2, "1.5,1.2")
+    + spot(14.8, 13.2, 2, ACCENT),
     # -- params: values a designer sets: knobs, dots and planes --------------------------
     "params.NumberSlider": line(3, 13, 21, 13) + circle(14, 13, 3.2, INK, 1.4, ACCENT) + text(7, 9, "0.5", 6),
     "params.IntegerSlider": line(3, 14, 21, 14)

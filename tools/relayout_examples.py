@@ -39,10 +39,10 @@ MOVES = {
     "kaohsiung-stadium": KAOHSIUNG,
     "kaohsiung-cut-sheets": KAOHSIUNG,
     "guggenheim-ny": (None, {"segments": (1080.0, 260.0)}, {"segments": ("inputs", "rings")}),
-    "zve-roof-edge": (None, {"segments": (1080.0, 260.0)}, {"segments": ("inputs", "surface")}),
+    "zve-roof-edge": (None, {"segments": (1340.0, 350.0)}, {"segments": ("inputs", "surface")}),
     "spline-approximation": (
         None,
-        {"edge_a": (820.0, 40.0), "segments": (1600.0, 150.0)},
+        {"edge_a": (820.0, 40.0), "segments": (1600.0, 240.0)},
         {"segments": ("inputs", "approx")},
     ),
 }
