@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from torsal.engine.node import Node
+from torsal.engine.widgets import Widget
 
 
 class GraphError(ValueError):
@@ -77,6 +78,13 @@ class NodeRecord:
 
     def input_state(self, port: str) -> InputState:
         return self.inputs.setdefault(port, InputState())
+
+    @property
+    def shows_geometry(self) -> bool:
+        """Whether a viewport, a variant's picture or Bake draws this node's geometry: its
+        preview is on, it is enabled, and it is not a panel (a panel shows text). Which of
+        its outputs are drawn is the node's :meth:`~torsal.engine.node.Node.previewed_outputs`."""
+        return self.preview and self.enabled and self.node.widget is not Widget.PANEL
 
 
 @dataclass

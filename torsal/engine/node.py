@@ -261,12 +261,21 @@ class Node:
 
         The solver asks only nodes that define it, and only for item-access calls (every
         branch iterated). It must give each row the very values ``solve`` gives it, bit for
-        bit, and say nothing: for any row it cannot vouch for (a value ``solve`` would refuse
-        or clamp, a kind of geometry whose evaluation is not row by row) it returns None, so
-        the messages come from ``solve`` as always. It checks the token between its pieces of
-        work (``self.token.check()``) as a long solve does: the solver checks it only before.
+        bit, and the messages ``solve`` would say, in the same order: each row's remarks and
+        warnings (``self.remark``, ``self.warn``) one row after another; None and that
+        row's warning where ``solve`` would raise :class:`NodeWarning` (see
+        :meth:`refuse_row`); and where ``solve`` would raise :class:`NodeError` for a row,
+        that error, raised after the messages of the rows before it and none of the rows
+        after. When it returns None the solver forgets whatever it said, so the messages
+        come from ``solve`` alone. It checks the token between its pieces of work
+        (``self.token.check()``) as a long solve does: the solver checks it only before.
         (The solver calls this only on node types that override it.)"""
         return None
+
+    def refuse_row(self, warning: NodeWarning) -> None:
+        """In :meth:`solve_many`: what the solver does when ``solve`` raises ``warning`` for
+        a row (the row's outputs are None; this says the warning in its place)."""
+        self.warn(str(warning))
 
     def call_work(self, *args: Any) -> int:
         """How much work one call of ``solve`` with these arguments asks for, counted

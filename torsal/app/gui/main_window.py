@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QMimeData, QPoint, QPointF, Qt, QTimer
+from PySide6.QtCore import QBuffer, QByteArray, QIODevice, QMimeData, QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -60,6 +60,7 @@ from torsal.app.gui.window_actions import build_menus
 from torsal.app.gui.write_consent import ask_to_write, sync_action
 from torsal.engine.graphfile import GraphFileError
 from torsal.engine.registry import Registry
+from torsal.engine.write_path import write_file
 
 FILE_FILTER = "Torsal graphs (*.graph);;All files (*)"
 #: The message log and profiler are refilled at most this often (ms) while solves stream
@@ -192,6 +193,8 @@ class MainWindow(QMainWindow):
         then the 3D viewport. The file's solve starts at once on the worker thread, so it
         runs while pyvista is imported and VTK set up (a second or more), not after."""
         self.palette.populate()
+        for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
+            self.report(problem[:1].upper() + problem[1:], "warning")
         try:
             if offer_recovery and self.offer_recovery():
                 return
@@ -578,7 +581,12 @@ class MainWindow(QMainWindow):
             target = qimage.scaled(int(plotter.width() * ratio), int(plotter.height() * ratio))
             painter.drawImage(top_left, target)
             painter.end()
-        pixmap.save(str(path), "PNG")
+        data = QByteArray()
+        buffer = QBuffer(data)
+        buffer.open(QIODevice.OpenModeFlag.WriteOnly)
+        pixmap.save(buffer, "PNG")
+        buffer.close()
+        write_file(path, bytes(data.data()))  # the one write path: never through a link
         return path
 
     def save_viewport_screenshot(self) -> None:

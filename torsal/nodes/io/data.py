@@ -37,6 +37,10 @@ class ExportCSV(Node):
         if not write:
             self.remark("Write is false: nothing written")
             return None
+        if not data.item_count:  # e.g. an upstream node refused: the file already there stays as it is
+            self.warn("There is nothing to write: Data is empty, so the file (and its .bak) is left "
+                      "as it was")
+            return None
         with file_errors():
             target = write_target(self, path)
             if not may_write(self, [target]):

@@ -68,6 +68,10 @@ class ExportMesh(Node):
             if not write:
                 self.remark("Write is false: nothing written")
                 return None
+            if not items:  # e.g. an upstream node refused: the file already there stays as it is
+                self.warn("There is nothing to write: Meshes is empty, so the file (and its .bak) is left "
+                          "as it was")
+                return None
             target = write_target(self, path)
             if not may_write(self, [target]):
                 return None
