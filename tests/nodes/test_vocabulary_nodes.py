@@ -12,6 +12,7 @@ import trimesh
 
 from tests.nodes.helpers import out, run, texts, tree
 from torsal.engine.values import Domain, Plane, Point, Vector
+from torsal.nodes.curves.division import DivideLength
 from torsal.nodes.curves.frames import CurveClosestPoint, CurveFrame, PerpFrames
 from torsal.nodes.geometry.curves import Circle, Line
 from torsal.nodes.geometry.vectors import Plane as KernelPlane
@@ -28,6 +29,7 @@ from torsal.nodes.params.planes import (
 )
 from torsal.nodes.params.two_points import Distance, VectorTwoPoints
 from torsal.nodes.surfaces.bounds import BoundingBox, Volume
+from torsal.nodes.surfaces.closest import SurfaceClosestPoint
 
 
 def one(result, port=None):
@@ -173,3 +175,23 @@ def test_curve_closest_point_on_a_circle_is_along_the_radius():
     assert one(result, "Point") == pytest.approx(Point(1.2, 1.6, 0), abs=1e-12)  # 2 · (3, 4)/5
     assert one(result, "Distance") == pytest.approx(math.sqrt(3**2 + 1), abs=1e-12)  # 5 − 2 in plan, 1 up
     assert 0 <= one(result, "Parameter") <= 1
+
+
+def test_divide_length_marks_every_length_along_a_line_and_refuses_a_count_past_the_cap():
+    line = Line([0, 0, 0], [10, 0, 0])
+    result = run(DivideLength(), Curve=tree({(0,): [line]}), Length=3.0)
+    (found,) = out(result, "Points").values()
+    assert [p[0] for p in found] == pytest.approx([0, 3, 6, 9], abs=1e-12)  # 10 is not a whole 3s
+    whole = run(DivideLength(), Curve=tree({(0,): [line]}), Length=2.5)
+    assert [p[0] for p in out(whole, "Points")[(0,)]] == pytest.approx([0, 2.5, 5, 7.5, 10], abs=1e-12)
+    tiny = run(DivideLength(), Curve=tree({(0,): [line]}), Length=1e-9)
+    assert tiny.state == "warning" and "at most" in texts(tiny)[0]
+
+
+def test_surface_closest_point_on_a_sphere_lies_along_the_radius():
+    from torsal.nodes.surfaces.primitives import Sphere
+
+    sphere = one(run(Sphere(), Radius=2.0))
+    result = run(SurfaceClosestPoint(), Point=Point(0, 3, 4), Surface=tree({(0,): [sphere]}))
+    assert one(result, "Point") == pytest.approx(Point(0, 1.2, 1.6), abs=1e-9)  # 2 · (0, 3, 4)/5
+    assert one(result, "Distance") == pytest.approx(3.0, abs=1e-9)  # 5 − 2
