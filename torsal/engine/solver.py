@@ -168,7 +168,7 @@ class Solver:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
         if isinstance(node, ClusterNode):
             return self._solve_cluster(record, node, token, on_progress)
-        context = SolveContext(node, token, self.files.for_node(record.id), on_progress)
+        context = SolveContext(node, token, self.files.for_node(record.id, token), on_progress)
         messages = context.messages
         outputs: dict[str, DataTree] = {}
         with solving(context):
