@@ -137,6 +137,7 @@ class MainWindow(QMainWindow):
         self.scene.selectionChanged.connect(self._selection_changed)
         self.scene.help_requested.connect(self.show_help)
         self.scene.export_requested.connect(self.export_output)
+        self.scene.bake_requested.connect(lambda node_ids: bake_previewed(self, node_ids=node_ids))
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
         self._outer_views: list[tuple[QTransform, QPointF]] = []  # the view outside each open cluster
@@ -188,18 +189,23 @@ class MainWindow(QMainWindow):
 
     # -- start-up --------------------------------------------------------------------
     def start(self, path: Path | None = None, offer_recovery: bool = True) -> None:
-        """After the window is shown: the 3D viewport, the palette, recovery of a crashed
-        session, the file."""
-        self.viewport.create_plotter()
+        """After the window is shown: the palette, recovery of a crashed session, the file,
+        then the 3D viewport. The file's solve starts at once on the worker thread, so it
+        runs while pyvista is imported and VTK set up (a second or more), not after."""
         self.palette.populate()
         for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
             self.report(problem[:1].upper() + problem[1:], "warning")
-        if offer_recovery and self.offer_recovery():
-            return
-        if path is not None:
-            self.open_file(path, ask=False)
-        else:
-            self.doc.solves.request()
+        try:
+            if offer_recovery and self.offer_recovery():
+                return
+            if path is not None:
+                self.open_file(path, ask=False)
+                if not self.doc.solves.idle():
+                    self.doc.solves.solve_now()
+            else:
+                self.doc.solves.request()
+        finally:
+            self.viewport.create_plotter()
 
     def offer_recovery(self) -> bool:
         """Ask whether to restore an autosave a crashed session left; True if restored."""

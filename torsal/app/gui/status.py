@@ -60,10 +60,10 @@ class SolveStatus(QStatusBar):
                 self.solve_label.setText(f"Solve failed: {outcome.error}")
             else:
                 self.solve_label.setText(
-                    f"Solve cancelled after {ms:.0f} ms ({len(report.solved)} nodes solved)"
+                    f"Solve cancelled after {ms:.0f} ms ({nodes(len(report.solved))} solved)"
                 )
         else:
-            self.solve_label.setText(f"Solved {len(report.solved)} nodes in {ms:.1f} ms")
+            self.solve_label.setText(f"Solved {nodes(len(report.solved))} in {ms:.1f} ms")
             # the label keeps a fixed size, the largest it has needed since: a new time does
             # not lay the status bar (and with it the window) out again, as a label that may
             # change size does on every new text
@@ -77,3 +77,8 @@ class SolveStatus(QStatusBar):
         style = "color: #c0281f;" if errors else ("color: #b06800;" if warnings else "")
         if style != self.counts_label.styleSheet():  # restyling costs a polish and a repaint
             self.counts_label.setStyleSheet(style)
+
+
+def nodes(count: int) -> str:
+    """``1 node``, ``2 nodes``."""
+    return f"{count} node" if count == 1 else f"{count} nodes"
