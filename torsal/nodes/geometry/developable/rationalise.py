@@ -42,7 +42,8 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
-from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, uncovered
+from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
+from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.warp import curve_warp
@@ -66,7 +67,9 @@ class Strip:
     result: RulingResult
     surface: RuledSurface
     warp: FloatArray  #: per ruling, recomputed from the curves' exact tangents (NaN undefined)
-    deviation: float  #: certified largest distance from the design (:mod:`.certify`)
+    #: certified largest distance from the design (:mod:`.certify`), and of the design's edge
+    #: at the strip's two ends from the strip
+    deviation: float
     where: FloatArray  #: (3,) the strip's point farthest from the design (of its samples)
 
     @property
@@ -157,7 +160,11 @@ def strip_between(
     warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
     reference = tolerance if tolerance is not None else np.inf
     deviation = certified_deviation(design, surface, reference)
-    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), deviation.bound, deviation.where)
+    bound, where = deviation.bound, deviation.where
+    if deviation.sampled <= reference:  # and the design's edge at the strip's two ends
+        gap, at = end_gaps(design, surface, a, b)
+        bound, where = (gap, at) if gap > bound else (bound, where)
+    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), bound, where)
 
 
 #: Strips are widened to about this share of the tolerance (deviation grows as width²).
@@ -249,6 +256,49 @@ def _even(
     return strips
 
 
+#: A rationalisation with at most this share of its area in creasing fans is kept without
+#: trying the other family of boundaries.
+SMOOTH = 0.01
+
+
+def creased_area(strips: Sequence[Strip]) -> float:
+    """The share of the strips' summed area in fans that crease the sheet."""
+    creased = total = 0.0
+    for strip in strips:
+        areas = patch_areas(strip.result.starts, strip.result.ends)
+        fan = strip.result.fan
+        total += float(areas.sum())
+        creased += float(areas[creased_fans(strip.result.starts, strip.result.ends, fan)].sum())
+    return creased / total if total > 0 else 0.0
+
+
+def _score(strips: Sequence[Strip], tolerance: float) -> tuple[float, ...]:
+    """Smaller is better: beyond the tolerance first, then creased area (to 2 %), then strips."""
+    over = max(0.0, max(s.deviation for s in strips) - tolerance)
+    return (over, round(creased_area(strips) / 0.02), float(len(strips)))
+
+
+def _cover(
+    design: Surface, family_of: Boundaries, tolerance: float, max_strips: int, segments: int,
+    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float,
+) -> tuple[list[Strip], list[int]]:
+    """The strips of one family of boundaries: each band between guides marched, or
+    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones."""
+    strips: list[Strip] | None = []
+    narrow: list[int] = []
+    for start, end in itertools.pairwise(family_of.levels):  # a boundary on every guide
+        assert strips is not None
+        band = _march(design, family_of, float(start), float(end), tolerance, max_strips - len(strips),
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
+        if band is None:
+            strips = None
+            break
+        strips.extend(band)
+    if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
+        return _even(design, family_of, max_strips, segments, warp_tolerance, tolerance), []
+    return strips, narrow
+
+
 def rationalise(
     design: Surface,
     tolerance: float,
@@ -277,24 +327,23 @@ def rationalise(
             "patches (cut it open) and rationalise each patch"
         )
     if guides:
-        family_of: Boundaries = guided_boundaries(design, guides)
-    else:
-        family = boundary_family(design, direction)
-        family_of = IsoBoundaries(design, family)
-    strips: list[Strip] | None = []
-    narrow: list[int] = []
-    levels = family_of.levels
-    for start, end in itertools.pairwise(levels):  # a boundary on every guide, each band marched
-        assert strips is not None
-        band = _march(design, family_of, float(start), float(end), tolerance, int(max_strips) - len(strips),
-                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
-        if band is None:
-            strips = None
-            break
-        strips.extend(band)
-    if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
-        strips = _even(design, family_of, int(max_strips), segments, warp_tolerance, tolerance)
-        narrow = []
+        candidates: list[Boundaries] = [guided_boundaries(design, guides)]
+    elif direction is not None:
+        candidates = [IsoBoundaries(design, boundary_family(design, direction))]
+    else:  # the family the square law prefers first; the other when the first creases the sheet
+        first = boundary_family(design)
+        candidates = [IsoBoundaries(design, first), IsoBoundaries(design, "v" if first == "u" else "u")]
+    best: tuple[tuple[float, ...], Boundaries, list[Strip], list[int]] | None = None
+    for k, family_of in enumerate(candidates):
+        strips, narrow = _cover(design, family_of, tolerance, int(max_strips), segments, warp_tolerance,
+                                progress if k == 0 else None, min_width)
+        score = _score(strips, tolerance)
+        if best is None or score < best[0]:
+            best = (score, family_of, strips, narrow)
+        if creased_area(strips) <= SMOOTH:
+            break  # smooth enough: the other family is not tried
+    assert best is not None
+    _, family_of, strips, narrow = best
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [family_of.at(p) for p in params]
     points, gaps = uncovered(design, [s.surface for s in strips])
