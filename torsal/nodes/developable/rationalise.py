@@ -120,9 +120,10 @@ class Rationalise(Node):
            max=SEGMENT_LIMIT),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
-        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (at its widest), model units: where the "
-           "tolerance would need narrower strips they are made this wide and the node warns where and how "
-           "far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).", default=0.2),
+        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (the median length of its rulings), model "
+           "units: where the tolerance would need narrower strips they are made this wide and the node warns "
+           "where and how far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).",
+           default=0.2),
     )
     outputs = (
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),

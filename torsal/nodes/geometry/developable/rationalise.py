@@ -74,8 +74,8 @@ class Strip:
 
     @property
     def width(self) -> float:
-        """The strip's widest point: its longest ruling."""
-        return float(np.linalg.norm(self.result.ends - self.result.starts, axis=1).max(initial=0.0))
+        """The strip's width: the median length of its rulings."""
+        return float(np.median(np.linalg.norm(self.result.ends - self.result.starts, axis=1)))
 
 
 @dataclass
@@ -144,6 +144,10 @@ def boundary_family(surface: Surface, direction: ArrayLike | None = None, sample
     return "u" if count(svv, sv) <= count(suu, su) else "v"
 
 
+class Unmade(ValueError):
+    """No strip between two boundaries: its rulings' partners do not run one way."""
+
+
 def strip_between(
     design: Surface, boundaries: Boundaries, lo: float, hi: float, segments: int = 24,
     warp_tolerance: float = 1e-7, tolerance: float | None = None,
@@ -156,7 +160,10 @@ def strip_between(
         check()
     a, b = boundaries.at(lo), boundaries.at(hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
-    surface = ruled_between(a, result.s, b, result.t)
+    try:
+        surface = ruled_between(a, result.s, b, result.t)
+    except ValueError as exc:  # partners that run back (a wide trial over a sharp bump)
+        raise Unmade(str(exc)) from exc
     warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
     reference = tolerance if tolerance is not None else np.inf
     deviation = certified_deviation(design, surface, reference)
@@ -183,8 +190,8 @@ def _march(
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
-    within). Where the tolerance would need a strip narrower than ``min_width`` (at its
-    widest), the strip is made ``min_width`` wide instead and its index (counted from
+    within). Where the tolerance would need a strip narrower than ``min_width`` (its rulings'
+    median length), the strip is made ``min_width`` wide instead and its index (counted from
     ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed."""
     strips: list[Strip] = []
     lo, width = start, end - start
@@ -196,8 +203,13 @@ def _march(
         w = min(width, end - lo)
         strip = None
         for trial in range(TRIALS * 4):
-            strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
-                                  tolerance)
+            try:
+                strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
+                                      tolerance)
+            except Unmade:  # too wide to be made: narrower
+                bad = min(bad, w)
+                w = 0.5 * (((good.hi - lo) if good is not None else 0.0) + bad)
+                continue
             if strip.deviation <= tolerance:
                 good = strip if good is None or strip.hi > good.hi else good
                 if strip.hi >= end:
@@ -220,12 +232,19 @@ def _march(
         if settled is None:
             # the tolerance needs a strip narrower than MinWidth (or none was found): one
             # MinWidth wide, by the width per level of the last trial
-            probe = good if good is not None else strip
-            if probe is None or not probe.width > 0.0 or not min_width > 0.0:
+            if not min_width > 0.0:
                 return None
-            w = min(end - lo, (probe.hi - lo) * min_width / probe.width)
-            settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
-                                    warp_tolerance, tolerance)
+            w = min(end - lo, _level_step(boundaries, lo, end, min_width))
+            settled = None
+            for _ in range(8):
+                try:
+                    settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
+                                            warp_tolerance, tolerance)
+                    break
+                except Unmade:
+                    w *= 0.5
+            if settled is None:
+                return None
             if settled.deviation > tolerance and narrow is not None:
                 narrow.append(first + len(strips))
         strips.append(settled)
@@ -234,6 +253,16 @@ def _march(
         if progress is not None:
             progress(lo)
     return strips
+
+
+def _level_step(boundaries: Boundaries, lo: float, end: float, width: float) -> float:
+    """The step in level from ``lo`` that puts the next boundary about ``width`` away (the
+    median distance at five points along, by the distance a small step moves them)."""
+    step = min(0.01, end - lo)
+    t = np.linspace(0.1, 0.9, 5)
+    moved = np.linalg.norm(boundaries.at(lo + step).point_at(t) - boundaries.at(lo).point_at(t), axis=1)
+    rate = float(np.median(moved)) / step
+    return width / rate if rate > 0 else end - lo
 
 
 def _even(
@@ -317,7 +346,7 @@ def rationalise(
     Raises ``ValueError`` for a design closed across the boundaries (cut it first) and for
     guides that cannot be followed (saying which). ``progress`` is called with the share
     of the design covered so far (0 to 1). Strips are at least ``min_width`` wide (at
-    their widest) even where the tolerance would need narrower ones (listed in ``narrow``).
+    their rulings' median length) even where the tolerance would need narrower ones (listed in ``narrow``).
     """
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
