@@ -116,6 +116,8 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     interior: list[float] = []
     lo, hi = float(span[0]), float(span[-1])
     tolerance = FIT * size
+    ends = span[[0, -1]]
+    slopes = np.hstack([strip.curve_a.derivatives(ends, 1)[1], strip.curve_b.derivatives(ends, 1)[1]])
     per = SAMPLES
     best: tuple[float, np.ndarray, object] = (np.inf, np.empty(0), None)
     while True:
@@ -127,9 +129,14 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
                 spline = make_lsq_spline(fine, data, knots, k=3)
             except (ValueError, np.linalg.LinAlgError):  # too many knots for these samples
                 break
-            # clamped: the end control points are the end rulings' ends, exactly (shared edges)
+            # clamped: the end control points are the end rulings' ends, exactly (shared edges),
+            # and the next ones give the rails' own end tangents (a rail that stands still there,
+            # next to a fan, stands still in the face too: its normals stay the strip's)
             ends = np.array(spline.c)
-            ends[0], ends[len(knots) - 5] = data[0], data[-1]
+            n = len(knots) - 4
+            ends[0], ends[n - 1] = data[0], data[-1]
+            ends[1] = ends[0] + (knots[4] - lo) / 3.0 * slopes[0]
+            ends[n - 2] = ends[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
             spline = BSpline(knots, ends, 3)
             fitted = spline(check)
             error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
