@@ -3,7 +3,8 @@
 A canopy 12 × 8 m, one untrimmed bicubic NURBS surface drawn in millimetres (as many
 architects model), rising from 3 m at its long edges to 4.2 m along its middle and
 sagging 0.3 m between its ends — curved both ways, gently. Made with rhino3dm alone, with
-fixed object and layer ids and a bare file name, so the file is the same bytes on every run.
+fixed object and layer ids and a bare file name, so two runs differ only in the time stamp
+openNURBS writes into the file's properties.
 ``rationalise-canopy.graph`` reads it (``tools/build_examples.py``).
 
 Run ``.venv/bin/python -m tools.build_design_3dm``.
@@ -42,7 +43,7 @@ def build(folder: Path = OUT) -> Path:
             surface.Points[(i, j)] = rh.Point4d(*points[i, j].tolist(), 1.0)
     for knots, count in ((surface.KnotsU, nu), (surface.KnotsV, nv)):
         inner = count - 3
-        values = [0.0, 0.0] + list(np.linspace(0.0, 1.0, inner + 1)) + [1.0, 1.0]
+        values = [0.0, 0.0, *np.linspace(0.0, 1.0, inner + 1).tolist(), 1.0, 1.0]
         for k in range(len(knots)):
             knots[k] = float(values[k])
     model = rh.File3dm()

@@ -50,7 +50,8 @@ def _attributes(number: int, layer: int = 0, name: str = "") -> rh.ObjectAttribu
 
 def seed_files(folder: Path) -> list[Path]:
     """Valid .3dm files, made with rhino3dm, holding every kind Import3dm reads; the same
-    bytes on every run (fixed ids, bare file names), so a seed's mutants are the same too."""
+    bytes on every run (fixed ids, bare file names) but for the time stamp openNURBS writes
+    near the start, so a seed's mutants are the same but for those bytes."""
     folder.mkdir(parents=True, exist_ok=True)
     files = []
     curves = rh.File3dm()
