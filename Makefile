@@ -17,7 +17,7 @@ SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontco
 	libdbus-1-3 libxkbcommon0 libxkbcommon-x11-0 libxcb-cursor0 libxcb-icccm4 libxcb-image0 \
 	libxcb-keysyms1 libxcb-randr0 libxcb-render-util0 libxcb-shape0 libxcb-xinerama0 \
 	libxcb-xkb1 libxcb-xfixes0 libxcb-sync1 libxcb-shm0 libxcb-render0 libxrender1 libxext6 \
-	libxi6 libsm6 libice6 libx11-xcb1
+	libxi6 libsm6 libice6 libx11-xcb1 librsvg2-bin
 
 .PHONY: run test bench lint system venv clean fuzz check-bounds
 

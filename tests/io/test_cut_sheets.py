@@ -189,7 +189,7 @@ def test_offset_polygon_keeps_corners_sharp_and_area_grows_by_perimeter_times_of
 # ------------------------------------------------------------------ SVG
 
 
-def test_svg_is_xml_in_mm_with_red_hairline_cuts_and_black_engraving(tmp_path):
+def test_svg_is_xml_in_mm_with_red_hairline_cuts_and_blue_engraving(tmp_path):
     panels = random_panels(8, seed=5)
     result = cut(tmp_path, panels, name="sheet.svg", SheetWidth=1200.0, SheetHeight=800.0)
     assert result.state == OK, texts(result)
@@ -204,8 +204,10 @@ def test_svg_is_xml_in_mm_with_red_hairline_cuts_and_black_engraving(tmp_path):
         cut_group, engrave_group = groups["CUT"], groups["ENGRAVE"]
         style = (cut_group.get("id"), cut_group.get("stroke"), cut_group.get("fill"))
         assert style == ("CUT", "#ff0000", "none")
-        assert (engrave_group.get("stroke"), engrave_group.get("fill")) == ("#000000", "none")
-        assert float(cut_group.get("stroke-width")) <= 0.0254  # a hairline to laser drivers
+        assert (engrave_group.get("stroke"), engrave_group.get("fill")) == ("#0000ff", "none")
+        # a hairline: one pixel at any zoom (docs/cut-sheets.md)
+        assert cut_group.get("vector-effect") == "non-scaling-stroke"
+        assert float(cut_group.get("stroke-width")) == 1.0
         for path in cut_group.findall(f"{SVG}path"):
             numbers = np.array([[float(x) for x in pair.split(",")] for pair in path.get("d").split()
                                 if "," in pair])

@@ -4,6 +4,7 @@ engraved on both parts with alignment ticks, and its two flat edge lengths are r
 from __future__ import annotations
 
 import functools
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -170,3 +171,38 @@ def test_kaohsiung_seams_are_as_long_flat_as_the_shared_curve_in_3d():
         assert parts[seam.part_a] == found.a
         assert seam.length_a == pytest.approx(arc, abs=0.005)
         assert seam.length_b == pytest.approx(arc, abs=0.005)
+
+
+def _label_boxes(part, seam_ids):
+    """The envelope of each label on a part: its ID, then each of its seams' IDs in order."""
+    boxes = [shapely.MultiPolygon([shapely.Polygon(g) for g in part.label]).envelope] if part.label else []
+    glyphs = list(part.seam_labels)
+    for seam_id in seam_ids:
+        count = len(cutfiles.text_outlines(seam_id))
+        these, glyphs = glyphs[:count], glyphs[count:]
+        boxes.append(shapely.MultiPolygon([shapely.Polygon(g) for g in these]).envelope)
+    assert not glyphs
+    return boxes
+
+
+@pytest.mark.parametrize("width", [0.025, 0.04, 0.08])
+def test_labels_on_narrow_parts_never_overlap_and_every_seam_is_labelled_on_both_parts(width):
+    """A narrow strip between two wide ones (the canopy's 4-12 cm strips at 1:1): its ID and
+    both its seams' IDs are engraved, none on top of another or of a tick."""
+    strips = [band(0.0, 0.3), band(0.3, 0.3 + width), band(0.3 + width, 0.6 + width)]
+    result = run(ExportCutSheet(), Surfaces=tree({(0,): strips}), Strips=tree({(0,): strips}),
+                 TickSpacing=50.0, TextHeight=10.0)
+    assert result.state == OK, texts(result)
+    assert not [t for t in texts(result) if "does not fit" in t or "too narrow" in t], texts(result)
+    layout = out(result, "Layout")[(0,)][0]
+    assert [s.id for s in layout.seams] == ["S1", "S2"]
+    seams_of = {p.id: [s.id for s in layout.seams if p.id in (s.part_a, s.part_b)] for p in layout.parts}
+    for part in layout.parts:
+        assert part.label, part.id
+        boxes = _label_boxes(part, seams_of[part.id])
+        assert len(boxes) == 1 + len(seams_of[part.id])
+        for a, b in itertools.combinations(boxes, 2):
+            assert not a.intersects(b), part.id
+        ticks = shapely.MultiLineString([t for t in part.ticks])
+        assert not any(box.intersects(ticks) for box in boxes), part.id
+        assert all(shapely.Polygon(part.panel).contains(box) for box in boxes)

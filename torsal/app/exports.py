@@ -11,7 +11,8 @@ the io nodes (:mod:`torsal.nodes.io`), so a file exported headless is the file t
 - ``.dxf`` / ``.svg`` — an ``io.ExportCutSheet`` Layout as laid out there; or closed
   flat curves or flat surfaces (their boundaries), laid out with the node's defaults
   (2500 × 1250 mm sheets, 10 mm gap, no kerf, IDs P-001 … in tree order). One file
-  per sheet (``name-1.dxf`` … when there are several).
+  per sheet (``name-1.dxf`` … when there are several); with ``--preview`` also a PNG of
+  each sheet beside its file (``name-1.png`` …).
 - ``.obj`` / ``.stl`` / ``.ply`` / ``.glb`` — meshes and surfaces (meshed 33 × 33),
   as ``io.ExportMesh`` writes them.
 
@@ -47,8 +48,10 @@ class ExportError(ValueError):
     """An export that cannot be written (unknown format, wrong kind of data, a file error)."""
 
 
-def export_tree(tree: DataTree, path: Path, units: str = "m") -> list[Path]:
-    """Write ``tree`` to ``path`` in the format its extension names; returns the files written."""
+def export_tree(tree: DataTree, path: Path, units: str = "m", preview: bool = False) -> list[Path]:
+    """Write ``tree`` to ``path`` in the format its extension names; returns the files written.
+    ``preview``: cut sheets (.dxf/.svg) also get one PNG per sheet beside their files
+    (:func:`~torsal.nodes.io.formats.sheetviews.write_previews`)."""
     from torsal.nodes.io.common import FileFailure
 
     suffix = path.suffix.lower()
@@ -62,7 +65,13 @@ def export_tree(tree: DataTree, path: Path, units: str = "m") -> list[Path]:
         if suffix in (".dxf", ".svg"):
             from torsal.nodes.io.formats import cutfiles
 
-            return cutfiles.write_cut_files(_layout(tree, suffix, units), path)
+            layout = _layout(tree, suffix, units)
+            files = cutfiles.write_cut_files(layout, path)
+            if preview:
+                from torsal.nodes.io.formats.sheetviews import write_previews
+
+                files += write_previews(layout, files)
+            return files
         if suffix in (".obj", ".stl", ".ply", ".glb"):
             from torsal.nodes.io.formats import meshfiles
 

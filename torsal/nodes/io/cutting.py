@@ -98,8 +98,11 @@ class ExportCutSheet(Node):
     polyline per part on layer CUT, the letters on ENGRAVE, the sheet's border on
     SHEET and, with Reference true, the drawn (un-offset) outlines on REFERENCE —
     those two layers are not plotted and not to be cut. SVG: a page of the sheet's
-    size in mm, red hairline cuts, black engraving, a grey SHEET border, green
-    REFERENCE outlines, no fill. One file per
+    size in mm, no fill, colours by layer as laser software maps them (red CUT, blue
+    ENGRAVE, grey SHEET border, green REFERENCE), each line a hairline drawn one pixel
+    wide at any zoom (vector-effect non-scaling-stroke), so the file can be checked in a
+    browser before cutting (docs/cut-sheets.md). ``torsal run --export … --preview``
+    also writes a PNG of each sheet. One file per
     sheet: name.dxf for one sheet, name-1.dxf, name-2.dxf … for more (name-01 …
     from ten sheets on, so they sort). Nothing is written until Write is true and
     you have allowed the graph to write files; Path is relative to the graph's folder
@@ -108,6 +111,7 @@ class ExportCutSheet(Node):
     """
 
     type_id = "io.ExportCutSheet"
+    nickname, aliases = "Cut", ("nest", "nesting", "cut sheet", "laser", "cutter", "dxf", "svg")
     inputs = (
         In("Path", TEXT, "P", "The .dxf or .svg file to write, relative to the graph's folder.", default=""),
         In("Panels", CURVE, "Pn", "Closed flat panel outlines, in model units.", access=TREE,

@@ -24,6 +24,7 @@ class ExportCSV(Node):
     """
 
     type_id = "io.ExportCSV"
+    nickname, aliases = "CSV", ("Write File", "spreadsheet", "excel")
     inputs = (
         In("Path", TEXT, "P", "The .csv file to write, relative to the graph's folder.", default=""),
         In("Data", GENERIC, "D", "The data tree to write.", access=TREE),

@@ -23,6 +23,7 @@ class ImportMesh(Node):
     """
 
     type_id = "io.ImportMesh"
+    nickname, aliases = "MeshIn", ("import obj", "import stl", "scan")
     inputs = (
         In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to read."),
         In("FileUnits", TEXT, "Fu", "Units of the file's numbers (empty: the model's; GLB: always m).",
@@ -48,6 +49,7 @@ class ExportMesh(Node):
     """
 
     type_id = "io.ExportMesh"
+    nickname, aliases = "MeshOut", ("export obj", "export stl", "glb", "ply")
     inputs = (
         In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write, relative to the graph's folder.",
            default=""),

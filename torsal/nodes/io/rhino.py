@@ -34,6 +34,7 @@ class Import3dm(Node):
     """
 
     type_id = "io.Import3dm"
+    nickname, aliases = "3dmIn", ("Import 3DM", "read rhino", "Geometry Pipeline")
     inputs = (
         In("Path", TEXT, "P", "The .3dm file to read."),
         In("Layers", TEXT, "L", "Only these layers (empty: every layer).", access=LIST, optional=True),
@@ -95,6 +96,7 @@ class Export3dm(Node):
     """
 
     type_id = "io.Export3dm"
+    nickname, aliases = "3dm", ("Bake", "export rhino", "rhino")
     inputs = (
         In("Path", TEXT, "P", "The .3dm file to write, relative to the graph's folder.", default=""),
         In("Curves", CURVE, "C", "Curves, on the layer Curves.", access=TREE, optional=True),

@@ -159,11 +159,17 @@ def ticks(edge: FloatArray, panel: FloatArray, spacing: float, reverse: bool = F
     return out
 
 
+#: Where along a seam's edge its ID is tried, as shares of the edge's length, in order.
+LABEL_STATIONS = (0.5, 0.35, 0.65, 0.2, 0.8, 0.1, 0.9)
+
+
 def seam_label(text: str, edge: FloatArray, panel: FloatArray, height: float,
-               glyphs: tuple[FloatArray, ...]) -> tuple[FloatArray, ...]:
-    """The seam ID's letter outlines (``glyphs`` at cap height 1) beside the middle of
-    ``edge``, inside the panel, as tall as ``height`` allows (down to a fifth of it); ()
-    when it does not fit."""
+               glyphs: tuple[FloatArray, ...],
+               avoid: shapely.Geometry | None = None) -> tuple[FloatArray, ...]:
+    """The seam ID's letter outlines (``glyphs`` at cap height 1) beside ``edge``, inside
+    the panel and clear of ``avoid`` (labels and ticks already engraved on it), as tall as
+    ``height`` allows (down to a fifth of it): beside the edge's middle, else moved along
+    the edge (:data:`LABEL_STATIONS`), else smaller; () when it does not fit anywhere."""
     if not glyphs or height <= 0:
         return ()
     del text
@@ -171,21 +177,26 @@ def seam_label(text: str, edge: FloatArray, panel: FloatArray, height: float,
     low, high = every.min(axis=0), every.max(axis=0)
     steps = np.linalg.norm(np.diff(edge, axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(steps)])
-    k = min(int(np.searchsorted(along, along[-1] / 2, side="right")) - 1, len(edge) - 2)
-    direction = edge[k + 1] - edge[k]
-    norm = float(np.linalg.norm(direction)) or 1.0
-    middle = edge[k] + (along[-1] / 2 - along[k]) / norm * direction
-    normal = np.array([-direction[1], direction[0]]) / norm
     polygon = shapely.Polygon(panel)
-    if not polygon.contains(shapely.Point(middle + SIDE_MM * normal)):
-        normal = -normal
+    stations = []
+    for share in LABEL_STATIONS:
+        at = along[-1] * share
+        k = min(int(np.searchsorted(along, at, side="right")) - 1, len(edge) - 2)
+        direction = edge[k + 1] - edge[k]
+        norm = float(np.linalg.norm(direction)) or 1.0
+        foot = edge[k] + (at - along[k]) / norm * direction
+        normal = np.array([-direction[1], direction[0]]) / norm
+        if not polygon.contains(shapely.Point(foot + SIDE_MM * normal)):
+            normal = -normal
+        stations.append((foot, normal))
     size = min(height, float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= height / 5:
-        for away in (1.2, 2.0, 3.0):
-            centre = middle + normal * (TICK_MM + away * size * max(1.0, (high - low).max() / 2))
-            corner = centre - (low + high) / 2 * size
-            box = shapely.box(*(corner + low * size), *(corner + high * size))
-            if polygon.contains(box.buffer(0.1 * size)):
-                return tuple(g * size + corner for g in glyphs)
+        for foot, normal in stations:
+            for away in (1.2, 2.0, 3.0):
+                centre = foot + normal * (TICK_MM + away * size * max(1.0, (high - low).max() / 2))
+                corner = centre - (low + high) / 2 * size
+                box = shapely.box(*(corner + low * size), *(corner + high * size)).buffer(0.1 * size)
+                if polygon.contains(box) and (avoid is None or not box.intersects(avoid)):
+                    return tuple(g * size + corner for g in glyphs)
         size *= 0.8
     return ()

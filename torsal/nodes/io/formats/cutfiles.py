@@ -20,9 +20,9 @@ with their ID and alignment ticks, and their two flat edge lengths are reported.
   (open) on layer ``ENGRAVE``; the sheet's border on ``SHEET`` and, when asked, the
   drawn (un-offset) outlines on ``REFERENCE`` — those two layers are not plotted (and
   are not to be cut); the drawing limits are the sheet.
-- **SVG**: ``width``/``height`` in mm with a matching ``viewBox`` (1 user unit = 1 mm,
-  y pointing down as SVG wants), no fill, hairline (0.01 mm) paths in groups ``SHEET``
-  (grey), ``REFERENCE`` (green, when asked), ``CUT`` (red) and ``ENGRAVE`` (black).
+- **SVG** (:mod:`torsal.nodes.io.formats.sheetviews`): ``width``/``height`` in mm with a
+  matching ``viewBox``, no fill, hairlines (1 px at any zoom) in groups ``SHEET`` (grey),
+  ``REFERENCE`` (green, when asked), ``CUT`` (red) and ``ENGRAVE`` (blue).
 
 Text outlines come from ezdxf's TrueType renderer (``ezdxf.fonts.ttfonts``) drawing
 DejaVu Sans — the font file matplotlib ships, so no system font is needed (ezdxf
@@ -38,7 +38,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 import shapely
@@ -51,6 +50,7 @@ from torsal.nodes.geometry.curves import NurbsCurve, Polyline
 from torsal.nodes.geometry.nesting import NestingFailed, nest, place
 from torsal.nodes.geometry.offset2d import offset_polygon
 from torsal.nodes.geometry.packing import DoesNotFit, shelf_pack
+from torsal.nodes.geometry.polygons import ring_areas, signed_ring_area
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.watch import watch_check, watch_progress, watched
 from torsal.nodes.io import seams as seam_edges
@@ -64,8 +64,6 @@ FLATTEN_MM = 0.01
 FLAT_MM = 0.01
 #: Space between sheets (mm) where sheets are shown side by side (previews, .3dm).
 SHEET_SPACING_MM = 100.0
-#: Stroke width of SVG paths (mm): a hairline to laser drivers.
-HAIRLINE_MM = 0.01
 #: Outline points closer than this share of the outline's size to the previous one are one point.
 SAME_POINT = 1e-9
 
@@ -134,7 +132,7 @@ class CutLayout:
 
     @property
     def panel_area(self) -> float:
-        return sum(abs(_signed_area(p.panel)) for p in self.parts)
+        return float(ring_areas([p.panel for p in self.parts]).sum())
 
     @property
     def usage(self) -> float:
@@ -172,11 +170,6 @@ class CutLayout:
 # ------------------------------------------------------------------ outlines and checks
 
 
-def _signed_area(points: FloatArray) -> float:
-    x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
-
-
 def _vertices(curve: Curve, tolerance: float) -> FloatArray:
     """The outline's points, exact for polylines and degree-1 NURBS, else within ``tolerance``."""
     if isinstance(curve, Polyline):
@@ -212,7 +205,7 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
         flat = (points - centre) @ axes[:2].T
     else:
         flat = points[:, :2].copy()
-    return flat[::-1] if _signed_area(flat) < 0 else flat
+    return flat[::-1] if signed_ring_area(flat) < 0 else flat
 
 
 def surface_outline(surface: Surface, tolerance: float) -> Polyline:
@@ -459,11 +452,11 @@ def lay_out(
         for i, name in enumerate(names):
             if check:  # a label may take tens of ms (its pole of inaccessibility, the font's first load)
                 check()
-            label, size = place_label(name, drawn[i], text_height)
+            tick_list, seam_glyphs = marks.get(i, ([], []))
+            label, size = place_label(name, drawn[i], text_height, engraved(tick_list, seam_glyphs))
             if text_height > 0 and not label:
                 notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: "
                              "not engraved")
-            tick_list, seam_glyphs = marks.get(i, ([], []))
             parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
                               tuple(seam_glyphs)))
     if stopped:
@@ -481,9 +474,12 @@ def _stock(sheet_of: NDArray[np.intp], cuts: Sequence[FloatArray]) -> tuple[int,
 
 
 def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, notes):  # type: ignore[no-untyped-def]
-    """Per part index, (ticks, seam-ID outlines) as laid out; and each seam's lengths."""
+    """Per part index, (ticks, seam-ID outlines) as laid out; and each seam's lengths. Every
+    tick is placed first, then the seams' IDs, each clear of the ticks and IDs already on
+    its part (moved along the edge or smaller, :func:`~torsal.nodes.io.seams.seam_label`)."""
     marks: dict[int, tuple[list[FloatArray], list[FloatArray]]] = {}
     lengths: list[SeamLengths] = []
+    sides_of = []
     for seam in seams:
         sides = []
         for index, edge_index in ((seam.a, seam.edge_a), (seam.b, seam.edge_b)):
@@ -498,19 +494,33 @@ def _seam_marks(curves, names, drawn, seams, scale, spacing, text_height, move, 
         (a, edge_a), (b, edge_b) = sides
         lengths.append(SeamLengths(seam.id, names[a], names[b], seam_edges.length(edge_a),
                                    seam_edges.length(edge_b)))
-        glyphs = text_outlines(seam.id)
-        for index, flat, reverse in ((a, edge_a, False), (b, edge_b, seam.reversed)):
-            placed = move(index, flat)
-            ticks, letters = marks.setdefault(index, ([], []))
+        placed = [(a, move(a, edge_a), False), (b, move(b, edge_b), seam.reversed)]
+        sides_of.append((seam, placed))
+        for index, edge, reverse in placed:
+            ticks, _ = marks.setdefault(index, ([], []))
             try:
-                ticks += seam_edges.ticks(placed, drawn[index], spacing, reverse)
+                ticks += seam_edges.ticks(edge, drawn[index], spacing, reverse)
             except ValueError as exc:
                 raise FileFailure(f"Seam {seam.id}: {exc}") from None
-            label = seam_edges.seam_label(seam.id, placed, drawn[index], 0.6 * text_height, glyphs)
+    for seam, placed in sides_of:
+        glyphs = text_outlines(seam.id)
+        for index, edge, _ in placed:
+            ticks, letters = marks[index]
+            label = seam_edges.seam_label(seam.id, edge, drawn[index], 0.6 * text_height, glyphs,
+                                          engraved(ticks, letters))
             if text_height > 0 and not label:
                 notes.append(f"Seam {seam.id}'s ID does not fit beside its edge on panel {names[index]}")
             letters += label
     return marks, lengths
+
+
+def engraved(ticks: Sequence[FloatArray], letters: Sequence[FloatArray]) -> shapely.Geometry | None:
+    """What is already engraved on a part, for a label to keep clear of: its ticks, and the
+    envelope of its letters."""
+    shapes = [shapely.LineString(t) for t in ticks]
+    if letters:
+        shapes.append(shapely.MultiPoint(np.vstack(letters)).envelope)
+    return shapely.GeometryCollection(shapes) if shapes else None
 
 
 # ------------------------------------------------------------------ writers
@@ -535,7 +545,7 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
         space = doc.modelspace()
         space.dxf_layout.dxf.limmin = (0.0, 0.0)  # saving syncs the header from the layout
         space.dxf_layout.dxf.limmax = (layout.width, layout.height)
-        space.add_lwpolyline(_border(layout).tolist(), close=True, dxfattribs={"layer": SHEET})
+        space.add_lwpolyline(border(layout).tolist(), close=True, dxfattribs={"layer": SHEET})
         for part in layout.on_sheet(sheet):
             if layout.reference:
                 space.add_lwpolyline(part.panel.tolist(), close=True, dxfattribs={"layer": REFERENCE})
@@ -549,56 +559,16 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
     return files
 
 
-def _border(layout: CutLayout) -> FloatArray:
+def border(layout: CutLayout) -> FloatArray:
     w, h = layout.width, layout.height
     return np.array([[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]])
 
 
-def _svg_path(points: FloatArray, height: float) -> str:
-    flipped = np.column_stack([points[:, 0], height - points[:, 1]])
-    coords = " ".join(f"{x:.6f},{y:.6f}" for x, y in flipped.tolist())
-    return f"M {coords} Z"
-
-
-def svg_text(layout: CutLayout, sheet: int) -> str:
-    """The SVG document of one sheet."""
-    w, h = layout.width, layout.height
-    lines = [
-        '<?xml version="1.0" encoding="UTF-8"?>',
-        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w:g}mm" height="{h:g}mm" '
-        f'viewBox="0 0 {w:g} {h:g}">',
-        f"  <title>Torsal cut sheet {sheet + 1} of {layout.sheets}</title>",
-        f'  <g id="{SHEET}" fill="none" stroke="#969696" stroke-width="{HAIRLINE_MM:g}">',
-        f'    <path d="{_svg_path(_border(layout), h)}"/>',
-        "  </g>",
-    ]
-    parts = layout.on_sheet(sheet)
-    if layout.reference:
-        lines.append(f'  <g id="{REFERENCE}" fill="none" stroke="#00a000" stroke-width="{HAIRLINE_MM:g}">')
-        for part in parts:
-            lines.append(f'    <path data-panel={quoteattr(part.id)} d="{_svg_path(part.panel, h)}"/>')
-        lines.append("  </g>")
-    lines.append(f'  <g id="{CUT}" fill="none" stroke="#ff0000" stroke-width="{HAIRLINE_MM:g}">')
-    for part in parts:
-        lines.append(f'    <path data-panel={quoteattr(part.id)} d="{_svg_path(part.outline, h)}"/>')
-    lines.append("  </g>")
-    lines.append(f'  <g id="{ENGRAVE}" fill="none" stroke="#000000" stroke-width="{HAIRLINE_MM:g}">')
-    for part in parts:
-        if part.label or part.seam_labels or part.ticks:
-            d = " ".join([_svg_path(g, h) for g in part.label + part.seam_labels]
-                         + [_svg_path(t, h)[:-2] for t in part.ticks])
-            lines.append(f'    <path data-panel={quoteattr(part.id)} d="{d}"/>')
-    lines += ["  </g>", "</svg>", ""]
-    return "\n".join(lines)
-
-
 def write_svg(layout: CutLayout, path: Path) -> list[Path]:
-    """One SVG file per sheet (see the module); returns the files written."""
-    files = numbered(writable(path), layout.sheets)
-    for sheet, file in enumerate(files):
-        text = svg_text(layout, sheet)
-        replacing(file, lambda temporary, text=text: temporary.write_text(text, encoding="utf-8"))
-    return files
+    """One SVG file per sheet (:mod:`torsal.nodes.io.formats.sheetviews`); returns the files written."""
+    from torsal.nodes.io.formats.sheetviews import write_svg as write
+
+    return write(layout, path)
 
 
 def write_cut_files(layout: CutLayout, path: Path) -> list[Path]:

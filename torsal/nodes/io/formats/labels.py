@@ -114,11 +114,30 @@ def text_outlines(text: str) -> tuple[FloatArray, ...]:
     return tuple(contours)
 
 
-def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[FloatArray, ...], float]:
+def _along_axis(polygon: shapely.Polygon, centroid: FloatArray) -> list[FloatArray]:
+    """Middles of the panel's cross-sections at a few places along its long axis (through
+    the centroid): where a label can go on a long narrow part besides its centre."""
+    ring = np.asarray(polygon.exterior.coords)
+    axes = np.linalg.svd(ring - centroid, full_matrices=False)[2]
+    long, across = axes[0], axes[1]
+    span = float(np.ptp((ring - centroid) @ long))
+    reach = float(np.ptp((ring - centroid) @ across)) + 1.0
+    out = []
+    for share in (-0.3, 0.3, -0.15, 0.15, -0.42, 0.42):
+        foot = centroid + share * span * long
+        chord = polygon.intersection(shapely.LineString([foot - reach * across, foot + reach * across]))
+        if not chord.is_empty:
+            out.append(np.asarray(chord.centroid.coords[0]))
+    return out
+
+
+def place_label(text: str, panel: FloatArray, height: float,
+                avoid: shapely.Geometry | None = None) -> tuple[tuple[FloatArray, ...], float]:
     """The ID's outlines centred on the panel's centroid, or else on its pole of
-    inaccessibility (the inside point farthest from the edges), as large as ``height``
-    (cap height, mm) allows while staying inside the panel with a margin of a tenth of
-    the height; (), 0 when even :data:`SMALLEST_TEXT_MM` does not fit."""
+    inaccessibility (the inside point farthest from the edges), or else moved along the
+    panel's long axis, as large as ``height`` (cap height, mm) allows while staying inside
+    the panel with a margin of a tenth of the height and clear of ``avoid`` (the seam labels
+    and ticks already engraved on it); (), 0 when even :data:`SMALLEST_TEXT_MM` does not fit."""
     glyphs = text_outlines(text)
     if not glyphs or height <= 0:
         return (), 0.0
@@ -126,16 +145,21 @@ def place_label(text: str, panel: FloatArray, height: float) -> tuple[tuple[Floa
     low, high = every.min(axis=0), every.max(axis=0)
     polygon = shapely.Polygon(panel)
     centroid = np.asarray(polygon.centroid.coords[0])
-    pole: FloatArray | None = None  # found the first time the centroid does not do (~40 ms a panel)
+    centres: list[FloatArray | None] = [centroid, None]  # None: the pole, found when first needed (~40 ms)
     size = min(float(height), float(np.ptp(panel, axis=0).max()))  # no taller than the panel
     while size >= SMALLEST_TEXT_MM:
-        for centre in (centroid, pole):
+        k = 0
+        while k < len(centres):
+            centre = centres[k]
             if centre is None:
                 found = polylabel(polygon, tolerance=max(1e-3, 1e-4 * math.sqrt(polygon.area)))
-                centre = pole = np.asarray(found.coords[0])
+                centre = centres[k] = np.asarray(found.coords[0])
+                if avoid is not None:  # somewhere else along the part when the middle is taken
+                    centres += _along_axis(polygon, centroid)
             corner = centre - (low + high) / 2 * size
-            box = shapely.box(*(corner + low * size), *(corner + high * size))
-            if polygon.contains(box.buffer(0.1 * size)):
+            box = shapely.box(*(corner + low * size), *(corner + high * size)).buffer(0.1 * size)
+            if polygon.contains(box) and (avoid is None or not box.intersects(avoid)):
                 return tuple(g * size + corner for g in glyphs), size
+            k += 1
         size *= 0.8
     return (), 0.0
