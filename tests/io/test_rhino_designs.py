@@ -89,6 +89,12 @@ def test_a_trimmed_face_comes_in_with_its_trim_loops_in_parameter_space(tmp_path
     # the kept part's share of the parameter square is the disc's share of the plane's square
     size = np.ptp(surface.surface.control_points.reshape(-1, 3), axis=0)[:2]
     assert abs(surface.parameter_share - np.pi * 1.5**2 / (size[0] * size[1])) <= 2e-3
+    # its area and centroid are the disc's (to the loop's polygon), and the preview drops the rest
+    area, centroid = surface.area_and_centroid()
+    assert abs(area - np.pi * 1.5**2) <= 5e-3 * area
+    assert np.linalg.norm(centroid - centre) <= 1e-6
+    points, faces, _ = surface.mesh_arrays(65, 65)
+    assert np.linalg.norm(points[faces].mean(axis=1) - centre, axis=1).max() <= 1.5
 
 
 def test_an_untrimmed_brep_face_comes_in_as_its_surface(tmp_path):
@@ -112,3 +118,19 @@ def test_the_canopy_example_reads_its_design_and_solves_with_no_warning(tmp_path
     assert np.allclose(box[:2], [12.0, 8.0], rtol=0, atol=1e-9)  # millimetres into metres
     deviations = solved.solver.result("strips").outputs["Deviation"].all_items()
     assert deviations and max(deviations) <= 0.02
+
+
+def test_a_trimmed_surface_is_written_as_its_untrimmed_surface_exactly(tmp_path):
+    from tests.io.helpers import rhino_surface_points
+    from tests.nodes.helpers import allowed, tree
+    from torsal.nodes.io.rhino import Export3dm
+
+    disc = rh.Circle(rh.Point3d(1.0, 0.5, 0.0), 1.5).ToNurbsCurve()
+    brep = rh.Brep.CreateTrimmedPlane(rh.Plane.WorldXY(), disc)
+    (surface,) = run(Import3dm(), Path=str(write(tmp_path / "t.3dm", brep))).outputs["Surfaces"].all_items()
+    result = run(Export3dm(), Path="out.3dm", Write=True, writes=allowed(tmp_path),
+                 Surfaces=tree({(0,): [surface]}))
+    assert result.state == OK, texts(result)
+    (obj,) = list(rh.File3dm.Read(str(tmp_path / "out.3dm")).Objects)
+    u, v = RNG.random(200), RNG.random(200)
+    assert np.abs(rhino_surface_points(obj.Geometry, u, v) - surface.surface.point_at(u, v)).max() <= 1e-12

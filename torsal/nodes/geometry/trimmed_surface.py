@@ -15,10 +15,20 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
-from shapely import Polygon, contains_xy
+from shapely import Polygon, constrained_delaunay_triangles, contains_xy, get_coordinates
 
 from .curve_base import FloatArray
-from .surface_base import Surface
+from .surface_base import Surface, uv_grid
+
+#: Dunavant's 7-point rule on a triangle (degree 5): barycentric points and weights.
+_RULE_POINTS = np.array([
+    [1 / 3, 1 / 3, 1 / 3],
+    [0.0597158717, 0.4701420641, 0.4701420641], [0.4701420641, 0.0597158717, 0.4701420641],
+    [0.4701420641, 0.4701420641, 0.0597158717],
+    [0.7974269853, 0.1012865073, 0.1012865073], [0.1012865073, 0.7974269853, 0.1012865073],
+    [0.1012865073, 0.1012865073, 0.7974269853],
+])
+_RULE_WEIGHTS = np.array([0.225, *[0.1323941527] * 3, *[0.1259391805] * 3])
 
 
 class TrimmedSurface(Surface):
@@ -54,6 +64,38 @@ class TrimmedSurface(Surface):
         """Whether each (u, v) lies in the kept part (on a loop counts as inside)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         return contains_xy(self.region, u, v) | contains_xy(self.region.boundary.buffer(1e-12), u, v)
+
+    def mesh_arrays(self, nu: int = 33, nv: int = 33) -> tuple[FloatArray, np.ndarray, FloatArray]:
+        """The underlying surface's grid mesh without the triangles outside the trim (by their
+        centres): what the viewport draws and Bake's mesh forms show."""
+        points, faces, normals = self.surface.mesh_arrays(nu, nv)
+        u, v = uv_grid(nu, nv)
+        keep = self.inside(u[faces].mean(axis=1), v[faces].mean(axis=1))
+        return points, faces[keep], normals
+
+    def area_and_centroid(self, rtol: float = 1e-11) -> tuple[float, FloatArray]:
+        """Area and centroid of the kept part: the trimmed (u, v) region cut into triangles
+        (shapely's constrained Delaunay), each split 64 ways, Dunavant's degree-5 rule on
+        each; exact to the trim loops' polygons and the rule (``rtol`` is not used)."""
+        del rtol
+        corners = get_coordinates(constrained_delaunay_triangles(self.region)).reshape(-1, 4, 2)[:, :3]
+        for _ in range(3):  # each triangle into 4, three times
+            a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+            ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
+            corners = np.concatenate([np.stack(t, axis=1) for t in
+                                      ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
+        e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+        flat = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+        uv = np.einsum("qk,tkd->tqd", _RULE_POINTS, corners).reshape(-1, 2)
+        point, su, sv = self.derivatives(uv[:, 0], uv[:, 1], 1)
+        element = np.linalg.norm(np.cross(su, sv), axis=1).reshape(len(corners), -1)
+        weights = element * _RULE_WEIGHTS * flat[:, None]
+        area = float(weights.sum())
+        centroid = (weights.reshape(-1, 1) * point).sum(axis=0) / area
+        return area, centroid
+
+    def area(self, rtol: float = 1e-11) -> float:
+        return self.area_and_centroid(rtol)[0]
 
     def loops_3d(self) -> list[FloatArray]:
         """The trim loops on the surface, as 3D polylines."""

@@ -86,7 +86,12 @@ class Export3dm(Node):
     ::Rulings, ::Panels, ::Meshes). Curves become NURBS curves and surfaces NURBS
     surfaces with Torsal's own parameterisation, exactly where the geometry is a
     B-spline already (a ruled surface is degree 1 across its rulings) and otherwise
-    interpolated to within 1e-9 of its size (the node says how close). Every object
+    interpolated to within 1e-9 of its size (the node says how close); a trimmed surface
+    goes out as its untrimmed surface (rhino3dm cannot write trimmed freeform faces). A
+    developable strip goes face by face along its rulings: ruled faces with rails fitted to
+    1e-6 of its size, fans as planar faces, the strip's faces in one Rhino group, each
+    named and tagged with its rulings (TorsalRulings, TorsalFace); see docs/rhino.md. A
+    curve of no length is left out. Every object
     is named (Curve 1 …, panels by their ID) and keeps its tree path in the user
     strings TorsalPath and TorsalIndex; panels also carry PanelID. The file's units
     are Units. Nothing is written until Write is true and you have allowed the

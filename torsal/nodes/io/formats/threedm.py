@@ -38,6 +38,7 @@ from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface, interpolate_grid
 from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
 from torsal.nodes.geometry.surface_base import Surface, TransformedSurface
+from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
 from torsal.nodes.io.common import FileFailure, replacing, unit_name, writable
 from torsal.nodes.io.formats.threedm_read import Imported, layer_matches, read_3dm
 from torsal.nodes.io.formats.threedm_strips import is_strip, strip_pieces
@@ -132,6 +133,8 @@ def surface_form(surface: Surface) -> NurbsForm:
         )
     if isinstance(surface, RuledSurface):
         return _ruled_form(surface)
+    if isinstance(surface, TrimmedSurface):  # rhino3dm makes no trimmed freeform faces: its surface
+        return surface_form(surface.surface)
     return _interpolated_surface(surface, ruled=surface.ruling_direction == "v")
 
 
