@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import atexit
 import os
-import select
+import queue
 import signal
 import struct
 import subprocess
@@ -61,6 +61,7 @@ class FencedReader:
         self._child: subprocess.Popen[bytes] | None = None
         self._owner = 0
         self._lock = threading.Lock()
+        self._frames: queue.Queue[bytes | int | None] = queue.Queue()
         self.started = 0  #: how many children this reader has started (a crash starts another)
 
     def _start(self) -> subprocess.Popen[bytes]:
@@ -76,11 +77,11 @@ class FencedReader:
         )
         self._owner = os.getpid()
         self.started += 1
+        self._frames = queue.Queue()
+        threading.Thread(target=_pump, args=(self._child.stdout, self._frames), daemon=True).start()
         try:  # the child says it is ready once its imports are done: that time is not a request's
-            deadline = time.monotonic() + STARTUP
-            (size,) = struct.unpack("<I", self._read(self._child, 4, deadline, STARTUP))
-            msgspec.msgpack.decode(self._read(self._child, min(size, 1024), deadline, STARTUP))
-        except (ReaderCrashed, struct.error, msgspec.DecodeError):
+            msgspec.msgpack.decode(self._frame(self._child, time.monotonic() + STARTUP, STARTUP))
+        except (ReaderCrashed, msgspec.DecodeError):
             self._stop(self._child)
             raise ReaderCrashed("the reader could not start") from None
         return self._child
@@ -96,16 +97,12 @@ class FencedReader:
                 assert child.stdin is not None
                 child.stdin.write(struct.pack("<I", len(body)) + body)
                 child.stdin.flush()
-                deadline = time.monotonic() + limit
-                (size,) = struct.unpack("<I", self._read(child, 4, deadline, limit))
-                if size > LARGEST_REPLY:
-                    raise ReaderCrashed(f"the reader sent a reply of {size:,} bytes")
-                reply = msgspec.msgpack.decode(self._read(child, size, deadline, limit))
+                reply = msgspec.msgpack.decode(self._frame(child, time.monotonic() + limit, limit))
             except (BrokenPipeError, ConnectionError):
                 why = self._why(child)
                 self._stop(child)
                 raise ReaderCrashed(why) from None
-            except (msgspec.DecodeError, struct.error):
+            except msgspec.DecodeError:
                 self._stop(child)
                 raise ReaderCrashed("the reader sent a malformed reply") from None
             except ReaderCrashed:
@@ -116,24 +113,18 @@ class FencedReader:
                 raise ReaderCrashed("the reader sent a malformed reply")
             return reply
 
-    def _read(self, child: subprocess.Popen[bytes], count: int, deadline: float, limit: float) -> bytes:
-        assert child.stdout is not None
-        fd = child.stdout.fileno()
-        chunks, left = [], count
-        while left:
-            wait = deadline - time.monotonic()
-            if wait <= 0:
-                self._stop(child)
-                raise ReaderCrashed(f"the reader took longer than {limit:g} s")
-            ready, _, _ = select.select([fd], [], [], wait)
-            if not ready:
-                continue
-            chunk = os.read(fd, min(left, 1 << 20))
-            if not chunk:
-                raise ReaderCrashed(self._why(child))
-            chunks.append(chunk)
-            left -= len(chunk)
-        return b"".join(chunks)
+    def _frame(self, child: subprocess.Popen[bytes], deadline: float, limit: float) -> bytes:
+        """The child's next message, read by its pump thread (portable: no select on pipes)."""
+        try:
+            item = self._frames.get(timeout=max(0.0, deadline - time.monotonic()))
+        except queue.Empty:
+            self._stop(child)
+            raise ReaderCrashed(f"the reader took longer than {limit:g} s") from None
+        if item is None:
+            raise ReaderCrashed(self._why(child))
+        if isinstance(item, int):
+            raise ReaderCrashed(f"the reader sent a reply of {item:,} bytes")
+        return item
 
     def _why(self, child: subprocess.Popen[bytes]) -> str:
         try:
@@ -166,6 +157,24 @@ class FencedReader:
             if child is not None and self._owner == os.getpid():
                 self._stop(child)
             self._child = None
+
+
+def _pump(stream: Any, frames: queue.Queue[bytes | int | None]) -> None:
+    """Read the child's frames into ``frames``: each body, the size of one too large (then
+    stop), and None at the end of its output."""
+    try:
+        while len(head := stream.read(4)) == 4:
+            (size,) = struct.unpack("<I", head)
+            if size > LARGEST_REPLY:
+                frames.put(size)
+                return
+            body = stream.read(size)
+            if len(body) < size:
+                break
+            frames.put(body)
+    except (OSError, ValueError):  # the pipe closed under us: the child was stopped
+        pass
+    frames.put(None)
 
 
 _READERS: dict[str, FencedReader] = {}

@@ -19,7 +19,6 @@ already turned to run along the loop).
 
 from __future__ import annotations
 
-import resource
 import struct
 import sys
 from typing import Any, BinaryIO
@@ -160,7 +159,12 @@ def read(rh: Any, path: str, units: str) -> dict[str, Any]:
 
 
 def limit(memory: int, seconds: int) -> None:
-    """Cap this process's address space and CPU time (a crash is better than a swamped machine)."""
+    """Cap this process's address space and CPU time (a crash is better than a swamped machine).
+    Where the platform has no such limits (Windows), only the parent's clock fences the child."""
+    try:
+        import resource
+    except ImportError:
+        return
     if memory > 0:
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
     if seconds > 0:
