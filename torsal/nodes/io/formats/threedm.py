@@ -9,7 +9,9 @@ copies of them, ruled surfaces between such rails (degree 1 across the rulings) 
 otherwise a cubic interpolation on a grid of Torsal's parameters, refined until it is
 within :data:`APPROXIMATION` of the object's size or has 4097 points along a curve,
 257 × 257 on a surface (the deviation is reported: ~5e-9 of the size for a sphere).
-Files are written in the Rhino 7 format, which Rhino 7 and 8 both open.
+Files are written in the Rhino 7 format, which Rhino 7 and 8 both open. Developable
+strips (ruled surfaces whose rails run on two curves at their rulings' pace) go out face by
+face along their rulings instead (:mod:`.threedm_strips`); a curve of no length is left out.
 
 Reading (:func:`read_3dm`) is :mod:`.threedm_read`'s: rhino3dm parses in a fenced child
 process, never in Torsal's own.

@@ -6,10 +6,13 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
 - each run of torsal rulings (consecutive rulings that do not share an end) is one ruled
   NURBS face, degree 1 across: its two rails are the strip's own rails over that run,
   fitted *together* (one knot vector, parameter u of the strip) by scipy's
-  ``make_lsq_spline``, with knots inserted where the fit is worst until both rails are
-  within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's u is that
-  ruling (to the fit), and the face has as few control points as that takes (not one per
-  sample);
+  ``make_lsq_spline``: double knots at the rulings (the rails' pace is piecewise cubic
+  between them, C1 at them), then knots inserted where the fit is worst until both rails
+  are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's u is
+  that ruling (to the fit), and the face has as few control points as that takes (not one
+  per sample). Its end control points are the end rulings' ends and the next ones give the
+  rails' own end tangents, so a rail that stands still next to a fan stands still in the
+  face too and the face's normals there are the strip's;
 - each triangle of a fan (two consecutive rulings sharing an end) is a planar face, a
   trimmed plane through its three corners;
 - faces next to each other share their ruling edge exactly (the same two points); a
