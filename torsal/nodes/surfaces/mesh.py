@@ -54,6 +54,7 @@ class SurfaceFromMesh(Node):
     """
 
     type_id = "surfaces.SurfaceFromMesh"
+    nickname, aliases = "FitSrf", ("fit surface", "mesh to NURBS", "surface from mesh design")
     inputs = (
         In("Mesh", MESH, "M", "The mesh design (ImportMesh's Mesh)."),
         In("Tolerance", NUMBER, "T", "Largest distance of the mesh from the surface, model units.",
