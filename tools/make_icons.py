@@ -329,6 +329,11 @@ GLYPHS: dict[str, str] = {
     "surfaces.NurbsSurface": path(PATCH, INK, 1.2, SOFT)
     + "".join(spot(x, y, 1.3, ACCENT) for x in (5, 12, 19) for y in (8, 13, 18)),
     "surfaces.ParametricSurface": path(PATCH, INK, 1.4, SOFT) + text(12, 15.5, "uv", 7.5, ACCENT),
+    # a mesh's triangle with the smooth patch fitted over it
+    "surfaces.SurfaceFromMesh": poly([(4, 20), (9, 11), (14, 20)], INK, 1.0, SOFT, True)
+    + line(6.5, 15.5, 11.5, 15.5, INK, 0.8)
+    + path("M3,9 C8,3 15,12 21,6", ACCENT, 1.6)
+    + path("M10,20 C14,15 17,18 21,14", INK, 1.4),
     "surfaces.MeshSurface": poly([(4, 19), (12, 4), (20, 19)], INK, 1.4, SOFT, True)
     + line(8, 11.5, 16, 11.5, INK, 1)
     + line(8, 11.5, 12, 19, INK, 1)
