@@ -14,10 +14,11 @@ from torsal.nodes.common.checks import number
 from torsal.nodes.common.values import CURVE, SURFACE
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.watch import watched
-from torsal.nodes.io import seams
+from torsal.nodes.io import seams, sheet_preview
 from torsal.nodes.io.common import FileFailure, file_errors, may_write, unit_name, unit_scale, write_target
 from torsal.nodes.io.formats import cutfiles
 from torsal.nodes.io.formats.cutfiles import CutLayout
+from torsal.nodes.io.sheet_preview import SHEET_PREVIEW
 
 
 def _nesting(value: Any) -> str:
@@ -108,6 +109,10 @@ class ExportCutSheet(Node):
     you have allowed the graph to write files; Path is relative to the graph's folder
     and must stay inside it. A file it replaces is kept as ``<name>.bak``.
     Layout also goes to ``torsal run --export ID.Layout=file.dxf`` (.svg, .3dm).
+    The viewport draws Preview: each sheet's border, the cut contours, IDs and seam marks
+    at the scale of the 3D Strips (so a 1:50 layout shows at the roof's size) and beside
+    their bounding box, never inside the model; without Strips, at the panels' scale from
+    the origin. Cuts and Sheets (model units, from the origin) are for wiring on.
     """
 
     type_id = "io.ExportCutSheet"
@@ -150,13 +155,16 @@ class ExportCutSheet(Node):
             access=LIST),
         Out("Layout", CUT_LAYOUT, "L", "The panels on their sheets, for --export and Bake."),
         Out("Cuts", CURVE, "C", "The cut contours as laid out, sheets side by side, model units.",
-            access=LIST),
-        Out("Sheets", CURVE, "S", "The sheets' outlines, side by side along X, model units.", access=LIST),
+            access=LIST, preview=False),
+        Out("Sheets", CURVE, "S", "The sheets' outlines, side by side along X, model units.", access=LIST,
+            preview=False),
         Out("Usage", NUMBER, "U", "Share of the sheets' area used by panels, 0 to 1."),
         Out("Seams", TEXT, "Sm", "Per seam: its ID, the two parts and their edges' lengths (mm).",
             access=LIST),
         Out("SeamDifferences", NUMBER, "Sd", "Per seam, the difference of its two flat edges' lengths, mm.",
             access=LIST),
+        Out("Preview", SHEET_PREVIEW, "Pv", "The sheets as the viewport draws them: borders, cuts and IDs at "
+            "the Strips' scale, beside them (docs/cut-sheets.md)."),
     )
 
     def solve(
@@ -242,6 +250,8 @@ class ExportCutSheet(Node):
             self.remark(f"{len(layout.seams)} seams; the largest edge-length difference is "
                         f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
         back = unit_scale("mm", model_units)
+        developments = [None] * len(panels.all_items()) + surfaces.all_items()
+        solids = [None] * len(panels.all_items()) + ([] if strips.is_empty() else strips.all_items())
         return (
             files,
             layout,
@@ -251,4 +261,5 @@ class ExportCutSheet(Node):
             [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
              for s in layout.seams],
             [s.difference for s in layout.seams],
+            sheet_preview.placed(layout, back, developments, solids),
         )
