@@ -39,6 +39,9 @@ class SolveContext:
     on_progress: Callable[[float], None] | None = None
     messages: list[Message] = field(default_factory=list)
     state: dict[str, Any] = field(default_factory=dict)
+    #: the host improves results after the solve (the app): see torsal/engine/improve.py
+    anytime: bool = False
+    improver: Any = None  #: what the node asked to run after its solve (an Improver)
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

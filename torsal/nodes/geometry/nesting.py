@@ -76,6 +76,11 @@ POLL = 0.05
 #: Kaohsiung strips: 30 s of budget took 35-130 s at a load of 1-8 on two cores); fewer
 #: or smaller parts go faster.
 STEPS_PER_SECOND = 40
+#: A trial (a sheet's set plus one part) ends after this many reports in a row that
+#: sparrow is still working on one width (deterministic, like the steps): such a struggle
+#: mostly ends in a failed attempt, which takes many times as long as the rest of a
+#: packing (profiled on the Kaohsiung strips: most of the time went to failed attempts).
+PATIENCE = 3
 #: Fewest steps a packing is given.
 FEWEST = 20
 #: Share of the steps left that the strip of every part still to place gets, when they
@@ -177,7 +182,7 @@ class _Budget:
 def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
            orientations: Sequence[float] | None, steps: int, seed: int,
            budget: _Budget, enough: float = 0.0,
-           failures: int = 1) -> dict[int, tuple[float, tuple[float, float]]] | None:
+           failures: int = 1, patience: int = 0) -> dict[int, tuple[float, tuple[float, float]]] | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -193,7 +198,7 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
-        "seconds": budget.seconds(), "seed": int(seed),
+        "seconds": budget.seconds(), "seed": int(seed), "patience": int(patience),
     }
     key = json.dumps({k: v for k, v in job.items() if k != "seconds"})
     if key in _PACKED:
@@ -402,7 +407,8 @@ def nest(
                 do not all fit inside it (less its margin, ``spacing`` apart)."""
                 nonlocal attempt_seed
                 trial = _strip(centred, members, strip_height, spacing, orientations,
-                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
+                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing,
+                               patience=PATIENCE)
                 attempt_seed += 1
                 if trial is None or len(trial) != len(members):
                     return None

@@ -58,6 +58,25 @@ def refused_settings() -> Iterator[None]:
         raise NodeWarning(str(exc).rstrip(".")) from None
 
 
+WRITE_IS_FALSE = ("Write is false: this node writes no files (its Layout still goes to --export and "
+                  "Export…)")
+
+
+def _usage(layout: CutLayout) -> str:
+    return (f"{layout.stock_usage:.1%} of the stock used on {layout.sheets} sheet"
+            f"{'s' if layout.sheets != 1 else ''}, the last to its parts' reach")
+
+
+def _remarks(layout: CutLayout) -> list[str]:
+    """The layout's notes, and its seams' worst edge-length difference."""
+    notes = list(layout.notes)
+    if layout.seams:
+        worst = max(layout.seams, key=lambda s: s.difference)
+        notes.append(f"{len(layout.seams)} seams; the largest edge-length difference is "
+                     f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
+    return notes
+
+
 CUT_LAYOUT = ValueType(
     "CutLayout", (CutLayout,),
     "Flat panels laid out on sheets, in mm: what a cut file holds.",
@@ -222,18 +241,23 @@ class ExportCutSheet(Node):
             model_units = unit_name(units)
         except FileFailure as exc:  # one input value: refused, as checks.py has it
             raise NodeWarning(str(exc)) from None
+        chosen = _nesting(nesting)
+        # in the app, TrueShape answers with rows at once and searches in the background
+        # (torsal/engine/improve.py); a node that writes files waits for its layout
+        later = chosen == cutfiles.TRUE_SHAPE and self.anytime and not write
+        settings = {
+            "width": number("SheetWidth", width), "height": number("SheetHeight", height),
+            "gap": number("Gap", gap), "kerf": number("Kerf", kerf),
+            "text_height": number("TextHeight", text_height), "rotate": bool(rotate), "units": model_units,
+            "sources": sources, "margin": None if margin is None else number("Margin", margin),
+            "grain": bool(grain), "budget": number("TimeBudget", budget), "seed": _seed(seed),
+            "reference": bool(reference), "seams": found, "tick_spacing": spacing,
+        }
         with file_errors():
             with refused_settings(), watched(self.check_cancelled, self.progress):
                 layout = cutfiles.lay_out(
-                    curves, names,
-                    width=number("SheetWidth", width), height=number("SheetHeight", height),
-                    gap=number("Gap", gap), kerf=number("Kerf", kerf),
-                    text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
-                    sources=sources, margin=None if margin is None else number("Margin", margin),
-                    nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
-                    seed=_seed(seed), reference=bool(reference),
-                    stop=lambda: self.token.cancelled, report=self.progress,
-                    seams=found, tick_spacing=spacing,
+                    curves, names, nesting=cutfiles.SHELF if later else chosen,
+                    stop=lambda: self.token.cancelled, report=self.progress, **settings,
                 )
             files = []
             if write:
@@ -241,25 +265,41 @@ class ExportCutSheet(Node):
                 if may_write(self, cutfiles.numbered(target, layout.sheets)):
                     files = [str(p) for p in cutfiles.write_cut_files(layout, target)]
             else:
-                self.remark("Write is false: this node writes no files (its Layout still goes to "
-                            "--export and Export…)")
-        for note in layout.notes:
+                self.remark(WRITE_IS_FALSE)
+        for note in _remarks(layout):
             self.remark(note)
-        if layout.seams:
-            worst = max(layout.seams, key=lambda s: s.difference)
-            self.remark(f"{len(layout.seams)} seams; the largest edge-length difference is "
-                        f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
         back = unit_scale("mm", model_units)
         developments = [None] * len(panels.all_items()) + surfaces.all_items()
         solids = [None] * len(panels.all_items()) + ([] if strips.is_empty() else strips.all_items())
-        return (
-            files,
-            layout,
-            cutfiles.placed_curves(layout, scale=back),
-            cutfiles.sheet_outlines(layout, scale=back),
-            layout.usage,
-            [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
-             for s in layout.seams],
-            [s.difference for s in layout.seams],
-            sheet_preview.placed(layout, back, developments, solids),
-        )
+
+        def outputs(layout: CutLayout, files: list[str]) -> tuple[Any, ...]:
+            return (
+                files,
+                layout,
+                cutfiles.placed_curves(layout, scale=back),
+                cutfiles.sheet_outlines(layout, scale=back),
+                layout.usage,
+                [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
+                 for s in layout.seams],
+                [s.difference for s in layout.seams],
+                sheet_preview.placed(layout, back, developments, solids),
+            )
+
+        if later:
+            shelf = layout
+            self.remark(f"TrueShape nesting searches in the background: rows shown meanwhile "
+                        f"({_usage(shelf)})")
+
+            def improve(stop, publish, progress):  # type: ignore[no-untyped-def]
+                """The true-shape layout, published when it takes less stock than the rows."""
+                try:
+                    nested = cutfiles.lay_out(curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop,
+                                              report=progress, **settings)
+                except (cutfiles.FileFailure, ValueError):
+                    return
+                if nested.stock_usage > shelf.stock_usage:
+                    publish(outputs(nested, []), [f"TrueShape nesting: {_usage(nested)}",
+                                                  WRITE_IS_FALSE, *_remarks(nested)])
+
+            self.improve_later(improve)
+        return outputs(layout, files)
