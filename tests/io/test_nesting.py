@@ -338,8 +338,7 @@ def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monk
     would too, but it would make the sheet denser than the strip was)."""
     from torsal.nodes.geometry import nesting
 
-    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            patience=0):
+    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1):
         budget.used += 10
         placed, x = {}, spacing
         for i in members:

@@ -72,7 +72,7 @@ def run_improvements(solver: Solver, seconds: float | None = None, token: Cancel
 
         if not stop():
             improver(stop, publish, progress)
-        if best and solver.adopt(node_id, *best[0]):
+        if best and solver.adopt(node_id, *best[0], improver=improver):
             improved.append(node_id)
         if node_progress is not None:
             node_progress(node_id, 1.0)

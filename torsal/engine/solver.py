@@ -172,7 +172,8 @@ class Solver:
         """node id → the improver of its current result, for every result that has one."""
         return {node_id: r.improver for node_id, r in self.results.items() if r.improver is not None}
 
-    def adopt(self, node_id: str, values: Any, remarks: list[str] | None = None) -> bool:
+    def adopt(self, node_id: str, values: Any, remarks: list[str] | None = None,
+              improver: Any = None) -> bool:
         """Take an improvement of ``node_id``'s result: ``values`` as its ``solve`` would
         return them, ``remarks`` replacing its remarks; what is downstream of it expires
         (the next :meth:`solve` solves it and reports this node as solved). False when the

@@ -33,6 +33,15 @@ precision (sparrow reports its placements in single precision): a part closer to
 another than the spacing, or outside the usable sheet, is moved on to the next sheet.
 So every layout returned keeps its spacing and margin.
 
+Where the time goes (profiled on the Kaohsiung strips, 18 parts, budget 45, issue 31): the
+first strip of every part took 39 % of the run, four trials of a sheet's set 52 %, the last
+sheet 8 %; within each, nearly all of it is sparrow's one failed attempt that ends the
+packing (a failed attempt searches many times as long as the hundreds that succeed). Ending
+a trial after a few reports of sparrow struggling at one width instead (deterministic, like
+the steps) made each trial cheap but lost trials that would have fitted: no faster overall.
+Packing the sheets as frames in one strip (a full-height bracket item per sheet) made one
+call, but sparrow moved the huge item slowly: 2-3 times its time for the plain strip.
+
 Out of steps with parts left (many sheets, a small budget), what is left is packed into
 one last strip and cut into sheet lengths: each sheet takes the parts that end within a
 sheet's length of the first part not yet placed.
@@ -76,11 +85,6 @@ POLL = 0.05
 #: Kaohsiung strips: 30 s of budget took 35-130 s at a load of 1-8 on two cores); fewer
 #: or smaller parts go faster.
 STEPS_PER_SECOND = 40
-#: A trial (a sheet's set plus one part) ends after this many reports in a row that
-#: sparrow is still working on one width (deterministic, like the steps): such a struggle
-#: mostly ends in a failed attempt, which takes many times as long as the rest of a
-#: packing (profiled on the Kaohsiung strips: most of the time went to failed attempts).
-PATIENCE = 3
 #: Fewest steps a packing is given.
 FEWEST = 20
 #: Share of the steps left that the strip of every part still to place gets, when they
@@ -182,7 +186,7 @@ class _Budget:
 def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
            orientations: Sequence[float] | None, steps: int, seed: int,
            budget: _Budget, enough: float = 0.0,
-           failures: int = 1, patience: int = 0) -> dict[int, tuple[float, tuple[float, float]]] | None:
+           failures: int = 1) -> dict[int, tuple[float, tuple[float, float]]] | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -198,7 +202,7 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
-        "seconds": budget.seconds(), "seed": int(seed), "patience": int(patience),
+        "seconds": budget.seconds(), "seed": int(seed),
     }
     key = json.dumps({k: v for k, v in job.items() if k != "seconds"})
     if key in _PACKED:
@@ -407,8 +411,7 @@ def nest(
                 do not all fit inside it (less its margin, ``spacing`` apart)."""
                 nonlocal attempt_seed
                 trial = _strip(centred, members, strip_height, spacing, orientations,
-                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing,
-                               patience=PATIENCE)
+                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
                 attempt_seed += 1
                 if trial is None or len(trial) != len(members):
                     return None

@@ -2,7 +2,7 @@
 
 Reads one JSON job on stdin (``shapes`` as ``[id, [[x, y], ...]]``, ``height``,
 ``spacing`` or null, ``orientations`` or null, ``steps``, ``failures``, ``enough``,
-``seconds``, ``seed``, optionally ``patience``) and writes one JSON line ``[width, [[id, angle, x, y], ...]]``
+``seconds``, ``seed``) and writes one JSON line ``[width, [[id, angle, x, y], ...]]``
 for each shorter feasible packing sparrow reports, ``["step", steps]`` after each step
 and finally ``["end", steps, on_the_clock]``, then exits.
 
@@ -12,10 +12,8 @@ the strip shorter (its reports ``ExplFeas`` and ``ExplInfeas``; sparrow's search
 seeded and runs on one thread, so these come in the same order every time). A failed
 attempt counts :data:`FAILED` steps: it searches much longer than one that succeeds.
 The worker stops when ``steps`` are spent, after ``failures`` failed attempts, at the
-first packing no longer than ``enough``, after ``patience`` (when given) reports in a row
-that sparrow is still improving an infeasible packing of one width (a long struggle that
-mostly ends in a failed attempt, the slowest thing sparrow does), or when sparrow ends its
-exploration itself (ten failed attempts in a row); only ``seconds``, a safety net, stops it on the clock (then
+first packing no longer than ``enough``, or when sparrow ends its exploration itself (ten
+failed attempts in a row); only ``seconds``, a safety net, stops it on the clock (then
 ``on_the_clock`` is true and the packing may differ from run to run). sparrow's
 compression phase, which shrinks the strip over time, is given no time: its end would
 depend on the clock. Run with ``python -m``; the parent ends it early when the user
@@ -63,9 +61,8 @@ def main() -> None:
     started = time.perf_counter()
     solver = threading.Thread(target=solve, daemon=True)
     solver.start()
-    steps, failed, first, best, struggling = 0, 0, True, math.inf, 0
+    steps, failed, first, best = 0, 0, True, math.inf
     enough, limit, failures = float(job["enough"]), int(job["steps"]), int(job["failures"])
-    patience = int(job.get("patience") or 0)
 
     def finish(on_the_clock: bool) -> None:
         print(json.dumps(["end", steps, on_the_clock]), flush=True)
@@ -75,11 +72,7 @@ def main() -> None:
         alive = solver.is_alive()
         for kind, solution in progress.drain():
             if kind == spyrrow.ReportType.ExplImproving:
-                struggling += 1  # sparrow works at one width: a long struggle usually fails
-                if patience and struggling >= patience and not first:
-                    finish(False)
                 continue
-            struggling = 0
             if kind == spyrrow.ReportType.Final:
                 finish(time.perf_counter() - started >= seconds)
             if kind == spyrrow.ReportType.ExplFeas and solution.width < best:
