@@ -1,8 +1,10 @@
 """The project's import graph, read statically with :mod:`ast` (nothing is imported).
 
 Every ``import`` and ``from ... import`` counts, at module level and inside functions alike
-(an import inside a function that closes a circle is still a circle, only a deferred one);
-imports under ``if TYPE_CHECKING:`` do not count, since they never run.
+(an import inside a function that closes a circle is still a circle, only a deferred one),
+and so do imports under ``if TYPE_CHECKING:``: they never run, but two modules that name
+each other's types still cannot be read, moved or tested one without the other
+(``type_checking=False`` leaves them out, to see what runs).
 
 Importing ``a.b.c`` also runs ``a/__init__.py`` and ``a/b/__init__.py``, so those packages
 count as imported too, except the importer's own ancestor packages (a package that
@@ -44,19 +46,22 @@ def _is_type_checking(test: ast.expr) -> bool:
     )
 
 
-def _import_nodes(statements: list[ast.stmt]) -> Iterator[ast.Import | ast.ImportFrom]:
-    """Every import statement among ``statements`` and the blocks they hold, outside
-    ``if TYPE_CHECKING:`` bodies (their ``else`` counts). Expressions hold no imports."""
+def _import_nodes(
+    statements: list[ast.stmt], type_checking: bool = True
+) -> Iterator[ast.Import | ast.ImportFrom]:
+    """Every import statement among ``statements`` and the blocks they hold; without
+    ``type_checking``, none from ``if TYPE_CHECKING:`` bodies (their ``else`` counts).
+    Expressions hold no imports."""
     for node in statements:
         if isinstance(node, ast.Import | ast.ImportFrom):
             yield node
-        elif isinstance(node, ast.If) and _is_type_checking(node.test):
-            yield from _import_nodes(node.orelse)
+        elif isinstance(node, ast.If) and _is_type_checking(node.test) and not type_checking:
+            yield from _import_nodes(node.orelse, type_checking)
         else:
             for field in ("body", "orelse", "finalbody", "handlers", "cases"):
                 block = getattr(node, field, None)
                 if isinstance(block, list):
-                    yield from _import_nodes(block)
+                    yield from _import_nodes(block, type_checking)
 
 
 def _package_of(name: str, path: Path) -> str:
@@ -64,10 +69,10 @@ def _package_of(name: str, path: Path) -> str:
     return name if path.name == "__init__.py" else name.rpartition(".")[0]
 
 
-def imported_names(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+def imported_names(name: str, path: Path, modules: dict[str, Path], type_checking: bool = True) -> set[str]:
     """Project modules that module ``name`` (file ``path``) imports, directly or as packages run."""
     targets: set[str] = set()
-    for node in _import_nodes(ast.parse(path.read_text(encoding="utf-8")).body):
+    for node in _import_nodes(ast.parse(path.read_text(encoding="utf-8")).body, type_checking):
         if isinstance(node, ast.Import):
             targets.update(alias.name for alias in node.names)
             continue
@@ -90,10 +95,13 @@ def imported_names(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
     return found
 
 
-def import_graph(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, set[str]]:
-    """Each project module and the project modules it imports."""
+def import_graph(
+    root: Path = ROOT, packages: tuple[str, ...] = PACKAGES, type_checking: bool = True
+) -> dict[str, set[str]]:
+    """Each project module and the project modules it imports (type-only imports too,
+    unless ``type_checking`` is False)."""
     modules = project_modules(root, packages)
-    return {name: imported_names(name, path, modules) for name, path in modules.items()}
+    return {name: imported_names(name, path, modules, type_checking) for name, path in modules.items()}
 
 
 def circles(graph: dict[str, set[str]]) -> list[frozenset[str]]:

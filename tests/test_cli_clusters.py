@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 
 from torsal.app.cli import main
+from torsal.engine.cluster_edits import add_cluster_instance, make_cluster
 from torsal.engine.graphfile import read_graph, write_graph
 from torsal.nodes.catalogue import default_registry
 
@@ -32,10 +33,10 @@ def two_instances(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ``show_total2``."""
     registry = default_registry()
     graph = read_graph(EXAMPLE, registry)
-    graph.make_cluster(["width", "count", "edges", "total", "heights"], name="Panels", node_id="panels",
+    make_cluster(graph, ["width", "count", "edges", "total", "heights"], name="Panels", node_id="panels",
                        definition_id="panel_row")
     total_port = next(w.source_port for w in graph.wires_into("show_total"))
-    graph.add_cluster_instance("panel_row", "panels2", position=(300.0, 400.0))
+    add_cluster_instance(graph, "panel_row", "panels2", position=(300.0, 400.0))
     graph.add_node(registry.create("params.Panel"), "show_total2", position=(600.0, 400.0))
     graph.connect("wave", "Value", "panels2", "a")
     graph.connect("panels2", total_port, "show_total2", "Input")

@@ -11,10 +11,12 @@ EXAMPLES = ROOT / "torsal" / "resources" / "examples"
 FIRST_STEPS = EXAMPLES / "first-steps.graph"
 
 
-def test_torsal_examples_lists_every_bundled_graph_by_name(capsys):
+def test_torsal_examples_lists_every_bundled_graph_by_name_and_path(capsys):
     assert main(["examples"]) == 0
-    names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
-    assert names == sorted(p.stem for p in EXAMPLES.glob("*.graph"))
+    # a line of name and path per example, its description indented on the next
+    rows = [line.split() for line in capsys.readouterr().out.splitlines() if not line.startswith(" ")]
+    assert [row[0] for row in rows] == sorted(p.stem for p in EXAMPLES.glob("*.graph"))
+    assert [Path(row[1]) for row in rows] == sorted(EXAMPLES.glob("*.graph"))
 
 
 def test_gui_with_an_unknown_example_names_the_examples_there_are(capsys):

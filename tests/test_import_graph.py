@@ -1,9 +1,9 @@
 """No import circles among the project's modules (engine, nodes, app, tools).
 
 The graph is read statically (:mod:`tests.import_graph`): imports inside functions count,
-imports under ``if TYPE_CHECKING:`` do not. Circles that sit in files this step of the
-redesign did not reach are listed in :data:`KNOWN_CIRCLES`; the list is exact, so a new
-circle fails and so does a listed one that has gone (remove it from the list).
+and so do imports under ``if TYPE_CHECKING:`` (a type named both ways still ties two modules
+together). Circles not yet untangled are listed in :data:`KNOWN_CIRCLES`; the list is
+exact, so a new circle fails and so does a listed one that has gone (remove it from the list).
 """
 
 from __future__ import annotations
@@ -14,8 +14,16 @@ import pytest
 
 from tests.import_graph import a_cycle, circles, import_graph
 
-#: Circles still to untangle, each as its set of modules. None left.
-KNOWN_CIRCLES: set[frozenset[str]] = set()
+#: Circles still to untangle, each as its set of modules: the GUI helpers that name the
+#: window, document or view they serve by its class.
+KNOWN_CIRCLES: set[frozenset[str]] = {
+    frozenset({"torsal.app.gui.commands", "torsal.app.gui.document"}),
+    frozenset({"torsal.app.gui.canvas.inline_widgets", "torsal.app.gui.canvas.node_item",
+               "torsal.app.gui.canvas.scene"}),
+    frozenset({"torsal.app.gui.canvas.context_menus", "torsal.app.gui.canvas.view"}),
+    frozenset({"torsal.app.gui.exporting", "torsal.app.gui.main_window", "torsal.app.gui.optimise_window",
+               "torsal.app.gui.window_actions", "torsal.app.gui.write_consent"}),
+}
 
 
 @pytest.fixture(scope="module")
@@ -65,13 +73,14 @@ def test_an_import_inside_a_function_closes_a_circle(tmp_path):
     assert circles(graph) == [frozenset({"pkg.a", "pkg.b"})]
 
 
-def test_an_import_under_type_checking_does_not_count(tmp_path):
-    graph = _package(tmp_path, {
+def test_an_import_under_type_checking_counts_unless_asked_not_to(tmp_path):
+    files = {
         "__init__.py": "",
         "a.py": "from .b import f\n",
         "b.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from .a import g\n",
-    })
-    assert circles(graph) == []
+    }
+    assert circles(_package(tmp_path, files)) == [frozenset({"pkg.a", "pkg.b"})]
+    assert circles(import_graph(tmp_path, ("pkg",), type_checking=False)) == []
 
 
 def test_importing_a_module_runs_its_package_init(tmp_path):

@@ -1,5 +1,5 @@
-"""Packaging: what the wheel carries, what `make run` installs, `torsal gui` without Qt,
-and (opt-in, slow) the declared lower bounds."""
+"""Packaging: what the wheel and the sdist carry (checked by twine and check-wheel-contents),
+what `make run` installs, `torsal gui` without Qt, and (opt-in, slow) the declared lower bounds."""
 
 from __future__ import annotations
 
@@ -14,22 +14,70 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted(p.name for p in (ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
-INSTALL_LINE = "pip install 'torsal[gui]'"
+CHECKOUT_INSTALL = "-m pip install -c constraints.txt "
 
 
 @pytest.fixture(scope="module")
-def wheel(tmp_path_factory) -> Path:
-    """The wheel `pip wheel .` builds from this checkout (about 20 s)."""
-    folder = tmp_path_factory.mktemp("wheel")
+def dists(tmp_path_factory) -> tuple[Path, Path]:
+    """The sdist `python -m build` makes of this checkout, and the wheel it builds from that
+    sdist (so the sdist is complete enough to build from); about 20 s."""
+    folder = tmp_path_factory.mktemp("dist")
     source = folder / "src"
     # A copy without the checkout's build leftovers, as a clean clone would be.
     shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(
-        ".venv", ".git", "build", "*.egg-info", "__pycache__", ".pytest_cache", ".ruff_cache", "tests"))
-    done = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w", str(folder),
-                           str(source)], capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-3000:]
-    (built,) = folder.glob("torsal-*.whl")
-    return built
+        ".venv", ".git", "build", "dist", "*.egg-info", "__pycache__", ".pytest_cache", ".ruff_cache",
+        ".hypothesis"))
+    done = subprocess.run([sys.executable, "-m", "build", "--outdir", str(folder), str(source)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-3000:]
+    (wheel_file,) = folder.glob("torsal-*.whl")
+    (sdist_file,) = folder.glob("torsal-*.tar.gz")
+    return wheel_file, sdist_file
+
+
+@pytest.fixture(scope="module")
+def wheel(dists) -> Path:
+    return dists[0]
+
+
+def test_the_sdist_holds_every_file_of_the_repository(dists):
+    """tests, docs, tools, examples, constraints.txt, the Makefile: everything git tracks but
+    its own files and CI's entry point, so the sdist builds and tests as a clone does."""
+    import tarfile
+
+    listed = subprocess.run(["git", "-C", str(ROOT), "ls-files"], capture_output=True, text=True, timeout=60)
+    if shutil.which("git") is None or listed.returncode != 0:
+        pytest.skip("not a git checkout: nothing to compare the sdist with")
+    tracked = {name for name in listed.stdout.splitlines() if (ROOT / name).is_file()}
+    tracked -= {".gitignore", ".ci/run"}
+    with tarfile.open(dists[1]) as archive:
+        held = {name.split("/", 1)[1] for name in archive.getnames() if "/" in name}
+    assert tracked - held == set()
+    assert {"constraints.txt", "Makefile", "docs/plugins.md", "examples/plugin/pyproject.toml",
+            "tests/test_packaging.py"} <= held
+
+
+def test_twine_check_passes_on_the_wheel_and_the_sdist(dists):
+    done = subprocess.run([sys.executable, "-m", "twine", "check", "--strict", *map(str, dists)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert done.stdout.count("PASSED") == 2
+
+
+def test_check_wheel_contents_passes(wheel):
+    done = subprocess.run([sys.executable, "-m", "check_wheel_contents", str(wheel)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert done.stdout.strip().endswith(": OK")
+
+
+def test_the_metadata_has_classifiers_keywords_and_the_readme(wheel):
+    names = zipfile.ZipFile(wheel).namelist()
+    (metadata,) = [n for n in names if n.endswith(".dist-info/METADATA")]
+    text = zipfile.ZipFile(wheel).read(metadata).decode()
+    assert "Classifier: Programming Language :: Python :: 3.11" in text
+    assert "Keywords: developable surfaces" in text
+    assert "Description-Content-Type: text/markdown" in text
 
 
 def test_the_wheel_contains_every_example_graph(wheel):
@@ -66,7 +114,34 @@ def test_torsal_examples_lists_the_examples_from_an_installed_wheel(wheel, tmp_p
     listed = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=tmp_path,
                             env=env, timeout=120)
     assert listed.returncode == 0, listed.stderr
-    assert [line.split()[0] for line in listed.stdout.splitlines()] == [n[: -len(".graph")] for n in EXAMPLES]
+    rows = [line.split() for line in listed.stdout.splitlines() if not line.startswith(" ")]
+    assert [row[0] for row in rows] == [n[: -len(".graph")] for n in EXAMPLES]
+    # each file's path: the installed copy, which is the example's own bytes
+    for (name, where), example in zip(rows, EXAMPLES, strict=True):
+        assert Path(where) == site / "torsal" / "resources" / "examples" / example, name
+        assert Path(where).read_bytes() == (ROOT / "torsal" / "resources" / "examples" / example).read_bytes()
+
+
+def test_torsal_gui_from_a_wheel_without_qt_names_the_gui_requirements(wheel, tmp_path):
+    """From a wheel, `torsal[gui]` cannot be resolved (Torsal is not on the package index): the
+    hint installs the extra's own requirements, read from the wheel's metadata, into this Python."""
+    site = tmp_path / "site"
+    done = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "--quiet", "--target",
+                           str(site), str(wheel)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    script = ("import sys\n"
+              "sys.modules['PySide6'] = None  # as if PySide6 were not installed\n"
+              "from torsal.app.cli import main\n"
+              "sys.exit(main(['gui', '--example', 'first-steps']))\n")
+    env = {**os.environ, "PYTHONPATH": str(site), "DISPLAY": os.environ.get("DISPLAY") or ":99"}
+    shown = subprocess.run([sys.executable, "-P", "-c", script], capture_output=True, text=True, cwd=tmp_path,
+                           env=env, timeout=120)
+    assert shown.returncode == 2
+    hint = next(line for line in shown.stderr.splitlines() if "Install it with:" in line)
+    assert f"{sys.executable} -m pip install " in hint
+    for requirement in ("PySide6-Essentials>=6.9", "pyvista>=0.45", "pyvistaqt>=0.11"):
+        assert requirement in hint
+    assert "torsal[gui]" not in hint and "constraints" not in hint
 
 
 def test_torsal_gui_without_pyside6_exits_2_with_the_install_line(tmp_path):
@@ -78,7 +153,11 @@ def test_torsal_gui_without_pyside6_exits_2_with_the_install_line(tmp_path):
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=ROOT, env=env,
                           timeout=120)
     assert done.returncode == 2
-    assert INSTALL_LINE in done.stderr
+    # run from this checkout: the command that works here, in this checkout's folder (with -e
+    # when Torsal is installed editable from it, as make run does)
+    hint = next(line for line in done.stderr.splitlines() if "Install it with:" in line)
+    start = f"cd {ROOT} && {sys.executable} {CHECKOUT_INSTALL}"
+    assert hint.split("Install it with: ")[1] in (f"{start}'.[gui]'", f"{start}-e '.[gui]'")
     assert "Traceback" not in done.stderr + done.stdout
 
 
@@ -88,6 +167,30 @@ def test_torsal_gui_opens_an_example_by_name_headless_without_a_display(tmp_path
                           capture_output=True, text=True, cwd=ROOT, env=env, timeout=120)
     assert done.returncode == 0, done.stderr
     assert "first-steps.graph: solved 8 nodes" in done.stdout
+
+
+def test_torsal_version_is_the_installed_distributions():
+    from importlib.metadata import version
+
+    done = subprocess.run([sys.executable, "-m", "torsal.app.cli", "--version"], capture_output=True,
+                          text=True, cwd=ROOT, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == f"torsal {version('torsal')}"
+
+
+def test_torsal_run_and_check_take_an_example_by_name():
+    from torsal.app.cli import main
+
+    command = [sys.executable, "-m", "torsal.app.cli", "run", "--example", "first-steps", "--json"]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    import json
+
+    assert json.loads(done.stdout)["file"].endswith("first-steps.graph")
+    assert main(["check", "--example", "paper-strip"]) == 0
+    assert main(["run", "--example", "no-such-example"]) == 2
+    assert main(["run"]) == 2
+    assert main(["run", "x.graph", "--example", "first-steps"]) == 2
 
 
 def make_dry_run(tmp_path: Path, target: str) -> str:

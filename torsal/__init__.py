@@ -3,7 +3,7 @@
 Everything Torsal installs lives under this one package: ``torsal.engine`` (graphs, data
 trees, the solver), ``torsal.nodes`` (the node library), ``torsal.app`` (the command line
 and the desktop app) and ``torsal.resources`` (the bundled examples). Plug-ins build on
-``torsal.api`` (see docs/plugins.md).
+``torsal.api``.
 """
 
 from importlib.metadata import PackageNotFoundError, version

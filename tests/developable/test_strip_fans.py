@@ -14,6 +14,7 @@ import pytest
 import shapely
 
 from tests.nodes.helpers import out, run, texts, tree
+from tests.toolbox.warp_check import shared_both_sides
 from torsal.nodes.developable.ruling_developable import RulingDevelopable
 from torsal.nodes.geometry.developable import ruling_developable
 from torsal.nodes.geometry.developable.fans import fan_share, patch_areas, zigzag
@@ -121,11 +122,21 @@ def test_patch_areas_are_exact_for_flat_quads_and_triangles():
 # -- the node ----------------------------------------------------------------------------------
 
 
-def test_the_node_says_per_ruling_whether_it_is_torsal_or_fan_and_reports_the_share(chorded):
+def test_the_node_says_per_ruling_whether_it_is_torsal_and_reports_the_share(chorded):
     a, b, result = chorded
     node = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), Segments=60)
-    kinds = out(node, "Kind")[(0,)]
-    assert kinds == ["fan" if fan else "torsal" for fan in result.fan]
+    kinds = np.array(out(node, "Kind")[(0,)])
+    # the stations with no torsal partner (least warp over B above the tolerance, measured
+    # independently) are never torsal; the rest of the stations are, unless they lie inside
+    # a fan (sharing an end with both neighbours, as the kernel's fans of step 6 do)
+    stations = result.stations
+    least = least_warp_over_b(a, b, result.s[stations])
+    in_fan = (shared_both_sides(result.starts) | shared_both_sides(result.ends))[stations]
+    assert not (kinds[stations][least > TOLERANCE] == "torsal").any()
+    has = least <= TOLERANCE
+    assert (kinds[stations][has] == np.where(in_fan[has], "fan", "torsal")).all()
+    assert (kinds[stations][has] == "torsal").sum() > 30
+    assert out(node, "Torsal")[(0,)][0] == pytest.approx(np.mean(kinds == "torsal"))
     share = f"{100 * result.fan_share:.3g} %"
     assert node.state == "warning"  # above the default FanLimit of 10 %
     count = result.fan[result.stations].sum()

@@ -12,7 +12,7 @@ from torsal.engine import graphfile
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 EXAMPLES = Path(__file__).resolve().parents[2] / "torsal" / "resources" / "examples"
-SPEC = Path(__file__).resolve().parents[3] / "shared" / "spec" / "graph-format.md"
+SPEC = Path(__file__).resolve().parents[2] / "docs" / "graph-format.md"
 
 ENGINE_FIXTURES = sorted(FIXTURES.glob("engine-*.graph"))  # written for the nodekit registry
 ALL_FIXTURES = sorted(FIXTURES.glob("*.graph"))

@@ -44,7 +44,7 @@ def test_write_graph_keeps_the_previous_content_as_bak(registry, tmp_path):
     assert no_temporaries(tmp_path) == []
 
 
-@pytest.mark.parametrize("failing", ["replace", "fsync"])
+@pytest.mark.parametrize("failing", ["rename", "fsync"])
 def test_a_failure_mid_save_leaves_the_original_untouched_and_no_temporary_files(
     registry, tmp_path, monkeypatch, failing
 ):
@@ -75,7 +75,7 @@ def test_an_interrupted_save_leaves_no_temporary_files(registry, tmp_path, monke
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(os, "replace", interrupted)
+    monkeypatch.setattr(os, "rename", interrupted)
     with pytest.raises(KeyboardInterrupt):
         graphfile.write_graph(graph, path)
     assert not path.exists()

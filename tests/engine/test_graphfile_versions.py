@@ -1,6 +1,6 @@
 """The ``.graph`` file's versions: a newer file is refused (and never overwritten), a
 version-0 file migrates to the same graph as its version-1 twin, unusable versions are
-refused. See ``shared/spec/graph-format.md``.
+refused. See ``docs/graph-format.md``.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""Data-tree matching through real graphs (``shared/spec/data-trees.md``).
+"""Data-tree matching through real graphs (``docs/data-trees.md``).
 
-Every case of the spec's table is built as a graph — a tree source (or a persistent
+Every case of the table in docs/data-trees.md is built as a graph — a tree source (or a persistent
 value) wired into an item-access Add, modifiers set with ``graph.set_modifiers`` — solved,
 and the output tree compared path by path, in order. Then list access, tree access and
 cases of our own: empty branches, three inputs, list outputs per call, master-input
@@ -60,7 +60,7 @@ def texts(solver: Solver, level: Level | None = None) -> list[str]:
     return [m.text for m in solver.result("n").messages if level is None or m.level is level]
 
 
-# --------------------------------------------------------------------------- the spec's table
+# --------------------------------------------------------------------------- the table of docs/data-trees.md
 
 SPEC_CASES = [
     # id, A, B, modifiers on A, expected Result

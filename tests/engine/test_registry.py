@@ -31,8 +31,9 @@ class Seven(Node):
 
 
 class FakeEntryPoint:
-    def __init__(self, name: str, loaded: object) -> None:
+    def __init__(self, name: str, loaded: object, dist: str | None = None) -> None:
         self.name, self._loaded = name, loaded
+        self.dist = types.SimpleNamespace(name=dist) if dist else None
 
     def load(self) -> object:
         if isinstance(self._loaded, Exception):
@@ -52,7 +53,37 @@ def test_plugins_register_classes_modules_and_factories(monkeypatch):
     registry = Registry()
     registry.load_entry_points()
     assert registry.get("plugin.Seven") is Seven
-    assert registry.problems == ["plug-in 'broken' could not be loaded: no module named 'wobble'"]
+    assert registry.problems == ["plug-in 'broken' (entry point 'broken') could not be loaded: "
+                                 "ImportError: no module named 'wobble'"]
+
+
+def test_a_plugin_reusing_a_built_in_type_id_is_refused_naming_both_packages(monkeypatch):
+    impostor = type("Expression", (Node,), {"type_id": "maths.Expression", "__module__": "impostor_nodes"})
+    extra = type("Extra", (Node,), {"type_id": "impostor.Extra", "__module__": "impostor_nodes"})
+    module = types.ModuleType("impostor_nodes")
+    module.Expression, module.Extra = impostor, extra
+    monkeypatch.setattr(registry_module, "entry_points",
+                        lambda group: [FakeEntryPoint("nodes", module, dist="torsal-impostor")])
+    registry = default_registry()
+    # refused whole: the built-in stays, the plug-in's other type is not half-loaded
+    assert registry.get("maths.Expression").__module__ == "torsal.nodes.maths.expression"
+    assert registry.get("impostor.Extra") is None
+    (problem,) = registry.problems
+    assert "'torsal-impostor'" in problem and "'maths.Expression'" in problem
+    assert "provided by 'torsal'" in problem
+
+
+def test_of_two_plugins_with_one_type_id_the_first_by_name_is_kept(monkeypatch):
+    first = type("Tile", (Node,), {"type_id": "tiles.Tile", "__module__": "a_nodes"})
+    second = type("Tile", (Node,), {"type_id": "tiles.Tile", "__module__": "b_nodes"})
+    points = [FakeEntryPoint("b", second, dist="torsal-b"), FakeEntryPoint("a", first, dist="torsal-a")]
+    monkeypatch.setattr(registry_module, "entry_points", lambda group: points)
+    registry = Registry()
+    registry.load_entry_points()
+    assert registry.get("tiles.Tile") is first
+    assert registry_module.provider(first) == "torsal-a"
+    (problem,) = registry.problems
+    assert "'torsal-b'" in problem and "provided by 'torsal-a'" in problem
 
 
 def test_type_ids_must_be_palette_dot_name():
@@ -165,15 +196,17 @@ def plugin_package(monkeypatch, name: str, declarations: dict) -> types.ModuleTy
     return package
 
 
-def test_a_plugin_palette_package_loads_lazily_with_its_value_types(monkeypatch, fake_modules):
+def test_a_plugin_palette_package_loads_whole_with_its_value_types(monkeypatch, fake_modules):
+    """Unlike Torsal's own palettes, a plug-in's modules are imported when it is loaded, so
+    every command can tell whether it is broken or clashes (docs/plugins.md)."""
     package = plugin_package(monkeypatch, "torsal_tiles",
                              {"PALETTE": "tiles", "NODE_TYPES": ("nodes",), "VALUE_TYPES": ("values",)})
     monkeypatch.setattr(registry_module, "entry_points", lambda group: [FakeEntryPoint("tiles", package)])
     registry = Registry(value_types=TypeTable())
     registry.load_entry_points()
-    assert registry.palettes() == ["tiles"] and fake_modules == []
-    assert registry.get("tiles.Eight").__name__ == "Eight"
     assert fake_modules == ["torsal_tiles.values", "torsal_tiles.nodes"]
+    assert registry.palettes() == ["tiles"]
+    assert registry.get("tiles.Eight").__name__ == "Eight"
     assert registry.value_types.find("Octagon").description == "Eight sides."
 
 

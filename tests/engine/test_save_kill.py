@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import os
 import random
+import re
 import select
 import signal
 import time
@@ -106,12 +107,15 @@ def test_a_save_killed_at_random_moments_leaves_file_and_backup_complete(registr
         if len(texts) > 50:
             texts.clear()
     seconds = time.perf_counter() - start
-    # the next save clears what the killed ones left behind
+    # a killed save may leave its hidden temporary file; nothing else is ever there, and
+    # Torsal never deletes what it did not make in the running process (issue 24)
     graphfile.write_graph(version(graph, 0), path)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["design.graph", "design.graph.bak"]
+    pattern = re.compile(r"^\.design\.graph(\.bak)?\.\d+-[0-9a-f]{8}\.tmp\.(graph|bak)$")
+    others = sorted(p.name for p in tmp_path.iterdir() if not pattern.match(p.name))
+    assert others == ["design.graph", "design.graph.bak"]
     print(
         f"\n{KILLS} kills in {seconds:.1f} s (one save: {one_save * 1e3:.1f} ms); "
         f"{mid_first_save} before the child's first save was complete; "
-        f"{leftovers} left temporary files, all removed by the next save"
+        f"{leftovers} left a hidden temporary file"
     )
     assert leftovers > 0, "no kill landed during a save: the test would prove nothing"

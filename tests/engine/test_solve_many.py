@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from torsal.engine.datatree import DataTree
-from torsal.engine.node import LIST, In, Node, NodeWarning, Out
+from torsal.engine.node import LIST, In, Node, NodeError, NodeWarning, Out
+from torsal.engine.solve_context import SolveContext, solving
 from torsal.engine.solver import run_node
 from torsal.engine.types import NUMBER
 
@@ -96,3 +97,74 @@ class Total(Node):
 def test_list_access_calls_are_not_batched():
     outputs = run_node(Total(), [DataTree({(0,): [1.0, 2.0], (1,): [3.0]})], [True])
     assert outputs["Sum"].to_dict() == {"{0}": [3.0], "{1}": [3.0]}
+
+
+class TalkingHalve(Halve):
+    """Halve whose rows say things: a remark per odd x, a warning (and None) per negative x,
+    an error at x = 99; ``solve_many`` says them itself, in row order."""
+
+    def solve(self, x: float, y: float) -> tuple[float, float]:
+        if x == 99:
+            raise NodeError("X is 99")
+        if x % 2 == 1:
+            self.remark(f"X is odd: {x:g}")
+        return super().solve(x, y)
+
+    def solve_many(self, xs, ys):
+        self.batches.append((tuple(xs), tuple(ys)))
+        if self.decline:
+            self.remark("said before declining")
+            return None
+        results = []
+        for x, y in zip(xs, ys, strict=True):
+            if x == 99:
+                raise NodeError("X is 99")
+            if x % 2 == 1:
+                self.remark(f"X is odd: {x:g}")
+            if x < 0:
+                self.refuse_row(NodeWarning(f"X is negative: {x:g}"))
+                results.append(None)
+            else:
+                results.append((x / 2, x + y))
+        return results
+
+
+class PlainTalkingHalve(TalkingHalve):
+    solve_many = Node.solve_many
+
+
+def _solved(node: Node, x: dict) -> tuple[dict, list[tuple[str, str]]]:
+    """The outputs and messages of one solve of ``node`` (an error as its last message)."""
+    context = SolveContext(node)
+    with solving(context):
+        try:
+            outputs = run_node(node, _trees(x, {(0,): [0.0]}), [True, True])
+            found = {p: t.to_dict() for p, t in outputs.items()}
+        except NodeError as exc:
+            node.warn(f"error: {exc}")
+            found = {}
+    return found, [(m.level.name, m.text) for m in context.messages]
+
+
+def test_the_rows_messages_said_by_a_batch_are_kept_in_the_order_of_the_rows():
+    x = {(0,): [1.0, -3.0, 2.0], (1,): [3.0, 1.0]}
+    batched, plain = TalkingHalve(), PlainTalkingHalve()
+    assert _solved(batched, x) == _solved(plain, x)
+    assert batched.calls == 0 and len(batched.batches) == 1
+    assert [text for _, text in _solved(TalkingHalve(), x)[1]] == [
+        "X is odd: 1", "X is odd: -3", "X is negative: -3", "X is odd: 3",
+    ]
+
+
+def test_an_error_in_a_batch_comes_after_the_messages_of_the_rows_before_it():
+    x = {(0,): [1.0, 99.0, 3.0]}
+    batched, plain = TalkingHalve(), PlainTalkingHalve()
+    assert _solved(batched, x) == _solved(plain, x)
+    assert _solved(TalkingHalve(), x)[1] == [("REMARK", "X is odd: 1"), ("WARNING", "error: X is 99")]
+
+
+def test_what_a_declining_batch_said_is_forgotten():
+    x = {(0,): [1.0, 2.0]}
+    declining = TalkingHalve(decline=True)
+    assert _solved(declining, x) == _solved(PlainTalkingHalve(), x)
+    assert declining.calls == 2

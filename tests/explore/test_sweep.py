@@ -127,7 +127,7 @@ def test_a_swept_graph_writes_no_file_without_allow_writes(tmp_path):
     path = export_graph(tmp_path)
     study = open_study(path, ["n=0:1:2"], ["n.Value"], steps=True)
     run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "out")
-    assert sorted(p.name for p in tmp_path.rglob("*.csv")) == [RESULTS]
+    assert sorted(p.name for p in tmp_path.rglob("*.csv")) == ["data.csv", RESULTS]
 
 
 def test_with_allow_writes_each_variant_writes_into_its_own_folder(tmp_path):

@@ -24,7 +24,7 @@ def test_a_window_started_on_no_file_is_untitled_and_its_canvas_empty(window):
 
 
 def test_the_makefile_runs_the_app_on_the_flagship_explicitly():
-    text = (EXAMPLES.parent.parent / "Makefile").read_text(encoding="utf-8")
+    text = (EXAMPLES.parents[2] / "Makefile").read_text(encoding="utf-8")
     assert "EXAMPLE ?= torsal/resources/examples/kaohsiung-stadium.graph" in text
     assert "torsal gui $(EXAMPLE)" in text
 

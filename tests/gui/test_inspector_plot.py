@@ -40,12 +40,23 @@ def test_clicking_a_plot_node_shows_its_image_in_the_inspector(qtbot, window, tm
     inspector = window.inspector
     qtbot.waitUntil(lambda: inspector.node_id == "plot", timeout=3000)
     assert inspector.tabs.tabText(inspector.tabs.currentIndex()) == "Plot"
-    shown = inspector.plot.pixmap()
     (image,) = window.doc.result("plot").output("Image").all_items()
     drawn = QImage(image)
+    area = inspector.plot_area
+    qtbot.waitUntil(lambda: not area.shown_size().isEmpty(), timeout=3000)
+    shown = inspector.plot.pixmap()
     assert not shown.isNull() and not drawn.isNull()
-    assert (shown.width(), shown.height()) == (drawn.width(), drawn.height())
-    assert shown.toImage().convertToFormat(drawn.format()) == drawn
+    # the whole chart shows: scaled to the tab's width, its aspect kept
+    room = area.viewport().width()
+    assert shown.width() <= room and shown.width() == min(room - 2, drawn.width())
+    assert abs(shown.height() / shown.width() - drawn.height() / drawn.width()) < 0.01
+    # a click shows it 1:1, pixel for pixel; another fits it again
+    QTest.mouseClick(inspector.plot, Qt.MouseButton.LeftButton)
+    one_to_one = inspector.plot.pixmap()
+    assert (one_to_one.width(), one_to_one.height()) == (drawn.width(), drawn.height())
+    assert one_to_one.toImage().convertToFormat(drawn.format()) == drawn
+    QTest.mouseClick(inspector.plot, Qt.MouseButton.LeftButton)
+    assert inspector.plot.pixmap().width() == shown.width()
 
 
 def test_a_node_without_an_image_has_no_plot_tab(qtbot, window, tmp_path):

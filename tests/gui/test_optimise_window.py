@@ -7,6 +7,7 @@ import time
 from pathlib import Path
 
 from PySide6.QtCore import Qt
+from PySide6.QtGui import QColor
 from PySide6.QtTest import QTest
 
 from tests.gui.fixtures_gui import wait_solved
@@ -71,3 +72,40 @@ def test_start_without_a_gene_says_what_is_missing(qtbot, window):
     dialog.set_genes([])
     QTest.mouseClick(dialog.start_button, Qt.MouseButton.LeftButton)
     assert not dialog.running and "Tick at least one slider" in dialog.status.text()
+
+
+def test_the_fitness_list_offers_number_outputs_only(qtbot, window):
+    dialog = open_window(qtbot, window)
+    offered = [dialog.fitness.itemData(i) for i in range(dialog.fitness.count())]
+    assert "strip.Valid" in offered
+    for target in offered:
+        node_id, port_name = target.split(".")
+        port = window.doc.graph.nodes[node_id].node.output_port(port_name)
+        if port.type.name == "Generic":  # offered only while it holds numbers
+            items = window.doc.result(node_id).outputs[port_name].all_items()
+            assert items and all(isinstance(v, int | float) for v in items), target
+        else:
+            assert port.type.name in ("Number", "Integer", "Boolean"), target
+    for geometry in ("strip.Surface", "edge_curves.Curve", "top.Geometry"):
+        assert geometry not in offered
+
+
+def test_the_chart_draws_the_first_generation_and_labels_its_axes(qtbot):
+    from torsal.app.explore.optimise import Generation
+    from torsal.app.gui.optimise_window import BEST_COLOUR, FitnessPlot
+
+    plot = FitnessPlot()
+    qtbot.addWidget(plot)
+    plot.resize(400, 240)
+    plot.add(Generation(0, 2.0, 1.5, 8))
+    image = plot.grab().toImage()
+    area = plot.plot_rect()
+    best = QColor(BEST_COLOUR)
+    marked = [
+        (x, y) for x in range(int(area.left()) - 4, int(area.right()) + 4)
+        for y in range(int(area.top()) - 4, int(area.bottom()) + 4)
+        if QColor(image.pixel(x, y)).name() == best.name()
+    ]
+    assert marked, "one generation draws a marker"
+    legend_line = [x for x in range(image.width()) if QColor(image.pixel(x, 12)).name() == best.name()]
+    assert legend_line and area.top() > 12 + 3  # the legend sits in a strip above the lines

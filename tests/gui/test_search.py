@@ -37,7 +37,7 @@ def test_a_typed_range_places_a_slider_with_that_range(qtbot, window):
 
 
 def test_isomap_lists_iso_mapping_first(qtbot, window):
-    assert typed(qtbot, window, "isomap")[0].startswith("IsoMapping")
+    assert typed(qtbot, window, "isomap")[0].startswith("Iso Mapping")
 
 
 def test_unroll_flatten_and_development_find_iso_mapping(registry):
@@ -69,3 +69,49 @@ def test_the_popup_opened_near_the_bottom_right_corner_stays_inside_the_window(q
     popup = window.popup.frameGeometry()
     window.popup.hide()
     assert inside.contains(popup), (inside, popup)
+
+
+#: What a Grasshopper user types, and the node it must list first.
+GRASSHOPPER_WORDS = {
+    "Pt": "Point",
+    "Construct Point": "Point",
+    "Divide Curve": "Divide Curve",
+    "XY Plane": "XY Plane",
+    "Plane": "XY Plane",
+    "Construct Plane": "Construct Plane",
+    "Plane 3Pt": "Plane Three Points",
+    "Deconstruct": "Deconstruct Point",
+    "Deconstruct Vector": "Deconstruct Vector",
+    "Loft": "Loft",
+    "Unroll": "Iso Mapping",
+    "Construct Domain": "Domain",
+    "Remap Numbers": "Remap",
+    "Bounding Box": "Bounding Box",
+    "Evaluate Surface": "Evaluate Surface",
+    "Perp Frames": "Perp Frames",
+    "Extrude": "Cylindrical Surface",
+    "Number Slider": "Number Slider",
+}
+
+
+def test_typing_grasshoppers_names_lists_the_node_first(qtbot, window):
+    for query, title in GRASSHOPPER_WORDS.items():
+        rows = typed(qtbot, window, query)
+        assert rows and rows[0].split("  (")[0] == title, (query, rows[:3])
+
+
+def test_every_node_declares_a_nickname_and_nicknames_are_unique_within_a_palette(registry):
+    seen: dict[tuple[str, str], str] = {}
+    for cls in registry:
+        if cls.type_id.partition(".")[0] not in TORSAL_PALETTES:
+            continue
+        assert cls.nickname, cls.type_id
+        key = (cls.type_id.partition(".")[0], cls.nickname.lower())
+        assert key not in seen, (cls.type_id, seen.get(key))
+        seen[key] = cls.type_id
+
+
+TORSAL_PALETTES = {
+    "params", "maths", "lists", "curves", "surfaces", "transform", "analysis", "developable",
+    "patching", "display", "io",
+}

@@ -177,7 +177,7 @@ def test_every_ruling_is_valid_and_the_remark_gives_the_count_and_deviation(name
     result = solved(name)
     assert all(items(result, "Valid"))
     count = len(items(result, "Strips"))
-    assert any(f"{count} strips" in t and "worst deviation" in t for t in texts(result))
+    assert any(f"{count} strips" in t and "deviation at most" in t for t in texts(result))
     assert max(items(result, "Deviation")) <= TOL
 
 
@@ -197,8 +197,11 @@ def test_too_few_strips_warn_with_the_deviation_reached():
     assert len(items(result, "Strips")) == 3
     reached = max(items(result, "Deviation"))
     assert reached > TOL
-    warning = [t for t in texts(result) if "MaxStrips 3 cannot meet" in t]
-    assert warning and f"{reached:.4g}" in warning[0]
+    warning = [t for t in texts(result) if "Tolerance 0.02 is not met" in t]
+    assert len(warning) == 1 and f"{reached:.4g}" in warning[0] and "raise MaxStrips (now 3)" in warning[0]
+    assert "within the tolerance" not in warning[0]  # no message contradicts it
+    where = items(result, "Where")
+    assert len(where) == 4 and "the design's edge is" in warning[0]  # each strip's farthest point, the edge's
 
 
 def test_a_surface_closed_across_the_strips_asks_to_be_cut():

@@ -9,6 +9,7 @@ import numpy as np
 
 from tests.nodes.helpers import out, run, texts, tree
 from tests.toolbox.direct_graphs import Chain
+from tests.toolbox.warp_check import shared_both_sides
 from torsal.engine.values import Domain
 from torsal.nodes.curves.splines import ParametricCurve
 from torsal.nodes.developable.ruling_developable import RulingDevelopable
@@ -120,7 +121,18 @@ def test_curves_that_bound_no_developable_warn_with_the_fan_share_and_mark_every
         "no torsal ruling within 0.01 rad at 40 of 40 stations: closed by flat triangles (100 % of the "
         "strip's area), above FanLimit 10 %"
     ]
-    assert set(out(result, "Kind")[(0,)]) == {"fan"}
+    # no ruling is torsal: the strip's end rulings lie beside one flat triangle each (a fan);
+    # every other one has a triangle through a point of A on one side and through a point of
+    # B on the other, whose planes (through the ruling and A', and through it and B') differ:
+    # det[R, A', B'] is the same non-zero number on every ruling, so each is a crease
+    kinds = np.array(out(result, "Kind")[(0,)])
+    starts = np.array([line.start for line in lines(result)])
+    ends = np.array([line.end for line in lines(result)])
+    in_fan = shared_both_sides(starts) | shared_both_sides(ends)
+    np.testing.assert_array_equal(kinds, np.where(in_fan, "fan", "crease"))
+    assert (kinds == "crease").sum() > 20
+    assert out(result, "Torsal")[(0,)] == [0.0]
+    assert not np.array(out(result, "Valid")[(0,)])[~in_fan].any()
     assert len(lines(result)) >= 40  # still drawn (as flat triangles), never hidden
 
 

@@ -10,7 +10,8 @@ import shapely
 from tests.toolbox.direct_graphs import Chain
 from torsal.nodes.geometry.curves.line import Polyline
 from torsal.nodes.geometry.parametric_surface import cone
-from torsal.nodes.geometry.pattern_cover import pattern_cover, ring_areas
+from torsal.nodes.geometry.pattern_cover import pattern_cover
+from torsal.nodes.geometry.polygons import ring_areas
 from torsal.nodes.patching.surface_patching import SurfacePatching
 
 

@@ -1,10 +1,11 @@
 """The ``torsal`` command: solve graphs headless, check them, list nodes, open the app.
 
-    torsal run FILE.graph [--set ID=VALUE ...] [--json] [--out DIR] [--export ID.PORT=PATH ...]
-               [--allow-writes]
+    torsal --version
+    torsal run (FILE.graph | --example NAME) [--set ID=VALUE ...] [--json] [--out DIR]
+               [--export ID.PORT=PATH ...] [--allow-writes]
         (--set CLUSTER/ID=VALUE sets a node inside a cluster: CLUSTER is an instance's id or its
         definition's id; the definition is shared, so every instance of it gets the value)
-    torsal check FILE.graph
+    torsal check (FILE.graph | --example NAME)
     torsal nodes [--json]
     torsal sweep FILE.graph --vary ID=LO:HI:N ... --collect NODE.OUTPUT ... --out DIR  (see app/explore)
     torsal optimise FILE.graph --vary ID=LO:HI ... (--minimise | --maximise) NODE.OUTPUT ...
@@ -35,6 +36,10 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        if args.command in _LOADING_NODES:
+            from torsal.app.plugins import report_problems
+
+            report_problems()  # a broken plug-in, or one refused, is said by every command, once
         return args.handler(args)
     except UsageError as exc:
         print(f"torsal: {exc}", file=sys.stderr)
@@ -46,15 +51,21 @@ def main(argv: list[str] | None = None) -> int:
         return 0
 
 
+#: The commands that load node types (and so plug-ins).
+_LOADING_NODES = frozenset({"run", "check", "nodes", "sweep", "optimise", "gui"})
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="torsal",
         description="Design with developable surfaces: solve node graphs headless or open the app.",
     )
+    parser.add_argument("--version", action="version", version=f"torsal {_version()}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     run = commands.add_parser("run", help="solve a .graph file and report its results")
-    run.add_argument("file", type=Path, help="the .graph file")
+    run.add_argument("file", type=Path, nargs="?", help="the .graph file")
+    run.add_argument("--example", metavar="NAME", help="solve one of the examples (see torsal examples)")
     run.add_argument("--set", action="append", default=[], metavar="ID=VALUE",
                      help="override a slider/toggle/panel value (height=4.5) or an input (cyl.Segments=48); "
                      "inside a cluster, CLUSTER/ID=VALUE (CLUSTER: an instance's or its definition's id; "
@@ -78,7 +89,8 @@ def _parser() -> argparse.ArgumentParser:
     run.set_defaults(handler=_run)
 
     check = commands.add_parser("check", help="parse and validate a .graph file without solving")
-    check.add_argument("file", type=Path)
+    check.add_argument("file", type=Path, nargs="?")
+    check.add_argument("--example", metavar="NAME", help="check one of the examples (see torsal examples)")
     check.set_defaults(handler=_check)
 
     nodes = commands.add_parser("nodes", help="list the node catalogue")
@@ -99,23 +111,26 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _version() -> str:
+    import torsal
+
+    return torsal.__version__
+
+
 def _run(args: argparse.Namespace) -> int:
+    from torsal.app.examples import choose
     from torsal.app.exports import ExportError, export_tree
     from torsal.app.headless import run_file, summary
+    from torsal.app.results_folder import out_folder, write_results
 
-    if args.out is not None:
-        if args.out.exists() and not args.out.is_dir():
-            raise UsageError(f"--out {args.out} is a file, not a folder: give a folder for the results")
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"--out {args.out}: cannot create that folder ({exc.strerror or exc})") from None
+    args.file = choose(args.file, args.example, "run")
+    out = out_folder(args.out) if args.out is not None else None  # resolved once; a link is refused
     from torsal.app.progress import reporting
 
     if args.nesting_time is not None and not (args.nesting_time >= 0 and math.isfinite(args.nesting_time)):
         raise UsageError(f"--nesting-time must be a number of seconds from 0, not {args.nesting_time:g}")
     with reporting(sys.stderr) as node_progress:  # rich's line on a terminal, else a heartbeat
-        run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=args.out,
+        run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=out,
                        node_progress=node_progress, anytime=args.nesting_time is not None)
         if args.nesting_time is not None:  # the background searches, for at most that long
             from torsal.engine.improve import run_improvements
@@ -143,12 +158,8 @@ def _run(args: argparse.Namespace) -> int:
             for file in written:
                 print(f"wrote {file}")
     data = run.to_json() if (args.out or args.json) else None
-    if args.out:
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-            (args.out / "results.json").write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
-        except OSError as exc:
-            raise UsageError(f"--out {args.out}: {exc}") from None
+    if out is not None:
+        write_results(out, "results.json", json.dumps(data, indent=2) + "\n")
     if args.json:
         print(json.dumps(data, indent=2))
     else:
@@ -169,34 +180,28 @@ def _timings(run: Run) -> str:
 
 
 def _check(args: argparse.Namespace) -> int:
+    from torsal.app.examples import choose
     from torsal.app.headless import open_graph
     from torsal.engine.graphfile import GraphFileError
-    from torsal.engine.solver import MISSING
 
+    args.file = choose(args.file, args.example, "check")
     try:
         graph, _ = open_graph(args.file)
     except GraphFileError as exc:
         raise UsageError(f"{args.file}: {exc}") from None
     from torsal.engine.cluster import reachable_definitions
-    from torsal.engine.graph import is_placeholder
 
-    definitions = reachable_definitions(graph)
-    records = [*graph.nodes.values(), *(r for d in definitions for r in d.graph.nodes.values())]
-    missing = sorted({r.type_id for r in records if is_placeholder(r.node)})
+    definitions = reachable_definitions(graph)  # a type not installed was refused by open_graph (exit 2)
     clusters = f", {len(definitions)} cluster definition{'s' if len(definitions) != 1 else ''}"
     print(f"{args.file}: valid — {len(graph.nodes)} nodes, {len(graph.wires)} wires, "
           f"{len(graph.groups)} groups{clusters if definitions else ''}")
-    if missing:
-        print(f"torsal: {MISSING} node types (kept as placeholders): {', '.join(missing)}", file=sys.stderr)
     return 0
 
 
 def _nodes(args: argparse.Namespace) -> int:
     from torsal.nodes.catalogue import default_registry
 
-    registry = default_registry()
-    for problem in registry.problems:
-        print(f"torsal: {problem}", file=sys.stderr)
+    registry = default_registry()  # its problems were reported by main
     if args.json:
         print(json.dumps([cls.catalogue_entry() for cls in registry], indent=2))
         return 0
@@ -217,7 +222,8 @@ def _examples(args: argparse.Namespace) -> int:
 
     for name in examples.names():
         text = examples.description(name).split(". ")[0]
-        print(f"{name:26s} {text if len(text) <= 90 else text[:89] + '…'}")
+        print(f"{name:26s} {examples.path(name)}")
+        print(f"{'':26s} {text if len(text) <= 90 else text[:89] + '…'}")
     return 0
 
 
@@ -225,9 +231,8 @@ def _gui(args: argparse.Namespace) -> int:
     from torsal.app import examples
     from torsal.app.headless import run_file, summary
 
-    if args.file is not None and args.example is not None:
-        raise UsageError("give either a FILE or --example NAME, not both")
-    file = args.file or (examples.path(args.example) if args.example else None)  # none: a blank document
+    # neither: a blank document
+    file = examples.choose(args.file, args.example, "gui") if args.file or args.example else None
     if not has_display():
         if file is None:
             print("No display found (DISPLAY is not set), and no FILE to solve headless.")
@@ -236,12 +241,13 @@ def _gui(args: argparse.Namespace) -> int:
         run = run_file(file)
         print(summary(run))
         return run.exit_code
-    from torsal.app.gui.availability import INSTALL, missing
+    from torsal.app.gui.availability import missing
+    from torsal.app.install import install_command
 
     reason = missing()
     if reason is not None:
         print(f"torsal: the desktop app cannot start: {reason}.\n"
-              f"        Install it with: {INSTALL}\n"
+              f"        Install it with: {install_command('gui')}\n"
               f"        (or solve the graph headless: torsal run {file or 'FILE.graph'})", file=sys.stderr)
         return 2
     from torsal.app.gui.main import launch

@@ -8,8 +8,6 @@ checkout), so an installed wheel finds them as well as an editable install does.
 from __future__ import annotations
 
 import json
-import shutil
-import tempfile
 from importlib.resources import files
 from pathlib import Path
 
@@ -40,12 +38,22 @@ def path(name: str) -> Path:
         raise UsageError(f"there is no example {name!r}; the examples are: {', '.join(names())}")
     if isinstance(resource, Path):
         return resource
-    # Not on the file system (e.g. imported from a zip): a copy in the temporary folder.
-    copy = Path(tempfile.gettempdir()) / "torsal" / "examples" / f"{stem}{SUFFIX}"
-    copy.parent.mkdir(parents=True, exist_ok=True)
-    with resource.open("rb") as source, copy.open("wb") as target:
-        shutil.copyfileobj(source, target)
-    return copy
+    # Not on the file system (e.g. imported from a zip): a copy in the user's private
+    # scratch folder (never a shared /tmp path), written without following a link.
+    from torsal.engine.write_path import scratch_folder, write_file
+
+    scratch = scratch_folder()
+    return write_file(scratch / "examples" / f"{stem}{SUFFIX}", resource.read_bytes(), base=scratch,
+                      backup=False)
+
+
+def choose(file: Path | None, example: str | None, command: str) -> Path:
+    """The graph a command works on: its FILE argument or the example ``--example NAME`` names."""
+    if file is not None and example is not None:
+        raise UsageError("give either a FILE or --example NAME, not both")
+    if file is None and example is None:
+        raise UsageError(f"torsal {command} needs a FILE.graph or --example NAME (see torsal examples)")
+    return file if file is not None else path(example or "")
 
 
 def description(name: str) -> str:

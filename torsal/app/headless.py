@@ -10,11 +10,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from torsal.app.plugins import missing_types
+from torsal.engine.cluster_edits import cluster_graph, set_cluster_graph
 from torsal.engine.graph import Graph, GraphError
 from torsal.engine.graphfile import GraphFileError, read_graph
 from torsal.engine.registry import Registry
 from torsal.engine.solver import ERROR, MISSING, OK, WARNING, NodeProgress, Solver, SolveReport
 from torsal.engine.types import summarize_value
+from torsal.engine.write_path import OutFolder
 from torsal.engine.writes import WriteAccess
 from torsal.nodes.catalogue import default_registry
 
@@ -76,9 +79,21 @@ class Run:
         }
 
 
+def refuse_missing(graph: Graph, path: Path | str) -> None:
+    """Raise :class:`UsageError` (exit code 2) when ``graph`` needs node types that are not
+    installed, naming each, its nodes and the plug-in package the file says provides it."""
+    missing = missing_types(graph)
+    if missing:
+        sentences = "; ".join(m.sentence() for m in missing)
+        raise UsageError(f"{path}: needs node types not installed here: {sentences}")
+
+
 def open_graph(path: str | Path, registry: Registry | None = None) -> tuple[Graph, Registry]:
+    """The graph in ``path``; :class:`UsageError` when it needs node types not installed."""
     registry = registry if registry is not None else default_registry()  # `or` would load every palette
-    return read_graph(path, registry), registry
+    graph = read_graph(path, registry)
+    refuse_missing(graph, path)
+    return graph, registry
 
 
 def parse_assignment(text: str) -> tuple[str, str | None, Any]:
@@ -153,9 +168,9 @@ def apply_assignment(graph: Graph, text: str) -> Target:
     if target.definition is None:
         _assign(graph, target.node_id, port, value, text)
         return target
-    edited = graph.cluster_graph(target.definition.id)
+    edited = cluster_graph(graph, target.definition.id)
     _assign(edited, target.node_id, port, value, text)
-    graph.set_cluster_graph(target.definition.id, edited)
+    set_cluster_graph(graph, target.definition.id, edited)
     return target
 
 
@@ -202,7 +217,7 @@ def run_file(
     registry: Registry | None = None,
     *,
     allow_writes: bool = False,
-    write_folder: Path | None = None,
+    write_folder: Path | OutFolder | None = None,
     node_progress: NodeProgress | None = None,
     anytime: bool = False,
 ) -> Run:
@@ -239,8 +254,14 @@ def run_file(
                 notes.append(note)
     except GraphError as exc:
         raise UsageError(str(exc)) from None
-    folder = write_folder if write_folder is not None else Path(path).resolve().parent
-    solver = Solver(graph, WriteAccess(folder.resolve(), allowed=allow_writes), anytime=anytime)
+    home = Path(path).resolve().parent  # files the graph reads are found from here, with or without --out
+    if isinstance(write_folder, OutFolder) and write_folder.identity is not None:
+        access = WriteAccess.held(write_folder.path, write_folder.identity, allowed=allow_writes)
+        access.read_folder = home
+    else:
+        folder = Path(write_folder) if write_folder is not None else home
+        access = WriteAccess(folder.resolve(), allowed=allow_writes, read_folder=home)
+    solver = Solver(graph, access, anytime=anytime)
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)
 

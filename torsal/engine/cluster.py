@@ -1,30 +1,32 @@
 """Clusters: a sub-graph packaged as one node, as in Grasshopper.
 
-API (what a front-end uses; every call is one edit, one undo step)::
+API (what a front-end uses; each edit is a function of :mod:`torsal.engine.cluster_edits`
+that takes the graph and works through its public methods, one edit, one undo step)::
 
     from torsal.engine.cluster import ClusterNode, ClusterInput, ClusterOutput, is_cluster
+    from torsal.engine.cluster_edits import make_cluster, explode_cluster, definition_of, ...
 
-    cid = graph.make_cluster(node_ids, name="Panels")    # -> the new cluster node's id
+    cid = make_cluster(graph, node_ids, name="Panels")    # -> the new cluster node's id
     did = graph.nodes[cid].node.definition.id            # its definition's id
-        # undo: graph.explode_cluster(cid) (puts back the same ids, records, wires, groups)
-        # redo: graph.make_cluster(node_ids, name, node_id=cid, definition_id=did)
-    info = graph.cluster_instance(cid)                   # capture before exploding (for undo)
-    ids = graph.explode_cluster(cid)                     # -> ids of the restored nodes
-        # undo: graph.restore_cluster(info, ids)
-    other = graph.add_cluster_instance(did, position=(x, y))   # a second instance (undo: remove it)
-    definition = graph.cluster_definition(cid_or_definition_id)    # ClusterDefinition
+        # undo: explode_cluster(graph, cid) (puts back the same ids, records, wires, groups)
+        # redo: make_cluster(graph, node_ids, name, node_id=cid, definition_id=did)
+    info = cluster_instance(graph, cid)                   # capture before exploding (for undo)
+    ids = explode_cluster(graph, cid)                     # -> ids of the restored nodes
+        # undo: restore_cluster(graph, info, ids)
+    other = add_cluster_instance(graph, did, position=(x, y))   # a second instance (undo: remove it)
+    definition = definition_of(graph, cid_or_definition_id)    # ClusterDefinition
     graph.clusters                                       # {definition id: ClusterDefinition}
     definition.name, definition.id, definition.input_names(), definition.output_names()
-    editable = graph.cluster_graph(definition_id)        # a copy of the inner Graph to edit
-    change = graph.set_cluster_graph(definition_id, editable)   # commit: every instance updates
-        # undo: graph.set_cluster_graph(definition_id, change.previous, change.previous_inputs,
+    editable = cluster_graph(graph, definition_id)        # a copy of the inner Graph to edit
+    change = set_cluster_graph(graph, definition_id, editable)   # commit: every instance updates
+        # undo: set_cluster_graph(graph, definition_id, change.previous, change.previous_inputs,
         #       change.previous_outputs), then reconnect change.dropped (outer wires to ports
         #       that vanished)
-    old = graph.rename_cluster_port(definition_id, "input", "Step", "Width")   # undo: swap names
+    old = rename_cluster_port(graph, definition_id, "input", "Step", "Width")   # undo: swap names
         # (a port's name is its boundary node's label: renaming the node in an edited copy
         # and committing it does the same)
-    old_order = graph.reorder_cluster_ports(definition_id, "output", ["B", "A"])   # undo: old_order
-    graph.rename_cluster(definition_id, "New name")      # -> old name
+    old_order = reorder_cluster_ports(graph, definition_id, "output", ["B", "A"])   # undo: old_order
+    rename_cluster(graph, definition_id, "New name")      # -> old name
     solver.cluster_solver(cid)                           # the inner Solver of one instance (or None)
     feed_inputs(editable, solver.cluster_inputs(cid))    # show an instance's values while editing
     fragment_clusters(graph, ids) / adopt_clusters(graph, records)   # engine.graphfile: copy, paste

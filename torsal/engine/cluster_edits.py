@@ -62,7 +62,7 @@ def _touching(graph: Graph, node_ids: list[str]) -> list[Wire]:
             found[wire] = None
         for wire in graph.wires_from(node_id):
             found[wire] = None
-    serial = graph._wires
+    serial = {wire: i for i, wire in enumerate(graph.wires)}
     return sorted(found, key=serial.__getitem__)
 
 
@@ -123,6 +123,24 @@ def _restore_orders(graph: Graph, orders: dict[tuple[str, str], list[Wire]]) -> 
             graph.connect_wire(wire)
 
 
+def _exposed_names(graph: Graph, ports: list[tuple[str, str]]) -> list[str]:
+    """The names of a new cluster's ports, after the inner ports they expose: the port's
+    own name ("Factor") when no other port of that side shares it, else the inner node's
+    title before it ("Copied up Geometry", "Scaled inwards Geometry"), so two outputs are
+    never "Geometry" and "Geometry 2". Renamed later in the cluster's ports dialog."""
+    counts: dict[str, int] = {}
+    for _node, port in ports:
+        counts[port] = counts.get(port, 0) + 1
+    names = []
+    for node_id, port in ports:
+        if counts[port] == 1:
+            names.append(port)
+            continue
+        title = graph.nodes[node_id].title
+        names.append(port if title == port else f"{title} {port}")
+    return _unique_names(names)
+
+
 def ordered_unique_wires(wires: list[Wire]) -> list[Wire]:
     return list(dict.fromkeys(wires))
 
@@ -147,7 +165,7 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
     ids = ordered_unique(node_ids)
     if not ids:
         raise _error("select the nodes to put in the cluster")
-    records = [graph._record(n) for n in ids]
+    records = [graph.record(n) for n in ids]
     chosen = set(ids)
     for record in records:
         if is_boundary(record.node):
@@ -184,8 +202,8 @@ def make_cluster(graph: Graph, node_ids: list[str], name: str = "Cluster", *, no
         return (position(top.target)[1], position(top.target)[0], order_of[first_out[key]])
 
     out_keys.sort(key=out_place)
-    in_names = _unique_names([first_in[k].target_port for k in in_keys])
-    out_names = _unique_names([first_out[k].source_port for k in out_keys])
+    in_names = _exposed_names(graph, [(first_in[k].target, first_in[k].target_port) for k in in_keys])
+    out_names = _exposed_names(graph, [(k[0], k[1]) for k in out_keys])
 
     xs = [r.position[0] for r in records]
     ys = [r.position[1] for r in records]
@@ -298,7 +316,7 @@ def cluster_instance(graph: Graph, node_id: str) -> ClusterInstance:
 
 
 def _cluster_record(graph: Graph, node_id: str) -> NodeRecord:
-    record = graph._record(node_id)
+    record = graph.record(node_id)
     if not isinstance(record.node, ClusterNode):
         raise _error(f"{record.title} is not a cluster")
     return record
@@ -454,12 +472,7 @@ def _reorder_nodes(graph: Graph, nodes: list[str]) -> None:
     """Put the graph's nodes in the order of ``nodes`` (those not named go last, in their
     order); the node order is the file's, it never changes the solve."""
     rank = {n: i for i, n in enumerate(nodes)}
-    order = sorted(graph.nodes, key=lambda n: rank.get(n, len(rank)))
-    if order != list(graph.nodes):
-        records = dict(graph.nodes)
-        graph.nodes.clear()
-        graph.nodes.update((n, records[n]) for n in order)
-        graph._order = None
+    graph.reorder_nodes(sorted(graph.nodes, key=lambda n: rank.get(n, len(rank))))
 
 
 def _restore_order(graph: Graph, before: tuple[list[str], list[Wire]], mapping: dict[str, str]) -> None:
@@ -522,6 +535,11 @@ def boundary_order(graph: Graph, kind: type, current: list[str]) -> list[str]:
     new = sorted((n for n in present if n not in kept),
                  key=lambda n: (graph.nodes[n].position[1], graph.nodes[n].position[0]))
     return kept + new
+
+
+def cluster_graph(graph: Graph, definition_id: str) -> Graph:
+    """A copy of a definition's inner graph, to edit and commit with :func:`set_cluster_graph`."""
+    return clone_graph(definition_of(graph, definition_id).graph)
 
 
 def set_cluster_graph(graph: Graph, definition_id: str, edited: Graph, inputs: list[str] | None = None,
@@ -610,7 +628,7 @@ def _commit(graph: Graph, definition: ClusterDefinition, new: Graph, inputs: lis
             graph.expire(instance)
             touched.add(instance)
     for instance in sorted(touched):
-        graph._emit(SettingChanged, instance, "definition", definition.id, definition.id)
+        graph.emit(SettingChanged, instance, "definition", definition.id, definition.id)
     return dropped
 
 
@@ -654,5 +672,5 @@ def rename_cluster(graph: Graph, definition_id: str, name: str) -> str:
         raise _error("a cluster needs a name")
     old, definition.name = definition.name, name
     for instance in instances(graph, definition.id):
-        graph._emit(SettingChanged, instance, "definition", definition.id, definition.id)
+        graph.emit(SettingChanged, instance, "definition", definition.id, definition.id)
     return old

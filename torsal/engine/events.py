@@ -13,7 +13,7 @@ from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, ClassVar
 
 if TYPE_CHECKING:
-    from torsal.engine.graph import Group, NodeRecord, Wire
+    from torsal.engine.graph_records import Group, NodeRecord, Wire
 
 
 @dataclass(frozen=True)

@@ -86,8 +86,10 @@ class Graph:
         self._listeners.append(listener)
         return lambda: self._listeners.remove(listener)
 
-    def _emit(self, event_type: type[GraphEvent], *fields: Any) -> None:
-        """Tell the listeners: the event is made only when someone listens."""
+    def emit(self, event_type: type[GraphEvent], *fields: Any) -> None:
+        """Tell the listeners of an edit: the event is made only when someone listens.
+        The graph's own edits call it; so do edits made beside it on its public records
+        (the cluster edits of :mod:`torsal.engine.cluster_edits`)."""
         if not self._listeners:  # a graph being loaded or built by a script: no one listens
             return
         event = event_type(*fields)
@@ -134,7 +136,7 @@ class Graph:
                 self._order.append(record.id)
         self.expired.add(record.id)
         self.touched.add(record.id)
-        self._emit(NodeAdded, record.id)
+        self.emit(NodeAdded, record.id)
         return record
 
     def remove_node(self, node_id: str) -> NodeRecord:
@@ -142,7 +144,7 @@ class Graph:
         return self._remove_node(node_id, None)
 
     def _remove_node(self, node_id: str, groups_of: dict[str, list[Group]] | None) -> NodeRecord:
-        record = self._record(node_id)
+        record = self.record(node_id)
         for wire in self._wires_touching(node_id):
             self.disconnect(wire)
         self.expire(node_id)
@@ -159,7 +161,7 @@ class Graph:
         for group in self.groups if groups_of is None else groups_of.get(node_id, ()):
             if node_id in group.nodes:
                 group.nodes.remove(node_id)
-        self._emit(NodeRemoved, node_id, record)
+        self.emit(NodeRemoved, node_id, record)
         return record
 
     # -- bulk edits -------------------------------------------------------------------
@@ -195,7 +197,7 @@ class Graph:
         """
         ids = list(dict.fromkeys(node_ids))
         for node_id in ids:
-            self._record(node_id)
+            self.record(node_id)
         doomed = set(ids)
         groups_of: dict[str, list[Group]] = {}
         for group in self.groups:
@@ -203,7 +205,8 @@ class Graph:
                 groups_of.setdefault(member, []).append(group)
         return [self._remove_node(node_id, groups_of) for node_id in ids]
 
-    def _record(self, node_id: str) -> NodeRecord:
+    def record(self, node_id: str) -> NodeRecord:
+        """The record of node ``node_id``; a :class:`GraphError` names an unknown id."""
         try:
             return self.nodes[node_id]
         except KeyError:
@@ -237,12 +240,12 @@ class Graph:
             else:  # unchecked (a file being loaded): order() sorts afresh and finds any loop
                 self._rank = self._order = None
         self.expire(wire.target)
-        self._emit(WireAdded, wire)
+        self.emit(WireAdded, wire)
         return wire
 
     def check_wire(self, wire: Wire, check_loops: bool = True) -> None:
         """Raise :class:`GraphError` saying why ``wire`` cannot be added."""
-        src, dst = self._record(wire.source), self._record(wire.target)
+        src, dst = self.record(wire.source), self.record(wire.target)
         out_port = src.node.output_port(wire.source_port)
         in_port = dst.node.input_port(wire.target_port)
         if out_port is None and not is_placeholder(src.node):
@@ -276,7 +279,7 @@ class Graph:
         del self._from[wire.source][wire]
         if wire.target in self.nodes:
             self.expire(wire.target)
-        self._emit(WireRemoved, wire)
+        self.emit(WireRemoved, wire)
 
     @property
     def wires(self) -> list[Wire]:
@@ -305,11 +308,11 @@ class Graph:
 
     # -- node state -------------------------------------------------------------------
     def set_setting(self, node_id: str, name: str, value: Any) -> None:
-        record = self._record(node_id)
+        record = self.record(node_id)
         old = record.node.settings.get(name)
         record.node.settings[name] = value
         self.expire(node_id)
-        self._emit(SettingChanged, node_id, name, old, value)
+        self.emit(SettingChanged, node_id, name, old, value)
         self._drop_wires_to_vanished_ports(record)
 
     def _drop_wires_to_vanished_ports(self, record: NodeRecord) -> None:
@@ -326,49 +329,49 @@ class Graph:
 
     def set_input_value(self, node_id: str, port: str, value: Any, present: bool = True) -> None:
         """Set (or with ``present=False`` clear) an input's persistent JSON value."""
-        record = self._record(node_id)
+        record = self.record(node_id)
         state = record.input_state(port)
         old = (state.has_value, copy.deepcopy(state.value))
         state.value, state.has_value = (value, True) if present else (None, False)
         self.expire(node_id)
-        self._emit(InputChanged, node_id, port, old, (present, value))
+        self.emit(InputChanged, node_id, port, old, (present, value))
 
     def set_modifiers(self, node_id: str, port: str, modifiers: Iterable[str]) -> None:
         modifiers = list(modifiers)
         unknown = [m for m in modifiers if m not in MODIFIERS]
         if unknown:
             raise GraphError(f"unknown input modifier {unknown[0]!r} (use {', '.join(MODIFIERS)})")
-        state = self._record(node_id).input_state(port)
+        state = self.record(node_id).input_state(port)
         old, state.modifiers = state.modifiers, modifiers
         self.expire(node_id)
-        self._emit(ModifiersChanged, node_id, port, old, modifiers)
+        self.emit(ModifiersChanged, node_id, port, old, modifiers)
 
     def set_enabled(self, node_id: str, enabled: bool) -> None:
-        record = self._record(node_id)
+        record = self.record(node_id)
         record.enabled = enabled
         self.expire(node_id)
-        self._emit(EnabledChanged, node_id, enabled)
+        self.emit(EnabledChanged, node_id, enabled)
 
     def set_preview(self, node_id: str, preview: bool) -> None:
-        self._record(node_id).preview = preview
-        self._emit(PreviewChanged, node_id, preview)
+        self.record(node_id).preview = preview
+        self.emit(PreviewChanged, node_id, preview)
 
     def move_node(self, node_id: str, position: tuple[float, float]) -> None:
-        record = self._record(node_id)
+        record = self.record(node_id)
         old, record.position = record.position, (float(position[0]), float(position[1]))
-        self._emit(NodeMoved, node_id, old, record.position)
+        self.emit(NodeMoved, node_id, old, record.position)
 
     def set_label(self, node_id: str, label: str) -> None:
-        record = self._record(node_id)
+        record = self.record(node_id)
         old, record.label = record.label, label
-        self._emit(LabelChanged, node_id, old, label)
+        self.emit(LabelChanged, node_id, old, label)
 
     # -- groups ---------------------------------------------------------------------
     def add_group(self, group: Group) -> Group:
         if any(g.id == group.id for g in self.groups):
             raise GraphError(f"there is already a group with id {group.id!r}")
         self.groups.append(group)
-        self._emit(GroupAdded, group)
+        self.emit(GroupAdded, group)
         return group
 
     def remove_group(self, group_id: str) -> Group:
@@ -376,77 +379,8 @@ class Graph:
         if group is None:
             raise GraphError(f"there is no group with id {group_id!r}")
         self.groups.remove(group)
-        self._emit(GroupRemoved, group)
+        self.emit(GroupRemoved, group)
         return group
-
-    # -- clusters (see engine.cluster and engine.cluster_edits) ------------------------
-    def make_cluster(self, node_ids: Iterable[str], name: str = "Cluster", *, node_id: str | None = None,
-                     definition_id: str | None = None) -> str:
-        """Collapse ``node_ids`` into one new cluster node; returns its id (undo: explode it)."""
-        from torsal.engine.cluster_edits import make_cluster
-
-        return make_cluster(self, list(node_ids), name, node_id=node_id, definition_id=definition_id)
-
-    def add_cluster_instance(self, definition_id: str, node_id: str | None = None,
-                             position: tuple[float, float] = (0.0, 0.0)) -> str:
-        """Add another instance of a cluster definition; returns its id (undo: remove it)."""
-        from torsal.engine.cluster_edits import add_cluster_instance
-
-        return add_cluster_instance(self, definition_id, node_id, position)
-
-    def explode_cluster(self, node_id: str) -> list[str]:
-        """Put the cluster ``node_id``'s inner nodes in its place; returns their ids
-        (undo: :meth:`restore_cluster` with what :meth:`cluster_instance` said before)."""
-        from torsal.engine.cluster_edits import explode_cluster
-
-        return explode_cluster(self, node_id)
-
-    def cluster_instance(self, node_id: str) -> Any:
-        """What undoing an explode of ``node_id`` needs (take it before exploding)."""
-        from torsal.engine.cluster_edits import cluster_instance
-
-        return cluster_instance(self, node_id)
-
-    def restore_cluster(self, info: Any, node_ids: list[str]) -> None:
-        """Undo :meth:`explode_cluster`: remove ``node_ids``, put the cluster back."""
-        from torsal.engine.cluster_edits import restore_cluster
-
-        restore_cluster(self, info, node_ids)
-
-    def cluster_definition(self, key: str) -> Any:
-        """The :class:`~torsal.engine.cluster.ClusterDefinition` with id ``key`` or of cluster ``key``."""
-        from torsal.engine.cluster_edits import definition_of
-
-        return definition_of(self, key)
-
-    def cluster_graph(self, definition_id: str) -> Graph:
-        """A copy of a definition's inner graph, to edit and commit with :meth:`set_cluster_graph`."""
-        from torsal.engine.cluster import clone_graph
-
-        return clone_graph(self.cluster_definition(definition_id).graph)
-
-    def set_cluster_graph(self, definition_id: str, edited: Graph, inputs: list[str] | None = None,
-                          outputs: list[str] | None = None) -> Any:
-        """Commit an edited definition graph: every instance updates (returns a
-        :class:`~torsal.engine.cluster.DefinitionChange` to undo it)."""
-        from torsal.engine.cluster_edits import set_cluster_graph
-
-        return set_cluster_graph(self, definition_id, edited, inputs, outputs)
-
-    def rename_cluster_port(self, definition_id: str, kind: str, old: str, new: str) -> str:
-        from torsal.engine.cluster_edits import rename_cluster_port
-
-        return rename_cluster_port(self, definition_id, kind, old, new)
-
-    def reorder_cluster_ports(self, definition_id: str, kind: str, names: list[str]) -> list[str]:
-        from torsal.engine.cluster_edits import reorder_cluster_ports
-
-        return reorder_cluster_ports(self, definition_id, kind, names)
-
-    def rename_cluster(self, definition_id: str, name: str) -> str:
-        from torsal.engine.cluster_edits import rename_cluster
-
-        return rename_cluster(self, definition_id, name)
 
     # -- topology -------------------------------------------------------------------
     def expire(self, node_id: str) -> None:
@@ -559,6 +493,15 @@ class Graph:
         costs what it sorts, not the graph."""
         rank = self._ranks()
         return sorted((n for n in node_ids if n in rank), key=rank.__getitem__)
+
+    def reorder_nodes(self, order: list[str]) -> None:
+        """Put the node records in ``order`` (every node id once), as a file lists them;
+        the order of records never changes a solve."""
+        if order != list(self.nodes):
+            records = dict(self.nodes)
+            self.nodes.clear()
+            self.nodes.update((n, records[n]) for n in order)
+            self._order = None
 
     def _sort(self) -> dict[str, int]:
         """Ranks from scratch (Kahn's algorithm); raises :class:`GraphError` on a loop."""

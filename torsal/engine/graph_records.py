@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from torsal.engine.node import Node
+from torsal.engine.widgets import Widget
 
 
 class GraphError(ValueError):
@@ -71,12 +72,19 @@ class NodeRecord:
 
     @property
     def title(self) -> str:
-        """The label, or the node type's name; shortened for messages and the canvas."""
-        text = self.label or self.node.name()
+        """The label, or the node type's name as words; shortened for messages and the canvas."""
+        text = self.label or self.node.display_name()
         return text if len(text) <= 60 else text[:59] + "…"
 
     def input_state(self, port: str) -> InputState:
         return self.inputs.setdefault(port, InputState())
+
+    @property
+    def shows_geometry(self) -> bool:
+        """Whether a viewport, a variant's picture or Bake draws this node's geometry: its
+        preview is on, it is enabled, and it is not a panel (a panel shows text). Which of
+        its outputs are drawn is the node's :meth:`~torsal.engine.node.Node.previewed_outputs`."""
+        return self.preview and self.enabled and self.node.widget is not Widget.PANEL
 
 
 @dataclass

@@ -1,4 +1,4 @@
-"""Reading and writing ``.graph`` files (see ``shared/spec/graph-format.md``).
+"""Reading and writing ``.graph`` files (see ``docs/graph-format.md``).
 
 A ``.graph`` file is JSON data and is only ever *parsed*: nothing in it is executed.
 The shape is checked with msgspec; what a schema cannot say (unique ids, wires that
@@ -47,7 +47,7 @@ from torsal.engine.cluster import (
     reachable_definitions,
 )
 from torsal.engine.graph import Graph, GraphError, Group, InputState, NodeRecord, PlaceholderNode, Wire
-from torsal.engine.registry import Registry
+from torsal.engine.registry import Registry, provider
 
 FORMAT = "torsal.graph"
 VERSION = 1
@@ -82,6 +82,7 @@ class _Node(msgspec.Struct):
     inputs: dict[str, _Input] = {}
     preview: bool = True
     enabled: bool = True
+    plugin: Identifier | None = None  # the distribution providing a plug-in's type (docs/plugins.md)
 
 
 class _Wire(msgspec.Struct, rename={"source": "from", "target": "to"}):
@@ -469,12 +470,8 @@ def _record(raw: dict[str, Any], registry: Registry, clusters: dict[str, Any] | 
         raise GraphFileError(f"node {raw['id']!r} has unusable settings: {exc}") from None
     inputs = {}
     for name, entry in raw.get("inputs", {}).items():
-        inputs[name] = InputState(
-            value=copy_data(entry.get("value")),
-            has_value="value" in entry,
-            modifiers=list(entry.get("modifiers", [])),
-            raw=entry,
-        )
+        inputs[name] = InputState(value=copy_data(entry.get("value")), has_value="value" in entry,
+                                  modifiers=list(entry.get("modifiers", [])), raw=entry)
     x, y = raw.get("position", (0.0, 0.0))
     return NodeRecord(
         id=raw["id"],
@@ -521,8 +518,8 @@ def _put(target: dict[str, Any], key: str, value: Any, default: Any, raw: dict[s
 def node_data(record: NodeRecord) -> dict[str, Any]:
     raw = record.raw
     data = copy.deepcopy(raw)
-    data["id"] = record.id
-    data["type"] = record.type_id
+    data.update(id=record.id, type=record.type_id)
+    _put(data, "plugin", provider(type(record.node)) or raw.get("plugin"), None, raw)
     _put(data, "label", record.label, "", raw)
     if tuple(raw.get("position", ())) != record.position:  # unchanged: keep 120 as 120
         data["position"] = list(record.position)
@@ -680,11 +677,7 @@ def write_graph(graph: Graph, path: str | os.PathLike[str]) -> None:
     if path.exists():
         _refuse_if_newer(path)
 
-    def write(temporary: Path) -> None:
-        with open(temporary, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-
-    replace_keeping_backup(path, write)
+    replace_keeping_backup(path, text.encode("utf-8"))
 
 
 def _refuse_if_newer(path: Path) -> None:

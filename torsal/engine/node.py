@@ -23,7 +23,7 @@ something and go on it calls :meth:`Node.remark` or :meth:`Node.warn`.
 from __future__ import annotations
 
 import enum
-import threading
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -32,6 +32,9 @@ from typing import Any, ClassVar
 from torsal.engine.errors import Cancelled as Cancelled
 from torsal.engine.errors import NodeError as NodeError
 from torsal.engine.errors import NodeWarning as NodeWarning
+from torsal.engine.messages import CancelToken as CancelToken
+from torsal.engine.messages import Level as Level
+from torsal.engine.messages import Message as Message
 from torsal.engine.solve_context import SolveContext, active
 from torsal.engine.types import ValueType
 from torsal.engine.widgets import Widget
@@ -49,31 +52,13 @@ class Access(enum.Enum):
 ITEM, LIST, TREE = Access.ITEM, Access.LIST, Access.TREE
 
 
-class Level(enum.IntEnum):
-    """Message levels, in increasing severity."""
-
-    REMARK = 0
-    WARNING = 1
-    ERROR = 2
+_WORD_BREAK = re.compile(r"(?<=[a-z])(?=[A-Z0-9])|(?<=[A-Z])(?=[A-Z][a-z])|(?<=[0-9])(?=[A-Z])")
 
 
-class CancelToken:
-    """Shared between a front-end and a running solve; long nodes call :meth:`check`."""
-
-    def __init__(self) -> None:
-        self._event = threading.Event()
-
-    def cancel(self) -> None:
-        self._event.set()
-
-    @property
-    def cancelled(self) -> bool:
-        return self._event.is_set()
-
-    def check(self) -> None:
-        """Raise :class:`Cancelled` if the solve has been cancelled."""
-        if self._event.is_set():
-            raise Cancelled
+def words(name: str) -> str:
+    """A CamelCase type name as words: ``DivideCurve`` → "Divide Curve", ``XYPlane`` →
+    "XY Plane", ``Export3dm`` → "Export 3dm" (a name with spaces is left as it is)."""
+    return name if " " in name else _WORD_BREAK.sub(" ", name)
 
 
 _NO_DEFAULT = object()
@@ -152,15 +137,6 @@ class Setting:
     description: str = ""
 
 
-@dataclass(frozen=True)
-class Message:
-    level: Level
-    text: str
-
-    def to_json(self) -> dict[str, str]:
-        return {"level": self.level.name.lower(), "text": self.text}
-
-
 #: The most calls of ``solve`` one solve of a node makes (item access over long lists, or
 #: one call per branch). Series, Range and Random make up to 1,000,000 numbers, so a cheap
 #: node follows any of them; a list wired by mistake cannot run a node past this.
@@ -175,6 +151,11 @@ class Node:
     outputs: ClassVar[tuple[Out, ...]] = ()
     settings_spec: ClassVar[tuple[Setting, ...]] = ()
     icon: ClassVar[str] = ""
+    #: A short name for the canvas and search, as Grasshopper's nicknames ("Pt", "Div").
+    nickname: ClassVar[str] = ""
+    #: Other names a designer may type for this node: Grasshopper's name for the same
+    #: thing first ("Construct Point"), then plain words ("unroll", "flat pattern").
+    aliases: ClassVar[tuple[str, ...]] = ()
     #: How a front-end lets a designer set this node by hand (:mod:`torsal.engine.widgets`), if at all.
     widget: ClassVar[Widget | None] = None
     #: The most calls of ``solve`` in one solve of this node (the solver refuses more
@@ -280,12 +261,21 @@ class Node:
 
         The solver asks only nodes that define it, and only for item-access calls (every
         branch iterated). It must give each row the very values ``solve`` gives it, bit for
-        bit, and say nothing: for any row it cannot vouch for (a value ``solve`` would refuse
-        or clamp, a kind of geometry whose evaluation is not row by row) it returns None, so
-        the messages come from ``solve`` as always. It checks the token between its pieces of
-        work (``self.token.check()``) as a long solve does: the solver checks it only before.
+        bit, and the messages ``solve`` would say, in the same order: each row's remarks and
+        warnings (``self.remark``, ``self.warn``) one row after another; None and that
+        row's warning where ``solve`` would raise :class:`NodeWarning` (see
+        :meth:`refuse_row`); and where ``solve`` would raise :class:`NodeError` for a row,
+        that error, raised after the messages of the rows before it and none of the rows
+        after. When it returns None the solver forgets whatever it said, so the messages
+        come from ``solve`` alone. It checks the token between its pieces of work
+        (``self.token.check()``) as a long solve does: the solver checks it only before.
         (The solver calls this only on node types that override it.)"""
         return None
+
+    def refuse_row(self, warning: NodeWarning) -> None:
+        """In :meth:`solve_many`: what the solver does when ``solve`` raises ``warning`` for
+        a row (the row's outputs are None; this says the warning in its place)."""
+        self.warn(str(warning))
 
     def call_work(self, *args: Any) -> int:
         """How much work one call of ``solve`` with these arguments asks for, counted
@@ -344,6 +334,10 @@ class Node:
     @classmethod
     def name(cls) -> str:
         return cls.type_id.split(".", 1)[-1]
+
+    def display_name(self) -> str:
+        """The name as words, for a node's title: ``DivideCurve`` → "Divide Curve"."""
+        return words(self.name())
 
     @classmethod
     def help(cls) -> str:

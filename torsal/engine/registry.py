@@ -12,9 +12,14 @@ reading only those declarations: a palette's node modules are imported the first
 one of its types is asked for, so opening a graph imports only the palettes it uses.
 
 Plug-ins publish through the ``torsal.nodes`` entry-point group; an entry point may name
-a palette package (declared as above, loaded lazily like Torsal's own), a module (every
-:class:`Node` subclass with a ``type_id`` in it is registered), a single class, or a
-callable returning classes.
+a palette package (declared as above), a module (every :class:`Node` subclass with a
+``type_id`` in it is registered), a single class, or a callable returning classes. A
+plug-in's node modules are imported when the registry loads it (not lazily like Torsal's
+own palettes), so that every command can check it whole: a plug-in that cannot be imported,
+or whose type ids are already taken (by Torsal or by a plug-in loaded before it, in the
+order of the distributions' names), is refused as a whole and named in
+:attr:`Registry.problems`; :func:`provider` tells which distribution a node class came from
+(the ``.graph`` file records it beside the node: docs/plugins.md).
 
 The registry owns the value types too (:attr:`Registry.value_types`, the process's
 :class:`~torsal.engine.types.TypeTable`): the palettes' declared modules, and the type of every
@@ -35,6 +40,15 @@ from torsal.engine.node import Node
 from torsal.engine.types import TYPES, TypeTable
 
 ENTRY_POINT_GROUP = "torsal.nodes"
+#: The distribution that provides Torsal's own node types.
+BUILT_IN = "torsal"
+#: Plug-in node classes → the distribution (pip's package name) that installed them.
+_PROVIDERS: dict[type, str] = {}
+
+
+def provider(cls: type) -> str | None:
+    """The distribution a plug-in's node class came from (None for Torsal's own)."""
+    return _PROVIDERS.get(cls)
 
 
 def _names(module: ModuleType, attribute: str) -> tuple[str, ...]:
@@ -146,21 +160,68 @@ class Registry:
         return len(self._types)
 
     def load_entry_points(self) -> None:
-        """Register third-party node types; a broken plug-in is reported, not fatal."""
-        for entry in entry_points(group=ENTRY_POINT_GROUP):
+        """Register third-party node types. A plug-in that cannot be loaded, or that reuses a
+        type id already registered, is refused whole and reported in :attr:`problems`."""
+        found = sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: (_distribution(e), e.name))
+        for entry in found:
+            package = _distribution(entry)
             try:
-                loaded = entry.load()
-                if isinstance(loaded, ModuleType) and declares_palette(loaded):
-                    self.add_palette(loaded)
-                elif isinstance(loaded, ModuleType):
-                    self.register_module(loaded)
-                elif inspect.isclass(loaded) and issubclass(loaded, Node):
-                    self.register(loaded)
-                elif callable(loaded):
-                    for cls in loaded():
-                        self.register(cls)
+                classes = self._plugin_classes(entry.load())
             except Exception as exc:  # a plug-in's bug must not stop Torsal starting
-                self.problems.append(f"plug-in {entry.name!r} could not be loaded: {exc}")
+                self.problems.append(f"plug-in {package!r} (entry point {entry.name!r}) could not be loaded: "
+                                     f"{type(exc).__name__}: {exc}")
+                continue
+            clash = self._clash(classes, package, entry.name)
+            if clash is not None:
+                self.problems.append(clash)
+                continue
+            for cls in classes:
+                self.register(cls)
+                _PROVIDERS[cls] = package
+
+    def _plugin_classes(self, loaded: Any) -> list[type[Node]]:
+        """The node classes an entry point offers (a palette package's modules imported now)."""
+        if isinstance(loaded, ModuleType) and declares_palette(loaded):
+            for module_name in _names(loaded, "VALUE_TYPES"):
+                self.value_types.load(module_name)
+            modules = [importlib.import_module(name) for name in _names(loaded, "NODE_TYPES")]
+            classes = [cls for module in modules for cls in classes_in(module)]
+        elif isinstance(loaded, ModuleType):
+            classes = classes_in(loaded)
+        elif inspect.isclass(loaded):
+            classes = [loaded]
+        elif callable(loaded):
+            classes = list(loaded())
+        else:
+            raise TypeError(f"it names a {type(loaded).__name__}, not a module, a node class or a factory")
+        for cls in classes:
+            if not (inspect.isclass(cls) and issubclass(cls, Node)):
+                raise TypeError(f"{cls!r} is not a torsal.api.Node subclass")
+            palette, _, name = cls.type_id.partition(".")
+            if not (palette and name and palette.isidentifier() and name.isidentifier()):
+                raise ValueError(f"{cls.__name__}.type_id must be '<palette>.<NodeName>', "
+                                 f"not {cls.type_id!r}")
+        return classes
+
+    def _clash(self, classes: list[type[Node]], package: str, entry: str) -> str | None:
+        """Why a plug-in's classes cannot be registered (a type id taken), or None."""
+        mine: dict[str, type[Node]] = {}
+        for cls in classes:
+            other = mine.get(cls.type_id) or self.get(cls.type_id)  # loads a built-in palette of that name
+            if other is not None and other is not cls:
+                owner = package if cls.type_id in mine else (provider(other) or BUILT_IN)
+                return (f"plug-in {package!r} (entry point {entry!r}) is refused: its node type "
+                        f"{cls.type_id!r} is already provided by {owner!r}; the plug-in must give its "
+                        f"node types ids of their own (its palette name is the part before the dot)")
+            mine[cls.type_id] = cls
+        return None
+
+
+def _distribution(entry: Any) -> str:
+    """The name of the distribution that declares an entry point (pip's package name)."""
+    dist = getattr(entry, "dist", None)
+    name = getattr(dist, "name", None) if dist is not None else None
+    return name or str(getattr(entry, "value", entry.name)).split(":")[0].split(".")[0]
 
 
 def classes_in(module: ModuleType) -> list[type[Node]]:

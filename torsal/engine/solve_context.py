@@ -19,8 +19,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from torsal.engine.messages import CancelToken, Message
+
 if TYPE_CHECKING:
-    from torsal.engine.node import CancelToken, Message, Node
     from torsal.engine.writes import NodeFiles
 
 
@@ -33,7 +34,9 @@ class SolveContext:
     the active one for the block (what :func:`solving` does).
     """
 
-    node: Node
+    #: The node being solved, told apart from others by identity alone (so this module
+    #: needs nothing of the node class).
+    node: object
     token: CancelToken | None = None
     files: NodeFiles | None = None
     on_progress: Callable[[float], None] | None = None

@@ -2,9 +2,9 @@
 
 Each node's inputs are gathered from its wires' cached output trees (or from its
 persistent values and defaults), modified, cast to the port types and *matched* the
-Grasshopper way (see ``shared/spec/data-trees.md``); ``solve`` is then called once per
-match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or ``missing`` with its
-messages and solve time. An exception in one node never stops the others.
+Grasshopper way (:mod:`torsal.engine.matching`, ``docs/data-trees.md``); ``solve`` is then
+called once per match. A node ends ``ok``, ``warning``, ``error``, ``disabled`` or
+``missing`` with its messages and solve time. An exception in one node never stops the others.
 """
 
 from __future__ import annotations
@@ -13,10 +13,7 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from itertools import chain, repeat
 from typing import Any
-
-import numpy as np
 
 from torsal.engine.bounds import within_bounds
 from torsal.engine.casting import (  # noqa: F401 - also exported here, where callers found them
@@ -27,15 +24,13 @@ from torsal.engine.casting import (  # noqa: F401 - also exported here, where ca
     merge_trees,
 )
 from torsal.engine.cluster import PORT, ClusterDefinition, ClusterInput, ClusterNode, clone_graph
-from torsal.engine.datatree import Branch, DataTree, Path, Triples, apply_modifiers, as_list, format_path
+from torsal.engine.datatree import DataTree, apply_modifiers
 from torsal.engine.graph import Graph, NodeRecord, Wire, is_placeholder
+from torsal.engine.matching import run_node as run_node  # where callers found it
+from torsal.engine.matching import store
 from torsal.engine.node import (
-    ITEM,
-    LIST,
-    TREE,
     Cancelled,
     CancelToken,
-    In,
     Level,
     Message,
     Node,
@@ -183,10 +178,9 @@ class Solver:
         if record is None or result is None or result.improver is None:
             return False
         node = record.node
-        out_ports = node.output_ports()
-        outputs = {p.name: DataTree() for p in out_ports}
+        outputs = {p.name: DataTree() for p in node.output_ports()}
         try:
-            _store(node, out_ports, outputs, [((0,), [values])], iterated=False)
+            store(node, outputs, [((0,), [values])], iterated=False)
         except NodeError:
             return False
         messages = [m for m in result.messages if m.level != Level.REMARK]
@@ -206,7 +200,9 @@ class Solver:
         node = record.node
         started = time.perf_counter()
         if is_placeholder(node):
-            text = f"node type {record.type_id!r} is not installed; its data is kept as it is"
+            package = record.raw.get("plugin")  # the plug-in the file says provides it
+            source = f" (it comes from the plug-in package {package!r})" if isinstance(package, str) else ""
+            text = f"node type {record.type_id!r} is not installed{source}; its data is kept as it is"
             return NodeResult(MISSING, [Message(Level.WARNING, text)], 0.0, _empty_outputs(node))
         if not record.enabled:
             return NodeResult(DISABLED, [], 0.0, _empty_outputs(node))
@@ -383,303 +379,3 @@ def _describe_exception(exc: Exception) -> str:
 
 
 # --------------------------------------------------------------------------- matching
-
-def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> dict[str, DataTree]:
-    """Match ``trees`` to ``node``'s inputs, call ``solve`` per match, collect output trees.
-
-    A required input with no data, or a wired non-optional input whose source produced
-    nothing, makes the node warn and produce nothing (Grasshopper's "collected no
-    data"): a default never silently replaces an upstream failure. Optional inputs may
-    be empty.
-    """
-    in_ports = node.input_ports()
-    out_ports = node.output_ports()
-    outputs = {p.name: DataTree() for p in out_ports}
-    wired = wired or [False] * len(in_ports)
-
-    matched: list[tuple[In, DataTree]] = []
-    single = True  # every matched input is one branch {0} of one item: the common case
-    trees = list(trees)
-    for index, (port, tree, is_wired) in enumerate(zip(in_ports, trees, wired, strict=True)):
-        if tree.is_empty():
-            if not port.optional and (is_wired or not port.has_default):
-                node.warn(f"Input {port.name} collected no data")
-                return outputs
-            if port.access is ITEM:  # an empty optional item arrives as None
-                trees[index] = tree = DataTree({(0,): [None]})
-        if port.access is not TREE:
-            matched.append((port, tree))
-            if single and not (tree.paths == [(0,)] and len(tree.raw_branches[0]) == 1):
-                single = False
-        else:
-            single = False
-
-    if not matched:  # no inputs, or only tree inputs: one call
-        _store(node, out_ports, outputs, [((0,), [_call(node, trees)])], iterated=False)
-        return outputs
-    if single:
-        args = [_for_port(t.raw_branches[0], p) for p, t in matched]
-        args = [a[0] if p.access is ITEM else a for (p, _), a in zip(matched, args, strict=True)]
-        _store(node, out_ports, outputs, [((0,), [_call(node, args)])], iterated=False)
-        return outputs
-    if len(matched) > 1:
-        _remark_uneven(node, matched)
-
-    branch_lists = [[_for_port(b, p) for b in t.raw_branches] or [[]] for p, t in matched]
-    path_lists = [t.paths or [(0,)] for _, t in matched]
-    branch_count = max(len(b) for b in branch_lists)
-    master = next(i for i, b in enumerate(branch_lists) if len(b) == branch_count)
-    item_slots = [i for i, (p, _) in enumerate(matched) if p.access is ITEM]
-    iterated = bool(item_slots)
-    # arguments in port order: tree inputs fixed, the others filled per call
-    template = [t if p.access is TREE else None for p, t in zip(in_ports, trees, strict=True)]
-    slot_of_port = [i for i, p in enumerate(in_ports) if p.access is not TREE]
-    no_tree_inputs = len(slot_of_port) == len(in_ports)
-    # list outputs go to {p;i} when any branch makes several calls, so depths never mix
-    # (each item input's branches are all read by some branch of the longest)
-    sub_branches = iterated and any(max(map(len, branch_lists[i])) > 1 for i in item_slots)
-
-    # plan every call first, so the budget is checked before the first one is made
-    plan: list[tuple[Path, Any, bool]] = []  # (path, args of one call or rows of calls, is rows)
-    calls = 0
-    # each input's branch for every branch of the longest tree (a shorter tree's last one reused)
-    per_branch = zip(*(bl + [bl[-1]] * (branch_count - len(bl)) for bl in branch_lists), strict=True)
-    paths = path_lists[master]
-    if not iterated:
-        for path, branches in zip(paths, per_branch, strict=True):
-            args = list(template)
-            for slot, port_index in enumerate(slot_of_port):
-                args[port_index] = branches[slot]
-            plan.append((path, args, False))
-            calls += 1
-    else:
-        # the calls a branch makes: its longest item list (none when one is empty)
-        lengths = [[len(branch) for branch in branch_lists[i]] for i in item_slots]
-        lengths = [ls + [ls[-1]] * (branch_count - len(ls)) for ls in lengths]
-        counts = list(map(max, *lengths)) if len(lengths) > 1 else lengths[0]
-        fewest = list(map(min, *lengths)) if len(lengths) > 1 else lengths[0]
-        listed = [p.access is LIST for p, _ in matched]
-        for path, branches, count, least in zip(paths, per_branch, counts, fewest, strict=True):
-            if least == 0:
-                continue
-            columns: list[Any] = [
-                repeat(branch, count) if is_list else branch if len(branch) == count
-                else branch + [branch[-1]] * (count - len(branch))
-                for branch, is_list in zip(branches, listed, strict=True)
-            ]
-            if no_tree_inputs:
-                arg_rows: Any = zip(*columns, strict=False)
-            else:
-                placed = list(zip(slot_of_port, columns, strict=True))
-                arg_rows = (_fill(template, placed, row) for row in zip(*columns, strict=False))
-            plan.append((path, arg_rows, True))
-            calls += count
-    if calls > node.max_calls:
-        raise NodeError(_too_many_calls(node, matched, calls, f"at most {node.max_calls:,} at once"))
-    if node.max_work is not None:
-        plan = [(path, list(rows) if is_rows else rows, is_rows) for path, rows, is_rows in plan]
-        work = sum(
-            sum(_work(node, row) for row in rows) if is_rows else _work(node, rows)
-            for _, rows, is_rows in plan
-        )
-        if work > node.max_work:
-            raise NodeError(_too_many_calls(
-                node, matched, calls,
-                f"{work:,} {node.work_unit} in all, at most {node.max_work:,} (the work of "
-                f"{node.max_work / max(work / calls, 1):,.0f} such runs)",
-            ))
-
-    if iterated and type(node).solve_many is not Node.solve_many and plan:
-        plan = [(path, list(rows), True) for path, rows, _ in plan]  # read again if it declines
-        node.check_cancelled()
-        results = node.solve_many(*zip(*chain.from_iterable(rows for _, rows, _ in plan), strict=True))
-        if results is not None:  # each branch's rows' results, in order
-            groups, start = [], 0
-            for path, rows, _ in plan:
-                groups.append((path, results[start:start + len(rows)]))
-                start += len(rows)
-            _store(node, out_ports, outputs, groups, iterated=sub_branches)
-            return outputs
-
-    for path, rows, is_rows in plan:
-        node.check_cancelled()
-        if not is_rows:
-            _store(node, out_ports, outputs, [(path, [_call(node, rows)])], iterated=False)
-            continue
-        _store(node, out_ports, outputs, [(path, _call_rows(node, rows))], iterated=sub_branches)
-    return outputs
-
-
-def _for_port(branch: Branch, port: In) -> Branch:
-    """A branch as ``port`` receives it: an array as it is for a list input that takes
-    arrays (``In(..., arrays=True)``; points and vectors as an (n, 3) array into a Point
-    or Vector input, as Triples into any other, which keeps what its rows are), otherwise
-    a list of Python values."""
-    if port.arrays and port.access is LIST:
-        return branch.array if isinstance(branch, Triples) and port.type.name in TRIPLE_OF else branch
-    return as_list(branch)
-
-
-def _work(node: Node, args: Any) -> int:
-    """One call's :meth:`Node.call_work`; a value it cannot count costs 1 (solve refuses it)."""
-    try:
-        return max(int(node.call_work(*args)), 1)
-    except Exception:  # a bad value: solve's own message names it
-        return 1
-
-
-def _too_many_calls(node: Node, matched: list[tuple[In, DataTree]], calls: int, limit: str) -> str:
-    """"UDensity has 200 values: SurfaceAnalysis would run 200 times; …": names the input
-    with the most values (or branches, for a node that runs once per branch)."""
-    def size(tree: DataTree) -> int:
-        return tree.item_count
-
-    items = [(p, t) for p, t in matched if p.access is ITEM]
-    if items:
-        port, tree = max(items, key=lambda pt: size(pt[1]))
-        many = f"{port.name} has {size(tree):,} values"
-    else:
-        port, tree = max(matched, key=lambda pt: pt[1].branch_count)
-        many = f"{port.name} has {tree.branch_count:,} branches"
-    if tree.branch_count > 1 and items:
-        many += f" in {tree.branch_count:,} branches"
-    return f"{many}: {node.name()} would run {calls:,} times; {limit}"
-
-
-def _fill(template: list[Any], columns: list[Any], row: tuple[Any, ...]) -> list[Any]:
-    args = list(template)
-    for (port_index, _), value in zip(columns, row, strict=True):
-        args[port_index] = value
-    return args
-
-
-def _call(node: Node, args: list[Any]) -> Any:
-    try:
-        return node.solve(*args)
-    except NodeWarning as exc:
-        node.warn(str(exc))
-        return None
-
-
-def _call_rows(node: Node, rows: Any) -> list[Any]:
-    """Call ``solve`` per argument row; the hot loop of item access. The token is checked
-    before a call once 20 ms have passed since the last check: the clock is read after
-    every call that takes 1 ms or more (a cancel waits for one call), after every 8 quicker
-    ones (reading it after each cost a trivial loop 30 %). Never after the last call: a
-    node that answered a cancel with its best result so far (a nesting) keeps it."""
-    solve = node.solve
-    token = node.token
-    clock = time.perf_counter
-    looked = clock()
-    due = looked + 0.02
-    look_at = 1  # the call after which the clock is read next
-    check_first = False  # look at the token before the next call
-    results: list[Any] = []
-    append = results.append
-    for count, row in enumerate(rows, 1):
-        if check_first:
-            token.check()
-            check_first = False
-        try:
-            append(solve(*row))
-        except NodeWarning as exc:
-            node.warn(str(exc))
-            append(None)
-        if count >= look_at:
-            now = clock()
-            if now >= due:
-                check_first = True
-                due = now + 0.02
-            look_at = count + (8 if now - looked < 1e-3 else 1)
-            looked = now
-    return results
-
-
-def _store(
-    node: Node,
-    out_ports: tuple[Any, ...],
-    outputs: dict[str, DataTree],
-    groups: list[tuple[Path, list[Any]]],
-    iterated: bool,
-) -> None:
-    """Place branch iterations' results in the output trees: ``groups`` holds each
-    iteration's path and its calls' results, in order.
-
-    With ``iterated``, each call's list goes to its own branch ``{p;i}``; otherwise
-    lists are appended to ``{p}``. The caller sets ``iterated`` when some branch of
-    an item-access node makes several calls, so a single call (one curve divided)
-    keeps the path ``{p}`` as in Grasshopper, and depths never mix within a solve.
-    """
-    width = len(out_ports)
-    if width == 1:
-        split = [(path, [results]) for path, results in groups]
-    else:  # each iteration's results as one column per output
-        blank = (None,) * width  # a call that made nothing: None on every output
-        split = []
-        for path, results in groups:
-            rows = [blank if result is None else result for result in results]
-            if not all(isinstance(row, tuple) and len(row) == width for row in rows):
-                raise NodeError(f"{type(node).__name__}.solve must return {width} values")
-            split.append((path, list(zip(*rows, strict=True)) if rows else [() for _ in out_ports]))
-    for index, port in enumerate(out_ports):
-        tree = outputs[port.name]
-        triples = port.access is LIST and port.type.name in TRIPLE_OF  # (n, 3) arrays: Triples
-        for path, columns in split:
-            column = columns[index]
-            if triples:
-                column = [_as_triples(values, port) for values in column]
-            if port.access is ITEM:
-                tree.extend(path, column)
-            elif port.access is LIST:
-                if iterated:
-                    for i, values in enumerate(column):
-                        tree.extend((*path, i), [] if values is None else values)
-                else:
-                    for values in column:
-                        tree.extend(path, [] if values is None else values)
-            else:  # TREE: the node built its own tree
-                for value in column:
-                    if isinstance(value, DataTree):
-                        for sub_path, branch in value.raw_items():
-                            tree.extend(sub_path, branch)
-
-
-def _as_triples(values: Any, port: Any) -> Any:
-    """A node's ``(n, 3)`` float array for a list output of points or vectors, as Triples."""
-    if (isinstance(values, np.ndarray) and values.ndim == 2 and values.shape[1] == 3
-            and values.dtype.kind in "fi"):
-        return Triples(values, TRIPLE_OF[port.type.name])
-    return values
-
-
-def _remark_uneven(node: Node, matched: list[tuple[In, DataTree]]) -> None:
-    """Say in plain words when trees match unevenly (a branch or item gets reused)."""
-    counts = [(p.name, t.branch_count) for p, t in matched if not t.is_empty()]
-    if len(counts) < 2:
-        return
-    most = max(c for _, c in counts)
-    for name, count in counts:
-        if 1 < count < most:
-            other = next(n for n, c in counts if c == most)
-            node.remark(
-                f"{other} has {most} branches, {name} has {count}: "
-                f"{name}'s last branch is reused"
-            )
-    items = [(p.name, t) for p, t in matched if p.access is ITEM and not t.is_empty()]
-    if len(items) < 2:
-        return
-    branch_lists = [(n, t.raw_branches) for n, t in items]  # built once: ``branches`` copies the tree's list
-    if sum(max(map(len, bl)) > 1 for _, bl in branch_lists) < 2:
-        return  # an item is reused only between two inputs that both have several in a branch
-    for path_index in range(max(t.branch_count for _, t in items)):
-        lengths = [(n, len(bl[min(path_index, len(bl) - 1)])) for n, bl in branch_lists]
-        longest = max(length for _, length in lengths)
-        for name, length in lengths:
-            if 1 < length < longest:
-                other = next(n for n, length2 in lengths if length2 == longest)
-                path = items[0][1].paths[min(path_index, items[0][1].branch_count - 1)]
-                node.remark(
-                    f"{other} has {longest} items, {name} has {length} in branch "
-                    f"{format_path(path)}: {name}'s last item is reused"
-                )
-                return

@@ -9,8 +9,12 @@ import argparse
 import json
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from torsal.app.headless import UsageError
+
+if TYPE_CHECKING:
+    from torsal.engine.write_path import OutFolder
 
 SWEEP_USAGE = (
     "torsal sweep FILE --vary ID=LO:HI:N [--vary ...] [--sampler grid|lhs|sobol --samples N] "
@@ -52,13 +56,14 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--samples", type=int, metavar="N", help="how many variants lhs/sobol draw")
     sweep.add_argument("--collect", action="append", default=[], metavar="NODE.OUTPUT",
                        help="an output to record (NODE.OUTPUT:mean|sum|min|max|count for several items)")
-    sweep.add_argument("--out", type=Path, metavar="DIR", help="folder for results.csv and the cache")
+    sweep.add_argument("--out", type=Path, metavar="DIR",
+                       help="folder for results.csv, Design Explorer's data.csv and the cache")
     sweep.add_argument("--seed", type=int, default=0, metavar="S", help="seed of lhs/sobol (default 0)")
     sweep.add_argument("--allow-writes", action="store_true",
                        help="let the graph's file nodes write, variant N into DIR/variants/N only")
     sweep.add_argument("--images", action="store_true",
-                       help="draw each variant's previewed geometry into DIR/images/N.png and add "
-                            "Design Explorer's img:perspective column")
+                       help="draw each variant's previewed geometry into DIR/N.png and add "
+                            "Design Explorer's img column")
     _workers(sweep)
     sweep.set_defaults(handler=_sweep)
 
@@ -84,14 +89,14 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
     optimise.set_defaults(handler=_optimise, objectives=None)
 
 
-def _folder(out: Path, flag: str = "--out") -> Path:
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"{flag} {out} is a file, not a folder: give a folder for the results")
+def _folder(out: Path, flag: str = "--out") -> OutFolder:
+    """``--out`` resolved once: created if missing, refused if it is a link or a file."""
+    from torsal.engine.write_path import OutFolder
+
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        return OutFolder.resolve(out, flag)
     except OSError as exc:
-        raise UsageError(f"{flag} {out}: cannot create that folder ({exc.strerror or exc})") from None
-    return out
+        raise UsageError(str(exc)) from None
 
 
 def _sweep(args: argparse.Namespace) -> int:
@@ -112,9 +117,14 @@ def _sweep(args: argparse.Namespace) -> int:
     variants = sample(study.variables, args.sampler, args.samples or 0, args.seed)
     out = _folder(args.out)
     progress = Progress("sweep", len(variants))
-    with make_executor(args.workers, args.scheduler) as executor:
-        result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes, images=args.images,
-                           progress=progress)
+    try:
+        with make_executor(args.workers, args.scheduler) as executor:
+            result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes,
+                               images=args.images, progress=progress)
+    except OSError as exc:  # a read-only or full --out, a link planted in it: one line, exit 2
+        raise UsageError(f"--out {out.path}: {exc.strerror or exc}") from None
+    for note in result.notes:
+        print(f"torsal: note: {note}", file=sys.stderr)
     print(f"{args.file}: {len(result.outcomes)} variants — {result.solved} solved, {result.cached} from "
           f"the cache, {result.failed} in error → {result.csv_path}")
     return 1 if result.failed else 0
@@ -142,9 +152,12 @@ def _optimise(args: argparse.Namespace) -> int:
                           progress=progress)
     progress.stream.write("\n" if progress.tty else "")
     if out is not None:
-        write_evaluations(out / "evaluations.csv", study, result)
-        if len(senses) > 1:
-            write_front(out / "front.csv", study, result)
+        try:
+            write_evaluations(out, "evaluations.csv", study, result)
+            if len(senses) > 1:
+                write_front(out, "front.csv", study, result)
+        except OSError as exc:
+            raise UsageError(f"--out {out.path}: {exc.strerror or exc}") from None
     if args.json:
         print(json.dumps(result.to_json(study, args.seed), indent=2))
     elif len(senses) == 1:

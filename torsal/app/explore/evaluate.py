@@ -14,10 +14,12 @@ from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.variables import Target
+from torsal.app.plugins import missing_types
 from torsal.engine.graphfile import GraphFileError, loads
 from torsal.engine.node import CancelToken
 from torsal.engine.registry import Registry
 from torsal.engine.solver import ERROR, WARNING, Solver
+from torsal.engine.write_path import make_folders
 from torsal.engine.writes import WriteAccess
 
 OK_STATUS = "ok"
@@ -31,6 +33,7 @@ class Job:
     allow_writes: bool = False
     write_root: str | None = None  # variant N writes into write_root/NNNNN when allowed
     image_root: str | None = None  # variant N is drawn into image_root/NNNNN.png (--images)
+    read_root: str | None = None  # the graph's folder: files its nodes read are found from here
 
 
 @dataclass
@@ -114,13 +117,24 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
         graph = loads(graph_text, _registry())
     except GraphFileError as exc:
         return Outcome(values, {t.name: None for t in job.targets}, f"error: the graph cannot be read: {exc}")
+    missing = missing_types(graph)
+    if missing:  # a worker without a plug-in the sender has: raised, so dask tries another worker
+        raise LookupError("this worker cannot solve the graph: " + "; ".join(m.sentence() for m in missing))
     for node_id, value in values.items():
         graph.set_setting(node_id, "value", value)
-    folder = None
+    access = WriteAccess()
     if job.allow_writes and job.write_root is not None:
-        folder = Path(job.write_root) / f"{index:05d}"
-        folder.mkdir(parents=True, exist_ok=True)
-    solver = Solver(graph, WriteAccess(folder, allowed=job.allow_writes and folder is not None))
+        root = Path(job.write_root)  # DIR/variants, DIR resolved once by the command
+        parts = (root.name, f"{index:05d}")
+        try:
+            identity = make_folders(root.parent, parts)
+        except OSError as exc:
+            return Outcome(values, {t.name: None for t in job.targets},
+                           f"error: cannot make the variant's folder: {exc.strerror or exc}")
+        access = WriteAccess.held(root / parts[1], identity, allowed=True)
+    # files the graph reads are found from its own folder, wherever variants write
+    access.read_folder = Path(job.read_root) if job.read_root is not None else None
+    solver = Solver(graph, access)
     if solver.solve(token).cancelled:
         raise Stopped
     notes: list[str] = []
@@ -157,6 +171,9 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
         from torsal.app.explore.images import previewed_values, render
 
         name = f"{index:05d}.png"
-        if render(previewed_values(graph, solver), Path(job.image_root) / name):
-            image = name
+        try:
+            if render(previewed_values(graph, solver), Path(job.image_root) / name):
+                image = name
+        except OSError as exc:  # a link planted in DIR/images, a full disk: no picture, said so
+            status += f"; no picture: {exc.strerror or exc}"
     return Outcome(values, outputs, status, image)

@@ -12,6 +12,7 @@ no display, no Qt or VTK, so it runs on a sweep's workers, a dask worker include
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +20,7 @@ import numpy as np
 
 from torsal.engine.graph import Graph
 from torsal.engine.solver import ERROR, Solver
-from torsal.engine.widgets import Widget
+from torsal.engine.write_path import write_file
 
 #: Picture size in pixels (width, height).
 SIZE = (640, 480)
@@ -40,7 +41,7 @@ def previewed_values(graph: Graph, solver: Solver) -> list[Any]:
     with preview on that are not in error (panels show text, not geometry)."""
     values: list[Any] = []
     for node_id, record in graph.nodes.items():
-        if not (record.preview and record.enabled) or record.node.widget is Widget.PANEL:
+        if not record.shows_geometry:
             continue
         result = solver.result(node_id)
         if result.state == ERROR:
@@ -112,8 +113,8 @@ def render(values: list[Any], path: Path, size: tuple[int, int] = SIZE) -> bool:
     axes.set_ylim(centre[1] - half[1], centre[1] + half[1])
     axes.set_zlim(centre[2] - half[2], centre[2] + half[2])
     axes.set_box_aspect(tuple(span / span.max()), zoom=1.0)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_name(path.name + ".part")
-    figure.savefig(temporary, format="png", facecolor="white")
-    temporary.replace(path)
+    picture = io.BytesIO()
+    figure.savefig(picture, format="png", facecolor="white")
+    # DIR/N.png beside the tables, DIR resolved once by the command: no link followed
+    write_file(path, picture.getvalue(), base=path.parent, backup=False)
     return True

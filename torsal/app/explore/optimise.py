@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -96,7 +97,7 @@ class Objective:
         self.senses = senses
         self.budget = budget
         self.progress = progress
-        self.job = Job(tuple(study.targets))
+        self.job = Job(tuple(study.targets), read_root=str(Path(study.path).resolve().parent))
         self.memo: dict[str, Evaluated] = {}
         self.result: OptimiseResult | None = None
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from torsal.app.explore.variables import Target, Variable, parse_target, parse_vary
-from torsal.app.headless import UsageError
+from torsal.app.headless import UsageError, refuse_missing
 from torsal.engine.graph import Graph
 from torsal.engine.graphfile import GraphFileError, loads, read_file
 
@@ -44,6 +44,7 @@ def study_from_text(text: str, path: Path, vary: list[str], collect: list[str], 
         graph = loads(text, _registry())
     except GraphFileError as exc:
         raise UsageError(f"{path}: {exc}") from None
+    refuse_missing(graph, path)
     if not vary:
         raise UsageError("give at least one --vary ID=LO:HI" + (":N" if steps else ""))
     variables = [parse_vary(text_, graph, steps) for text_ in vary]

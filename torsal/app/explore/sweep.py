@@ -1,31 +1,37 @@
-"""``torsal sweep``: solve many variants and write them as a Design Explorer table.
+"""``torsal sweep``: solve many variants and write them as tables.
 
 ``DIR/results.csv`` has one row per variant, in the sampler's order: an ``in:ID`` column
 per varied slider, an ``out:NODE.OUTPUT`` column per collected output, with ``--images``
-an ``img:perspective`` column (the variant's picture, ``images/NNNNN.png`` beside the table:
+an ``img:perspective`` column (the variant's picture, ``NNNNN.png`` beside the table:
 see :mod:`torsal.app.explore.images`), and a ``status`` column (``ok``, or the message of the node
-in error). The solved variants are also kept
-in ``DIR/cache.jsonl``: a re-run takes them from there, and a killed sweep resumes.
+in error). ``DIR/data.csv`` is the same for Design Explorer: the designs that solved, without
+the status (:mod:`torsal.app.explore.design_explorer`); with ``--images`` the pictures lie
+beside both tables. The solved variants are also kept in ``DIR/cache.jsonl``: a re-run takes
+them from there, and a killed sweep resumes (only lines this user's Torsal signed for this
+graph are used: :mod:`torsal.app.explore.cache`). Every file goes through the one write path
+(:mod:`torsal.engine.write_path`): ``DIR`` is resolved once and nothing in it is written
+through a link. Text cells that a spreadsheet would run as a formula are escaped (:func:`cell`).
 """
 
 from __future__ import annotations
 
 import csv
-import os
+import io
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from torsal.app.explore.cache import ResultCache, graph_digest, variant_key
+from torsal.app.explore.design_explorer import write_data
 from torsal.app.explore.evaluate import Job, Outcome
 from torsal.app.explore.executors import WORKER_FAILED, Executor
 from torsal.app.explore.progress import Progress
 from torsal.app.explore.study import Study
+from torsal.engine.write_path import OutFolder
 
 RESULTS = "results.csv"
 CACHE = "cache.jsonl"
-IMAGES = "images"
 #: The header of the pictures' column (Design Explorer shows ``img:`` columns as pictures).
 IMAGE_COLUMN = "img:perspective"
 
@@ -38,6 +44,7 @@ class SweepResult:
     solved: int
     cached: int
     csv_path: Path | None = None
+    notes: list[str] = field(default_factory=list)  #: what the command prints as notes
 
     @property
     def failed(self) -> int:
@@ -48,19 +55,26 @@ def run_sweep(
     study: Study,
     variants: list[dict[str, Any]],
     executor: Executor,
-    out: Path | None = None,
+    out: Path | OutFolder | None = None,
     *,
     allow_writes: bool = False,
     images: bool = False,
     progress: Progress | None = None,
     on_outcome: Callable[[int, Outcome], None] | None = None,
 ) -> SweepResult:
-    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` (with
-    ``images``, each variant's picture in ``out/images`` and its column in the table)."""
-    job = Job(tuple(study.targets), allow_writes, str((out / "variants").resolve()) if out else None,
-              str((out / IMAGES).resolve()) if out is not None and images else None)
-    cache = ResultCache(out / CACHE) if out is not None else None
+    """Solve every variant not in ``out``'s cache, then write ``out/results.csv`` and
+    ``out/data.csv`` (with ``images``, each variant's picture beside them and its column in
+    the tables: Design Explorer finds pictures beside its ``data.csv``)."""
+    folder = out if isinstance(out, OutFolder) or out is None else OutFolder.resolve(out)
+    job = Job(tuple(study.targets), allow_writes, str(folder / "variants") if folder else None,
+              str(folder.path) if folder is not None and images else None,
+              str(Path(study.path).resolve().parent))
     digest = graph_digest(study.text)
+    cache = ResultCache(folder, CACHE, digest) if folder is not None else None
+    notes = []
+    if cache is not None and cache.ignored:
+        notes.append(f"{cache.ignored} line(s) of {CACHE} were not signed by your Torsal for this graph "
+                     "and version: ignored, those variants are solved again")
     keys = [variant_key(digest, values, job) for values in variants]
     outcomes: list[Outcome | None] = [None] * len(variants)
     pending = []
@@ -87,21 +101,36 @@ def run_sweep(
     finally:
         if cache is not None:
             cache.close()
-    result = SweepResult([o for o in outcomes if o is not None], solved, len(variants) - len(pending))
-    if out is not None:
-        result.csv_path = write_table(out / RESULTS, study, result.outcomes, images=images)
+    result = SweepResult([o for o in outcomes if o is not None], solved, len(variants) - len(pending),
+                         notes=notes)
+    if folder is not None:
+        result.csv_path = write_table(folder, RESULTS, study, result.outcomes, images=images)
+        write_data(folder, study, result.outcomes, cell, images=images)
     return result
 
 
+#: What a spreadsheet takes for the start of a formula (OWASP's list for CSV injection).
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+
+
 def cell(value: Any) -> str:
-    """A table cell: numbers exactly (``repr``), nothing for a missing value (never 0)."""
+    """A table cell: numbers exactly (``repr``), nothing for a missing value (never 0);
+    text that starts like a formula (``=``, ``+``, ``-``, ``@``, tab, CR) gets a leading
+    ``'`` as OWASP recommends, so a spreadsheet shows it rather than running it."""
     if value is None:
         return ""
     if isinstance(value, bool):
         return "1" if value else "0"
     if isinstance(value, float):
         return repr(value)
-    return str(value)
+    if isinstance(value, int):
+        return str(value)
+    return escaped(str(value))
+
+
+def escaped(text: str) -> str:
+    """``text`` made safe for a spreadsheet cell (see :func:`cell`)."""
+    return "'" + text if text.startswith(FORMULA_STARTS) else text
 
 
 def table_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> list[list[str]]:
@@ -109,20 +138,19 @@ def table_rows(study: Study, outcomes: list[Outcome], images: bool = False) -> l
     header += [IMAGE_COLUMN] if images else []
     rows = [[*header, "status"]]
     for outcome in outcomes:
-        picture = [f"{IMAGES}/{outcome.image}" if outcome.image else ""] if images else []
+        picture = [outcome.image or ""] if images else []
         rows.append(
             [cell(outcome.values.get(v.node_id)) for v in study.variables]
             + [cell(outcome.outputs.get(t.name)) for t in study.targets]
             + picture
-            + [outcome.status]
+            + [escaped(outcome.status)]
         )
     return rows
 
 
-def write_table(path: Path, study: Study, outcomes: list[Outcome], images: bool = False) -> Path:
+def write_table(out: OutFolder, name: str, study: Study, outcomes: list[Outcome],
+                images: bool = False) -> Path:
     """Write the Design Explorer CSV (atomically: a reader never sees half a table)."""
-    temporary = path.with_name(path.name + ".part")
-    with temporary.open("w", encoding="utf-8", newline="") as handle:
-        csv.writer(handle).writerows(table_rows(study, outcomes, images))
-    os.replace(temporary, path)
-    return path
+    text = io.StringIO(newline="")
+    csv.writer(text).writerows(table_rows(study, outcomes, images))
+    return out.write(name, text.getvalue())

@@ -55,3 +55,11 @@ class AppSettings:
         self._settings.setValue("geometry", geometry)
         self._settings.setValue("state", state)
         self._settings.sync()
+
+    def show_nicknames(self) -> bool:
+        """Nicknames on tiles instead of the node icons (View menu)."""
+        return str(self._settings.value("show_nicknames", "false")).lower() == "true"
+
+    def set_show_nicknames(self, show: bool) -> None:
+        self._settings.setValue("show_nicknames", "true" if show else "false")
+        self._settings.sync()

@@ -18,6 +18,7 @@ from PySide6.QtCore import QObject, QTimer
 
 from torsal.app.gui.document import Document
 from torsal.engine.graphfile import GraphFileError, write_graph
+from torsal.engine.write_path import write_file
 
 DEFAULT_INTERVAL_S = 60.0
 
@@ -84,7 +85,10 @@ class Autosaver(QObject):
             "saved_at": time.time(),
             "pid": os.getpid(),
         }
-        self.note_path.write_text(json.dumps(note), encoding="utf-8")
+        try:
+            write_file(self.note_path, json.dumps(note), backup=False, mode=0o600)
+        except OSError:
+            return False
         self._saved_index = index
         self.saves += 1
         return True

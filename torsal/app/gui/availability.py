@@ -5,9 +5,6 @@ from __future__ import annotations
 
 import importlib.util
 
-#: The command that installs them.
-INSTALL = "pip install 'torsal[gui]'"
-
 
 def missing() -> str | None:
     """Why the app cannot start here (Qt, pyvista or pyvistaqt missing), or None.

@@ -21,6 +21,17 @@ from torsal.app.gui.graph_order import (
     restore_wire_order,
 )
 from torsal.engine.cluster import clone_graph
+from torsal.engine.cluster_edits import (
+    cluster_instance,
+    definition_of,
+    explode_cluster,
+    make_cluster,
+    rename_cluster,
+    rename_cluster_port,
+    reorder_cluster_ports,
+    restore_cluster,
+    set_cluster_graph,
+)
 from torsal.engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 
 if TYPE_CHECKING:  # the document imports these commands (to commit a cluster edit)
@@ -379,15 +390,15 @@ class MakeCluster(ClusterCommand):
 
     def apply(self, graph: Graph) -> None:
         if self.cluster_id is None:
-            self.cluster_id = graph.make_cluster(self.node_ids, self.name)
-            self.definition_id = graph.cluster_definition(self.cluster_id).id
+            self.cluster_id = make_cluster(graph, self.node_ids, self.name)
+            self.definition_id = definition_of(graph, self.cluster_id).id
         else:
-            graph.make_cluster(
+            make_cluster(graph,
                 self.node_ids, self.name, node_id=self.cluster_id, definition_id=self.definition_id
             )
 
     def revert(self, graph: Graph) -> None:
-        graph.explode_cluster(self.cluster_id)
+        explode_cluster(graph, self.cluster_id)
 
 
 class ExplodeCluster(ClusterCommand):
@@ -400,12 +411,12 @@ class ExplodeCluster(ClusterCommand):
         self.restored: list[str] = []
 
     def apply(self, graph: Graph) -> None:
-        info = graph.cluster_instance(self.cluster_id)
-        self.restored = graph.explode_cluster(self.cluster_id)
+        info = cluster_instance(graph, self.cluster_id)
+        self.restored = explode_cluster(graph, self.cluster_id)
         self.info = info
 
     def revert(self, graph: Graph) -> None:
-        graph.restore_cluster(self.info, self.restored)
+        restore_cluster(graph, self.info, self.restored)
 
 
 class EditClusterDefinition(ClusterCommand):
@@ -418,11 +429,11 @@ class EditClusterDefinition(ClusterCommand):
         self.change: Any = None
 
     def apply(self, graph: Graph) -> None:
-        self.change = graph.set_cluster_graph(self.definition_id, clone_graph(self.edited))
+        self.change = set_cluster_graph(graph, self.definition_id, clone_graph(self.edited))
 
     def revert(self, graph: Graph) -> None:
         change = self.change
-        graph.set_cluster_graph(
+        set_cluster_graph(graph,
             self.definition_id, change.previous, change.previous_inputs, change.previous_outputs
         )
         for wire in change.dropped:
@@ -439,16 +450,16 @@ class RenameClusterPort(ClusterCommand):
         self.given = new  # the name the definition gave (a repeat gets " 2")
 
     def _names(self, graph: Graph) -> list[str]:
-        definition = graph.cluster_definition(self.definition_id)
+        definition = definition_of(graph, self.definition_id)
         return definition.input_names() if self.kind == "input" else definition.output_names()
 
     def apply(self, graph: Graph) -> None:
         index = self._names(graph).index(self.old)
-        graph.rename_cluster_port(self.definition_id, self.kind, self.old, self.new)
+        rename_cluster_port(graph, self.definition_id, self.kind, self.old, self.new)
         self.given = self._names(graph)[index]
 
     def revert(self, graph: Graph) -> None:
-        graph.rename_cluster_port(self.definition_id, self.kind, self.given, self.old)
+        rename_cluster_port(graph, self.definition_id, self.kind, self.given, self.old)
 
 
 class ReorderClusterPorts(ClusterCommand):
@@ -460,10 +471,10 @@ class ReorderClusterPorts(ClusterCommand):
         self.old: list[str] = []
 
     def apply(self, graph: Graph) -> None:
-        self.old = list(graph.reorder_cluster_ports(self.definition_id, self.kind, self.names))
+        self.old = list(reorder_cluster_ports(graph, self.definition_id, self.kind, self.names))
 
     def revert(self, graph: Graph) -> None:
-        graph.reorder_cluster_ports(self.definition_id, self.kind, self.old)
+        reorder_cluster_ports(graph, self.definition_id, self.kind, self.old)
 
 
 class RenameCluster(ClusterCommand):
@@ -475,7 +486,7 @@ class RenameCluster(ClusterCommand):
         self.old = ""
 
     def apply(self, graph: Graph) -> None:
-        self.old = graph.rename_cluster(self.definition_id, self.name)
+        self.old = rename_cluster(graph, self.definition_id, self.name)
 
     def revert(self, graph: Graph) -> None:
-        graph.rename_cluster(self.definition_id, self.old)
+        rename_cluster(graph, self.definition_id, self.old)

@@ -19,6 +19,7 @@ from PySide6.QtGui import QUndoGroup, QUndoStack
 from torsal.app.gui.improvements import Improvements
 from torsal.app.gui.solve_controller import SolveController, SolveOutcome
 from torsal.engine.cluster import ClusterInput
+from torsal.engine.cluster_edits import cluster_graph, definition_of
 from torsal.engine.graph import Graph, GraphEvent
 from torsal.engine.graphfile import read_graph, write_graph
 from torsal.engine.registry import Registry
@@ -183,8 +184,8 @@ class Document(QObject):
         data that instance received last."""
         self.solves.pause()
         outer = self.graph
-        definition = outer.cluster_definition(node_id)
-        edited = outer.cluster_graph(definition.id)
+        definition = definition_of(outer, node_id)
+        edited = cluster_graph(outer, definition.id)
         for input_id, tree in self.solver.cluster_inputs(node_id).items():
             record = edited.nodes.get(input_id)
             if record is not None and isinstance(record.node, ClusterInput):

@@ -18,6 +18,7 @@ from torsal.app.gui import commands as cmd
 from torsal.app.gui.document import Document
 from torsal.app.gui.fragments import copy_fragment, paste_fragment
 from torsal.app.gui.graph_order import fresh_id, group_by_id
+from torsal.engine.cluster_edits import definition_of
 from torsal.engine.datatree import MODIFIERS
 from torsal.engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 from torsal.engine.types import can_cast
@@ -361,7 +362,7 @@ class Editor(QObject):
 
         ``inputs`` and ``outputs`` are ``(current name, new name)`` pairs in the new order.
         """
-        definition = self.graph.cluster_definition(definition_id)
+        definition = definition_of(self.graph, definition_id)
         commands: list[cmd.ClusterCommand] = []
         if name and name != definition.name:
             commands.append(cmd.RenameCluster(self.doc, definition_id, name))

@@ -1,10 +1,14 @@
 """Fuzzy search over the node catalogue: names, nicknames, aliases and descriptions.
 
-``"numsl"`` finds NumberSlider (the letters in order), ``"slider"`` finds both
-sliders, ``"ruled"`` finds nodes whose description mentions rulings, ``"unroll"`` finds
-IsoMapping (the word a designer may use for it). Names that start with what was typed
-rank first. A typed number (``6``, ``-2.5``) or range (``0<6<10``) is read by
-:func:`slider_settings` as a slider to place, as in Grasshopper.
+A node is found by its name ("DivideCurve" or "Divide Curve"), its nickname ("Pt"), one
+of its aliases — Grasshopper's name for the same thing ("Construct Point", "XY Plane",
+"Unroll Surface") or a designer's word ("unroll", "flat pattern") — or words of its
+description. Each node class declares its ``nickname`` and ``aliases``; the search knows
+no node by name. Ranking: the exact name first, then an exact nickname or alias, then
+names that start with what was typed, aliases that start with it, names that contain it,
+the letters in order (``"numsl"`` finds NumberSlider), the description. A typed number
+(``6``, ``-2.5``) or range (``0<6<10``) is read by :func:`slider_settings` as a slider to
+place, as in Grasshopper.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 from torsal.app.gui.icons import node_letters
+from torsal.engine.node import words
 
 
 @dataclass(frozen=True)
@@ -27,6 +32,12 @@ class Entry:
     nickname: str
     description: str
     cls: type
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def title(self) -> str:
+        """The name as words ("Divide Curve"), as the canvas titles the node."""
+        return words(self.name)
 
 
 def build_entries(node_classes: Iterable[type]) -> list[Entry]:
@@ -35,23 +46,10 @@ def build_entries(node_classes: Iterable[type]) -> list[Entry]:
         palette, _, name = cls.type_id.partition(".")
         help_text = cls.help() if hasattr(cls, "help") else ""
         nickname = getattr(cls, "nickname", "") or node_letters(cls)
-        entries.append(Entry(cls.type_id, name, palette, str(nickname), help_text, cls))
+        aliases = tuple(str(a) for a in getattr(cls, "aliases", ()) or ())
+        entries.append(Entry(cls.type_id, name, palette, str(nickname), help_text, cls, aliases))
     return entries
 
-
-ALIASES: dict[str, tuple[str, ...]] = {
-    "analysis.IsoMapping": ("unroll", "unfold", "flatten", "development", "develop", "flat pattern"),
-    "patching.SurfacePatching": ("panel", "panels", "panelling", "paneling", "strips", "patch"),
-    "patching.StaggeredPattern": ("panel pattern", "brick", "stagger"),
-    "io.ExportCutSheet": ("nest", "nesting", "cut sheet", "laser", "cutter", "dxf", "svg"),
-    "params.Panel": ("text", "note", "show", "display value"),
-    "params.NumberSlider": ("number", "slider"),
-    "maths.Expression": ("formula", "expression", "evaluate"),
-    "developable.RulingDevelopable": ("ruling", "developable"),
-    "surfaces.Loft": ("skin",),
-    "curves.DivideCurve": ("points on curve",),
-}
-"""Other words for a node, as a designer may type them (matched whole or by their start)."""
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)"
 _SLIDER_RE = re.compile(rf"^\s*(?:({_NUMBER})\s*<\s*)?({_NUMBER})(?:\s*<\s*({_NUMBER}))?\s*$")
@@ -89,12 +87,19 @@ def slider_settings(query: str) -> dict[str, float | int] | None:
     return {"value": value, "min": lo, "max": hi, "decimals": min(decimals, 15)}
 
 
+def _compact(text: str) -> str:
+    return text.lower().replace(" ", "")
+
+
 def _alias_score(compact: str, entry: Entry) -> float | None:
+    """95 for an exact nickname or alias; 84 for an alias that starts with the query."""
     best = None
-    for alias in ALIASES.get(entry.type_id, ()):
-        word = alias.replace(" ", "")
+    if _compact(entry.nickname) == compact:
+        return 95.0
+    for alias in entry.aliases:
+        word = _compact(alias)
         if word == compact:
-            return 85.0
+            return 95.0
         if len(compact) >= 3 and word.startswith(compact):
             best = 84.0
     return best
@@ -123,11 +128,11 @@ def score(query: str, entry: Entry) -> float | None:
     name = entry.name.lower()
     if name == compact:
         return 100.0
-    if entry.nickname.lower() == compact:
-        return 88.0
+    alias = _alias_score(compact, entry)
+    if alias is not None and alias > 90.0:
+        return alias
     if name.startswith(compact):
         return 90.0 - len(name) / 100
-    alias = _alias_score(compact, entry)
     if alias is not None:
         return alias
     if compact in name:
@@ -145,15 +150,22 @@ def score(query: str, entry: Entry) -> float | None:
 
 
 def search(
-    entries: list[Entry], query: str, accept: Callable[[Entry], bool] | None = None, limit: int = 60
+    entries: list[Entry],
+    query: str,
+    accept: Callable[[Entry], bool] | None = None,
+    limit: int = 60,
+    rank: Callable[[Entry], tuple] | None = None,
 ) -> list[Entry]:
-    """Entries matching ``query`` (and ``accept``), best first."""
+    """Entries matching ``query`` (and ``accept``), best first; ``rank`` (a sort key) orders
+    entries that score alike — all of them when nothing is typed (a dropped wire's likeliest
+    nodes, :mod:`torsal.app.gui.wire_ranking`)."""
     scored = []
     for entry in entries:
         if accept is not None and not accept(entry):
             continue
         value = score(query, entry)
         if value is not None:
-            scored.append((-value, entry.palette, entry.name, entry))
-    scored.sort(key=lambda t: t[:3])
-    return [t[3] for t in scored[:limit]]
+            key = rank(entry) if rank is not None else (entry.palette, entry.name)
+            scored.append((-value, key, entry))
+    scored.sort(key=lambda t: t[:2])
+    return [t[2] for t in scored[:limit]]

@@ -12,7 +12,6 @@ from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QPixmap
 from PySide6.QtWidgets import (
     QLabel,
-    QScrollArea,
     QTableWidget,
     QTableWidgetItem,
     QTabWidget,
@@ -26,6 +25,7 @@ from PySide6.QtWidgets import (
 from torsal.app.gui.document import Document
 from torsal.app.gui.editor import Editor
 from torsal.app.gui.formatting import format_item
+from torsal.app.gui.plot_view import PlotArea
 from torsal.engine.bounds import bounds_text
 from torsal.engine.cluster import is_cluster
 from torsal.engine.datatree import DataTree, format_path
@@ -84,16 +84,12 @@ class Inspector(QWidget):
         self.help = QTextBrowser()
         # The Plot tab is shown only for a node that drew an image (the node drew it on
         # the solver's thread; here it is only read, once per new file).
-        self.plot = QLabel()
-        self.plot.setObjectName("inspector:plot")
-        self.plot.setAlignment(Qt.AlignmentFlag.AlignCenter)
         # A child of the inspector even while no tab shows it: Qt deletes it with the window.
         # Parentless, it was deleted by Python's garbage collector, on whichever thread
         # collected the inspector's reference cycles (a solver's worker thread too).
-        self.plot_area = QScrollArea(self)
+        self.plot_area = PlotArea(self)
         self.plot_area.hide()
-        self.plot_area.setWidget(self.plot)
-        self.plot_area.setWidgetResizable(True)
+        self.plot = self.plot_area.label
         self.plot_path: Path | None = None
         self._plot_key: tuple[str, int, int] | None = None
         self.tabs.addTab(self.settings, "Settings")
@@ -211,7 +207,7 @@ class Inspector(QWidget):
         if path is None:
             if index >= 0:
                 self.tabs.removeTab(index)
-            self.plot.clear()
+            self.plot_area.clear()
             self._plot_key = None
             return
         if index < 0:
@@ -219,7 +215,7 @@ class Inspector(QWidget):
         try:
             stat = path.stat()
         except OSError:
-            self.plot.setText(f"The plot {path} cannot be read.")
+            self.plot_area.set_text(f"The plot {path} cannot be read.")
             return
         key = (str(path), stat.st_mtime_ns, stat.st_size)
         if key == self._plot_key:
@@ -227,10 +223,9 @@ class Inspector(QWidget):
         self._plot_key = key
         pixmap = QPixmap(str(path))
         if pixmap.isNull():
-            self.plot.setText(f"The plot {path} is not a readable image.")
+            self.plot_area.set_text(f"The plot {path} is not a readable image.")
             return
-        self.plot.setPixmap(pixmap)
-        self.plot.setToolTip(str(path))
+        self.plot_area.set_image(pixmap)
 
     def _add_tree(self, name: str, tree: DataTree) -> None:
         top = QTreeWidgetItem([name, f"{tree.item_count} items in {tree.branch_count} branches"])
@@ -254,7 +249,7 @@ class Inspector(QWidget):
         if placeholder:
             return f"<p>The node type <b>{type_id}</b> is not installed; its data is kept unchanged.</p>"
         cls = type(node)
-        parts = [f"<h3>{html.escape(node.name())}</h3><p><i>{cls.type_id}</i></p>"]
+        parts = [f"<h3>{html.escape(node.display_name())}</h3><p><i>{cls.type_id}</i></p>"]
         parts += [f"<p>{html.escape(p)}</p>" for p in cls.help().split("\n\n")]
         if is_cluster(node):
             parts.append(

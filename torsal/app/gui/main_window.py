@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QMimeData, QPoint, QPointF, Qt, QTimer
+from PySide6.QtCore import QBuffer, QByteArray, QIODevice, QMimeData, QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -46,6 +46,7 @@ from torsal.app.gui.document import Document
 from torsal.app.gui.editor import Editor
 from torsal.app.gui.exporting import bake_previewed, export_output
 from torsal.app.gui.fragments import MIME_TYPE, looks_like_fragment
+from torsal.app.gui.icons import set_show_nicknames
 from torsal.app.gui.inspector import Inspector
 from torsal.app.gui.message_log import MessageLog
 from torsal.app.gui.palette import Palette
@@ -59,6 +60,7 @@ from torsal.app.gui.window_actions import build_menus
 from torsal.app.gui.write_consent import ask_to_write, sync_action
 from torsal.engine.graphfile import GraphFileError
 from torsal.engine.registry import Registry
+from torsal.engine.write_path import write_file
 
 FILE_FILTER = "Torsal graphs (*.graph);;All files (*)"
 #: The message log and profiler are refilled at most this often (ms) while solves stream
@@ -79,6 +81,7 @@ class MainWindow(QMainWindow):
         self.registry = registry
         self.folder = settings_folder or config_dir()
         self.settings = AppSettings(self.folder)
+        set_show_nicknames(self.settings.show_nicknames())
         self.doc = Document(registry, self)
         self.editor = Editor(self.doc, self)
         self.autosaver = Autosaver(self.doc, self.folder, parent=self)
@@ -190,6 +193,8 @@ class MainWindow(QMainWindow):
         session, the file."""
         self.viewport.create_plotter()
         self.palette.populate()
+        for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
+            self.report(problem[:1].upper() + problem[1:], "warning")
         if offer_recovery and self.offer_recovery():
             return
         if path is not None:
@@ -277,7 +282,7 @@ class MainWindow(QMainWindow):
         self.report(f"Opened {path}")
         self._attention_pending = True
         self.view.resetTransform()
-        defer(self, lambda: self.view.zoom_to_fit(readable=True))
+        defer(self, self.view.frame_opened)
         return True
 
     def save(self) -> bool:
@@ -338,6 +343,14 @@ class MainWindow(QMainWindow):
         self.autosaver.discard()
         self.viewport.close_plotter()
         event.accept()
+
+    def set_show_nicknames(self, show: bool) -> None:
+        """Nicknames on tiles instead of the node icons, in the palette, search and nodes."""
+        self.settings.set_show_nicknames(show)
+        set_show_nicknames(show)
+        self.palette.refresh_icons()
+        for item in self.scene.nodes.values():
+            item.update()
 
     # -- messages --------------------------------------------------------------------
     def report(self, text: str, level: str = "info") -> None:
@@ -450,7 +463,7 @@ class MainWindow(QMainWindow):
         self.inspector.show_node(node_id)
         dialog = QDialog(self)
         record = self.doc.graph.nodes[node_id]
-        dialog.setWindowTitle(f"Help — {record.node.name()}")
+        dialog.setWindowTitle(f"Help — {record.node.display_name()}")
         browser = QTextBrowser()
         browser.setHtml(self.inspector.help.toHtml())
         layout = QVBoxLayout(dialog)
@@ -565,7 +578,12 @@ class MainWindow(QMainWindow):
             target = qimage.scaled(int(plotter.width() * ratio), int(plotter.height() * ratio))
             painter.drawImage(top_left, target)
             painter.end()
-        pixmap.save(str(path), "PNG")
+        data = QByteArray()
+        buffer = QBuffer(data)
+        buffer.open(QIODevice.OpenModeFlag.WriteOnly)
+        pixmap.save(buffer, "PNG")
+        buffer.close()
+        write_file(path, bytes(data.data()))  # the one write path: never through a link
         return path
 
     def save_viewport_screenshot(self) -> None:

@@ -1,12 +1,18 @@
-"""The message log: what every node said in the last solve, and what the app did."""
+"""The message log: what every node said in the last solve, and what the app did.
+
+Node messages are grouped by node, as Grasshopper keeps a component's messages in its
+balloon: one row per node (its worst level, its title, its first message and how many
+more), its messages beneath. Warnings and errors are shown; remarks only on request
+(right-click ▸ Show Remarks), and a last row says how many are hidden.
+"""
 
 from __future__ import annotations
 
 import time
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QPoint, Qt, Signal
 from PySide6.QtGui import QBrush
-from PySide6.QtWidgets import QTreeWidget, QTreeWidgetItem, QWidget
+from PySide6.QtWidgets import QMenu, QTreeWidget, QTreeWidgetItem, QWidget
 
 from torsal.app.gui import theme
 from torsal.app.gui.solve_controller import SolveOutcome
@@ -24,7 +30,7 @@ class MessageLog(QTreeWidget):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setHeaderLabels(["Level", "Node", "Message"])
-        self.setRootIsDecorated(False)
+        self.setRootIsDecorated(True)
         self.setColumnWidth(0, 70)
         self.setColumnWidth(1, 160)
         self.setAlternatingRowColors(True)
@@ -33,7 +39,25 @@ class MessageLog(QTreeWidget):
         self.app_messages: list[tuple[str, str, str]] = []
         self.node_rows: list[tuple[str, str, str, str]] = []
         self.fills = 0  # how many times the rows were rebuilt
+        self.show_remarks = False  # remarks are listed only on request
+        self.hidden_remarks = 0
         self.itemActivated.connect(self._activated)
+        self.setContextMenuPolicy(Qt.ContextMenuPolicy.CustomContextMenu)
+        self.customContextMenuRequested.connect(self._menu)
+
+    def set_show_remarks(self, show: bool) -> None:
+        """List remarks too (True) or only warnings and errors (False)."""
+        if show != self.show_remarks:
+            self.show_remarks = show
+            self._fill()
+
+    def _menu(self, pos: QPoint) -> None:
+        menu = QMenu(self)
+        action = menu.addAction("Show Remarks")
+        action.setCheckable(True)
+        action.setChecked(self.show_remarks)
+        action.toggled.connect(self.set_show_remarks)
+        menu.exec(self.viewport().mapToGlobal(pos))
 
     def show_solve(self, outcome: SolveOutcome, graph: Graph) -> bool:
         """Show the messages of ``outcome``'s nodes; the rows are rebuilt only if they
@@ -69,15 +93,44 @@ class MessageLog(QTreeWidget):
         del self.app_messages[:-APP_MESSAGES_KEPT]
         self._fill()
 
+    def node_groups(self) -> list[tuple[str, str, list[tuple[str, str]]]]:
+        """The node rows as shown: ``(node id, title, [(level, text), ...])`` per node, the
+        nodes with errors first, then warnings (then remarks, when shown)."""
+        order = {"error": 0, "warning": 1, "remark": 2}
+        groups: dict[str, tuple[str, list[tuple[str, str]]]] = {}
+        for level, node_id, title, text in self.node_rows:
+            if level == "remark" and not self.show_remarks:
+                continue
+            groups.setdefault(node_id, (title, []))[1].append((level, text))
+        rows = [(node_id, title, sorted(messages, key=lambda m: order.get(m[0], 3)))
+                for node_id, (title, messages) in groups.items()]
+        rows.sort(key=lambda row: order.get(row[2][0][0], 3))
+        return rows
+
     def _fill(self) -> None:
         self.fills += 1
         self.clear()
-        order = {"error": 0, "warning": 1, "remark": 2}
-        for level, node_id, title, text in sorted(self.node_rows, key=lambda r: order.get(r[0], 3)):
-            item = QTreeWidgetItem([level, f"{title} [{node_id}]", text])
+        for node_id, title, messages in self.node_groups():
+            level, text = messages[0]
+            more = f"  (+{len(messages) - 1} more)" if len(messages) > 1 else ""
+            item = QTreeWidgetItem([level, f"{title} [{node_id}]", text + more])
             item.setData(0, Qt.ItemDataRole.UserRole, node_id)
             item.setForeground(0, QBrush(theme.MESSAGE_COLOURS.get(level, theme.NODE_TEXT)))
-            item.setToolTip(2, text)
+            item.setToolTip(2, "\n".join(f"{lv}: {tx}" for lv, tx in messages))
+            if len(messages) > 1:
+                for child_level, child_text in messages:
+                    child = QTreeWidgetItem([child_level, "", child_text])
+                    child.setData(0, Qt.ItemDataRole.UserRole, node_id)
+                    child.setForeground(0, QBrush(theme.MESSAGE_COLOURS.get(child_level, theme.NODE_TEXT)))
+                    child.setToolTip(2, child_text)
+                    item.addChild(child)
+            self.addTopLevelItem(item)
+        self.hidden_remarks = 0 if self.show_remarks else sum(r[0] == "remark" for r in self.node_rows)
+        if self.hidden_remarks:
+            plural = "s" if self.hidden_remarks != 1 else ""
+            item = QTreeWidgetItem(["remark", "", f"{self.hidden_remarks} remark{plural} hidden "
+                                    "(right-click ▸ Show Remarks, or hover a node's balloon)"])
+            item.setForeground(0, QBrush(theme.MESSAGE_COLOURS.get("remark", theme.NODE_TEXT)))
             self.addTopLevelItem(item)
         for stamp, level, text in reversed(self.app_messages):
             item = QTreeWidgetItem([level, "", text])  # the app's own: no node; the time in the tip

@@ -11,11 +11,12 @@ as one undo step.
 from __future__ import annotations
 
 import math
+import numbers
 import threading
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import QObject, QPointF, Qt, Signal
+from PySide6.QtCore import QObject, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import (
     QComboBox,
@@ -46,18 +47,29 @@ from torsal.engine.widgets import Widget
 if TYPE_CHECKING:
     from torsal.app.gui.main_window import MainWindow
 
-#: outputs offered as fitness: numbers, and generic ones that may hold numbers
-FITNESS_TYPES = (NUMBER, INTEGER, BOOLEAN, GENERIC)
+#: outputs offered as fitness: numbers (a Generic output only while it holds numbers)
+FITNESS_TYPES = (NUMBER, INTEGER, BOOLEAN)
+
+
+def holds_numbers(tree: Any) -> bool:
+    """True when an output's last value is numbers only (a list is reduced to one)."""
+    if tree is None or tree.item_count == 0:
+        return False
+    return all(isinstance(item, numbers.Real) for item in tree.all_items())
 
 
 class FitnessPlot(QWidget):
-    """Best and mean fitness per generation, as two polylines scaled to the widget."""
+    """Best and mean fitness per generation: a chart with labelled axes (generation,
+    fitness), its legend and latest values in a strip above the plotting area (never under
+    a line), and a marker on every generation from the first."""
+
+    LEFT, RIGHT, TOP, BOTTOM = 62, 14, 26, 34  # the plotting area's margins, in pixels
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.best: list[float] = []
         self.mean: list[float] = []
-        self.setMinimumSize(360, 180)
+        self.setMinimumSize(360, 200)
 
     def clear(self) -> None:
         self.best, self.mean = [], []
@@ -68,30 +80,82 @@ class FitnessPlot(QWidget):
         self.mean.append(generation.mean)
         self.update()
 
+    def plot_rect(self) -> QRectF:
+        """Where the lines are drawn (inside the axes)."""
+        return QRectF(self.LEFT, self.TOP, max(1, self.width() - self.LEFT - self.RIGHT),
+                      max(1, self.height() - self.TOP - self.BOTTOM))
+
     def paintEvent(self, event: Any) -> None:
         painter = QPainter(self)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
         painter.fillRect(self.rect(), QColor("#1e1f22"))
+        area = self.plot_rect()
         values = [v for v in self.best + self.mean if math.isfinite(v)]
-        if len(self.best) < 1 or not values:
+        self._axes(painter, area)
+        if not self.best or not values:
             painter.setPen(QColor("#888"))
             hint = "best and mean fitness per generation"
-            painter.drawText(self.rect(), Qt.AlignmentFlag.AlignCenter, hint)
+            painter.drawText(area, Qt.AlignmentFlag.AlignCenter, hint)
             return
         low, high = min(values), max(values)
-        span = (high - low) or 1.0
-        width, height, margin = self.width(), self.height(), 8
-        count = max(len(self.best) - 1, 1)
+        if high == low:
+            low, high = low - 0.5 * (abs(low) or 1.0), high + 0.5 * (abs(high) or 1.0)
+        count = max(len(self.best), 2)  # generations 1 … n along x (room for the first alone)
 
         def point(i: int, v: float) -> QPointF:
-            x = margin + (width - 2 * margin) * i / count
-            y = height - margin - (height - 2 * margin) * (v - low) / span
+            x = area.left() + area.width() * i / (count - 1)
+            y = area.bottom() - area.height() * (v - low) / (high - low)
             return QPointF(x, y)
 
-        for series, colour in ((self.mean, "#6aa0d8"), (self.best, "#f0b43c")):
+        self._ticks(painter, area, low, high, count)
+        for series, colour in ((self.mean, MEAN_COLOUR), (self.best, BEST_COLOUR)):
+            points = [point(i, v) for i, v in enumerate(series) if math.isfinite(v)]
             painter.setPen(QPen(QColor(colour), 2))
-            painter.drawPolyline(QPolygonF([point(i, v) for i, v in enumerate(series) if math.isfinite(v)]))
-        painter.setPen(QColor("#ccc"))
-        painter.drawText(margin, margin + 10, f"best {self.best[-1]:.6g}   mean {self.mean[-1]:.6g}")
+            if len(points) > 1:
+                painter.drawPolyline(QPolygonF(points))
+            painter.setBrush(QColor(colour))
+            for p in points:
+                painter.drawEllipse(p, 2.5, 2.5)
+        self._legend(painter)
+
+    def _axes(self, painter: QPainter, area: QRectF) -> None:
+        painter.setPen(QPen(QColor("#777"), 1))
+        painter.drawLine(area.bottomLeft(), area.bottomRight())
+        painter.drawLine(area.bottomLeft(), area.topLeft())
+        painter.setPen(QColor("#bbb"))
+        label = QRectF(area.left(), self.height() - 16, area.width(), 14)
+        painter.drawText(label, Qt.AlignmentFlag.AlignCenter, "generation")
+        painter.save()
+        painter.translate(12, area.center().y())
+        painter.rotate(-90)
+        upright = QRectF(-area.height() / 2, -8, area.height(), 14)
+        painter.drawText(upright, Qt.AlignmentFlag.AlignCenter, "fitness")
+        painter.restore()
+
+    def _ticks(self, painter: QPainter, area: QRectF, low: float, high: float, count: int) -> None:
+        painter.setPen(QColor("#999"))
+        for fraction in (0.0, 0.5, 1.0):
+            value = low + fraction * (high - low)
+            y = area.bottom() - fraction * area.height()
+            painter.drawText(QRectF(14, y - 7, self.LEFT - 18, 14),
+                             Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, f"{value:.4g}")
+        for generation in sorted({1, (count + 1) // 2, count} if len(self.best) > 1 else {1}):
+            x = area.left() + area.width() * (generation - 1) / (count - 1)
+            painter.drawText(QRectF(x - 20, area.bottom() + 2, 40, 14), Qt.AlignmentFlag.AlignCenter,
+                             str(generation))
+
+    def _legend(self, painter: QPainter) -> None:
+        x = float(self.LEFT)
+        for name, series, colour in (("best", self.best, BEST_COLOUR), ("mean", self.mean, MEAN_COLOUR)):
+            painter.setPen(QPen(QColor(colour), 3))
+            painter.drawLine(QPointF(x, 12), QPointF(x + 16, 12))
+            painter.setPen(QColor("#ccc"))
+            text = f"{name} {series[-1]:.6g}"
+            painter.drawText(QRectF(x + 20, 4, 170, 16), Qt.AlignmentFlag.AlignVCenter, text)
+            x += 190
+
+
+BEST_COLOUR, MEAN_COLOUR = "#f0b43c", "#6aa0d8"
 
 
 class _Relay(QObject):
@@ -178,8 +242,12 @@ class OptimiseWindow(QDialog):
                 item.setCheckState(Qt.CheckState.Unchecked)
                 self.genes.addItem(item)
             else:
+                result = self.doc.result(node_id)
                 for port in record.node.output_ports():
-                    if port.type not in FITNESS_TYPES:
+                    if port.type not in FITNESS_TYPES and not (
+                        port.type is GENERIC and result is not None
+                        and holds_numbers(result.outputs.get(port.name))
+                    ):
                         continue
                     label = f"{record.title} [{node_id}] · {port.name}"
                     self.fitness.addItem(label, f"{node_id}.{port.name}")

@@ -13,21 +13,12 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QToo
 
 from torsal.app.gui.canvas.view import NODE_MIME
 from torsal.app.gui.icons import node_icon
+from torsal.app.gui.theme import PALETTE_TABS
+from torsal.engine.node import words
 from torsal.engine.registry import Registry
 
 #: The tabs a Grasshopper user expects, in order; other palettes (plug-ins) follow.
-TABS = (
-    "params",
-    "maths",
-    "lists",
-    "curves",
-    "surfaces",
-    "transform",
-    "analysis",
-    "developable",
-    "patching",
-    "display",
-)
+TABS = PALETTE_TABS
 ICON_SIZE = 30
 
 
@@ -42,7 +33,9 @@ class NodeButton(QToolButton):
         self.setAutoRaise(True)
         help_text = cls.help()
         first = help_text.splitlines()[0] if help_text else ""
-        self.setToolTip(f"<b>{cls.name()}</b> <i>{cls.type_id}</i><br>{first}")
+        nickname = getattr(cls, "nickname", "")
+        nick = f" ({nickname})" if nickname else ""
+        self.setToolTip(f"<b>{words(cls.name())}</b>{nick} <i>{cls.type_id}</i><br>{first}")
         self.setObjectName(f"palette:{cls.type_id}")
         self._press: QPoint | None = None
 
@@ -106,6 +99,13 @@ class Palette(QTabWidget):
         """Fill every tab now (imports every palette)."""
         for index in range(self.count()):
             self._fill(index)
+
+    def refresh_icons(self) -> None:
+        """Draw every button's icon again (nicknames instead of icons turned on or off)."""
+        for button in self.findChildren(NodeButton):
+            cls = self.registry.get(button.type_id)
+            if cls is not None:
+                button.setIcon(node_icon(cls, ICON_SIZE))
 
     def _fill(self, index: int) -> None:
         if not self.populated or not 0 <= index < len(self.tab_palettes):

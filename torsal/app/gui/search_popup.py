@@ -31,12 +31,13 @@ class SearchPopup(QFrame):
         self.registry = registry
         self._entries: list[Entry] | None = None
         self.accept: Callable[[Entry], bool] | None = None
+        self.rank: Callable[[Entry], tuple] | None = None
         self._chose = False
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         layout.setSpacing(3)
         self.query = QLineEdit()
-        self.query.setPlaceholderText("Search nodes by name, nickname or description…")
+        self.query.setPlaceholderText("Search nodes by name, nickname, Grasshopper name or description…")
         self.note = QLabel()
         self.note.setStyleSheet("color: #555; font-size: 8pt;")
         self.list = QListWidget()
@@ -58,10 +59,16 @@ class SearchPopup(QFrame):
         return self._entries
 
     def open_at(
-        self, global_pos: QPoint, accept: Callable[[Entry], bool] | None = None, note: str = ""
+        self,
+        global_pos: QPoint,
+        accept: Callable[[Entry], bool] | None = None,
+        note: str = "",
+        rank: Callable[[Entry], tuple] | None = None,
     ) -> None:
-        """Show at ``global_pos`` listing the entries ``accept`` lets through."""
+        """Show at ``global_pos`` listing the entries ``accept`` lets through, ordered by
+        ``rank`` where the typed text does not decide (the likeliest preselected)."""
         self.accept = accept
+        self.rank = rank
         self._chose = False
         self.note.setText(note)
         self.note.setVisible(bool(note))
@@ -103,10 +110,11 @@ class SearchPopup(QFrame):
             item.setData(Qt.ItemDataRole.UserRole, "params.NumberSlider")
             item.setData(Qt.ItemDataRole.UserRole + 1, slider)
             self.list.addItem(item)
-        for entry in search(self.entries, self.query.text(), self.accept):
+        for entry in search(self.entries, self.query.text(), self.accept, rank=self.rank):
             first_line = entry.description.splitlines()[0] if entry.description else ""
-            item = QListWidgetItem(node_icon(entry.cls, 20), f"{entry.name}   ·  {entry.palette}")
-            item.setToolTip(first_line)
+            label = f"{entry.title}  ({entry.nickname})   ·  {entry.palette}"
+            item = QListWidgetItem(node_icon(entry.cls, 20), label)
+            item.setToolTip(f"{entry.type_id}\n{first_line}")
             item.setData(Qt.ItemDataRole.UserRole, entry.type_id)
             self.list.addItem(item)
         if self.list.count():

@@ -40,6 +40,18 @@ PANEL_TEXT = QColor("#202020")
 MESSAGE_COLOURS = {"remark": QColor("#606060"), "warning": QColor("#c77700"), "error": QColor("#c0281f")}
 
 #: Letter-icon colours per palette (Grasshopper-like tabs).
+#: The palette tabs a Grasshopper user expects, in order; other palettes (io, plug-ins) follow.
+PALETTE_TABS = (
+    "params", "maths", "lists", "curves", "surfaces", "transform", "analysis", "developable",
+    "patching", "display",
+)
+
+
+def palette_order(palette: str) -> int:
+    """A palette's place in the palette bar (plug-ins' palettes after Torsal's)."""
+    return PALETTE_TABS.index(palette) if palette in PALETTE_TABS else len(PALETTE_TABS)
+
+
 PALETTE_COLOURS: dict[str, str] = {
     "params": "#5b7fa6",
     "maths": "#7a6aa8",

@@ -125,6 +125,12 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     ):
         add(view, f"view_{name}", text, lambda n=name: window.viewport.set_view(n))
     view.addSeparator()
+    nicknames = QAction("Show &Nicknames Instead of Icons", window, checkable=True,
+                        checked=window.settings.show_nicknames())
+    nicknames.toggled.connect(window.set_show_nicknames)
+    view.addAction(nicknames)
+    actions["show_nicknames"] = nicknames
+    view.addSeparator()
     for dock in (window.viewport_dock, window.inspector_dock, window.log_dock, window.profiler_dock):
         view.addAction(dock.toggleViewAction())
 

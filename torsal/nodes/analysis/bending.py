@@ -175,6 +175,7 @@ class BendingCheck(Node):
     """
 
     type_id = "analysis.BendingCheck"
+    nickname, aliases = "Bend", ("bending radius", "minimum radius", "material check")
     inputs = (
         In("Strips", GENERIC, "S", "The developable strips (surfaces), in model units.", access=LIST),
         In("Material", GENERIC, "M", "A material from the table (see help) or its minimum bending radius "

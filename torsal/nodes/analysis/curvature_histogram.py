@@ -108,6 +108,7 @@ class CurvatureHistogram(Node):
     """
 
     type_id = "analysis.CurvatureHistogram"
+    nickname, aliases = "CrvHist", ("curvature graph", "histogram")
     inputs = (
         In("Surface", GENERIC, "S", "The surface, mesh or mesh surface to measure."),
         In("Measure", TEXT, "M",

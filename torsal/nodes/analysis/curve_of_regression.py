@@ -73,6 +73,7 @@ class CurveOfRegression(Node):
     """
 
     type_id = "analysis.CurveOfRegression"
+    nickname, aliases = "CoR", ("edge of regression", "cuspidal edge", "striction curve")
     inputs = (
         In("Surface", SURFACE, "S", "The ruled surface, ideally developable."),
         In("Deviation", NUMBER, "D", "How far (rad) the curve may turn away from the rulings it "

@@ -37,18 +37,19 @@ def development_surface(development: Development, frame: Plane | None = None) ->
     ones and those between them) with straight edges from one to the next — exactly the
     outline of the unrolled triangles, the polygon a sheet is cut along — whose rulings
     are the requested ones (:attr:`Development.rulings2d`). Its u parameter is the 3D
-    surface's at every unrolled ruling. ``frame``: where the development's XY plane is
-    laid (:mod:`torsal.nodes.geometry.development_placement`; default: where it was unrolled)."""
+    surface's at every unrolled ruling when they were sampled evenly. ``frame``: where
+    the development's XY plane is laid (:mod:`torsal.nodes.geometry.development_placement`;
+    default: where it was unrolled)."""
     zero = np.zeros((len(development.starts2d), 1))
     if frame is None:
         starts, ends = np.hstack([development.starts2d, zero]), np.hstack([development.ends2d, zero])
     else:
         starts, ends = place(frame, development.starts2d), place(frame, development.ends2d)
     surface = RuledSurface.from_rulings(starts, ends, degree=1)
-    stride = development.stride
+    requested = development.requested_rulings
     assert surface.ruling_lines is not None and surface.ruling_parameters is not None
-    surface.ruling_lines = surface.ruling_lines[::stride]
-    surface.ruling_parameters = surface.ruling_parameters[::stride]
+    surface.ruling_lines = surface.ruling_lines[requested]
+    surface.ruling_parameters = surface.ruling_parameters[requested]
     return surface
 
 
@@ -74,10 +75,13 @@ class IsoMapping(Node):
     each congruent to its 3D original, so rulings, both edges and the strips' widths
     keep their lengths (EdgeError shows it: rounding level). Between the rulings you
     see, at least 7 more per strip are unrolled too — as many as it takes for both
-    flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size, up
-    to 4096 rulings in all — so two strips made between a shared curve have flat
-    edges of the same length and their seam closes; Development is the outline of all these triangles, edge by
-    straight edge, so a sheet cut along it is exactly what was unrolled. The first
+    flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size:
+    evenly, up to 4096 rulings in all, or where that is not enough (a fan sweeping a
+    long stretch of one curve from a point of the other), each strip as many as its
+    own stretch of the edges needs, up to 32768 — so two strips made between a shared
+    curve have flat edges of the same length and their seam closes; Development is the
+    outline of all these triangles, edge by straight edge, so a sheet cut along it is
+    exactly what was unrolled. The first
     ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
 
     Placement says where Development and Rulings are shown, so the flat development
@@ -103,6 +107,7 @@ class IsoMapping(Node):
     """
 
     type_id = "analysis.IsoMapping"
+    nickname, aliases = "Unroll", ("Unroll Surface", "unfold", "flatten", "development", "flat pattern")
     inputs = (
         In("Surface", SURFACE, "S", "The ruled surface to unroll (its rulings must be straight lines)."),
         In("Segments", INTEGER, "N", "How many strips to cut it into: rulings minus one (1 or more).",
@@ -118,7 +123,7 @@ class IsoMapping(Node):
         Out("AreaInput", NUMBER, "Ai", "Area of the input surface, in square model units."),
         Out("AreaDevelopment", NUMBER, "Ad", "Area of the development, in square model units."),
         Out("EdgeError", NUMBER, "Ee", "Largest relative change of any edge length in the unrolling "
-            "(rounding level: ~1e-15, up to ~1e-9 on the shortest edges of a finely sampled strip)."),
+            "(rounding level: ~1e-15, up to ~1e-8 on the shortest edges of a finely sampled strip)."),
         Out("AreaError", NUMBER, "Ae", "(development area − input area) / input area: ~0 for a "
             "developable surface."),
         Out("Map", DEVELOPMENT, "M", "The development with its map to and from the 3D surface, for "

@@ -225,6 +225,7 @@ class SurfaceAnalysis(Node):
     """
 
     type_id = "analysis.SurfaceAnalysis"
+    nickname, aliases = "SrfA", ("developability", "single curved", "gaussian map")
     inputs = (
         In("Surface", GENERIC, "S", "The surface to analyse: any surface, a mesh or a mesh surface."),
         In("UDensity", INTEGER, "U", "Grid points across u (2 or more; a closed direction is not "

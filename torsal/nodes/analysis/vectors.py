@@ -146,6 +146,7 @@ class VectorAnalysis(Node):
     """
 
     type_id = "analysis.VectorAnalysis"
+    nickname, aliases = "VecA", ("Cross Product", "Dot Product", "Vector Angle")
     inputs = (
         In("A", VECTOR, "A", "The first vectors.", access=LIST),
         In("B", VECTOR, "B", "The second vectors; the shorter list reuses its last vector.",

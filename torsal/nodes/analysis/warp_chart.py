@@ -53,6 +53,7 @@ class WarpChart(Node):
     """
 
     type_id = "analysis.WarpChart"
+    nickname, aliases = "Warp", ("warp graph", "twist chart")
     inputs = (
         In("WarpAngles", NUMBER, "W", "The warp angle of each ruling, rad, in order along the strip.",
            access=LIST),

@@ -2,24 +2,29 @@
 matplotlib's Agg canvas, where its image goes and how it is written.
 
 An image goes to the File a node is given, under the write rules of
-:mod:`torsal.nodes.common.files`, or, with no File, to a temporary folder named for what the
-chart shows; either way it is written beside its place and renamed over it, so a viewer
-never reads half an image.
+:mod:`torsal.nodes.common.files`, or, with no File, to the user's private scratch folder
+(:func:`plot_folder`: the user cache folder, mode 0700 — never a shared ``/tmp`` path),
+named for what the chart shows; either way it goes through the one write path
+(:mod:`torsal.engine.write_path`), so a viewer never reads half an image and no link is
+ever followed.
 """
 
 from __future__ import annotations
 
 import hashlib
-import os
-import tempfile
+import io
 from pathlib import Path
 from typing import Any
 
 from torsal.engine.node import Node, NodeWarning
+from torsal.engine.write_path import scratch_folder, write_file
 from torsal.nodes.common.files import may_write, replacing, writable, write_target
 
-PLOT_FOLDER = Path(tempfile.gettempdir()) / "torsal" / "plots"
-"""Where plots go when no File is given: one file per distinct plot, rewritten in place."""
+
+def plot_folder() -> Path:
+    """Where plots go when no File is given (one file per distinct plot): ``plots`` in
+    this user's private scratch folder."""
+    return scratch_folder() / "plots"
 
 
 def target(file: str, key: bytes, node: Node | None = None) -> tuple[Path, bool]:
@@ -29,9 +34,9 @@ def target(file: str, key: bytes, node: Node | None = None) -> tuple[Path, bool]
     (:mod:`torsal.engine.writes`): inside the graph's folder, never a ``.graph``, and only once
     the user allows the graph to write (``node`` asks; without consent it warns and the
     image goes to the temporary folder, so it can still be shown). Without a File the
-    image goes to :data:`PLOT_FOLDER`, named for ``key`` (the bytes that make the plot).
+    image goes to :func:`plot_folder`, named for ``key`` (the bytes that make the plot).
     """
-    temporary = PLOT_FOLDER / f"plot-{hashlib.sha1(key).hexdigest()[:12]}.png"
+    temporary = plot_folder() / f"plot-{hashlib.sha1(key).hexdigest()[:12]}.png"
     name = file.strip()
     if not name:
         return temporary, True
@@ -57,17 +62,15 @@ def new_figure() -> tuple[Any, Any]:
 
 
 def save(figure: Any, path: Path) -> None:
-    """Write ``figure`` as a PNG at ``path``: next to it first, then renamed over it, so
-    a viewer never reads half an image."""
+    """Write ``figure`` as a PNG at ``path`` through the one write path, so a viewer never
+    reads half an image: the user's own file keeps its original as ``.bak``; a plot in
+    the scratch folder is simply replaced."""
     figure.tight_layout()
-    if PLOT_FOLDER not in path.parents:  # the user's own file: atomic, keeping a .bak
+    image = io.BytesIO()
+    figure.savefig(image, format="png")
+    scratch = plot_folder()
+    if scratch not in path.parents:  # the user's own file: atomic, keeping a .bak
         writable(path)
-        replacing(path, lambda temporary: figure.savefig(temporary, format="png"))
+        replacing(path, image.getvalue())
         return
-    path.parent.mkdir(parents=True, exist_ok=True)
-    partial = path.with_name(f".{path.stem}.{os.getpid()}.partial.png")
-    try:
-        figure.savefig(partial, format="png")
-        os.replace(partial, path)
-    finally:
-        partial.unlink(missing_ok=True)
+    write_file(path, image.getvalue(), base=scratch.parent, backup=False)

@@ -26,7 +26,7 @@ from torsal.nodes.geometry.array_types import BoolArray, FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.curves.line import Line
-from torsal.nodes.geometry.developable.ruling import warp_allowance
+from torsal.nodes.geometry.developable.measure import warp_allowance
 from torsal.nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from torsal.nodes.geometry.ruled import RuledSurface
 
@@ -176,7 +176,7 @@ def curve_strip_outputs(
     recomputed from the output rulings with the curves' exact tangents
     (:func:`~torsal.nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
     number within ``tolerance`` (plus what the ends' rounding alone adds far from the
-    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.ruling.warp_allowance`).
+    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.measure.warp_allowance`).
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
     recomputation rejects are counted in a message. ``source`` names the inputs the curves

@@ -87,7 +87,7 @@ def _development_summary(development: Development) -> dict[str, Any]:
     bounds = np.asarray(development.bounds, dtype=float)
     return {
         "type": "Development",
-        "rulings": len(development.starts2d[:: development.stride]),
+        "rulings": len(development.requested_rulings),
         "area_3d": float(development.area_3d),
         "area_2d": float(development.area_2d),
         "area_error": float(development.area_error),

@@ -33,6 +33,7 @@ class DivideCurve(Node):
     """
 
     type_id = "curves.DivideCurve"
+    nickname, aliases = "Divide", ("points on curve", "Divide Length")
     inputs = (
         In("Curve", CURVE, "C", "The curve to divide."),
         In("Count", INTEGER, "N", "How many equal segments to divide it into (1 or more).",
@@ -64,6 +65,7 @@ class EvaluateCurve(Node):
     """
 
     type_id = "curves.EvaluateCurve"
+    nickname, aliases = "Eval", ("point on curve", "Point On Curve", "curve tangent")
     inputs = (
         In("Curve", CURVE, "C", "The curve to evaluate."),
         In("Parameter", NUMBER, "t", "Where on the curve, from 0 (start) to 1 (end)."),
@@ -132,6 +134,7 @@ class CurveLength(Node):
     """
 
     type_id = "curves.CurveLength"
+    nickname, aliases = "Len", ("Length", "Curve Length")
     inputs = (In("Curve", CURVE, "C", "The curve to measure."),)
     outputs = (Out("Length", NUMBER, "L", "The curve's length, in model units."),)
 
@@ -147,6 +150,7 @@ class Flip(Node):
     """
 
     type_id = "curves.Flip"
+    nickname, aliases = "Flip", ("Flip Curve", "reverse curve")
     inputs = (In("Curve", CURVE, "C", "The curve to reverse."),)
     outputs = (Out("Curve", CURVE, "C", "The same curve, run from end to start."),)
 
@@ -158,6 +162,7 @@ class EndPoints(Node):
     """The first and last points of a curve (the same point on a closed curve)."""
 
     type_id = "curves.EndPoints"
+    nickname, aliases = "End", ("start point", "end point")
     inputs = (In("Curve", CURVE, "C", "The curve whose ends to find."),)
     outputs = (
         Out("Start", POINT, "S", "The point at t = 0."),

@@ -199,6 +199,7 @@ class Offset(Node):
     """
 
     type_id = "curves.Offset"
+    nickname, aliases = "Offset", ("Offset Curve", "parallel curve")
     inputs = (
         In("Curve", CURVE, "C", "The curve to offset; it should lie flat in the Plane."),
         In("Distance", NUMBER, "D", "How far to move it, in model units; negative is to the left.",

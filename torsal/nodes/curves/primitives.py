@@ -33,6 +33,7 @@ class Line(Node):
     """
 
     type_id = "curves.Line"
+    nickname, aliases = "Ln", ("Line SDL", "two point line")
     inputs = (
         In("Start", POINT, "A", "Where the line starts."),
         In("End", POINT, "B", "Where the line ends; must differ from Start."),
@@ -57,6 +58,7 @@ class Polyline(Node):
     """
 
     type_id = "curves.Polyline"
+    nickname, aliases = "PLine", ("polygon",)
     inputs = (
         In("Vertices", POINT, "V", "The corner points, in order (at least 2).", access=LIST),
         In("Closed", BOOLEAN, "C", "Whether to join the last vertex back to the first.",
@@ -83,6 +85,7 @@ class Circle(Node):
     """
 
     type_id = "curves.Circle"
+    nickname, aliases = "Cir", ("Circle CNR",)
     inputs = (
         In("Plane", PLANE, "P", "The circle's plane; its origin is the centre.", default=WORLD_XY),
         In("Radius", NUMBER, "R", "Distance from the centre, in model units (positive).",
@@ -105,6 +108,7 @@ class Arc(Node):
     """
 
     type_id = "curves.Arc"
+    nickname, aliases = "Arc", ("circular arc",)
     inputs = (
         In("Plane", PLANE, "P", "The arc's plane; its origin is the centre.", default=WORLD_XY),
         In("Radius", NUMBER, "R", "Distance from the centre, in model units (positive).",

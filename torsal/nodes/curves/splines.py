@@ -65,6 +65,7 @@ class Interpolate(Node):
     """
 
     type_id = "curves.Interpolate"
+    nickname, aliases = "IntCrv", ("Interpolate Curve", "spline through points")
     inputs = (
         In("Vertices", POINT, "V",
            "The points the curve passes through, in order.", access=LIST),
@@ -155,6 +156,7 @@ class NurbsCurve(Node):
     """
 
     type_id = "curves.NurbsCurve"
+    nickname, aliases = "Nurbs", ("control point curve", "spline")
     inputs = (
         In("Vertices", POINT, "V",
            "The control points, in order.", access=LIST),
@@ -202,6 +204,7 @@ class ParametricCurve(Node):
     """
 
     type_id = "curves.ParametricCurve"
+    nickname, aliases = "ParCrv", ("function curve",)
     inputs = (
         In("X", TEXT, "X", "Formula in t for the X coordinate.", default="cos(t)"),
         In("Y", TEXT, "Y", "Formula in t for the Y coordinate.", default="sin(t)"),

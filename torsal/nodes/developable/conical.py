@@ -41,6 +41,7 @@ class ConicalSurface(Node):
     """
 
     type_id = "developable.ConicalSurface"
+    nickname, aliases = "ConS", ("developable cone", "apex surface")
     inputs = (
         In("Curve", CURVE, "C", "The base curve the rulings start from, planar or not."),
         In("Apex", POINT, "A", "The cone's tip, where all rulings meet.", default=Point(0, 0, 1)),

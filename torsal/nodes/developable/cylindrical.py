@@ -39,6 +39,7 @@ class CylindricalSurface(Node):
     """
 
     type_id = "developable.CylindricalSurface"
+    nickname, aliases = "CylS", ("Extrude", "Extrude Curve", "developable cylinder")
     inputs = (
         In("Curve", CURVE, "C", "The section curve the rulings start from, planar or not."),
         In("Direction", VECTOR, "D", "Direction of the rulings (only its direction counts).",

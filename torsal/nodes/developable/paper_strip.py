@@ -66,6 +66,7 @@ class PaperStrip(Node):
     """
 
     type_id = "developable.PaperStrip"
+    nickname, aliases = "Strip", ("developable strip", "bent strip", "twisted strip", "paper")
     inputs = (
         In("Length", NUMBER, "L", "Length of the strip along its middle line, model units.",
            default=10.0),

@@ -116,6 +116,7 @@ class ParametricRuledSurface(Node):
     """
 
     type_id = "developable.ParametricRuledSurface"
+    nickname, aliases = "PRuled", ("ruled surface equation",)
     inputs = (
         In("Directrix", GENERIC, "C", "Points C(u), one per ruling, in order — or one curve.",
            access=LIST),

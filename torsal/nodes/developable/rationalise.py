@@ -7,16 +7,18 @@ from typing import Any
 import numpy as np
 
 from torsal.engine.node import LIST, In, Node, NodeError, NodeWarning, Out
-from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, TEXT, VECTOR
+from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, POINT, TEXT, VECTOR
+from torsal.engine.values import Point
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import parametric_surface as surface_input
 from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable.measure import warp_allowance
 from torsal.nodes.geometry.developable.rationalise import rationalise
-from torsal.nodes.geometry.developable.ruling import warp_allowance
 from torsal.nodes.geometry.local_frame import LocalFrame
+from torsal.nodes.geometry.surface_base import uv_grid
 from torsal.nodes.geometry.watch import watched
 
 #: Share of a strip's area in creased fans above which the node warns.
@@ -48,6 +50,21 @@ def _count(value: Any) -> int:
     if not 1 <= n <= STRIP_LIMIT:
         raise NodeWarning(f"MaxStrips is {n}: give a whole number from 1 to {STRIP_LIMIT}")
     return n
+
+
+def _width(value: Any) -> float:
+    if value is None:
+        return 0.0
+    x = float(value)
+    if not (np.isfinite(x) and x >= 0.0):
+        raise NodeWarning(f"MinWidth must be a width of 0 or more in model units, not {x:g}")
+    return x
+
+
+def _size(design: Any) -> float:
+    """The design's extent (its diagonal), from a grid of its points."""
+    u, v = uv_grid(17, 17)
+    return float(np.linalg.norm(np.ptp(design.point_at(u, v), axis=0)))
 
 
 def _direction(value: Any) -> np.ndarray | None:
@@ -87,6 +104,7 @@ class Rationalise(Node):
     """
 
     type_id = "developable.Rationalise"
+    nickname, aliases = "Rat", ("rationalize", "developable strips", "panelise", "panelize")
     inputs = (
         In("Surface", SURFACE, "S", "The freeform design (a NURBS, loft or parametric surface)."),
         In("Tolerance", NUMBER, "T", "Largest distance of any strip from the design, model units.",
@@ -103,6 +121,9 @@ class Rationalise(Node):
            max=SEGMENT_LIMIT),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
+        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (at its widest), model units: where the "
+           "tolerance would need narrower strips they are made this wide and the node warns where and how "
+           "far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).", default=0.2),
     )
     outputs = (
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
@@ -116,13 +137,20 @@ class Rationalise(Node):
             "WarpTolerance.", access=LIST),
         Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
             "triangles that close a strip where no torsal ruling exists.", access=LIST),
+        Out("Creases", NUMBER, "C", "Per inner boundary (boundary i + 1, between strips i and i + 1): the "
+            "largest fold angle (rad) between the two strips along it — how much the sheets kink there.",
+            access=LIST),
+        Out("Where", POINT, "P", "Where the tolerance is not met: each strip's farthest point when it is "
+            "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it "
+            "(empty when all is within).", access=LIST),
     )
 
     def solve(
         self, surface: Any, tolerance: Any, max_strips: Any, direction: Any, guides: list[Any],
-        segments: Any, warp_tolerance: Any,
+        segments: Any, warp_tolerance: Any, min_width: Any = 0.2,
     ) -> tuple[
-        list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str]
+        list[Any], list[Any], list[Any], list[float], list[float], list[bool], list[str], list[float],
+        list[Any],
     ]:
         design = surface_input("Surface", surface)
         tol = _positive("Tolerance", tolerance)
@@ -132,6 +160,7 @@ class Rationalise(Node):
         if not 1 <= n <= SEGMENT_LIMIT:
             raise NodeWarning(f"Segments is {n}: give a whole number from 1 to {SEGMENT_LIMIT}")
         warp_limit = tolerance_input("WarpTolerance", warp_tolerance)
+        narrowest = _width(min_width)
         if count * (n + 1) > RULING_BUDGET:
             raise NodeError(f"MaxStrips {count} × (Segments {n} + 1) rulings is more than {RULING_BUDGET:,} "
                             "at once: lower MaxStrips or Segments")
@@ -144,11 +173,15 @@ class Rationalise(Node):
         # solved in a frame at the design (at site coordinates its rulings, boundaries and
         # deviations then round as at the origin); the strips are moved back at the end
         frame = LocalFrame.around(design)
+        size = _size(design)
+        if tol >= size:
+            raise NodeWarning(f"Tolerance {tol:g} is larger than the design itself ({size:.4g} across): give "
+                              "the largest distance a strip may keep from the design, a small part of it")
         try:
             with watched(self.check_cancelled, self.progress):
                 result = rationalise(frame.to_local(design), tol, count, None if curves else guide,
                                      segments=n, warp_tolerance=warp_limit, progress=self.progress,
-                                     guides=[frame.to_local(g) for g in curves])
+                                     guides=[frame.to_local(g) for g in curves], min_width=narrowest)
         except ValueError as exc:
             about = "Guides" if curves and "guide" in str(exc) else "Surface"
             raise NodeWarning(f"{about}: {sentence(exc)}") from None
@@ -169,24 +202,17 @@ class Rationalise(Node):
             kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
         deviation = [s.deviation for s in result.strips]
         worst = max(deviation)
-        text = (f"{len(result.strips)} strips, worst deviation {worst:.4g} (tolerance {tol:g}); "
+        creases = [float(c) for c in result.creases]
+        text = (f"{len(result.strips)} strips, deviation at most {worst:.4g} (certified; tolerance {tol:g}); "
                 f"boundaries along {result.family}")
         if fans:
             text += f"; {fans} rulings in flat fans"
-        creased = [i + 1 for i, strip in enumerate(result.strips) if strip.result.creased_share > CREASED]
-        if creased:
-            shown_strips = ", ".join(map(str, creased[:8])) + (" …" if len(creased) > 8 else "")
-            self.warn(
-                f"{len(creased)} of {len(result.strips)} strips are mostly flat triangles that crease the "
-                f"sheet (strips {shown_strips}): between those boundaries no smooth torsal strip exists "
-                "(the design's parameter lines there are close to its straight asymptotic lines, as on a "
-                "hyperbolic paraboloid); the strips are still developable and within the tolerance"
-            )
-        if result.within:
+        if np.isfinite(creases).any():
+            text += f"; creases up to {np.nanmax(creases):.3g} rad"
+        where = self._limits(result, frame, tol, count, narrowest, text)
+        if where is None:
             self.remark(text)
-        else:
-            self.warn(f"MaxStrips {count} cannot meet Tolerance {tol:g}: {text}; raise MaxStrips or "
-                      "the tolerance")
+            where = []
         # fan rulings are flat triangles' edges, not torsal: Valid is false there by
         # definition and the remark counts them; a torsal ruling that fails is a warning
         torsal = np.asarray(kinds) == "torsal"
@@ -196,4 +222,40 @@ class Rationalise(Node):
                       f"or above {warp_limit:g} rad (Valid = false)")
         strips = [frame.to_world(s.surface) for s in result.strips]
         boundaries = [frame.to_world(b) for b in result.boundaries]
-        return strips, boundaries, rulings, warp, deviation, valid, kinds
+        return strips, boundaries, rulings, warp, deviation, valid, kinds, creases, where
+
+    def _limits(self, result: Any, frame: LocalFrame, tol: float, count: int, narrowest: float,
+                text: str) -> list[Any] | None:
+        """One warning when the strips are not all within the tolerance or leave part of the
+        design's edge uncovered, or when most of a strip creases (where, how far, what would
+        help), with the points it speaks of; None when there is nothing to warn about."""
+        far = [i for i, s in enumerate(result.strips) if s.deviation > tol]
+        points = [frame.points_to_world(result.strips[i].where[None])[0] for i in far]
+        problems, help_ = [], []
+        if far:
+            worst = max(result.strips[i].deviation for i in far)
+            shown = ", ".join(str(i + 1) for i in far[:8]) + (" …" if len(far) > 8 else "")
+            problems.append(f"strips {shown} are up to {worst:.4g} from the design (Where)")
+            if result.narrow:
+                help_.append(f"the tolerance needs strips narrower than MinWidth {narrowest:g} there: lower "
+                             "MinWidth, raise the tolerance or smooth that region")
+            if not result.narrow or len(far) > len(result.narrow):
+                help_.append(f"raise MaxStrips (now {count}) or the tolerance")
+        if not result.covered:
+            gap = int(np.argmax(result.edge_gaps))
+            points.append(frame.points_to_world(result.edge_points[gap][None])[0])
+            problems.append(f"the design's edge is {result.coverage:.4g} from the nearest strip (Where)")
+            help_.append("more strips (a lower tolerance) narrow the gaps at the strips' ends")
+        creased = [i + 1 for i, strip in enumerate(result.strips) if strip.result.creased_share > CREASED]
+        if creased:
+            shown = ", ".join(map(str, creased[:8])) + (" …" if len(creased) > 8 else "")
+            problems.append(f"{len(creased)} of {len(result.strips)} strips are mostly flat triangles that "
+                            f"crease the sheet (strips {shown}): no smooth torsal strip joins their"
+                            " boundaries there")
+            help_.append("a Direction or Guides along the design's lines of curvature")
+        if not problems:
+            return None
+        head = (f"Tolerance {tol:g} is not met everywhere" if far or not result.covered
+                else "The strips are within the tolerance, but")
+        self.warn(f"{head}: {'; '.join(problems)}. What would help: {'; '.join(help_)}. ({text})")
+        return [Point(*map(float, p)) for p in points]

@@ -2,34 +2,74 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from torsal.engine.node import LIST, In, Node, NodeError, Out
-from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, TEXT
+from torsal.engine.node import LIST, In, Node, NodeError, NodeWarning, Out
+from torsal.engine.types import BOOLEAN, INTEGER, NUMBER, POINT, TEXT
+from torsal.nodes.common.checks import angle as angle_input
 from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
+from torsal.nodes.common.strip_folds import fold_report
 from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
-from torsal.nodes.geometry.developable import RulingResult, ruling_developable
+from torsal.nodes.geometry.curves.line import Line
+from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
+from torsal.nodes.geometry.developable.kinds import ruling_kinds
+from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.vec_ops import norm
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS
 
 
-def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
-    """The kernel's strip between two checked curves, with its errors as node errors."""
+class _Row(NamedTuple):
+    """One call's checked inputs, its curves moved into a frame anchored at them (solved,
+    checked and measured there as at the world origin; site coordinates round only when
+    the outputs are moved back)."""
+
+    a: Curve
+    b: Curve
+    segments: int
+    tolerance: float
+    fan_limit: float
+    crease_angle: float
+    frame: LocalFrame
+
+
+def _arguments(
+    curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
+) -> _Row:
+    """One call's checked inputs: the curves (never one curve twice), Segments,
+    WarpTolerance, FanLimit and CreaseAngle."""
+    a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
+    n = segments_input(segments)
+    tol = tolerance_input("WarpTolerance", tolerance)
+    limit = fan_limit_input(fan_limit)
+    sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
+    _distinct(a, b)
+    frame = LocalFrame.around(a, b)
+    return _Row(frame.to_local(a), frame.to_local(b), n, tol, limit, sharp, frame)
+
+
+def _distinct(curve_a: Curve, curve_b: Curve) -> None:
+    """Refuses one curve given as both edges."""
     if coincident(curve_a, curve_b):
         raise NodeError(
             "CurveA and CurveB are the same curve, so there is no strip between them: "
             "give two different edges (e.g. a bottom and a top curve)"
         )
+
+
+def solve_strip(curve_a: Curve, curve_b: Curve, segments: int, tolerance: float) -> RulingResult:
+    """The kernel's strip between two checked curves, with its errors as node errors."""
+    _distinct(curve_a, curve_b)
     try:
         return ruling_developable(curve_a, curve_b, segments, tolerance)
     except ValueError as exc:
@@ -85,12 +125,28 @@ class RulingDevelopable(Node):
     FanLimit of the area, and names swapping the curves or reversing CurveB only when
     it has solved that alternative and found it needs fewer of them.
 
-    Valid is true where a ruling's warp, recomputed from the output (its end points
-    and the curves' exact tangents there), is within WarpTolerance — never where the
-    warp is undefined (a ruling of zero length or along a tangent).
+    Kind tells each ruling what it is, recomputed from the output alone (its end points,
+    the curves' exact tangents there and which ends it shares with its neighbours):
+
+    - "torsal": the planes through the ruling and each curve's tangent agree within
+      WarpTolerance; both curves are tangent to the sheet there. Valid.
+    - "fan": inside a cone through one point of a curve (its neighbours on both sides
+      share that end): the sheet is smooth and developable there, but the curve through
+      the apex is not tangent to it. Valid (a cone is developable), never torsal.
+    - "crease": the sheet folds along the ruling (a flat triangle through a point of A
+      beside one through a point of B, or a fan turning back over itself). Never Valid.
+
+    A torsal ruling whose warp is above WarpTolerance (a warped stretch) is "torsal" and
+    not Valid. Torsal is the share of torsal, Valid rulings of the strip (fans and creases
+    count against it), the number to maximise for a strip bent from one sheet; the mean of
+    Valid also counts the fans. The node warns where the sheet folds by more than
+    CreaseAngle or passes through itself (pairs of the strip's triangles, drawn between
+    consecutive rulings, that cross), and Folds gives those places: the middle of each
+    such crease, then a point of each crossing.
     """
 
     type_id = "developable.RulingDevelopable"
+    nickname, aliases = "RDev", ("ruling", "developable", "developable loft", "Edge Surface")
     inputs = (
         In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
         In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
@@ -104,6 +160,9 @@ class RulingDevelopable(Node):
            "Largest share of the strip's area (0 to 1) that may be closed by creased fans of flat "
            "triangles without a warning; 0.1 = 10 %. Smooth cones through one point never warn.",
            default=0.1),
+        In("CreaseAngle", NUMBER, "C",
+           "Creases of the sheet sharper than this angle (rad, the turn of its plane across the "
+           "crease) are named in a warning and given in Folds; 0.5 rad is about 29°.", default=0.5),
     )
     outputs = (
         Out("Surface", SURFACE, "S", "The developable strip, lofted through its rulings."),
@@ -114,21 +173,67 @@ class RulingDevelopable(Node):
         Out("Valid", BOOLEAN, "V", "Whether each ruling's recomputed warp is a number within "
             "WarpTolerance.", access=LIST),
         Out("Kind", TEXT, "K",
-            'Per ruling: "torsal" for a ruling of the developable through both curves, "fan" for '
-            "a ruling of the flat triangles that close the strip where no torsal ruling exists.",
-            access=LIST),
+            'Per ruling: "torsal" where both curves are tangent to the sheet (Valid when its warp is '
+            'within WarpTolerance), "fan" inside a cone through one point of a curve (developable, '
+            'Valid), "crease" where the sheet folds (never Valid).', access=LIST),
+        Out("Torsal", NUMBER, "T", "The share of the strip's rulings that are torsal and Valid, 0 to 1 "
+            "(fans and creases count against it)."),
+        Out("Folds", POINT, "F", "Where the sheet creases by more than CreaseAngle (the middle of the "
+            "ruling), then where its triangles cross each other.", access=LIST),
     )
 
     def solve(
-        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any
-    ) -> tuple[Any, list[Any], list[float], list[bool], list[str]]:
-        a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
-        n = segments_input(segments)
-        tol = tolerance_input("WarpTolerance", tolerance)
-        limit = fan_limit_input(fan_limit)
+        self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
+    ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
+        row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
         self.check_cancelled()
         with watched(self.check_cancelled):  # the kernel looks at the token between its steps
-            result = solve_strip(a, b, n, tol)
+            result = ruling_developables([(row.a, row.b, row.segments, row.tolerance)])[0]
+        if isinstance(result, ValueError):
+            raise NodeError(sentence(result))
+        return self._outputs(row, result)
+
+    def solve_many(self, *columns: Sequence[Any]) -> list[Any] | None:
+        """Every strip of the solve at once (:func:`ruling_developables`: each step of the
+        kernel runs once for all of them), with each row's outputs and messages as
+        :meth:`solve` gives them."""
+        rows: list[_Row | NodeWarning] = []
+        stop: Exception | None = None  # what ends the solve at a row, after the rows before it
+        for row in zip(*columns, strict=True):
+            try:
+                rows.append(_arguments(*row))
+            except NodeWarning as exc:  # that row is refused, the others are made
+                rows.append(exc)
+            except Exception as exc:  # (solve raises it at that row, after the rows before)
+                stop = exc
+                break
+        jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
+        self.check_cancelled()
+        with watched(self.check_cancelled):
+            solved = iter(ruling_developables(jobs))
+        outputs: list[Any] = []
+        for row in rows:
+            if isinstance(row, NodeWarning):
+                self.refuse_row(row)
+                outputs.append(None)
+                continue
+            result = next(solved)
+            if isinstance(result, ValueError):
+                raise NodeError(sentence(result))
+            try:
+                outputs.append(self._outputs(row, result))
+            except NodeWarning as exc:
+                self.refuse_row(exc)
+                outputs.append(None)
+        if stop is not None:
+            raise stop
+        return outputs
+
+    def _outputs(
+        self, row: _Row, result: RulingResult
+    ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
+        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
         self.check_cancelled()
@@ -152,5 +257,13 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = ["fan" if fan else "torsal" for fan in result.fan.tolist()]
-        return strip.surface, strip.rulings, strip.warp, strip.valid, kinds
+        kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
+        if folds.message:
+            self.warn(folds.message)
+        surface, rulings = strip.surface, strip.rulings
+        if not frame.is_world:
+            surface = frame.to_world(surface)
+            rulings = Line.many(frame.points_to_world(result.starts), frame.points_to_world(result.ends))
+        valid = kinds.valid.tolist()
+        return surface, rulings, strip.warp, valid, kinds.kind, kinds.torsal_share, folds.points

@@ -78,6 +78,7 @@ class SplineApproximation(Node):
     """
 
     type_id = "developable.SplineApproximation"
+    nickname, aliases = "SpApx", ("approximate", "developable approximation")
     inputs = (
         In("Surface", SURFACE, "S", "The double-curved ruled surface to approximate."),
         In("Curve", CURVE, "C", "The curved edge of Surface that stays where it is (open)."),

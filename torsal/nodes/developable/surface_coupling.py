@@ -51,6 +51,7 @@ class SurfaceCoupling(Node):
     """
 
     type_id = "developable.SurfaceCoupling"
+    nickname, aliases = "Couple", ("Blend Surface", "blend", "join surfaces")
     inputs = (
         In("SurfaceA", SURFACE, "A", "The first patch."),
         In("SurfaceB", SURFACE, "B", "The second patch."),

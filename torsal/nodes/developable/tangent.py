@@ -53,6 +53,7 @@ class TangentDevelopable(Node):
     """
 
     type_id = "developable.TangentDevelopable"
+    nickname, aliases = "TanDev", ("tangent surface", "tangent lines")
     inputs = (
         In("Curve", CURVE, "C", "The space curve whose tangents sweep the surface (its edge of regression)."),
         In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,

@@ -59,6 +59,7 @@ class Plot(Node):
     """
 
     type_id = "display.Plot"
+    nickname, aliases = "Plot", ("Quick Graph", "graph", "chart")
     inputs = (
         In("Values", NUMBER, "V", "The numbers to plot, in order.", access=LIST),
         In("Title", TEXT, "T", "The graph's title.", default=""),

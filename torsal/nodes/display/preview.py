@@ -44,6 +44,7 @@ class Preview(Node):
     """
 
     type_id = "display.Preview"
+    nickname, aliases = "Prev", ("Custom Preview", "colour", "color")
     inputs = (
         In("Geometry", GENERIC, "G", "What to draw: any geometry.", access=LIST),
         In("Colour", TEXT, "C", "Colour as #rrggbb or a name, one or one per item.", access=LIST,
@@ -91,6 +92,7 @@ class Tag(Node):
     """
 
     type_id = "display.Tag"
+    nickname, aliases = "Tag", ("Text Tag", "Text Tag 3D", "label", "dot")
     inputs = (
         In("Text", TEXT, "T", "What to write."),
         In("Location", POINT, "L", "Where to write it.", default=Point(0.0, 0.0, 0.0)),

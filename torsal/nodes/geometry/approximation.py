@@ -63,6 +63,7 @@ from scipy.interpolate import make_interp_spline
 from scipy.optimize import least_squares
 
 from .array_types import FloatArray
+from .counts import segment_count
 from .curve_base import Curve
 from .developable.stations import station_parameters
 from .developable.warp import end_normals
@@ -140,8 +141,7 @@ def _curved_edges(surface: Surface) -> list[tuple[int, IsoCurve, str, float]]:
 def station_rulings(surface: Surface, curve: Curve, segments: int) -> StationRulings:
     """The surface's rulings through ``segments + 1`` stations of ``curve`` (one of its
     curved edges, or a piece of one), each pointing away from that edge."""
-    if int(segments) != segments or segments < 1:
-        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
+    segments = segment_count(segments)
     if getattr(curve, "closed", False):
         raise ValueError(
             "The curve is closed: SplineApproximation needs an open edge (split a closed "

@@ -7,16 +7,12 @@ written out vectorised: every interval in the table is refined in the same pass.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from scipy.special import roots_legendre
 
 from .array_types import FloatArray
+from .curve_protocol import ParametricCurve
 from .roots import safeguarded_newton
-
-if TYPE_CHECKING:
-    from .curve_base import Curve
 
 _NODES, _WEIGHTS = roots_legendre(16)
 
@@ -27,12 +23,12 @@ _NODES, _WEIGHTS = roots_legendre(16)
 _NOISE_SHARE = 1e-8
 
 
-def speed(curve: Curve, t: FloatArray) -> FloatArray:
+def speed(curve: ParametricCurve, t: FloatArray) -> FloatArray:
     """``|C'(t)|``, the rate at which arc length grows with t."""
     return np.linalg.norm(curve.derivative_at(t, 1), axis=1)
 
 
-def gauss_length(curve: Curve, low: FloatArray, high: FloatArray) -> FloatArray:
+def gauss_length(curve: ParametricCurve, low: FloatArray, high: FloatArray) -> FloatArray:
     """16-point Gauss–Legendre length of the curve over each ``[low, high]``, one call."""
     half = 0.5 * (high - low)
     x = (0.5 * (high + low))[:, None] + half[:, None] * _NODES[None, :]
@@ -52,7 +48,7 @@ class LengthTable:
     on such short smooth pieces.
     """
 
-    def __init__(self, curve: Curve, rel_tol: float = 1e-13, max_rounds: int = 60) -> None:
+    def __init__(self, curve: ParametricCurve, rel_tol: float = 1e-13, max_rounds: int = 60) -> None:
         self.curve = curve
         breaks = curve._breakpoints()
         # four starting intervals per smooth span

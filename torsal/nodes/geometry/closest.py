@@ -34,18 +34,16 @@ from __future__ import annotations
 
 from functools import lru_cache
 from itertools import chain
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from .array_types import FloatArray, IntArray
+from .curve_protocol import ParametricCurve
 from .roots import safeguarded_newton
 from .tessellate import tessellation_parameters
 from .vec_ops import anchor
-
-if TYPE_CHECKING:
-    from .curve_base import Curve
 
 #: Largest angle between the tangent (at an interval's ends and middle) and its chord.
 MAX_TURN = np.radians(5.0)
@@ -59,7 +57,7 @@ MAX_CHORD = 1 / 100
 MAX_SAMPLES = 100_000
 
 
-def sample_parameters(curve: Curve, per_span: int = 16, minimum: int = 128) -> FloatArray:
+def sample_parameters(curve: ParametricCurve, per_span: int = 16, minimum: int = 128) -> FloatArray:
     """Parameters spread over every smooth span of the curve, at least ``minimum`` of them."""
     breaks = tuple(curve._breakpoints().tolist())
     if len(breaks) > _CACHED_BREAKS:  # a long key costs more than the work it saves
@@ -88,7 +86,7 @@ def _cosine_to_chord(tangents: FloatArray, chords: FloatArray) -> FloatArray:
     return np.where(lengths > 0, dots / np.where(lengths > 0, lengths, 1.0), 1.0)
 
 
-def turning_parameters(curve: Curve, t: FloatArray, max_chord: float, max_turn: float = MAX_TURN,
+def turning_parameters(curve: ParametricCurve, t: FloatArray, max_chord: float, max_turn: float = MAX_TURN,
                        max_points: int = MAX_SAMPLES) -> FloatArray:
     """``t`` subdivided until the tangent at every interval's ends and middle is within
     ``max_turn`` of the interval's chord and no chord is longer than ``max_chord``
@@ -117,7 +115,7 @@ def turning_parameters(curve: Curve, t: FloatArray, max_chord: float, max_turn: 
     return np.sort(np.concatenate([t, *added]))
 
 
-def search_parameters(curve: Curve) -> FloatArray:
+def search_parameters(curve: ParametricCurve) -> FloatArray:
     """Samples dense enough to tell the curve's turns and folds apart.
 
     At least 16 per smooth span and 128 in all, then subdivided until every chord is
@@ -150,7 +148,17 @@ class SearchSamples(NamedTuple):
     tree: cKDTree  #: of ``points``
 
 
-def search_samples(curve: Curve) -> SearchSamples:
+class SearchableCurve(ParametricCurve, Protocol):
+    """A curve that keeps its search samples (as :class:`~.curve_base.Curve` does, cached)."""
+
+    @property
+    def _search_parameters(self) -> FloatArray: ...
+
+    @property
+    def _search_samples(self) -> SearchSamples: ...
+
+
+def search_samples(curve: SearchableCurve) -> SearchSamples:
     """The :class:`SearchSamples` of ``curve``'s :func:`search_parameters`."""
     t = curve._search_parameters
     points, tangents = curve.derivatives(t, 1)
@@ -219,7 +227,7 @@ def _samples_within(
     return nearest, first, rows[hit], index[hit], distances[hit]
 
 
-def closest_parameters(curve: Curve, points: FloatArray) -> FloatArray:
+def closest_parameters(curve: SearchableCurve, points: FloatArray) -> FloatArray:
     """Parameter of the closest point on ``curve`` to each of ``points`` ``(m, 3)``.
 
     A non-finite query gets 0.

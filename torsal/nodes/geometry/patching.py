@@ -39,6 +39,7 @@ import shapely
 from numpy.typing import ArrayLike
 
 from .array_types import FloatArray, IntArray
+from .polygons import signed_ring_area
 from .unroll import Development
 from .watch import watch_check
 
@@ -170,8 +171,7 @@ def _canonical_ring(ring: FloatArray) -> FloatArray:
     """A closed ring, counter-clockwise, starting at the vertex nearest its bounding
     box's lower-left corner (so equal panels print equally, whatever the clipper did)."""
     open_ring = ring[:-1] if len(ring) > 1 and np.array_equal(ring[0], ring[-1]) else ring
-    x, y = open_ring[:, 0], open_ring[:, 1]
-    if np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y) < 0:
+    if signed_ring_area(open_ring) < 0:
         open_ring = open_ring[::-1]
     start = int(np.argmin(np.linalg.norm(open_ring - open_ring.min(axis=0), axis=1)))
     open_ring = np.roll(open_ring, -start, axis=0)

@@ -15,26 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .array_types import FloatArray
+from .polygons import ring_areas
 
 #: The share of the tile's area by which the panels may differ from it and still cover
 #: it once (their rounding).
 COVER_TOLERANCE = 1e-9
-
-
-def ring_areas(rings: Sequence[ArrayLike]) -> FloatArray:
-    """The area enclosed by each closed ring ``(k, 2)`` (first vertex not repeated, or
-    repeated: it adds nothing), whichever way it runs; one pass over all vertices."""
-    if not rings:
-        return np.zeros(0)
-    points = [np.asarray(r, dtype=float)[:, :2] for r in rings]
-    counts = np.array([len(p) for p in points])
-    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    flat = np.vstack(points) - np.repeat(np.vstack([p[0] for p in points]), counts, axis=0)
-    following = np.arange(len(flat)) + 1
-    following[starts + counts - 1] = starts  # each ring's last vertex closes to its first
-    cross = flat[:, 0] * flat[following, 1] - flat[following, 0] * flat[:, 1]
-    return np.abs(np.add.reduceat(cross, starts)) / 2.0
 
 
 @dataclass(frozen=True)

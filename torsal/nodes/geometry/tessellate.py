@@ -2,14 +2,10 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from .array_types import FloatArray
-
-if TYPE_CHECKING:
-    from .curve_base import Curve
+from .curve_protocol import ParametricCurve
 
 
 def _distance_to_chords(points: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
@@ -22,7 +18,7 @@ def _distance_to_chords(points: FloatArray, a: FloatArray, b: FloatArray) -> Flo
 
 
 def tessellation_parameters(
-    curve: Curve,
+    curve: ParametricCurve,
     tolerance: float,
     per_span: int = 4,
     max_points: int = 1_000_000,

@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from torsal.nodes.geometry.array_types import FloatArray
+from torsal.nodes.geometry.array_types import FloatArray, IntArray
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
@@ -111,7 +111,8 @@ class Development:
     rounding level by construction. ``hinge_angles`` (rad, one per quad) is the fold
     between each quad's two triangles: zero for a planar quad, so it shows where a
     strip is not developable. ``stride`` marks every stride-th ruling as one the user
-    asked for (see :func:`unroll_surface`).
+    asked for (see :func:`unroll_surface`), unless ``requested`` lists them (a strip
+    sampled more finely in some segments than in others).
     """
 
     starts2d: FloatArray
@@ -125,6 +126,7 @@ class Development:
     hinge_angles: FloatArray
     map: DevelopmentMap = field(repr=False)
     stride: int = 1
+    requested: IntArray | None = field(default=None, repr=False)
 
     @property
     def area_difference(self) -> float:
@@ -133,8 +135,17 @@ class Development:
 
     @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
-        """Starts and ends of the requested rulings (every ``stride``-th one)."""
+        """Starts and ends of the requested rulings (every ``stride``-th one, or ``requested``)."""
+        if self.requested is not None:
+            return self.starts2d[self.requested], self.ends2d[self.requested]
         return self.starts2d[:: self.stride], self.ends2d[:: self.stride]
+
+    @property
+    def requested_rulings(self) -> IntArray:
+        """The indices of the requested rulings among all those unrolled."""
+        if self.requested is not None:
+            return self.requested
+        return np.arange(0, len(self.starts2d), self.stride)
 
     @property
     def outline(self) -> FloatArray:
@@ -407,20 +418,91 @@ def unroll_surface(
     """
     if segments < 1 or subdivisions < 1:
         raise ValueError("segments and subdivisions must be at least 1")
+    requested = u = None
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)
     else:
-        subdivisions, rulings, _ = edge_subdivisions(surface, segments, subdivisions, edge_tolerance)
+        subdivisions, rulings, error = edge_subdivisions(surface, segments, subdivisions, edge_tolerance)
+        if not error <= edge_tolerance:  # (NaN too) uniform sampling did not get there: per segment
+            u, requested = adaptive_parameters(surface, segments, subdivisions, edge_tolerance)
+            if u is not None:
+                rulings = rulings_at(surface, u)
     area_3d = surface.area()
     _look()
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=area_3d)
     _look()
-    upright = _upright(development, surface)
+    upright = _upright(development, surface, u)
     _look()
-    return replace(upright, stride=subdivisions)
+    return replace(upright, stride=subdivisions, requested=requested)
 
 
-def _upright(development: Development, surface: Surface) -> Development:
+def rulings_at(surface: Surface, u: FloatArray) -> FloatArray:
+    """The surface's rulings ``(n, 2, 3)`` at parameters ``u`` across them (as
+    :meth:`~.surface_base.Surface.rulings` at evenly spaced ones)."""
+    direction = surface.ruling_direction
+    if direction is None:
+        raise ValueError("surface has no straight rulings")
+    zeros, ones = np.zeros(len(u)), np.ones(len(u))
+    if direction == "v":
+        start, end = surface.point_at(u, zeros), surface.point_at(u, ones)
+    else:
+        start, end = surface.point_at(zeros, u), surface.point_at(ones, u)
+    return np.stack([start, end], axis=1)
+
+
+#: Most rulings :func:`adaptive_parameters` samples along a strip.
+MAX_ADAPTIVE_RULINGS = 1 << 15
+#: The share of the tolerance :func:`adaptive_parameters` aims at (the C/k² law is an estimate).
+ADAPTIVE_MARGIN = 0.8
+
+
+def adaptive_parameters(
+    surface: Surface, segments: int, subdivisions: int, tolerance: float
+) -> tuple[FloatArray | None, IntArray | None]:
+    """Parameters across the rulings where each of the ``segments`` gets as many rulings as
+    its own stretch of the rails needs, so that both rails' chord polylines are within
+    ``tolerance`` (relative to the strip's size) of their arc lengths; and the indices of
+    the segments' ends among them (the rulings the user asked for).
+
+    Where a strip's rails run fast over a few segments (a fan sweeping along a curve while
+    the other curve's point stands still), evenly spaced rulings waste most of their
+    samples elsewhere. Here each segment j's chord error is estimated from two samplings
+    (``k`` and ``2k`` rulings per segment: C_j/k² by Richardson, the worse of its two
+    rails), and segment j is given k_j ∝ C_j^(1/3) rulings — the counts that meet the
+    tolerance in the fewest rulings — with a margin. None when that would take more than
+    :data:`MAX_ADAPTIVE_RULINGS`."""
+    k = subdivisions
+    size = 0.0
+    sums = []
+    for per in (k, 2 * k):
+        rulings = surface.rulings(segments * per + 1)
+        size = size or float(np.ptp(rulings.reshape(-1, 3), axis=0).max()) or 1.0
+        chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (segments·per, 2)
+        sums.append(chords.reshape(segments, per, 2).sum(axis=1))
+    _look()
+    error_fine = np.abs(sums[1] - sums[0]).max(axis=1) / 3.0  # per segment, the worse rail
+    if not np.isfinite(error_fine).all():
+        return None, None
+    constant = error_fine * (2 * k) ** 2
+    target = ADAPTIVE_MARGIN * tolerance * size
+    cube = np.cbrt(constant)
+    total = float(cube.sum())
+    if total == 0.0:
+        return None, None
+    # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
+    counts = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
+    if counts.sum() + 1 > MAX_ADAPTIVE_RULINGS:
+        return None, None
+    requested = np.concatenate([[0], np.cumsum(counts)])
+    u = np.empty(int(requested[-1]) + 1)
+    segment = np.repeat(np.arange(segments), counts)
+    within = np.arange(len(segment)) - requested[segment]
+    u[:-1] = (segment + within / counts[segment]) / segments
+    u[-1] = 1.0
+    return u, requested
+
+
+def _upright(development: Development, surface: Surface, u: FloatArray | None = None) -> Development:
     """The development turned so that the ruling laid up the +Y axis (the first one with
     a length) runs exactly along the surface's own ruling direction there.
 
@@ -431,14 +513,15 @@ def _upright(development: Development, surface: Surface) -> Development:
     development's, turns by that over its length (6e-9 rad at 2e6 m, 3e-6 at 1e9 m), a
     rigid turn of the shape; the surface's derivative along the ruling is evaluated
     relative to the surface and carries no such error. The turn between the two, in the
-    plane of the first triangle with area, is undone about the origin."""
+    plane of the first triangle with area, is undone about the origin. ``u``: the
+    rulings' parameters, when they are not evenly spaced."""
     laid = (development.starts2d == 0.0).all(axis=1) & (development.ends2d[:, 1] > 0.0)
     k = int(np.argmax(laid))
     m = development.map
     later = m.proper[m.proper >= 2 * k]
     if not laid[k] or later.size == 0:
         return development
-    t = k / (len(development.starts2d) - 1)
+    t = float(u[k]) if u is not None else k / (len(development.starts2d) - 1)
     if surface.ruling_direction == "v":
         along = surface.derivatives(t, 0.0, 1)[2][0]
     else:

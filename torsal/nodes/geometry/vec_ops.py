@@ -18,12 +18,6 @@ import numpy as np
 
 from .array_types import FloatArray
 
-try:  # what np.einsum calls without ``optimize`` (the same values), less its Python wrapper
-    from numpy._core._multiarray_umath import c_einsum as _einsum
-except ImportError:  # pragma: no cover - another numpy: the public call
-    _einsum = np.einsum
-
-
 #: The coordinates after and before each one:
 #: (a × b)_k = a[_NEXT[k]]·b[_PREVIOUS[k]] − a[_PREVIOUS[k]]·b[_NEXT[k]].
 _NEXT = np.array([1, 2, 0])
@@ -45,7 +39,7 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     if a.shape[-1] == 3:  # (a0·b0 + a1·b1) + a2·b2, the products in one multiplication
         products = a * b
         return products[..., 0] + products[..., 1] + products[..., 2]
-    return _einsum("...i,...i->...", a, b)
+    return np.einsum("...i,...i->...", a, b)
 
 
 def det(r: FloatArray, u: FloatArray, v: FloatArray) -> FloatArray:
@@ -61,7 +55,7 @@ def flatnonzero(a: FloatArray) -> FloatArray:
 
 def norm(a: FloatArray) -> FloatArray:
     """Row-wise Euclidean length."""
-    return np.sqrt(_einsum("...i,...i->...", a, a))
+    return np.sqrt(np.einsum("...i,...i->...", a, a))
 
 
 def linalg_norm(a: FloatArray) -> FloatArray:

@@ -41,7 +41,7 @@ def resolve(path: str | os.PathLike[str] | None, what: str = "Path", folder: Pat
 
 def read_path(node: Node, path: object, what: str = "Path") -> Path:
     """The file ``node`` is asked to read, a relative path taken from the graph's folder."""
-    return resolve(None if path is None else str(path), what, node.files.folder)
+    return resolve(None if path is None else str(path), what, node.files.read_folder)
 
 
 def readable(path: Path, kind: str) -> Path:

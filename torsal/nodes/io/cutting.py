@@ -135,6 +135,7 @@ class ExportCutSheet(Node):
     """
 
     type_id = "io.ExportCutSheet"
+    nickname, aliases = "Cut", ("nest", "nesting", "cut sheet", "laser", "cutter", "dxf", "svg")
     inputs = (
         In("Path", TEXT, "P", "The .dxf or .svg file to write, relative to the graph's folder.", default=""),
         In("Panels", CURVE, "Pn", "Closed flat panel outlines, in model units.", access=TREE,

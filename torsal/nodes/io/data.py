@@ -24,6 +24,7 @@ class ExportCSV(Node):
     """
 
     type_id = "io.ExportCSV"
+    nickname, aliases = "CSV", ("Write File", "spreadsheet", "excel")
     inputs = (
         In("Path", TEXT, "P", "The .csv file to write, relative to the graph's folder.", default=""),
         In("Data", GENERIC, "D", "The data tree to write.", access=TREE),
@@ -35,6 +36,10 @@ class ExportCSV(Node):
     def solve(self, path: Any, data: DataTree, write: Any) -> Any:
         if not write:
             self.remark("Write is false: nothing written")
+            return None
+        if not data.item_count:  # e.g. an upstream node refused: the file already there stays as it is
+            self.warn("There is nothing to write: Data is empty, so the file (and its .bak) is left "
+                      "as it was")
             return None
         with file_errors():
             target = write_target(self, path)

@@ -23,6 +23,7 @@ class ImportMesh(Node):
     """
 
     type_id = "io.ImportMesh"
+    nickname, aliases = "MeshIn", ("import obj", "import stl", "scan")
     inputs = (
         In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to read."),
         In("FileUnits", TEXT, "Fu", "Units of the file's numbers (empty: the model's; GLB: always m).",
@@ -48,6 +49,7 @@ class ExportMesh(Node):
     """
 
     type_id = "io.ExportMesh"
+    nickname, aliases = "MeshOut", ("export obj", "export stl", "glb", "ply")
     inputs = (
         In("Path", TEXT, "P", "The .obj, .stl, .ply or .glb file to write, relative to the graph's folder.",
            default=""),
@@ -65,6 +67,10 @@ class ExportMesh(Node):
             model_units = unit_name(units)
             if not write:
                 self.remark("Write is false: nothing written")
+                return None
+            if not items:  # e.g. an upstream node refused: the file already there stays as it is
+                self.warn("There is nothing to write: Meshes is empty, so the file (and its .bak) is left "
+                          "as it was")
                 return None
             target = write_target(self, path)
             if not may_write(self, [target]):

@@ -30,6 +30,7 @@ class Import3dm(Node):
     """
 
     type_id = "io.Import3dm"
+    nickname, aliases = "3dmIn", ("Import 3DM", "read rhino", "Geometry Pipeline")
     inputs = (
         In("Path", TEXT, "P", "The .3dm file to read."),
         In("Layers", TEXT, "L", "Only these layers (empty: every layer).", access=LIST, optional=True),
@@ -84,10 +85,12 @@ class Export3dm(Node):
     strings TorsalPath and TorsalIndex; panels also carry PanelID. The file's units
     are Units. Nothing is written until Write is true and you have allowed the
     graph to write files; Path is relative to the graph's folder and must stay inside
-    it. A file it replaces is kept as ``<name>.bak``.
+    it. A file it replaces is kept as ``<name>.bak``. With nothing to write (every input
+    empty, as after an upstream node's error) it warns and leaves the file alone.
     """
 
     type_id = "io.Export3dm"
+    nickname, aliases = "3dm", ("Bake", "export rhino", "rhino")
     inputs = (
         In("Path", TEXT, "P", "The .3dm file to write, relative to the graph's folder.", default=""),
         In("Curves", CURVE, "C", "Curves, on the layer Curves.", access=TREE, optional=True),
@@ -137,8 +140,10 @@ class Export3dm(Node):
             if not write:
                 self.remark("Write is false: nothing written")
                 return None, len(entries)
-            if not entries:
-                self.warn("There is nothing to write: every geometry input is empty")
+            if not entries:  # e.g. an upstream node refused: the file already there stays as it is
+                self.warn("There is nothing to write: every geometry input is empty, so the file (and its "
+                          ".bak) is left as it was")
+                return None, 0
             target = write_target(self, path)
             if not may_write(self, [target]):
                 return None, len(entries)

@@ -20,6 +20,7 @@ class ListItem(Node):
     """
 
     type_id = "lists.ListItem"
+    nickname, aliases = "Item", ("get item", "index")
     inputs = (
         In("List", GENERIC, "L", "The list to pick from.", access=LIST, arrays=True),
         In("Index", INTEGER, "i", "Position of the item, 0 for the first.", default=0),
@@ -45,6 +46,7 @@ class ListLength(Node):
     """Count the items in a list: one count per branch of a tree."""
 
     type_id = "lists.ListLength"
+    nickname, aliases = "Lng", ("count", "how many")
     inputs = (In("List", GENERIC, "L", "The list to count.", access=LIST, arrays=True),)
     outputs = (Out("Length", INTEGER, "L", "How many items the list holds, empty ones included."),)
 

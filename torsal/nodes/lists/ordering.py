@@ -22,6 +22,7 @@ class Shift(Node):
     """
 
     type_id = "lists.Shift"
+    nickname, aliases = "Shift", ("Shift List",)
     inputs = (
         In("List", GENERIC, "L", "The list to shift.", access=LIST, arrays=True),
         In("Shift", INTEGER, "S", "How many places to move the items; negative moves them back.",
@@ -48,6 +49,7 @@ class Reverse(Node):
     """Reverse the order of a list: the last item comes first."""
 
     type_id = "lists.Reverse"
+    nickname, aliases = "Rev", ("Reverse List",)
     inputs = (In("List", GENERIC, "L", "The list to reverse.", access=LIST, arrays=True),)
     outputs = (Out("List", GENERIC, "L", "The same items, last first.", access=LIST),)
 
@@ -64,6 +66,7 @@ class Sort(Node):
     """
 
     type_id = "lists.Sort"
+    nickname, aliases = "Sort", ("Sort List",)
     inputs = (
         In("Keys", NUMBER, "K", "The numbers to sort by, such as lengths or distances.",
            access=LIST, arrays=True),

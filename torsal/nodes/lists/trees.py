@@ -18,6 +18,7 @@ class Flatten(Node):
     """
 
     type_id = "lists.Flatten"
+    nickname, aliases = "Flat", ("Flatten Tree",)
     inputs = (In("Tree", GENERIC, "T", "The tree to flatten.", access=TREE),)
     outputs = (Out("Tree", GENERIC, "T", "All the items in the single branch {0}.", access=TREE),)
 
@@ -33,6 +34,7 @@ class Graft(Node):
     """
 
     type_id = "lists.Graft"
+    nickname, aliases = "Graft", ("Graft Tree",)
     inputs = (In("Tree", GENERIC, "T", "The tree to graft.", access=TREE),)
     outputs = (Out("Tree", GENERIC, "T", "One branch per item, one path level deeper.",
                    access=TREE),)
@@ -49,6 +51,7 @@ class Merge(Node):
     """
 
     type_id = "lists.Merge"
+    nickname, aliases = "Merge", ("Entwine", "combine", "join lists")
     inputs = (
         In("D1", GENERIC, "D1", "The first data; its items come first.", access=TREE,
            optional=True),
@@ -76,6 +79,7 @@ class Partition(Node):
     """
 
     type_id = "lists.Partition"
+    nickname, aliases = "Part", ("Partition List", "chunk", "split list")
     inputs = (
         In("List", GENERIC, "L", "The list to cut up.", access=TREE),
         In("Size", INTEGER, "S", "How many items go in each chunk (1 or more).", access=TREE,

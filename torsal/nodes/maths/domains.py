@@ -16,6 +16,7 @@ class Domain(Node):
     """
 
     type_id = "maths.Domain"
+    nickname, aliases = "Dom", ("Construct Domain", "interval")
     inputs = (
         In("Start", NUMBER, "A", "The number the interval starts at.", default=0.0),
         In("End", NUMBER, "B", "The number the interval ends at.", default=1.0),

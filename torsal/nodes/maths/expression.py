@@ -64,6 +64,7 @@ class Expression(Node):
     """
 
     type_id = "maths.Expression"
+    nickname, aliases = "Expr", ("formula", "Addition", "Multiplication", "Division", "Subtraction")
     widget = Widget.EXPRESSION
     inputs = (_port("x", True), _port("y", True))
     outputs = (

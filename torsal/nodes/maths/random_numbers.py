@@ -20,6 +20,7 @@ class Random(Node):
     """
 
     type_id = "maths.Random"
+    nickname, aliases = "Rnd", ("random numbers",)
     inputs = (
         In("Range", DOMAIN, "R", "The interval the numbers fall in.", default=Domain(0.0, 1.0)),
         In("Number", INTEGER, "N", "How many numbers to make (0 or more).", default=10,

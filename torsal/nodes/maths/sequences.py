@@ -19,6 +19,7 @@ class Series(Node):
     """
 
     type_id = "maths.Series"
+    nickname, aliases = "Series", ("arithmetic sequence", "count up")
     inputs = (
         In("Start", NUMBER, "S", "The first number of the series.", default=0.0),
         In("Step", NUMBER, "N", "The difference between neighbouring numbers.", default=1.0),
@@ -41,6 +42,7 @@ class Range(Node):
     """
 
     type_id = "maths.Range"
+    nickname, aliases = "Range", ("divide domain",)
     inputs = (
         In("Domain", DOMAIN, "D", "The interval to divide, from its start to its end.",
            default=Domain(0.0, 1.0)),

@@ -23,6 +23,7 @@ class Panel(Node):
     """
 
     type_id = "params.Panel"
+    nickname, aliases = "Panel", ("text", "note", "show", "display value")
     widget = Widget.PANEL
     inputs = (
         In("Input", GENERIC, "I", "Data to show and pass on; leave unwired to use the text.",

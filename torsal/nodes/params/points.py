@@ -19,6 +19,7 @@ class Point(Node):
     """
 
     type_id = "params.Point"
+    nickname, aliases = "Pt", ("Construct Point", "Point XYZ", "xyz")
     inputs = (
         In("X", NUMBER, "X", "Distance along the X axis, in model units.", default=0.0,
            access=LIST, arrays=True),

@@ -54,6 +54,7 @@ class NumberSlider(Node):
     """
 
     type_id = "params.NumberSlider"
+    nickname, aliases = "Num", ("Number", "slider")
     widget = Widget.SLIDER
     outputs = (Out("Value", NUMBER, "V", "The slider's number, in model units or as a ratio."),)
     settings_spec = (
@@ -82,6 +83,7 @@ class IntegerSlider(Node):
     """
 
     type_id = "params.IntegerSlider"
+    nickname, aliases = "Int", ("Integer", "count slider")
     widget = Widget.SLIDER
     outputs = (Out("Value", INTEGER, "V", "The slider's whole number, e.g. a count of segments."),)
     settings_spec = (
@@ -106,6 +108,7 @@ class Toggle(Node):
     """
 
     type_id = "params.Toggle"
+    nickname, aliases = "Tgl", ("Boolean Toggle", "boolean", "switch")
     widget = Widget.TOGGLE
     outputs = (Out("Value", BOOLEAN, "B", "True when the toggle is on."),)
     settings_spec = (Setting("value", bool, False, "Whether the toggle is on."),)

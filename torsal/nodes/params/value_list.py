@@ -26,6 +26,7 @@ class ValueList(Node):
     """
 
     type_id = "params.ValueList"
+    nickname, aliases = "List", ("Value List", "dropdown", "preset")
     widget = Widget.VALUE_LIST
     outputs = (Out("Value", GENERIC, "V", "The value of the selected item."),)
     settings_spec = (

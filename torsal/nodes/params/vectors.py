@@ -21,6 +21,7 @@ class Vector(Node):
     """
 
     type_id = "params.Vector"
+    nickname, aliases = "Vec", ("Vector XYZ", "Construct Vector")
     inputs = (
         In("X", NUMBER, "X", "Component along the X axis, in model units.", default=0.0,
            access=LIST, arrays=True),
@@ -81,6 +82,7 @@ class UnitX(_Unit):
     """A vector along the X axis, Factor long: (Factor, 0, 0)."""
 
     type_id = "params.UnitX"
+    nickname, aliases = "X", ("X axis",)
     axis = 0
     inputs = (_factor("X"),)
     outputs = (Out("Vector", VECTOR, "V", "The vector (Factor, 0, 0), one for each Factor.", access=LIST),)
@@ -90,6 +92,7 @@ class UnitY(_Unit):
     """A vector along the Y axis, Factor long: (0, Factor, 0)."""
 
     type_id = "params.UnitY"
+    nickname, aliases = "Y", ("Y axis",)
     axis = 1
     inputs = (_factor("Y"),)
     outputs = (Out("Vector", VECTOR, "V", "The vector (0, Factor, 0), one for each Factor.", access=LIST),)
@@ -99,6 +102,7 @@ class UnitZ(_Unit):
     """A vector along the Z axis, Factor long: (0, 0, Factor)."""
 
     type_id = "params.UnitZ"
+    nickname, aliases = "Z", ("Z axis", "up")
     axis = 2
     inputs = (_factor("Z"),)
     outputs = (Out("Vector", VECTOR, "V", "The vector (0, 0, Factor), one for each Factor.", access=LIST),)

@@ -29,6 +29,7 @@ class StaggeredPattern(Node):
     """
 
     type_id = "patching.StaggeredPattern"
+    nickname, aliases = "Stagger", ("panel pattern", "brick", "running bond")
     inputs = (
         In("Width", NUMBER, "W", "Panel width along X, model units.", default=2.0),
         In("Height", NUMBER, "H", "Panel height along Y (one row), model units.", default=1.0),

@@ -106,6 +106,7 @@ class SurfacePatching(Node):
     """
 
     type_id = "patching.SurfacePatching"
+    nickname, aliases = "Patch", ("panel", "panels", "panelling", "paneling", "Paneling Tools")
     inputs = (
         In("Surface", SURFACE, "S", "The 3D developable the Development was unrolled from.",
            optional=True),

@@ -48,6 +48,7 @@ class EvaluateSurface(Node):
     """
 
     type_id = "surfaces.EvaluateSurface"
+    nickname, aliases = "EvalSrf", ("point on surface", "surface frame", "Surface Frames")
     inputs = (SURFACE_INPUT, UV_INPUT)
     outputs = (
         Out("Point", POINT, "P", "The point at (u, v)."),
@@ -76,6 +77,7 @@ class SurfaceCurvature(Node):
     """
 
     type_id = "surfaces.SurfaceCurvature"
+    nickname, aliases = "SrfCrv", ("principal curvature", "gaussian curvature", "mean curvature")
     inputs = (SURFACE_INPUT, UV_INPUT)
     outputs = (
         Out("Point", POINT, "P", "The point at (u, v)."),
@@ -115,6 +117,7 @@ class Isocurve(Node):
     """
 
     type_id = "surfaces.Isocurve"
+    nickname, aliases = "Iso", ("Iso Curve", "isoparametric curve", "Extract Isocurve")
     inputs = (SURFACE_INPUT, UV_INPUT)
     outputs = (
         Out("U", CURVE, "U", "The curve along u through the point."),
@@ -145,6 +148,7 @@ class SurfaceEdges(Node):
     """
 
     type_id = "surfaces.SurfaceEdges"
+    nickname, aliases = "Edges", ("Brep Edges", "boundary", "naked edges")
     inputs = (SURFACE_INPUT,)
     outputs = (Out("Edges", CURVE, "E", "Edges 0 to 3, in the order above.", access=LIST),)
 
@@ -174,6 +178,7 @@ class Area(Node):
     """
 
     type_id = "surfaces.Area"
+    nickname, aliases = "Area", ("Area Centroid", "centroid")
     inputs = (In("Geometry", GENERIC, "G", "A surface, a mesh or a closed planar curve."),)
     outputs = (
         Out("Area", NUMBER, "A", "The area, in square model units."),

@@ -52,6 +52,7 @@ class Loft(Node):
     """
 
     type_id = "surfaces.Loft"
+    nickname, aliases = "Loft", ("skin", "Loft Curves")
     inputs = (In("Curves", CURVE, "C", "The section curves, in order (at least 2).", access=LIST),)
     outputs = (Out("Surface", SURFACE, "S", "The lofted NURBS surface."),)
 
@@ -87,6 +88,7 @@ class RuledSurface(Node):
     """
 
     type_id = "surfaces.RuledSurface"
+    nickname, aliases = "Rule", ("ruled", "two curve surface")
     inputs = (
         In("CurveA", CURVE, "A", "The first rail: the edge v = 0."),
         In("CurveB", CURVE, "B", "The second rail: the edge v = 1."),
@@ -183,6 +185,7 @@ class NurbsSurface(Node):
     """
 
     type_id = "surfaces.NurbsSurface"
+    nickname, aliases = "SrfGrid", ("Surface From Points", "control point surface")
     inputs = (
         In("Points", POINT, "P", "The grid: a list read with UCount, or one branch per row.",
            access=TREE),
@@ -256,6 +259,7 @@ class ParametricSurface(Node):
     """
 
     type_id = "surfaces.ParametricSurface"
+    nickname, aliases = "ParSrf", ("function surface",)
     inputs = (
         In("X", TEXT, "X", "Formula in u and v for the X coordinate.", default="u"),
         In("Y", TEXT, "Y", "Formula in u and v for the Y coordinate.", default="v"),

@@ -22,6 +22,7 @@ class MeshSurface(Node):
     """
 
     type_id = "surfaces.MeshSurface"
+    nickname, aliases = "MeshSrf", ("mesh to surface",)
     inputs = (In("Mesh", MESH, "M", "The triangle mesh."),)
     outputs = (Out("Surface", MESH_SURFACE, "S", "The mesh as a surface."),)
 

@@ -58,6 +58,7 @@ class Sphere(Node):
     """
 
     type_id = "surfaces.Sphere"
+    nickname, aliases = "Sph", ("ball",)
     inputs = (
         In("Plane", PLANE, "P", PLANE_INPUT, default=WORLD_XY),
         In("Radius", NUMBER, "R", "Distance from the centre, in model units (positive).", default=1.0),
@@ -82,6 +83,7 @@ class Torus(Node):
     """
 
     type_id = "surfaces.Torus"
+    nickname, aliases = "Torus", ("ring", "donut")
     inputs = (
         In("Plane", PLANE, "P", PLANE_INPUT, default=WORLD_XY),
         In("MajorRadius", NUMBER, "R", "From the centre to the middle of the tube (positive).",
@@ -111,6 +113,7 @@ class Cylinder(Node):
     """
 
     type_id = "surfaces.Cylinder"
+    nickname, aliases = "Cyl", ("cylinder surface",)
     inputs = (
         In("Plane", PLANE, "P", "The base: its origin is the centre of the bottom circle.",
            default=WORLD_XY),
@@ -137,6 +140,7 @@ class Cone(Node):
     """
 
     type_id = "surfaces.Cone"
+    nickname, aliases = "Cone", ("cone surface",)
     inputs = (
         In("Plane", PLANE, "P", "The base: its origin is the centre of the base circle.",
            default=WORLD_XY),

@@ -24,6 +24,7 @@ class Array(Node):
     """
 
     type_id = "transform.Array"
+    nickname, aliases = "ArrLin", ("Linear Array", "copy")
     inputs = (
         In("Geometry", GENERIC, "G", f"What to copy: {SUPPORTED}."),
         In("Direction", VECTOR, "D", "The step between neighbouring copies.",
@@ -49,6 +50,7 @@ class PolarArray(Node):
     """
 
     type_id = "transform.PolarArray"
+    nickname, aliases = "ArrPolar", ("radial array",)
     inputs = (
         In("Geometry", GENERIC, "G", f"What to copy: {SUPPORTED}."),
         In("Plane", PLANE, "P", "The axis: the plane's normal through its origin.", default=WORLD_XY),

@@ -43,6 +43,7 @@ class Move(_Transform):
     """
 
     type_id = "transform.Move"
+    nickname, aliases = "Move", ("translate",)
     inputs = (
         GEOMETRY,
         In("Motion", VECTOR, "T", "How far and which way to move, in model units.",
@@ -62,6 +63,7 @@ class Rotate(_Transform):
     """
 
     type_id = "transform.Rotate"
+    nickname, aliases = "Rot", ("turn",)
     inputs = (
         GEOMETRY,
         In("Angle", NUMBER, "A", "Rotation angle in radians, counter-clockwise about the normal.",
@@ -84,6 +86,7 @@ class Scale(_Transform):
     """
 
     type_id = "transform.Scale"
+    nickname, aliases = "Scale", ("Scale Uniform",)
     inputs = (
         GEOMETRY,
         In("Centre", POINT, "C", "The point that stays where it is.", default=Point(0, 0, 0)),
@@ -104,6 +107,7 @@ class ScaleNonUniform(_Transform):
     """
 
     type_id = "transform.ScaleNonUniform"
+    nickname, aliases = "ScaleNU", ("Scale NU", "Scale Non Uniform")
     inputs = (
         GEOMETRY,
         In("Plane", PLANE, "P", "The axes to scale along; its origin stays put.", default=WORLD_XY),
@@ -126,6 +130,7 @@ class Mirror(_Transform):
     """
 
     type_id = "transform.Mirror"
+    nickname, aliases = "Mirror", ("reflect",)
     inputs = (
         GEOMETRY,
         In("Plane", PLANE, "P", "The mirror plane.", default=WORLD_YZ),
@@ -144,6 +149,7 @@ class Orient(_Transform):
     """
 
     type_id = "transform.Orient"
+    nickname, aliases = "Orient", ("plane to plane",)
     inputs = (
         GEOMETRY,
         In("Source", PLANE, "A", "The plane the geometry is placed relative to.", default=WORLD_XY),

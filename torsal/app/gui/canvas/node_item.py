@@ -25,7 +25,7 @@ from torsal.app.gui.canvas.inline_widgets import InlineWidget, widget_for
 from torsal.app.gui.canvas.layout import TITLE_H, NodeLayout, compute_layout
 from torsal.app.gui.canvas.port_item import PortItem
 from torsal.app.gui.formatting import MODIFIER_MARKS, format_item
-from torsal.app.gui.icons import node_letters, paint_letter_tile, palette_colour
+from torsal.app.gui.icons import paint_node_icon
 from torsal.engine.cluster import is_cluster
 from torsal.engine.graph import Graph, NodeRecord, is_placeholder
 from torsal.engine.solver import NodeResult
@@ -45,6 +45,7 @@ class NodeItem(QGraphicsRectItem):
     """
 
     title_font = theme.ui_font(8.5, bold=True)
+    badge_font = theme.ui_font(7.0, bold=True)
     port_font = theme.ui_font(8.0)
     mono_font = theme.mono_font(8.0)
 
@@ -190,10 +191,10 @@ class NodeItem(QGraphicsRectItem):
 
     def drawn_state(self) -> tuple[str, str]:
         """What of the result the node draws: its state (the body colour) and the worst
-        level of its messages (the balloon)."""
+        level and the count of its messages (the balloon)."""
         messages = self.result.messages if self.result is not None else ()
         worst = max(m.level for m in messages).name if messages else ""
-        return self.state, worst
+        return self.state, f"{worst}{len(messages)}" if messages else ""
 
     def size(self) -> tuple[float, float]:
         return (self.layout.width, self.layout.height)
@@ -301,18 +302,18 @@ class NodeItem(QGraphicsRectItem):
                 slot.label_rect, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, slot.text
             )
         if layout.icon_rect is not None:
-            cls = type(self.record.node)
-            palette = self.record.type_id.partition(".")[0]
-            letters = node_letters(cls) if not is_placeholder(self.record.node) else "?"
-            paint_letter_tile(painter, layout.icon_rect, letters, palette_colour(palette))
+            node = self.record.node
+            paint_node_icon(painter, layout.icon_rect, type(node), is_placeholder(node))
         if self.widget is not None and layout.widget_rect is not None:
             self.widget.paint(painter, layout.widget_rect)
         self._paint_badge(painter)
 
     def _paint_badge(self, painter: QPainter) -> None:
-        """A balloon at the top-right corner when the node has something to say."""
+        """A balloon at the top-right corner when the node has something to say: coloured by
+        its worst level, holding how many messages there are (hover the node to read them)."""
         if self.result is None or not self.result.messages:
             return
+        count = len(self.result.messages)
         worst = max(m.level for m in self.result.messages).name.lower()
         colour = theme.MESSAGE_COLOURS.get(worst, QColor("#606060"))
         centre = QPointF(self.layout.width - 10, TITLE_H / 2)
@@ -321,11 +322,11 @@ class NodeItem(QGraphicsRectItem):
         painter.setBrush(colour)
         painter.drawEllipse(centre, 7, 7)
         painter.setPen(QColor("white"))
-        painter.setFont(self.title_font)
+        painter.setFont(self.title_font if count < 10 else self.badge_font)
         painter.drawText(
             QRectF(centre.x() - 7, centre.y() - 7, 14, 14),
             Qt.AlignmentFlag.AlignCenter,
-            "!" if worst != "remark" else "i",
+            str(count) if count < 10 else "9+",
         )
 
     # -- events ----------------------------------------------------------------------

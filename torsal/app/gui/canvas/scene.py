@@ -30,6 +30,7 @@ from torsal.app.gui.graph_order import fresh_id
 from torsal.app.gui.qt_compat import defer
 from torsal.app.gui.solve_controller import SolveOutcome
 from torsal.engine.cluster import INPUT_TYPE, OUTPUT_TYPE, ClusterInput, ClusterOutput, is_cluster
+from torsal.engine.cluster_edits import definition_of
 from torsal.engine.events import (
     NODE_REDRAWN,
     GroupEvent,
@@ -438,7 +439,7 @@ class CanvasScene(QGraphicsScene):
 
     def edit_cluster_ports(self, node_id: str) -> None:
         """The cluster's name and ports: rename, reorder (one undo step)."""
-        definition = self.doc.graph.cluster_definition(node_id)
+        definition = definition_of(self.doc.graph, node_id)
         dialog = ClusterPortsDialog(definition.name, definition.input_names(), definition.output_names())
         if dialog.exec() == ClusterPortsDialog.DialogCode.Accepted:
             self.editor.edit_cluster(

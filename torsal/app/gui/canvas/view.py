@@ -6,9 +6,15 @@ takes it; double-click empty canvas to search; wheel zooms about the cursor; mid
 right drag pans (a right-click without a drag opens the menu of what is under the cursor:
 a port, a node, a group, the canvas); left drag on empty canvas selects with a box;
 Alt-drag duplicates.
+
+Selection, as in Grasshopper, for a click on a node and for a box alike: a plain click or
+box replaces the selection, Shift adds to it, Ctrl removes from it, Ctrl+Shift toggles.
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from PySide6.QtCore import QMimeData, QPoint, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import (
@@ -30,19 +36,61 @@ from torsal.app.gui import theme
 from torsal.app.gui.canvas import context_menus
 from torsal.app.gui.canvas.group_item import GroupItem
 from torsal.app.gui.canvas.node_item import NodeItem
+from torsal.app.gui.canvas.opening_focus import focus_regions
 from torsal.app.gui.canvas.port_item import PortItem
 from torsal.app.gui.canvas.scene import CanvasScene
 from torsal.app.gui.canvas.wire_item import DragWire, WireItem
 from torsal.app.gui.fuzzy import Entry
 from torsal.app.gui.search_popup import SearchPopup
+from torsal.app.gui.theme import palette_order
+from torsal.app.gui.wire_ranking import rank_for_wire
 from torsal.engine.types import can_cast, get_type
 
 NODE_MIME = "application/x-torsal-node-type"
 ZOOM_STEP = 1.15
 ZOOM_RANGE = (0.15, 4.0)
 READABLE_ZOOM = 0.75  # below this the 8-point labels cannot be read
+OPENING_ZOOM = 0.6  # an opened file is shown whole only when it can be read at this zoom
 PAN_THRESHOLD = 4
 WIRE_REACH = 4.0  # view pixels either side of a wire that a right-click still finds it
+
+
+def selection_operation(modifiers: Qt.KeyboardModifier) -> str:
+    """What a click or box with ``modifiers`` does to the selection: "replace", "add",
+    "remove" or "toggle" (Grasshopper's Shift, Ctrl and Ctrl+Shift)."""
+    shift = bool(modifiers & Qt.KeyboardModifier.ShiftModifier)
+    ctrl = bool(modifiers & Qt.KeyboardModifier.ControlModifier)
+    if shift and ctrl:
+        return "toggle"
+    if shift:
+        return "add"
+    if ctrl:
+        return "remove"
+    return "replace"
+
+
+def _combine(operation: str, before: set[QGraphicsItem], touched: set[QGraphicsItem]) -> set[QGraphicsItem]:
+    if operation == "add":
+        return before | touched
+    if operation == "remove":
+        return before - touched
+    if operation == "toggle":
+        return before ^ touched
+    return set(touched)
+
+
+def _without_modifiers(event: QMouseEvent) -> QMouseEvent:
+    """The same mouse event with no keyboard modifiers (Qt's own Ctrl-toggles rule must not
+    run: the view applies Grasshopper's)."""
+    return QMouseEvent(
+        event.type(),
+        event.position(),
+        event.scenePosition(),
+        event.globalPosition(),
+        event.button(),
+        event.buttons(),
+        Qt.KeyboardModifier.NoModifier,
+    )
 
 
 class CanvasView(QGraphicsView):
@@ -75,6 +123,10 @@ class CanvasView(QGraphicsView):
         self._place_at = QPointF()
         self._last_mouse: QPoint | None = None
         self._menu_on_release = False
+        # a Shift/Ctrl click or box in progress: the operation, the selection before it, and
+        # (for a click) the selection it made, restored after Qt's own release handling
+        self._selecting: tuple[str, set[QGraphicsItem]] | None = None
+        self._click_selection: set[QGraphicsItem] | None = None
         self.viewport().setMouseTracking(True)  # the Menu key opens the menu under the mouse
         popup.chosen.connect(self._place_chosen)
         popup.dismissed.connect(self._forget_pending_wire)
@@ -125,6 +177,49 @@ class CanvasView(QGraphicsView):
             )
         else:
             self.centerOn(rect.center())
+
+    def frame_opened(self) -> None:
+        """Frame a file just opened: the whole graph when it can be read at
+        :data:`OPENING_ZOOM` or more, otherwise the widest region around its last (most
+        downstream) previewed nodes that can (:func:`~.opening_focus.focus_regions`), and
+        at worst the last node itself at that zoom."""
+        rect = self.canvas.items_rect()
+        if rect.isNull():
+            return
+        zoom, margin = self._fit(rect)
+        if zoom >= OPENING_ZOOM:
+            self._show(margin, min(zoom, 1.25))
+            return
+        x_of = {n: item.pos().x() for n, item in self.canvas.nodes.items()}
+        regions = focus_regions(self.canvas.doc.graph, x_of)
+        boxes = [self._nodes_rect(region) for region in regions]
+        boxes = [box for box in boxes if not box.isNull()]
+        for box in boxes:
+            zoom, margin = self._fit(box)
+            if zoom >= OPENING_ZOOM:
+                self._show(margin, min(zoom, 1.0))
+                return
+        self._show(boxes[-1] if boxes else rect, OPENING_ZOOM)
+
+    def _nodes_rect(self, node_ids: set[str]) -> QRectF:
+        rect = QRectF()
+        for node_id in node_ids:
+            item = self.canvas.nodes.get(node_id)
+            if item is not None:
+                rect = rect.united(item.sceneBoundingRect())
+        return rect
+
+    def _fit(self, rect: QRectF) -> tuple[float, QRectF]:
+        """The zoom that shows ``rect`` with a margin, and that margin rectangle."""
+        margin = rect.adjusted(-30, -30, 30, 30)
+        view = self.viewport().rect()
+        zoom = min(view.width() / max(margin.width(), 1.0), view.height() / max(margin.height(), 1.0))
+        return zoom, margin
+
+    def _show(self, rect: QRectF, zoom: float) -> None:
+        self.resetTransform()
+        self.scale(zoom, zoom)
+        self.centerOn(rect.center())
 
     def _port_at(self, view_pos: QPoint) -> PortItem | None:
         for item in self.items(view_pos):
@@ -196,7 +291,71 @@ class CanvasView(QGraphicsView):
                 self._start_alt_drag(node, self.mapToScene(pos))
                 event.accept()
                 return
+            operation = selection_operation(event.modifiers())
+            if operation != "replace":
+                self._modified_press(event, node, operation)
+                return
         super().mousePressEvent(event)
+
+    def _modified_press(self, event: QMouseEvent, node: NodeItem | None, operation: str) -> None:
+        """A Shift/Ctrl press: on a node it changes that node's selection (and a drag then
+        moves what is selected); on empty canvas it begins a box with that operation."""
+        before = set(self.canvas.selectedItems())
+        if node is None:
+            self._selecting = (operation, before)
+            with self._quiet_selection():  # Qt starts its box, clearing the selection
+                super().mousePressEvent(_without_modifiers(event))
+            self._apply_selection(before, announce=True)
+            return
+        wanted = _combine(operation, before, {node})
+        self._apply_selection(wanted)
+        self._click_selection = wanted
+        if node in wanted:  # a drag from here moves the selection
+            super().mousePressEvent(_without_modifiers(event))
+        event.accept()
+
+    @contextmanager
+    def _quiet_selection(self) -> Iterator[None]:
+        """Qt's own selection changes inside are not announced (the view announces its own)."""
+        blocked = self.canvas.blockSignals(True)
+        try:
+            yield
+        finally:
+            self.canvas.blockSignals(blocked)
+
+    def _apply_selection(self, items: set[QGraphicsItem], announce: bool = False) -> None:
+        """Select exactly ``items`` with one ``selectionChanged`` (none when nothing changes,
+        unless ``announce``: Qt changed it quietly just before)."""
+        if set(self.canvas.selectedItems()) == items and not announce:
+            return
+        blocked = self.canvas.blockSignals(True)
+        try:
+            for item in self.canvas.selectedItems():
+                if item not in items:
+                    item.setSelected(False)
+            for item in items:
+                if item.scene() is self.canvas:
+                    item.setSelected(True)
+        finally:
+            self.canvas.blockSignals(blocked)
+        self.canvas.selectionChanged.emit()
+
+    def _band_selection(self, announce: bool = False) -> None:
+        """While a Shift/Ctrl box is dragged: what it touches combined with what was selected."""
+        if self._selecting is None:
+            return
+        operation, before = self._selecting
+        band = self.rubberBandRect()
+        touched: set[QGraphicsItem] = set()
+        if not band.isNull():
+            area = self.mapToScene(band)
+            mode = self.rubberBandSelectionMode()
+            touched = {
+                item
+                for item in self.canvas.items(area, mode)
+                if item.flags() & QGraphicsItem.GraphicsItemFlag.ItemIsSelectable
+            }
+        self._apply_selection(_combine(operation, before, touched), announce)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position().toPoint()
@@ -225,6 +384,14 @@ class CanvasView(QGraphicsView):
                 item.setPos(origin + delta)
             event.accept()
             return
+        if self._selecting is not None:
+            with self._quiet_selection():  # Qt's box replaces the selection: ours follows
+                super().mouseMoveEvent(_without_modifiers(event))
+            self._band_selection(announce=True)
+            return
+        if self._click_selection is not None:
+            super().mouseMoveEvent(_without_modifiers(event))
+            return
         super().mouseMoveEvent(event)
 
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
@@ -249,6 +416,21 @@ class CanvasView(QGraphicsView):
             self.canvas.commit_moves()
             self.canvas.doc.undo_stack.endMacro()
             event.accept()
+            return
+        if event.button() == Qt.MouseButton.LeftButton and (
+            self._selecting is not None or self._click_selection is not None
+        ):
+            self._band_selection()
+            wanted = self._click_selection if self._click_selection is not None else None
+            if wanted is None and self._selecting is not None:
+                wanted = set(self.canvas.selectedItems())
+            self._selecting = None
+            self._click_selection = None
+            with self._quiet_selection():  # Qt's release of a still click selects only it
+                super().mouseReleaseEvent(_without_modifiers(event))
+            if wanted is not None:
+                self._apply_selection(wanted, announce=True)
+            self.canvas.commit_moves()
             return
         super().mouseReleaseEvent(event)
         if event.button() == Qt.MouseButton.LeftButton:
@@ -356,8 +538,8 @@ class CanvasView(QGraphicsView):
         if end is None:
             if self.itemAt(pos) is None or isinstance(self.itemAt(pos), GroupItem):
                 self._pending_wire = start
-                accept, note = self._type_filter(start)
-                self.open_search(self.mapToScene(pos), global_pos, accept, note)
+                accept, note, rank = self._type_filter(start)
+                self.open_search(self.mapToScene(pos), global_pos, accept, note, rank)
             return
         if end.is_input == start.is_input or end.node_id == start.node_id:
             return
@@ -369,32 +551,40 @@ class CanvasView(QGraphicsView):
             mode = "remove"
         self.canvas.editor.connect(out_port.node_id, out_port.name, in_port.node_id, in_port.name, mode)
 
-    def _type_filter(self, port: PortItem) -> tuple[object, str]:
+    def _type_filter(self, port: PortItem) -> tuple[object, str, object]:
+        """Which nodes a wire dropped from ``port`` may meet, the popup's note, and their
+        ranking (the likeliest first: :mod:`torsal.app.gui.wire_ranking`)."""
         try:
             value_type = get_type(port.type_name)
         except KeyError:
-            return None, ""
+            return None, "", None
+        rank = rank_for_wire(value_type, port.is_output, self.popup.registry, palette_order)
         if port.is_output:
 
             def accept(entry: Entry) -> bool:
                 return any(can_cast(value_type, p.type) for p in entry.cls.inputs)
 
-            return accept, f"Nodes that take {value_type.name}"
+            return accept, f"Nodes that take {value_type.name}", rank
 
         def accept_source(entry: Entry) -> bool:
             return any(can_cast(p.type, value_type) for p in entry.cls.outputs)
 
-        return accept_source, f"Nodes that give {value_type.name}"
+        return accept_source, f"Nodes that give {value_type.name}", rank
 
     def _forget_pending_wire(self) -> None:
         self._pending_wire = None
 
     # -- search and placing ------------------------------------------------------------
     def open_search(
-        self, scene_pos: QPointF, global_pos: QPoint, accept: object = None, note: str = ""
+        self,
+        scene_pos: QPointF,
+        global_pos: QPoint,
+        accept: object = None,
+        note: str = "",
+        rank: object = None,
     ) -> None:
         self._place_at = scene_pos
-        self.popup.open_at(global_pos, accept, note)
+        self.popup.open_at(global_pos, accept, note, rank)
 
     def _place_chosen(self, type_id: str, settings: dict | None = None) -> None:
         pending, self._pending_wire = self._pending_wire, None

@@ -72,6 +72,7 @@ class ViewportPanel(QWidget):
         doc.solves.partial.connect(self._on_partial)
         doc.graph_changed.connect(self._on_graph_event)
         doc.graph_replaced.connect(self._on_replaced)
+        doc.context_changed.connect(self._on_context)  # a cluster entered or left: the model outside, dimmed
         # an edit of many nodes (deleting 1,000) refreshes once, when its undo command has
         # run (or on the next event-loop turn for an edit made outside the undo stack)
         self._refresh_due = False
@@ -151,6 +152,13 @@ class ViewportPanel(QWidget):
         if self.preview is not None:
             self.preview.clear()
             self.refresh()
+
+    def _on_context(self) -> None:
+        if self.plotter is not None:
+            from torsal.app.gui.viewport.outside import show_outside
+
+            show_outside(self.plotter, self.doc)
+            self.schedule_render()
 
     def _on_results(self, outcome: SolveOutcome) -> None:
         self.refresh(outcome.prepared)

@@ -23,7 +23,6 @@ from torsal.app.gui.viewport.datasets import (
 )
 from torsal.engine.graph import Graph
 from torsal.engine.solver import NodeResult
-from torsal.engine.widgets import Widget
 
 PREFIX = "preview:"
 
@@ -92,7 +91,7 @@ def previewed(graph: Graph, results: dict[str, NodeResult]) -> set[str]:
     return {
         node_id
         for node_id, record in graph.nodes.items()
-        if record.preview and record.enabled and record.node.widget is not Widget.PANEL and node_id in results
+        if record.shows_geometry and node_id in results
     }
 
 

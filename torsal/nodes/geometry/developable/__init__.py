@@ -14,7 +14,7 @@ Arrays in, arrays out, numpy/scipy only; the node layer wraps these.
 """
 
 from .direct import Rulings, cone_rulings, cylinder_rulings, tangent_developable_rulings
-from .ruling import RulingResult, ruling_developable
+from .ruling import RulingResult, ruling_developable, ruling_developables
 from .stations import LengthMap, station_parameters
 from .warp import edge_tangents, in_plane_tangent, warp_angles, warp_of_rulings
 
@@ -27,6 +27,7 @@ __all__ = [
     "edge_tangents",
     "in_plane_tangent",
     "ruling_developable",
+    "ruling_developables",
     "station_parameters",
     "tangent_developable_rulings",
     "warp_angles",

@@ -4,14 +4,15 @@ For each station s on A the torsal partners are the roots t of
 f_s(t) = det[B(t) − A(s), A'(s), B'(t)] (see :mod:`.ruling` for the geometry). This
 module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
 
-- :func:`find_candidates` — brackets from one thin matrix product of f over all
+- :func:`find_all` — brackets from one thin matrix product of f over all
   station–sample pairs (:func:`_brackets`), judged and split by the certified isolation
   (:mod:`.isolation`) until each holds provably no root, one simple root or a double
   root, refined to rounding (:mod:`.brackets`); plus the roots at corners of B and the
   ends of flat runs. Each candidate carries its branch slope dt/ds and whether its
-  normals are consistently oriented.
-- :func:`choose` — one consistently oriented candidate per station with t never
-  decreasing (:mod:`.selection`).
+  normals are consistently oriented. Several strips are searched at once: each has its
+  own matrix, and the isolation and refinement of all their intervals run together.
+- :func:`choose` (:func:`choose_all` for several strips) — one consistently oriented
+  candidate per station with t never decreasing (:mod:`.selection`).
 - :func:`near_partners` — for stations left without one, a partner whose warp is
   within the tolerance (the plain loft's or the least-warped sample of B), if any.
 """
@@ -19,6 +20,7 @@ module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
 from __future__ import annotations
 
 from bisect import bisect_right
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -26,10 +28,11 @@ import numpy as np
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import _einsum, cross, dot, extent, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
+from .stack import Stack, evaluate_each
 from .strip import Grid, Strip
 from .warp import in_plane_tangent, warp_angles
 
@@ -205,13 +208,33 @@ class Candidates:
 _FIELDS = tuple(Candidates.__dataclass_fields__)
 
 
-def find_candidates(
-    curve_b: Curve, grid: Grid, a0: FloatArray, a1: FloatArray, a2: FloatArray
-) -> Candidates:
-    """All candidate partners of all stations: refined roots (every root of f, isolated
-    with the guarantee of :mod:`.isolation`), corner roots, flat-run ends."""
+@dataclass
+class _Found:
+    """One strip's partner search up to its isolation: the sifted intervals (as the first
+    pieces to judge, their columns and the rulings to their ends), corner intervals and
+    runs of zero samples."""
+
+    strip: Strip
+    units: FloatArray  #: A's unit tangents at the stations
+    bounds: IntervalBounds
+    first: Pieces
+    curvature: FloatArray  #: the first pieces' bounds of f''
+    cols: IntArray
+    lengths: FloatArray  #: (2, k) the rulings' lengths at both ends of the intervals
+    corner_rows: IntArray
+    corner_cols: IntArray
+    run_rows: IntArray
+    run_first: IntArray
+    run_last: IntArray
+    flat: BoolArray  #: which runs are flat (of positive extent)
+
+
+def _search(strip: Strip) -> _Found:
+    """Brackets from the matrix of f (:func:`_brackets`), corners and zero runs: one strip's
+    search before its isolation."""
+    grid, a0 = strip.grid, strip.a0
     m = len(grid.t)
-    units = unit(a1)
+    units = unit(strip.a1)
     positions = np.concatenate([a0, grid.points])
     diameter = float(norm(extent(positions)))
     bounds = grid.interval_bounds(diameter)
@@ -235,7 +258,6 @@ def find_candidates(
         run_rows, run_first = np.divmod(z[run_start], m)
         run_last = z[run_end] % m
     flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
-
     # judge what the sift left (it used the rulings' own lengths), subdividing where a
     # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
     # (at both ends at once, B'' at the far end as seen from the left)
@@ -245,29 +267,69 @@ def find_candidates(
     none = np.empty(0)
     f_low, f_high = f_ends
     first = Pieces(rows, grid.at.take(cols), grid.at.take(cols_next), f_low, f_high, *d_ends, *([none] * 7))
+    return _Found(strip, units, bounds, first, bounds.curvature.take(cols), cols, lengths, corner_rows,
+                  corner_cols, run_rows, run_first, run_last, flat)
+
+
+def _piece_ends(found: _Found, index: IntArray) -> dict[str, FloatArray]:
+    """The B-data of the first pieces ``index`` of one strip (see :func:`.isolation.isolate`)."""
+    grid, bounds = found.strip.grid, found.bounds
+    c = found.cols[index]
+    c_next = c + 1
+    # (a row's length is the same computed alone or among others)
+    return {
+        "speed0": grid.speeds[c],
+        "speed1": grid.speeds[c_next],
+        "second0": grid.second_lengths[c],
+        "second1": grid.left_second_lengths[c_next],
+        "bound3": bounds.third[c],
+        "r0": found.lengths[0, index],
+        "r1": found.lengths[1, index],
+    }
+
+
+def find_all(strips: Sequence[Strip]) -> list[Candidates]:
+    """All candidate partners of all stations of every strip: refined roots (every root of
+    f, isolated with the guarantee of :mod:`.isolation`), corner roots, flat-run ends. Each
+    strip's matrix of f is its own; the isolation and refinement of every strip's
+    intervals run at once (the stations stacked, each strip's B evaluated on its rows)."""
+    searches = [_search(strip) for strip in strips]
+    stations = Stack([len(strip.s) for strip in strips])
+    strip_of = stations.owner()
+    shift = stations.starts
+    a0 = np.concatenate([strip.a0 for strip in strips])
+    a1 = np.concatenate([strip.a1 for strip in strips])
+    a2 = np.concatenate([strip.a2 for strip in strips])
+    units = np.concatenate([found.units for found in searches])
+    first = Pieces(*(
+        np.concatenate([getattr(found.first, name) + (shift[i] if name == "row" else 0)
+                        for i, found in enumerate(searches)]) if name in _BRACKET_FIELDS else np.empty(0)
+        for name in _PIECE_NAMES
+    ))
+    pieces_of = Stack([len(found.first.row) for found in searches])
+    curves = [strip.curve_b for strip in strips]
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
-        c, c_next = cols[index], cols_next[index]
-        return replace(
-            pieces.take(index),
-            # (a row's length is the same computed alone or among others)
-            speed0=grid.speeds[c],
-            speed1=grid.speeds[c_next],
-            second0=grid.second_lengths[c],
-            second1=grid.left_second_lengths[c_next],
-            bound3=bounds.third[c],
-            r0=lengths[0, index],
-            r1=lengths[1, index],
-        )
+        bounds = np.searchsorted(index, pieces_of.offsets).tolist()
+        parts = [
+            _piece_ends(found, index[low:high] - pieces_of.starts[i])
+            for i, (found, low, high) in enumerate(zip(searches, bounds[:-1], bounds[1:], strict=True))
+            if high > low  # (a strip with nothing to judge again reads none of its B-data)
+        ]
+        joined = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+        return replace(pieces.take(index), **joined)
 
-    def evaluate_b(x: FloatArray) -> list[FloatArray]:
-        return curve_b.derivatives(x, 2)
+    def evaluate_b(x: FloatArray, rows: IntArray) -> list[FloatArray]:
+        return evaluate_rows(curves, x, strip_of[rows], 2)
 
-    isolated = isolate(first, bounds.curvature.take(cols), evaluate_b, a0, units, ends)
+    curvature = np.concatenate([found.curvature for found in searches])
+    isolated = isolate(first, curvature, evaluate_b, a0, units, ends, strip_of)
     rows = isolated.rows
+    run_rows = np.concatenate([found.run_rows[~found.flat] + shift[i] for i, found in enumerate(searches)])
+    run_t = np.concatenate([found.strip.grid.t[found.run_first[~found.flat]] for found in searches])
     if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
-        point_rows = np.concatenate([run_rows[~flat], isolated.double_rows])
-        point_t = np.concatenate([grid.t[run_first[~flat]], isolated.double_t])
+        point_rows = np.concatenate([run_rows, isolated.double_rows])
+        point_t = np.concatenate([run_t, isolated.double_t])
     else:
         point_rows, point_t = isolated.double_rows, isolated.double_t
 
@@ -281,9 +343,10 @@ def find_candidates(
     # the stations of the roots, gathered once for every evaluation and what follows
     a0_root, a1_root = a0.take(root_rows, axis=0), a1.take(root_rows, axis=0)
     speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
+    strip_of_root = strip_of[root_rows]
 
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
-        c0, c1, c2 = curve_b.derivatives(x, 2)
+        c0, c1, c2 = evaluate_rows(curves, x, strip_of_root[index], 2)
         plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
         value, slope = dot(plane, np.array([c1, c2]))  # (both products in one)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
@@ -313,13 +376,47 @@ def find_candidates(
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
     slope[jumped] = 0.0
-    nan = np.full(len(root_rows), np.nan)
-    candidates = Candidates(
-        root_rows, root_t, kind, slope, nan, nan, b0, b1, _oriented(rr, aa, bb, ra, rb, ab)
-    )
-    if len(corner_rows) == 0 and not np.count_nonzero(flat):
-        return _in_order(candidates)
+    oriented = _oriented(rr, aa, bb, ra, rb, ab)
+    # each strip's roots (its brackets', then its points'), in the order it finds them alone
+    by_strip = np.argsort(strip_of_root, kind="stable")
+    per_strip = Stack(np.bincount(strip_of_root, minlength=len(strips)))
+    fields = (root_rows - shift[strip_of_root], root_t, kind, slope, b0, b1, oriented)
+    split = [per_strip.split(values[by_strip]) for values in fields]
+    results = []
+    for i, found in enumerate(searches):
+        rows_i, t_i, kind_i, slope_i, b0_i, b1_i, oriented_i = (part[i] for part in split)
+        nan = np.full(len(rows_i), np.nan)
+        candidates = Candidates(rows_i, t_i, kind_i, slope_i, nan, nan, b0_i, b1_i, oriented_i)
+        results.append(_with_extras(found, candidates))
+    return results
 
+
+#: The fields of :class:`.isolation.Pieces` and those a first piece has (the others are
+#: filled in by :func:`_piece_ends` where a piece is judged again).
+_PIECE_NAMES = tuple(Pieces.__dataclass_fields__)
+_BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
+
+
+def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:
+    """Curve ``strip_of[i]``'s points and derivatives up to ``order`` at ``x[i]``, each
+    curve evaluated once at its own parameters (:func:`.stack.evaluate_each`)."""
+    if len(curves) == 1:
+        return curves[0].derivatives(x, order)
+    by_strip = np.argsort(strip_of, kind="stable")
+    bounds = np.searchsorted(strip_of[by_strip], np.arange(len(curves) + 1))
+    grouped = evaluate_each(curves, x[by_strip], bounds, order)
+    out = np.empty((order + 1, len(x), 3))
+    out[:, by_strip] = grouped
+    return list(out)
+
+
+def _with_extras(found: _Found, candidates: Candidates) -> Candidates:
+    """One strip's refined roots with its roots at corners of B and the ends of its flat runs."""
+    if len(found.corner_rows) == 0 and not np.count_nonzero(found.flat):
+        return _in_order(candidates)
+    grid, a0, a1 = found.strip.grid, found.strip.a0, found.strip.a1
+    corner_rows, corner_cols, flat = found.corner_rows, found.corner_cols, found.flat
+    run_rows, run_first, run_last = found.run_rows, found.run_first, found.run_last
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
     corner_points = grid.points[corner_cols + 1]
     corner_tangents = in_plane_tangent(
@@ -407,8 +504,17 @@ def _longest_monotone(t: FloatArray) -> BoolArray:
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
     """The chosen candidate per station (−1 where none) and the consistently oriented
     candidates."""
+    return choose_all([strip])[0]
+
+
+def choose_all(strips: Sequence[Strip]) -> list[tuple[IntArray, Candidates]]:
+    """:func:`choose` of every strip, their candidates found at once (:func:`find_all`)."""
+    return [_choose(strip, found) for strip, found in zip(strips, find_all(strips), strict=True)]
+
+
+def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
+    """One strip's choice among its candidates ``found``."""
     n = len(strip.s)
-    found = find_candidates(strip.curve_b, strip.grid, strip.a0, strip.a1, strip.a2)
     good = found if found.oriented.all() else found.subset(found.oriented)
     chosen = np.full(n, -1, dtype=np.int64)
     if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
@@ -478,10 +584,10 @@ def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) 
     """
     centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
     a, b = a - centre, b - centre
-    aa, bb = _einsum("ij,ij->i", a, a), _einsum("ij,ij->i", b, b)
+    aa, bb = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
     rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
-    ra = ta @ b.T - _einsum("ij,ij->i", a, ta)[:, None]
-    rb = _einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
+    ra = ta @ b.T - np.einsum("ij,ij->i", a, ta)[:, None]
+    rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
     triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
     return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
 

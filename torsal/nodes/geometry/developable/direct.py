@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
 from ..vectors import as_vector, normalise, unit
 from .stations import Spacing, station_parameters
@@ -35,12 +36,6 @@ class Rulings(NamedTuple):
     start_tangents: FloatArray  #: (n, 3) unit tangents of the first edge (zero where undefined)
     end_tangents: FloatArray  #: (n, 3) unit tangents of the second edge (zero where undefined)
     warp: FloatArray  #: (n,) warp angles, rad, from those exact tangents
-
-
-def _check_segments(segments: int) -> int:
-    if int(segments) != segments or segments < 1:
-        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
-    return int(segments)
 
 
 def _finite(value: float, name: str) -> float:
@@ -71,7 +66,7 @@ def cylinder_rulings(
     >>> r.ends.tolist()
     [[0.0, 0.0, 3.0], [0.5, 0.0, 3.0], [1.0, 0.0, 3.0]]
     """
-    n = _check_segments(segments) + 1
+    n = segment_count(segments) + 1
     d = normalise(direction, "cylinder direction")
     h = _finite(height, "The height")
     u = station_parameters(curve, n, spacing)
@@ -94,7 +89,7 @@ def cone_rulings(
     along itself). A clamped ruling ends at the apex, where the edge stands still and
     the tangent is zero.
     """
-    n = _check_segments(segments) + 1
+    n = segment_count(segments) + 1
     p = as_vector(apex)
     h = _finite(height, "The height")
     u = station_parameters(curve, n, spacing)
@@ -135,7 +130,7 @@ def tangent_developable_rulings(
     Raises ``ValueError`` unless ``length > cutting_length`` (and, two-sided,
     ``cutting_length >= 0``, so the sheets do not overlap).
     """
-    n = _check_segments(segments) + 1
+    n = segment_count(segments) + 1
     v_far = _finite(length, "The length")
     v_near = _finite(cutting_length, "The cutting length")
     if not v_far > v_near:

@@ -26,7 +26,9 @@ reversed copies of the curves.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 
@@ -36,6 +38,7 @@ from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
+from .stack import Stack, evaluate_each, sizes
 from .warp import consistently_oriented
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
@@ -78,27 +81,54 @@ def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     the module). Not for a closed B, whose partners may run through its seam. Rulings
     away from the ends keep their parameters bit for bit (and ``rulings`` itself comes
     back where neither end changes)."""
-    if curve_b.closed or rulings.fan.all() or not rulings.fan.any():
-        return rulings
-    runs = [run for run in (_run(rulings, False), _run(rulings, True)) if run is not None]
-    if not runs:
-        return rulings
-    # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); both ends at once
-    through_b = _roots(curve_a, curve_b, runs, moving_a=True)
-    cones: dict[bool, tuple[bool, float]] = {}
-    others = []
-    for run, root in zip(runs, through_b, strict=True):
-        stations = run.source >= 0
-        if root is not None and not (stations & (run.s > root) & (run.s < run.sk)).any():
-            cones[run.reverse] = (False, root)
-        elif not (stations & (run.s > run.s0)).any():
-            others.append(run)  # else the cone through A(s0) could not cover the run's stations
+    return smooth_all([(curve_a, curve_b, rulings)])[0]
+
+
+def smooth_all(strips: Sequence[tuple[Curve, Curve, Rulings]]) -> list[Rulings]:
+    """:func:`smooth_ends` of every strip ``(curve_a, curve_b, rulings)``, the end rulings of
+    all of them solved at once."""
+    done: list[Rulings] = [rulings for _, _, rulings in strips]
+    # per strip its runs: those of the strips whose ends may become cones
+    jobs: list[tuple[int, list[_Run]]] = []
+    for index, (_, curve_b, rulings) in enumerate(strips):
+        if curve_b.closed or rulings.fan.all() or not rulings.fan.any():
+            continue
+        runs = [run for run in (_run(rulings, False), _run(rulings, True)) if run is not None]
+        if runs:
+            jobs.append((index, runs))
+    if not jobs:
+        return done
+    # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); all ends at once
+    through_b = _roots([(strips[i][0], strips[i][1], runs) for i, runs in jobs], moving_a=True)
+    cones: list[dict[bool, tuple[bool, float]]] = []
+    others: list[tuple[int, list[_Run]]] = []
+    for (_, runs), roots in zip(jobs, through_b, strict=True):
+        found: dict[bool, tuple[bool, float]] = {}
+        rest = []
+        for run, root in zip(runs, roots, strict=True):
+            stations = run.source >= 0
+            if root is not None and not (stations & (run.s > root) & (run.s < run.sk)).any():
+                found[run.reverse] = (False, root)
+            elif not (stations & (run.s > run.s0)).any():
+                rest.append(run)  # else the cone through A(s0) could not cover the run's stations
+        cones.append(found)
+        if rest:
+            others.append((len(cones) - 1, rest))
     if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
-        for run, root in zip(others, _roots(curve_a, curve_b, others, moving_a=False), strict=True):
-            if root is not None:
-                cones[run.reverse] = (True, root)
-    if not cones:
-        return rulings
+        through_a = _roots([(*strips[jobs[j][0]][:2], rest) for j, rest in others], moving_a=False)
+        for (j, rest), roots in zip(others, through_a, strict=True):
+            for run, root in zip(rest, roots, strict=True):
+                if root is not None:
+                    cones[j][run.reverse] = (True, root)
+    for (index, runs), found in zip(jobs, cones, strict=True):
+        if found:
+            done[index] = _with_cones(strips[index][2], runs, found)
+    return done
+
+
+def _with_cones(rulings: Rulings, runs: list[_Run], cones: dict[bool, tuple[bool, float]]) -> Rulings:
+    """The rulings with the end runs that have a cone (``cones``, by ``reverse``: whether
+    it is through A and the end ruling's root) made that cone."""
     # the rulings between the ends' runs stay; the first (last) of them is the torsal
     # ruling the head's (tail's) cone joins, and may become that cone's station
     n = len(rulings.s)
@@ -163,45 +193,57 @@ def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulin
     return Rulings(head[0], head[1], head_source, head_fan), source_k
 
 
-def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> list[float | None]:
-    """For each run, the parameter nearest the first torsal ruling of the moving end of a
-    torsal ruling with consistently oriented normals (signed warp near 0, not near π)
-    through the fixed end point — B(t0) when ``moving_a`` (the root in (s0, sk)), else
-    A(s0) (the root in (t0, tk)) — or None.
+def _roots(strips: Sequence[tuple[Curve, Curve, list[_Run]]], moving_a: bool) -> list[list[float | None]]:
+    """For each run of each strip ``(curve_a, curve_b, runs)``, the parameter nearest the
+    first torsal ruling of the moving end of a torsal ruling with consistently oriented
+    normals (signed warp near 0, not near π) through the fixed end point — B(t0) when
+    ``moving_a`` (the root in (s0, sk)), else A(s0) (the root in (t0, tk)) — or None.
 
     Each run's pencil is bracketed on :data:`SAMPLES` samples; all runs' samples are one
-    evaluation of the moving curve, which also tells the orientation
-    (:func:`.warp.consistently_oriented`). Every sign change
-    is then refined at once, by Newton's method inside its bracket on
+    evaluation of each strip's moving curve, which also tells the orientation
+    (:func:`.warp.consistently_oriented`, with each strip's own size). Every sign change
+    of every strip is then refined at once, by Newton's method inside its bracket on
     g = det[B − A, A', B'] (the coplanarity with the curves' own tangents: the same
     roots), with g' = det[R, A'', B'] (or det[R, A', B''] when B moves).
     """
-    moving, still = (curve_a, curve_b) if moving_a else (curve_b, curve_a)
-    offset = curve_b.anchor - curve_a.anchor
+    moving = [(a, b) if moving_a else (b, a) for a, b, _ in strips]
+    runs = [run for _, _, of_strip in strips for run in of_strip]
+    per_strip = Stack([len(of_strip) for _, _, of_strip in strips])
+    strip_of = per_strip.owner()  # (of every run)
+    found: list[float | None] = [None] * len(runs)
+
+    def by_strip(flat: list[float | None]) -> list[list[float | None]]:
+        bounds = per_strip.offsets.tolist()
+        return [flat[low:high] for low, high in pairwise(bounds)]
+
     reverse = np.array([run.reverse for run in runs])
     # per run, the fixed end's parameter and the moving end's interval
     fixed, low, high = np.array(
         [(run.t0, run.s0, run.sk) if moving_a else (run.s0, run.t0, run.tk) for run in runs]
     ).T
-    found: list[float | None] = [None] * len(runs)
     wide = high > low
     if not wide.any():
-        return found
-    q, dq = still.local_derivatives(np.where(reverse, 1.0 - fixed, fixed), 1)
+        return by_strip(found)
+    offset = per_strip.repeat(np.array([b.anchor - a.anchor for a, b, _ in strips]))
+    q, dq = evaluate_each(
+        [m[1] for m in moving], np.where(reverse, 1.0 - fixed, fixed), per_strip.offsets, 1, local=True
+    )
     # (runs, SAMPLES), in each run's parameters, as np.linspace places them
     x = low[:, None] + ((high - low) / (SAMPLES - 1))[:, None] * _STEPS
     x[:, -1] = high
     flip = np.repeat(reverse, SAMPLES)
     u = x.reshape(-1)
-    p, dp, ddp = moving.local_derivatives(np.where(flip, 1.0 - u, u), 2)
+    p, dp, ddp = evaluate_each(
+        [m[0] for m in moving], np.where(flip, 1.0 - u, u), per_strip.offsets * SAMPLES, 2, local=True
+    )
     rows = np.repeat(np.arange(len(runs)), SAMPLES)
 
     def pencil(rows: IntArray, p: FloatArray, dp: FloatArray) -> tuple[FloatArray, ...]:
         """The rulings of the pencils ``rows`` to the moving points ``p`` (tangents ``dp``)
         as ``(a, da, b, db)``, B's points measured in A's local coordinates."""
         if moving_a:
-            return p, dp, q[rows] + offset, dq[rows]
-        return q[rows], dq[rows], p + offset, dp
+            return p, dp, q[rows] + offset[rows], dq[rows]
+        return q[rows], dq[rows], p + offset[rows], dp
 
     def coplanarity(
         rows: IntArray, p: FloatArray, dp: FloatArray, ddp: FloatArray, flip: BoolArray, scaled: bool = True
@@ -213,7 +255,7 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
         if moving_a:  # g' = det[R, A'', B'] (det[−A', A', B'] vanishes)
             plane = cross(r, db)
             g, slope = -dot(plane, da), -dot(plane, ddp)
-        else:  # g' = det[R, A', B''] (det[B', A', B'] vanishes)
+        else:  # g' = det[R, A', B''] (det[B', A', B''] vanishes)
             plane = cross(r, da)
             g, slope = dot(plane, db), dot(plane, ddp)
         slope = np.where(flip, -slope, slope)  # d/dx = −d/du on a run read backwards
@@ -222,14 +264,16 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
 
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         g, slope, _, (a, da, b, db) = coplanarity(rows, p, dp, ddp, flip, scaled=False)
-        oriented = consistently_oriented(a, b, da, db).reshape(x.shape)
+        samples = Stack(per_strip.counts * SAMPLES)
+        size = samples.repeat(sizes(samples, a, b))
+        oriented = consistently_oriented(a, b, da, db, size).reshape(x.shape)
     g, slope = g.reshape(x.shape), slope.reshape(x.shape)
     usable = wide & np.isfinite(g).all(axis=1)
     change = (np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0) & (oriented[:, :-1] | oriented[:, 1:])
     change &= usable[:, None]
     run_of, j = np.nonzero(change)
     if len(run_of) == 0:
-        return found
+        return by_strip(found)
     # the samples before and after each sign change, as flat indices of the (runs, SAMPLES) arrays
     before = run_of * SAMPLES + j
     after = before + 1
@@ -239,10 +283,13 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
     start = cubic_start(x0, x1, g0, g1, slopes[before], slopes[after])
     roots = np.empty(len(run_of))
     at_root = np.empty((4, len(run_of), 3))
+    strip_of_root = strip_of[run_of]
+    curves = [m[0] for m in moving]
 
     def refined(xs: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         back = reverse[run_of[index]]
-        c = moving.local_derivatives(np.where(back, 1.0 - xs, xs), 2)
+        bounds = np.searchsorted(strip_of_root[index], np.arange(len(strips) + 1))
+        c = evaluate_each(curves, np.where(back, 1.0 - xs, xs), bounds, 2, local=True)
         value, value_slope, scale, ends = coplanarity(run_of[index], *c, back)
         roots[index] = xs  # the last evaluated point of each bracket, and its ruling
         at_root[:, index] = ends
@@ -251,8 +298,9 @@ def _roots(curve_a: Curve, curve_b: Curve, runs: list[_Run], moving_a: bool) -> 
     refine_roots(refined, x0, x1, g0, start)
     with np.errstate(invalid="ignore", over="ignore"):
         a, da, b, db = at_root
-        good = consistently_oriented(a, b, da, db)
+        strip_roots = Stack(np.bincount(strip_of_root, minlength=len(strips)))
+        good = consistently_oriented(a, b, da, db, strip_roots.repeat(sizes(strip_roots, a, b)))
     # per run, the root of the last (nearest the torsal ruling) sign change whose root is oriented
-    for i in set(run_of[good].tolist()):  # (at most two runs)
+    for i in set(run_of[good].tolist()):
         found[int(i)] = float(roots[good & (run_of == i)][-1])
-    return found
+    return by_strip(found)

@@ -40,6 +40,9 @@ from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .strip import SIDE, Strip
 
+#: Fractions of a chain's length this close are one in :func:`zigzag`.
+TIE = 1e-9
+
 
 def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArray]:
     """Vertex indices ``(i, j)`` of the rulings of the triangle strip between a chain of
@@ -51,7 +54,10 @@ def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArr
     ([0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
     """
     fa, fb = _fractions(length_a), _fractions(length_b)
-    keys = np.concatenate([fa[1:], fb[1:]])
+    # fractions equal to TIE count as a tie: chains evenly spaced along both curves meet at
+    # equal fractions (1/3 and 1/3) that rounding alone would otherwise order, so that the
+    # triangles of a model moved far from the origin flipped diagonals
+    keys = np.round(np.concatenate([fa[1:], fb[1:]]) / TIE)
     along_b = np.arange(len(keys)) >= len(fa) - 1
     # step to whichever next vertex comes first, A's before B's at a tie
     steps = along_b[np.lexsort((along_b, keys))]

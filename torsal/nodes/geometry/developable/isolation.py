@@ -239,10 +239,11 @@ def _judge(p: Pieces, curvature: FloatArray) -> tuple[BoolArray, BoolArray, Bool
 def isolate(
     first: Pieces,
     curvature: FloatArray,
-    evaluate: Callable[[FloatArray], list[FloatArray]],
+    evaluate: Callable[[FloatArray], list[FloatArray]] | Callable[[FloatArray, IntArray], list[FloatArray]],
     a0: FloatArray,
     a1: FloatArray,
     ends: Callable[[Pieces, IntArray], Pieces] | None = None,
+    strip_of: IntArray | None = None,
 ) -> Isolated:
     """Judge and subdivide the pieces ``first`` (whose f'' bounds are ``curvature``) until
     each is certified (module docstring).
@@ -252,17 +253,27 @@ def isolate(
     given, returns the pieces ``index`` of ``first`` with their B-data (speed and second
     derivative and ruling lengths at both ends, β3) filled in: ``first`` need not carry them, since
     only the few pieces that are split read them.
+
+    With ``strip_of`` (the strip of every station row) the stations are those of several
+    strips, each isolated as if alone: each strip has its own budget of pieces, and
+    ``evaluate(t, rows)`` gets the pieces' station rows too (to evaluate each strip's B).
     """
     found: list[tuple[FloatArray, ...]] = []
     doubles: list[tuple[IntArray, FloatArray]] = []
     pieces = first
-    # the work a curve far outside the guarantee gets (a few intervals may need all levels)
-    budget = max(PIECES_PER_INTERVAL * len(first.row), 8 * MAX_LEVELS)
+    # the work a curve far outside the guarantee gets (a few intervals may need all levels),
+    # per strip
+    count = len(strip_of) and int(strip_of.max()) + 1 if strip_of is not None else 1
+    budget = np.maximum(PIECES_PER_INTERVAL * _per_strip(first.row, strip_of, count), 8 * MAX_LEVELS)
     for level in range(MAX_LEVELS):
-        budget -= len(pieces.row)
-        if budget < 0:  # as when the levels run out (below): what still changes sign is kept
-            found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
-            break
+        budget -= _per_strip(pieces.row, strip_of, count)
+        if (budget < 0).any():  # as when the levels run out (below): what still changes sign is kept
+            spent = budget < 0
+            out = spent if strip_of is None else spent[strip_of[pieces.row]]
+            found.append(pieces.brackets(out & (np.signbit(pieces.f0) != np.signbit(pieces.f1))))
+            if out.all():
+                break
+            curvature, pieces = curvature[~out], pieces.take(~out)
         bracket, touching, uncertain = _judge(pieces, curvature)
         if np.count_nonzero(bracket):  # (a third of what .any() costs on a short mask)
             found.append(pieces.brackets(bracket))
@@ -278,7 +289,10 @@ def isolate(
             curvature = _curvature(pieces)
             continue
         pieces = pieces.take(uncertain)
-        pieces, curvature = _split(pieces, evaluate, a0, a1)
+        if strip_of is None:
+            pieces, curvature = _split(pieces, evaluate, a0, a1)
+        else:
+            pieces, curvature = _split(pieces, lambda x, rows=pieces.row: evaluate(x, rows), a0, a1)
     else:  # levels exhausted (never on curves within the guarantee): keep what changes sign
         found.append(pieces.brackets(np.signbit(pieces.f0) != np.signbit(pieces.f1)))
     if len(found) == 1:  # the usual case: all were judged at once
@@ -298,6 +312,13 @@ def isolate(
     else:
         double_rows, double_t = np.empty(0, dtype=np.int64), np.empty(0)
     return Isolated(rows, low, high, f_low, f_high, d_low, d_high, double_rows, double_t)
+
+
+def _per_strip(rows: IntArray, strip_of: IntArray | None, count: int) -> IntArray:
+    """How many of the pieces of station rows ``rows`` each strip has."""
+    if strip_of is None:
+        return np.array([len(rows)])
+    return np.bincount(strip_of[rows], minlength=count)
 
 
 def _split(

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -42,6 +42,7 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, uncovered
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.warp import curve_warp
@@ -65,7 +66,13 @@ class Strip:
     result: RulingResult
     surface: RuledSurface
     warp: FloatArray  #: per ruling, recomputed from the curves' exact tangents (NaN undefined)
-    deviation: float  #: largest distance of the strip's dense samples from the design
+    deviation: float  #: certified largest distance from the design (:mod:`.certify`)
+    where: FloatArray  #: (3,) the strip's point farthest from the design (of its samples)
+
+    @property
+    def width(self) -> float:
+        """The strip's widest point: its longest ruling."""
+        return float(np.linalg.norm(self.result.ends - self.result.starts, axis=1).max(initial=0.0))
 
 
 @dataclass
@@ -76,6 +83,16 @@ class Rationalisation:
     strips: list[Strip]
     boundaries: list[Curve]  #: len(strips) + 1 curves; strip i lies between i and i + 1
     tolerance: float
+    #: the strips that had to be made MinWidth wide though the tolerance asked for narrower
+    narrow: list[int] = field(default_factory=list)
+    edge_points: FloatArray | None = None  #: samples along the design's edges
+    edge_gaps: FloatArray | None = None  #: each one's distance to the nearest strip
+    creases: list[float] = field(default_factory=list)  #: fold angle (rad) per inner boundary
+
+    @property
+    def coverage(self) -> float:
+        """Largest distance of the design's edge from the strips (0 before it is measured)."""
+        return float(self.edge_gaps.max()) if self.edge_gaps is not None and len(self.edge_gaps) else 0.0
 
     @property
     def deviation(self) -> float:
@@ -84,6 +101,10 @@ class Rationalisation:
     @property
     def within(self) -> bool:
         return self.deviation <= self.tolerance
+
+    @property
+    def covered(self) -> bool:
+        return self.coverage <= self.tolerance
 
 
 def boundary_family(surface: Surface, direction: ArrayLike | None = None, samples: int = 17) -> str:
@@ -120,21 +141,13 @@ def boundary_family(surface: Surface, direction: ArrayLike | None = None, sample
     return "u" if count(svv, sv) <= count(suu, su) else "v"
 
 
-def strip_deviation(
-    design: Surface, strip: RuledSurface, samples: tuple[int, int] = DEVIATION_SAMPLES
-) -> float:
-    """Largest distance from a grid of points of ``strip`` to ``design`` (closest points)."""
-    nu, nv = samples
-    u, v = uv_grid(nu, nv)
-    points = strip.point_at(u, v)
-    return float(design.closest_point(points).distances.max())
-
-
 def strip_between(
     design: Surface, boundaries: Boundaries, lo: float, hi: float, segments: int = 24,
-    warp_tolerance: float = 1e-7,
+    warp_tolerance: float = 1e-7, tolerance: float | None = None,
 ) -> Strip:
-    """The strip between the boundaries at levels ``lo`` and ``hi``, with its warp and deviation."""
+    """The strip between the boundaries at levels ``lo`` and ``hi``, with its warp and its
+    deviation certified against ``tolerance`` (:mod:`.certify`; without one, the bound on
+    the first grid of samples)."""
     check = watch_check()
     if check:
         check()
@@ -142,7 +155,9 @@ def strip_between(
     result = ruling_developable(a, b, segments, warp_tolerance)
     surface = ruled_between(a, result.s, b, result.t)
     warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
-    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), strip_deviation(design, surface))
+    reference = tolerance if tolerance is not None else np.inf
+    deviation = certified_deviation(design, surface, reference)
+    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), deviation.bound, deviation.where)
 
 
 #: Strips are widened to about this share of the tolerance (deviation grows as width²).
@@ -156,11 +171,14 @@ CLOSE = 0.95
 def _march(
     design: Surface, boundaries: Boundaries, start: float, end: float, tolerance: float, max_strips: int,
     segments: int, warp_tolerance: float, progress: Callable[[float], None] | None = None,
+    min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0,
 ) -> list[Strip] | None:
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
-    within). None when more than ``max_strips`` would be needed."""
+    within). Where the tolerance would need a strip narrower than ``min_width`` (at its
+    widest), the strip is made ``min_width`` wide instead and its index (counted from
+    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed."""
     strips: list[Strip] = []
     lo, width = start, end - start
     while lo < end:
@@ -169,8 +187,10 @@ def _march(
         good: Strip | None = None
         bad = end - lo + 1.0  # the smallest width known too wide (none yet)
         w = min(width, end - lo)
+        strip = None
         for trial in range(TRIALS * 4):
-            strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance)
+            strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
+                                  tolerance)
             if strip.deviation <= tolerance:
                 good = strip if good is None or strip.hi > good.hi else good
                 if strip.hi >= end:
@@ -179,19 +199,31 @@ def _march(
                 bad = min(bad, w)
             if good is not None and (trial >= TRIALS - 1 or good.deviation >= CLOSE * tolerance):
                 break
+            if strip.width < 0.5 * min_width:
+                break  # narrower than MinWidth can be made: settled below
             ratio = np.sqrt(AIM * tolerance / max(strip.deviation, 1e-300))
             w_new = w * float(np.clip(ratio, 0.25, 2.0))
             floor = (good.hi - lo) if good is not None else 0.0
             if not floor < w_new < bad:
                 w_new = 0.5 * (floor + min(bad, end - lo))
             w = min(w_new, end - lo)
-            if w <= 1e-6:
+            if w <= 1e-9:
+                break
+        settled = good if good is not None and good.width >= min_width else None
+        if settled is None:
+            # the tolerance needs a strip narrower than MinWidth (or none was found): one
+            # MinWidth wide, by the width per level of the last trial
+            probe = good if good is not None else strip
+            if probe is None or not probe.width > 0.0 or not min_width > 0.0:
                 return None
-        if good is None:
-            return None
-        strips.append(good)
-        width = good.hi - lo
-        lo = good.hi
+            w = min(end - lo, (probe.hi - lo) * min_width / probe.width)
+            settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
+                                    warp_tolerance, tolerance)
+            if settled.deviation > tolerance and narrow is not None:
+                narrow.append(first + len(strips))
+        strips.append(settled)
+        width = settled.hi - lo
+        lo = settled.hi
         if progress is not None:
             progress(lo)
     return strips
@@ -199,7 +231,7 @@ def _march(
 
 def _even(
     design: Surface, boundaries: Boundaries, count: int, segments: int, warp_tolerance: float,
-    progress: Callable[[float], None] | None = None,
+    tolerance: float, progress: Callable[[float], None] | None = None,
 ) -> list[Strip]:
     """About ``count`` strips between evenly spaced boundaries (when the tolerance needs
     more), at least one in each band between guides, the bands' shares by their widths."""
@@ -210,7 +242,8 @@ def _even(
     cuts = np.unique(np.concatenate(pieces))
     strips = []
     for lo, hi in itertools.pairwise(cuts):
-        strips.append(strip_between(design, boundaries, float(lo), float(hi), segments, warp_tolerance))
+        strips.append(strip_between(design, boundaries, float(lo), float(hi), segments, warp_tolerance,
+                                    tolerance))
         if progress is not None:
             progress(float(hi))
     return strips
@@ -225,6 +258,7 @@ def rationalise(
     warp_tolerance: float = 1e-7,
     progress: Callable[[float], None] | None = None,
     guides: Sequence[Curve] = (),
+    min_width: float = 0.0,
 ) -> Rationalisation:
     """Developable strips within ``tolerance`` of ``design`` (see the module).
 
@@ -232,33 +266,39 @@ def rationalise(
     through them and blend between them (:mod:`.guided`); ``direction`` is then unused.
     Raises ``ValueError`` for a design closed across the boundaries (cut it first) and for
     guides that cannot be followed (saying which). ``progress`` is called with the share
-    of the design covered so far (0 to 1).
+    of the design covered so far (0 to 1). Strips are at least ``min_width`` wide (at
+    their widest) even where the tolerance would need narrower ones (listed in ``narrow``).
     """
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
+    if design.closed_u or design.closed_v:
+        raise ValueError(
+            "the surface is closed (a tube or a ring): cut it first — split it at its seam into open "
+            "patches (cut it open) and rationalise each patch"
+        )
     if guides:
         family_of: Boundaries = guided_boundaries(design, guides)
     else:
         family = boundary_family(design, direction)
-        closed_across = design.closed_v if family == "u" else design.closed_u
-        if closed_across:
-            raise ValueError(
-                "the surface is closed across the strips' direction: cut it open (e.g. split it at its "
-                "seam into two patches) and rationalise each patch"
-            )
         family_of = IsoBoundaries(design, family)
     strips: list[Strip] | None = []
+    narrow: list[int] = []
     levels = family_of.levels
     for start, end in itertools.pairwise(levels):  # a boundary on every guide, each band marched
         assert strips is not None
         band = _march(design, family_of, float(start), float(end), tolerance, int(max_strips) - len(strips),
-                      segments, warp_tolerance, progress)
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
         if band is None:
             strips = None
             break
         strips.extend(band)
     if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
-        strips = _even(design, family_of, int(max_strips), segments, warp_tolerance)
+        strips = _even(design, family_of, int(max_strips), segments, warp_tolerance, tolerance)
+        narrow = []
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [family_of.at(p) for p in params]
-    return Rationalisation(family_of.family, strips, boundaries, float(tolerance))
+    points, gaps = uncovered(design, [s.surface for s in strips])
+    creases = [crease_angle(low.result, boundaries[i + 1], up.result, boundaries[i + 1])
+               for i, (low, up) in enumerate(itertools.pairwise(strips))]
+    return Rationalisation(family_of.family, strips, boundaries, float(tolerance), narrow, points, gaps,
+                           creases)

@@ -92,6 +92,7 @@ end cones; this module runs the steps, assembles the rulings and checks them (st
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -99,15 +100,18 @@ from numpy.typing import ArrayLike
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
+from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
-from ..vec_ops import cross, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
-from .candidates import ROOT, Candidates, choose, near_partners
-from .end_cones import Rulings, smooth_ends
+from .candidates import Candidates, choose_all, near_partners
+from .end_cones import Rulings, smooth_all
 from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
+from .measure import check_rulings
+from .measure import warp_allowance as warp_allowance  # (its home before .measure)
 from .stations import Spacing
 from .strip import SIDE, Strip
-from .warp import PARALLEL, in_plane_tangent, warp_angles
+from .warp import PARALLEL
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
 MAX_CHECKS = 3
@@ -212,124 +216,192 @@ def ruling_developable(
     >>> r.s.tolist(), r.t.round(3).tolist(), r.message
     ([0.0, 0.5, 1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 0.333, 0.667, 1.0], None)
     """
-    if int(segments) != segments or segments < 1:
-        raise ValueError(f"Segments must be a whole number >= 1; got {segments}.")
-    tolerance = float(warp_tolerance)
-    if not (np.isfinite(tolerance) and tolerance >= 0):
-        raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
+    job = (curve_a, curve_b, segments, warp_tolerance)
+    result = ruling_developables([job], spacing=spacing, samples=samples)[0]
+    if isinstance(result, ValueError):
+        raise result
+    return result
+
+
+def ruling_developables(
+    jobs: Sequence[tuple[Curve, Curve, int, float]],
+    *,
+    spacing: Spacing = "length",
+    samples: int = 128,
+) -> list[RulingResult | ValueError]:
+    """:func:`ruling_developable` of every ``(curve_a, curve_b, segments, warp_tolerance)``
+    of ``jobs``, solved side by side: each step of the solve runs once for all the strips
+    (their stations and rulings one after another in the same arrays), so a node with many
+    strips pays each step's fixed cost once rather than once per strip. Each strip's result
+    is the one it gets alone, bit for bit; a job the solve refuses gets its ValueError in
+    its place."""
     samples = max(int(samples), 8)
-    result = _solve(curve_a, curve_b, int(segments), tolerance, spacing, samples)
-    if curve_b.closed and result.fan.any():
-        # B's seam may sit away from where the strip starts: restart B at A(0)'s partner
-        # (or, when A is closed too, at the partner of its end, the same point)
+    results: list[RulingResult | ValueError] = []
+    strips: list[Strip] = []
+    for curve_a, curve_b, segments, warp_tolerance in jobs:
+        try:
+            strips.append(_strip(curve_a, curve_b, segments, warp_tolerance, spacing, samples))
+            results.append(None)  # type: ignore[arg-type]  (filled in below)
+        except ValueError as exc:
+            results.append(exc)
+    solved = iter(_solve_all(strips))
+    results = [result if result is not None else next(solved) for result in results]
+    # a closed B whose seam sits away from where the strip starts: restart B at A(0)'s
+    # partner (or, when A is closed too, at the partner of its end, the same point)
+    again: list[tuple[int, _Rotated]] = []
+    for index, (result, (curve_a, curve_b, _, _)) in enumerate(zip(results, jobs, strict=True)):
+        if isinstance(result, ValueError) or not (curve_b.closed and result.fan.any()):
+            continue
         station = result.t[result.stations]
         torsal = (result.valid & ~result.fan)[result.stations]
         shift = station[0] if torsal[0] else station[-1] if curve_a.closed and torsal[-1] else None
         if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
-            rotated = _Rotated(curve_b, shift)
-            again = _solve(curve_a, rotated, int(segments), tolerance, spacing, samples)
-            if again.fan_share < result.fan_share:
-                return replace(again, t=rotated.original(again.t))
-    return result
+            again.append((index, _Rotated(curve_b, shift)))
+    if again:
+        rotated_strips = []
+        for index, rotated in again:
+            curve_a, _, segments, warp_tolerance = jobs[index]
+            rotated_strips.append(_strip(curve_a, rotated, segments, warp_tolerance, spacing, samples))
+        for (index, rotated), other in zip(again, _solve_all(rotated_strips), strict=True):
+            if other.fan_share < results[index].fan_share:  # type: ignore[union-attr]
+                results[index] = replace(other, t=rotated.original(other.t))
+    return results
 
-def _solve(
-    curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
-) -> RulingResult:
-    """One solve of :func:`ruling_developable` as the module docstring describes it. Between
-    its steps it calls the enclosing :func:`~..watch.watched` block's check, if any (a
-    2,000-station solve takes tens of milliseconds: Esc is seen within one step)."""
+
+def _strip(
+    curve_a: Curve, curve_b: Curve, segments: int, warp_tolerance: float, spacing: Spacing, samples: int
+) -> Strip:
+    """The checked arguments of one strip, as the :class:`Strip` its solve starts from."""
+    segments = segment_count(segments)
+    tolerance = float(warp_tolerance)
+    if not (np.isfinite(tolerance) and tolerance >= 0):
+        raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
+    return Strip(curve_a, curve_b, int(segments), tolerance, spacing, samples)
+
+
+@dataclass
+class _Solve:
+    """One strip's state between the steps of :func:`_solve_all`."""
+
+    strip: Strip
+    chosen: IntArray  #: the chosen candidate per station (−1 where none)
+    good: Candidates  #: the consistently oriented candidates
+    t: FloatArray  #: the partner per station (NaN where none)
+    fans: list  #: the torsal fans ``(s*, t_low, t_high)``
+    #: the rulings s, t, source, fan (:func:`_merge`) and their check (:func:`_checked`)
+    rulings: tuple[FloatArray, FloatArray, IntArray, BoolArray] | None = None
+    checked: tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray] | None = None
+
+
+def _solve_all(strips: list[Strip]) -> list[RulingResult]:
+    """One solve of :func:`ruling_developable` as the module docstring describes it, for
+    every strip of ``strips`` step by step. Between its steps it calls the enclosing
+    :func:`~..watch.watched` block's check, if any (a 2,000-station solve takes tens of
+    milliseconds: Esc is seen within one step)."""
     check = watch_check() or _unwatched
-    strip = Strip(curve_a, curve_b, segments, tolerance, spacing, samples)
-    n = len(strip.s)
     check()
-    chosen, good = choose(strip)
+    if not strips:
+        return []
+    solves = []
+    choices = choose_all(strips)
     check()
-    has = chosen >= 0
-    t = np.full(n, np.nan)
-    slope = np.zeros(n)
-    partner = chosen[has]
-    t[has], slope[has] = good.t[partner], good.slope[partner]
-    # stations without a partner get one first, so that a planar piece's fans end where the
-    # next station's partner is (two curves in one plane: otherwise a fan over all of B, then
-    # a partner running back)
-    near_partners(strip, t)
-    fans, planar = flat_fans(strip, t, chosen, good)
-    regular = has & ~planar
-    fans += a_fans(strip, t, slope, regular)
+    for strip, (chosen, good) in zip(strips, choices, strict=True):
+        n = len(strip.s)
+        has = chosen >= 0
+        t = np.full(n, np.nan)
+        slope = np.zeros(n)
+        partner = chosen[has]
+        t[has], slope[has] = good.t[partner], good.slope[partner]
+        # stations without a partner get one first, so that a planar piece's fans end where
+        # the next station's partner is (two curves in one plane: otherwise a fan over all
+        # of B, then a partner running back)
+        near_partners(strip, t)
+        fans, planar = flat_fans(strip, t, chosen, good)
+        regular = has & ~planar
+        fans += a_fans(strip, t, slope, regular)
+        solves.append(_Solve(strip, chosen, good, t, fans))
     check()
 
+    # the check (step 8), round by round for the strips some of whose stations failed it
+    open_ = solves
     for _ in range(MAX_CHECKS):
-        gap = np.isnan(t)
-        closed_t = t.copy()
-        kept = outside_gaps(fans, strip.s, gap)
-        added = close_gaps(strip, closed_t, kept)
-        s_out, t_out, source, fan = _merge(strip, closed_t, gap, kept, added)
-        # the warp of the output, from the curves' exact tangents (NaN where undefined)
-        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
-        # a station ruling taken as torsal that fails the check is a gap after all
-        failed = source[(source >= 0) & ~fan & ~valid]
+        for solve in open_:
+            strip, t = solve.strip, solve.t
+            gap = np.isnan(t)
+            closed_t = t.copy()
+            kept = outside_gaps(solve.fans, strip.s, gap)
+            added = close_gaps(strip, closed_t, kept)
+            solve.rulings = _merge(strip, closed_t, gap, kept, added)
+        _check_all(open_)
         check()
-        if len(failed) == 0:
+        still = []
+        for solve in open_:
+            source, fan = solve.rulings[2], solve.rulings[3]
+            # a station ruling taken as torsal that fails the check is a gap after all
+            failed = source[(source >= 0) & ~fan & ~solve.checked[4]]
+            if len(failed):
+                solve.t[failed] = np.nan
+                still.append(solve)
+        if not still:
             break
-        t[failed] = np.nan
+        open_ = still
     # each end's fans as one smooth cone, joining the torsal rulings at the ruling through
     # the curve's end point, where that ruling exists (see .end_cones)
-    rulings = Rulings(s_out, t_out, source, fan)
-    smoothed = smooth_ends(curve_a, curve_b, rulings)
+    given = [Rulings(*solve.rulings) for solve in solves]
+    smoothed = []
+    curves = [(solve.strip.curve_a, solve.strip.curve_b) for solve in solves]
+    ends = smooth_all([(*pair, r) for pair, r in zip(curves, given, strict=True)])
+    for solve, rulings, smooth in zip(solves, given, ends, strict=True):
+        s_out = rulings.s
+        if smooth is not rulings and (len(smooth.s) != len(s_out) or not np.array_equal(smooth.s, s_out)):
+            smoothed.append((solve, smooth))
     check()
-    if smoothed is not rulings and (len(smoothed.s) != len(s_out) or not np.array_equal(smoothed.s, s_out)):
-        again = _checked(strip, smoothed.s, smoothed.t, smoothed.source, chosen, good)
-        valid2 = again[4]
-        torsal = ~smoothed.fan
-        kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
-        if kept_torsal and valid2[torsal & (smoothed.source < 0)].all():
-            s_out, t_out, source, fan = smoothed.s, smoothed.t, smoothed.source, smoothed.fan
-            starts, ends, signed, warp, valid = again
-    folded = _fan_folds(strip, s_out, t_out, starts, ends, np.isnan(warp))
-    if len(folded[0]):
-        s_out, t_out, source, fan = _with_folds(s_out, t_out, source, fan, *folded)
-        starts, ends, signed, warp, valid = _checked(strip, s_out, t_out, source, chosen, good)
+    if smoothed:
+        again = [replace(solve, rulings=(r.s, r.t, r.source, r.fan)) for solve, r in smoothed]
+        _check_all(again)
+        for (solve, smooth), other in zip(smoothed, again, strict=True):
+            valid, fan, valid2 = solve.checked[4], solve.rulings[3], other.checked[4]
+            torsal = ~smooth.fan
+            kept_torsal = np.count_nonzero(valid2 & torsal) >= np.count_nonzero(valid & ~fan)
+            if kept_torsal and valid2[torsal & (smooth.source < 0)].all():
+                solve.rulings, solve.checked = other.rulings, other.checked
+    folded = []
+    for solve in solves:
+        s_out, t_out, source, fan = solve.rulings
+        starts, ends, _, warp, _ = solve.checked
+        folds = _fan_folds(solve.strip, s_out, t_out, starts, ends, np.isnan(warp))
+        if len(folds[0]):
+            solve.rulings = _with_folds(s_out, t_out, source, fan, *folds)
+            folded.append(solve)
+    if folded:
+        _check_all(folded)
+    return [_result(solve) for solve in solves]
+
+
+def _check_all(solves: list[_Solve]) -> None:
+    """The check of every strip's rulings, all at once (:func:`.measure.check_rulings`)."""
+    rulings = [(solve.strip, *solve.rulings[:3], solve.chosen, solve.good) for solve in solves]
+    for solve, checked in zip(solves, check_rulings(rulings), strict=True):
+        solve.checked = checked
+
+
+def _result(solve: _Solve) -> RulingResult:
+    """The strip's result from its checked rulings: the share of its area in fans, and the message."""
+    s_out, t_out, source, fan = solve.rulings
+    starts, ends, signed, warp, valid = solve.checked
     if fan.any():
         share, creased = fan_shares(starts, ends, fan)
     else:  # (what both give without fans: no piece counts)
         share = creased = 0.0
     station = source >= 0
-    message = _message(int(np.count_nonzero(fan[station])), n, tolerance, share, creased)
+    strip = solve.strip
+    message = _message(int(np.count_nonzero(fan[station])), len(strip.s), strip.tolerance, share, creased)
     return RulingResult(
         s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased
     )
 
 def _unwatched() -> None:
     """The check outside a :func:`~..watch.watched` block: nothing to look at."""
-
-
-def _checked(
-    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray]:
-    """The rulings' check (step 8): :func:`_measured`'s starts, ends and signed warp, the
-    warp and whether it is within the tolerance plus :func:`warp_allowance` (never where
-    it is NaN)."""
-    starts, ends, signed, ruling = _measured(strip, s, t, source, chosen, good)
-    warp = np.abs(signed)
-    with np.errstate(invalid="ignore"):
-        valid = warp <= strip.tolerance + _allowance(starts, ends, ruling)  # NaN is never valid
-    return starts, ends, signed, warp, valid
-
-
-def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """What the rounding of the rulings' end points alone adds to a warp measured from
-    them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
-    the origin; at site coordinates the ends are known to an ulp of their coordinates
-    (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
-    return _allowance(starts, ends, ends - starts)
-
-
-def _allowance(starts: FloatArray, ends: FloatArray, ruling: FloatArray) -> FloatArray:
-    """:func:`warp_allowance` of the rulings with the rulings ``ends − starts`` already at
-    hand (:func:`_measured` returns them)."""
-    length = norm(ruling)
-    rounding = max(position_rounding(starts), position_rounding(ends))
-    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
 def _merge(
@@ -364,76 +436,6 @@ def _merge(
     order[later_station - 1] = order[later_station]
     order = order[~repeat]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
-
-def _measured(
-    strip: Strip, s: FloatArray, t: FloatArray, source: IntArray, chosen: IntArray, good: Candidates
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """The output rulings A(s) → B(t) and their signed warp, measured from the curves:
-    the end points and exact tangents at (s, t), :func:`.warp.warp_angles` of those
-    (NaN where no normal is defined), with the tangent at a corner taken in the plane
-    of the ruling where the corner straddles it (:func:`_corner_tangent`), and an end
-    shared with every neighbouring ruling (the apex of a fan of flat triangles)
-    taking the other end's plane. Nothing of the solve enters but the curves'
-    evaluations at those very parameters (a station's, a refined root's), which are
-    reused rather than repeated. Returns starts, ends, the signed warp and the rulings
-    ``ends − starts`` (for :func:`_allowance`)."""
-    k = len(s)
-    station = source >= 0
-    at = flatnonzero(station)  # (index arrays, found once: masks would be searched again at every use)
-    rows = source[at]
-    if len(rows) == k:  # no added rulings
-        starts, ta = strip.a0[rows], strip.a1[rows]
-    else:
-        away = flatnonzero(~station)
-        starts, ta = np.empty((2, k, 3))
-        starts[at], ta[at] = strip.a0[rows], strip.a1[rows]
-        starts[away], ta[away] = strip.curve_a.derivatives(s[away], 1)
-    # B where a station's chosen root still stands (a flat end or corner is re-evaluated);
-    # ``chosen`` holds −1 (none) or a candidate's index
-    picked = chosen[rows]
-    has = picked >= 0
-    candidate, picked = at[has], picked[has]
-    stands = (good.t[picked] == t[candidate]) & (good.kind[picked] == ROOT)
-    kept, kept_root = candidate[stands], picked[stands]
-    if len(kept) == k:
-        ends, tb = good.points[kept_root], good.tangents[kept_root]
-    else:
-        ends, tb = np.empty((2, k, 3))
-        ends[kept], tb[kept] = good.points[kept_root], good.tangents[kept_root]
-        again = np.ones(k, dtype=bool)
-        again[kept] = False
-        lost = flatnonzero(again)
-        ends[lost], tb[lost] = strip.curve_b.derivatives(t[lost], 1)
-    ruling = ends - starts
-    if len(strip.kinks_b):
-        at_b = np.isin(t, strip.kinks_b)
-        if at_b.any():
-            left = strip.curve_b.derivatives(t[at_b] - SIDE, 1)[1]
-            tb[at_b] = _corner_tangent(ruling[at_b], ta[at_b], left, tb[at_b])
-    if len(strip.kinks_a):
-        at_a = np.min(np.abs(s[:, None] - strip.kinks_a[None, :]), axis=1) <= 1e-12
-        if at_a.any():
-            around = np.clip(np.concatenate([s[at_a] - SIDE, s[at_a] + SIDE]), 0.0, 1.0)
-            sides = strip.curve_a.derivatives(around, 1)[1]
-            ta[at_a] = _corner_tangent(ruling[at_a], tb[at_a], *np.split(sides, 2))
-    signed = warp_angles(starts, ends, ta, tb, signed=True, apex_a=_fan_apex(s), apex_b=_fan_apex(t))
-    return starts, ends, signed, ruling
-
-def _corner_tangent(ruling: FloatArray, other: FloatArray, left: FloatArray, right: FloatArray) -> FloatArray:
-    """The tangent of a curve at a corner for rulings ending there: the in-plane blend of
-    :func:`.warp.in_plane_tangent`, or, where that runs along the ruling (no normal), the
-    one-sided tangent that gives a defined normal with the smaller warp."""
-    tangent = in_plane_tangent(ruling, other, left, right)
-    along = norm(cross(ruling, tangent)) <= 1e-10 * norm(ruling)
-    if along.any():
-        r, o = ruling[along], other[along]
-        sides = unit(left[along]), unit(right[along])
-        zero = np.zeros_like(r)
-        warps = [warp_angles(zero, r, o, side) for side in sides]
-        pick_left = ~np.isnan(warps[0]) & (np.isnan(warps[1]) | (warps[0] <= warps[1]))
-        tangent[along] = np.where(pick_left[:, None], sides[0], sides[1])
-    return tangent
-
 
 #: :func:`_fan_folds` where no fan folds (empty, never written to).
 _NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
@@ -512,18 +514,6 @@ def _with_folds(
         np.insert(source, at, -1),
         np.insert(fan, at, fan[pieces] | fan[pieces + 1]),
     )
-
-
-def _fan_apex(parameters: FloatArray) -> BoolArray:
-    """Rulings whose end is shared with every neighbouring ruling (both inside the strip,
-    the one neighbour of its first and last rulings): the apex of a fan."""
-    same = parameters[1:] == parameters[:-1]
-    apex = np.zeros(len(parameters), dtype=bool)
-    apex[1:-1] = same[:-1] & same[1:]
-    if len(same):  # the first and last rulings have one neighbour each
-        apex[0] |= same[0]
-        apex[-1] |= same[-1]
-    return apex
 
 
 def _message(fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0) -> str | None:

@@ -195,14 +195,20 @@ def _angles(
 
 
 def consistently_oriented(
-    starts: FloatArray, ends: FloatArray, tangents_a: FloatArray, tangents_b: FloatArray
+    starts: FloatArray,
+    ends: FloatArray,
+    tangents_a: FloatArray,
+    tangents_b: FloatArray,
+    size: FloatArray | float | None = None,
 ) -> BoolArray:
     """Where the signed warp is a number within (−π/2, π/2): the end normals are defined
     and point to the same side, ``|warp_angles(..., signed=True)| < π/2`` (the rules of
-    :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays."""
+    :func:`end_normals`, without the angles: only N1·N2 > 0 is needed). ``(n, 3)`` arrays.
+    ``size`` is the size lengths are zero against (per row, for rows of several strips),
+    else that of all the rows: the diagonal of the box of their ends."""
     ruling = ends - starts
     n = len(ruling)
-    zero = (ZERO * _size(starts, ends)) ** 2
+    zero = (ZERO * (_size(starts, ends) if size is None else size)) ** 2
     if tangents_a.shape != ruling.shape or tangents_b.shape != ruling.shape:  # (broadcast ones)
         tangents_a = np.broadcast_to(tangents_a, ruling.shape)
         tangents_b = np.broadcast_to(tangents_b, ruling.shape)
@@ -360,6 +366,7 @@ def _interior_of_fans(points: FloatArray, size: float) -> BoolArray:
 def curve_warp(
     curve_a: Curve, curve_b: Curve, s: ArrayLike, t: ArrayLike, starts: ArrayLike, ends: ArrayLike,
     signed: bool = False,
+    fans: bool = True,
 ) -> FloatArray:
     """Warp angles (as :func:`warp_angles`, [0, π] or signed, NaN where undefined) of the
     rulings ``starts[i] → ends[i]`` of a strip between two curves, in order along it,
@@ -372,7 +379,9 @@ def curve_warp(
     that tangent runs along the ruling, the one-sided tangent that gives the least
     defined warp (every direction of the corner's cone touches it). A ruling
     inside a fan (its end shared with every neighbouring ruling) is measured in the
-    plane of the fan's triangles (the curve's tangent at the fan's apex plays no part).
+    plane of the fan's triangles (the curve's tangent at the fan's apex plays no part);
+    with ``fans=False`` it is measured with both curves' tangents there too (how far the
+    ruling is from torsal, whatever sheet lies beside it: see :mod:`.kinds`).
     """
     s = np.asarray(s, dtype=float).reshape(-1)
     t = np.asarray(t, dtype=float).reshape(-1)
@@ -382,7 +391,9 @@ def curve_warp(
     tb = curve_b.derivative_at(t, 1)
     sides_a, sides_b = _corner_sides(curve_a, s), _corner_sides(curve_b, t)
     size = _size(a, b)
-    if a.shape == b.shape:  # both edges' fans at once
+    if not fans:
+        apex_a = apex_b = np.zeros(len(a), dtype=bool)
+    elif a.shape == b.shape:  # both edges' fans at once
         apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size)
     else:
         apex_a, apex_b = _interior_of_fans(a[None], size)[0], _interior_of_fans(b[None], size)[0]

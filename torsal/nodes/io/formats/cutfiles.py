@@ -50,6 +50,7 @@ from torsal.nodes.geometry.curves import NurbsCurve, Polyline
 from torsal.nodes.geometry.nesting import NestingFailed, nest, place
 from torsal.nodes.geometry.offset2d import offset_polygon
 from torsal.nodes.geometry.packing import DoesNotFit, shelf_pack
+from torsal.nodes.geometry.polygons import ring_areas, signed_ring_area
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.watch import watch_check, watch_progress, watched
 from torsal.nodes.io import seams as seam_edges
@@ -131,7 +132,7 @@ class CutLayout:
 
     @property
     def panel_area(self) -> float:
-        return sum(abs(_signed_area(p.panel)) for p in self.parts)
+        return float(ring_areas([p.panel for p in self.parts]).sum())
 
     @property
     def usage(self) -> float:
@@ -169,11 +170,6 @@ class CutLayout:
 # ------------------------------------------------------------------ outlines and checks
 
 
-def _signed_area(points: FloatArray) -> float:
-    x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
-
-
 def _vertices(curve: Curve, tolerance: float) -> FloatArray:
     """The outline's points, exact for polylines and degree-1 NURBS, else within ``tolerance``."""
     if isinstance(curve, Polyline):
@@ -209,7 +205,7 @@ def panel_outline(curve: Curve, scale: float) -> FloatArray:
         flat = (points - centre) @ axes[:2].T
     else:
         flat = points[:, :2].copy()
-    return flat[::-1] if _signed_area(flat) < 0 else flat
+    return flat[::-1] if signed_ring_area(flat) < 0 else flat
 
 
 def surface_outline(surface: Surface, tolerance: float) -> Polyline:

@@ -1,0 +1,153 @@
+"""The Grasshopper staples a developable workflow needs: planes, deconstructing points,
+vectors and domains, remapping, curve frames, bounding boxes and volumes — each against
+a closed form."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import trimesh
+
+from tests.nodes.helpers import out, run, texts, tree
+from torsal.engine.values import Domain, Plane, Point, Vector
+from torsal.nodes.curves.frames import CurveFrame, PerpFrames
+from torsal.nodes.geometry.curves import Circle, Line
+from torsal.nodes.geometry.vectors import Plane as KernelPlane
+from torsal.nodes.maths.remap import Bounds, DeconstructDomain, Remap
+from torsal.nodes.params.deconstruct import DeconstructPoint, DeconstructVector
+from torsal.nodes.params.planes import (
+    ConstructPlane,
+    DeconstructPlane,
+    PlaneNormal,
+    PlaneThreePoints,
+    XYPlane,
+    XZPlane,
+    YZPlane,
+)
+from torsal.nodes.surfaces.bounds import BoundingBox, Volume
+
+
+def one(result, port=None):
+    (items,) = out(result, port).values()
+    (item,) = items
+    return item
+
+
+def axes(plane: Plane) -> np.ndarray:
+    x, y = np.asarray(plane.x), np.asarray(plane.y)
+    return np.stack([x, y, np.cross(x, y)])
+
+
+def test_world_planes_have_grasshoppers_axes_and_move_to_origin():
+    xy = one(run(XYPlane(), Origin=Point(1, 2, 3)))
+    assert xy == Plane(Point(1, 2, 3), Vector(1, 0, 0), Vector(0, 1, 0))
+    xz = one(run(XZPlane()))
+    np.testing.assert_array_equal(axes(xz), [[1, 0, 0], [0, 0, 1], [0, -1, 0]])
+    yz = one(run(YZPlane()))
+    np.testing.assert_array_equal(axes(yz), [[0, 1, 0], [0, 0, 1], [1, 0, 0]])
+
+
+def test_construct_plane_keeps_x_and_makes_y_square_to_it():
+    plane = one(run(ConstructPlane(), Origin=Point(0, 0, 1), XAxis=Vector(2, 0, 0), YAxis=Vector(1, 1, 0)))
+    np.testing.assert_allclose(axes(plane), np.eye(3), atol=1e-15)
+    assert plane.origin == Point(0, 0, 1)
+
+
+def test_construct_plane_refuses_parallel_axes():
+    result = run(ConstructPlane(), XAxis=Vector(1, 0, 0), YAxis=Vector(-3, 0, 0))
+    assert result.state == "warning" and "parallel" in texts(result)[0]
+
+
+def test_deconstruct_plane_gives_unit_axes_and_the_normal():
+    result = run(DeconstructPlane(), Plane=Plane(Point(1, 1, 1), Vector(0, 3, 0), Vector(0, 0, 2)))
+    assert one(result, "Origin") == Point(1, 1, 1)
+    assert one(result, "XAxis") == Vector(0, 1, 0)
+    assert one(result, "YAxis") == Vector(0, 0, 1)
+    assert one(result, "ZAxis") == Vector(1, 0, 0)
+
+
+def test_plane_normal_of_z_is_world_xy_and_of_a_slope_is_square_to_it():
+    assert one(run(PlaneNormal())) == Plane(Point(0, 0, 0), Vector(1, 0, 0), Vector(0, 1, 0))
+    slope = one(run(PlaneNormal(), Normal=Vector(0, 1, 1)))
+    frame = axes(slope)
+    np.testing.assert_allclose(frame[2], [0, 1 / math.sqrt(2), 1 / math.sqrt(2)], atol=1e-15)
+    np.testing.assert_allclose(frame @ frame.T, np.eye(3), atol=1e-15)
+
+
+def test_plane_through_three_points():
+    plane = one(run(PlaneThreePoints(), A=Point(1, 0, 0), B=Point(1, 5, 0), C=Point(1, 0, 2)))
+    np.testing.assert_allclose(axes(plane), [[0, 1, 0], [0, 0, 1], [1, 0, 0]], atol=1e-15)
+    collinear = run(PlaneThreePoints(), A=Point(0, 0, 0), B=Point(1, 1, 1), C=Point(3, 3, 3))
+    assert collinear.state == "warning" and "one line" in texts(collinear)[0]
+
+
+def test_deconstruct_point_and_vector():
+    result = run(DeconstructPoint(), Point=Point(1.5, -2, 7))
+    assert [one(result, p) for p in "XYZ"] == [1.5, -2.0, 7.0]
+    result = run(DeconstructVector(), Vector=Vector(3, 4, 12))
+    assert [one(result, p) for p in ("X", "Y", "Z", "Length")] == [3.0, 4.0, 12.0, 13.0]
+
+
+def test_deconstruct_domain():
+    result = run(DeconstructDomain(), Domain=Domain(2.5, -1))
+    assert (one(result, "Start"), one(result, "End")) == (2.5, -1.0)
+
+
+def test_remap_keeps_proportions_and_clips_to_the_target():
+    result = run(Remap(), Values=[0.0, 5.0, 10.0, 12.0], Source=Domain(0, 10), Target=Domain(100, 200))
+    assert out(result, "Mapped") == {(0,): [100.0, 150.0, 200.0, 220.0]}
+    assert out(result, "Clipped") == {(0,): [100.0, 150.0, 200.0, 200.0]}
+
+
+def test_remap_without_source_uses_the_values_own_bounds():
+    result = run(Remap(), Values=[2.0, 4.0, 6.0])
+    assert out(result, "Mapped") == {(0,): [0.0, 0.5, 1.0]}
+
+
+def test_bounds_spans_the_smallest_to_the_largest():
+    assert one(run(Bounds(), Numbers=[3.0, -1.0, 7.5, 2.0])) == Domain(-1.0, 7.5)
+    empty = run(Bounds(), Numbers=tree({(0,): []}))
+    assert empty.state == "warning"
+
+
+def test_curve_frame_on_a_circle_points_at_the_centre():
+    circle = Circle(KernelPlane.from_normal([1, 2, 0], [0, 0, 1]), 3.0)
+    for t in (0.0, 0.3, 0.8):
+        frame = one(run(CurveFrame(), Curve=tree({(0,): [circle]}), Parameter=t))
+        radius = np.asarray(frame.origin) - [1, 2, 0]
+        assert np.linalg.norm(radius) == pytest.approx(3.0, abs=1e-12)
+        np.testing.assert_allclose(frame.y, -radius / 3, atol=1e-12)  # towards the centre
+        np.testing.assert_allclose(frame.x, [radius[1] / -3, radius[0] / 3, 0], atol=1e-12)  # anticlockwise
+        np.testing.assert_allclose(axes(frame)[2], [0, 0, 1], atol=1e-12)
+
+
+def test_perp_frames_along_a_line_are_square_to_it_and_evenly_spaced():
+    line = Line([0, 0, 0], [0, 0, 8])
+    result = run(PerpFrames(), Curve=tree({(0,): [line]}), Count=4)
+    (frames,) = out(result, "Frames").values()
+    assert [f.origin[2] for f in frames] == pytest.approx([0, 2, 4, 6, 8], abs=1e-12)
+    for frame in frames:
+        np.testing.assert_allclose(axes(frame)[2], [0, 0, 1], atol=1e-12)
+
+
+def test_bounding_box_of_a_circle_and_a_point():
+    circle = Circle(KernelPlane.from_normal([0, 0, 0], [0, 0, 1]), 2.0)
+    result = run(BoundingBox(), Geometry=tree({(0,): [circle, Point(5, 1, 3)]}))
+    assert one(result, "Min") == pytest.approx(Point(-2, -2, 0), abs=1e-9)
+    assert one(result, "Max") == pytest.approx(Point(5, 2, 3), abs=1e-9)
+    box = one(result, "Box")
+    assert box.volume == pytest.approx(7 * 4 * 3, rel=1e-9)
+
+
+def test_volume_and_centroid_of_a_box_and_an_open_mesh_refused():
+    move = trimesh.transformations.translation_matrix([1, 1, 1])
+    box = trimesh.creation.box(extents=[2, 3, 4], transform=move)
+    result = run(Volume(), Mesh=tree({(0,): [box]}))
+    assert one(result, "Volume") == pytest.approx(24.0, rel=1e-12)
+    assert one(result, "Centroid") == pytest.approx(Point(1, 1, 1), abs=1e-12)
+    open_box = box.copy()
+    open_box.update_faces(np.arange(len(box.faces)) != 0)
+    result = run(Volume(), Mesh=tree({(0,): [open_box]}))
+    assert result.state == "warning" and "open" in texts(result)[0]

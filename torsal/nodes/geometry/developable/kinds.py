@@ -1,0 +1,141 @@
+"""What each ruling of a strip between two curves is: torsal, in a fan, or a crease.
+
+Read from the output alone — the rulings' end points and parameters and the curves'
+exact tangents there — never from the solver's own flags.
+
+The sheet beside a ruling is one of three pieces, told by which ends the ruling shares
+with its neighbour on that side: a cone through a point of A (the neighbour starts at
+the same point, the edge on A stands still), a cone through a point of B, or a ruled
+quad (both ends move). The sheet's normal next to the ruling is R × B' in a cone through
+A, R × A' in a cone through B, and runs from R × A' at A to R × B' at B in a quad. So:
+
+- Where both sides are the same cone (the ruling is inside a fan through a point, or is
+  a strip's end ruling beside one) the sheet is a cone there, smooth and developable,
+  and only one point of the apex's curve belongs to it: a **fan**. Valid when the
+  sheet's warp (the cone's plane at both ends, :func:`.warp.curve_warp`, the node's
+  WarpAngles) is within the tolerance: a cone is developable.
+- Otherwise the ruling is **torsal** when the planes through it and the two curves'
+  tangents agree (its *tangent warp*, :func:`.warp.curve_warp` with ``fans=False``, is
+  within the tolerance): the sheet is smooth across it and both curves are tangent to
+  it. Valid. (A cone joining torsal rulings does so at such a ruling.)
+- Otherwise, where the pieces on its two sides are of different sorts (a cone through A
+  beside a quad or a cone through B), the sheet's plane jumps across the ruling by its
+  tangent warp: a **crease**, a fold line of the sheet. A ruling with no tangent warp
+  (it runs along a curve's tangent: a fan turning back over itself there) is a crease too.
+  Never valid.
+- A ruling between two quads whose tangent warp exceeds the tolerance is a warped torsal
+  ruling: torsal, not valid.
+
+A ruling of zero length (the curves meet there: the strip tapers to a point) has no
+plane at all: a fan when beside a cone, else torsal, and never valid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..array_types import BoolArray, FloatArray, IntArray
+from ..curve_base import Curve
+from ..vec_ops import cross, norm, position_rounding
+from .warp import ZERO, curve_warp
+
+TORSAL, FAN, CREASE = "torsal", "fan", "crease"
+#: The sorts of piece beside a ruling: none (a strip's end), a cone through a point of A,
+#: of B, a quad, and a piece of no width (a ruling repeated).
+_NONE, _CONE_A, _CONE_B, _QUAD, _EMPTY = range(5)
+
+
+@dataclass(frozen=True)
+class RulingKinds:
+    """Per ruling of a strip: its kind, whether it is valid, and the angles that decided."""
+
+    kind: list[str]  #: "torsal", "fan" or "crease"
+    valid: BoolArray  #: torsal within the tolerance, or a fan whose cone has a defined plane
+    #: how far the ruling is from torsal, rad, [0, π]: the angle between R × A' and R × B'
+    #: with both curves' exact tangents (NaN where either is undefined)
+    tangent_warp: FloatArray
+    #: the angle the sheet's plane turns through across the ruling, rad: its tangent warp at
+    #: a crease (π where the sheet turns back along a curve's tangent), 0 elsewhere
+    crease_angle: FloatArray
+    tip: BoolArray  #: rulings of zero length
+
+    @property
+    def torsal_share(self) -> float:
+        """The share of rulings that are torsal and valid (0 to 1; NaN for no rulings)."""
+        n = len(self.kind)
+        if n == 0:
+            return float("nan")
+        torsal = np.array([k == TORSAL for k in self.kind]) & self.valid
+        return float(np.count_nonzero(torsal)) / n
+
+
+def piece_sorts(starts: FloatArray, ends: FloatArray, size: float) -> IntArray:
+    """The sort of each of the ``n − 1`` pieces between consecutive rulings (a cone through
+    a point of A or B, a quad, or empty), by which ends the two rulings share. A piece
+    whose triangles have no area (beside a ruling of no length where the curves meet, the
+    two rulings run along one chord) is empty: it is no sheet."""
+    tol = ZERO * size
+    same_a = norm(starts[1:] - starts[:-1]) <= tol
+    same_b = norm(ends[1:] - ends[:-1]) <= tol
+    # twice the area of the piece's polygon A_i, B_i, B_i+1, A_i+1 (a triangle's when an end is shared)
+    area = norm(cross(ends[1:] - starts[:-1], ends[:-1] - starts[1:]))
+    sort = np.full(len(same_a), _QUAD)
+    sort[same_a] = _CONE_A
+    sort[same_b] = _CONE_B
+    sort[(same_a & same_b) | (area <= tol * size)] = _EMPTY
+    return sort
+
+
+def ruling_kinds(
+    curve_a: Curve,
+    curve_b: Curve,
+    s: ArrayLike,
+    t: ArrayLike,
+    starts: ArrayLike,
+    ends: ArrayLike,
+    tolerance: float,
+    sheet_warp: ArrayLike | None = None,
+) -> RulingKinds:
+    """The kind of each ruling ``A(s) → B(t)`` of a strip, as the module docstring tells.
+
+    ``sheet_warp`` is :func:`.warp.curve_warp` of the same rulings where the caller has it
+    (the warp of the sheet, a fan's apex taking the cone's plane). The tolerance is widened
+    by what the rounding of the end points alone adds far from the origin, as the solver's
+    check does.
+    """
+    a = np.asarray(starts, dtype=float).reshape(-1, 3)
+    b = np.asarray(ends, dtype=float).reshape(-1, 3)
+    n = len(a)
+    if sheet_warp is None:
+        sheet_warp = curve_warp(curve_a, curve_b, s, t, a, b)
+    sheet = np.asarray(sheet_warp, dtype=float)
+    tangent = curve_warp(curve_a, curve_b, s, t, a, b, fans=False)
+    columns = np.concatenate([a, b])
+    size = float(norm(columns.max(axis=0) - columns.min(axis=0))) if n else 0.0
+    length = norm(b - a)
+    tip = length <= ZERO * size
+    rounding = max(position_rounding(a), position_rounding(b)) if n else 0.0
+    allowed = tolerance + rounding / np.where(length > 0.0, length, np.inf)
+    left, right = np.full(n, _NONE), np.full(n, _NONE)
+    if n > 1:
+        sorts = piece_sorts(a, b, size)
+        left[1:], right[:-1] = sorts, sorts
+    # a piece of no width is no sheet: the ruling's other side decides
+    left = np.where(left == _EMPTY, right, left)
+    right = np.where(right == _EMPTY, left, right)
+    one_side = (left == _NONE) | (right == _NONE)
+    cone = np.isin(left, (_CONE_A, _CONE_B)) | np.isin(right, (_CONE_A, _CONE_B))
+    same = (left == right) | one_side
+    with np.errstate(invalid="ignore"):
+        torsal = tangent <= allowed  # (False where NaN)
+        sheet_ok = sheet <= allowed
+    fan = same & cone  # inside a cone (or a strip's end ruling beside one), or a tip beside one
+    undefined = np.isnan(tangent) & ~tip
+    crease = ~tip & ~fan & ~torsal & (undefined | ~same)
+    kind = np.where(fan, FAN, np.where(crease, CREASE, TORSAL))
+    valid = ~tip & np.where(fan, sheet_ok, torsal & ~crease)
+    angle = np.where(crease, np.where(undefined, np.pi, tangent), 0.0)
+    return RulingKinds(kind.tolist(), valid, tangent, angle, tip)
