@@ -101,7 +101,12 @@ class ExportCutSheet(Node):
     the search is counted in steps, not seconds, so the same graph gives the same layout
     on every run and machine, a busy machine only takes longer (up to ten times the
     budget and a minute, then it stops with a remark that the layout may differ) — and
-    keeps the row layout when that takes less stock. Stop (Esc in the app) keeps the best layout found so far.
+    keeps the row layout when that takes less stock. In the app the search runs in the
+    background (docs/anytime-results.md): the rows show at once, the true-shape sheets replace
+    them when found, with their usage in the node's message and the search's progress bar
+    in the status bar, and the canvas and other solves never wait; Esc stops the search and
+    keeps the best layout found so far. With Write true the node waits for its layout and
+    writes that; ``torsal run --nesting-time S`` shows rows and searches for at most S s.
     Nesting Shelf (the default, so graphs made before TrueShape keep their layout)
     places the parts' bounding rectangles in rows, tallest first: instant, more
     sheets. TrueShape turns parts freely (Shelf lays them along the sheet); Grain
