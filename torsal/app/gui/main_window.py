@@ -129,6 +129,7 @@ class MainWindow(QMainWindow):
         solves = self.doc.solves
         solves.started.connect(self.status.solve_started)
         solves.progress.connect(self.status.solve_progress)
+        self.doc.improvements.progress.connect(self.status.search_progress)
         self.doc.results_changed.connect(self._solved)
         self.doc.dirty_changed.connect(lambda _dirty: self._update_title())
         self.doc.path_changed.connect(lambda _path: self._update_title())
@@ -563,6 +564,8 @@ class MainWindow(QMainWindow):
     def cancel_solve(self) -> None:
         if self.doc.solves.cancel():
             self.status.showMessage("Cancelling the solve…", 3000)
+        if self.doc.improvements.stop():  # background searches keep their best (nesting)
+            self.status.showMessage("Stopping the background search: its best result so far is kept", 3000)
 
     # -- screenshots -----------------------------------------------------------------
     def grab_window(self, path: str | Path) -> Path:

@@ -25,6 +25,11 @@ class SolveStatus(QStatusBar):
         self.progress.setTextVisible(True)
         self.progress.setFormat("Solving %p % — Esc cancels")
         self.progress.hide()
+        self.search = QProgressBar()  # a background search's (nesting), beside the solves'
+        self.search.setMaximumWidth(300)
+        self.search.setTextVisible(True)
+        self.search.hide()
+        self.addPermanentWidget(self.search)
         self.addPermanentWidget(self.progress)
         self.addPermanentWidget(self.solve_label)
         self.addPermanentWidget(self.counts_label)
@@ -43,6 +48,16 @@ class SolveStatus(QStatusBar):
     def _show_progress(self) -> None:
         self.progress.show()
         self.solve_label.setText("Solving…")
+
+    def search_progress(self, node_id: str, fraction: float) -> None:
+        """A background search (torsal/engine/improve.py) of ``node_id``: its own bar."""
+        if fraction >= 1.0:
+            self.search.hide()
+            return
+        self.search.setFormat(f"{node_id}: searching %p % — Esc keeps the best")
+        self.search.setRange(0, 1000)
+        self.search.setValue(round(1000 * max(0.0, fraction)))
+        self.search.show()
 
     def solve_progress(self, index: int, total: int, node_id: str) -> None:
         self.progress.setRange(0, max(1, total))
