@@ -32,10 +32,10 @@ def _wavy(z: float, phase: float) -> NurbsCurve:
 def _solved(node: Node, curves_a: list, curves_b: list, segments: list) -> tuple[dict, list]:
     context = SolveContext(node)
     trees = [DataTree({(0,): curves_a}), DataTree({(0,): curves_b}), DataTree({(0,): segments}),
-             DataTree({(0,): [0.01]}), DataTree({(0,): [0.1]})]
+             DataTree({(0,): [0.01]}), DataTree({(0,): [0.1]}), DataTree({(0,): [0.5]})]
     with solving(context):
         try:
-            outputs = run_node(node, trees, [True, True, True, False, False])
+            outputs = run_node(node, trees, [True, True, True, False, False, False])
         except Exception as exc:  # (the solver would make it the node's error)
             return {}, [*((m.level, m.text) for m in context.messages), ("raised", str(exc))]
     found = {}
