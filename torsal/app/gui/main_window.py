@@ -149,6 +149,9 @@ class MainWindow(QMainWindow):
         self._tables_timer.setSingleShot(True)
         self._tables_timer.timeout.connect(self._tables_due)
         self.editor.drag_ended.connect(self._drag_ended)
+        # a slider drag's next solve waits for the viewport to draw the last one
+        self.editor.frame_due = self.viewport.frame_due
+        self.viewport.frame_rendered.connect(self.editor.frame_shown)
         # no full garbage collection (a pause of a frame or two) while a slider is dragged
         self._collections = FullCollectionsHeld()
         self.editor.drag_started.connect(self._collections.hold)
