@@ -11,8 +11,8 @@ ROOT = Path(__file__).resolve().parent.parent
 LIBRARIES = ("numpy", "scipy")
 
 #: Files still importing one, with what; the list is exact (a new one fails, and so does a
-#: listed one that has gone).
-KNOWN: dict[str, set[str]] = {"torsal/nodes/geometry/spline_eval.py": {"scipy.interpolate._dierckx"}}
+#: listed one that has gone). None left.
+KNOWN: dict[str, set[str]] = {}
 
 
 def private_imports(tree: ast.AST) -> set[str]:

@@ -136,7 +136,7 @@ class NurbsCurve(Curve):
         self._spline = BSpline.construct_fast(
             knots, coefficients, degree, extrapolate="periodic" if periodic else True
         )
-        self._values = SplineValues(self._spline, knots, coefficients)
+        self._values = SplineValues(self._spline)
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
         if periodic:
