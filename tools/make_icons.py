@@ -124,6 +124,9 @@ def in_arrow() -> str:
 
 
 GLYPHS: dict[str, str] = {
+    "curves.CurvePlane": poly([(9, 3), (15, 6), (15, 21), (9, 18)], INK, 1.1, SOFT, True)
+    + path(CURVE, INK, 1.6)
+    + spot(12, 12.6, 2.2, ACCENT),
     "curves.Rectangle": rect(3.5, 6, 17, 12, INK, 2) + spot(12, 12, 1.3, ACCENT),
     "curves.Polygon": poly([(20, 12), (16, 19), (8, 19), (4, 12), (8, 5), (16, 5)], INK, 2, "none", True)
     + spot(12, 12, 1.3, ACCENT),

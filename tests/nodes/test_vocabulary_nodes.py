@@ -14,6 +14,7 @@ from tests.nodes.helpers import out, run, texts, tree
 from torsal.engine.values import Domain, Plane, Point, Vector
 from torsal.nodes.curves.division import DivideLength
 from torsal.nodes.curves.frames import CurveClosestPoint, CurveFrame, PerpFrames
+from torsal.nodes.curves.intersect import CurvePlane
 from torsal.nodes.curves.outlines import Polygon, Rectangle
 from torsal.nodes.geometry.curves import Circle, Line
 from torsal.nodes.geometry.vectors import Plane as KernelPlane
@@ -223,3 +224,14 @@ def test_dispatch_sends_items_by_the_pattern():
     assert out(result, "B") == {(0,): [11.0, 13.0]}
     empty = run(Dispatch(), List=[1.0], Pattern=tree({(0,): []}))
     assert empty.state == "warning"
+
+
+def test_curve_plane_finds_both_crossings_of_a_circle():
+    circle = Circle(KernelPlane.from_normal([0, 0, 0], [0, 0, 1]), 2.0)
+    xz = Plane(Point(0, 0, 0), Vector(1, 0, 0), Vector(0, 0, 1))
+    result = run(CurvePlane(), Curve=tree({(0,): [circle]}), Plane=xz)
+    (found,) = out(result, "Points").values()
+    assert sorted(p[0] for p in found) == pytest.approx([-2.0, 2.0], abs=1e-12)
+    assert all(abs(p[1]) < 1e-12 for p in found)
+    above = Plane(Point(0, 0, 1), Vector(1, 0, 0), Vector(0, 1, 0))  # parallel, 1 above: no crossing
+    assert out(run(CurvePlane(), Curve=tree({(0,): [circle]}), Plane=above), "Points") == {(0,): []}
