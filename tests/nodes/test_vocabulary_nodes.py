@@ -235,3 +235,16 @@ def test_curve_plane_finds_both_crossings_of_a_circle():
     assert all(abs(p[1]) < 1e-12 for p in found)
     above = Plane(Point(0, 0, 1), Vector(1, 0, 0), Vector(0, 1, 0))  # parallel, 1 above: no crossing
     assert out(run(CurvePlane(), Curve=tree({(0,): [circle]}), Plane=above), "Points") == {(0,): []}
+
+
+def test_volume_at_site_coordinates_is_the_volume_at_the_origin():
+    sphere = trimesh.creation.icosphere(4, 3.0)
+    at_origin = run(Volume(), Mesh=tree({(0,): [sphere]}))
+    far = sphere.copy()
+    far.apply_translation([1e6, -2e6, 30.0])
+    result = run(Volume(), Mesh=tree({(0,): [far]}))
+    # the vertices themselves hold 1e6 + 3 to ~1e-10: 2.6e-12 relative measured
+    assert one(result, "Volume") == pytest.approx(one(at_origin, "Volume"), rel=1e-11)
+    # about the world origin the centroid came out 1e-5 off (trimesh's mass properties)
+    centre = np.asarray(one(result, "Centroid")) - [1e6, -2e6, 30.0]
+    assert np.abs(centre - np.asarray(one(at_origin, "Centroid"))).max() < 1e-9
