@@ -124,6 +124,18 @@ def in_arrow() -> str:
 
 
 GLYPHS: dict[str, str] = {
+    "curves.CurvePlane": poly([(9, 3), (15, 6), (15, 21), (9, 18)], INK, 1.1, SOFT, True)
+    + path(CURVE, INK, 1.6)
+    + spot(12, 12.6, 2.2, ACCENT),
+    "curves.Rectangle": rect(3.5, 6, 17, 12, INK, 2) + spot(12, 12, 1.3, ACCENT),
+    "curves.Polygon": poly([(20, 12), (16, 19), (8, 19), (4, 12), (8, 5), (16, 5)], INK, 2, "none", True)
+    + spot(12, 12, 1.3, ACCENT),
+    "lists.Dispatch": line(3, 12, 8, 12, INK, 2.4)
+    + path("M8,12 C12,12 12,6 15,6 M8,12 C12,12 12,18 15,18", INK, 1)
+    + line(16, 4, 21, 4, ACCENT, 2)
+    + line(16, 8, 21, 8, ACCENT, 2)
+    + line(16, 16, 21, 16, INK, 2)
+    + line(16, 20, 21, 20, INK, 2),
     "curves.DivideLength": path(CURVE, INK, 1.6)
     + spot(4, 17, 1.8, ACCENT)
     + spot(8.3, 11, 1.8, ACCENT)

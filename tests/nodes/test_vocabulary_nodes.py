@@ -14,8 +14,11 @@ from tests.nodes.helpers import out, run, texts, tree
 from torsal.engine.values import Domain, Plane, Point, Vector
 from torsal.nodes.curves.division import DivideLength
 from torsal.nodes.curves.frames import CurveClosestPoint, CurveFrame, PerpFrames
+from torsal.nodes.curves.intersect import CurvePlane
+from torsal.nodes.curves.outlines import Polygon, Rectangle
 from torsal.nodes.geometry.curves import Circle, Line
 from torsal.nodes.geometry.vectors import Plane as KernelPlane
+from torsal.nodes.lists.dispatching import Dispatch
 from torsal.nodes.maths.remap import Bounds, DeconstructDomain, Remap
 from torsal.nodes.params.deconstruct import DeconstructPoint, DeconstructVector
 from torsal.nodes.params.planes import (
@@ -195,3 +198,53 @@ def test_surface_closest_point_on_a_sphere_lies_along_the_radius():
     result = run(SurfaceClosestPoint(), Point=Point(0, 3, 4), Surface=tree({(0,): [sphere]}))
     assert one(result, "Point") == pytest.approx(Point(0, 1.2, 1.6), abs=1e-9)  # 2 · (0, 3, 4)/5
     assert one(result, "Distance") == pytest.approx(3.0, abs=1e-9)  # 5 − 2
+
+
+def test_rectangle_is_centred_on_the_plane_with_its_perimeter():
+    plane = Plane(Point(1, 1, 5), Vector(0, 1, 0), Vector(0, 0, 1))  # a wall: X along y, Y up
+    result = run(Rectangle(), Plane=plane, Width=4.0, Height=2.0)
+    outline = one(result, "Rectangle")
+    np.testing.assert_allclose(outline.point_at(0.0), [1, -1, 4], atol=1e-12)  # (−W/2, −H/2) in the plane
+    np.testing.assert_allclose(outline.point_at(0.5), [1, 3, 6], atol=1e-12)  # half the perimeter on
+    assert outline.closed and one(result, "Length") == 12.0
+    assert outline.length == pytest.approx(12.0, abs=1e-12)
+
+
+def test_polygon_corners_lie_on_the_circle_and_its_perimeter_is_2nr_sin_pi_over_n():
+    result = run(Polygon(), Radius=2.0, Segments=6)
+    outline = one(result, "Polygon")
+    assert one(result, "Length") == pytest.approx(12.0, abs=1e-12)  # a hexagon's side is its radius
+    assert outline.length == pytest.approx(12.0, abs=1e-12)
+    np.testing.assert_allclose(outline.point_at(0.0), [2, 0, 0], atol=1e-12)
+
+
+def test_dispatch_sends_items_by_the_pattern():
+    result = run(Dispatch(), List=[10.0, 11.0, 12.0, 13.0, 14.0], Pattern=[True, False])
+    assert out(result, "A") == {(0,): [10.0, 12.0, 14.0]}
+    assert out(result, "B") == {(0,): [11.0, 13.0]}
+    empty = run(Dispatch(), List=[1.0], Pattern=tree({(0,): []}))
+    assert empty.state == "warning"
+
+
+def test_curve_plane_finds_both_crossings_of_a_circle():
+    circle = Circle(KernelPlane.from_normal([0, 0, 0], [0, 0, 1]), 2.0)
+    xz = Plane(Point(0, 0, 0), Vector(1, 0, 0), Vector(0, 0, 1))
+    result = run(CurvePlane(), Curve=tree({(0,): [circle]}), Plane=xz)
+    (found,) = out(result, "Points").values()
+    assert sorted(p[0] for p in found) == pytest.approx([-2.0, 2.0], abs=1e-12)
+    assert all(abs(p[1]) < 1e-12 for p in found)
+    above = Plane(Point(0, 0, 1), Vector(1, 0, 0), Vector(0, 1, 0))  # parallel, 1 above: no crossing
+    assert out(run(CurvePlane(), Curve=tree({(0,): [circle]}), Plane=above), "Points") == {(0,): []}
+
+
+def test_volume_at_site_coordinates_is_the_volume_at_the_origin():
+    sphere = trimesh.creation.icosphere(4, 3.0)
+    at_origin = run(Volume(), Mesh=tree({(0,): [sphere]}))
+    far = sphere.copy()
+    far.apply_translation([1e6, -2e6, 30.0])
+    result = run(Volume(), Mesh=tree({(0,): [far]}))
+    # the vertices themselves hold 1e6 + 3 to ~1e-10: 2.6e-12 relative measured
+    assert one(result, "Volume") == pytest.approx(one(at_origin, "Volume"), rel=1e-11)
+    # about the world origin the centroid came out 1e-5 off (trimesh's mass properties)
+    centre = np.asarray(one(result, "Centroid")) - [1e6, -2e6, 30.0]
+    assert np.abs(centre - np.asarray(one(at_origin, "Centroid"))).max() < 1e-9

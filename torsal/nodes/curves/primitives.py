@@ -58,7 +58,7 @@ class Polyline(Node):
     """
 
     type_id = "curves.Polyline"
-    nickname, aliases = "PLine", ("polygon",)
+    nickname, aliases = "PLine", ("PolyLine", "open polygon")
     inputs = (
         In("Vertices", POINT, "V", "The corner points, in order (at least 2).", access=LIST),
         In("Closed", BOOLEAN, "C", "Whether to join the last vertex back to the first.",

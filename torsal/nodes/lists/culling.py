@@ -17,7 +17,7 @@ class CullPattern(Node):
     """
 
     type_id = "lists.CullPattern"
-    nickname, aliases = "Cull", ("Cull Pattern", "dispatch")
+    nickname, aliases = "Cull", ("Cull Pattern", "keep by pattern")
     inputs = (
         In("List", GENERIC, "L", "The list to cull.", access=LIST, arrays=True),
         In("Pattern", BOOLEAN, "P", "True keeps an item, false drops it; repeats along the list.",

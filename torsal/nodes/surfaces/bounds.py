@@ -89,9 +89,13 @@ class Volume(Node):
             raise NodeWarning("Mesh has no faces, so it encloses no volume")
         if not mesh.is_watertight:
             raise NodeWarning("The mesh is open (not watertight), so it encloses no volume")
-        volume = float(mesh.volume)
+        # measured about the mesh's own middle: at site coordinates (1e6 m) the triple
+        # products about the world origin would cancel away the volume's digits
+        middle = np.asarray(mesh.bounds, dtype=float).mean(axis=0)
+        local = trimesh.Trimesh(np.asarray(mesh.vertices) - middle, mesh.faces, process=False)
+        volume = float(local.volume)
         if not np.isfinite(volume) or volume == 0.0:
             raise NodeWarning("The mesh encloses no volume: it is flat or folds back on itself")
         if volume < 0:
             self.remark("The mesh's faces point inwards; its volume is given as a positive number")
-        return abs(volume), point(mesh.center_mass)
+        return abs(volume), point(np.asarray(local.center_mass) + middle)
