@@ -12,7 +12,10 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   that ruling (to the fit), and the face has as few control points as that takes (not one
   per sample). Its end control points are the end rulings' ends and the next ones give the
   rails' own end tangents, so a rail that stands still next to a fan stands still in the
-  face too and the face's normals there are the strip's;
+  face too and the face's normals there are the strip's. Where the strip's own pairing of
+  the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
+  paired with their developable partners on rail B instead
+  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT;
 - each fan (consecutive rulings, each sharing an end with the next) is one face of degree
   1 both ways through its rulings, whose every span is one flat triangle (a lone triangle,
   or a fan whose triangles all meet at one point, is a trimmed plane through its corners);
