@@ -101,7 +101,9 @@ def kaohsiung_cut_sheets() -> None:
            Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
     b.wire("strip.Surface", "cut.Strips")  # neighbouring strips' shared edges become seams
-    for flat in ("unroll", "model", "cut"):  # the flat parts are for the cutter, not the 3D view
+    # the flat parts are for the cutter; the cut node previews its sheets at the roof's scale,
+    # beside it (its Preview output)
+    for flat in ("unroll", "model"):
         b.graph.set_preview(flat, False)
     b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
             ["unroll", "model_scale", "factor", "model", "cut"])
