@@ -135,3 +135,24 @@ def test_sweep_with_a_link_planted_in_out_exits_2_with_one_line(tmp_path, victim
     err = capsys.readouterr().err
     assert code == 2 and f"{planted} is a symbolic link" in err and "Traceback" not in err
     assert digest(victim) == before
+
+
+@pytest.mark.parametrize("path, state", [("n.csv", "ok (warnings in 1 node)"), ("../../x.csv", "error")])
+def test_a_sweep_reports_exporters_consent_as_run_does(tmp_path, path, state):
+    """Without --allow-writes an exporter warns that nothing was written (as ``run`` does);
+    a path leading out is an error naming why, not "save it first"."""
+    graph = Graph()
+    graph.add_node(IntegerSlider({"min": 0, "max": 3, "value": 1}), "n")
+    graph.add_node(ExportCSV(), "export")
+    graph.connect("n", "Value", "export", "Data")
+    graph.set_input_value("export", "Path", path)
+    graph.set_input_value("export", "Write", True)
+    write_graph(graph, tmp_path / "g.graph")
+    study = open_study(tmp_path / "g.graph", ["n=0:1:2"], ["n.Value"], steps=True)
+    result = run_sweep(study, grid(study.variables), InlineExecutor(), tmp_path / "out")
+    for outcome in result.outcomes:
+        assert outcome.status.startswith(state)
+        assert "save it first" not in outcome.status
+    if state == "error":
+        assert "leads out of the graph's folder" in result.outcomes[0].status
+    assert not [p for p in tmp_path.rglob("*.csv") if p.name in ("n.csv", "x.csv")]

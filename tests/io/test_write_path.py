@@ -269,3 +269,19 @@ def test_plots_and_scratch_files_go_to_a_private_per_user_folder():
     import tempfile
 
     assert not folder.is_relative_to(tempfile.gettempdir())
+
+
+def test_without_a_usable_cache_folder_scratch_is_a_fresh_private_folder(tmp_path, monkeypatch):
+    import platformdirs
+
+    from torsal.engine import write_path
+
+    blocker = tmp_path / "home-is-a-file"
+    blocker.write_text("")
+    monkeypatch.setattr(platformdirs, "user_cache_dir", lambda *args, **kwargs: str(blocker / "torsal"))
+    monkeypatch.setattr(write_path, "_fallback", None)
+    folder = scratch_folder()
+    assert folder.is_dir() and stat.S_IMODE(os.lstat(folder).st_mode) == 0o700
+    assert folder.name.startswith("torsal-") and folder.name != "torsal"
+    assert scratch_folder() == folder  # one per process
+    folder.rmdir()

@@ -110,7 +110,30 @@ def parse_assignment(text: str) -> tuple[str, str | None, Any]:
         value = json.loads(raw)
     except ValueError:
         value = raw
+    except RecursionError:
+        value = None  # refused just below, as too deep
+    if (value is None and raw.strip() != "null") or _depth(value) > MAX_SET_DEPTH:
+        raise UsageError(f"--set {node_id}: the value nests lists or objects more than {MAX_SET_DEPTH} "
+                         "deep; a value holds data trees of a few levels")
     return node_id, port or None, value
+
+
+#: How deep lists and objects in a ``--set`` value may nest (a data tree needs a few levels).
+MAX_SET_DEPTH = 32
+
+
+def _depth(value: Any) -> int:
+    """How deep lists and dicts nest in ``value`` (walked without recursion)."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, list | dict):
+            level += 1
+            deepest = max(deepest, level)
+            if deepest > MAX_SET_DEPTH:
+                return deepest
+            stack.extend((child, level) for child in (item.values() if isinstance(item, dict) else item))
+    return deepest
 
 
 @dataclass
@@ -219,12 +242,15 @@ def run_file(
     allow_writes: bool = False,
     write_folder: Path | OutFolder | None = None,
     node_progress: NodeProgress | None = None,
+    anytime: bool = False,
 ) -> Run:
     """Open, adjust with ``--set`` assignments, and solve a graph file.
 
     Nodes write files only when ``allow_writes`` (``--allow-writes``) is given, and only
     inside ``write_folder`` (``--out``), or the graph's own folder without one.
-    ``node_progress`` hears long nodes' progress (node id, fraction).
+    ``node_progress`` hears long nodes' progress (node id, fraction). ``anytime``: nodes
+    may answer at once and improve later (torsal/engine/improve.py; the caller runs the
+    improvements, as ``torsal run --nesting-time`` does).
     """
     try:
         graph, registry = open_graph(path, registry)
@@ -258,7 +284,7 @@ def run_file(
     else:
         folder = Path(write_folder) if write_folder is not None else home
         access = WriteAccess(folder.resolve(), allowed=allow_writes, read_folder=home)
-    solver = Solver(graph, access)
+    solver = Solver(graph, access, anytime=anytime)
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)
 

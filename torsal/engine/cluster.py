@@ -378,7 +378,8 @@ def nesting_problem_of(uses: dict[str, set[str]]) -> str | None:
 
 def expanded_size(graph: Graph) -> int:
     """How many nodes ``graph`` would have with every cluster expanded (instances inside
-    instances multiply), counted only to one past :data:`MAX_EXPANDED_NODES`."""
+    instances multiply; each instance counts one besides its contents, so a nest of empty
+    definitions is counted too), counted only to one past :data:`MAX_EXPANDED_NODES`."""
     size: dict[int, int] = {}
 
     def of(nodes: Iterable[NodeRecord]) -> int:
@@ -390,7 +391,7 @@ def expanded_size(graph: Graph) -> int:
                 if key not in size:
                     size[key] = MAX_EXPANDED_NODES + 1  # a loop (refused elsewhere) counts as too many
                     size[key] = of(node.definition.graph.nodes.values())
-                total += size[key]
+                total += 1 + size[key]  # an instance costs one, even of an empty definition
             else:
                 total += 1
             if total > MAX_EXPANDED_NODES:

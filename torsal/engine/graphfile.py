@@ -392,6 +392,8 @@ def _build_clusters(entries: list[dict[str, Any]], registry: Registry, graph: Gr
     for def_id in order:
         entry = raw_of[def_id]
         where = f"cluster definition {def_id!r}"
+        if not isinstance(entry.get("nodes"), list):
+            raise GraphFileError(f'{where} has no "nodes" list: every definition lists its nodes')
         inner = Graph()
         inner.clusters = graph.clusters
         inner.units = graph.units
@@ -428,7 +430,7 @@ def _check_expansion(raw_of: dict[str, dict[str, Any]], order: list[str],
         for node in nodes:
             used = node.get("settings", {}).get("definition")
             if node["type"] == CLUSTER_TYPE and isinstance(used, str):
-                total += size.get(used, 0)
+                total += 1 + size.get(used, 0)  # an instance costs one, even of an empty definition
             else:
                 total += 1
         return min(total, MAX_EXPANDED_NODES + 1)

@@ -20,9 +20,11 @@ from typing import Any
 
 import numpy as np
 
+from torsal.engine.call_budget import BudgetExceeded
 from torsal.engine.casting import TRIPLE_OF
 from torsal.engine.datatree import Branch, DataTree, Path, Triples, as_list, format_path
 from torsal.engine.node import ITEM, LIST, TREE, In, Node, NodeError, NodeWarning
+from torsal.engine.solve_context import active
 
 
 @dataclass
@@ -53,6 +55,8 @@ class Plan:
     remarks: list[str] = field(default_factory=list)
     missing: str | None = None
     refusal: str | None = None
+    #: the inputs matched, for a message naming the one that multiplied the calls
+    matched: list[tuple[In, DataTree]] = field(default_factory=list)
 
     def materialise(self) -> None:
         """Make every group's rows a list, to read them more than once."""
@@ -72,7 +76,14 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     for text in matching.remarks:
         node.remark(text)
     if matching.refusal:
-        raise NodeError(matching.refusal)
+        raise BudgetExceeded(matching.refusal)
+    context = active()
+    if context is not None and context.budget is not None:  # the solve's calls, every node together
+        context.budget.spend(matching.calls, lambda: _too_many_calls(
+            node, matching.matched, matching.calls, "counted in the solve") if matching.matched
+            else f"{node.name()} would run once")
+    if context is not None and context.dry is not None and context.dry(node):
+        return outputs  # planned and within its budgets: a dry solve (torsal check) stops here
     if not run_batched(node, matching, outputs):
         run_rows(node, matching, outputs)
     return outputs
@@ -109,7 +120,7 @@ def plan(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> 
         args = [a[0] if p.access is ITEM else a for (p, _), a in zip(matched, args, strict=True)]
         return Plan([Group((0,), [args])], calls=1)
 
-    result = Plan(remarks=uneven_remarks(matched) if len(matched) > 1 else [])
+    result = Plan(remarks=uneven_remarks(matched) if len(matched) > 1 else [], matched=matched)
     branch_lists = [[_for_port(b, p) for b in t.raw_branches] or [[]] for p, t in matched]
     path_lists = [t.paths or [(0,)] for _, t in matched]
     branch_count = max(len(b) for b in branch_lists)

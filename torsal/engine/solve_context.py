@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 from torsal.engine.messages import CancelToken, Message
 
 if TYPE_CHECKING:
+    from torsal.engine.call_budget import SolveBudget
     from torsal.engine.writes import NodeFiles
 
 
@@ -42,6 +43,13 @@ class SolveContext:
     on_progress: Callable[[float], None] | None = None
     messages: list[Message] = field(default_factory=list)
     state: dict[str, Any] = field(default_factory=dict)
+    #: the solve's count of calls (:mod:`torsal.engine.call_budget`); None: not counted
+    budget: SolveBudget | None = None
+    #: a dry solve (``torsal check``): the nodes this says are planned and checked, not run
+    dry: Callable[[Any], bool] | None = None  # given the node
+    #: the host improves results after the solve (the app): see torsal/engine/improve.py
+    anytime: bool = False
+    improver: Any = None  #: what the node asked to run after its solve (an Improver)
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

@@ -365,17 +365,28 @@ def read_own(path: Path, limit: int) -> bytes | None:
 def scratch_folder() -> Path:
     """This user's private folder for scratch files (plots without a file, writers that
     need a name): the user cache folder (platformdirs), created with mode 0700 and checked
-    to be a real folder owned by this user and closed to others."""
+    to be a real folder owned by this user and closed to others. Where that cannot be made
+    (a read-only home), a folder of this process's own made by :func:`tempfile.mkdtemp`
+    (mode 0700, a fresh random name): never a shared, predictable path."""
+    global _fallback
     import platformdirs
 
     folder = Path(platformdirs.user_cache_dir("torsal", appauthor=False))
-    folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-    status = os.lstat(folder)
-    if not stat.S_ISDIR(status.st_mode) or (hasattr(os, "getuid") and status.st_uid != os.getuid()):
-        raise UnsafeWrite(f"the scratch folder {folder} is not a folder of this user's")
-    if status.st_mode & 0o077:
-        os.chmod(folder, 0o700)
-    return folder
+    try:
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+        status = os.lstat(folder)
+        if not stat.S_ISDIR(status.st_mode) or (hasattr(os, "getuid") and status.st_uid != os.getuid()):
+            raise UnsafeWrite(f"the scratch folder {folder} is not a folder of this user's")
+        if status.st_mode & 0o077:
+            os.chmod(folder, 0o700)
+        return folder
+    except OSError:
+        if _fallback is None:
+            _fallback = Path(tempfile.mkdtemp(prefix="torsal-"))
+        return _fallback
+
+
+_fallback: Path | None = None
 
 
 @contextlib.contextmanager

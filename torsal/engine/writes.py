@@ -34,7 +34,6 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath, PureWindowsPath
 
 from torsal.engine.errors import NodeError
-from torsal.engine.solve_context import active
 from torsal.engine.write_path import folder_identity
 
 #: File types a node may never write, whatever the folder (lower case).
@@ -123,8 +122,10 @@ class WriteAccess:
             for path in paths:
                 self._claims[path] = node_id
 
-    def for_node(self, node_id: str) -> NodeFiles:
-        return NodeFiles(self, node_id)
+    def for_node(self, node_id: str, solve: object = None) -> NodeFiles:
+        """The files of node ``node_id`` in the solve ``solve`` (its cancel token: what two
+        nodes of one solve write is told apart from what the next solve writes)."""
+        return NodeFiles(self, node_id, solve)
 
     def pending(self) -> list[WriteRequest]:
         """The requests made while writes were not allowed, in the order they came."""
@@ -150,6 +151,7 @@ class NodeFiles:
 
     access: WriteAccess
     node_id: str
+    solve: object = None
 
     @property
     def folder(self) -> Path | None:
@@ -215,8 +217,7 @@ class NodeFiles:
         """Whether the user allows this document to write; if not, the request is kept."""
         if self.access.allowed:
             self.access._forget(self.node_id)
-            context = active()
-            self.access.claim(self.node_id, tuple(paths), context.token if context is not None else None)
+            self.access.claim(self.node_id, tuple(paths), self.solve)
             return True
         self.access._record(WriteRequest(self.node_id, tuple(paths)))
         return False

@@ -59,3 +59,21 @@ MAX_DENSITY = 500
 #: development-and-panels example), each panel clipped and mapped onto the surface; a
 #: Scale of 1e-9 asked for 3.3 billion (23.8 GiB).
 MAX_PANELS = 20_000
+
+#: Bytes of a mesh file ImportMesh reads, and of each file it names (an OBJ's material
+#: library, a glTF's buffers): 200 MB is about 4 million triangles of binary STL. A
+#: larger file is refused before it is read (a 1 GB mesh took 2.1–3.2 GB and 21 s).
+MAX_MESH_FILE_BYTES = 200 * 2**20
+
+#: Strips RulingDevelopable (also ConicalSurface, SplineApproximation: 12–37 ms a call in
+#: the examples) solves in one solve of the node, when a list of values (a Series into
+#: WarpTolerance, a list of curves) multiplies its calls: one strip at the default 24
+#: segments takes 5–25 ms, so 10–50 s at the cap (1,000,000 would take hours).
+MAX_STRIP_SOLVES = 2_000
+#: Rulings RulingDevelopable makes in one solve of the node, all its strips together:
+#: four strips at MAX_SEGMENTS (3–15 s).
+MAX_STRIP_RULINGS = 4 * MAX_SEGMENTS
+#: Designs Rationalise splits into strips in one solve of the node, when a list of values
+#: (surfaces, tolerances) multiplies its calls: one design took 5.5 s (the
+#: rationalise-roof example), so about 5 min at the cap.
+MAX_RATIONALISE_CALLS = 50

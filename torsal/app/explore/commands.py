@@ -100,7 +100,7 @@ def _folder(out: Path, flag: str = "--out") -> OutFolder:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from torsal.app.explore.executors import make_executor
+    from torsal.app.explore.option_bounds import bounded_executor, check_count, check_seed, grid_size
     from torsal.app.explore.progress import Progress
     from torsal.app.explore.samplers import sample
     from torsal.app.explore.study import open_study
@@ -113,12 +113,15 @@ def _sweep(args: argparse.Namespace) -> int:
         raise UsageError(f"--sampler {args.sampler} needs --samples N (1 or more)")
     if args.out is None:
         raise UsageError("give --out DIR: the folder for results.csv")
+    check_seed(args.seed)
     study = open_study(args.file, args.vary, args.collect, steps=grid)
+    count = grid_size([v.steps for v in study.variables]) if grid else args.samples
+    check_count(count, "the grid" if grid else f"--samples {args.samples}")
     variants = sample(study.variables, args.sampler, args.samples or 0, args.seed)
     out = _folder(args.out)
     progress = Progress("sweep", len(variants))
     try:
-        with make_executor(args.workers, args.scheduler) as executor:
+        with bounded_executor(args.workers, args.scheduler, len(variants)) as executor:
             result = run_sweep(study, variants, executor, out, allow_writes=args.allow_writes,
                                images=args.images, progress=progress)
     except OSError as exc:  # a read-only or full --out, a link planted in it: one line, exit 2
@@ -131,8 +134,8 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _optimise(args: argparse.Namespace) -> int:
-    from torsal.app.explore.executors import make_executor
     from torsal.app.explore.optimise import optimise
+    from torsal.app.explore.option_bounds import bounded_executor, check_count, check_seed
     from torsal.app.explore.progress import Progress
     from torsal.app.explore.report import write_evaluations, write_front
     from torsal.app.explore.study import open_study
@@ -141,13 +144,15 @@ def _optimise(args: argparse.Namespace) -> int:
         raise UsageError("give --minimise NODE.OUTPUT or --maximise NODE.OUTPUT")
     if args.budget < 1:
         raise UsageError(f"--budget {args.budget}: give 1 or more evaluations")
+    check_count(args.budget, f"--budget {args.budget}")
+    check_seed(args.seed)
     names = [name for _, name in args.objectives]
     flag = "--minimise" if args.objectives[0][0] == 1 else "--maximise"
     study = open_study(args.file, args.vary, names, steps=False, collect_flag=flag)
     out = _folder(args.out) if args.out is not None else None
     senses = [sense for sense, _ in args.objectives]
     progress = Progress("optimise", args.budget)
-    with make_executor(args.workers, args.scheduler) as executor:
+    with bounded_executor(args.workers, args.scheduler, args.budget) as executor:
         result = optimise(study, executor, senses, budget=args.budget, seed=args.seed, method=args.method,
                           progress=progress)
     progress.stream.write("\n" if progress.tty else "")

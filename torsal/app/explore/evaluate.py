@@ -132,6 +132,8 @@ def _solve(graph_text: str, values: dict[str, Any], job: Job, index: int, token:
             return Outcome(values, {t.name: None for t in job.targets},
                            f"error: cannot make the variant's folder: {exc.strerror or exc}")
         access = WriteAccess.held(root / parts[1], identity, allowed=True)
+    elif job.write_root is not None:  # no consent: the paths are still checked, then the node warns
+        access = WriteAccess(Path(job.write_root) / f"{index:05d}", allowed=False)
     # files the graph reads are found from its own folder, wherever variants write
     access.read_folder = Path(job.read_root) if job.read_root is not None else None
     solver = Solver(graph, access)

@@ -40,7 +40,7 @@ def may_write(node: Node, paths: Sequence[Path]) -> bool:
     names = ", ".join(_shown(p, folder) for p in paths)
     node.warn(
         f"Nothing written to {names}: this graph writes files only with your consent "
-        "(torsal run --allow-writes; in the app, answer Allow when it asks)"
+        "(torsal run or sweep --allow-writes; in the app, answer Allow when it asks)"
     )
     return False
 
@@ -68,7 +68,11 @@ def replacing(path: Path, write: Produce) -> Path:
         if base is not None:
             home, identity, access = base
             return write_file(path, write, base=home, identity=identity, backup=access.first_write(path))
-        Path(os.path.abspath(path)).parent.mkdir(parents=True, exist_ok=True)
+        parent = Path(os.path.abspath(path)).parent
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise FileFailure(f"Cannot create the folder {parent}: {exc.strerror or exc}") from None
         return write_file(path, write)
     except OSError as exc:
         raise FileFailure(f"Cannot write {path}: {exc.strerror or exc}") from None

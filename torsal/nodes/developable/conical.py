@@ -19,7 +19,7 @@ from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable.direct import cone_rulings
 from torsal.nodes.geometry.ruled import RuledSurface
-from torsal.nodes.limits import MAX_SEGMENTS
+from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_SOLVES
 
 
 class ConicalSurface(Node):
@@ -41,6 +41,7 @@ class ConicalSurface(Node):
     """
 
     type_id = "developable.ConicalSurface"
+    max_calls = MAX_STRIP_SOLVES  # a list of values multiplies the strips solved (limits.py)
     nickname, aliases = "ConS", ("developable cone", "apex surface")
     inputs = (
         In("Curve", CURVE, "C", "The base curve the rulings start from, planar or not."),

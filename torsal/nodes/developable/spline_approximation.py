@@ -18,7 +18,7 @@ from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.approximation import MAX_OPTIMISED, Approximation, approximate, station_rulings
 from torsal.nodes.geometry.local_frame import LocalFrame
-from torsal.nodes.limits import MAX_SPLINE_SEGMENTS
+from torsal.nodes.limits import MAX_SPLINE_SEGMENTS, MAX_STRIP_SOLVES
 
 #: Above this largest warp (rad) after optimising, the node says the strip is still warped.
 STILL_WARPED = 0.01
@@ -78,6 +78,7 @@ class SplineApproximation(Node):
     """
 
     type_id = "developable.SplineApproximation"
+    max_calls = MAX_STRIP_SOLVES  # a list of values multiplies the strips solved (limits.py)
     nickname, aliases = "SpApx", ("approximate", "developable approximation")
     inputs = (
         In("Surface", SURFACE, "S", "The double-curved ruled surface to approximate."),

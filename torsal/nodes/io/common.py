@@ -19,6 +19,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from torsal.engine.bounded_read import kind_of
 from torsal.engine.node import Node, NodeError
 from torsal.nodes.common.files import FileFailure, may_write, replacing, writable, write_target
 from torsal.nodes.common.units import METRES, unit_name, unit_scale
@@ -48,8 +49,9 @@ def readable(path: Path, kind: str) -> Path:
     """``path`` if it is a non-empty file, else a FileFailure saying what is wrong."""
     if not path.exists():
         raise FileFailure(f"There is no file {path}")
-    if path.is_dir():
-        raise FileFailure(f"{path} is a folder, not a {kind} file")
+    found = kind_of(path)  # by type: a pipe would hang a reader, a device never ends
+    if found is not None:
+        raise FileFailure(f"{path} is {found}, not a {kind} file: only regular files are read")
     if path.stat().st_size == 0:
         raise FileFailure(f"{path} is empty (0 bytes), so it holds no {kind} data")
     return path

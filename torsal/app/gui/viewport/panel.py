@@ -33,6 +33,7 @@ class ViewportPanel(QWidget):
     """The 3D preview of every node with preview on; the selected nodes are highlighted."""
 
     frame_rendered = Signal()
+    plotter_created = Signal()  # pyvista and VTK set up (start-up is timed by it)
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -125,6 +126,7 @@ class ViewportPanel(QWidget):
         self.toolbar.setEnabled(True)
         self._update_grid()
         self.refresh()
+        self.plotter_created.emit()
 
     def close_plotter(self) -> None:
         if self.plotter is not None:

@@ -11,6 +11,7 @@ import numpy as np
 import pyvista as pv
 
 from torsal.app.gui import theme
+from torsal.app.gui.viewport.coloured import replace_coloured
 from torsal.app.gui.viewport.datasets import (
     PLAIN_TYPES,
     Memo,
@@ -152,6 +153,7 @@ class Preview:
         self.bar_users: dict[str, set[str]] = {}  # colour-bar title -> nodes that use it
         self.bar_keys: dict[str, tuple[Any, str]] = {}  # colour-bar title -> (range, colour map)
         self._bounds: tuple[np.ndarray | None] | None = None  # bounds() until the actors change
+        self.hidden: set[str] = set()  # nodes whose surfaces a colour map replaces
 
     def update(
         self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
@@ -183,6 +185,8 @@ class Preview:
                 self._remove(node_id)
                 self._add(node_id, ready)
             changed = True
+        if changed:  # a colour map replaces the surface it colours (viewport/coloured.py)
+            self.hidden = replace_coloured(graph, self.nodes)
         return changed
 
     def _update_in_place(self, node_id: str, entry: NodeActors, ready: Prepared) -> bool:
@@ -268,19 +272,20 @@ class Preview:
             return title
         self.bar_keys[title] = key
         row = len(self.plotter.scalar_bars)
-        self.plotter.add_scalar_bar(
+        bar = self.plotter.add_scalar_bar(
             title=title,
             mapper=actor.mapper,
             vertical=False,
-            n_labels=5,
+            n_labels=2,  # the two ends: a middle tick label would lie under the centred title
             fmt="%.3g",
             title_font_size=11,
             label_font_size=10,
             width=0.45,
-            height=0.07,
+            height=0.1,
             position_x=0.52,
-            position_y=0.03 + 0.12 * row,
+            position_y=0.03 + 0.14 * row,
         )
+        bar.SetTextPositionToPrecedeScalarBar()  # the end labels and the title under the bar
         return title
 
     def _remove(self, node_id: str) -> None:
