@@ -47,12 +47,14 @@ lint: $(TEST_STAMP)
 
 # A larger, seeded fuzzing corpus than make test's (SEED=n for another; about 15 minutes):
 # 600 structure-aware mutants of every example, their outputs described as by --json; every
-# node's numeric inputs fed hostile numbers; every capped input at its cap. Failing mutants
+# node's numeric inputs fed hostile numbers; every capped input at its cap; 5,000 byte mutants
+# of .3dm files read through the fenced rhino3dm child (tools/fuzz_3dm.py). Failing mutants
 # are written to $TMPDIR/torsal-fuzz for `torsal run FILE`.
 fuzz: $(TEST_STAMP)
 	$(BIN)/python -m tools.fuzz_graphs --mutants 600 --seed $${SEED:-0} --summarize
 	$(BIN)/python -m tools.fuzz_inputs
 	$(BIN)/python -m tools.fuzz_inputs --at-caps
+	$(BIN)/python -m tools.fuzz_3dm --mutants 5000 --seed $${SEED:-0}
 
 # System packages: installed only when missing, and only when we are root with apt-get.
 system:

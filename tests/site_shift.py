@@ -30,6 +30,11 @@ from torsal.nodes.geometry.surface_base import Surface
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted((ROOT / "torsal" / "resources" / "examples").glob("*.graph"))
+#: The test suite's own graphs (engine fixtures, the GUI's showcase): moved like the examples.
+TEST_GRAPHS = sorted(
+    [*(ROOT / "tests" / "fixtures").glob("*.graph"), *(ROOT / "tests" / "gui" / "fixtures").glob("*.graph")]
+)
+GRAPHS = EXAMPLES + TEST_GRAPHS
 REGISTRY = default_registry(plugins=False)
 
 SITE = (1e6, 2e6, 300.0)  # a national-grid site, in metres

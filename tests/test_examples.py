@@ -8,6 +8,7 @@ import pytest
 
 from torsal.engine import graphfile
 from torsal.engine.solver import ERROR, Solver
+from torsal.engine.writes import WriteAccess
 from torsal.nodes.catalogue import default_registry
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -26,7 +27,7 @@ def test_graph_file_loads_and_saves_byte_identically(path: Path):
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
 def test_example_solves_with_no_node_in_error(path: Path):
     graph = graphfile.read_graph(path, REGISTRY)
-    solver = Solver(graph)
+    solver = Solver(graph, WriteAccess(path.parent))  # files it reads are beside it
     solver.solve()
     errors = {n: r.messages for n, r in solver.results.items() if r.state == ERROR}
     assert errors == {}

@@ -84,6 +84,7 @@ def test_the_wheel_contains_every_example_graph(wheel):
     names = set(zipfile.ZipFile(wheel).namelist())
     assert EXAMPLES
     assert {f"torsal/resources/examples/{name}" for name in EXAMPLES} <= names
+    assert "torsal/resources/examples/canopy.3dm" in names  # the design rationalise-canopy reads
 
 
 def test_the_wheel_installs_one_namespace(wheel):

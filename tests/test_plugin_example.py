@@ -66,6 +66,10 @@ def test_the_plugin_is_listed_with_its_help(waves, tmp_path):
     assert "sine wave" in listed["waves.Wave"] and "corrugated sheet" in listed["waves.Corrugation"]
     without = torsal(tmp_path, "nodes")
     assert "waves.Wave" not in without.stdout
+    listed_json = torsal(tmp_path, "nodes", "--json", plugins=(waves,)).stdout
+    catalogue = {entry["type"]: entry for entry in json.loads(listed_json)}
+    assert catalogue["waves.Wave"]["plugin"] == "torsal-waves"
+    assert "plugin" not in catalogue["maths.Expression"]
 
 
 def test_a_saved_graph_records_the_distribution_of_each_plugin_node(graph):

@@ -31,6 +31,7 @@ import pytest
 from tests.site_shift import (
     EXAMPLES,
     FAR,
+    GRAPHS,
     REGISTRY,
     SITE,
     compare,
@@ -89,7 +90,7 @@ def _marks(stem: str, offset: tuple[float, float, float]) -> list:
 
 CASES = [
     pytest.param(path, offset, id=f"{path.stem}@{offset[0]:.0e}", marks=_marks(path.stem, offset))
-    for path in EXAMPLES
+    for path in GRAPHS
     for offset in (SITE, FAR)
 ]
 

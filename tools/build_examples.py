@@ -101,7 +101,9 @@ def kaohsiung_cut_sheets() -> None:
            Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
     b.wire("strip.Surface", "cut.Strips")  # neighbouring strips' shared edges become seams
-    for flat in ("unroll", "model", "cut"):  # the flat parts are for the cutter, not the 3D view
+    # the flat parts are for the cutter; the cut node previews its sheets at the roof's scale,
+    # beside it (its Preview output)
+    for flat in ("unroll", "model"):
         b.graph.set_preview(flat, False)
     b.group("fabrication", "Unrolled, scaled, laid out", RESULT,
             ["unroll", "model_scale", "factor", "model", "cut"])
@@ -574,6 +576,34 @@ def rationalise_roof() -> None:
     b.save("rationalise-roof")
 
 
+def rationalise_canopy() -> None:
+    """Rationalise a design brought from Rhino: canopy.3dm (tools/build_design_3dm.py)."""
+    b = Builder(
+        "Rationalise a design drawn in Rhino: canopy.3dm, beside this graph, holds a canopy "
+        "12 × 8 m as one NURBS surface in millimetres. Import3dm reads it into metres (the path "
+        "is relative to this graph's folder, with or without --out), Rationalise covers it with "
+        "developable strips within the Tolerance, and Export3dm writes them back for Rhino face "
+        "by face along their rulings (set its Write to true, or: torsal run "
+        "rationalise-canopy.graph --allow-writes --set export.Write=true)."
+    )
+    b.slider("tolerance", 0, "Tolerance (m)", 0.02, 0.005, 0.1, 3)
+    b.integer("max_strips", 1, "Most strips", 40, 1, 120)
+    b.node("io.Import3dm", "design", 1, 0, "Design from Rhino", Path="canopy.3dm", Units="m")
+    b.node("developable.Rationalise", "strips", 2, 0, "Developable strips")
+    b.wire("design.Surfaces", "strips.Surface")
+    b.wire("tolerance.Value", "strips.Tolerance")
+    b.wire("max_strips.Value", "strips.MaxStrips")
+    b.node("io.Export3dm", "export", 3, 0, "Strips to Rhino", Path="out/canopy-strips.3dm",
+           Layer="Torsal", Units="m", Write=False)
+    b.wire("strips.Strips", "export.Surfaces")
+    b.wire("strips.Rulings", "export.Rulings")
+    b.graph.set_preview("design", False)
+    b.group("inputs", "Inputs", INPUTS, ["tolerance", "max_strips"])
+    b.group("surface", "Design and its strips", GEOMETRY, ["design", "strips"])
+    b.group("out", "Back to Rhino", RESULT, ["export"])
+    b.save("rationalise-canopy")
+
+
 EXAMPLES: dict[str, Callable[[], None]] = {
     "kaohsiung-stadium": kaohsiung,
     "kaohsiung-cut-sheets": kaohsiung_cut_sheets,
@@ -584,6 +614,7 @@ EXAMPLES: dict[str, Callable[[], None]] = {
     "spline-approximation": spline_approximation,
     "development-and-panels": panels,
     "rationalise-roof": rationalise_roof,
+    "rationalise-canopy": rationalise_canopy,
 }
 
 if __name__ == "__main__":

@@ -124,6 +124,30 @@ def in_arrow() -> str:
 
 
 GLYPHS: dict[str, str] = {
+    "curves.DivideLength": path(CURVE, INK, 1.6)
+    + spot(4, 17, 1.8, ACCENT)
+    + spot(8.3, 11, 1.8, ACCENT)
+    + spot(14, 13.4, 1.8, ACCENT)
+    + line(4, 22, 8.3, 22, INK, 1.1)
+    + line(8.3, 22, 14, 22, INK, 1.1)
+    + line(4, 20.5, 4, 23, INK, 1)
+    + line(8.3, 20.5, 8.3, 23, INK, 1)
+    + line(14, 20.5, 14, 23, INK, 1),
+    "surfaces.SurfaceClosestPoint": path(PATCH, INK, 1.3, SOFT)
+    + spot(12, 3, 2, INK)
+    + line(12, 3, 12, 13, ACCENT, 1.2, "1.5,1.2")
+    + spot(12, 13.5, 2, ACCENT),
+    "params.VectorTwoPoints": spot(4, 18, 2.2) + spot(20, 6, 2.2) + arrow(5.5, 17, 18, 7.5, ACCENT, 1.8),
+    "params.Distance": spot(4, 12, 2.2)
+    + spot(20, 12, 2.2)
+    + line(4, 17, 20, 17, ACCENT, 1.2)
+    + line(4, 15, 4, 19, ACCENT, 1.2)
+    + line(20, 15, 20, 19, ACCENT, 1.2)
+    + text(12, 9, "d", 7),
+    "curves.CurveClosestPoint": path(CURVE, INK, 1.6)
+    + spot(17, 20, 2, INK)
+    + line(17, 20, 14.8, 13.2, ACCENT, 1.2, "1.5,1.2")
+    + spot(14.8, 13.2, 2, ACCENT),
     # -- params: values a designer sets: knobs, dots and planes --------------------------
     "params.NumberSlider": line(3, 13, 21, 13) + circle(14, 13, 3.2, INK, 1.4, ACCENT) + text(7, 9, "0.5", 6),
     "params.IntegerSlider": line(3, 14, 21, 14)
@@ -305,6 +329,11 @@ GLYPHS: dict[str, str] = {
     "surfaces.NurbsSurface": path(PATCH, INK, 1.2, SOFT)
     + "".join(spot(x, y, 1.3, ACCENT) for x in (5, 12, 19) for y in (8, 13, 18)),
     "surfaces.ParametricSurface": path(PATCH, INK, 1.4, SOFT) + text(12, 15.5, "uv", 7.5, ACCENT),
+    # a mesh's triangle with the smooth patch fitted over it
+    "surfaces.SurfaceFromMesh": poly([(4, 20), (9, 11), (14, 20)], INK, 1.0, SOFT, True)
+    + line(6.5, 15.5, 11.5, 15.5, INK, 0.8)
+    + path("M3,9 C8,3 15,12 21,6", ACCENT, 1.6)
+    + path("M10,20 C14,15 17,18 21,14", INK, 1.4),
     "surfaces.MeshSurface": poly([(4, 19), (12, 4), (20, 19)], INK, 1.4, SOFT, True)
     + line(8, 11.5, 16, 11.5, INK, 1)
     + line(8, 11.5, 12, 19, INK, 1)

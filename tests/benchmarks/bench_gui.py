@@ -31,12 +31,20 @@ Run alone with::
   drag is held against the quickest reference run, each side's quietest moment. Today's
   headless re-solve is printed beside it (the share of the frame the solve takes).
 
+- issue "Fluid": dragging the Kaohsiung slider gives at least 25 updates a second with
+  the drag's median solve at most 1.2 times the headless re-solve of the same round (so
+  nothing of the drag slows the solve), and the flagship with ten times its strips (280)
+  at least 5. These are absolute: on the shared 2-core machine at load 8–14 they were not
+  met (4.4/s, drag solve 0.79–2.43× headless in wall time, its CPU time 0.97–1.03× the
+  headless solve's; 280 strips 0.5/s).
+
 The functional side of each (the window appears, the loop ticks, Esc cancels, every
 solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui``.
 """
 
 from __future__ import annotations
 
+import json
 import statistics
 import subprocess
 import sys
@@ -110,9 +118,12 @@ def headless_resolve_seconds(repeats: int = 7) -> float:
 
 
 _REFERENCE_SOLVE = """
-import statistics, sys, time
+import os, statistics, sys, time
 sys.path.insert(0, sys.argv[1])
-from torsal.app.headless import run_file
+if os.path.isdir(os.path.join(sys.argv[1], "torsal")):
+    from torsal.app.headless import run_file
+else:  # (before commit 6f94a22 the packages were top-level: app, engine, nodes)
+    from app.headless import run_file
 run = run_file(sys.argv[3])
 times = []
 for index in range(int(sys.argv[2]) + 1):
@@ -133,7 +144,7 @@ def reference_resolve_seconds(tree, repeats: int = 7) -> float:
     graph = EXAMPLES / "kaohsiung-stadium.graph"
     done = subprocess.run(
         [sys.executable, "-c", _REFERENCE_SOLVE, str(tree), str(repeats), str(graph)],
-        capture_output=True, text=True, check=True, timeout=300,
+        capture_output=True, text=True, check=True, timeout=300, cwd=tree,  # (not today's torsal)
     )
     return float(done.stdout.split()[-1])
 
@@ -165,6 +176,49 @@ def test_dragging_the_kaohsiung_slider_updates_the_viewport_at_least_10_times_a_
         f"re-solve is {today / reference:.2f}× the reference"
     )
     assert ratio <= FRAME_RATIO_LIMIT
+
+
+#: Issue "Fluid": the flagship follows a slider at this many updates a second …
+FLUID_RATE = 25.0
+#: … its solve during the drag at most this many times the headless re-solve …
+DRAG_SOLVE_LIMIT = 1.2
+#: … and ten times its strips (280) still at this many.
+MANY_STRIPS_RATE = 5.0
+
+
+def test_dragging_the_kaohsiung_slider_updates_25_times_a_second_solving_at_headless_speed(qtbot, window):
+    """The bars of issue "Fluid", absolute (the solve and the frame on this machine): of
+    :data:`DRAGS` rounds (today's headless re-solve, then a drag), the fastest drag, and
+    the round whose drag solved closest to its headless re-solve (the median solve of the
+    drag against the median headless re-solve just before it)."""
+    runs = []
+    for _ in range(DRAGS):
+        today = headless_resolve_seconds()
+        drag = drag_main_slider(qtbot, window, EXAMPLES / "kaohsiung-stadium.graph")
+        runs.append((today, drag, statistics.median(drag.solves)))
+    print()
+    for today, drag, solve in runs:
+        print(f"{drag.line('kaohsiung-stadium.graph')}; the drag's median solve {solve * 1000:.0f} ms, "
+              f"{solve / today:.2f}× the headless re-solve ({today * 1000:.0f} ms)")
+    best = max((drag for _, drag, _ in runs), key=lambda drag: drag.rate)
+    ratio = min(solve / today for today, _, solve in runs)
+    print(f"best: {best.rate:.1f} updates/s (bar {FLUID_RATE:.0f}); the drag's solve {ratio:.2f}× headless "
+          f"(limit {DRAG_SOLVE_LIMIT})")
+    assert ratio <= DRAG_SOLVE_LIMIT
+    assert best.rate >= FLUID_RATE
+
+
+def test_dragging_kaohsiung_with_280_strips_updates_5_times_a_second(qtbot, window, tmp_path):
+    """The flagship with 'Edge points' at 276 (280 strips, ten times the file's)."""
+    graph = json.loads((EXAMPLES / "kaohsiung-stadium.graph").read_text(encoding="utf-8"))
+    for node in graph["nodes"]:
+        if node["id"] == "count":
+            node["settings"].update(max=400, value=276)
+    path = tmp_path / "kaohsiung-280-strips.graph"
+    path.write_text(json.dumps(graph), encoding="utf-8")
+    best = max((drag_main_slider(qtbot, window, path) for _ in range(DRAGS)), key=lambda drag: drag.rate)
+    print(f"\n{best.line(path.name)} (bar {MANY_STRIPS_RATE:.0f}/s)")
+    assert best.rate >= MANY_STRIPS_RATE
 
 
 def test_dragging_a_slider_of_a_cheap_graph_is_bounded_by_the_gui_not_the_solve(qtbot, window):

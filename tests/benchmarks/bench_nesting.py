@@ -22,6 +22,9 @@ example itself, run as shipped but for ``--set cut.Nesting=TrueShape``: usage â‰
 from __future__ import annotations
 
 import itertools
+import json
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -40,6 +43,61 @@ BUDGET = {"kaohsiung": 45.0, "panels": 20.0, "random strips": 30.0}
 #: which shelf packing already packs well).
 USAGE_RATIO = {"kaohsiung": 1.3, "panels": 1.0, "random strips": 1.1}
 ROWS: list[str] = []
+#: The issue's bar (31): true-shape nesting within this many times sparrow's own time to pack
+#: the same parts at the same density in one strip of the sheet's height.
+TIME_RATIO = 1.5
+#: Longest a baseline strip packing is given to reach the density (s).
+BASELINE_CAP = 300.0
+
+#: The baseline: spyrrow in one call, free rotation (or the layout's turns), 10 mm
+#: separation, a strip of the sheet's height, two threads; prints the seconds from the
+#: start of the solve to its first packing at least as dense as asked (null: not by the cap).
+BASELINE = """
+import json, sys, threading, time, spyrrow, shapely
+job = json.loads(sys.stdin.read())
+area = sum(shapely.Polygon(s).area for s in job["shapes"])
+items = [spyrrow.Item(str(i), [tuple(p) for p in s], demand=1, allowed_orientations=None)
+         for i, s in enumerate(job["shapes"])]
+instance = spyrrow.StripPackingInstance("baseline", job["height"], items)
+config = spyrrow.StripPackingConfig(early_termination=False, total_computation_time=None,
+    exploration_time=int(job["cap"]), compression_time=0, min_items_separation=job["spacing"],
+    seed=0, num_workers=2)
+progress = spyrrow.ProgressQueue()
+solver = threading.Thread(target=lambda: instance.solve(config, progress=progress), daemon=True)
+start = time.perf_counter()
+solver.start()
+while True:
+    alive = solver.is_alive()
+    for kind, solution in progress.drain():
+        if kind in (spyrrow.ReportType.ExplFeas, spyrrow.ReportType.CmprFeas, spyrrow.ReportType.Final) \\
+                and area / (solution.width * job["height"]) >= job["density"]:
+            reached = area / (solution.width * job["height"])
+            print(json.dumps([time.perf_counter() - start, reached]), flush=True)
+            import os; os._exit(0)
+    if not alive:
+        print(json.dumps([None, 0.0]), flush=True)
+        break
+    time.sleep(0.01)
+"""
+
+
+def sparrow_seconds(files: list[Path], density: float, height: float = 1250.0,
+                    spacing: float = 10.0) -> float:
+    """Seconds spyrrow takes, in one call, to pack the parts of ``files`` (their CUT contours,
+    centred) into a strip ``height`` tall at ``density`` or more; inf when not within
+    :data:`BASELINE_CAP`. The strip's density counts its length to the far separation, as the
+    stock usage counts the last sheet to its parts' reach plus the margin."""
+    shapes = []
+    for file in files:
+        for e in ezdxf.readfile(file).modelspace().query('LWPOLYLINE[layer=="CUT"]'):
+            ring = np.array([(x, y) for x, y, *_ in e.get_points()])
+            shapes.append(np.round(ring - ring.mean(axis=0), 3).tolist())
+    job = {"shapes": shapes, "height": height, "spacing": spacing + 0.02, "density": density,
+           "cap": BASELINE_CAP}
+    done = subprocess.run([sys.executable, "-c", BASELINE], input=json.dumps(job), capture_output=True,
+                          text=True, timeout=BASELINE_CAP + 60, check=True)
+    seconds, _ = json.loads(done.stdout.strip().splitlines()[-1])
+    return float("inf") if seconds is None else float(seconds)
 
 
 def _example_items(name: str, node: str, port: str) -> tuple[list, str]:
@@ -114,7 +172,26 @@ def test_true_shape_nesting_uses_no_more_sheets_and_more_of_them_than_shelf_pack
     assert true[0] >= USAGE_RATIO[name] * shelf[0]
 
 
-def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_70_percent_of_the_stock(tmp_path, capsys):
+@pytest.mark.xfail(strict=True, reason="issue 31 item 1 not reached: nesting spends 20-50x sparrow's own "
+                   "time (most of it waiting on sparrow's failed attempts, see the note in nesting.py)")
+@pytest.mark.parametrize("name", ["kaohsiung", "panels", "random strips"])
+def test_true_shape_nesting_takes_at_most_one_and_a_half_times_sparrows_own_strip_packing(name, tmp_path):
+    """The issue's bar: time to the layout against spyrrow's time, in one call, to pack the same
+    parts at the same density in one strip of the sheet's height (measured here, in this run,
+    from the parts as the DXF files hold them)."""
+    items, units = {"kaohsiung": kaohsiung, "panels": panels, "random strips": random_strips}[name]()
+    usage, sheets, seconds = _lay_out(items, units, cutfiles.TRUE_SHAPE, tmp_path, BUDGET[name])
+    files = sorted(tmp_path.glob(f"{cutfiles.TRUE_SHAPE}*.dxf"))
+    baseline = sparrow_seconds(files, usage)
+    ratio = seconds / baseline
+    ROWS.append(f"{name:14s} true shape {usage:6.1%} on {sheets} sheets in {seconds:6.1f} s | sparrow alone "
+                f"to {usage:.1%} in one strip: {baseline:6.1f} s | ratio {ratio:.1f} (bar {TIME_RATIO})")
+    print("\n" + "\n".join(ROWS))
+    assert ratio <= TIME_RATIO
+
+
+def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_72_percent_with_seams_on_both_parts(tmp_path,
+                                                                                                   capsys):
     """The issue's bar on the example itself: ``torsal run kaohsiung-cut-sheets.graph --set
     cut.Nesting=TrueShape`` as a user types it, with the graph's own Seed and TimeBudget
     (the example ships with Nesting = Shelf, which ignores both: TrueShape at the budget
@@ -138,4 +215,7 @@ def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_70_percent_of_the_s
     with capsys.disabled():
         print(f"\nkaohsiung-cut-sheets, Nesting = TrueShape: {sheets} sheets, usage {usage:.1%} "
               f"(from the DXF files), run {seconds:.1f} s")
-    assert usage >= 0.70
+    assert usage >= 0.72  # and no two parts overlap (_usage_from_files checks with shapely)
+    # every seam engraved on both its parts: the node says when an ID fits on neither side
+    messages = " ".join(m["text"] for m in data["nodes"]["cut"].get("messages", []))
+    assert "does not fit" not in messages and "seams" in messages

@@ -31,7 +31,7 @@ TOLERANCES = (0.01, 0.02, 0.05)
 def _even_ok(design, family: str, tolerance: float, count: int) -> bool:
     cuts = np.linspace(0.0, 1.0, count + 1)
     boundaries = IsoBoundaries(design, family)
-    return all(strip_between(design, boundaries, lo, hi).deviation <= tolerance
+    return all(strip_between(design, boundaries, lo, hi, tolerance=tolerance).deviation <= tolerance
                for lo, hi in itertools.pairwise(cuts))
 
 

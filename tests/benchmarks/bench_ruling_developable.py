@@ -46,8 +46,9 @@ BEFORE_ISSUE_10 = "d980062"
 def sampled_search(curve_a: Curve, curve_b: Curve, segments: int):
     """RulingDevelopable as it was before issue 10, loaded from git history."""
     modules = ("brackets", "selection", "stations", "warp", "ruling")
-    package = load_package(
-        BEFORE_ISSUE_10, "nodes/geometry/developable", modules, "nodes.geometry", "ruling_before_issue_10"
+    package = load_package(  # (its kernel imports pointed at today's torsal.nodes.geometry)
+        BEFORE_ISSUE_10, "nodes/geometry/developable", modules, "torsal.nodes.geometry",
+        "ruling_before_issue_10",
     )
     return package.ruling.ruling_developable(curve_a, curve_b, segments)
 

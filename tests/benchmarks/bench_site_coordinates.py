@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.site_shift import EXAMPLES, FAR, REGISTRY, SITE, shifted, solve
+from tests.site_shift import FAR, GRAPHS, REGISTRY, SITE, shifted, solve
 from torsal.engine import graphfile
 
 REPEATS = 5
@@ -28,7 +28,7 @@ BAR = 2.0
 
 CASES = [
     pytest.param(path, offset, id=f"{path.stem}@{offset[0]:.0e}")
-    for path in EXAMPLES
+    for path in GRAPHS
     for offset in (SITE, FAR)
 ]
 

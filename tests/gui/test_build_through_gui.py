@@ -68,7 +68,7 @@ def test_graph_built_with_search_wires_and_slider_drag_solves_the_same_headless(
     wait_solved(qtbot, window)
     value = graph.nodes[step].node.settings["value"]
     assert value > 0.6
-    assert window.doc.undo_stack.undoText() == "Set value"  # one merged command for the whole drag
+    assert window.doc.undo_stack.undoText() == f"Set value of {graph.nodes[step].title}"  # one for the drag
 
     series_out = window.doc.results[series].outputs["Series"].all_items()
     assert len(series_out) == 5 and series_out[1] == value  # Count 5 (default), Start 0, Step = slider

@@ -318,7 +318,7 @@ def test_inspector_edits_a_setting_as_one_undo_step(first_steps):
     row = next(r for r in range(table.rowCount()) if table.item(r, 0).text() == "expression")
     table.item(row, 1).setText(json.dumps("w * n * 2"))
     assert window.doc.graph.nodes["total"].node.settings["expression"] == "w * n * 2"
-    assert window.doc.undo_stack.undoText() == "Set expression"
+    assert window.doc.undo_stack.undoText() == "Set expression of Total length"  # names the node
 
 
 def test_palette_click_places_a_node_and_icons_carry_the_toolbox_letters(window):

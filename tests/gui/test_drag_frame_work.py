@@ -295,4 +295,4 @@ def test_a_slider_drag_ends_when_a_menu_takes_the_mouse_before_the_release(qtbot
     wait_solved(qtbot, window)
     assert not window.editor.dragging
     assert gc.get_threshold() == before
-    assert window.doc.undo_stack.undoText() == "Set value"  # the drag's one step, closed
+    assert window.doc.undo_stack.undoText().startswith("Set value of ")  # the drag's one step, closed

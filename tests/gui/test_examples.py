@@ -53,6 +53,10 @@ def expected_actors(doc) -> int:
                 kinds.add("surfaces")
             elif isinstance(value, Curve):
                 kinds.add("curves")
+            elif hasattr(type(value), "preview_geometry"):  # draws itself (a cut sheets' Preview)
+                drawn_by_itself = value.preview_geometry()
+                kinds.update(kind for kind, items in (("curves", drawn_by_itself.polylines),
+                                                      ("points", drawn_by_itself.points)) if len(items))
         count += len(kinds)
     return count
 

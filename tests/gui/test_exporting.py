@@ -13,7 +13,7 @@ from PySide6.QtGui import QColor, QKeySequence
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QColorDialog, QFileDialog, QMenu
 
-from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, port_point, view_point, wait_solved
+from tests.gui.fixtures_gui import EXAMPLES, copy_fixture, port_point, title_point, view_point, wait_solved
 from tests.gui.fixtures_gui import right_click as right_click_menu
 from tests.io.helpers import rhino_points, rhino_surface_points
 from torsal.app.gui.canvas.view import CanvasView
@@ -270,3 +270,21 @@ def test_right_drag_over_a_group_still_pans_and_opens_no_menu(qtbot, window, tmp
     after = window.view.mapToScene(start)
     assert opened == []
     assert after.x() == pytest.approx(before.x() - 80 / window.view.zoom(), abs=2)
+
+
+def test_a_nodes_own_bake_writes_that_node_only_even_with_its_preview_off(
+    qtbot, window, tmp_path, monkeypatch
+):
+    open_example(qtbot, window, "textbook-ruled-surfaces.graph", tmp_path)
+    window.editor.set_preview(["cylinder"], False)  # Grasshopper bakes a component whatever its preview
+    wait_solved(qtbot, window)
+    dialog = save_as(monkeypatch, tmp_path / "cylinder.3dm")
+    window.view.centerOn(window.scene.nodes["cylinder"])
+    catcher = right_click_menu(window, title_point(window, "cylinder"), "Bake…")
+    assert "Bake…" in catcher.menus[0]
+    assert dialog.offered[0][0] == str(tmp_path / "textbook-ruled-surfaces-cylinder-bake.3dm")
+    model = rh.File3dm.Read(str(tmp_path / "cylinder.3dm"))
+    layers = {layer.Index: layer.FullPath for layer in model.Layers}
+    assert {layers[o.Attributes.LayerIndex] for o in model.Objects} == {"textbook-ruled-surfaces::Cylinder"}
+    assert len(model.Objects) == 50  # the surface and its 49 rulings
+    assert "Baked 50 objects from 1 node " in window.status.currentMessage()

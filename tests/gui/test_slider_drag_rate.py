@@ -101,7 +101,7 @@ def drag_main_slider(qtbot, window, path) -> Drag:
     )
     wait_solved(qtbot, window)
     assert window.doc.graph.nodes[slider_id].node.settings["value"] != value_before
-    assert window.doc.undo_stack.undoText() == "Set value"  # the whole drag is one undo step
+    assert window.doc.undo_stack.undoText().startswith("Set value of ")  # the drag: one undo step
     assert not unshown, f"results not shown in the viewport: {unshown}"
     return Drag(slider_id, elapsed, frames, solved, len(partials))
 

@@ -12,7 +12,8 @@ import trimesh
 
 from tests.nodes.helpers import out, run, texts, tree
 from torsal.engine.values import Domain, Plane, Point, Vector
-from torsal.nodes.curves.frames import CurveFrame, PerpFrames
+from torsal.nodes.curves.division import DivideLength
+from torsal.nodes.curves.frames import CurveClosestPoint, CurveFrame, PerpFrames
 from torsal.nodes.geometry.curves import Circle, Line
 from torsal.nodes.geometry.vectors import Plane as KernelPlane
 from torsal.nodes.maths.remap import Bounds, DeconstructDomain, Remap
@@ -26,7 +27,9 @@ from torsal.nodes.params.planes import (
     XZPlane,
     YZPlane,
 )
+from torsal.nodes.params.two_points import Distance, VectorTwoPoints
 from torsal.nodes.surfaces.bounds import BoundingBox, Volume
+from torsal.nodes.surfaces.closest import SurfaceClosestPoint
 
 
 def one(result, port=None):
@@ -151,3 +154,44 @@ def test_volume_and_centroid_of_a_box_and_an_open_mesh_refused():
     open_box.update_faces(np.arange(len(box.faces)) != 0)
     result = run(Volume(), Mesh=tree({(0,): [open_box]}))
     assert result.state == "warning" and "open" in texts(result)[0]
+
+
+def test_vector_between_two_points_and_its_unit_direction():
+    result = run(VectorTwoPoints(), A=Point(1, 1, 1), B=Point(4, 5, 1))
+    assert one(result, "Vector") == Vector(3, 4, 0) and one(result, "Length") == 5.0
+    unit = run(VectorTwoPoints(), A=Point(1, 1, 1), B=Point(4, 5, 1), Unit=True)
+    assert one(unit, "Vector") == pytest.approx(Vector(0.6, 0.8, 0), abs=1e-15)
+    same = run(VectorTwoPoints(), A=Point(1, 1, 1), B=Point(1, 1, 1), Unit=True)
+    assert same.state == "warning" and "zero length" in texts(same)[0]
+
+
+def test_distance_between_points():
+    assert one(run(Distance(), A=Point(1, 2, 3), B=Point(3, 5, 9))) == 7.0
+
+
+def test_curve_closest_point_on_a_circle_is_along_the_radius():
+    circle = Circle(KernelPlane.from_normal([0, 0, 0], [0, 0, 1]), 2.0)
+    result = run(CurveClosestPoint(), Point=Point(3, 4, 1), Curve=tree({(0,): [circle]}))
+    assert one(result, "Point") == pytest.approx(Point(1.2, 1.6, 0), abs=1e-12)  # 2 · (3, 4)/5
+    assert one(result, "Distance") == pytest.approx(math.sqrt(3**2 + 1), abs=1e-12)  # 5 − 2 in plan, 1 up
+    assert 0 <= one(result, "Parameter") <= 1
+
+
+def test_divide_length_marks_every_length_along_a_line_and_refuses_a_count_past_the_cap():
+    line = Line([0, 0, 0], [10, 0, 0])
+    result = run(DivideLength(), Curve=tree({(0,): [line]}), Length=3.0)
+    (found,) = out(result, "Points").values()
+    assert [p[0] for p in found] == pytest.approx([0, 3, 6, 9], abs=1e-12)  # 10 is not a whole 3s
+    whole = run(DivideLength(), Curve=tree({(0,): [line]}), Length=2.5)
+    assert [p[0] for p in out(whole, "Points")[(0,)]] == pytest.approx([0, 2.5, 5, 7.5, 10], abs=1e-12)
+    tiny = run(DivideLength(), Curve=tree({(0,): [line]}), Length=1e-9)
+    assert tiny.state == "warning" and "at most" in texts(tiny)[0]
+
+
+def test_surface_closest_point_on_a_sphere_lies_along_the_radius():
+    from torsal.nodes.surfaces.primitives import Sphere
+
+    sphere = one(run(Sphere(), Radius=2.0))
+    result = run(SurfaceClosestPoint(), Point=Point(0, 3, 4), Surface=tree({(0,): [sphere]}))
+    assert one(result, "Point") == pytest.approx(Point(0, 1.2, 1.6), abs=1e-9)  # 2 · (0, 3, 4)/5
+    assert one(result, "Distance") == pytest.approx(3.0, abs=1e-9)  # 5 − 2

@@ -99,9 +99,7 @@ def test_placement_is_a_rigid_motion_of_the_origin_development(unrolled, placeme
     placed = pdist(development_points(unrolled[placement]))
     origin = pdist(development_points(unrolled[ORIGIN]))
     assert np.abs(placed - origin).max() <= 1e-15 * SIZE
-    # (pairs closer than 1e-3 of the size — the cone is unrolled finely enough for its flat
-    # edges to keep their length to 1e-7, 1e-4 apart — differ by the rounding checked above)
-    apart = origin > 1e-3 * SIZE
+    apart = origin > 1e-9 * SIZE
     np.testing.assert_allclose(placed[apart], origin[apart], rtol=1e-12, atol=0)
 
 
@@ -147,9 +145,7 @@ def test_patching_flat_outputs_beside_model_lie_outside_the_models_bounding_box(
 def test_patching_placement_is_a_rigid_motion_of_the_flat_outputs(panelled):
     placed, origin = pdist(panel_points(panelled[BESIDE])), pdist(panel_points(panelled[ORIGIN]))
     assert np.abs(placed - origin).max() <= 1e-15 * SIZE
-    # (pairs closer than 1e-3 of the size — the cone is unrolled finely enough for its flat
-    # edges to keep their length to 1e-7, 1e-4 apart — differ by the rounding checked above)
-    apart = origin > 1e-3 * SIZE
+    apart = origin > 1e-9 * SIZE
     np.testing.assert_allclose(placed[apart], origin[apart], rtol=1e-12, atol=0)
 
 

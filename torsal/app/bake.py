@@ -6,13 +6,17 @@ through the same writer as ``io.Export3dm`` (:func:`torsal.nodes.io.formats.thre
 entries come from :func:`~torsal.nodes.io.formats.threedm.tree_entries`):
 
 - one layer per node, ``Parent::Title``, where Parent names the graph (its file's stem
-  in the GUI) and Title is the node's label, or its type's name when it has none. Two
+  in the GUI) and Title is the node's label, or its type's name when it has none; the
+  layer has the colour of the node's group on the canvas. Two
   nodes with the same title are told apart by their ids: ``Curvature analysis
   (torus_analysis)``. Characters Rhino refuses in a name (control characters, ``::``, a
   leading bracket or space) are replaced or dropped.
 - every object named after its output and its number there (``Surface 1``, ``Rulings
   12``), with the user strings ``TorsalNode``, ``TorsalOutput``, ``TorsalPath`` and
-  ``TorsalIndex`` saying where it came from;
+  ``TorsalIndex`` saying where it came from; a developable strip goes face by face along
+  its rulings (:mod:`torsal.nodes.io.formats.threedm_strips`), each face also carrying
+  ``TorsalRulings`` (``3-14``) and ``TorsalFace`` (torsal or fan), the strip's faces in
+  one Rhino group;
 - the file in the graph's units.
 
 Values that are not geometry (numbers, text, vectors, domains, planes, cut layouts) are
@@ -116,6 +120,24 @@ def bake_entries(
     return entries, layers, skipped
 
 
+def node_colours(graph: Graph, layers: Mapping[str, str]) -> dict[str, tuple[int, int, int, int]]:
+    """Each baked node's layer coloured as the node's group on the canvas (ungrouped nodes'
+    layers keep Rhino's default): ``{layer path: (r, g, b, a)}``."""
+    colours = {}
+    for group in graph.groups:
+        text = str(group.colour).lstrip("#")
+        if len(text) != 6:
+            continue
+        try:
+            rgb = tuple(int(text[i:i + 2], 16) for i in (0, 2, 4))
+        except ValueError:
+            continue
+        for node_id in group.nodes:
+            if node_id in layers:
+                colours.setdefault(layers[node_id], (*rgb, 255))
+    return colours
+
+
 def nothing_to_bake(count: int) -> str:
     """What to say when none of ``count`` nodes has geometry."""
     return (
@@ -147,7 +169,7 @@ def bake(
     if not entries:
         raise ExportError(nothing_to_bake(len([n for n in node_ids if n in results])))
     try:
-        written = threedm.write_3dm(path, entries, graph.units)
+        written = threedm.write_3dm(path, entries, graph.units, node_colours(graph, layers))
     except FileFailure as exc:
         raise ExportError(str(exc)) from None
     counts = Counter(entry.layer for entry in entries)

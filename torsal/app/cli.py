@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 from pathlib import Path
@@ -80,6 +81,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--export", action="append", default=[], metavar="ID.PORT=PATH",
                      help="write one output to PATH: .json/.csv (data), .3dm, .dxf/.svg (cut sheets), "
                      ".obj/.stl/.ply/.glb")
+    run.add_argument("--nesting-time", type=float, metavar="S",
+                     help="answer with row layouts at once, then nest TrueShape cut sheets for at most S "
+                     "seconds in all, keeping the best found (default: each node's TimeBudget, in steps)")
     run.add_argument("--preview", action="store_true",
                      help="with --export of cut sheets (.dxf/.svg), also write a PNG of each sheet beside it")
     run.set_defaults(handler=_run)
@@ -123,9 +127,15 @@ def _run(args: argparse.Namespace) -> int:
     out = out_folder(args.out) if args.out is not None else None  # resolved once; a link is refused
     from torsal.app.progress import reporting
 
+    if args.nesting_time is not None and not (args.nesting_time >= 0 and math.isfinite(args.nesting_time)):
+        raise UsageError(f"--nesting-time must be a number of seconds from 0, not {args.nesting_time:g}")
     with reporting(sys.stderr) as node_progress:  # rich's line on a terminal, else a heartbeat
         run = run_file(args.file, args.set, allow_writes=args.allow_writes, write_folder=out,
-                       node_progress=node_progress)
+                       node_progress=node_progress, anytime=args.nesting_time is not None)
+        if args.nesting_time is not None:  # the background searches, for at most that long
+            from torsal.engine.improve import run_improvements
+
+            run_improvements(run.solver, args.nesting_time, node_progress=node_progress)
     for note in run.notes:
         print(f"torsal: note: {note}", file=sys.stderr)
     for request in args.export:
@@ -196,11 +206,16 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _nodes(args: argparse.Namespace) -> int:
+    from torsal.engine.registry import provider
     from torsal.nodes.catalogue import default_registry
 
     registry = default_registry()  # its problems were reported by main
-    if args.json:
-        print(json.dumps([cls.catalogue_entry() for cls in registry], indent=2))
+    if args.json:  # a plug-in's types say which package provides them
+        entries = [cls.catalogue_entry() for cls in registry]
+        for cls, entry in zip(registry, entries, strict=True):
+            if provider(cls):
+                entry["plugin"] = provider(cls)
+        print(json.dumps(entries, indent=2))
         return 0
     for cls in registry:
         summary_line = cls.help().splitlines()[0] if cls.help() else ""

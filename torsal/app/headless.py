@@ -242,12 +242,15 @@ def run_file(
     allow_writes: bool = False,
     write_folder: Path | OutFolder | None = None,
     node_progress: NodeProgress | None = None,
+    anytime: bool = False,
 ) -> Run:
     """Open, adjust with ``--set`` assignments, and solve a graph file.
 
     Nodes write files only when ``allow_writes`` (``--allow-writes``) is given, and only
     inside ``write_folder`` (``--out``), or the graph's own folder without one.
-    ``node_progress`` hears long nodes' progress (node id, fraction).
+    ``node_progress`` hears long nodes' progress (node id, fraction). ``anytime``: nodes
+    may answer at once and improve later (torsal/engine/improve.py; the caller runs the
+    improvements, as ``torsal run --nesting-time`` does).
     """
     try:
         graph, registry = open_graph(path, registry)
@@ -281,7 +284,7 @@ def run_file(
     else:
         folder = Path(write_folder) if write_folder is not None else home
         access = WriteAccess(folder.resolve(), allowed=allow_writes, read_folder=home)
-    solver = Solver(graph, access)
+    solver = Solver(graph, access, anytime=anytime)
     report = solver.solve(node_progress=node_progress)
     return Run(Path(path), graph, solver, report, registry, notes=notes)
 

@@ -301,6 +301,20 @@ class Node:
         if message not in messages:
             messages.append(message)
 
+    @property
+    def anytime(self) -> bool:
+        """Whether the host improves this node's result after the solve (the app does;
+        ``torsal run`` does not): a node may then answer at once and :meth:`improve_later`."""
+        return self.context().anytime
+
+    def improve_later(self, improver: Any) -> None:
+        """Run ``improver`` after this solve, off the solve, when the host is :attr:`anytime`
+        (torsal/engine/improve.py): it publishes better outputs as it finds them. Only for
+        a node solved in one call (tree inputs); the first one asked for is kept."""
+        context = self.context()
+        if context.improver is None:
+            context.improver = improver
+
     def check_cancelled(self) -> None:
         """Long-running nodes call this inside their loops so a solve can be stopped."""
         self.token.check()

@@ -47,6 +47,9 @@ class SolveContext:
     budget: SolveBudget | None = None
     #: a dry solve (``torsal check``): the nodes this says are planned and checked, not run
     dry: Callable[[Any], bool] | None = None  # given the node
+    #: the host improves results after the solve (the app): see torsal/engine/improve.py
+    anytime: bool = False
+    improver: Any = None  #: what the node asked to run after its solve (an Improver)
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def __enter__(self) -> SolveContext:

@@ -13,6 +13,7 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from torsal.engine.bounds import within_bounds
 from torsal.engine.call_budget import BudgetExceeded, SolveBudget
@@ -27,6 +28,7 @@ from torsal.engine.cluster import PORT, ClusterDefinition, ClusterInput, Cluster
 from torsal.engine.datatree import DataTree, apply_modifiers
 from torsal.engine.graph import Graph, NodeRecord, Wire, is_placeholder
 from torsal.engine.matching import run_node as run_node  # where callers found it
+from torsal.engine.matching import store
 from torsal.engine.node import (
     Cancelled,
     CancelToken,
@@ -55,6 +57,8 @@ class NodeResult:
     messages: list[Message] = field(default_factory=list)
     seconds: float = 0.0
     outputs: dict[str, DataTree] = field(default_factory=dict)
+    #: what improves this result after the solve (torsal/engine/improve.py), or None
+    improver: Any = None
 
     def output(self, port: str) -> DataTree:
         return self.outputs.get(port) or DataTree()
@@ -75,9 +79,12 @@ class SolveReport:
 class Solver:
     """Solves a :class:`Graph` incrementally and keeps each node's :class:`NodeResult`."""
 
-    def __init__(self, graph: Graph, files: WriteAccess | None = None, *,
+    def __init__(self, graph: Graph, files: WriteAccess | None = None, anytime: bool = False, *,
                  dry: Callable[[Node], bool] | None = None, budget: SolveBudget | None = None) -> None:
         self.graph = graph
+        #: nodes may answer at once and improve their result later (the app): improve.py
+        self.anytime = anytime
+        self._adopted: list[str] = []  # improved since the last solve: reported as solved
         self.results: dict[str, NodeResult] = {}
         #: where the graph's nodes may write files, and whether the user allows it
         self.files = files if files is not None else WriteAccess()
@@ -159,7 +166,40 @@ class Solver:
             graph.expired.clear()
             touched.clear()
         report.seconds = time.perf_counter() - start
+        if self._adopted:  # improved after their solve: shown as if solved now
+            report.solved[:0] = [n for n in self._adopted if n not in report.solved]
+            self._adopted.clear()
         return report
+
+    # -- results that improve after the solve (torsal/engine/improve.py) --------------
+    def improvers(self) -> dict[str, Any]:
+        """node id → the improver of its current result, for every result that has one."""
+        return {node_id: r.improver for node_id, r in self.results.items() if r.improver is not None}
+
+    def adopt(self, node_id: str, values: Any, remarks: list[str] | None = None,
+              improver: Any = None) -> bool:
+        """Take an improvement of ``node_id``'s result: ``values`` as its ``solve`` would
+        return them, ``remarks`` replacing its remarks; what is downstream of it expires
+        (the next :meth:`solve` solves it and reports this node as solved). False when the
+        node has been solved again since (the improvement is stale) or is gone."""
+        record = self.graph.nodes.get(node_id)
+        result = self.results.get(node_id)
+        if record is None or result is None or result.improver is None:
+            return False
+        node = record.node
+        outputs = {p.name: DataTree() for p in node.output_ports()}
+        try:
+            store(node, outputs, [((0,), [values])], iterated=False)
+        except NodeError:
+            return False
+        messages = [m for m in result.messages if m.level != Level.REMARK]
+        messages += [Message(Level.REMARK, text) for text in remarks or []]
+        self.results[node_id] = NodeResult(result.state, messages, result.seconds, outputs, result.improver)
+        for wire in self.graph.wires_from(node_id):
+            self.graph.expire(wire.target)
+        if node_id not in self._adopted:
+            self._adopted.append(node_id)
+        return True
 
     # -- one node -------------------------------------------------------------------
     def _solve_node(self, record: NodeRecord, token: CancelToken,
@@ -178,7 +218,7 @@ class Solver:
         if isinstance(node, ClusterNode):
             return self._solve_cluster(record, node, token, on_progress)
         context = SolveContext(node, token, self.files.for_node(record.id, token), on_progress,
-                               budget=self.budget, dry=self.dry)
+                               budget=self.budget, dry=self.dry, anytime=self.anytime)
         messages = context.messages
         outputs: dict[str, DataTree] = {}
         with solving(context):
@@ -204,7 +244,8 @@ class Solver:
             state = {Level.ERROR: ERROR, Level.WARNING: WARNING}.get(worst, OK)
         if state == ERROR or not outputs:
             outputs = _empty_outputs(node)
-        return NodeResult(state, messages, seconds, outputs)
+        improver = context.improver if state != ERROR and self.anytime else None
+        return NodeResult(state, messages, seconds, outputs, improver)
 
     def _solve_cluster(self, record: NodeRecord, node: ClusterNode, token: CancelToken,
                        on_progress: Callable[[float], None] | None) -> NodeResult:

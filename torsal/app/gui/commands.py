@@ -149,7 +149,8 @@ class SetSetting(GraphCommand):
     def __init__(
         self, doc: Document, node_id: str, name: str, value: Any, merge_key: object = None, text: str = ""
     ) -> None:
-        super().__init__(doc, text or f"Set {name}")
+        # "Set value of Panel width (m)": the undo history names the slider it changed
+        super().__init__(doc, text or f"Set {name} of {doc.graph.nodes[node_id].title}")
         self.node_id, self.name, self.value = node_id, name, copy.deepcopy(value)
         self.old = copy.deepcopy(doc.graph.nodes[node_id].node.settings.get(name))
         self.merge_key = merge_key

@@ -16,6 +16,7 @@ from pathlib import Path
 from PySide6.QtCore import QObject, Signal
 from PySide6.QtGui import QUndoGroup, QUndoStack
 
+from torsal.app.gui.improvements import Improvements
 from torsal.app.gui.solve_controller import SolveController, SolveOutcome
 from torsal.engine.cluster import ClusterInput
 from torsal.engine.cluster_edits import cluster_graph, definition_of
@@ -81,7 +82,9 @@ class Document(QObject):
         #: where this document's nodes may write, and whether the user has said they may
         self.writes = WriteAccess()
         self.writes_asked = False
-        self.solver = Solver(self.graph, self.writes)
+        self.solver = Solver(self.graph, self.writes, anytime=True)
+        #: results that improve after the solve, searched in the background (nesting)
+        self.improvements = Improvements(self.solves, lambda: self.solver, self)
         self._unsubscribe = self.graph.subscribe(self._relay)
         self.solves.set_solver(self.solver)
 
@@ -89,12 +92,13 @@ class Document(QObject):
     def replace(self, graph: Graph, path: Path | None, *, clean: bool = True) -> None:
         """Show ``graph`` instead of the current one (undo history is cleared)."""
         self.solves.pause()
+        self.improvements.stop()
         self._drop_frames()
         self._unsubscribe()
         self.graph = graph
         self.writes = WriteAccess(path.parent if path is not None else None)  # a new document: not allowed
         self.writes_asked = False
-        self.solver = Solver(graph, self.writes)
+        self.solver = Solver(graph, self.writes, anytime=True)
         self.solves.set_solver(self.solver)
         self._unsubscribe = graph.subscribe(self._relay)
         self.results = {}
@@ -193,7 +197,7 @@ class Document(QObject):
         )
         self.frames.append(frame)
         stack = QUndoStack(self)
-        self._show(edited, Solver(edited, self.writes), stack, {}, None)
+        self._show(edited, Solver(edited, self.writes, anytime=True), stack, {}, None)
 
     def leave_cluster(self) -> bool:
         """Back to the graph outside; edits made inside are committed to the definition as
@@ -293,4 +297,5 @@ class Document(QObject):
         """Stop the worker (the app is closing): cancel, and wait a little for it. A node
         that never checks for cancellation is left to finish on its daemon thread, its
         results going nowhere (:meth:`SolveController.shutdown`)."""
+        self.improvements.stop()
         self.solves.shutdown(timeout=1.0)

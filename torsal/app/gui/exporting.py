@@ -16,7 +16,6 @@ from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox
 
 from torsal.app.bake import DEFAULT_PARENT, Baked, bake, bake_entries, is_geometry, nothing_to_bake
 from torsal.app.exports import FILE_TYPES, ExportError, export_tree
-from torsal.app.gui.viewport.preview import previewed
 from torsal.engine.datatree import DataTree
 
 if TYPE_CHECKING:
@@ -110,13 +109,21 @@ def export_output(window: MainWindow, node_id: str, port: str) -> list[Path]:
     return written
 
 
-def bake_previewed(window: MainWindow, path: Path | None = None) -> Baked | None:
-    """Write the geometry of every previewed node into one .3dm (asked for unless ``path``)."""
+def bake_previewed(window: MainWindow, path: Path | None = None, node_ids: list[str] | None = None
+                   ) -> Baked | None:
+    """Write the geometry of every previewed node — or of ``node_ids`` only (a node's own
+    Bake…, previewed or not, as Grasshopper's) — into one .3dm (asked for unless ``path``)."""
+    from torsal.app.gui.viewport.preview import previewed  # pyvista: not before the first frame
+
     doc = window.doc
     reason = _not_ready(window)
-    shown = previewed(doc.graph, doc.results) if not reason else set()
+    if node_ids is None:
+        shown = previewed(doc.graph, doc.results) if not reason else set()
+    else:
+        shown = {n for n in node_ids if n in doc.results} if not reason else set()
     if not reason and not shown:
-        reason = "Nothing to bake: no node is previewed (or the graph has not been solved yet)."
+        reason = ("Nothing to bake: no node is previewed (or the graph has not been solved yet)."
+                  if node_ids is None else "Nothing to bake: the node has no results yet.")
     if not reason and not bake_entries(doc.graph, doc.results, shown)[0]:
         reason = nothing_to_bake(len(shown))
     if reason:
@@ -124,7 +131,8 @@ def bake_previewed(window: MainWindow, path: Path | None = None) -> Baked | None
         return None
     stem = doc.path.stem if doc.path is not None else ""
     if path is None:
-        name = f"{file_name(stem or 'torsal')}-bake.3dm"
+        only = f"-{file_name(sorted(shown)[0])}" if node_ids is not None and len(shown) == 1 else ""
+        name = f"{file_name(stem or 'torsal')}{only}-bake.3dm"
         folder = _folder(window)
         chosen, _ = QFileDialog.getSaveFileName(
             window, "Bake previewed geometry to Rhino", str(folder / name) if folder else name, BAKE_FILTER
@@ -144,7 +152,8 @@ def bake_previewed(window: MainWindow, path: Path | None = None) -> Baked | None
         return None
     left_out = f"; {baked.skipped} values that are not geometry left out" if baked.skipped else ""
     window.report(
-        f"Baked {baked.objects} objects from {len(baked.layers)} nodes (one layer each) "
+        f"Baked {baked.objects} objects from {len(baked.layers)} node{'s' if len(baked.layers) != 1 else ''} "
+        "(one layer each) "
         f"to {baked.path}{left_out}"
     )
     return baked

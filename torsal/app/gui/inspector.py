@@ -4,6 +4,7 @@ and the plot a node drew (display.Plot, analysis.CurvatureHistogram, analysis.Wa
 from __future__ import annotations
 
 import html
+import inspect
 import json
 from pathlib import Path
 from typing import Any
@@ -197,7 +198,7 @@ class Inspector(QWidget):
             self.ports.addTopLevelItem(item)
             if tree is not None:
                 self._add_tree(port.name, tree)
-        self.help.setHtml(self._help_html(node, is_placeholder(node), record.type_id))
+        self.help.setMarkdown(self._help_markdown(node, is_placeholder(node), record.type_id))
         self._show_plot(plot_image(result.outputs if result else None))
 
     def _show_plot(self, path: Path | None) -> None:
@@ -245,25 +246,31 @@ class Inspector(QWidget):
                 top.child(i).setExpanded(True)
 
     @staticmethod
-    def _help_html(node: Node, placeholder: bool, type_id: str) -> str:
+    @staticmethod
+    def _help_markdown(node: Node, placeholder: bool, type_id: str) -> str:
+        """The node's help as Markdown (its docstring is written in it: ``code``, *emphasis*,
+        lists), rendered by the Help tab."""
         if placeholder:
-            return f"<p>The node type <b>{type_id}</b> is not installed; its data is kept unchanged.</p>"
+            return f"The node type **{type_id}** is not installed; its data is kept unchanged."
         cls = type(node)
-        parts = [f"<h3>{html.escape(node.display_name())}</h3><p><i>{cls.type_id}</i></p>"]
-        parts += [f"<p>{html.escape(p)}</p>" for p in cls.help().split("\n\n")]
+        nickname = getattr(cls, "nickname", "")
+        known_as = f" — nickname **{nickname}**" if nickname else ""
+        parts = [f"### {node.display_name()}", f"*{cls.type_id}*{known_as}"]
+        parts.append(inspect.cleandoc(cls.__doc__ or ""))  # docstring lines lose their indent
+        aliases = getattr(cls, "aliases", ())
+        if aliases:
+            parts.append("Also found as: " + ", ".join(f"*{a}*" for a in aliases))
         if is_cluster(node):
-            parts.append(
-                "<p>Double-click it to edit its definition; right-click for its ports or to explode it.</p>"
-            )
+            parts.append("Double-click it to edit its definition; right-click for its ports "
+                         "or to explode it.")
         for title, ports in (("Inputs", node.input_ports()), ("Outputs", node.output_ports())):
             if ports:
-                rows = "".join(
-                    f"<li><b>{p.name}</b> ({p.nickname}, {p.type.name}, {p.access.value}): "
-                    f"{html.escape(p.description)}</li>"
+                rows = "\n".join(
+                    f"- **{p.name}** ({p.nickname}, {p.type.name}, {p.access.value}): {p.description}"
                     for p in ports
                 )
-                parts.append(f"<h4>{title}</h4><ul>{rows}</ul>")
-        return "".join(parts)
+                parts.append(f"#### {title}\n\n{rows}")
+        return "\n\n".join(parts)
 
     def _setting_edited(self, item: QTableWidgetItem) -> None:
         if self._filling or item.column() != 1 or self.node_id is None:

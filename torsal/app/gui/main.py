@@ -14,14 +14,25 @@ def launch(path: str | Path | None = None) -> int:
 
     The window is shown first; the 3D viewport (pyvista takes a second or two to import),
     an autosave left by a crash and the file follow once it has been painted.
-    ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` of the
-    first paint and of the viewport being ready (for the start-up benchmark).
+    ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` of each
+    start-up stage (for the start-up benchmark): ``imported`` (Qt and the window's
+    modules), ``window-shown`` (its first paint), ``plotter`` (pyvista and VTK set up),
+    ``viewport-ready`` (the file opened, its solve started), ``solved`` (the first results)
+    and ``first-frame`` (the viewport's first render after them).
     """
+    report = os.environ.get("TORSAL_REPORT_STARTUP") == "1"
+
+    def stamp(stage: str) -> None:
+        if report:
+            print(f"torsal-startup {stage} {time.time():.4f}", file=sys.stderr, flush=True)
+
     from PySide6.QtCore import QEvent, QObject
     from PySide6.QtWidgets import QApplication
 
     from torsal.app.gui.main_window import MainWindow
     from torsal.app.gui.qt_compat import defer
+
+    stamp("imported")
 
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Torsal")
@@ -32,12 +43,22 @@ def launch(path: str | Path | None = None) -> int:
         window.restoreGeometry(geometry)
     if state is not None:
         window.restoreState(state)
-    report = os.environ.get("TORSAL_REPORT_STARTUP") == "1"
 
     def started() -> None:
-        window.start(Path(path) if path else None)
         if report:
-            print(f"torsal-startup viewport-ready {time.time():.4f}", file=sys.stderr, flush=True)
+            window.viewport.plotter_created.connect(lambda: stamp("plotter"))
+            window.doc.results_changed.connect(first_results)
+        window.start(Path(path) if path else None)
+        stamp("viewport-ready")
+
+    def first_results(_outcome: object) -> None:
+        window.doc.results_changed.disconnect(first_results)
+        stamp("solved")
+        window.viewport.frame_rendered.connect(first_frame)
+
+    def first_frame() -> None:
+        window.viewport.frame_rendered.disconnect(first_frame)
+        stamp("first-frame")
 
     class FirstPaint(QObject):
         """Runs ``then`` once, after the window's first paint."""
@@ -50,8 +71,7 @@ def launch(path: str | Path | None = None) -> int:
             if event.type() == QEvent.Type.Paint and self.then is not None:
                 then, self.then = self.then, None
                 window.removeEventFilter(self)
-                if report:
-                    print(f"torsal-startup window-shown {time.time():.4f}", file=sys.stderr, flush=True)
+                stamp("window-shown")
                 defer(window, then)
             return False
 

@@ -129,6 +129,7 @@ class MainWindow(QMainWindow):
         solves = self.doc.solves
         solves.started.connect(self.status.solve_started)
         solves.progress.connect(self.status.solve_progress)
+        self.doc.improvements.progress.connect(self.status.search_progress)
         self.doc.results_changed.connect(self._solved)
         self.doc.dirty_changed.connect(lambda _dirty: self._update_title())
         self.doc.path_changed.connect(lambda _path: self._update_title())
@@ -137,6 +138,7 @@ class MainWindow(QMainWindow):
         self.scene.selectionChanged.connect(self._selection_changed)
         self.scene.help_requested.connect(self.show_help)
         self.scene.export_requested.connect(self.export_output)
+        self.scene.bake_requested.connect(lambda node_ids: bake_previewed(self, node_ids=node_ids))
         self.editor.refused.connect(lambda text: self.report(text, "warning"))
         self.view.escape_pressed.connect(self.cancel_solve)
         self._outer_views: list[tuple[QTransform, QPointF]] = []  # the view outside each open cluster
@@ -147,6 +149,9 @@ class MainWindow(QMainWindow):
         self._tables_timer.setSingleShot(True)
         self._tables_timer.timeout.connect(self._tables_due)
         self.editor.drag_ended.connect(self._drag_ended)
+        # a slider drag's next solve waits for the viewport to draw the last one
+        self.editor.frame_due = self.viewport.frame_due
+        self.viewport.frame_rendered.connect(self.editor.frame_shown)
         # no full garbage collection (a pause of a frame or two) while a slider is dragged
         self._collections = FullCollectionsHeld()
         self.editor.drag_started.connect(self._collections.hold)
@@ -188,18 +193,23 @@ class MainWindow(QMainWindow):
 
     # -- start-up --------------------------------------------------------------------
     def start(self, path: Path | None = None, offer_recovery: bool = True) -> None:
-        """After the window is shown: the 3D viewport, the palette, recovery of a crashed
-        session, the file."""
-        self.viewport.create_plotter()
+        """After the window is shown: the palette, recovery of a crashed session, the file,
+        then the 3D viewport. The file's solve starts at once on the worker thread, so it
+        runs while pyvista is imported and VTK set up (a second or more), not after."""
         self.palette.populate()
         for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
             self.report(problem[:1].upper() + problem[1:], "warning")
-        if offer_recovery and self.offer_recovery():
-            return
-        if path is not None:
-            self.open_file(path, ask=False)
-        else:
-            self.doc.solves.request()
+        try:
+            if offer_recovery and self.offer_recovery():
+                return
+            if path is not None:
+                self.open_file(path, ask=False)
+                if not self.doc.solves.idle():
+                    self.doc.solves.solve_now()
+            else:
+                self.doc.solves.request()
+        finally:
+            self.viewport.create_plotter()
 
     def offer_recovery(self) -> bool:
         """Ask whether to restore an autosave a crashed session left; True if restored."""
@@ -557,6 +567,8 @@ class MainWindow(QMainWindow):
     def cancel_solve(self) -> None:
         if self.doc.solves.cancel():
             self.status.showMessage("Cancelling the solve…", 3000)
+        if self.doc.improvements.stop():  # background searches keep their best (nesting)
+            self.status.showMessage("Stopping the background search: its best result so far is kept", 3000)
 
     # -- screenshots -----------------------------------------------------------------
     def grab_window(self, path: str | Path) -> Path:

@@ -19,6 +19,8 @@ from torsal.engine.registry import Registry
 
 #: The tabs a Grasshopper user expects, in order; other palettes (plug-ins) follow.
 TABS = PALETTE_TABS
+#: Tab titles that are not the palette's name capitalised
+TAB_TITLES = {"io": "IO"}
 ICON_SIZE = 30
 
 
@@ -72,7 +74,8 @@ class Palette(QTabWidget):
         self.filled: set[str] = set()
         self.setDocumentMode(True)
         for palette in TABS:
-            self.addTab(self._note("Loading the node library…"), palette.capitalize())
+            title = TAB_TITLES.get(palette, palette.capitalize())
+            self.addTab(self._note("Loading the node library…"), title)
         self.setFixedHeight(ICON_SIZE + 46)
         self.currentChanged.connect(self._fill)
 
@@ -88,7 +91,7 @@ class Palette(QTabWidget):
         try:
             self.clear()
             for palette in self.tab_palettes:
-                self.addTab(self._note("Loading…"), palette.capitalize())
+                self.addTab(self._note("Loading…"), TAB_TITLES.get(palette, palette.capitalize()))
             self.setCurrentIndex(max(0, current))
         finally:
             self.blockSignals(False)

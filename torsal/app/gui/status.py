@@ -25,6 +25,11 @@ class SolveStatus(QStatusBar):
         self.progress.setTextVisible(True)
         self.progress.setFormat("Solving %p % — Esc cancels")
         self.progress.hide()
+        self.search = QProgressBar()  # a background search's (nesting), beside the solves'
+        self.search.setMaximumWidth(300)
+        self.search.setTextVisible(True)
+        self.search.hide()
+        self.addPermanentWidget(self.search)
         self.addPermanentWidget(self.progress)
         self.addPermanentWidget(self.solve_label)
         self.addPermanentWidget(self.counts_label)
@@ -44,6 +49,16 @@ class SolveStatus(QStatusBar):
         self.progress.show()
         self.solve_label.setText("Solving…")
 
+    def search_progress(self, node_id: str, fraction: float) -> None:
+        """A background search (torsal/engine/improve.py) of ``node_id``: its own bar."""
+        if fraction >= 1.0:
+            self.search.hide()
+            return
+        self.search.setFormat(f"{node_id}: searching %p % — Esc keeps the best")
+        self.search.setRange(0, 1000)
+        self.search.setValue(round(1000 * max(0.0, fraction)))
+        self.search.show()
+
     def solve_progress(self, index: int, total: int, node_id: str) -> None:
         self.progress.setRange(0, max(1, total))
         self.progress.setValue(index)
@@ -60,10 +75,10 @@ class SolveStatus(QStatusBar):
                 self.solve_label.setText(f"Solve failed: {outcome.error}")
             else:
                 self.solve_label.setText(
-                    f"Solve cancelled after {ms:.0f} ms ({len(report.solved)} nodes solved)"
+                    f"Solve cancelled after {ms:.0f} ms ({nodes(len(report.solved))} solved)"
                 )
         else:
-            self.solve_label.setText(f"Solved {len(report.solved)} nodes in {ms:.1f} ms")
+            self.solve_label.setText(f"Solved {nodes(len(report.solved))} in {ms:.1f} ms")
             # the label keeps a fixed size, the largest it has needed since: a new time does
             # not lay the status bar (and with it the window) out again, as a label that may
             # change size does on every new text
@@ -77,3 +92,8 @@ class SolveStatus(QStatusBar):
         style = "color: #c0281f;" if errors else ("color: #b06800;" if warnings else "")
         if style != self.counts_label.styleSheet():  # restyling costs a polish and a repaint
             self.counts_label.setStyleSheet(style)
+
+
+def nodes(count: int) -> str:
+    """``1 node``, ``2 nodes``."""
+    return f"{count} node" if count == 1 else f"{count} nodes"

@@ -76,13 +76,16 @@ class IsoMapping(Node):
     keep their lengths (EdgeError shows it: rounding level). Between the rulings you
     see, at least 7 more per strip are unrolled too — as many as it takes for both
     flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size:
-    evenly, up to 4096 rulings in all, or where that is not enough (a fan sweeping a
-    long stretch of one curve from a point of the other), each strip as many as its
-    own stretch of the edges needs, up to 32768 — so two strips made between a shared
-    curve have flat edges of the same length and their seam closes; Development is the
-    outline of all these triangles, edge by straight edge, so a sheet cut along it is
-    exactly what was unrolled. The first
-    ruling starts at the origin and runs up the Y axis; the strip continues towards +X.
+    evenly, up to 4096 rulings in all, or where that is not enough and the edges run
+    fast over some strips only (a fan sweeping a long stretch of one curve from a point
+    of the other), each strip as many as its own stretch of the edges needs, up to
+    32768 — so two strips made between a shared curve have flat edges of the same
+    length and their seam closes. (An edge as curved all along as a full cone's rim is
+    not refined past 8 rulings a strip: 100 strips of it are short by about 8e-6 of the
+    size; more Segments shorten that by their square.) Development is the outline of
+    all these triangles, edge by straight edge, so a sheet cut along it is exactly what
+    was unrolled. The first ruling starts at the origin and runs up the Y axis; the
+    strip continues towards +X.
 
     Placement says where Development and Rulings are shown, so the flat development
     does not cut through the 3D model: 0 Beside model (the default) lays it flat beside

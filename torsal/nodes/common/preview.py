@@ -39,6 +39,8 @@ from torsal.engine.values import Plane, Point, Triple, Vector
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line, Polyline
 from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.ruled_meshes import ruled_mesh_arrays
 from torsal.nodes.geometry.surface_base import Surface
 
 #: Grid points per direction of a surface's preview mesh (two along a straight ruling).
@@ -246,6 +248,32 @@ def _surface(surface: Surface) -> PreviewGeometry:
         meshes = _trimesh(surface.to_mesh(nu, nv)).meshes
     rulings = surface_rulings(surface) if direction else None
     return PreviewGeometry(meshes=meshes, rulings=() if rulings is None else rulings)
+
+
+@register_preview_many(RuledSurface)
+def _ruled_surfaces(surfaces: Sequence[RuledSurface]) -> PreviewGeometry:
+    """A run of ruled surfaces (a strip's pieces): what :func:`_surface` draws for each, in
+    order, with the meshes of those between curve rails made in one pass."""
+    direction = [ruling_direction(surface) for surface in surfaces]
+    grids = {"v": (SURFACE_GRID, 2), "u": (2, SURFACE_GRID)}
+    plain = [
+        k for k, surface in enumerate(surfaces)
+        if direction[k] == "v" and type(surface).to_mesh is Surface.to_mesh
+    ]
+    meshes = dict(zip(plain, ruled_mesh_arrays([surfaces[k] for k in plain], *grids["v"]), strict=True))
+    out = PreviewGeometry(meshes=[], rulings=[])
+    for k, surface in enumerate(surfaces):
+        if k in meshes:
+            rulings = surface_rulings(surface)
+            rulings = () if rulings is None else rulings
+            drawn = PreviewGeometry(meshes=[PreviewMesh(*meshes[k])], rulings=rulings)
+        else:
+            drawn = _surface(surface)
+        out.meshes.extend(drawn.meshes)
+        if drawn.rulings is not None and len(drawn.rulings):
+            out.rulings.append(np.asarray(drawn.rulings, dtype=float).reshape(-1, 2, 3))
+    out.rulings = np.concatenate(out.rulings) if out.rulings else ()
+    return out
 
 
 @register_preview(MeshSurface)

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from torsal.engine.values import Point
 from torsal.nodes.common.convert import points as as_points
-from torsal.nodes.geometry.strip_crossings import crossings
+from torsal.nodes.geometry.strip_crossings import Crossings, crossings, crossings_all
 
 
 @dataclass(frozen=True)
@@ -30,19 +30,25 @@ def _at(point: np.ndarray) -> str:
 
 
 def fold_report(
-    starts: ArrayLike, ends: ArrayLike, crease_angle: ArrayLike, sharp: float, origin: ArrayLike | None = None
+    starts: ArrayLike,
+    ends: ArrayLike,
+    crease_angle: ArrayLike,
+    sharp: float,
+    origin: ArrayLike | None = None,
+    crossed: Crossings | None = None,
 ) -> FoldReport:
     """Creases of the strip whose angle (rad, NaN never) exceeds ``sharp``, and the pairs of its
     triangles that cross, with the message naming how many and the first of each. The rulings
     may be given in a frame anchored at the model whose ``origin`` is this (the points and the
-    message are then in world coordinates)."""
+    message are then in world coordinates). ``crossed`` is the strip's :func:`crossings` where
+    the caller has it (:func:`crossings_all` of several strips at once)."""
     a = np.asarray(starts, dtype=float).reshape(-1, 3)
     b = np.asarray(ends, dtype=float).reshape(-1, 3)
     angle = np.asarray(crease_angle, dtype=float)
     sharp_rows = np.flatnonzero(angle > sharp)
     shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=float)
     middles = 0.5 * (a[sharp_rows] + b[sharp_rows]) + shift
-    crossed = crossings(a, b)
+    crossed = crossings(a, b) if crossed is None else crossed
     crossed_at = crossed.points + shift
     parts = []
     if len(sharp_rows):
@@ -60,3 +66,11 @@ def fold_report(
         message = "the sheet folds: " + "; ".join(parts) + ". Folds gives where"
     points = as_points(np.concatenate([middles, crossed_at])) if parts else []
     return FoldReport(message, points, len(sharp_rows), len(crossed))
+
+
+def strips_crossings(strips: list[tuple[np.ndarray, np.ndarray]]) -> list[Crossings | None]:
+    """The :func:`crossings` of every strip ``(starts, ends)`` whose ends are all finite (at
+    once, :func:`crossings_all`); None for the others (they make no strip)."""
+    finite = [len(a) >= 2 and bool(np.isfinite(a).all() and np.isfinite(b).all()) for a, b in strips]
+    found = iter(crossings_all([strip for strip, ok in zip(strips, finite, strict=True) if ok]))
+    return [next(found) if ok else None for ok in finite]

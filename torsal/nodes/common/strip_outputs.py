@@ -168,6 +168,7 @@ def curve_strip_outputs(
     tolerance: float,
     claimed: ArrayLike | None = None,
     source: str = "CurveA and CurveB",
+    warp: FloatArray | None = None,
 ) -> StripOutputs:
     """The outputs of a strip between two curves whose rulings run from ``A(s)`` to ``B(t)``:
     the Surface whose edges run on the two curves through those rulings
@@ -180,10 +181,12 @@ def curve_strip_outputs(
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
     recomputation rejects are counted in a message. ``source`` names the inputs the curves
-    come from in the warnings of :func:`strip_outputs`.
+    come from in the warnings of :func:`strip_outputs`. ``warp`` is that recomputed warp
+    where the caller has it (:func:`~torsal.nodes.geometry.developable.warp.curve_warps` of
+    several strips at once).
     """
     starts, ends = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
-    w = curve_warp(curve_a, curve_b, s, t, starts, ends)
+    w = curve_warp(curve_a, curve_b, s, t, starts, ends) if warp is None else warp
     # edges on the curves themselves, so neighbouring strips meet exactly; parameters that
     # do not run one way keep the loft through the rulings (the rulings' ends are the
     # curves' points at s and t: the rails take them rather than evaluate them again)

@@ -1,4 +1,5 @@
-"""Frames on curves: the Frenet plane at a parameter, and planes square to a curve along it.
+"""Frames on curves (the Frenet plane at a parameter, planes square to a curve along it)
+and the point of a curve closest to a given point.
 
 A curve's Frenet frame at t is its unit tangent T, its unit principal normal N (towards
 the centre of curvature) and the binormal B = T × N. Where the curve is straight N has
@@ -11,9 +12,9 @@ from __future__ import annotations
 from typing import Any
 
 from torsal.engine.node import LIST, In, Node, NodeWarning, Out
-from torsal.engine.types import INTEGER, NUMBER, PLANE
+from torsal.engine.types import INTEGER, NUMBER, PLANE, POINT
 from torsal.engine.values import Plane, Point, Vector
-from torsal.nodes.common.checks import given, number, whole
+from torsal.nodes.common.checks import given, number, whole, xyz
 from torsal.nodes.common.values import CURVE
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.limits import MAX_DIVISIONS
@@ -81,3 +82,30 @@ class PerpFrames(Node):
         f = c.frames_at(t)
         planes = [_plane(o, x, y) for o, x, y in zip(f.origins, f.normals, f.binormals, strict=True)]
         return planes, t.tolist()
+
+
+class CurveClosestPoint(Node):
+    """The point of a curve closest to a given point, its parameter t and the distance.
+
+    The global closest point, not merely a local one: the curve is sampled finely enough
+    to find every stretch that could hold it, then refined by Newton's method to
+    rounding. On a closed curve with two equally close points, either may be given.
+    """
+
+    type_id = "curves.CurveClosestPoint"
+    nickname, aliases = "CrvCP", ("Curve Closest Point", "closest point", "pull point", "project point")
+    inputs = (
+        In("Point", POINT, "P", "The point to look from."),
+        In("Curve", CURVE, "C", "The curve to find the closest point on."),
+    )
+    outputs = (
+        Out("Point", POINT, "P", "The closest point on the curve."),
+        Out("Parameter", NUMBER, "t", "Its curve parameter, 0 to 1."),
+        Out("Distance", NUMBER, "D", "How far it is from Point."),
+    )
+
+    def solve(self, place: Any, curve: Any) -> tuple[Point, float, float]:
+        c = _curve(curve)
+        found = c.closest_point(xyz("Point", place))
+        origin = found.points[0]
+        return Point(*map(float, origin)), float(found.parameters[0]), float(found.distances[0])

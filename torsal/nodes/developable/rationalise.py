@@ -84,24 +84,41 @@ class Rationalise(Node):
     two boundary curves lying on the design, with straight torsal rulings from one to
     the other (flat triangles only where no torsal ruling exists), so it bends from a
     flat sheet without stretching. Neighbouring strips share their boundary curve
-    exactly, so they meet without gaps or steps.
+    exactly, so they meet without gaps or steps; how much they kink there is the
+    Creases output (the fold angle along each inner boundary).
 
-    The rulings run where the design bends least and the boundaries across them: the
-    boundaries are the design's parameter lines of the family the node picks from the
-    surface's normal curvature, or the family running most nearly along Direction when
-    it is given. With Guides, the strips follow your curves instead: one boundary runs
-    along each guide (projected onto the design) and the boundaries between two guides,
-    or a guide and the design's edge, blend from one to the other, as Tween Curves do.
-    Guides must cross the design from edge to edge and stay apart.
+    Method. The rulings run where the design bends least and the boundaries across them:
+    the boundaries are the design's parameter lines of the family the node picks from the
+    surface's normal curvature (the square law: a strip w wide whose rulings bend with
+    curvature k deviates by about k·w²/8). Where a boundary runs along an asymptotic
+    direction of the design (a straight line of a saddle, the inflection of a wave) no
+    torsal ruling joins it to its neighbour and the strip is closed with creasing
+    triangles; the node then also tries the other family and keeps the one that creases
+    less (then the one with fewer strips). It does not yet trace lines of curvature: a
+    boundary family along them (the D-strip models of Pottmann et al. 2008) must leave
+    the design through its sides, and strips trimmed by the design's outline are not
+    made yet. Where the design's parameter lines are far from its curvature lines, give
+    Guides (or a Direction) along the lines of curvature.
 
-    Starting from one edge (and from every guide), each strip is made as wide as the
-    tolerance allows, measured by the largest distance of a dense grid of its points from the
-    design. When more than MaxStrips would be needed, the node makes MaxStrips evenly
-    spaced strips and warns with the deviation reached.
+    With Direction, the boundaries are the parameter lines running most nearly along it.
+    With Guides, the strips follow your curves instead: one boundary runs along each guide
+    (projected onto the design) and the boundaries between two guides, or a guide and the
+    design's edge, blend from one to the other, as Tween Curves do. Guides must cross the
+    design from edge to edge and stay apart.
 
-    An already developable design, such as a cylinder patch, comes back as one strip
-    or a few. A design closed across the strips (a full tube around) must be cut open
-    first. Mesh surfaces have no parameter lines and are refused.
+    The tolerance is a guarantee. Starting from one edge (and from every guide), each
+    strip is made as wide as the tolerance allows. A strip's Deviation is certified: its
+    distance from the design is sampled and the grid refined where needed until the bound
+    between samples (Taylor's remainder from the samples' second differences) is within
+    1 % of the tolerance of the samples; it includes how far the design's edge at the
+    strip's two ends is from it, so the strips cover the design to its edges.
+
+    Honest limits. When more than MaxStrips would be needed, or where the tolerance asks
+    for strips narrower than MinWidth (a sharp bump), the node makes MaxStrips evenly
+    spaced strips (or MinWidth-wide ones there) and gives one warning: where (the Where
+    points), how far off, and what would help. An already developable design, such as a
+    cylinder patch, comes back as one strip or a few. A closed design (a tube or a ring)
+    is refused: cut it first. Mesh surfaces have no parameter lines and are refused.
     """
 
     type_id = "developable.Rationalise"
@@ -123,9 +140,10 @@ class Rationalise(Node):
            max=SEGMENT_LIMIT),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
-        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (at its widest), model units: where the "
-           "tolerance would need narrower strips they are made this wide and the node warns where and how "
-           "far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).", default=0.2),
+        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (the median length of its rulings), model "
+           "units: where the tolerance would need narrower strips they are made this wide and the node warns "
+           "where and how far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).",
+           default=0.2),
     )
     outputs = (
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),

@@ -14,7 +14,7 @@ from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
-from torsal.nodes.common.strip_folds import fold_report
+from torsal.nodes.common.strip_folds import fold_report, strips_crossings
 from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
@@ -22,9 +22,11 @@ from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
-from torsal.nodes.geometry.developable.kinds import ruling_kinds
+from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
+from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
-from torsal.nodes.geometry.vec_ops import norm
+from torsal.nodes.geometry.strip_crossings import Crossings
+from torsal.nodes.geometry.vec_ops import norm, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
 
@@ -195,7 +197,9 @@ class RulingDevelopable(Node):
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
         row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
         self.check_cancelled()
-        with watched(self.check_cancelled):  # the kernel looks at the token between its steps
+        # (the inputs were rounded at their world coordinates: the kernel's tests that allow
+        # for the rounding of positions allow for that, as a solve there would)
+        with watched(self.check_cancelled), rounding_of(row.frame.origin):  # (the kernel looks at the token)
             result = ruling_developables([(row.a, row.b, row.segments, row.tolerance)])[0]
         if isinstance(result, ValueError):
             raise NodeError(sentence(result))
@@ -217,8 +221,28 @@ class RulingDevelopable(Node):
                 break
         jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
         self.check_cancelled()
-        with watched(self.check_cancelled):
-            solved = iter(ruling_developables(jobs))
+        # (one rounding allowance for the batch: that of the strip farthest out, in practice
+        # every strip of one model sits at the same site)
+        far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
+        with watched(self.check_cancelled), rounding_of(far):
+            results = ruling_developables(jobs)
+            # every strip's warp recomputed from its output rulings at once
+            made = [(row, result) for row, result in zip(
+                (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
+            ) if not isinstance(result, ValueError)]
+            warps = curve_warps([(row.a, row.b, r.s, r.t, r.starts, r.ends) for row, r in made])
+            # what each ruling is, and where each strip's sheet passes through itself (of the
+            # strips whose rulings make a strip: the others are refused by their outputs)
+            whole = [len(r.starts) >= 2 and bool(np.isfinite(r.starts).all() and np.isfinite(r.ends).all())
+                     for _, r in made]
+            judged = iter(ruling_kinds_all([
+                (row.a, row.b, r.s, r.t, r.starts, r.ends, row.tolerance, warp)
+                for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok
+            ]))
+            kinds = [next(judged) if ok else None for ok in whole]
+        crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
+        warps_and_kinds = iter(zip(warps, kinds, strict=True))
+        solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
             if isinstance(row, NodeWarning):
@@ -229,7 +253,7 @@ class RulingDevelopable(Node):
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
             try:
-                outputs.append(self._outputs(row, result))
+                outputs.append(self._outputs(row, result, *next(warps_and_kinds), next(crossed)))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -238,24 +262,37 @@ class RulingDevelopable(Node):
         return outputs
 
     def _outputs(
-        self, row: _Row, result: RulingResult
+        self,
+        row: _Row,
+        result: RulingResult,
+        warp: np.ndarray | None = None,
+        kinds: RulingKinds | None = None,
+        crossed: Crossings | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        """The outputs of one strip from the kernel's result, and what the node says of it."""
+        """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
+        rulings' ``kinds`` and its self-crossings, where they are at hand), and what the node
+        says of it."""
         a, b, n, tol, limit, sharp, frame = row
         # Valid from the warp recomputed from the output rulings and the curves' tangents
-        strip = curve_strip_outputs(a, b, result.s, result.t, result.starts, result.ends, tol, result.valid)
+        with rounding_of(frame.origin):
+            strip = curve_strip_outputs(
+                a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp
+            )
+            if kinds is None:
+                kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
         self.check_cancelled()
         if result.message:
             if result.creased_share > limit:
-                hint = better_pairing(a, b, n, tol, result)
+                with rounding_of(frame.origin):
+                    hint = better_pairing(a, b, n, tol, result)
                 text = f"{result.message}, above FanLimit {100 * limit:.3g} %"
                 self.warn(f"{text}; {hint}" if hint else text)
             else:
                 self.remark(result.message)
         tip = _tips(result.starts, result.ends)
         if tip.any():
-            ends = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
-            self.remark(f"the strip tapers to a point at its {ends} (the curves meet there): the "
+            where = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
+            self.remark(f"the strip tapers to a point at its {where} (the curves meet there): the "
                         "warp of that zero-length ruling is undefined, so it is not Valid")
         # a fan ruling's or a tip's undefined warp is no news
         strip.report(self, explained=result.fan | tip)
@@ -265,8 +302,7 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin)
+        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)
         surface, rulings = strip.surface, strip.rulings

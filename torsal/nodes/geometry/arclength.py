@@ -13,6 +13,7 @@ from scipy.special import roots_legendre
 from .array_types import FloatArray
 from .curve_protocol import ParametricCurve
 from .roots import safeguarded_newton
+from .vec_ops import derivative_noise
 
 _NODES, _WEIGHTS = roots_legendre(16)
 
@@ -56,6 +57,8 @@ class LengthTable:
         low, high = edges[:, :-1].reshape(-1), edges[:, 1:].reshape(-1)
         done_low, done_high, done_length = [], [], []
         estimate = float(gauss_length(curve, low, high).sum())
+        # the noise an interval may be left at: 1e-8 of the length, or more far from the origin
+        share = max(_NOISE_SHARE, derivative_noise(curve.point_at(np.linspace(0.0, 1.0, 9))))
         parent = np.full(len(low), np.inf)  # the error estimate of each interval's parent
         for round_ in range(max_rounds):
             mid = 0.5 * (low + high)
@@ -68,7 +71,7 @@ class LengthTable:
             # an error that halving no longer shrinks, though already small, is the noise
             # of the speed's rounding (a curve evaluated at site coordinates, 1e5 m and
             # more, by finite differences): refining further only multiplies intervals
-            noise = (error >= 0.5 * parent) & (error <= _NOISE_SHARE * estimate * (high - low))
+            noise = (error >= 0.5 * parent) & (error <= share * estimate * (high - low))
             accept = (error <= allowed) | noise | (round_ == max_rounds - 1) | (high - low < 1e-14)
             if len(low) > 200_000:  # a pathological curve: stop refining, keep what we have
                 accept[:] = True

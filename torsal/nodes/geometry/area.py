@@ -117,6 +117,7 @@ def integrate_unit_square(
     breaks_v: ArrayLike | None = None,
     check: Check | None = None,
     progress: Progress | None = None,
+    noise: float = 0.0,
 ) -> FloatArray:
     """Integrate ``func(u, v)`` over [0, 1]², adaptively.
 
@@ -128,6 +129,13 @@ def integrate_unit_square(
     maximum), or when ``max_level`` or ``max_cells`` is reached. ``check()`` is
     called between blocks of cells (it stops the integral by raising); ``progress``
     receives the fraction of the square done.
+
+    ``noise`` (relative to |I|, per unit of area) is the integrand's rounding noise: a
+    cell whose error estimate is below that share and did not shrink when its parent was
+    halved is at the noise and kept, as it is (refining it would only multiply cells: an
+    integrand made of positions far from the origin, 1e6 m and more, differenced). A
+    smooth cell's estimate falls by orders of magnitude per halving, so it is never taken
+    for noise while it is still converging.
     """
     check = check if check is not None else watch_check()
     progress = progress if progress is not None else watch_progress()
@@ -139,6 +147,8 @@ def integrate_unit_square(
     parent = _cells_integral(func, u0, v0, du, dv, nodes, weights, check)
     accepted = np.zeros(parent.shape[1])
     done_area = 0.0
+    # each cell's share of its parent's error estimate (none for the start cells)
+    inherited = np.full(len(u0), np.inf)
     for _ in range(max_level):
         hu, hv = 0.5 * du, 0.5 * dv
         cu = np.concatenate([u0, u0 + hu, u0, u0 + hu])
@@ -152,6 +162,9 @@ def integrate_unit_square(
         tolerance = max(atol, rtol * float(np.max(np.abs(total))))
         cell_area = du * dv
         done = error <= tolerance * cell_area
+        if noise > 0.0:
+            floor = noise * float(np.max(np.abs(total))) * cell_area
+            done |= (error >= 0.5 * inherited) & (error <= floor)
         accepted = accepted + child_sum[done].sum(axis=0)
         done_area += float(cell_area[done].sum())
         if progress is not None:
@@ -161,4 +174,5 @@ def integrate_unit_square(
             return accepted + child_sum[~done].sum(axis=0)
         keep = np.tile(~done, 4)
         u0, v0, du, dv, parent = cu[keep], cv[keep], cdu[keep], cdv[keep], children[keep]
+        inherited = np.tile(0.25 * error, 4)[keep]
     return accepted + parent.sum(axis=0)

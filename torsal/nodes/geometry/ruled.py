@@ -34,7 +34,7 @@ from .curve_base import Curve
 from .curves.line import Line
 from .rail_tangents import without_overshoot
 from .surface_base import Surface, broadcast_uv
-from .vec_ops import anchor, extent, position_rounding
+from .vec_ops import anchor, derivative_noise, extent, position_rounding
 
 #: Gauss–Legendre orders whose area estimates must agree (to ``rtol``) per attempt.
 _AREA_ORDERS = (12, 16)
@@ -432,6 +432,10 @@ class RuledSurface(Surface):
         # strip's extent, and asking more refines to the span limit for nothing
         probe = self.derivatives(*np.meshgrid(np.linspace(0.0, 1.0, 5), [0.0, 1.0]), 0)[0]
         rounding = position_rounding(probe) / (float(extent(probe).max()) or 1.0)
+        # and where the rails' derivatives are differences of such points (a curve given as a
+        # function of its world coordinates), they are noisy far above that: the rules then
+        # agree to that noise at best (each span still keeps its finer rule's value)
+        rounding = max(rounding, derivative_noise(probe.reshape(-1, 3)))
         tolerance = max(rtol, 1e-13, rounding)
         for _level in range(_AREA_LEVELS):
             (coarse, _), (fine, fine_moment) = (self._gauss_spans(lows, highs, n) for n in _AREA_ORDERS)

@@ -18,13 +18,14 @@ within ``1e-9`` of the strip's size does not count as crossing.
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from .array_types import FloatArray, IntArray
-from .vec_ops import cross, dot, norm
+from .vec_ops import cross, dot, flatnonzero, norm
 
 #: Touching within this share of the strip's size is not crossing.
 TOUCH = 1e-9
@@ -47,36 +48,67 @@ class Crossings:
 def strip_triangles(starts: FloatArray, ends: FloatArray) -> tuple[FloatArray, IntArray, IntArray]:
     """The strip's triangles: corners ``(m, 3, 3)``, the corners' vertex numbers ``(m, 3)``
     (one number per distinct point: a fan's apex is one vertex) and each triangle's piece."""
-    a = np.asarray(starts, dtype=float).reshape(-1, 3)
-    b = np.asarray(ends, dtype=float).reshape(-1, 3)
-    n = len(a)
-    points = np.concatenate([a, b])
-    size = float(norm(points.max(axis=0) - points.min(axis=0))) if n else 0.0
-    grid = np.round((points - points.min(axis=0)) / (size * 1e-12 or 1.0))
-    _, vertex = np.unique(grid, axis=0, return_inverse=True)
+    corners, ids, piece, _ = _triangles([(starts, ends)])
+    return corners, ids, piece
+
+
+def _triangles(
+    strips: Sequence[tuple[FloatArray, FloatArray]],
+) -> tuple[FloatArray, IntArray, IntArray, IntArray]:
+    """:func:`strip_triangles` of every strip at once, strip after strip (each strip's in the
+    order it has alone; vertex numbers distinct across strips), and each triangle's strip."""
+    a_all = [np.asarray(starts, dtype=float).reshape(-1, 3) for starts, _ in strips]
+    b_all = [np.asarray(ends, dtype=float).reshape(-1, 3) for _, ends in strips]
+    n = np.array([len(a) for a in a_all], dtype=np.int64)
+    a, b = np.concatenate(a_all), np.concatenate(b_all)
+    # each strip's points: its starts then its ends (as the strip alone lists them)
+    points = np.concatenate([np.concatenate([x, y]) for x, y in zip(a_all, b_all, strict=True)])
+    rows = 2 * n
+    has = rows > 0
+    first = (np.cumsum(rows) - rows)[has]
+    low = np.zeros((len(strips), 3))
+    size = np.zeros(len(strips))
+    if len(first):
+        low[has] = np.minimum.reduceat(points, first, axis=0)
+        size[has] = norm(np.maximum.reduceat(points, first, axis=0) - low[has])
+    step = np.where(size * 1e-12 != 0, size * 1e-12, 1.0)  # (size·1e-12 or 1)
+    strip_of_point = np.repeat(np.arange(len(strips)), rows)
+    grid = np.round((points - low[strip_of_point]) / step[strip_of_point, None])
+    # one vertex number per distinct point of a strip (the strip first: numbers run strip by strip)
+    _, vertex = np.unique(np.column_stack([strip_of_point, grid]), axis=0, return_inverse=True)
     vertex = vertex.reshape(-1)
-    va, vb = vertex[:n], vertex[n:]
-    i = np.arange(n - 1)
-    p0, p1, q0, q1 = va[:-1], va[1:], vb[:-1], vb[1:]
+    start_of = np.cumsum(rows) - rows  # (each strip's first point)
+    ruling = np.arange(len(a))
+    strip_of_ruling = np.repeat(np.arange(len(strips)), n)
+    point_a = start_of[strip_of_ruling] + (ruling - (np.cumsum(n) - n)[strip_of_ruling])
+    va, vb = vertex[point_a], vertex[point_a + n[strip_of_ruling]]
+    # the pieces between consecutive rulings of one strip
+    inner = flatnonzero(strip_of_ruling[1:] == strip_of_ruling[:-1])
+    i = inner - (np.cumsum(n) - n)[strip_of_ruling[inner]]  # (each piece's number in its strip)
+    p0, p1, q0, q1 = va[inner], va[inner + 1], vb[inner], vb[inner + 1]
     fan_a = p0 == p1  # apex on A: the triangle A_i, B_i, B_i+1
     fan_b = (q0 == q1) & ~fan_a
     quad = ~fan_a & ~fan_b
     # a quad is cut along its shorter diagonal
-    short = norm(b[1:] - a[:-1]) <= norm(a[1:] - b[:-1])
-    rows = []
-    rows.append((i[fan_a], np.stack([p0, q0, q1], axis=1)[fan_a]))
-    rows.append((i[fan_b], np.stack([p0, q0, p1], axis=1)[fan_b]))
+    short = norm(b[inner + 1] - a[inner]) <= norm(a[inner + 1] - b[inner])
+    own = strip_of_ruling[inner]
+    parts = []
+    parts.append((i[fan_a], np.stack([p0, q0, q1], axis=1)[fan_a], own[fan_a]))
+    parts.append((i[fan_b], np.stack([p0, q0, p1], axis=1)[fan_b], own[fan_b]))
     qs = quad & short  # diagonal A_i → B_i+1
-    rows.append((i[qs], np.stack([p0, q0, q1], axis=1)[qs]))
-    rows.append((i[qs], np.stack([p0, q1, p1], axis=1)[qs]))
+    parts.append((i[qs], np.stack([p0, q0, q1], axis=1)[qs], own[qs]))
+    parts.append((i[qs], np.stack([p0, q1, p1], axis=1)[qs], own[qs]))
     ql = quad & ~short  # diagonal B_i → A_i+1
-    rows.append((i[ql], np.stack([p0, q0, p1], axis=1)[ql]))
-    rows.append((i[ql], np.stack([p1, q0, q1], axis=1)[ql]))
-    piece = np.concatenate([r[0] for r in rows]).astype(np.int64)
-    ids = np.concatenate([r[1] for r in rows]).astype(np.int64).reshape(-1, 3)
+    parts.append((i[ql], np.stack([p0, q0, p1], axis=1)[ql], own[ql]))
+    parts.append((i[ql], np.stack([p1, q0, q1], axis=1)[ql], own[ql]))
+    piece = np.concatenate([part[0] for part in parts]).astype(np.int64)
+    ids = np.concatenate([part[1] for part in parts]).astype(np.int64).reshape(-1, 3)
+    strip_of = np.concatenate([part[2] for part in parts]).astype(np.int64)
+    order = np.argsort(strip_of, kind="stable")  # strip after strip, each in its own order
     unique_points = np.empty((int(vertex.max(initial=-1)) + 1, 3))
     unique_points[vertex] = points
-    return unique_points[ids], ids, piece
+    ids = ids[order]
+    return unique_points[ids], ids, piece[order], strip_of[order]
 
 
 def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
@@ -113,8 +145,87 @@ def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
     return Crossings(piece[i], piece[j], points)
 
 
+def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Crossings]:
+    """:func:`crossings` of every strip ``(starts, ends)``: each strip's triangles its own
+    (:func:`strip_triangles`), their candidate pairs found in one k-d tree of all strips'
+    boxes (pairs within a strip only, each strip's reach and touching margin its own) and
+    tested at once. Each strip's pairs come in the order :func:`crossings` gives them."""
+    empty = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
+    results = [empty] * len(strips)
+    if not strips:
+        return results
+    corners, ids, piece, strip_of = _triangles(strips)
+    counts = np.bincount(strip_of, minlength=len(strips))
+    tested = flatnonzero(counts >= 2)  # (a strip of fewer than two triangles cannot cross)
+    if len(tested) == 0:
+        return results
+    if len(tested) < len(strips):
+        keep = np.isin(strip_of, tested)
+        corners, ids, piece = corners[keep], ids[keep], piece[keep]
+    strip_of = np.repeat(np.arange(len(tested)), counts[tested])
+    offsets = np.concatenate([[0], np.cumsum(counts[tested])])
+    low, high = corners.min(axis=1), corners.max(axis=1)
+    first = offsets[:-1]
+    size = norm(np.maximum.reduceat(high, first, axis=0) - np.minimum.reduceat(low, first, axis=0))
+    eps = TOUCH * size
+    centre, half = 0.5 * (low + high), 0.5 * (high - low)
+    reach = 2.0 * np.maximum.reduceat(half, first, axis=0).max(axis=1)
+    # one tree of every strip's boxes, the strips set apart along a fourth axis further than
+    # any reach, so that a search finds the boxes of the searching triangle's strip alone
+    apart_by = 2.0 * float(reach.max()) + 1.0
+    tree = cKDTree(np.column_stack([centre, strip_of * apart_by]))
+    found: list[tuple[IntArray, IntArray, FloatArray]] = []
+    # (there are no pairs across strips: at most each strip's pairs of triangles)
+    most = int(np.sum(counts[tested] * (counts[tested] - 1) // 2))
+    for i, j in _near_pairs(tree, float(reach.max()), most):
+        own = strip_of[i]
+        # pairs within that strip's reach whose boxes overlap
+        apart = np.abs(centre[i] - centre[j])
+        keep = (apart.max(axis=1) <= reach[own]) & (apart <= half[i] + half[j] + eps[own, None]).all(axis=1)
+        i, j, own = i[keep], j[keep], own[keep]
+        if len(i):
+            hit, point = _pairs_cross(corners, ids, i, j, eps[own])
+            found.append((i[hit], j[hit], point[hit]))
+    if not found:
+        return results
+    i, j, points = (np.concatenate(parts) for parts in zip(*found, strict=True))
+    own = strip_of[i]
+    order = np.argsort(own, kind="stable")  # (each strip's pairs in the order of its own search)
+    bounds = np.searchsorted(own[order], np.arange(len(tested) + 1)).tolist()
+    spans = zip(tested.tolist(), bounds[:-1], bounds[1:], offsets[:-1].tolist(), strict=True)
+    for k, low_row, high_row, _ in spans:
+        if high_row > low_row:
+            rows = order[low_row:high_row]
+            results[k] = Crossings(piece[i[rows]], piece[j[rows]], points[rows])
+    return results
+
+
+#: Most candidate pairs searched at once (else in blocks of :data:`_BLOCK` triangles).
+_MOST_PAIRS = 1 << 20
+
+
+def _near_pairs(tree: cKDTree, reach: float, most: int) -> Iterator[tuple[IntArray, IntArray]]:
+    """The pairs ``i < j`` of the tree's points within ``reach`` of each other (the greatest
+    coordinate difference), ordered by i then j: all at once when there can be few (at most
+    ``most``), else the pairs of :data:`_BLOCK` points at a time (so a long strip never
+    holds all of them)."""
+    if most <= _MOST_PAIRS:
+        pairs = tree.query_pairs(reach, p=np.inf, output_type="ndarray")
+        order = np.lexsort((pairs[:, 1], pairs[:, 0]))
+        yield pairs[order, 0].astype(np.int64), pairs[order, 1].astype(np.int64)
+        return
+    for start in range(0, tree.n, _BLOCK):
+        rows = np.arange(start, min(start + _BLOCK, tree.n))
+        near = tree.query_ball_point(tree.data[rows], reach, p=np.inf)  # (each sorted)
+        counts = np.fromiter((len(x) for x in near), dtype=np.int64, count=len(rows))
+        i = np.repeat(rows, counts)
+        j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
+        keep = j > i
+        yield i[keep], j[keep]
+
+
 def _pairs_cross(
-    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: float
+    corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
     """Whether each pair (triangle i, triangle j) crosses, and a point where it does."""
     hit = np.zeros(len(i), dtype=bool)
@@ -133,7 +244,7 @@ def _pairs_cross(
 
 
 def _segment_through(
-    p: FloatArray, q: FloatArray, tri: FloatArray, eps: float
+    p: FloatArray, q: FloatArray, tri: FloatArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
     """Whether segments ``p → q`` pass through the inside of triangles ``tri`` (``(k, 3, 3)``)
     more than ``eps`` from their edges and the segments' ends, and where."""

@@ -52,7 +52,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
-from .vec_ops import anchor, cross, dot, extent, position_rounding
+from .vec_ops import anchor, cross, derivative_noise, dot, extent, position_rounding
 from .watch import watch_check
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
@@ -259,7 +259,14 @@ class Surface(ABC):
             return np.linalg.norm(np.cross(su, sv), axis=1)
 
         bu, bv = self.area_breaks()
-        return float(integrate_unit_square(element, rtol=rtol, breaks_u=bu, breaks_v=bv)[0])
+        noise = derivative_noise(self._probe())
+        return float(integrate_unit_square(element, rtol=rtol, breaks_u=bu, breaks_v=bv, noise=noise)[0])
+
+    def _probe(self) -> FloatArray:
+        """A 5 × 5 grid of the surface's points: where it is and how big, for the cubature's
+        rounding floor (:func:`~.vec_ops.derivative_noise`)."""
+        grid = np.linspace(0.0, 1.0, 5)
+        return self.point_at(*(a.ravel() for a in np.meshgrid(grid, grid)))
 
     def area_breaks(self) -> tuple[FloatArray | None, FloatArray | None]:
         """Parameters in u and v where the area element may not be smooth (knots), or
@@ -272,8 +279,7 @@ class Surface(ABC):
         The moment is integrated about a point of the surface and in units of its size,
         so that the cubature's tolerance (relative to the largest component) is set by
         the area wherever the surface sits, not by its distance from the origin."""
-        grid = np.linspace(0.0, 1.0, 5)
-        probe = self.point_at(*(a.ravel() for a in np.meshgrid(grid, grid)))
+        probe = self._probe()
         origin = anchor(probe)
         size = float(np.linalg.norm(extent(probe))) or 1.0
 
@@ -283,7 +289,8 @@ class Surface(ABC):
             return np.column_stack([w, (s - origin) * (w / size)[:, None]])
 
         bu, bv = self.area_breaks()
-        result = integrate_unit_square(integrand, rtol=rtol, breaks_u=bu, breaks_v=bv)
+        result = integrate_unit_square(integrand, rtol=rtol, breaks_u=bu, breaks_v=bv,
+                                       noise=derivative_noise(probe))
         return float(result[0]), origin + size * result[1:] / result[0]
 
     # ------------------------------------------------------------------ queries

@@ -454,6 +454,10 @@ def rulings_at(surface: Surface, u: FloatArray) -> FloatArray:
 MAX_ADAPTIVE_RULINGS = 1 << 15
 #: The share of the tolerance :func:`adaptive_parameters` aims at (the C/k² law is an estimate).
 ADAPTIVE_MARGIN = 0.8
+#: :func:`adaptive_parameters` samples per segment only where that takes at most this share
+#: of the rulings evenly spaced ones would need (the rails' error is concentrated: fans; measured
+#: 0.30 and 0.88 on two strips with fans, 1.01 on a full cylinder).
+UNEVEN = 0.9
 
 
 def adaptive_parameters(
@@ -470,7 +474,9 @@ def adaptive_parameters(
     (``k`` and ``2k`` rulings per segment: C_j/k² by Richardson, the worse of its two
     rails), and segment j is given k_j ∝ C_j^(1/3) rulings — the counts that meet the
     tolerance in the fewest rulings — with a margin. None when that would take more than
-    :data:`MAX_ADAPTIVE_RULINGS`."""
+    :data:`MAX_ADAPTIVE_RULINGS`, or more than :data:`UNEVEN` of what evenly spaced
+    rulings would need (then nothing is gained: a full cone's rim is as curved everywhere,
+    and the even sampling stands, its edges short by what it reached)."""
     k = subdivisions
     size = 0.0
     sums = []
@@ -492,6 +498,12 @@ def adaptive_parameters(
     # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
     counts = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
     if counts.sum() + 1 > MAX_ADAPTIVE_RULINGS:
+        return None, None
+    # evenly spaced rulings would need segments · √(Σ C / target): where that is not far
+    # more (the rails' error spread evenly: a cone's or a cylinder's rim), sampling per
+    # segment gains nothing over the even sampling that already gave up
+    even = segments * np.sqrt(float(constant.sum()) / target)
+    if counts.sum() > UNEVEN * even:
         return None, None
     requested = np.concatenate([[0], np.cumsum(counts)])
     u = np.empty(int(requested[-1]) + 1)

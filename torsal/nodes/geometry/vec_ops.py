@@ -14,7 +14,12 @@ kernel but :mod:`.array_types`, so any module can use it without an import circl
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .array_types import FloatArray
 
@@ -112,7 +117,47 @@ def position_rounding(points: FloatArray) -> float:
     point, say) cannot be smaller than this; tests of such a gap against a tolerance
     relative to the object's size add it, or they never pass far from the origin.
     """
-    return POSITION_ULPS * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0))
+    own = POSITION_ULPS * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0))
+    return max(own, _ROUNDING_FLOOR.get())
+
+
+#: The least :func:`position_rounding` inside a :func:`rounding_of` block (0 outside).
+_ROUNDING_FLOOR: ContextVar[float] = ContextVar("rounding_floor", default=0.0)
+
+
+@contextmanager
+def rounding_of(points: ArrayLike) -> Iterator[None]:
+    """Inside the block, positions are known no better than near ``points``: the world
+    coordinates of a model solved in a frame anchored at it
+    (:mod:`torsal.nodes.geometry.local_frame`). Its inputs were rounded there (1.2e-7 m at
+    1e9 m), so tests that allow for the rounding of positions (a flat run of two curves,
+    a warp's check) allow for that, as a solve in world coordinates would, though the
+    local coordinates are small."""
+    floor = position_rounding(np.asarray(points, dtype=float))
+    token = _ROUNDING_FLOOR.set(floor)
+    try:
+        yield
+    finally:
+        _ROUNDING_FLOOR.reset(token)
+
+
+#: How much a derivative made of positions (finite differences, rational weights) may
+#: amplify their rounding, relative to the object's size: the gain behind
+#: :func:`derivative_noise`.
+NOISE_GAIN = 1e4
+
+
+def derivative_noise(points: FloatArray) -> float:
+    """The share of an object's derivatives (and of an integral of them, per unit of its
+    domain) that its coordinates' rounding may leave as noise: :data:`NOISE_GAIN` ulps of
+    the largest coordinate over the object's extent. ~2e-12 at the origin (below every
+    tolerance); 4e-7 for a 5 m object at 1e6 m, where a curve given by a function of its
+    world coordinates has finite-difference derivatives noisy at 2e-8: an adaptive
+    integral stops refining there instead of chasing the noise (minutes of work)."""
+    size = float(norm(extent(points))) if len(points) else 0.0
+    if not size > 0.0:
+        return 0.0
+    return NOISE_GAIN * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0)) / size
 
 
 _EPS = float(np.finfo(float).eps)

@@ -14,10 +14,11 @@ from torsal.nodes.common.checks import number
 from torsal.nodes.common.values import CURVE, SURFACE
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.watch import watched
-from torsal.nodes.io import seams
+from torsal.nodes.io import seams, sheet_preview
 from torsal.nodes.io.common import FileFailure, file_errors, may_write, unit_name, unit_scale, write_target
 from torsal.nodes.io.formats import cutfiles
 from torsal.nodes.io.formats.cutfiles import CutLayout
+from torsal.nodes.io.sheet_preview import SHEET_PREVIEW
 
 
 def _nesting(value: Any) -> str:
@@ -57,6 +58,25 @@ def refused_settings() -> Iterator[None]:
         raise NodeWarning(str(exc).rstrip(".")) from None
 
 
+WRITE_IS_FALSE = ("Write is false: this node writes no files (its Layout still goes to --export and "
+                  "Export…)")
+
+
+def _usage(layout: CutLayout) -> str:
+    return (f"{layout.stock_usage:.1%} of the stock used on {layout.sheets} sheet"
+            f"{'s' if layout.sheets != 1 else ''}, the last to its parts' reach")
+
+
+def _remarks(layout: CutLayout) -> list[str]:
+    """The layout's notes, and its seams' worst edge-length difference."""
+    notes = list(layout.notes)
+    if layout.seams:
+        worst = max(layout.seams, key=lambda s: s.difference)
+        notes.append(f"{len(layout.seams)} seams; the largest edge-length difference is "
+                     f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
+    return notes
+
+
 CUT_LAYOUT = ValueType(
     "CutLayout", (CutLayout,),
     "Flat panels laid out on sheets, in mm: what a cut file holds.",
@@ -81,7 +101,12 @@ class ExportCutSheet(Node):
     the search is counted in steps, not seconds, so the same graph gives the same layout
     on every run and machine, a busy machine only takes longer (up to ten times the
     budget and a minute, then it stops with a remark that the layout may differ) — and
-    keeps the row layout when that takes less stock. Stop (Esc in the app) keeps the best layout found so far.
+    keeps the row layout when that takes less stock. In the app the search runs in the
+    background (docs/anytime-results.md): the rows show at once, the true-shape sheets replace
+    them when found, with their usage in the node's message and the search's progress bar
+    in the status bar, and the canvas and other solves never wait; Esc stops the search and
+    keeps the best layout found so far. With Write true the node waits for its layout and
+    writes that; ``torsal run --nesting-time S`` shows rows and searches for at most S s.
     Nesting Shelf (the default, so graphs made before TrueShape keep their layout)
     places the parts' bounding rectangles in rows, tallest first: instant, more
     sheets. TrueShape turns parts freely (Shelf lays them along the sheet); Grain
@@ -108,6 +133,10 @@ class ExportCutSheet(Node):
     you have allowed the graph to write files; Path is relative to the graph's folder
     and must stay inside it. A file it replaces is kept as ``<name>.bak``.
     Layout also goes to ``torsal run --export ID.Layout=file.dxf`` (.svg, .3dm).
+    The viewport draws Preview: each sheet's border, the cut contours, IDs and seam marks
+    at the scale of the 3D Strips (so a 1:50 layout shows at the roof's size) and beside
+    their bounding box, never inside the model; without Strips, at the panels' scale from
+    the origin. Cuts and Sheets (model units, from the origin) are for wiring on.
     """
 
     type_id = "io.ExportCutSheet"
@@ -151,13 +180,16 @@ class ExportCutSheet(Node):
             access=LIST),
         Out("Layout", CUT_LAYOUT, "L", "The panels on their sheets, for --export and Bake."),
         Out("Cuts", CURVE, "C", "The cut contours as laid out, sheets side by side, model units.",
-            access=LIST),
-        Out("Sheets", CURVE, "S", "The sheets' outlines, side by side along X, model units.", access=LIST),
+            access=LIST, preview=False),
+        Out("Sheets", CURVE, "S", "The sheets' outlines, side by side along X, model units.", access=LIST,
+            preview=False),
         Out("Usage", NUMBER, "U", "Share of the sheets' area used by panels, 0 to 1."),
         Out("Seams", TEXT, "Sm", "Per seam: its ID, the two parts and their edges' lengths (mm).",
             access=LIST),
         Out("SeamDifferences", NUMBER, "Sd", "Per seam, the difference of its two flat edges' lengths, mm.",
             access=LIST),
+        Out("Preview", SHEET_PREVIEW, "Pv", "The sheets as the viewport draws them: borders, cuts and IDs at "
+            "the Strips' scale, beside them (docs/cut-sheets.md)."),
     )
 
     def solve(
@@ -215,18 +247,23 @@ class ExportCutSheet(Node):
             model_units = unit_name(units)
         except FileFailure as exc:  # one input value: refused, as checks.py has it
             raise NodeWarning(str(exc)) from None
+        chosen = _nesting(nesting)
+        # in the app, TrueShape answers with rows at once and searches in the background
+        # (torsal/engine/improve.py); a node that writes files waits for its layout
+        later = chosen == cutfiles.TRUE_SHAPE and self.anytime and not write
+        settings = {
+            "width": number("SheetWidth", width), "height": number("SheetHeight", height),
+            "gap": number("Gap", gap), "kerf": number("Kerf", kerf),
+            "text_height": number("TextHeight", text_height), "rotate": bool(rotate), "units": model_units,
+            "sources": sources, "margin": None if margin is None else number("Margin", margin),
+            "grain": bool(grain), "budget": number("TimeBudget", budget), "seed": _seed(seed),
+            "reference": bool(reference), "seams": found, "tick_spacing": spacing,
+        }
         with file_errors():
             with refused_settings(), watched(self.check_cancelled, self.progress):
                 layout = cutfiles.lay_out(
-                    curves, names,
-                    width=number("SheetWidth", width), height=number("SheetHeight", height),
-                    gap=number("Gap", gap), kerf=number("Kerf", kerf),
-                    text_height=number("TextHeight", text_height), rotate=bool(rotate), units=model_units,
-                    sources=sources, margin=None if margin is None else number("Margin", margin),
-                    nesting=_nesting(nesting), grain=bool(grain), budget=number("TimeBudget", budget),
-                    seed=_seed(seed), reference=bool(reference),
-                    stop=lambda: self.token.cancelled, report=self.progress,
-                    seams=found, tick_spacing=spacing,
+                    curves, names, nesting=cutfiles.SHELF if later else chosen,
+                    stop=lambda: self.token.cancelled, report=self.progress, **settings,
                 )
             files = []
             if write:
@@ -234,22 +271,41 @@ class ExportCutSheet(Node):
                 if may_write(self, cutfiles.numbered(target, layout.sheets)):
                     files = [str(p) for p in cutfiles.write_cut_files(layout, target)]
             else:
-                self.remark("Write is false: this node writes no files (its Layout still goes to "
-                            "--export and Export…)")
-        for note in layout.notes:
+                self.remark(WRITE_IS_FALSE)
+        for note in _remarks(layout):
             self.remark(note)
-        if layout.seams:
-            worst = max(layout.seams, key=lambda s: s.difference)
-            self.remark(f"{len(layout.seams)} seams; the largest edge-length difference is "
-                        f"{worst.difference:.4g} mm ({worst.id}: {worst.part_a} | {worst.part_b})")
         back = unit_scale("mm", model_units)
-        return (
-            files,
-            layout,
-            cutfiles.placed_curves(layout, scale=back),
-            cutfiles.sheet_outlines(layout, scale=back),
-            layout.usage,
-            [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
-             for s in layout.seams],
-            [s.difference for s in layout.seams],
-        )
+        developments = [None] * len(panels.all_items()) + surfaces.all_items()
+        solids = [None] * len(panels.all_items()) + ([] if strips.is_empty() else strips.all_items())
+
+        def outputs(layout: CutLayout, files: list[str]) -> tuple[Any, ...]:
+            return (
+                files,
+                layout,
+                cutfiles.placed_curves(layout, scale=back),
+                cutfiles.sheet_outlines(layout, scale=back),
+                layout.usage,
+                [f"{s.id}: {s.part_a} {s.length_a:.3f} mm | {s.part_b} {s.length_b:.3f} mm"
+                 for s in layout.seams],
+                [s.difference for s in layout.seams],
+                sheet_preview.placed(layout, back, developments, solids),
+            )
+
+        if later:
+            shelf = layout
+            self.remark(f"TrueShape nesting searches in the background: rows shown meanwhile "
+                        f"({_usage(shelf)})")
+
+            def improve(stop, publish, progress):  # type: ignore[no-untyped-def]
+                """The true-shape layout, published when it takes less stock than the rows."""
+                try:
+                    nested = cutfiles.lay_out(curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop,
+                                              report=progress, **settings)
+                except (cutfiles.FileFailure, ValueError):
+                    return
+                if nested.stock_usage > shelf.stock_usage:
+                    publish(outputs(nested, []), [f"TrueShape nesting: {_usage(nested)}",
+                                                  WRITE_IS_FALSE, *_remarks(nested)])
+
+            self.improve_later(improve)
+        return outputs(layout, files)

@@ -22,11 +22,15 @@ class Import3dm(Node):
     """Curves, surfaces and meshes from a Rhino .3dm file, with their layers and names.
 
     Lines and polylines come in as such, every other curve as a NURBS curve; surfaces,
-    extrusions and the faces of breps (each face on its own, trims and caps left out)
-    as NURBS surfaces. Lengths are converted from the file's units to Units, so a file
-    in millimetres comes into a metre graph at 1/1000. Layers picks layers by full
-    path (``Facade::Panels``) or name, ``*`` as a wildcard; a layer brings its
-    sublayers. A relative Path starts from the graph's folder.
+    extrusions and the faces of breps (each face on its own) as NURBS surfaces. A face
+    trimmed in Rhino keeps its trim loops (a trimmed surface: Rationalise works inside
+    them); an extrusion's caps are left out. Lengths are converted from the file's units
+    to Units, so a file in millimetres comes into a metre graph at 1/1000. Layers picks
+    layers by full path (``Facade::Panels``) or name, ``*`` as a wildcard; a layer brings
+    its sublayers. The file is parsed in a separate process with a memory and time
+    limit, so a damaged file that crashes the reader puts this node in error ("could not
+    read FILE: the reader crashed") and nothing else. Files over 512 MB are refused.
+    A relative Path starts from the graph's folder (also with ``torsal run --out``).
     """
 
     type_id = "io.Import3dm"
@@ -57,6 +61,8 @@ class Import3dm(Node):
             self.remark("The file has no units: its numbers are taken as model units")
         elif found.scale != 1.0:
             self.remark(f"Converted from {found.units} to {model_units} (× {found.scale:g})")
+        if found.trims:
+            self.remark(f"{found.trims} brep faces came in trimmed: each keeps its trim loops")
         if found.trimmed:
             self.remark(
                 f"{found.trimmed} brep faces or capped extrusions came in as their untrimmed surfaces"
@@ -80,7 +86,12 @@ class Export3dm(Node):
     ::Rulings, ::Panels, ::Meshes). Curves become NURBS curves and surfaces NURBS
     surfaces with Torsal's own parameterisation, exactly where the geometry is a
     B-spline already (a ruled surface is degree 1 across its rulings) and otherwise
-    interpolated to within 1e-9 of its size (the node says how close). Every object
+    interpolated to within 1e-9 of its size (the node says how close); a trimmed surface
+    goes out as its untrimmed surface (rhino3dm cannot write trimmed freeform faces). A
+    developable strip goes face by face along its rulings: ruled faces with rails fitted to
+    1e-6 of its size, fans as planar faces, the strip's faces in one Rhino group, each
+    named and tagged with its rulings (TorsalRulings, TorsalFace); see docs/rhino.md. A
+    curve of no length is left out. Every object
     is named (Curve 1 …, panels by their ID) and keeps its tree path in the user
     strings TorsalPath and TorsalIndex; panels also carry PanelID. The file's units
     are Units. Nothing is written until Write is true and you have allowed the
@@ -152,4 +163,6 @@ class Export3dm(Node):
             self.remark(
                 f"Some geometry was interpolated as NURBS: within {written.deviation:.2g} {model_units}"
             )
+        if written.degenerate:
+            self.remark(f"{written.degenerate} curves of no length (points) were left out")
         return str(written.path), written.objects

@@ -122,6 +122,7 @@ def node_menu(scene: CanvasScene, node: NodeItem) -> QMenu:
     if record.node.widget is Widget.EXPRESSION:
         menu.addAction("Edit expression…", lambda: ask_expression(scene, node.node_id))
     menu.addAction("Help", lambda: scene.help_requested.emit(node.node_id))
+    menu.addAction("Bake…", lambda: scene.bake_requested.emit(list(selected)))
     outputs = [port.name for port in node.record.node.output_ports()]
     if outputs:
         export = menu.addMenu("Export output")

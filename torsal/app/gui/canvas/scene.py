@@ -52,6 +52,7 @@ class CanvasScene(QGraphicsScene):
 
     help_requested = Signal(str)
     export_requested = Signal(str, str)  # node id, output port: "Export…"
+    bake_requested = Signal(object)  # node ids: a node's own "Bake…"
 
     def __init__(self, doc: Document, editor: Editor, parent: QObject | None = None) -> None:
         super().__init__(parent)

@@ -353,6 +353,13 @@ def move_points(poly: pv.PolyData, piece: Piece) -> None:
     poly.Modified()
 
 
+def reshape(poly: pv.PolyData, piece: Piece) -> None:
+    """Give ``poly`` the points and cells of ``piece`` (of its kind, with other cells): the
+    dataset an actor draws stays that actor's, only its arrays are replaced (a drag that
+    adds rulings to a strip makes no new actor)."""
+    poly.shallow_copy(dataset(piece))
+
+
 def _overwrite(array: Any, values: np.ndarray) -> bool:
     """Copy ``values`` into the VTK ``array`` of the same shape; False if the shapes differ."""
     target = vtk_to_numpy(array)

@@ -24,12 +24,16 @@ from torsal.engine.graph import GraphEvent
 from torsal.engine.solver import Solver, SolveReport
 
 REPREVIEW_EVENTS = PREVIEW_CHANGED
+#: A frame asked for longer ago than this (seconds) is no longer waited for by
+#: :meth:`ViewportPanel.frame_due` (a window that does not paint: minimised, covered).
+FRAME_DUE_LIMIT = 0.25
 
 
 class ViewportPanel(QWidget):
     """The 3D preview of every node with preview on; the selected nodes are highlighted."""
 
     frame_rendered = Signal()
+    plotter_created = Signal()  # pyvista and VTK set up (start-up is timed by it)
 
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -44,6 +48,7 @@ class ViewportPanel(QWidget):
         self._grid_bounds: tuple[float, ...] | None = None
         self._selected: set[str] = set()
         self._render_began = 0.0
+        self._render_asked: float | None = None  # when a render was asked for, until it is done
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
         outer.setSpacing(0)
@@ -121,6 +126,7 @@ class ViewportPanel(QWidget):
         self.toolbar.setEnabled(True)
         self._update_grid()
         self.refresh()
+        self.plotter_created.emit()
 
     def close_plotter(self) -> None:
         if self.plotter is not None:
@@ -254,7 +260,15 @@ class ViewportPanel(QWidget):
         render) again.
         """
         if self.plotter is not None:
+            if self._render_asked is None and self.plotter.isVisible():
+                self._render_asked = time.perf_counter()
             self.plotter.update()
+
+    def frame_due(self) -> bool:
+        """Whether a render has been asked for and not yet done (for at most
+        :data:`FRAME_DUE_LIMIT`): what the viewport shows is behind the results."""
+        asked = self._render_asked
+        return asked is not None and time.perf_counter() - asked < FRAME_DUE_LIMIT
 
     def render(self) -> None:
         """Render now (a screenshot needs the picture at once)."""
@@ -267,6 +281,7 @@ class ViewportPanel(QWidget):
     def _render_ended(self, *_args: object) -> None:
         """Count finished renders (the slider-drag rate measurement reads :attr:`frames`)."""
         self.render_seconds = time.perf_counter() - self._render_began
+        self._render_asked = None
         self.frames += 1
         self.frame_rendered.emit()
 

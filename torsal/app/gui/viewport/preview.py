@@ -11,6 +11,7 @@ import numpy as np
 import pyvista as pv
 
 from torsal.app.gui import theme
+from torsal.app.gui.viewport.coloured import replace_coloured
 from torsal.app.gui.viewport.datasets import (
     PLAIN_TYPES,
     Memo,
@@ -19,6 +20,7 @@ from torsal.app.gui.viewport.datasets import (
     dataset,
     move_points,
     pieces,
+    reshape,
     same_topology,
 )
 from torsal.engine.graph import Graph
@@ -63,6 +65,23 @@ class Prepared:
     result: NodeResult
     pieces: list[Piece]
     problems: list[str]
+
+
+def piece_names(node_id: str, pieces: list[Piece]) -> list[str]:
+    """The actors' names of a node's pieces: the node, the kind, and the piece's place
+    among the pieces of its kind (so a kind's actor keeps its name when another kind comes
+    or goes)."""
+    seen: dict[str, int] = {}
+    names = []
+    for piece in pieces:
+        index = seen[piece.kind] = seen.get(piece.kind, -1) + 1
+        names.append(f"{PREFIX}{node_id}:{piece.kind}:{index}")
+    return names
+
+
+def point_size(piece: Piece) -> float:
+    """Dots of points: smaller when there are many."""
+    return 9.0 if len(piece.points) <= 60 else 5.0
 
 
 def ascii_title(text: str) -> str:
@@ -134,6 +153,7 @@ class Preview:
         self.bar_users: dict[str, set[str]] = {}  # colour-bar title -> nodes that use it
         self.bar_keys: dict[str, tuple[Any, str]] = {}  # colour-bar title -> (range, colour map)
         self._bounds: tuple[np.ndarray | None] | None = None  # bounds() until the actors change
+        self.hidden: set[str] = set()  # nodes whose surfaces a colour map replaces
 
     def update(
         self, graph: Graph, results: dict[str, NodeResult], prepared: dict[str, Prepared] | None = None
@@ -161,34 +181,49 @@ class Preview:
                 self.problems[node_id] = ready.problems
             else:
                 self.problems.pop(node_id, None)
-            if shown is None or not self._update_in_place(shown, ready):
+            if shown is None or not self._update_in_place(node_id, shown, ready):
                 self._remove(node_id)
                 self._add(node_id, ready)
             changed = True
+        if changed:  # a colour map replaces the surface it colours (viewport/coloured.py)
+            self.hidden = replace_coloured(graph, self.nodes)
         return changed
 
-    def _update_in_place(self, entry: NodeActors, ready: Prepared) -> bool:
-        """Reuse the node's actors when the kinds of geometry are the same as before (a
-        slider drag): pieces whose cells are unchanged only move their points, others get
-        a new dataset. Much cheaper than new actors. False if the kinds differ."""
-        kinds = [piece.kind for piece in ready.pieces]
-        if kinds != [piece.kind for piece in entry.pieces.values()] or "scalars" in kinds:
+    def _update_in_place(self, node_id: str, entry: NodeActors, ready: Prepared) -> bool:
+        """Reuse the node's actors (a slider drag): a piece of a kind the node drew before
+        keeps that kind's actor, its points moved in place when its cells are unchanged,
+        else its dataset's arrays replaced; a kind the node now draws as well gets an actor
+        of its own, and a kind it no longer draws loses its. Much cheaper than new actors.
+        False for coloured meshes (their colour bars are made with their actors)."""
+        if "scalars" in (piece.kind for piece in [*ready.pieces, *entry.pieces.values()]):
             return False
-        for name, piece in zip(entry.names, ready.pieces, strict=True):
-            if same_topology(entry.pieces[name], piece):
+        names = piece_names(node_id, ready.pieces)
+        for name in [name for name in entry.actors if name not in names]:
+            self.plotter.remove_actor(name, reset_camera=False, render=False)
+            del entry.actors[name], entry.pieces[name], entry.datasets[name]
+        added = False
+        for name, piece in zip(names, ready.pieces, strict=True):
+            before = entry.pieces.get(name)
+            if before is None:
+                self._add_piece(name, piece, node_id, entry)
+                added = True
+                continue
+            if same_topology(before, piece):
                 move_points(entry.datasets[name], piece)
             else:
-                entry.datasets[name] = dataset(piece)
-                entry.actors[name].mapper.SetInputData(entry.datasets[name])
+                reshape(entry.datasets[name], piece)
+                if piece.kind == "points":
+                    entry.actors[name].prop.point_size = point_size(piece)
             entry.pieces[name] = piece
+        if added and node_id in self.selected:
+            self._style(node_id, True)
         entry.result = ready.result
         return True
 
     def _add(self, node_id: str, ready: Prepared) -> None:
         self._bounds = None
         entry = NodeActors(ready.result)
-        for index, piece in enumerate(ready.pieces):
-            name = f"{PREFIX}{node_id}:{piece.kind}:{index}"
+        for name, piece in zip(piece_names(node_id, ready.pieces), ready.pieces, strict=True):
             self._add_piece(name, piece, node_id, entry)
         self.nodes[node_id] = entry
         if node_id in self.selected:
@@ -213,8 +248,8 @@ class Preview:
             if not piece.rgb:
                 entry.bars.append(self._add_bar(piece, node_id, actor))
         else:
-            if piece.kind == "points":  # many points: smaller dots
-                style["point_size"] = 9.0 if len(piece.points) <= 60 else 5.0
+            if piece.kind == "points":
+                style["point_size"] = point_size(piece)
             actor = self.plotter.add_mesh(data, name=name, reset_camera=False, render=False, **style)
         entry.actors[name] = actor
         entry.pieces[name] = piece
@@ -237,19 +272,20 @@ class Preview:
             return title
         self.bar_keys[title] = key
         row = len(self.plotter.scalar_bars)
-        self.plotter.add_scalar_bar(
+        bar = self.plotter.add_scalar_bar(
             title=title,
             mapper=actor.mapper,
             vertical=False,
-            n_labels=5,
+            n_labels=2,  # the two ends: a middle tick label would lie under the centred title
             fmt="%.3g",
             title_font_size=11,
             label_font_size=10,
             width=0.45,
-            height=0.07,
+            height=0.1,
             position_x=0.52,
-            position_y=0.03 + 0.12 * row,
+            position_y=0.03 + 0.14 * row,
         )
+        bar.SetTextPositionToPrecedeScalarBar()  # the end labels and the title under the bar
         return title
 
     def _remove(self, node_id: str) -> None:

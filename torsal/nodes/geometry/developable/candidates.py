@@ -27,14 +27,14 @@ import numpy as np
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
-from ..curve_base import Curve, FloatArray
+from ..curve_base import FloatArray
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
 from .selection import monotone_path
-from .stack import Stack, evaluate_each
+from .stack import Stack, evaluate_rows
 from .strip import Grid, Strip
-from .warp import in_plane_tangent, warp_angles
+from .warp import _angles, _normals, in_plane_tangent, sizes
 
 #: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
 FLAT = 1e-10
@@ -397,19 +397,6 @@ _PIECE_NAMES = tuple(Pieces.__dataclass_fields__)
 _BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
 
 
-def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:
-    """Curve ``strip_of[i]``'s points and derivatives up to ``order`` at ``x[i]``, each
-    curve evaluated once at its own parameters (:func:`.stack.evaluate_each`)."""
-    if len(curves) == 1:
-        return curves[0].derivatives(x, order)
-    by_strip = np.argsort(strip_of, kind="stable")
-    bounds = np.searchsorted(strip_of[by_strip], np.arange(len(curves) + 1))
-    grouped = evaluate_each(curves, x[by_strip], bounds, order)
-    out = np.empty((order + 1, len(x), 3))
-    out[:, by_strip] = grouped
-    return list(out)
-
-
 def _with_extras(found: _Found, candidates: Candidates) -> Candidates:
     """One strip's refined roots with its roots at corners of B and the ends of its flat runs."""
     if len(found.corner_rows) == 0 and not np.count_nonzero(found.flat):
@@ -538,10 +525,33 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     partners: the plain loft's (in arc length between those neighbours) if that is
     within it, else the least-warped sample of B. The others stay NaN, to be closed
     by fans."""
+    near_partners_all([strip], [t])
+
+
+def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None:
+    """:func:`near_partners` of every strip (its partners ``ts[i]``, filled in in place),
+    the plain lofts' warps of all of them measured at once."""
+    lofts = [_loft(strip, t) for strip, t in zip(strips, ts, strict=True)]
+    at = [i for i, loft in enumerate(lofts) if loft is not None]
+    if not at:
+        return
+    # the lofts' warps, every strip's at once (each with its own size)
+    a0, a1, points, tangents = (np.concatenate([lofts[i][k] for i in at]) for k in range(4, 8))
+    stack = Stack.of([lofts[i][4] for i in at])
+    warps = stack.split(_angles(*_normals(a0, points, a1, tangents, None, None, stack.repeat(
+        sizes(stack, a0, points))), False))
+    for i, loft_warp in zip(at, warps, strict=True):
+        _near(strips[i], ts[i], *lofts[i][:6], loft_warp)
+
+
+def _loft(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...] | None:
+    """For one strip's stations without a partner: where they are, the plain loft's
+    partners (between their neighbours' partners ``lo`` and ``hi``), A there and B at the
+    loft's partners; None where every station has one."""
     gap = np.isnan(t)
     missing = flatnonzero(gap)
     if len(missing) == 0:
-        return
+        return None
     # where each station without a partner falls among those with one: the partners of its
     # two neighbours (padded with B's ends where there is none before or after it) and
     # their arc lengths along A (padded with A's ends), one row for each neighbour
@@ -558,7 +568,15 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
     a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
-    loft_warp = warp_angles(a0, points, a1, tangents)
+    return missing, loft, lo, hi, a0, a1, points, tangents
+
+
+def _near(
+    strip: Strip, t: FloatArray, missing: IntArray, loft: FloatArray, lo: FloatArray, hi: FloatArray,
+    a0: FloatArray, a1: FloatArray, loft_warp: FloatArray,
+) -> None:
+    """One strip's partners where it had none: the loft's where its warp ``loft_warp`` is
+    within the tolerance, else the least-warped sample of B between ``lo`` and ``hi``."""
     # else the least angle between the end normals among B's samples in the window
     grid = strip.grid
     angle = normal_angles(a0, a1, grid.points, grid.tangents)
@@ -572,6 +590,7 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])
+
 
 def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) -> FloatArray:
     """The angle (0 to π) between N1 = R × A'_i and N2 = R × B'_j with R = B_j − A_i, for

@@ -38,8 +38,8 @@ from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
-from .stack import Stack, evaluate_each, sizes
-from .warp import consistently_oriented
+from .stack import Stack, evaluate_each
+from .warp import consistently_oriented, sizes
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
 SAMPLES = 33

@@ -26,6 +26,7 @@ length*, so the triangles are about as wide on both curves and no ruling crosses
 from __future__ import annotations
 
 import struct
+from collections.abc import Sequence
 from math import isnan
 
 import numpy as np
@@ -38,6 +39,7 @@ from ..vec_ops import cross, det, flatnonzero, norm, unit
 from ..vec_ops import extent as box_extent
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
+from .stack import Stack, evaluate_each, evaluate_rows
 from .strip import SIDE, Strip
 
 #: Fractions of a chain's length this close are one in :func:`zigzag`.
@@ -289,39 +291,77 @@ def a_fans(
     from one point A(s*) to a stretch of B (a triangle on a straight piece of B, or a
     cone at a corner of A). s* solves f(s, t_mid) = 0 for s, or is the corner of A.
     """
-    s = strip.s
-    dt = t[1:] - t[:-1]
-    predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
-    jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
-    pairs = flatnonzero(jump)
-    if len(pairs) == 0:
-        return []
-    t_mid = 0.5 * (t[pairs] + t[pairs + 1])
-    bm0, bm1 = strip.curve_b.derivatives(t_mid, 1)
+    return a_fans_all([(strip, t, slope, regular)])[0]
+
+
+def a_fans_all(
+    strips: Sequence[tuple[Strip, FloatArray, FloatArray, BoolArray]],
+) -> list[list[tuple[float, float, float]]]:
+    """:func:`a_fans` of every strip ``(strip, t, slope, regular)``, the apexes of all
+    their fans solved at once (each strip's curves evaluated on its own rows)."""
+    jumps = []
+    for strip, t, slope, regular in strips:
+        s = strip.s
+        dt = t[1:] - t[:-1]
+        predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
+        jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
+        jumps.append((dt, flatnonzero(jump)))
+    found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
+    with_pairs = [i for i, (_, pairs) in enumerate(jumps) if len(pairs)]
+    if not with_pairs:
+        return found
+    stack = Stack([len(jumps[i][1]) for i in with_pairs])
+    owner = stack.owner()
+    stations = np.cumsum([0] + [len(strips[i][0].s) for i in with_pairs])[:-1]
+    pairs = np.concatenate([jumps[i][1] for i in with_pairs])
+    t_all = np.concatenate([strips[i][1] for i in with_pairs])
+    s_all = np.concatenate([strips[i][0].s for i in with_pairs])
+    at = pairs + stations[owner]  # (the pairs' first stations among all strips' stations)
+    t_mid = 0.5 * (t_all[at] + t_all[at + 1])
+    bm0, bm1 = evaluate_each([strips[i][0].curve_b for i in with_pairs], t_mid, stack.offsets, 1)
     # f at both stations of every pair at once: rows (i, i + 1)
-    both = pairs + _NEXT
-    f_left, f_right = det(bm0 - strip.a0[both], strip.a1[both], bm1)
+    a0 = np.concatenate([strips[i][0].a0 for i in with_pairs])
+    a1 = np.concatenate([strips[i][0].a1 for i in with_pairs])
+    both = at + _NEXT
+    f_left, f_right = det(bm0 - a0[both], a1[both], bm1)
     apex = np.full(len(pairs), np.nan)
     which = flatnonzero(f_left * f_right < 0)
     if len(which):
         # B and B' at each bracket's t_mid, gathered once: the same on every iteration
         b0, b1 = bm0[which], bm1[which]
+        curves_a = [strips[i][0].curve_a for i in with_pairs]
+        strip_of = owner[which]
 
         def coplanarity(x: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-            c0, c1, c2 = strip.curve_a.derivatives(x, 2)
+            c0, c1, c2 = evaluate_rows(curves_a, x, strip_of[index], 2)
             r0, r1 = (b0, b1) if len(index) == len(which) else (b0[index], b1[index])
             r = r0 - c0
             # f and f_s = det[R, A'', B'] (the term det[−A', A', B'] vanishes), in one det
             f, f_s = det(r, np.array([c1, c2]), r1)
             return f, f_s, rounding_scale(norm(c0), r0, norm(c1), r1)
 
-        low, high = s[pairs[which]], s[pairs[which] + 1]
+        low, high = s_all[at[which]], s_all[at[which] + 1]
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
-        # a root that converged onto a corner of A (a jump of f) or onto a station is that point
-        for exact in (strip.kinks_a, s):
-            if len(exact):
-                nearest = exact[np.argmin(np.abs(apex[:, None] - exact[None, :]), axis=1)]
-                apex = np.where(np.abs(apex - nearest) <= 1e-12, nearest, apex)
+    for k, index in enumerate(with_pairs):
+        strip, t, _, _ = strips[index]
+        dt, pairs_k = jumps[index]
+        apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
+        if np.count_nonzero(~np.isnan(apex_k)):
+            # a root that converged onto a corner of A (a jump of f) or onto a station is that point
+            for exact in (strip.kinks_a, strip.s):
+                if len(exact):
+                    nearest = exact[np.argmin(np.abs(apex_k[:, None] - exact[None, :]), axis=1)]
+                    apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
+        found[index] = _a_fans_of(strip, t, dt, pairs_k, apex_k)
+    return found
+
+
+def _a_fans_of(
+    strip: Strip, t: FloatArray, dt: FloatArray, pairs: IntArray, apex: FloatArray
+) -> list[tuple[float, float, float]]:
+    """One strip's fans through points of A at the jumps ``pairs`` with the apexes found
+    (NaN where f had no root between the two stations)."""
+    s = strip.s
     fans = []
     for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
         if isnan(s_star):

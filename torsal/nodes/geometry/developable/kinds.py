@@ -32,15 +32,19 @@ plane at all: a fan when beside a cone, else torsal, and never valid.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..array_types import BoolArray, FloatArray, IntArray
 from ..curve_base import Curve
-from ..vec_ops import cross, norm, position_rounding
-from .warp import ZERO, curve_warp
+from ..vec_ops import cross, norm
+from .measure import rounding_of
+from .stack import Stack
+from .warp import ZERO, curve_warps
 
 TORSAL, FAN, CREASE = "torsal", "fan", "crease"
 #: The sorts of piece beside a ruling: none (a strip's end), a cone through a point of A,
@@ -72,11 +76,12 @@ class RulingKinds:
         return float(np.count_nonzero(torsal)) / n
 
 
-def piece_sorts(starts: FloatArray, ends: FloatArray, size: float) -> IntArray:
+def piece_sorts(starts: FloatArray, ends: FloatArray, size: float | FloatArray) -> IntArray:
     """The sort of each of the ``n − 1`` pieces between consecutive rulings (a cone through
     a point of A or B, a quad, or empty), by which ends the two rulings share. A piece
     whose triangles have no area (beside a ruling of no length where the curves meet, the
-    two rulings run along one chord) is empty: it is no sheet."""
+    two rulings run along one chord) is empty: it is no sheet. (``size`` may be given per
+    piece: the size of the strip each piece is of.)"""
     tol = ZERO * size
     same_a = norm(starts[1:] - starts[:-1]) <= tol
     same_b = norm(ends[1:] - ends[:-1]) <= tol
@@ -106,23 +111,56 @@ def ruling_kinds(
     by what the rounding of the end points alone adds far from the origin, as the solver's
     check does.
     """
-    a = np.asarray(starts, dtype=float).reshape(-1, 3)
-    b = np.asarray(ends, dtype=float).reshape(-1, 3)
+    return ruling_kinds_all([(curve_a, curve_b, s, t, starts, ends, tolerance, sheet_warp)])[0]
+
+
+def ruling_kinds_all(strips: Sequence[tuple[Any, ...]]) -> list[RulingKinds]:
+    """:func:`ruling_kinds` of every strip ``(curve_a, curve_b, s, t, starts, ends, tolerance,
+    sheet_warp)``: the rulings of all strips judged at once (each strip's size, rounding and
+    tolerance its own, its pieces its own)."""
+    rows = []
+    for curve_a, curve_b, s, t, starts, ends, tolerance, sheet_warp in strips:
+        a = np.asarray(starts, dtype=float).reshape(-1, 3)
+        b = np.asarray(ends, dtype=float).reshape(-1, 3)
+        rows.append((curve_a, curve_b, s, t, a, b, float(tolerance), sheet_warp))
+    results: list[RulingKinds | None] = [None] * len(rows)
+    for index, row in enumerate(rows):
+        if len(row[4]) == 0:  # (no rulings: nothing to judge)
+            empty = np.empty(0)
+            results[index] = RulingKinds([], np.empty(0, dtype=bool), empty, empty, np.empty(0, dtype=bool))
+    judged = [row for row in rows if len(row[4])]
+    if judged:
+        done = iter(_judged(judged))
+        results = [next(done) if result is None else result for result in results]
+    return results  # type: ignore[return-value]  (every strip's is filled in)
+
+
+def _judged(rows: list[tuple[Any, ...]]) -> list[RulingKinds]:
+    """:func:`ruling_kinds_all` of strips with rulings, ``(curve_a, curve_b, s, t, a, b,
+    tolerance, sheet_warp)`` with a and b as ``(n, 3)`` arrays."""
+    missing = [row[:6] for row in rows if row[7] is None]
+    sheets = iter(curve_warps(missing))
+    sheet = np.concatenate([
+        np.asarray(next(sheets) if row[7] is None else row[7], dtype=float).reshape(-1) for row in rows
+    ])
+    tangent = np.concatenate(curve_warps([row[:6] for row in rows], fans=False))
+    stack = Stack.of([row[4] for row in rows])
+    a, b = np.concatenate([row[4] for row in rows]), np.concatenate([row[5] for row in rows])
     n = len(a)
-    if sheet_warp is None:
-        sheet_warp = curve_warp(curve_a, curve_b, s, t, a, b)
-    sheet = np.asarray(sheet_warp, dtype=float)
-    tangent = curve_warp(curve_a, curve_b, s, t, a, b, fans=False)
-    columns = np.concatenate([a, b])
-    size = float(norm(columns.max(axis=0) - columns.min(axis=0))) if n else 0.0
+    high = np.maximum(stack.reduce_max(a), stack.reduce_max(b))
+    size = stack.repeat(norm(high - np.minimum(stack.reduce_min(a), stack.reduce_min(b))))
     length = norm(b - a)
     tip = length <= ZERO * size
-    rounding = max(position_rounding(a), position_rounding(b)) if n else 0.0
-    allowed = tolerance + rounding / np.where(length > 0.0, length, np.inf)
+    tolerance = stack.repeat(np.array([row[6] for row in rows]))
+    allowed = tolerance + stack.repeat(rounding_of(stack, a, b)) / np.where(length > 0.0, length, np.inf)
     left, right = np.full(n, _NONE), np.full(n, _NONE)
     if n > 1:
-        sorts = piece_sorts(a, b, size)
-        left[1:], right[:-1] = sorts, sorts
+        # the pieces between consecutive rulings of one strip (none across two strips)
+        sorts = piece_sorts(a, b, size[:-1])
+        within = np.ones(n - 1, dtype=bool)
+        within[stack.offsets[1:-1] - 1] = False
+        left[1:] = np.where(within, sorts, _NONE)
+        right[:-1] = np.where(within, sorts, _NONE)
     # a piece of no width is no sheet: the ruling's other side decides
     left = np.where(left == _EMPTY, right, left)
     right = np.where(right == _EMPTY, left, right)
@@ -138,4 +176,5 @@ def ruling_kinds(
     kind = np.where(fan, FAN, np.where(crease, CREASE, TORSAL))
     valid = ~tip & np.where(fan, sheet_ok, torsal & ~crease)
     angle = np.where(crease, np.where(undefined, np.pi, tangent), 0.0)
-    return RulingKinds(kind.tolist(), valid, tangent, angle, tip)
+    columns = (stack.split(x) for x in (kind, valid, tangent, angle, tip))
+    return [RulingKinds(k.tolist(), v, w, c, p) for k, v, w, c, p in zip(*columns, strict=True)]

@@ -20,9 +20,9 @@ import numpy as np
 from ..array_types import BoolArray, FloatArray, IntArray
 from ..vec_ops import _EPS, POSITION_ULPS, cross, flatnonzero, norm, position_rounding, unit
 from .candidates import ROOT, Candidates
-from .stack import Stack, evaluate_each, sizes
+from .stack import Stack, evaluate_each
 from .strip import SIDE, Strip
-from .warp import _angles, _normals, in_plane_tangent, warp_angles
+from .warp import _angles, _normals, in_plane_tangent, sizes, warp_angles
 
 #: One strip's rulings to check: the strip, s, t, per ruling its station (−1 for an added
 #: ruling), and the station's chosen candidate (−1 for none) among ``good``.
@@ -38,7 +38,7 @@ def check_rulings(strips: Sequence[Rulings]) -> list[Checked]:
     stack = Stack.of([s for _, s, _, _, _, _ in strips])
     starts, ends, signed, ruling = measured(strips, stack)
     warp = np.abs(signed)
-    rounding = _rounding(stack, starts, ends)
+    rounding = rounding_of(stack, starts, ends)
     tolerance = np.array([strip.tolerance for strip, *_ in strips])
     with np.errstate(invalid="ignore"):  # NaN is never valid
         valid = warp <= stack.repeat(tolerance) + _allowance(stack.repeat(rounding), ruling)
@@ -61,7 +61,7 @@ def _allowance(rounding: FloatArray | float, ruling: FloatArray) -> FloatArray:
     return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
 
 
-def _rounding(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
+def rounding_of(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
     """The larger :func:`~..vec_ops.position_rounding` of each strip's ``starts`` and ``ends``
     (as ``max`` picks it: the first unless the second is larger)."""
     of_starts, of_ends = (

@@ -42,7 +42,8 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
-from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, uncovered
+from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
+from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.warp import curve_warp
@@ -66,13 +67,15 @@ class Strip:
     result: RulingResult
     surface: RuledSurface
     warp: FloatArray  #: per ruling, recomputed from the curves' exact tangents (NaN undefined)
-    deviation: float  #: certified largest distance from the design (:mod:`.certify`)
+    #: certified largest distance from the design (:mod:`.certify`), and of the design's edge
+    #: at the strip's two ends from the strip
+    deviation: float
     where: FloatArray  #: (3,) the strip's point farthest from the design (of its samples)
 
     @property
     def width(self) -> float:
-        """The strip's widest point: its longest ruling."""
-        return float(np.linalg.norm(self.result.ends - self.result.starts, axis=1).max(initial=0.0))
+        """The strip's width: the median length of its rulings."""
+        return float(np.median(np.linalg.norm(self.result.ends - self.result.starts, axis=1)))
 
 
 @dataclass
@@ -141,6 +144,10 @@ def boundary_family(surface: Surface, direction: ArrayLike | None = None, sample
     return "u" if count(svv, sv) <= count(suu, su) else "v"
 
 
+class Unmade(ValueError):
+    """No strip between two boundaries: its rulings' partners do not run one way."""
+
+
 def strip_between(
     design: Surface, boundaries: Boundaries, lo: float, hi: float, segments: int = 24,
     warp_tolerance: float = 1e-7, tolerance: float | None = None,
@@ -153,11 +160,18 @@ def strip_between(
         check()
     a, b = boundaries.at(lo), boundaries.at(hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
-    surface = ruled_between(a, result.s, b, result.t)
+    try:
+        surface = ruled_between(a, result.s, b, result.t)
+    except ValueError as exc:  # partners that run back (a wide trial over a sharp bump)
+        raise Unmade(str(exc)) from exc
     warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
     reference = tolerance if tolerance is not None else np.inf
     deviation = certified_deviation(design, surface, reference)
-    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), deviation.bound, deviation.where)
+    bound, where = deviation.bound, deviation.where
+    if deviation.sampled <= reference:  # and the design's edge at the strip's two ends
+        gap, at = end_gaps(design, surface, a, b)
+        bound, where = (gap, at) if gap > bound else (bound, where)
+    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), bound, where)
 
 
 #: Strips are widened to about this share of the tolerance (deviation grows as width²).
@@ -176,8 +190,8 @@ def _march(
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
-    within). Where the tolerance would need a strip narrower than ``min_width`` (at its
-    widest), the strip is made ``min_width`` wide instead and its index (counted from
+    within). Where the tolerance would need a strip narrower than ``min_width`` (its rulings'
+    median length), the strip is made ``min_width`` wide instead and its index (counted from
     ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed."""
     strips: list[Strip] = []
     lo, width = start, end - start
@@ -189,8 +203,13 @@ def _march(
         w = min(width, end - lo)
         strip = None
         for trial in range(TRIALS * 4):
-            strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
-                                  tolerance)
+            try:
+                strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
+                                      tolerance)
+            except Unmade:  # too wide to be made: narrower
+                bad = min(bad, w)
+                w = 0.5 * (((good.hi - lo) if good is not None else 0.0) + bad)
+                continue
             if strip.deviation <= tolerance:
                 good = strip if good is None or strip.hi > good.hi else good
                 if strip.hi >= end:
@@ -213,12 +232,19 @@ def _march(
         if settled is None:
             # the tolerance needs a strip narrower than MinWidth (or none was found): one
             # MinWidth wide, by the width per level of the last trial
-            probe = good if good is not None else strip
-            if probe is None or not probe.width > 0.0 or not min_width > 0.0:
+            if not min_width > 0.0:
                 return None
-            w = min(end - lo, (probe.hi - lo) * min_width / probe.width)
-            settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
-                                    warp_tolerance, tolerance)
+            w = min(end - lo, _level_step(boundaries, lo, end, min_width))
+            settled = None
+            for _ in range(8):
+                try:
+                    settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
+                                            warp_tolerance, tolerance)
+                    break
+                except Unmade:
+                    w *= 0.5
+            if settled is None:
+                return None
             if settled.deviation > tolerance and narrow is not None:
                 narrow.append(first + len(strips))
         strips.append(settled)
@@ -227,6 +253,16 @@ def _march(
         if progress is not None:
             progress(lo)
     return strips
+
+
+def _level_step(boundaries: Boundaries, lo: float, end: float, width: float) -> float:
+    """The step in level from ``lo`` that puts the next boundary about ``width`` away (the
+    median distance at five points along, by the distance a small step moves them)."""
+    step = min(0.01, end - lo)
+    t = np.linspace(0.1, 0.9, 5)
+    moved = np.linalg.norm(boundaries.at(lo + step).point_at(t) - boundaries.at(lo).point_at(t), axis=1)
+    rate = float(np.median(moved)) / step
+    return width / rate if rate > 0 else end - lo
 
 
 def _even(
@@ -249,6 +285,49 @@ def _even(
     return strips
 
 
+#: A rationalisation with at most this share of its area in creasing fans is kept without
+#: trying the other family of boundaries.
+SMOOTH = 0.01
+
+
+def creased_area(strips: Sequence[Strip]) -> float:
+    """The share of the strips' summed area in fans that crease the sheet."""
+    creased = total = 0.0
+    for strip in strips:
+        areas = patch_areas(strip.result.starts, strip.result.ends)
+        fan = strip.result.fan
+        total += float(areas.sum())
+        creased += float(areas[creased_fans(strip.result.starts, strip.result.ends, fan)].sum())
+    return creased / total if total > 0 else 0.0
+
+
+def _score(strips: Sequence[Strip], tolerance: float) -> tuple[float, ...]:
+    """Smaller is better: beyond the tolerance first, then creased area (to 2 %), then strips."""
+    over = max(0.0, max(s.deviation for s in strips) - tolerance)
+    return (over, round(creased_area(strips) / 0.02), float(len(strips)))
+
+
+def _cover(
+    design: Surface, family_of: Boundaries, tolerance: float, max_strips: int, segments: int,
+    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float,
+) -> tuple[list[Strip], list[int]]:
+    """The strips of one family of boundaries: each band between guides marched, or
+    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones."""
+    strips: list[Strip] | None = []
+    narrow: list[int] = []
+    for start, end in itertools.pairwise(family_of.levels):  # a boundary on every guide
+        assert strips is not None
+        band = _march(design, family_of, float(start), float(end), tolerance, max_strips - len(strips),
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
+        if band is None:
+            strips = None
+            break
+        strips.extend(band)
+    if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
+        return _even(design, family_of, max_strips, segments, warp_tolerance, tolerance), []
+    return strips, narrow
+
+
 def rationalise(
     design: Surface,
     tolerance: float,
@@ -267,7 +346,7 @@ def rationalise(
     Raises ``ValueError`` for a design closed across the boundaries (cut it first) and for
     guides that cannot be followed (saying which). ``progress`` is called with the share
     of the design covered so far (0 to 1). Strips are at least ``min_width`` wide (at
-    their widest) even where the tolerance would need narrower ones (listed in ``narrow``).
+    their rulings' median length) even where the tolerance would need narrower ones (listed in ``narrow``).
     """
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
@@ -277,24 +356,23 @@ def rationalise(
             "patches (cut it open) and rationalise each patch"
         )
     if guides:
-        family_of: Boundaries = guided_boundaries(design, guides)
-    else:
-        family = boundary_family(design, direction)
-        family_of = IsoBoundaries(design, family)
-    strips: list[Strip] | None = []
-    narrow: list[int] = []
-    levels = family_of.levels
-    for start, end in itertools.pairwise(levels):  # a boundary on every guide, each band marched
-        assert strips is not None
-        band = _march(design, family_of, float(start), float(end), tolerance, int(max_strips) - len(strips),
-                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
-        if band is None:
-            strips = None
-            break
-        strips.extend(band)
-    if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
-        strips = _even(design, family_of, int(max_strips), segments, warp_tolerance, tolerance)
-        narrow = []
+        candidates: list[Boundaries] = [guided_boundaries(design, guides)]
+    elif direction is not None:
+        candidates = [IsoBoundaries(design, boundary_family(design, direction))]
+    else:  # the family the square law prefers first; the other when the first creases the sheet
+        first = boundary_family(design)
+        candidates = [IsoBoundaries(design, first), IsoBoundaries(design, "v" if first == "u" else "u")]
+    best: tuple[tuple[float, ...], Boundaries, list[Strip], list[int]] | None = None
+    for k, family_of in enumerate(candidates):
+        strips, narrow = _cover(design, family_of, tolerance, int(max_strips), segments, warp_tolerance,
+                                progress if k == 0 else None, min_width)
+        score = _score(strips, tolerance)
+        if best is None or score < best[0]:
+            best = (score, family_of, strips, narrow)
+        if creased_area(strips) <= SMOOTH:
+            break  # smooth enough: the other family is not tried
+    assert best is not None
+    _, family_of, strips, narrow = best
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [family_of.at(p) for p in params]
     points, gaps = uncovered(design, [s.surface for s in strips])

@@ -104,9 +104,9 @@ from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
-from .candidates import Candidates, choose_all, near_partners
+from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans, close_gaps, fan_shares, flat_fans, outside_gaps
+from .fans import a_fans_all, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
 from .measure import warp_allowance as warp_allowance  # (its home before .measure)
 from .stations import Spacing
@@ -305,6 +305,7 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     solves = []
     choices = choose_all(strips)
     check()
+    partners = []
     for strip, (chosen, good) in zip(strips, choices, strict=True):
         n = len(strip.s)
         has = chosen >= 0
@@ -312,14 +313,20 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
         slope = np.zeros(n)
         partner = chosen[has]
         t[has], slope[has] = good.t[partner], good.slope[partner]
-        # stations without a partner get one first, so that a planar piece's fans end where
-        # the next station's partner is (two curves in one plane: otherwise a fan over all
-        # of B, then a partner running back)
-        near_partners(strip, t)
+        partners.append((t, slope, has))
+    # stations without a partner get one first, so that a planar piece's fans end where
+    # the next station's partner is (two curves in one plane: otherwise a fan over all of
+    # B, then a partner running back)
+    near_partners_all(strips, [t for t, _, _ in partners])
+    flat, jumps = [], []
+    for strip, (chosen, good), (t, slope, has) in zip(strips, choices, partners, strict=True):
         fans, planar = flat_fans(strip, t, chosen, good)
-        regular = has & ~planar
-        fans += a_fans(strip, t, slope, regular)
-        solves.append(_Solve(strip, chosen, good, t, fans))
+        flat.append(fans)
+        jumps.append((strip, t, slope, has & ~planar))  # (the stations on a regular branch)
+    for strip, (chosen, good), (t, _, _), fans, more in zip(
+        strips, choices, partners, flat, a_fans_all(jumps), strict=True
+    ):
+        solves.append(_Solve(strip, chosen, good, t, fans + more))
     check()
 
     # the check (step 8), round by round for the strips some of whose stations failed it

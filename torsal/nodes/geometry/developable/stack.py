@@ -13,13 +13,12 @@ curves are evaluated strip by strip (each strip has its own two curves):
 from __future__ import annotations
 
 from collections.abc import Sequence
+from itertools import pairwise
 
 import numpy as np
 
 from ..array_types import FloatArray, IntArray
 from ..curve_base import Curve
-from ..vec_ops import flatnonzero, norm
-from .warp import _size
 
 
 class Stack:
@@ -57,7 +56,8 @@ class Stack:
 
     def split(self, array: np.ndarray) -> list[np.ndarray]:
         """A stacked array as one array per strip (views)."""
-        return np.split(array, self.offsets[1:-1])
+        bounds = self.offsets.tolist()
+        return [array[low:high] for low, high in pairwise(bounds)]
 
     def groups(self, rows: IntArray) -> IntArray:
         """For increasing row indices ``rows``, where each strip's ones start and end among
@@ -88,18 +88,14 @@ def evaluate_each(
     return list(out)
 
 
-def sizes(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """:func:`.warp._size` of each strip's rows of ``starts`` and ``ends``: the diagonal of
-    the bounding box of their finite points (0 for a strip without rows)."""
-    size = np.zeros(len(stack))
-    rows = flatnonzero(stack.counts > 0)
-    if len(rows) == 0:
-        return size
-    first = stack.starts[rows]  # (reduceat over the strips that have rows)
-    high = np.maximum(np.maximum.reduceat(starts, first, axis=0), np.maximum.reduceat(ends, first, axis=0))
-    low = np.minimum(np.minimum.reduceat(starts, first, axis=0), np.minimum.reduceat(ends, first, axis=0))
-    size[rows] = norm(high - low)
-    for i in flatnonzero(~np.isfinite(size)):  # a NaN or infinite coordinate: the finite ones'
-        low_row, high_row = stack.offsets[i], stack.offsets[i + 1]
-        size[i] = _size(starts[low_row:high_row], ends[low_row:high_row])
-    return size
+def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:
+    """Curve ``strip_of[i]``'s points and derivatives up to ``order`` at ``x[i]``, the rows
+    in any order: each curve evaluated once at its own parameters (:func:`evaluate_each`)."""
+    if len(curves) == 1:
+        return curves[0].derivatives(x, order)
+    by_strip = np.argsort(strip_of, kind="stable")
+    bounds = np.searchsorted(strip_of[by_strip], np.arange(len(curves) + 1))
+    grouped = evaluate_each(curves, x[by_strip], bounds, order)
+    out = np.empty((order + 1, len(x), 3))
+    out[:, by_strip] = grouped
+    return list(out)

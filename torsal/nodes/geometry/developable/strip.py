@@ -145,6 +145,12 @@ class Strip:
         else:  # one smooth span: no corners
             self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
             self.kinks_a = breaks
+        # where A's parameter stands still (A'(s) = 0: a curve run as t²), its tangent is the
+        # limit of A'/|A'|, the direction of A'' there: the strip does not depend on the pace
+        still = norm(self.a1) <= 1e-9 * self.map_a.total
+        if still.any():
+            self.a1 = self.a1.copy()
+            self.a1[still] = self.a2[still]
         self.grid, self.kinks_b = sample_grid(curve_b, samples)
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)

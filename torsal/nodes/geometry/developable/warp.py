@@ -34,6 +34,7 @@ The same holds at a point the caller knows is on the edge of regression (``apex_
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from math import isfinite
 
 import numpy as np
@@ -43,6 +44,7 @@ from torsal.nodes.geometry.array_types import BoolArray
 
 from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, unit
+from .stack import Stack
 
 #: Below this share of the strip's size a ruling has no length and a tangent is zero
 #: (the edge stands still there).
@@ -74,6 +76,23 @@ def _size(start: FloatArray, end: FloatArray) -> float:
     points = np.concatenate([start, end])
     points = points[np.isfinite(points).all(axis=1)]
     return float(norm(extent(points))) if len(points) else 0.0
+
+
+def sizes(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """:func:`.warp._size` of each strip's rows of ``starts`` and ``ends``: the diagonal of
+    the bounding box of their finite points (0 for a strip without rows)."""
+    size = np.zeros(len(stack))
+    rows = flatnonzero(stack.counts > 0)
+    if len(rows) == 0:
+        return size
+    first = stack.starts[rows]  # (reduceat over the strips that have rows)
+    high = np.maximum(np.maximum.reduceat(starts, first, axis=0), np.maximum.reduceat(ends, first, axis=0))
+    low = np.minimum(np.minimum.reduceat(starts, first, axis=0), np.minimum.reduceat(ends, first, axis=0))
+    size[rows] = norm(high - low)
+    for i in flatnonzero(~np.isfinite(size)):  # a NaN or infinite coordinate: the finite ones'
+        low_row, high_row = stack.offsets[i], stack.offsets[i + 1]
+        size[i] = _size(starts[low_row:high_row], ends[low_row:high_row])
+    return size
 
 
 def _normals(
@@ -350,16 +369,27 @@ def _corner_sides(curve: Curve, t: FloatArray) -> tuple[BoolArray, FloatArray, F
     return corner, left, right
 
 
-def _interior_of_fans(points: FloatArray, size: float) -> BoolArray:
+def _interior_of_fans(points: FloatArray, size: float | FloatArray, stack: Stack | None = None) -> BoolArray:
     """Rows whose point is shared with every neighbouring row (both inside, the one
     neighbour of the first and last rows): in a fan through it. ``points`` ``(k, n, 3)``:
-    ``k`` edges' points (both ends of the rulings at once), a ``(k, n)`` mask."""
-    same = norm(points[:, 1:] - points[:, :-1]) <= ZERO * size
-    inside = np.zeros(points.shape[:2], dtype=bool)
-    inside[:, 1:-1] = same[:, :-1] & same[:, 1:]
-    if same.shape[1]:  # the first and last rulings have one neighbour each
-        inside[:, 0] |= same[:, 0]
-        inside[:, -1] |= same[:, -1]
+    ``k`` edges' points (both ends of the rulings at once), a ``(k, n)`` mask. With
+    ``stack`` the rows are those of several strips (``size`` per row), each its own."""
+    if stack is None:
+        same = norm(points[:, 1:] - points[:, :-1]) <= ZERO * size
+        inside = np.zeros(points.shape[:2], dtype=bool)
+        inside[:, 1:-1] = same[:, :-1] & same[:, 1:]
+        if same.shape[1]:  # the first and last rulings have one neighbour each
+            inside[:, 0] |= same[:, 0]
+            inside[:, -1] |= same[:, -1]
+        return inside
+    # same[:, i]: row i − 1 is at row i's point (False across a strip's bounds)
+    same = np.zeros((len(points), points.shape[1] + 1), dtype=bool)
+    same[:, 1:-1] = norm(points[:, 1:] - points[:, :-1]) <= ZERO * size[1:]
+    same[:, stack.offsets] = False
+    inside = same[:, :-1] & same[:, 1:]
+    first, last = stack.starts, stack.offsets[1:] - 1
+    inside[:, first] = same[:, first + 1]  # the first and last rulings have one neighbour each
+    inside[:, last] |= same[:, last]
     return inside
 
 
@@ -428,3 +458,36 @@ def curve_warp(
                 best = np.where(better, w, best)
         warp[retry] = best
     return warp
+
+
+def curve_warps(
+    strips: Sequence[tuple[Curve, Curve, FloatArray, FloatArray, FloatArray, FloatArray]],
+    fans: bool = True,
+) -> list[FloatArray]:
+    """:func:`curve_warp` of every strip ``(curve_a, curve_b, s, t, starts, ends)`` (and
+    ``fans``): the rulings of the strips between smooth curves measured at once (each
+    strip's size and fans its own), the others strip by strip."""
+    warps: list[FloatArray | None] = [None] * len(strips)
+    smooth: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
+    for index, (curve_a, curve_b, s, t, starts, ends) in enumerate(strips):
+        s = np.asarray(s, dtype=float).reshape(-1)
+        t = np.asarray(t, dtype=float).reshape(-1)
+        a = np.asarray(starts, dtype=float).reshape(-1, 3)
+        b = np.asarray(ends, dtype=float).reshape(-1, 3)
+        corners = _corner_sides(curve_a, s) is not None or _corner_sides(curve_b, t) is not None
+        if corners or a.shape != b.shape:
+            warps[index] = curve_warp(curve_a, curve_b, s, t, a, b, fans=fans)
+        else:  # (the tangents alone: a polynomial curve skips the points)
+            smooth.append((index, a, b, curve_a.derivative_at(s, 1), curve_b.derivative_at(t, 1)))
+    if smooth:
+        a, b, ta, tb = (np.concatenate([row[i] for row in smooth]) for i in range(1, 5))
+        stack = Stack.of([row[1] for row in smooth])
+        size = stack.repeat(sizes(stack, a, b))
+        if fans:
+            apex_a, apex_b = _interior_of_fans(np.concatenate([a, b]).reshape(2, -1, 3), size, stack)
+        else:
+            apex_a = apex_b = np.zeros(len(a), dtype=bool)
+        joined = _angles(*_normals(a, b, ta, tb, apex_a, apex_b, size), False)
+        for (index, *_), warp in zip(smooth, stack.split(joined), strict=True):
+            warps[index] = warp
+    return warps  # type: ignore[return-value]  (every strip's is filled in)

@@ -9,11 +9,12 @@ copies of them, ruled surfaces between such rails (degree 1 across the rulings) 
 otherwise a cubic interpolation on a grid of Torsal's parameters, refined until it is
 within :data:`APPROXIMATION` of the object's size or has 4097 points along a curve,
 257 × 257 on a surface (the deviation is reported: ~5e-9 of the size for a sphere).
-Files are written in the Rhino 7 format, which Rhino 7 and 8 both open.
+Files are written in the Rhino 7 format, which Rhino 7 and 8 both open. Developable
+strips (ruled surfaces whose rails run on two curves at their rulings' pace) go out face by
+face along their rulings instead (:mod:`.threedm_strips`); a curve of no length is left out.
 
-Reading (:func:`read_3dm`): curves, surfaces (NURBS, planes, revolutions, extrusions,
-the faces of breps; trims are ignored) and meshes, with their layer paths and object
-names, scaled from the file's units to the model's.
+Reading (:func:`read_3dm`) is :mod:`.threedm_read`'s: rhino3dm parses in a fenced child
+process, never in Torsal's own.
 
 rhino3dm's control points are homogeneous ``(w·x, w·y, w·z, w)`` and its knot vectors
 have the ``n + p − 1`` knots of the openNURBS convention (the kernel's full vectors
@@ -22,10 +23,9 @@ without their first and last knot).
 
 from __future__ import annotations
 
-import fnmatch
 import itertools
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -40,7 +40,12 @@ from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface, interpolate_grid
 from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
 from torsal.nodes.geometry.surface_base import Surface, TransformedSurface
-from torsal.nodes.io.common import FileFailure, readable, replacing, unit_name, writable
+from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
+from torsal.nodes.io.common import FileFailure, replacing, unit_name, writable
+from torsal.nodes.io.formats.threedm_read import Imported, layer_matches, read_3dm
+from torsal.nodes.io.formats.threedm_strips import is_strip, strip_pieces
+
+__all__ = ["Imported", "layer_matches", "read_3dm"]
 
 #: Relative accuracy (of the object's size) an interpolated NURBS form aims for.
 APPROXIMATION = 1e-9
@@ -130,6 +135,8 @@ def surface_form(surface: Surface) -> NurbsForm:
         )
     if isinstance(surface, RuledSurface):
         return _ruled_form(surface)
+    if isinstance(surface, TrimmedSurface):  # rhino3dm makes no trimmed freeform faces: its surface
+        return surface_form(surface.surface)
     return _interpolated_surface(surface, ruled=surface.ruling_direction == "v")
 
 
@@ -262,171 +269,6 @@ def _full_knots(knots: Sequence[float]) -> np.ndarray:
     return np.concatenate([k[:1], k, k[-1:]])
 
 
-def kernel_curve(curve: rh.Curve, scale: float = 1.0) -> Curve:
-    """A rhino3dm curve as a kernel curve: lines and polylines as such, the rest as NURBS."""
-    if isinstance(curve, rh.LineCurve):
-        a, b = curve.PointAtStart, curve.PointAtEnd
-        return Line(np.array([a.X, a.Y, a.Z]) * scale, np.array([b.X, b.Y, b.Z]) * scale)
-    if isinstance(curve, rh.PolylineCurve):
-        points = np.array([[p.X, p.Y, p.Z] for p in (curve.Point(i) for i in range(curve.PointCount))])
-        return Polyline(points * scale, closed=bool(curve.IsClosed))
-    nurbs = curve if isinstance(curve, rh.NurbsCurve) else curve.ToNurbsCurve()
-    if nurbs is None:
-        raise FileFailure(f"A {type(curve).__name__} has no NURBS form")
-    cells = [nurbs.Points[i] for i in range(len(nurbs.Points))]
-    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in cells])
-    weights = homogeneous[:, 3]
-    points = homogeneous[:, :3] / weights[:, None] * scale
-    knots = _full_knots(nurbs.Knots.ToList())
-    return NurbsCurve(points, nurbs.Degree, knots, weights if nurbs.IsRational else None)
-
-
-def kernel_surface(surface: Any, scale: float = 1.0) -> NurbsSurface:
-    """A rhino3dm surface (any kind with a NURBS form) as a kernel NURBS surface."""
-    nurbs = surface if isinstance(surface, rh.NurbsSurface) else surface.ToNurbsSurface()
-    if nurbs is None:
-        raise FileFailure(f"A {type(surface).__name__} has no NURBS form")
-    nu, nv = nurbs.Points.CountU, nurbs.Points.CountV
-    cells = [nurbs.Points.GetControlPoint(i, j) for i in range(nu) for j in range(nv)]
-    homogeneous = np.array([[p.X, p.Y, p.Z, p.W] for p in cells]).reshape(nu, nv, 4)
-    weights = homogeneous[..., 3]
-    points = homogeneous[..., :3] / weights[..., None] * scale
-    return NurbsSurface(
-        points,
-        nurbs.OrderU - 1,
-        nurbs.OrderV - 1,
-        _full_knots(nurbs.KnotsU.ToList()),
-        _full_knots(nurbs.KnotsV.ToList()),
-        weights if nurbs.IsRational else None,
-    )
-
-
-def kernel_mesh(mesh: rh.Mesh, scale: float = 1.0) -> trimesh.Trimesh:
-    """A rhino3dm mesh as a trimesh mesh (quads split along their first diagonal)."""
-    vertices = np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()], dtype=float) * scale
-    faces = np.array([mesh.Faces[i] for i in range(mesh.Faces.Count)], dtype=np.int64).reshape(-1, 4)
-    quads = faces[:, 2] != faces[:, 3]
-    triangles = np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]])
-    return trimesh.Trimesh(vertices, triangles, process=False)
-
-
-# ------------------------------------------------------------------ reading
-
-
-@dataclass
-class Imported:
-    """What :func:`read_3dm` found, in file order, each with its layer path and name."""
-
-    units: str  #: the file's units ("mm" …, "none" for a unitless file)
-    scale: float  #: factor applied to the file's lengths
-    curves: list[tuple[Curve, str, str]] = field(default_factory=list)
-    surfaces: list[tuple[NurbsSurface, str, str]] = field(default_factory=list)
-    meshes: list[tuple[trimesh.Trimesh, str, str]] = field(default_factory=list)
-    skipped: dict[str, int] = field(default_factory=dict)  #: object kinds not imported, counted
-    trimmed: int = 0  #: brep faces or capped extrusions whose trims/caps were left out
-
-
-def open_3dm(path: Path) -> rh.File3dm:
-    """The parsed file, or a FileFailure that says whether it is missing, empty, not a .3dm
-    or damaged."""
-    readable(path, "Rhino .3dm")
-    with path.open("rb") as stream:
-        head = stream.read(len(MAGIC))
-    if head != MAGIC:
-        raise FileFailure(f"{path.name} is not a Rhino .3dm file (it does not start like one)")
-    model = rh.File3dm.Read(str(path))
-    if model is None:
-        raise FileFailure(f"{path.name} is damaged or truncated: rhino3dm could not read it")
-    return model
-
-
-def file_units(model: rh.File3dm) -> str | None:
-    """The file's unit as a Torsal unit name, None for "no units", or a FileFailure."""
-    system = model.Settings.ModelUnitSystem
-    if system.name == "None":
-        return None
-    for name, value in UNIT_SYSTEMS.items():
-        if system == value:
-            return name
-    if system.name in ("CustomUnits", "Unset"):
-        raise FileFailure(
-            f"The file's units are {system.name}, which Torsal cannot convert: "
-            "set standard units in Rhino (File ▸ Properties ▸ Units) and save again"
-        )
-    return system.name  # another standard unit (feet, microns ...): converted by rhino3dm
-
-
-def _scale(model: rh.File3dm, units: str) -> tuple[str, float]:
-    found = file_units(model)
-    if found is None:
-        return "none", 1.0
-    system = UNIT_SYSTEMS.get(found) or getattr(rh.UnitSystem, found)
-    return found, float(rh.UnitSystem.UnitScale(system, UNIT_SYSTEMS[unit_name(units)]))
-
-
-def _layer_paths(model: rh.File3dm) -> dict[int, str]:
-    return {layer.Index: layer.FullPath for layer in model.Layers}
-
-
-def layer_matches(path: str, patterns: Sequence[str]) -> bool:
-    """Whether a layer path is picked by any pattern: its full path or its own name, case
-    insensitive, ``*`` and ``?`` as wildcards; a parent layer picks its sublayers."""
-    if not patterns:
-        return True
-    full = path.lower()
-    name = full.rsplit("::", 1)[-1]
-    for pattern in patterns:
-        p = pattern.strip().lower()
-        if fnmatch.fnmatchcase(full, p) or fnmatch.fnmatchcase(name, p) or full.startswith(p + "::"):
-            return True
-    return False
-
-
-def read_3dm(path: Path, units: str = "m", layers: Sequence[str] = ()) -> Imported:
-    """Curves, surfaces and meshes of a .3dm file, scaled into ``units``.
-
-    ``layers`` filters by layer (see :func:`layer_matches`); empty means all layers.
-    """
-    model = open_3dm(path)
-    found, scale = _scale(model, units)
-    names = _layer_paths(model)
-    result = Imported(found, scale)
-    for obj in model.Objects:
-        geometry, attributes = obj.Geometry, obj.Attributes
-        layer = names.get(attributes.LayerIndex, "")
-        if not layer_matches(layer, layers):
-            continue
-        name = attributes.Name or ""
-        try:
-            _take(result, geometry, layer, name, scale)
-        except (ValueError, FloatingPointError):  # a degenerate object: counted, not fatal
-            kind = f"invalid {type(geometry).__name__}"
-            result.skipped[kind] = result.skipped.get(kind, 0) + 1
-    return result
-
-
-def _take(result: Imported, geometry: Any, layer: str, name: str, scale: float) -> None:
-    """Convert one object and file it under curves, surfaces or meshes (or skipped)."""
-    if isinstance(geometry, rh.Curve):
-        result.curves.append((kernel_curve(geometry, scale), layer, name))
-    elif isinstance(geometry, rh.Brep):
-        faces = geometry.Faces
-        result.trimmed += len(faces)
-        for i in range(len(faces)):
-            result.surfaces.append((kernel_surface(faces[i], scale), layer, name))
-    elif isinstance(geometry, rh.Extrusion):
-        if geometry.IsCappedAtBottom or geometry.IsCappedAtTop:
-            result.trimmed += 1
-        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
-    elif isinstance(geometry, rh.Surface):
-        result.surfaces.append((kernel_surface(geometry, scale), layer, name))
-    elif isinstance(geometry, rh.Mesh):
-        result.meshes.append((kernel_mesh(geometry, scale), layer, name))
-    else:
-        kind = type(geometry).__name__
-        result.skipped[kind] = result.skipped.get(kind, 0) + 1
-
-
 # ------------------------------------------------------------------ writing
 
 
@@ -445,6 +287,7 @@ class Written:
     path: Path
     objects: int
     deviation: float  #: the largest distance of an interpolated NURBS form from its object
+    degenerate: int = 0  #: curves of no length left out (a file never holds zero-length curves)
 
 
 def _layer_index(model: rh.File3dm, cache: dict[str, int], path: str, colour: tuple | None) -> int:
@@ -479,6 +322,16 @@ def _geometry(value: Any) -> tuple[Any, float]:
     raise FileFailure(f"A {type(value).__name__} cannot be written to a .3dm file")
 
 
+def _attributes(layer: int, name: str, strings: Iterable[tuple[str, str]]) -> rh.ObjectAttributes:
+    attributes = rh.ObjectAttributes()
+    attributes.LayerIndex = layer
+    if name:
+        attributes.Name = name
+    for key, value in strings:
+        attributes.SetUserString(key, value)
+    return attributes
+
+
 def write_3dm(
     path: Path,
     entries: Iterable[Entry],
@@ -490,17 +343,29 @@ def write_3dm(
     model.Settings.ModelUnitSystem = UNIT_SYSTEMS[unit_name(units)]
     model.ApplicationName = "Torsal"
     layers: dict[str, int] = {}
-    count, deviation = 0, 0.0
+    count, deviation, degenerate = 0, 0.0, 0
     for entry in entries:
+        layer = _layer_index(model, layers, entry.layer, (colours or {}).get(entry.layer))
+        if is_strip(entry.geometry):  # face by face along its rulings, grouped
+            group = rh.Group()
+            group.Name = f"{entry.layer.rpartition('::')[2]} {entry.name}".strip()
+            model.Groups.Add(group)
+            number = model.Groups.FindName(group.Name).Index
+            for piece in strip_pieces(entry.geometry):
+                deviation = max(deviation, piece.deviation)
+                rulings = f"{piece.first + 1}-{piece.last + 1}"
+                strings = (*entry.strings, ("TorsalRulings", rulings), ("TorsalFace", piece.kind))
+                attributes = _attributes(layer, f"{entry.name} rulings {rulings}", strings)
+                attributes.AddToGroup(number)
+                model.Objects.Add(piece.brep, attributes)
+                count += 1
+            continue
+        if isinstance(entry.geometry, Curve) and _no_length(entry.geometry):
+            degenerate += 1
+            continue
         geometry, off = _geometry(entry.geometry)
         deviation = max(deviation, off)
-        attributes = rh.ObjectAttributes()
-        attributes.LayerIndex = _layer_index(model, layers, entry.layer, (colours or {}).get(entry.layer))
-        if entry.name:
-            attributes.Name = entry.name
-        for key, value in entry.strings:
-            attributes.SetUserString(key, value)
-        model.Objects.Add(geometry, attributes)
+        model.Objects.Add(geometry, _attributes(layer, entry.name, entry.strings))
         count += 1
     writable(path)
 
@@ -509,7 +374,15 @@ def write_3dm(
             raise FileFailure(f"Cannot write {path}: rhino3dm refused (is the folder writable?)")
 
     replacing(path, write)
-    return Written(path, count, deviation)
+    return Written(path, count, deviation, degenerate)
+
+
+def _no_length(curve: Curve) -> bool:
+    """Whether a curve is a point: every sample of it at one place (to 1e-15 of its distance
+    from the origin, or exactly there)."""
+    points = curve.point_at(np.linspace(0.0, 1.0, 17))
+    reach = float(np.abs(points).max()) if np.isfinite(points).all() else 0.0
+    return bool(np.ptp(points, axis=0).max() <= 1e-15 * reach)
 
 
 def tree_entries(

@@ -1,0 +1,84 @@
+"""developable.Rationalise on the freeform designs of ``tests/toolbox/freeform_designs.py``
+and the Kaohsiung roof, at 1, 2 and 5 cm (``make bench``).
+
+Run alone with::
+
+    .venv/bin/python -m pytest tests/benchmarks/bench_rationalise_freeform.py \\
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
+
+For every design and tolerance it prints the row of the table in the issue's note:
+strips, the certified deviation and an independent one (the designs' own Newton on
+dense samples of every strip), torsal and fan rulings, the fan and creased shares of
+the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly
+spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
+on every design: within the tolerance by the independent measure, never more strips than
+the baseline, and a solve of at most 60 s on this 2-core machine.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from tests.benchmarks.bench_rationalise import even_strips
+from tests.toolbox.freeform_designs import DESIGNS
+from tests.toolbox.test_rationalise import distance_to_surface, kaohsiung_roof
+from torsal.nodes.geometry.developable.fans import patch_areas
+from torsal.nodes.geometry.developable.rationalise import creased_area, rationalise
+
+TOLERANCES = (0.01, 0.02, 0.05)
+#: The issue's bar for one solve on this machine, s.
+SOLVE_LIMIT = 60.0
+
+
+def _fan_area(strips) -> float:
+    fan = total = 0.0
+    for strip in strips:
+        areas = patch_areas(strip.result.starts, strip.result.ends)
+        pieces = strip.result.fan[:-1] | strip.result.fan[1:]
+        fan += float(areas[pieces].sum())
+        total += float(areas.sum())
+    return fan / total
+
+
+def _independent(name: str, surface, strips) -> float:
+    u, v = np.meshgrid(np.linspace(0, 1, 201), np.linspace(0, 1, 17), indexing="ij")
+    worst = 0.0
+    for strip in strips:
+        points = strip.surface.point_at(u.ravel(), v.ravel())
+        d = DESIGNS[name].distance(points) if name in DESIGNS else distance_to_surface(surface, points)
+        worst = max(worst, float(d.max()))
+    return worst
+
+
+CASES = [*DESIGNS, "kaohsiung"]
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(name):
+    surface = DESIGNS[name].surface() if name in DESIGNS else kaohsiung_roof()
+    unit = DESIGNS[name].unit if name in DESIGNS else 1.0
+    rows = []
+    for tolerance in TOLERANCES:
+        tol = tolerance * unit
+        start = time.perf_counter()
+        result = rationalise(surface, tol, 64, min_width=0.2 * unit)
+        seconds = time.perf_counter() - start
+        baseline = even_strips(surface, tol, limit=128)
+        fans = sum(int(s.result.fan.sum()) for s in result.strips)
+        rulings = sum(len(s.result.fan) for s in result.strips)
+        independent = _independent(name, surface, result.strips)
+        rows.append(
+            f"| {name} | {100 * tolerance:g} cm | {len(result.strips)} ({result.family}) | "
+            f"{result.deviation / unit * 100:.3f} cm | {independent / unit * 100:.3f} cm | "
+            f"{result.coverage / unit * 100:.3f} cm | {rulings - fans} / {fans} | "
+            f"{_fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | {seconds:.1f} s | "
+            f"{baseline} |"
+        )
+        print(rows[-1], flush=True)
+        assert independent <= tol * 1.0001
+        assert result.within and result.covered
+        assert len(result.strips) <= baseline
+        assert seconds <= SOLVE_LIMIT

@@ -1,0 +1,112 @@
+"""Launch → first solved frame of the flagship, against launch → first frame of an empty
+``QMainWindow`` holding a pyvista ``QtInteractor``, in the same run (``make bench``).
+
+Run alone with::
+
+    xvfb-run -a -s "-screen 0 1600x1000x24" .venv/bin/python -m pytest tests/benchmarks/bench_startup.py \\
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
+
+The baseline is what any pyvista-in-Qt app pays before it can show a 3D frame (Python,
+Qt, pyvista with the matplotlib it imports, VTK, an OpenGL context); Torsal adds its
+window, the flagship's node palettes (trimesh, scipy), the solve and the first drawing
+of its strips. ``torsal gui`` reports each stage on stderr (``TORSAL_REPORT_STARTUP``,
+see :func:`torsal.app.gui.main.launch`); they are printed, so a slow start says where its
+time went.
+
+Measured on 5 December 2026 on the 2-core machine shared by eight jobs (load 9.6-10.3),
+three rounds: the baseline's first frame 3.79-4.07 s; Torsal's first solved frame
+7.34-8.39 s; ratio (median of the rounds) 2.06. Torsal's stages: imports done 1.35-1.53 s,
+window shown 1.50-1.69 s, pyvista and VTK set up (the solve running meanwhile on the
+worker thread) 6.90-8.07 s, solved 7.22-8.29 s, first frame 7.34-8.39 s. Before this
+change the window was shown after 4.6-5.6 s (load 11: the viewport's module, with pyvista
+and trimesh behind it, was imported before the first paint) and the solve waited for
+VTK. The limit, 2.6, leaves room for the shared machine's noise. The issue's bar of 2 s
+absolute on a quiet machine could not be measured here: no quiet machine, and the
+baseline alone took 3.8 s on this one.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.gui.conftest import unavailable_reason
+
+REASON = unavailable_reason()
+if REASON:
+    pytest.skip(REASON, allow_module_level=True)
+
+ROOT = Path(__file__).resolve().parents[2]
+FLAGSHIP = ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph"
+RATIO_LIMIT = 2.6
+ROUNDS = 3
+
+#: the baseline: an empty main window with a QtInteractor, timed to its first render
+_BASELINE = """
+import sys, time
+began = float(sys.argv[1])
+from PySide6.QtWidgets import QApplication, QMainWindow
+from pyvistaqt import QtInteractor
+app = QApplication([])
+window = QMainWindow()
+plotter = QtInteractor(window, auto_update=False, multi_samples=0)
+window.setCentralWidget(plotter)
+def rendered(*_):
+    print(f"torsal-startup first-frame {time.time():.4f}", file=sys.stderr, flush=True)
+    app.quit()
+plotter.ren_win.AddObserver("EndEvent", rendered)
+window.resize(1500, 920)
+window.show()
+app.exec()
+"""
+
+
+def _stages(command: list[str], env: dict[str, str]) -> dict[str, float]:
+    """Run ``command`` until it reports its first frame (or 120 s pass); each reported
+    stage's seconds since launch."""
+    began = time.time()
+    child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
+    stamps: dict[str, float] = {}
+
+    def read() -> None:
+        for line in child.stderr:
+            parts = line.split()
+            if len(parts) >= 3 and parts[0] == "torsal-startup":
+                stamps[parts[1]] = float(parts[2]) - began
+                if parts[1] == "first-frame":
+                    return
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(timeout=120)
+    child.terminate()
+    child.wait(timeout=10)
+    return stamps
+
+
+def test_launch_to_the_flagships_first_solved_frame_against_an_empty_qtinteractor_window():
+    ratios, ours, baselines = [], [], []
+    for _ in range(ROUNDS):
+        with tempfile.TemporaryDirectory() as folder:
+            env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=folder, PYTHONPATH=str(ROOT))
+            baseline = _stages([sys.executable, "-c", _BASELINE, str(time.time())], env)
+            torsal = _stages([sys.executable, "-m", "torsal.app.cli", "gui", str(FLAGSHIP)], env)
+        assert "first-frame" in baseline and "first-frame" in torsal, (baseline, torsal)
+        print("\n  stages: " + "  ".join(f"{k} {v:.2f} s" for k, v in torsal.items())
+              + f"   (baseline first frame {baseline['first-frame']:.2f} s, load {os.getloadavg()[0]:.1f})")
+        ours.append(torsal["first-frame"])
+        baselines.append(baseline["first-frame"])
+        ratios.append(torsal["first-frame"] / baseline["first-frame"])
+    ratio = statistics.median(ratios)
+    print(f"launch → first solved frame of the flagship {min(ours):.2f} s, empty QtInteractor window "
+          f"{min(baselines):.2f} s: ratio {ratio:.2f} (limit {RATIO_LIMIT})")
+    assert ratio <= RATIO_LIMIT
