@@ -5,8 +5,9 @@ The model is moved at its sources: every Point, Plane and Line value stored in a
 gets the offset, and the nodes that make geometry from plain numbers (``params.Point``,
 ``surfaces.ParametricSurface``, ``developable.PaperStrip``) and the geometry read from a
 file (``io.Import3dm``) get a ``transform.Move`` on their geometry outputs. Developments
-are drawn flat about the origin whatever the surface's position, so the nodes downstream of one (and their stored points, such as a
-scale centre) are left as they are and their outputs are expected unchanged.
+are drawn flat about the origin whatever the surface's position, so the nodes downstream
+of one (and their stored points, such as a scale centre) are left as they are and their
+outputs are expected unchanged.
 """
 
 from __future__ import annotations
