@@ -12,23 +12,13 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from torsal.app.palette_colours import COLOURS
+
 OUT = Path(__file__).resolve().parent.parent / "torsal" / "resources" / "icons"
 
 #: Tile colours: the palette colours of the app (torsal/app/gui/theme.py), repeated here so
 #: the icons are plain files that need no Qt to be made.
-TILES = {
-    "params": "#5b7fa6",
-    "maths": "#7a6aa8",
-    "lists": "#5f8f6a",
-    "curves": "#3d8fb3",
-    "surfaces": "#3f9e95",
-    "transform": "#8a7a4e",
-    "analysis": "#c0622f",
-    "developable": "#b3453f",
-    "patching": "#a0527f",
-    "display": "#5a5a5a",
-    "io": "#6b6b8a",
-}
+TILES = COLOURS  # the palettes' own colours (the app's, torsal/app/palette_colours.py)
 INK = "#ffffff"  # every glyph's lines
 ACCENT = "#ffd166"  # the one part a glyph points at (the item picked, the result)
 SOFT = "#ffffff55"  # fills: a surface, a sheet

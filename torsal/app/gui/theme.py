@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from PySide6.QtGui import QColor, QFont
 
+from torsal.app import palette_colours
+
 CANVAS_BACKGROUND = QColor("#d2d4d6")
 GRID_MINOR = QColor("#c8cacc")
 GRID_MAJOR = QColor("#b9bcbf")
@@ -52,20 +54,7 @@ def palette_order(palette: str) -> int:
     return PALETTE_TABS.index(palette) if palette in PALETTE_TABS else len(PALETTE_TABS)
 
 
-PALETTE_COLOURS: dict[str, str] = {
-    "params": "#5b7fa6",
-    "maths": "#7a6aa8",
-    "lists": "#5f8f6a",
-    "curves": "#3d8fb3",
-    "surfaces": "#3f9e95",
-    "transform": "#8a7a4e",
-    "analysis": "#c0622f",
-    "developable": "#b3453f",
-    "patching": "#a0527f",
-    "display": "#5a5a5a",
-    "io": "#6b6b8a",
-    "optimise": "#4f7f4f",
-}
+PALETTE_COLOURS = palette_colours.COLOURS  # each palette's colour: tiles, icons, node bars
 
 # viewport colours (RGB hex strings, as pyvista takes them)
 PREVIEW_SURFACE = "#9fb8d3"
