@@ -35,6 +35,7 @@ from scipy.interpolate import BSpline, make_lsq_spline
 from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.io.formats.threedm_native import rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
@@ -165,8 +166,6 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     controls = np.asarray(spline.c)[:count]
     net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
     surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    from torsal.nodes.io.formats.threedm import rhino_surface
-
     brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
     return Piece(brep, "torsal", first, last, worst, count)
 
