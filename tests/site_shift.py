@@ -3,10 +3,11 @@ original (shared by ``tests/test_site_coordinates.py`` and its benchmark).
 
 The model is moved at its sources: every Point, Plane and Line value stored in an input
 gets the offset, and the nodes that make geometry from plain numbers (``params.Point``,
-``surfaces.ParametricSurface``, ``developable.PaperStrip``) get a ``transform.Move`` on
-their geometry outputs. Developments are drawn flat about the origin whatever the
-surface's position, so the nodes downstream of one (and their stored points, such as a
-scale centre) are left as they are and their outputs are expected unchanged.
+``surfaces.ParametricSurface``, ``developable.PaperStrip``) and the geometry read from a
+file (``io.Import3dm``) get a ``transform.Move`` on their geometry outputs. Developments
+are drawn flat about the origin whatever the surface's position, so the nodes downstream
+of one (and their stored points, such as a scale centre) are left as they are and their
+outputs are expected unchanged.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from torsal.engine.graph import Graph
 from torsal.engine.solver import ERROR, Solver
 from torsal.engine.types import encode_value
 from torsal.engine.values import Plane, Point, Vector
+from torsal.engine.writes import WriteAccess
 from torsal.nodes.catalogue import default_registry
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.surface_base import Surface
@@ -45,6 +47,8 @@ SOURCES = {
     "params.Point": ("Point",),
     "surfaces.ParametricSurface": ("Surface",),
     "developable.PaperStrip": ("Surface", "Rulings"),
+    # a design read from a file (rationalise-canopy's canopy.3dm): what it reads is moved
+    "io.Import3dm": ("Curves", "Surfaces", "Meshes"),
 }
 #: Outputs laid flat in the XY plane about the origin, wherever the input is.
 FLAT = {
@@ -199,9 +203,10 @@ class Solved:
     outputs: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
-def solve(graph: Graph) -> Solved:
-    """Solve ``graph`` and measure every output (the time covers both)."""
-    solver = Solver(graph)
+def solve(graph: Graph, folder: Path | None = None) -> Solved:
+    """Solve ``graph`` and measure every output (the time covers both); files it reads are
+    found from ``folder`` (its file's folder), as ``torsal run`` finds them."""
+    solver = Solver(graph, WriteAccess(folder) if folder is not None else None)
     start = time.perf_counter()
     solver.solve()
     figures = {}

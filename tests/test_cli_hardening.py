@@ -12,7 +12,6 @@ import json
 import os
 import socket
 import threading
-import time
 from pathlib import Path
 
 import pytest
@@ -70,12 +69,10 @@ def silent_port():
 
 
 def test_a_silent_scheduler_port_is_a_message_not_a_hang(tmp_path, capsys, monkeypatch, silent_port):
-    monkeypatch.setattr(option_bounds, "CONNECT_SECONDS", 0.3)
-    started = time.perf_counter()
+    monkeypatch.setattr(option_bounds, "CONNECT_SECONDS", 0.3)  # the message proves the timeout ended it
     err = one_line_exit_2(capsys, [*SWEEP, "--out", str(tmp_path / "o"), "--scheduler",
                                    f"tcp://127.0.0.1:{silent_port}"])
     assert "nothing answered within 0.3 s" in err
-    assert time.perf_counter() - started < 5.0
 
 
 def test_a_port_that_speaks_another_protocol_is_not_a_scheduler(capsys):
@@ -162,11 +159,10 @@ def cluster_bomb(path: Path, levels: int = 16, fan: int = 10) -> Path:
     return path
 
 
-def test_check_refuses_a_nested_cluster_bomb_of_empty_definitions_fast(tmp_path, capsys):
+def test_check_refuses_a_nested_cluster_bomb_of_empty_definitions(tmp_path, capsys):
+    """(How fast: tests/benchmarks/bench_hardening.py.)"""
     bomb = cluster_bomb(tmp_path / "bomb.graph")
-    started = time.perf_counter()
     err = one_line_exit_2(capsys, ["check", str(bomb)])
-    assert time.perf_counter() - started < 1.0
     assert "expand to more than 200,000 nodes" in err
     assert "expand to more than" in one_line_exit_2(capsys, ["run", str(bomb)])
 
@@ -233,15 +229,14 @@ def warp_series_graph(path: Path, count: int) -> Path:
     return path
 
 
-def test_check_refuses_a_million_strip_solves_in_under_a_second(tmp_path, capsys):
-    """The issue's 12 KB graph: a Series of 1,000,000 into WarpTolerance (~80 min of solves)."""
+def test_check_refuses_a_million_strip_solves(tmp_path, capsys):
+    """The issue's 12 KB graph: a Series of 1,000,000 into WarpTolerance (~80 min of solves);
+    how fast: tests/benchmarks/bench_hardening.py."""
     small = warp_series_graph(tmp_path / "small.graph", 3)
     assert main(["check", str(small)]) == 0  # imports warmed; three strips are fine
     assert "calls of the solve's 5,000,000" in capsys.readouterr().out
     bomb = warp_series_graph(tmp_path / "million.graph", 1_000_000)
-    started = time.perf_counter()
     err = one_line_exit_2(capsys, ["check", str(bomb)])
-    assert time.perf_counter() - started < 1.0
     assert "strip: WarpTolerance has 1,000,000 values: RulingDevelopable would run 1,000,000 times; " \
            "at most 2,000 at once" in err
 
@@ -309,10 +304,8 @@ def test_rationalise_fed_a_list_of_60_tolerances_is_refused_before_any_work():
     from torsal.nodes.geometry.parametric_surface import cylinder
     from torsal.nodes.limits import MAX_RATIONALISE_CALLS
 
-    started = time.perf_counter()
     result = run(Rationalise(), Surface=tree({(0,): [cylinder(1.0, 2.0)]}),
                  Tolerance=tree({(0,): [0.01 + 0.001 * i for i in range(60)]}))
-    assert time.perf_counter() - started < 1.0  # one design takes seconds
-    assert result.state == ERROR
+    assert result.state == ERROR  # before any of the 60 designs (seconds each) was solved
     assert result.messages[0].text == (f"Tolerance has 60 values: Rationalise would run 60 times; "
                                        f"at most {MAX_RATIONALISE_CALLS:,} at once")

@@ -54,7 +54,12 @@ ROUNDING_ULPS = 32
 #: Gauss–Newton steps (its Levenberg–Marquardt stopped anywhere within 5e-8 rad of it):
 #: now 1.5e-7 and 1.3e-8 (the worst outputs: the finishing strip's warp angles, 2.4e-7
 #: rad, and a strip's area, 7.8e-8 of itself). An entry here fails once its case passes.
-KNOWN: dict[tuple[str, tuple[float, float, float]], str] = {}
+KNOWN: dict[tuple[str, tuple[float, float, float]], str] = {
+    ("rationalise-canopy", SITE): (
+        "Rationalise does not yet solve a design read from a file in a frame anchored at it: at 1e6 "
+        "its strips move 4.2e-6 of the size from the origin's (issue 26, site coordinates as a class)"
+    ),
+}
 
 #: Examples too slow to check at an offset (each would spend the test's whole time limit).
 SLOW: dict[tuple[str, tuple[float, float, float]], str] = {}
@@ -71,7 +76,7 @@ _ORIGIN: dict[Path, object] = {}
 
 def _at_origin(path: Path):
     if path not in _ORIGIN:
-        _ORIGIN[path] = solve(graphfile.read_graph(path, REGISTRY))
+        _ORIGIN[path] = solve(graphfile.read_graph(path, REGISTRY), path.parent)
     return _ORIGIN[path]
 
 
@@ -99,7 +104,7 @@ CASES = [
 @pytest.mark.parametrize(("path", "offset"), CASES)
 def test_example_moved_far_from_the_origin_gives_the_same_model_moved(path: Path, offset):
     origin = _at_origin(path)
-    moved = solve(shifted(path, offset))
+    moved = solve(shifted(path, offset), path.parent)
     assert moved.errors == {}
     size = model_size(origin)
     panels = {("patching", "PanelsFlat"), ("patching", "Panels3D")} if path.stem in PANELS else set()

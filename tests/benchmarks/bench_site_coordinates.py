@@ -37,9 +37,9 @@ CASES = [
 def test_example_far_from_the_origin_solves_within_2x_of_its_time_at_the_origin(path: Path, offset):
     ratio = ratio_to_baseline(
         f"{path.stem} moved by {offset[0]:.0e}: load, solve, measure",
-        lambda: solve(shifted(path, offset)),
+        lambda: solve(shifted(path, offset), path.parent),
         "at the origin",
-        lambda: solve(graphfile.read_graph(path, REGISTRY)),
+        lambda: solve(graphfile.read_graph(path, REGISTRY), path.parent),
         REPEATS,
     )
     assert ratio <= BAR

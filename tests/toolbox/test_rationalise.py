@@ -220,21 +220,37 @@ def test_a_mesh_surface_is_refused_naming_the_input():
     assert any("Surface" in t and "mesh" in t.lower() for t in texts(result))
 
 
-def test_strips_exported_to_3dm_read_back_as_nurbs_of_degree_1_across_the_rulings(tmp_path):
+def test_strips_exported_to_3dm_read_back_as_ruled_faces_degree_1_across_on_the_strips_edges(tmp_path):
+    """Each strip goes out as ruled faces (Breps, degree 1 across), its rails fitted to 1e-6 of
+    the strip's size (docs/rhino.md): every face's rail points lie on one of the strip's edges."""
     from torsal.app.exports import export_tree
     from torsal.engine.datatree import DataTree
 
     strips = items(solved("wave"), "Strips")
     path = export_tree(DataTree.from_branches([strips]), tmp_path / "r.3dm")[0]
     objects = list(rhino3dm.File3dm.Read(str(path)).Objects)
-    assert len(objects) == len(strips)
-    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 5)))
-    for obj, strip in zip(objects, strips, strict=True):
-        nurbs = obj.Geometry
-        assert isinstance(nurbs, rhino3dm.NurbsSurface)
-        assert nurbs.Degree(1) == 1
-        back = np.array([[p.X, p.Y, p.Z] for p in (nurbs.PointAt(a, b) for a, b in zip(u, v, strict=True))])
-        assert np.abs(back - strip.point_at(u, v)).max() <= 1e-9 * SIZE
+    assert len(objects) >= len(strips)
+    u = np.linspace(0, 1, 4001)
+    polylines = [strip.point_at(u, np.full(len(u), v)) for strip in strips for v in (0.0, 1.0)]
+    starts = np.vstack([line[:-1] for line in polylines])
+    steps = np.vstack([np.diff(line, axis=0) for line in polylines])
+    for obj in objects:
+        assert isinstance(obj.Geometry, rhino3dm.Brep)
+        for face in obj.Geometry.Faces:
+            surface = face.UnderlyingSurface().ToNurbsSurface()
+            across = 0 if surface.Degree(0) == 1 else 1
+            assert surface.Degree(across) == 1
+            domain = surface.Domain(1 - across)
+            rails = []
+            for t in np.linspace(domain.T0, domain.T1, 9):
+                for end in (surface.Domain(across).T0, surface.Domain(across).T1):
+                    p = surface.PointAt(end, t) if across == 0 else surface.PointAt(t, end)
+                    rails.append([p.X, p.Y, p.Z])
+            # distance from each rail point to the nearest segment of the edges' polylines
+            rel = np.asarray(rails)[:, None, :] - starts[None, :, :]
+            along = np.clip((rel * steps).sum(axis=2) / (steps * steps).sum(axis=1), 0.0, 1.0)
+            gaps = np.linalg.norm(rel - along[..., None] * steps[None], axis=2).min(axis=1)
+            assert gaps.max() <= 1e-5 * SIZE  # the 1e-6 fit, plus the chords of the 4001-point edges
 
 
 def kaohsiung_roof():

@@ -121,6 +121,10 @@ def plan(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> 
         return Plan([Group((0,), [args])], calls=1)
 
     result = Plan(remarks=uneven_remarks(matched) if len(matched) > 1 else [], matched=matched)
+    counted = _call_count(matched)  # from the branches' lengths, before any value is converted
+    if counted > node.max_calls:  # a list of 1,000,000 is refused without building its calls
+        result.calls = counted
+        return _budgeted(node, matched, result)
     branch_lists = [[_for_port(b, p) for b in t.raw_branches] or [[]] for p, t in matched]
     path_lists = [t.paths or [(0,)] for _, t in matched]
     branch_count = max(len(b) for b in branch_lists)
@@ -168,6 +172,17 @@ def plan(node: Node, trees: list[DataTree], wired: list[bool] | None = None) -> 
         result.groups.append(Group(path, rows))
         result.calls += count
     return _budgeted(node, matched, result)
+
+
+def _call_count(matched: list[tuple[In, DataTree]]) -> int:
+    """The calls rules 2 and 3 make, from the lengths of the branches alone."""
+    lengths = [[len(b) for b in t.raw_branches] or [0] for _, t in matched]
+    branch_count = max(len(ls) for ls in lengths)
+    items = [ls for ls, (p, _) in zip(lengths, matched, strict=True) if p.access is ITEM]
+    if not items:
+        return branch_count
+    padded = [ls + [ls[-1]] * (branch_count - len(ls)) for ls in items]
+    return sum(max(column) for column in zip(*padded, strict=True) if min(column) > 0)
 
 
 def _budgeted(node: Node, matched: list[tuple[In, DataTree]], result: Plan) -> Plan:

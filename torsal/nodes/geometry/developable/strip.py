@@ -16,6 +16,7 @@ from functools import cached_property
 from math import ceil
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from torsal.nodes.geometry.array_types import BoolArray
 
@@ -30,6 +31,51 @@ from .stations import LengthMap, Spacing, station_parameters
 CORNER_ANGLE = 1e-7
 #: Parameter offset for one-sided evaluation beside a corner.
 SIDE = 1e-11
+
+
+class _Steady(Curve):
+    """A curve whose parameter stands still at an end (C'(t) = 0 there: a curve run as t²,
+    a NURBS with a doubled end control point), with the tangent there replaced by the
+    direction it tends to, C''(t): the same points, the geometric tangent. Without it
+    det[B − A, A', B'] vanishes at that end for every station, whatever the ruling, and the
+    strip took it for a partner of all of them (a fan through B's end)."""
+
+    def __init__(self, curve: Curve, ends: FloatArray) -> None:
+        self.curve, self.ends = curve, ends
+        self.closed, self.domain = curve.closed, curve.domain
+
+    def _steadied(self, t: FloatArray, values: list[FloatArray], order: int) -> list[FloatArray]:
+        at = np.isin(t, self.ends)
+        if order >= 1 and at.any():
+            second = self.curve.derivatives(t[at], 2)[2]
+            values[1] = values[1].copy()
+            values[1][at] = second
+        return values
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        return self._steadied(t, list(self.curve.derivatives(t, order)), order)
+
+    @property
+    def anchor(self) -> FloatArray:
+        return self.curve.anchor
+
+    def local_derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).reshape(-1)
+        return self._steadied(t, list(self.curve.local_derivatives(t, order)), order)
+
+    def _breakpoints(self) -> FloatArray:
+        return self.curve._breakpoints()
+
+
+def steady(curve: Curve) -> Curve:
+    """``curve``, or :class:`_Steady` of it where its parameter stands still at an end (its
+    speed there under 1e-9 of its chord, while its second derivative is not)."""
+    ends = np.array([0.0, 1.0])
+    points, first, second = curve.derivatives(ends, 2)
+    scale = float(norm(points[1] - points[0])) or float(norm(second).max())
+    still = (norm(first) <= 1e-9 * scale) & (norm(second) > 1e-9 * scale)
+    return _Steady(curve, ends[still]) if still.any() else curve
 
 
 def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
@@ -130,6 +176,7 @@ class Strip:
     def __init__(
         self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
     ) -> None:
+        curve_b = steady(curve_b)
         self.curve_a, self.curve_b = curve_a, curve_b
         self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
         self.map_a = LengthMap(curve_a)

@@ -12,9 +12,13 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   that ruling (to the fit), and the face has as few control points as that takes (not one
   per sample). Its end control points are the end rulings' ends and the next ones give the
   rails' own end tangents, so a rail that stands still next to a fan stands still in the
-  face too and the face's normals there are the strip's;
-- each triangle of a fan (two consecutive rulings sharing an end) is a planar face, a
-  trimmed plane through its three corners;
+  face too and the face's normals there are the strip's. Where the strip's own pairing of
+  the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
+  paired with their developable partners on rail B instead
+  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT;
+- each fan (consecutive rulings, each sharing an end with the next) is one face of degree
+  1 both ways through its rulings, whose every span is one flat triangle (a lone triangle,
+  or a fan whose triangles all meet at one point, is a trimmed plane through its corners);
 - faces next to each other share their ruling edge exactly (the same two points); a
   degenerate piece (a ruling or triangle of no length or area) is left out, never written
   as a zero-length curve.
@@ -26,6 +30,7 @@ them one polysurface.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,10 +40,17 @@ from scipy.interpolate import BSpline, make_lsq_spline
 from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
+from torsal.nodes.geometry.torsal_pairing import switches, torsal_partners
 from torsal.nodes.io.formats.threedm_native import rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
+
+#: A face whose normals turn less than this along every ruling counts as developable (rad).
+DEVELOPABLE = 1e-7
+
+#: How much closer than FIT a developable pairing is fitted where the samples allow it.
+TIGHTER = 0.03
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -85,6 +97,14 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
     n = len(lines)
     while k < n - 1:
         if shared[k]:
+            end = k + 1
+            while end < n - 1 and shared[end]:
+                end += 1
+            run = _fan_run(lines[k:end + 1]) if end - k > 1 else None
+            if run is not None:  # one face of flat triangles, degree 1 both ways
+                pieces.append(Piece(run, "fan", k, end, 0.0, end - k + 1))
+                k = end
+                continue
             triangle = _fan(lines[k], lines[k + 1], size)
             if triangle is not None:
                 pieces.append(Piece(triangle, "fan", k, k + 1, 0.0, 3))
@@ -96,6 +116,22 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         pieces.append(_ruled(strip, u, lines, k, end, size))
         k = end
     return pieces
+
+
+def _fan_run(lines: np.ndarray) -> rh.Brep | None:
+    """Consecutive fan triangles (each pair of rulings sharing an end) as one face of degree 1
+    both ways through the rulings: each span between two rulings is one flat triangle (the
+    rail that shares the end stands still there). None when rhino3dm will not make it a face
+    (every triangle through one point: an edge collapsed to it)."""
+    count = len(lines)
+    knots = np.concatenate([[0.0], np.linspace(0.0, 1.0, count), [1.0]])
+
+    try:
+        surface = NurbsSurface(np.asarray(lines, dtype=float), 1, 1, knots, [0.0, 0.0, 1.0, 1.0])
+        brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
+    except ValueError:
+        return None
+    return brep if brep is not None and brep.IsValid else None
 
 
 def _fan(first: np.ndarray, second: np.ndarray, size: float) -> rh.Brep | None:
@@ -111,24 +147,79 @@ def _fan(first: np.ndarray, second: np.ndarray, size: float) -> rh.Brep | None:
 
 def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, last: int,
            size: float) -> Piece:
-    """The ruled face over rulings ``first`` … ``last``: rails fitted with inserted knots."""
+    """The ruled face over rulings ``first`` … ``last``: between the rulings, each point of
+    rail A paired with its developable partner on rail B (:mod:`~torsal.nodes.geometry.
+    torsal_pairing`) where that fits within :data:`FIT`, else with the strip's own pairing;
+    the rails fitted with inserted knots."""
     span = u[first:last + 1]
-    # the rails are the curves at a pace that is piecewise cubic between rulings (C1 at them):
-    # the rulings' parameters are double knots from the start (C1 there too), else the fit
+    tolerance = FIT * size
+    own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
+    fit = own
+    if _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
+        kinks = switches(strip.curve_a, strip.curve_b, span)
+
+        def paired(at: np.ndarray) -> np.ndarray:
+            return torsal_partners(strip.curve_a, strip.curve_b, span, at)[0]
+
+        # closer than FIT where the samples allow: the torsal condition is one of derivatives
+        developable = _fit(strip, span, lines[first:last + 1], tolerance * TIGHTER, paired, kinks)
+        if developable[0] <= tolerance and _twist(developable) < _twist(own):
+            fit = developable
+    worst, knots, spline = fit
+    count = len(knots) - 4
+    controls = np.asarray(spline.c)[:count]
+    net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
+    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
+    brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
+    return Piece(brep, "torsal", first, last, worst, count)
+
+
+def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
+    """The largest angle between a fitted face's normals 1 % in from either end of its
+    rulings (isocurves across), at ``count`` of them."""
+    _, knots, spline = fit
+    if spline is None:
+        return float("inf")
+    lo, hi = knots[0], knots[-1]
+    u = np.linspace(lo, hi, count)
+    points, slopes = spline(u), spline.derivative()(u)
+    ruling = points[:, 3:] - points[:, :3]
+    near = np.cross(0.99 * slopes[:, :3] + 0.01 * slopes[:, 3:], ruling)
+    far = np.cross(0.01 * slopes[:, :3] + 0.99 * slopes[:, 3:], ruling)
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
+    return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
+
+
+def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: float,
+         partner: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray) -> tuple[float, np.ndarray, BSpline]:
+    """Both rails, rail B at ``partner`` of rail A's parameter, fitted on one knot vector
+    (double knots at the rulings, triple at ``kinks``, more inserted where the fit is worst
+    until within ``tolerance``): (largest distance, knots, spline)."""
+    # the rails' pace is piecewise cubic between rulings (C1 at them), the developable
+    # pairing has kinks where it changes kind: knots there from the start, else the fit
     # converges slowly round them
-    rulings = np.repeat(span[1:-1], 2).tolist()
+    fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
     interior: list[float] = []
     lo, hi = float(span[0]), float(span[-1])
-    tolerance = FIT * size
+    # the rails' end tangents: A's own; B's as its partner point moves (a difference of
+    # points: where B's pace stands still at a ruling the partner parameter moves like a
+    # square root while the point moves smoothly)
+    step = 1e-7 * (hi - lo)
     ends = span[[0, -1]]
-    slopes = np.hstack([strip.curve_a.derivatives(ends, 1)[1], strip.curve_b.derivatives(ends, 1)[1]])
+    b_ends = strip.curve_b.point_at(ends)
+    b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
+    slopes = np.hstack([strip.curve_a.derivatives(ends, 1)[1],
+                        np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step])
     per = SAMPLES
-    best: tuple[float, np.ndarray, object] = (np.inf, np.empty(0), None)
+    best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
     while True:
-        fine, data = _samples(strip, span, per, lines[first:last + 1])
-        check, truth = _samples(strip, span, 2 * per)
+        # the fit's samples are every other one of the check's: rail B's partners found once
+        check, truth = _samples(strip, span, 2 * per, partner)
+        fine, data = check[::2], truth[::2].copy()
+        data[np.searchsorted(fine, span)] = lines.reshape(-1, 6)  # the node's rulings exactly
+        breaks_fixed = np.unique(np.concatenate([span, kinks]))
         while True:
-            knots = np.concatenate([[lo] * 4, sorted(rulings + interior), [hi] * 4])
+            knots = np.concatenate([[lo] * 4, sorted(fixed + interior), [hi] * 4])
             try:
                 spline = make_lsq_spline(fine, data, knots, k=3)
             except (ValueError, np.linalg.LinAlgError):  # too many knots for these samples
@@ -142,16 +233,17 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
             ends[1] = ends[0] + (knots[4] - lo) / 3.0 * slopes[0]
             ends[n - 2] = ends[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
             spline = BSpline(knots, ends, 3)
-            fitted = spline(check)
-            error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
-                               np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
+            with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed fit: judged below
+                fitted = spline(check)
+                error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
+                                   np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
             worst = float(error.max())
             if not np.isfinite(worst):  # a span without samples: the previous fit stands
                 break
             best = (worst, knots, spline)
             if worst <= tolerance or len(knots) - 4 >= len(fine) // 3:
                 break
-            breaks = np.unique(np.concatenate([span, interior]))
+            breaks = np.unique(np.concatenate([breaks_fixed, interior]))
             where = np.searchsorted(breaks, check[error > tolerance]) - 1
             bad = np.unique(np.clip(where, 0, len(breaks) - 2))
             grown = sorted({*interior, *((breaks[bad] + breaks[bad + 1]) / 2).tolist()})
@@ -159,23 +251,18 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
                 break
             interior = grown
         if best[0] <= tolerance or per >= LARGEST_SAMPLING:
-            break
+            return best
         per *= 2  # more knots are needed than these samples can carry
-    worst, knots, spline = best
-    count = len(knots) - 4
-    controls = np.asarray(spline.c)[:count]
-    net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
-    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
-    return Piece(brep, "torsal", first, last, worst, count)
 
 
-def _samples(strip: RuledSurface, span: np.ndarray, per: int, lines: np.ndarray | None = None
+def _samples(strip: RuledSurface, span: np.ndarray, per: int,
+             partner: Callable[[np.ndarray], np.ndarray], lines: np.ndarray | None = None
              ) -> tuple[np.ndarray, np.ndarray]:
-    """Parameters ``per`` to a ruling interval, and both rails there side by side (n, 6);
-    with ``lines``, the rulings' own ends stand at their parameters (the node's lines exactly)."""
+    """Parameters ``per`` to a ruling interval, and both rails there side by side (n, 6),
+    rail B at the partner parameters; with ``lines``, the rulings' own ends stand at their
+    parameters (the node's lines exactly)."""
     at = _between(span, per)
-    data = np.hstack([strip.curve_a.point_at(at), strip.curve_b.point_at(at)])
+    data = np.hstack([strip.curve_a.point_at(at), strip.curve_b.point_at(partner(at))])
     if lines is not None:
         data[np.searchsorted(at, span)] = lines.reshape(-1, 6)
     return at, data
