@@ -14,16 +14,8 @@ import pytest
 
 from tests.import_graph import a_cycle, circles, import_graph
 
-#: Circles still to untangle, each as its set of modules: the GUI helpers that name the
-#: window, document or view they serve by its class.
-KNOWN_CIRCLES: set[frozenset[str]] = {
-    frozenset({"torsal.app.gui.commands", "torsal.app.gui.document"}),
-    frozenset({"torsal.app.gui.canvas.inline_widgets", "torsal.app.gui.canvas.node_item",
-               "torsal.app.gui.canvas.scene"}),
-    frozenset({"torsal.app.gui.canvas.context_menus", "torsal.app.gui.canvas.view"}),
-    frozenset({"torsal.app.gui.exporting", "torsal.app.gui.main_window", "torsal.app.gui.optimise_window",
-               "torsal.app.gui.window_actions", "torsal.app.gui.write_consent"}),
-}
+#: Circles still to untangle, each as its set of modules (none: keep it empty).
+KNOWN_CIRCLES: set[frozenset[str]] = set()
 
 
 @pytest.fixture(scope="module")

@@ -2,7 +2,7 @@
 
 Every command edits the graph only through :class:`torsal.engine.graph.Graph` methods (the
 engine reports each change as an event the canvas redraws from) inside
-:meth:`Document.editing`, which pauses the solver for edits that change results.
+:meth:`~torsal.app.gui.edited.EditedDocument.editing`, which pauses the solver for edits that change results.
 Commands keep the very objects they removed (records, wires, groups), so undo puts
 back exactly what was there, in the same order, and a saved file gets the same bytes.
 """
@@ -10,10 +10,11 @@ back exactly what was there, in the same order, and a saved file gets the same b
 from __future__ import annotations
 
 import copy
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from PySide6.QtGui import QUndoCommand
 
+from torsal.app.gui.edited import EditedDocument
 from torsal.app.gui.graph_order import (
     group_by_id,
     restore_group_order,
@@ -34,18 +35,15 @@ from torsal.engine.cluster_edits import (
 )
 from torsal.engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 
-if TYPE_CHECKING:  # the document imports these commands (to commit a cluster edit)
-    from torsal.app.gui.document import Document
-
 SETTING_MERGE_ID = 1001
 
 
 class GraphCommand(QUndoCommand):
-    """Base: ``apply``/``revert`` run inside :meth:`Document.editing`."""
+    """Base: ``apply``/``revert`` run inside :meth:`~torsal.app.gui.edited.EditedDocument.editing`."""
 
     affects_solve = True
 
-    def __init__(self, doc: Document, text: str) -> None:
+    def __init__(self, doc: EditedDocument, text: str) -> None:
         super().__init__(text)
         self.doc = doc
 
@@ -68,7 +66,7 @@ class AddNodes(GraphCommand):
     """Add node records and wires (a new node, a paste, a duplicate)."""
 
     def __init__(
-        self, doc: Document, records: list[NodeRecord], wires: list[Wire] = (), text: str = "Add node"
+        self, doc: EditedDocument, records: list[NodeRecord], wires: list[Wire] = (), text: str = "Add node"
     ) -> None:
         super().__init__(doc, text)
         self.records = list(records)
@@ -87,7 +85,7 @@ class AddNodes(GraphCommand):
 class RemoveNodes(GraphCommand):
     """Delete nodes with their wires; undo restores nodes, wires and group membership in order."""
 
-    def __init__(self, doc: Document, node_ids: list[str], text: str = "Delete") -> None:
+    def __init__(self, doc: EditedDocument, node_ids: list[str], text: str = "Delete") -> None:
         super().__init__(doc, text)
         graph = doc.graph
         self.node_ids = [n for n in node_ids if n in graph.nodes]
@@ -121,7 +119,7 @@ class ChangeWires(GraphCommand):
     """Connect and/or disconnect wires in one step (replace, add with Shift, remove with Ctrl)."""
 
     def __init__(
-        self, doc: Document, add: list[Wire] = (), remove: list[Wire] = (), text: str = "Connect"
+        self, doc: EditedDocument, add: list[Wire] = (), remove: list[Wire] = (), text: str = "Connect"
     ) -> None:
         super().__init__(doc, text)
         self.add = list(add)
@@ -147,7 +145,8 @@ class SetSetting(GraphCommand):
     """Change one setting; successive changes with the same ``merge_key`` (a slider drag) merge."""
 
     def __init__(
-        self, doc: Document, node_id: str, name: str, value: Any, merge_key: object = None, text: str = ""
+        self, doc: EditedDocument, node_id: str, name: str, value: Any, merge_key: object = None,
+        text: str = "",
     ) -> None:
         # "Set value of Panel width (m)": the undo history names the slider it changed
         super().__init__(doc, text or f"Set {name} of {doc.graph.nodes[node_id].title}")
@@ -179,7 +178,9 @@ class SetSetting(GraphCommand):
 class SetInputValue(GraphCommand):
     """Set (or clear) an input's persistent value."""
 
-    def __init__(self, doc: Document, node_id: str, port: str, value: Any, present: bool = True) -> None:
+    def __init__(
+        self, doc: EditedDocument, node_id: str, port: str, value: Any, present: bool = True
+    ) -> None:
         super().__init__(doc, f"Set {port}" if present else f"Clear {port}")
         self.node_id, self.port, self.value, self.present = node_id, port, copy.deepcopy(value), present
         state = doc.graph.nodes[node_id].inputs.get(port)
@@ -196,7 +197,7 @@ class SetInputValue(GraphCommand):
 class SetModifiers(GraphCommand):
     """Change an input's graft/flatten/simplify/reverse modifiers."""
 
-    def __init__(self, doc: Document, node_id: str, port: str, modifiers: list[str]) -> None:
+    def __init__(self, doc: EditedDocument, node_id: str, port: str, modifiers: list[str]) -> None:
         super().__init__(doc, f"Modify {port}")
         self.node_id, self.port, self.modifiers = node_id, port, list(modifiers)
         state = doc.graph.nodes[node_id].inputs.get(port)
@@ -210,7 +211,7 @@ class SetModifiers(GraphCommand):
 
 
 class SetEnabled(GraphCommand):
-    def __init__(self, doc: Document, node_ids: list[str], enabled: bool) -> None:
+    def __init__(self, doc: EditedDocument, node_ids: list[str], enabled: bool) -> None:
         super().__init__(doc, "Enable" if enabled else "Disable")
         self.enabled = enabled
         self.old = {n: doc.graph.nodes[n].enabled for n in node_ids}
@@ -227,7 +228,7 @@ class SetEnabled(GraphCommand):
 class SetPreview(GraphCommand):
     affects_solve = False
 
-    def __init__(self, doc: Document, node_ids: list[str], preview: bool) -> None:
+    def __init__(self, doc: EditedDocument, node_ids: list[str], preview: bool) -> None:
         super().__init__(doc, "Preview on" if preview else "Preview off")
         self.preview = preview
         self.old = {n: doc.graph.nodes[n].preview for n in node_ids}
@@ -244,7 +245,7 @@ class SetPreview(GraphCommand):
 class SetLabel(GraphCommand):
     affects_solve = False
 
-    def __init__(self, doc: Document, node_id: str, label: str) -> None:
+    def __init__(self, doc: EditedDocument, node_id: str, label: str) -> None:
         super().__init__(doc, "Rename")
         self.node_id, self.label = node_id, label
         self.old = doc.graph.nodes[node_id].label
@@ -263,7 +264,7 @@ class MoveNodes(GraphCommand):
 
     def __init__(
         self,
-        doc: Document,
+        doc: EditedDocument,
         moves: dict[str, tuple[tuple[float, float], tuple[float, float]]],
         text: str = "Move",
     ) -> None:
@@ -282,7 +283,7 @@ class MoveNodes(GraphCommand):
 class AddGroup(GraphCommand):
     affects_solve = False
 
-    def __init__(self, doc: Document, group: Group) -> None:
+    def __init__(self, doc: EditedDocument, group: Group) -> None:
         super().__init__(doc, "Group")
         self.group = group
 
@@ -296,7 +297,7 @@ class AddGroup(GraphCommand):
 class RemoveGroup(GraphCommand):
     affects_solve = False
 
-    def __init__(self, doc: Document, group_id: str) -> None:
+    def __init__(self, doc: EditedDocument, group_id: str) -> None:
         super().__init__(doc, "Ungroup")
         self.group = group_by_id(doc.graph, group_id)
         self.order: list[str] = []
@@ -315,14 +316,14 @@ class EditGroup(GraphCommand):
     """Retitle, recolour or change a group's members.
 
     Engine gap (reported): there is no ``Graph.set_group_*`` method or event, so the
-    group object is changed here and :attr:`Document.groups_changed` is emitted.
+    group object is changed here and :attr:`~torsal.app.gui.edited.EditedDocument.groups_changed` is emitted.
     """
 
     affects_solve = False
 
     def __init__(
         self,
-        doc: Document,
+        doc: EditedDocument,
         group_id: str,
         *,
         title: str | None = None,
@@ -358,7 +359,7 @@ class ClusterCommand(GraphCommand):
     first time it runs makes the command obsolete (the stack drops it) and its reason
     is kept in :attr:`failure`."""
 
-    def __init__(self, doc: Document, text: str) -> None:
+    def __init__(self, doc: EditedDocument, text: str) -> None:
         super().__init__(doc, text)
         self.failure = ""
         self.done = False
@@ -383,7 +384,7 @@ class ClusterCommand(GraphCommand):
 class MakeCluster(ClusterCommand):
     """Collapse nodes into one cluster node (undo explodes it back to the same ids)."""
 
-    def __init__(self, doc: Document, node_ids: list[str], name: str = "Cluster") -> None:
+    def __init__(self, doc: EditedDocument, node_ids: list[str], name: str = "Cluster") -> None:
         super().__init__(doc, f"Cluster {len(node_ids)} node{'s' * (len(node_ids) != 1)}")
         self.node_ids, self.name = list(node_ids), name
         self.cluster_id: str | None = None
@@ -405,7 +406,7 @@ class MakeCluster(ClusterCommand):
 class ExplodeCluster(ClusterCommand):
     """Put a cluster's inner nodes in its place (undo puts the cluster back)."""
 
-    def __init__(self, doc: Document, cluster_id: str) -> None:
+    def __init__(self, doc: EditedDocument, cluster_id: str) -> None:
         super().__init__(doc, "Explode cluster")
         self.cluster_id = cluster_id
         self.info: Any = None
@@ -423,7 +424,9 @@ class ExplodeCluster(ClusterCommand):
 class EditClusterDefinition(ClusterCommand):
     """Commit a cluster definition edited on the canvas: every instance updates."""
 
-    def __init__(self, doc: Document, definition_id: str, edited: Graph, text: str = "Edit cluster") -> None:
+    def __init__(
+        self, doc: EditedDocument, definition_id: str, edited: Graph, text: str = "Edit cluster"
+    ) -> None:
         super().__init__(doc, text)
         self.definition_id = definition_id
         self.edited = edited
@@ -445,7 +448,7 @@ class EditClusterDefinition(ClusterCommand):
 class RenameClusterPort(ClusterCommand):
     """Rename an input or output of a cluster definition (outer wires follow)."""
 
-    def __init__(self, doc: Document, definition_id: str, kind: str, old: str, new: str) -> None:
+    def __init__(self, doc: EditedDocument, definition_id: str, kind: str, old: str, new: str) -> None:
         super().__init__(doc, f"Rename {kind} {old}")
         self.definition_id, self.kind, self.old, self.new = definition_id, kind, old, new
         self.given = new  # the name the definition gave (a repeat gets " 2")
@@ -466,7 +469,7 @@ class RenameClusterPort(ClusterCommand):
 class ReorderClusterPorts(ClusterCommand):
     """Put a cluster definition's inputs or outputs in a new order."""
 
-    def __init__(self, doc: Document, definition_id: str, kind: str, names: list[str]) -> None:
+    def __init__(self, doc: EditedDocument, definition_id: str, kind: str, names: list[str]) -> None:
         super().__init__(doc, f"Reorder {kind}s")
         self.definition_id, self.kind, self.names = definition_id, kind, list(names)
         self.old: list[str] = []
@@ -481,7 +484,7 @@ class ReorderClusterPorts(ClusterCommand):
 class RenameCluster(ClusterCommand):
     """Rename a cluster definition (every instance shows the new name)."""
 
-    def __init__(self, doc: Document, definition_id: str, name: str) -> None:
+    def __init__(self, doc: EditedDocument, definition_id: str, name: str) -> None:
         super().__init__(doc, "Rename cluster")
         self.definition_id, self.name = definition_id, name
         self.old = ""

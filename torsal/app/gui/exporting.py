@@ -9,17 +9,15 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox
 
 from torsal.app.bake import DEFAULT_PARENT, Baked, bake, bake_entries, is_geometry, nothing_to_bake
 from torsal.app.exports import FILE_TYPES, ExportError, export_tree
+from torsal.app.gui.hosts import ExportingWindow
 from torsal.engine.datatree import DataTree
-
-if TYPE_CHECKING:
-    from torsal.app.gui.main_window import MainWindow
 
 BAKE_FILTER = "Rhino 3D models (*.3dm)"
 
@@ -47,23 +45,23 @@ def default_suffix(tree: DataTree) -> str:
     return ".csv"
 
 
-def _folder(window: MainWindow) -> Path | None:
+def _folder(window: ExportingWindow) -> Path | None:
     return window.doc.path.parent if window.doc.path is not None else None
 
 
-def _not_ready(window: MainWindow) -> str:
+def _not_ready(window: ExportingWindow) -> str:
     """Why the results cannot be used now ("" when they can)."""
     if not window.doc.solves.idle():
         return "Torsal is still solving: try again when the solve has finished."
     return ""
 
 
-def _warn(window: MainWindow, title: str, text: str) -> None:
+def _warn(window: ExportingWindow, title: str, text: str) -> None:
     window.log.add(text, "warning")
     QMessageBox.warning(window, title, text)
 
 
-def export_output(window: MainWindow, node_id: str, port: str) -> list[Path]:
+def export_output(window: ExportingWindow, node_id: str, port: str) -> list[Path]:
     """Ask for a file and write the output ``node_id``.``port`` to it; the files written."""
     doc = window.doc
     record = doc.graph.nodes.get(node_id)
@@ -109,7 +107,7 @@ def export_output(window: MainWindow, node_id: str, port: str) -> list[Path]:
     return written
 
 
-def bake_previewed(window: MainWindow, path: Path | None = None, node_ids: list[str] | None = None
+def bake_previewed(window: ExportingWindow, path: Path | None = None, node_ids: list[str] | None = None
                    ) -> Baked | None:
     """Write the geometry of every previewed node — or of ``node_ids`` only (a node's own
     Bake…, previewed or not, as Grasshopper's) — into one .3dm (asked for unless ``path``)."""

@@ -14,7 +14,7 @@ import math
 import numbers
 import threading
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from PySide6.QtCore import QObject, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QPainter, QPen, QPolygonF
@@ -38,14 +38,12 @@ from torsal.app.explore.optimise import Generation, OptimiseResult, optimise
 from torsal.app.explore.study import Study, study_from_text
 from torsal.app.explore.variables import REDUCERS
 from torsal.app.gui.commands import SetSetting
+from torsal.app.gui.hosts import OptimiseOwner
 from torsal.app.headless import UsageError
 from torsal.engine.graphfile import dumps
 from torsal.engine.node import CancelToken
 from torsal.engine.types import BOOLEAN, GENERIC, INTEGER, NUMBER
 from torsal.engine.widgets import Widget
-
-if TYPE_CHECKING:
-    from torsal.app.gui.main_window import MainWindow
 
 #: outputs offered as fitness: numbers (a Generic output only while it holds numbers)
 FITNESS_TYPES = (NUMBER, INTEGER, BOOLEAN)
@@ -168,7 +166,7 @@ class _Relay(QObject):
 class OptimiseWindow(QDialog):
     """Non-modal: the canvas keeps working while a search runs."""
 
-    def __init__(self, window: MainWindow) -> None:
+    def __init__(self, window: OptimiseOwner) -> None:
         super().__init__(window)
         self.setWindowTitle("Optimise")
         self.main = window
@@ -362,7 +360,7 @@ class OptimiseWindow(QDialog):
         super().closeEvent(event)
 
 
-def open_optimise_window(window: MainWindow) -> OptimiseWindow:
+def open_optimise_window(window: OptimiseOwner) -> OptimiseWindow:
     """Show the window (one per main window), refreshed for the current document."""
     dialog = getattr(window, "_optimise_window", None)
     if dialog is None:

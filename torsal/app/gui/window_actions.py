@@ -4,18 +4,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QMenu, QMessageBox
 
+from torsal.app.gui.hosts import MenuWindow
 from torsal.app.gui.optimise_window import open_optimise_window
 from torsal.app.gui.write_consent import toggle_writes
 from torsal.engine import __version__
-
-if TYPE_CHECKING:
-    from torsal.app.gui.main_window import MainWindow
 
 CANVAS_ACTIONS = (
     "cut",
@@ -33,7 +30,7 @@ CANVAS_ACTIONS = (
 )
 
 
-def build_menus(window: MainWindow) -> dict[str, QAction]:
+def build_menus(window: MenuWindow) -> dict[str, QAction]:
     """Create the menu bar; returns the actions by name (tests trigger them)."""
     actions: dict[str, QAction] = {}
     bar = window.menuBar()
@@ -166,7 +163,7 @@ def build_menus(window: MainWindow) -> dict[str, QAction]:
     return actions
 
 
-def _fill_recent(window: MainWindow, menu: QMenu) -> None:
+def _fill_recent(window: MenuWindow, menu: QMenu) -> None:
     menu.clear()
     files = window.settings.recent_files()
     for path in files:

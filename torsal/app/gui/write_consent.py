@@ -10,20 +10,17 @@ Writes" changes the answer later.
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
 
 from PySide6.QtWidgets import QMessageBox
 
+from torsal.app.gui.hosts import ConsentWindow
 from torsal.engine.writes import WriteRequest
-
-if TYPE_CHECKING:
-    from torsal.app.gui.main_window import MainWindow
 
 #: At most this many files are listed in the question; the rest are counted.
 LISTED = 12
 
 
-def ask_to_write(window: MainWindow, requests: list[WriteRequest]) -> bool:
+def ask_to_write(window: ConsentWindow, requests: list[WriteRequest]) -> bool:
     """Ask whether the document may write the files ``requests`` name; True if allowed."""
     doc = window.doc
     folder = doc.writes.folder
@@ -59,7 +56,7 @@ def ask_to_write(window: MainWindow, requests: list[WriteRequest]) -> bool:
     return allowed
 
 
-def toggle_writes(window: MainWindow) -> None:
+def toggle_writes(window: ConsentWindow) -> None:
     """File ▸ Allow File Writes: change the document's answer."""
     doc = window.doc
     allow = not doc.writes.allowed
@@ -72,7 +69,7 @@ def toggle_writes(window: MainWindow) -> None:
     sync_action(window)
 
 
-def sync_action(window: MainWindow) -> None:
+def sync_action(window: ConsentWindow) -> None:
     action = window.actions_by_name.get("allow_writes") if hasattr(window, "actions_by_name") else None
     if action is not None:
         action.setChecked(window.doc.writes.allowed)

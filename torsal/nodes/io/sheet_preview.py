@@ -25,7 +25,7 @@ from torsal.engine.types import ValueType
 from torsal.nodes.common.preview import PreviewGeometry
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.surface_base import Surface
-from torsal.nodes.io.formats.cutfiles import CutLayout, border
+from torsal.nodes.io.formats.cutlayout import CutLayout, border
 
 #: Space between the model's bounding box and the first sheet, as a share of the box's size.
 BESIDE = 0.2

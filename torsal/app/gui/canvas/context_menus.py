@@ -19,8 +19,8 @@ from torsal.engine.types import CastError, decode_value
 from torsal.engine.widgets import Widget
 
 if TYPE_CHECKING:
+    from torsal.app.gui.canvas.hosts import MenuView
     from torsal.app.gui.canvas.scene import CanvasScene
-    from torsal.app.gui.canvas.view import CanvasView
 
 MODIFIER_LABELS = {"graft": "Graft", "flatten": "Flatten", "simplify": "Simplify", "reverse": "Reverse"}
 
@@ -173,7 +173,7 @@ def ask_group_colour(scene: CanvasScene, group_id: str) -> None:
         scene.editor.edit_group(group_id, colour=colour.name())
 
 
-def canvas_menu(view: CanvasView, scene_pos: QPointF) -> QMenu:
+def canvas_menu(view: MenuView, scene_pos: QPointF) -> QMenu:
     menu = QMenu()
     menu.addAction(
         "Add node…", lambda: view.open_search(scene_pos, view.mapToGlobal(view.mapFromScene(scene_pos)))

@@ -4,8 +4,9 @@ A node gets one by declaring a :class:`~torsal.engine.widgets.Widget` hint (``wi
 Widget.SLIDER``) and keeping the widget's settings, never by its type id: a plug-in's
 slider is drawn as the built-in one.
 
-They are painted by their :class:`NodeItem` (not QWidgets: hundreds of nodes stay
-cheap) and get the node's mouse events that fall in their rectangle. Every change
+They are painted by their node item (not QWidgets: hundreds of nodes stay cheap), which
+they see as a :class:`~torsal.app.gui.canvas.hosts.WidgetHost`, and get the node's mouse
+events that fall in their rectangle. Every change
 is an edit through the scene's :class:`~torsal.app.gui.editor.Editor`.
 """
 
@@ -25,7 +26,7 @@ from torsal.engine.types import INTEGER
 from torsal.engine.widgets import Widget
 
 if TYPE_CHECKING:
-    from torsal.app.gui.canvas.node_item import NodeItem
+    from torsal.app.gui.canvas.hosts import WidgetHost
     from torsal.app.gui.editor import Editor
 
 HANDLE_W = 9.0
@@ -38,7 +39,7 @@ _WHITE = QColor("white")
 class InlineWidget:
     """Base: a rectangle inside a node that paints itself and may take mouse events."""
 
-    def __init__(self, item: NodeItem) -> None:
+    def __init__(self, item: WidgetHost) -> None:
         self.item = item
 
     @property
@@ -71,7 +72,7 @@ class InlineWidget:
 class SliderWidget(InlineWidget):
     """A number or integer slider: drag the handle; double-click to edit min/max/step/value."""
 
-    def __init__(self, item: NodeItem, integer: bool) -> None:
+    def __init__(self, item: WidgetHost, integer: bool) -> None:
         super().__init__(item)
         self.integer = integer
         self.drag_value: float | None = None
@@ -272,7 +273,7 @@ class PanelWidget(InlineWidget):
     MAX_LINES = 30
     WIDTH = 190.0
 
-    def __init__(self, item: NodeItem) -> None:
+    def __init__(self, item: WidgetHost) -> None:
         super().__init__(item)
         self._cache: tuple[object, list[str]] | None = None
 
@@ -343,7 +344,7 @@ def integer_slider(node: Node) -> bool:
     return bool(outputs) and outputs[0].type is INTEGER
 
 
-def widget_for(item: NodeItem) -> InlineWidget | None:
+def widget_for(item: WidgetHost) -> InlineWidget | None:
     """The inline widget a node asks for by its :class:`~torsal.engine.widgets.Widget` hint, if any."""
     node = item.record.node
     hint = node.widget

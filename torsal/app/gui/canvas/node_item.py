@@ -32,7 +32,7 @@ from torsal.engine.solver import NodeResult
 from torsal.engine.widgets import Widget
 
 if TYPE_CHECKING:
-    from torsal.app.gui.canvas.scene import CanvasScene
+    from torsal.app.gui.canvas.hosts import NodeCanvas
 
 RADIUS = 5.0
 
@@ -74,7 +74,7 @@ class NodeItem(QGraphicsRectItem):
         self.setPos(QPointF(*record.position))
         self.rebuild()
 
-    def canvas(self) -> CanvasScene:
+    def canvas(self) -> NodeCanvas:
         return self.scene()
 
     # -- structure -------------------------------------------------------------------

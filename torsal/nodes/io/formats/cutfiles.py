@@ -1,6 +1,7 @@
 """Cut sheets for lasers and routers: flat panels checked, laid out on sheets, written out.
 
-:func:`lay_out` turns closed flat outlines (model units) into a :class:`CutLayout` in
+:func:`lay_out` turns closed flat outlines (model units) into a
+:class:`~torsal.nodes.io.formats.cutlayout.CutLayout` in
 millimetres: every outline is checked (:func:`panel_outline`, :func:`check_panels`),
 grown by half the kerf (mitre joins, :func:`~torsal.nodes.geometry.offset2d.offset_polygon`)
 and placed with ``gap`` between the cut contours and ``margin`` from the sheet's edges,
@@ -35,7 +36,6 @@ import itertools
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -50,11 +50,24 @@ from torsal.nodes.geometry.curves import NurbsCurve, Polyline
 from torsal.nodes.geometry.nesting import NestingFailed, nest, place
 from torsal.nodes.geometry.offset2d import offset_polygon
 from torsal.nodes.geometry.packing import DoesNotFit, shelf_pack
-from torsal.nodes.geometry.polygons import ring_areas, signed_ring_area
+from torsal.nodes.geometry.polygons import signed_ring_area
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.watch import watch_check, watch_progress, watched
 from torsal.nodes.io import seams as seam_edges
 from torsal.nodes.io.common import FileFailure, numbered, replacing, unit_scale, writable
+from torsal.nodes.io.formats import sheetviews
+from torsal.nodes.io.formats.cutlayout import (
+    CUT,
+    ENGRAVE,
+    NESTINGS,
+    REFERENCE,
+    SHEET,
+    SHELF,
+    TRUE_SHAPE,
+    CutLayout,
+    Part,
+    border,
+)
 from torsal.nodes.io.formats.labels import SMALLEST_TEXT_MM, place_label, text_outlines
 from torsal.nodes.io.seams import Seam, SeamLengths
 
@@ -62,8 +75,6 @@ from torsal.nodes.io.seams import Seam, SeamLengths
 FLATTEN_MM = 0.01
 #: Flatness (mm): an outline that leaves its best-fit plane by more is refused.
 FLAT_MM = 0.01
-#: Space between sheets (mm) where sheets are shown side by side (previews, .3dm).
-SHEET_SPACING_MM = 100.0
 #: Outline points closer than this share of the outline's size to the previous one are one point.
 SAME_POINT = 1e-9
 
@@ -72,10 +83,6 @@ SAME_POINT = 1e-9
 #: sheet, whose edges would otherwise be sampled to a millionth of their length.
 FINEST_RELATIVE = 1e-7
 
-CUT, ENGRAVE, SHEET, REFERENCE = "CUT", "ENGRAVE", "SHEET", "REFERENCE"
-#: Nesting methods: sparrow's true-shape nesting, or rows of bounding rectangles.
-TRUE_SHAPE, SHELF = "TrueShape", "Shelf"
-NESTINGS = (TRUE_SHAPE, SHELF)
 SUFFIXES = (".dxf", ".svg")
 #: Longest time budget (s) a true-shape nesting may be given.
 MAX_BUDGET = 3600.0
@@ -87,84 +94,6 @@ class PanelProblem(FileFailure):
 
 class SettingProblem(FileFailure):
     """A setting (sheet size, gap, kerf …) :func:`lay_out` refuses; the message names it."""
-
-
-@dataclass(frozen=True)
-class Part:
-    """One panel placed on a sheet; coordinates in mm on that sheet."""
-
-    id: str
-    sheet: int  #: 0-based sheet number
-    outline: FloatArray  #: (n, 2) the cut contour (the panel grown by half the kerf), counter-clockwise
-    panel: FloatArray  #: (n, 2) the panel as drawn, where it is cut out
-    label: tuple[FloatArray, ...]  #: closed letter outlines of the ID, (m, 2) each
-    text_height: float  #: cap height of the label, mm (0 without a label)
-    ticks: tuple[FloatArray, ...] = ()  #: open (2, 2) alignment ticks along its seams, engraved
-    seam_labels: tuple[FloatArray, ...] = ()  #: closed letter outlines of its seams' IDs
-
-
-@dataclass(frozen=True)
-class CutLayout:
-    """Panels laid out on sheets of ``width`` × ``height`` mm, ready to write."""
-
-    width: float
-    height: float
-    gap: float  #: space between parts (mm)
-    kerf: float
-    parts: tuple[Part, ...]
-    sheets: int
-    model_units: str = "m"
-    notes: tuple[str, ...] = ()  #: things worth telling (labels that did not fit ...)
-    margin: float | None = None  #: space from the sheet's edges (mm); None: the gap
-    nesting: str = SHELF
-    reference: bool = False  #: also draw the drawn (un-offset) outlines on layer REFERENCE
-    stopped: bool = False  #: the nesting was stopped early and kept its best layout so far
-    seconds: float = 0.0  #: time the layout took
-    seams: tuple[SeamLengths, ...] = ()  #: per seam, its two flat edges' lengths (mm)
-
-    def on_sheet(self, sheet: int) -> list[Part]:
-        return [p for p in self.parts if p.sheet == sheet]
-
-    @property
-    def edge(self) -> float:
-        """The space kept free along the sheet's edges (mm)."""
-        return self.gap if self.margin is None else self.margin
-
-    @property
-    def panel_area(self) -> float:
-        return float(ring_areas([p.panel for p in self.parts]).sum())
-
-    @property
-    def usage(self) -> float:
-        """Share of the sheets' area that ends up in the panels (0 to 1)."""
-        if not self.sheets:
-            return 0.0
-        return self.panel_area / (self.sheets * self.width * self.height)
-
-    @property
-    def last_length(self) -> float:
-        """How far along X the last sheet's cut contours reach (mm): the rest is offcut."""
-        last = self.on_sheet(self.sheets - 1)
-        return max((float(p.outline[:, 0].max()) for p in last), default=0.0)
-
-    @property
-    def stock_usage(self) -> float:
-        """Share of the stock used by panels, the last sheet counted only up to
-        :attr:`last_length` (its offcut goes back to stock)."""
-        if not self.sheets:
-            return 0.0
-        stock = (self.sheets - 1) * self.width * self.height + self.last_length * self.height
-        return self.panel_area / stock if stock > 0 else 0.0
-
-    def offset(self, sheet: int) -> float:
-        """Where sheet ``sheet`` starts along X when the sheets are shown side by side (mm)."""
-        return sheet * (self.width + SHEET_SPACING_MM)
-
-    def __repr__(self) -> str:
-        return (
-            f"CutLayout({len(self.parts)} panels on {self.sheets} sheets of "
-            f"{self.width:g} × {self.height:g} mm)"
-        )
 
 
 # ------------------------------------------------------------------ outlines and checks
@@ -559,16 +488,9 @@ def write_dxf(layout: CutLayout, path: Path) -> list[Path]:
     return files
 
 
-def border(layout: CutLayout) -> FloatArray:
-    w, h = layout.width, layout.height
-    return np.array([[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]])
-
-
 def write_svg(layout: CutLayout, path: Path) -> list[Path]:
     """One SVG file per sheet (:mod:`torsal.nodes.io.formats.sheetviews`); returns the files written."""
-    from torsal.nodes.io.formats.sheetviews import write_svg as write
-
-    return write(layout, path)
+    return sheetviews.write_svg(layout, path)
 
 
 def write_cut_files(layout: CutLayout, path: Path) -> list[Path]:

@@ -27,7 +27,7 @@ import numpy as np
 
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.io.common import numbered, replacing, writable
-from torsal.nodes.io.formats.cutfiles import CUT, ENGRAVE, REFERENCE, SHEET, CutLayout, border
+from torsal.nodes.io.formats.cutlayout import CUT, ENGRAVE, REFERENCE, SHEET, CutLayout, border
 
 #: Width of a hairline on screen (px), whatever the zoom.
 HAIRLINE_PX = 1.0

@@ -16,9 +16,7 @@ face along their rulings instead (:mod:`.threedm_strips`); a curve of no length 
 Reading (:func:`read_3dm`) is :mod:`.threedm_read`'s: rhino3dm parses in a fenced child
 process, never in Torsal's own.
 
-rhino3dm's control points are homogeneous ``(w·x, w·y, w·z, w)`` and its knot vectors
-have the ``n + p − 1`` knots of the openNURBS convention (the kernel's full vectors
-without their first and last knot).
+The kernel's NURBS and meshes become rhino3dm objects in :mod:`.threedm_native`.
 """
 
 from __future__ import annotations
@@ -42,6 +40,7 @@ from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
 from torsal.nodes.geometry.surface_base import Surface, TransformedSurface
 from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
 from torsal.nodes.io.common import FileFailure, replacing, unit_name, writable
+from torsal.nodes.io.formats.threedm_native import rhino_curve, rhino_mesh, rhino_surface
 from torsal.nodes.io.formats.threedm_read import Imported, layer_matches, read_3dm
 from torsal.nodes.io.formats.threedm_strips import is_strip, strip_pieces
 
@@ -217,56 +216,6 @@ def _interpolated_surface(
         if deviation <= APPROXIMATION * _size(grid) or count >= limit:
             return NurbsForm(nurbs, deviation)
         count = 2 * count - 1
-
-
-# ------------------------------------------------------------------ NURBS ↔ rhino3dm
-
-
-def rhino_curve(curve: NurbsCurve) -> rh.NurbsCurve:
-    """The rhino3dm NURBS curve with ``curve``'s control points, weights and knots."""
-    points = curve.control_points
-    weights = curve.weights
-    out = rh.NurbsCurve(3, bool(curve.is_rational), curve.degree + 1, len(points))
-    homogeneous = np.column_stack([points * weights[:, None], weights]).tolist()
-    for i, (x, y, z, w) in enumerate(homogeneous):
-        out.Points[i] = rh.Point4d(x, y, z, w)
-    for i, knot in enumerate(np.asarray(curve.knots, dtype=float)[1:-1].tolist()):
-        out.Knots[i] = knot
-    return out
-
-
-def rhino_surface(surface: NurbsSurface) -> rh.NurbsSurface:
-    """The rhino3dm NURBS surface with ``surface``'s net, weights and (normalised) knots."""
-    points = surface.control_points
-    weights = surface.weights
-    nu, nv = points.shape[:2]
-    out = rh.NurbsSurface.Create(
-        3, bool(surface.is_rational), surface.degree_u + 1, surface.degree_v + 1, nu, nv
-    )
-    homogeneous = np.concatenate([points * weights[..., None], weights[..., None]], axis=2)
-    for i, row in enumerate(homogeneous.tolist()):
-        for j, (x, y, z, w) in enumerate(row):
-            out.Points[(i, j)] = rh.Point4d(x, y, z, w)
-    for i, knot in enumerate(np.asarray(surface.knots_u)[1:-1].tolist()):
-        out.KnotsU[i] = knot
-    for i, knot in enumerate(np.asarray(surface.knots_v)[1:-1].tolist()):
-        out.KnotsV[i] = knot
-    return out
-
-
-def rhino_mesh(mesh: trimesh.Trimesh) -> rh.Mesh:
-    out = rh.Mesh()
-    out.Vertices.UseDoublePrecisionVertices = True
-    for x, y, z in np.asarray(mesh.vertices, dtype=float).tolist():
-        out.Vertices.Add(x, y, z)
-    for a, b, c in np.asarray(mesh.faces, dtype=int).tolist():
-        out.Faces.AddFace(a, b, c)
-    return out
-
-
-def _full_knots(knots: Sequence[float]) -> np.ndarray:
-    k = np.asarray(knots, dtype=float)
-    return np.concatenate([k[:1], k, k[-1:]])
 
 
 # ------------------------------------------------------------------ writing

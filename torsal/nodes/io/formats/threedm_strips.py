@@ -41,6 +41,7 @@ from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import switches, torsal_partners
+from torsal.nodes.io.formats.threedm_native import rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
@@ -124,7 +125,6 @@ def _fan_run(lines: np.ndarray) -> rh.Brep | None:
     (every triangle through one point: an edge collapsed to it)."""
     count = len(lines)
     knots = np.concatenate([[0.0], np.linspace(0.0, 1.0, count), [1.0]])
-    from torsal.nodes.io.formats.threedm import rhino_surface
 
     try:
         surface = NurbsSurface(np.asarray(lines, dtype=float), 1, 1, knots, [0.0, 0.0, 1.0, 1.0])
@@ -170,8 +170,6 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     controls = np.asarray(spline.c)[:count]
     net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
     surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    from torsal.nodes.io.formats.threedm import rhino_surface
-
     brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
     return Piece(brep, "torsal", first, last, worst, count)
 
