@@ -114,24 +114,26 @@ def test_every_strip_lies_within_the_tolerance_of_the_design(name):
 
 
 @pytest.mark.parametrize("name", DESIGNS)
-def test_every_torsal_ruling_has_warp_below_1e_12_by_the_triple_product(name):
-    field = DESIGNS[name]
-    rulings = items(solved(name), "Rulings")
-    kinds = items(solved(name), "Kind")
-    a = np.array([r.start for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
-    b = np.array([r.end for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
-    assert len(a) > 10
-    # the boundaries are parameter lines: along x (y fixed) or along y (x fixed)
-    along_x = bool(np.ptp(items(solved(name), "Boundaries")[0].point_at(np.linspace(0, 1, 9))[:, 1]) < 1e-9)
+def test_every_torsal_ruling_has_warp_below_1e_7_against_the_boundaries_own_tangents(name):
+    """The boundaries are lifted off the design (see the node): the tangents are the
+    boundary curves' own, by central differences of their points (measured below 1e-8)."""
+    from tests.toolbox.test_rationalise_freeform import curve_tangents
 
-    def tangent(p):
-        if along_x:
-            return np.column_stack([np.ones(len(p)), np.zeros(len(p)), field.fx(p[:, 0], p[:, 1])])
-        return np.column_stack([np.zeros(len(p)), np.ones(len(p)), field.fy(p[:, 0], p[:, 1])])
-
-    n1, n2 = np.cross(b - a, tangent(a)), np.cross(b - a, tangent(b))
-    warp = np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2))
-    assert warp.max() < 1e-12  # measured 3.7e-14 to 6.5e-14
+    result = solved(name)
+    rulings, kinds = items(result, "Rulings"), items(result, "Kind")
+    boundaries, strips = items(result, "Boundaries"), items(result, "Strips")
+    worst, start, torsal = 0.0, 0, 0
+    for i, strip in enumerate(strips):
+        keep = [j for j in range(start, start + len(strip.ruling_lines)) if kinds[j] == "torsal"]
+        a = np.array([rulings[j].start for j in keep], dtype=float)
+        b = np.array([rulings[j].end for j in keep], dtype=float)
+        n1 = np.cross(b - a, curve_tangents(boundaries[i], a))
+        n2 = np.cross(b - a, curve_tangents(boundaries[i + 1], b))
+        warp = np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2))
+        worst, torsal = max(worst, float(warp.max(initial=0.0))), torsal + len(keep)
+        start += len(strip.ruling_lines)
+    assert torsal > 10
+    assert worst < 1e-7
 
 
 @pytest.mark.parametrize("name", DESIGNS)
@@ -148,28 +150,29 @@ def test_fan_rulings_share_an_apex_with_a_neighbour(name):
 
 @pytest.mark.parametrize("name", DESIGNS)
 def test_neighbouring_strips_share_their_boundary(name):
-    """Both edges along a boundary run on that boundary curve of the design, end to end."""
-    field = DESIGNS[name]
-    strips = items(solved(name), "Strips")
+    """Both edges along a boundary run on that boundary curve, end to end; the boundary is
+    lifted off the design by at most 0.8 of the tolerance."""
+    from tests.toolbox.test_rationalise_freeform import project
+
+    strips, boundaries = items(solved(name), "Strips"), items(solved(name), "Boundaries")
     assert len(strips) >= 2
-    for lower, upper in itertools.pairwise(strips):
+    for i, (lower, upper) in enumerate(itertools.pairwise(strips)):
         top, bottom = grid(lower)[:, -1], grid(upper)[:, 0]
-        # to rounding (measured at most 5.6e-18 of the size)
-        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-14 * SIZE
+        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-12 * SIZE
+        curve = boundaries[i + 1]
         for edge in (top, bottom):
-            assert np.abs(edge[:, 2] - field.f(edge[:, 0], edge[:, 1])).max() <= 1e-14 * SIZE
-        fixed = 1 if np.ptp(top[:, 1]) < np.ptp(top[:, 0]) else 0
-        assert np.abs(np.concatenate([top, bottom])[:, fixed] - top[0, fixed]).max() <= 1e-14 * SIZE
+            assert np.linalg.norm(curve.point_at(project(curve, edge)) - edge, axis=1).max() <= 1e-9 * SIZE
+        assert distance_to(DESIGNS[name], curve.point_at(np.linspace(0, 1, 201))).max() <= 0.8 * TOL * 1.0001
 
 
 @pytest.mark.parametrize("name", DESIGNS)
-def test_summed_strip_area_is_within_a_thousandth_of_the_designs(name):
-    """Measured 3.0e-4 to 5.3e-4 under (the strips stay within the tolerance of the design)."""
+def test_summed_strip_area_is_within_a_hundredth_of_the_designs(name):
+    """Within 1 % (the strips stay within the tolerance of the design, to both sides)."""
     field = DESIGNS[name]
     design, _ = dblquad(lambda y, x: np.sqrt(1 + field.fx(x, y) ** 2 + field.fy(x, y) ** 2),
                         -HALF, HALF, -HALF, HALF, epsabs=1e-9)
     strips = sum(grid_area(grid(s, 241, 21)) for s in items(solved(name), "Strips"))
-    assert abs(strips - design) <= 1e-3 * design
+    assert abs(strips - design) <= 1e-2 * design
 
 
 @pytest.mark.parametrize("name", DESIGNS)

@@ -100,26 +100,56 @@ def test_the_design_edge_is_covered_within_the_tolerance(name):
     assert gaps.max() <= TOL * design.unit  # measured 1.98 cm (wave), 0.48 cm (saddle)
 
 
+def project(curve, points: np.ndarray) -> np.ndarray:
+    """The parameter of the point of ``curve`` nearest each of ``points``: the nearest of
+    20001 samples refined by Newton on |C(t) − P|² with central differences of C (only
+    the curve's points are used)."""
+    t0 = np.linspace(0, 1, 20001)
+    _, index = cKDTree(curve.point_at(t0)).query(points)
+    t = t0[index]
+    h = 1e-6
+    for _ in range(8):
+        c, ca, cb = curve.point_at(t), curve.point_at(t + h), curve.point_at(t - h)
+        d1, d2 = (ca - cb) / (2 * h), (ca - 2 * c + cb) / (h * h)
+        g = np.einsum("ij,ij->i", c - points, d1)
+        t = np.clip(t - g / (np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", c - points, d2)), 0, 1)
+    return t
+
+
+def curve_tangents(curve, points: np.ndarray) -> np.ndarray:
+    """The unit tangent of ``curve`` at each of ``points`` on it, by second-order differences
+    (central inside, one-sided within two steps of an end)."""
+    h = 1e-6
+    t = np.clip(project(curve, points), 0, 1)
+    lo, hi = t < 2 * h, t > 1 - 2 * h
+    mid = np.clip(t, 2 * h, 1 - 2 * h)
+    tangent = curve.point_at(mid + h) - curve.point_at(mid - h)
+    p0 = curve.point_at(t)
+    p1, p2 = curve.point_at(np.minimum(t + h, 1)), curve.point_at(np.minimum(t + 2 * h, 1))
+    tangent[lo] = (-3 * p0 + 4 * p1 - p2)[lo]
+    q1, q2 = curve.point_at(np.maximum(t - h, 0)), curve.point_at(np.maximum(t - 2 * h, 0))
+    tangent[hi] = (3 * p0 - 4 * q1 + q2)[hi]
+    return tangent / np.linalg.norm(tangent, axis=1, keepdims=True)
+
+
 @pytest.mark.parametrize("name", FAST)
-def test_torsal_rulings_have_no_warp_by_the_boundaries_closed_form_tangents(name):
-    design = DESIGNS[name]
+def test_torsal_rulings_have_no_warp_against_the_boundaries_own_tangents(name):
     result = solved(name)
     rulings, kinds = items(result, "Rulings"), items(result, "Kind")
-    a = np.array([r.start for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
-    b = np.array([r.end for r, k in zip(rulings, kinds, strict=True) if k == "torsal"], dtype=float)
-    assert len(a) > 100
-    first = items(result, "Boundaries")[1].point_at(np.linspace(0, 1, 9))
-    along_x = np.ptp(first[:, 1]) < 1e-9 * design.size  # boundaries at fixed y: tangent (1, 0, f_x)
-
-    def tangent(p):
-        one, zero = np.ones(len(p)), np.zeros(len(p))
-        if along_x:
-            return np.column_stack([one, zero, design.height(p[:, 0], p[:, 1], 1)])
-        return np.column_stack([zero, one, design.height(p[:, 0], p[:, 1], 2)])
-
-    n1, n2 = np.cross(b - a, tangent(a)), np.cross(b - a, tangent(b))
-    warp = np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2))
-    assert warp.max() < 1e-7
+    boundaries, strips = items(result, "Boundaries"), items(result, "Strips")
+    warps, start = [], 0
+    for i, strip in enumerate(strips):
+        count = len(strip.ruling_lines)
+        keep = [j for j in range(start, start + count) if kinds[j] == "torsal"]
+        a = np.array([rulings[j].start for j in keep], dtype=float)
+        b = np.array([rulings[j].end for j in keep], dtype=float)
+        n1 = np.cross(b - a, curve_tangents(boundaries[i], a))
+        n2 = np.cross(b - a, curve_tangents(boundaries[i + 1], b))
+        warps.append(np.arctan2(np.linalg.norm(np.cross(n1, n2), axis=1), np.einsum("ij,ij->i", n1, n2)))
+        start += count
+    warp = np.concatenate(warps)
+    assert len(warp) > 100
+    assert warp.max() < 1e-7  # measured below 1e-8 (the differences' own error)
     assert all(v for v, k in zip(items(result, "Valid"), kinds, strict=True) if k == "torsal")
 
 
@@ -175,23 +205,26 @@ def test_the_waves_creasing_fans_are_few_and_the_one_warning_names_their_strips(
     total = sum(0.5 * np.linalg.norm(np.cross(s.ruling_lines[1:, 1] - s.ruling_lines[:-1, 0],
                                               s.ruling_lines[:-1, 1] - s.ruling_lines[1:, 0]), axis=1).sum()
                 for s in items(result, "Strips"))
-    assert 0 < area <= 0.06 * total
+    assert 0 < area <= 0.06 * total  # measured 4.8 % (the boundaries on the design: the lift creased 10 %)
     warnings = [t for t in texts(result) if "crease the sheet" in t]
     assert len(warnings) == 1 and warnings[0].startswith("The strips are within the tolerance, but")
 
 
 @pytest.mark.parametrize("name", FAST)
-def test_neighbours_share_their_boundary_on_the_design(name):
+def test_neighbours_share_their_boundary_lifted_at_most_four_fifths_of_the_tolerance(name):
     design = DESIGNS[name]
     strips = items(solved(name), "Strips")
-    for lower, upper in itertools.pairwise(strips):
+    boundaries = items(solved(name), "Boundaries")
+    t = np.linspace(0, 1, 401)
+    for i, (lower, upper) in enumerate(itertools.pairwise(strips)):
         top, bottom = grid(lower)[:, -1], grid(upper)[:, 0]
-        for edge in (top, bottom):  # on the design ...
-            assert np.abs(edge[:, 2] - design.height(edge[:, 0], edge[:, 1])).max() <= 1e-9 * design.size
-        fixed = 1 if np.ptp(top[:, 1]) < np.ptp(top[:, 0]) else 0  # ... on one isocurve
-        both = np.concatenate([top, bottom])
-        assert np.abs(both[:, fixed] - top[0, fixed]).max() <= 1e-9 * design.size
-        assert np.abs(top[[0, -1]] - bottom[[0, -1]]).max() <= 1e-9 * design.size
+        curve = boundaries[i + 1].point_at(t)
+        for edge in (top, bottom):  # both edges run on the one boundary curve, end to end
+            gap = np.linalg.norm(boundaries[i + 1].point_at(project(boundaries[i + 1], edge)) - edge, axis=1)
+            assert gap.max() <= 1e-9 * design.size
+            assert np.abs(edge[[0, -1]] - curve[[0, -1]]).max() <= 1e-9 * design.size
+        lift = design.distance(curve)
+        assert lift.max() <= 0.8 * TOL * design.unit * 1.0001
 
 
 @pytest.mark.parametrize("name", FAST)

@@ -81,7 +81,7 @@ class Rationalise(Node):
     """Cover a freeform design with developable strips, each within Tolerance of it.
 
     The strips run side by side across the design. Each is a developable sheet between
-    two boundary curves lying on the design, with straight torsal rulings from one to
+    two boundary curves running over the design, with straight torsal rulings from one to
     the other (flat triangles only where no torsal ruling exists), so it bends from a
     flat sheet without stretching. Neighbouring strips share their boundary curve
     exactly, so they meet without gaps or steps; how much they kink there is the
@@ -90,7 +90,11 @@ class Rationalise(Node):
     Method. The rulings run where the design bends least and the boundaries across them:
     the boundaries are the design's parameter lines of the family the node picks from the
     surface's normal curvature (the square law: a strip w wide whose rulings bend with
-    curvature k deviates by about k·w²/8). Where a boundary runs along an asymptotic
+    curvature k sags by about k·w²/8 under the design). Each boundary is lifted off the
+    design by up to 0.8 × Tolerance against that sag, so a strip deviates to both sides
+    of the design and may be about √1.8 as wide: about three quarters as many strips as
+    with boundaries on the design (the issue's isocurve baseline). Where a boundary runs
+    along an asymptotic
     direction of the design (a straight line of a saddle, the inflection of a wave) no
     torsal ruling joins it to its neighbour and the strip is closed with creasing
     triangles; the node then also tries the other family and keeps the one that creases
@@ -100,11 +104,12 @@ class Rationalise(Node):
     made yet. Where the design's parameter lines are far from its curvature lines, give
     Guides (or a Direction) along the lines of curvature.
 
-    With Direction, the boundaries are the parameter lines running most nearly along it.
+    With Direction, the boundaries are the parameter lines running most nearly along it,
+    on the design (not lifted).
     With Guides, the strips follow your curves instead: one boundary runs along each guide
     (projected onto the design) and the boundaries between two guides, or a guide and the
-    design's edge, blend from one to the other, as Tween Curves do. Guides must cross the
-    design from edge to edge and stay apart.
+    design's edge, blend from one to the other, as Tween Curves do; they lie on the design.
+    Guides must cross the design from edge to edge and stay apart.
 
     The tolerance is a guarantee. Starting from one edge (and from every guide), each
     strip is made as wide as the tolerance allows. A strip's Deviation is certified: its
@@ -147,8 +152,9 @@ class Rationalise(Node):
     )
     outputs = (
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
-        Out("Boundaries", CURVE, "B", "The boundary curves on the design: strip i lies between "
-            "boundaries i and i + 1, which it shares exactly with its neighbours.", access=LIST),
+        Out("Boundaries", CURVE, "B", "The boundary curves over the design (lifted off it by up to 0.8 × "
+            "Tolerance; on it with Guides or Direction): strip i lies between boundaries i and i + 1, "
+            "which it shares exactly with its neighbours.", access=LIST),
         Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
         Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
             "rulings and the boundary curves' tangents.", access=LIST),

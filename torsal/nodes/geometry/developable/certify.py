@@ -115,7 +115,9 @@ def certified_deviation(design: Surface, strip: Surface, tolerance: float) -> De
 def _distances(design: Surface, strip: Surface, u: FloatArray, v: FloatArray) -> FloatArray:
     uu, vv = np.meshgrid(u, v, indexing="ij")
     points = strip.point_at(uu.ravel(), vv.ravel())
-    return design.closest_point(points).distances.reshape(len(u), len(v))
+    # the strip lies within a few tolerances of the design: the nearest seeds suffice, and a
+    # parameter step of 1e-10 moves the distance by far less than the 1 % certified
+    return design.closest_point(points, candidates=2, tolerance=1e-10).distances.reshape(len(u), len(v))
 
 
 def uncovered(
@@ -157,7 +159,7 @@ def end_gaps(
 
 
 #: Grid of a strip's points for :func:`uncovered`: along its rails × across.
-ALONG, ACROSS = 801, 33
+ALONG, ACROSS = 401, 33
 #: Nearest cells (by their centres) whose triangles a query is measured to.
 NEAREST = 24
 

@@ -1,33 +1,45 @@
 """Rationalising a freeform design into developable strips (developable.Rationalise).
 
-Method (a first version)
-------------------------
+Method
+------
 1. Direction. A strip's rulings are straight, so a ruling deviates least from the
    design where the design bends least along it: the rulings should run along the
    direction of least normal curvature and the strips' boundary curves across it.
-   The boundaries are taken as isocurves of the design: of the two parameter
-   families, the one that needs fewer strips by the square law (see
-   :func:`boundary_family`: normal curvature along the rulings and the extent the
-   strips are stacked over). A guide vector instead picks the family whose tangents
-   run most nearly along it (the strips follow the guide).
-2. Strips. Between two neighbouring boundaries the strip is RulingDevelopable's
+   The boundaries follow the design's parameter lines: of the two families, first the
+   one that needs fewer strips by the square law (see :func:`boundary_family`: normal
+   curvature along the rulings and the extent the strips are stacked over); when its
+   strips crease the sheet (more than :data:`SMOOTH` of their area in creasing fans,
+   where the lines run along an asymptotic direction), the other family too, and the
+   better is kept (:func:`_score`), lifted (step 2) or, when the lift creases more, on
+   the design. A guide vector instead picks the family whose
+   tangents run most nearly along it (the strips follow the guide), and guides give
+   the blended family of :mod:`.guided`.
+2. Lift. Without guides or a direction, the boundaries are lifted off the design by up
+   to 0.8 of the tolerance, against the side the rulings sag to (:mod:`.offset`): the
+   strips then deviate to both sides of the design and may be about √1.8 as wide, so
+   the design needs about three quarters as many strips as with boundaries on it.
+3. Strips. Between two neighbouring boundaries the strip is RulingDevelopable's
    (:func:`~torsal.nodes.geometry.developable.ruling_developable`): certified torsal rulings,
    flat fans where none exist, and its Surface is
    :func:`~torsal.nodes.geometry.curve_rail.ruled_between`, whose edges run on the boundary
    curves themselves — so two neighbours share their boundary exactly.
-3. Placement. Marching from one edge of the design, each next boundary is placed so
+4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
-   guessed from the square law (a straight ruling's deviation grows as the width²) and
-   kept inside the bracket of widths found too wide and within. A strip's deviation is
-   the largest distance of a dense grid of its points from the design, by the design's
-   own closest-point search. When more than ``max_strips`` would be needed, the design
-   is instead split into ``max_strips`` evenly spaced strips, and the result reports
-   the deviation reached.
+   guessed from the square law (a straight ruling's sag grows as the width²) and kept
+   inside the bracket of widths found too wide and within. A strip's deviation is
+   certified (:mod:`.certify`): samples refined until the bound between them is within
+   1 % of the tolerance, and the design's edge at the strip's two ends measured too. Where
+   the tolerance would need strips narrower than ``min_width`` they are made that wide
+   and listed. When more than ``max_strips`` would be needed, the design is instead
+   split into ``max_strips`` evenly spaced strips, and the result reports the deviation
+   reached.
 
-What this version does not do (yet): boundaries are isocurves, not curves traced along
-principal directions or optimised (the issue's least-squares route), so on a design
-whose parameter lines are far from its curvature lines the strips are narrower than they
-need be.
+What this version does not do (yet): the boundaries are not traced along lines of
+curvature. A family that follows them leaves the design through its sides, so its
+strips would have to be trimmed by the design's outline (the D-strip models of
+Pottmann et al. 2008); a field fitted to the curvature directions but held to the
+design's edges (the level sets of one function, tried) bent away from them near the
+edges and creased more than the parameter lines on the test designs.
 """
 
 from __future__ import annotations
@@ -45,6 +57,7 @@ from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
 from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
+from torsal.nodes.geometry.developable.offset import LiftedBoundaries, lift_for
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.warp import curve_warp
 from torsal.nodes.geometry.ruled import RuledSurface
@@ -52,7 +65,7 @@ from torsal.nodes.geometry.surface_base import Surface, uv_grid
 from torsal.nodes.geometry.watch import watch_check
 
 #: The boundaries of a rationalisation: a curve on the design for every level in [0, 1].
-Boundaries = IsoBoundaries | GuidedBoundaries
+Boundaries = IsoBoundaries | GuidedBoundaries | LiftedBoundaries
 
 #: Dense samples per strip for its deviation: along the boundaries x across the strip.
 DEVIATION_SAMPLES = (41, 7)
@@ -220,7 +233,11 @@ def _march(
                 break
             if strip.width < 0.5 * min_width:
                 break  # narrower than MinWidth can be made: settled below
-            ratio = np.sqrt(AIM * tolerance / max(strip.deviation, 1e-300))
+            lift = float(getattr(boundaries, "height", 0.0))  # lifted boundaries: their sag is dev + lift
+            if strip.deviation <= lift * 1.01:
+                ratio = np.sqrt(2.0)  # the lift alone: the sag is not seen yet
+            else:
+                ratio = np.sqrt((AIM * tolerance + lift) / max(strip.deviation + lift, 1e-300))
             w_new = w * float(np.clip(ratio, 0.25, 2.0))
             floor = (good.hi - lo) if good is not None else 0.0
             if not floor < w_new < bad:
@@ -286,8 +303,8 @@ def _even(
 
 
 #: A rationalisation with at most this share of its area in creasing fans is kept without
-#: trying the other family of boundaries.
-SMOOTH = 0.01
+#: trying the next family of boundaries (lifted, then on the design; each way).
+SMOOTH = 0.02
 
 
 def creased_area(strips: Sequence[Strip]) -> float:
@@ -361,7 +378,12 @@ def rationalise(
         candidates = [IsoBoundaries(design, boundary_family(design, direction))]
     else:  # the family the square law prefers first; the other when the first creases the sheet
         first = boundary_family(design)
-        candidates = [IsoBoundaries(design, first), IsoBoundaries(design, "v" if first == "u" else "u")]
+        other = "v" if first == "u" else "u"
+        candidates = []
+        for f in (first, other):  # each family lifted (where it bends across), then on the design
+            lifted = LiftedBoundaries(design, f, lift_for(design, f, tolerance))
+            candidates += [lifted] if lifted.lift.spline is not None else []
+            candidates.append(IsoBoundaries(design, f))
     best: tuple[tuple[float, ...], Boundaries, list[Strip], list[int]] | None = None
     for k, family_of in enumerate(candidates):
         strips, narrow = _cover(design, family_of, tolerance, int(max_strips), segments, warp_tolerance,
@@ -369,10 +391,14 @@ def rationalise(
         score = _score(strips, tolerance)
         if best is None or score < best[0]:
             best = (score, family_of, strips, narrow)
-        if creased_area(strips) <= SMOOTH:
-            break  # smooth enough: the other family is not tried
+        if score[0] == 0.0 and creased_area(strips) <= SMOOTH:
+            break  # within the tolerance and smooth enough: the next family is not tried
     assert best is not None
     _, family_of, strips, narrow = best
+    for strip in strips:
+        if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
+            again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)
+            strip.deviation, strip.where = max(strip.deviation, again.bound), again.where
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [family_of.at(p) for p in params]
     points, gaps = uncovered(design, [s.surface for s in strips])
