@@ -225,7 +225,9 @@ def test_a_mesh_surface_is_refused_naming_the_input():
 
 def test_strips_exported_to_3dm_read_back_as_ruled_faces_degree_1_across_on_the_strips_edges(tmp_path):
     """Each strip goes out as ruled faces (Breps, degree 1 across), its rails fitted to 1e-6 of
-    the strip's size (docs/rhino.md): every face's rail points lie on one of the strip's edges."""
+    the strip's size (docs/rhino.md): every ruled face's rail points lie on one of the strip's
+    edges. (A lone fan triangle goes out as a trimmed plane, whose untrimmed corners lie off
+    the strip: only its degree is checked.)"""
     from torsal.app.exports import export_tree
     from torsal.engine.datatree import DataTree
 
@@ -243,6 +245,8 @@ def test_strips_exported_to_3dm_read_back_as_ruled_faces_degree_1_across_on_the_
             surface = face.UnderlyingSurface().ToNurbsSurface()
             across = 0 if surface.Degree(0) == 1 else 1
             assert surface.Degree(across) == 1
+            if surface.Degree(1 - across) == 1:  # a plane (a fan triangle, trimmed)
+                continue
             domain = surface.Domain(1 - across)
             rails = []
             for t in np.linspace(domain.T0, domain.T1, 9):
@@ -251,9 +255,10 @@ def test_strips_exported_to_3dm_read_back_as_ruled_faces_degree_1_across_on_the_
                     rails.append([p.X, p.Y, p.Z])
             # distance from each rail point to the nearest segment of the edges' polylines
             rel = np.asarray(rails)[:, None, :] - starts[None, :, :]
-            along = np.clip((rel * steps).sum(axis=2) / (steps * steps).sum(axis=1), 0.0, 1.0)
+            squared = (steps * steps).sum(axis=1)  # (0 where an edge stands still: a cone's apex)
+            along = np.clip((rel * steps).sum(axis=2) / np.where(squared > 0, squared, 1.0), 0.0, 1.0)
             gaps = np.linalg.norm(rel - along[..., None] * steps[None], axis=2).min(axis=1)
-            assert gaps.max() <= 1e-5 * SIZE  # the 1e-6 fit, plus the chords of the 4001-point edges
+            assert gaps.max() <= 1e-6 * SIZE  # 3.3e-7 measured
 
 
 def kaohsiung_roof():
