@@ -29,16 +29,15 @@ from __future__ import annotations
 
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import threading
 import time
 from pathlib import Path
 
 import pytest
 
 from tests.gui.conftest import unavailable_reason
+from tests.gui.test_startup import stages
 
 REASON = unavailable_reason()
 if REASON:
@@ -70,27 +69,8 @@ app.exec()
 
 
 def _stages(command: list[str], env: dict[str, str]) -> dict[str, float]:
-    """Run ``command`` until it reports its first frame (or 120 s pass); each reported
-    stage's seconds since launch."""
-    began = time.time()
-    child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True)
-    stamps: dict[str, float] = {}
-
-    def read() -> None:
-        for line in child.stderr:
-            parts = line.split()
-            if len(parts) >= 3 and parts[0] == "torsal-startup":
-                stamps[parts[1]] = float(parts[2]) - began
-                if parts[1] == "first-frame":
-                    return
-
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    reader.join(timeout=120)
-    child.terminate()
-    child.wait(timeout=10)
-    return stamps
+    """Run ``command`` until it reports its first frame (or 120 s pass)."""
+    return stages(command, env, until="first-frame", timeout=120)
 
 
 def test_launch_to_the_flagships_first_solved_frame_against_an_empty_qtinteractor_window():

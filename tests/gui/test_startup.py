@@ -22,15 +22,16 @@ def start_app(config_folder: Path) -> dict[str, float]:
     env = dict(
         os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(config_folder), PYTHONPATH=str(ROOT)
     )
+    command = [sys.executable, "-m", "torsal.app.cli", "gui", str(EXAMPLES / "first-steps.graph")]
+    return stages(command, env, until="viewport-ready", timeout=60)
+
+
+def stages(command: list[str], env: dict[str, str], until: str, timeout: float) -> dict[str, float]:
+    """Run ``command`` until it reports the stage ``until`` (or ``timeout`` seconds pass);
+    the seconds from launch to each ``torsal-startup STAGE TIME`` line it wrote on stderr."""
     began = time.time()
-    child = subprocess.Popen(
-        [sys.executable, "-m", "torsal.app.cli", "gui", str(EXAMPLES / "first-steps.graph")],
-        cwd=ROOT,
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
     stamps: dict[str, float] = {}
 
     def read() -> None:
@@ -38,12 +39,12 @@ def start_app(config_folder: Path) -> dict[str, float]:
             parts = line.split()
             if len(parts) >= 3 and parts[0] == "torsal-startup":
                 stamps[parts[1]] = float(parts[2]) - began
-                if parts[1] == "viewport-ready":
+                if parts[1] == until:
                     return
 
     reader = threading.Thread(target=read, daemon=True)
     reader.start()
-    reader.join(timeout=60)
+    reader.join(timeout=timeout)
     child.terminate()
     child.wait(timeout=10)
     return stamps

@@ -21,7 +21,8 @@ import trimesh
 from scipy.integrate import dblquad
 from scipy.spatial import cKDTree
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.nodes.helpers import run, texts, tree
+from tests.toolbox.strip_grids import grid, grid_area, items
 from torsal.engine.values import Vector
 from torsal.nodes.developable.rationalise import Rationalise
 from torsal.nodes.geometry.mesh_surface import MeshSurface
@@ -91,19 +92,10 @@ def solved(name: str):
     return result
 
 
-def items(result, port: str) -> list:
-    return out(result, port)[(0,)]
 
 
-def grid(strip, nu: int = 121, nv: int = 21) -> np.ndarray:
-    u, v = np.meshgrid(np.linspace(0, 1, nu), np.linspace(0, 1, nv), indexing="ij")
-    return strip.point_at(u.ravel(), v.ravel()).reshape(nu, nv, 3)
 
 
-def grid_area(points: np.ndarray) -> float:
-    a, b, c, d = points[:-1, :-1], points[1:, :-1], points[1:, 1:], points[:-1, 1:]
-    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1)
-                        + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
 
 
 @pytest.mark.parametrize("name", DESIGNS)

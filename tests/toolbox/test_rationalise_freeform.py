@@ -21,8 +21,9 @@ import pytest
 import shapely
 from scipy.spatial import cKDTree
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.nodes.helpers import run, texts, tree
 from tests.toolbox.freeform_designs import DESIGNS
+from tests.toolbox.strip_grids import grid, grid_area, items
 from torsal.nodes.developable.rationalise import Rationalise
 
 TOL = 0.02
@@ -37,19 +38,10 @@ def solved(name: str):
     return result
 
 
-def items(result, port: str) -> list:
-    return out(result, port)[(0,)]
 
 
-def grid(strip, nu: int = 241, nv: int = 25) -> np.ndarray:
-    u, v = np.meshgrid(np.linspace(0, 1, nu), np.linspace(0, 1, nv), indexing="ij")
-    return strip.point_at(u.ravel(), v.ravel()).reshape(nu, nv, 3)
 
 
-def grid_area(points: np.ndarray) -> float:
-    a, b, c, d = points[:-1, :-1], points[1:, :-1], points[1:, 1:], points[:-1, 1:]
-    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1)
-                        + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
 
 
 def distance_to_strip(strip, points: np.ndarray) -> np.ndarray:
@@ -83,7 +75,7 @@ def test_the_strips_are_within_the_tolerance_and_no_warning_says_otherwise(name)
     assert result.state == ("ok" if name == "saddle" else "warning"), texts(result)  # the wave: creases
     assert not any("not met" in t for t in texts(result))
     design = DESIGNS[name]
-    worst = max(design.distance(grid(s).reshape(-1, 3)).max() for s in items(result, "Strips"))
+    worst = max(design.distance(grid(s, 241, 25).reshape(-1, 3)).max() for s in items(result, "Strips"))
     assert worst <= TOL * design.unit
     # the node's certified deviation bounds the dense independent samples, and agrees with them
     reported = max(items(result, "Deviation"))
@@ -217,7 +209,7 @@ def test_neighbours_share_their_boundary_lifted_at_most_four_fifths_of_the_toler
     boundaries = items(solved(name), "Boundaries")
     t = np.linspace(0, 1, 401)
     for i, (lower, upper) in enumerate(itertools.pairwise(strips)):
-        top, bottom = grid(lower)[:, -1], grid(upper)[:, 0]
+        top, bottom = grid(lower, 241, 25)[:, -1], grid(upper, 241, 25)[:, 0]
         curve = boundaries[i + 1].point_at(t)
         for edge in (top, bottom):  # both edges run on the one boundary curve, end to end
             gap = np.linalg.norm(boundaries[i + 1].point_at(project(boundaries[i + 1], edge)) - edge, axis=1)
@@ -291,5 +283,5 @@ def test_a_bump_narrower_than_minwidth_gives_one_warning_with_where_and_how_far(
     assert far_strips >= 1 and np.abs(where[:far_strips, :2]).max() <= 1.0  # at the bump
     far = max(items(result, "Deviation"))
     assert f"{far:.4g}" in warnings[0]
-    independent = max(design.distance(grid(s).reshape(-1, 3)).max() for s in items(result, "Strips"))
+    independent = max(design.distance(grid(s, 241, 25).reshape(-1, 3)).max() for s in items(result, "Strips"))
     assert 0.002 < independent <= far

@@ -80,8 +80,7 @@ def run_node(node: Node, trees: list[DataTree], wired: list[bool] | None = None)
     context = active()
     if context is not None and context.budget is not None:  # the solve's calls, every node together
         context.budget.spend(matching.calls, lambda: _too_many_calls(
-            node, matching.matched, matching.calls, "counted in the solve") if matching.matched
-            else f"{node.name()} would run once")
+            node, matching.matched, matching.calls, "counted in the solve"))
     if context is not None and context.dry is not None and context.dry(node):
         return outputs  # planned and within its budgets: a dry solve (torsal check) stops here
     if not run_batched(node, matching, outputs):
