@@ -297,15 +297,25 @@ class ExportCutSheet(Node):
                         f"({_usage(shelf)})")
 
             def improve(stop, publish, progress):  # type: ignore[no-untyped-def]
-                """The true-shape layout, published when it takes less stock than the rows."""
+                """Each true-shape layout that takes less stock than the last shown, published as
+                the search finds it (the rows first), and the search's final one."""
+                shown = [shelf.stock_usage]
+
+                def show(layout: CutLayout, what: str) -> None:
+                    # the final one again when no better: its message says the search has ended
+                    if layout.stock_usage > shown[0] or (not what and shelf.stock_usage < layout.stock_usage
+                                                         == shown[0]):
+                        shown[0] = layout.stock_usage
+                        publish(outputs(layout, []), [f"TrueShape nesting{what}: {_usage(layout)}",
+                                                      WRITE_IS_FALSE, *_remarks(layout)])
+
                 try:
-                    nested = cutfiles.lay_out(curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop,
-                                              report=progress, **settings)
+                    nested = cutfiles.lay_out(
+                        curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop, report=progress,
+                        found=lambda layout: show(layout, ", searching"), **settings)
                 except (cutfiles.FileFailure, ValueError):
                     return
-                if nested.stock_usage > shelf.stock_usage:
-                    publish(outputs(nested, []), [f"TrueShape nesting: {_usage(nested)}",
-                                                  WRITE_IS_FALSE, *_remarks(nested)])
+                show(nested, "")
 
             self.improve_later(improve)
         return outputs(layout, files)
