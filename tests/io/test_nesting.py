@@ -365,3 +365,22 @@ def test_a_strip_is_cut_into_sheets_where_no_part_crosses_a_sheet_end():
     assert _cut(squares, 300.0, 10.0) == [(0.0, [0, 1]), (220.0, [2, 3]), (440.0, [4])]
     longer = {0: shapely.box(10, 10, 400, 110)}
     assert _cut(longer, 300.0, 10.0) == []
+
+
+def test_the_parts_kept_are_those_a_pairwise_check_keeps():
+    """200 random squares, some closer than the spacing, some off the room: the parts kept
+    (measured only against near ones, an STRtree) are those a check of every pair keeps,
+    largest first."""
+    from torsal.nodes.geometry.nesting import _valid
+
+    rng = np.random.default_rng(7)
+    corners, sides = rng.uniform(0, 1000, (200, 2)), rng.uniform(5, 40, 200)
+    polygons = {k: shapely.box(x, y, x + s, y + s)
+                for k, ((x, y), s) in enumerate(zip(corners, sides, strict=True))}
+    room = shapely.box(0, 0, 1000, 1000)
+    kept: list[int] = []
+    for i in sorted(polygons, key=lambda k: -polygons[k].area):
+        if room.covers(polygons[i]) and all(polygons[i].distance(polygons[j]) >= 10.0 for j in kept):
+            kept.append(i)
+    assert 20 < len(kept) < 200
+    assert _valid(polygons, room, 10.0) == kept

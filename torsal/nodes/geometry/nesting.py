@@ -307,14 +307,20 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
 def _valid(polygons: dict[int, shapely.Polygon], room: shapely.Polygon, spacing: float) -> list[int]:
     """The parts of a packing that keep the spacing and stay in ``room``, largest first
     (a part too close to one already kept is left out)."""
+    order = sorted(polygons, key=lambda k: -polygons[k].area)
+    tree = shapely.STRtree([polygons[i] for i in order])  # only near pairs are measured
     kept: list[int] = []
-    for i in sorted(polygons, key=lambda k: -polygons[k].area):
+    taken: set[int] = set()
+    for rank, i in enumerate(order):
         polygon = polygons[i]
         if not room.covers(polygon):
             continue
-        if any(polygon.distance(polygons[j]) < spacing for j in kept):
+        near = tree.query(polygon, predicate="dwithin", distance=spacing)
+        if any(int(k) in taken and int(k) != rank and polygon.distance(polygons[order[int(k)]]) < spacing
+               for k in near):
             continue
         kept.append(i)
+        taken.add(rank)
     return kept
 
 
