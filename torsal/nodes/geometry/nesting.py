@@ -52,6 +52,14 @@ a trial after a few reports of sparrow struggling at one width instead (determin
 the steps) made each trial cheap but lost trials that would have fitted: no faster overall.
 Packing the sheets as frames in one strip (a full-height bracket item per sheet) made one
 call, but sparrow moved the huge item slowly: 2-3 times its time for the plain strip.
+Measured next (two threads, load 3): the strip cut into sheets keeps 62 % of the Kaohsiung
+strips' stock where the strip is 73.7 % dense, 58 % for 50 random strips at 67.8 %; filling
+the cuts' holes with the last sheet's parts by a raster bottom-left search moved one part of
+6-13 (no gain, 1-2 s each); and sparrow took 12.4 s to pack 13 Kaohsiung strips (69 % of a
+sheet) into one sheet's length, more than the 5-13 s it takes to pack all 18 into a strip
+72 % dense. Kaohsiung's 72 % of the stock needs its first sheet 72.7 % full: a sheet packed
+by sparrow, which costs about the whole baseline, so its bar (1.5) is out of reach of
+spyrrow 0.9's strip-only interface (no obstacles, no warm start).
 
 Out of steps with parts left (many sheets, a small budget), what is left is packed into
 one last strip and cut into sheet lengths: each sheet takes the parts that end within a
