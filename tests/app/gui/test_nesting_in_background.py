@@ -11,7 +11,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 
 from tests.app.gui.test_live_solving import watch_event_loop
-from tests.support.fixtures_gui import EXAMPLES, wait_solved
+from tests.support.fixtures_gui import EXAMPLES, copy_fixture, wait_solved
 from torsal.nodes.io.formats import cutfiles
 
 
@@ -101,7 +101,6 @@ def test_clicking_a_part_on_the_sheets_highlights_it_and_its_strip_on_the_roof(q
     import numpy as np
     import shapely
 
-    from tests.gui.fixtures_gui import copy_fixture
     from torsal.app.gui.viewport.picking import STRIP_ACTOR
 
     assert window.open_file(copy_fixture(EXAMPLES / "kaohsiung-cut-sheets.graph", tmp_path), ask=False)
