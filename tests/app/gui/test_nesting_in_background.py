@@ -127,3 +127,45 @@ def test_clicking_a_part_on_the_sheets_highlights_it_and_its_strip_on_the_roof(q
                      _display(viewport, corner))
     qtbot.waitUntil(lambda: viewport.picker.picked is None, timeout=5000)
     assert STRIP_ACTOR not in viewport.plotter.renderer.actors
+    # the reverse: the middle of a strip the eye sees first along its ray
+    from torsal.app.gui.viewport.datasets import collect, pieces
+
+    eye = np.array(viewport.plotter.camera.position)
+    triangles = []
+    for strip in strips:
+        (piece,) = [p for p in pieces(collect([strip])) if p.kind == "surfaces"]
+        triangles.append(piece.points[piece.faces])
+    for index, strip in enumerate(strips):
+        target = np.asarray(strip.point_at(0.5, 0.5), dtype=float).reshape(3)
+        if _first_hit(eye, target - eye, triangles) == index:
+            break
+    else:
+        raise AssertionError("the eye sees no strip's middle first")
+    QTest.mouseClick(viewport.plotter, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
+                     _display(viewport, target))
+    qtbot.waitUntil(lambda: viewport.picker.picked is not None, timeout=5000)
+    assert viewport.picker.picked == ("cut", preview.layout.parts[index].id)
+    assert STRIP_ACTOR in viewport.plotter.renderer.actors
+
+
+def _first_hit(origin, direction, meshes):  # type: ignore[no-untyped-def]
+    """Which of ``meshes`` (``(m, 3, 3)`` triangles each) the ray meets first (Möller-Trumbore)."""
+    import numpy as np
+
+    best, first = np.inf, None
+    for k, tri in enumerate(meshes):
+        a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+        e1, e2 = b - a, c - a
+        h = np.cross(direction, e2)
+        det = np.einsum("ij,ij->i", e1, h)
+        ok = np.abs(det) > 1e-12
+        f = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        s = origin - a
+        u = f * np.einsum("ij,ij->i", s, h)
+        q = np.cross(s, e1)
+        v = f * (q @ direction)
+        t = f * np.einsum("ij,ij->i", e2, q)
+        hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
+        if hit.any() and t[hit].min() < best:
+            best, first = float(t[hit].min()), k
+    return first
