@@ -6,7 +6,8 @@ too, so :func:`nest` first packs every part into one strip as tall as the sheet'
 height and cuts it into sheet lengths as sparrow shortens it (:func:`_cut`: each sheet
 starts a margin before the first part not yet placed and takes the parts that end within
 it); each cut layout that takes less stock than the last is told to ``found`` at once (the
-app redraws it). When the best cut keeps :data:`CUT_KEEPS` of the strip's density, that is
+app redraws it), and so is, later, each one made of the sheets filled so far and the strip
+of the parts left cut after them. When the best cut keeps :data:`CUT_KEEPS` of the strip's density, that is
 the layout (many parts small beside the sheet: panels). Otherwise (parts a third of a
 sheet long, as the Kaohsiung strips: every cut line crosses four or five of them and the
 cut loses a tenth of the density) it fills the sheets one at a time ("pack, cut, re-pack"),
@@ -431,26 +432,27 @@ def nest(
     cut: list[tuple[tuple[int, float], Nested]] = []
 
     def cut_into_sheets(packing: dict[int, tuple[float, tuple[float, float]]]) -> None:
-        """Keep (and tell ``found``) the strip ``packing`` of every part cut into sheet
-        lengths when that takes less stock than the one kept."""
+        """Keep (and tell ``found``) the sheets filled so far and the strip ``packing`` of
+        every part left cut into sheet lengths after them, when that takes less stock than
+        the layout kept."""
         polygons = polygons_of(packing)
-        if len(polygons) < n or len(_valid(polygons, open_room, spacing)) < n:
+        if len(polygons) < len(remaining) or len(_valid(polygons, open_room, spacing)) < len(polygons):
             return
         sheets = _cut(polygons, width, margin)
         if not sheets:
             return
         start, members = sheets[-1]
-        stock = (len(sheets), max(polygons[i].bounds[2] for i in members) - start)
+        stock = (sheet + len(sheets), max(polygons[i].bounds[2] for i in members) - start)
         if cut and stock >= cut[0][0]:
             return
-        cut_sheet, cut_angle, cut_shift = np.full(n, -1, dtype=np.intp), np.zeros(n), np.zeros((n, 2))
+        cut_sheet, cut_angle, cut_shift = sheet_of.copy(), angle.copy(), shift.copy()
         for k, (start, members) in enumerate(sheets):
             for i in members:
                 a, t = packing[i]
-                cut_sheet[i], cut_angle[i] = k, a
+                cut_sheet[i], cut_angle[i] = sheet + k, a
                 lift = np.add(t, (margin - spacing - start, margin - spacing))
                 cut_shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
-        layout = Nested(cut_sheet, cut_angle, cut_shift, len(sheets), seconds=time.perf_counter() - run.start,
+        layout = Nested(cut_sheet, cut_angle, cut_shift, stock[0], seconds=time.perf_counter() - run.start,
                         steps=run.used)
         cut[:] = [(stock, layout)]
         if found is not None:
@@ -463,14 +465,14 @@ def nest(
         first = sheet == 0
         packing = _strip(centred, remaining, strip_height, spacing, orientations,
                          steps(1.0 if last else FIRST_SHARE), attempt_seed, run,
-                         better=cut_into_sheets if first else None)
+                         better=cut_into_sheets)
         attempt_seed += 1
         if packing is None:
             break
         # the last sheet's length is what goes back to stock: try other seeds while steps last
         while last and not run.stopped and run.left() >= RETRY:
             again = _strip(centred, remaining, strip_height, spacing, orientations, run.left(),
-                           attempt_seed, run, better=cut_into_sheets if first else None)
+                           attempt_seed, run, better=cut_into_sheets)
             attempt_seed += 1
             if again is not None and length(again) < length(packing):
                 packing = again
