@@ -135,6 +135,10 @@ GRACE = 60.0
 #: Threads sparrow searches on, whatever the machine: with a fixed count its reports come in
 #: the same order for the same seed (they differ from one thread count to another).
 WORKERS = 2
+#: A layout on the way is told to ``found`` when it uses this much more of the stock than
+#: the last one told (sparrow shortens a strip by a millimetre at a time: each would be
+#: engraved and redrawn).
+TELL = 0.005
 #: The strip of every part, cut into sheet lengths, is the layout when it keeps at least
 #: this share of the strip's density; below, sheets are filled one at a time.
 CUT_KEEPS = 0.9
@@ -383,8 +387,9 @@ def nest(
 
     ``orientations`` lists the allowed turns in degrees (``None``: free rotation).
     Every shape must fit the usable sheet in some allowed turn (the caller checks).
-    ``found`` is told each complete layout that takes less stock than the last it was told
-    (the strip of every part cut into sheets, as sparrow shortens it), before the end.
+    ``found`` is told each complete layout that uses :data:`TELL` more of the stock than the
+    last it was told (the strip of every part cut into sheets, as sparrow shortens it), before
+    the end.
     """
     run = _Budget(budget, stop, report)
     n = len(shapes)
@@ -430,6 +435,7 @@ def nest(
 
     #: the strip of every part cut into sheets, the least stock so far: ((sheets, reach), layout)
     cut: list[tuple[tuple[int, float], Nested]] = []
+    told = [-math.inf]  # the stock usage of the last layout told to found
 
     def cut_into_sheets(packing: dict[int, tuple[float, tuple[float, float]]]) -> None:
         """Keep (and tell ``found``) the sheets filled so far and the strip ``packing`` of
@@ -455,7 +461,9 @@ def nest(
         layout = Nested(cut_sheet, cut_angle, cut_shift, stock[0], seconds=time.perf_counter() - run.start,
                         steps=run.used)
         cut[:] = [(stock, layout)]
-        if found is not None:
+        usage = float(area.sum()) / (((stock[0] - 1) * width + stock[1]) * height)
+        if found is not None and usage >= told[0] + TELL:
+            told[0] = usage
             found(layout)
 
     cut_is_enough = False
