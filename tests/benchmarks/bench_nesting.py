@@ -150,6 +150,9 @@ def _usage_from_files(files: list[Path], width: float, height: float) -> tuple[f
 
 
 def _lay_out(items, units, nesting, folder: Path, budget: float, found=None):  # type: ignore[no-untyped-def]
+    from torsal.nodes.geometry import nesting as engine
+
+    engine._PACKED.clear()  # packings cached by an earlier test of the same parts would be no search at all
     started = time.perf_counter()
     seen: list[tuple[float, float]] = []  # (seconds, stock usage) of each layout found on the way
     layout = cutfiles.lay_out(items, width=2500.0, height=1250.0, gap=10.0, units=units, nesting=nesting,
