@@ -20,6 +20,7 @@ from scipy.spatial import cKDTree
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
 from torsal.nodes.geometry.vec_ops import dot as _dot
+from torsal.nodes.geometry.vec_ops import extent
 
 from .strip_walk import StripWalk, strip_triangles
 from .watch import watch_check, watch_progress
@@ -118,7 +119,7 @@ class DevelopmentMap:
         tri = self.vertices2d[self.triangles]
         e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
         self._area2 = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # twice the signed area
-        size = float(np.ptp(self.vertices2d, axis=0).max()) or 1.0
+        size = float(extent(self.vertices2d).max()) or 1.0
         #: triangles with area: the only ones a point can be located in
         self.proper_area = 1e-13 * size * size
         self.proper = np.flatnonzero(self._area2 > self.proper_area)
@@ -233,7 +234,7 @@ class DevelopmentMap:
         bary = _closest_on_triangles(pts, g[:, 0], g[:, 1], g[:, 2])
         bound = np.linalg.norm(np.einsum("kj,kjd->kd", bary, g) - pts, axis=1)
         low, high = self._boxes3d
-        tie = TIE * (float(np.linalg.norm(np.ptp(self.vertices3d, axis=0))) or 1.0)
+        tie = TIE * (float(np.linalg.norm(extent(self.vertices3d))) or 1.0)
         chunk = max(1, 2_000_000 // len(low))
         check, progress = watch_check(), watch_progress()
         found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
@@ -324,7 +325,7 @@ class DevelopmentMap:
         plain = images[first]
         # a vertex is ambiguous when its candidate images lie apart (the seam)
         spread = np.maximum.reduceat(np.abs(images - plain[rows]).max(axis=1), first)
-        ambiguous = spread > TIE * (float(np.ptp(self.vertices2d, axis=0).max()) or 1.0)
+        ambiguous = spread > TIE * (float(extent(self.vertices2d).max()) or 1.0)
         if ambiguous.any():
             index = np.arange(k)
             starts = np.cumsum(counts) - counts
@@ -525,7 +526,7 @@ class DevelopmentMap:
         nxt = np.minimum(key + 1, len(pts) - 1)
         out = np.where(closing[:, None], pts[key], pts[key] + par[:, None] * (pts[nxt] - pts[key]))
         who = owner[key]
-        size = float(np.ptp(pts, axis=0).max()) or 1.0
+        size = float(extent(pts).max()) or 1.0
         step = np.linalg.norm(np.diff(out, axis=0), axis=1)
         twin = np.r_[False, (step <= 1e-12 * size) & (who[1:] == who[:-1])]  # a crossing at a vertex
         # of a twin pair keep the polyline's own end vertex exactly
@@ -558,7 +559,7 @@ class DevelopmentMap:
 def merge_repeats(ring: FloatArray) -> FloatArray:
     """The closed polygon without the points within :data:`REPEATED` of its size of the
     point before them (nor a last point that repeats the first)."""
-    size = float(np.ptp(ring, axis=0).max()) or 1.0
+    size = float(extent(ring).max()) or 1.0
     keep = np.r_[True, np.linalg.norm(np.diff(ring, axis=0), axis=1) > REPEATED * size]
     merged = ring[keep]
     if len(merged) > 1 and np.linalg.norm(merged[-1] - merged[0]) <= REPEATED * size:

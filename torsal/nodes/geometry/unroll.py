@@ -39,7 +39,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import bounds as coordinate_bounds
 from torsal.nodes.geometry.vec_ops import dot as _dot
+from torsal.nodes.geometry.vec_ops import extent
 
 from .area import gauss_legendre_01
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
@@ -158,7 +160,7 @@ class Development:
     def bounds(self) -> FloatArray:
         """Bounding rectangle ``[xmin, ymin, xmax, ymax]`` of the development."""
         pts = np.vstack([self.starts2d, self.ends2d])
-        return np.concatenate([pts.min(axis=0), pts.max(axis=0)])
+        return np.concatenate(coordinate_bounds(pts))
 
     @property
     def overlaps(self) -> bool:
@@ -225,7 +227,7 @@ def unroll_rulings(
     n = len(a)
     ruling = b - a
     length = np.linalg.norm(ruling, axis=1)
-    size = float(np.ptp(np.vstack([a, b]), axis=0).max())
+    size = float(extent(np.vstack([a, b])).max())
     zero = length <= 1e-12 * size
     tip_start, tip_end = bool(zero[0]) and n > 2, bool(zero[-1]) and n > 2
     inner = zero.copy()
@@ -323,7 +325,7 @@ def _development(
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]
     edges2d = np.linalg.norm(t2 - np.roll(t2, -1, axis=1), axis=2)
     edges3d = np.linalg.norm(t3 - np.roll(t3, -1, axis=1), axis=2)
-    diameter = float(np.linalg.norm(np.ptp(vertices3d, axis=0)))
+    diameter = float(np.linalg.norm(extent(vertices3d)))
     scale = np.where(edges3d > EDGE_COLLAPSED * diameter, edges3d, diameter)
     edge_error = float(np.max(np.abs(edges2d - edges3d) / scale))
     _look()
@@ -366,7 +368,7 @@ def edge_subdivisions(
     longest = max(MAX_RULINGS // segments, 2 * subdivisions)
     k1 = first = subdivisions
     coarse = start = surface.rulings(segments * k1 + 1)
-    size = float(np.ptp(coarse.reshape(-1, 3), axis=0).max()) or 1.0
+    size = float(extent(coarse.reshape(-1, 3)).max()) or 1.0
     k2 = 2 * k1
     first_error = np.inf
     check = watch_check()
@@ -482,7 +484,7 @@ def adaptive_parameters(
     sums = []
     for per in (k, 2 * k):
         rulings = surface.rulings(segments * per + 1)
-        size = size or float(np.ptp(rulings.reshape(-1, 3), axis=0).max()) or 1.0
+        size = size or float(extent(rulings.reshape(-1, 3)).max()) or 1.0
         chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (segments·per, 2)
         sums.append(chords.reshape(segments, per, 2).sum(axis=1))
     _look()
