@@ -5,7 +5,7 @@ import itertools
 import numpy as np
 import pytest
 
-from torsal.nodes.geometry.vec_ops import cross, every, largest, smallest, some
+from torsal.nodes.geometry.vec_ops import cross, every, largest, linalg_norm, smallest, some
 
 SHAPES = [
     ((1, 3), (1, 3)), ((2000, 3), (2000, 3)), ((5, 3), (3,)), ((3,), (4, 3)), ((2, 7, 3), (7, 3)),
@@ -55,3 +55,13 @@ def test_a_reduction_over_no_items_is_numpys():
     np.testing.assert_array_equal(every(empty > 0), (empty > 0).all(axis=1))
     with pytest.raises(ValueError):
         largest(empty)
+
+
+@pytest.mark.parametrize("coordinates", [1, 2, 3, 7, 9])
+def test_linalg_norm_is_numpys_norm_bit_for_bit(coordinates):
+    rng = np.random.default_rng(coordinates)
+    a = rng.standard_normal((4000, coordinates)) * 10.0 ** rng.uniform(-8, 8, (4000, coordinates))
+    a[0] = -0.0
+    np.testing.assert_array_equal(linalg_norm(a), np.linalg.norm(a, axis=-1))
+    triangles = rng.standard_normal((50, 3, coordinates))
+    np.testing.assert_array_equal(linalg_norm(triangles), np.linalg.norm(triangles, axis=2))
