@@ -114,12 +114,14 @@ def some(mask: np.ndarray, axis: int = -1) -> np.ndarray:
 def _fold(ufunc: np.ufunc, a: np.ndarray, axis: int) -> np.ndarray:
     """``ufunc.reduce(a, axis)`` for an exact, order-free ``ufunc`` (max, min, and, or), as
     one ``ufunc`` of whole arrays per item along the axis (meant for short axes)."""
-    items = np.moveaxis(a, axis, 0)
-    if len(items) == 0:  # (as the reduction: an identity, or its error)
+    axis %= a.ndim
+    count = a.shape[axis]
+    if count == 0:  # (as the reduction: an identity, or its error)
         return ufunc.reduce(a, axis=axis)
-    out = items[0].copy()
-    for item in items[1:]:
-        ufunc(out, item, out=out)
+    before = (slice(None),) * axis  # (the item k along the axis is a[before + (k,)])
+    out = a[(*before, 0)].copy()
+    for k in range(1, count):
+        ufunc(out, a[(*before, k)], out=out)
     return out
 
 
