@@ -1,0 +1,131 @@
+"""Cutting surfaces and meshes by planes: Contour (parallel planes Distance apart), Section (one plane)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from torsal.engine.node import LIST, In, Node, NodeWarning, Out
+from torsal.engine.types import GENERIC, INTEGER, NUMBER, PLANE, POINT, VECTOR
+from torsal.engine.values import UNIT_Z, WORLD_XY, Point
+from torsal.nodes.common.checks import count, direction, positive, xyz
+from torsal.nodes.common.convert import kernel_plane
+from torsal.nodes.common.geometry_checks import surface_or_mesh
+from torsal.nodes.common.values import CURVE
+from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves import Polyline
+from torsal.nodes.geometry.mesh_surface import MeshSurface
+from torsal.nodes.geometry.sections import Sectioner, grid_triangles
+from torsal.nodes.limits import MAX_DENSITY, MAX_DIVISIONS
+
+SHAPE_INPUT = In("Shape", GENERIC, "S", "The surface, mesh or mesh surface to cut.")
+DENSITY_INPUT = In("Density", INTEGER, "D", "A surface is cut on a grid of Density × Density points in "
+                   "(u, v) (2 or more); a mesh on its own triangles.", default=64)
+
+
+def _sectioner(value: Any, density: Any) -> Sectioner:
+    shape = surface_or_mesh("Shape", value, "faces to cut")
+    if isinstance(shape, MeshSurface):
+        return Sectioner(np.asarray(shape.mesh.vertices, dtype=float), np.asarray(shape.mesh.faces))
+    n = count("Density", density, least=2, limit=MAX_DENSITY)
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, n), np.linspace(0.0, 1.0, n), indexing="ij")
+    uv = np.stack([u.ravel(), v.ravel()], axis=1)
+
+    def on_surface(at: np.ndarray) -> np.ndarray:
+        return shape.point_at(at[:, 0], at[:, 1])
+
+    grid = on_surface(uv)
+    if not np.all(np.isfinite(grid)):
+        raise NodeWarning("Shape has points that are not finite numbers, so it cannot be cut")
+    return Sectioner(grid, grid_triangles(n, n), uv, on_surface)
+
+
+#: Chain ends closer than this share of the chain's size meet (a surface's seam, where the
+#: grid's first and last columns are the same points to rounding); shorter chains are points.
+ROUNDING = 1e-9
+
+
+def _curves(chains: list[tuple[np.ndarray, bool]]) -> list[Curve]:
+    """Polylines from the chains: consecutive repeats (a cut through a vertex) dropped, a
+    chain whose ends meet across a seam closed, a chain with no length (a plane touching
+    a pole) left out."""
+    curves: list[Curve] = []
+    for chain, _closed in chains:
+        keep = np.concatenate([[True], np.any(np.diff(chain, axis=0) != 0, axis=1)])
+        chain = chain[keep]
+        size = float(np.linalg.norm(np.ptp(chain, axis=0)))
+        if len(chain) < 2 or not size > ROUNDING * float(np.abs(chain).max(initial=0.0)):
+            continue
+        if np.linalg.norm(chain[-1] - chain[0]) <= ROUNDING * size:
+            chain[-1] = chain[0]  # closed exactly
+        curves.append(Polyline(chain))
+    return curves
+
+
+class Contour(Node):
+    """Cut a surface or mesh by parallel planes Distance apart: contour lines, or the
+    cutting pattern of a stack of ribs.
+
+    The planes are square to Direction and pass through Point + k·Distance·Direction for
+    every whole k that meets the shape. A surface is cut on a (u, v) grid of Density ×
+    Density points: each corner of a contour lies on the surface and on its plane to
+    rounding, the straight pieces between them stray by the grid's chord error (raise
+    Density for a closer fit). A mesh is cut exactly on its triangles. Each contour is a
+    polyline (closed when it closes); Levels gives each one's distance from Point along
+    Direction.
+    """
+
+    type_id = "surfaces.Contour"
+    nickname, aliases = "Contour", ("Contour", "contours", "ribs", "slice", "Mesh Contour", "waterfall")
+    inputs = (
+        SHAPE_INPUT,
+        In("Point", POINT, "P", "A point the first plane passes through.", default=Point(0.0, 0.0, 0.0)),
+        In("Direction", VECTOR, "N", "The planes' normal: the direction the contours are stacked in.",
+           default=UNIT_Z),
+        In("Distance", NUMBER, "D", "The distance between neighbouring planes, in model units.", default=1.0),
+        DENSITY_INPUT,
+    )
+    outputs = (
+        Out("Curves", CURVE, "C", "The contours, from the lowest plane up.", access=LIST),
+        Out("Levels", NUMBER, "L", "Each contour's distance from Point along Direction.", access=LIST),
+    )
+
+    def solve(self, shape: Any, point: Any, normal: Any, distance: Any, density: Any
+              ) -> tuple[list[Curve], list[float]]:
+        origin = xyz("Point", point)
+        n = direction("Direction", normal)
+        n = n / np.linalg.norm(n)
+        step = positive("Distance", distance)
+        cutter = _sectioner(shape, density)
+        height = (cutter.points - origin) @ n
+        low, high = math.ceil(height.min() / step), math.floor(height.max() / step)
+        if high - low + 1 > MAX_DIVISIONS:
+            raise NodeWarning(f"Distance {step:g} would cut {high - low + 1:,} contours; at most "
+                              f"{MAX_DIVISIONS:,}: give a longer Distance")
+        curves: list[Curve] = []
+        levels: list[float] = []
+        for k in range(low, high + 1):  # one vectorised cut per plane
+            made = _curves(cutter.section(origin + k * step * n, n))
+            curves += made
+            levels += [k * step] * len(made)
+        return curves, levels
+
+
+class Section(Node):
+    """Cut a surface or mesh by one plane: the section curves where they meet.
+
+    As Contour, for a single Plane: a surface is cut on a (u, v) grid of Density ×
+    Density points (every corner on the surface and on the plane), a mesh on its
+    triangles. A shape the plane misses gives no curves.
+    """
+
+    type_id = "surfaces.Section"
+    nickname, aliases = "Sec", ("Brep | Plane", "Mesh | Plane", "section", "cut by plane", "Section")
+    inputs = (SHAPE_INPUT, In("Plane", PLANE, "P", "The cutting plane.", default=WORLD_XY), DENSITY_INPUT)
+    outputs = (Out("Curves", CURVE, "C", "The section curves.", access=LIST),)
+
+    def solve(self, shape: Any, plane: Any, density: Any) -> list[Curve]:
+        frame = kernel_plane("Plane", plane)
+        return _curves(_sectioner(shape, density).section(frame.origin, frame.z))
