@@ -169,6 +169,10 @@ GLYPHS: dict[str, str] = {
     "surfaces.Section": path(PATCH, INK, 1.2, SOFT)
     + poly([(9, 2.5), (15, 5), (15, 22), (9, 19.5)], INK, 0.9, "none", True)
     + path("M12,8.5 C12.5,12 11.5,15 12,18.5", ACCENT, 2.2),
+    "surfaces.Sweep1": path("M4,19 C8,19 14,16 18,6", ACCENT, 1.6)
+    + path("M2,17 C2,14 6,14 6,17 C6,20 2,20 2,17 Z", INK, 1.3, SOFT)
+    + path("M15,7 C15,4 21,4 21,7 C21,10 15,10 15,7 Z", INK, 1.3, SOFT)
+    + path("M4,14.5 C9,14 13,11 16,4.5 M4,19.8 C9,20 15,17 20.5,8.5", INK, 0.9),
     "lists.SimplifyTree": line(3, 12, 9, 12, ACCENT, 1.4, "1.5,1.2")
     + path("M9,12 C12,12 12,6 15,6 M9,12 C12,12 12,18 15,18", INK, 1)
     + line(16, 6, 21, 6, INK, 2)

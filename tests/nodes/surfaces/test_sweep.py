@@ -1,0 +1,67 @@
+"""Sweep1: a circle swept along an arc is a piece of a torus, along a line a cylinder (closed forms)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tests.nodes.helpers import out, run, texts, tree
+from torsal.nodes.geometry.curves import Arc, Circle, Line, Polyline
+from torsal.nodes.geometry.sweep import rotation_minimising_frames
+from torsal.nodes.geometry.vectors import Plane
+from torsal.nodes.surfaces.sweep import Sweep1
+
+GRID = np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 41))
+
+
+def _sweep(rail, profile, **inputs):
+    result = run(Sweep1(), Rail=tree({(0,): [rail]}), Profile=tree({(0,): [profile]}), **inputs)
+    assert result.state == "ok", texts(result)
+    return out(result)[(0,)][0].point_at(GRID[0].ravel(), GRID[1].ravel())
+
+
+def test_a_circle_swept_along_a_quarter_arc_is_a_quarter_torus():
+    big, small = 5.0, 1.0
+    rail = Arc(Plane.from_normal([0, 0, 0], [0, 0, 1]), big, 0.0, math.pi / 2)
+    profile = Circle(Plane.from_axes([big, 0, 0], [1, 0, 0], [0, 0, 1]), small)  # square to the rail
+    p = _sweep(rail, profile)
+    from_tube_centre = np.hypot(np.hypot(p[:, 0], p[:, 1]) - big, p[:, 2])
+    assert np.abs(from_tube_centre - small).max() < 1e-6 * small  # 3.8e-7 measured at 33 sections
+    angle = np.arctan2(p[:, 1], p[:, 0])
+    assert angle.min() > -1e-12 and abs(angle.max() - math.pi / 2) < 1e-12
+
+
+def test_a_profile_away_from_the_rail_keeps_its_place_a_square_along_a_line_is_a_tube():
+    rail = Line([0, 0, 0], [0, 0, 7])
+    square = Polyline([[2, -1, 0], [4, -1, 0], [4, 1, 0], [2, 1, 0]], closed=True)
+    p = _sweep(rail, square, Sections=4)
+    assert p[:, 2].min() > -1e-12 and p[:, 2].max() < 7 + 1e-12
+    # every point keeps the square's x and y: the profile slides along z without turning
+    on_sides = (np.isclose(p[:, 0], 2) | np.isclose(p[:, 0], 4)) & (np.abs(p[:, 1]) <= 1 + 1e-12)
+    on_ends = (np.isclose(np.abs(p[:, 1]), 1)) & (p[:, 0] >= 2 - 1e-12) & (p[:, 0] <= 4 + 1e-12)
+    assert np.all(on_sides | on_ends)
+
+
+def test_rotation_minimising_frames_along_a_helix_turn_from_frenets_by_the_integral_of_torsion():
+    # the helix (cos t, sin t, t/2): curvature 0.8, torsion 0.4, speed sqrt(1.25); the
+    # rotation-minimising normal turns away from the Frenet normal by the torsion's integral
+    t = np.linspace(0, 4 * math.pi, 400)
+    speed = math.sqrt(1.25)
+    points = np.stack([np.cos(t), np.sin(t), 0.5 * t], axis=1)
+    tangents = np.stack([-np.sin(t), np.cos(t), np.full_like(t, 0.5)], axis=1) / speed
+    frenet_n = np.stack([-np.cos(t), -np.sin(t), np.zeros_like(t)], axis=1)
+    frenet_b = np.cross(tangents, frenet_n)
+    normals = rotation_minimising_frames(points, tangents, frenet_n[0])
+    turned = np.arctan2(np.einsum("ij,ij->i", normals, frenet_b), np.einsum("ij,ij->i", normals, frenet_n))
+    expected = -0.4 * speed * t  # −∫τ ds
+    wrapped = np.angle(np.exp(1j * (turned - expected)))
+    assert np.abs(wrapped).max() < 1e-8  # 1.2e-9 rad measured (400 stations over two turns)
+    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-12)
+
+
+def test_sweep_refuses_three_sections_naming_sections():
+    result = run(Sweep1(), Rail=tree({(0,): [Line([0, 0, 0], [0, 0, 1])]}),
+                 Profile=tree({(0,): [Line([0, 0, 0], [1, 0, 0])]}), Sections=3)
+    assert result.state == "warning"
+    assert texts(result)[0].startswith("Sections must be at least 4")
