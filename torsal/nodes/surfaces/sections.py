@@ -42,6 +42,10 @@ def _sectioner(value: Any, density: Any) -> Sectioner:
     return Sectioner(grid, grid_triangles(n, n), uv, on_surface)
 
 
+#: Planes × points (grid points or mesh vertices) one Contour may cut: every plane measures
+#: every point (6 s at the cap, 4,761 contours of a sphere, on the 2-core machine at load 9).
+MAX_CUT_WORK = 20_000_000
+
 #: Chain ends closer than this share of the chain's size meet (a surface's seam, where the
 #: grid's first and last columns are the same points to rounding); shorter chains are points.
 ROUNDING = 1e-9
@@ -101,15 +105,18 @@ class Contour(Node):
         cutter = _sectioner(shape, density)
         height = (cutter.points - origin) @ n
         low, high = math.ceil(height.min() / step), math.floor(height.max() / step)
-        if high - low + 1 > MAX_DIVISIONS:
-            raise NodeWarning(f"Distance {step:g} would cut {high - low + 1:,} contours; at most "
-                              f"{MAX_DIVISIONS:,}: give a longer Distance")
+        planes = high - low + 1
+        most = min(MAX_DIVISIONS, MAX_CUT_WORK // len(cutter.points))
+        if planes > most:
+            raise NodeWarning(f"Distance {step:g} would cut {planes:,} contours; at most {most:,} on this "
+                              "shape: give a longer Distance")
         curves: list[Curve] = []
         levels: list[float] = []
-        for k in range(low, high + 1):  # one vectorised cut per plane
-            made = _curves(cutter.section(origin + k * step * n, n))
+        heights = np.arange(low, high + 1) * step
+        for level, chains in zip(heights.tolist(), cutter.sections(origin, n, heights), strict=True):
+            made = _curves(chains)
             curves += made
-            levels += [k * step] * len(made)
+            levels += [level] * len(made)
         return curves, levels
 
 
