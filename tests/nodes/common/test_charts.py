@@ -7,7 +7,7 @@ import json
 import numpy as np
 from PIL import Image
 
-from tests.nodes.helpers import run
+from tests.support.node_helpers import run
 from torsal.nodes.common.charts import RECIPE_KEY, read_recipe, render
 from torsal.nodes.display.plot import Plot
 

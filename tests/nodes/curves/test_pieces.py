@@ -9,7 +9,7 @@ import pytest
 import shapely
 from shapely.ops import linemerge
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.nodes.curves.pieces import Explode, JoinCurves, Shatter
 from torsal.nodes.geometry.curves import Arc, Circle, Line, NurbsCurve, Polyline
 from torsal.nodes.geometry.curves.pieces import PolyCurve, SubCurve

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.nodes.lists.paths import PathMapper, SimplifyTree, TreeBranch, TrimTree
 
 GRID = tree({(0, 0): ["a", "b", "c"], (0, 1): ["d", "e", "f"]})  # two rows of three

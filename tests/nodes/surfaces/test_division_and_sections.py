@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.engine.values import Plane, Point, Vector
 from torsal.nodes.geometry.curves import Polyline
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface

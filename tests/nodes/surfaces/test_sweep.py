@@ -6,9 +6,8 @@ import math
 
 import numpy as np
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.nodes.geometry.curves import Arc, Circle, Line, Polyline
-from torsal.nodes.geometry.sweep import rotation_minimising_frames
 from torsal.nodes.geometry.vectors import Plane
 from torsal.nodes.surfaces.sweep import Sweep1
 
@@ -41,23 +40,6 @@ def test_a_profile_away_from_the_rail_keeps_its_place_a_square_along_a_line_is_a
     on_sides = (np.isclose(p[:, 0], 2) | np.isclose(p[:, 0], 4)) & (np.abs(p[:, 1]) <= 1 + 1e-12)
     on_ends = (np.isclose(np.abs(p[:, 1]), 1)) & (p[:, 0] >= 2 - 1e-12) & (p[:, 0] <= 4 + 1e-12)
     assert np.all(on_sides | on_ends)
-
-
-def test_rotation_minimising_frames_along_a_helix_turn_from_frenets_by_the_integral_of_torsion():
-    # the helix (cos t, sin t, t/2): curvature 0.8, torsion 0.4, speed sqrt(1.25); the
-    # rotation-minimising normal turns away from the Frenet normal by the torsion's integral
-    t = np.linspace(0, 4 * math.pi, 400)
-    speed = math.sqrt(1.25)
-    points = np.stack([np.cos(t), np.sin(t), 0.5 * t], axis=1)
-    tangents = np.stack([-np.sin(t), np.cos(t), np.full_like(t, 0.5)], axis=1) / speed
-    frenet_n = np.stack([-np.cos(t), -np.sin(t), np.zeros_like(t)], axis=1)
-    frenet_b = np.cross(tangents, frenet_n)
-    normals = rotation_minimising_frames(points, tangents, frenet_n[0])
-    turned = np.arctan2(np.einsum("ij,ij->i", normals, frenet_b), np.einsum("ij,ij->i", normals, frenet_n))
-    expected = -0.4 * speed * t  # −∫τ ds
-    wrapped = np.angle(np.exp(1j * (turned - expected)))
-    assert np.abs(wrapped).max() < 1e-8  # 1.2e-9 rad measured (400 stations over two turns)
-    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-12)
 
 
 def test_sweep_refuses_three_sections_naming_sections():
