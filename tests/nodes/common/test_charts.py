@@ -31,3 +31,11 @@ def test_a_recipe_drawn_at_another_size_is_laid_out_for_it():
     # the axes fill each figure (tight layout for that size), not a scaled copy of one layout
     small_axes, wide_axes = small.axes[0].get_position(), wide.axes[0].get_position()
     assert wide_axes.width > small_axes.width
+
+
+def test_a_title_with_dollar_signs_is_drawn_as_typed_not_as_maths():
+    result = run(Plot(), Values=[1.0, 2.0], Title="$x^{$ per panel")  # broken TeX if read as maths
+    assert result.state == "ok"
+    figure = render({"kind": "line", "y": [1.0, 2.0], "title": "$x^{$ per panel"})
+    figure.canvas.draw()
+    assert figure.axes[0].title.get_text() == r"\$x^{\$ per panel"  # matplotlib's escaped dollars

@@ -106,7 +106,14 @@ class PlotArea(QScrollArea):
             size = self.chart_size()
             if size != self.drawn_size:
                 self.drawn_size = size
-                image = chart_image(self.recipe, size, self.devicePixelRatioF())
+                try:
+                    image = chart_image(self.recipe, size, self.devicePixelRatioF())
+                except (ValueError, TypeError, OverflowError, RuntimeError, MemoryError):
+                    # a recipe matplotlib cannot draw (a title of broken $math$ in a PNG
+                    # from elsewhere): show the image as written, scaled, instead
+                    self.recipe = None
+                    self._update()
+                    return
                 self.label.setPixmap(QPixmap.fromImage(image))
             self.label.setToolTip("Drawn to fit the tab — click for the image as written, 1:1")
             return

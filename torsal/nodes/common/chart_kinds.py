@@ -26,11 +26,16 @@ MAX_VALUES = 1_000_000
 MAX_TEXT = 1_000
 
 
+def _literal(text: str) -> str:
+    """``text`` shown as typed: a ``$`` is a dollar sign, not the start of matplotlib's maths."""
+    return text.replace("$", r"\$")
+
+
 def _line(axes: Any, r: dict[str, Any]) -> None:
     y = np.asarray(r["y"], dtype=float)
     x = np.arange(len(y))
     axes.plot(x, y, color="#d55e00", linewidth=1.5, marker="o" if len(y) <= 60 else None, markersize=3)
-    axes.set_title(r["title"])
+    axes.set_title(_literal(r["title"]))
     axes.set_xlabel("Index")
     axes.set_ylabel("Value")
     axes.grid(True, alpha=0.3)
@@ -46,7 +51,7 @@ def _warp(axes: Any, r: dict[str, Any]) -> None:
                   label=f"over tolerance ({int(over.sum())})")
     axes.axhline(tolerance, color="#d55e00", linestyle="--", linewidth=1.0,
                  label=f"tolerance {tolerance:g} rad")
-    axes.set_title(r["title"])
+    axes.set_title(_literal(r["title"]))
     axes.set_xlabel("Distance along the strip" if r["along"] else "Ruling")
     axes.set_ylabel("Warp angle, rad")
     axes.set_ylim(bottom=0.0)
@@ -63,7 +68,7 @@ def _histogram(axes: Any, r: dict[str, Any]) -> None:
         axes.axvline(tolerance, color="#0072b2", linestyle="--", linewidth=1.2,
                      label=f"tolerance {tolerance:g}")
         axes.legend(loc="upper right")
-    axes.set_title(r["title"])
+    axes.set_title(_literal(r["title"]))
     axes.set_xlabel(f"{name}, 1/unit" if name != "gaussian" else "gaussian, 1/unit²")
     axes.set_ylabel("Grid points")
     axes.grid(True, axis="y", alpha=0.3)
