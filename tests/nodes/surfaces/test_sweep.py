@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from tests.support.node_helpers import out, run, texts, tree
-from torsal.nodes.geometry.curves import Arc, Circle, Line, Polyline
+from torsal.nodes.geometry.curves import Arc, Circle, Line, NurbsCurve, Polyline
 from torsal.nodes.geometry.vectors import Plane
 from torsal.nodes.surfaces.sweep import Sweep1
 
@@ -47,3 +47,24 @@ def test_sweep_refuses_three_sections_naming_sections():
                  Profile=tree({(0,): [Line([0, 0, 0], [1, 0, 0])]}), Sections=3)
     assert result.state == "warning"
     assert texts(result)[0].startswith("Sections must be at least 4")
+
+
+def test_a_sweep_along_a_closed_knotted_rail_closes_its_last_section_onto_its_first():
+    # a (2, 3) torus knot's curve: its torsion leaves plain rotation-minimising frames turned
+    # after one round; the sweep shares that turn out along the rail
+    t = np.linspace(0, 2 * np.pi, 13)[:-1]
+    points = np.stack([(3 + np.cos(3 * t)) * np.cos(2 * t), (3 + np.cos(3 * t)) * np.sin(2 * t),
+                       np.sin(3 * t)], axis=1)
+    rail = NurbsCurve(points, degree=3, periodic=True)
+    start, along = rail.point_at(0.0), rail.tangent_at(0.0)
+    side = np.cross(along, [0.0, 0.0, 1.0])
+    side /= np.linalg.norm(side)
+    up = np.cross(along, side)
+    corners = [start + 0.3 * side, start + 0.3 * up, start - 0.3 * side, start - 0.3 * up]
+    square = Polyline(corners, closed=True)
+    result = run(Sweep1(), Rail=tree({(0,): [rail]}), Profile=tree({(0,): [square]}), Sections=40)
+    assert result.state == "ok", texts(result)
+    surface = out(result)[(0,)][0]
+    u = np.linspace(0, 1, 17)
+    first, last = surface.point_at(u, np.zeros_like(u)), surface.point_at(u, np.ones_like(u))
+    assert np.abs(first - last).max() < 1e-9 * 4  # the knot is about 4 across

@@ -47,11 +47,25 @@ def swept_sections(rail: Curve, profile: Curve, count: int) -> list[Curve]:
     tangents = unit(rail.tangent_at(t))
     first = perpendicular(tangents[:1])[0]
     normals = rotation_minimising_frames(points, tangents, first)
+    if rail.closed:
+        normals = _closed_up(normals, tangents, t)
     binormals = np.cross(tangents, normals)
     start = _frame(points[0], normals[0], binormals[0], tangents[0])
     to_start = np.linalg.inv(start)
     return [profile.transformed(_frame(o, n, b, tg) @ to_start)
             for o, n, b, tg in zip(points, normals, binormals, tangents, strict=True)]
+
+
+def _closed_up(normals: FloatArray, tangents: FloatArray, t: FloatArray) -> FloatArray:
+    """Normals of a closed rail turned about their tangents, by a share of the angle the
+    last frame lies off the first that grows evenly along the rail, so the frames meet
+    again after one round (a closed space curve's rotation-minimising frames need not)."""
+    end = tangents[-1]
+    off = np.arctan2(np.cross(normals[-1], normals[0]) @ end, normals[-1] @ normals[0])
+    angle = off * (t - t[0]) / (t[-1] - t[0])
+    turned = (np.cos(angle)[:, None] * normals
+              + np.sin(angle)[:, None] * np.cross(tangents, normals))  # Rodrigues: n ⟂ tangent
+    return unit(turned)
 
 
 def _frame(origin: FloatArray, x: FloatArray, y: FloatArray, z: FloatArray) -> FloatArray:

@@ -30,9 +30,10 @@ class Sweep1(Node):
     rotation-minimising frames, never twisting about the rail, so a profile swept along
     a flat rail stays square to its plane. The surface is lofted through Sections copies
     of the profile equally spaced along the rail (u along the profile, v along the rail);
-    more Sections follow a sharply bending rail more closely. On a closed space rail the
-    frames need not meet again after one round, so the last copy can be turned against
-    the first. A sweep is developable only in special cases (a straight profile along a
+    more Sections follow a sharply bending rail more closely. On a closed rail the frames
+    are turned evenly along the way by the angle they would miss after one round (a
+    closed space curve's rotation-minimising frames need not meet), so the last copy is
+    the first and the sweep closes. A sweep is developable only in special cases (a straight profile along a
     flat rail, which gives a cylinder or a plane); check one with Surface Analysis.
     """
 
