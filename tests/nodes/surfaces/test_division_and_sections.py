@@ -13,6 +13,7 @@ from tests.support.node_helpers import out, run, texts, tree
 from torsal.engine.values import Plane, Point, Vector
 from torsal.nodes.geometry.curves import Polyline
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
 from torsal.nodes.surfaces.division import DivideSurface
 from torsal.nodes.surfaces.primitives import Sphere
 from torsal.nodes.surfaces.sections import Contour, Section
@@ -99,3 +100,18 @@ def test_contour_refuses_a_zero_distance_naming_it():
     result = run(Contour(), Shape=tree({(0,): [_sphere(1.0)]}), Distance=0.0)
     assert result.state == "warning"
     assert texts(result)[0].startswith("Distance must be a positive length")
+
+
+def test_a_section_of_a_trimmed_surface_keeps_only_the_part_inside_the_trim():
+    corners = np.array([[[0, 0, 0], [0, 4, 0]], [[4, 0, 0], [4, 4, 0]]], float)
+    square = NurbsSurface(corners, degree_u=1, degree_v=1)
+    around = np.linspace(0, 2 * np.pi, 401)
+    loop = np.stack([0.5 + 0.4 * np.cos(around), 0.5 + 0.4 * np.sin(around)], axis=1)
+    disc = TrimmedSurface(square, loop)
+    plane = Plane(Point(2.5, 0, 0), Vector(0, 1, 0), Vector(0, 0, 1))  # x = 2.5, 0.5 from the disc's centre
+    (chord,) = _items(run(Section(), Shape=tree({(0,): [disc]}), Plane=plane))
+    # the disc of radius 1.6 round (2, 2), cut 0.5 from its centre (its trim a 400-gon: 5e-5 off the circle)
+    assert chord.length == pytest.approx(2 * math.sqrt(1.6**2 - 0.5**2), abs=2e-4)
+    ends = chord.points[[0, -1]]
+    assert np.allclose(ends[:, 0], 2.5, atol=1e-12)
+    assert np.abs(np.hypot(ends[:, 0] - 2, ends[:, 1] - 2) - 1.6).max() < 1e-4

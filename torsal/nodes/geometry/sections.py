@@ -17,6 +17,7 @@ the straight pieces between them stray from the true curve (by the grid's chord 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize.elementwise import find_root
@@ -47,6 +48,15 @@ def _edges(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return edges, inverse.reshape(-1, 3)
 
 
+class Chain(NamedTuple):
+    """One section polyline: its points (a closed one repeats its first), and on a
+    parametric surface their (u, v)."""
+
+    points: FloatArray
+    closed: bool
+    uv: FloatArray | None
+
+
 class Sectioner:
     """Cuts one triangle mesh (or surface grid) by many planes, sharing its edge table."""
 
@@ -57,25 +67,25 @@ class Sectioner:
         self.edges, self.face_edges = _edges(self.faces)
         self.uv, self.surface = uv, surface
 
-    def section(self, origin: FloatArray, normal: FloatArray) -> list[tuple[FloatArray, bool]]:
+    def section(self, origin: FloatArray, normal: FloatArray) -> list[Chain]:
         """The section by the plane through ``origin`` with unit ``normal``: a list of
         ``(points (n, 3), closed)`` polylines (a closed one repeats its first point)."""
         return self.sections(origin, normal, np.zeros(1))[0]
 
     def sections(self, origin: FloatArray, normal: FloatArray, levels: FloatArray
-                 ) -> list[list[tuple[FloatArray, bool]]]:
+                 ) -> list[list[Chain]]:
         """The sections by the planes ``level`` along unit ``normal`` from ``origin``, one
         list of polylines per level. The levels are cut together in blocks (one pass over
         the mesh per block, one root search for every crossing of the block)."""
         height = (self.points - origin) @ normal
         block = max(1, _BLOCK // max(len(self.edges), 1))
-        out: list[list[tuple[FloatArray, bool]]] = []
+        out: list[list[Chain]] = []
         for first in range(0, len(levels), block):
             out += self._block(height, origin, normal, np.asarray(levels[first:first + block], dtype=float))
         return out
 
     def _block(self, height: FloatArray, origin: FloatArray, normal: FloatArray, levels: FloatArray
-               ) -> list[list[tuple[FloatArray, bool]]]:
+               ) -> list[list[Chain]]:
         above = height[None, :] >= levels[:, None]  # (levels, points)
         a, b = self.edges[:, 0], self.edges[:, 1]
         cut = above[:, a] != above[:, b]  # (levels, edges)
@@ -90,20 +100,20 @@ class Sectioner:
         # each cut face has exactly two cut edges (the sign changes an even number of times)
         pairs = self.face_edges[face][cut_faces[face_level, face]].reshape(-1, 2)
         segments = node[face_level[:, None] * edge_count + pairs]
-        crossings = self._crossings(edge_of, height, levels[level_of], origin, normal)
-        out: list[list[tuple[FloatArray, bool]]] = [[] for _ in levels]
+        crossings, uv = self._crossings(edge_of, height, levels[level_of], origin, normal)
+        out: list[list[Chain]] = [[] for _ in levels]
         for walk, closed in _walks(segments, len(cut_ids)):  # one chain of one level each
-            out[level_of[walk[0]]].append((crossings[walk], closed))
+            out[level_of[walk[0]]].append(Chain(crossings[walk], closed, None if uv is None else uv[walk]))
         return out
 
     def _crossings(self, ids: np.ndarray, height: FloatArray, level: FloatArray, origin: FloatArray,
-                   normal: FloatArray) -> FloatArray:
-        """Where each edge ``ids[i]`` crosses the plane at ``level[i]``."""
+                   normal: FloatArray) -> tuple[FloatArray, FloatArray | None]:
+        """Where each edge ``ids[i]`` crosses the plane at ``level[i]``, and its (u, v) on a surface."""
         a, b = self.edges[ids, 0], self.edges[ids, 1]
         ha, hb = height[a] - level, height[b] - level
         s = ha / (ha - hb)  # the linear estimate, in (0, 1] (ha and hb differ in sign)
         if self.surface is None or self.uv is None:
-            return self.points[a] + s[:, None] * (self.points[b] - self.points[a])
+            return self.points[a] + s[:, None] * (self.points[b] - self.points[a]), None
         ua, ub = self.uv[a], self.uv[b]
         surface = self.surface
 
@@ -116,11 +126,12 @@ class Sectioner:
             return ((surface(uv) - origin) @ normal - np.ravel(lv)).reshape(shape)
 
         if not len(ids):
-            return np.empty((0, 3))
+            return np.empty((0, 3)), np.empty((0, 2))
         found = find_root(flat, (np.zeros(len(ids)), np.ones(len(ids))),
                           args=(ua[:, 0], ua[:, 1], ub[:, 0], ub[:, 1], level))
         x = np.where(found.success, found.x, s)
-        return surface(ua + x[:, None] * (ub - ua))
+        uv = ua + x[:, None] * (ub - ua)
+        return surface(uv), uv
 
 
 def _walks(segments: np.ndarray, count: int) -> list[tuple[np.ndarray, bool]]:

@@ -6,6 +6,8 @@ import math
 from typing import Any
 
 import numpy as np
+from shapely import LineString
+from shapely.ops import linemerge
 
 from torsal.engine.node import LIST, In, Node, NodeWarning, Out
 from torsal.engine.types import GENERIC, INTEGER, NUMBER, PLANE, POINT, VECTOR
@@ -17,7 +19,8 @@ from torsal.nodes.common.values import CURVE
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves import Polyline
 from torsal.nodes.geometry.mesh_surface import MeshSurface
-from torsal.nodes.geometry.sections import Sectioner, grid_triangles
+from torsal.nodes.geometry.sections import Chain, Sectioner, grid_triangles
+from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
 from torsal.nodes.limits import MAX_DENSITY, MAX_DIVISIONS
 
 SHAPE_INPUT = In("Shape", GENERIC, "S", "The surface, mesh or mesh surface to cut.")
@@ -25,10 +28,11 @@ DENSITY_INPUT = In("Density", INTEGER, "D", "A surface is cut on a grid of Densi
                    "(u, v) (2 or more); a mesh on its own triangles.", default=64)
 
 
-def _sectioner(value: Any, density: Any) -> Sectioner:
+def _sectioner(value: Any, density: Any) -> tuple[Sectioner, TrimmedSurface | None]:
+    """The cutter of the Shape, and the Shape when it is a trimmed surface (to clip by)."""
     shape = surface_or_mesh("Shape", value, "faces to cut")
     if isinstance(shape, MeshSurface):
-        return Sectioner(np.asarray(shape.mesh.vertices, dtype=float), np.asarray(shape.mesh.faces))
+        return Sectioner(np.asarray(shape.mesh.vertices, dtype=float), np.asarray(shape.mesh.faces)), None
     n = count("Density", density, least=2, limit=MAX_DENSITY)
     u, v = np.meshgrid(np.linspace(0.0, 1.0, n), np.linspace(0.0, 1.0, n), indexing="ij")
     uv = np.stack([u.ravel(), v.ravel()], axis=1)
@@ -39,7 +43,8 @@ def _sectioner(value: Any, density: Any) -> Sectioner:
     grid = on_surface(uv)
     if not np.all(np.isfinite(grid)):
         raise NodeWarning("Shape has points that are not finite numbers, so it cannot be cut")
-    return Sectioner(grid, grid_triangles(n, n), uv, on_surface)
+    trim = shape if isinstance(shape, TrimmedSurface) else None
+    return Sectioner(grid, grid_triangles(n, n), uv, on_surface), trim
 
 
 #: Planes × points (grid points or mesh vertices) one Contour may cut: every plane measures
@@ -51,12 +56,33 @@ MAX_CUT_WORK = 20_000_000
 ROUNDING = 1e-9
 
 
-def _curves(chains: list[tuple[np.ndarray, bool]]) -> list[Curve]:
-    """Polylines from the chains: consecutive repeats (a cut through a vertex) dropped, a
-    chain whose ends meet across a seam closed, a chain with no length (a plane touching
-    a pole) left out."""
+def _inside(chain: Chain, trim: TrimmedSurface) -> list[np.ndarray]:
+    """The parts of a section of a trimmed surface inside its trim: the (u, v) polyline
+    clipped by the trim region (shapely), its pieces put back on the surface. Corners
+    inside keep their places; the ends on a trim loop lie on the surface, off the plane by
+    at most the grid's chord error."""
+    kept = _line_pieces(LineString(chain.uv).intersection(trim.region))
+    return [trim.point_at(uv[:, 0], uv[:, 1]) for uv in kept]
+
+
+def _line_pieces(geometry: Any) -> list[np.ndarray]:
+    """The (u, v) coordinates of each line in ``geometry`` (points where a section only
+    touches the trim are left out), pieces that meet end to end joined."""
+    parts = getattr(geometry, "geoms", [geometry])
+    lines = [g for g in parts if isinstance(g, LineString) and not g.is_empty]
+    if not lines:
+        return []
+    merged = linemerge(lines) if len(lines) > 1 else lines[0]
+    return [np.asarray(g.coords) for g in getattr(merged, "geoms", [merged])]
+
+
+def _curves(chains: list[Chain], trim: TrimmedSurface | None = None) -> list[Curve]:
+    """Polylines from the chains (clipped by ``trim``): consecutive repeats (a cut through a
+    vertex) dropped, a chain whose ends meet across a seam closed, a chain with no length
+    (a plane touching a pole) left out."""
     curves: list[Curve] = []
-    for chain, _closed in chains:
+    pieces = [c.points for c in chains] if trim is None else [p for c in chains for p in _inside(c, trim)]
+    for chain in pieces:
         keep = np.concatenate([[True], np.any(np.diff(chain, axis=0) != 0, axis=1)])
         chain = chain[keep]
         size = float(np.linalg.norm(np.ptp(chain, axis=0)))
@@ -76,7 +102,8 @@ class Contour(Node):
     every whole k that meets the shape. A surface is cut on a (u, v) grid of Density ×
     Density points: each corner of a contour lies on the surface and on its plane to
     rounding, the straight pieces between them stray by the grid's chord error (raise
-    Density for a closer fit). A mesh is cut exactly on its triangles. Each contour is a
+    Density for a closer fit). A trimmed surface (a face from Rhino) is cut only inside
+    its trim. A mesh is cut exactly on its triangles. Each contour is a
     polyline (closed when it closes); Levels gives each one's distance from Point along
     Direction.
     """
@@ -102,7 +129,7 @@ class Contour(Node):
         n = direction("Direction", normal)
         n = n / np.linalg.norm(n)
         step = positive("Distance", distance)
-        cutter = _sectioner(shape, density)
+        cutter, trim = _sectioner(shape, density)
         height = (cutter.points - origin) @ n
         low, high = math.ceil(height.min() / step), math.floor(height.max() / step)
         planes = high - low + 1
@@ -114,7 +141,7 @@ class Contour(Node):
         levels: list[float] = []
         heights = np.arange(low, high + 1) * step
         for level, chains in zip(heights.tolist(), cutter.sections(origin, n, heights), strict=True):
-            made = _curves(chains)
+            made = _curves(chains, trim)
             curves += made
             levels += [level] * len(made)
         return curves, levels
@@ -124,8 +151,8 @@ class Section(Node):
     """Cut a surface or mesh by one plane: the section curves where they meet.
 
     As Contour, for a single Plane: a surface is cut on a (u, v) grid of Density ×
-    Density points (every corner on the surface and on the plane), a mesh on its
-    triangles. A shape the plane misses gives no curves.
+    Density points (every corner on the surface and on the plane; a trimmed surface only
+    inside its trim), a mesh on its triangles. A shape the plane misses gives no curves.
     """
 
     type_id = "surfaces.Section"
@@ -135,4 +162,5 @@ class Section(Node):
 
     def solve(self, shape: Any, plane: Any, density: Any) -> list[Curve]:
         frame = kernel_plane("Plane", plane)
-        return _curves(_sectioner(shape, density).section(frame.origin, frame.z))
+        cutter, trim = _sectioner(shape, density)
+        return _curves(cutter.section(frame.origin, frame.z), trim)
