@@ -102,7 +102,6 @@ class EvaluateCurve(Node):
                 return None
             rows_of.setdefault(id(curve), []).append(row)
         results: list[Any] = [None] * len(parameters)
-        make = tuple.__new__  # (the rows are Python floats already: Point() would convert them again)
         token = self.token
         for rows_of_curve in rows_of.values():
             c = curves[rows_of_curve[0]]
@@ -113,7 +112,7 @@ class EvaluateCurve(Node):
                 at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
                          c.curvature_vector_at(t).tolist(), strict=True)
                 for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
-                    results[row] = (make(Point, p), make(Vector, tangent), k, make(Vector, kv))
+                    results[row] = (Point(*p), Vector(*tangent), k, Vector(*kv))
         return results
 
 
