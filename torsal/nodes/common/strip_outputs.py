@@ -16,7 +16,7 @@ recomputed from the output rulings and found within the tolerance.
 from __future__ import annotations
 
 from contextlib import suppress
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -193,25 +193,21 @@ def curve_strip_outputs(
     on_curves = None
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
-    # (as strip_outputs(starts, ends, warp=w, surface=on_curves, source=source), in one go)
-    a, b = _checked(starts, ends, source)
-    surface = on_curves if on_curves is not None else _loft(a, b, source)
-    undefined, message = _undefined(w)
-    defined = ~undefined  # (w is finite where it is not NaN: an angle from atan2)
+    outputs = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
+    defined = ~outputs.undefined  # (w is finite where it is not NaN: an angle from atan2)
     valid = w <= tolerance  # (False where NaN)
     if (valid != defined).any():  # some defined warp is above the tolerance: does rounding allow it?
         valid = defined & (w <= tolerance + warp_allowance(starts, ends))
-    messages = [message] if message else []
+    messages = outputs.messages
     if claimed is not None:
         refused = np.asarray(claimed, dtype=bool) & ~valid & defined
         if refused.any():
-            messages.append(
+            messages += (
                 f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
                 f"{tolerance:g} rad (largest {float(w[refused].max()):.3g} rad, first: ruling "
-                f"{int(np.argmax(refused))}): they are marked Valid = false"
+                f"{int(np.argmax(refused))}): they are marked Valid = false",
             )
-    rulings = _lines(a, b)
-    return StripOutputs(surface, rulings, w.tolist(), valid.tolist(), tuple(messages), undefined=undefined)
+    return replace(outputs, valid=valid.tolist(), messages=messages)
 
 
 def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:
