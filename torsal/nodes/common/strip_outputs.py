@@ -26,7 +26,7 @@ from torsal.nodes.geometry.array_types import BoolArray, FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.curves.line import Line
-from torsal.nodes.geometry.developable.measure import warp_allowance
+from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from torsal.nodes.geometry.ruled import RuledSurface
 
@@ -177,7 +177,7 @@ def curve_strip_outputs(
     recomputed from the output rulings with the curves' exact tangents
     (:func:`~torsal.nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
     number within ``tolerance`` (plus what the ends' rounding alone adds far from the
-    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.measure.warp_allowance`).
+    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.measure.within_tolerance`).
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
     recomputation rejects are counted in a message. ``source`` names the inputs the curves
@@ -194,13 +194,10 @@ def curve_strip_outputs(
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
     outputs = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
-    defined = ~outputs.undefined  # (w is finite where it is not NaN: an angle from atan2)
-    valid = w <= tolerance  # (False where NaN)
-    if (valid != defined).any():  # some defined warp is above the tolerance: does rounding allow it?
-        valid = defined & (w <= tolerance + warp_allowance(starts, ends))
+    valid = within_tolerance(w, tolerance, starts, ends)
     messages = outputs.messages
     if claimed is not None:
-        refused = np.asarray(claimed, dtype=bool) & ~valid & defined
+        refused = np.asarray(claimed, dtype=bool) & ~valid & ~outputs.undefined
         if refused.any():
             messages += (
                 f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
