@@ -13,7 +13,7 @@ import pytest
 
 from torsal.nodes.geometry.curves import InterpolatedCurve, NurbsCurve
 from torsal.nodes.geometry.spline_eval import evaluation_parameters
-from torsal.nodes.geometry.vec_ops import anchor, bounds, cross, extent, linalg_norm
+from torsal.nodes.geometry.vec_ops import anchor, bounds, cross, extent
 
 
 def same(a: np.ndarray, b: np.ndarray) -> bool:
@@ -96,14 +96,6 @@ def test_cross_is_numpys_cross_bit_for_bit(shape_a, shape_b):
         assert cross(a, b).flags.c_contiguous
     strided = awkward_vectors(rng, (8, 6))[:, ::2]
     assert same(cross(strided, strided[::-1]), np.cross(strided, strided[::-1]))
-
-
-@pytest.mark.parametrize("shape", [(3,), (1, 3), (40, 3), (2, 7, 3), (9, 2)])
-def test_linalg_norm_is_numpys_norm_along_the_last_axis_bit_for_bit(shape):
-    rng = np.random.default_rng(shape[0])
-    for _ in range(20):
-        v = awkward_vectors(rng, shape)
-        assert same(linalg_norm(v), np.linalg.norm(v, axis=-1))
 
 
 def test_bounds_make_the_anchor_and_the_extent():

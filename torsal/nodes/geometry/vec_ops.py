@@ -63,13 +63,6 @@ def norm(a: FloatArray) -> FloatArray:
     return np.sqrt(np.einsum("...i,...i->...", a, a))
 
 
-def linalg_norm(a: FloatArray) -> FloatArray:
-    """``np.linalg.norm(a, axis=-1)`` of a float array, bit for bit: the square root of the same
-    reduction of the same squares (:func:`norm` sums the squares in another order), without
-    that function's argument handling."""
-    return np.sqrt(np.add.reduce(a * a, axis=-1))
-
-
 def unit(a: FloatArray) -> FloatArray:
     """Row-wise unit vectors; zero rows stay zero."""
     length = norm(a)[..., None]
