@@ -205,22 +205,3 @@ def curve_strip_outputs(
                 f"{int(np.argmax(refused))}): they are marked Valid = false",
             )
     return replace(outputs, valid=valid.tolist(), messages=messages)
-
-
-def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:
-    """One line for a node's remark: the largest warp and, given a tolerance, how many exceed
-    it (NaN warps are counted apart, never as 0)."""
-    w = np.asarray(warp, dtype=float)
-    if w.size == 0:
-        return "no rulings"
-    nan = int(np.isnan(w).sum())
-    if nan == w.size:
-        return f"no defined warp over {w.size} rulings"
-    text = f"largest warp {np.nanmax(w):.3g} rad over {w.size} rulings"
-    if nan:
-        text += f" ({nan} undefined)"
-    if tolerance is not None:
-        over = int(np.count_nonzero(w > tolerance))
-        within = "all defined ones" if nan else "all"
-        text += f"; {over} above {tolerance:g} rad" if over else f"; {within} within {tolerance:g} rad"
-    return text

@@ -102,16 +102,6 @@ class Curve(ABC):
 
     # -- parameters ---------------------------------------------------------------------
 
-    def to_domain(self, t: ArrayLike) -> FloatArray:
-        """The original parameter u for normalised ``t``."""
-        a, b = self.domain
-        return a + (b - a) * np.asarray(t, dtype=float)
-
-    def from_domain(self, u: ArrayLike) -> FloatArray:
-        """The normalised t for an original parameter ``u``."""
-        a, b = self.domain
-        return (np.asarray(u, dtype=float) - a) / (b - a)
-
     def _breakpoints(self) -> FloatArray:
         """Increasing t values, 0 and 1 included, between which the curve is smooth.
 

@@ -129,11 +129,6 @@ class Development:
     requested: IntArray | None = field(default=None, repr=False)
 
     @property
-    def area_difference(self) -> float:
-        """area_2d − area_3d, in model units²."""
-        return self.area_2d - self.area_3d
-
-    @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
         """Starts and ends of the requested rulings (every ``stride``-th one, or ``requested``)."""
         if self.requested is not None:
