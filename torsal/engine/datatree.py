@@ -46,8 +46,7 @@ class Triples:
 
     def tolist(self) -> list[Any]:
         """The items as :attr:`item_class` values (three Python floats each)."""
-        make = self.item_class
-        return [make(*row) for row in self.array.tolist()]
+        return self.item_class.many(self.array.tolist())
 
     def same_kind(self, other: object) -> bool:
         return isinstance(other, Triples) and other.item_class is self.item_class

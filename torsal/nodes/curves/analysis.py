@@ -109,10 +109,11 @@ class EvaluateCurve(Node):
                 token.check()
                 rows = rows_of_curve[start:start + _AT_ONCE]
                 t = np.array([parameters[row] for row in rows])
-                at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
-                         c.curvature_vector_at(t).tolist(), strict=True)
-                for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
-                    results[row] = (Point(*p), Vector(*tangent), k, Vector(*kv))
+                at = zip(Point.many(c.point_at(t).tolist()), Vector.many(c.tangent_at(t).tolist()),
+                         c.curvature_at(t).tolist(), Vector.many(c.curvature_vector_at(t).tolist()),
+                         strict=True)
+                for row, values in zip(rows, at, strict=True):
+                    results[row] = values
         return results
 
 
