@@ -239,7 +239,7 @@ def _search(strip: Strip) -> _Found:
     found = _brackets(a0, units, grid, bounds, diameter, positions)
     rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
-    if np.count_nonzero(grid.pair):  # (a third of what .any() costs on a short mask)
+    if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
@@ -395,7 +395,7 @@ _BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
 
 def _with_extras(found: _Found, candidates: Candidates) -> Candidates:
     """One strip's refined roots with its roots at corners of B and the ends of its flat runs."""
-    if len(found.corner_rows) == 0 and not np.count_nonzero(found.flat):
+    if len(found.corner_rows) == 0 and not found.flat.any():
         return _in_order(candidates)
     grid, a0, a1 = found.strip.grid, found.strip.a0, found.strip.a1
     corner_rows, corner_cols, flat = found.corner_rows, found.corner_cols, found.flat
