@@ -42,6 +42,7 @@ from torsal.nodes.geometry.array_types import FloatArray, IntArray
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
+from .counts import segment_count
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
 from .watch import watch_check
 
@@ -411,8 +412,7 @@ def unroll_surface(
 
     Raises ValueError("surface has no straight rulings") for a non-ruled surface.
     """
-    if segments < 1 or subdivisions < 1:
-        raise ValueError("segments and subdivisions must be at least 1")
+    segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
     requested = u = None
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)
