@@ -1,4 +1,5 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds.
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds;
+and the plane cross product (cross2).
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -37,6 +38,12 @@ def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     whole arrays of the same shape (not on the strided halves of one)."""
     first = a.take(_NEXT, axis=-1) * b.take(_PREVIOUS, axis=-1)
     return first - a.take(_PREVIOUS, axis=-1) * b.take(_NEXT, axis=-1)
+
+
+def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Row-wise cross product of plane (2-) vectors, a_x·b_y − a_y·b_x: twice the signed area
+    of the triangle they span (positive when b is counter-clockwise of a)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
