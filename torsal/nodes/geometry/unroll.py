@@ -42,6 +42,7 @@ from torsal.nodes.geometry.array_types import FloatArray, IntArray
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
+from .counts import segment_count
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
 from .watch import watch_check
 
@@ -127,11 +128,6 @@ class Development:
     map: DevelopmentMap = field(repr=False)
     stride: int = 1
     requested: IntArray | None = field(default=None, repr=False)
-
-    @property
-    def area_difference(self) -> float:
-        """area_2d − area_3d, in model units²."""
-        return self.area_2d - self.area_3d
 
     @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
@@ -416,8 +412,7 @@ def unroll_surface(
 
     Raises ValueError("surface has no straight rulings") for a non-ruled surface.
     """
-    if segments < 1 or subdivisions < 1:
-        raise ValueError("segments and subdivisions must be at least 1")
+    segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
     requested = u = None
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)

@@ -1,4 +1,5 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds.
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds;
+and the plane cross product (cross2).
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -39,6 +40,12 @@ def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     return first - a.take(_PREVIOUS, axis=-1) * b.take(_NEXT, axis=-1)
 
 
+def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Row-wise cross product of plane (2-) vectors, a_x·b_y − a_y·b_x: twice the signed area
+    of the triangle they span (positive when b is counter-clockwise of a)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise dot product (broadcasting), of 3-vectors or of plane (2-) vectors."""
     if a.shape[-1] == 3:  # (a0·b0 + a1·b1) + a2·b2, the products in one multiplication
@@ -61,13 +68,6 @@ def flatnonzero(a: FloatArray) -> FloatArray:
 def norm(a: FloatArray) -> FloatArray:
     """Row-wise Euclidean length."""
     return np.sqrt(np.einsum("...i,...i->...", a, a))
-
-
-def linalg_norm(a: FloatArray) -> FloatArray:
-    """``np.linalg.norm(a, axis=-1)`` of a float array, bit for bit: the square root of the same
-    reduction of the same squares (:func:`norm` sums the squares in another order), without
-    that function's argument handling."""
-    return np.sqrt(np.add.reduce(a * a, axis=-1))
 
 
 def unit(a: FloatArray) -> FloatArray:
