@@ -452,8 +452,7 @@ def unroll_surface(
         if not error <= edge_tolerance:  # (NaN too) evenly spaced rulings did not get there
             plan = edge_parameters(samples, segments, subdivisions, edge_tolerance)
             if plan is not None:
-                u, requested, panelled = plan
-                rulings = rulings_at(surface, u)
+                u, requested, rulings, panelled = plan
     area_3d = surface.area()
     _look()
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=area_3d)
@@ -502,15 +501,17 @@ UNEVEN = 0.9
 
 def edge_parameters(
     surface: Surface | _Samples, segments: int, subdivisions: int, tolerance: float
-) -> tuple[FloatArray, IntArray, IntArray | None] | None:
+) -> tuple[FloatArray, IntArray, FloatArray, IntArray | None] | None:
     """Parameters across the rulings at which both rails' chord polylines are within
     ``tolerance`` (relative to the strip's size) of their arc lengths; the indices of the
-    segments' ends among them (the rulings the user asked for); and, where the rulings are
-    spread evenly, the indices of ``subdivisions`` of them per segment (the development's
-    map: see :func:`unroll_surface`), else None (the map keeps them all).
+    segments' ends among them (the rulings the user asked for); the rulings there; and,
+    where the rulings are spread evenly, the indices of ``subdivisions`` of them per
+    segment (the development's map: see :func:`unroll_surface`), else None (the map keeps
+    them all).
 
-    Each segment j's chord error is estimated from two samplings (``k`` and ``2k``
-    rulings per segment: C_j/k² by Richardson, the worse of its two rails).
+    Each segment j's chord error is estimated from two samplings (``k_j`` and ``2k_j``
+    rulings in it: C_j/k_j² by Richardson, the worse of its two rails), starting from
+    ``subdivisions`` a segment.
 
     - Where the rails run fast over a few segments (a fan sweeping along a curve while
       the other curve's point stands still), evenly spaced rulings waste most of their
@@ -521,42 +522,75 @@ def edge_parameters(
       √(Σ C_j / tolerance), rounded up to a multiple of ``subdivisions``, so the
       ``subdivisions`` a segment the map keeps are evenly spaced too.
 
-    None when either takes more than :data:`MAX_ADAPTIVE_RULINGS`."""
-    k = subdivisions
-    size = 0.0
-    sums = []
-    for per in (k, 2 * k):
-        rulings = surface.rulings(segments * per + 1)
-        size = size or float(np.ptp(rulings.reshape(-1, 3), axis=0).max()) or 1.0
-        chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (segments·per, 2)
-        sums.append(chords.reshape(segments, per, 2).sum(axis=1))
-    _look()
-    error_fine = np.abs(sums[1] - sums[0]).max(axis=1) / 3.0  # per segment, the worse rail
-    if not np.isfinite(error_fine).all():
-        return None
-    constant = error_fine * (2 * k) ** 2
+    The counts are estimated again from their own two samplings until those say the
+    tolerance is met (a rail whose pace changes sharply is not yet in the C/k² regime at
+    ``subdivisions`` a segment), at most :data:`ADAPTIVE_ROUNDS` times; the counts of the
+    last round stand, or as many in the same proportions as :data:`MAX_ADAPTIVE_RULINGS`
+    allows. None when the chord sums are not finite."""
+    samples = surface if isinstance(surface, _Samples) else _Samples(surface)
+    counts = np.full(segments, subdivisions, dtype=np.int64)
+    spread: bool | None = None
+    size = float(np.ptp(samples.rulings(segments * subdivisions + 1).reshape(-1, 3), axis=0).max()) or 1.0
     target = ADAPTIVE_MARGIN * tolerance * size
-    cube = np.cbrt(constant)
-    total = float(cube.sum())
-    if total == 0.0:
-        return None
-    # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
-    counts = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
-    # evenly spaced rulings would need segments · √(Σ C / target)
-    even = int(np.ceil(np.sqrt(float(constant.sum()) / target) / subdivisions)) * subdivisions
-    spread = bool(counts.sum() > UNEVEN * segments * even)
-    if spread:
-        counts = np.full(segments, max(even, subdivisions), dtype=np.int64)
-    if counts.sum() + 1 > MAX_ADAPTIVE_RULINGS:
-        return None
-    requested = np.concatenate([[0], np.cumsum(counts)])
-    u = np.empty(int(requested[-1]) + 1)
-    segment = np.repeat(np.arange(segments), counts)
-    within = np.arange(len(segment)) - requested[segment]
-    u[:-1] = (segment + within / counts[segment]) / segments
-    u[-1] = 1.0
+    for _ in range(ADAPTIVE_ROUNDS):
+        u, requested, rulings, sums = _per_segment(samples, counts)
+        finer = _per_segment(samples, 2 * counts)[3]
+        _look()
+        error_fine = np.abs(finer - sums).max(axis=1) / 3.0  # per segment, the worse rail, at 2k_j
+        if not np.isfinite(error_fine).all():
+            return None
+        if spread is not None and 4.0 * error_fine.sum() <= tolerance * size:  # these counts are enough
+            break
+        constant = error_fine * (2 * counts) ** 2
+        cube = np.cbrt(constant)
+        total = float(cube.sum())
+        if total == 0.0:
+            return None
+        # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
+        wanted = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
+        # evenly spaced rulings would need segments · √(Σ C / target)
+        even = int(np.ceil(np.sqrt(float(constant.sum()) / target) / subdivisions)) * subdivisions
+        if spread is None:
+            spread = bool(wanted.sum() > UNEVEN * segments * even)
+        if spread:
+            wanted = np.full(segments, max(even, subdivisions), dtype=np.int64)
+        wanted = np.maximum(wanted, counts)
+        if wanted.sum() + 1 > MAX_ADAPTIVE_RULINGS:  # as near as the cap allows, in the same proportions
+            if counts.sum() >= MAX_ADAPTIVE_RULINGS // 2:
+                break
+            room = (MAX_ADAPTIVE_RULINGS - 1) / wanted.sum()
+            step = subdivisions if spread else 1
+            counts = np.maximum(np.floor(wanted * room / step).astype(np.int64) * step, counts)
+            u, requested, rulings, _ = _per_segment(samples, counts)
+            break
+        counts = wanted
+    else:
+        u, requested, rulings, _ = _per_segment(samples, counts)
     panelled = np.arange(0, len(u), counts[0] // subdivisions) if spread else None
-    return u, requested, panelled
+    return u, requested, rulings, panelled
+
+
+#: Most rounds of estimates :func:`edge_parameters` makes.
+ADAPTIVE_ROUNDS = 4
+
+
+def _per_segment(samples: _Samples, counts: IntArray) -> tuple[FloatArray, IntArray, FloatArray, FloatArray]:
+    """Parameters with ``counts[j]`` rulings evenly spaced in each segment j, the segments'
+    ends among them, the rulings there and each segment's two chord sums ``(segments, 2)``."""
+    segments = len(counts)
+    requested = np.concatenate([[0], np.cumsum(counts)])
+    if np.all(counts == counts[0]):  # evenly spaced: perhaps sampled already
+        rulings = samples.rulings(int(requested[-1]) + 1)
+        u = np.linspace(0.0, 1.0, len(rulings))
+    else:
+        u = np.empty(int(requested[-1]) + 1)
+        segment = np.repeat(np.arange(segments), counts)
+        within = np.arange(len(segment)) - requested[segment]
+        u[:-1] = (segment + within / counts[segment]) / segments
+        u[-1] = 1.0
+        rulings = rulings_at(samples.surface, u)
+    chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (rulings − 1, 2)
+    return u, requested, rulings, np.add.reduceat(chords, requested[:-1], axis=0)
 
 
 def _upright(development: Development, surface: Surface, u: FloatArray | None = None) -> Development:
