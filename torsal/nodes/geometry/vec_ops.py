@@ -163,12 +163,12 @@ def derivative_noise(points: FloatArray) -> float:
 def differenced(geometry: object) -> bool:
     """Whether a curve's or surface's first derivatives may be differences of its positions
     (a function of world coordinates, differentiated numerically): only then is
-    :func:`derivative_noise` the floor of an integral of them. A kind whose class says
+    :func:`derivative_noise` the floor of an integral of them. An object that says
     ``exact_derivatives`` is as it says; a wrapper (a rail, a transform, a curve on a
     surface: its ``curve`` or ``surface``) is as exact as what it wraps; any other kind may
     be differenced."""
     for _ in range(_WRAPPERS):
-        exact = getattr(type(geometry), "exact_derivatives", None)
+        exact = getattr(geometry, "exact_derivatives", None)
         if exact is not None:
             return not exact
         inner = getattr(geometry, "curve", None)
