@@ -160,4 +160,27 @@ def derivative_noise(points: FloatArray) -> float:
     return NOISE_GAIN * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0)) / size
 
 
+def differenced(geometry: object) -> bool:
+    """Whether a curve's or surface's first derivatives may be differences of its positions
+    (a function of world coordinates, differentiated numerically): only then is
+    :func:`derivative_noise` the floor of an integral of them. An object that says
+    ``exact_derivatives`` is as it says; a wrapper (a rail, a transform, a curve on a
+    surface: its ``curve`` or ``surface``) is as exact as what it wraps; any other kind may
+    be differenced."""
+    for _ in range(_WRAPPERS):
+        exact = getattr(geometry, "exact_derivatives", None)
+        if exact is not None:
+            return not exact
+        inner = getattr(geometry, "curve", None)
+        if inner is None:
+            inner = getattr(geometry, "surface", None)
+        if inner is None or inner is geometry:
+            return True
+        geometry = inner
+    return True
+
+
+#: Most wrappers :func:`differenced` looks through.
+_WRAPPERS = 16
+
 _EPS = float(np.finfo(float).eps)
