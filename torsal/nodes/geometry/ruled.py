@@ -266,7 +266,7 @@ class RuledSurface(Surface):
 
     def __init__(self, curve_a: Curve, curve_b: Curve) -> None:
         ends = np.vstack([curve_a.point_at(np.array([0.0, 1.0])), curve_b.point_at(np.array([0.0, 1.0]))])
-        size = float(np.ptp(ends, axis=0).max()) or 1.0
+        size = float(extent(ends).max()) or 1.0
         closed_u = bool(getattr(curve_a, "closed", False) and getattr(curve_b, "closed", False)) or bool(
             np.abs(ends[0] - ends[1]).max() <= 1e-12 * size
             and np.abs(ends[2] - ends[3]).max() <= 1e-12 * size

@@ -39,6 +39,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import bounds as coordinate_bounds
+from torsal.nodes.geometry.vec_ops import cross, extent, linalg_norm, smallest
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
@@ -88,7 +90,7 @@ def bilinear_quad_areas(starts: ArrayLike, ends: ArrayLike, order: int = QUAD_OR
     ra, rb = b[:-1] - a[:-1], b[1:] - a[1:]  # rulings i and i + 1
     # S_a = (1 − b)·dA + b·dB and S_b = (1 − a)·r_i + a·r_{i+1}, so S_a × S_b is bilinear
     # in (a, b) with the four corner values below: evaluate it at the Gauss nodes.
-    corners = np.stack([np.cross(da, ra), np.cross(da, rb), np.cross(db, ra), np.cross(db, rb)], 1)
+    corners = np.stack([cross(da, ra), cross(da, rb), cross(db, ra), cross(db, rb)], 1)
     aa, bb = np.meshgrid(x, x, indexing="ij")
     aa, bb = aa.ravel(), bb.ravel()
     basis = np.column_stack([(1 - bb) * (1 - aa), (1 - bb) * aa, bb * (1 - aa), bb * aa])
@@ -159,7 +161,7 @@ class Development:
     def bounds(self) -> FloatArray:
         """Bounding rectangle ``[xmin, ymin, xmax, ymax]`` of the development."""
         pts = np.vstack([self.starts2d, self.ends2d])
-        return np.concatenate([pts.min(axis=0), pts.max(axis=0)])
+        return np.concatenate(coordinate_bounds(pts))
 
     @property
     def overlaps(self) -> bool:
@@ -198,8 +200,8 @@ def _local(x3: FloatArray, y3: FloatArray, p3: FloatArray) -> tuple[FloatArray, 
     """Coordinates of p over the edge x→y of triangle (x, y, p): the projection along
     the edge and the (unsigned) distance from its line."""
     edge, w = y3 - x3, p3 - x3
-    length = np.linalg.norm(edge, axis=1)
-    return _dot(w, edge) / length, np.linalg.norm(np.cross(edge, w), axis=1) / length
+    length = linalg_norm(edge)
+    return _dot(w, edge) / length, linalg_norm(cross(edge, w)) / length
 
 
 def unroll_rulings(
@@ -225,8 +227,8 @@ def unroll_rulings(
     a, b = _as_rulings(starts, ends)
     n = len(a)
     ruling = b - a
-    length = np.linalg.norm(ruling, axis=1)
-    size = float(np.ptp(np.vstack([a, b]), axis=0).max())
+    length = linalg_norm(ruling)
+    size = float(extent(np.vstack([a, b])).max())
     zero = length <= 1e-12 * size
     tip_start, tip_end = bool(zero[0]) and n > 2, bool(zero[-1]) and n > 2
     inner = zero.copy()
@@ -259,7 +261,7 @@ def _with_tips(
     corner of its triangle with the neighbouring ruling, away from the strip."""
     core = slice(1 if tip_start else 0, len(a) - 1 if tip_end else len(a))
     ca, cb = a[core], b[core]
-    starts2d, ends2d, _ = _unrolled(ca, cb, np.linalg.norm(cb - ca, axis=1))
+    starts2d, ends2d, _ = _unrolled(ca, cb, linalg_norm(cb - ca))
     z_a = starts2d[:, 0] + 1j * starts2d[:, 1]
     z_b = ends2d[:, 0] + 1j * ends2d[:, 1]
     parts_a, parts_b = [z_a], [z_b]
@@ -274,7 +276,7 @@ def _with_tips(
         parts_a.append(tip)
         parts_b.append(tip)
     za, zb = np.concatenate(parts_a), np.concatenate(parts_b)
-    first = np.linalg.norm(a[1:] - b[:-1], axis=1) <= np.linalg.norm(b[1:] - a[:-1], axis=1) * (
+    first = linalg_norm(a[1:] - b[:-1]) <= linalg_norm(b[1:] - a[:-1]) * (
         1 + DIAGONAL_TIE
     )
     starts2d = np.column_stack([za.real, za.imag])
@@ -286,7 +288,7 @@ def _unrolled(a: FloatArray, b: FloatArray, length: FloatArray) -> tuple[FloatAr
     """The 2D ruling ends of a strip with no zero-length ruling, and each quad's diagonal."""
     n = len(a)
     a0, a1, b0, b1 = a[:-1], a[1:], b[:-1], b[1:]
-    first = np.linalg.norm(a1 - b0, axis=1) <= np.linalg.norm(b1 - a0, axis=1) * (1 + DIAGONAL_TIE)
+    first = linalg_norm(a1 - b0) <= linalg_norm(b1 - a0) * (1 + DIAGONAL_TIE)
     col = first[:, None]
 
     # Frame i: A_i = 0, B_i = i·|r_i|. The first new vertex sits left of B_i → A_i,
@@ -322,20 +324,21 @@ def _development(
     tmap = DevelopmentMap(vertices2d, vertices3d, first)
     _look()
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]
-    edges2d = np.linalg.norm(t2 - np.roll(t2, -1, axis=1), axis=2)
-    edges3d = np.linalg.norm(t3 - np.roll(t3, -1, axis=1), axis=2)
-    diameter = float(np.linalg.norm(np.ptp(vertices3d, axis=0)))
+    # each triangle's edges, from each corner to the next
+    edges2d = linalg_norm(t2 - t2.take(_NEXT_CORNER, axis=1))
+    edges3d = linalg_norm(t3 - t3.take(_NEXT_CORNER, axis=1))
+    diameter = float(np.linalg.norm(extent(vertices3d)))
     scale = np.where(edges3d > EDGE_COLLAPSED * diameter, edges3d, diameter)
     edge_error = float(np.max(np.abs(edges2d - edges3d) / scale))
     _look()
 
     area_2d = float(0.5 * tmap._area2.sum())
     area3 = float(bilinear_quad_areas(a, b).sum()) if area_3d is None else float(area_3d)
-    normals = np.cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0]).reshape(n - 1, 2, 3)
-    hinge = np.arctan2(np.linalg.norm(np.cross(normals[:, 0], normals[:, 1]), axis=1),
+    normals = cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0]).reshape(n - 1, 2, 3)
+    hinge = np.arctan2(linalg_norm(cross(normals[:, 0], normals[:, 1])),
                        _dot(normals[:, 0], normals[:, 1]))
     # a quad with a collapsed edge (in a fan) is one triangle: it does not fold
-    hinge = np.where(np.linalg.norm(normals, axis=2).min(axis=1) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
+    hinge = np.where(smallest(linalg_norm(normals)) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
     return Development(
         starts2d=starts2d, ends2d=ends2d, starts3d=a, ends3d=b,
         area_3d=area3, area_2d=area_2d,
@@ -344,9 +347,13 @@ def _development(
     )
 
 
+#: Each corner's next one, round a triangle.
+_NEXT_CORNER = np.array([1, 2, 0])
+
+
 def _rail_lengths(rulings: FloatArray) -> FloatArray:
     """Lengths ``(2,)`` of the two chord polylines through the rulings' starts and ends."""
-    return np.linalg.norm(np.diff(rulings, axis=0), axis=2).sum(axis=0)
+    return linalg_norm(np.diff(rulings, axis=0)).sum(axis=0)
 
 
 class _Samples:
@@ -382,7 +389,7 @@ def edge_subdivisions(
     longest = max(MAX_RULINGS // segments, 2 * subdivisions)
     k1 = first = subdivisions
     coarse = start = surface.rulings(segments * k1 + 1)
-    size = float(np.ptp(coarse.reshape(-1, 3), axis=0).max()) or 1.0
+    size = float(extent(coarse.reshape(-1, 3)).max()) or 1.0
     k2 = 2 * k1
     first_error = np.inf
     check = watch_check()
@@ -616,7 +623,7 @@ def _upright(development: Development, surface: Surface, u: FloatArray | None = 
     # +X in the plane is up × the normal of the triangles, which all face +Z there (an
     # error in the normal tilts this out of the plane: it changes the turn to second order)
     corners = m.vertices3d[m.triangles[later[0]]]
-    across = np.cross(up, np.cross(corners[1] - corners[0], corners[2] - corners[0]))
+    across = cross(up, cross(corners[1] - corners[0], corners[2] - corners[0]))
     scale = float(np.linalg.norm(up) * np.linalg.norm(across) * np.linalg.norm(along))
     if scale == 0.0 or not np.isfinite(scale):
         return development
