@@ -19,8 +19,8 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import cross2, extent, linalg_norm
 from torsal.nodes.geometry.vec_ops import dot as _dot
-from torsal.nodes.geometry.vec_ops import extent, linalg_norm
 
 from .strip_walk import StripWalk, strip_triangles
 from .watch import watch_check, watch_progress
@@ -118,7 +118,7 @@ class DevelopmentMap:
         self.triangles = strip_triangles(self.n, self.first_diagonal)
         tri = self.vertices2d[self.triangles]
         e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-        self._area2 = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # twice the signed area
+        self._area2 = cross2(e1, e2)  # twice the signed area
         size = float(extent(self.vertices2d).max()) or 1.0
         #: triangles with area: the only ones a point can be located in
         self.proper_area = 1e-13 * size * size
@@ -187,8 +187,8 @@ class DevelopmentMap:
         d = pts - corners[:, 0]
         area2 = self._area2[tri]
         with np.errstate(divide="ignore", invalid="ignore"):
-            v = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / area2
-            w = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / area2
+            v = cross2(d, e2) / area2
+            w = cross2(e1, d) / area2
         return np.column_stack([1.0 - v - w, v, w])
 
     def to_3d(self, points2d: ArrayLike) -> FloatArray:
@@ -464,10 +464,10 @@ class DevelopmentMap:
         ``ep → ep + de``; NaN where they are parallel or meet at (or beyond) the segment's
         ends (collinear overlaps need no split)."""
         w = ep - p0
-        den = ds[:, 0] * de[:, 1] - ds[:, 1] * de[:, 0]
+        den = cross2(ds, de)
         ok = np.abs(den) > 1e-14 * linalg_norm(ds) * linalg_norm(de)
         with np.errstate(divide="ignore", invalid="ignore"):
-            t = (w[:, 0] * de[:, 1] - w[:, 1] * de[:, 0]) / den
+            t = cross2(w, de) / den
         ok &= (t > 1e-12) & (t < 1.0 - 1e-12)
         return np.where(ok, t, np.nan)
 

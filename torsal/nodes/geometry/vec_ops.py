@@ -1,4 +1,5 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds.
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds;
+and the plane cross product (cross2).
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -38,6 +39,12 @@ def cross(a: FloatArray, b: FloatArray) -> FloatArray:
 
 #: For each coordinate k of a cross product, the two after it (cyclically): i, j.
 _AFTER = ((1, 2), (2, 0), (0, 1))
+
+
+def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Row-wise cross product of plane (2-) vectors, a_x·b_y − a_y·b_x: twice the signed area
+    of the triangle they span (positive when b is counter-clockwise of a)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -168,5 +175,28 @@ def derivative_noise(points: FloatArray) -> float:
         return 0.0
     return NOISE_GAIN * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0)) / size
 
+
+def differenced(geometry: object) -> bool:
+    """Whether a curve's or surface's first derivatives may be differences of its positions
+    (a function of world coordinates, differentiated numerically): only then is
+    :func:`derivative_noise` the floor of an integral of them. An object that says
+    ``exact_derivatives`` is as it says; a wrapper (a rail, a transform, a curve on a
+    surface: its ``curve`` or ``surface``) is as exact as what it wraps; any other kind may
+    be differenced."""
+    for _ in range(_WRAPPERS):
+        exact = getattr(geometry, "exact_derivatives", None)
+        if exact is not None:
+            return not exact
+        inner = getattr(geometry, "curve", None)
+        if inner is None:
+            inner = getattr(geometry, "surface", None)
+        if inner is None or inner is geometry:
+            return True
+        geometry = inner
+    return True
+
+
+#: Most wrappers :func:`differenced` looks through.
+_WRAPPERS = 16
 
 _EPS = float(np.finfo(float).eps)

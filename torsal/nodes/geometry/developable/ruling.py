@@ -74,7 +74,7 @@ Algorithm (all stations at once)
    — and ``valid`` is that warp within the tolerance (never NaN), plus what the rounding
    of the rulings' end points alone can add to it far from the origin (their positions'
    rounding over the ruling's length: nothing at the origin, 3e-6 rad for a 1.3 m ruling
-   at 1e9 m; see :func:`warp_allowance`). A station taken as
+   at 1e9 m; see :func:`.measure.within_tolerance`). A station taken as
    torsal that fails the check joins the fans and the strip is closed again. A fan that
    turns back over itself between two of its rulings (in a plane: over a stretch of a
    curve its apex does not see whole) gets a ruling at the turn, which runs along the
@@ -108,7 +108,6 @@ from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
 from .fans import a_fans_all, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
-from .measure import warp_allowance as warp_allowance  # (its home before .measure)
 from .stations import Spacing
 from .strip import SIDE, Strip
 from .warp import PARALLEL
