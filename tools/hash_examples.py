@@ -38,6 +38,8 @@ def solve_all(out: Path, names: list[str]) -> None:
         run = subprocess.run(
             [sys.executable, "-m", "torsal.app.cli", "run", str(graph), "--json"],
             capture_output=True, text=True, check=False, timeout=900)
+        if not run.stdout.strip():
+            sys.exit(f"{graph.stem} printed no results:\n{run.stderr}")
         text = json.dumps(_without_timings(json.loads(run.stdout)), sort_keys=True, indent=1)
         (out / f"{graph.stem}.json").write_text(text)
         lines.append(f"{hashlib.sha256(text.encode()).hexdigest()}  {graph.stem}")
