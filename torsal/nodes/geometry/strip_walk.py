@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
-from torsal.nodes.geometry.vec_ops import cross2
+from torsal.nodes.geometry.vec_ops import cross2, linalg_norm
 
 #: Every STRIDE-th ruling makes the next coarser strip.
 STRIDE = 8
@@ -96,7 +96,7 @@ class StripWalk:
         if n > TOP:
             keep = np.unique(np.append(np.arange(0, n, STRIDE), n - 1))
             a, b = vertices2d[:n][keep], vertices2d[n:][keep]
-            diagonal = np.linalg.norm(a[1:] - b[:-1], axis=1) <= np.linalg.norm(b[1:] - a[:-1], axis=1)
+            diagonal = linalg_norm(a[1:] - b[:-1]) <= linalg_norm(b[1:] - a[:-1])
             self.coarse = StripWalk(np.vstack([a, b]), diagonal)
             #: per coarse quad, the chain positions of its triangles here: from, how many
             self.coarse_first, self.coarse_count = 2 * keep[:-1], 2 * np.diff(keep)

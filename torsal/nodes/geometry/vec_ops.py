@@ -1,5 +1,5 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds;
-and the plane cross product (cross2).
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds,
+the largest, smallest, every and some along a short axis; and the plane cross product (cross2).
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -24,20 +24,22 @@ from numpy.typing import ArrayLike
 
 from .array_types import FloatArray
 
-#: The coordinates after and before each one:
-#: (a × b)_k = a[_NEXT[k]]·b[_PREVIOUS[k]] − a[_PREVIOUS[k]]·b[_NEXT[k]].
-_NEXT = np.array([1, 2, 0])
-_PREVIOUS = np.array([2, 0, 1])
-
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Row-wise cross product (broadcasting): each component a_i·b_j − a_j·b_i, the three
-    first products in one multiplication and the three second in another (``np.cross``'s
-    values, bit for bit). ``take`` gathers coordinates into new C-ordered arrays, a few
-    times faster than indexing with an index array, and the subtraction then runs on two
-    whole arrays of the same shape (not on the strided halves of one)."""
-    first = a.take(_NEXT, axis=-1) * b.take(_PREVIOUS, axis=-1)
-    return first - a.take(_PREVIOUS, axis=-1) * b.take(_NEXT, axis=-1)
+    """Row-wise cross product (broadcasting), component by component from the coordinates'
+    columns: (a × b)_x = a_y·b_z − a_z·b_y and so on (``np.cross``'s values, bit for bit,
+    without its axis bookkeeping). Each component is two products and a difference of
+    whole columns, so the cost grows with the rows alone (gathering the coordinates with
+    ``take`` along the last axis, as this did before, slows down past a few hundred rows:
+    260 µs against 17 µs for 1,500)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b))
+    for k, (i, j) in enumerate(_AFTER):
+        np.subtract(a[..., i] * b[..., j], a[..., j] * b[..., i], out=out[..., k])
+    return out
+
+
+#: For each coordinate k of a cross product, the two after it (cyclically): i, j.
+_AFTER = ((1, 2), (2, 0), (0, 1))
 
 
 def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -70,10 +72,63 @@ def norm(a: FloatArray) -> FloatArray:
     return np.sqrt(np.einsum("...i,...i->...", a, a))
 
 
+def linalg_norm(a: FloatArray) -> FloatArray:
+    """``np.linalg.norm(a, axis=-1)`` of a float array, bit for bit: the square root of the same
+    sum of the same squares (:func:`norm` sums them in another order). numpy adds fewer than
+    eight items one after another, from the first: so are a point's 2 or 3 squares added
+    here, as whole columns (numpy's reduction along a short axis goes one row at a time,
+    four times slower on 8,000 triangles' edges)."""
+    squares = a * a
+    if a.shape[-1] >= 8:  # (numpy sums as many pairwise: its own reduction)
+        return np.sqrt(np.add.reduce(squares, axis=-1))
+    total = squares[..., 0].copy()
+    for k in range(1, a.shape[-1]):
+        total += squares[..., k]
+    return np.sqrt(total)
+
+
 def unit(a: FloatArray) -> FloatArray:
     """Row-wise unit vectors; zero rows stay zero."""
     length = norm(a)[..., None]
     return a / np.where(length > 0, length, 1.0)
+
+
+def largest(a: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``a.max(axis=axis)`` along a short axis (a point's 3 coordinates, a triangle's 3
+    corners), bit for bit (a maximum is exact, and NaN wins in both): one
+    :func:`numpy.maximum` of whole arrays per item of that axis. numpy reduces along an axis
+    one row at a time, about 0.1 µs a row: 420 µs for the coordinates of 3,000 points,
+    against 5 µs this way."""
+    return _fold(np.maximum, a, axis)
+
+
+def smallest(a: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``a.min(axis=axis)`` along a short axis, bit for bit (see :func:`largest`)."""
+    return _fold(np.minimum, a, axis)
+
+
+def every(mask: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``mask.all(axis=axis)`` along a short axis (see :func:`largest`)."""
+    return _fold(np.logical_and, mask, axis)
+
+
+def some(mask: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``mask.any(axis=axis)`` along a short axis (see :func:`largest`)."""
+    return _fold(np.logical_or, mask, axis)
+
+
+def _fold(ufunc: np.ufunc, a: np.ndarray, axis: int) -> np.ndarray:
+    """``ufunc.reduce(a, axis)`` for an exact, order-free ``ufunc`` (max, min, and, or), as
+    one ``ufunc`` of whole arrays per item along the axis (meant for short axes)."""
+    axis %= a.ndim
+    count = a.shape[axis]
+    if count == 0:  # (as the reduction: an identity, or its error)
+        return ufunc.reduce(a, axis=axis)
+    before = (slice(None),) * axis  # (the item k along the axis is a[before + (k,)])
+    out = a[(*before, 0)].copy()
+    for k in range(1, count):
+        ufunc(out, a[(*before, k)], out=out)
+    return out
 
 
 def extent(points: FloatArray) -> FloatArray:
@@ -159,5 +214,28 @@ def derivative_noise(points: FloatArray) -> float:
         return 0.0
     return NOISE_GAIN * _EPS * float(np.maximum.reduce(np.abs(points), axis=None, initial=0.0)) / size
 
+
+def differenced(geometry: object) -> bool:
+    """Whether a curve's or surface's first derivatives may be differences of its positions
+    (a function of world coordinates, differentiated numerically): only then is
+    :func:`derivative_noise` the floor of an integral of them. An object that says
+    ``exact_derivatives`` is as it says; a wrapper (a rail, a transform, a curve on a
+    surface: its ``curve`` or ``surface``) is as exact as what it wraps; any other kind may
+    be differenced."""
+    for _ in range(_WRAPPERS):
+        exact = getattr(geometry, "exact_derivatives", None)
+        if exact is not None:
+            return not exact
+        inner = getattr(geometry, "curve", None)
+        if inner is None:
+            inner = getattr(geometry, "surface", None)
+        if inner is None or inner is geometry:
+            return True
+        geometry = inner
+    return True
+
+
+#: Most wrappers :func:`differenced` looks through.
+_WRAPPERS = 16
 
 _EPS = float(np.finfo(float).eps)
