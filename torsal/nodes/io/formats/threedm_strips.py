@@ -58,6 +58,9 @@ SAMPLES = 12
 #: The densest sampling tried (per ruling interval) before a fit settles for what it reached.
 LARGEST_SAMPLING = 192
 
+#: A rail whose tangent turns more than this (rad) at a ruling has a corner there.
+CORNER = 1e-3
+
 #: Two ruling ends closer than this (relative to the size) are one point: a fan.
 SAME_POINT = 1e-12
 
@@ -92,6 +95,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
     same = SAME_POINT * size
     shared = (np.abs(lines[1:, 0] - lines[:-1, 0]).max(axis=1) <= same) | (
         np.abs(lines[1:, 1] - lines[:-1, 1]).max(axis=1) <= same)
+    corner = _corners(strip, u)
     pieces: list[Piece] = []
     k = 0
     n = len(lines)
@@ -111,11 +115,30 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             k += 1
             continue
         end = k + 1
-        while end < n - 1 and not shared[end]:
+        while end < n - 1 and not shared[end] and not corner[end]:
             end += 1
         pieces.append(_ruled(strip, u, lines, k, end, size))
         k = end
     return pieces
+
+
+def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
+    """Per ruling: whether a rail turns a corner there (its tangents just before and just
+    after it differ by more than :data:`CORNER`), as a strip cut to a trim does where its
+    edge leaves a boundary for the trim: the faces on either side meet at that ruling."""
+    corner = np.zeros(len(u), dtype=bool)
+    if len(u) < 3:
+        return corner
+    step = 1e-7 * float(u[-1] - u[0])
+    inner = u[1:-1]
+    for rail in (strip.curve_a, strip.curve_b):
+        before = rail.derivatives(inner - step, 1)[1]
+        after = rail.derivatives(inner + step, 1)[1]
+        with np.errstate(invalid="ignore"):
+            angle = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1),
+                               np.einsum("ij,ij->i", before, after))
+        corner[1:-1] |= np.nan_to_num(angle) > CORNER
+    return corner
 
 
 def _fan_run(lines: np.ndarray) -> rh.Brep | None:
@@ -155,7 +178,16 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     tolerance = FIT * size
     own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
     fit = own
-    if _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
+    if _twist(own) > DEVELOPABLE and _own_twist(strip, span) <= DEVELOPABLE:
+        # the strip's own pairing is developable (as a strip cut to a trim is) but its short
+        # rulings magnify the fit's error into a twist: closer fits, as close as that takes
+        for closer in (0.1, 0.01, 0.001):
+            tighter = _fit(strip, span, lines[first:last + 1], tolerance * closer, lambda at: at,
+                           np.empty(0))
+            fit = tighter if _twist(tighter) < _twist(fit) else fit
+            if _twist(fit) <= DEVELOPABLE:
+                break
+    elif _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
         kinks = switches(strip.curve_a, strip.curve_b, span)
 
         def paired(at: np.ndarray) -> np.ndarray:
@@ -172,6 +204,16 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
     brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
     return Piece(brep, "torsal", first, last, worst, count)
+
+
+def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
+    """The largest angle between the strip's own normals 1 % in from either end of its lines
+    across (isocurves) at ``count`` of them over ``span``."""
+    u = np.linspace(span[0], span[-1], count)
+    near = np.cross(*strip.derivatives(u, np.full(count, 0.01))[1:3])
+    far = np.cross(*strip.derivatives(u, np.full(count, 0.99))[1:3])
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
+    return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
 
 
 def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
@@ -208,7 +250,10 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     ends = span[[0, -1]]
     b_ends = strip.curve_b.point_at(ends)
     b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
-    slopes = np.hstack([strip.curve_a.derivatives(ends, 1)[1],
+    # (the last one just inside: at a corner of the rail, as on a strip cut to a trim, the
+    # face's own side of it)
+    inside = np.array([lo, hi - 1e-12 * (hi - lo)])
+    slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1],
                         np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step])
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
@@ -238,9 +283,10 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
                 error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
                                    np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
             worst = float(error.max())
-            if not np.isfinite(worst):  # a span without samples: the previous fit stands
-                break
-            best = (worst, knots, spline)
+            if not np.isfinite(worst) or worst > 1e3 * best[0]:  # ill-posed (a span without
+                break  # enough samples): the previous fit stands
+            if worst < best[0]:
+                best = (worst, knots, spline)
             if worst <= tolerance or len(knots) - 4 >= len(fine) // 3:
                 break
             breaks = np.unique(np.concatenate([breaks_fixed, interior]))
