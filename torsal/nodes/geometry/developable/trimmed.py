@@ -40,6 +40,7 @@ import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
@@ -65,6 +66,9 @@ MARGIN = 0.02
 PER_RULING, ACROSS = 12, 41
 #: Bisections of a cut strip's end (where its lines leave the trim).
 HALVINGS = 24
+#: Strips are cut this share of the tolerance outside the trim, so the trim is covered by
+#: their inside, not only by their cut edges (which lie up to the deviation off the design).
+REACH = 0.5
 #: A cut strip's end line is this share of its neighbour's length at least (not a point).
 TIP = 2e-3
 #: Samples per trim loop span, for the coverage.
@@ -151,7 +155,7 @@ class _OnSheet(Curve):
     from rail A's A(x) to B(τ(x)) (``tau``, ``w``: scipy splines in x), with exact
     derivatives (to order 3, the chain rule through τ and w)."""
 
-    def __init__(self, a: Curve, b: Curve, tau: BSpline | PchipInterpolator, w: BSpline) -> None:
+    def __init__(self, a: Curve, b: Curve, tau: _Pace, w: BSpline) -> None:
         self.a, self.b, self.tau, self.w = a, b, tau, w
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
@@ -196,7 +200,13 @@ class _Sheet:
         self.x, self.ruling = _columns(self.u)
         tau = torsal_partners(self.a, self.b, self.u, self.x)[0]
         tau[self.ruling >= 0] = self.u
-        self.tau = _monotone_spline(self.x, np.maximum.accumulate(tau))
+        # in a fan (two rulings through one point) the sheet is the cone of lines from that
+        # point to the other rail, at the strip's own pace: no partner to look for
+        size = float(np.ptp(self.lines.reshape(-1, 3), axis=0).max()) or 1.0
+        apex = (np.abs(np.diff(self.lines, axis=0)).max(axis=2) <= 1e-12 * size).any(axis=1)
+        between = np.minimum(np.searchsorted(self.u, self.x, side="right") - 1, len(apex) - 1)
+        tau = np.where(apex[between], self.x, tau)
+        self.tau = _Pace(self.x, np.maximum.accumulate(tau), self.u)
 
     def ends(self, x: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Both ends of the lines at ``x``: the strip's rulings exactly at their u."""
@@ -214,13 +224,31 @@ class _Sheet:
         return self.inside(points.reshape(-1, 3)).reshape(len(x), len(self.w))
 
 
-def _monotone_spline(x: FloatArray, y: FloatArray) -> BSpline | PchipInterpolator:
-    """The cubic spline through ``(x, y)`` (``y`` non-decreasing) where it stays monotone
-    (checked between the samples), else the monotone piecewise cubic (PCHIP): a C2 curve
-    is what the ``.3dm`` export fits in few control points."""
-    spline = make_interp_spline(x, y, k=3)
-    check = np.linspace(x[0], x[-1], 8 * len(x))
-    return spline if (np.diff(spline(check)) >= 0.0).all() else PchipInterpolator(x, y)
+class _Pace:
+    """The partner parameter τ(x) between the strip's rulings: on each ruling interval the
+    cubic spline through its samples (where it stays monotone, else the monotone PCHIP), so
+    a fan's pace next to a torsal one does not ripple across the ruling between them."""
+
+    def __init__(self, x: FloatArray, tau: FloatArray, rulings: FloatArray) -> None:
+        self.rulings = rulings
+        self.pieces = []
+        for lo, hi in itertools.pairwise(rulings):
+            mine = (x >= lo) & (x <= hi)
+            xs, ys = x[mine], tau[mine]
+            spline = make_interp_spline(xs, ys, k=min(3, len(xs) - 1))
+            check = np.linspace(lo, hi, 8 * len(xs))
+            monotone = (np.diff(spline(check)) >= 0.0).all()
+            self.pieces.append(spline if monotone else PchipInterpolator(xs, ys))
+
+    def __call__(self, x: ArrayLike, nu: int = 0) -> FloatArray:
+        x = np.asarray(x, dtype=float)
+        flat = np.atleast_1d(x)
+        which = np.clip(np.searchsorted(self.rulings, flat, side="right") - 1, 0, len(self.pieces) - 1)
+        out = np.empty(len(flat))
+        for k in np.unique(which):
+            mine = which == k
+            out[mine] = self.pieces[k](flat[mine], nu)
+        return out.reshape(x.shape) if x.ndim else out[0]
 
 
 def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
@@ -333,12 +361,19 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
         edge, line = (run[-1] if ahead else run[0]), added[k]
         share = (TIP * longest[k] - _kept(line)) / max(_kept(edge) - _kept(line), 1e-300)
         where.append(line.x + (edge.x - line.x) * min(max(share, 0.0), 1.0))
-    moved = _lines_at(sheet, np.array(where), [(added[k].lo, added[k].hi) for k in short])
-    for k, line in zip(short, moved, strict=True):
-        added[k] = line
+    for toward in (0.0, 0.5, 0.8):  # a line still outside (a point): closer to the run's edge
+        shift = [x + toward * ((tips[k][0][-1] if tips[k][2] else tips[k][0][0]).x - x)
+                 for k, x in zip(short, where, strict=True)]
+        moved = _lines_at(sheet, np.array(shift), [(added[k].lo, added[k].hi) for k in short])
+        for k, line in zip(short, moved, strict=True):
+            added[k] = line
+        short_again = [i for i, k in enumerate(short) if _kept(added[k]) <= 0.0]
+        short, where = [short[i] for i in short_again], [where[i] for i in short_again]
+        if not short:
+            break
     for (run, _, ahead), line in zip(tips, added, strict=True):
         edge = run[-1] if ahead else run[0]
-        if (line.x - edge.x) * (1 if ahead else -1) > 0.0:
+        if _kept(line) > 0.0 and (line.x - edge.x) * (1 if ahead else -1) > 0.0:  # (a point: none)
             run.append(line) if ahead else run.insert(0, line)
             edge.kept = edge.ruling >= 0  # the end is the new line (a ruling stays one)
     return [run for run in runs if len(run) >= 2]
@@ -466,16 +501,22 @@ def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: C
     return Strip(float(run[0].x), float(run[-1].x), result, surface, warp, deviation.bound, deviation.where)
 
 
-def signed_inside(design: TrimmedSurface, patch: Patch) -> Callable[[FloatArray], FloatArray]:
-    """Points' signed distance in (u, v) from the trim loops, positive inside: each point
-    projected onto the patch first."""
-    boundary = design.region.boundary
+def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
+                  ) -> Callable[[FloatArray], FloatArray]:
+    """Points' signed distance from the trim loops, positive inside, plus ``margin``: each
+    point projected onto the patch, its (u, v) scaled by the surface's mean speeds along u
+    and v (so the distance is about one along the surface, in model units)."""
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
+    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
+    speed = np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
+    region = shapely.transform(design.region, lambda xy: xy * speed)
+    boundary = region.boundary
 
     def inside(points: FloatArray) -> FloatArray:
-        uv = np.column_stack(patch.to_surface(*patch.closest_point(points, candidates=1, tolerance=1e-9).parameters.T))
-        where = shapely.points(uv)
-        distance = shapely.distance(boundary, where)
-        return np.where(shapely.contains_xy(design.region, uv[:, 0], uv[:, 1]), distance, -distance)
+        found = patch.closest_point(points, candidates=1, tolerance=1e-9).parameters
+        uv = np.column_stack(patch.to_surface(found[:, 0], found[:, 1])) * speed
+        distance = shapely.distance(boundary, shapely.points(uv))
+        return np.where(shapely.contains_xy(region, uv[:, 0], uv[:, 1]), distance, -distance) + margin
 
     return inside
 
@@ -490,12 +531,13 @@ def trim_points(design: TrimmedSurface) -> FloatArray:
     return np.concatenate(out)
 
 
-def rationalise_trimmed(design: TrimmedSurface, tolerance: float, **options) -> Rationalisation:
+def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **options: Any
+                        ) -> Rationalisation:
     """Strips within ``tolerance`` of a trimmed design, inside its trim (see the module);
-    ``options`` as :func:`~torsal.nodes.geometry.developable.rationalise.rationalise`."""
+    the other arguments as :func:`~torsal.nodes.geometry.developable.rationalise.rationalise`."""
     patch = patch_of(design)
-    base = rationalise(patch, tolerance, **options)
-    inside = signed_inside(design, patch)
+    base = rationalise(patch, tolerance, *args, **options)
+    inside = signed_inside(design, patch, REACH * tolerance)
     strips: list[Strip] = []
     narrow: list[int] = []
     for k, strip in enumerate(base.strips):

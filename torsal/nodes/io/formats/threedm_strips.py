@@ -181,9 +181,8 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     if _twist(own) > DEVELOPABLE and _own_twist(strip, span) <= DEVELOPABLE:
         # the strip's own pairing is developable (as a strip cut to a trim is) but its short
         # rulings magnify the fit's error into a twist: closer fits, as close as that takes
-        for closer in (0.1, 0.01, 0.001):
-            tighter = _fit(strip, span, lines[first:last + 1], tolerance * closer, lambda at: at,
-                           np.empty(0))
+        for _ in range(3):
+            tighter = _fit(strip, span, lines[first:last + 1], 0.1 * fit[0], lambda at: at, np.empty(0))
             fit = tighter if _twist(tighter) < _twist(fit) else fit
             if _twist(fit) <= DEVELOPABLE:
                 break
@@ -253,8 +252,13 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     # (the last one just inside: at a corner of the rail, as on a strip cut to a trim, the
     # face's own side of it)
     inside = np.array([lo, hi - 1e-12 * (hi - lo)])
-    slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1],
-                        np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step])
+    probe = np.array([lo + step, hi - step])
+    if np.array_equal(partner(probe), probe):  # the strip's own pairing: B's own tangents (a
+        # difference over a short face's step would carry the points' rounding)
+        b_slopes = strip.curve_b.derivatives(inside, 1)[1]
+    else:
+        b_slopes = np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step
+    slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1], b_slopes])
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
     while True:
