@@ -179,3 +179,17 @@ def test_every_ruling_is_torsal_and_the_exported_faces_are_developable_and_join(
             a, b = corners(before), corners(after)
             near = np.linalg.norm(a[:, None] - b[None], axis=2).min(axis=1)
             assert np.sort(near)[1] <= 1e-9 * size
+
+
+def test_the_strips_file_is_at_most_a_fifth_of_the_one_surface_form(solved):
+    from torsal.nodes.io.formats import threedm
+
+    folder, result = solved
+    strips = items(result, "Strips")
+    threedm.write_3dm(folder / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
+    naive = rh.File3dm()  # the form written before: one interpolated surface per strip
+    for strip in strips:
+        naive.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
+    assert naive.Write(str(folder / "naive.3dm"), 7)
+    size, naive_size = ((folder / name).stat().st_size for name in ("faces.3dm", "naive.3dm"))
+    assert size <= 0.2 * naive_size  # measured 6.5 %

@@ -221,3 +221,20 @@ def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developab
     twists = [normal_twist(surface_of(o), 100) for o in objects
               if o.Attributes.GetUserString("TorsalFace") == "torsal"]
     assert twists and max(twists) <= 1e-6  # measured 2.9e-7 (Rhino's own NormalAt)
+
+
+def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path):
+    from torsal.app.headless import run_file
+
+    solved = run_file(ROOT / "torsal" / "resources" / "examples" / "rationalise-roof.graph")
+    strips = solved.solver.result("strips").outputs["Strips"].all_items()
+    threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
+    naive = rh.File3dm()
+    for strip in strips:
+        naive.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
+    assert naive.Write(str(tmp_path / "naive.3dm"), 7)
+    size, naive_size = ((tmp_path / name).stat().st_size for name in ("faces.3dm", "naive.3dm"))
+    assert size <= 0.2 * naive_size  # measured 9.4 % (the canopy's twisting strips: 28 %)
+    twists = [normal_twist(surface_of(o), 60) for o in rh.File3dm.Read(str(tmp_path / "faces.3dm")).Objects
+              if o.Attributes.GetUserString("TorsalFace") == "torsal"]
+    assert max(twists) <= 1e-6  # measured 1.2e-13
