@@ -96,9 +96,15 @@ def loop_points(count: int = 2000) -> np.ndarray:
     return SADDLE.points(x0 + uv[:, 0] * (x1 - x0), y0 + uv[:, 1] * (y1 - y0))
 
 
-def strip_mesh(strip) -> trimesh.Trimesh:
-    points = grid(strip, 241, 25)
-    nu, nv = points.shape[:2]
+def strip_mesh(strip, per: int = 16, nv: int = 25) -> trimesh.Trimesh:
+    """Triangles of ``per`` samples between consecutive rulings (a cut strip's end, where the
+    trim runs nearly along its rulings, is a short stretch of its parameter) by ``nv`` across."""
+    rulings = np.asarray(strip.ruling_parameters, dtype=float)
+    steps = np.linspace(0.0, 1.0, per + 1)[:-1]
+    u = np.concatenate([(rulings[:-1, None] + np.diff(rulings)[:, None] * steps).ravel(), rulings[-1:]])
+    uu, vv = np.meshgrid(u, np.linspace(0.0, 1.0, nv), indexing="ij")
+    points = strip.point_at(uu.ravel(), vv.ravel()).reshape(len(u), nv, 3)
+    nu = len(u)
     a = (np.arange(nu - 1)[:, None] * nv + np.arange(nv - 1)).ravel()
     faces = np.concatenate([np.stack([a, a + nv, a + nv + 1], 1), np.stack([a, a + nv + 1, a + 1], 1)])
     return trimesh.Trimesh(points.reshape(-1, 3), faces, process=False)
