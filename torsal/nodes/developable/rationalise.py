@@ -15,7 +15,7 @@ from torsal.nodes.common.geometry_checks import parametric_surface as surface_in
 from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
-from torsal.nodes.geometry.developable.measure import warp_allowance
+from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.rationalise import rationalise
 from torsal.nodes.geometry.developable.trimmed import rationalise_trimmed
 from torsal.nodes.geometry.local_frame import LocalFrame
@@ -234,7 +234,7 @@ class Rationalise(Node):
             rulings.extend(lines.rulings)
             w = strip.warp
             warp.extend(w.tolist())
-            ok = np.isfinite(w) & (w <= warp_limit + warp_allowance(starts, ends))
+            ok = within_tolerance(w, warp_limit, starts, ends)
             valid.extend(ok.tolist())
             fans += int(np.count_nonzero(strip.result.fan))
             kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())

@@ -60,6 +60,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import make_interp_spline
+from scipy.linalg import cho_factor, cho_solve
 from scipy.optimize import least_squares
 
 from .array_types import FloatArray
@@ -370,12 +371,11 @@ def _polished(
     input: the same strip moved by 16 m turned its rulings' ends by 1e-8 of its size.
     Gauss–Newton steps on the optimum's condition g = Jᵀw + μ²(θ − θ⁰) = 0 (free angles)
     settle on it to ~1e-14 rad wherever the strip sits. The matrix JᵀJ + μ²I is factored
-    once, where MINPACK stopped (it hardly changes over the last 5e-8 rad), by
-    :func:`_cholesky` in plain numpy: the threaded LAPACK behind ``np.linalg.solve``
-    stalled for a fifth of a second per 200-ruling solve on a busy machine. The steps stop
-    when one no longer shrinks, and never leave the angle limit."""
+    once, where MINPACK stopped (it hardly changes over the last 5e-8 rad), by Cholesky
+    (:func:`scipy.linalg.cho_factor`). The steps stop when one no longer shrinks, and never
+    leave the angle limit."""
     theta = theta.copy()
-    factor: FloatArray | None = None
+    factor: tuple[FloatArray, bool] | None = None
     previous = np.inf
     for step in range(POLISH_STEPS):
         if check is not None:
@@ -389,8 +389,8 @@ def _polished(
         if factor is None:
             normal = np.einsum("ki,kj->ij", j, j)
             normal[np.diag_indices_from(normal)] += PULL**2
-            factor = _cholesky(normal)
-        delta = -_cholesky_solve(factor, gradient)
+            factor = cho_factor(normal, lower=True)
+        delta = -cho_solve(factor, gradient)
         size = float(np.abs(delta).max(initial=0.0))
         moved = theta[free] + delta
         if not (size < previous and np.isfinite(size) and np.abs(moved).max(initial=0.0) <= ANGLE_LIMIT):
@@ -400,28 +400,3 @@ def _polished(
         if size <= 4.0 * np.finfo(float).eps:
             return theta, step + 1
     return theta, POLISH_STEPS
-
-
-def _cholesky(a: FloatArray) -> FloatArray:
-    """The lower Cholesky factor L (L Lᵀ = a) of a symmetric positive definite matrix, by
-    column and rank-one update in plain numpy (no threaded BLAS or LAPACK)."""
-    m = np.array(a, dtype=float)
-    for k in range(len(m)):
-        pivot = np.sqrt(m[k, k])
-        m[k, k] = pivot
-        column = m[k + 1:, k] / pivot
-        m[k + 1:, k] = column
-        m[k + 1:, k + 1:] -= column[:, None] * column[None, :]
-    return np.tril(m)
-
-
-def _cholesky_solve(lower: FloatArray, b: FloatArray) -> FloatArray:
-    """x with L Lᵀ x = b, by forward and back substitution."""
-    n = len(b)
-    y = np.empty(n)
-    for i in range(n):
-        y[i] = (b[i] - lower[i, :i] @ y[:i]) / lower[i, i]
-    x = np.empty(n)
-    for i in range(n - 1, -1, -1):
-        x[i] = (y[i] - lower[i + 1:, i] @ x[i + 1:]) / lower[i, i]
-    return x

@@ -54,6 +54,9 @@ class NurbsCurve(Curve):
     [1.0, 1.0, 0.0]
     """
 
+    #: Derivatives from the definition, not differences of positions (:func:`.vec_ops.differenced`).
+    exact_derivatives = True
+
     def __init__(
         self,
         control_points: ArrayLike,
