@@ -31,7 +31,7 @@ from ..curve_base import FloatArray
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
-from .selection import monotone_path
+from .selection import longest_chain, monotone_path
 from .stack import Stack, evaluate_rows
 from .strip import Grid, Strip
 from .warp import _angles, _normals, in_plane_tangent, sizes
@@ -515,8 +515,9 @@ def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
         pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
         chosen[rows] = index_pad[rows, pick]
         t = good.t[chosen[rows]]
-        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
-            chosen[rows[~_longest_monotone(t)]] = -1
+        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: the longest chain
+            pick = longest_chain(t_pad[rows], slope_pad[rows], s)
+            chosen[rows] = np.where(pick >= 0, index_pad[rows, np.maximum(pick, 0)], -1)
     return chosen, good
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
