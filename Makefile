@@ -29,10 +29,10 @@ run: system $(RUN_STAMP)
 test: system $(TEST_STAMP)
 	$(BIN)/ruff check .
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
-		$(BIN)/python -m pytest --ignore=tests/gui && $(BIN)/python -m pytest tests/gui; \
+		$(BIN)/python -m pytest --ignore=tests/app/gui && $(BIN)/python -m pytest tests/app/gui; \
 	else \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest --ignore=tests/gui && \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/gui; \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest --ignore=tests/app/gui && \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/app/gui; \
 	fi
 
 bench: system $(TEST_STAMP)

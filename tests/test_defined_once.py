@@ -13,7 +13,7 @@ import ast
 
 import pytest
 
-from tests.import_graph import PACKAGES, ROOT
+from tests.support.import_graph import PACKAGES, ROOT
 
 ALIASES = ("FloatArray", "IntArray", "BoolArray")
 DOT = ("dot", "_dot")

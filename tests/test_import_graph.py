@@ -1,6 +1,6 @@
 """No import circles among the project's modules (engine, nodes, app, tools).
 
-The graph is read statically (:mod:`tests.import_graph`): imports inside functions count,
+The graph is read statically (:mod:`tests.support.import_graph`): imports inside functions count,
 and so do imports under ``if TYPE_CHECKING:`` (a type named both ways still ties two modules
 together). Circles not yet untangled are listed in :data:`KNOWN_CIRCLES`; the list is
 exact, so a new circle fails and so does a listed one that has gone (remove it from the list).
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.import_graph import a_cycle, circles, import_graph
+from tests.support.import_graph import a_cycle, circles, import_graph
 
 #: Circles still to untangle, each as its set of modules (none: keep it empty).
 KNOWN_CIRCLES: set[frozenset[str]] = set()

@@ -1,7 +1,7 @@
 """Solving untrusted graphs under guard: worker processes with a memory cap and a stall alarm.
 
-The input-cap sweep (tests/test_input_caps.py) and the ``.graph`` fuzzer
-(tools/fuzz_graphs.py, tests/test_fuzz_examples.py) solve thousands of hostile graphs.
+The input-cap sweep (tests/nodes/test_input_caps.py) and the ``.graph`` fuzzer
+(tools/fuzz_graphs.py, tests/app/test_fuzz_examples.py) solve thousands of hostile graphs.
 A case that tries to allocate 20 GiB or loops for ever must be caught, named and
 reported, not take the machine (shared with other work) down with it. So every case runs
 in a worker process of a :class:`GuardedPool`:

@@ -14,7 +14,7 @@ accuracy test (``ACCURACY`` of the true area), searched for in the run knowing t
 themselves (two orders must agree), so they reach rounding where Simpson's grid is only
 as fine as it must be; both errors are printed. Against that best case the Gauss rules
 are slower (8–18× measured), the price of not having to know the answer to pick a grid.
-What the areas are is checked by ``make test`` (``tests/geometry``, ``tests/developable``).
+What the areas are is checked by ``make test`` (``tests/nodes/geometry``).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ import math
 import time
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.developable.test_ruled_area import circle_loft, simpson_area, twisted_loft
+from tests.nodes.geometry.test_ruled_area import circle_loft, simpson_area, twisted_loft
 from torsal.nodes.geometry.curves import Circle
 from torsal.nodes.geometry.nurbs_surface import Loft
 from torsal.nodes.geometry.surface_base import Surface

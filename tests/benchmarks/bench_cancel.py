@@ -45,9 +45,9 @@ import pytest
 
 from tests.benchmarks.check_gaps import RecordingToken, check_gaps
 from tests.benchmarks.timing import check_interval_block, duration
-from tests.developable.surfaces import PAIRS
-from tests.geometry.test_area_knot_grid import bumpy_net
-from tests.nodes.helpers import Source
+from tests.nodes.geometry.test_area_knot_grid import bumpy_net
+from tests.support.curve_pairs import PAIRS
+from tests.support.node_helpers import Source
 from torsal.engine.datatree import DataTree
 from torsal.engine.graph import Graph
 from torsal.engine.graphfile import read_graph

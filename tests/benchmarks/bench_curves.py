@@ -17,7 +17,7 @@ bars are about twice the ratios measured (0.85–1.9×; interpolation 1.6–3.1�
 findings stood out and are fixed: a circle's closest points took the generic search, 68×
 its closed form (Circle and Arc now have the closed form), and the closest points of a
 rational cubic missed the nearest stretch of the curve for about 3 % of random queries
-(the test below compares them with the baseline; tests/geometry/test_curve_closest_point.py
+(the test below compares them with the baseline; tests/nodes/geometry/curves/test_curve_closest_point.py
 with brute force).
 """
 

@@ -11,9 +11,9 @@ same operations on the same array, already built. Each node is timed alone where
 own work is O(n) (Sort, Shift with wrap, Cull Pattern), and the chain Sort → Shift →
 Reverse → Cull Pattern → List Item + List Length as a whole (Reverse is a view in both,
 so alone it would time only the engine's per-node cost). What the nodes compute is
-checked by ``make test`` (``tests/nodes/test_lists_arrays.py``). Points too: Series 10⁶ →
+checked by ``make test`` (``tests/nodes/lists/test_lists_arrays.py``). Points too: Series 10⁶ →
 Point → Shift against numpy stacking the (n, 3) array and rolling it
-(``tests/nodes/test_params_arrays.py``).
+(``tests/nodes/params/test_params_arrays.py``).
 """
 
 from __future__ import annotations

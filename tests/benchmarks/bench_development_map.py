@@ -9,7 +9,7 @@ sampling costs (``make bench``; issue 16). Run alone with::
 rulings, in the same run. Before the coarse-to-fine start (nodes/geometry/strip_walk.py)
 the fine cone took 12.8 times as long (its k-d tree start searched thousands of equally
 near samples); with it 2.3–3.3 times. What it computes is checked by ``make test``
-(tests/unroll/test_development_map_index.py).
+(tests/nodes/geometry/test_development_map_index.py).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.unroll.test_development_map_index import cone_to_apex
+from tests.nodes.geometry.test_development_map_index import cone_to_apex
 from torsal.nodes.geometry.unroll import unroll_rulings
 
 

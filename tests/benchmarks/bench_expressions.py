@@ -9,7 +9,7 @@ The bars: compiled expressions evaluate as fast as numpy (within 30 %); ``maths.
 solves 10⁶ items in a graph well under a second (here: within 3× numpy doing the same
 formula on the same list); hostile texts (a power tower, a megabyte of text) cost no
 more than an ordinary expression. What they compute is checked by ``make test``
-(``tests/test_expression_*.py``, ``tests/nodes/test_maths_expression.py``).
+(``tests/test_expression_*.py``, ``tests/nodes/maths/test_maths_expression.py``).
 """
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ The bars, each a ratio to a baseline measured in the same run (see
 from __future__ import annotations
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.engine.nodekit import make_registry
+from tests.support.nodekit import make_registry
 from torsal.engine import graphfile
 from torsal.engine.graph import Graph
 from torsal.engine.solver import Solver

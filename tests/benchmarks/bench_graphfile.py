@@ -30,7 +30,7 @@ from pathlib import Path
 import pytest
 
 from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
-from tests.engine.nodekit import make_registry
+from tests.support.nodekit import make_registry
 from torsal.engine import graphfile
 from torsal.engine.solver import Solver
 

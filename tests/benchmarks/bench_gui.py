@@ -39,7 +39,7 @@ Run alone with::
   headless solve's; 280 strips 0.5/s).
 
 The functional side of each (the window appears, the loop ticks, Esc cancels, every
-solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/gui``.
+solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/app/gui``.
 """
 
 from __future__ import annotations
@@ -52,19 +52,19 @@ import time
 
 import pytest
 
-from tests.gui.conftest import unavailable_reason
+from tests.app.gui.conftest import unavailable_reason
 
 REASON = unavailable_reason()
 if REASON:
     pytest.skip(REASON, allow_module_level=True)
 
 
+from tests.app.gui.test_live_solving import press_escape, start_long_solve, watch_event_loop  # noqa: E402
+from tests.app.gui.test_slider_drag_rate import drag_main_slider  # noqa: E402
+from tests.app.gui.test_startup import start_app  # noqa: E402
 from tests.benchmarks.from_history import extract_tree  # noqa: E402
-from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
-from tests.gui.fixtures_gui import EXAMPLES, FIXTURES  # noqa: E402
-from tests.gui.test_live_solving import press_escape, start_long_solve, watch_event_loop  # noqa: E402
-from tests.gui.test_slider_drag_rate import drag_main_slider  # noqa: E402
-from tests.gui.test_startup import start_app  # noqa: E402
+from tests.support.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
+from tests.support.fixtures_gui import EXAMPLES, FIXTURES  # noqa: E402
 from torsal.app.headless import run_file  # noqa: E402
 
 START_LIMIT_S = 3.0

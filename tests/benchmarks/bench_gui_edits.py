@@ -13,7 +13,7 @@ Each figure is the best of three, measured in the real window (canvas, viewport 
 inspector all listening), from the editor's call until the event loop has nothing
 left to do, with the garbage collector paused; the solve the edit asks for runs on the
 worker thread and is not counted.
-``make test`` counts the node items the canvas builds (``tests/gui/test_canvas_scale.py``).
+``make test`` counts the node items the canvas builds (``tests/app/gui/canvas/test_canvas_scale.py``).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.gui.conftest import unavailable_reason
+from tests.app.gui.conftest import unavailable_reason
 
 REASON = unavailable_reason()
 if REASON:
@@ -34,8 +34,8 @@ if REASON:
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
 from tests.benchmarks.timing import duration  # noqa: E402
-from tests.gui.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
-from tests.gui.fixtures_gui import wait_solved  # noqa: E402
+from tests.support.fixtures_gui import *  # noqa: E402, F403 - the window, registry and dialog fixtures
+from tests.support.fixtures_gui import wait_solved  # noqa: E402
 from torsal.engine.graph import Graph  # noqa: E402
 from torsal.engine.graphfile import write_graph  # noqa: E402
 from torsal.engine.registry import Registry  # noqa: E402

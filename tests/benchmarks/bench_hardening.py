@@ -24,8 +24,8 @@ import contextlib
 import io
 from pathlib import Path
 
+from tests.app.test_cli_hardening import EXAMPLE, cluster_bomb, warp_series_graph
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.test_cli_hardening import EXAMPLE, cluster_bomb, warp_series_graph
 from torsal.app.cli import main
 from torsal.nodes.io.common import FileFailure
 from torsal.nodes.io.formats import meshfiles

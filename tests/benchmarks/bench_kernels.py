@@ -18,7 +18,7 @@ Run alone with::
 * The one root solver on 2·10⁴ cubics x³ + x = c: within 3× ten plain Newton steps (the
   solver it replaced needed 59 calls, 1,800 problems still bisecting after 10).
 
-What they compute is checked by ``make test`` (tests/geometry/test_area_knot_grid.py,
+What they compute is checked by ``make test`` (tests/nodes/geometry/test_area_knot_grid.py,
 test_nearest_sample.py, test_triangle_search.py, test_roots.py).
 """
 
@@ -28,10 +28,10 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.geometry.test_area_knot_grid import bumpy_net, reference_area
-from tests.geometry.test_nearest_sample import helix_samples
-from tests.geometry.test_roots import cubic_problems
-from tests.geometry.test_triangle_search import queries, thin_strip
+from tests.nodes.geometry.test_area_knot_grid import bumpy_net, reference_area
+from tests.nodes.geometry.test_nearest_sample import helix_samples
+from tests.nodes.geometry.test_roots import cubic_problems
+from tests.nodes.geometry.test_triangle_search import queries, thin_strip
 from torsal.nodes.geometry.closest import nearest_sample
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface

@@ -21,7 +21,7 @@ import time
 import numpy as np
 import pytest
 
-from tests.toolbox.test_rationalise import DESIGNS, kaohsiung_roof
+from tests.nodes.developable.test_rationalise import DESIGNS, kaohsiung_roof
 from torsal.nodes.geometry.developable.guided import IsoBoundaries
 from torsal.nodes.geometry.developable.rationalise import boundary_family, rationalise, strip_between
 

@@ -1,4 +1,4 @@
-"""developable.Rationalise on the freeform designs of ``tests/toolbox/freeform_designs.py``
+"""developable.Rationalise on the freeform designs of ``tests/support/freeform_designs.py``
 and the Kaohsiung roof, at 1, 2 and 5 cm (``make bench``).
 
 Run alone with::
@@ -23,8 +23,8 @@ import numpy as np
 import pytest
 
 from tests.benchmarks.bench_rationalise import even_strips
-from tests.toolbox.freeform_designs import DESIGNS
-from tests.toolbox.test_rationalise import distance_to_surface, kaohsiung_roof
+from tests.nodes.developable.test_rationalise import distance_to_surface, kaohsiung_roof
+from tests.support.freeform_designs import DESIGNS
 from torsal.nodes.geometry.developable.fans import patch_areas
 from torsal.nodes.geometry.developable.rationalise import creased_area, rationalise
 

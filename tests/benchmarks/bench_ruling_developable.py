@@ -31,7 +31,7 @@ import pytest
 
 from tests.benchmarks.from_history import load_package
 from tests.benchmarks.timing import duration, ratio_to_baseline, timed_rounds
-from tests.developable.surfaces import PAIRS, Pair
+from tests.support.curve_pairs import PAIRS, Pair
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.developable import ruling_developable, station_parameters
 

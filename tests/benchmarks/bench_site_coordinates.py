@@ -5,7 +5,7 @@ Run alone with::
     .venv/bin/python -m pytest tests/benchmarks/bench_site_coordinates.py \\
         -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
-The bar of issue 11: moved by (1e6, 2e6, 300) m or by 1e9 m (see ``tests/site_shift.py``),
+The bar of issue 11: moved by (1e6, 2e6, 300) m or by 1e9 m (see ``tests/support/site_shift.py``),
 each example is loaded, solved and measured (every curve's length, every surface's area,
 as ``torsal run --json`` does) within 2× of the same at the origin, timed in pairs in one
 run. Before the kernel kept its curves relative to an anchor, the Guggenheim example
@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.site_shift import FAR, GRAPHS, REGISTRY, SITE, shifted, solve
+from tests.support.site_shift import FAR, GRAPHS, REGISTRY, SITE, shifted, solve
 from torsal.engine import graphfile
 
 REPEATS = 5

@@ -6,7 +6,7 @@ Run alone with::
     .venv/bin/python -m pytest tests/benchmarks/bench_site_strips.py \\
         -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
-The pairs are ``tests/test_site_strips.py``'s: random rational NURBS moved on their
+The pairs are ``tests/app/test_site_strips.py``'s: random rational NURBS moved on their
 control points, and curves given as functions of their world coordinates (finite
 differences). Before adaptive integrals stopped at the derivatives' rounding noise, the
 functions' strip took 84 s for its area and 83 s to unroll at 1e6 m (0.02 s and 0.05 s at
@@ -21,8 +21,8 @@ from collections.abc import Callable
 
 import pytest
 
+from tests.app.test_site_strips import FAR, SITE, solved
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.test_site_strips import FAR, SITE, solved
 
 REPEATS = 3
 BAR = 2.0

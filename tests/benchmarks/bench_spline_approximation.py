@@ -10,13 +10,13 @@ summed warp over 100 times in under 2 s. Here the optimising solve is timed agai
 baseline measured in the same run, the node solving the same strip at the given angles
 (stations, rulings, warps and outputs, without the least-squares search), so the ratio
 is what optimising adds. The warp it reaches is checked by ``make test``
-(``tests/toolbox/test_spline_approximation.py``).
+(``tests/nodes/developable/test_spline_approximation.py``).
 """
 
 from __future__ import annotations
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.toolbox.test_spline_approximation import only, solve, texts, twisted_strip
+from tests.nodes.developable.test_spline_approximation import only, solve, texts, twisted_strip
 
 
 def test_optimising_a_twisted_strip_costs_at_most_3_plain_solves():

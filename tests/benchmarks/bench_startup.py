@@ -36,8 +36,8 @@ from pathlib import Path
 
 import pytest
 
-from tests.gui.conftest import unavailable_reason
-from tests.gui.test_startup import stages
+from tests.app.gui.conftest import unavailable_reason
+from tests.app.gui.test_startup import stages
 
 REASON = unavailable_reason()
 if REASON:

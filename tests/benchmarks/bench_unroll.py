@@ -15,7 +15,7 @@ Each kernel is timed against a baseline measured in the same run:
   scipy k-d tree query of the same points among the triangles' centroids, a point
   location that is not exact.
 
-What they compute is checked by ``make test`` (``tests/unroll``, ``tests/toolbox``).
+What they compute is checked by ``make test`` (``tests/nodes/geometry``, ``tests/nodes/analysis``).
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.toolbox.test_development_locate import helix_tangent, inside_points
-from tests.unroll.test_unroll_rulings import helix_tangent_rulings
+from tests.nodes.geometry.test_development_locate import helix_tangent, inside_points
+from tests.nodes.geometry.test_unroll_rulings import helix_tangent_rulings
 from torsal.nodes.geometry.paper_strip import paper_strip
 from torsal.nodes.geometry.unroll import unroll_rulings
 

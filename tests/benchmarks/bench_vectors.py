@@ -10,7 +10,7 @@ the node on 10⁶ engine vectors in a few seconds. Here the kernel is timed agai
 doing the same three products, and the node against the plain way of doing its whole
 job: numpy's conversion of the vector lists, the same products, and a list
 comprehension building the output vectors. The values are checked by ``make test``
-(``tests/toolbox/test_analysis_vectors.py``).
+(``tests/nodes/analysis/test_analysis_vectors.py``).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from tests.benchmarks.timing import ratio_to_baseline
-from tests.toolbox.test_analysis_vectors import numpy_reference
+from tests.nodes.analysis.test_analysis_vectors import numpy_reference
 from torsal.engine.values import Vector
 from torsal.nodes.analysis.vectors import VectorAnalysis, as_vectors, vector_products
 

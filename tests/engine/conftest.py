@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.engine.nodekit import make_registry
+from tests.support.nodekit import make_registry
 from torsal.engine.registry import Registry
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.engine.bounds import bounds_text
 from torsal.engine.node import In, Node, Out
 from torsal.engine.types import INTEGER

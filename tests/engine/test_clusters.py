@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 
 import pytest
 
-from tests.engine.nodekit import make_registry
+from tests.support.nodekit import make_registry
 from torsal.engine.cluster import MAX_NESTING, ClusterNode
 from torsal.engine.cluster_edits import (
     add_cluster_instance,

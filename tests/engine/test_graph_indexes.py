@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tests.engine.nodekit import Add
+from tests.support.nodekit import Add
 from torsal.engine.graph import Graph, GraphError, Group, NodeRecord, Wire
 from torsal.engine.node import In, Node, Out, Setting
 from torsal.engine.solver import Solver

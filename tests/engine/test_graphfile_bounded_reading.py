@@ -10,7 +10,7 @@ import os
 
 import pytest
 
-from tests.engine.graphfile_files import (
+from tests.support.graphfile_files import (
     calls_made,
 )
 from torsal.engine import graphfile

@@ -27,7 +27,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tests.engine.graph_file_strategies import (
+from tests.support.graph_file_strategies import (
     HYPOTHESIS,
     canonical_files,
     corrupt,
@@ -35,7 +35,7 @@ from tests.engine.graph_file_strategies import (
     json_values,
     plausible_files,
 )
-from tests.engine.graphfile_fuzz_harness import (
+from tests.support.graphfile_fuzz_harness import (
     FUZZ_TESTS,
     MINIMUM_CASES,
     REGISTRY,
@@ -50,7 +50,7 @@ from tests.engine.graphfile_fuzz_harness import (
     run_case,
     timed,
 )
-from tests.engine.hostile_graph_files import SPECIAL_FILES
+from tests.support.hostile_graph_files import SPECIAL_FILES
 from torsal.engine import graphfile
 
 # --------------------------------------------------------------------------- deterministic

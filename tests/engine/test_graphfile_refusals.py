@@ -8,8 +8,8 @@ import json
 
 import pytest
 
-from tests.engine.graphfile_fuzz_harness import REGISTRY, deep_array
-from tests.engine.hostile_graph_files import HEAD, SPECIAL_FILES
+from tests.support.graphfile_fuzz_harness import REGISTRY, deep_array
+from tests.support.hostile_graph_files import HEAD, SPECIAL_FILES
 from torsal.engine import graphfile
 from torsal.engine.graph import PlaceholderNode
 from torsal.engine.graphfile import MAX_DEPTH, GraphFileError

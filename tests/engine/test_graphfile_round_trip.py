@@ -11,7 +11,7 @@ import re
 
 import pytest
 
-from tests.engine.graphfile_files import (
+from tests.support.graphfile_files import (
     ALL_EXAMPLES,
     ALL_FIXTURES,
     ENGINE_FIXTURES,
@@ -20,7 +20,7 @@ from tests.engine.graphfile_files import (
     chain_text,
     read,
 )
-from tests.engine.nodekit import Add, ListLength, NumberSlider
+from tests.support.nodekit import Add, ListLength, NumberSlider
 from torsal.engine import graphfile
 from torsal.engine.graph import Graph, PlaceholderNode
 from torsal.engine.registry import Registry

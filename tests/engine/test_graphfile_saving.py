@@ -9,7 +9,7 @@ import os
 
 import pytest
 
-from tests.engine.graphfile_files import (
+from tests.support.graphfile_files import (
     no_temporaries,
     read,
 )

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from tests.engine.nodekit import (
+from tests.support.nodekit import (
     Add,
     AddRequired,
     BranchCount,

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from tests.engine.nodekit import Add, AddRequired, ListItem, ListLength, Series
+from tests.support.nodekit import Add, AddRequired, ListItem, ListLength, Series
 from torsal.engine.datatree import DataTree
 from torsal.engine.matching import plan
 from torsal.engine.node import ITEM, In, Node, Out

@@ -8,7 +8,7 @@ import types
 
 import pytest
 
-from tests.engine.nodekit import NumberSlider
+from tests.support.nodekit import NumberSlider
 from torsal.engine import graphfile
 from torsal.engine import registry as registry_module
 from torsal.engine.graph import Graph

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.nodes.helpers import run, texts, tree
+from tests.support.node_helpers import run, texts, tree
 from torsal.engine.node import Node
 from torsal.engine.values import Point
 from torsal.nodes.analysis.bending import BendingCheck

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from tests.nodes.helpers import out, run, texts, tree
+from tests.support.node_helpers import out, run, texts, tree
 from torsal.engine.values import Domain, Plane, Point, Vector
 from torsal.nodes.curves.division import DivideLength
 from torsal.nodes.curves.frames import CurveClosestPoint, CurveFrame, PerpFrames

@@ -13,7 +13,7 @@ on a shared two-core machine (the ranges beside each cap go from quiet to loaded
 are guards against typos, not statements about what is useful: a job that needs more
 splits the work (more strips, more curves) rather than raising a cap.
 
-``tests/test_input_caps.py`` feeds every numeric input of every node 0, -1, 1e-9, 1e12,
+``tests/nodes/test_input_caps.py`` feeds every numeric input of every node 0, -1, 1e-9, 1e12,
 1e308, NaN and ∞ and checks that each gives a message or a result in bounded time and
 memory.
 """

@@ -27,7 +27,7 @@ than ``|C'|² / |C''|`` (about the radius of curvature) over the interval, where
 ``|C − P|²`` is convex. Only a query farther than that, on the inside of a turn, could
 see a minimum and a maximum of the distance within one interval of a few degrees' turn;
 none did among 10,000 random queries on a random rational cubic checked against brute
-force (tests/geometry/test_curve_closest_point.py, tests/benchmarks/bench_curves.py).
+force (tests/nodes/geometry/curves/test_curve_closest_point.py, tests/benchmarks/bench_curves.py).
 """
 
 from __future__ import annotations

@@ -1,0 +1,61 @@
+"""`torsal gui FILE` starts, shows its window and opens the file in a real process.
+
+The time it takes (< 3 s to the first shown window) is a benchmark:
+``tests/benchmarks/bench_gui.py``, run by ``make bench``, which calls :func:`start_app`.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+from tests.support.fixtures_gui import EXAMPLES, ROOT
+
+
+def start_app(config_folder: Path) -> dict[str, float]:
+    """Run ``torsal gui`` on an example until its viewport is ready (or 60 s pass); the
+    seconds from launch to each start-up stage it reported (``window-shown``, …)."""
+    env = dict(
+        os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(config_folder), PYTHONPATH=str(ROOT)
+    )
+    command = [sys.executable, "-m", "torsal.app.cli", "gui", str(EXAMPLES / "first-steps.graph")]
+    return stages(command, env, until="viewport-ready", timeout=60)
+
+
+def stages(command: list[str], env: dict[str, str], until: str, timeout: float) -> dict[str, float]:
+    """Run ``command`` until it reports the stage ``until`` (or ``timeout`` seconds pass);
+    the seconds from launch to each ``torsal-startup STAGE TIME`` line it wrote on stderr."""
+    began = time.time()
+    child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
+    stamps: dict[str, float] = {}
+
+    def read() -> None:
+        for line in child.stderr:
+            parts = line.split()
+            if len(parts) >= 3 and parts[0] == "torsal-startup":
+                stamps[parts[1]] = float(parts[2]) - began
+                if parts[1] == until:
+                    return
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(timeout=timeout)
+    child.terminate()
+    child.wait(timeout=10)
+    return stamps
+
+
+def test_torsal_gui_shows_its_window_and_the_example(tmp_path):
+    stamps = start_app(tmp_path)
+    assert "window-shown" in stamps, "the app never reported its window"
+    assert "viewport-ready" in stamps, "the 3D viewport never became ready"
+    print(
+        f"\nstart-up: window shown after {stamps['window-shown']:.2f} s, "
+        f"3D viewport and example ready after {stamps['viewport-ready']:.2f} s"
+    )
+    assert 0 < stamps["window-shown"] <= stamps["viewport-ready"]

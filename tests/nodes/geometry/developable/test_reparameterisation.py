@@ -1,0 +1,102 @@
+"""The strip between two curves depends on the curves, not on how they are parameterised.
+
+Random pairs cut from one cone (seeded wave parameters; every generator is a torsal
+ruling, its partner known in closed form) are solved as given and with a curve
+re-parameterised: t → t² (the parameter stands still at the start: B′(0) = 0) and
+t → 1 − t on both curves (the strip read from its other end). The rulings' end points
+must agree to 1e-9 of the pair's size, in order (reversed for t → 1 − t). The curves'
+derivatives are exact (chain rule on analytic ones), so any difference is the solver's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from tests.support import curve_pairs
+from torsal.nodes.geometry.curves import ParametricCurve
+from torsal.nodes.geometry.developable import ruling_developable
+
+SEGMENTS = 30
+
+
+def reparameterised(curve, phi, dphi, ddphi) -> ParametricCurve:
+    """x ↦ curve(φ(x)) with exact first and second derivatives."""
+
+    def parts(x):
+        x = np.asarray(x, dtype=float)
+        p, d1, d2 = curve.derivatives(phi(x), 2)
+        return p, d1 * dphi(x)[:, None], d2 * (dphi(x) ** 2)[:, None] + d1 * ddphi(x)[:, None]
+
+    return ParametricCurve(lambda x: parts(x)[0], (0.0, 1.0),
+                           derivatives=(lambda x: parts(x)[1], lambda x: parts(x)[2]))
+
+
+def squared(curve) -> ParametricCurve:
+    return reparameterised(curve, lambda x: x * x, lambda x: 2 * x, lambda x: np.full_like(x, 2.0))
+
+
+def reversed_(curve) -> ParametricCurve:
+    return reparameterised(curve, lambda x: 1 - x, lambda x: -np.ones_like(x), lambda x: np.zeros_like(x))
+
+
+def cone_pair(base_a: float, amp_a: float, freq_a: float, base_b: float, amp_b: float, freq_b: float):
+    span = curve_pairs._lin(0.0, 2.5)
+    a = curve_pairs._curve(curve_pairs.cone_surface, span, curve_pairs._wave(base_a, amp_a, freq_a), False)
+    wave_b = curve_pairs._wave(base_a + base_b, amp_b, freq_b, 1.0)
+    b = curve_pairs._curve(curve_pairs.cone_surface, span, wave_b, False)
+    return a, b
+
+
+def ends(a, b) -> tuple[np.ndarray, float]:
+    r = ruling_developable(a, b, SEGMENTS)
+    size = float(np.linalg.norm(np.ptp(np.vstack([r.starts, r.ends]), axis=0)))
+    return np.stack([r.starts, r.ends], axis=1), size
+
+
+pairs = st.tuples(
+    st.floats(1.5, 2.5), st.floats(0.0, 0.3), st.floats(1.0, 6.0),
+    st.floats(1.5, 3.0), st.floats(0.0, 0.4), st.floats(1.0, 5.0),
+)
+SETTINGS = settings(
+    max_examples=8, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
+
+
+@SETTINGS
+@given(pairs)
+def test_reading_both_curves_from_their_other_ends_gives_the_same_rulings_reversed(params):
+    a, b = cone_pair(*params)
+    given_, size = ends(a, b)
+    other, _ = ends(reversed_(a), reversed_(b))
+    assert other.shape == given_.shape
+    assert np.abs(other[::-1] - given_).max() <= 1e-9 * size
+
+
+@pytest.mark.xfail(reason="issue 26 item 5: where B's parameter stands still (B'(0) = 0) the first "
+                   "ruling is doubled as a NaN fan and fans replace torsal rulings near it; left for the "
+                   "partner-choice work after the batched kernel lands", strict=False)
+@SETTINGS
+@given(pairs)
+def test_squaring_the_parameter_of_b_leaves_the_rulings_where_they_were(params):
+    a, b = cone_pair(*params)
+    given_, size = ends(a, b)
+    other, _ = ends(a, squared(b))
+    assert other.shape == given_.shape
+    assert np.abs(other - given_).max() <= 1e-9 * size
+
+
+@pytest.mark.xfail(reason="issue 26 item 5: with A'(0) = 0 the strip now has the same rulings (A's "
+                   "tangent there is A''s direction), but its stations, spaced by arc length through "
+                   "LengthMap's cubic pieces, move by 3.3e-9 of the size near the stationary start",
+                   strict=False)
+@SETTINGS
+@given(pairs)
+def test_squaring_the_parameter_of_a_leaves_the_rulings_where_they_were(params):
+    a, b = cone_pair(*params)
+    given_, size = ends(a, b)
+    other, _ = ends(squared(a), b)
+    assert other.shape == given_.shape
+    assert np.abs(other - given_).max() <= 1e-9 * size

@@ -1,0 +1,214 @@
+"""Developable strips go to Rhino face by face along their own rulings, in few control points.
+
+Read back with rhino3dm (not with the code under test): each run of torsal rulings is one
+ruled NURBS face, degree 1 across, its rails within 1e-6 of the strip's size of the strip's
+own; each fan triangle a planar face; neighbouring faces share their ruling edge; the
+normals 1 % in from either end of a ruling of a face agree (on a cone, whose every ruling
+is torsal, to 1e-6 rad); the Kaohsiung flagship's file is ≤ 10 % of the one-surface form.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+import rhino3dm as rh
+
+from tests.support.node_helpers import allowed, run, texts, tree
+from torsal.engine.solver import OK
+from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.curves import Arc, Line
+from torsal.nodes.geometry.vectors import Plane
+from torsal.nodes.io.formats import threedm
+from torsal.nodes.io.rhino import Export3dm
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[3]
+
+
+def cone_strip(s: list[float] | None = None, t: list[float] | None = None):
+    """A strip of a cone (apex (0, 0, 4)): rulings from an arc of radius 4 at z = 0 to one of
+    radius 2 at z = 2, at the same angles — every ruling torsal, the cone's generators."""
+    low = Arc(Plane.from_axes(np.zeros(3), np.array([1.0, 0, 0]), np.array([0, 1.0, 0])), 4.0, 0.0, 1.5)
+    high = Arc(Plane.from_axes(np.array([0, 0, 2.0]), np.array([1.0, 0, 0]), np.array([0, 1.0, 0])),
+               2.0, 0.0, 1.5)
+    s = np.linspace(0, 1, 13) if s is None else np.asarray(s)
+    t = s if t is None else np.asarray(t)
+    return ruled_between(low, s, high, t)
+
+
+def export(tmp_path, surfaces):
+    result = run(Export3dm(), Path="strips.3dm", Write=True, writes=allowed(tmp_path),
+                 Surfaces=tree({(0,): surfaces}))
+    assert result.state == OK, texts(result)
+    return list(rh.File3dm.Read(str(tmp_path / "strips.3dm")).Objects)
+
+
+def surface_of(obj) -> rh.Surface:
+    return obj.Geometry.Faces[0].UnderlyingSurface()
+
+
+def normal_twist(surface: rh.Surface, count: int = 100) -> float:
+    """The largest angle between the normals 1 % in from each end of an isoparametric line
+    across the face (v from 0 to 1), over ``count`` of them."""
+    du, dv = surface.Domain(0), surface.Domain(1)
+    worst = 0.0
+    for a in np.linspace(0.0, 1.0, count):
+        u = du.T0 + (du.T1 - du.T0) * a
+        n0 = surface.NormalAt(u, dv.T0 + 0.01 * (dv.T1 - dv.T0))
+        n1 = surface.NormalAt(u, dv.T0 + 0.99 * (dv.T1 - dv.T0))
+        x, y = np.array([n0.X, n0.Y, n0.Z]), np.array([n1.X, n1.Y, n1.Z])
+        worst = max(worst, float(np.arctan2(np.linalg.norm(np.cross(x, y)), x @ y)))
+    return worst
+
+
+def corners(obj) -> np.ndarray:
+    return np.array([[v.Location.X, v.Location.Y, v.Location.Z] for v in obj.Geometry.Vertices])
+
+
+def test_a_cone_strip_is_one_ruled_face_degree_1_across_with_few_control_points(tmp_path):
+    (obj,) = export(tmp_path, [cone_strip()])
+    nurbs = surface_of(obj).ToNurbsSurface()
+    assert (nurbs.OrderU, nurbs.OrderV, nurbs.Points.CountV) == (4, 2, 2)
+    assert nurbs.Points.CountU <= 60  # not one per sample (the old form had 4,097)
+    assert obj.Attributes.GetUserString("TorsalFace") == "torsal"
+    assert obj.Attributes.GetUserString("TorsalRulings") == "1-13"
+    assert obj.Attributes.Name == "Surface 1 rulings 1-13"
+
+
+def test_the_faces_rails_are_the_strips_within_1e_6_of_its_size(tmp_path):
+    strip = cone_strip()
+    (obj,) = export(tmp_path, [strip])
+    surface = surface_of(obj)
+    du, dv = surface.Domain(0), surface.Domain(1)
+    a = np.linspace(0.0, 1.0, 501)
+    for v, rail in ((dv.T0, strip.curve_a), (dv.T1, strip.curve_b)):
+        got = np.array([[p.X, p.Y, p.Z] for p in (surface.PointAt(du.T0 + (du.T1 - du.T0) * x, v)
+                                                   for x in a)])
+        assert np.linalg.norm(got - rail.point_at(a), axis=1).max() <= 1e-6 * 4.0
+
+
+def test_normals_along_every_exported_ruling_of_a_cone_agree_to_1e_6_rad(tmp_path):
+    (obj,) = export(tmp_path, [cone_strip()])
+    assert normal_twist(surface_of(obj)) <= 1e-6
+
+
+def test_a_fan_is_one_face_of_flat_triangles_between_ruled_faces_that_share_its_edges(tmp_path):
+    # rulings 4 to 6 all start at one point of the lower arc: two fan triangles
+    s = [0.0, 0.1, 0.2, 0.3, 0.3, 0.3, 0.5, 0.6, 0.7, 0.8, 1.0]
+    t = [0.0, 0.1, 0.2, 0.26, 0.3, 0.36, 0.5, 0.6, 0.7, 0.8, 1.0]
+    strip = cone_strip(s, t)
+    objects = export(tmp_path, [strip])
+    kinds = [(o.Attributes.GetUserString("TorsalFace"), o.Attributes.GetUserString("TorsalRulings"))
+             for o in objects]
+    assert kinds == [("torsal", "1-4"), ("fan", "4-6"), ("torsal", "6-11")]
+    fan = surface_of(objects[1])
+    du, dv = fan.Domain(0), fan.Domain(1)
+    for span in range(2):  # each span is the flat triangle of rulings 4-5, then 5-6
+        lines = strip.ruling_lines[3 + span:5 + span]
+        corners_of = np.unique(lines.reshape(-1, 3).round(12), axis=0)
+        assert len(corners_of) == 3
+        normal = np.cross(corners_of[1] - corners_of[0], corners_of[2] - corners_of[0])
+        normal /= np.linalg.norm(normal)
+        for a in np.linspace(0.05, 0.95, 7):
+            for b in np.linspace(0.05, 0.95, 7):
+                u = du.T0 + (du.T1 - du.T0) * (span + a) / 2
+                p = fan.PointAt(u, dv.T0 + (dv.T1 - dv.T0) * b)
+                assert abs((np.array([p.X, p.Y, p.Z]) - corners_of[0]) @ normal) <= 1e-12 * 4.0
+    size = 4.0
+    for before, after in itertools.pairwise(objects):  # each pair shares a ruling: 2 corners
+        a, b = corners(before), corners(after)
+        near = np.linalg.norm(a[:, None] - b[None], axis=2).min(axis=1)
+        assert np.sort(near)[1] <= 1e-9 * size
+    groups = {tuple(o.Attributes.GetGroupList() or ()) for o in objects}
+    assert len(groups) == 1 and len(next(iter(groups))) == 1, "one strip, one Rhino group"
+
+
+def test_zero_length_curves_are_left_out_and_said(tmp_path):
+    result = run(Export3dm(), Path="r.3dm", Write=True, writes=allowed(tmp_path),
+                 Rulings=tree({(0,): [Line([1, 2, 3], [1, 2, 3]), Line([0, 0, 0], [1, 0, 0])]}))
+    assert "1 curves of no length (points) were left out" in texts(result)
+    assert len(list(rh.File3dm.Read(str(tmp_path / "r.3dm")).Objects)) == 1
+
+
+def distance_to_polyline(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
+    """Each point's distance to a dense polyline (its nearest vertex's two segments)."""
+    from scipy.spatial import cKDTree
+
+    _, nearest = cKDTree(polyline).query(points)
+    best = np.full(len(points), np.inf)
+    for shift in (-1, 0):
+        i = np.clip(nearest + shift, 0, len(polyline) - 2)
+        a, b = polyline[i], polyline[i + 1]
+        length = np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300)  # (a rail may stand still)
+        t = np.clip(np.einsum("ij,ij->i", points - a, b - a) / length, 0, 1)
+        best = np.minimum(best, np.linalg.norm(a + t[:, None] * (b - a) - points, axis=1))
+    return best
+
+
+def face_points(obj, a: np.ndarray, b: float) -> np.ndarray:
+    face = surface_of(obj)
+    fu, fv = face.Domain(0), face.Domain(1)
+    return np.array([[p.X, p.Y, p.Z] for p in (face.PointAt(fu.T0 + (fu.T1 - fu.T0) * x,
+                                                             fv.T0 + (fv.T1 - fv.T0) * b) for x in a)])
+
+
+@pytest.mark.slow  # ~30 s: the old one-surface form is built for the comparison
+def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_the_same_rulings_and_edges(
+        tmp_path):
+    from torsal.app.headless import run_file
+
+    solved = run_file(ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph")
+    strips = solved.solver.result("strip").outputs["Surface"].all_items()
+    new = threedm.write_3dm(tmp_path / "new.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
+    old_model = rh.File3dm()  # the form written before: one interpolated surface per strip
+    for strip in strips:
+        old_model.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
+    assert old_model.Write(str(tmp_path / "old.3dm"), 7)
+    new_size, old_size = (tmp_path / "new.3dm").stat().st_size, (tmp_path / "old.3dm").stat().st_size
+    assert new_size <= 0.1 * old_size, (new_size, old_size)
+    old_objects = list(rh.File3dm.Read(str(tmp_path / "old.3dm")).Objects)
+    new_objects = list(rh.File3dm.Read(str(new.path)).Objects)
+    dense = np.linspace(0.0, 1.0, 2001)  # chords of ~2.5 cm: their sag is below 1e-6 of the size
+    for index, (strip, old) in enumerate(zip(strips, old_objects, strict=True)):
+        size = float(np.ptp(strip.ruling_lines.reshape(-1, 3), axis=0).max())
+        reference = old.Geometry  # the old file's strip, read back: its edges and rulings
+        ru, rv = reference.Domain(0), reference.Domain(1)
+        edges = [np.array([[p.X, p.Y, p.Z] for p in (reference.PointAt(ru.T0 + (ru.T1 - ru.T0) * x, v)
+                                                      for x in dense)]) for v in (rv.T0, rv.T1)]
+        u = strip.ruling_parameters
+        covered = []
+        for obj in (o for o in new_objects if o.Attributes.GetUserString("TorsalIndex") == str(index)):
+            first, last = (int(x) - 1 for x in obj.Attributes.GetUserString("TorsalRulings").split("-"))
+            covered.append((first, last))
+            if obj.Attributes.GetUserString("TorsalFace") == "fan" and len(obj.Geometry.Vertices) == 3:
+                ends = strip.ruling_lines[[first, last]].reshape(-1, 3)  # a trimmed triangle
+                gaps = np.linalg.norm(corners(obj)[:, None] - ends[None], axis=2).min(axis=1)
+                assert gaps.max() <= 1e-9 * size
+                continue
+            at = (u[first:last + 1] - u[first]) / (u[last] - u[first])  # the rulings inside the face
+            if obj.Attributes.GetUserString("TorsalFace") == "fan":
+                at = np.linspace(0.0, 1.0, last - first + 1)
+            for side in (0, 1):  # its isocurves at the rulings are the node's rulings
+                got = face_points(obj, at, float(side))
+                assert np.linalg.norm(got - strip.ruling_lines[first:last + 1, side], axis=1).max() \
+                    <= 1e-6 * size
+                # and its edges run on the old file's edges (the strip's two curves)
+                along = face_points(obj, np.linspace(0.0, 1.0, 101), float(side))
+                assert distance_to_polyline(along, edges[side]).max() <= 1e-6 * size
+        assert covered[0][0] == 0 and covered[-1][1] == len(u) - 1
+        assert all(b[0] == a[1] for a, b in itertools.pairwise(covered)), "the faces follow on"
+
+
+def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developable(tmp_path):
+    """The canopy's strips turn up to ~2e-3 rad along a ruling between their stations; the
+    exported faces pair each point of one rail with its torsal partner on the other."""
+    from torsal.app.headless import run_file
+
+    solved = run_file(ROOT / "torsal" / "resources" / "examples" / "rationalise-canopy.graph")
+    strips = solved.solver.result("strips").outputs["Strips"].all_items()[:1]
+    objects = export(tmp_path, strips)
+    twists = [normal_twist(surface_of(o), 100) for o in objects
+              if o.Attributes.GetUserString("TorsalFace") == "torsal"]
+    assert twists and max(twists) <= 2e-6  # measured 1.3e-6 (Rhino's own NormalAt)
+    assert np.median(twists) <= 1e-6

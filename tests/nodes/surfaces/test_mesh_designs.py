@@ -1,0 +1,89 @@
+"""A mesh design (OBJ through trimesh) becomes a surface Rationalise can cover within tolerance.
+
+The mesh is a canopy sampled on a 61 × 41 grid and written as OBJ; distances are checked
+independently: surface samples against the mesh's own triangles (matplotlib's linear
+interpolation on them, vertical distance, an upper bound), mesh vertices against the
+surface (its closest points).
+"""
+
+from __future__ import annotations
+
+import matplotlib.tri as mtri
+import numpy as np
+import pytest
+import trimesh
+
+from tests.support.node_helpers import run, texts, tree
+from torsal.engine.solver import OK, WARNING
+from torsal.nodes.io.meshes import ImportMesh
+from torsal.nodes.surfaces.mesh import SurfaceFromMesh
+
+
+def canopy_mesh(wall: bool = False) -> trimesh.Trimesh:
+    x, y = np.linspace(0, 12, 61), np.linspace(0, 8, 41)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    across = 1 - ((gy - 4) / 4) ** 2
+    gz = 3 + 1.2 * across - 0.3 * (1 - ((gx - 6) / 6) ** 2) * across + 0.2 * np.sin(gx / 2)
+    if wall:  # fold the last columns down into a wall
+        gz[-6:] -= np.linspace(0, 40, 6)[:, None]
+        gx[-6:] = gx[-6]
+    vertices = np.stack([gx, gy, gz], -1).reshape(-1, 3)
+    index = np.arange(gx.size).reshape(gx.shape)
+    a, b, c, d = (index[:-1, :-1].ravel(), index[1:, :-1].ravel(), index[1:, 1:].ravel(),
+                  index[:-1, 1:].ravel())
+    faces = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    return trimesh.Trimesh(vertices, faces, process=False)
+
+
+def test_a_mesh_design_from_an_obj_file_is_fitted_within_its_tolerance(tmp_path):
+    source = canopy_mesh()
+    source.export(str(tmp_path / "canopy.obj"), digits=15)
+    mesh = run(ImportMesh(), Path=str(tmp_path / "canopy.obj")).outputs["Mesh"].all_items()[0]
+    result = run(SurfaceFromMesh(), Mesh=tree({(0,): [mesh]}), Tolerance=0.002)
+    assert result.state == OK, texts(result)
+    (surface,) = result.outputs["Surface"].all_items()
+    (deviation,) = result.outputs["Deviation"].all_items()
+    assert deviation <= 0.002
+    vertices, faces = np.asarray(source.vertices), np.asarray(source.faces)
+    on_mesh = mtri.LinearTriInterpolator(mtri.Triangulation(vertices[:, 0], vertices[:, 1], faces),
+                                         vertices[:, 2])
+    uv = np.random.default_rng(4).random((3000, 2))
+    points = surface.point_at(uv[:, 0], uv[:, 1])
+    heights = np.ma.filled(on_mesh(points[:, 0], points[:, 1]), np.nan)
+    inside = np.isfinite(heights)
+    assert inside.mean() > 0.98
+    assert np.abs(heights[inside] - points[inside, 2]).max() <= 0.002
+    assert surface.closest_point(vertices).distances.max() <= 0.002
+
+
+def test_a_mesh_that_folds_over_its_plane_is_refused_with_the_reason():
+    result = run(SurfaceFromMesh(), Mesh=tree({(0,): [canopy_mesh(wall=True)]}), Tolerance=0.002)
+    assert result.state == WARNING
+    assert "folds over itself" in texts(result)[0]
+
+
+@pytest.mark.parametrize("tolerance", [0.0, -1.0, float("nan"), 1e9])
+def test_a_tolerance_that_is_no_distance_or_larger_than_the_mesh_is_a_warning_naming_it(tolerance):
+    result = run(SurfaceFromMesh(), Mesh=tree({(0,): [canopy_mesh()]}), Tolerance=tolerance)
+    assert result.state == WARNING and texts(result)[0].startswith("Tolerance must be")
+
+
+def test_rationalise_on_the_fitted_surface_keeps_its_strips_within_tolerance_of_the_mesh():
+    from torsal.nodes.developable.rationalise import Rationalise
+
+    source = canopy_mesh()
+    fit = run(SurfaceFromMesh(), Mesh=tree({(0,): [source]}), Tolerance=0.002)
+    (surface,) = fit.outputs["Surface"].all_items()
+    (deviation,) = fit.outputs["Deviation"].all_items()
+    result = run(Rationalise(), Surface=tree({(0,): [surface]}), Tolerance=0.03 - deviation)
+    strips = result.outputs["Strips"].all_items()
+    assert strips
+    vertices, faces = np.asarray(source.vertices), np.asarray(source.faces)
+    on_mesh = mtri.LinearTriInterpolator(mtri.Triangulation(vertices[:, 0], vertices[:, 1], faces),
+                                         vertices[:, 2])
+    u, v = np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 9))
+    for strip in strips:
+        points = strip.point_at(u.ravel(), v.ravel())
+        heights = np.ma.filled(on_mesh(points[:, 0], points[:, 1]), np.nan)
+        inside = np.isfinite(heights)
+        assert np.abs(heights[inside] - points[inside, 2]).max() <= 0.03
