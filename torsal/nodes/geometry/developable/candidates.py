@@ -19,7 +19,6 @@ module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
 
 from __future__ import annotations
 
-from bisect import bisect_right
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -464,28 +463,6 @@ def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
     slope[rows, column] = c.slope[keep]
     index[rows, column] = keep
     return t, slope, index
-
-
-def _longest_monotone(t: FloatArray) -> BoolArray:
-    """Mask of a longest non-decreasing subsequence (patience sorting)."""
-    tails: list[float] = []
-    tail_index: list[int] = []
-    parent = np.full(len(t), -1, dtype=np.int64)
-    for i, x in enumerate(t.tolist()):  # fallback only: when the selection had to step back
-        j = bisect_right(tails, x)
-        if j == len(tails):
-            tails.append(x)
-            tail_index.append(i)
-        else:
-            tails[j] = x
-            tail_index[j] = i
-        parent[i] = tail_index[j - 1] if j > 0 else -1
-    keep = np.zeros(len(t), dtype=bool)
-    i = tail_index[-1] if tail_index else -1
-    while i >= 0:
-        keep[i] = True
-        i = parent[i]
-    return keep
 
 
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
