@@ -11,7 +11,6 @@ derivatives are exact (chain rule on analytic ones), so any difference is the so
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -75,9 +74,6 @@ def test_reading_both_curves_from_their_other_ends_gives_the_same_rulings_revers
     assert np.abs(other[::-1] - given_).max() <= 1e-9 * size
 
 
-@pytest.mark.xfail(reason="issue 26 item 5: where B's parameter stands still (B'(0) = 0) the first "
-                   "ruling is doubled as a NaN fan and fans replace torsal rulings near it; left for the "
-                   "partner-choice work after the batched kernel lands", strict=False)
 @SETTINGS
 @given(pairs)
 def test_squaring_the_parameter_of_b_leaves_the_rulings_where_they_were(params):
@@ -88,10 +84,6 @@ def test_squaring_the_parameter_of_b_leaves_the_rulings_where_they_were(params):
     assert np.abs(other - given_).max() <= 1e-9 * size
 
 
-@pytest.mark.xfail(reason="issue 26 item 5: with A'(0) = 0 the strip now has the same rulings (A's "
-                   "tangent there is A''s direction), but its stations, spaced by arc length through "
-                   "LengthMap's cubic pieces, move by 3.3e-9 of the size near the stationary start",
-                   strict=False)
 @SETTINGS
 @given(pairs)
 def test_squaring_the_parameter_of_a_leaves_the_rulings_where_they_were(params):

@@ -33,7 +33,7 @@ CORNER_ANGLE = 1e-7
 SIDE = 1e-11
 
 
-class _Steady(Curve):
+class Steady(Curve):
     """A curve whose parameter stands still at an end (C'(t) = 0 there: a curve run as t²,
     a NURBS with a doubled end control point), with the tangent there replaced by the
     direction it tends to, C''(t): the same points, the geometric tangent. Without it
@@ -69,13 +69,13 @@ class _Steady(Curve):
 
 
 def steady(curve: Curve) -> Curve:
-    """``curve``, or :class:`_Steady` of it where its parameter stands still at an end (its
+    """``curve``, or :class:`Steady` of it where its parameter stands still at an end (its
     speed there under 1e-9 of its chord, while its second derivative is not)."""
     ends = np.array([0.0, 1.0])
     points, first, second = curve.derivatives(ends, 2)
     scale = float(norm(points[1] - points[0])) or float(norm(second).max())
     still = (norm(first) <= 1e-9 * scale) & (norm(second) > 1e-9 * scale)
-    return _Steady(curve, ends[still]) if still.any() else curve
+    return Steady(curve, ends[still]) if still.any() else curve
 
 
 def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
