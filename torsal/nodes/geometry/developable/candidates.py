@@ -370,7 +370,8 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     rights = np.array([r, b1, a1_root, b1, b1, cross(a2.take(root_rows, axis=0), b1)])
     rr, bb, ra, rb, ab, f_s = dot(lefts, rights)
     aa = speed_a**2
-    slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    with np.errstate(over="ignore"):  # (a still end of B: f_t ~ 0 there, the slope is clipped)
+        slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)

@@ -4,12 +4,14 @@ The developable nodes place their ``Segments + 1`` rulings at stations spaced ev
 arc length along the base curve, as Grasshopper's *Divide Curve* does (the thesis
 divides the curve that way); ``spacing="parameter"`` spaces them evenly in t instead.
 
-Stations only need to be evenly spaced to the eye, so the arc length here is a light
-table: Gauss–Legendre on a fixed partition of every smooth span, read back by
-cubic Hermite interpolation (the speed |C'| is the exact slope of the length at each
-node) and inverted by Newton steps from a linear guess. Spacing is even to about 1e-7
-of the total length on typical curves (1e-9 on gentle ones) — ample for placing
-rulings, and several times cheaper than the curve's own 1e-13
+The arc length here is a light table: Gauss–Legendre on a fixed partition of every
+smooth span, read back by cubic Hermite interpolation (the speed |C'| is the exact slope
+of the length at each node), inverted by Newton steps from a linear guess, and the
+stations then polished by one Newton step on the integral of the quintic through each
+piece's six speeds (its ends and Gauss nodes). The cubic alone spaces stations evenly to
+about 1e-9 of the length on a wavy curve — not enough for a strip that must not depend
+on how its curve is parameterised (the same curve run as t² moved its stations by that);
+the quintic to about 1e-15. It is still several times cheaper than the curve's own
 :class:`~..arclength.LengthTable`, which matters when a slider rebuilds the curve on
 every solve.
 """
