@@ -489,14 +489,32 @@ def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
     t_pad, slope_pad, index_pad = _pad(good, n)
     rows = flatnonzero(~np.isnan(t_pad).all(axis=1))
     if len(rows):
-        s = strip.s[rows]
-        pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
+        x, y, rate = _along(strip, good, rows, t_pad[rows], slope_pad[rows], index_pad[rows])
+        pick = monotone_path(y, rate, x[1:] - x[:-1])
         chosen[rows] = index_pad[rows, pick]
         t = good.t[chosen[rows]]
         if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: the longest chain
-            pick = longest_chain(t_pad[rows], slope_pad[rows], s)
+            pick = longest_chain(y, rate, x)
             chosen[rows] = np.where(pick >= 0, index_pad[rows, np.maximum(pick, 0)], -1)
     return chosen, good
+
+
+def _along(
+    strip: Strip, good: Candidates, rows: IntArray, t: FloatArray, slope: FloatArray, index: IntArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The stations ``rows`` and their candidates as the choice reads them: where they are
+    along each curve as shares of its length (x on A, y on B; t and y rise together) and
+    each branch's slope dy/dx = (dt/ds)·|B'|/|A'| — so that which branch the strip follows
+    does not depend on how either curve is parameterised, only on the curves."""
+    x = strip.station_lengths[rows] / strip.map_a.total
+    total_b = strip.chords_b[-1]
+    y = strip.length_b(t) / total_b
+    speed_b = norm(good.tangents[np.maximum(index, 0)])
+    speed_a = norm(strip.a1[rows])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = slope * speed_b * (strip.map_a.total / total_b) / speed_a[:, None]
+    rate = np.where(np.isnan(slope), np.nan, np.minimum(np.maximum(np.nan_to_num(rate), -1e6), 1e6))
+    return x, y, rate
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
     """Give every station without a partner one whose warp is within the tolerance

@@ -125,7 +125,7 @@ class LengthMap:
         through the six speeds each piece has (its ends and Gauss nodes), exact to ~h⁷
         where the Hermite cubic alone is to ~h⁴ (1e-9 of the length on a wavy curve:
         enough for stations to move by that when the curve's parameter changes)."""
-        return np.einsum("ij,ij->i", u[:, None] ** _POWERS[1:], self._samples[k] @ _INTEGRAL)
+        return np.einsum("...j,...j->...", u[..., None] ** _POWERS[1:], self._samples[k] @ _INTEGRAL)
 
     def parameter_at(self, length: ArrayLike) -> FloatArray:
         """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
