@@ -139,7 +139,9 @@ def test_the_node_says_per_ruling_whether_it_is_torsal_and_reports_the_share(cho
     share = f"{100 * result.fan_share:.3g} %"
     assert node.state == "warning"  # above the default FanLimit of 10 %
     count = result.fan[result.stations].sum()
-    assert texts(node)[0].startswith(f"no torsal ruling within 0.01 rad at {count} of 61 stations")
+    assert texts(node)[0].startswith(
+        f"no torsal ruling within 0.01 rad keeps the rulings' order at {count} of 61 stations"
+    )
     assert f"closed by flat triangles ({share} of the strip's area), above FanLimit 10 %" in texts(node)[0]
 
 
@@ -167,4 +169,4 @@ def test_a_fold_of_b_that_no_torsal_ruling_reaches_is_closed_by_flat_triangles()
     p0, p1, q0, q1 = result.starts[:-1], result.starts[1:], result.ends[:-1], result.ends[1:]
     in_fan = result.fan[:-1] | result.fan[1:]
     assert (np.all(p0 == p1, axis=1) | np.all(q0 == q1, axis=1))[in_fan].all()
-    assert result.message.startswith("no torsal ruling reaches part of curve B")
+    assert result.message.startswith("no torsal ruling in the strip's order reaches part of curve B")

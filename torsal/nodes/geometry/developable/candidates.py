@@ -481,6 +481,8 @@ def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
     """One strip's choice among its candidates ``found``."""
     n = len(strip.s)
     good = found if found.oriented.all() else found.subset(found.oriented)
+    if len(good.row) < len(found.row):  # (roots whose partner runs backwards along B)
+        strip.flipped[found.row[~found.oriented & (found.kind == ROOT)]] = True
     chosen = np.full(n, -1, dtype=np.int64)
     if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
         # at most one candidate per station, in order along B: nothing to choose

@@ -202,6 +202,9 @@ class Strip:
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
         self.holes: list[int] = []
+        #: per station, whether it has a torsal partner whose normals are flipped: one that
+        #: runs backwards along B (set by the partner choice, :func:`.candidates.choose`)
+        self.flipped: BoolArray = np.zeros(n, dtype=bool)
         #: :meth:`gap_lengths` found so far, by the bits of their ends
         self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
         #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
