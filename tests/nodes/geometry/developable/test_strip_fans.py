@@ -145,12 +145,15 @@ def test_the_node_says_per_ruling_whether_it_is_torsal_and_reports_the_share(cho
     assert f"closed by flat triangles ({share} of the strip's area), above FanLimit 10 %" in texts(node)[0]
 
 
-def test_the_node_names_reversing_b_when_that_removes_the_fans():
+def test_the_node_reverses_b_itself_when_its_torsal_rulings_run_backwards_along_it():
+    """(It named reversing B in a warning; now it solves the strip so, as a loft aligns its
+    curves, and says what it did.)"""
     pair = curve_pairs.PAIRS["cone"]()
     curves = {"CurveA": tree({(0,): [pair.a]}), "CurveB": tree({(0,): [pair.b.reversed()]})}
     node = run(RulingDevelopable(), **curves, Segments=40)
-    assert node.state == "warning"
-    assert texts(node)[0].endswith("; reverse CurveB: creased fans fall to 0 % of the area")
+    assert node.state == "ok"
+    assert texts(node)[0].startswith("CurveB runs against CurveA")
+    assert out(node, "Torsal")[(0,)] == [1.0]  # every ruling torsal, as with B drawn the same way
 
 
 # -- a stretch of B that t jumps over ------------------------------------------------------------

@@ -551,9 +551,9 @@ def _message(
     if out_of_order:
         why.append(f"at {out_of_order} of them a torsal ruling exists but would cross its neighbours")
     if backward:
-        why.append(f"at {backward} of them the torsal ruling runs backwards along curve B (reverse it?)")
+        why.append(f"at {backward} of them the torsal ruling runs backwards along curve B")
     elif any_backward and not fan_stations:
-        why.append("torsal rulings from other stations run backwards along curve B (reverse it?)")
+        why.append("torsal rulings from other stations run backwards along curve B")
     if creased == 0.0:
         where = f"at {fan_stations} of {n} stations" if fan_stations else "beyond the last torsal ruling"
         text = (
