@@ -150,6 +150,48 @@ GLYPHS: dict[str, str] = {
     + spot(17, 20, 2, INK)
     + line(17, 20, 14.8, 13.2, ACCENT, 1.2, "1.5,1.2")
     + spot(14.8, 13.2, 2, ACCENT),
+    # -- joining, exploding and cutting curves; dividing and cutting surfaces ------------
+    "curves.JoinCurves": path("M4,17 C6,10 9,10 12,12.5", INK, 1.6)
+    + path("M12,12.5 C15,15 18,14 20,8", INK, 1.6)
+    + spot(12, 12.5, 2.4, ACCENT),
+    "curves.Explode": line(3, 18, 6.5, 9, INK, 1.8)
+    + line(9, 7, 12.5, 15, INK, 1.8)
+    + line(15, 15, 20, 5, INK, 1.8)
+    + "".join(spot(x, y, 1.5, ACCENT) for x, y in ((6.5, 9), (9, 7), (12.5, 15), (15, 15))),
+    "curves.Shatter": path(CURVE, INK, 1.6)
+    + line(6, 9, 10.5, 13, ACCENT, 1.8)
+    + line(12, 16.5, 16, 10.5, ACCENT, 1.8),
+    "surfaces.DivideSurface": path(PATCH, INK, 1.2, SOFT)
+    + "".join(spot(x, y, 1.2, ACCENT) for x in (6, 10, 14, 18) for y in (11, 16)),
+    "surfaces.Contour": path(PATCH, INK, 1.2, SOFT)
+    + path("M4,12.5 C9,9.5 15,13.5 20,10.5", ACCENT, 1.2)
+    + path("M4,16 C9,13 15,17 20,14", ACCENT, 1.2),
+    "surfaces.Section": path(PATCH, INK, 1.2, SOFT)
+    + poly([(9, 2.5), (15, 5), (15, 22), (9, 19.5)], INK, 0.9, "none", True)
+    + path("M12,8.5 C12.5,12 11.5,15 12,18.5", ACCENT, 2.2),
+    "surfaces.Sweep1": path("M4,19 C8,19 14,16 18,6", ACCENT, 1.6)
+    + path("M2,17 C2,14 6,14 6,17 C6,20 2,20 2,17 Z", INK, 1.3, SOFT)
+    + path("M15,7 C15,4 21,4 21,7 C21,10 15,10 15,7 Z", INK, 1.3, SOFT)
+    + path("M4,14.5 C9,14 13,11 16,4.5 M4,19.8 C9,20 15,17 20.5,8.5", INK, 0.9),
+    "lists.SimplifyTree": line(3, 12, 9, 12, ACCENT, 1.4, "1.5,1.2")
+    + path("M9,12 C12,12 12,6 15,6 M9,12 C12,12 12,18 15,18", INK, 1)
+    + line(16, 6, 21, 6, INK, 2)
+    + line(16, 18, 21, 18, INK, 2),
+    "lists.TreeBranch": line(3, 12, 7, 12, INK, 2)
+    + path("M7,12 C11,12 11,5 14,5 M7,12 L14,12 M7,12 C11,12 11,19 14,19", INK, 1)
+    + line(15, 5, 20, 5, INK, 2)
+    + line(15, 12, 20, 12, INK, 2)
+    + line(15, 19, 21, 19, ACCENT, 2.6),
+    "lists.TrimTree": "".join(line(3, y, 7, y, INK, 2) for y in (3.5, 8.5, 15.5, 20.5))
+    + path("M7,3.5 C10,3.5 10,6 12,6 M7,8.5 C10,8.5 10,6 12,6 M7,15.5 C10,15.5 10,18 12,18 "
+           "M7,20.5 C10,20.5 10,18 12,18", INK, 1)
+    + line(13, 6, 20, 6, ACCENT, 2.2)
+    + line(13, 18, 20, 18, ACCENT, 2.2),
+    "lists.PathMapper": line(3, 7, 8, 7, INK, 2)
+    + line(3, 17, 8, 17, INK, 2)
+    + path("M8,7 C13,7 11,17 16,17 M8,17 C13,17 11,7 16,7", ACCENT, 1.3)
+    + line(16, 7, 21, 7, INK, 2)
+    + line(16, 17, 21, 17, INK, 2),
     # -- params: values a designer sets: knobs, dots and planes --------------------------
     "params.NumberSlider": line(3, 13, 21, 13) + circle(14, 13, 3.2, INK, 1.4, ACCENT) + text(7, 9, "0.5", 6),
     "params.IntegerSlider": line(3, 14, 21, 14)

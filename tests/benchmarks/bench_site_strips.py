@@ -16,26 +16,13 @@ boxes), timed in pairs with the origin in one run.
 
 from __future__ import annotations
 
-import tracemalloc
-from collections.abc import Callable
-
 import pytest
 
 from tests.app.test_site_strips import FAR, SITE, solved
-from tests.benchmarks.timing import ratio_to_baseline
+from tests.benchmarks.timing import peak_bytes, ratio_to_baseline
 
 REPEATS = 3
 BAR = 2.0
-
-
-def _peak(function: Callable[[], object]) -> int:
-    """Bytes allocated at the peak while ``function`` runs."""
-    tracemalloc.start()
-    try:
-        kept = function()  # noqa: F841 - held until the peak is read
-        return tracemalloc.get_traced_memory()[1]
-    finally:
-        tracemalloc.stop()
 
 
 @pytest.mark.parametrize("offset", [SITE, FAR], ids=["1e6", "1e9"])
@@ -48,7 +35,7 @@ def test_a_strip_far_from_the_origin_solves_within_2x_of_its_time_and_memory_at_
         lambda: solved(kind, (0.0, 0.0, 0.0)),
         REPEATS,
     )
-    far, origin = _peak(lambda: solved(kind, offset)), _peak(lambda: solved(kind, (0.0, 0.0, 0.0)))
+    far, origin = peak_bytes(lambda: solved(kind, offset)), peak_bytes(lambda: solved(kind, (0.0, 0.0, 0.0)))
     print(f"  peak memory {far / 2**20:.1f} MiB against {origin / 2**20:.1f} MiB: ratio {far / origin:.2f}")
     assert ratio <= BAR
     assert far <= BAR * origin

@@ -20,7 +20,16 @@ window shown 1.50-1.69 s, pyvista and VTK set up (the solve running meanwhile on
 worker thread) 6.90-8.07 s, solved 7.22-8.29 s, first frame 7.34-8.39 s. Before this
 change the window was shown after 4.6-5.6 s (load 11: the viewport's module, with pyvista
 and trimesh behind it, was imported before the first paint) and the solve waited for
-VTK. The limit, 2.6, leaves room for the shared machine's noise. The issue's bar of 2 s
+VTK. The limit, 2.6, leaves room for the shared machine's noise.
+
+The CPU seconds each process had used at each stage are printed too (user + system, every
+thread, from /proc): a figure a loaded machine disturbs far less than time. On 5 December
+2026 at load 11-12: Torsal 2.66-2.78 CPU s to its first solved frame, the baseline
+1.33-1.44 (ratio 2.00), Torsal's window shown at 0.46-0.49 CPU s and pyvista's interactor
+ready at 2.50-2.63 (the palettes' imports, scipy and trimesh, pyvista with matplotlib and
+VTK, and the solve on the worker thread in between). On an idle machine the wall time
+comes close to the CPU time, so the 2 s bar needs about 0.7 CPU s less than today: more
+than all of Torsal's own imports and solve together, which is why it is not met. The issue's bar of 2 s
 absolute on a quiet machine could not be measured here: no quiet machine, and the
 baseline alone took 3.8 s on this one.
 """
@@ -68,25 +77,32 @@ app.exec()
 """
 
 
-def _stages(command: list[str], env: dict[str, str]) -> dict[str, float]:
-    """Run ``command`` until it reports its first frame (or 120 s pass)."""
-    return stages(command, env, until="first-frame", timeout=120)
+def _stages(command: list[str], env: dict[str, str], cpu: dict[str, float]) -> dict[str, float]:
+    """Run ``command`` until it reports its first frame (or 120 s pass); its CPU seconds
+    at each stage go to ``cpu``."""
+    return stages(command, env, until="first-frame", timeout=120, cpu=cpu)
 
 
 def test_launch_to_the_flagships_first_solved_frame_against_an_empty_qtinteractor_window():
-    ratios, ours, baselines = [], [], []
+    ratios, ours, baselines, cpu_ratios = [], [], [], []
     for _ in range(ROUNDS):
         with tempfile.TemporaryDirectory() as folder:
             env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=folder, PYTHONPATH=str(ROOT))
-            baseline = _stages([sys.executable, "-c", _BASELINE, str(time.time())], env)
-            torsal = _stages([sys.executable, "-m", "torsal.app.cli", "gui", str(FLAGSHIP)], env)
+            baseline_cpu: dict[str, float] = {}
+            torsal_cpu: dict[str, float] = {}
+            baseline = _stages([sys.executable, "-c", _BASELINE, str(time.time())], env, baseline_cpu)
+            torsal = _stages([sys.executable, "-m", "torsal.app.cli", "gui", str(FLAGSHIP)], env, torsal_cpu)
         assert "first-frame" in baseline and "first-frame" in torsal, (baseline, torsal)
         print("\n  stages: " + "  ".join(f"{k} {v:.2f} s" for k, v in torsal.items())
-              + f"   (baseline first frame {baseline['first-frame']:.2f} s, load {os.getloadavg()[0]:.1f})")
+              + f"   (baseline first frame {baseline['first-frame']:.2f} s, load {os.getloadavg()[0]:.1f})"
+              + "\n  CPU seconds: " + "  ".join(f"{k} {v:.2f}" for k, v in torsal_cpu.items())
+              + f"   (baseline {baseline_cpu['first-frame']:.2f})")
+        cpu_ratios.append(torsal_cpu["first-frame"] / baseline_cpu["first-frame"])
         ours.append(torsal["first-frame"])
         baselines.append(baseline["first-frame"])
         ratios.append(torsal["first-frame"] / baseline["first-frame"])
     ratio = statistics.median(ratios)
     print(f"launch → first solved frame of the flagship {min(ours):.2f} s, empty QtInteractor window "
-          f"{min(baselines):.2f} s: ratio {ratio:.2f} (limit {RATIO_LIMIT})")
+          f"{min(baselines):.2f} s: ratio {ratio:.2f} (limit {RATIO_LIMIT}); in CPU seconds "
+          f"{statistics.median(cpu_ratios):.2f}")
     assert ratio <= RATIO_LIMIT

@@ -57,6 +57,20 @@ def ratio_to_baseline(
     return ratio
 
 
+def peak_bytes(function: Callable[[], object]) -> int:
+    """Bytes allocated at the peak while ``function`` runs (:mod:`tracemalloc`: Python
+    objects and numpy's arrays, which numpy reports to it), from a collected heap."""
+    import tracemalloc
+
+    gc.collect()
+    tracemalloc.start()
+    try:
+        kept = function()  # noqa: F841 - held until the peak is read
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
 def duration(seconds: float) -> str:
     """``12.3 µs``, ``4.56 ms`` or ``1.23 s``."""
     if seconds < 1e-3:

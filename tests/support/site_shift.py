@@ -172,7 +172,8 @@ class Figures:
 
 
 def measure(value: Any) -> Figures:
-    """The figures of one output item (evaluating lengths and areas, as the JSON summary does)."""
+    """The figures of one output item (evaluating lengths, areas and bounding boxes, as the JSON
+    summary does)."""
     if value is None or isinstance(value, bool | str):
         return Figures("other")
     if isinstance(value, int | float):
@@ -186,9 +187,10 @@ def measure(value: Any) -> Figures:
                        numbers=[*value.x, *value.y, *value.z])
     if isinstance(value, Curve):
         return Figures("curve", value.point_at(SAMPLES), lengths=[value.length])
-    if isinstance(value, Surface):
+    if isinstance(value, Surface):  # samples and, as the JSON summary gives it, the bounding box
         u, v = (a.ravel() for a in np.meshgrid(SAMPLES, SAMPLES))
-        return Figures("surface", value.point_at(u, v), areas=[value.area()])
+        positions = np.vstack([value.point_at(u, v), value.bounding_box()])
+        return Figures("surface", positions, areas=[value.area()])
     if isinstance(value, trimesh.Trimesh):
         return Figures("mesh", np.asarray(value.vertices, dtype=float), areas=[float(value.area)])
     return Figures(type(value).__name__)

@@ -42,12 +42,11 @@ class Triples:
         (as numpy takes them), as Triples of the rows picked."""
         if isinstance(index, slice | np.ndarray | list):
             return Triples(self.array[index], self.item_class)
-        return tuple.__new__(self.item_class, self.array[index].tolist())
+        return self.item_class(*self.array[index].tolist())
 
     def tolist(self) -> list[Any]:
         """The items as :attr:`item_class` values (three Python floats each)."""
-        make, cls = tuple.__new__, self.item_class
-        return [make(cls, row) for row in self.array.tolist()]
+        return self.item_class.many(self.array.tolist())
 
     def same_kind(self, other: object) -> bool:
         return isinstance(other, Triples) and other.item_class is self.item_class

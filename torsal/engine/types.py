@@ -163,10 +163,6 @@ def get_type(name: str) -> ValueType:
     return found
 
 
-def all_types() -> dict[str, ValueType]:
-    return {t.name: t for t in TYPES.values()}
-
-
 def register_cast(source: ValueType, target: ValueType, cast: Callable[[Any], Any]) -> None:
     """Let values of ``source`` flow into ports of ``target`` through ``cast``."""
     target.casts[source.name] = cast

@@ -91,6 +91,17 @@ GRASSHOPPER_WORDS = {
     "Perp Frames": "Perp Frames",
     "Extrude": "Cylindrical Surface",
     "Number Slider": "Number Slider",
+    "Join Curves": "Join Curves",
+    "Explode": "Explode",
+    "Shatter": "Shatter",
+    "Split Curve": "Shatter",
+    "Divide Surface": "Divide Surface",
+    "Contour": "Contour",
+    "Brep | Plane": "Section",
+    "Sweep1": "Sweep 1",
+    "Simplify Tree": "Simplify Tree",
+    "Tree Branch": "Tree Branch",
+    "Path Mapper": "Path Mapper",
 }
 
 

@@ -6,6 +6,7 @@ The time it takes (< 3 s to the first shown window) is a benchmark:
 
 from __future__ import annotations
 
+import math
 import os
 import subprocess
 import sys
@@ -26,9 +27,12 @@ def start_app(config_folder: Path) -> dict[str, float]:
     return stages(command, env, until="viewport-ready", timeout=60)
 
 
-def stages(command: list[str], env: dict[str, str], until: str, timeout: float) -> dict[str, float]:
+def stages(command: list[str], env: dict[str, str], until: str, timeout: float,
+           cpu: dict[str, float] | None = None) -> dict[str, float]:
     """Run ``command`` until it reports the stage ``until`` (or ``timeout`` seconds pass);
-    the seconds from launch to each ``torsal-startup STAGE TIME`` line it wrote on stderr."""
+    the seconds from launch to each ``torsal-startup STAGE TIME`` line it wrote on stderr.
+    With ``cpu``, also the CPU seconds (user + system, every thread) the process had used
+    when it reported each stage: a figure a loaded machine disturbs far less than time."""
     began = time.time()
     child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True)
@@ -39,6 +43,8 @@ def stages(command: list[str], env: dict[str, str], until: str, timeout: float) 
             parts = line.split()
             if len(parts) >= 3 and parts[0] == "torsal-startup":
                 stamps[parts[1]] = float(parts[2]) - began
+                if cpu is not None:
+                    cpu[parts[1]] = cpu_seconds(child.pid)
                 if parts[1] == until:
                     return
 
@@ -48,6 +54,16 @@ def stages(command: list[str], env: dict[str, str], until: str, timeout: float) 
     child.terminate()
     child.wait(timeout=10)
     return stamps
+
+
+def cpu_seconds(pid: int) -> float:
+    """The CPU seconds process ``pid`` has used (Linux's /proc; NaN where there is none)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            fields = stat.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return math.nan
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
 
 
 def test_torsal_gui_shows_its_window_and_the_example(tmp_path):

@@ -133,7 +133,8 @@ def test_area_error_of_a_developable_is_at_most_1e_4_at_100_segments(name):
 def test_area_error_of_a_cone_and_a_cylinder_is_that_of_their_flat_facets():
     """AreaInput is the smooth surface's area, AreaDevelopment that of the Map's n flat
     facets: triangles ½L²·sin α (α = 2·asin(r·sin(π/n)/L)) on the cone, rectangles
-    2r·sin(π/n)·h on the cylinder (measured to 6e-16 and 4e-15)."""
+    2r·sin(π/n)·h on the cylinder (measured to 6e-16 and, at the 8,800 facets the
+    cylinder's edges need for 1e-7 of its size, 6.3e-14: the sum of many facets' rounding)."""
     slant = math.hypot(R_CONE, H_CONE)
     _, v = unrolled(cone(R_CONE, H_CONE), 100)
     n = len(v["Map"].starts2d) - 1
@@ -142,7 +143,7 @@ def test_area_error_of_a_cone_and_a_cylinder_is_that_of_their_flat_facets():
     assert v["AreaError"] == pytest.approx(facets / (math.pi * R_CONE * slant) - 1, abs=1e-14)
     _, v = unrolled(cylinder(R_CYL, H_CYL), 100)
     n = len(v["Map"].starts2d) - 1
-    assert v["AreaError"] == pytest.approx(n * math.sin(math.pi / n) / math.pi - 1, abs=1e-14)
+    assert v["AreaError"] == pytest.approx(n * math.sin(math.pi / n) / math.pi - 1, abs=1e-13)
 
 
 def test_cone_input_area_is_pi_r_L():

@@ -31,11 +31,14 @@ def arc_length(curve, t0: float, t1: float, panels: int = 400) -> float:
     return float((half * (speed * w).sum(axis=1)).sum())
 
 
-@pytest.mark.parametrize("pair", ["chorded", "nappes"])
+PAIRS = {"chorded": curve_pairs.chorded_pair, "nappes": nappes, "folded cone": curve_pairs.folded_cone_pair}
+
+
+@pytest.mark.parametrize("pair", list(PAIRS))
 def test_flat_edges_of_a_strip_with_fans_are_as_long_as_its_3d_edges_to_1e_7(pair):
-    a, b = curve_pairs.chorded_pair() if pair == "chorded" else nappes()
+    a, b = PAIRS[pair]()
     strip = ruling_developable(a, b, 60, 0.01)
-    assert (~strip.stations).sum() > 20  # fans: rulings added through single points
+    assert (~strip.stations).sum() >= 5  # fans: rulings added through single points (22, 57, 5)
     surface = ruled_between(a, strip.s, b, strip.t, points=(strip.starts, strip.ends))
     result = run(IsoMapping(), Surface=tree({(0,): [surface]}), Segments=100, Placement=1)
     development = out(result, "Map")[(0,)][0]
@@ -44,7 +47,7 @@ def test_flat_edges_of_a_strip_with_fans_are_as_long_as_its_3d_edges_to_1e_7(pai
     exact = [arc_length(a, strip.s[0], strip.s[-1]), arc_length(b, strip.t[0], strip.t[-1])]
     size = np.linalg.norm(np.ptp(np.vstack([strip.starts, strip.ends]), axis=0))
     errors = np.abs(np.subtract(flat, exact)) / size
-    assert errors.max() < 1e-7  # measured 3.1e-8 (chorded), 2.4e-8 (nappes)
+    assert errors.max() < 1e-7  # measured 4.9e-8 (chorded), 3.8e-8 (nappes), 4.8e-8 (folded cone)
     # the rulings the user sees are still the 101 asked for, laid flat at their lengths
     lines = out(result, "Rulings")[(0,)]
     assert len(lines) == 101

@@ -144,3 +144,30 @@ def test_a_cone_whose_apex_crosses_the_strips_edge_is_integrated_span_by_span(mo
     monkeypatch.setattr(Surface, "area_and_centroid", no_fallback)
     area, _ = surface.area_and_centroid()
     assert area == pytest.approx(math.pi * math.sqrt(2), rel=1e-10)
+
+
+def test_only_rails_whose_derivatives_are_differences_stop_at_their_rounding_noise():
+    """Far from the origin an integral of a rail's derivatives stops at their rounding
+    noise only where they may be differences of positions (a function of world
+    coordinates, differentiated numerically): exact rails (NURBS, a design's parameter
+    lines, anything wrapping them) are integrated as at the origin. It once stopped on
+    every kind: rationalise-canopy's strips at 1e6 m came out 3.9e-8 of their area off."""
+    from torsal.nodes.geometry.curve_rail import CurveRail
+    from torsal.nodes.geometry.curves import NurbsCurve, ParametricCurve
+    from torsal.nodes.geometry.nurbs_surface import NurbsSurface
+    from torsal.nodes.geometry.surface_base import IsoCurve
+    from torsal.nodes.geometry.transforms import translation
+    from torsal.nodes.geometry.vec_ops import differenced
+
+    nurbs = NurbsCurve(np.array([[0, 0, 0], [1, 2, 0], [3, 1, 1], [4, 0, 0]], float), 3)
+    grid = np.stack([*np.meshgrid(np.arange(4.0), np.arange(4.0), indexing="ij"), np.zeros((4, 4))], axis=2)
+    design = NurbsSurface.from_points(grid)
+    given = ParametricCurve(lambda t: (np.cos(t), np.sin(t), 0 * t), (0.0, 1.0),
+                            derivatives=[lambda t: (-np.sin(t), np.cos(t), 0 * t)])
+    function = ParametricCurve(lambda t: (np.cos(t), np.sin(t), 0 * t), (0.0, 1.0))
+    exact = [nurbs, Circle(Plane.from_normal([0, 0, 0], [0, 0, 1]), 1.0), IsoCurve(design, "u", 0.5), given,
+             CurveRail(nurbs, [0.0, 1.0], [0.0, 1.0]), nurbs.reversed(),
+             IsoCurve(design, "v", 0.2).transformed(translation([1e6, 0.0, 0.0]))]
+    assert [differenced(c) for c in exact] == [False] * len(exact)
+    noisy = [function, CurveRail(function, [0.0, 1.0], [0.0, 1.0]), function.reversed()]
+    assert [differenced(c) for c in noisy] == [True] * len(noisy)

@@ -338,7 +338,8 @@ def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monk
     would too, but it would make the sheet denser than the strip was)."""
     from torsal.nodes.geometry import nesting
 
-    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1):
+    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
+            better=None):  # the strip is not offered cut into sheets: the trials are what is tested
         budget.used += 10
         placed, x = {}, spacing
         for i in members:
@@ -351,3 +352,35 @@ def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monk
     bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 100, 180, 150, 110)]
     nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0)
     assert nested.sheet.tolist() == [0, 1, 0, 1, 0]
+
+
+def test_a_strip_is_cut_into_sheets_where_no_part_crosses_a_sheet_end():
+    """Squares 100 mm wide in a strip at x = 10, 120, 230, 340 and 450 cut into sheets of 300
+    with a 10 mm margin: the first sheet starts at 0 and holds the parts ending by 290 (two);
+    the next starts 10 before the first part left (220) and holds those ending by 510 (two);
+    the last starts at 440."""
+    from torsal.nodes.geometry.nesting import _cut
+
+    squares = {k: shapely.box(x, 10, x + 100, 110) for k, x in enumerate((10, 120, 230, 340, 450))}
+    assert _cut(squares, 300.0, 10.0) == [(0.0, [0, 1]), (220.0, [2, 3]), (440.0, [4])]
+    longer = {0: shapely.box(10, 10, 400, 110)}
+    assert _cut(longer, 300.0, 10.0) == []
+
+
+def test_the_parts_kept_are_those_a_pairwise_check_keeps():
+    """200 random squares, some closer than the spacing, some off the room: the parts kept
+    (measured only against near ones, an STRtree) are those a check of every pair keeps,
+    largest first."""
+    from torsal.nodes.geometry.nesting import _valid
+
+    rng = np.random.default_rng(7)
+    corners, sides = rng.uniform(0, 1000, (200, 2)), rng.uniform(5, 40, 200)
+    polygons = {k: shapely.box(x, y, x + s, y + s)
+                for k, ((x, y), s) in enumerate(zip(corners, sides, strict=True))}
+    room = shapely.box(0, 0, 1000, 1000)
+    kept: list[int] = []
+    for i in sorted(polygons, key=lambda k: -polygons[k].area):
+        if room.covers(polygons[i]) and all(polygons[i].distance(polygons[j]) >= 10.0 for j in kept):
+            kept.append(i)
+    assert 20 < len(kept) < 200
+    assert _valid(polygons, room, 10.0) == kept

@@ -72,3 +72,28 @@ def test_a_node_that_writes_files_waits_for_its_layout(tmp_path):
     assert solver.improvers() == {}
     assert _layout(solver).nesting in (cutfiles.TRUE_SHAPE, cutfiles.SHELF)
     assert (tmp_path / "a.dxf").exists()
+
+
+def test_each_better_layout_is_published_as_the_search_finds_it():
+    """The search publishes every layout that takes less stock than the last one shown (the
+    strip of every part cut into sheets, as sparrow shortens it) before its final one: the
+    usages rise, the ones on the way say so, and every one keeps its gap (shapely)."""
+    import itertools
+
+    import shapely
+
+    solver = _solver(TimeBudget=3.0)
+    rows = _layout(solver).stock_usage
+    (improver,) = solver.improvers().values()
+    published = []
+    improver(lambda: False, lambda values, remarks: published.append((values[1], remarks)), lambda f: None)
+    usages = [layout.stock_usage for layout, _ in published]
+    assert len(published) >= 2, usages
+    assert usages[0] > rows and all(b >= a for a, b in itertools.pairwise(usages))
+    assert all("searching" in remarks[0] for _, remarks in published[:-1])
+    assert published[-1][1][0].startswith("TrueShape nesting: ")
+    for layout, _ in published:
+        for sheet in range(layout.sheets):
+            cuts = [shapely.Polygon(p.outline) for p in layout.parts if p.sheet == sheet]
+            gaps = [a.distance(b) for a, b in itertools.combinations(cuts, 2)]
+            assert min(gaps, default=10.0) >= 10.0 - 1e-6

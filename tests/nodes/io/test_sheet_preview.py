@@ -66,3 +66,19 @@ def test_without_strips_the_sheets_are_drawn_at_the_panels_scale_from_the_origin
     (preview,) = out(result, "Preview")[(0,)]
     assert preview.scale == pytest.approx(0.001) and preview.origin == (0.0, 0.0, 0.0)
     assert preview.bounds()[:, :2].ravel().tolist() == pytest.approx([0.0, 0.0, 2.5, 1.25])
+
+
+def test_a_point_picked_on_a_part_names_that_part_and_its_strip_on_the_roof():
+    """A point inside each part's drawn contour (its representative point, shapely) names
+    that part, and the part's strip is the example's strip of the same position (the cut
+    node's Surfaces and Strips come in the same order); a point on the bare sheet names none."""
+    import shapely
+
+    _, strips, preview = example()
+    assert len(preview.strips) == len(preview.layout.parts) == len(strips)
+    for index, lines in enumerate(preview.part_polylines()):
+        inside = shapely.Polygon(lines[0][:, :2]).representative_point()
+        assert preview.part_at((inside.x, inside.y, lines[0][0, 2])) == index
+        assert preview.strip_of(index) is strips[index]
+    corner = preview.sheet_borders()[0][0]  # a sheet's corner: inside the margin, no part
+    assert preview.part_at(corner + np.array([1e-3, 1e-3, 0.0])) is None

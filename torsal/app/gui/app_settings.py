@@ -45,9 +45,6 @@ class AppSettings:
         self._settings.setValue("recent", [str(p) for p in files])
         self._settings.sync()
 
-    def clear_recent(self) -> None:
-        self._settings.setValue("recent", [])
-
     def window_state(self) -> tuple[QByteArray | None, QByteArray | None]:
         return self._settings.value("geometry"), self._settings.value("state")
 

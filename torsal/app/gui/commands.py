@@ -210,36 +210,45 @@ class SetModifiers(GraphCommand):
         graph.set_modifiers(self.node_id, self.port, self.old)
 
 
-class SetEnabled(GraphCommand):
-    def __init__(self, doc: EditedDocument, node_ids: list[str], enabled: bool) -> None:
-        super().__init__(doc, "Enable" if enabled else "Disable")
-        self.enabled = enabled
-        self.old = {n: doc.graph.nodes[n].enabled for n in node_ids}
+class _SetFlag(GraphCommand):
+    """One on/off setting of several nodes set to ``value``; ``old`` holds each node's value
+    before, which undo puts back. A subclass says which setting (:meth:`set`)."""
+
+    def __init__(self, doc: EditedDocument, text: str, value: bool, old: dict[str, bool]) -> None:
+        super().__init__(doc, text)
+        self.value = value
+        self.old = old
+
+    def set(self, graph: Graph, node_id: str, value: bool) -> None:
+        raise NotImplementedError
 
     def apply(self, graph: Graph) -> None:
         for node_id in self.old:
-            graph.set_enabled(node_id, self.enabled)
+            self.set(graph, node_id, self.value)
 
     def revert(self, graph: Graph) -> None:
-        for node_id, enabled in self.old.items():
-            graph.set_enabled(node_id, enabled)
+        for node_id, value in self.old.items():
+            self.set(graph, node_id, value)
 
 
-class SetPreview(GraphCommand):
+class SetEnabled(_SetFlag):
+    def __init__(self, doc: EditedDocument, node_ids: list[str], enabled: bool) -> None:
+        old = {n: doc.graph.nodes[n].enabled for n in node_ids}
+        super().__init__(doc, "Enable" if enabled else "Disable", enabled, old)
+
+    def set(self, graph: Graph, node_id: str, value: bool) -> None:
+        graph.set_enabled(node_id, value)
+
+
+class SetPreview(_SetFlag):
     affects_solve = False
 
     def __init__(self, doc: EditedDocument, node_ids: list[str], preview: bool) -> None:
-        super().__init__(doc, "Preview on" if preview else "Preview off")
-        self.preview = preview
-        self.old = {n: doc.graph.nodes[n].preview for n in node_ids}
+        old = {n: doc.graph.nodes[n].preview for n in node_ids}
+        super().__init__(doc, "Preview on" if preview else "Preview off", preview, old)
 
-    def apply(self, graph: Graph) -> None:
-        for node_id in self.old:
-            graph.set_preview(node_id, self.preview)
-
-    def revert(self, graph: Graph) -> None:
-        for node_id, preview in self.old.items():
-            graph.set_preview(node_id, preview)
+    def set(self, graph: Graph, node_id: str, value: bool) -> None:
+        graph.set_preview(node_id, value)
 
 
 class SetLabel(GraphCommand):

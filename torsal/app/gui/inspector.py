@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from PySide6.QtCore import Qt, QTimer
-from PySide6.QtGui import QPixmap
+from PySide6.QtGui import QImage, QPixmap
 from PySide6.QtWidgets import (
     QLabel,
     QTableWidget,
@@ -222,11 +222,14 @@ class Inspector(QWidget):
         if key == self._plot_key:
             return
         self._plot_key = key
-        pixmap = QPixmap(str(path))
-        if pixmap.isNull():
+        from torsal.nodes.common.charts import RECIPE_KEY, read_recipe
+
+        image = QImage(str(path))
+        if image.isNull():
             self.plot_area.set_text(f"The plot {path} is not a readable image.")
             return
-        self.plot_area.set_image(pixmap)
+        # a chart node's PNG carries its recipe: the tab draws the chart at its own size
+        self.plot_area.set_image(QPixmap.fromImage(image), read_recipe(image.text(RECIPE_KEY)))
 
     def _add_tree(self, name: str, tree: DataTree) -> None:
         top = QTreeWidgetItem([name, f"{tree.item_count} items in {tree.branch_count} branches"])

@@ -98,11 +98,6 @@ class Palette(QTabWidget):
         self.populated = True
         self._fill(self.currentIndex())
 
-    def fill_all(self) -> None:
-        """Fill every tab now (imports every palette)."""
-        for index in range(self.count()):
-            self._fill(index)
-
     def refresh_icons(self) -> None:
         """Draw every button's icon again (nicknames instead of icons turned on or off)."""
         for button in self.findChildren(NodeButton):

@@ -63,6 +63,7 @@ PREVIEW_POINT = "#8b1a1a"
 PREVIEW_VECTOR = "#2a5fa0"
 PREVIEW_RULING = "#4a5a6a"
 PREVIEW_SELECTED = "#30b030"
+PREVIEW_PICKED = "#e07020"  #: a cut-sheet part picked in the viewport, and its strip
 VIEWPORT_BACKGROUND = "#f4f5f7"
 VIEWPORT_BACKGROUND_TOP = "#dfe4ea"
 VIEWPORT_GRID = "#c4c9d0"

@@ -8,7 +8,7 @@ import numpy as np
 
 from torsal.engine.node import LIST, In, Node, NodeWarning, Out
 from torsal.engine.types import GENERIC, INTEGER, NUMBER, TEXT
-from torsal.nodes.common.charts import new_figure, save, target
+from torsal.nodes.common.charts import target, write_chart
 from torsal.nodes.common.checks import finite, whole
 from torsal.nodes.common.geometry_checks import surface_or_mesh
 from torsal.nodes.geometry.array_types import FloatArray
@@ -167,26 +167,11 @@ class CurvatureHistogram(Node):
         key = heading.encode() + name.encode() + edges.tobytes() + np.asarray(counts).tobytes()
         path, chosen = target("" if file is None else str(file), key + repr(tol).encode(), self)
         try:
-            draw_histogram(path, edges, counts, heading, name, tol)
+            write_chart(path, {"kind": "histogram", "edges": edges.tolist(),
+                               "counts": [int(c) for c in counts], "tolerance": tol, "title": heading,
+                               "name": name})
         except OSError as exc:
             raise NodeWarning(f"Could not write the chart to {path}: {exc.strerror or exc}") from None
         if chosen:
             self.remark(f"No File given: the chart was written to {path}")
         return str(path), counts, edges.tolist(), values.tolist(), summary
-
-
-def draw_histogram(path: Any, edges: FloatArray, counts: list[int], title: str, name: str,
-                   tolerance: float | None) -> None:
-    """The bar chart of ``counts`` between ``edges`` into the PNG at ``path``."""
-    figure, axes = new_figure()
-    axes.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color="#cc79a7", edgecolor="#5d2a4c",
-             linewidth=0.6)
-    if tolerance is not None and edges[0] <= tolerance <= edges[-1]:
-        axes.axvline(tolerance, color="#0072b2", linestyle="--", linewidth=1.2,
-                     label=f"tolerance {tolerance:g}")
-        axes.legend(loc="upper right")
-    axes.set_title(title)
-    axes.set_xlabel(f"{name}, 1/unit" if name != "gaussian" else "gaussian, 1/unit²")
-    axes.set_ylabel("Grid points")
-    axes.grid(True, axis="y", alpha=0.3)
-    save(figure, path)

@@ -76,16 +76,17 @@ class IsoMapping(Node):
     keep their lengths (EdgeError shows it: rounding level). Between the rulings you
     see, at least 7 more per strip are unrolled too — as many as it takes for both
     flat edges to be as long as the curved 3D edges to 1e-7 of the surface's size:
-    evenly, up to 4096 rulings in all, or where that is not enough and the edges run
-    fast over some strips only (a fan sweeping a long stretch of one curve from a point
-    of the other), each strip as many as its own stretch of the edges needs, up to
-    32768 — so two strips made between a shared curve have flat edges of the same
-    length and their seam closes. (An edge as curved all along as a full cone's rim is
-    not refined past 8 rulings a strip: 100 strips of it are short by about 8e-6 of the
-    size; more Segments shorten that by their square.) Development is the outline of
-    all these triangles, edge by straight edge, so a sheet cut along it is exactly what
-    was unrolled. The first ruling starts at the origin and runs up the Y axis; the
-    strip continues towards +X.
+    evenly, up to 4096 rulings in all; where that is not enough, up to 32768: each strip
+    as many as its own stretch of the edges needs where the edges run fast over some
+    strips only (a fan sweeping a long stretch of one curve from a point of the other),
+    evenly where they are curved all along (a full cone's rim: 88 a strip at 100
+    Segments) — so two strips made between a shared curve have flat edges of the same
+    length and their seam closes. Development is the outline of all these triangles,
+    edge by straight edge, so a sheet cut along it is exactly what was unrolled. The
+    first ruling starts at the origin and runs up the Y axis; the strip continues
+    towards +X. Map triangulates the same rulings, except where the edges are curved all
+    along: there it keeps 8 a strip of them, laid where the fine unrolling put them, so
+    panels cost what they did (its outline is within the chords' sag of Development's).
 
     Placement says where Development and Rulings are shown, so the flat development
     does not cut through the 3D model: 0 Beside model (the default) lays it flat beside

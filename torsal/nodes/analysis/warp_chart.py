@@ -9,7 +9,7 @@ import numpy as np
 
 from torsal.engine.node import LIST, In, Node, NodeWarning, Out
 from torsal.engine.types import INTEGER, NUMBER, TEXT, describe
-from torsal.nodes.common.charts import new_figure, save, target
+from torsal.nodes.common.charts import target, write_chart
 from torsal.nodes.common.checks import angle
 from torsal.nodes.common.values import LINE
 from torsal.nodes.geometry.array_types import FloatArray
@@ -103,29 +103,10 @@ class WarpChart(Node):
         path, chosen = target("" if file is None else str(file),
                               heading.encode() + warp.tobytes() + x.tobytes() + repr(tol).encode(), self)
         try:
-            draw_warp(path, x, warp, tol, heading, along=bool(lines))
+            write_chart(path, {"kind": "warp", "x": x.tolist(), "warp": warp.tolist(), "tolerance": tol,
+                               "title": heading, "along": bool(lines)})
         except OSError as exc:
             raise NodeWarning(f"Could not write the chart to {path}: {exc.strerror or exc}") from None
         if chosen:
             self.remark(f"No File given: the chart was written to {path}")
         return str(path), over, x.tolist(), summary
-
-
-def draw_warp(path: Any, x: FloatArray, warp: FloatArray, tolerance: float, title: str, along: bool) -> None:
-    """Warp against position, the tolerance dashed and the rulings over it marked."""
-    figure, axes = new_figure()
-    axes.plot(x, warp, color="#0072b2", linewidth=1.5, marker="o" if len(warp) <= 60 else None, markersize=3,
-              label="warp angle")
-    over = np.isfinite(warp) & (warp > tolerance)
-    if over.any():
-        axes.plot(x[over], warp[over], linestyle="none", marker="o", markersize=5, color="#d55e00",
-                  label=f"over tolerance ({int(over.sum())})")
-    axes.axhline(tolerance, color="#d55e00", linestyle="--", linewidth=1.0,
-                 label=f"tolerance {tolerance:g} rad")
-    axes.set_title(title)
-    axes.set_xlabel("Distance along the strip" if along else "Ruling")
-    axes.set_ylabel("Warp angle, rad")
-    axes.set_ylim(bottom=0.0)
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="best")
-    save(figure, path)

@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import hashlib
 import io
+import json
 from pathlib import Path
 from typing import Any
 
 from torsal.engine.node import Node, NodeWarning
 from torsal.engine.write_path import scratch_folder, write_file
+from torsal.nodes.common.chart_kinds import checked, draw
 from torsal.nodes.common.files import may_write, replacing, writable, write_target
 
 
@@ -50,24 +52,64 @@ def target(file: str, key: bytes, node: Node | None = None) -> tuple[Path, bool]
     return (path, False) if may_write(node, [path]) else (temporary, False)
 
 
-def new_figure() -> tuple[Any, Any]:
-    """A figure on matplotlib's Agg canvas (no pyplot, no window, no global state: safe
-    headless and on the solver's worker thread) and its one axes."""
+#: The size a node draws its chart at, in pixels (at :data:`DPI`), for its PNG file.
+FILE_SIZE = (640, 400)
+DPI = 100
+#: The PNG text chunk that carries a chart's recipe (JSON, ASCII), so the app can draw the
+#: chart again at the size of the panel showing it. The pixels are the same without it.
+RECIPE_KEY = "torsal-chart"
+#: A recipe longer than this (a chart of very many values) is not carried: the app then
+#: scales the PNG instead.
+MAX_RECIPE_BYTES = 2_000_000
+
+
+def new_figure(width: int = FILE_SIZE[0], height: int = FILE_SIZE[1], dpi: float = DPI) -> tuple[Any, Any]:
+    """A figure of ``width`` × ``height`` pixels on matplotlib's Agg canvas (no pyplot, no
+    window, no global state: safe headless and on the solver's worker thread) and its axes."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    figure = Figure(figsize=(6.4, 4.0), dpi=100)
+    figure = Figure(figsize=(width / dpi, height / dpi), dpi=dpi)
     FigureCanvasAgg(figure)
     return figure, figure.add_subplot()
 
 
-def save(figure: Any, path: Path) -> None:
+def render(recipe: dict[str, Any], width: int = FILE_SIZE[0], height: int = FILE_SIZE[1],
+           dpi: float = DPI) -> Any:
+    """The figure of ``recipe`` (see :mod:`torsal.nodes.common.chart_kinds`) at ``width`` ×
+    ``height`` pixels, laid out for that size: titles and labels keep their size in points
+    (``dpi`` pixels an inch; a high-DPI screen draws at more pixels for the same layout)."""
+    figure, axes = new_figure(width, height, dpi)
+    draw(axes, recipe)
+    figure.tight_layout()
+    return figure
+
+
+def write_chart(path: Path, recipe: dict[str, Any]) -> None:
+    """Draw ``recipe`` at :data:`FILE_SIZE` and write it as the PNG at ``path`` (see :func:`save`),
+    the recipe in its text chunk :data:`RECIPE_KEY`."""
+    text = json.dumps(recipe, ensure_ascii=True, separators=(",", ":"))
+    save(render(recipe), path, text if len(text) <= MAX_RECIPE_BYTES else None)
+
+
+def read_recipe(text: str) -> dict[str, Any] | None:
+    """The recipe in a PNG's :data:`RECIPE_KEY` text, checked (None when there is none or
+    it is not a well-formed recipe: the text comes from a file, so it is only data)."""
+    if not text or len(text) > MAX_RECIPE_BYTES:
+        return None
+    try:
+        recipe = json.loads(text)
+    except ValueError:
+        return None
+    return checked(recipe)
+
+
+def save(figure: Any, path: Path, recipe: str | None = None) -> None:
     """Write ``figure`` as a PNG at ``path`` through the one write path, so a viewer never
     reads half an image: the user's own file keeps its original as ``.bak``; a plot in
-    the scratch folder is simply replaced."""
-    figure.tight_layout()
+    the scratch folder is simply replaced. ``recipe`` goes in its text chunk."""
     image = io.BytesIO()
-    figure.savefig(image, format="png")
+    figure.savefig(image, format="png", metadata={RECIPE_KEY: recipe} if recipe else None)
     scratch = plot_folder()
     if scratch not in path.parents:  # the user's own file: atomic, keeping a .bak
         writable(path)

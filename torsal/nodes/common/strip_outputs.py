@@ -16,7 +16,7 @@ recomputed from the output rulings and found within the tolerance.
 from __future__ import annotations
 
 from contextlib import suppress
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -26,7 +26,7 @@ from torsal.nodes.geometry.array_types import BoolArray, FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.curves.line import Line
-from torsal.nodes.geometry.developable.measure import warp_allowance
+from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
 from torsal.nodes.geometry.ruled import RuledSurface
 
@@ -177,7 +177,7 @@ def curve_strip_outputs(
     recomputed from the output rulings with the curves' exact tangents
     (:func:`~torsal.nodes.geometry.developable.warp.curve_warp`), and ``valid`` where it is a
     number within ``tolerance`` (plus what the ends' rounding alone adds far from the
-    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.measure.warp_allowance`).
+    origin, as the solver allows: :func:`~torsal.nodes.geometry.developable.measure.within_tolerance`).
 
     ``claimed`` is what the solver thought valid; rulings it accepted that the
     recomputation rejects are counted in a message. ``source`` names the inputs the curves
@@ -193,41 +193,15 @@ def curve_strip_outputs(
     on_curves = None
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
-    # (as strip_outputs(starts, ends, warp=w, surface=on_curves, source=source), in one go)
-    a, b = _checked(starts, ends, source)
-    surface = on_curves if on_curves is not None else _loft(a, b, source)
-    undefined, message = _undefined(w)
-    defined = ~undefined  # (w is finite where it is not NaN: an angle from atan2)
-    valid = w <= tolerance  # (False where NaN)
-    if (valid != defined).any():  # some defined warp is above the tolerance: does rounding allow it?
-        valid = defined & (w <= tolerance + warp_allowance(starts, ends))
-    messages = [message] if message else []
+    outputs = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
+    valid = within_tolerance(w, tolerance, starts, ends)
+    messages = outputs.messages
     if claimed is not None:
-        refused = np.asarray(claimed, dtype=bool) & ~valid & defined
+        refused = np.asarray(claimed, dtype=bool) & ~valid & ~outputs.undefined
         if refused.any():
-            messages.append(
+            messages += (
                 f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
                 f"{tolerance:g} rad (largest {float(w[refused].max()):.3g} rad, first: ruling "
-                f"{int(np.argmax(refused))}): they are marked Valid = false"
+                f"{int(np.argmax(refused))}): they are marked Valid = false",
             )
-    rulings = _lines(a, b)
-    return StripOutputs(surface, rulings, w.tolist(), valid.tolist(), tuple(messages), undefined=undefined)
-
-
-def warp_summary(warp: ArrayLike, tolerance: float | None = None) -> str:
-    """One line for a node's remark: the largest warp and, given a tolerance, how many exceed
-    it (NaN warps are counted apart, never as 0)."""
-    w = np.asarray(warp, dtype=float)
-    if w.size == 0:
-        return "no rulings"
-    nan = int(np.isnan(w).sum())
-    if nan == w.size:
-        return f"no defined warp over {w.size} rulings"
-    text = f"largest warp {np.nanmax(w):.3g} rad over {w.size} rulings"
-    if nan:
-        text += f" ({nan} undefined)"
-    if tolerance is not None:
-        over = int(np.count_nonzero(w > tolerance))
-        within = "all defined ones" if nan else "all"
-        text += f"; {over} above {tolerance:g} rad" if over else f"; {within} within {tolerance:g} rad"
-    return text
+    return replace(outputs, valid=valid.tolist(), messages=messages)

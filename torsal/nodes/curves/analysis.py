@@ -102,7 +102,6 @@ class EvaluateCurve(Node):
                 return None
             rows_of.setdefault(id(curve), []).append(row)
         results: list[Any] = [None] * len(parameters)
-        make = tuple.__new__  # (the rows are Python floats already: Point() would convert them again)
         token = self.token
         for rows_of_curve in rows_of.values():
             c = curves[rows_of_curve[0]]
@@ -110,10 +109,11 @@ class EvaluateCurve(Node):
                 token.check()
                 rows = rows_of_curve[start:start + _AT_ONCE]
                 t = np.array([parameters[row] for row in rows])
-                at = zip(c.point_at(t).tolist(), c.tangent_at(t).tolist(), c.curvature_at(t).tolist(),
-                         c.curvature_vector_at(t).tolist(), strict=True)
-                for row, (p, tangent, k, kv) in zip(rows, at, strict=True):
-                    results[row] = (make(Point, p), make(Vector, tangent), k, make(Vector, kv))
+                at = zip(Point.many(c.point_at(t).tolist()), Vector.many(c.tangent_at(t).tolist()),
+                         c.curvature_at(t).tolist(), Vector.many(c.curvature_vector_at(t).tolist()),
+                         strict=True)
+                for row, values in zip(rows, at, strict=True):
+                    results[row] = values
         return results
 
 

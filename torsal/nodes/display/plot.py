@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from torsal.engine.node import LIST, In, Node, NodeWarning, Out
 from torsal.engine.types import NUMBER, TEXT
-from torsal.nodes.common.charts import new_figure, save, target
+from torsal.nodes.common.charts import target, write_chart
 from torsal.nodes.common.files import FileFailure
 
 
@@ -29,23 +28,6 @@ def summary(y: np.ndarray) -> str:
     if missing:
         text += f" ({missing} not finite, left out)"
     return text
-
-
-def draw(path: Path, y: np.ndarray, title: str) -> None:
-    """Draw the line graph of ``y`` against its index into the PNG at ``path``.
-
-    Uses matplotlib's Agg canvas directly (no pyplot, no window, no global state),
-    so it works headless and from a solver thread. The file is written next to the
-    target and renamed over it, so a viewer never reads half an image.
-    """
-    figure, axes = new_figure()
-    x = np.arange(len(y))
-    axes.plot(x, y, color="#d55e00", linewidth=1.5, marker="o" if len(y) <= 60 else None, markersize=3)
-    axes.set_title(title)
-    axes.set_xlabel("Index")
-    axes.set_ylabel("Value")
-    axes.grid(True, alpha=0.3)
-    save(figure, path)
 
 
 class Plot(Node):
@@ -82,7 +64,7 @@ class Plot(Node):
         heading = "" if title is None else str(title)
         path, chosen = target("" if file is None else str(file), heading.encode() + y.tobytes(), self)
         try:
-            draw(path, y, heading)
+            write_chart(path, {"kind": "line", "y": y.tolist(), "title": heading})
         except OSError as exc:
             raise NodeWarning(f"Could not write the plot to {path}: {exc.strerror or exc}") from None
         except FileFailure as exc:

@@ -27,7 +27,7 @@ from .roots import roots_in_samples
 from .spline_eval import evaluation_parameters
 from .tessellate import tessellation_parameters
 from .transforms import check_matrix, is_affine
-from .vec_ops import cross, dot, linalg_norm
+from .vec_ops import cross, dot
 from .vectors import Plane, as_points, perpendicular, unit
 
 
@@ -102,16 +102,6 @@ class Curve(ABC):
 
     # -- parameters ---------------------------------------------------------------------
 
-    def to_domain(self, t: ArrayLike) -> FloatArray:
-        """The original parameter u for normalised ``t``."""
-        a, b = self.domain
-        return a + (b - a) * np.asarray(t, dtype=float)
-
-    def from_domain(self, u: ArrayLike) -> FloatArray:
-        """The normalised t for an original parameter ``u``."""
-        a, b = self.domain
-        return (np.asarray(u, dtype=float) - a) / (b - a)
-
     def _breakpoints(self) -> FloatArray:
         """Increasing t values, 0 and 1 included, between which the curve is smooth.
 
@@ -145,8 +135,8 @@ class Curve(ABC):
         is used, its limit; where both vanish the tangent is the zero vector."""
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
-        speed = linalg_norm(d1)
-        scale = np.maximum(linalg_norm(d2), 1e-300)
+        speed = np.linalg.norm(d1, axis=1)
+        scale = np.maximum(np.linalg.norm(d2, axis=1), 1e-300)
         stationary = speed <= 1e-12 * scale
         tangent = unit(np.where(stationary[:, None], d2, d1))
         return tangent[0] if scalar else tangent
@@ -167,10 +157,10 @@ class Curve(ABC):
         """Curvature κ = |C' × C''| / |C'|³ (1 / radius of the osculating circle)."""
         ts, scalar = _parameters(t)
         _, d1, d2 = self.derivatives(ts, 2)
-        speed = linalg_norm(d1)
+        speed = np.linalg.norm(d1, axis=1)
         moving = speed > 0
         safe = np.where(moving, speed, 1.0)
-        kappa = np.where(moving, linalg_norm(cross(d1, d2)) / safe**3, 0.0)
+        kappa = np.where(moving, np.linalg.norm(cross(d1, d2), axis=1) / safe**3, 0.0)
         return kappa[0] if scalar else kappa
 
     def torsion_at(self, t: ArrayLike) -> FloatArray:
@@ -194,8 +184,8 @@ class Curve(ABC):
         origins, d1, d2 = self.derivatives(ts, 2)
         tangents = self.tangent_at(ts)
         # straight where C'' is parallel to C' (sine of their angle below 1e-12) or zero
-        sine_area = linalg_norm(cross(d1, d2))
-        flat = sine_area <= 1e-12 * linalg_norm(d1) * linalg_norm(d2)
+        sine_area = np.linalg.norm(cross(d1, d2), axis=1)
+        flat = sine_area <= 1e-12 * np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1)
         flat |= sine_area == 0
         normals = np.where(flat[:, None], perpendicular(tangents), unit(self.curvature_vector_at(ts)))
         return Frames(origins, tangents, normals, cross(tangents, normals))

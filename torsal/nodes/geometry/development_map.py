@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import cross2, extent, linalg_norm
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .strip_walk import StripWalk, strip_triangles
@@ -117,8 +118,8 @@ class DevelopmentMap:
         self.triangles = strip_triangles(self.n, self.first_diagonal)
         tri = self.vertices2d[self.triangles]
         e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-        self._area2 = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # twice the signed area
-        size = float(np.ptp(self.vertices2d, axis=0).max()) or 1.0
+        self._area2 = cross2(e1, e2)  # twice the signed area
+        size = float(extent(self.vertices2d).max()) or 1.0
         #: triangles with area: the only ones a point can be located in
         self.proper_area = 1e-13 * size * size
         self.proper = np.flatnonzero(self._area2 > self.proper_area)
@@ -186,8 +187,8 @@ class DevelopmentMap:
         d = pts - corners[:, 0]
         area2 = self._area2[tri]
         with np.errstate(divide="ignore", invalid="ignore"):
-            v = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / area2
-            w = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / area2
+            v = cross2(d, e2) / area2
+            w = cross2(e1, d) / area2
         return np.column_stack([1.0 - v - w, v, w])
 
     def to_3d(self, points2d: ArrayLike) -> FloatArray:
@@ -231,9 +232,9 @@ class DevelopmentMap:
         guess = owner[tree.query(pts)[1]]
         g = corners[guess]
         bary = _closest_on_triangles(pts, g[:, 0], g[:, 1], g[:, 2])
-        bound = np.linalg.norm(np.einsum("kj,kjd->kd", bary, g) - pts, axis=1)
+        bound = linalg_norm(np.einsum("kj,kjd->kd", bary, g) - pts)
         low, high = self._boxes3d
-        tie = TIE * (float(np.linalg.norm(np.ptp(self.vertices3d, axis=0))) or 1.0)
+        tie = TIE * (float(np.linalg.norm(extent(self.vertices3d))) or 1.0)
         chunk = max(1, 2_000_000 // len(low))
         check, progress = watch_check(), watch_progress()
         found: list[tuple[IntArray, IntArray, FloatArray, FloatArray]] = []
@@ -242,11 +243,11 @@ class DevelopmentMap:
                 check()
             q = pts[start:start + chunk]
             gap = np.maximum(low[None] - q[:, None], 0.0) + np.maximum(q[:, None] - high[None], 0.0)
-            near = np.linalg.norm(gap, axis=2) <= (bound[start:start + chunk] + tie)[:, None]
+            near = linalg_norm(gap) <= (bound[start:start + chunk] + tie)[:, None]
             row, col = np.nonzero(near)
             c = corners[col]
             b = _closest_on_triangles(q[row], c[:, 0], c[:, 1], c[:, 2])
-            dist = np.linalg.norm(np.einsum("kj,kjd->kd", b, c) - q[row], axis=1)
+            dist = linalg_norm(np.einsum("kj,kjd->kd", b, c) - q[row])
             best = np.full(len(q), np.inf)
             np.minimum.at(best, row, dist)
             keep = dist <= best[row] + tie
@@ -281,7 +282,7 @@ class DevelopmentMap:
         else:
             images = np.einsum("kj,kjd->kd", barys, self.vertices2d[self.triangles[tri]])
             hints = np.asarray(hints2d, dtype=float).reshape(len(pts), -1, 2)
-            score = np.linalg.norm(images[:, None] - hints[rows], axis=2).sum(axis=1)
+            score = linalg_norm(images[:, None] - hints[rows]).sum(axis=1)
         order = np.lexsort((cols, score, rows))
         first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
         return tri[first], barys[first], dists[first]
@@ -324,7 +325,7 @@ class DevelopmentMap:
         plain = images[first]
         # a vertex is ambiguous when its candidate images lie apart (the seam)
         spread = np.maximum.reduceat(np.abs(images - plain[rows]).max(axis=1), first)
-        ambiguous = spread > TIE * (float(np.ptp(self.vertices2d, axis=0).max()) or 1.0)
+        ambiguous = spread > TIE * (float(extent(self.vertices2d).max()) or 1.0)
         if ambiguous.any():
             index = np.arange(k)
             starts = np.cumsum(counts) - counts
@@ -341,7 +342,7 @@ class DevelopmentMap:
             usable = ambiguous & (before >= 0)  # a polyline with no clear vertex keeps its guess
             hints = np.stack([plain[np.maximum(before, 0)], plain[np.maximum(after, 0) % k]], axis=1)
             pick = usable[rows]
-            score = np.linalg.norm(images[pick][:, None] - hints[rows[pick]], axis=2).sum(axis=1)
+            score = linalg_norm(images[pick][:, None] - hints[rows[pick]]).sum(axis=1)
             sub = np.lexsort((cols[pick], score, rows[pick]))
             chosen_rows = rows[pick][sub]
             lead = np.r_[True, chosen_rows[1:] != chosen_rows[:-1]]
@@ -392,7 +393,7 @@ class DevelopmentMap:
         starts = np.concatenate([np.arange(n), np.where(self.first_diagonal, i + 1, i)])
         ends = np.concatenate([n + np.arange(n), np.where(self.first_diagonal, n + i, n + i + 1)])
         p, q = self.vertices2d[starts], self.vertices2d[ends]
-        keep = np.linalg.norm(q - p, axis=1) > 0
+        keep = linalg_norm(q - p) > 0
         p, q = p[keep], q[keep]
         return shapely.STRtree(shapely.linestrings(np.stack([p, q], axis=1))), p, q
 
@@ -463,10 +464,10 @@ class DevelopmentMap:
         ``ep → ep + de``; NaN where they are parallel or meet at (or beyond) the segment's
         ends (collinear overlaps need no split)."""
         w = ep - p0
-        den = ds[:, 0] * de[:, 1] - ds[:, 1] * de[:, 0]
-        ok = np.abs(den) > 1e-14 * np.linalg.norm(ds, axis=1) * np.linalg.norm(de, axis=1)
+        den = cross2(ds, de)
+        ok = np.abs(den) > 1e-14 * linalg_norm(ds) * linalg_norm(de)
         with np.errstate(divide="ignore", invalid="ignore"):
-            t = (w[:, 0] * de[:, 1] - w[:, 1] * de[:, 0]) / den
+            t = cross2(w, de) / den
         ok &= (t > 1e-12) & (t < 1.0 - 1e-12)
         return np.where(ok, t, np.nan)
 
@@ -496,7 +497,7 @@ class DevelopmentMap:
         seg = [np.arange(len(inner))]
         param = [np.zeros(len(inner))]
         if max_length is not None and max_length > 0:
-            pieces = np.maximum(1, np.ceil(np.linalg.norm(d, axis=1) / max_length)).astype(np.int64)
+            pieces = np.maximum(1, np.ceil(linalg_norm(d) / max_length)).astype(np.int64)
             extra = np.repeat(np.arange(len(inner)), pieces - 1)
             rank = np.arange(len(extra)) - np.repeat(np.cumsum(pieces - 1) - (pieces - 1), pieces - 1)
             seg.append(extra)
@@ -525,8 +526,8 @@ class DevelopmentMap:
         nxt = np.minimum(key + 1, len(pts) - 1)
         out = np.where(closing[:, None], pts[key], pts[key] + par[:, None] * (pts[nxt] - pts[key]))
         who = owner[key]
-        size = float(np.ptp(pts, axis=0).max()) or 1.0
-        step = np.linalg.norm(np.diff(out, axis=0), axis=1)
+        size = float(extent(pts).max()) or 1.0
+        step = linalg_norm(np.diff(out, axis=0))
         twin = np.r_[False, (step <= 1e-12 * size) & (who[1:] == who[:-1])]  # a crossing at a vertex
         # of a twin pair keep the polyline's own end vertex exactly
         move = twin & closing
@@ -558,8 +559,8 @@ class DevelopmentMap:
 def merge_repeats(ring: FloatArray) -> FloatArray:
     """The closed polygon without the points within :data:`REPEATED` of its size of the
     point before them (nor a last point that repeats the first)."""
-    size = float(np.ptp(ring, axis=0).max()) or 1.0
-    keep = np.r_[True, np.linalg.norm(np.diff(ring, axis=0), axis=1) > REPEATED * size]
+    size = float(extent(ring).max()) or 1.0
+    keep = np.r_[True, linalg_norm(np.diff(ring, axis=0)) > REPEATED * size]
     merged = ring[keep]
     if len(merged) > 1 and np.linalg.norm(merged[-1] - merged[0]) <= REPEATED * size:
         merged = merged[:-1]

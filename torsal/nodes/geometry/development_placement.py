@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .array_types import FloatArray
+from .vec_ops import bounds
 from .vectors import Plane
 
 #: The gap between the model and a development laid beside it, as a share of the
@@ -35,7 +36,7 @@ def beside_model(model_points: ArrayLike, flat_bounds: ArrayLike, gap: float = B
     only, so the development keeps its orientation.
     """
     points = np.asarray(model_points, dtype=float).reshape(-1, 3)
-    low, high = points.min(axis=0), points.max(axis=0)
+    low, high = bounds(points)
     xmin, ymin = np.asarray(flat_bounds, dtype=float)[:2]
     size = float(np.max(high - low))
     origin = np.array([high[0] + gap * size - xmin, low[1] - ymin, low[2]])

@@ -2,7 +2,16 @@
 
 sparrow packs polygons into a *strip* of fixed height and minimises its length, keeping
 a minimum separation between parts and from the strip's edges. Sheets have a length
-too, so :func:`nest` fills them one at a time ("pack, cut, re-pack"):
+too, so :func:`nest` first packs every part into one strip as tall as the sheet's usable
+height and cuts it into sheet lengths as sparrow shortens it (:func:`_cut`: each sheet
+starts a margin before the first part not yet placed and takes the parts that end within
+it); each cut layout that takes less stock than the last is told to ``found`` at once (the
+app redraws it), and so is, later, each one made of the sheets filled so far and the strip
+of the parts left cut after them. When the best cut keeps :data:`CUT_KEEPS` of the strip's density, that is
+the layout (many parts small beside the sheet: panels). Otherwise (parts a third of a
+sheet long, as the Kaohsiung strips: every cut line crosses four or five of them and the
+cut loses a tenth of the density) it fills the sheets one at a time ("pack, cut, re-pack"),
+starting from that same strip, and keeps whichever takes less stock:
 
 1. pack every part still to place into a strip as tall as the sheet's usable height;
 2. the sheet is the stretch of that strip, a sheet long, that holds the most part area
@@ -22,10 +31,13 @@ too, so :func:`nest` fills them one at a time ("pack, cut, re-pack"):
 Repeatability: the budget is counted in sparrow's *steps*, not seconds (see
 :mod:`torsal.nodes.geometry.sparrow_worker`): :data:`STEPS_PER_SECOND` per second of
 ``budget``, shared among those packings by fixed rules, each packing ending at its
-first failed attempt. sparrow is seeded and searches on one thread, so the same parts,
-sheet and seed give the same layout on any machine, however busy — a busy one only
-takes longer. The clock is a safety net (:data:`NET` times the budget): a packing it
-stops sets ``Nested.on_the_clock``, and that layout may differ from run to run.
+first failed attempt. sparrow is seeded and searches on :data:`WORKERS` threads, always
+that many whatever the machine's cores (with another thread count its reports differ;
+with the same one they come in the same order: checked on the Kaohsiung strips, the first
+60 reports of two runs identical), so the same parts, sheet and seed give the same layout
+on any machine, however busy — a busy one only takes longer. The clock is a safety net
+(:data:`NET` times the budget): a packing it stops sets ``Nested.on_the_clock``, and that
+layout may differ from run to run.
 Identical packings asked again in the same process are answered from a cache.
 
 Every packing is checked afterwards with shapely against the exact polygons in double
@@ -41,6 +53,14 @@ a trial after a few reports of sparrow struggling at one width instead (determin
 the steps) made each trial cheap but lost trials that would have fitted: no faster overall.
 Packing the sheets as frames in one strip (a full-height bracket item per sheet) made one
 call, but sparrow moved the huge item slowly: 2-3 times its time for the plain strip.
+Measured next (two threads, load 3): the strip cut into sheets keeps 62 % of the Kaohsiung
+strips' stock where the strip is 73.7 % dense, 58 % for 50 random strips at 67.8 %; filling
+the cuts' holes with the last sheet's parts by a raster bottom-left search moved one part of
+6-13 (no gain, 1-2 s each); and sparrow took 12.4 s to pack 13 Kaohsiung strips (69 % of a
+sheet) into one sheet's length, more than the 5-13 s it takes to pack all 18 into a strip
+72 % dense. Kaohsiung's 72 % of the stock needs its first sheet 72.7 % full: a sheet packed
+by sparrow, which costs about the whole baseline, so its bar (1.5) is out of reach of
+spyrrow 0.9's strip-only interface (no obstacles, no warm start).
 
 Out of steps with parts left (many sheets, a small budget), what is left is packed into
 one last strip and cut into sheet lengths: each sheet takes the parts that end within a
@@ -112,6 +132,12 @@ LAST_RESERVE = 0.3
 #: budget (plus :data:`GRACE` s), and the layout says it was stopped on the clock.
 NET = 10.0
 GRACE = 60.0
+#: Threads sparrow searches on, whatever the machine: with a fixed count its reports come in
+#: the same order for the same seed (they differ from one thread count to another).
+WORKERS = 2
+#: The strip of every part, cut into sheet lengths, is the layout when it keeps at least
+#: this share of the strip's density; below, sheets are filled one at a time.
+CUT_KEEPS = 0.9
 
 
 #: Packings kept for identical jobs asked again in this process (the same graph solved
@@ -185,8 +211,9 @@ class _Budget:
 
 def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
            orientations: Sequence[float] | None, steps: int, seed: int,
-           budget: _Budget, enough: float = 0.0,
-           failures: int = 1) -> dict[int, tuple[float, tuple[float, float]]] | None:
+           budget: _Budget, enough: float = 0.0, failures: int = 1,
+           better: Callable[[dict[int, tuple[float, tuple[float, float]]]], None] | None = None,
+           ) -> dict[int, tuple[float, tuple[float, float]]] | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -194,7 +221,8 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
 
     sparrow cannot be interrupted, so it runs in a worker process
     (:mod:`torsal.nodes.geometry.sparrow_worker`) that a stop ends at once; the best feasible
-    packing it reported by then is kept."""
+    packing it reported by then is kept. ``better`` is told each shorter packing as it
+    arrives (not those of a cached job)."""
     job = {
         # to a micrometre: below what sparrow's single precision holds on a sheet, and
         # rounding noise (a far site) then asks the same job
@@ -202,13 +230,15 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
-        "seconds": budget.seconds(), "seed": int(seed),
+        "seconds": budget.seconds(), "seed": int(seed), "workers": WORKERS,
     }
     key = json.dumps({k: v for k, v in job.items() if k != "seconds"})
     if key in _PACKED:
         cached, used = _PACKED[key]
         budget.used += used
         budget.tick()
+        if better is not None and cached is not None:
+            better(dict(cached))
         return None if cached is None else dict(cached)
     # -P: the current folder is not searched, so a folder of the user's that holds its own
     # `torsal` (or anything else) cannot stand in for the worker's modules; the folder that
@@ -250,6 +280,8 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
                         budget.on_the_clock |= clocked
                     else:
                         best = message
+                        if better is not None:
+                            better({int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]})
                 try:
                     line = lines.get_nowait()
                 except queue.Empty:
@@ -284,14 +316,20 @@ def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, 
 def _valid(polygons: dict[int, shapely.Polygon], room: shapely.Polygon, spacing: float) -> list[int]:
     """The parts of a packing that keep the spacing and stay in ``room``, largest first
     (a part too close to one already kept is left out)."""
+    order = sorted(polygons, key=lambda k: -polygons[k].area)
+    tree = shapely.STRtree([polygons[i] for i in order])  # only near pairs are measured
     kept: list[int] = []
-    for i in sorted(polygons, key=lambda k: -polygons[k].area):
+    taken: set[int] = set()
+    for rank, i in enumerate(order):
         polygon = polygons[i]
         if not room.covers(polygon):
             continue
-        if any(polygon.distance(polygons[j]) < spacing for j in kept):
+        near = tree.query(polygon, predicate="dwithin", distance=spacing)
+        if any(int(k) in taken and int(k) != rank and polygon.distance(polygons[order[int(k)]]) < spacing
+               for k in near):
             continue
         kept.append(i)
+        taken.add(rank)
     return kept
 
 
@@ -310,6 +348,23 @@ def _window(polygons: dict[int, shapely.Polygon], area: FloatArray, width: float
     return max(starts, key=lambda start: (held(start), -start))
 
 
+def _cut(polygons: dict[int, shapely.Polygon], width: float, margin: float) -> list[tuple[float, list[int]]]:
+    """A packed strip cut into sheets ``width`` long: (where the sheet starts along the strip,
+    its parts) per sheet. Each sheet starts ``margin`` before the first part not yet placed
+    and takes the parts that end ``margin`` before its end; empty when a part is longer."""
+    bounds = {i: p.bounds for i, p in polygons.items()}
+    left = sorted(bounds, key=lambda i: (bounds[i][0], i))
+    sheets: list[tuple[float, list[int]]] = []
+    while left:
+        start = bounds[left[0]][0] - margin
+        here = [i for i in left if bounds[i][2] - start <= width - margin]
+        if not here:
+            return []
+        sheets.append((start, here))
+        left = [i for i in left if i not in here]
+    return sheets
+
+
 def nest(
     shapes: Sequence[FloatArray],
     width: float,
@@ -321,12 +376,15 @@ def nest(
     seed: int = 0,
     stop: Callable[[], bool] | None = None,
     report: Callable[[float], None] | None = None,
+    found: Callable[[Nested], None] | None = None,
 ) -> Nested:
     """Nest ``shapes`` (closed polygons in mm, each given once) onto sheets of
     ``width`` × ``height`` mm, ``margin`` from the sheet's edges and ``spacing`` apart.
 
     ``orientations`` lists the allowed turns in degrees (``None``: free rotation).
     Every shape must fit the usable sheet in some allowed turn (the caller checks).
+    ``found`` is told each complete layout that takes less stock than the last it was told
+    (the strip of every part cut into sheets, as sparrow shortens it), before the end.
     """
     run = _Budget(budget, stop, report)
     n = len(shapes)
@@ -370,18 +428,51 @@ def nest(
         sheets_left = max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
         return max(FEWEST, round(max(run.left() - reserve, 0.0) / sheets_left * share))
 
+    #: the strip of every part cut into sheets, the least stock so far: ((sheets, reach), layout)
+    cut: list[tuple[tuple[int, float], Nested]] = []
+
+    def cut_into_sheets(packing: dict[int, tuple[float, tuple[float, float]]]) -> None:
+        """Keep (and tell ``found``) the sheets filled so far and the strip ``packing`` of
+        every part left cut into sheet lengths after them, when that takes less stock than
+        the layout kept."""
+        polygons = polygons_of(packing)
+        if len(polygons) < len(remaining) or len(_valid(polygons, open_room, spacing)) < len(polygons):
+            return
+        sheets = _cut(polygons, width, margin)
+        if not sheets:
+            return
+        start, members = sheets[-1]
+        stock = (sheet + len(sheets), max(polygons[i].bounds[2] for i in members) - start)
+        if cut and stock >= cut[0][0]:
+            return
+        cut_sheet, cut_angle, cut_shift = sheet_of.copy(), angle.copy(), shift.copy()
+        for k, (start, members) in enumerate(sheets):
+            for i in members:
+                a, t = packing[i]
+                cut_sheet[i], cut_angle[i] = sheet + k, a
+                lift = np.add(t, (margin - spacing - start, margin - spacing))
+                cut_shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
+        layout = Nested(cut_sheet, cut_angle, cut_shift, stock[0], seconds=time.perf_counter() - run.start,
+                        steps=run.used)
+        cut[:] = [(stock, layout)]
+        if found is not None:
+            found(layout)
+
+    cut_is_enough = False
     while remaining and not run.stopped and run.left() >= FEWEST:
         # likely the last sheet: all the steps left, since its length is what the offcut saves
         last = sum(area[i] for i in remaining) <= LAST_SHEET * usable
+        first = sheet == 0
         packing = _strip(centred, remaining, strip_height, spacing, orientations,
-                         steps(1.0 if last else FIRST_SHARE), attempt_seed, run)
+                         steps(1.0 if last else FIRST_SHARE), attempt_seed, run,
+                         better=cut_into_sheets)
         attempt_seed += 1
         if packing is None:
             break
         # the last sheet's length is what goes back to stock: try other seeds while steps last
         while last and not run.stopped and run.left() >= RETRY:
             again = _strip(centred, remaining, strip_height, spacing, orientations, run.left(),
-                           attempt_seed, run)
+                           attempt_seed, run, better=cut_into_sheets)
             attempt_seed += 1
             if again is not None and length(again) < length(packing):
                 packing = again
@@ -389,6 +480,14 @@ def nest(
         # how densely sparrow packed them all: a sheet's set is tried up to about as dense
         reach = max(p.bounds[2] for p in polygons.values()) - (margin - spacing) + spacing
         density = sum(area[i] for i in packing) / (reach * strip_height)
+        if first and cut:
+            (count, cut_reach), _ = cut[0]
+            usage = float(area.sum()) / (((count - 1) * width + cut_reach) * height)
+            # the cut strip keeps nearly its density: filling sheets one at a time (trials
+            # that end on sparrow's slowest step, a failed attempt) would gain little
+            if usage >= CUT_KEEPS * density:
+                cut_is_enough = True
+                break
         # the sheet is the stretch of the strip holding the most area, not always its start
         start = _window(polygons, area, width, margin)
         if start > 0:
@@ -463,6 +562,8 @@ def nest(
             shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
         remaining = [i for i in remaining if sheet_of[i] < 0]
         sheet += 1
+    if cut_is_enough:
+        remaining = []
     if remaining and not run.stopped:  # out of steps: one strip of the rest, cut into sheet lengths
         packing = _strip(centred, remaining, strip_height, spacing, orientations, FEWEST,
                          attempt_seed, run)
@@ -491,5 +592,16 @@ def nest(
         sheet += int(extra.max()) + 1
     if report is not None:
         report(1.0)
-    return Nested(sheet_of, angle, shift, sheet, run.stopped, time.perf_counter() - run.start,
-                  run.on_the_clock, run.used)
+    seconds = time.perf_counter() - run.start
+    if cut and (cut_is_enough or cut[0][0] <= _stock(shapes, sheet_of, angle, shift, sheet)):
+        return Nested(cut[0][1].sheet, cut[0][1].angle, cut[0][1].shift, cut[0][1].sheets, run.stopped,
+                      seconds, run.on_the_clock, run.used)
+    return Nested(sheet_of, angle, shift, sheet, run.stopped, seconds, run.on_the_clock, run.used)
+
+
+def _stock(shapes: Sequence[FloatArray], sheet_of: NDArray[np.intp], angle: FloatArray, shift: FloatArray,
+           sheets: int) -> tuple[int, float]:
+    """What a layout takes from stock: its sheets, and how far the last one's parts reach."""
+    reach = max(float(place(shapes[i], angle[i], shift[i])[:, 0].max())
+                for i in range(len(shapes)) if sheet_of[i] == sheets - 1)
+    return sheets, reach

@@ -242,6 +242,9 @@ class NurbsSurface(Surface):
         array([0.5 , 0.5 , 0.25])
     """
 
+    #: Derivatives from the definition, not differences of positions (:func:`.vec_ops.differenced`).
+    exact_derivatives = True
+
     def __init__(
         self,
         control_points: ArrayLike,

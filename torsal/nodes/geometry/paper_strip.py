@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .array_types import FloatArray
+from .counts import segment_count
 
 
 def quad_planarity(starts: ArrayLike, ends: ArrayLike) -> FloatArray:
@@ -174,8 +175,7 @@ def paper_strip(
         >>> round(float(np.linalg.norm(strip.starts[-1] - strip.starts[0])), 12)  # closes
         0.0
     """
-    if segments < 1:
-        raise ValueError("segments must be at least 1")
+    segments = segment_count(segments)
     if not (length > 0 and width > 0):
         raise ValueError("length and width must be positive")
     iso = _per_segment(iso_angles, segments, 0.5 * np.pi, "iso angles")

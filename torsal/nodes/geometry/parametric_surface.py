@@ -360,6 +360,9 @@ def _xyz(x: ArrayLike, y: ArrayLike, z: ArrayLike, n: int) -> FloatArray:
 class _JetSurface(ParametricSurface):
     """A ParametricSurface whose value and derivatives come from one ``jet`` call."""
 
+    #: Derivatives from the definition, not differences of positions (:func:`.vec_ops.differenced`).
+    exact_derivatives = True
+
     def __init__(
         self,
         jet: Jet,

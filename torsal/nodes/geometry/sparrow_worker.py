@@ -47,7 +47,7 @@ def main() -> None:
     seconds = max(1, math.ceil(job["seconds"]))
     config = spyrrow.StripPackingConfig(
         early_termination=True, total_computation_time=None, exploration_time=seconds, compression_time=0,
-        min_items_separation=job["spacing"], seed=job["seed"], num_workers=1,
+        min_items_separation=job["spacing"], seed=job["seed"], num_workers=int(job.get("workers", 1)),
     )
     progress = spyrrow.ProgressQueue()
     failure: list[BaseException] = []

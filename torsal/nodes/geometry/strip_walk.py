@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import cross2, linalg_norm
 
 #: Every STRIDE-th ruling makes the next coarser strip.
 STRIDE = 8
@@ -88,14 +89,14 @@ class StripWalk:
         self.tolerance = ON_EDGE * size * size
         corners = vertices2d[strip_triangles(n, first_diagonal)]
         e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
-        proper = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0] > PROPER_AREA * size * size
+        proper = cross2(e1, e2) > PROPER_AREA * size * size
         #: whether the triangle at each chain position has area (a point can be in it)
         self.proper = proper[self.chain]
         self.coarse: StripWalk | None = None
         if n > TOP:
             keep = np.unique(np.append(np.arange(0, n, STRIDE), n - 1))
             a, b = vertices2d[:n][keep], vertices2d[n:][keep]
-            diagonal = np.linalg.norm(a[1:] - b[:-1], axis=1) <= np.linalg.norm(b[1:] - a[:-1], axis=1)
+            diagonal = linalg_norm(a[1:] - b[:-1]) <= linalg_norm(b[1:] - a[:-1])
             self.coarse = StripWalk(np.vstack([a, b]), diagonal)
             #: per coarse quad, the chain positions of its triangles here: from, how many
             self.coarse_first, self.coarse_count = 2 * keep[:-1], 2 * np.diff(keep)
@@ -103,7 +104,7 @@ class StripWalk:
             # matrix [e1 e2], which give a point's barycentric coordinates (v, w)
             at = corners[self.chain]
             e1, e2 = at[:, 1] - at[:, 0], at[:, 2] - at[:, 0]
-            det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+            det = cross2(e1, e2)
             det = np.where(self.proper, det, 1.0)
             self.origin = at[:, 0]
             self.inverse = np.stack([np.column_stack([e2[:, 1], -e2[:, 0]]),
@@ -122,7 +123,7 @@ class StripWalk:
         """cross(E, p − E_start): negative ahead of the edge, positive behind it."""
         d = points - self.edge_start[edge]
         e = self.edge_vector[edge]
-        return e[:, 0] * d[:, 1] - e[:, 1] * d[:, 0]
+        return cross2(e, d)
 
     def positions(self, points: FloatArray) -> IntArray:
         """The chain position of the triangle each point lies in (between edges k and

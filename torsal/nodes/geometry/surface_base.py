@@ -225,10 +225,6 @@ class Surface(ABC):
         """Gaussian curvature K = k1·k2 = (LN − M²)/(EG − F²), ``(n,)``."""
         return self.curvature(u, v).gaussian
 
-    def mean_curvature(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
-        """Mean curvature H = (k1 + k2)/2 (sign: see :mod:`curvature`), ``(n,)``."""
-        return self.curvature(u, v).mean
-
     # ------------------------------------------------------------------ curves
 
     def isocurve(self, direction: str | int, param: float) -> IsoCurve:

@@ -19,6 +19,7 @@ from shapely import Polygon, constrained_delaunay_triangles, contains_xy, get_co
 
 from .curve_base import FloatArray
 from .surface_base import Surface, uv_grid
+from .vec_ops import cross2
 
 #: Dunavant's 7-point rule on a triangle (degree 5): barycentric points and weights.
 _RULE_POINTS = np.array([
@@ -85,7 +86,7 @@ class TrimmedSurface(Surface):
             corners = np.concatenate([np.stack(t, axis=1) for t in
                                       ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
         e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
-        flat = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+        flat = 0.5 * np.abs(cross2(e1, e2))
         uv = np.einsum("qk,tkd->tqd", _RULE_POINTS, corners).reshape(-1, 2)
         point, su, sv = self.derivatives(uv[:, 0], uv[:, 1], 1)
         element = np.linalg.norm(np.cross(su, sv), axis=1).reshape(len(corners), -1)

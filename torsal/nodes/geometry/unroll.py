@@ -39,9 +39,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
+from torsal.nodes.geometry.vec_ops import bounds as coordinate_bounds
+from torsal.nodes.geometry.vec_ops import cross, extent, linalg_norm
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
+from .counts import segment_count
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
 from .watch import watch_check
 
@@ -87,7 +90,7 @@ def bilinear_quad_areas(starts: ArrayLike, ends: ArrayLike, order: int = QUAD_OR
     ra, rb = b[:-1] - a[:-1], b[1:] - a[1:]  # rulings i and i + 1
     # S_a = (1 − b)·dA + b·dB and S_b = (1 − a)·r_i + a·r_{i+1}, so S_a × S_b is bilinear
     # in (a, b) with the four corner values below: evaluate it at the Gauss nodes.
-    corners = np.stack([np.cross(da, ra), np.cross(da, rb), np.cross(db, ra), np.cross(db, rb)], 1)
+    corners = np.stack([cross(da, ra), cross(da, rb), cross(db, ra), cross(db, rb)], 1)
     aa, bb = np.meshgrid(x, x, indexing="ij")
     aa, bb = aa.ravel(), bb.ravel()
     basis = np.column_stack([(1 - bb) * (1 - aa), (1 - bb) * aa, bb * (1 - aa), bb * aa])
@@ -112,7 +115,11 @@ class Development:
     between each quad's two triangles: zero for a planar quad, so it shows where a
     strip is not developable. ``stride`` marks every stride-th ruling as one the user
     asked for (see :func:`unroll_surface`), unless ``requested`` lists them (a strip
-    sampled more finely in some segments than in others).
+    sampled more finely in some segments than in others). ``map`` triangulates every
+    unrolled ruling, or only every few of them where the edges needed far more rulings
+    than a panel layout does (:func:`unroll_surface`: a full cone's rim): its vertices
+    are then a subset of these, laid where the fine unrolling put them, and
+    :attr:`outline` is its outline.
     """
 
     starts2d: FloatArray
@@ -127,11 +134,6 @@ class Development:
     map: DevelopmentMap = field(repr=False)
     stride: int = 1
     requested: IntArray | None = field(default=None, repr=False)
-
-    @property
-    def area_difference(self) -> float:
-        """area_2d − area_3d, in model units²."""
-        return self.area_2d - self.area_3d
 
     @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
@@ -152,13 +154,14 @@ class Development:
         """The boundary polygon ``(m, 2)``: the starts forwards, then the ends backwards
         (m ≤ 2n: a run of points within :data:`.development_map.REPEATED` of the size of each other, as at
         a fan's apex, is one vertex, so a simple development has a valid outline)."""
-        return merge_repeats(np.vstack([self.starts2d, self.ends2d[::-1]]))
+        vertices, n = self.map.vertices2d, self.map.n  # the map's rulings (see :attr:`map`)
+        return merge_repeats(np.vstack([vertices[:n], vertices[n:][::-1]]))
 
     @property
     def bounds(self) -> FloatArray:
         """Bounding rectangle ``[xmin, ymin, xmax, ymax]`` of the development."""
         pts = np.vstack([self.starts2d, self.ends2d])
-        return np.concatenate([pts.min(axis=0), pts.max(axis=0)])
+        return np.concatenate(coordinate_bounds(pts))
 
     @property
     def overlaps(self) -> bool:
@@ -197,8 +200,8 @@ def _local(x3: FloatArray, y3: FloatArray, p3: FloatArray) -> tuple[FloatArray, 
     """Coordinates of p over the edge x→y of triangle (x, y, p): the projection along
     the edge and the (unsigned) distance from its line."""
     edge, w = y3 - x3, p3 - x3
-    length = np.linalg.norm(edge, axis=1)
-    return _dot(w, edge) / length, np.linalg.norm(np.cross(edge, w), axis=1) / length
+    length = linalg_norm(edge)
+    return _dot(w, edge) / length, linalg_norm(cross(edge, w)) / length
 
 
 def unroll_rulings(
@@ -224,8 +227,8 @@ def unroll_rulings(
     a, b = _as_rulings(starts, ends)
     n = len(a)
     ruling = b - a
-    length = np.linalg.norm(ruling, axis=1)
-    size = float(np.ptp(np.vstack([a, b]), axis=0).max())
+    length = linalg_norm(ruling)
+    size = float(extent(np.vstack([a, b])).max())
     zero = length <= 1e-12 * size
     tip_start, tip_end = bool(zero[0]) and n > 2, bool(zero[-1]) and n > 2
     inner = zero.copy()
@@ -258,7 +261,7 @@ def _with_tips(
     corner of its triangle with the neighbouring ruling, away from the strip."""
     core = slice(1 if tip_start else 0, len(a) - 1 if tip_end else len(a))
     ca, cb = a[core], b[core]
-    starts2d, ends2d, _ = _unrolled(ca, cb, np.linalg.norm(cb - ca, axis=1))
+    starts2d, ends2d, _ = _unrolled(ca, cb, linalg_norm(cb - ca))
     z_a = starts2d[:, 0] + 1j * starts2d[:, 1]
     z_b = ends2d[:, 0] + 1j * ends2d[:, 1]
     parts_a, parts_b = [z_a], [z_b]
@@ -273,7 +276,7 @@ def _with_tips(
         parts_a.append(tip)
         parts_b.append(tip)
     za, zb = np.concatenate(parts_a), np.concatenate(parts_b)
-    first = np.linalg.norm(a[1:] - b[:-1], axis=1) <= np.linalg.norm(b[1:] - a[:-1], axis=1) * (
+    first = linalg_norm(a[1:] - b[:-1]) <= linalg_norm(b[1:] - a[:-1]) * (
         1 + DIAGONAL_TIE
     )
     starts2d = np.column_stack([za.real, za.imag])
@@ -285,7 +288,7 @@ def _unrolled(a: FloatArray, b: FloatArray, length: FloatArray) -> tuple[FloatAr
     """The 2D ruling ends of a strip with no zero-length ruling, and each quad's diagonal."""
     n = len(a)
     a0, a1, b0, b1 = a[:-1], a[1:], b[:-1], b[1:]
-    first = np.linalg.norm(a1 - b0, axis=1) <= np.linalg.norm(b1 - a0, axis=1) * (1 + DIAGONAL_TIE)
+    first = linalg_norm(a1 - b0) <= linalg_norm(b1 - a0) * (1 + DIAGONAL_TIE)
     col = first[:, None]
 
     # Frame i: A_i = 0, B_i = i·|r_i|. The first new vertex sits left of B_i → A_i,
@@ -321,20 +324,21 @@ def _development(
     tmap = DevelopmentMap(vertices2d, vertices3d, first)
     _look()
     t2, t3 = vertices2d[tmap.triangles], vertices3d[tmap.triangles]
-    edges2d = np.linalg.norm(t2 - np.roll(t2, -1, axis=1), axis=2)
-    edges3d = np.linalg.norm(t3 - np.roll(t3, -1, axis=1), axis=2)
-    diameter = float(np.linalg.norm(np.ptp(vertices3d, axis=0)))
+    # each triangle's edges, from each corner to the next
+    edges2d = linalg_norm(t2 - t2.take(_NEXT_CORNER, axis=1))
+    edges3d = linalg_norm(t3 - t3.take(_NEXT_CORNER, axis=1))
+    diameter = float(np.linalg.norm(extent(vertices3d)))
     scale = np.where(edges3d > EDGE_COLLAPSED * diameter, edges3d, diameter)
     edge_error = float(np.max(np.abs(edges2d - edges3d) / scale))
     _look()
 
     area_2d = float(0.5 * tmap._area2.sum())
     area3 = float(bilinear_quad_areas(a, b).sum()) if area_3d is None else float(area_3d)
-    normals = np.cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0]).reshape(n - 1, 2, 3)
-    hinge = np.arctan2(np.linalg.norm(np.cross(normals[:, 0], normals[:, 1]), axis=1),
+    normals = cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0]).reshape(n - 1, 2, 3)
+    hinge = np.arctan2(linalg_norm(cross(normals[:, 0], normals[:, 1])),
                        _dot(normals[:, 0], normals[:, 1]))
     # a quad with a collapsed edge (in a fan) is one triangle: it does not fold
-    hinge = np.where(np.linalg.norm(normals, axis=2).min(axis=1) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
+    hinge = np.where(linalg_norm(normals).min(axis=1) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
     return Development(
         starts2d=starts2d, ends2d=ends2d, starts3d=a, ends3d=b,
         area_3d=area3, area_2d=area_2d,
@@ -343,13 +347,31 @@ def _development(
     )
 
 
+#: Each corner's next one, round a triangle.
+_NEXT_CORNER = np.array([1, 2, 0])
+
+
 def _rail_lengths(rulings: FloatArray) -> FloatArray:
     """Lengths ``(2,)`` of the two chord polylines through the rulings' starts and ends."""
-    return np.linalg.norm(np.diff(rulings, axis=0), axis=2).sum(axis=0)
+    return linalg_norm(np.diff(rulings, axis=0)).sum(axis=0)
+
+
+class _Samples:
+    """A surface's evenly spaced rulings, each count sampled once (the estimates of
+    :func:`edge_subdivisions` and :func:`edge_parameters` start from the same two)."""
+
+    def __init__(self, surface: Surface) -> None:
+        self.surface = surface
+        self._kept: dict[int, FloatArray] = {}
+
+    def rulings(self, count: int) -> FloatArray:
+        if count not in self._kept:
+            self._kept[count] = self.surface.rulings(count)
+        return self._kept[count]
 
 
 def edge_subdivisions(
-    surface: Surface, segments: int, subdivisions: int, tolerance: float
+    surface: Surface | _Samples, segments: int, subdivisions: int, tolerance: float
 ) -> tuple[int, FloatArray, float]:
     """About the fewest rulings per segment (at least ``subdivisions``) for which both rails'
     chord polylines are within ``tolerance`` (relative to the strip's size) of the rails'
@@ -360,13 +382,14 @@ def edge_subdivisions(
     finer one as |L(k₂) − L(k₁)| / ((k₂/k₁)² − 1) (Richardson). Starting from
     ``subdivisions`` and twice that, the next k is the one that law asks for (at least
     1.5 times the last). A rail that is not smooth enough for the law (a kink, a cusp at
-    an edge of regression) does not settle within :data:`REFINEMENTS` samplings or
-    :data:`MAX_RULINGS` rulings: then the first sampling is returned, with its error.
+    an edge of regression) does not settle within :data:`REFINEMENTS` samplings, and one
+    that asks for more than :data:`MAX_RULINGS` rulings is not sampled further: then the
+    first sampling is returned, with its error.
     """
     longest = max(MAX_RULINGS // segments, 2 * subdivisions)
     k1 = first = subdivisions
     coarse = start = surface.rulings(segments * k1 + 1)
-    size = float(np.ptp(coarse.reshape(-1, 3), axis=0).max()) or 1.0
+    size = float(extent(coarse.reshape(-1, 3)).max()) or 1.0
     k2 = 2 * k1
     first_error = np.inf
     check = watch_check()
@@ -384,9 +407,9 @@ def edge_subdivisions(
                 return k1, coarse, first_error
         if error <= tolerance:
             return k2, fine, error
-        if k2 >= longest:
-            break
         wanted = int(np.ceil(k2 * np.sqrt(error / tolerance) * 1.2))
+        if k2 >= longest or wanted > 1.2 * longest:  # (by the law, the cap cannot get there)
+            break
         k1, coarse, k2 = k2, fine, min(max(wanted, int(np.ceil(1.5 * k2))), longest)
     return first, start, first_error
 
@@ -408,32 +431,50 @@ def unroll_surface(
     ``subdivisions²`` (area error of a full cone at 100 segments: 2.9e-4 → 4.5e-6). The 3D area is the
     surface's own (exact cubature). ``Development.rulings2d`` picks the user's rulings.
 
-    With ``edge_tolerance`` (relative to the strip's size) more rulings are sampled, as
-    many per segment as :func:`edge_subdivisions` finds, until both flat edges — chord
-    polylines congruent to the 3D ones — are as long as the 3D edges to that tolerance:
+    With ``edge_tolerance`` (relative to the strip's size) more rulings are sampled until
+    both flat edges — chord polylines congruent to the 3D ones — are as long as the 3D
+    edges to that tolerance (:func:`edge_subdivisions`, then :func:`edge_parameters`):
     then two strips that share a curve have flat edges of the same length (their seam
-    closes), whatever stations each strip samples the curve at.
+    closes), whatever stations each strip samples the curve at. Where the edges are
+    curved all along (a full cone's rim, tens of thousands of rulings), the
+    development's :attr:`~Development.map` keeps ``subdivisions`` rulings per segment of
+    them, at the places the fine unrolling laid them: a panel layout carried through it
+    costs what it did at ``subdivisions``, and its flat corners sit on the accurate
+    development.
 
     Raises ValueError("surface has no straight rulings") for a non-ruled surface.
     """
-    if segments < 1 or subdivisions < 1:
-        raise ValueError("segments and subdivisions must be at least 1")
-    requested = u = None
+    segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
+    requested = u = panelled = None
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)
     else:
-        subdivisions, rulings, error = edge_subdivisions(surface, segments, subdivisions, edge_tolerance)
-        if not error <= edge_tolerance:  # (NaN too) uniform sampling did not get there: per segment
-            u, requested = adaptive_parameters(surface, segments, subdivisions, edge_tolerance)
-            if u is not None:
-                rulings = rulings_at(surface, u)
+        samples = _Samples(surface)
+        subdivisions, rulings, error = edge_subdivisions(samples, segments, subdivisions, edge_tolerance)
+        if not error <= edge_tolerance:  # (NaN too) evenly spaced rulings did not get there
+            plan = edge_parameters(samples, segments, subdivisions, edge_tolerance)
+            if plan is not None:
+                u, requested, rulings, panelled = plan
     area_3d = surface.area()
     _look()
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=area_3d)
     _look()
     upright = _upright(development, surface, u)
     _look()
+    if panelled is not None:
+        upright = replace(upright, map=_map_through(upright, panelled))
     return replace(upright, stride=subdivisions, requested=requested)
+
+
+def _map_through(development: Development, keep: IntArray) -> DevelopmentMap:
+    """The map of ``development`` triangulating only the rulings ``keep``, each quad cut
+    along its shorter 3D diagonal as :func:`unroll_rulings` cuts them."""
+    a3, b3 = development.starts3d[keep], development.ends3d[keep]
+    first = np.linalg.norm(a3[1:] - b3[:-1], axis=1) <= np.linalg.norm(b3[1:] - a3[:-1], axis=1) * (
+        1 + DIAGONAL_TIE
+    )
+    flat = np.vstack([development.starts2d[keep], development.ends2d[keep]])
+    return DevelopmentMap(flat, np.vstack([a3, b3]), first)
 
 
 def rulings_at(surface: Surface, u: FloatArray) -> FloatArray:
@@ -450,68 +491,108 @@ def rulings_at(surface: Surface, u: FloatArray) -> FloatArray:
     return np.stack([start, end], axis=1)
 
 
-#: Most rulings :func:`adaptive_parameters` samples along a strip.
+#: Most rulings :func:`edge_parameters` samples along a strip.
 MAX_ADAPTIVE_RULINGS = 1 << 15
-#: The share of the tolerance :func:`adaptive_parameters` aims at (the C/k² law is an estimate).
+#: The share of the tolerance :func:`edge_parameters` aims at (the C/k² law is an estimate).
 ADAPTIVE_MARGIN = 0.8
-#: :func:`adaptive_parameters` samples per segment only where that takes at most this share
-#: of the rulings evenly spaced ones would need (the rails' error is concentrated: fans; measured
+#: :func:`edge_parameters` samples per segment where that takes at most this share of the
+#: rulings evenly spaced ones would need (the rails' error is concentrated: fans; measured
 #: 0.30 and 0.88 on two strips with fans, 1.01 on a full cylinder).
 UNEVEN = 0.9
 
 
-def adaptive_parameters(
-    surface: Surface, segments: int, subdivisions: int, tolerance: float
-) -> tuple[FloatArray | None, IntArray | None]:
-    """Parameters across the rulings where each of the ``segments`` gets as many rulings as
-    its own stretch of the rails needs, so that both rails' chord polylines are within
-    ``tolerance`` (relative to the strip's size) of their arc lengths; and the indices of
-    the segments' ends among them (the rulings the user asked for).
+def edge_parameters(
+    surface: Surface | _Samples, segments: int, subdivisions: int, tolerance: float
+) -> tuple[FloatArray, IntArray, FloatArray, IntArray | None] | None:
+    """Parameters across the rulings at which both rails' chord polylines are within
+    ``tolerance`` (relative to the strip's size) of their arc lengths; the indices of the
+    segments' ends among them (the rulings the user asked for); the rulings there; and,
+    where the rulings are spread evenly, the indices of ``subdivisions`` of them per
+    segment (the development's map: see :func:`unroll_surface`), else None (the map keeps
+    them all).
 
-    Where a strip's rails run fast over a few segments (a fan sweeping along a curve while
-    the other curve's point stands still), evenly spaced rulings waste most of their
-    samples elsewhere. Here each segment j's chord error is estimated from two samplings
-    (``k`` and ``2k`` rulings per segment: C_j/k² by Richardson, the worse of its two
-    rails), and segment j is given k_j ∝ C_j^(1/3) rulings — the counts that meet the
-    tolerance in the fewest rulings — with a margin. None when that would take more than
-    :data:`MAX_ADAPTIVE_RULINGS`, or more than :data:`UNEVEN` of what evenly spaced
-    rulings would need (then nothing is gained: a full cone's rim is as curved everywhere,
-    and the even sampling stands, its edges short by what it reached)."""
-    k = subdivisions
-    size = 0.0
-    sums = []
-    for per in (k, 2 * k):
-        rulings = surface.rulings(segments * per + 1)
-        size = size or float(np.ptp(rulings.reshape(-1, 3), axis=0).max()) or 1.0
-        chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (segments·per, 2)
-        sums.append(chords.reshape(segments, per, 2).sum(axis=1))
-    _look()
-    error_fine = np.abs(sums[1] - sums[0]).max(axis=1) / 3.0  # per segment, the worse rail
-    if not np.isfinite(error_fine).all():
-        return None, None
-    constant = error_fine * (2 * k) ** 2
+    Each segment j's chord error is estimated from two samplings (``k_j`` and ``2k_j``
+    rulings in it: C_j/k_j² by Richardson, the worse of its two rails), starting from
+    ``subdivisions`` a segment.
+
+    - Where the rails run fast over a few segments (a fan sweeping along a curve while
+      the other curve's point stands still), evenly spaced rulings waste most of their
+      samples elsewhere: segment j is given k_j ∝ C_j^(1/3) rulings — the counts that meet
+      the tolerance in the fewest rulings — with a margin.
+    - Where that saves little (at most :data:`UNEVEN` of what evenly spaced rulings need:
+      a full cone's rim is as curved everywhere), every segment gets the even count,
+      √(Σ C_j / tolerance), rounded up to a multiple of ``subdivisions``, so the
+      ``subdivisions`` a segment the map keeps are evenly spaced too.
+
+    The counts are estimated again from their own two samplings until those say the
+    tolerance is met (a rail whose pace changes sharply is not yet in the C/k² regime at
+    ``subdivisions`` a segment), at most :data:`ADAPTIVE_ROUNDS` times; the counts of the
+    last round stand, or as many in the same proportions as :data:`MAX_ADAPTIVE_RULINGS`
+    allows. None when the chord sums are not finite."""
+    samples = surface if isinstance(surface, _Samples) else _Samples(surface)
+    counts = np.full(segments, subdivisions, dtype=np.int64)
+    spread: bool | None = None
+    size = float(np.ptp(samples.rulings(segments * subdivisions + 1).reshape(-1, 3), axis=0).max()) or 1.0
     target = ADAPTIVE_MARGIN * tolerance * size
-    cube = np.cbrt(constant)
-    total = float(cube.sum())
-    if total == 0.0:
-        return None, None
-    # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
-    counts = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
-    if counts.sum() + 1 > MAX_ADAPTIVE_RULINGS:
-        return None, None
-    # evenly spaced rulings would need segments · √(Σ C / target): where that is not far
-    # more (the rails' error spread evenly: a cone's or a cylinder's rim), sampling per
-    # segment gains nothing over the even sampling that already gave up
-    even = segments * np.sqrt(float(constant.sum()) / target)
-    if counts.sum() > UNEVEN * even:
-        return None, None
+    for _ in range(ADAPTIVE_ROUNDS):
+        u, requested, rulings, sums = _per_segment(samples, counts)
+        finer = _per_segment(samples, 2 * counts)[3]
+        _look()
+        error_fine = np.abs(finer - sums).max(axis=1) / 3.0  # per segment, the worse rail, at 2k_j
+        if not np.isfinite(error_fine).all():
+            return None
+        if spread is not None and 4.0 * error_fine.sum() <= tolerance * size:  # these counts are enough
+            break
+        constant = error_fine * (2 * counts) ** 2
+        cube = np.cbrt(constant)
+        total = float(cube.sum())
+        if total == 0.0:
+            return None
+        # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
+        wanted = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
+        # evenly spaced rulings would need segments · √(Σ C / target)
+        even = int(np.ceil(np.sqrt(float(constant.sum()) / target) / subdivisions)) * subdivisions
+        if spread is None:
+            spread = bool(wanted.sum() > UNEVEN * segments * even)
+        if spread:
+            wanted = np.full(segments, max(even, subdivisions), dtype=np.int64)
+        wanted = np.maximum(wanted, counts)
+        if wanted.sum() + 1 > MAX_ADAPTIVE_RULINGS:  # as near as the cap allows, in the same proportions
+            if counts.sum() >= MAX_ADAPTIVE_RULINGS // 2:
+                break
+            room = (MAX_ADAPTIVE_RULINGS - 1) / wanted.sum()
+            step = subdivisions if spread else 1
+            counts = np.maximum(np.floor(wanted * room / step).astype(np.int64) * step, counts)
+            u, requested, rulings, _ = _per_segment(samples, counts)
+            break
+        counts = wanted
+    else:
+        u, requested, rulings, _ = _per_segment(samples, counts)
+    panelled = np.arange(0, len(u), counts[0] // subdivisions) if spread else None
+    return u, requested, rulings, panelled
+
+
+#: Most rounds of estimates :func:`edge_parameters` makes.
+ADAPTIVE_ROUNDS = 4
+
+
+def _per_segment(samples: _Samples, counts: IntArray) -> tuple[FloatArray, IntArray, FloatArray, FloatArray]:
+    """Parameters with ``counts[j]`` rulings evenly spaced in each segment j, the segments'
+    ends among them, the rulings there and each segment's two chord sums ``(segments, 2)``."""
+    segments = len(counts)
     requested = np.concatenate([[0], np.cumsum(counts)])
-    u = np.empty(int(requested[-1]) + 1)
-    segment = np.repeat(np.arange(segments), counts)
-    within = np.arange(len(segment)) - requested[segment]
-    u[:-1] = (segment + within / counts[segment]) / segments
-    u[-1] = 1.0
-    return u, requested
+    if np.all(counts == counts[0]):  # evenly spaced: perhaps sampled already
+        rulings = samples.rulings(int(requested[-1]) + 1)
+        u = np.linspace(0.0, 1.0, len(rulings))
+    else:
+        u = np.empty(int(requested[-1]) + 1)
+        segment = np.repeat(np.arange(segments), counts)
+        within = np.arange(len(segment)) - requested[segment]
+        u[:-1] = (segment + within / counts[segment]) / segments
+        u[-1] = 1.0
+        rulings = rulings_at(samples.surface, u)
+    chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (rulings − 1, 2)
+    return u, requested, rulings, np.add.reduceat(chords, requested[:-1], axis=0)
 
 
 def _upright(development: Development, surface: Surface, u: FloatArray | None = None) -> Development:
@@ -542,7 +623,7 @@ def _upright(development: Development, surface: Surface, u: FloatArray | None = 
     # +X in the plane is up × the normal of the triangles, which all face +Z there (an
     # error in the normal tilts this out of the plane: it changes the turn to second order)
     corners = m.vertices3d[m.triangles[later[0]]]
-    across = np.cross(up, np.cross(corners[1] - corners[0], corners[2] - corners[0]))
+    across = cross(up, cross(corners[1] - corners[0], corners[2] - corners[0]))
     scale = float(np.linalg.norm(up) * np.linalg.norm(across) * np.linalg.norm(along))
     if scale == 0.0 or not np.isfinite(scale):
         return development

@@ -102,11 +102,12 @@ class ExportCutSheet(Node):
     on every run and machine, a busy machine only takes longer (up to ten times the
     budget and a minute, then it stops with a remark that the layout may differ) — and
     keeps the row layout when that takes less stock. In the app the search runs in the
-    background (docs/anytime-results.md): the rows show at once, the true-shape sheets replace
-    them when found, with their usage in the node's message and the search's progress bar
-    in the status bar, and the canvas and other solves never wait; Esc stops the search and
-    keeps the best layout found so far. With Write true the node waits for its layout and
-    writes that; ``torsal run --nesting-time S`` shows rows and searches for at most S s.
+    background (docs/anytime-results.md): the rows show at once, then each better true-shape
+    layout replaces the last as the search finds it, with its usage in the node's message and
+    the search's progress bar in the status bar, and the canvas and other solves never
+    wait; Esc stops the search and keeps the best layout found so far. With Write true the
+    node waits for its layout and writes that; ``torsal run --nesting-time S`` shows rows
+    and searches for at most S s.
     Nesting Shelf (the default, so graphs made before TrueShape keep their layout)
     places the parts' bounding rectangles in rows, tallest first: instant, more
     sheets. TrueShape turns parts freely (Shelf lays them along the sheet); Grain
@@ -136,7 +137,9 @@ class ExportCutSheet(Node):
     The viewport draws Preview: each sheet's border, the cut contours, IDs and seam marks
     at the scale of the 3D Strips (so a 1:50 layout shows at the roof's size) and beside
     their bounding box, never inside the model; without Strips, at the panels' scale from
-    the origin. Cuts and Sheets (model units, from the origin) are for wiring on.
+    the origin. Click a part on the sheets to highlight it with the strip it was cut from on
+    the model, or a strip to highlight it with its part. Cuts and Sheets (model units, from
+    the origin) are for wiring on.
     """
 
     type_id = "io.ExportCutSheet"
@@ -297,15 +300,25 @@ class ExportCutSheet(Node):
                         f"({_usage(shelf)})")
 
             def improve(stop, publish, progress):  # type: ignore[no-untyped-def]
-                """The true-shape layout, published when it takes less stock than the rows."""
+                """Each true-shape layout that takes less stock than the last shown, published as
+                the search finds it (the rows first), and the search's final one."""
+                shown = [shelf.stock_usage]
+
+                def show(layout: CutLayout, what: str) -> None:
+                    # the final one again when no better: its message says the search has ended
+                    if layout.stock_usage > shown[0] or (not what and shelf.stock_usage < layout.stock_usage
+                                                         == shown[0]):
+                        shown[0] = layout.stock_usage
+                        publish(outputs(layout, []), [f"TrueShape nesting{what}: {_usage(layout)}",
+                                                      WRITE_IS_FALSE, *_remarks(layout)])
+
                 try:
-                    nested = cutfiles.lay_out(curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop,
-                                              report=progress, **settings)
+                    nested = cutfiles.lay_out(
+                        curves, names, nesting=cutfiles.TRUE_SHAPE, stop=stop, report=progress,
+                        found=lambda layout: show(layout, ", searching"), **settings)
                 except (cutfiles.FileFailure, ValueError):
                     return
-                if nested.stock_usage > shelf.stock_usage:
-                    publish(outputs(nested, []), [f"TrueShape nesting: {_usage(nested)}",
-                                                  WRITE_IS_FALSE, *_remarks(nested)])
+                show(nested, "")
 
             self.improve_later(improve)
         return outputs(layout, files)

@@ -12,6 +12,10 @@ seen together and never overlap. It draws through the preview protocol
 
 Without Strips the node knows no model: the sheets are drawn at the panels' own scale,
 from the origin.
+
+It also knows each part's 3D strip, when there is one: the viewport asks :meth:`SheetPreview.part_at`
+which part lies under a point picked on the sheets, and highlights that part and its strip
+on the model.
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from torsal.engine.types import ValueType
 from torsal.nodes.common.preview import PreviewGeometry
@@ -40,6 +45,23 @@ class SheetPreview:
     layout: CutLayout
     scale: float
     origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    #: per part, the 3D strip it was unrolled from (None for a panel that has none); empty
+    #: when no Strips are wired
+    strips: tuple[object, ...] = ()
+
+    def part_at(self, point: Sequence[float]) -> int | None:
+        """The index of the part whose cut contour holds ``point`` (model units, on the
+        sheets' plane; its height is not looked at), or None."""
+        flat = (np.asarray(point, dtype=float)[:2] - np.asarray(self.origin[:2])) / self.scale
+        for index, part in enumerate(self.layout.parts):
+            local = flat - np.array([self.layout.offset(part.sheet), 0.0])
+            if shapely.contains_xy(shapely.Polygon(part.outline), float(local[0]), float(local[1])):
+                return index
+        return None
+
+    def strip_of(self, index: int) -> object | None:
+        """Part ``index``'s 3D strip, or None."""
+        return self.strips[index] if index < len(self.strips) else None
 
     def to_model(self, points: FloatArray, sheet: int) -> FloatArray:
         """Sheet ``sheet``'s points (mm) in the model."""
@@ -108,6 +130,8 @@ def placed(layout: CutLayout, mm: float, developments: Sequence[object],
              if isinstance(d, Surface) and isinstance(s, Surface)]
     if not pairs:
         return SheetPreview(layout, mm)
+    per_part = tuple(s if isinstance(s, Surface) else None for s in strips)
+    per_part = per_part if len(per_part) == len(layout.parts) else ()
     ratios = [_edge_length(s) / flat for d, s in pairs if (flat := _edge_length(d)) > 0]
     ratios = [r for r in ratios if np.isfinite(r) and r > 0]
     scale = mm * (float(np.median(ratios)) if ratios else 1.0)
@@ -115,4 +139,4 @@ def placed(layout: CutLayout, mm: float, developments: Sequence[object],
     low, high = boxes.min(axis=0), boxes.max(axis=0)
     size = float(np.max(high - low)) or 1.0
     origin = (float(high[0] + BESIDE * size), float(low[1]), float(low[2]))
-    return SheetPreview(layout, scale, origin)
+    return SheetPreview(layout, scale, origin, per_part)

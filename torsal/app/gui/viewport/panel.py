@@ -40,6 +40,7 @@ class ViewportPanel(QWidget):
         self.doc = doc
         self.plotter: Any = None
         self.preview: Any = None
+        self.picker: Any = None  #: highlights a cut-sheet part clicked and its strip (viewport/picking.py)
         self.frames = 0
         self.render_seconds = 0.0
         self._fit_pending = True
@@ -95,6 +96,7 @@ class ViewportPanel(QWidget):
         import pyvista as pv
         from pyvistaqt import QtInteractor
 
+        from torsal.app.gui.viewport.picking import PartPicker
         from torsal.app.gui.viewport.preview import Preview
 
         pv.global_theme.allow_empty_mesh = True
@@ -120,6 +122,7 @@ class ViewportPanel(QWidget):
         plotter.ren_win.AddObserver("EndEvent", self._render_ended)
         self.plotter = plotter
         self.preview = Preview(plotter)
+        self.picker = PartPicker(plotter, self._sheet_previews, self.schedule_render)
         self.doc.solves.prepare = self._prepare
         self.stack.addWidget(holder)
         self.stack.setCurrentWidget(holder)
@@ -139,6 +142,7 @@ class ViewportPanel(QWidget):
             if forget is not None:
                 forget()
             self.plotter = None
+            self.picker = None
 
     # -- updates ---------------------------------------------------------------------
     def _on_graph_event(self, event: GraphEvent) -> None:
@@ -189,12 +193,20 @@ class ViewportPanel(QWidget):
             return
         changed = self.preview.update(self.doc.graph, self.doc.results, prepared)
         self.preview.set_selected(self._selected & set(self.preview.nodes))
+        if changed and self.picker is not None and self.picker.picked is not None:
+            self.picker.show()  # the part in the new layout (a better nesting), by its ID
         has_geometry = bool(self.preview.actor_names())
         if has_geometry:
             changed = self._frame_or_follow() or changed
         self._update_hint(has_geometry)
         if changed or not self.frames:
             self.schedule_render()
+
+    def _sheet_previews(self) -> list:
+        from torsal.app.gui.viewport.picking import sheet_previews
+        from torsal.app.gui.viewport.preview import previewed
+
+        return sheet_previews(self.doc.results, previewed(self.doc.graph, self.doc.results))
 
     def _frame_or_follow(self) -> bool:
         """A newly opened graph is framed once it shows geometry; later, geometry that leaves

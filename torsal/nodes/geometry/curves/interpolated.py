@@ -27,7 +27,7 @@ def _chord_parameters(steps: np.ndarray) -> np.ndarray:
 
 def _chord_lengths(steps: np.ndarray) -> np.ndarray:
     """The lengths of the steps between consecutive points."""
-    return np.sqrt(np.add.reduce(steps * steps, axis=1))
+    return np.linalg.norm(steps, axis=1)
 
 
 def _cumulative_parameters(lengths: np.ndarray) -> np.ndarray:

@@ -25,6 +25,9 @@ class Line(Curve):
     [0.5, 0.0, 0.0]
     """
 
+    #: Derivatives from the definition, not differences of positions (:func:`.vec_ops.differenced`).
+    exact_derivatives = True
+
     def __init__(self, start: ArrayLike, end: ArrayLike) -> None:
         self._start = as_vector(start)
         self._end = as_vector(end)
@@ -147,6 +150,9 @@ class Polyline(Curve):
     >>> Polyline([[0, 0], [1, 0], [1, 3]]).vertex_parameters.tolist()
     [0.0, 0.25, 1.0]
     """
+
+    #: Derivatives from the definition, not differences of positions (:func:`.vec_ops.differenced`).
+    exact_derivatives = True
 
     def __init__(self, points: ArrayLike, closed: bool = False) -> None:
         p = as_points(points)

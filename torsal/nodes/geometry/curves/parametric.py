@@ -84,6 +84,12 @@ class ParametricCurve(Curve):
             closed = bool(np.linalg.norm(probe[0] - probe[-1]) <= 1e-10 * size)
         self.closed = closed
 
+    @property
+    def exact_derivatives(self) -> bool:
+        """Whether its first derivative is a given function, not differences of positions
+        (:func:`~torsal.nodes.geometry.vec_ops.differenced`)."""
+        return bool(self._derivative_functions)
+
     def _evaluate(self, function: CurveFunction, t: FloatArray) -> FloatArray:
         a, b = self.domain
         return _as_points_of(function(a + (b - a) * t), len(t))

@@ -88,10 +88,8 @@ def _brackets(
     n, m = len(a0), len(b0)
     centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
     units = unit(a1)
-    moments = cross(np.concatenate([units, b1]), positions - centre)  # (both curves' at once)
-    left = np.concatenate([units, moments[:n]], axis=1)
-    right = np.empty((6, m))
-    right[:3], right[3:] = moments[n:].T, b1.T
+    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
+    right = np.concatenate([cross(b1, b0 - centre).T, b1.T])
     speed_b = grid.speeds
     # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
     # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
@@ -240,7 +238,7 @@ def _search(strip: Strip) -> _Found:
     found = _brackets(a0, units, grid, bounds, diameter, positions)
     rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
     corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
-    if np.count_nonzero(grid.pair):  # (a third of what .any() costs on a short mask)
+    if grid.pair.any():
         at_corner = grid.pair[cols]
         corner_rows, corner_cols = rows[at_corner], cols[at_corner]
         keep = ~at_corner
@@ -341,13 +339,13 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     f, f_t = np.empty((2, len(root_rows)))
     # the stations of the roots, gathered once for every evaluation and what follows
     a0_root, a1_root = a0.take(root_rows, axis=0), a1.take(root_rows, axis=0)
-    speed_a, size_a = norm(np.array([a1_root, a0_root]))  # (row by row, as the rows alone)
+    speed_a, size_a = norm(a1_root), norm(a0_root)
     strip_of_root = strip_of[root_rows]
 
     def evaluate(x: FloatArray, index: IntArray | slice) -> tuple[FloatArray, FloatArray, FloatArray]:
         c0, c1, c2 = evaluate_rows(curves, x, strip_of_root[index], 2)
         plane = cross(c0 - a0_root[index], a1_root[index])  # det[R, A', X] = X · (R × A')
-        value, slope = dot(plane, np.array([c1, c2]))  # (both products in one)
+        value, slope = dot(plane, c1), dot(plane, c2)
         root_t[index], b0[index], b1[index], f[index], f_t[index] = x, c0, c1, value, slope
         return value, slope, rounding_scale(size_a[index], c0, speed_a[index], c1)
 
@@ -362,13 +360,11 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     if len(point_rows):
         evaluate(root_t[k:], slice(k, None))
 
-    # the slope dt/ds = −f_s/f_t of each smooth root's branch
-    # (every dot product of R = B − A, A', B' and f_s = det[R, A'', B'] = R · (A'' × B') at
-    # once: each is the same sum of the same products)
+    # the slope dt/ds = −f_s/f_t of each smooth root's branch, f_s = det[R, A'', B'] =
+    # R · (A'' × B') with R = B − A
     r = b0 - a0_root
-    lefts = np.array([r, b1, r, r, a1_root, r])
-    rights = np.array([r, b1, a1_root, b1, b1, cross(a2.take(root_rows, axis=0), b1)])
-    rr, bb, ra, rb, ab, f_s = dot(lefts, rights)
+    rr, bb, ra, rb, ab = dot(r, r), dot(b1, b1), dot(r, a1_root), dot(r, b1), dot(a1_root, b1)
+    f_s = dot(r, cross(a2.take(root_rows, axis=0), b1))
     aa = speed_a**2
     with np.errstate(over="ignore"):  # (a still end of B: f_t ~ 0 there, the slope is clipped)
         slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
@@ -399,7 +395,7 @@ _BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
 
 def _with_extras(found: _Found, candidates: Candidates) -> Candidates:
     """One strip's refined roots with its roots at corners of B and the ends of its flat runs."""
-    if len(found.corner_rows) == 0 and not np.count_nonzero(found.flat):
+    if len(found.corner_rows) == 0 and not found.flat.any():
         return _in_order(candidates)
     grid, a0, a1 = found.strip.grid, found.strip.a0, found.strip.a1
     corner_rows, corner_cols, flat = found.corner_rows, found.corner_cols, found.flat

@@ -64,8 +64,8 @@ def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArr
     # step to whichever next vertex comes first, A's before B's at a tie
     steps = along_b[np.lexsort((along_b, keys))]
     ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
-    np.add.accumulate(~steps, dtype=np.int64, out=ij[0, 1:])  # (np.cumsum, without its wrapper)
-    np.add.accumulate(steps, dtype=np.int64, out=ij[1, 1:])
+    np.cumsum(~steps, dtype=np.int64, out=ij[0, 1:])
+    np.cumsum(steps, dtype=np.int64, out=ij[1, 1:])
     return ij[0], ij[1]
 
 
@@ -103,7 +103,7 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
 def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
     """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
     creased = np.zeros(len(in_fan), dtype=bool)
-    if not np.count_nonzero(in_fan):
+    if not in_fan.any():
         return creased
     both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
     size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
@@ -133,12 +133,12 @@ def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> 
     """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
     :func:`creased_fans`), from one measurement of the pieces' areas."""
     areas = patch_areas(starts, ends)
-    total = float(np.add.reduce(areas))  # (ndarray.sum's own reduction, without its wrapper)
+    total = float(areas.sum())
     in_fan = fan[:-1] | fan[1:]
     creased = _creased(starts, ends, in_fan)
     if not total > 0:
         return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
-    return float(np.add.reduce(areas[in_fan]) / total), float(np.add.reduce(areas[creased]) / total)
+    return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
 
 
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:
@@ -163,11 +163,11 @@ def flat_fans(strip: Strip, t: FloatArray, chosen: IntArray, good: Candidates) -
     n = len(t)
     is_flat = np.zeros(n, dtype=bool)
     fans: list[tuple[float, float, float]] = []
-    if not np.count_nonzero(good.kind == FLAT_END):  # (no flat run among the candidates at all)
+    if not (good.kind == FLAT_END).any():  # (no flat run among the candidates at all)
         return fans, is_flat
     has = chosen >= 0
     is_flat[has] = good.kind[chosen[has]] == FLAT_END
-    if not np.count_nonzero(is_flat):
+    if not is_flat.any():
         return fans, is_flat
     low = np.where(is_flat, good.low[chosen], np.nan)
     high = np.where(is_flat, good.high[chosen], np.nan)
@@ -349,7 +349,7 @@ def a_fans_all(
         strip, t, _, _ = strips[index]
         dt, pairs_k = jumps[index]
         apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
-        if np.count_nonzero(~np.isnan(apex_k)):
+        if not np.isnan(apex_k).all():
             # a root that converged onto a corner of A (a jump of f) or onto a station is that point
             for exact in (strip.kinks_a, strip.s):
                 if len(exact):
@@ -541,7 +541,7 @@ def _closing(
     if i1 < n - 1:
         extra[-1] = False  # and after it
     added = None
-    if np.count_nonzero(extra):
+    if extra.any():
         added = (strip.s[k0 + i[extra]], tb[j[extra]])
         for array in added:
             array.setflags(write=False)
@@ -551,7 +551,7 @@ def _closing(
 def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:
     """The torsal fans ``(s*, t_low, t_high)`` whose apex is neither inside a gap's stretch
     of A (from the torsal station before the gap to the one after it) nor a gap station."""
-    if not fans or not np.count_nonzero(gap):
+    if not fans or not gap.any():
         return fans
     n = len(s)
     begins = flatnonzero(gap & ~np.concatenate([[False], gap[:-1]]))

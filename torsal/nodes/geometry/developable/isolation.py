@@ -275,13 +275,13 @@ def isolate(
                 break
             curvature, pieces = curvature[~out], pieces.take(~out)
         bracket, touching, uncertain = _judge(pieces, curvature)
-        if np.count_nonzero(bracket):  # (a third of what .any() costs on a short mask)
+        if bracket.any():
             found.append(pieces.brackets(bracket))
-        if np.count_nonzero(touching):
+        if touching.any():
             p = pieces
             row, x0, x1, f0, f1 = (v[touching] for v in (p.row, p.x0, p.x1, p.f0, p.f1))
             doubles.append((row, np.where(np.abs(f0) <= np.abs(f1), x0, x1)))
-        if not np.count_nonzero(uncertain):
+        if not uncertain.any():
             break
         if level == 0 and ends is not None:
             # judge again with the bound from the rulings' own lengths before splitting

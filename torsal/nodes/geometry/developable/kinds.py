@@ -42,7 +42,7 @@ from numpy.typing import ArrayLike
 from ..array_types import BoolArray, FloatArray, IntArray
 from ..curve_base import Curve
 from ..vec_ops import cross, norm
-from .measure import rounding_of
+from .measure import rounding_of, within_tolerance
 from .stack import Stack
 from .warp import ZERO, curve_warps
 
@@ -152,7 +152,7 @@ def _judged(rows: list[tuple[Any, ...]]) -> list[RulingKinds]:
     length = norm(b - a)
     tip = length <= ZERO * size
     tolerance = stack.repeat(np.array([row[6] for row in rows]))
-    allowed = tolerance + stack.repeat(rounding_of(stack, a, b)) / np.where(length > 0.0, length, np.inf)
+    rounding = stack.repeat(rounding_of(stack, a, b))
     left, right = np.full(n, _NONE), np.full(n, _NONE)
     if n > 1:
         # the pieces between consecutive rulings of one strip (none across two strips)
@@ -167,9 +167,8 @@ def _judged(rows: list[tuple[Any, ...]]) -> list[RulingKinds]:
     one_side = (left == _NONE) | (right == _NONE)
     cone = np.isin(left, (_CONE_A, _CONE_B)) | np.isin(right, (_CONE_A, _CONE_B))
     same = (left == right) | one_side
-    with np.errstate(invalid="ignore"):
-        torsal = tangent <= allowed  # (False where NaN)
-        sheet_ok = sheet <= allowed
+    torsal = within_tolerance(tangent, tolerance, a, b, rounding)
+    sheet_ok = within_tolerance(sheet, tolerance, a, b, rounding)
     fan = same & cone  # inside a cone (or a strip's end ruling beside one), or a tip beside one
     undefined = np.isnan(tangent) & ~tip
     crease = ~tip & ~fan & ~torsal & (undefined | ~same)

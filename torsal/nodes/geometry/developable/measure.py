@@ -4,7 +4,7 @@ Every output ruling A(s) → B(t) is measured from the curves: its end points an
 curves' exact tangents at (s, t), and its signed warp from those
 (:func:`.warp.warp_angles`, NaN where no normal is defined); it is valid where that warp is
 within the tolerance plus what the rounding of its end points alone can add
-(:func:`warp_allowance`). The rulings of all the strips given are stacked in one array
+(:func:`within_tolerance`). The rulings of all the strips given are stacked in one array
 (:class:`.stack.Stack`); only the curves are evaluated strip by strip, and only where a
 ruling's end is not already at hand (a station's point of A, a chosen root on B). Each
 strip's size and rounding are its own, so each ruling gets the values it gets when its
@@ -33,32 +33,37 @@ Checked = tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray]
 
 def check_rulings(strips: Sequence[Rulings]) -> list[Checked]:
     """The check of every strip's rulings: :func:`measured`'s starts, ends and signed warp,
-    the warp, and whether it is within the strip's tolerance plus :func:`warp_allowance`
-    (never where it is NaN)."""
+    the warp, and whether it is valid (:func:`within_tolerance`)."""
     stack = Stack.of([s for _, s, _, _, _, _ in strips])
-    starts, ends, signed, ruling = measured(strips, stack)
+    starts, ends, signed = measured(strips, stack)
     warp = np.abs(signed)
     rounding = rounding_of(stack, starts, ends)
     tolerance = np.array([strip.tolerance for strip, *_ in strips])
-    with np.errstate(invalid="ignore"):  # NaN is never valid
-        valid = warp <= stack.repeat(tolerance) + _allowance(stack.repeat(rounding), ruling)
+    valid = within_tolerance(warp, stack.repeat(tolerance), starts, ends, stack.repeat(rounding))
     columns = (stack.split(a) for a in (starts, ends, signed, warp, valid))
     return list(zip(*columns, strict=True))
 
 
-def warp_allowance(starts: FloatArray, ends: FloatArray) -> FloatArray:
-    """What the rounding of the rulings' end points alone adds to a warp measured from
-    them (rad, per ruling): the positions' rounding over the ruling's length. Nothing at
-    the origin; at site coordinates the ends are known to an ulp of their coordinates
-    (1.2e-7 m at 1e9 m), so a tolerance below this could not be checked there."""
-    rounding = max(position_rounding(starts), position_rounding(ends))
-    return _allowance(rounding, ends - starts)
+def within_tolerance(
+    warp: FloatArray, tolerance: FloatArray | float, starts: FloatArray, ends: FloatArray,
+    rounding: FloatArray | float | None = None,
+) -> BoolArray:
+    """The validity rule, its one home: a ruling from ``starts`` to ``ends`` is valid where its
+    ``warp`` is a number within ``tolerance`` plus what the rounding of its end points alone
+    can add to a warp measured from them (rad: the positions' rounding over the ruling's
+    length). A NaN warp is never valid. The allowance is nothing at the origin; at site
+    coordinates the ends are known to an ulp of their coordinates (1.2e-7 m at 1e9 m), so a
+    tolerance below it could not be checked there.
 
-
-def _allowance(rounding: FloatArray | float, ruling: FloatArray) -> FloatArray:
-    """:func:`warp_allowance` of the rulings ``ruling`` with their ends' rounding at hand."""
-    length = norm(ruling)
-    return rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
+    ``rounding`` is the ends' position rounding, per ruling or one for all; by default the
+    larger of :func:`~..vec_ops.position_rounding` of ``starts`` and of ``ends`` (one strip).
+    """
+    if rounding is None:
+        rounding = max(position_rounding(starts), position_rounding(ends))
+    length = norm(ends - starts)
+    allowance = rounding / np.where(length > 0.0, length, np.inf)  # (never a division by 0)
+    with np.errstate(invalid="ignore"):  # NaN is never valid
+        return warp <= tolerance + allowance
 
 
 def rounding_of(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArray:
@@ -73,7 +78,7 @@ def rounding_of(stack: Stack, starts: FloatArray, ends: FloatArray) -> FloatArra
 
 def measured(
     strips: Sequence[Rulings], stack: Stack
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The output rulings A(s) → B(t) of every strip, stacked, and their signed warp,
     measured from the curves: the end points and exact tangents at (s, t),
     :func:`.warp.warp_angles` of those (NaN where no normal is defined), with the tangent at
@@ -81,8 +86,7 @@ def measured(
     (:func:`_corner_tangent`), and an end shared with every neighbouring ruling (the apex
     of a fan of flat triangles) taking the other end's plane. Nothing of the solve enters
     but the curves' evaluations at those very parameters (a station's, a refined root's),
-    which are reused rather than repeated. Returns starts, ends, the signed warp and the
-    rulings ``ends − starts``."""
+    which are reused rather than repeated. Returns starts, ends and the signed warp."""
     s = np.concatenate([r[1] for r in strips])
     t = np.concatenate([r[2] for r in strips])
     k = len(s)
@@ -126,7 +130,7 @@ def measured(
             _corners(strip, s[low:high], t[low:high], ruling[low:high], ta[low:high], tb[low:high])
     size = sizes(stack, starts, ends)
     normals = _normals(starts, ends, ta, tb, _fan_apex(s, stack), _fan_apex(t, stack), stack.repeat(size))
-    return starts, ends, _angles(*normals, signed=True), ruling
+    return starts, ends, _angles(*normals, signed=True)
 
 
 def _corners(

@@ -95,7 +95,7 @@ class LengthMap:
         self.nodes: FloatArray = nodes
         self.lengths: FloatArray = np.empty(m)
         self.lengths[0] = 0.0
-        np.add.accumulate(pieces, out=self.lengths[1:])  # (np.cumsum, without its wrapper)
+        np.cumsum(pieces, out=self.lengths[1:])
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
         self.start_speeds: FloatArray = speeds[g : g + m - 1]
         self.end_speeds: FloatArray = end_speeds

@@ -128,7 +128,7 @@ class Grid:
         speed = self.speeds
         second, left_second = self.second_lengths, self.left_second_lengths
         third, left_third = self.third, self.left_third
-        if not np.count_nonzero(third) and (left_third is third or not np.count_nonzero(left_third)):
+        if not third.any() and (left_third is third or not left_third.any()):
             b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
         else:
             b3 = third_bound(third[:-1], left_third[1:])
@@ -229,7 +229,7 @@ class Strip:
         points = self.grid.points
         chords = np.empty(len(points))
         chords[0] = 0.0
-        np.add.accumulate(norm(points[1:] - points[:-1]), out=chords[1:])  # (np.cumsum, without its wrapper)
+        np.cumsum(norm(points[1:] - points[:-1]), out=chords[1:])
         return chords
 
     @cached_property

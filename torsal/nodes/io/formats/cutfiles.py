@@ -47,7 +47,7 @@ from shapely.validation import explain_validity
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves import NurbsCurve, Polyline
-from torsal.nodes.geometry.nesting import NestingFailed, nest, place
+from torsal.nodes.geometry.nesting import Nested, NestingFailed, nest, place
 from torsal.nodes.geometry.offset2d import offset_polygon
 from torsal.nodes.geometry.packing import DoesNotFit, shelf_pack
 from torsal.nodes.geometry.polygons import signed_ring_area
@@ -257,6 +257,7 @@ def lay_out(
     report: Callable[[float], None] | None = None,
     seams: Sequence[Seam] = (),
     tick_spacing: float = 50.0,
+    found: Callable[[CutLayout], None] | None = None,
 ) -> CutLayout:
     """Check the panels and place them on as many sheets as they need (see the module).
 
@@ -270,6 +271,8 @@ def lay_out(
     :data:`SHELF`. ``grain``: parts turn only by 0° or 180°; ``rotate`` False: not at all.
     ``seams`` (:func:`~torsal.nodes.io.seams.find_seams`, between flat surfaces among the panels)
     are engraved on both parts with their ID and ticks every ``tick_spacing`` mm.
+    ``found`` is told each better true-shape layout the search finds on the way (engraved,
+    marked stopped: a layout before the search's end).
     """
     edge = gap if margin is None else margin
     for name, value in (("SheetWidth", width), ("SheetHeight", height)):
@@ -336,64 +339,78 @@ def lay_out(
         cuts.append(cut - low)
         drawn.append(panel - low)
         boxes.append(high - low)
-    stopped = False
-    notes: list[str] = []
     try:
         shelf_of, corners = shelf_pack(np.array(boxes), (width, height), gap, edge)
     except DoesNotFit as exc:  # already ruled out above; kept for rounding at the edge
         raise PanelProblem(f"Panel {names[exc.index]} does not fit on the sheet: {exc}") from None
     shelf_cuts = [c + corner for c, corner in zip(cuts, corners, strict=True)]
-    use_shelf = nesting == SHELF
-    if nesting == TRUE_SHAPE:
-        orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
-        try:
-            nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report)
-        except NestingFailed as exc:
-            raise FileFailure(f"TrueShape nesting failed: {exc} (Nesting = Shelf still works)") from None
-        stopped = nested.stopped
-        if nested.on_the_clock:
-            notes.append("TrueShape nesting ran out of time before its steps (a very busy machine): this "
-                         "layout may differ from run to run")
-        nested_cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
-        # the shelf layout is instant: keep it when the search did not beat it (rectangles)
-        if _stock(shelf_of, shelf_cuts) < _stock(nested.sheet, nested_cuts):
-            use_shelf = True
-            notes.append("Shelf packing uses less stock than the true-shape nesting found in its time: "
-                         "the parts are laid out in rows")
-        else:
-            cuts, sheet_of = nested_cuts, nested.sheet
-            drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
+    outline_cuts, outline_drawn = cuts, drawn
+
+    def build(nested: Nested | None, notes: list[str], stopped: bool, on_the_way: bool = False) -> CutLayout:
+        """The layout: ``nested`` (None: the shelf rows), engraved; ``on_the_way``: a layout
+        the search found before its end (not cancelled by the node's token)."""
+        cuts, drawn = outline_cuts, outline_drawn
+        use_shelf = nested is None
+        if nested is not None:
+            nested_cuts = [place(c, a, t) for c, a, t in zip(cuts, nested.angle, nested.shift, strict=True)]
+            # the shelf layout is instant: keep it when the search did not beat it (rectangles)
+            if _stock(shelf_of, shelf_cuts) < _stock(nested.sheet, nested_cuts):
+                use_shelf = True
+                notes.append("Shelf packing uses less stock than the true-shape nesting found in its time: "
+                             "the parts are laid out in rows")
+            else:
+                cuts, sheet_of = nested_cuts, nested.sheet
+                drawn = [place(d, a, t) for d, a, t in zip(drawn, nested.angle, nested.shift, strict=True)]
+
+                def move(i: int, points: FloatArray) -> FloatArray:
+                    return place(_turn(points, turns[i]) - lows[i], nested.angle[i], nested.shift[i])
+        if use_shelf:
+            cuts, sheet_of = shelf_cuts, shelf_of
+            drawn = [d + corner for d, corner in zip(drawn, corners, strict=True)]
 
             def move(i: int, points: FloatArray) -> FloatArray:
-                return place(_turn(points, turns[i]) - lows[i], nested.angle[i], nested.shift[i])
-    if use_shelf:
-        cuts, sheet_of = shelf_cuts, shelf_of
-        drawn = [d + corner for d, corner in zip(drawn, corners, strict=True)]
+                return _turn(points, turns[i]) - lows[i] + corners[i]
+        parts = []
+        # Esc stopped the search: its best layout is engraved to the end
+        check = None if stopped or on_the_way else watch_check()
+        with watched(check, watch_progress()):
+            marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move,
+                                         notes)
+            for i, name in enumerate(names):
+                if check:  # a label may take tens of ms (its pole of inaccessibility, the font's first load)
+                    check()
+                tick_list, seam_glyphs = marks.get(i, ([], []))
+                label, size = place_label(name, drawn[i], text_height, engraved(tick_list, seam_glyphs))
+                if text_height > 0 and not label:
+                    notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: "
+                                 "not engraved")
+                parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
+                                  tuple(seam_glyphs)))
+        if stopped:
+            notes.append("Nesting was stopped: this is the best layout found by then")
+        return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),
+                         margin=margin, nesting=SHELF if use_shelf else TRUE_SHAPE, reference=reference,
+                         stopped=stopped, seconds=time.perf_counter() - started, seams=tuple(lengths))
 
-        def move(i: int, points: FloatArray) -> FloatArray:
-            return _turn(points, turns[i]) - lows[i] + corners[i]
-    parts = []
-    if stopped:  # Esc stopped the search: its best layout is kept, so it is engraved to the end
-        check = None
-    with watched(check, watch_progress()):
-        marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move,
-                                     notes)
-        for i, name in enumerate(names):
-            if check:  # a label may take tens of ms (its pole of inaccessibility, the font's first load)
-                check()
-            tick_list, seam_glyphs = marks.get(i, ([], []))
-            label, size = place_label(name, drawn[i], text_height, engraved(tick_list, seam_glyphs))
-            if text_height > 0 and not label:
-                notes.append(f"Panel {name} is too narrow for its ID at {SMALLEST_TEXT_MM:g} mm: "
-                             "not engraved")
-            parts.append(Part(name, int(sheet_of[i]), cuts[i], drawn[i], label, size, tuple(tick_list),
-                              tuple(seam_glyphs)))
-    if stopped:
-        notes.append("Nesting was stopped: this is the best layout found by then")
-    return CutLayout(width, height, gap, kerf, tuple(parts), int(sheet_of.max()) + 1, units, tuple(notes),
-                     margin=margin, nesting=SHELF if use_shelf else TRUE_SHAPE, reference=reference,
-                     stopped=stopped,
-                     seconds=time.perf_counter() - started, seams=tuple(lengths))
+    if nesting == SHELF:
+        return build(None, [], False)
+    orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
+
+    def better(nested: Nested) -> None:
+        """A layout on the way, engraved, for ``found``."""
+        if found is not None:
+            found(build(nested, [], False, on_the_way=True))
+
+    try:
+        nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report,
+                      better if found is not None else None)
+    except NestingFailed as exc:
+        raise FileFailure(f"TrueShape nesting failed: {exc} (Nesting = Shelf still works)") from None
+    notes: list[str] = []
+    if nested.on_the_clock:
+        notes.append("TrueShape nesting ran out of time before its steps (a very busy machine): this "
+                     "layout may differ from run to run")
+    return build(nested, notes, nested.stopped)
 
 
 def _stock(sheet_of: NDArray[np.intp], cuts: Sequence[FloatArray]) -> tuple[int, float]:

@@ -34,6 +34,7 @@ from scipy.interpolate import make_interp_spline, make_lsq_spline
 
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves import Line, NurbsCurve, Polyline, ReversedCurve, TransformedCurve
+from torsal.nodes.geometry.curves.pieces import PolyCurve
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface, interpolate_grid
 from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
@@ -259,6 +260,13 @@ def _geometry(value: Any) -> tuple[Any, float]:
         return rhino_mesh(value.mesh), 0.0
     if isinstance(value, trimesh.Trimesh):
         return rhino_mesh(value), 0.0
+    if isinstance(value, PolyCurve):  # joined curves stay a polycurve, kinks and all
+        joined, worst = rh.PolyCurve(), 0.0
+        for piece in value.pieces:
+            segment, off = _geometry(piece)
+            joined.AppendSegment(segment)
+            worst = max(worst, off)
+        return joined, worst
     if isinstance(value, Curve):
         form = curve_form(value)
         return rhino_curve(form.nurbs), form.deviation  # type: ignore[arg-type]
