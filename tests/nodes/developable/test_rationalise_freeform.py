@@ -72,7 +72,8 @@ def distance_to_strip(strip, points: np.ndarray) -> np.ndarray:
 @pytest.mark.parametrize("name", FAST)
 def test_the_strips_are_within_the_tolerance_and_no_warning_says_otherwise(name):
     result = solved(name)
-    assert result.state == ("ok" if name == "saddle" else "warning"), texts(result)  # the wave: creases
+    # (the wave warned of creased fans until the partner choice kept the longest torsal chain)
+    assert result.state == "ok", texts(result)
     assert not any("not met" in t for t in texts(result))
     design = DESIGNS[name]
     worst = max(design.distance(grid(s, 241, 25).reshape(-1, 3)).max() for s in items(result, "Strips"))
@@ -185,10 +186,11 @@ def test_the_saddles_fans_are_flat_or_cones_never_creases():
     assert max(_creasing(run, design.size) for run in runs) < 1e-7
 
 
-def test_the_waves_creasing_fans_are_few_and_the_one_warning_names_their_strips():
-    """Not yet a bar met: where the wave's parameter lines turn asymptotic the strips
-    between them close with creased fans; the node says so in its one warning (and no
-    other message says otherwise). Measured: 2 of 9 strips, 4.8 % of the area."""
+def test_the_waves_creasing_fans_are_few_and_no_warning_names_them():
+    """Where the wave's parameter lines turn asymptotic the strips between them had creased
+    fans (2 of 9 strips, 4.8 % of the area, and a warning) while the partner choice dropped
+    whole torsal branches after a station it could not use; with the longest torsal chain
+    kept (issue 26, item 3) none is left, and no message speaks of creases."""
     design = DESIGNS["wave"]
     result = solved("wave")
     creased = [run for run in _fan_runs(result) if _creasing(run, design.size) > 1e-7]
@@ -197,9 +199,8 @@ def test_the_waves_creasing_fans_are_few_and_the_one_warning_names_their_strips(
     total = sum(0.5 * np.linalg.norm(np.cross(s.ruling_lines[1:, 1] - s.ruling_lines[:-1, 0],
                                               s.ruling_lines[:-1, 1] - s.ruling_lines[1:, 0]), axis=1).sum()
                 for s in items(result, "Strips"))
-    assert 0 < area <= 0.06 * total  # measured 4.8 % (the boundaries on the design: the lift creased 10 %)
-    warnings = [t for t in texts(result) if "crease the sheet" in t]
-    assert len(warnings) == 1 and warnings[0].startswith("The strips are within the tolerance, but")
+    assert area == 0.0 <= total  # (4.8 % before)
+    assert not any("crease the sheet" in t for t in texts(result))
 
 
 @pytest.mark.parametrize("name", FAST)

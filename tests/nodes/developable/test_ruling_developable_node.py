@@ -118,8 +118,8 @@ def test_curves_that_bound_no_developable_warn_with_the_fan_share_and_mark_every
     result = run(RulingDevelopable(), CurveA=tree({(0,): [a]}), CurveB=tree({(0,): [b]}), Segments=39)
     assert result.state == "warning"
     assert texts(result) == [
-        "no torsal ruling within 0.01 rad at 40 of 40 stations: closed by flat triangles (100 % of the "
-        "strip's area), above FanLimit 10 %"
+        "no torsal ruling within 0.01 rad keeps the rulings' order at 40 of 40 stations: closed by flat "
+        "triangles (100 % of the strip's area), above FanLimit 10 %"
     ]
     # no ruling is torsal: the strip's end rulings lie beside one flat triangle each (a fan);
     # every other one has a triangle through a point of A on one side and through a point of
@@ -142,8 +142,8 @@ def test_a_fan_share_within_fan_limit_is_reported_without_a_warning():
                  FanLimit=1.0)
     assert result.state == "ok"
     assert texts(result) == [
-        "no torsal ruling within 0.01 rad at 10 of 10 stations: closed by flat triangles (100 % of the "
-        "strip's area)"
+        "no torsal ruling within 0.01 rad keeps the rulings' order at 10 of 10 stations: closed by flat "
+        "triangles (100 % of the strip's area)"
     ]
 
 

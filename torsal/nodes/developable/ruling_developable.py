@@ -21,7 +21,7 @@ from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
-from torsal.nodes.geometry.developable.alternatives import better_pairing
+from torsal.nodes.geometry.developable.alternatives import align_b, better_pairing
 from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
 from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
@@ -43,6 +43,7 @@ class _Row(NamedTuple):
     fan_limit: float
     crease_angle: float
     frame: LocalFrame
+    reversed_b: bool = False  #: b is CurveB reversed (its torsal rulings ran backwards along it)
 
 
 def _arguments(
@@ -58,6 +59,11 @@ def _arguments(
     _distinct(a, b)
     frame = LocalFrame.around(a, b)
     return _Row(frame.to_local(a), frame.to_local(b), n, tol, limit, sharp, frame)
+
+
+def _flipped(row: _Row, reversed_b: Curve | None) -> _Row:
+    """``row`` with CurveB reversed where :func:`align_b` reversed it."""
+    return row if reversed_b is None else row._replace(b=reversed_b, reversed_b=True)
 
 
 def _distinct(curve_a: Curve, curve_b: Curve) -> None:
@@ -125,7 +131,10 @@ class RulingDevelopable(Node):
     so this is reported, never warned about. Fans that need apexes on both curves
     fold the sheet at every change of apex: the node warns when those take more than
     FanLimit of the area, and names swapping the curves or reversing CurveB only when
-    it has solved that alternative and found it needs fewer of them.
+    it has solved that alternative and found it needs fewer of them. A CurveB drawn
+    against CurveA (its torsal rulings run backwards along it) is reversed for the solve,
+    as a loft aligns its curves, when that closes less of the strip with fans; a remark
+    says so.
 
     Kind tells each ruling what it is, recomputed from the output alone (its end points,
     the curves' exact tangents there and which ends it shares with its neighbours):
@@ -151,7 +160,8 @@ class RulingDevelopable(Node):
     nickname, aliases = "RDev", ("ruling", "developable", "developable loft", "Edge Surface")
     inputs = (
         In("CurveA", CURVE, "A", "The base curve: the rulings start at Segments + 1 points along it."),
-        In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA."),
+        In("CurveB", CURVE, "B", "The other edge of the strip, running the same way as CurveA (drawn "
+           "against it, it is reversed for the solve)."),
         In("Segments", INTEGER, "S", "Number of rulings minus one (1 or more).", default=24,
            min=1, max=MAX_SEGMENTS),
         In("WarpTolerance", NUMBER, "W",
@@ -200,7 +210,11 @@ class RulingDevelopable(Node):
         # (the inputs were rounded at their world coordinates: the kernel's tests that allow
         # for the rounding of positions allow for that, as a solve there would)
         with watched(self.check_cancelled), rounding_of(row.frame.origin):  # (the kernel looks at the token)
-            result = ruling_developables([(row.a, row.b, row.segments, row.tolerance)])[0]
+            job = (row.a, row.b, row.segments, row.tolerance)
+            results = ruling_developables([job])
+            flipped = align_b([job], results)[0]
+            result = results[0]
+        row = _flipped(row, flipped)
         if isinstance(result, ValueError):
             raise NodeError(sentence(result))
         return self._outputs(row, result)
@@ -226,6 +240,8 @@ class RulingDevelopable(Node):
         far = np.array([r.frame.origin for r in rows if not isinstance(r, NodeWarning)] or [np.zeros(3)])
         with watched(self.check_cancelled), rounding_of(far):
             results = ruling_developables(jobs)
+            flips = iter(align_b(jobs, results))
+            rows = [row if isinstance(row, NodeWarning) else _flipped(row, next(flips)) for row in rows]
             # every strip's warp recomputed from its output rulings at once
             made = [(row, result) for row, result in zip(
                 (row for row in rows if not isinstance(row, NodeWarning)), results, strict=True
@@ -272,7 +288,10 @@ class RulingDevelopable(Node):
         """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
         rulings' ``kinds`` and its self-crossings, where they are at hand), and what the node
         says of it."""
-        a, b, n, tol, limit, sharp, frame = row
+        a, b, n, tol, limit, sharp, frame, reversed_b = row
+        if reversed_b:
+            self.remark("CurveB runs against CurveA (its torsal rulings ran backwards along it): the strip "
+                        "is solved with CurveB reversed, as a loft aligns its curves")
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
             strip = curve_strip_outputs(

@@ -301,7 +301,7 @@ def test_skew_lines_bound_no_developable_and_every_station_is_flagged():
     result = ruling_developable(Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 1]), 10, 0.01)
     assert result.fan.all() and result.fan_share == 1.0
     assert result.message == (
-        "no torsal ruling within 0.01 rad at 11 of 11 stations: "
+        "no torsal ruling within 0.01 rad keeps the rulings' order at 11 of 11 stations: "
         "closed by flat triangles (100 % of the strip's area)"
     )
 

@@ -139,16 +139,21 @@ def test_the_node_says_per_ruling_whether_it_is_torsal_and_reports_the_share(cho
     share = f"{100 * result.fan_share:.3g} %"
     assert node.state == "warning"  # above the default FanLimit of 10 %
     count = result.fan[result.stations].sum()
-    assert texts(node)[0].startswith(f"no torsal ruling within 0.01 rad at {count} of 61 stations")
+    assert texts(node)[0].startswith(
+        f"no torsal ruling within 0.01 rad keeps the rulings' order at {count} of 61 stations"
+    )
     assert f"closed by flat triangles ({share} of the strip's area), above FanLimit 10 %" in texts(node)[0]
 
 
-def test_the_node_names_reversing_b_when_that_removes_the_fans():
+def test_the_node_reverses_b_itself_when_its_torsal_rulings_run_backwards_along_it():
+    """(It named reversing B in a warning; now it solves the strip so, as a loft aligns its
+    curves, and says what it did.)"""
     pair = curve_pairs.PAIRS["cone"]()
     curves = {"CurveA": tree({(0,): [pair.a]}), "CurveB": tree({(0,): [pair.b.reversed()]})}
     node = run(RulingDevelopable(), **curves, Segments=40)
-    assert node.state == "warning"
-    assert texts(node)[0].endswith("; reverse CurveB: creased fans fall to 0 % of the area")
+    assert node.state == "ok"
+    assert texts(node)[0].startswith("CurveB runs against CurveA")
+    assert out(node, "Torsal")[(0,)] == [1.0]  # every ruling torsal, as with B drawn the same way
 
 
 # -- a stretch of B that t jumps over ------------------------------------------------------------
@@ -167,4 +172,4 @@ def test_a_fold_of_b_that_no_torsal_ruling_reaches_is_closed_by_flat_triangles()
     p0, p1, q0, q1 = result.starts[:-1], result.starts[1:], result.ends[:-1], result.ends[1:]
     in_fan = result.fan[:-1] | result.fan[1:]
     assert (np.all(p0 == p1, axis=1) | np.all(q0 == q1, axis=1))[in_fan].all()
-    assert result.message.startswith("no torsal ruling reaches part of curve B")
+    assert result.message.startswith("no torsal ruling in the strip's order reaches part of curve B")

@@ -9,11 +9,11 @@ share, with the share it reaches — or returns None, and nothing is suggested.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from ..curve_base import Curve
-from .ruling import RulingResult, ruling_developable
+from .ruling import RulingResult, ruling_developable, ruling_developables
 
 #: An alternative is worth naming when it lowers the fan share by at least this much.
 GAIN = 0.01
@@ -48,3 +48,29 @@ def better_pairing(
     if best.fan_share > result.creased_share - GAIN:
         return None
     return f"{best.change}: creased fans fall to {100 * best.fan_share:.3g} % of the area"
+
+
+def align_b(
+    jobs: Sequence[tuple[Curve, Curve, int, float]], results: list[RulingResult | ValueError]
+) -> list[Curve | None]:
+    """Where a strip closed partly by fans has torsal rulings that run backwards along B
+    (partners whose normals flip: B was drawn against A there), the strip solved
+    with B reversed, when that closes at least :data:`GAIN` less of its area with fans:
+    ``results`` are replaced in place and the reversed curve is returned at that place
+    (None elsewhere). A designer expects the strip between the curves whichever way each
+    was drawn, as Rhino's Loft aligns its curves; every strip is solved side by side
+    (:func:`.ruling.ruling_developables`)."""
+    redo = [
+        i for i, result in enumerate(results)
+        if not isinstance(result, ValueError) and result.fan.any()
+        and (result.backward or result.any_backward)
+    ]
+    reversed_b: list[Curve | None] = [None] * len(results)
+    if not redo:
+        return reversed_b
+    flipped = {i: jobs[i][1].reversed() for i in redo}
+    again = ruling_developables([(jobs[i][0], flipped[i], *jobs[i][2:]) for i in redo])
+    for i, other in zip(redo, again, strict=True):
+        if not isinstance(other, ValueError) and other.fan_share < results[i].fan_share - GAIN:
+            results[i], reversed_b[i] = other, flipped[i]
+    return reversed_b

@@ -19,7 +19,6 @@ module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
 
 from __future__ import annotations
 
-from bisect import bisect_right
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -31,7 +30,7 @@ from ..curve_base import FloatArray
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
 from .brackets import refine_roots
 from .isolation import IntervalBounds, Pieces, isolate
-from .selection import monotone_path
+from .selection import longest_chain, monotone_path
 from .stack import Stack, evaluate_rows
 from .strip import Grid, Strip
 from .warp import _angles, _normals, in_plane_tangent, sizes
@@ -367,7 +366,8 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     rr, bb, ra, rb, ab = dot(r, r), dot(b1, b1), dot(r, a1_root), dot(r, b1), dot(a1_root, b1)
     f_s = dot(r, cross(a2.take(root_rows, axis=0), b1))
     aa = speed_a**2
-    slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    with np.errstate(over="ignore"):  # (a still end of B: f_t ~ 0 there, the slope is clipped)
+        slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
@@ -462,28 +462,6 @@ def _pad(c: Candidates, n: int) -> tuple[FloatArray, FloatArray, IntArray]:
     return t, slope, index
 
 
-def _longest_monotone(t: FloatArray) -> BoolArray:
-    """Mask of a longest non-decreasing subsequence (patience sorting)."""
-    tails: list[float] = []
-    tail_index: list[int] = []
-    parent = np.full(len(t), -1, dtype=np.int64)
-    for i, x in enumerate(t.tolist()):  # fallback only: when the selection had to step back
-        j = bisect_right(tails, x)
-        if j == len(tails):
-            tails.append(x)
-            tail_index.append(i)
-        else:
-            tails[j] = x
-            tail_index[j] = i
-        parent[i] = tail_index[j - 1] if j > 0 else -1
-    keep = np.zeros(len(t), dtype=bool)
-    i = tail_index[-1] if tail_index else -1
-    while i >= 0:
-        keep[i] = True
-        i = parent[i]
-    return keep
-
-
 def choose(strip: Strip) -> tuple[IntArray, Candidates]:
     """The chosen candidate per station (−1 where none) and the consistently oriented
     candidates."""
@@ -499,6 +477,8 @@ def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
     """One strip's choice among its candidates ``found``."""
     n = len(strip.s)
     good = found if found.oriented.all() else found.subset(found.oriented)
+    if len(good.row) < len(found.row):  # (roots whose partner runs backwards along B)
+        strip.flipped[found.row[~found.oriented & (found.kind == ROOT)]] = True
     chosen = np.full(n, -1, dtype=np.int64)
     if len(good.row) and (good.row[1:] > good.row[:-1]).all() and (good.t[1:] >= good.t[:-1]).all():
         # at most one candidate per station, in order along B: nothing to choose
@@ -507,13 +487,32 @@ def _choose(strip: Strip, found: Candidates) -> tuple[IntArray, Candidates]:
     t_pad, slope_pad, index_pad = _pad(good, n)
     rows = flatnonzero(~np.isnan(t_pad).all(axis=1))
     if len(rows):
-        s = strip.s[rows]
-        pick = monotone_path(t_pad[rows], slope_pad[rows], s[1:] - s[:-1])
+        x, y, rate = _along(strip, good, rows, t_pad[rows], slope_pad[rows], index_pad[rows])
+        pick = monotone_path(y, rate, x[1:] - x[:-1])
         chosen[rows] = index_pad[rows, pick]
         t = good.t[chosen[rows]]
-        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: keep a monotone subset
-            chosen[rows[~_longest_monotone(t)]] = -1
+        if (t[1:] - t[:-1] < -1e-12).any():  # the selection had to step back: the longest chain
+            pick = longest_chain(y, rate, x)
+            chosen[rows] = np.where(pick >= 0, index_pad[rows, np.maximum(pick, 0)], -1)
     return chosen, good
+
+
+def _along(
+    strip: Strip, good: Candidates, rows: IntArray, t: FloatArray, slope: FloatArray, index: IntArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The stations ``rows`` and their candidates as the choice reads them: where they are
+    along each curve as shares of its length (x on A, y on B; t and y rise together) and
+    each branch's slope dy/dx = (dt/ds)·|B'|/|A'| — so that which branch the strip follows
+    does not depend on how either curve is parameterised, only on the curves."""
+    x = strip.station_lengths[rows] / strip.map_a.total
+    total_b = strip.chords_b[-1]
+    y = strip.length_b(t) / total_b
+    speed_b = norm(good.tangents[np.maximum(index, 0)])
+    speed_a = norm(strip.a1[rows])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = slope * speed_b * (strip.map_a.total / total_b) / speed_a[:, None]
+    rate = np.where(np.isnan(slope), np.nan, np.minimum(np.maximum(np.nan_to_num(rate), -1e6), 1e6))
+    return x, y, rate
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
     """Give every station without a partner one whose warp is within the tolerance

@@ -40,7 +40,7 @@ from ..vec_ops import extent as box_extent
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .stack import Stack, evaluate_each, evaluate_rows
-from .strip import SIDE, Strip
+from .strip import SIDE, Steady, Strip
 
 #: Fractions of a chain's length this close are one in :func:`zigzag`.
 TIE = 1e-9
@@ -305,7 +305,10 @@ def a_fans_all(
         dt = t[1:] - t[:-1]
         predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
         jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
-        jumps.append((dt, flatnonzero(jump)))
+        pairs = flatnonzero(jump)
+        if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
+            pairs = pairs[_jumps_along_b(strip, t, slope, pairs)]
+        jumps.append((dt, pairs))
     found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
     with_pairs = [i for i, (_, pairs) in enumerate(jumps) if len(pairs)]
     if not with_pairs:
@@ -354,6 +357,29 @@ def a_fans_all(
                     apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
         found[index] = _a_fans_of(strip, t, dt, pairs_k, apex_k)
     return found
+
+
+def _jumps_along_b(strip: Strip, t: FloatArray, slope: FloatArray, pairs: IntArray) -> BoolArray:
+    """Which of the steps ``pairs`` (i, i + 1), each a jump of t, jump along B's length too.
+
+    The step is read again in arc length along B, predicted from dL/ds = (dt/ds)·|B'| at
+    both stations: what B's parameterisation does to t cancels. Where B's parameter stands
+    still (|B'| = 0 at an end, a curve run as t²) dt/ds is infinite and |B'| zero, so that
+    station takes the other's dL/ds: near B(0) a curve run as t² takes steps of t like
+    √s, a jump by their slope alone, not by their length.
+    """
+    both = np.concatenate([pairs, pairs + 1])
+    curve = strip.curve_b.curve if isinstance(strip.curve_b, Steady) else strip.curve_b
+    speed = norm(curve.derivatives(t[both], 1)[1])
+    still = speed <= 1e-9 * strip.chords_b[-1]
+    with np.errstate(invalid="ignore"):
+        rate = np.where(still, 0.0, slope[both] * speed)
+    k = len(pairs)
+    rate = np.where(still, rate[np.r_[k:2 * k, 0:k]], rate)  # (a still end: the other's)
+    s = strip.s
+    step = strip.length_b(t[pairs + 1]) - strip.length_b(t[pairs])
+    predicted = 0.5 * (s[pairs + 1] - s[pairs]) * (rate[:k] + rate[k:])
+    return ~(np.abs(step - predicted) <= 0.25 * step)
 
 
 def _a_fans_of(

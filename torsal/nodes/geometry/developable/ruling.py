@@ -150,6 +150,13 @@ class RulingResult:
     #: share of the area in fans that crease the sheet (apexes on both curves, see
     #: :func:`.fans.creased_fans`); a single cone closing a strip's end is smooth and not counted
     creased_share: float = 0.0
+    #: stations closed by fans that do have a torsal ruling, but one that would cross the
+    #: strip's other rulings: its partner lies behind the neighbours' on B
+    out_of_order: int = 0
+    #: stations closed by fans whose torsal rulings run backwards along B (their normals
+    #: flip: B runs against A there), and whether any station of the strip has one
+    backward: int = 0
+    any_backward: bool = False
 
     @property
     def max_warp(self) -> float:
@@ -400,9 +407,13 @@ def _result(solve: _Solve) -> RulingResult:
         share = creased = 0.0
     station = source >= 0
     strip = solve.strip
-    message = _message(int(np.count_nonzero(fan[station])), len(strip.s), strip.tolerance, share, creased)
+    closed = source[station & fan]  # the stations closed by fans
+    out_of_order = np.isin(closed, solve.good.row) if len(closed) else np.zeros(0, dtype=bool)
+    backward = strip.flipped[closed]
+    counts = (int(np.count_nonzero(out_of_order)), int(np.count_nonzero(backward)), bool(strip.flipped.any()))
+    message = _message(len(closed), len(strip.s), strip.tolerance, share, creased, *counts)
     return RulingResult(
-        s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased
+        s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased, *counts
     )
 
 def _unwatched() -> None:
@@ -531,22 +542,45 @@ def _with_folds(
     )
 
 
-def _message(fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0) -> str | None:
-    """How much of the strip had to be closed by flat triangles; None when none."""
+def _message(
+    fan_stations: int, n: int, tolerance: float, share: float, creased: float = 0.0, out_of_order: int = 0,
+    backward: int = 0, any_backward: bool = False,
+) -> str | None:
+    """How much of the strip had to be closed by flat triangles; None when none.
+
+    It says only what the solve checked: that no torsal ruling keeps the strip's order
+    there (the certified partner search found none between the neighbours' partners),
+    and, where one exists out of that order, that it would cross the other rulings or
+    runs backwards along B."""
     if fan_stations == 0 and share == 0.0:
         return None
     area = f"{100 * share:.3g} % of the strip's area"
+    why = []
+    if out_of_order:
+        why.append(f"at {out_of_order} of them a torsal ruling exists but would cross its neighbours")
+    if backward:
+        why.append(f"at {backward} of them the torsal ruling runs backwards along curve B")
+    elif any_backward and not fan_stations:
+        why.append("torsal rulings from other stations run backwards along curve B")
     if creased == 0.0:
         where = f"at {fan_stations} of {n} stations" if fan_stations else "beyond the last torsal ruling"
-        return (
+        text = (
             f"closed by smooth cones through single points of the curves {where}, where no ruling "
-            f"tangent to both curves exists ({area}; the sheet stays smooth and developable)"
+            f"tangent to both curves keeps the rulings' order ({area}; the sheet stays smooth and "
+            "developable)"
         )
-    if creased < share:
-        area = f"{area}, {100 * creased:.3g} % in creased fans"
-    if fan_stations == 0:
-        return f"no torsal ruling reaches part of curve B: it is closed by flat triangles ({area})"
-    return (
-        f"no torsal ruling within {tolerance:g} rad at {fan_stations} of {n} stations: "
-        f"closed by flat triangles ({area})"
-    )
+    elif fan_stations == 0:
+        if creased < share:
+            area = f"{area}, {100 * creased:.3g} % in creased fans"
+        text = (
+            f"no torsal ruling in the strip's order reaches part of curve B: it is closed by flat triangles "
+            f"({area})"
+        )
+    else:
+        if creased < share:
+            area = f"{area}, {100 * creased:.3g} % in creased fans"
+        text = (
+            f"no torsal ruling within {tolerance:g} rad keeps the rulings' order at {fan_stations} of {n} "
+            f"stations: closed by flat triangles ({area})"
+        )
+    return f"{text}; {'; '.join(why)}" if why else text

@@ -101,3 +101,64 @@ def _trace_back(forward: FloatArray, costs: FloatArray, end: FloatArray) -> IntA
     for i in range(n - 2, -1, -1):  # ties only: rare, and each step is one small vector
         choice[i] = int(np.argmin(forward[i] + costs[i][:, choice[i + 1]]))
     return choice
+
+
+def longest_chain(t: FloatArray, slope: FloatArray, s: FloatArray, end_weight: float = 0.1) -> IntArray:
+    """The candidate chosen at each station (−1 where none) on a chain through the most
+    stations with t never decreasing: what :func:`monotone_path` is for when its path
+    had to step back (a station whose every candidate lies behind its neighbours'
+    partners forces a step back on a path that must pass every station).
+
+    A chain may skip stations; it takes as many as any chain can, and among the chains
+    that long the one whose steps miss their branches' predictions least (the costs of
+    :func:`step_costs` over the whole skip, with the same end weights as
+    :func:`monotone_path`). So every station with a candidate between its chain
+    neighbours' partners is on the chain: a torsal ruling consistent with the strip's
+    order is never left out for a fan.
+
+    ``t`` and ``slope`` are ``(n, K)`` with NaN for missing candidates, ``s`` the
+    stations' parameters ``(n,)``. Each station is compared with every candidate before
+    it at once (``n`` vectorised steps over at most ``n·K`` candidates: the fallback of a
+    rare case, so no faster structure is kept for it).
+    """
+    n = len(t)
+    rows, cols = np.nonzero(~np.isnan(t))  # (row-major: station by station)
+    cand_t, cand_slope, cand_s = t[rows, cols], slope[rows, cols], s[rows]
+    count = np.zeros(len(rows), dtype=np.int64)
+    cost = np.zeros(len(rows))
+    parent = np.full(len(rows), -1, dtype=np.int64)
+    bounds = np.searchsorted(rows, np.arange(n + 1))
+    previous = -1  # the last station with candidates
+    for i in range(n):  # the chains ending at station i's candidates, from all before them
+        low, high = bounds[i], bounds[i + 1]
+        if low == high:
+            continue
+        here = slice(low, high)
+        start = end_weight * cand_t[here]
+        if low == 0:
+            count[here], cost[here] = 1, start
+            previous = i
+            continue
+        step = cand_t[here, None] - cand_t[None, :low]
+        allowed = step >= -1e-12
+        longest = np.where(allowed, count[None, :low], 0).max(axis=1)
+        ds = cand_s[here, None] - cand_s[None, :low]
+        predicted = 0.5 * ds * (cand_slope[here, None] + cand_slope[None, :low])
+        # a step over a station that had candidates is a jump whatever the slopes say
+        miss = np.where(rows[None, :low] == previous, np.abs(step - predicted), 0.0)
+        through = np.where(allowed & (count[None, :low] == longest[:, None]), cost[None, :low] + miss, np.inf)
+        best = np.argmin(through, axis=1)
+        first = longest == 0
+        count[here] = longest + 1
+        previous = i
+        cost[here] = np.where(first, start, through[np.arange(high - low), best])
+        parent[here] = np.where(first, -1, best)
+    if len(rows) == 0:
+        return np.full(n, -1, dtype=np.int64)
+    final = cost + end_weight * (1.0 - cand_t)
+    last = int(np.lexsort((final, -count))[0])
+    pick = np.full(n, -1, dtype=np.int64)
+    while last >= 0:
+        pick[rows[last]] = cols[last]
+        last = int(parent[last])
+    return pick

@@ -33,7 +33,7 @@ CORNER_ANGLE = 1e-7
 SIDE = 1e-11
 
 
-class _Steady(Curve):
+class Steady(Curve):
     """A curve whose parameter stands still at an end (C'(t) = 0 there: a curve run as t²,
     a NURBS with a doubled end control point), with the tangent there replaced by the
     direction it tends to, C''(t): the same points, the geometric tangent. Without it
@@ -69,13 +69,13 @@ class _Steady(Curve):
 
 
 def steady(curve: Curve) -> Curve:
-    """``curve``, or :class:`_Steady` of it where its parameter stands still at an end (its
+    """``curve``, or :class:`Steady` of it where its parameter stands still at an end (its
     speed there under 1e-9 of its chord, while its second derivative is not)."""
     ends = np.array([0.0, 1.0])
     points, first, second = curve.derivatives(ends, 2)
     scale = float(norm(points[1] - points[0])) or float(norm(second).max())
     still = (norm(first) <= 1e-9 * scale) & (norm(second) > 1e-9 * scale)
-    return _Steady(curve, ends[still]) if still.any() else curve
+    return Steady(curve, ends[still]) if still.any() else curve
 
 
 def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
@@ -202,6 +202,9 @@ class Strip:
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
         self.holes: list[int] = []
+        #: per station, whether it has a torsal partner whose normals are flipped: one that
+        #: runs backwards along B (set by the partner choice, :func:`.candidates.choose`)
+        self.flipped: BoolArray = np.zeros(n, dtype=bool)
         #: :meth:`gap_lengths` found so far, by the bits of their ends
         self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
         #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
