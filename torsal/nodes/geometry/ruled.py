@@ -347,6 +347,13 @@ class RuledSurface(Surface):
         """Always ``"v"``: the isocurves u = const are the rulings."""
         return "v"
 
+    def ruling_kinks(self) -> FloatArray:
+        """Where either rail turns a corner (:meth:`.curve_base.Curve.kinks`: a NURBS
+        curve's C0 knots, a polyline's vertices, a rail on such a curve where its pace
+        crosses them)."""
+        kinks = np.concatenate([self.curve_a.kinks(), self.curve_b.kinks()])
+        return np.unique(kinks[(kinks >= 0.0) & (kinks < 1.0)])
+
     def _rails(self, u: FloatArray, order: int) -> tuple[list[FloatArray], list[FloatArray]]:
         """Derivatives of rail A and of rail B at ``u`` (one evaluation for a loft's pair),
         the points of each relative to rail A's anchor (see :meth:`_rail_anchors`)."""
