@@ -27,7 +27,7 @@ from .roots import roots_in_samples
 from .spline_eval import evaluation_parameters
 from .tessellate import tessellation_parameters
 from .transforms import check_matrix, is_affine
-from .vec_ops import cross, dot
+from .vec_ops import cross, dot, extent, linalg_norm
 from .vectors import Plane, as_points, perpendicular, unit
 
 
@@ -340,16 +340,22 @@ KINK_STEP = 1e-9
 def turning_points(curve: Curve, t: FloatArray) -> FloatArray:
     """Those of the inner parameters ``t`` where ``curve``'s tangent turns by more than
     :data:`KINK_ANGLE` (the unit tangents of :meth:`Curve.tangent_at` a step either side;
-    where one is zero no turn can be told and the point counts), with
+    where one is zero no turn can be told and the point counts, where the curve stands
+    still on both sides it turns no corner), with
     0 first when the curve is closed and its tangent turns at the seam."""
     t = np.asarray(t, dtype=float)
     if curve.closed:
         t = np.concatenate([[0.0], t])
     if not len(t):
         return t
-    before = curve.tangent_at(np.where(t > 0.0, np.maximum(t - KINK_STEP, 0.0), 1.0 - KINK_STEP))
-    after = curve.tangent_at(np.minimum(t + KINK_STEP, 1.0))
-    return t[~(dot(before, after) >= np.cos(KINK_ANGLE))]  # (a zero tangent counts)
+    sides = np.where(t > 0.0, np.maximum(t - KINK_STEP, 0.0), 1.0 - KINK_STEP), np.minimum(t + KINK_STEP, 1.0)
+    (p0, d0), (p1, d1) = (curve.derivatives(side, 1) for side in sides)
+    # a curve that stands still on both sides (a rail held on a cone's apex) turns no corner:
+    # still means slower than 1e-9 of its extent per unit t (its derivatives' rounding)
+    scale = float(extent(np.vstack([p0, p1, curve.end_points])).max())
+    still = (linalg_norm(d0) <= 1e-9 * scale) & (linalg_norm(d1) <= 1e-9 * scale)
+    before, after = (curve.tangent_at(side) for side in sides)
+    return t[~(dot(before, after) >= np.cos(KINK_ANGLE)) & ~still]  # (a zero tangent on one side counts)
 
 
 class ReversedCurve(Curve):

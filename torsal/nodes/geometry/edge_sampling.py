@@ -170,13 +170,16 @@ def edge_subdivisions(
 
 def edge_parameters(
     samples: Samples, segments: int, subdivisions: int, tolerance: float
-) -> tuple[Sampling, IntArray, IntArray | None] | None:
+) -> tuple[Sampling, IntArray, IntArray | None, float, bool] | None:
     """Rulings at which both rails' chord polylines are within ``tolerance`` (relative to
     the strip's size) of their arc lengths (with the kinks'); the indices of the segments'
-    ends among them (the rulings the user asked for); and, where the rulings are spread
+    ends among them (the rulings the user asked for); where the rulings are spread
     evenly, the indices of ``subdivisions`` of them per segment and of the kinks' (the
     development's map: see :func:`.unroll.unroll_surface`), else None (the map keeps
-    them all).
+    them all); their estimated error, Σ C_j / k_j² relative to the size (the worse
+    rail's in each segment: an upper bound for either rail's); and whether the cap
+    stopped the refinement (the law then asked for more rulings than it allows: an
+    edge with a corner no kink marks converges only like 1/k, and its estimate is low).
 
     Each segment j's chord error is estimated from two samplings (``k_j`` and ``2k_j``
     rulings in it: C_j/k_j² by Richardson, the worse of its two rails), starting from
@@ -198,6 +201,7 @@ def edge_parameters(
     allows. None when the chord sums are not finite."""
     counts = np.full(segments, subdivisions, dtype=np.int64)
     spread: bool | None = None
+    capped = False
     size = float(np.ptp(samples.rulings(segments * subdivisions + 1).reshape(-1, 3), axis=0).max()) or 1.0
     target = ADAPTIVE_MARGIN * tolerance * size
     for _ in range(ADAPTIVE_ROUNDS):
@@ -207,9 +211,9 @@ def edge_parameters(
         error_fine = np.abs(finer - sums).max(axis=1) / 3.0  # per segment, the worse rail, at 2k_j
         if not np.isfinite(error_fine).all():
             return None
+        constant = error_fine * (2 * counts) ** 2
         if spread is not None and 4.0 * error_fine.sum() <= tolerance * size:  # these counts are enough
             break
-        constant = error_fine * (2 * counts) ** 2
         cube = np.cbrt(constant)
         total = float(cube.sum())
         if total == 0.0:
@@ -224,6 +228,7 @@ def edge_parameters(
             wanted = np.full(segments, max(even, subdivisions), dtype=np.int64)
         wanted = np.maximum(wanted, counts)
         if wanted.sum() + 1 > MAX_ADAPTIVE_RULINGS:  # as near as the cap allows, in the same proportions
+            capped = True
             if counts.sum() >= MAX_ADAPTIVE_RULINGS // 2:
                 break
             room = (MAX_ADAPTIVE_RULINGS - 1) / wanted.sum()
@@ -234,6 +239,7 @@ def edge_parameters(
         counts = wanted
     else:
         sampling, requested, _ = _per_segment(samples, counts)
+    error = float((constant / counts.astype(float) ** 2).sum()) / size
     panelled = None
     if spread:
         planned = int(counts.sum()) + 1
@@ -241,7 +247,7 @@ def edge_parameters(
         if sampling.grid is not None:  # the kinks' rulings too, so panels follow the corners
             kinks = np.setdiff1d(np.arange(len(sampling.u)), sampling.grid)
             panelled = np.union1d(sampling.grid[panelled], kinks)
-    return sampling, requested, panelled
+    return sampling, requested, panelled, error, capped
 
 
 def _per_segment(samples: Samples, counts: IntArray) -> tuple[Sampling, IntArray, FloatArray]:

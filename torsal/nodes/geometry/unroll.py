@@ -120,7 +120,11 @@ class Development:
     unrolled ruling, or only every few of them where the edges needed far more rulings
     than a panel layout does (:func:`unroll_surface`: a full cone's rim): its vertices
     are then a subset of these, laid where the fine unrolling put them, and
-    :attr:`outline` is its outline.
+    :attr:`outline` is its outline. ``edge_shortfall`` is how much shorter than the
+    3D edges the flat ones are estimated to be, relative to the strip's size (the
+    chords' Richardson estimate, :mod:`.edge_sampling`; NaN where none was made);
+    ``edge_capped`` says the sampling stopped at its cap of rulings short of the
+    tolerance asked for, where that estimate may be low.
     """
 
     starts2d: FloatArray
@@ -135,6 +139,8 @@ class Development:
     map: DevelopmentMap = field(repr=False)
     stride: int = 1
     requested: IntArray | None = field(default=None, repr=False)
+    edge_shortfall: float = float("nan")
+    edge_capped: bool = False
 
     @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
@@ -379,6 +385,7 @@ def unroll_surface(
     """
     segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
     requested = u = panelled = None
+    error, capped = float("nan"), False
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)
     else:
@@ -389,7 +396,7 @@ def unroll_surface(
         if not error <= edge_tolerance:  # (NaN too) evenly spaced rulings did not get there
             plan = edge_parameters(samples, segments, subdivisions, edge_tolerance)
             if plan is not None:
-                sampling, requested, panelled = plan
+                sampling, requested, panelled, error, capped = plan
         rulings = sampling.rulings
         if requested is not None:
             u = sampling.u
@@ -401,7 +408,8 @@ def unroll_surface(
     _look()
     if panelled is not None:
         upright = replace(upright, map=_map_through(upright, panelled))
-    return replace(upright, stride=subdivisions, requested=requested)
+    return replace(upright, stride=subdivisions, requested=requested, edge_shortfall=error,
+                   edge_capped=capped)
 
 
 def _map_through(development: Development, keep: IntArray) -> DevelopmentMap:
