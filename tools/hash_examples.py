@@ -2,7 +2,8 @@
 
 ``python tools/hash_examples.py DIR [NAME ...]`` solves each example (or those named) in
 ``torsal/resources/examples`` headless and writes ``DIR/<example>.json`` (the results
-with every ``seconds`` and ``solve_seconds`` field dropped) and ``DIR/hashes.txt`` (one sha256 per example).
+with every ``seconds`` and ``solve_seconds`` field and the file's path dropped) and
+``DIR/hashes.txt`` (one sha256 per example).
 ``python tools/hash_examples.py --compare BEFORE AFTER`` says, per example, whether the
 two runs are identical and otherwise the largest difference between numbers at the same
 place, relative to the largest magnitude among that example's numbers (its size).
@@ -18,12 +19,13 @@ import sys
 from pathlib import Path
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "torsal" / "resources" / "examples"
-TIMINGS = {"seconds", "solve_seconds"}
+#: Dropped: the timings, and the graph file's path (two checkouts solve the same file).
+DROPPED = {"seconds", "solve_seconds", "file"}
 
 
 def _without_timings(value: object) -> object:
     if isinstance(value, dict):
-        return {k: _without_timings(v) for k, v in value.items() if k not in TIMINGS}
+        return {k: _without_timings(v) for k, v in value.items() if k not in DROPPED}
     if isinstance(value, list):
         return [_without_timings(v) for v in value]
     return value
@@ -38,6 +40,8 @@ def solve_all(out: Path, names: list[str]) -> None:
         run = subprocess.run(
             [sys.executable, "-m", "torsal.app.cli", "run", str(graph), "--json"],
             capture_output=True, text=True, check=False, timeout=900)
+        if not run.stdout.strip():
+            sys.exit(f"{graph.stem} printed no results:\n{run.stderr}")
         text = json.dumps(_without_timings(json.loads(run.stdout)), sort_keys=True, indent=1)
         (out / f"{graph.stem}.json").write_text(text)
         lines.append(f"{hashlib.sha256(text.encode()).hexdigest()}  {graph.stem}")

@@ -45,6 +45,11 @@ class Design:
 
     def distance(self, points: np.ndarray, grid: int = 301) -> np.ndarray:
         """Distance from each point to the design (Newton from the nearest grid sample)."""
+        return self.nearest(points, grid)[2]
+
+    def nearest(self, points: np.ndarray, grid: int = 301) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Each point's closest point on the design, (x, y), and its distance (Newton from
+        the nearest grid sample)."""
         gx, gy = (a.ravel() for a in np.meshgrid(np.linspace(*self.x, grid), np.linspace(*self.y, grid)))
         _, index = cKDTree(self.points(gx, gy)).query(points)
         x, y = gx[index].copy(), gy[index].copy()
@@ -63,7 +68,7 @@ class Design:
             det = h11 * h22 - h12 * h12
             x = np.clip(x - (h22 * gradient_x - h12 * gradient_y) / det, *self.x)
             y = np.clip(y - (h11 * gradient_y - h12 * gradient_x) / det, *self.y)
-        return np.linalg.norm(self.points(x, y) - points, axis=1)
+        return x, y, np.linalg.norm(self.points(x, y) - points, axis=1)
 
     def edge(self, count: int = 400) -> np.ndarray:
         """Points along the design's boundary, all four sides."""

@@ -1,11 +1,9 @@
 """vec_ops' row-wise helpers give numpy's own values, bit for bit."""
 
-import itertools
-
 import numpy as np
 import pytest
 
-from torsal.nodes.geometry.vec_ops import cross, every, largest, linalg_norm, smallest, some
+from torsal.nodes.geometry.vec_ops import cross, linalg_norm
 
 SHAPES = [
     ((1, 3), (1, 3)), ((2000, 3), (2000, 3)), ((5, 3), (3,)), ((3,), (4, 3)), ((2, 7, 3), (7, 3)),
@@ -27,34 +25,6 @@ def test_cross_is_numpys_cross_bit_for_bit_whatever_the_shapes(shape_a, shape_b)
 def test_cross_carries_nan_and_infinity_as_numpy_does():
     a, b = np.array([[np.nan, 1.0, np.inf]]), np.array([[1.0, np.inf, 2.0]])
     np.testing.assert_array_equal(cross(a, b), np.cross(a, b))
-
-
-def test_largest_and_smallest_are_numpys_max_and_min_along_a_short_axis():
-    rows = np.array(list(itertools.product([0.0, -0.0, 1.0, -1.0, np.nan], repeat=3)))
-    corners = np.random.default_rng(0).standard_normal((50, 3, 3))
-    corners[4, 1, 2] = np.nan
-    for got, want in [
-        (largest(rows), rows.max(axis=1)), (smallest(rows), rows.min(axis=1)),
-        (largest(rows, axis=0), rows.max(axis=0)), (smallest(rows, axis=0), rows.min(axis=0)),
-        (largest(corners, axis=1), corners.max(axis=1)), (smallest(corners, axis=1), corners.min(axis=1)),
-    ]:
-        assert got.shape == want.shape
-        np.testing.assert_array_equal(got, want)
-        np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
-
-
-def test_every_and_some_are_numpys_all_and_any_along_a_short_axis():
-    mask = np.array(list(itertools.product([False, True], repeat=3)))
-    np.testing.assert_array_equal(every(mask), mask.all(axis=1))
-    np.testing.assert_array_equal(some(mask), mask.any(axis=1))
-    np.testing.assert_array_equal(every(mask, axis=0), mask.all(axis=0))
-
-
-def test_a_reduction_over_no_items_is_numpys():
-    empty = np.empty((4, 0))
-    np.testing.assert_array_equal(every(empty > 0), (empty > 0).all(axis=1))
-    with pytest.raises(ValueError):
-        largest(empty)
 
 
 @pytest.mark.parametrize("coordinates", [1, 2, 3, 7, 9])

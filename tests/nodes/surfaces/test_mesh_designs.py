@@ -87,3 +87,34 @@ def test_rationalise_on_the_fitted_surface_keeps_its_strips_within_tolerance_of_
         heights = np.ma.filled(on_mesh(points[:, 0], points[:, 1]), np.nan)
         inside = np.isfinite(heights)
         assert np.abs(heights[inside] - points[inside, 2]).max() <= 0.03
+
+
+def distance_to_triangles(mesh: trimesh.Trimesh, points: np.ndarray, nearest: int = 24) -> np.ndarray:
+    """Each point's exact distance to the mesh: trimesh's closest point on the triangles whose
+    centres are nearest it (a KD tree on the centres; the mesh's cells are 20 cm, the points
+    within centimetres of it)."""
+    from scipy.spatial import cKDTree
+
+    _, index = cKDTree(mesh.triangles_center).query(points, k=nearest)
+    query = np.repeat(points, nearest, axis=0)
+    found = trimesh.triangles.closest_point(mesh.triangles[np.asarray(index).ravel()], query)
+    return np.linalg.norm(found - query, axis=1).reshape(len(points), nearest).min(axis=1)
+
+
+@pytest.mark.xfail(strict=True, reason="SurfaceFromMesh's surface spans the footprint's rectangle in "
+                   "the mesh's tilted mean plane: at the curved ends it reaches 4.6 cm past the mesh")
+def test_rationalised_strips_of_a_mesh_file_lie_within_the_tolerance_of_the_mesh_itself(tmp_path):
+    from torsal.nodes.developable.rationalise import Rationalise
+
+    source = canopy_mesh()
+    source.export(str(tmp_path / "canopy.ply"))
+    mesh = run(ImportMesh(), Path=str(tmp_path / "canopy.ply")).outputs["Mesh"].all_items()[0]
+    fit = run(SurfaceFromMesh(), Mesh=tree({(0,): [mesh]}), Tolerance=0.002)
+    assert fit.state == OK, texts(fit)
+    (surface,) = fit.outputs["Surface"].all_items()
+    (deviation,) = fit.outputs["Deviation"].all_items()
+    result = run(Rationalise(), Surface=tree({(0,): [surface]}), Tolerance=0.03 - deviation)
+    assert result.state == OK, texts(result)
+    u, v = np.meshgrid(np.linspace(0, 1, 121), np.linspace(0, 1, 17))
+    points = np.concatenate([s.point_at(u.ravel(), v.ravel()) for s in result.outputs["Strips"].all_items()])
+    assert distance_to_triangles(source, points).max() <= 0.03  # measured 4.6 cm at the ends, 2.8 elsewhere

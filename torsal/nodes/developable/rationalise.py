@@ -17,8 +17,10 @@ from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.rationalise import rationalise
+from torsal.nodes.geometry.developable.trimmed import rationalise_trimmed
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.surface_base import uv_grid
+from torsal.nodes.geometry.trimmed_surface import TrimmedSurface
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_RATIONALISE_CALLS
 
@@ -124,6 +126,14 @@ class Rationalise(Node):
     points), how far off, and what would help. An already developable design, such as a
     cylinder patch, comes back as one strip or a few. A closed design (a tube or a ring)
     is refused: cut it first. Mesh surfaces have no parameter lines and are refused.
+
+    A trimmed design (a Rhino brep face read by Import3dm) is rationalised inside its trim:
+    the strips are made over the box of the trim loops and each is cut to the trim along
+    its own developable sheet, so it stays developable and ends on the trim (within the
+    tolerance; its corners and ends become extra rulings). Deviation is certified on the
+    kept part only, and the coverage is measured along the trim loops, not the untrimmed
+    surface's edges. Boundaries then are the uncut boundary curves across the trim's box
+    (a strip cut in two by a notch or a hole becomes two strips between the same two).
     """
 
     type_id = "developable.Rationalise"
@@ -205,9 +215,11 @@ class Rationalise(Node):
                               "the largest distance a strip may keep from the design, a small part of it")
         try:
             with watched(self.check_cancelled, self.progress):
-                result = rationalise(frame.to_local(design), tol, count, None if curves else guide,
-                                     segments=n, warp_tolerance=warp_limit, progress=self.progress,
-                                     guides=[frame.to_local(g) for g in curves], min_width=narrowest)
+                local = frame.to_local(design)
+                solve = rationalise_trimmed if isinstance(local, TrimmedSurface) else rationalise
+                result = solve(local, tol, count, None if curves else guide, segments=n,
+                               warp_tolerance=warp_limit, progress=self.progress,
+                               guides=[frame.to_local(g) for g in curves], min_width=narrowest)
         except ValueError as exc:
             about = "Guides" if curves and "guide" in str(exc) else "Surface"
             raise NodeWarning(f"{about}: {sentence(exc)}") from None

@@ -50,6 +50,7 @@ from .nurbs_surface import Loft, NurbsSurface
 from .ruled import RuledSurface, SplineRail
 from .surface_base import IsoCurve, Surface, TransformedSurface
 from .transforms import translation
+from .trimmed_surface import TrimmedSurface
 
 #: A model whose box centre is within this many extents of the world origin stays in world
 #: coordinates: its coordinates already round relative to its size.
@@ -173,6 +174,11 @@ def _(rail: CurveRail, move: Mover) -> CurveRail:
 @_translate.register
 def _(curve: IsoCurve, move: Mover) -> IsoCurve:
     return IsoCurve(move(curve.surface), curve.direction, curve.param, curve.reverse)
+
+
+@_translate.register
+def _(surface: TrimmedSurface, move: Mover) -> TrimmedSurface:
+    return TrimmedSurface(move(surface.surface), surface.outer, surface.holes)  # the trim is in (u, v)
 
 
 @_translate.register

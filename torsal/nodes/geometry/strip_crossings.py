@@ -25,7 +25,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .array_types import FloatArray, IntArray
-from .vec_ops import cross, dot, every, flatnonzero, largest, norm, smallest, some
+from .vec_ops import cross, dot, flatnonzero, norm
 
 #: Touching within this share of the strip's size is not crossing.
 TOUCH = 1e-9
@@ -117,8 +117,8 @@ def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
     empty = Crossings(np.empty(0, np.int64), np.empty(0, np.int64), np.empty((0, 3)))
     if len(corners) < 2:
         return empty
-    low, high = smallest(corners, axis=1), largest(corners, axis=1)  # (each triangle's box)
-    size = float(norm(largest(high, axis=0) - smallest(low, axis=0)))
+    low, high = corners.min(axis=1), corners.max(axis=1)
+    size = float(norm(high.max(axis=0) - low.min(axis=0)))
     eps = TOUCH * size
     centre, half = 0.5 * (low + high), 0.5 * (high - low)
     tree = cKDTree(centre)
@@ -134,7 +134,7 @@ def crossings(starts: FloatArray, ends: FloatArray) -> Crossings:
         j = np.concatenate([np.asarray(x, dtype=np.int64) for x in near if len(x)])
         keep = j > i
         i, j = i[keep], j[keep]
-        overlap = every(np.abs(centre[i] - centre[j]) <= half[i] + half[j] + eps)
+        overlap = (np.abs(centre[i] - centre[j]) <= half[i] + half[j] + eps).all(axis=1)
         i, j = i[overlap], j[overlap]
         if len(i):
             hit, point = _pairs_cross(corners, ids, i, j, eps)
@@ -164,12 +164,12 @@ def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Cross
         corners, ids, piece = corners[keep], ids[keep], piece[keep]
     strip_of = np.repeat(np.arange(len(tested)), counts[tested])
     offsets = np.concatenate([[0], np.cumsum(counts[tested])])
-    low, high = smallest(corners, axis=1), largest(corners, axis=1)  # (each triangle's box)
+    low, high = corners.min(axis=1), corners.max(axis=1)
     first = offsets[:-1]
     size = norm(np.maximum.reduceat(high, first, axis=0) - np.minimum.reduceat(low, first, axis=0))
     eps = TOUCH * size
     centre, half = 0.5 * (low + high), 0.5 * (high - low)
-    reach = 2.0 * largest(np.maximum.reduceat(half, first, axis=0))
+    reach = 2.0 * np.maximum.reduceat(half, first, axis=0).max(axis=1)
     # one tree of every strip's boxes, the strips set apart along a fourth axis further than
     # any reach, so that a search finds the boxes of the searching triangle's strip alone
     apart_by = 2.0 * float(reach.max()) + 1.0
@@ -181,7 +181,7 @@ def crossings_all(strips: Sequence[tuple[FloatArray, FloatArray]]) -> list[Cross
         own = strip_of[i]
         # pairs within that strip's reach whose boxes overlap
         apart = np.abs(centre[i] - centre[j])
-        keep = (largest(apart) <= reach[own]) & every(apart <= half[i] + half[j] + eps[own, None])
+        keep = (apart.max(axis=1) <= reach[own]) & (apart <= half[i] + half[j] + eps[own, None]).all(axis=1)
         i, j, own = i[keep], j[keep], own[keep]
         if len(i):
             hit, point = _pairs_cross(corners, ids, i, j, eps[own])
@@ -235,7 +235,7 @@ def _pairs_cross(
             m = (k + 1) % 3
             # an edge touching the other triangle at a shared corner is not tested
             shared = (ids[one, k, None] == ids[other]) | (ids[one, m, None] == ids[other])
-            free = ~some(shared)
+            free = ~shared.any(axis=1)
             h, x = _segment_through(corners[one, k], corners[one, m], corners[other], eps)
             new = free & h & ~hit
             point[new] = x[new]

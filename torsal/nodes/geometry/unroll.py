@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from torsal.nodes.geometry.array_types import FloatArray, IntArray
 from torsal.nodes.geometry.vec_ops import bounds as coordinate_bounds
-from torsal.nodes.geometry.vec_ops import cross, extent, linalg_norm, smallest
+from torsal.nodes.geometry.vec_ops import cross, extent, linalg_norm
 from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .area import gauss_legendre_01
@@ -345,7 +345,7 @@ def _development(
     hinge = np.arctan2(linalg_norm(cross(normals[:, 0], normals[:, 1])),
                        _dot(normals[:, 0], normals[:, 1]))
     # a quad with a collapsed edge (in a fan) is one triangle: it does not fold
-    hinge = np.where(smallest(linalg_norm(normals)) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
+    hinge = np.where(linalg_norm(normals).min(axis=1) > EDGE_COLLAPSED * diameter**2, hinge, 0.0)
     return Development(
         starts2d=starts2d, ends2d=ends2d, starts3d=a, ends3d=b,
         area_3d=area3, area_2d=area_2d,

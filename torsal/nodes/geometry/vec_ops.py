@@ -1,5 +1,5 @@
-"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds,
-the largest, smallest, every and some along a short axis; and the plane cross product (cross2).
+"""Lean row-wise vector operations on ``(..., 3)`` arrays: cross, dot, det, norm, unit, extent, bounds;
+and the plane cross product (cross2).
 
 ``np.cross`` and ``np.linalg.norm`` spend most of their time on axis bookkeeping for
 the small arrays the kernels pass around (a strip's few hundred rulings), and solvers
@@ -28,10 +28,9 @@ from .array_types import FloatArray
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     """Row-wise cross product (broadcasting), component by component from the coordinates'
     columns: (a × b)_x = a_y·b_z − a_z·b_y and so on (``np.cross``'s values, bit for bit,
-    without its axis bookkeeping). Each component is two products and a difference of
-    whole columns, so the cost grows with the rows alone (gathering the coordinates with
-    ``take`` along the last axis, as this did before, slows down past a few hundred rows:
-    260 µs against 17 µs for 1,500)."""
+    without its axis bookkeeping). (It gathered the coordinates with ``take`` along the last
+    axis before: several times slower past a thousand rows when timed alone, the same in
+    the flagship's re-solve, so the plain formula stays.)"""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b))
     for k, (i, j) in enumerate(_AFTER):
         np.subtract(a[..., i] * b[..., j], a[..., j] * b[..., i], out=out[..., k])
@@ -91,44 +90,6 @@ def unit(a: FloatArray) -> FloatArray:
     """Row-wise unit vectors; zero rows stay zero."""
     length = norm(a)[..., None]
     return a / np.where(length > 0, length, 1.0)
-
-
-def largest(a: np.ndarray, axis: int = -1) -> np.ndarray:
-    """``a.max(axis=axis)`` along a short axis (a point's 3 coordinates, a triangle's 3
-    corners), bit for bit (a maximum is exact, and NaN wins in both): one
-    :func:`numpy.maximum` of whole arrays per item of that axis. numpy reduces along an axis
-    one row at a time, about 0.1 µs a row: 420 µs for the coordinates of 3,000 points,
-    against 5 µs this way."""
-    return _fold(np.maximum, a, axis)
-
-
-def smallest(a: np.ndarray, axis: int = -1) -> np.ndarray:
-    """``a.min(axis=axis)`` along a short axis, bit for bit (see :func:`largest`)."""
-    return _fold(np.minimum, a, axis)
-
-
-def every(mask: np.ndarray, axis: int = -1) -> np.ndarray:
-    """``mask.all(axis=axis)`` along a short axis (see :func:`largest`)."""
-    return _fold(np.logical_and, mask, axis)
-
-
-def some(mask: np.ndarray, axis: int = -1) -> np.ndarray:
-    """``mask.any(axis=axis)`` along a short axis (see :func:`largest`)."""
-    return _fold(np.logical_or, mask, axis)
-
-
-def _fold(ufunc: np.ufunc, a: np.ndarray, axis: int) -> np.ndarray:
-    """``ufunc.reduce(a, axis)`` for an exact, order-free ``ufunc`` (max, min, and, or), as
-    one ``ufunc`` of whole arrays per item along the axis (meant for short axes)."""
-    axis %= a.ndim
-    count = a.shape[axis]
-    if count == 0:  # (as the reduction: an identity, or its error)
-        return ufunc.reduce(a, axis=axis)
-    before = (slice(None),) * axis  # (the item k along the axis is a[before + (k,)])
-    out = a[(*before, 0)].copy()
-    for k in range(1, count):
-        ufunc(out, a[(*before, k)], out=out)
-    return out
 
 
 def extent(points: FloatArray) -> FloatArray:

@@ -127,9 +127,6 @@ class NurbsCurve(Curve):
         low, high = bounds(points)
         self._anchor: FloatArray = 0.5 * (high + low)  # (vec_ops.anchor, from the same bounds)
         self._anchor.setflags(write=False)
-        # one point adds the anchor as a (1, 3) row: numpy adds arrays of one shape without
-        # setting up a broadcast, three times faster on a small array (the same sums)
-        self._anchor_row: FloatArray = self._anchor[None, :]
         local = points - self._anchor
         coefficients = local if weights is None else np.column_stack([local * weights[:, None], weights])
         # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve; the
@@ -181,7 +178,7 @@ class NurbsCurve(Curve):
         """
         result = self.local_derivatives(t, order)
         points = result[0]  # (a new array: the anchor is added in place, the same sums)
-        points += self._anchor_row if len(points) == 1 else self._anchor
+        points += self._anchor
         return result
 
     @property
@@ -241,7 +238,7 @@ class NurbsCurve(Curve):
         u, scale = self._knot_parameters(t)
         d = self._polynomial_derivative(u, order, scale)
         if order == 0:
-            d += self._anchor_row if len(d) == 1 else self._anchor  # (as in derivatives)
+            d += self._anchor
         return d[0] if np.ndim(t) == 0 else d
 
     def _knot_parameters(self, t: ArrayLike) -> tuple[FloatArray, float]:

@@ -201,3 +201,11 @@ def crease_angle(lower: RulingResult, lower_edge: Curve, upper: RulingResult, up
     angle = np.arctan2(np.linalg.norm(np.cross(n_low, at), axis=1), np.einsum("ij,ij->i", n_low, at))
     angle = angle[np.isfinite(angle)]
     return float(angle.max()) if len(angle) else float("nan")
+
+
+def distances_to_strips(points: FloatArray, strips: Sequence[Surface]) -> FloatArray:
+    """Each point's distance to the nearest of ``strips`` (as :func:`uncovered` measures)."""
+    nearest = np.full(len(points), np.inf)
+    for strip in strips:
+        nearest = np.minimum(nearest, _mesh_distance(strip, points))
+    return nearest

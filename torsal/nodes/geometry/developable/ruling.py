@@ -78,7 +78,7 @@ Algorithm (all stations at once)
    torsal that fails the check joins the fans and the strip is closed again. A fan that
    turns back over itself between two of its rulings (in a plane: over a stretch of a
    curve its apex does not see whole) gets a ruling at the turn, which runs along the
-   curve: its warp is undefined and it is not valid (:func:`_fan_folds`).
+   curve: its warp is undefined and it is not valid (:func:`_fan_folds_all`).
 9. A closed B whose seam is away from the strip's start is solved again from A(0)'s
    partner, so that t can run once round B through its seam.
 
@@ -94,6 +94,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -108,6 +109,7 @@ from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
 from .fans import a_fans_all, close_gaps, fan_shares, flat_fans, outside_gaps
 from .measure import check_rulings
+from .stack import Stack, evaluate_rows
 from .stations import Spacing
 from .strip import SIDE, Strip
 from .warp import PARALLEL
@@ -372,12 +374,9 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
             if kept_torsal and valid2[torsal & (smooth.source < 0)].all():
                 solve.rulings, solve.checked = other.rulings, other.checked
     folded = []
-    for solve in solves:
-        s_out, t_out, source, fan = solve.rulings
-        starts, ends, _, warp, _ = solve.checked
-        folds = _fan_folds(solve.strip, s_out, t_out, starts, ends, np.isnan(warp))
+    for solve, folds in zip(solves, _fan_folds_all(solves), strict=True):
         if len(folds[0]):
-            solve.rulings = _with_folds(s_out, t_out, source, fan, *folds)
+            solve.rulings = _with_folds(*solve.rulings, *folds)
             folded.append(solve)
     if folded:
         _check_all(folded)
@@ -443,15 +442,10 @@ def _merge(
     order = order[~repeat]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
 
-#: :func:`_fan_folds` where no fan folds (empty, never written to).
-_NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
-
-
-def _fan_folds(
-    strip: Strip, s: FloatArray, t: FloatArray, starts: FloatArray, ends: FloatArray, undefined: BoolArray
-) -> tuple[IntArray, FloatArray, FloatArray]:
-    """Where a fan folds back on itself between two of its rulings: the piece, and the
-    parameters (s, t) of the ruling at the fold.
+def _fan_folds_all(solves: list[_Solve]) -> list[tuple[IntArray, FloatArray, FloatArray]]:
+    """Where a fan folds back on itself between two of its rulings, in every strip of
+    ``solves`` at once (their checked rulings one strip after another): per strip the
+    pieces, and the parameters (s, t) of the ruling at each fold.
 
     In a fan through a point P (consecutive rulings sharing an end) the sheet's normal
     is N(x) = (C(x) − P) × C'(x), C the curve the rulings move along. It turns smoothly
@@ -463,49 +457,64 @@ def _fan_folds(
     :data:`.warp.PARALLEL`: a true fold, not a fast turn of a curved cone), returned, to
     be added: its warp is undefined (NaN) and it is not valid.
     """
+    rulings = Stack([len(solve.rulings[0]) for solve in solves])
+    s, t = (np.concatenate([solve.rulings[k] for solve in solves]) for k in (0, 1))
+    starts, ends = (np.concatenate([solve.checked[k] for solve in solves]) for k in (0, 1))
+    undefined = np.isnan(np.concatenate([solve.checked[3] for solve in solves]))
     apex_a = s[1:] == s[:-1]
     apex_b = (t[1:] == t[:-1]) & ~apex_a
+    # pieces between two rulings of one strip (not from a strip's last to the next one's first);
     # (a piece next to a ruling with no warp, of no length or along the curve, has no
     # normal there to compare: that ruling is not valid itself)
-    pieces = flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:])
+    inside_strip = np.ones(len(s) - 1, dtype=bool) if len(s) else np.ones(0, dtype=bool)
+    inside_strip[rulings.offsets[1:-1] - 1] = False
+    pieces = flatnonzero((apex_a | apex_b) & ~undefined[:-1] & ~undefined[1:] & inside_strip)
     if len(pieces) == 0:
-        return _NO_FOLDS
+        return [_NO_FOLDS] * len(solves)
+    strip_of = np.searchsorted(rulings.offsets, pieces, side="right") - 1
     on_b = apex_a[pieces]  # the rulings move along B; else along A
     low = np.where(on_b, t[pieces], s[pieces])
     high = np.where(on_b, t[pieces + 1], s[pieces + 1])
     apex = np.where(on_b[:, None], starts[pieces], ends[pieces])
+    # each strip's A and B, curve 2·i and 2·i + 1
+    curves = [curve for solve in solves for curve in (solve.strip.curve_a, solve.strip.curve_b)]
 
-    def normal(x: FloatArray, on_b: BoolArray, apex: FloatArray) -> tuple[FloatArray, FloatArray]:
-        point, tangent = np.empty((2, len(x), 3))
-        for curve, rows in ((strip.curve_b, on_b), (strip.curve_a, ~on_b)):
-            if rows.all():
-                point, tangent = curve.derivatives(x, 1)
-            elif rows.any():
-                point[rows], tangent[rows] = curve.derivatives(x[rows], 1)
+    def normal(x: FloatArray, curve: IntArray, apex: FloatArray) -> tuple[FloatArray, FloatArray]:
+        point, tangent = evaluate_rows(curves, x, curve, 1)
         ruling = point - apex
         return cross(ruling, unit(tangent)), ruling
 
     inside = np.minimum(SIDE, 0.5 * (high - low))  # one-sided: beside a corner, its piece's side
     k = len(pieces)
+    curve = 2 * strip_of + on_b
     ends_x = np.concatenate([low + inside, high - inside])  # both ends of every piece at once
-    both, both_rulings = normal(ends_x, np.concatenate([on_b, on_b]), np.concatenate([apex, apex]))
+    both, both_rulings = normal(ends_x, np.concatenate([curve, curve]), np.concatenate([apex, apex]))
     has = norm(both) > PARALLEL * norm(both_rulings)
     first, last = both[:k], both[k:]
     flips = flatnonzero(has[:k] & has[k:] & (np.einsum("ij,ij->i", first, last) < 0.0))
     if len(flips) == 0:
-        return _NO_FOLDS
-    pieces, on_b, apex, first = pieces[flips], on_b[flips], apex[flips], first[flips]
+        return [_NO_FOLDS] * len(solves)
+    pieces, on_b, apex, first, curve = pieces[flips], on_b[flips], apex[flips], first[flips], curve[flips]
     lo, hi = low[flips] + inside[flips], high[flips] - inside[flips]
     for _ in range(60):  # bisection on N(x)·N(start): halves the bracket to rounding
         mid = 0.5 * (lo + hi)
-        n, _ = normal(mid, on_b, apex)
+        n, _ = normal(mid, curve, apex)
         same = np.einsum("ij,ij->i", n, first) > 0.0
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     x = 0.5 * (lo + hi)
-    n, ruling = normal(x, on_b, apex)
+    n, ruling = normal(x, curve, apex)
     fold = norm(n) <= PARALLEL * norm(ruling)
     pieces, x, on_b = pieces[fold], x[fold], on_b[fold]
-    return pieces, np.where(on_b, s[pieces], x), np.where(on_b, x, t[pieces])
+    s_add, t_add = np.where(on_b, s[pieces], x), np.where(on_b, x, t[pieces])
+    bounds = rulings.groups(pieces).tolist()  # (each strip's folds, as indices into its rulings)
+    return [
+        (pieces[start:stop] - rulings.offsets[i], s_add[start:stop], t_add[start:stop])
+        for i, (start, stop) in enumerate(pairwise(bounds))
+    ]
+
+
+#: :func:`_fan_folds_all` of a strip where no fan folds (empty, never written to).
+_NO_FOLDS: tuple[IntArray, FloatArray, FloatArray] = (np.empty(0, dtype=np.int64), np.empty(0), np.empty(0))
 
 
 def _with_folds(

@@ -69,11 +69,10 @@ def _size(start: FloatArray, end: FloatArray) -> float:
     """The diagonal of the bounding box of the finite ones of the points ``start`` and ``end``."""
     if not len(start):
         return 0.0
-    columns = np.concatenate([start.T, end.T], axis=1)  # (3, 2n): contiguous rows to reduce
-    size = float(norm(np.maximum.reduce(columns, axis=1) - np.minimum.reduce(columns, axis=1)))
+    points = np.concatenate([start, end])
+    size = float(norm(extent(points)))
     if isfinite(size):  # (a NaN or an infinite coordinate would not leave it finite)
         return size
-    points = np.concatenate([start, end])
     points = points[np.isfinite(points).all(axis=1)]
     return float(norm(extent(points))) if len(points) else 0.0
 

@@ -16,6 +16,15 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
   (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT;
+- where no developable pairing joins two rulings (the torsal condition has no root between
+  them, or a rail comes to rest at one of them, next to a fan: the partner would move like
+  a square root) and the strip's own pairing twists there, the interval goes out as two
+  cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
+  of A to rail B): a cone is developable whatever its rail does. A face that still twists
+  (more than :data:`TWISTED`) has its most twisted interval made cones, one at a time;
+- consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
+  joined at the ruling they share by a triple knot (each keeps its shape; fewer faces, a
+  smaller file). Where a rail turns a corner (a strip cut to a trim) the faces meet there;
 - each fan (consecutive rulings, each sharing an end with the next) is one face of degree
   1 both ways through its rulings, whose every span is one flat triangle (a lone triangle,
   or a fan whose triangles all meet at one point, is a trimmed plane through its corners);
@@ -35,12 +44,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import rhino3dm as rh
+from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline, make_lsq_spline
 
+from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
-from torsal.nodes.geometry.torsal_pairing import switches, torsal_partners
+from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_native import rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
@@ -48,6 +59,10 @@ FIT = 1e-6
 
 #: A face whose normals turn less than this along every ruling counts as developable (rad).
 DEVELOPABLE = 1e-7
+
+#: A face still twisting more than this (rad) after both pairings has its most twisted
+#: interval made cones instead, one at a time while it does.
+TWISTED = 5e-7
 
 #: How much closer than FIT a developable pairing is fitted where the samples allow it.
 TIGHTER = 0.03
@@ -58,6 +73,9 @@ SAMPLES = 12
 #: The densest sampling tried (per ruling interval) before a fit settles for what it reached.
 LARGEST_SAMPLING = 192
 
+#: A rail whose tangent turns more than this (rad) at a ruling has a corner there.
+CORNER = 1e-3
+
 #: Two ruling ends closer than this (relative to the size) are one point: a fan.
 SAME_POINT = 1e-12
 
@@ -67,11 +85,12 @@ class Piece:
     """One face of a strip: a rhino3dm brep, its kind and the rulings it spans."""
 
     brep: rh.Brep
-    kind: str  #: "torsal" (a ruled face) or "fan" (a planar triangle)
+    kind: str  #: "torsal" (a ruled face), "fan" (a planar triangle) or "cone" (one rail at rest)
     first: int  #: index of its first ruling in the strip
     last: int  #: index of its last ruling
     deviation: float  #: largest distance of the face's rails from the strip's (0 for a fan)
     controls: int  #: control points per rail (3 for a fan's corners)
+    rails: BSpline | None = None  #: a ruled face's two rails, (x, y, z) side by side
 
 
 def is_strip(value: object) -> bool:
@@ -92,6 +111,8 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
     same = SAME_POINT * size
     shared = (np.abs(lines[1:, 0] - lines[:-1, 0]).max(axis=1) <= same) | (
         np.abs(lines[1:, 1] - lines[:-1, 1]).max(axis=1) <= same)
+    corner = _corners(strip, u)
+    conical = _conical(strip, u, shared)
     pieces: list[Piece] = []
     k = 0
     n = len(lines)
@@ -110,12 +131,140 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
                 pieces.append(Piece(triangle, "fan", k, k + 1, 0.0, 3))
             k += 1
             continue
+        if conical[k]:  # no developable pairing: two cones meeting on a diagonal
+            pieces += _cones(strip, u, lines, k, size)
+            k += 1
+            continue
         end = k + 1
-        while end < n - 1 and not shared[end]:
+        while end < n - 1 and not shared[end] and not corner[end] and not conical[end]:
             end += 1
-        pieces.append(_ruled(strip, u, lines, k, end, size))
+        piece, twist = _ruled(strip, u, lines, k, end, size)
+        if twist > TWISTED:  # still twisted: its most twisted interval as cones, and again
+            own = [_own_twist(strip, u[i:i + 2], 17) for i in range(k, end)]
+            if max(own) > TWISTED:
+                conical[k + int(np.argmax(own))] = True
+                continue
+        pieces.append(piece)
         k = end
-    return pieces
+    return _joined(pieces)
+
+
+def _joined(pieces: list[Piece]) -> list[Piece]:
+    """Consecutive ruled faces (torsal runs and cone pairs) as one face each: their rails'
+    splines end to end, joined at the ruling they share (a triple knot, so each keeps its
+    own shape): fewer faces, a smaller file."""
+    out: list[Piece] = []
+    for piece in pieces:
+        before = out[-1] if out else None
+        if before is None or before.rails is None or piece.rails is None or before.last != piece.first:
+            out.append(piece)
+            continue
+        one, two = before.rails, piece.rails
+        n1, n2 = len(one.t) - 4, len(two.t) - 4
+        knots = np.concatenate([one.t[:-1], two.t[4:]])
+        controls = np.concatenate([np.asarray(one.c)[:n1], np.asarray(two.c)[1:n2]])
+        spline = BSpline(knots, controls, 3)
+        brep, count = _brep((0.0, knots, spline))
+        worst = max(before.deviation, piece.deviation)
+        out[-1] = Piece(brep, "torsal", before.first, piece.last, worst, count, spline)
+    return out
+
+
+def _conical(strip: RuledSurface, u: np.ndarray, shared: np.ndarray) -> np.ndarray:
+    """Per interval between rulings: whether the strip's own pairing twists there (more than
+    :data:`DEVELOPABLE`) and no developable pairing joins its two rulings (the torsal
+    condition has no root for some point of rail A, or a rail is at rest at one of the two
+    rulings: next to a fan)."""
+    flags = np.zeros(len(u) - 1, dtype=bool)
+    speeds = [np.linalg.norm(rail.derivatives(u, 1)[1], axis=1) for rail in (strip.curve_a, strip.curve_b)]
+    resting = np.zeros(len(u), dtype=bool)
+    for speed in speeds:
+        resting |= speed <= 1e-6 * max(float(speed.max()), 1e-300)
+    for i in np.flatnonzero(~shared):
+        span = u[i:i + 2]
+        if _own_twist(strip, span, 17) <= DEVELOPABLE:
+            continue
+        if resting[i] or resting[i + 1]:  # a partner moving like a square root: no fit follows it
+            flags[i] = True
+            continue
+        at = np.linspace(span[0], span[1], 9)[1:-1]
+        flags[i] = bool((torsal_partners(strip.curve_a, strip.curve_b, span, at)[1] == CONE).any())
+    return flags
+
+
+@dataclass(frozen=True)
+class _Rails:
+    """Two rails to fit a face between (the strip's own, or one of them at rest)."""
+
+    curve_a: Curve
+    curve_b: Curve
+
+
+class _AtRest(Curve):
+    """A rail at rest: one point (a cone's apex)."""
+
+    def __init__(self, point: np.ndarray) -> None:
+        self.point = np.asarray(point, dtype=float)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        count = len(np.atleast_1d(np.asarray(t, dtype=float)))
+        return [np.tile(self.point, (count, 1))] + [np.zeros((count, 3)) for _ in range(order)]
+
+
+def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float) -> list[Piece]:
+    """The interval after ruling ``k`` as two cones meeting on its shorter diagonal, one
+    face: rail A to the diagonal's end on B, then that end of A to rail B (or the other way
+    round). A cone is developable whatever its rail does (every line through its apex), so
+    the face's normals are constant along its lines; its edges still run on the rails."""
+    (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
+    span = u[k:k + 2]
+    if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
+        middle = np.array([a_hi, b_lo])
+        rails = [_Rails(strip.curve_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), strip.curve_b)]
+    else:
+        middle = np.array([a_lo, b_hi])
+        rails = [_Rails(_AtRest(a_lo), strip.curve_b), _Rails(strip.curve_a, _AtRest(b_hi))]
+    fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
+            for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
+    # one face: the first cone on the first half of the span, the second on the other half,
+    # joined at the diagonal (a triple knot: the face folds there)
+    lo, hi = float(span[0]), float(span[1])
+    half = 0.5 * (lo + hi)
+    (_, first, one), (_, second, two) = fits
+    knots = np.concatenate([lo + (first[:-1] - lo) * 0.5, half + (second[4:] - lo) * 0.5])
+    controls = np.concatenate([np.asarray(one.c)[:len(first) - 4], np.asarray(two.c)[1:len(second) - 4]])
+    brep, count = _brep((0.0, knots, BSpline(knots, controls, 3)))  # (its rails kept below)
+    spline = BSpline(knots, controls, 3)
+    return [Piece(brep, "cone", k, k + 1, max(fits[0][0], fits[1][0]), count, spline)]
+
+
+def _brep(fit: tuple[float, np.ndarray, BSpline]) -> tuple[rh.Brep, int]:
+    """A fitted pair of rails as one ruled NURBS face (degree 3 along, 1 across)."""
+    _, knots, spline = fit
+    count = len(knots) - 4
+    controls = np.asarray(spline.c)[:count]
+    net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
+    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
+    return rh.Brep.CreateFromSurface(rhino_surface(surface)), count
+
+
+def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
+    """Per ruling: whether a rail turns a corner there (its tangents just before and just
+    after it differ by more than :data:`CORNER`), as a strip cut to a trim does where its
+    edge leaves a boundary for the trim: the faces on either side meet at that ruling."""
+    corner = np.zeros(len(u), dtype=bool)
+    if len(u) < 3:
+        return corner
+    step = 1e-7 * float(u[-1] - u[0])
+    inner = u[1:-1]
+    for rail in (strip.curve_a, strip.curve_b):
+        before = rail.derivatives(inner - step, 1)[1]
+        after = rail.derivatives(inner + step, 1)[1]
+        with np.errstate(invalid="ignore"):
+            angle = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1),
+                               np.einsum("ij,ij->i", before, after))
+        corner[1:-1] |= np.nan_to_num(angle) > CORNER
+    return corner
 
 
 def _fan_run(lines: np.ndarray) -> rh.Brep | None:
@@ -146,16 +295,24 @@ def _fan(first: np.ndarray, second: np.ndarray, size: float) -> rh.Brep | None:
 
 
 def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, last: int,
-           size: float) -> Piece:
+           size: float) -> tuple[Piece, float]:
     """The ruled face over rulings ``first`` … ``last``: between the rulings, each point of
     rail A paired with its developable partner on rail B (:mod:`~torsal.nodes.geometry.
     torsal_pairing`) where that fits within :data:`FIT`, else with the strip's own pairing;
-    the rails fitted with inserted knots."""
+    the rails fitted with inserted knots; and how much it still twists (:func:`_twist`)."""
     span = u[first:last + 1]
     tolerance = FIT * size
     own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
     fit = own
-    if _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
+    if _twist(own) > DEVELOPABLE and _own_twist(strip, span) <= DEVELOPABLE:
+        # the strip's own pairing is developable (as a strip cut to a trim is) but its short
+        # rulings magnify the fit's error into a twist: closer fits, as close as that takes
+        for _ in range(3):
+            tighter = _fit(strip, span, lines[first:last + 1], 0.1 * fit[0], lambda at: at, np.empty(0))
+            fit = tighter if _twist(tighter) < _twist(fit) else fit
+            if _twist(fit) <= DEVELOPABLE:
+                break
+    elif _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
         kinks = switches(strip.curve_a, strip.curve_b, span)
 
         def paired(at: np.ndarray) -> np.ndarray:
@@ -165,13 +322,18 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
         developable = _fit(strip, span, lines[first:last + 1], tolerance * TIGHTER, paired, kinks)
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
             fit = developable
-    worst, knots, spline = fit
-    count = len(knots) - 4
-    controls = np.asarray(spline.c)[:count]
-    net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
-    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
-    return Piece(brep, "torsal", first, last, worst, count)
+    brep, count = _brep(fit)
+    return Piece(brep, "torsal", first, last, fit[0], count, fit[2]), _twist(fit)
+
+
+def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
+    """The largest angle between the strip's own normals 1 % in from either end of its lines
+    across (isocurves) at ``count`` of them over ``span``."""
+    u = np.linspace(span[0], span[-1], count)
+    near = np.cross(*strip.derivatives(u, np.full(count, 0.01))[1:3])
+    far = np.cross(*strip.derivatives(u, np.full(count, 0.99))[1:3])
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
+    return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
 
 
 def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
@@ -208,13 +370,28 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     ends = span[[0, -1]]
     b_ends = strip.curve_b.point_at(ends)
     b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
-    slopes = np.hstack([strip.curve_a.derivatives(ends, 1)[1],
-                        np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step])
+    # (the last one just inside: at a corner of the rail, as on a strip cut to a trim, the
+    # face's own side of it)
+    inside = np.array([lo, hi - 1e-12 * (hi - lo)])
+    probe = np.array([lo + step, hi - step])
+    if np.array_equal(partner(probe), probe):  # the strip's own pairing: B's own tangents (a
+        # difference over a short face's step would carry the points' rounding)
+        b_slopes = strip.curve_b.derivatives(inside, 1)[1]
+    else:  # the pace from the difference, the direction from B's own tangent where it has one
+        # (a difference of a partner moving like a square root turns by ~√step)
+        b_slopes = np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step
+        own = strip.curve_b.derivatives(inside, 1)[1]
+        length = np.linalg.norm(own, axis=1, keepdims=True)
+        along = np.einsum("ij,ij->i", b_slopes, own)[:, None]
+        b_slopes = np.where((length > 0) & (along > 0), own / np.maximum(length, 1e-300)
+                            * np.linalg.norm(b_slopes, axis=1, keepdims=True), b_slopes)
+    slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1], b_slopes])
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
     while True:
         # the fit's samples are every other one of the check's: rail B's partners found once
-        check, truth = _samples(strip, span, 2 * per, partner)
+        # (sampled between the kinks too: every span between two knots has samples)
+        check, truth = _samples(strip, np.unique(np.concatenate([span, kinks])), 2 * per, partner)
         fine, data = check[::2], truth[::2].copy()
         data[np.searchsorted(fine, span)] = lines.reshape(-1, 6)  # the node's rulings exactly
         breaks_fixed = np.unique(np.concatenate([span, kinks]))
@@ -238,9 +415,10 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
                 error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
                                    np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
             worst = float(error.max())
-            if not np.isfinite(worst):  # a span without samples: the previous fit stands
-                break
-            best = (worst, knots, spline)
+            if not np.isfinite(worst) or worst > 1e3 * best[0]:  # ill-posed (a span without
+                break  # enough samples): the previous fit stands
+            if worst < best[0]:
+                best = (worst, knots, spline)
             if worst <= tolerance or len(knots) - 4 >= len(fine) // 3:
                 break
             breaks = np.unique(np.concatenate([breaks_fixed, interior]))

@@ -1,0 +1,553 @@
+"""Rationalising a trimmed design: strips over the trim's box, cut to the trim.
+
+A Rhino brep face is a surface kept inside trim loops (:class:`~torsal.nodes.geometry.
+trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to the trim:
+
+1. Box. The underlying surface is taken on the box of the trim loops in (u, v), a
+   little larger (:class:`Patch`, reparameterised to [0, 1]²), and rationalised as any
+   design (:func:`~torsal.nodes.geometry.developable.rationalise.rationalise`): the
+   boundaries and strips are chosen there, the parts of the surface far outside the trim
+   play no part.
+2. The strip's own sheet. Between its rulings a strip's rails are paired at an
+   interpolated pace, which twists a little; every point of rail A is paired instead
+   with its developable partner on rail B (:func:`~torsal.nodes.geometry.torsal_pairing.
+   torsal_partners`, as the ``.3dm`` export does), so every line across the sheet is
+   torsal, not only the solved rulings.
+3. Cut. The sheet's lines are sampled (:data:`PER_RULING` per ruling interval,
+   :data:`ACROSS` points along each), each point projected onto the design and judged
+   inside or outside the trim in (u, v) by its signed distance to the trim loops
+   (shapely); along each line the kept interval is where that distance is ≥ 0 (linear
+   interpolation between samples). The lines whose interval is not empty, in runs, make
+   the cut strips; a run's ends are found by bisection to where the lines leave the trim.
+4. Rails. A cut strip's two edges are chains of pieces: stretches of the strip's own
+   rails (kept exactly, so neighbours still share their boundary) and stretches along
+   the trim, an interpolating cubic through the lines' cut points (so each line's end lies
+   on that line exactly). Where a chain turns from a rail onto the trim (a corner) a
+   ruling is added there, so the exported faces meet at the corner.
+5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
+   ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
+   only, and the trim loops' distance to the strips is the coverage.
+
+A run of lines that splits in two (a strip crossing a notch of the trim, or a hole)
+becomes separate strips from the first line past the split; between the last line
+before and the first after, a sliver up to one sample step (:data:`PER_RULING`) wide is
+left out, and the coverage measured says so where it matters.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import shapely
+from numpy.typing import ArrayLike
+from scipy.interpolate import BSpline, PchipInterpolator, make_interp_spline, make_lsq_spline
+
+from ..array_types import FloatArray
+from ..curve_base import Curve
+from ..curve_rail import CurveRail
+from ..ruled import RuledSurface
+from ..surface_base import Surface
+from ..torsal_pairing import torsal_partners
+from ..trimmed_surface import TrimmedSurface
+from .certify import certified_deviation, distances_to_strips
+from .fans import creased_fans, patch_areas
+from .rationalise import Rationalisation, Strip, rationalise
+from .ruling import RulingResult
+from .warp import curve_warp
+
+#: Share of the trim's (u, v) box added on each side for the patch that is rationalised.
+MARGIN = 0.02
+#: Lines of a strip's sheet sampled per ruling interval, and points along each line.
+PER_RULING, ACROSS = 12, 41
+#: Bisections of a cut strip's end (where its lines leave the trim).
+HALVINGS = 24
+#: Strips are cut this share of the tolerance outside the trim, so the trim is covered by
+#: their inside, not only by their cut edges (which lie up to the deviation off the design).
+REACH = 0.5
+#: A cut strip's end line is this share of its neighbour's length at least (not a point).
+TIP = 2e-3
+#: Samples per trim loop span, for the coverage.
+LOOP_SAMPLES = 8
+
+
+class Patch(Surface):
+    """``surface`` on the (u, v) box ``(u0, u1, v0, v1)``, reparameterised to [0, 1]²."""
+
+    def __init__(self, surface: Surface, box: tuple[float, float, float, float]) -> None:
+        self.surface = surface
+        self.box = tuple(float(b) for b in box)
+        self.closed_u = self.closed_v = False
+
+    def __repr__(self) -> str:
+        return f"Patch({self.surface!r}, {self.box})"
+
+    def to_surface(self, u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """The underlying surface's (u, v) of the patch's."""
+        u0, u1, v0, v1 = self.box
+        return u0 + (u1 - u0) * np.asarray(u, dtype=float), v0 + (v1 - v0) * np.asarray(v, dtype=float)
+
+    def from_surface(self, uv: ArrayLike) -> FloatArray:
+        """The patch's (u, v) of the underlying surface's ``(n, 2)``."""
+        u0, u1, v0, v1 = self.box
+        uv = np.asarray(uv, dtype=float)
+        return np.column_stack([(uv[:, 0] - u0) / (u1 - u0), (uv[:, 1] - v0) / (v1 - v0)])
+
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
+        self._check_order(order)
+        u0, u1, v0, v1 = self.box
+        found = self.surface.derivatives(*self.to_surface(u, v), order)
+        du, dv = u1 - u0, v1 - v0
+        scale = [1.0, du, dv, du * du, du * dv, dv * dv][:len(found)]
+        return [d * k for d, k in zip(found, scale, strict=True)]
+
+
+def patch_of(design: TrimmedSurface) -> Patch:
+    """The underlying surface on the trim's (u, v) box, :data:`MARGIN` larger each way
+    (within the surface's own square)."""
+    u0, v0, u1, v1 = design.region.bounds
+    pad_u, pad_v = MARGIN * (u1 - u0), MARGIN * (v1 - v0)
+    return Patch(design.surface, (max(0.0, u0 - pad_u), min(1.0, u1 + pad_u),
+                                  max(0.0, v0 - pad_v), min(1.0, v1 + pad_v)))
+
+
+class Chain(Curve):
+    """Pieces of curves end to end: piece k is ``curve`` over its own parameters ``p0 → p1``,
+    run on t in ``[knots[k], knots[k + 1]]`` (the pieces' shares by their parameter spans:
+    pieces that follow on in one parameter make a chain linear in it).
+    Smooth on each piece; the joins are its breakpoints (corners, in general)."""
+
+    def __init__(self, pieces: list[tuple[Curve, float, float]]) -> None:
+        self.pieces = pieces
+        lengths = np.array([p1 - p0 for _, p0, p1 in pieces])
+        self.knots = np.concatenate([[0.0], np.cumsum(lengths) / lengths.sum()])
+        self.knots[-1] = 1.0
+
+    def at(self, piece: int, p: FloatArray) -> FloatArray:
+        """The chain's t where piece ``piece`` is at its own parameters ``p``."""
+        _, p0, p1 = self.pieces[piece]
+        share = (np.asarray(p, dtype=float) - p0) / (p1 - p0) if p1 != p0 else np.zeros(np.shape(p))
+        return self.knots[piece] + share * (self.knots[piece + 1] - self.knots[piece])
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, 1.0)
+        which = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.pieces) - 1)
+        out = [np.empty((len(t), 3)) for _ in range(order + 1)]
+        for k in np.unique(which):
+            curve, p0, p1 = self.pieces[k]
+            mine = which == k
+            rate = (p1 - p0) / (self.knots[k + 1] - self.knots[k])
+            p = p0 + (t[mine] - self.knots[k]) * rate
+            for d, value in enumerate(curve.derivatives(p, order)):
+                out[d][mine] = value * rate**d
+        return out
+
+    def _breakpoints(self) -> FloatArray:
+        return self.knots.copy()
+
+
+class _OnSheet(Curve):
+    """A curve on a strip's sheet: at u = x the point ``w(x)`` of the way along the line
+    from rail A's A(x) to B(τ(x)) (``tau``, ``w``: scipy splines in x), with exact
+    derivatives (to order 3, the chain rule through τ and w)."""
+
+    def __init__(self, a: Curve, b: Curve, tau: _Pace, w: BSpline) -> None:
+        self.a, self.b, self.tau, self.w = a, b, tau, w
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        x = np.atleast_1d(np.asarray(t, dtype=float))
+        a = self.a.derivatives(x, order)
+        tau = [np.asarray(self.tau(x, nu=k), dtype=float)[:, None] for k in range(order + 1)]
+        b = self.b.derivatives(tau[0][:, 0], order)
+        along = [b[0], b[1] * tau[1] if order >= 1 else None,
+                 b[2] * tau[1] ** 2 + b[1] * tau[2] if order >= 2 else None,
+                 b[3] * tau[1] ** 3 + 3.0 * b[2] * tau[1] * tau[2] + b[1] * tau[3] if order >= 3 else None]
+        across = [along[k] - a[k] for k in range(order + 1)]
+        w = [np.asarray(self.w(x, nu=k), dtype=float)[:, None] for k in range(order + 1)]
+        return [a[k] + sum(math.comb(k, j) * w[j] * across[k - j] for j in range(k + 1))
+                for k in range(order + 1)]
+
+
+@dataclass
+class _Line:
+    """One line across the sheet at u = ``x`` and its kept interval ``[lo, hi]`` along it,
+    with the signed distance from the trim at its two ends (rails A and B)."""
+
+    x: float
+    lo: float
+    hi: float
+    ruling: int = -1  #: index of the strip's own ruling at this u, or −1
+    g0: float = 0.0
+    g1: float = 0.0
+    kept: bool = False  #: a ruling of the cut strip (the strip's own, a corner or an end)
+
+
+class _Sheet:
+    """A strip's sheet: the line at u from rail A's point to its developable partner on B
+    (the partners found at the sampled lines, a monotone cubic in u between them)."""
+
+    def __init__(self, strip: Strip, inside: Callable[[FloatArray], FloatArray]) -> None:
+        surface = strip.surface
+        self.a, self.b = surface.curve_a, surface.curve_b
+        self.u = np.asarray(surface.ruling_parameters, dtype=float)
+        self.lines = np.asarray(surface.ruling_lines, dtype=float)
+        self.inside = inside  # signed distance of 3D points from the trim (≥ 0 inside)
+        self.w = np.linspace(0.0, 1.0, ACROSS)
+        self.x, self.ruling = _columns(self.u)
+        tau = torsal_partners(self.a, self.b, self.u, self.x)[0]
+        tau[self.ruling >= 0] = self.u
+        # in a fan (two rulings through one point) the sheet is the cone of lines from that
+        # point to the other rail, at the strip's own pace: no partner to look for
+        size = float(np.ptp(self.lines.reshape(-1, 3), axis=0).max()) or 1.0
+        apex = (np.abs(np.diff(self.lines, axis=0)).max(axis=2) <= 1e-12 * size).any(axis=1)
+        between = np.minimum(np.searchsorted(self.u, self.x, side="right") - 1, len(apex) - 1)
+        tau = np.where(apex[between], self.x, tau)
+        self.tau = _Pace(self.x, np.maximum.accumulate(tau), self.u)
+
+    def ends(self, x: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Both ends of the lines at ``x``: the strip's rulings exactly at their u."""
+        x = np.asarray(x, dtype=float)
+        start, end = self.a.point_at(x), self.b.point_at(self.tau(x))
+        k = np.minimum(np.searchsorted(self.u, x), len(self.u) - 1)
+        hit = self.u[k] == x
+        start[hit], end[hit] = self.lines[k[hit], 0], self.lines[k[hit], 1]
+        return start, end
+
+    def distances(self, x: FloatArray) -> FloatArray:
+        """The signed distance from the trim at :data:`ACROSS` points along each line at ``x``."""
+        start, end = self.ends(x)
+        points = start[:, None] + self.w[None, :, None] * (end - start)[:, None]
+        return self.inside(points.reshape(-1, 3)).reshape(len(x), len(self.w))
+
+
+class _Pace:
+    """The partner parameter τ(x) between the strip's rulings: on each ruling interval the
+    cubic spline through its samples (where it stays monotone, else the monotone PCHIP), so
+    a fan's pace next to a torsal one does not ripple across the ruling between them."""
+
+    def __init__(self, x: FloatArray, tau: FloatArray, rulings: FloatArray) -> None:
+        self.rulings = rulings
+        self.pieces = []
+        for lo, hi in itertools.pairwise(rulings):
+            mine = (x >= lo) & (x <= hi)
+            xs, ys = x[mine], tau[mine]
+            spline = make_interp_spline(xs, ys, k=min(3, len(xs) - 1))
+            check = np.linspace(lo, hi, 8 * len(xs))
+            monotone = (np.diff(spline(check)) >= 0.0).all()
+            self.pieces.append(spline if monotone else PchipInterpolator(xs, ys))
+
+    def __call__(self, x: ArrayLike, nu: int = 0) -> FloatArray:
+        x = np.asarray(x, dtype=float)
+        flat = np.atleast_1d(x)
+        which = np.clip(np.searchsorted(self.rulings, flat, side="right") - 1, 0, len(self.pieces) - 1)
+        out = np.empty(len(flat))
+        for k in np.unique(which):
+            mine = which == k
+            out[mine] = self.pieces[k](flat[mine], nu)
+        return out.reshape(x.shape) if x.ndim else out[0]
+
+
+def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
+    """A cubic in x fitted to ``w`` by least squares with knots at the strip's rulings
+    (``knots``) inside ``x``'s range, through the two end values exactly: where the trim's
+    line of cut lies across the sheet (no need to pass through the samples: every point of
+    the sheet lies on a torsal line)."""
+    if len(x) < 6:
+        return make_interp_spline(x, w, k=min(3, len(x) - 1))
+    inner = knots[(knots > x[0]) & (knots < x[-1])]
+    inner = inner[(inner - x[0] > 1e-9) & (x[-1] - inner > 1e-9)]
+    full = np.concatenate([[x[0]] * 4, inner, [x[-1]] * 4])
+    try:
+        spline = make_lsq_spline(x, w, full, k=3)
+    except (ValueError, np.linalg.LinAlgError):
+        return make_interp_spline(x, w, k=3)
+    c = np.array(spline.c)
+    c[0], c[-1] = w[0], w[-1]
+    return BSpline(full, c, 3)
+
+
+def _runs(g: FloatArray, w: FloatArray) -> list[tuple[float, float]]:
+    """The intervals of w where the sampled ``g`` ≥ 0, its zeros interpolated linearly."""
+    keep = g >= 0.0
+    if not keep.any():
+        return []
+    change = np.flatnonzero(keep[1:] != keep[:-1])
+    cuts = w[change] + (w[change + 1] - w[change]) * g[change] / (g[change] - g[change + 1])
+    bounds = [w[0]] if keep[0] else []
+    bounds += cuts.tolist()
+    if keep[-1]:
+        bounds.append(w[-1])
+    return [(float(bounds[i]), float(bounds[i + 1])) for i in range(0, len(bounds) - 1, 2)]
+
+
+def _columns(u: FloatArray) -> tuple[FloatArray, np.ndarray]:
+    """:data:`PER_RULING` lines per ruling interval, the rulings' own u among them, and
+    each one's ruling index (−1 between rulings)."""
+    steps = np.linspace(0.0, 1.0, PER_RULING + 1)[:-1]
+    x = np.concatenate([(u[:-1, None] + np.diff(u)[:, None] * steps).ravel(), u[-1:]])
+    ruling = np.full(len(x), -1)
+    ruling[::PER_RULING] = np.arange(len(u))
+    return x, ruling
+
+
+def _crossing(x0: float, x1: float, g0: float, g1: float) -> float:
+    """Where a quantity sampled ``g0`` at ``x0`` and ``g1`` at ``x1`` (opposite signs) is 0."""
+    return x0 + (x1 - x0) * g0 / (g0 - g1) if g0 != g1 else 0.5 * (x0 + x1)
+
+
+def _lines_at(sheet: _Sheet, x: FloatArray, near: list[tuple[float, float]]) -> list[_Line]:
+    """Lines at ``x`` (added ends and corners), each with its kept interval nearest the
+    interval in ``near``; a line whose samples miss the trim keeps the point of it nearest
+    inside (an interval of no length)."""
+    if len(x) == 0:
+        return []
+    g = sheet.distances(np.asarray(x, dtype=float))
+    out = []
+    for xi, row, (lo, hi) in zip(x, g, near, strict=True):
+        kept = _runs(row, sheet.w)
+        if kept:
+            a, b = min(kept, key=lambda iv: abs(0.5 * (iv[0] + iv[1]) - 0.5 * (lo + hi)))
+        else:
+            a = b = float(sheet.w[int(np.argmax(row))])
+        out.append(_Line(float(xi), a, b, -1, float(row[0]), float(row[-1]), True))
+    return out
+
+
+def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
+    """The runs of lines whose kept interval is one piece, each ended where its lines leave
+    the trim (by interpolating the largest signed distance along the lines) when the
+    neighbouring line is wholly outside."""
+    x, ruling = sheet.x, sheet.ruling
+    g = sheet.distances(x)
+    found = [_runs(row, sheet.w) for row in g]
+    most = g.max(axis=1)
+    runs: list[list[_Line]] = []
+    open_: list[list[_Line]] = []
+    previous: list[tuple[float, float]] = []
+    tips: list[tuple[list[_Line], float, bool]] = []  # run, x of its end, at its end (not start)
+    for k, kept in enumerate(found):
+        same = len(kept) == len(previous) and all(a[0] < b[1] and b[0] < a[1]
+                                                   for a, b in zip(kept, previous, strict=True))
+        lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]), ruling[k] >= 0)
+                 for lo, hi in kept]
+        if same:
+            for run, line in zip(open_, lines, strict=True):
+                run.append(line)
+        else:
+            if not kept:
+                tips += [(run, _crossing(x[k - 1], x[k], most[k - 1], most[k]), True) for run in open_]
+            runs += open_
+            open_ = [[line] for line in lines]
+            if kept and not previous and k > 0:
+                tips += [(run, _crossing(x[k - 1], x[k], most[k - 1], most[k]), False) for run in open_]
+        previous = kept
+    runs += open_
+    for run in runs:
+        run[0].kept = run[-1].kept = True
+    added = _lines_at(sheet, np.array([t[1] for t in tips]),
+                      [((run[-1] if ahead else run[0]).lo, (run[-1] if ahead else run[0]).hi)
+                       for run, _, ahead in tips])
+    # a line at an end shrinks to a point: the end line is taken where it is TIP of its
+    # neighbour's length instead (a face needs lines of some length across to have normals)
+    longest = [max(_kept(line) for line in run) for run, _, _ in tips]
+    short = [k for k, line in enumerate(added) if _kept(line) < TIP * longest[k]]
+    where = []
+    for k in short:
+        run, _, ahead = tips[k]
+        edge, line = (run[-1] if ahead else run[0]), added[k]
+        share = (TIP * longest[k] - _kept(line)) / max(_kept(edge) - _kept(line), 1e-300)
+        where.append(line.x + (edge.x - line.x) * min(max(share, 0.0), 1.0))
+    for toward in (0.0, 0.5, 0.8):  # a line still outside (a point): closer to the run's edge
+        shift = [x + toward * ((tips[k][0][-1] if tips[k][2] else tips[k][0][0]).x - x)
+                 for k, x in zip(short, where, strict=True)]
+        moved = _lines_at(sheet, np.array(shift), [(added[k].lo, added[k].hi) for k in short])
+        for k, line in zip(short, moved, strict=True):
+            added[k] = line
+        short_again = [i for i, k in enumerate(short) if _kept(added[k]) <= 0.0]
+        short, where = [short[i] for i in short_again], [where[i] for i in short_again]
+        if not short:
+            break
+    for (run, _, ahead), line in zip(tips, added, strict=True):
+        edge = run[-1] if ahead else run[0]
+        if _kept(line) > 0.0 and (line.x - edge.x) * (1 if ahead else -1) > 0.0:  # (a point: none)
+            run.append(line) if ahead else run.insert(0, line)
+            edge.kept = edge.ruling >= 0  # the end is the new line (a ruling stays one)
+    return [run for run in runs if len(run) >= 2]
+
+
+def _kept(line: _Line) -> float:
+    return line.hi - line.lo
+
+
+def _corners(sheet: _Sheet, run: list[_Line]) -> list[_Line]:
+    """``run`` with a line added wherever one of its edges turns from a rail onto the trim
+    or back (where the signed distance at the rail crosses 0, interpolated)."""
+    where: list[float] = []
+    near: list[tuple[float, float]] = []
+    sides: list[bool] = []
+    for before, after in itertools.pairwise(run):
+        for upper in (False, True):
+            if _on_rail(before, upper) == _on_rail(after, upper):
+                continue
+            g0, g1 = (before.g1, after.g1) if upper else (before.g0, after.g0)
+            if g0 * g1 > 0.0:
+                continue
+            where.append(_crossing(before.x, after.x, g0, g1))
+            near.append((before.lo, before.hi) if _on_rail(before, upper) else (after.lo, after.hi))
+            sides.append(upper)
+    added = _lines_at(sheet, np.array(where), near)
+    for line, upper in zip(added, sides, strict=True):
+        if upper:
+            line.hi = 1.0
+        else:
+            line.lo = 0.0
+    out = sorted(run + added, key=lambda line: line.x)
+    return [line for k, line in enumerate(out) if k == 0 or line.x > out[k - 1].x]
+
+
+def _on_rail(line: _Line, upper: bool) -> bool:
+    return line.hi >= 1.0 - 1e-12 if upper else line.lo <= 1e-12
+
+
+def _chain(sheet: _Sheet, run: list[_Line], upper: bool) -> tuple[Chain, FloatArray]:
+    """One edge of a cut strip (``upper``: the B side) as a :class:`Chain` run at the pace of
+    the sheet's u: stretches of the strip's own rail (w = 0 or 1 exactly, so neighbours
+    still share their boundary) and of the trim (w a cubic in u through the cut); and each
+    line's parameter on it. Both edges run at the same pace, so at any parameter the strip
+    joins two points of one line of the sheet: torsal between the rulings too."""
+    x = np.array([line.x for line in run])
+    w = np.array([line.hi if upper else line.lo for line in run])
+    rail = np.array([_on_rail(line, upper) for line in run])
+    along = rail[:-1] & rail[1:]  # each interval between lines: along the rail, else the trim
+    pieces: list[tuple[Curve, float, float]] = []
+    first = 0
+    while first < len(run) - 1:
+        last = first + 1
+        while last < len(run) - 1 and along[last] == along[first]:
+            last += 1
+        across = _Constant(1.0 if upper else 0.0) if along[first] else _smooth(x[first:last + 1],
+                                                                                w[first:last + 1], sheet.u)
+        pieces.append((_OnSheet(sheet.a, sheet.b, sheet.tau, across), float(x[first]), float(x[last])))
+        first = last
+    chain = Chain(pieces)
+    return chain, (x - x[0]) / (x[-1] - x[0])
+
+
+class _Constant:
+    """A constant w along a rail (0 on A, 1 on B), called as a scipy spline is."""
+
+    def __init__(self, value: float) -> None:
+        self.value = value
+
+    def __call__(self, x: FloatArray, nu: int = 0) -> FloatArray:
+        return np.full(np.shape(x), self.value if nu == 0 else 0.0)
+
+
+def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: Surface,
+              tolerance: float) -> list[Strip]:
+    """``strip`` cut to where ``inside`` ≥ 0 (see the module): none, one or several strips."""
+    sheet = _Sheet(strip, inside)
+    pieces = []
+    for run in _runs_of_lines(sheet):
+        run = _corners(sheet, run)
+        keep = np.array([line.kept for line in run])
+        try:
+            lower, s = _chain(sheet, run, upper=False)
+            upper, t = _chain(sheet, run, upper=True)
+            surface = _ruled(lower, upper, s[keep])
+        except ValueError:  # a run too short to make a strip of
+            continue
+        starts, ends = surface.ruling_lines[:, 0], surface.ruling_lines[:, 1]
+        run = [line for line in run if line.kept]
+        pieces.append(_strip(strip, run, surface, lower, upper, s[keep], t[keep], starts, ends, design,
+                             tolerance))
+    return pieces
+
+
+def _ruled(lower: Chain, upper: Chain, at: FloatArray) -> RuledSurface:
+    """The strip between two chains run at one pace (the sheet's u), its rulings at ``at``:
+    the rails are the chains themselves at their own parameters (a ruling's parameter is
+    its chain parameter), so between rulings the strip joins the two points of one line of
+    the sheet, as it does at them."""
+    if len(at) < 2 or not (np.diff(at) > 0.0).all():
+        raise ValueError("a cut strip needs two rulings or more, in order")
+    surface = RuledSurface(CurveRail(lower, at, at), CurveRail(upper, at, at))
+    surface.ruling_parameters = np.asarray(at, dtype=float)
+    surface.ruling_lines = np.stack([lower.point_at(at), upper.point_at(at)], axis=1)
+    return surface
+
+
+def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: Curve, s: FloatArray,
+           t: FloatArray, starts: FloatArray, ends: FloatArray, design: Surface, tolerance: float) -> Strip:
+    own = strip.result
+    index = np.array([line.ruling for line in run])
+    station = index >= 0
+    fan = np.zeros(len(run), dtype=bool)
+    fan[station] = own.fan[index[station]]
+    stations = np.zeros(len(run), dtype=bool)
+    stations[station] = own.stations[index[station]]
+    warp = np.asarray(curve_warp(a, b, s, t, starts, ends), dtype=float)
+    areas = patch_areas(starts, ends)
+    total = float(areas.sum()) or 1.0
+    creased = float(areas[creased_fans(starts, ends, fan)].sum()) / total
+    shared = fan[:-1] & fan[1:]
+    result = RulingResult(s, t, starts, ends, warp, warp.copy(), np.isfinite(warp) & (warp <= 1e-7), None,
+                          stations, fan, float(areas[shared].sum()) / total, creased)
+    deviation = certified_deviation(design, surface, tolerance)
+    return Strip(float(run[0].x), float(run[-1].x), result, surface, warp, deviation.bound, deviation.where)
+
+
+def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
+                  ) -> Callable[[FloatArray], FloatArray]:
+    """Points' signed distance from the trim loops, positive inside, plus ``margin``: each
+    point projected onto the patch, its (u, v) scaled by the surface's mean speeds along u
+    and v (so the distance is about one along the surface, in model units)."""
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
+    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
+    speed = np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
+    region = shapely.transform(design.region, lambda xy: xy * speed)
+    boundary = region.boundary
+
+    def inside(points: FloatArray) -> FloatArray:
+        found = patch.closest_point(points, candidates=1, tolerance=1e-9).parameters
+        uv = np.column_stack(patch.to_surface(found[:, 0], found[:, 1])) * speed
+        distance = shapely.distance(boundary, shapely.points(uv))
+        return np.where(shapely.contains_xy(region, uv[:, 0], uv[:, 1]), distance, -distance) + margin
+
+    return inside
+
+
+def trim_points(design: TrimmedSurface) -> FloatArray:
+    """Points along every trim loop, :data:`LOOP_SAMPLES` per span, on the design."""
+    out = []
+    for loop in design.loops:
+        w = np.linspace(0.0, 1.0, LOOP_SAMPLES + 1)[:-1]
+        dense = (loop[:-1, None] + w[None, :, None] * (loop[1:] - loop[:-1])[:, None]).reshape(-1, 2)
+        out.append(design.surface.point_at(dense[:, 0], dense[:, 1]))
+    return np.concatenate(out)
+
+
+def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **options: Any
+                        ) -> Rationalisation:
+    """Strips within ``tolerance`` of a trimmed design, inside its trim (see the module);
+    the other arguments as :func:`~torsal.nodes.geometry.developable.rationalise.rationalise`."""
+    patch = patch_of(design)
+    base = rationalise(patch, tolerance, *args, **options)
+    inside = signed_inside(design, patch, REACH * tolerance)
+    strips: list[Strip] = []
+    narrow: list[int] = []
+    for k, strip in enumerate(base.strips):
+        cut = cut_strip(strip, inside, patch, tolerance)
+        if k in base.narrow:
+            narrow += list(range(len(strips), len(strips) + len(cut)))
+        strips += cut
+    if not strips:
+        raise ValueError("no strip lies inside the trim: the trim loops are too small for the tolerance")
+    points = trim_points(design)
+    gaps = distances_to_strips(points, [s.surface for s in strips])
+    return Rationalisation(base.family, strips, base.boundaries, float(tolerance), narrow, points, gaps,
+                           base.creases)
