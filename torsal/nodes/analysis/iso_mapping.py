@@ -67,6 +67,18 @@ def area_text(development: Development) -> str:
             f"({100 * development.area_error:+.3g} %)")
 
 
+def edge_text(development: Development) -> str:
+    """The remark when the flat edges were not sampled to :data:`EDGE_TOLERANCE`."""
+    count = len(development.starts2d)
+    most = ", as many as the unrolling samples," if development.edge_capped else ""
+    why = f"{count:,} rulings{most} were not enough"
+    return (f"The flat edges may be shorter than the 3D edges by more than {EDGE_TOLERANCE:g} of the "
+            f"surface's size: {why} (estimated {development.edge_shortfall:.1g} short). An edge with a "
+            "corner the surface does not mark (a curve given by a formula with a kink) converges more "
+            "slowly than that estimate assumes and may be shorter still: give the edge a knot or vertex "
+            "at the corner, or split the surface there")
+
+
 class IsoMapping(Node):
     """Unroll a ruled surface into the XY plane, keeping the length of every ruling.
 
@@ -80,8 +92,9 @@ class IsoMapping(Node):
     as many as its own stretch of the edges needs where the edges run fast over some
     strips only (a fan sweeping a long stretch of one curve from a point of the other),
     evenly where they are curved all along (a full cone's rim: 88 a strip at 100
-    Segments) — so two strips made between a shared curve have flat edges of the same
-    length and their seam closes. Development is the outline of all these triangles,
+    Segments), and one on every corner of an edge (a NURBS rail's kinked knots, a
+    polyline's vertices) — so two strips made between a shared curve have flat edges of
+    the same length and their seam closes. Development is the outline of all these triangles,
     edge by straight edge, so a sheet cut along it is exactly what was unrolled. The
     first ruling starts at the origin and runs up the Y axis; the strip continues
     towards +X. Map triangulates the same rulings, except where the edges are curved all
@@ -149,6 +162,8 @@ class IsoMapping(Node):
         if overlaps(development):
             self.warn("The development overlaps itself, so it cannot be cut from one sheet: unroll "
                       "less of the surface (fewer turns) or split it into pieces")
+        if development.edge_capped or development.edge_shortfall > EDGE_TOLERANCE:
+            self.remark(edge_text(development))
         if abs(development.area_error) > AREA_NOTE:
             self.remark(f"The development's area differs from the surface's by "
                         f"{100 * development.area_error:+.3g} %: for a developable surface raise "

@@ -179,6 +179,11 @@ def _sign(x: float) -> float:
 _UNPACED = "a curve rail needs increasing u and non-decreasing curve parameters"
 
 
+#: Most Newton steps :meth:`CurveRail._crossings` takes on the pace (quadratic from the
+#: interpolated start: two or three reach rounding).
+CROSSING_STEPS = 6
+
+
 class CurveRail(Curve):
     """``C(σ(u))``: curve C run at the pace of the monotone interpolant σ through
     ``(u_i, p_i)`` (``params`` → ``curve_params``, non-decreasing). Exact derivatives to
@@ -262,18 +267,36 @@ class CurveRail(Curve):
     def _breakpoints(self) -> FloatArray:
         """The ruling parameters, and where the pace crosses one of the curve's own
         breakpoints (or its seam) — between them the rail is smooth."""
+        crossing = self._crossings(self.curve._breakpoints())
+        return np.unique(np.clip(np.concatenate([self.params, crossing, [0.0, 1.0]]), 0.0, 1.0))
+
+    def _find_kinks(self) -> FloatArray:
+        """Where the pace crosses one of the curve's kinks (a closed curve's seam when it
+        is a corner): the rail turns there as the curve does, and nowhere else (σ is C¹
+        and a stretch where it stands still keeps the rail on one point)."""
+        return np.unique(np.clip(self._crossings(self.curve.kinks()), 0.0, 1.0))
+
+    def _crossings(self, inner: FloatArray) -> FloatArray:
+        """The u where the pace crosses the curve parameters ``inner`` (each turn of them
+        on a closed curve), strictly between the first and last ruling's."""
         u, p = self.params, self.curve_params
-        inner = self.curve._breakpoints()
         turns = np.arange(np.floor(p[0]), np.ceil(p[-1]) + 1.0)
         marks = (turns[:, None] + inner[None, :]).ravel() if self.curve.closed else inner
         marks = marks[(marks > p[0]) & (marks < p[-1])]
         # σ is monotone: its inverse at the marks, by interpolation on the ruling spans,
-        # then one Newton step on the PCHIP itself
+        # then Newton steps on the PCHIP itself, kept within the ruling span (a sample put
+        # δu off a kink leaves a share of δu's arc short: to rounding, they converge)
         crossing = np.interp(marks, p, u)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = (self._pace(crossing) - marks) / self._pace(crossing, nu=1)
-        crossing = np.where(np.isfinite(step), crossing - step, crossing)
-        return np.unique(np.clip(np.concatenate([u, crossing, [0.0, 1.0]]), 0.0, 1.0))
+        span = np.clip(np.searchsorted(u, crossing, side="right") - 1, 0, len(u) - 2)
+        low, high = u[span], u[span + 1]
+        for _ in range(CROSSING_STEPS):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = (self._pace(crossing) - marks) / self._pace(crossing, nu=1)
+            step = np.where(np.isfinite(step), step, 0.0)
+            crossing = np.clip(crossing - step, low, high)
+            if not np.any(np.abs(step) > 1e-15):
+                break
+        return crossing
 
     def __repr__(self) -> str:
         return f"CurveRail({self.curve!r}, {len(self.params)} rulings)"

@@ -317,6 +317,16 @@ class NurbsSurface(Surface):
     def area(self, rtol: float = 1e-11) -> float:
         return self.area_and_centroid(rtol)[0]
 
+    def ruling_kinks(self) -> FloatArray:
+        """The inner knots across the rulings of multiplicity ≥ the degree there: the only
+        places its edges can turn a corner (elsewhere they are at least C¹)."""
+        direction = self.ruling_direction
+        if direction is None:
+            return np.empty(0)
+        knots, degree = (self.knots_u, self.degree_u) if direction == "v" else (self.knots_v, self.degree_v)
+        values, counts = np.unique(knots[(knots > 0.0) & (knots < 1.0)], return_counts=True)
+        return values[counts >= degree]
+
     def area_breaks(self) -> tuple[FloatArray | None, FloatArray | None]:
         """The distinct knots in [0, 1] (when there are not too many cells between them)."""
         spans_u, spans_v = (np.unique(np.clip(k, 0.0, 1.0)) for k in (self.knots_u, self.knots_v))

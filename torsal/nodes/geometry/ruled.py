@@ -347,6 +347,18 @@ class RuledSurface(Surface):
         """Always ``"v"``: the isocurves u = const are the rulings."""
         return "v"
 
+    def ruling_kinks(self) -> FloatArray:
+        """Where either rail turns a corner (:meth:`.curve_base.Curve.kinks`: a NURBS
+        curve's C0 knots, a polyline's vertices, a rail on such a curve where its pace
+        crosses them). A rail held on one point (a cone's apex) has none: its derivatives
+        are rounding noise, whose directions mean nothing."""
+        probe = self.rulings(9)
+        size = float(extent(probe.reshape(-1, 3)).max())
+        rails = [rail for side, rail in enumerate((self.curve_a, self.curve_b))
+                 if float(extent(probe[:, side]).max()) > 1e-9 * size + position_rounding(probe)]
+        kinks = np.concatenate([np.empty(0), *(rail.kinks() for rail in rails)])
+        return np.unique(kinks[(kinks >= 0.0) & (kinks < 1.0)])
+
     def _rails(self, u: FloatArray, order: int) -> tuple[list[FloatArray], list[FloatArray]]:
         """Derivatives of rail A and of rail B at ``u`` (one evaluation for a loft's pair),
         the points of each relative to rail A's anchor (see :meth:`_rail_anchors`)."""

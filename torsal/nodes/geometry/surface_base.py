@@ -482,6 +482,13 @@ class Surface(ABC):
             start, end = self.point_at(zeros, t), self.point_at(ones, t)
         return np.stack([start, end], axis=1)
 
+    def ruling_kinks(self) -> FloatArray:
+        """Increasing parameters across the rulings (u when ``ruling_direction`` is
+        ``"v"``) where an edge may turn a corner (a rail's kink): a chord polyline of the
+        edge samples a ruling on each, or its length converges only like 1/n
+        (:mod:`.edge_sampling`). None here; ruled and NURBS surfaces know theirs."""
+        return np.empty(0)
+
     def transformed(self, matrix: ArrayLike) -> TransformedSurface:
         """This surface moved by an affine 4 × 4 matrix (see :class:`TransformedSurface`)."""
         return TransformedSurface(self, matrix)
@@ -624,6 +631,10 @@ class TransformedSurface(Surface):
     def ruling_direction(self) -> str | None:
         """The wrapped surface's: an affine map takes straight lines to straight lines."""
         return self.surface.ruling_direction
+
+    def ruling_kinks(self) -> FloatArray:
+        """The wrapped surface's: an affine map keeps corners and parameters."""
+        return self.surface.ruling_kinks()
 
     def _area_scale(self) -> float | None:
         """k² when the matrix is a similarity (rotation, mirror, uniform scale k and a

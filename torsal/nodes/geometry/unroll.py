@@ -46,6 +46,7 @@ from torsal.nodes.geometry.vec_ops import dot as _dot
 from .area import gauss_legendre_01
 from .counts import segment_count
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
+from .edge_sampling import Samples, edge_parameters, edge_subdivisions
 from .watch import watch_check
 
 if TYPE_CHECKING:
@@ -119,7 +120,11 @@ class Development:
     unrolled ruling, or only every few of them where the edges needed far more rulings
     than a panel layout does (:func:`unroll_surface`: a full cone's rim): its vertices
     are then a subset of these, laid where the fine unrolling put them, and
-    :attr:`outline` is its outline.
+    :attr:`outline` is its outline. ``edge_shortfall`` is how much shorter than the
+    3D edges the flat ones are estimated to be, relative to the strip's size (the
+    chords' Richardson estimate, :mod:`.edge_sampling`; NaN where none was made);
+    ``edge_capped`` says the sampling stopped at its cap of rulings short of the
+    tolerance asked for, where that estimate may be low.
     """
 
     starts2d: FloatArray
@@ -134,6 +139,8 @@ class Development:
     map: DevelopmentMap = field(repr=False)
     stride: int = 1
     requested: IntArray | None = field(default=None, repr=False)
+    edge_shortfall: float = float("nan")
+    edge_capped: bool = False
 
     @property
     def rulings2d(self) -> tuple[FloatArray, FloatArray]:
@@ -351,75 +358,6 @@ def _development(
 _NEXT_CORNER = np.array([1, 2, 0])
 
 
-def _rail_lengths(rulings: FloatArray) -> FloatArray:
-    """Lengths ``(2,)`` of the two chord polylines through the rulings' starts and ends."""
-    return linalg_norm(np.diff(rulings, axis=0)).sum(axis=0)
-
-
-class _Samples:
-    """A surface's evenly spaced rulings, each count sampled once (the estimates of
-    :func:`edge_subdivisions` and :func:`edge_parameters` start from the same two)."""
-
-    def __init__(self, surface: Surface) -> None:
-        self.surface = surface
-        self._kept: dict[int, FloatArray] = {}
-
-    def rulings(self, count: int) -> FloatArray:
-        if count not in self._kept:
-            self._kept[count] = self.surface.rulings(count)
-        return self._kept[count]
-
-
-def edge_subdivisions(
-    surface: Surface | _Samples, segments: int, subdivisions: int, tolerance: float
-) -> tuple[int, FloatArray, float]:
-    """About the fewest rulings per segment (at least ``subdivisions``) for which both rails'
-    chord polylines are within ``tolerance`` (relative to the strip's size) of the rails'
-    arc lengths, the sampled rulings ``(n, 2, 3)`` and that estimated relative error.
-
-    A chord polyline of a smooth rail falls short of its arc length by C/k² at k rulings
-    per segment, so the chord sums L(k₁) and L(k₂) of two samplings give the error of the
-    finer one as |L(k₂) − L(k₁)| / ((k₂/k₁)² − 1) (Richardson). Starting from
-    ``subdivisions`` and twice that, the next k is the one that law asks for (at least
-    1.5 times the last). A rail that is not smooth enough for the law (a kink, a cusp at
-    an edge of regression) does not settle within :data:`REFINEMENTS` samplings, and one
-    that asks for more than :data:`MAX_RULINGS` rulings is not sampled further: then the
-    first sampling is returned, with its error.
-    """
-    longest = max(MAX_RULINGS // segments, 2 * subdivisions)
-    k1 = first = subdivisions
-    coarse = start = surface.rulings(segments * k1 + 1)
-    size = float(extent(coarse.reshape(-1, 3)).max()) or 1.0
-    k2 = 2 * k1
-    first_error = np.inf
-    check = watch_check()
-    for _ in range(REFINEMENTS):
-        if check:
-            check()
-        fine = surface.rulings(segments * k2 + 1)
-        step = np.abs(_rail_lengths(fine) - _rail_lengths(coarse))
-        error = float(step.max() / ((k2 / k1) ** 2 - 1.0) / size)
-        if not np.isfinite(error):
-            break
-        if k1 == first:
-            first_error = error * (k2 / k1) ** 2
-            if first_error <= tolerance:  # the first sampling was already enough
-                return k1, coarse, first_error
-        if error <= tolerance:
-            return k2, fine, error
-        wanted = int(np.ceil(k2 * np.sqrt(error / tolerance) * 1.2))
-        if k2 >= longest or wanted > 1.2 * longest:  # (by the law, the cap cannot get there)
-            break
-        k1, coarse, k2 = k2, fine, min(max(wanted, int(np.ceil(1.5 * k2))), longest)
-    return first, start, first_error
-
-
-#: Most rulings :func:`edge_subdivisions` samples along a strip.
-MAX_RULINGS = 1 << 12
-#: Most refined samplings :func:`edge_subdivisions` tries before it gives up.
-REFINEMENTS = 4
-
-
 def unroll_surface(
     surface: Surface, segments: int, subdivisions: int = 8, edge_tolerance: float | None = None
 ) -> Development:
@@ -433,7 +371,8 @@ def unroll_surface(
 
     With ``edge_tolerance`` (relative to the strip's size) more rulings are sampled until
     both flat edges — chord polylines congruent to the 3D ones — are as long as the 3D
-    edges to that tolerance (:func:`edge_subdivisions`, then :func:`edge_parameters`):
+    edges to that tolerance (:func:`.edge_sampling.edge_subdivisions`, then
+    :func:`.edge_sampling.edge_parameters`; a ruling at every corner of an edge besides):
     then two strips that share a curve have flat edges of the same length (their seam
     closes), whatever stations each strip samples the curve at. Where the edges are
     curved all along (a full cone's rim, tens of thousands of rulings), the
@@ -446,15 +385,21 @@ def unroll_surface(
     """
     segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
     requested = u = panelled = None
+    error, capped = float("nan"), False
     if edge_tolerance is None:
         rulings = surface.rulings(segments * subdivisions + 1)
     else:
-        samples = _Samples(surface)
-        subdivisions, rulings, error = edge_subdivisions(samples, segments, subdivisions, edge_tolerance)
+        samples = Samples(surface)
+        subdivisions, sampling, error = edge_subdivisions(samples, segments, subdivisions, edge_tolerance)
+        if sampling.grid is not None:  # evenly spaced, with the rulings at the edges' kinks
+            requested = sampling.grid[::subdivisions]
         if not error <= edge_tolerance:  # (NaN too) evenly spaced rulings did not get there
             plan = edge_parameters(samples, segments, subdivisions, edge_tolerance)
             if plan is not None:
-                u, requested, rulings, panelled = plan
+                sampling, requested, panelled, error, capped = plan
+        rulings = sampling.rulings
+        if requested is not None:
+            u = sampling.u
     area_3d = surface.area()
     _look()
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=area_3d)
@@ -463,7 +408,8 @@ def unroll_surface(
     _look()
     if panelled is not None:
         upright = replace(upright, map=_map_through(upright, panelled))
-    return replace(upright, stride=subdivisions, requested=requested)
+    return replace(upright, stride=subdivisions, requested=requested, edge_shortfall=error,
+                   edge_capped=capped)
 
 
 def _map_through(development: Development, keep: IntArray) -> DevelopmentMap:
@@ -475,124 +421,6 @@ def _map_through(development: Development, keep: IntArray) -> DevelopmentMap:
     )
     flat = np.vstack([development.starts2d[keep], development.ends2d[keep]])
     return DevelopmentMap(flat, np.vstack([a3, b3]), first)
-
-
-def rulings_at(surface: Surface, u: FloatArray) -> FloatArray:
-    """The surface's rulings ``(n, 2, 3)`` at parameters ``u`` across them (as
-    :meth:`~.surface_base.Surface.rulings` at evenly spaced ones)."""
-    direction = surface.ruling_direction
-    if direction is None:
-        raise ValueError("surface has no straight rulings")
-    zeros, ones = np.zeros(len(u)), np.ones(len(u))
-    if direction == "v":
-        start, end = surface.point_at(u, zeros), surface.point_at(u, ones)
-    else:
-        start, end = surface.point_at(zeros, u), surface.point_at(ones, u)
-    return np.stack([start, end], axis=1)
-
-
-#: Most rulings :func:`edge_parameters` samples along a strip.
-MAX_ADAPTIVE_RULINGS = 1 << 15
-#: The share of the tolerance :func:`edge_parameters` aims at (the C/k² law is an estimate).
-ADAPTIVE_MARGIN = 0.8
-#: :func:`edge_parameters` samples per segment where that takes at most this share of the
-#: rulings evenly spaced ones would need (the rails' error is concentrated: fans; measured
-#: 0.30 and 0.88 on two strips with fans, 1.01 on a full cylinder).
-UNEVEN = 0.9
-
-
-def edge_parameters(
-    surface: Surface | _Samples, segments: int, subdivisions: int, tolerance: float
-) -> tuple[FloatArray, IntArray, FloatArray, IntArray | None] | None:
-    """Parameters across the rulings at which both rails' chord polylines are within
-    ``tolerance`` (relative to the strip's size) of their arc lengths; the indices of the
-    segments' ends among them (the rulings the user asked for); the rulings there; and,
-    where the rulings are spread evenly, the indices of ``subdivisions`` of them per
-    segment (the development's map: see :func:`unroll_surface`), else None (the map keeps
-    them all).
-
-    Each segment j's chord error is estimated from two samplings (``k_j`` and ``2k_j``
-    rulings in it: C_j/k_j² by Richardson, the worse of its two rails), starting from
-    ``subdivisions`` a segment.
-
-    - Where the rails run fast over a few segments (a fan sweeping along a curve while
-      the other curve's point stands still), evenly spaced rulings waste most of their
-      samples elsewhere: segment j is given k_j ∝ C_j^(1/3) rulings — the counts that meet
-      the tolerance in the fewest rulings — with a margin.
-    - Where that saves little (at most :data:`UNEVEN` of what evenly spaced rulings need:
-      a full cone's rim is as curved everywhere), every segment gets the even count,
-      √(Σ C_j / tolerance), rounded up to a multiple of ``subdivisions``, so the
-      ``subdivisions`` a segment the map keeps are evenly spaced too.
-
-    The counts are estimated again from their own two samplings until those say the
-    tolerance is met (a rail whose pace changes sharply is not yet in the C/k² regime at
-    ``subdivisions`` a segment), at most :data:`ADAPTIVE_ROUNDS` times; the counts of the
-    last round stand, or as many in the same proportions as :data:`MAX_ADAPTIVE_RULINGS`
-    allows. None when the chord sums are not finite."""
-    samples = surface if isinstance(surface, _Samples) else _Samples(surface)
-    counts = np.full(segments, subdivisions, dtype=np.int64)
-    spread: bool | None = None
-    size = float(np.ptp(samples.rulings(segments * subdivisions + 1).reshape(-1, 3), axis=0).max()) or 1.0
-    target = ADAPTIVE_MARGIN * tolerance * size
-    for _ in range(ADAPTIVE_ROUNDS):
-        u, requested, rulings, sums = _per_segment(samples, counts)
-        finer = _per_segment(samples, 2 * counts)[3]
-        _look()
-        error_fine = np.abs(finer - sums).max(axis=1) / 3.0  # per segment, the worse rail, at 2k_j
-        if not np.isfinite(error_fine).all():
-            return None
-        if spread is not None and 4.0 * error_fine.sum() <= tolerance * size:  # these counts are enough
-            break
-        constant = error_fine * (2 * counts) ** 2
-        cube = np.cbrt(constant)
-        total = float(cube.sum())
-        if total == 0.0:
-            return None
-        # minimise Σ k_j subject to Σ C_j / k_j² = target: k_j = C_j^(1/3) · (Σ C^(1/3) / target)^(1/2)
-        wanted = np.maximum(np.ceil(cube * np.sqrt(total / target)), subdivisions).astype(np.int64)
-        # evenly spaced rulings would need segments · √(Σ C / target)
-        even = int(np.ceil(np.sqrt(float(constant.sum()) / target) / subdivisions)) * subdivisions
-        if spread is None:
-            spread = bool(wanted.sum() > UNEVEN * segments * even)
-        if spread:
-            wanted = np.full(segments, max(even, subdivisions), dtype=np.int64)
-        wanted = np.maximum(wanted, counts)
-        if wanted.sum() + 1 > MAX_ADAPTIVE_RULINGS:  # as near as the cap allows, in the same proportions
-            if counts.sum() >= MAX_ADAPTIVE_RULINGS // 2:
-                break
-            room = (MAX_ADAPTIVE_RULINGS - 1) / wanted.sum()
-            step = subdivisions if spread else 1
-            counts = np.maximum(np.floor(wanted * room / step).astype(np.int64) * step, counts)
-            u, requested, rulings, _ = _per_segment(samples, counts)
-            break
-        counts = wanted
-    else:
-        u, requested, rulings, _ = _per_segment(samples, counts)
-    panelled = np.arange(0, len(u), counts[0] // subdivisions) if spread else None
-    return u, requested, rulings, panelled
-
-
-#: Most rounds of estimates :func:`edge_parameters` makes.
-ADAPTIVE_ROUNDS = 4
-
-
-def _per_segment(samples: _Samples, counts: IntArray) -> tuple[FloatArray, IntArray, FloatArray, FloatArray]:
-    """Parameters with ``counts[j]`` rulings evenly spaced in each segment j, the segments'
-    ends among them, the rulings there and each segment's two chord sums ``(segments, 2)``."""
-    segments = len(counts)
-    requested = np.concatenate([[0], np.cumsum(counts)])
-    if np.all(counts == counts[0]):  # evenly spaced: perhaps sampled already
-        rulings = samples.rulings(int(requested[-1]) + 1)
-        u = np.linspace(0.0, 1.0, len(rulings))
-    else:
-        u = np.empty(int(requested[-1]) + 1)
-        segment = np.repeat(np.arange(segments), counts)
-        within = np.arange(len(segment)) - requested[segment]
-        u[:-1] = (segment + within / counts[segment]) / segments
-        u[-1] = 1.0
-        rulings = rulings_at(samples.surface, u)
-    chords = np.linalg.norm(np.diff(rulings, axis=0), axis=2)  # (rulings − 1, 2)
-    return u, requested, rulings, np.add.reduceat(chords, requested[:-1], axis=0)
 
 
 def _upright(development: Development, surface: Surface, u: FloatArray | None = None) -> Development:

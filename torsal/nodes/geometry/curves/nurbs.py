@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline
 
 from ..array_types import FloatArray
-from ..curve_base import Curve
+from ..curve_base import Curve, turning_points
 from ..spline_eval import SplineValues, evaluation_parameters
 from ..vec_ops import bounds
 from ..vectors import as_points
@@ -272,6 +272,15 @@ class NurbsCurve(Curve):
             breaks.setflags(write=False)
             self._breaks = breaks
         return breaks
+
+    def _find_kinks(self) -> FloatArray:
+        """Where the tangent turns (see :meth:`Curve.kinks`): only an inner knot of
+        multiplicity ≥ degree can be a corner (the curve is C^(degree − multiplicity)
+        elsewhere), and the ones where the tangent turns are (a re-weighted arc's double
+        knots, a degree-1 curve's vertices)."""
+        a, b = self.domain
+        values, counts = np.unique(self.knots[(self.knots > a) & (self.knots < b)], return_counts=True)
+        return turning_points(self, (values[counts >= self.degree] - a) / (b - a))
 
     # -- exact operations ---------------------------------------------------------------
 

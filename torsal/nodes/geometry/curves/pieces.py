@@ -236,24 +236,8 @@ def explode(curve: Curve) -> list[Curve]:
         corners = curve.point_at(curve._breakpoints())
         return [Line(a, b) for a, b in itertools.pairwise(corners) if np.any(a != b)]
     if isinstance(curve, NurbsCurve):
-        kinks = _kinks(curve)
+        kinks = curve.kinks()
+        kinks = kinks[kinks > 0.0]  # (not a closed curve's seam: it is already an end)
         if len(kinks):
             return split(curve, kinks)
     return [curve]
-
-
-def _kinks(curve: NurbsCurve) -> FloatArray:
-    """The parameters t of a NURBS curve's inner knots of multiplicity ≥ degree where the
-    tangent turns (where the curve is only C0)."""
-    knots, degree = np.asarray(curve.knots, dtype=float), curve.degree
-    a, b = curve.domain
-    values, counts = np.unique(knots[(knots > a) & (knots < b)], return_counts=True)
-    full = values[counts >= degree]
-    if not len(full):
-        return full
-    t = (full - a) / (b - a)
-    step = 1e-7
-    before = curve.tangent_at(np.clip(t - step, 0.0, 1.0))
-    after = curve.tangent_at(np.clip(t + step, 0.0, 1.0))
-    turned = np.einsum("ij,ij->i", before, after) < np.cos(np.radians(1e-3))
-    return t[turned]
