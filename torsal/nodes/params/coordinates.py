@@ -17,7 +17,8 @@ from typing import Any
 import numpy as np
 
 from torsal.engine.datatree import Branch
-from torsal.engine.node import Node, NodeWarning
+from torsal.engine.node import LIST, In, Node, NodeWarning
+from torsal.engine.types import NUMBER
 from torsal.nodes.common.checks import finite
 
 
@@ -69,3 +70,26 @@ def each_row(node: Node, columns: dict[str, Branch], count: int, make: Callable[
         if not i & 4095:
             node.check_cancelled()
     return results
+
+
+def xyz_inputs(x: str, y: str, z: str) -> tuple[In, In, In]:
+    """The X, Y and Z inputs of a node that builds points or vectors, each a list (whole
+    arrays when they come as arrays), 0 by default; ``x``, ``y``, ``z`` are their help."""
+    def port(name: str, help: str) -> In:
+        return In(name, NUMBER, name, help, default=0.0, access=LIST, arrays=True)
+
+    return port("X", x), port("Y", y), port("Z", z)
+
+
+def xyz_rows(
+    node: Node, x: Branch, y: Branch, z: Branch, make: Callable[..., Any]
+) -> np.ndarray | list[Any]:
+    """The X, Y and Z lists paired item by item: an ``(n, 3)`` array when they come as
+    arrays of finite numbers (the tree holds it as Triples), else ``make(x, y, z)`` row by
+    row with each refused row's warning; ``[]`` when a list is empty."""
+    columns = {"X": x, "Y": y, "Z": z}
+    count = paired_count(node, columns)
+    if count == 0:
+        return []
+    xyz = as_float_columns(columns, count)
+    return xyz if xyz is not None else each_row(node, columns, count, make)

@@ -8,7 +8,7 @@ from torsal.engine.datatree import Branch
 from torsal.engine.node import LIST, In, Node, Out
 from torsal.engine.types import NUMBER, VECTOR
 from torsal.engine.values import Vector as VectorValue
-from torsal.nodes.params.coordinates import as_float_columns, each_row, paired_count
+from torsal.nodes.params.coordinates import as_float_columns, each_row, paired_count, xyz_inputs, xyz_rows
 
 _ZERO = "The vector has zero length, so it has no direction"
 
@@ -22,31 +22,23 @@ class Vector(Node):
 
     type_id = "params.Vector"
     nickname, aliases = "Vec", ("Vector XYZ", "Construct Vector")
-    inputs = (
-        In("X", NUMBER, "X", "Component along the X axis, in model units.", default=0.0,
-           access=LIST, arrays=True),
-        In("Y", NUMBER, "Y", "Component along the Y axis, in model units.", default=0.0,
-           access=LIST, arrays=True),
-        In("Z", NUMBER, "Z", "Component along the Z axis, in model units.", default=0.0,
-           access=LIST, arrays=True),
+    inputs = xyz_inputs(
+        "Component along the X axis, in model units.",
+        "Component along the Y axis, in model units.",
+        "Component along the Z axis, in model units.",
     )
     outputs = (Out("Vector", VECTOR, "V", "The vector (X, Y, Z), one for each item of the lists.",
                    access=LIST),)
 
     def solve(self, x: Branch, y: Branch, z: Branch) -> np.ndarray | list[VectorValue | None]:
-        columns = {"X": x, "Y": y, "Z": z}
-        count = paired_count(self, columns)
-        if count == 0:
-            return []
-        xyz = as_float_columns(columns, count)
-        if xyz is None:
-            vectors = each_row(self, columns, count, VectorValue)
-            if any(v is not None and v.length == 0.0 for v in vectors):
-                self.remark(_ZERO)
-            return vectors
-        if (xyz == 0.0).all(axis=1).any():
+        made = xyz_rows(self, x, y, z, VectorValue)
+        if isinstance(made, np.ndarray):
+            zero = bool((made == 0.0).all(axis=1).any())
+        else:
+            zero = any(v is not None and v.length == 0.0 for v in made)
+        if zero:
             self.remark(_ZERO)
-        return xyz  # an (n, 3) array: the tree holds it as Triples of vectors
+        return made
 
 
 class _Unit(Node):

@@ -103,6 +103,23 @@ class Torus(Node):
         return _placed(frame, lambda centre: kernel.torus(big, small, centre))
 
 
+def _axial_inputs(plane: str, radius: str, height: str) -> tuple[In, In, In]:
+    """The Plane, Radius and Height inputs of a surface round an axis (Cylinder, Cone)."""
+    return (
+        In("Plane", PLANE, "P", plane, default=WORLD_XY),
+        In("Radius", NUMBER, "R", radius, default=1.0),
+        In("Height", NUMBER, "H", height, default=1.0),
+    )
+
+
+def _axial(plane: Any, radius: Any, height: Any, what: str, make: Callable[..., Surface]) -> Surface:
+    """A surface round the Plane's normal: ``make(radius, height, centre)`` placed on it."""
+    frame = kernel_plane("Plane", plane)
+    r = positive("Radius", radius)
+    h, frame = _height(height, frame, what)
+    return _placed(frame, lambda centre: make(r, h, centre))
+
+
 class Cylinder(Node):
     """An open cylinder (no caps) of Radius, standing Height along the Plane's normal.
 
@@ -114,20 +131,15 @@ class Cylinder(Node):
 
     type_id = "surfaces.Cylinder"
     nickname, aliases = "Cyl", ("cylinder surface",)
-    inputs = (
-        In("Plane", PLANE, "P", "The base: its origin is the centre of the bottom circle.",
-           default=WORLD_XY),
-        In("Radius", NUMBER, "R", "Radius of the cylinder, in model units (positive).", default=1.0),
-        In("Height", NUMBER, "H", "Length along the Plane's normal (not 0; negative goes below).",
-           default=1.0),
+    inputs = _axial_inputs(
+        "The base: its origin is the centre of the bottom circle.",
+        "Radius of the cylinder, in model units (positive).",
+        "Length along the Plane's normal (not 0; negative goes below).",
     )
     outputs = (Out("Cylinder", SURFACE, "C", "The cylinder's side, without caps."),)
 
     def solve(self, plane: Any, radius: Any, height: Any) -> Surface:
-        frame = kernel_plane("Plane", plane)
-        r = positive("Radius", radius)
-        h, frame = _height(height, frame, "cylinder")
-        return _placed(frame, lambda centre: kernel.cylinder(r, h, centre))
+        return _axial(plane, radius, height, "cylinder", kernel.cylinder)
 
 
 class Cone(Node):
@@ -141,17 +153,12 @@ class Cone(Node):
 
     type_id = "surfaces.Cone"
     nickname, aliases = "Cone", ("cone surface",)
-    inputs = (
-        In("Plane", PLANE, "P", "The base: its origin is the centre of the base circle.",
-           default=WORLD_XY),
-        In("Radius", NUMBER, "R", "Radius of the base circle, in model units (positive).", default=1.0),
-        In("Height", NUMBER, "H", "From the base to the apex (not 0; negative goes below).",
-           default=1.0),
+    inputs = _axial_inputs(
+        "The base: its origin is the centre of the base circle.",
+        "Radius of the base circle, in model units (positive).",
+        "From the base to the apex (not 0; negative goes below).",
     )
     outputs = (Out("Cone", SURFACE, "C", "The cone's side, without the base disc."),)
 
     def solve(self, plane: Any, radius: Any, height: Any) -> Surface:
-        frame = kernel_plane("Plane", plane)
-        r = positive("Radius", radius)
-        h, frame = _height(height, frame, "cone")
-        return _placed(frame, lambda centre: kernel.cone(r, h, centre))
+        return _axial(plane, radius, height, "cone", kernel.cone)
