@@ -405,8 +405,11 @@ def _polished(
         if factor is None:
             normal = np.einsum("ki,kj->ij", j, j)
             normal[np.diag_indices_from(normal)] += PULL**2
-            with _one_blas_thread():
-                factor = cho_factor(normal, lower=True)
+            try:
+                with _one_blas_thread():
+                    factor = cho_factor(normal, lower=True)
+            except np.linalg.LinAlgError:  # not positive definite to rounding (huge entries)
+                return theta, step
         with _one_blas_thread():
             delta = -cho_solve(factor, gradient)
         size = float(np.abs(delta).max(initial=0.0))
