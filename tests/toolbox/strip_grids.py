@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from tests.nodes.helpers import out
 
@@ -21,3 +22,19 @@ def grid_area(points: np.ndarray) -> float:
     a, b, c, d = points[:-1, :-1], points[1:, :-1], points[1:, 1:], points[:-1, 1:]
     return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1)
                         + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
+
+
+def gaps_to_edge(strip, v: float, points: np.ndarray) -> np.ndarray:
+    """Distance of each point from the strip's edge at ``v``: the polyline of 20001 of its
+    points and its rulings' ends (where the edge turns from a boundary onto the cut at the
+    design's edge), from the nearest vertex's two chords."""
+    t = np.union1d(np.linspace(0, 1, 20001), np.asarray(strip.ruling_parameters, dtype=float))
+    edge = strip.point_at(t, np.full_like(t, v))
+    _, k = cKDTree(edge).query(points)
+    best = np.full(len(points), np.inf)
+    for first in (np.maximum(k - 1, 0), np.minimum(k, len(edge) - 2)):
+        a, d = edge[first], edge[first + 1] - edge[first]
+        dd = np.einsum("ij,ij->i", d, d)  # (0 where the edge stands still: a fan's apex)
+        w = np.clip(np.einsum("ij,ij->i", points - a, d) / np.where(dd > 0, dd, 1.0), 0, 1)
+        best = np.minimum(best, np.linalg.norm(a + w[:, None] * d - points, axis=1))
+    return best

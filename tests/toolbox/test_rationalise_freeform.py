@@ -23,7 +23,7 @@ from scipy.spatial import cKDTree
 
 from tests.nodes.helpers import run, texts, tree
 from tests.toolbox.freeform_designs import DESIGNS
-from tests.toolbox.strip_grids import grid, grid_area, items
+from tests.toolbox.strip_grids import gaps_to_edge, grid, grid_area, items
 from torsal.nodes.developable.rationalise import Rationalise
 
 TOL = 0.02
@@ -214,22 +214,6 @@ def test_the_waves_creasing_fans_are_few_and_the_one_warning_names_their_strips(
     assert len(warnings) == 1 and warnings[0].startswith("The strips are within the tolerance, but")
 
 
-def _gaps_to_edge(strip, v: float, points: np.ndarray) -> np.ndarray:
-    """Distance of each point from the strip's edge at ``v``: the polyline of 20001 of its
-    points and its rulings' ends (where the edge turns from a boundary onto the cut at the
-    design's edge), from the nearest vertex's two chords."""
-    t = np.union1d(np.linspace(0, 1, 20001), np.asarray(strip.ruling_parameters, dtype=float))
-    edge = strip.point_at(t, np.full_like(t, v))
-    _, k = cKDTree(edge).query(points)
-    best = np.full(len(points), np.inf)
-    for first in (np.maximum(k - 1, 0), np.minimum(k, len(edge) - 2)):
-        a, d = edge[first], edge[first + 1] - edge[first]
-        dd = np.einsum("ij,ij->i", d, d)  # (0 where the edge stands still: a fan's apex)
-        w = np.clip(np.einsum("ij,ij->i", points - a, d) / np.where(dd > 0, dd, 1.0), 0, 1)
-        best = np.minimum(best, np.linalg.norm(a + w[:, None] * d - points, axis=1))
-    return best
-
-
 @pytest.mark.parametrize("name", FAST)
 def test_neighbours_share_their_boundary_lifted_at_most_four_fifths_of_the_tolerance(name):
     """Every point of an inner boundary lies on the edges of both strips beside it (a strip
@@ -241,7 +225,7 @@ def test_neighbours_share_their_boundary_lifted_at_most_four_fifths_of_the_toler
     for i, (lower, upper) in enumerate(itertools.pairwise(strips)):
         curve = boundaries[i + 1].point_at(t)
         for strip, v in ((lower, 1.0), (upper, 0.0)):  # both edges run on the one boundary curve
-            assert _gaps_to_edge(strip, v, curve).max() <= 1e-9 * design.size  # chords sag ~2e-10
+            assert gaps_to_edge(strip, v, curve).max() <= 1e-9 * design.size  # chords sag ~2e-10
         lift = design.distance(curve)
         assert lift.max() <= 0.8 * TOL * design.unit * 1.0001
 
