@@ -25,11 +25,19 @@ def grid_area(points: np.ndarray) -> float:
 
 
 def gaps_to_edge(strip, v: float, points: np.ndarray) -> np.ndarray:
-    """Distance of each point from the strip's edge at ``v``: the polyline of 20001 of its
-    points and its rulings' ends (where the edge turns from a boundary onto the cut at the
-    design's edge), from the nearest vertex's two chords."""
+    """Distance of each point from the strip's edge at ``v``: the polyline of its points at
+    20001 parameters, its rulings' (where the edge turns from a boundary onto the cut at the
+    design's edge) and more where its chords are longer than 1/20000 of it, from the
+    nearest vertex's two chords."""
     t = np.union1d(np.linspace(0, 1, 20001), np.asarray(strip.ruling_parameters, dtype=float))
     edge = strip.point_at(t, np.full_like(t, v))
+    chord = float(np.linalg.norm(np.diff(edge, axis=0), axis=1).sum()) / 20000
+    for _ in range(8):  # where the edge runs fast (a rail hurrying past a fan), halved chords
+        long = np.linalg.norm(np.diff(edge, axis=0), axis=1) > chord
+        if not long.any():
+            break
+        t = np.union1d(t, 0.5 * (t[:-1] + t[1:])[long])
+        edge = strip.point_at(t, np.full_like(t, v))
     _, k = cKDTree(edge).query(points)
     best = np.full(len(points), np.inf)
     for first in (np.maximum(k - 1, 0), np.minimum(k, len(edge) - 2)):
