@@ -12,7 +12,9 @@ dense samples of every strip), torsal and fan rulings, the fan and creased share
 the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly
 spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
 on every design: within the tolerance by the independent measure, never more strips than
-the baseline, and a solve of at most 60 s on this 2-core machine.
+the baseline, a solve of at most 60 s on this 2-core machine and at most 10 % of the
+strips' area in fans (the last not yet met where the parameter lines turn asymptotic:
+the wave's and the double bump's inflections).
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ from torsal.nodes.geometry.developable.rationalise import creased_area, rational
 TOLERANCES = (0.01, 0.02, 0.05)
 #: The issue's bar for one solve on this machine, s.
 SOLVE_LIMIT = 60.0
+#: The issue's bar for the strips' area in fans (flat triangles and end cones), a share.
+FAN_LIMIT = 0.10
 
 
 def _fan_area(strips) -> float:
@@ -60,7 +64,8 @@ CASES = [*DESIGNS, "kaohsiung"]
 def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(name):
     surface = DESIGNS[name].surface() if name in DESIGNS else kaohsiung_roof()
     unit = DESIGNS[name].unit if name in DESIGNS else 1.0
-    rows = []
+    rows: list[str] = []
+    failed: list[str] = []
     for tolerance in TOLERANCES:
         tol = tolerance * unit
         start = time.perf_counter()
@@ -78,7 +83,11 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
             f"{baseline} |"
         )
         print(rows[-1], flush=True)
-        assert independent <= tol * 1.0001
-        assert result.within and result.covered
-        assert len(result.strips) <= baseline
-        assert seconds <= SOLVE_LIMIT
+        checks = {"independent deviation within the tolerance": independent <= tol * 1.0001,
+                  "certified within and covered": result.within and result.covered,
+                  "no more strips than the baseline": len(result.strips) <= baseline,
+                  f"solve within {SOLVE_LIMIT:g} s": seconds <= SOLVE_LIMIT,
+                  f"fan area within {FAN_LIMIT:g} of the strips'": _fan_area(result.strips) <= FAN_LIMIT}
+        failed += [f"{100 * tolerance:g} cm: {what}" for what, ok in checks.items() if not ok]
+    # every tolerance is solved and printed before the checks fail, so the table is whole
+    assert not failed, failed

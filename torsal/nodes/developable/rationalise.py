@@ -95,16 +95,23 @@ class Rationalise(Node):
     curvature k sags by about k·w²/8 under the design). Each boundary is lifted off the
     design by up to 0.8 × Tolerance against that sag, so a strip deviates to both sides
     of the design and may be about √1.8 as wide: about three quarters as many strips as
-    with boundaries on the design (the issue's isocurve baseline). Where a boundary runs
-    along an asymptotic
-    direction of the design (a straight line of a saddle, the inflection of a wave) no
-    torsal ruling joins it to its neighbour and the strip is closed with creasing
+    with boundaries on the design (the issue's isocurve baseline).
+    The rulings of a strip run in the direction conjugate to its boundaries (along lines
+    of curvature, across them; at an angle where the boundaries cross the lines of
+    curvature, as on a saddle turned to its outline). Where they cross the boundaries
+    obliquely, the rulings near the design's edge leave it on one boundary before the
+    other: such a strip is run on past the edge (the design continued by its Taylor
+    expansion) and cut by it, as the D-strip models of Pottmann et al. 2008 cut their
+    strips by the outline — so its ends are torsal and follow the design's edge, instead
+    of a cone that bends away from the design over a fifth of a saddle's area. Where a
+    boundary runs along an asymptotic direction of the design (the inflection of a wave)
+    no torsal ruling joins it to its neighbour and the strip is closed with creasing
     triangles; the node then also tries the other family and keeps the one that creases
-    less (then the one with fewer strips). It does not yet trace lines of curvature: a
-    boundary family along them (the D-strip models of Pottmann et al. 2008) must leave
-    the design through its sides, and strips trimmed by the design's outline are not
-    made yet. Where the design's parameter lines are far from its curvature lines, give
-    Guides (or a Direction) along the lines of curvature.
+    less (then the one with fewer strips). The boundaries themselves are parameter lines,
+    not traced lines of curvature: a family along them leaves the design through its
+    sides (a field fitted to them and held to the edges creased more and was 5–10×
+    slower). Where the design's parameter lines are far from its curvature lines and the
+    strips crease, give Guides (or a Direction) along the lines of curvature.
 
     With Direction, the boundaries are the parameter lines running most nearly along it,
     on the design (not lifted).

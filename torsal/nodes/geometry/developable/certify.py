@@ -165,9 +165,16 @@ NEAREST = 24
 
 
 def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
-    gu, gv = np.meshgrid(np.linspace(0.0, 1.0, ALONG), np.linspace(0.0, 1.0, ACROSS), indexing="ij")
+    # along: at the strip's rulings too, where its edges may turn a corner (a strip cut at
+    # the design's edge, :mod:`.outline_cut`): a mesh that cut the corner would over-report
+    along = np.linspace(0.0, 1.0, ALONG)
+    rulings = getattr(strip, "ruling_parameters", None)
+    if rulings is not None:
+        along = np.union1d(along, np.clip(np.asarray(rulings, dtype=float), 0.0, 1.0))
+    count = len(along)
+    gu, gv = np.meshgrid(along, np.linspace(0.0, 1.0, ACROSS), indexing="ij")
     grid = strip.point_at(gu.ravel(), gv.ravel())
-    a = (np.arange(ALONG - 1)[:, None] * ACROSS + np.arange(ACROSS - 1)).ravel()  # cells' first corners
+    a = (np.arange(count - 1)[:, None] * ACROSS + np.arange(ACROSS - 1)).ravel()  # cells' first corners
     b, c, d = a + ACROSS, a + ACROSS + 1, a + 1
     # cells by their centres (a fan's cells share a corner at its apex, never a centre)
     centres = 0.25 * (grid[a] + grid[b] + grid[c] + grid[d])

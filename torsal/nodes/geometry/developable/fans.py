@@ -108,6 +108,10 @@ def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArr
     both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
     size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
     same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
+    # a piece next to a "ruling" of no length (the point a strip trimmed by the design's
+    # edge tapers to, :mod:`.outline_cut`) is one triangle: flat, it creases nothing
+    point = norm(ends - starts) <= 1e-12 * size
+    triangle = point[:-1] | point[1:]
     # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
     padded = np.zeros(len(in_fan) + 2, dtype=bool)
     padded[1:-1] = in_fan
@@ -116,7 +120,7 @@ def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArr
         one_apex = np.count_nonzero(same_start[first:stop]) == stop - first or (
             np.count_nonzero(same_end[first:stop]) == stop - first
         )
-        creased[first:stop] = not one_apex
+        creased[first:stop] = not (one_apex or np.all(triangle[first:stop]))
     return creased
 
 

@@ -22,7 +22,10 @@ Method
    (:func:`~torsal.nodes.geometry.developable.ruling_developable`): certified torsal rulings,
    flat fans where none exist, and its Surface is
    :func:`~torsal.nodes.geometry.curve_rail.ruled_between`, whose edges run on the boundary
-   curves themselves — so two neighbours share their boundary exactly.
+   curves themselves — so two neighbours share their boundary exactly. Where its rulings
+   cross the boundaries obliquely its ends would be cones through a boundary's end point
+   (a fifth of a saddle turned to its outline); the strip is then run on past the
+   design's edge and cut by it (:mod:`.outline_cut`): torsal to its ends, which follow the edge.
 4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
    guessed from the square law (a straight ruling's sag grows as the width²) and kept
@@ -35,18 +38,20 @@ Method
    reached.
 
 What this version does not do (yet): the boundaries are not traced along lines of
-curvature. A family that follows them leaves the design through its sides, so its
-strips would have to be trimmed by the design's outline (the D-strip models of
-Pottmann et al. 2008); a field fitted to the curvature directions but held to the
-design's edges (the level sets of one function, tried) bent away from them near the
-edges and creased more than the parameter lines on the test designs.
+curvature. A family that follows them leaves the design through its sides; the strips'
+ends are cut by the design's outline (:mod:`.outline_cut`, the D-strip models of Pottmann et
+al. 2008), but a boundary that itself runs out through a side is not made. A field fitted
+to the curvature directions but held to the design's edges (the level sets of one
+function, tried) bent away from them near the edges and creased more than the parameter
+lines on the test designs. Where a boundary runs along an asymptotic direction (a wave's
+inflection) the strip still creases there.
 """
 
 from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -58,6 +63,7 @@ from torsal.nodes.geometry.developable.certify import certified_deviation, creas
 from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from torsal.nodes.geometry.developable.offset import LiftedBoundaries, lift_for
+from torsal.nodes.geometry.developable.outline_cut import trim_ends
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
 from torsal.nodes.geometry.developable.warp import curve_warp
 from torsal.nodes.geometry.ruled import RuledSurface
@@ -84,6 +90,10 @@ class Strip:
     #: at the strip's two ends from the strip
     deviation: float
     where: FloatArray  #: (3,) the strip's point farthest from the design (of its samples)
+    #: each ruling's parameter on the lower and the upper boundary (NaN where a ruling ends
+    #: on a trim at the design's edge, :mod:`.outline_cut`)
+    on_lower: FloatArray | None = None
+    on_upper: FloatArray | None = None
 
     @property
     def width(self) -> float:
@@ -163,28 +173,43 @@ class Unmade(ValueError):
 
 def strip_between(
     design: Surface, boundaries: Boundaries, lo: float, hi: float, segments: int = 24,
-    warp_tolerance: float = 1e-7, tolerance: float | None = None,
+    warp_tolerance: float = 1e-7, tolerance: float | None = None, trim: bool = True,
 ) -> Strip:
     """The strip between the boundaries at levels ``lo`` and ``hi``, with its warp and its
     deviation certified against ``tolerance`` (:mod:`.certify`; without one, the bound on
-    the first grid of samples)."""
+    the first grid of samples). With ``trim``, end cones are replaced by the strip run on
+    past the design's edge and cut by it (:mod:`.outline_cut`) where that has less fan area."""
     check = watch_check()
     if check:
         check()
     a, b = boundaries.at(lo), boundaries.at(hi)
     result = ruling_developable(a, b, segments, warp_tolerance)
+    trimmed = None
+    if trim and np.any(result.fan[[0, -1]]) and isinstance(boundaries, IsoBoundaries | LiftedBoundaries):
+        lift = boundaries.lift if isinstance(boundaries, LiftedBoundaries) else None
+        trimmed = trim_ends(design, boundaries.family, lift, lo, hi, result, (a, b), warp_tolerance)
+        if trimmed is not None and not trimmed.result.fan_share < result.fan_share:
+            trimmed = None
     try:
-        surface = ruled_between(a, result.s, b, result.t)
+        if trimmed is not None:  # the ends run past the design's edge and are cut by it
+            result = trimmed.result
+            surface = ruled_between(trimmed.curve_a, result.s, trimmed.curve_b, result.t)
+        else:
+            surface = ruled_between(a, result.s, b, result.t)
     except ValueError as exc:  # partners that run back (a wide trial over a sharp bump)
         raise Unmade(str(exc)) from exc
-    warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
+    if trimmed is not None:
+        warp = result.warp
+    else:
+        warp = curve_warp(a, b, result.s, result.t, result.starts, result.ends)
     reference = tolerance if tolerance is not None else np.inf
     deviation = certified_deviation(design, surface, reference)
     bound, where = deviation.bound, deviation.where
     if deviation.sampled <= reference:  # and the design's edge at the strip's two ends
         gap, at = end_gaps(design, surface, a, b)
         bound, where = (gap, at) if gap > bound else (bound, where)
-    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), bound, where)
+    on = (trimmed.on_a, trimmed.on_b) if trimmed is not None else (result.s, result.t)
+    return Strip(lo, hi, result, surface, np.asarray(warp, dtype=float), bound, where, *on)
 
 
 #: Strips are widened to about this share of the tolerance (deviation grows as width²).
@@ -218,7 +243,7 @@ def _march(
         for trial in range(TRIALS * 4):
             try:
                 strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
-                                      tolerance)
+                                      tolerance, trim=False)
             except Unmade:  # too wide to be made: narrower
                 bad = min(bad, w)
                 w = 0.5 * (((good.hi - lo) if good is not None else 0.0) + bad)
@@ -256,7 +281,7 @@ def _march(
             for _ in range(8):
                 try:
                     settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
-                                            warp_tolerance, tolerance)
+                                            warp_tolerance, tolerance, trim=False)
                     break
                 except Unmade:
                     w *= 0.5
@@ -296,7 +321,7 @@ def _even(
     strips = []
     for lo, hi in itertools.pairwise(cuts):
         strips.append(strip_between(design, boundaries, float(lo), float(hi), segments, warp_tolerance,
-                                    tolerance))
+                                    tolerance, trim=False))
         if progress is not None:
             progress(float(hi))
     return strips
@@ -343,6 +368,31 @@ def _cover(
     if strips is None:  # the tolerance needs more than max_strips: that many, evenly spaced
         return _even(design, family_of, max_strips, segments, warp_tolerance, tolerance), []
     return strips, narrow
+
+
+def _trimmed(design: Surface, family_of: Boundaries, strip: Strip, segments: int, warp_tolerance: float,
+             tolerance: float) -> Strip:
+    """``strip`` with its end cones replaced by its run past the design's edge, cut there
+    (:mod:`.outline_cut`), when that is within the tolerance (or no farther than the strip)."""
+    if not np.any(strip.result.fan[[0, -1]]) or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
+        return strip
+    try:
+        cut = strip_between(design, family_of, strip.lo, strip.hi, segments, warp_tolerance, tolerance)
+    except Unmade:
+        return strip
+    if cut.result.fan_share < strip.result.fan_share and cut.deviation <= max(tolerance, strip.deviation):
+        return cut
+    return strip
+
+
+def _on_boundary(strip: Strip, side: str) -> RulingResult:
+    """The strip's rulings that end on its ``side`` boundary, with their parameters there
+    (a trimmed strip's rails run on past its boundaries, :mod:`.outline_cut`)."""
+    s = strip.on_lower if strip.on_lower is not None else strip.result.s
+    t = strip.on_upper if strip.on_upper is not None else strip.result.t
+    keep = np.isfinite(t if side == "upper" else s)
+    r = strip.result
+    return replace(r, s=s[keep], t=t[keep], starts=r.starts[keep], ends=r.ends[keep])
 
 
 def rationalise(
@@ -395,6 +445,9 @@ def rationalise(
             break  # within the tolerance and smooth enough: the next family is not tried
     assert best is not None
     _, family_of, strips, narrow = best
+    # the strips' widths are found with their ends closed by cones (cheaper to certify);
+    # the kept strips' ends are then cut at the design's edge where that is smoother
+    strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
     for strip in strips:
         if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
             again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)
@@ -402,7 +455,8 @@ def rationalise(
     params = [strips[0].lo] + [s.hi for s in strips]
     boundaries = [family_of.at(p) for p in params]
     points, gaps = uncovered(design, [s.surface for s in strips])
-    creases = [crease_angle(low.result, boundaries[i + 1], up.result, boundaries[i + 1])
+    creases = [crease_angle(_on_boundary(low, "upper"), boundaries[i + 1], _on_boundary(up, "lower"),
+                            boundaries[i + 1])
                for i, (low, up) in enumerate(itertools.pairwise(strips))]
     return Rationalisation(family_of.family, strips, boundaries, float(tolerance), narrow, points, gaps,
                            creases)
