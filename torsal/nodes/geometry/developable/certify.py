@@ -170,7 +170,8 @@ def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
     along = np.linspace(0.0, 1.0, ALONG)
     rulings = getattr(strip, "ruling_parameters", None)
     if rulings is not None:
-        along = np.union1d(along, np.clip(np.asarray(rulings, dtype=float), 0.0, 1.0))
+        rulings = np.asarray(rulings, dtype=float)
+        along = np.union1d(along, np.clip(rulings[np.isfinite(rulings)], 0.0, 1.0))
     count = len(along)
     gu, gv = np.meshgrid(along, np.linspace(0.0, 1.0, ACROSS), indexing="ij")
     grid = strip.point_at(gu.ravel(), gv.ravel())
@@ -182,8 +183,11 @@ def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
     cells = np.asarray(index).reshape(len(points), NEAREST)
     triangles = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], 1)[cells].reshape(-1, 3)
     query = np.repeat(points, NEAREST * 2, axis=0)
-    found = closest_on_triangles(grid[triangles], query)
-    return np.linalg.norm(found - query, axis=1).reshape(len(points), -1).min(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a cell of zero width: NaN, left out
+        found = closest_on_triangles(grid[triangles], query)
+    # a degenerate triangle (two rulings a hair apart) has no closest point of its own; its
+    # neighbours' edges hold it, so the nearest of the others is the distance
+    return np.fmin.reduce(np.linalg.norm(found - query, axis=1).reshape(len(points), -1), axis=1)
 
 
 def crease_angle(lower: RulingResult, lower_edge: Curve, upper: RulingResult, upper_edge: Curve) -> float:

@@ -405,6 +405,7 @@ def rationalise(
     progress: Callable[[float], None] | None = None,
     guides: Sequence[Curve] = (),
     min_width: float = 0.0,
+    cut_at_edge: bool = True,
 ) -> Rationalisation:
     """Developable strips within ``tolerance`` of ``design`` (see the module).
 
@@ -414,6 +415,9 @@ def rationalise(
     guides that cannot be followed (saying which). ``progress`` is called with the share
     of the design covered so far (0 to 1). Strips are at least ``min_width`` wide (at
     their rulings' median length) even where the tolerance would need narrower ones (listed in ``narrow``).
+    With ``cut_at_edge`` (the default) a strip's end cones give way to the strip run on past
+    the design's edge and cut by it, where that is smoother (:mod:`.outline_cut`); a caller
+    that cuts the strips itself (a trimmed face, :mod:`.trimmed`) turns it off.
     """
     if not (tolerance > 0.0 and np.isfinite(tolerance)):
         raise ValueError(f"the tolerance must be a positive distance, not {tolerance!r}")
@@ -447,7 +451,8 @@ def rationalise(
     _, family_of, strips, narrow = best
     # the strips' widths are found with their ends closed by cones (cheaper to certify);
     # the kept strips' ends are then cut at the design's edge where that is smoother
-    strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
+    if cut_at_edge:
+        strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
     for strip in strips:
         if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
             again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)

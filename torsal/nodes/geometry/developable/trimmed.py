@@ -536,7 +536,8 @@ def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **
     """Strips within ``tolerance`` of a trimmed design, inside its trim (see the module);
     the other arguments as :func:`~torsal.nodes.geometry.developable.rationalise.rationalise`."""
     patch = patch_of(design)
-    base = rationalise(patch, tolerance, *args, **options)
+    # the box's edges lie outside the trim: the strips are cut by the trim, not by them
+    base = rationalise(patch, tolerance, *args, cut_at_edge=False, **options)
     inside = signed_inside(design, patch, REACH * tolerance)
     strips: list[Strip] = []
     narrow: list[int] = []
