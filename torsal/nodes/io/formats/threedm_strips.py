@@ -40,7 +40,7 @@ them one polysurface.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import rhino3dm as rh
@@ -113,6 +113,10 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         np.abs(lines[1:, 1] - lines[:-1, 1]).max(axis=1) <= same)
     corner = _corners(strip, u)
     conical = _conical(strip, u, shared)
+    # next to a ruling of no length (a strip cut to a point at the design's edge) both rails
+    # run into one point: no pairing of them is developable there, a cone from it is
+    tip = np.linalg.norm(lines[:, 1] - lines[:, 0], axis=1) <= same
+    conical |= (tip[:-1] | tip[1:]) & ~shared
     pieces: list[Piece] = []
     k = 0
     n = len(lines)
@@ -132,7 +136,10 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             k += 1
             continue
         if conical[k]:  # no developable pairing: two cones meeting on a diagonal
-            pieces += _cones(strip, u, lines, k, size)
+            cones = _cones(strip, u, lines, k, size)
+            if tip[k] or tip[k + 1]:  # a face of its own: one of its lines is a point
+                cones = [replace(piece, rails=None) for piece in cones]
+            pieces += cones
             k += 1
             continue
         end = k + 1
