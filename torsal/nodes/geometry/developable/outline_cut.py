@@ -57,6 +57,7 @@ from scipy.interpolate import CubicHermiteSpline
 from ..array_types import BoolArray, FloatArray
 from ..curve_base import Curve
 from ..surface_base import Surface
+from ..vec_ops import differenced
 from .offset import Lift, LiftedIsoCurve, _normal_jet
 from .ruling import RulingResult
 
@@ -118,6 +119,8 @@ class _ExtendedLift:
 class _Hermite(Curve):
     """The cubic Hermite curve through ``points`` with ``tangents`` at parameters ``x``."""
 
+    exact_derivatives = True  # a spline's own derivatives (vec_ops.differenced)
+
     def __init__(self, x: FloatArray, points: FloatArray, tangents: FloatArray) -> None:
         self.spline = CubicHermiteSpline(x, points, tangents)
 
@@ -144,6 +147,11 @@ class Joined(Curve):
 
     def __repr__(self) -> str:
         return f"Joined({len(self.pieces)} pieces)"
+
+    @property
+    def exact_derivatives(self) -> bool:
+        """As exact as its pieces (vec_ops.differenced)."""
+        return not any(differenced(piece) for piece in self.pieces)
 
     def at(self, piece: int, t: FloatArray) -> FloatArray:
         """This curve's parameter for parameters ``t`` of piece ``piece``."""
