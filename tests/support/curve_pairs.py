@@ -195,6 +195,22 @@ def _angle(curve: NurbsCurve, t: Array) -> Array:
     return np.arctan2(p[:, 1], p[:, 0])
 
 
+def _same_angle(a, b) -> Callable[[Array], Array]:
+    """The partner on B of each A(s): the point at the same angle round the cone's axis
+    (B's angle increases along it), by bisection."""
+
+    def partner(s: Array) -> Array:
+        target = _angle(a, np.atleast_1d(np.asarray(s, float)))
+        low, high = np.zeros_like(target), np.ones_like(target)
+        for _ in range(60):
+            mid = 0.5 * (low + high)
+            below = _angle(b, mid) < target
+            low, high = np.where(below, mid, low), np.where(below, high, mid)
+        return 0.5 * (low + high)
+
+    return partner
+
+
 def nurbs_cone_pair(sweep: float = 2.4) -> Pair:
     """Rational quadratic curves on the cone of half-angle CONE_ALPHA (apex at the origin):
     A from 4 arc spans, B from 7, both re-weighted; partners share their angle."""
@@ -202,16 +218,7 @@ def nurbs_cone_pair(sweep: float = 2.4) -> Pair:
     a = _arc_nurbs(1.0 * tan, 1.0, sweep, 4, 1.0 + 0.25 * np.sin(1.7 * np.arange(9)))
     b = _arc_nurbs(2.2 * tan, 2.2, sweep, 7, 1.0 + 0.3 * np.cos(1.3 * np.arange(15)))
 
-    def partner(s: Array) -> Array:
-        target = _angle(a, np.atleast_1d(np.asarray(s, float)))
-        low, high = np.zeros_like(target), np.ones_like(target)
-        for _ in range(60):  # bisection on the (increasing) angle of B
-            mid = 0.5 * (low + high)
-            below = _angle(b, mid) < target
-            low, high = np.where(below, mid, low), np.where(below, high, mid)
-        return 0.5 * (low + high)
-
-    return Pair(a, b, partner, _size(a, b))
+    return Pair(a, b, _same_angle(a, b), _size(a, b))
 
 
 PAIRS["nurbs_cone"] = nurbs_cone_pair
@@ -243,16 +250,7 @@ def conic_sections_pair(sweep: float = 2.4) -> Pair:
     a = circle_a.transformed(_projection([0.15, 0.1, 1.0], 1.0))
     b = circle_b.transformed(_projection([-0.1, 0.2, 1.0], 2.4))
 
-    def partner(s: Array) -> Array:
-        target = _angle(a, np.atleast_1d(np.asarray(s, float)))
-        low, high = np.zeros_like(target), np.ones_like(target)
-        for _ in range(60):  # bisection on the (increasing) angle of B
-            mid = 0.5 * (low + high)
-            below = _angle(b, mid) < target
-            low, high = np.where(below, mid, low), np.where(below, high, mid)
-        return 0.5 * (low + high)
-
-    return Pair(a, b, partner, _size(a, b))
+    return Pair(a, b, _same_angle(a, b), _size(a, b))
 
 
 PAIRS["conic_sections"] = conic_sections_pair
