@@ -55,6 +55,7 @@ if REASON:
 ROOT = Path(__file__).resolve().parents[2]
 FLAGSHIP = ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph"
 RATIO_LIMIT = 2.6
+CPU_RATIO_LIMIT = 2.0
 ROUNDS = 3
 
 #: the baseline: an empty main window with a QtInteractor, timed to its first render
@@ -68,7 +69,8 @@ window = QMainWindow()
 plotter = QtInteractor(window, auto_update=False, multi_samples=0)
 window.setCentralWidget(plotter)
 def rendered(*_):
-    print(f"torsal-startup first-frame {time.time():.4f}", file=sys.stderr, flush=True)
+    stamp = f"torsal-startup first-frame {time.time():.4f} {time.process_time():.4f}"
+    print(stamp, file=sys.stderr, flush=True)
     app.quit()
 plotter.ren_win.AddObserver("EndEvent", rendered)
 window.resize(1500, 920)
@@ -83,26 +85,44 @@ def _stages(command: list[str], env: dict[str, str], cpu: dict[str, float]) -> d
     return stages(command, env, until="first-frame", timeout=120, cpu=cpu)
 
 
+def _env(folder: str) -> dict[str, str]:
+    """A child's environment: a fresh settings folder, and the compiled modules kept in
+    ``folder`` across launches (an installed Torsal, as every library, runs from the
+    bytecode pip compiled at install; a checkout run with ``PYTHONDONTWRITEBYTECODE``
+    would compile Torsal's 250 modules from source at every launch, 0.2-0.3 CPU s a user
+    never pays)."""
+    env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=tempfile.mkdtemp(dir=folder),
+               PYTHONPATH=str(ROOT), PYTHONPYCACHEPREFIX=str(Path(folder) / "bytecode"))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
 def test_launch_to_the_flagships_first_solved_frame_against_an_empty_qtinteractor_window():
     ratios, ours, baselines, cpu_ratios = [], [], [], []
-    for _ in range(ROUNDS):
-        with tempfile.TemporaryDirectory() as folder:
-            env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=folder, PYTHONPATH=str(ROOT))
+    torsal_command = [sys.executable, "-m", "torsal.app.cli", "gui", str(FLAGSHIP)]
+    baseline_command = [sys.executable, "-c", _BASELINE, str(time.time())]
+    with tempfile.TemporaryDirectory() as folder:
+        # a first launch of each compiles every module it imports into the bytecode folder
+        _stages(baseline_command, _env(folder), {})
+        _stages(torsal_command, _env(folder), {})
+        for _ in range(ROUNDS):
             baseline_cpu: dict[str, float] = {}
             torsal_cpu: dict[str, float] = {}
-            baseline = _stages([sys.executable, "-c", _BASELINE, str(time.time())], env, baseline_cpu)
-            torsal = _stages([sys.executable, "-m", "torsal.app.cli", "gui", str(FLAGSHIP)], env, torsal_cpu)
-        assert "first-frame" in baseline and "first-frame" in torsal, (baseline, torsal)
-        print("\n  stages: " + "  ".join(f"{k} {v:.2f} s" for k, v in torsal.items())
-              + f"   (baseline first frame {baseline['first-frame']:.2f} s, load {os.getloadavg()[0]:.1f})"
-              + "\n  CPU seconds: " + "  ".join(f"{k} {v:.2f}" for k, v in torsal_cpu.items())
-              + f"   (baseline {baseline_cpu['first-frame']:.2f})")
-        cpu_ratios.append(torsal_cpu["first-frame"] / baseline_cpu["first-frame"])
-        ours.append(torsal["first-frame"])
-        baselines.append(baseline["first-frame"])
-        ratios.append(torsal["first-frame"] / baseline["first-frame"])
-    ratio = statistics.median(ratios)
+            baseline = _stages(baseline_command, _env(folder), baseline_cpu)
+            torsal = _stages(torsal_command, _env(folder), torsal_cpu)
+            assert "first-frame" in baseline and "first-frame" in torsal, (baseline, torsal)
+            print("\n  stages: " + "  ".join(f"{k} {v:.2f} s" for k, v in torsal.items())
+                  + f"   (baseline first frame {baseline['first-frame']:.2f} s,"
+                  + f" load {os.getloadavg()[0]:.1f})"
+                  + "\n  CPU seconds: " + "  ".join(f"{k} {v:.2f}" for k, v in torsal_cpu.items())
+                  + f"   (baseline {baseline_cpu['first-frame']:.2f})")
+            cpu_ratios.append(torsal_cpu["first-frame"] / baseline_cpu["first-frame"])
+            ours.append(torsal["first-frame"])
+            baselines.append(baseline["first-frame"])
+            ratios.append(torsal["first-frame"] / baseline["first-frame"])
+    ratio, cpu_ratio = statistics.median(ratios), statistics.median(cpu_ratios)
     print(f"launch → first solved frame of the flagship {min(ours):.2f} s, empty QtInteractor window "
           f"{min(baselines):.2f} s: ratio {ratio:.2f} (limit {RATIO_LIMIT}); in CPU seconds "
-          f"{statistics.median(cpu_ratios):.2f}")
+          f"{cpu_ratio:.2f} (limit {CPU_RATIO_LIMIT})")
     assert ratio <= RATIO_LIMIT
+    assert cpu_ratio <= CPU_RATIO_LIMIT
