@@ -177,6 +177,13 @@ GLYPHS: dict[str, str] = {
     + path("M9,12 C12,12 12,6 15,6 M9,12 C12,12 12,18 15,18", INK, 1)
     + line(16, 6, 21, 6, INK, 2)
     + line(16, 18, 21, 18, INK, 2),
+    "lists.ExplodeTree": line(3, 12, 7, 12, INK, 2)
+    + "".join(line(8, 12, 8 + 2.6 * dx, 12 + 2.6 * dy, ACCENT, 1.2)
+              for dx, dy in ((0.7, -0.7), (1, 0), (0.7, 0.7), (0, -1), (0, 1)))
+    + path("M11,12 C13,12 13,4 16,4 M11,12 L16,12 M11,12 C13,12 13,20 16,20", INK, 1)
+    + line(17, 4, 21, 4, ACCENT, 2.2)
+    + line(17, 12, 21, 12, ACCENT, 2.2)
+    + line(17, 20, 21, 20, ACCENT, 2.2),
     "lists.TreeBranch": line(3, 12, 7, 12, INK, 2)
     + path("M7,12 C11,12 11,5 14,5 M7,12 L14,12 M7,12 C11,12 11,19 14,19", INK, 1)
     + line(15, 5, 20, 5, INK, 2)
