@@ -385,6 +385,16 @@ GLYPHS: dict[str, str] = {
     + line(6.5, 15.5, 11.5, 15.5, INK, 0.8)
     + path("M3,9 C8,3 15,12 21,6", ACCENT, 1.6)
     + path("M10,20 C14,15 17,18 21,14", INK, 1.4),
+    # -- mesh booleans: two overlapping boxes, A up left and B down right; the result in accent
+    "surfaces.MeshUnion": poly([(3, 4), (14, 4), (14, 9), (21, 9), (21, 20), (9, 20), (9, 15), (3, 15)],
+                               ACCENT, 1.8, SOFT, True)
+    + line(9, 9, 14, 9, INK, 0.8, "1.2,1.2")
+    + line(9, 9, 9, 15, INK, 0.8, "1.2,1.2"),
+    "surfaces.MeshDifference": rect(9, 9, 12, 11, INK, 1, "none")
+    + poly([(3, 4), (14, 4), (14, 9), (9, 9), (9, 15), (3, 15)], ACCENT, 1.8, SOFT, True),
+    "surfaces.MeshIntersection": rect(3, 4, 11, 11, INK, 1, "none")
+    + rect(9, 9, 12, 11, INK, 1, "none")
+    + rect(9, 9, 5, 6, ACCENT, 1.8, ACCENT),
     "surfaces.MeshSurface": poly([(4, 19), (12, 4), (20, 19)], INK, 1.4, SOFT, True)
     + line(8, 11.5, 16, 11.5, INK, 1)
     + line(8, 11.5, 12, 19, INK, 1)
