@@ -58,7 +58,8 @@ class ExplodeTree(Node):
     """
 
     type_id = "lists.ExplodeTree"
-    nickname, aliases = "BANG!", ("Explode Tree", "explode branches", "split tree", "one output per branch")
+    nickname, aliases = "BANG!", ("Explode Tree", "BANG", "explode branches", "split tree",
+                                  "one output per branch")
     inputs = (In("Data", GENERIC, "D", "The tree to take apart.", access=TREE),)
     outputs = tuple(_branch_port(i) for i in range(DEFAULT_OUTPUTS))
     settings_spec = (
