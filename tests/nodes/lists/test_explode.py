@@ -7,6 +7,7 @@ import math
 import pytest
 
 from tests.support.node_helpers import out, run, texts, tree
+from torsal.engine.datatree import DataTree
 from torsal.engine.graph import Graph
 from torsal.engine.graphfile import dumps, loads
 from torsal.engine.solver import Solver
@@ -69,6 +70,7 @@ def test_match_outputs_gives_one_output_per_branch_of_the_tree_it_receives():
     solver.solve()
     record = graph.nodes["bang"]
     assert record.node.match_outputs(solver.inputs_of("bang")) == {"outputs": 4}  # 7 items in 2s: 4 chunks
+    assert record.node.match_outputs([DataTree()]) is None  # nothing received: nothing to match
     graph.set_setting("bang", "outputs", 4)
     solver.solve()
     assert solver.result("bang").state == "ok"

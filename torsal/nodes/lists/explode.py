@@ -73,9 +73,10 @@ class ExplodeTree(Node):
 
     def match_outputs(self, trees: Sequence[DataTree]) -> dict[str, Any] | None:
         """The settings that give the node one output per branch of ``trees[0]`` (the tree
-        it last received): Grasshopper's *Match outputs*."""
+        it last received): Grasshopper's *Match outputs*. None for an empty tree: its
+        outputs, and the wires from them, are left as they are."""
         branches = len(trees[0].paths) if trees else 0
-        return {"outputs": max(1, min(branches, MAX_OUTPUTS))}
+        return {"outputs": min(branches, MAX_OUTPUTS)} if branches else None
 
     def solve(self, tree: DataTree) -> tuple[DataTree, ...] | DataTree:
         count, problem = outputs_setting(self.settings.get("outputs"))
