@@ -373,6 +373,10 @@ def main() -> None:
     parser.add_argument("--sort", default="cumulative", help="the profiles' order (pstats)")
     parser.add_argument("--top", type=int, default=45, help="rows of each profile")
     parser.add_argument("--render", action="store_true", help="time renders of the opened graph by variant")
+    parser.add_argument("--ab", action="store_true",
+                        help="rounds alternate the pacing: as the app, --after-flush")
+    parser.add_argument("--ab-repaint", action="store_true",
+                        help="rounds alternate: a dragged slider drawn on every move, or as the app does")
     parser.add_argument("--after-flush", action="store_true",
                         help="(experiment) a drag's next solve starts a turn after the render, once composed")
     args = parser.parse_args()
@@ -394,14 +398,22 @@ def main() -> None:
     from torsal.app.gui.solve_controller import SolveController
     from torsal.app.gui.viewport.panel import ViewportPanel
 
-    if args.after_flush:
+    after_flush = [args.after_flush]
+    if args.after_flush or args.ab:
         from torsal.app.gui.editor import Editor
 
+        as_render_ends = Editor.frame_shown
+
         def frame_shown(self) -> None:
-            if self._pending_drag is not None:
+            if not after_flush[0]:
+                as_render_ends(self)
+            elif self._pending_drag is not None:
                 self._check_next_value(0)
 
         Editor.frame_shown = frame_shown
+    from torsal.app.gui.canvas import node_item
+
+    busy_interval = node_item.BUSY_WIDGET_INTERVAL_MS
     timed = Timed()
     timed.wrap(SolveController, "_on_worker_done", "GUI takes the result in (all)")
     timed.wrap(ViewportPanel, "_on_results", "  viewport refresh")
@@ -430,6 +442,14 @@ def main() -> None:
         render_variants(window, path)
         args.rounds = 0
     for round_no in range(1, args.rounds + 1):
+        if args.ab:
+            after_flush[0] = round_no % 2 == 0
+            when = "after the flush" if after_flush[0] else "as the render ends"
+            print(f"(round {round_no}: the next solve starts {when})")
+        if args.ab_repaint:
+            node_item.BUSY_WIDGET_INTERVAL_MS = busy_interval if round_no % 2 == 0 else 0
+            print(f"(round {round_no}: a dragged slider is drawn at most every "
+                  f"{node_item.BUSY_WIDGET_INTERVAL_MS} ms during a solve)")
         if args.profile and round_no == args.rounds:
             HEADLESS_PROFILE.append(cProfile.Profile())
         result_headless = headless(path)
