@@ -224,9 +224,14 @@ def drag(window, path: Path, seconds: float, timed: Timed, profile: bool) -> dic
 
     solver.solve, controller.prepare = solve, prepare
     renders: list[tuple[float, float]] = []
-    window.viewport.frame_rendered.connect(
-        lambda: renders.append((time.perf_counter(), window.viewport.render_seconds))
-    )
+    composed: list[tuple[float, float]] = []  # (wall, GUI CPU) from a render's end to the next turn
+
+    def rendered() -> None:
+        renders.append((time.perf_counter(), window.viewport.render_seconds))
+        wall, cpu = time.perf_counter(), time.thread_time()
+        QTimer.singleShot(0, lambda: composed.append((time.perf_counter() - wall, time.thread_time() - cpu)))
+
+    window.viewport.frame_rendered.connect(rendered)
     slider_id = main_slider(window.doc.graph)
     start_point, left, right = slider_handle(window, slider_id)
     viewport = window.view.viewport()
@@ -263,6 +268,7 @@ def drag(window, path: Path, seconds: float, timed: Timed, profile: bool) -> dic
         "seconds": elapsed, "frames": frames, "solves": solves,
         "calls": {k: [c[1] for c in v if c[0] < began + elapsed] for k, v in timed.calls.items()},
         "renders": [r[1] for r in renders if r[0] < began + elapsed],
+        "composed": list(composed),
         "process": others_cpu(gui_before, gui_after, -1),
         "profiles": (gui_profile, worker_profile),
     }
@@ -319,6 +325,19 @@ def render_variants(window, path: Path, repeats: int = 12) -> None:
         timed("points as squares")
         for a in pts:
             a.prop.render_points_as_spheres = True
+        from torsal.app.gui import theme
+
+        plotter.set_background(theme.VIEWPORT_BACKGROUND)
+        timed("plain background (no gradient)")
+        plotter.set_background(theme.VIEWPORT_BACKGROUND, top=theme.VIEWPORT_BACKGROUND_TOP)
+        plotter.hide_axes()
+        timed("no orientation axes")
+        plotter.show_axes()
+        grid = plotter.renderer.actors.get("decor:grid")
+        if grid is not None:
+            grid.SetVisibility(False)
+            timed("no ground grid")
+            grid.SetVisibility(True)
         hidden = [a for _, p, a, _ in entries if p.kind in ("curves", "rulings", "points")]
         for a in hidden:
             a.SetVisibility(False)
@@ -355,7 +374,9 @@ def report(round_no: int, solves_headless, result) -> None:
         kinds = sorted({k for x in s for k in x["others"]})
         print("  other threads' CPU during each solve (median ms): " + ", ".join(
             f"{k} {ms(x['others'].get(k, 0.0) for x in s)}" for k in kinds))
-    print(f"  render (VTK) {ms(result['renders'])} ms x{len(result['renders'])}")
+    print(f"  render (VTK) {ms(result['renders'])} ms x{len(result['renders'])}; from its end to the "
+          f"next event-loop turn (Qt composing the window) {ms(c[0] for c in result['composed'])} ms, "
+          f"GUI CPU {ms(c[1] for c in result['composed'])}")
     for label, calls in result["calls"].items():
         print(f"  {label}: median {ms(calls)} ms, x{len(calls)}, total {1000 * sum(calls):.0f} ms")
     per = {k: 1000 * v / max(1, result['frames']) for k, v in result["process"].items()}
