@@ -33,7 +33,7 @@ Algorithm (all stations at once)
    (:mod:`.stations`).
 2. Sampling: B is sampled on every smooth span, with both one-sided values at its
    corners, and the whole ``stations × samples`` matrix of f and of f_t is one thin
-   matrix product (see :func:`.candidates._brackets`).
+   matrix product (see :mod:`.sift`).
 3. Certified isolation (:mod:`.isolation`): every sample interval where f changes sign
    or comes within reach of zero is judged with a bound on f_tt from B's derivatives,
    and split until each piece provably holds no root, exactly one simple root (a

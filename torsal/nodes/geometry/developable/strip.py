@@ -24,7 +24,6 @@ from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
-from .isolation import IntervalBounds, interval_bounds, third_bound
 from .stations import LengthMap, Spacing, station_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
@@ -104,37 +103,6 @@ class Grid:
     third: FloatArray  #: B''' there
     left_second: FloatArray  #: B'' and B''' as seen from the left (they differ at knots)
     left_third: FloatArray
-
-    @cached_property
-    def speeds(self) -> FloatArray:
-        """|B'| at every sample."""
-        return norm(self.tangents)
-
-    @cached_property
-    def second_lengths(self) -> FloatArray:
-        """|B''| at every sample."""
-        return norm(self.second)
-
-    @cached_property
-    def left_second_lengths(self) -> FloatArray:
-        """|B''| at every sample as seen from the left."""
-        return self.second_lengths if self.left_second is self.second else norm(self.left_second)
-
-    def interval_bounds(self, diameter: float) -> IntervalBounds:
-        """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
-        the zero-width intervals between the two sides of a corner get reach −1 (never
-        looked at: a sign change there is a corner root)."""
-        width = self.at[1:] - self.at[:-1]
-        speed = self.speeds
-        second, left_second = self.second_lengths, self.left_second_lengths
-        third, left_third = self.third, self.left_third
-        if not third.any() and (left_third is third or not left_third.any()):
-            b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
-        else:
-            b3 = third_bound(third[:-1], left_third[1:])
-        bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
-        bounds.reach[self.pair] = -1.0
-        return bounds
 
 
 def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
