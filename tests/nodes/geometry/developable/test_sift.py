@@ -10,11 +10,11 @@ import pytest
 from torsal.nodes.geometry.curves import Line, NurbsCurve
 from torsal.nodes.geometry.developable import sift
 from torsal.nodes.geometry.developable.sift import sift_all
-from torsal.nodes.geometry.developable.strip import Strip
+from torsal.nodes.geometry.developable.strip import Strip, set_up
 
 
 def _strip(a, b, segments: int = 6, samples: int = 16) -> Strip:
-    return Strip(a, b, segments, 0.01, "length", samples)
+    return set_up([(a, b, segments, 0.01)], "length", samples)[0]
 
 
 def _wavy(z: float, phase: float, points: int = 9) -> NurbsCurve:
