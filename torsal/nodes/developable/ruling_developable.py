@@ -46,9 +46,14 @@ class _Row(NamedTuple):
     reversed_b: bool = False  #: b is CurveB reversed (its torsal rulings ran backwards along it)
 
 
+#: One call's checked inputs, the curves where they are: CurveA, CurveB, Segments,
+#: WarpTolerance, FanLimit and CreaseAngle.
+_Checked = tuple[Curve, Curve, int, float, float, float]
+
+
 def _arguments(
     curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
-) -> _Row:
+) -> _Checked:
     """One call's checked inputs: the curves (never one curve twice), Segments,
     WarpTolerance, FanLimit and CreaseAngle."""
     a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
@@ -57,8 +62,13 @@ def _arguments(
     limit = fan_limit_input(fan_limit)
     sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
     _distinct(a, b)
-    frame = LocalFrame.around(a, b)
-    return _Row(frame.to_local(a), frame.to_local(b), n, tol, limit, sharp, frame)
+    return a, b, n, tol, limit, sharp
+
+
+def _placed(checked: _Checked, frame: LocalFrame) -> _Row:
+    """The row of one call's ``checked`` inputs, its curves moved into ``frame`` (anchored at them)."""
+    a, b, *rest = checked
+    return _Row(frame.to_local(a), frame.to_local(b), *rest, frame)
 
 
 def _flipped(row: _Row, reversed_b: Curve | None) -> _Row:
@@ -205,7 +215,8 @@ class RulingDevelopable(Node):
     def solve(
         self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
+        checked = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
+        row = _placed(checked, LocalFrame.around(checked[0], checked[1]))
         self.check_cancelled()
         # (the inputs were rounded at their world coordinates: the kernel's tests that allow
         # for the rounding of positions allow for that, as a solve there would)
@@ -223,16 +234,20 @@ class RulingDevelopable(Node):
         """Every strip of the solve at once (:func:`ruling_developables`: each step of the
         kernel runs once for all of them), with each row's outputs and messages as
         :meth:`solve` gives them."""
-        rows: list[_Row | NodeWarning] = []
+        checked: list[_Checked | NodeWarning] = []
         stop: Exception | None = None  # what ends the solve at a row, after the rows before it
         for row in zip(*columns, strict=True):
             try:
-                rows.append(_arguments(*row))
+                checked.append(_arguments(*row))
             except NodeWarning as exc:  # that row is refused, the others are made
-                rows.append(exc)
+                checked.append(exc)
             except Exception as exc:  # (solve raises it at that row, after the rows before)
                 stop = exc
                 break
+        # each row's frame, around its two curves (their boxes found at once)
+        curves = [row[:2] for row in checked if not isinstance(row, NodeWarning)]
+        frames = iter(LocalFrame.around_each(curves))
+        rows = [row if isinstance(row, NodeWarning) else _placed(row, next(frames)) for row in checked]
         jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
         self.check_cancelled()
         # (one rounding allowance for the batch: that of the strip farthest out, in practice
