@@ -107,7 +107,7 @@ from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans_all, close_gaps, fan_shares, flat_fans, outside_gaps
+from .fans import a_fans_all, close_gaps, fan_shares_all, flat_fans, outside_gaps
 from .measure import check_rulings
 from .stack import Stack, evaluate_rows
 from .stations import Spacing
@@ -401,7 +401,11 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
             folded.append(solve)
     if folded:
         _check_all(folded)
-    return [_result(solve) for solve in solves]
+    # the share of each strip's area in fans (of the strips that have some), all measured at once
+    fanned = [solve for solve in solves if solve.rulings[3].any()]
+    measured = [(solve.checked[0], solve.checked[1], solve.rulings[3]) for solve in fanned]
+    shares = iter(fan_shares_all(measured) if fanned else [])
+    return [_result(solve, *(next(shares) if solve.rulings[3].any() else (0.0, 0.0))) for solve in solves]
 
 
 def _check_all(solves: list[_Solve]) -> None:
@@ -411,14 +415,11 @@ def _check_all(solves: list[_Solve]) -> None:
         solve.checked = checked
 
 
-def _result(solve: _Solve) -> RulingResult:
-    """The strip's result from its checked rulings: the share of its area in fans, and the message."""
+def _result(solve: _Solve, share: float, creased: float) -> RulingResult:
+    """The strip's result from its checked rulings and the ``share`` of its area in fans
+    (``creased`` in creased ones; 0 without fans: no piece counts), and the message."""
     s_out, t_out, source, fan = solve.rulings
     starts, ends, signed, warp, valid = solve.checked
-    if fan.any():
-        share, creased = fan_shares(starts, ends, fan)
-    else:  # (what both give without fans: no piece counts)
-        share = creased = 0.0
     station = source >= 0
     strip = solve.strip
     closed = source[station & fan]  # the stations closed by fans
