@@ -74,9 +74,14 @@ def _triangles(
     step = np.where(size * 1e-12 != 0, size * 1e-12, 1.0)  # (size·1e-12 or 1)
     strip_of_point = np.repeat(np.arange(len(strips)), rows)
     grid = np.round((points - low[strip_of_point]) / step[strip_of_point, None])
-    # one vertex number per distinct point of a strip (the strip first: numbers run strip by strip)
-    _, vertex = np.unique(np.column_stack([strip_of_point, grid]), axis=0, return_inverse=True)
-    vertex = vertex.reshape(-1)
+    # one vertex number per distinct point of a strip, numbered in the order of (strip, x, y,
+    # z) as np.unique(axis=0) numbers them (a sort by the columns: several times faster)
+    order = np.lexsort((grid[:, 2], grid[:, 1], grid[:, 0], strip_of_point))
+    ranked, owner = grid[order], strip_of_point[order]
+    new = np.ones(len(order), dtype=bool)
+    new[1:] = (owner[1:] != owner[:-1]) | (ranked[1:] != ranked[:-1]).any(axis=1)
+    vertex = np.empty(len(order), dtype=np.int64)
+    vertex[order] = np.cumsum(new) - 1
     start_of = np.cumsum(rows) - rows  # (each strip's first point)
     ruling = np.arange(len(a))
     strip_of_ruling = np.repeat(np.arange(len(strips)), n)
