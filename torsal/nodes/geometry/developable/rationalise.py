@@ -223,14 +223,16 @@ CLOSE = 0.95
 def _march(
     design: Surface, boundaries: Boundaries, start: float, end: float, tolerance: float, max_strips: int,
     segments: int, warp_tolerance: float, progress: Callable[[float], None] | None = None,
-    min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0,
+    min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0, trim: bool = False,
 ) -> list[Strip] | None:
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
     within). Where the tolerance would need a strip narrower than ``min_width`` (its rulings'
     median length), the strip is made ``min_width`` wide instead and its index (counted from
-    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed."""
+    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed.
+    With ``trim`` every trial strip is cut at the design's edge where that is smoother
+    (:mod:`.outline_cut`), so its width is the cut strip's."""
     strips: list[Strip] = []
     lo, width = start, end - start
     while lo < end:
@@ -243,7 +245,7 @@ def _march(
         for trial in range(TRIALS * 4):
             try:
                 strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
-                                      tolerance, trim=False)
+                                      tolerance, trim=trim)
             except Unmade:  # too wide to be made: narrower
                 bad = min(bad, w)
                 w = 0.5 * (((good.hi - lo) if good is not None else 0.0) + bad)
@@ -281,7 +283,7 @@ def _march(
             for _ in range(8):
                 try:
                     settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
-                                            warp_tolerance, tolerance, trim=False)
+                                            warp_tolerance, tolerance, trim=trim)
                     break
                 except Unmade:
                     w *= 0.5
@@ -332,6 +334,18 @@ def _even(
 SMOOTH = 0.02
 
 
+def fan_area(strips: Sequence[Strip]) -> float:
+    """The share of the strips' summed area between rulings of which one or both are a
+    fan's (flat triangles, creasing or not, and the cones that close a strip's end)."""
+    fan = total = 0.0
+    for strip in strips:
+        areas = patch_areas(strip.result.starts, strip.result.ends)
+        pieces = strip.result.fan[:-1] | strip.result.fan[1:]
+        fan += float(areas[pieces].sum())
+        total += float(areas.sum())
+    return fan / total if total > 0 else 0.0
+
+
 def creased_area(strips: Sequence[Strip]) -> float:
     """The share of the strips' summed area in fans that crease the sheet."""
     creased = total = 0.0
@@ -351,16 +365,17 @@ def _score(strips: Sequence[Strip], tolerance: float) -> tuple[float, ...]:
 
 def _cover(
     design: Surface, family_of: Boundaries, tolerance: float, max_strips: int, segments: int,
-    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float,
+    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float, trim: bool = False,
 ) -> tuple[list[Strip], list[int]]:
     """The strips of one family of boundaries: each band between guides marched, or
-    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones."""
+    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones. With
+    ``trim`` the strips are marched cut at the design's edge (:func:`_march`)."""
     strips: list[Strip] | None = []
     narrow: list[int] = []
     for start, end in itertools.pairwise(family_of.levels):  # a boundary on every guide
         assert strips is not None
         band = _march(design, family_of, float(start), float(end), tolerance, max_strips - len(strips),
-                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips), trim)
         if band is None:
             strips = None
             break
@@ -383,6 +398,40 @@ def _trimmed(design: Surface, family_of: Boundaries, strip: Strip, segments: int
     if cut.result.fan_share < strip.result.fan_share and cut.deviation <= max(tolerance, strip.deviation):
         return cut
     return strip
+
+
+#: When more than this share of the strips' area is in cones at their ends (fans that do not
+#: crease) after their ends are cut at the design's edge, the family is marched again with
+#: every trial strip cut (:func:`_recut`).
+RECUT = 0.05
+#: ... and the strips marched cut are kept when their fan area is at most this share of
+#: the first strips' (fewer strips with cones at their ends otherwise).
+RECUT_GAIN = 0.5
+
+
+def _recut(
+    design: Surface, family_of: Boundaries, strips: list[Strip], narrow: list[int], tolerance: float,
+    max_strips: int, segments: int, warp_tolerance: float, min_width: float,
+) -> tuple[list[Strip], list[int]]:
+    """The strips of ``family_of`` marched with every trial strip cut at the design's
+    edge, where the strips found with cones at their ends and cut afterwards keep much of
+    their area in those cones: a strip cut at the edge deviates more there than its cone
+    (its rulings run on to the edge instead of bending towards a boundary's end), so where
+    the rulings cross the boundaries at a small angle (a monkey saddle's, near its edges)
+    the widths found with cones are too wide to be cut within the tolerance, and the cones
+    stand. Marched cut, the strips are narrower and smooth to the edge; they are kept when
+    they are within the tolerance and their fan area is at most :data:`RECUT_GAIN` of the
+    first's."""
+    first = fan_area(strips)
+    cones = first - creased_area(strips)  # the fans that cutting can remove: the cones at the ends
+    if cones <= RECUT or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
+        return strips, narrow
+    again, narrow_again = _cover(design, family_of, tolerance, max_strips, segments, warp_tolerance, None,
+                                 min_width, trim=True)
+    if (max(s.deviation for s in again) <= max(tolerance, max(s.deviation for s in strips))
+            and len(narrow_again) <= len(narrow) and fan_area(again) <= RECUT_GAIN * first):
+        return again, narrow_again
+    return strips, narrow
 
 
 def _on_boundary(strip: Strip, side: str) -> RulingResult:
@@ -453,6 +502,8 @@ def rationalise(
     # the kept strips' ends are then cut at the design's edge where that is smoother
     if cut_at_edge:
         strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
+        strips, narrow = _recut(design, family_of, strips, narrow, tolerance, int(max_strips), segments,
+                                warp_tolerance, min_width)
     for strip in strips:
         if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
             again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)
