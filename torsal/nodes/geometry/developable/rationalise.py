@@ -7,7 +7,10 @@ Method
    direction of least normal curvature and the strips' boundary curves across it.
    The boundaries follow the design's parameter lines: of the two families, first the
    one that needs fewer strips by the square law (see :func:`boundary_family`: normal
-   curvature along the rulings and the extent the strips are stacked over); when its
+   curvature along the rulings and the extent the strips are stacked over) — unless its
+   lines cross the design's asymptotic directions (where no torsal strip joins two
+   neighbours) much more than the other's (:mod:`.asymptotic`: on a monkey saddle every
+   line along x crosses one, the lines along y none), then the other first; when its
    strips crease the sheet (more than :data:`SMOOTH` of their area in creasing fans,
    where the lines run along an asymptotic direction), the other family too, and the
    better is kept (:func:`_score`), lifted (step 2) or, when the lift creases more, on
@@ -26,6 +29,10 @@ Method
    cross the boundaries obliquely its ends would be cones through a boundary's end point
    (a fifth of a saddle turned to its outline); the strip is then run on past the
    design's edge and cut by it (:mod:`.outline_cut`): torsal to its ends, which follow the edge.
+   A cut end deviates more than its cone (its rulings run on to the edge instead of
+   bending to a boundary's end point), so where strips as wide as their cones allow keep
+   more than :data:`RECUT` of their area in cones after cutting, the family is marched
+   again with every trial strip cut (:func:`_recut`): narrower strips, smooth to the edge.
 4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
    guessed from the square law (a straight ruling's sag grows as the width²) and kept
@@ -59,6 +66,7 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.developable.asymptotic import asymptotic_crossings
 from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
 from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
@@ -329,6 +337,10 @@ def _even(
     return strips
 
 
+#: The family the square law prefers is tried second when the other's parameter lines cross
+#: the design's asymptotic directions less than this share as much (:mod:`.asymptotic`).
+CROSSINGS = 0.5
+
 #: A rationalisation with at most this share of its area in creasing fans is kept without
 #: trying the next family of boundaries (lifted, then on the design; each way).
 SMOOTH = 0.02
@@ -407,6 +419,11 @@ RECUT = 0.05
 #: ... and the strips marched cut are kept when their fan area is at most this share of
 #: the first strips' (fewer strips with cones at their ends otherwise).
 RECUT_GAIN = 0.5
+#: ... and when their creased area is at most this much more (a share of the area), with no
+#: more strips creased over more than :data:`CREASING` of their area (narrower strips meet
+#: an asymptotic stretch elsewhere: the canopy example's last strip creased).
+RECUT_CREASED = 0.005
+CREASING = 0.1
 
 
 def _recut(
@@ -420,16 +437,21 @@ def _recut(
     the rulings cross the boundaries at a small angle (a monkey saddle's, near its edges)
     the widths found with cones are too wide to be cut within the tolerance, and the cones
     stand. Marched cut, the strips are narrower and smooth to the edge; they are kept when
-    they are within the tolerance and their fan area is at most :data:`RECUT_GAIN` of the
-    first's."""
+    they are within the tolerance, their fan area is at most :data:`RECUT_GAIN` of the
+    first's and they crease no more (:data:`RECUT_CREASED`)."""
     first = fan_area(strips)
     cones = first - creased_area(strips)  # the fans that cutting can remove: the cones at the ends
     if cones <= RECUT or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
         return strips, narrow
     again, narrow_again = _cover(design, family_of, tolerance, max_strips, segments, warp_tolerance, None,
                                  min_width, trim=True)
+    def creasing(of: Sequence[Strip]) -> int:  # strips with more than a tenth of their area creased
+        return sum(s.result.creased_share > CREASING for s in of)
+
     if (max(s.deviation for s in again) <= max(tolerance, max(s.deviation for s in strips))
-            and len(narrow_again) <= len(narrow) and fan_area(again) <= RECUT_GAIN * first):
+            and len(narrow_again) <= len(narrow) and fan_area(again) <= RECUT_GAIN * first
+            and creased_area(again) <= creased_area(strips) + RECUT_CREASED
+            and creasing(again) <= creasing(strips)):
         return again, narrow_again
     return strips, narrow
 
@@ -482,6 +504,8 @@ def rationalise(
     else:  # the family the square law prefers first; the other when the first creases the sheet
         first = boundary_family(design)
         other = "v" if first == "u" else "u"
+        if asymptotic_crossings(design, other) < CROSSINGS * asymptotic_crossings(design, first):
+            first, other = other, first  # the square law's family runs along asymptotic directions
         candidates = []
         for f in (first, other):  # each family lifted (where it bends across), then on the design
             lifted = LiftedBoundaries(design, f, lift_for(design, f, tolerance))
