@@ -116,7 +116,8 @@ class Rationalise(Node):
     less (then the one with fewer strips). It tries first the family whose lines cross
     the design's asymptotic directions (where the normal curvature along them changes
     sign while the surface twists) much less than the other's — on a monkey saddle the
-    lines along its straight asymptotic line, not across it. The boundaries themselves are parameter lines,
+    lines along its straight asymptotic line, not across it — and where only the other
+    family crosses them, it does not try that one. The boundaries themselves are parameter lines,
     not traced lines of curvature: a family along them leaves the design through its
     sides (a field fitted to them and held to the edges creased more and was 5–10×
     slower). Where the design's parameter lines are far from its curvature lines and the

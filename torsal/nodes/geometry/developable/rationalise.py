@@ -10,7 +10,8 @@ Method
    curvature along the rulings and the extent the strips are stacked over) — unless its
    lines cross the design's asymptotic directions (where no torsal strip joins two
    neighbours) much more than the other's (:mod:`.asymptotic`: on a monkey saddle every
-   line along x crosses one, the lines along y none), then the other first; when its
+   line along x crosses one, the lines along y none), then the other first, and a family
+   that crosses them where the other does not (:data:`ALONG`) is not tried; when its
    strips crease the sheet (more than :data:`SMOOTH` of their area in creasing fans,
    where the lines run along an asymptotic direction), the other family too, and the
    better is kept (:func:`_score`), lifted (step 2) or, when the lift creases more, on
@@ -340,6 +341,10 @@ def _even(
 #: The family the square law prefers is tried second when the other's parameter lines cross
 #: the design's asymptotic directions less than this share as much (:mod:`.asymptotic`).
 CROSSINGS = 0.5
+#: The other family is not tried at all when its lines cross asymptotic directions more than
+#: ALONG times as much as the first's plus ALONE (a monkey saddle's lines along x, 0.52,
+#: against 0 for those along y; the wave's along y, 0.21, against 0 along x).
+ALONG, ALONE = 4.0, 0.05
 
 #: A rationalisation with at most this share of its area in creasing fans is kept without
 #: trying the next family of boundaries (lifted, then on the design; each way).
@@ -419,10 +424,10 @@ RECUT = 0.05
 #: ... and the strips marched cut are kept when their fan area is at most this share of
 #: the first strips' (fewer strips with cones at their ends otherwise).
 RECUT_GAIN = 0.5
-#: ... and when their creased area is at most this much more (a share of the area), with no
-#: more strips creased over more than :data:`CREASING` of their area (narrower strips meet
-#: an asymptotic stretch elsewhere: the canopy example's last strip creased).
-RECUT_CREASED = 0.005
+#: ... and when their creased area grows by at most this share of the fan area they remove,
+#: with no more strips creased over more than :data:`CREASING` of their area (narrower
+#: strips may meet an asymptotic stretch elsewhere: the canopy example's last strip creased).
+RECUT_CREASED = 0.25
 CREASING = 0.1
 
 
@@ -438,7 +443,7 @@ def _recut(
     the widths found with cones are too wide to be cut within the tolerance, and the cones
     stand. Marched cut, the strips are narrower and smooth to the edge; they are kept when
     they are within the tolerance, their fan area is at most :data:`RECUT_GAIN` of the
-    first's and they crease no more (:data:`RECUT_CREASED`)."""
+    first's and they crease little more (:data:`RECUT_CREASED`)."""
     first = fan_area(strips)
     cones = first - creased_area(strips)  # the fans that cutting can remove: the cones at the ends
     if cones <= RECUT or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
@@ -450,7 +455,7 @@ def _recut(
 
     if (max(s.deviation for s in again) <= max(tolerance, max(s.deviation for s in strips))
             and len(narrow_again) <= len(narrow) and fan_area(again) <= RECUT_GAIN * first
-            and creased_area(again) <= creased_area(strips) + RECUT_CREASED
+            and creased_area(again) - creased_area(strips) <= RECUT_CREASED * (first - fan_area(again))
             and creasing(again) <= creasing(strips)):
         return again, narrow_again
     return strips, narrow
@@ -504,10 +509,14 @@ def rationalise(
     else:  # the family the square law prefers first; the other when the first creases the sheet
         first = boundary_family(design)
         other = "v" if first == "u" else "u"
-        if asymptotic_crossings(design, other) < CROSSINGS * asymptotic_crossings(design, first):
+        crossings = {f: asymptotic_crossings(design, f) for f in (first, other)}
+        if crossings[other] < CROSSINGS * crossings[first]:
             first, other = other, first  # the square law's family runs along asymptotic directions
+        families = (first, other)
+        if crossings[other] > ALONG * crossings[first] + ALONE:
+            families = (first,)  # the other runs along them where the first does not: not tried
         candidates = []
-        for f in (first, other):  # each family lifted (where it bends across), then on the design
+        for f in families:  # each family lifted (where it bends across), then on the design
             lifted = LiftedBoundaries(design, f, lift_for(design, f, tolerance))
             candidates += [lifted] if lifted.lift.spline is not None else []
             candidates.append(IsoBoundaries(design, f))
