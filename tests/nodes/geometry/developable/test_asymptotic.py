@@ -13,6 +13,8 @@ import pytest
 
 from tests.support.freeform_designs import DESIGNS, Design, _monkey
 from torsal.nodes.geometry.developable.asymptotic import asymptotic_crossings
+from torsal.nodes.geometry.developable.fans import patch_areas
+from torsal.nodes.geometry.developable.rationalise import rationalise
 
 
 def _ripple(x, y):
@@ -72,3 +74,20 @@ def _twisted(x, y):
 def test_crossing_an_inflection_where_the_surface_twists_is_harmful():
     design = Design("twisted", _twisted, (-6.0, 6.0), (-4.0, 4.0))
     assert asymptotic_crossings(design.surface(), "u") > 0.3
+
+
+def test_rationalise_runs_a_monkey_saddles_boundaries_along_its_asymptotic_line_within_the_tolerance():
+    # the square law ties the two families (the saddle is symmetric under x ↔ y up to sign);
+    # the lines along x all cross x = 0, so the boundaries run along y, and the one strip
+    # on x = 0 creases (the saddle's straight line: no strip along it is torsal)
+    tolerance = 0.1
+    result = rationalise(MONKEY.surface(), tolerance, 64, min_width=0.2)
+    assert result.family == "v"
+    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0, 1, 121), np.linspace(0, 1, 13)))
+    worst = max(float(MONKEY.distance(strip.surface.point_at(u, v)).max()) for strip in result.strips)
+    assert worst <= tolerance
+    areas = [patch_areas(s.result.starts, s.result.ends) for s in result.strips]
+    shared = [(np.linalg.norm(np.diff(s.result.starts, axis=0), axis=1) <= 1e-9)
+              | (np.linalg.norm(np.diff(s.result.ends, axis=0), axis=1) <= 1e-9) for s in result.strips]
+    triangles = sum(float(a[k].sum()) for a, k in zip(areas, shared, strict=True))
+    assert triangles / sum(float(a.sum()) for a in areas) <= 0.10
