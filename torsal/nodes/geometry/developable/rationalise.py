@@ -403,18 +403,22 @@ def _cover(
 
 
 def _trimmed(design: Surface, family_of: Boundaries, strip: Strip, segments: int, warp_tolerance: float,
-             tolerance: float) -> Strip:
+             tolerance: float) -> tuple[Strip, bool]:
     """``strip`` with its end cones replaced by its run past the design's edge, cut there
-    (:mod:`.outline_cut`), when that is within the tolerance (or no farther than the strip)."""
+    (:mod:`.outline_cut`), when that is within the tolerance (or no farther than the strip);
+    and whether the cut strip was smoother but too far from the design (a narrower strip
+    may be cut within the tolerance, :func:`_recut`)."""
     if not np.any(strip.result.fan[[0, -1]]) or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
-        return strip
+        return strip, False
     try:
         cut = strip_between(design, family_of, strip.lo, strip.hi, segments, warp_tolerance, tolerance)
     except Unmade:
-        return strip
-    if cut.result.fan_share < strip.result.fan_share and cut.deviation <= max(tolerance, strip.deviation):
-        return cut
-    return strip
+        return strip, False
+    if cut.result.fan_share < strip.result.fan_share:
+        if cut.deviation <= max(tolerance, strip.deviation):
+            return cut, False
+        return strip, True
+    return strip, False
 
 
 #: When more than this share of the strips' area is in cones at their ends (fans that do not
@@ -431,9 +435,13 @@ RECUT_CREASED = 0.25
 CREASING = 0.1
 
 
+def _area(strips: Sequence[Strip]) -> float:
+    return float(sum(patch_areas(s.result.starts, s.result.ends).sum() for s in strips))
+
+
 def _recut(
-    design: Surface, family_of: Boundaries, strips: list[Strip], narrow: list[int], tolerance: float,
-    max_strips: int, segments: int, warp_tolerance: float, min_width: float,
+    design: Surface, family_of: Boundaries, strips: list[Strip], too_far: list[Strip], narrow: list[int],
+    tolerance: float, max_strips: int, segments: int, warp_tolerance: float, min_width: float,
 ) -> tuple[list[Strip], list[int]]:
     """The strips of ``family_of`` marched with every trial strip cut at the design's
     edge, where the strips found with cones at their ends and cut afterwards keep much of
@@ -443,13 +451,18 @@ def _recut(
     the widths found with cones are too wide to be cut within the tolerance, and the cones
     stand. Marched cut, the strips are narrower and smooth to the edge; they are kept when
     they are within the tolerance, their fan area is at most :data:`RECUT_GAIN` of the
-    first's and they crease little more (:data:`RECUT_CREASED`)."""
+    first's and they crease little more (:data:`RECUT_CREASED`). ``too_far`` are the strips
+    whose cut was smoother but beyond the tolerance: only their cones count."""
     first = fan_area(strips)
-    cones = first - creased_area(strips)  # the fans that cutting can remove: the cones at the ends
-    if cones <= RECUT or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
+    if not too_far or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
+        return strips, narrow
+    # the fans that a narrower cut can remove: the cones at the ends of the strips cut too far
+    cones = (fan_area(too_far) - creased_area(too_far)) * _area(too_far) / max(_area(strips), 1e-300)
+    if cones <= RECUT:
         return strips, narrow
     again, narrow_again = _cover(design, family_of, tolerance, max_strips, segments, warp_tolerance, None,
                                  min_width, trim=True)
+
     def creasing(of: Sequence[Strip]) -> int:  # strips with more than a tenth of their area creased
         return sum(s.result.creased_share > CREASING for s in of)
 
@@ -534,9 +547,11 @@ def rationalise(
     # the strips' widths are found with their ends closed by cones (cheaper to certify);
     # the kept strips' ends are then cut at the design's edge where that is smoother
     if cut_at_edge:
-        strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
-        strips, narrow = _recut(design, family_of, strips, narrow, tolerance, int(max_strips), segments,
-                                warp_tolerance, min_width)
+        cut = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
+        strips = [strip for strip, _ in cut]
+        too_far = [strip for strip, far in cut if far]
+        strips, narrow = _recut(design, family_of, strips, too_far, narrow, tolerance, int(max_strips),
+                                segments, warp_tolerance, min_width)
     for strip in strips:
         if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
             again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)
