@@ -13,8 +13,10 @@ the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (e
 spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
 on every design: within the tolerance by the independent measure, never more strips than
 the baseline, a solve of at most 60 s on this 2-core machine and at most 10 % of the
-strips' area in fans (the last not yet met where the parameter lines turn asymptotic:
-the wave's and the double bump's inflections).
+strips' area in fans (the last not yet met on the double bump: every line x = const
+crosses an asymptotic direction at y = ±3, where f_yy changes sign and f_xy does not
+vanish, and so does every line y = const near the bumps' inflection circles — no family
+of parameter lines avoids it, see docs/geometry.md).
 """
 
 from __future__ import annotations

@@ -33,6 +33,12 @@ class Design:
     def height(self, x: np.ndarray, y: np.ndarray, which: int = 0) -> np.ndarray:
         return np.asarray(self.jet(x, y)[which], dtype=float)
 
+    def heights(self, x: np.ndarray, y: np.ndarray, count: int = 6) -> list[np.ndarray]:
+        """f and its derivatives up to the ``count``-th of (f, fx, fy, fxx, fxy, fyy), from
+        one evaluation of the jet."""
+        jet = self.jet(x, y)
+        return [np.broadcast_to(np.asarray(jet[k], dtype=float), np.shape(x)) for k in range(count)]
+
     def surface(self) -> HeightSurface:
         return HeightSurface(self)
 
@@ -54,7 +60,7 @@ class Design:
         _, index = cKDTree(self.points(gx, gy)).query(points)
         x, y = gx[index].copy(), gy[index].copy()
         for _ in range(40):
-            f, fx, fy, fxx, fxy, fyy = (self.height(x, y, k) for k in range(6))
+            f, fx, fy, fxx, fxy, fyy = self.heights(x, y)
             d = np.column_stack([x, y, f]) - points
             gradient_x = d[:, 0] + d[:, 2] * fx
             gradient_y = d[:, 1] + d[:, 2] * fy
@@ -101,7 +107,7 @@ class HeightSurface(Surface):
         (x0, x1), (y0, y1) = self.design.x, self.design.y
         a, b = x1 - x0, y1 - y0
         x, y = x0 + s * a, y0 + t * b
-        h = [self.design.height(x, y, k) for k in range(6 if order == 2 else 3 if order == 1 else 1)]
+        h = self.design.heights(x, y, 6 if order == 2 else 3 if order == 1 else 1)
         zero, one = np.zeros_like(x), np.ones_like(x)
         out = [np.column_stack([x, y, h[0]])]
         if order >= 1:

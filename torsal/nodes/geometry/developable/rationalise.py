@@ -7,7 +7,11 @@ Method
    direction of least normal curvature and the strips' boundary curves across it.
    The boundaries follow the design's parameter lines: of the two families, first the
    one that needs fewer strips by the square law (see :func:`boundary_family`: normal
-   curvature along the rulings and the extent the strips are stacked over); when its
+   curvature along the rulings and the extent the strips are stacked over) — unless its
+   lines cross the design's asymptotic directions (where no torsal strip joins two
+   neighbours) much more than the other's (:mod:`.asymptotic`: on a monkey saddle every
+   line along x crosses one, the lines along y none), then the other first, and a family
+   that crosses them where the other does not (:data:`ALONG`) is not tried; when its
    strips crease the sheet (more than :data:`SMOOTH` of their area in creasing fans,
    where the lines run along an asymptotic direction), the other family too, and the
    better is kept (:func:`_score`), lifted (step 2) or, when the lift creases more, on
@@ -26,6 +30,10 @@ Method
    cross the boundaries obliquely its ends would be cones through a boundary's end point
    (a fifth of a saddle turned to its outline); the strip is then run on past the
    design's edge and cut by it (:mod:`.outline_cut`): torsal to its ends, which follow the edge.
+   A cut end deviates more than its cone (its rulings run on to the edge instead of
+   bending to a boundary's end point), so where strips as wide as their cones allow keep
+   more than :data:`RECUT` of their area in cones after cutting, the family is marched
+   again with every trial strip cut (:func:`_recut`): narrower strips, smooth to the edge.
 4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
    guessed from the square law (a straight ruling's sag grows as the width²) and kept
@@ -59,6 +67,7 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.developable.asymptotic import asymptotic_crossings
 from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
 from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
@@ -223,14 +232,16 @@ CLOSE = 0.95
 def _march(
     design: Surface, boundaries: Boundaries, start: float, end: float, tolerance: float, max_strips: int,
     segments: int, warp_tolerance: float, progress: Callable[[float], None] | None = None,
-    min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0,
+    min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0, trim: bool = False,
 ) -> list[Strip] | None:
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
     within). Where the tolerance would need a strip narrower than ``min_width`` (its rulings'
     median length), the strip is made ``min_width`` wide instead and its index (counted from
-    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed."""
+    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed.
+    With ``trim`` every trial strip is cut at the design's edge where that is smoother
+    (:mod:`.outline_cut`), so its width is the cut strip's."""
     strips: list[Strip] = []
     lo, width = start, end - start
     while lo < end:
@@ -243,7 +254,7 @@ def _march(
         for trial in range(TRIALS * 4):
             try:
                 strip = strip_between(design, boundaries, lo, min(end, lo + w), segments, warp_tolerance,
-                                      tolerance, trim=False)
+                                      tolerance, trim=trim)
             except Unmade:  # too wide to be made: narrower
                 bad = min(bad, w)
                 w = 0.5 * (((good.hi - lo) if good is not None else 0.0) + bad)
@@ -281,7 +292,7 @@ def _march(
             for _ in range(8):
                 try:
                     settled = strip_between(design, boundaries, lo, lo + w if lo + w < end else end, segments,
-                                            warp_tolerance, tolerance, trim=False)
+                                            warp_tolerance, tolerance, trim=trim)
                     break
                 except Unmade:
                     w *= 0.5
@@ -327,9 +338,29 @@ def _even(
     return strips
 
 
+#: The family the square law prefers is tried second when the other's parameter lines cross
+#: the design's asymptotic directions less than this share as much (:mod:`.asymptotic`).
+CROSSINGS = 0.5
+#: The other family is not tried at all when its lines cross asymptotic directions more than
+#: ALONG times as much as the first's plus ALONE (a monkey saddle's lines along x, 0.52,
+#: against 0 for those along y; the wave's along y, 0.21, against 0 along x).
+ALONG, ALONE = 4.0, 0.05
+
 #: A rationalisation with at most this share of its area in creasing fans is kept without
 #: trying the next family of boundaries (lifted, then on the design; each way).
 SMOOTH = 0.02
+
+
+def fan_area(strips: Sequence[Strip]) -> float:
+    """The share of the strips' summed area between rulings of which one or both are a
+    fan's (flat triangles, creasing or not, and the cones that close a strip's end)."""
+    fan = total = 0.0
+    for strip in strips:
+        areas = patch_areas(strip.result.starts, strip.result.ends)
+        pieces = strip.result.fan[:-1] | strip.result.fan[1:]
+        fan += float(areas[pieces].sum())
+        total += float(areas.sum())
+    return fan / total if total > 0 else 0.0
 
 
 def creased_area(strips: Sequence[Strip]) -> float:
@@ -351,16 +382,17 @@ def _score(strips: Sequence[Strip], tolerance: float) -> tuple[float, ...]:
 
 def _cover(
     design: Surface, family_of: Boundaries, tolerance: float, max_strips: int, segments: int,
-    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float,
+    warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float, trim: bool = False,
 ) -> tuple[list[Strip], list[int]]:
     """The strips of one family of boundaries: each band between guides marched, or
-    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones."""
+    ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones. With
+    ``trim`` the strips are marched cut at the design's edge (:func:`_march`)."""
     strips: list[Strip] | None = []
     narrow: list[int] = []
     for start, end in itertools.pairwise(family_of.levels):  # a boundary on every guide
         assert strips is not None
         band = _march(design, family_of, float(start), float(end), tolerance, max_strips - len(strips),
-                      segments, warp_tolerance, progress, min_width, narrow, len(strips))
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips), trim)
         if band is None:
             strips = None
             break
@@ -371,18 +403,75 @@ def _cover(
 
 
 def _trimmed(design: Surface, family_of: Boundaries, strip: Strip, segments: int, warp_tolerance: float,
-             tolerance: float) -> Strip:
+             tolerance: float) -> tuple[Strip, bool]:
     """``strip`` with its end cones replaced by its run past the design's edge, cut there
-    (:mod:`.outline_cut`), when that is within the tolerance (or no farther than the strip)."""
+    (:mod:`.outline_cut`), when that is within the tolerance (or no farther than the strip);
+    and whether the cut strip was smoother but too far from the design (a narrower strip
+    may be cut within the tolerance, :func:`_recut`)."""
     if not np.any(strip.result.fan[[0, -1]]) or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
-        return strip
+        return strip, False
     try:
         cut = strip_between(design, family_of, strip.lo, strip.hi, segments, warp_tolerance, tolerance)
     except Unmade:
-        return strip
-    if cut.result.fan_share < strip.result.fan_share and cut.deviation <= max(tolerance, strip.deviation):
-        return cut
-    return strip
+        return strip, False
+    if cut.result.fan_share < strip.result.fan_share:
+        if cut.deviation <= max(tolerance, strip.deviation):
+            return cut, False
+        return strip, True
+    return strip, False
+
+
+#: When more than this share of the strips' area is in cones at their ends (fans that do not
+#: crease) after their ends are cut at the design's edge, the family is marched again with
+#: every trial strip cut (:func:`_recut`).
+RECUT = 0.05
+#: ... and the strips marched cut are kept when their fan area is at most this share of
+#: the first strips' (fewer strips with cones at their ends otherwise).
+RECUT_GAIN = 0.5
+#: ... and when their creased area grows by at most this share of the fan area they remove,
+#: with no more strips creased over more than :data:`CREASING` of their area (narrower
+#: strips may meet an asymptotic stretch elsewhere: the canopy example's last strip creased).
+RECUT_CREASED = 0.25
+CREASING = 0.1
+
+
+def _area(strips: Sequence[Strip]) -> float:
+    return float(sum(patch_areas(s.result.starts, s.result.ends).sum() for s in strips))
+
+
+def _recut(
+    design: Surface, family_of: Boundaries, strips: list[Strip], too_far: list[Strip], narrow: list[int],
+    tolerance: float, max_strips: int, segments: int, warp_tolerance: float, min_width: float,
+) -> tuple[list[Strip], list[int]]:
+    """The strips of ``family_of`` marched with every trial strip cut at the design's
+    edge, where the strips found with cones at their ends and cut afterwards keep much of
+    their area in those cones: a strip cut at the edge deviates more there than its cone
+    (its rulings run on to the edge instead of bending towards a boundary's end), so where
+    the rulings cross the boundaries at a small angle (a monkey saddle's, near its edges)
+    the widths found with cones are too wide to be cut within the tolerance, and the cones
+    stand. Marched cut, the strips are narrower and smooth to the edge; they are kept when
+    they are within the tolerance, their fan area is at most :data:`RECUT_GAIN` of the
+    first's and they crease little more (:data:`RECUT_CREASED`). ``too_far`` are the strips
+    whose cut was smoother but beyond the tolerance: only their cones count."""
+    first = fan_area(strips)
+    if not too_far or not isinstance(family_of, IsoBoundaries | LiftedBoundaries):
+        return strips, narrow
+    # the fans that a narrower cut can remove: the cones at the ends of the strips cut too far
+    cones = (fan_area(too_far) - creased_area(too_far)) * _area(too_far) / max(_area(strips), 1e-300)
+    if cones <= RECUT:
+        return strips, narrow
+    again, narrow_again = _cover(design, family_of, tolerance, max_strips, segments, warp_tolerance, None,
+                                 min_width, trim=True)
+
+    def creasing(of: Sequence[Strip]) -> int:  # strips with more than a tenth of their area creased
+        return sum(s.result.creased_share > CREASING for s in of)
+
+    if (max(s.deviation for s in again) <= max(tolerance, max(s.deviation for s in strips))
+            and len(narrow_again) <= len(narrow) and fan_area(again) <= RECUT_GAIN * first
+            and creased_area(again) - creased_area(strips) <= RECUT_CREASED * (first - fan_area(again))
+            and creasing(again) <= creasing(strips)):
+        return again, narrow_again
+    return strips, narrow
 
 
 def _on_boundary(strip: Strip, side: str) -> RulingResult:
@@ -433,8 +522,14 @@ def rationalise(
     else:  # the family the square law prefers first; the other when the first creases the sheet
         first = boundary_family(design)
         other = "v" if first == "u" else "u"
+        crossings = {f: asymptotic_crossings(design, f) for f in (first, other)}
+        if crossings[other] < CROSSINGS * crossings[first]:
+            first, other = other, first  # the square law's family runs along asymptotic directions
+        families = (first, other)
+        if crossings[other] > ALONG * crossings[first] + ALONE:
+            families = (first,)  # the other runs along them where the first does not: not tried
         candidates = []
-        for f in (first, other):  # each family lifted (where it bends across), then on the design
+        for f in families:  # each family lifted (where it bends across), then on the design
             lifted = LiftedBoundaries(design, f, lift_for(design, f, tolerance))
             candidates += [lifted] if lifted.lift.spline is not None else []
             candidates.append(IsoBoundaries(design, f))
@@ -452,7 +547,11 @@ def rationalise(
     # the strips' widths are found with their ends closed by cones (cheaper to certify);
     # the kept strips' ends are then cut at the design's edge where that is smoother
     if cut_at_edge:
-        strips = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
+        cut = [_trimmed(design, family_of, strip, segments, warp_tolerance, tolerance) for strip in strips]
+        strips = [strip for strip, _ in cut]
+        too_far = [strip for strip, far in cut if far]
+        strips, narrow = _recut(design, family_of, strips, too_far, narrow, tolerance, int(max_strips),
+                                segments, warp_tolerance, min_width)
     for strip in strips:
         if strip.deviation > tolerance:  # beyond it, refined against its own deviation too
             again = certified_deviation(design, strip.surface, 1.5 * strip.deviation)
