@@ -26,7 +26,12 @@ little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (ma
 the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:
 each sheet starts a margin before the first part not yet placed and takes those that end
 within it), and it is the layout when it keeps :data:`CUT_KEEPS` of the strip's density;
-otherwise the sheets are filled one at a time as above.
+otherwise the sheets are filled one at a time as above. Not reached: a set that does not fit
+at :data:`SHEET_TARGET` costs both its seeds' packings and still loses its strip's end (50
+random strips, annular sectors sparrow packs to only about 66 % in a strip: sheet 1's set of
+13 failed with both seeds, 28 s; sheet 2's set of 22 took 69 s beside its last sheet of 16,
+89 s, at a load of 10; sparrow's strip of all 50 reaches their 65.5 % in 10.5 s). A target
+that follows the parts (the density a short strip of them reaches) is what is left to try.
 
 The budget is counted in sparrow's steps (:data:`~torsal.nodes.geometry.sparrow_runs.STEPS_PER_SECOND`
 per second of ``budget``), never the clock, and every packing is seeded (the seeds follow
