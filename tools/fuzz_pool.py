@@ -275,7 +275,9 @@ def solve_guarded(graph: Any, summarize: bool = False) -> dict[str, Any]:
     from torsal.engine.solver import Solver
     from torsal.engine.types import summarize_value
 
-    solver = Solver(graph)
+    # as the app solves: a node with a background search (TrueShape nesting, which the
+    # kaohsiung-cut-sheets example ships) answers at once and its search is not run here
+    solver = Solver(graph, anytime=True)
     report = solver.solve()
     states = {}
     for node_id in graph.nodes:

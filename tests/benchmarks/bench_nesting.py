@@ -16,7 +16,7 @@ For each: sheets used, material usage (parts' area over the sheets' area, the la
 counted only up to where its parts reach, measured from the DXF files written), and the
 time. Bars: true-shape nesting never needs more sheets, and its usage is at least
 :data:`USAGE_RATIO` times the shelf packing's on each set; and the issue's bar on the
-example itself, run as shipped but for ``--set cut.Nesting=TrueShape``: usage ≥ 70 %.
+example itself, run as shipped (Nesting = TrueShape): usage ≥ 72 %.
 """
 
 from __future__ import annotations
@@ -152,7 +152,7 @@ def _usage_from_files(files: list[Path], width: float, height: float) -> tuple[f
 def _lay_out(items, units, nesting, folder: Path, budget: float, found=None):  # type: ignore[no-untyped-def]
     from torsal.nodes.geometry import nesting as engine
 
-    engine._PACKED.clear()  # packings cached by an earlier test of the same parts would be no search at all
+    engine.PACKED.clear()  # packings cached by an earlier test of the same parts would be no search at all
     started = time.perf_counter()
     seen: list[tuple[float, float]] = []  # (seconds, stock usage) of each layout found on the way
     layout = cutfiles.lay_out(items, width=2500.0, height=1250.0, gap=10.0, units=units, nesting=nesting,
@@ -180,15 +180,22 @@ def test_true_shape_nesting_uses_no_more_sheets_and_more_of_them_than_shelf_pack
     assert true[0] >= USAGE_RATIO[name] * shelf[0]
 
 
-#: Parts long beside the sheet: a strip cut into sheets loses a tenth of its density at the cuts
-#: (every cut line crosses several parts), so the sheets are filled one at a time by sparrow
-#: trials, each as slow as the baseline (measured on one run at load 12-14: Kaohsiung 72.6 %
-#: shown at 354 s against 56.6 s, ratio 6.3; random strips 60.8 % at 174 s against 10.7 s, 16.2).
-SHEET_BY_SHEET = pytest.mark.xfail(strict=True, reason="issue 31 item 1 not reached for parts a third of "
-                                   "a sheet long: see the note in nesting.py and docs/cut-sheets.md")
+#: Many parts long beside the sheet: the sheets are filled one at a time, each set of twenty or so
+#: random strips packed by sparrow at 72 % of a sheet, far slower than sparrow's strip of every
+#: part reaches the layout's usage (one run at load 11-14: 65.5 % shown at 382.8 s against 10.5 s,
+#: ratio 36).
+SHEET_BY_SHEET = pytest.mark.xfail(strict=True, reason="issue 31 item 1 not reached for many parts long "
+                                   "beside the sheet: see nesting.py and docs/cut-sheets.md")
 
 
-@pytest.mark.parametrize("name", [pytest.param("kaohsiung", marks=SHEET_BY_SHEET), "panels",
+#: The Kaohsiung strips: a sheet's set of 13 packed by sparrow costs about its strip of all 18 to
+#: the same density, with a seed-to-seed spread of two to three (three runs at load 5-12: ratio
+#: 1.07, 1.68, 1.51): the bar is met about one run in three, so not strictly expected either way.
+BORDERLINE = pytest.mark.xfail(strict=False, reason="issue 31 item 1 on the Kaohsiung strips: ratio 1.1-1.7 "
+                               "from run to run (sparrow's time to fit a sheet's set varies with the seed)")
+
+
+@pytest.mark.parametrize("name", [pytest.param("kaohsiung", marks=BORDERLINE), "panels",
                                   pytest.param("random strips", marks=SHEET_BY_SHEET)])
 def test_true_shape_nesting_takes_at_most_one_and_a_half_times_sparrows_own_strip_packing(name, tmp_path):
     """The issue's bar: time to the layout against spyrrow's time, in one call, to pack the same
@@ -212,18 +219,16 @@ def test_true_shape_nesting_takes_at_most_one_and_a_half_times_sparrows_own_stri
 
 def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_72_percent_with_seams_on_both_parts(tmp_path,
                                                                                                    capsys):
-    """The issue's bar on the example itself: ``torsal run kaohsiung-cut-sheets.graph --set
-    cut.Nesting=TrueShape`` as a user types it, with the graph's own Seed and TimeBudget
-    (the example ships with Nesting = Shelf, which ignores both: TrueShape at the budget
-    that reaches the bar takes a minute or more, too slow to open the example in the app
-    or to solve it in the test suite). Usage measured from the DXF files ``--json`` says
-    were written."""
+    """The issue's bar on the example itself: ``torsal run kaohsiung-cut-sheets.graph --export
+    cut.Layout=roof.dxf --json`` as a user types it (the example ships Nesting = TrueShape with
+    its own Seed and TimeBudget). Usage measured from the DXF files ``--json`` says were
+    written."""
     import json
 
     from torsal.app.cli import main
 
     started = time.perf_counter()
-    assert main(["run", str(EXAMPLES / "kaohsiung-cut-sheets.graph"), "--set", "cut.Nesting=TrueShape",
+    assert main(["run", str(EXAMPLES / "kaohsiung-cut-sheets.graph"),
                  "--export", f"cut.Layout={tmp_path / 'roof.dxf'}", "--json"]) == 0
     seconds = time.perf_counter() - started
     data = json.loads(capsys.readouterr().out)
@@ -233,7 +238,7 @@ def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_72_percent_with_sea
     assert layout["nesting"] == cutfiles.TRUE_SHAPE
     usage, sheets = _usage_from_files(files, 2500.0, 1250.0)
     with capsys.disabled():
-        print(f"\nkaohsiung-cut-sheets, Nesting = TrueShape: {sheets} sheets, usage {usage:.1%} "
+        print(f"\nkaohsiung-cut-sheets as shipped: {sheets} sheets, usage {usage:.1%} "
               f"(from the DXF files), run {seconds:.1f} s")
     assert usage >= 0.72  # and no two parts overlap (_usage_from_files checks with shapely)
     # every seam engraved on both its parts: the node says when an ID fits on neither side

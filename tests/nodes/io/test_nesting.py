@@ -256,7 +256,7 @@ def test_layout_area_is_kept_under_true_shape_nesting(tmp_path):
 def test_a_failing_nesting_engine_is_an_error_saying_so(monkeypatch):
     import subprocess
 
-    from torsal.nodes.geometry import nesting
+    from torsal.nodes.geometry import sparrow_runs
 
     real = subprocess.Popen
 
@@ -264,7 +264,7 @@ def test_a_failing_nesting_engine_is_an_error_saying_so(monkeypatch):
         code = "import sys; sys.stdin.read(); raise ModuleNotFoundError(\"No module named 'spyrrow'\")"
         return real([args[0], "-c", code], **kwargs)
 
-    monkeypatch.setattr(nesting.subprocess, "Popen", broken)
+    monkeypatch.setattr(sparrow_runs.subprocess, "Popen", broken)
     result = run(ExportCutSheet(), Panels=tree({(0,): [rectangle(0, 0, 1, 0.5)]}), Nesting="TrueShape")
     (message,) = texts(result)
     assert "TrueShape nesting failed: the nesting engine (sparrow) stopped with ModuleNotFound" in message
@@ -290,7 +290,7 @@ def test_true_shape_never_takes_more_stock_than_shelf_packing(panels):
 def _nested_once(shapes, budget=2.0):
     from torsal.nodes.geometry import nesting
 
-    nesting._PACKED.clear()  # the cache would answer a repeat without searching
+    nesting.PACKED.clear()  # the cache would answer a repeat without searching
     return nest(shapes, 1250.0, 1250.0, 10.0, 10.0, budget=budget, seed=3)
 
 
@@ -330,28 +330,45 @@ def test_a_sheet_is_cut_where_the_strip_holds_the_most_part_area():
     assert _window(big, np.array([1e4, 1e4, 1e4, 14400]), 500.0, 10.0) == pytest.approx(530.0)
 
 
-def test_a_larger_part_left_over_takes_a_smaller_ones_place_on_a_full_sheet(monkeypatch):
-    """With a stand-in for sparrow that lays the parts in a row in the order asked, 1 mm
-    apart: full-height bars 200, 100, 180, 150 and 110 mm wide on a sheet with 500 mm of
-    room. The strip's best sheet-long stretch holds 200 + 100 + 180; swapping the 100 for
-    the 110 still fits (200 + 180 + 110 + 2 gaps = 492) and puts more on the sheet (the 150
-    would too, but it would make the sheet denser than the strip was)."""
-    from torsal.nodes.geometry import nesting
+def test_a_sheets_parts_are_chosen_largest_first_each_that_keeps_within_its_target():
+    """Areas 50, 40, 30, 22 and 5. Towards 100: 50 + 40, the 30 and the 22 would pass 100,
+    the 5 not: 95. Towards 117: 50 + 40, the 30 would pass, the 22 and the 5 not: 117."""
+    from torsal.nodes.geometry.nesting import _choose
+
+    area = np.array([50.0, 40.0, 30.0, 22.0, 5.0])
+    assert _choose(range(5), area, 100.0) == [0, 1, 4]
+    assert _choose(range(5), area, 117.0) == [0, 1, 3, 4]
+    assert _choose([2, 3, 4], area, 1.0) == [2]  # at least the largest
+
+
+def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_the_last(monkeypatch):
+    """With a stand-in for sparrow that lays the parts in a row, 1 mm apart, in the order
+    asked (reversed for odd seeds): full-height bars 200, 150, 120, 100 and 60 mm wide,
+    a sheet with 500 mm of room (502 × 102, margin and gap 1). The sheet's set towards
+    ``SHEET_TARGET`` of its area (0.72 × 502 × 102 = 36,867 mm², each bar 100 mm tall):
+    200 + 150 (35,000); the 120, 100 and 60 would each pass it. Those three (28,000 mm²,
+    within 0.8 of the 500 × 100 usable sheet) are the last sheet, packed beside it."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
 
     def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            better=None):  # the strip is not offered cut into sheets: the trials are what is tested
-        budget.used += 10
+            better=None, halt=None, counted=True):
+        budget.spend(10 if counted else 0)
         placed, x = {}, spacing
-        for i in members:
+        for i in (members if seed % 2 == 0 else list(members)[::-1]):
             w = float(np.ptp(shapes[i][:, 0]))
             placed[i] = (0.0, (x + w / 2, height / 2))
             x += w + spacing
+        if better is not None:
+            better(placed)
         return placed
 
-    monkeypatch.setattr(nesting, "_strip", row)
-    bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 100, 180, 150, 110)]
+    monkeypatch.setattr(sparrow_runs, "strip", row)
+    monkeypatch.setattr(nesting, "strip", row)
+    bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 150, 120, 100, 60)]
     nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0)
-    assert nested.sheet.tolist() == [0, 1, 0, 1, 0]
+    assert nested.sheet.tolist() == [0, 0, 1, 1, 1]
+    first = [place(bars[i], nested.angle[i], nested.shift[i])[:, 0].min() for i in (0, 1)]
+    assert first == pytest.approx([1.0, 202.0])  # the first seed's order (the odd one's is reversed)
 
 
 def test_a_strip_is_cut_into_sheets_where_no_part_crosses_a_sheet_end():
@@ -371,7 +388,7 @@ def test_the_parts_kept_are_those_a_pairwise_check_keeps():
     """200 random squares, some closer than the spacing, some off the room: the parts kept
     (measured only against near ones, an STRtree) are those a check of every pair keeps,
     largest first."""
-    from torsal.nodes.geometry.nesting import _valid
+    from torsal.nodes.geometry.sparrow_runs import valid as _valid
 
     rng = np.random.default_rng(7)
     corners, sides = rng.uniform(0, 1000, (200, 2)), rng.uniform(5, 40, 200)

@@ -1,91 +1,64 @@
 """True-shape nesting of flat parts onto fixed sheets, with sparrow (``spyrrow``) as the engine.
 
 sparrow packs polygons into a *strip* of fixed height and minimises its length, keeping
-a minimum separation between parts and from the strip's edges. Sheets have a length
-too, so :func:`nest` first packs every part into one strip as tall as the sheet's usable
-height and cuts it into sheet lengths as sparrow shortens it (:func:`_cut`: each sheet
-starts a margin before the first part not yet placed and takes the parts that end within
-it); each cut layout that takes less stock than the last is told to ``found`` at once (the
-app redraws it), and so is, later, each one made of the sheets filled so far and the strip
-of the parts left cut after them. When the best cut keeps :data:`CUT_KEEPS` of the strip's density, that is
-the layout (many parts small beside the sheet: panels). Otherwise (parts a third of a
-sheet long, as the Kaohsiung strips: every cut line crosses four or five of them and the
-cut loses a tenth of the density) it fills the sheets one at a time ("pack, cut, re-pack"),
-starting from that same strip, and keeps whichever takes less stock:
+a minimum separation between parts and from the strip's edges (its runs, the steps they
+share and their check: :mod:`torsal.nodes.geometry.sparrow_runs`). Sheets have a length
+too, and a strip cut into sheet lengths loses at every cut the parts that cross it. So
+:func:`nest` fills the sheets one at a time:
 
-1. pack every part still to place into a strip as tall as the sheet's usable height;
-2. the sheet is the stretch of that strip, a sheet long, that holds the most part area
-   (:func:`_window`; not always its start): the parts wholly within it make its first set;
-3. the parts that cross the stretch's ends (largest first, then the others) are tried
-   one at a time, while the set stays below about the density the strip reached: the
-   sheet's set plus one candidate is packed again, and the candidate stays when that
-   strip ends within the sheet;
-4. swaps, smallest part on the sheet first: the largest part left over that is larger
-   but keeps the sheet's part area within what the strip's density would put on a sheet
-   takes its place when the set so changed still fits the sheet (packed again as in 3). More area
-   on the full sheet leaves less for the next, so the last one ends shorter;
-5. what is left goes to the next sheet, from step 1. The last sheet is the strip of
-   what remains, as short as sparrow makes it, packed again with further seeds while
-   the budget lasts (the shortest is kept: its offcut goes back to stock).
+1. a sheet's parts are chosen by area alone (:func:`_choose`: largest first, each that keeps
+   the set within :data:`SHEET_TARGET` of the sheet's area), and sparrow packs them into a
+   strip as tall as the sheet's usable height, ending as soon as it is no longer than the
+   sheet; the set is packed with :data:`SET_SEEDS` seeds side by side;
+2. when the parts left then cover no more than :data:`LAST_SHEET` of a sheet, they are
+   packed as the last sheet *beside* it (two packings at once, one on each core): its
+   length is what the offcut saves;
+3. a set sparrow could not get within the sheet's length gives the sheet the stretch of its
+   strip holding the most part area (:func:`_window`), and the rest goes back to the pool.
 
-Repeatability: the budget is counted in sparrow's *steps*, not seconds (see
-:mod:`torsal.nodes.geometry.sparrow_worker`): :data:`STEPS_PER_SECOND` per second of
-``budget``, shared among those packings by fixed rules, each packing ending at its
-first failed attempt. sparrow is seeded and searches on :data:`WORKERS` threads, always
-that many whatever the machine's cores (with another thread count its reports differ;
-with the same one they come in the same order: checked on the Kaohsiung strips, the first
-60 reports of two runs identical), so the same parts, sheet and seed give the same layout
-on any machine, however busy — a busy one only takes longer. The clock is a safety net
-(:data:`NET` times the budget): a packing it stops sets ``Nested.on_the_clock``, and that
-layout may differ from run to run.
-Identical packings asked again in the same process are answered from a cache.
+What a sheet's set costs is about what sparrow's own strip of every part costs to reach
+the same density: a sheet is a strip with the density of the layout, not more, and each
+part is packed once (issue 31; profiled on the Kaohsiung strips, 18 parts about a third
+of a sheet long: the set of 13 at 71-74 % of the sheet took 13-27 s at a load of 6, the
+last sheet's 5 beside it 2-5 s). Strips of every part cut into sheets were 10 points less
+dense for such parts (every cut crosses four or five); parts small beside the sheet lose
+little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (many panels)
+the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:
+each sheet starts a margin before the first part not yet placed and takes those that end
+within it), and it is the layout when it keeps :data:`CUT_KEEPS` of the strip's density;
+otherwise the sheets are filled one at a time as above. Not reached: a set that does not fit
+at :data:`SHEET_TARGET` costs both its seeds' packings and still loses its strip's end (50
+random strips, annular sectors sparrow packs to only about 66 % in a strip: sheet 1's set of
+13 failed with both seeds, 28 s; sheet 2's set of 22 took 69 s beside its last sheet of 16,
+89 s, at a load of 10; sparrow's strip of all 50 reaches their 65.5 % in 10.5 s). A target
+that follows the parts (the density a short strip of them reaches) is what is left to try.
 
-Every packing is checked afterwards with shapely against the exact polygons in double
-precision (sparrow reports its placements in single precision): a part closer to
-another than the spacing, or outside the usable sheet, is moved on to the next sheet.
-So every layout returned keeps its spacing and margin.
-
-Where the time goes (profiled on the Kaohsiung strips, 18 parts, budget 45, issue 31): the
-first strip of every part took 39 % of the run, four trials of a sheet's set 52 %, the last
-sheet 8 %; within each, nearly all of it is sparrow's one failed attempt that ends the
-packing (a failed attempt searches many times as long as the hundreds that succeed). Ending
-a trial after a few reports of sparrow struggling at one width instead (deterministic, like
-the steps) made each trial cheap but lost trials that would have fitted: no faster overall.
-Packing the sheets as frames in one strip (a full-height bracket item per sheet) made one
-call, but sparrow moved the huge item slowly: 2-3 times its time for the plain strip.
-Measured next (two threads, load 3): the strip cut into sheets keeps 62 % of the Kaohsiung
-strips' stock where the strip is 73.7 % dense, 58 % for 50 random strips at 67.8 %; filling
-the cuts' holes with the last sheet's parts by a raster bottom-left search moved one part of
-6-13 (no gain, 1-2 s each); and sparrow took 12.4 s to pack 13 Kaohsiung strips (69 % of a
-sheet) into one sheet's length, more than the 5-13 s it takes to pack all 18 into a strip
-72 % dense. Kaohsiung's 72 % of the stock needs its first sheet 72.7 % full: a sheet packed
-by sparrow, which costs about the whole baseline, so its bar (1.5) is out of reach of
-spyrrow 0.9's strip-only interface (no obstacles, no warm start).
+The budget is counted in sparrow's steps (:data:`~torsal.nodes.geometry.sparrow_runs.STEPS_PER_SECOND`
+per second of ``budget``), never the clock, and every packing is seeded (the seeds follow
+``seed`` in the order the packings are asked for), so the same parts, sheet and seed give
+the same layout on any machine, however busy. Every packing is checked afterwards with
+shapely against the exact polygons in double precision (sparrow reports its placements in
+single precision): a part closer to another than the spacing, or outside the usable sheet,
+goes back to the pool. Each complete layout on the way that takes less stock than the last
+(a sheet's strip as sparrow shortens it with the last sheet packed beside it) is told to
+``found`` at once (the app redraws it).
 
 Out of steps with parts left (many sheets, a small budget), what is left is packed into
-one last strip and cut into sheet lengths: each sheet takes the parts that end within a
-sheet's length of the first part not yet placed.
-
-Stopping: ``stop()`` is polled about every 50 ms; when it says yes, the best layout
-found so far is kept (a strip under way contributes its best feasible packing), and
-the rest is placed on further sheets by bounding-rectangle shelf packing so every part
-is still on a sheet. ``report(fraction)`` is told how far the budget's steps are spent.
+one last strip and cut into sheet lengths. Stopping: ``stop()`` is polled about every 50 ms;
+when it says yes, the best layout found so far is kept (a strip under way contributes its
+best feasible packing), and the rest is placed on further sheets by bounding-rectangle
+shelf packing so every part is still on a sheet. ``report(fraction)`` is told how far the
+budget's steps are spent.
 """
 
 from __future__ import annotations
 
-import contextlib
-import json
+import itertools
 import math
-import os
-import queue
-import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import shapely
@@ -93,65 +66,47 @@ from numpy.typing import NDArray
 
 from torsal.nodes.geometry.array_types import FloatArray
 from torsal.nodes.geometry.packing import shelf_pack
+from torsal.nodes.geometry.sparrow_runs import (
+    FEWEST,
+    PACKED,
+    Budget,
+    NestingFailed,
+    Packing,
+    strip,
+    strips,
+    valid,
+)
 
-#: Extra separation asked of sparrow (mm) so single-precision placements still keep
-#: the spacing when checked in double precision.
-SLACK = 0.02
-#: How often a running packing looks at ``stop`` (s).
-POLL = 0.05
-#: Steps of sparrow's search per second of the budget (see :mod:`torsal.nodes.geometry.sparrow_worker`:
-#: a step is one attempt to pack the strip shorter, a failed one counts 20). Roughly what
-#: an unloaded machine does in a second on sheets of a dozen or more large parts (the
-#: Kaohsiung strips: 30 s of budget took 35-130 s at a load of 1-8 on two cores); fewer
-#: or smaller parts go faster.
-STEPS_PER_SECOND = 40
-#: Fewest steps a packing is given.
-FEWEST = 20
-#: Share of the steps left that the strip of every part still to place gets, when they
-#: need more than one sheet; the trials that fill its sheet share the rest with the next.
-FIRST_SHARE = 0.35
-#: Share of the budget's steps that one trial (a sheet's set plus one part) gets at most;
-#: it ends as soon as the set fits the sheet.
-TRIAL_SHARE = 0.4
-#: A sheet's set is tried only up to this share of the density the strip of all the
-#: parts reached (a sheet has two ends a strip has not): denser trials fail, and a failed
-#: trial is the slowest step there is.
-SHEET_DENSITY = 0.95
-#: Fewest steps a trial is worth: sparrow starts from a strip a sixth or so longer and
-#: shortens it by 0.1 % a step.
-FEWEST_TRIAL = 150
-#: A trial ends at its first failed attempt: sparrow could not make it shorter, so it
-#: probably does not fit (a failed attempt takes as long as hundreds that succeed).
-#: Parts covering at most this share of a usable sheet probably fit on it: the last one.
+__all__ = ["PACKED", "Nested", "NestingFailed", "nest", "place"]
+
+#: A sheet's parts are chosen to cover this share of its area (the sheet as sparrow's
+#: strip: its length and height less the margins plus the spacing). sparrow packs the
+#: Kaohsiung strips' sets of 71-74 % into a sheet in about the time its strip of every part
+#: takes to reach that density; denser sets often do not fit at all.
+SHEET_TARGET = 0.72
+#: Seeds a sheet's set is packed with side by side (one worker process each): sparrow's time
+#: to fit a set varies two- to threefold from seed to seed (the Kaohsiung strips' set of 13:
+#: 8.5, 18.4, 10.7 and 20.8 s of CPU for seeds 0-3), so the first that fits is shown at once;
+#: the layout kept is the first seed's when it fits too, so the same seed gives the same layout.
+#: With nothing to show on the way (``found`` None: a headless run) the next seed is packed
+#: only when the first does not fit: the same layout, half the work.
+SET_SEEDS = 2
+#: Parts covering at most this share of a usable sheet are packed as the last sheet.
 LAST_SHEET = 0.8
-#: Fewest steps left for another seed's packing of the last sheet (the shortest is kept).
-RETRY = 100
-#: Share of the steps kept for the last sheet, whose length decides what goes back to stock.
+#: Share of the steps left that the last sheet, packed beside a sheet's set, is given.
 LAST_RESERVE = 0.3
-#: The clock as a safety net only: a packing stops after this many times the whole
-#: budget (plus :data:`GRACE` s), and the layout says it was stopped on the clock.
-NET = 10.0
-GRACE = 60.0
-#: Threads sparrow searches on, whatever the machine: with a fixed count its reports come in
-#: the same order for the same seed (they differ from one thread count to another).
-WORKERS = 2
+#: Above this many sheets' worth of parts, the strip of every part cut into sheets comes first.
+FILL_SHEETS = 3.0
+#: Share of a sheet's steps the strip of every part gets in that case.
+FIRST_SHARE = 0.35
+#: The strip of every part, cut into sheets, is the layout when it keeps at least this
+#: share of the strip's density.
+CUT_KEEPS = 0.9
 #: A layout on the way is told to ``found`` when it uses this much more of the stock than
 #: the last one told (sparrow shortens a strip by a millimetre at a time: each would be
-#: engraved and redrawn).
-TELL = 0.005
-#: The strip of every part, cut into sheet lengths, is the layout when it keeps at least
-#: this share of the strip's density; below, sheets are filled one at a time.
-CUT_KEEPS = 0.9
-
-
-#: Packings kept for identical jobs asked again in this process (the same graph solved
-#: again, a test suite): job -> (packing, steps), at most :data:`CACHED` of them.
-_PACKED: dict[str, tuple[dict[int, tuple[float, tuple[float, float]]] | None, int]] = {}
-CACHED = 64
-
-
-class NestingFailed(RuntimeError):
-    """sparrow's worker failed (not installed, refused the parts): the message says how."""
+#: engraved and redrawn). The layout told last is, when it is the final one, not engraved
+#: again: the panels' final (0.4 % above the first told) came at the end with 0.005.
+TELL = 0.002
 
 
 @dataclass(frozen=True)
@@ -176,165 +131,16 @@ def place(outline: FloatArray, angle: float, shift: Sequence[float]) -> FloatArr
     return np.asarray(outline, dtype=float) @ np.array([[c, s], [-s, c]]) + np.asarray(shift, dtype=float)
 
 
-class _Budget:
-    """The shared steps, stop requests and progress of one :func:`nest` call."""
-
-    def __init__(self, budget: float, stop: Callable[[], bool] | None,
-                 report: Callable[[float], None] | None) -> None:
-        self.start = time.perf_counter()
-        self.steps = max(FEWEST, round(float(budget) * STEPS_PER_SECOND))
-        self.used = 0
-        self.net = NET * float(budget) + GRACE  # seconds, for every packing together
-        self.stop = stop
-        self.report = report
-        self.stopped = False
-        self.on_the_clock = False
-        self.reported = 0.0
-
-    def left(self) -> int:
-        return self.steps - self.used
-
-    def share(self, fraction: float) -> int:
-        """``fraction`` of the steps left, at least :data:`FEWEST`."""
-        return max(FEWEST, round(max(self.left(), 0) * fraction))
-
-    def seconds(self) -> float:
-        return max(1.0, self.net - (time.perf_counter() - self.start))
-
-    def tick(self, running: int = 0) -> bool:
-        """Report progress (``running``: steps of the packing under way); True when a stop
-        was asked for."""
-        fraction = min(0.99, (self.used + running) / self.steps)  # 1 when done
-        if self.report is not None and fraction > self.reported:
-            self.reported = fraction
-            self.report(fraction)
-        if not self.stopped and self.stop is not None and self.stop():
-            self.stopped = True
-        return self.stopped
-
-
-def _strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
-           orientations: Sequence[float] | None, steps: int, seed: int,
-           budget: _Budget, enough: float = 0.0, failures: int = 1,
-           better: Callable[[dict[int, tuple[float, tuple[float, float]]]], None] | None = None,
-           ) -> dict[int, tuple[float, tuple[float, float]]] | None:
-    """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
-    ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
-    sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
-    at once (a sheet's length: shorter is no better).
-
-    sparrow cannot be interrupted, so it runs in a worker process
-    (:mod:`torsal.nodes.geometry.sparrow_worker`) that a stop ends at once; the best feasible
-    packing it reported by then is kept. ``better`` is told each shorter packing as it
-    arrives (not those of a cached job)."""
-    job = {
-        # to a micrometre: below what sparrow's single precision holds on a sheet, and
-        # rounding noise (a far site) then asks the same job
-        "shapes": [[i, np.round(shapes[i], 3).tolist()] for i in members], "height": float(height),
-        "spacing": float(spacing) + SLACK if spacing > 0 else None,
-        "orientations": None if orientations is None else [float(a) for a in orientations],
-        "steps": int(steps), "failures": int(failures), "enough": float(enough),
-        "seconds": budget.seconds(), "seed": int(seed), "workers": WORKERS,
-    }
-    key = json.dumps({k: v for k, v in job.items() if k != "seconds"})
-    if key in _PACKED:
-        cached, used = _PACKED[key]
-        budget.used += used
-        budget.tick()
-        if better is not None and cached is not None:
-            better(dict(cached))
-        return None if cached is None else dict(cached)
-    # -P: the current folder is not searched, so a folder of the user's that holds its own
-    # `torsal` (or anything else) cannot stand in for the worker's modules; the folder that
-    # holds this very `torsal` package goes first on the path instead.
-    root = str(Path(__file__).resolve().parents[3])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
-    worker = subprocess.Popen(
-        [sys.executable, "-P", "-m", "torsal.nodes.geometry.sparrow_worker"], stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
-    )
-    lines: queue.Queue[str | None] = queue.Queue()
-
-    def read() -> None:
-        assert worker.stdout is not None
-        for line in worker.stdout:
-            lines.put(line)
-        lines.put(None)
-
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    best, used, complete, clocked = None, 0, False, False
-    try:
-        assert worker.stdin is not None
-        worker.stdin.write(json.dumps(job))
-        worker.stdin.close()
-        finished = False
-        while not finished:
-            try:
-                line = lines.get(timeout=POLL)
-            except queue.Empty:
-                line = ""
-            while line is not None:
-                if line.strip():
-                    message = json.loads(line)
-                    if message[0] == "step":
-                        used = int(message[1])
-                    elif message[0] == "end":
-                        used, complete, clocked = int(message[1]), True, bool(message[2])
-                        budget.on_the_clock |= clocked
-                    else:
-                        best = message
-                        if better is not None:
-                            better({int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]})
-                try:
-                    line = lines.get_nowait()
-                except queue.Empty:
-                    break
-            else:  # the worker closed its output: it has ended, or is about to
-                finished = True
-                with contextlib.suppress(subprocess.TimeoutExpired):
-                    worker.wait(timeout=5.0)
-            if budget.tick(used):
-                finished = True
-    finally:
-        ended = worker.poll() is not None
-        if not ended:
-            worker.kill()
-        worker.wait()
-        reader.join(timeout=1.0)
-        problem = worker.stderr.read() if worker.stderr is not None and ended else ""
-        if worker.stderr is not None:
-            worker.stderr.close()
-    budget.used += used
-    if ended and worker.returncode != 0 and best is None:
-        last = (problem.strip().splitlines() or ["no message"])[-1]
-        raise NestingFailed(f"the nesting engine (sparrow) stopped with {last}")
-    packing = None if best is None else {int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]}
-    if complete and not clocked:  # what any later run of this job would find
-        while len(_PACKED) >= CACHED:
-            _PACKED.pop(next(iter(_PACKED)))
-        _PACKED[key] = (packing, used)
-    return packing
-
-
-def _valid(polygons: dict[int, shapely.Polygon], room: shapely.Polygon, spacing: float) -> list[int]:
-    """The parts of a packing that keep the spacing and stay in ``room``, largest first
-    (a part too close to one already kept is left out)."""
-    order = sorted(polygons, key=lambda k: -polygons[k].area)
-    tree = shapely.STRtree([polygons[i] for i in order])  # only near pairs are measured
-    kept: list[int] = []
-    taken: set[int] = set()
-    for rank, i in enumerate(order):
-        polygon = polygons[i]
-        if not room.covers(polygon):
-            continue
-        near = tree.query(polygon, predicate="dwithin", distance=spacing)
-        if any(int(k) in taken and int(k) != rank and polygon.distance(polygons[order[int(k)]]) < spacing
-               for k in near):
-            continue
-        kept.append(i)
-        taken.add(rank)
-    return kept
+def _choose(members: Sequence[int], area: FloatArray, cap: float) -> list[int]:
+    """The parts for one sheet by area alone: largest first, each that keeps their total
+    within ``cap`` (first fit decreasing; no swap of one chosen for one left would then
+    fit: the one left did not fit before the smaller was chosen); at least the largest."""
+    chosen, total = [], 0.0
+    for i in sorted(members, key=lambda i: (-area[i], i)):
+        if total + area[i] <= cap or not chosen:
+            chosen.append(i)
+            total += area[i]
+    return chosen
 
 
 def _window(polygons: dict[int, shapely.Polygon], area: FloatArray, width: float, margin: float) -> float:
@@ -387,224 +193,214 @@ def nest(
 
     ``orientations`` lists the allowed turns in degrees (``None``: free rotation).
     Every shape must fit the usable sheet in some allowed turn (the caller checks).
-    ``found`` is told each complete layout that uses :data:`TELL` more of the stock than the
-    last it was told (the strip of every part cut into sheets, as sparrow shortens it), before
-    the end.
+    ``found`` is told each complete layout on the way that uses :data:`TELL` more of the
+    stock than the last it was told, before the end.
     """
-    run = _Budget(budget, stop, report)
+    run = Budget(budget, stop, report)
     n = len(shapes)
     # sparrow keeps the spacing from the strip's edges too: widen the strip by it
     strip_height = height - 2 * margin + 2 * spacing
     room_length = width - 2 * margin
+    sheet_length = room_length + 2 * spacing  # a sheet, as sparrow measures its strip
     room = shapely.box(margin, margin, width - margin, height - margin).buffer(1e-9, join_style="mitre")
     # sparrow turns about the origin: centre each shape there (smaller rounding)
     centres = [np.asarray(s, dtype=float).mean(axis=0) for s in shapes]
     centred = [np.asarray(s, dtype=float) - c for s, c in zip(shapes, centres, strict=True)]
     area = np.array([shapely.Polygon(s).area for s in centred])
-    sheet_of = np.full(n, -1, dtype=np.intp)
-    angle = np.zeros(n)
-    shift = np.zeros((n, 2))
-    remaining = list(range(n))
-    sheet = 0
-    attempt_seed = int(seed)
-
-    def polygons_of(packing: dict[int, tuple[float, tuple[float, float]]]) -> dict[int, shapely.Polygon]:
-        lift = (margin - spacing, margin - spacing)  # strip origin -> sheet
-        return {i: shapely.Polygon(place(centred[i], a, np.add(t, lift))) for i, (a, t) in packing.items()}
-
     usable = room_length * (height - 2 * margin)
     # a strip of every part, however loosely packed, ends well before this (a finite box:
     # shapely cannot tell what an infinite one covers when a part touches its edge)
     far = width + 2 * sum(float(np.ptp(c, axis=0).max()) + 2 * spacing for c in centred)
     open_room = shapely.box(margin, margin, far, height - margin).buffer(1e-9, join_style="mitre")
+    seeds = itertools.count(int(seed))  # each packing its own seed, in the order they are asked for
+    lock = threading.Lock()  # packings side by side tell their layouts from two threads
 
-    def length(packing: dict[int, tuple[float, tuple[float, float]]]) -> float:
-        """How far a packing of every part left reaches; infinite when one is missing or
-        too close to another in double precision."""
+    # the sheets filled for good: part -> (sheet, angle, shift)
+    placed: dict[int, tuple[int, float, FloatArray]] = {}
+    remaining = list(range(n))
+
+    def put(i: int, sheet: int, angle: float, t: Sequence[float], start: float, into: dict) -> None:
+        # placed = R(shape - centre) + t + lift = R(shape) + (t + lift - R(centre))
+        lift = np.add(t, (margin - spacing - start, margin - spacing))
+        into[i] = (sheet, angle, lift - place(centres[i][None, :], angle, (0, 0))[0])
+
+    def polygons_of(packing: Packing, start: float = 0.0) -> dict[int, shapely.Polygon]:
+        lift = (margin - spacing - start, margin - spacing)  # strip origin -> sheet
+        return {i: shapely.Polygon(place(centred[i], a, np.add(t, lift))) for i, (a, t) in packing.items()}
+
+    def cut_into_sheets(packing: Packing, first: int, into: dict) -> int | None:
+        """``packing`` (every part valid, or None) cut into sheets from sheet ``first`` into
+        ``into``; the sheets it takes."""
         polygons = polygons_of(packing)
-        if len(polygons) < len(remaining) or len(_valid(polygons, open_room, spacing)) < len(polygons):
-            return math.inf
-        return max(p.bounds[2] for p in polygons.values())
-
-    def steps(share: float, reserve: float = 0.0) -> int:
-        """``share`` of this sheet's part of the steps left (less ``reserve``): the steps
-        split among the sheets the remaining parts need at least (their area over the
-        usable sheet)."""
-        sheets_left = max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
-        return max(FEWEST, round(max(run.left() - reserve, 0.0) / sheets_left * share))
-
-    #: the strip of every part cut into sheets, the least stock so far: ((sheets, reach), layout)
-    cut: list[tuple[tuple[int, float], Nested]] = []
-    told = [-math.inf]  # the stock usage of the last layout told to found
-
-    def cut_into_sheets(packing: dict[int, tuple[float, tuple[float, float]]]) -> None:
-        """Keep (and tell ``found``) the sheets filled so far and the strip ``packing`` of
-        every part left cut into sheet lengths after them, when that takes less stock than
-        the layout kept."""
-        polygons = polygons_of(packing)
-        if len(polygons) < len(remaining) or len(_valid(polygons, open_room, spacing)) < len(polygons):
-            return
+        if len(valid(polygons, open_room, spacing)) < len(polygons):
+            return None
         sheets = _cut(polygons, width, margin)
-        if not sheets:
-            return
-        start, members = sheets[-1]
-        stock = (sheet + len(sheets), max(polygons[i].bounds[2] for i in members) - start)
-        if cut and stock >= cut[0][0]:
-            return
-        cut_sheet, cut_angle, cut_shift = sheet_of.copy(), angle.copy(), shift.copy()
         for k, (start, members) in enumerate(sheets):
             for i in members:
-                a, t = packing[i]
-                cut_sheet[i], cut_angle[i] = sheet + k, a
-                lift = np.add(t, (margin - spacing - start, margin - spacing))
-                cut_shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
-        layout = Nested(cut_sheet, cut_angle, cut_shift, stock[0], seconds=time.perf_counter() - run.start,
-                        steps=run.used)
-        cut[:] = [(stock, layout)]
-        usage = float(area.sum()) / (((stock[0] - 1) * width + stock[1]) * height)
-        if found is not None and usage >= told[0] + TELL:
-            told[0] = usage
-            found(layout)
+                put(i, first + k, *packing[i], start, into)
+        return len(sheets) or None
 
-    cut_is_enough = False
-    while remaining and not run.stopped and run.left() >= FEWEST:
-        # likely the last sheet: all the steps left, since its length is what the offcut saves
-        last = sum(area[i] for i in remaining) <= LAST_SHEET * usable
-        first = sheet == 0
-        packing = _strip(centred, remaining, strip_height, spacing, orientations,
-                         steps(1.0 if last else FIRST_SHARE), attempt_seed, run,
-                         better=cut_into_sheets)
-        attempt_seed += 1
-        if packing is None:
-            break
-        # the last sheet's length is what goes back to stock: try other seeds while steps last
-        while last and not run.stopped and run.left() >= RETRY:
-            again = _strip(centred, remaining, strip_height, spacing, orientations, run.left(),
-                           attempt_seed, run, better=cut_into_sheets)
-            attempt_seed += 1
-            if again is not None and length(again) < length(packing):
-                packing = again
-        polygons = polygons_of(packing)
-        # how densely sparrow packed them all: a sheet's set is tried up to about as dense
-        reach = max(p.bounds[2] for p in polygons.values()) - (margin - spacing) + spacing
-        density = sum(area[i] for i in packing) / (reach * strip_height)
-        if first and cut:
-            (count, cut_reach), _ = cut[0]
-            usage = float(area.sum()) / (((count - 1) * width + cut_reach) * height)
-            # the cut strip keeps nearly its density: filling sheets one at a time (trials
-            # that end on sparrow's slowest step, a failed attempt) would gain little
-            if usage >= CUT_KEEPS * density:
-                cut_is_enough = True
-                break
-        # the sheet is the stretch of the strip holding the most area, not always its start
-        start = _window(polygons, area, width, margin)
-        if start > 0:
-            packing = {i: (a, (t[0] - start, t[1])) for i, (a, t) in packing.items()}
+    def nested(layout: dict[int, tuple[int, float, FloatArray]], stopped: bool = False) -> Nested:
+        sheet_of = np.array([layout[i][0] for i in range(n)], dtype=np.intp)
+        return Nested(sheet_of, np.array([layout[i][1] for i in range(n)]),
+                      np.array([layout[i][2] for i in range(n)], dtype=float).reshape(n, 2),
+                      int(sheet_of.max()) + 1, stopped, time.perf_counter() - run.start, run.on_the_clock,
+                      run.used)
+
+    def stock(layout: Nested) -> tuple[int, float]:
+        return _stock(shapes, layout.sheet, layout.angle, layout.shift, layout.sheets)
+
+    best: list[tuple[tuple[int, float], Nested]] = []  # the layout on the way taking least stock
+    told = [-math.inf]  # the stock usage of the last layout told to found
+
+    def offer(packings: Sequence[Packing]) -> None:
+        """The sheets filled so far, then each of ``packings`` (together every part left)
+        cut into sheet lengths: kept, and told to ``found``, when it takes less stock."""
+        with lock:
+            layout = dict(placed)
+            for packing in packings:
+                first = 1 + max((s for s, _, _ in layout.values()), default=-1)
+                taken = cut_into_sheets(packing, first, layout)
+                if taken is None:
+                    return
+            if len(layout) < n:
+                return
+            candidate = nested(layout)
+            used = stock(candidate)
+            if best and used >= best[0][0]:
+                return
+            best[:] = [(used, candidate)]
+            usage = float(area.sum()) / (((used[0] - 1) * width + used[1]) * height)
+            if found is not None and usage >= told[0] + TELL:
+                told[0] = usage
+                found(candidate)
+
+    def sheets_left() -> float:
+        return max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
+
+    sheet = 0  # the next sheet to fill
+    if area.sum() > FILL_SHEETS * usable:
+        # many sheets: the strip of every part cut into sheets, kept when it keeps the strip's density
+        steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
+        packing = strip(centred, remaining, strip_height, spacing, orientations, steps, next(seeds), run,
+                        better=lambda p: offer([p]))
+        if packing is not None and best:
             polygons = polygons_of(packing)
-        inside = {i: p for i, p in polygons.items() if p.bounds[2] <= width - margin}
-        kept = _valid(inside, room, spacing)
-        chosen = {i: packing[i] for i in kept}
-        if len(kept) < len(remaining):
-            crossing = sorted((i for i in remaining if i not in chosen and i in polygons
-                               and polygons[i].bounds[0] < width - margin
-                               and polygons[i].bounds[2] > margin), key=lambda i: -area[i])
-            others = sorted((i for i in remaining if i not in chosen and i not in crossing),
-                            key=lambda i: -area[i])
-            full = density * (room_length + 2 * spacing) * strip_height  # part area at the strip's density
-            free = SHEET_DENSITY * full - sum(area[i] for i in chosen)
-
-            def fitted(members: list[int], trial_steps: int) -> dict | None:
-                """``members`` packed onto the sheet by one sparrow trial, or None if they
-                do not all fit inside it (less its margin, ``spacing`` apart)."""
-                nonlocal attempt_seed
-                trial = _strip(centred, members, strip_height, spacing, orientations,
-                               trial_steps, attempt_seed, run, enough=room_length + 2 * spacing)
-                attempt_seed += 1
-                if trial is None or len(trial) != len(members):
-                    return None
-                trial_polygons = polygons_of(trial)
-                if max(p.bounds[2] for p in trial_polygons.values()) > width - margin:
-                    return None
-                return trial if len(_valid(trial_polygons, room, spacing)) == len(members) else None
-
-            for candidate in crossing + others:
-                rest = sum(area[i] for i in remaining if i not in chosen)
-                # the next sheet is likely the last: keep a share of the budget for it
-                reserve = LAST_RESERVE * run.steps if rest <= LAST_SHEET * usable else 0.0
-                trial_steps = round(min(run.left() - reserve, run.steps * TRIAL_SHARE))
-                if run.stopped or trial_steps < FEWEST_TRIAL or not chosen:
-                    break
-                if area[candidate] > free:
-                    continue
-                trial = fitted([*chosen, candidate], trial_steps)
-                if trial is not None:
-                    chosen = trial
-                    free -= area[candidate]
-            # swaps: the largest part left for the smallest on the sheet, while the sheet stays
-            # no denser than the strip was (the leftovers' sheet gets shorter)
-            for out in sorted(chosen, key=lambda i: (area[i], i)):
-                room_for = full - sum(area[i] for i in chosen) + area[out]
-                left_over = [i for i in remaining if i not in chosen and area[out] < area[i] <= room_for]
-                if not left_over:
-                    continue
-                swap_in = max(left_over, key=lambda i: (area[i], -i))
-                rest = sum(area[i] for i in remaining if i not in chosen) - area[swap_in] + area[out]
-                reserve = LAST_RESERVE * run.steps if rest <= LAST_SHEET * usable else 0.0
-                trial_steps = round(min(run.left() - reserve, run.steps * TRIAL_SHARE))
-                if run.stopped or trial_steps < FEWEST_TRIAL:
-                    break
-                trial = fitted([*(i for i in chosen if i != out), swap_in], trial_steps)
-                if trial is not None:
-                    chosen = trial
-        if not chosen:  # sparrow spread even the first part past the sheet: place one alone
-            largest = max(remaining, key=lambda i: area[i])
-            alone = _strip(centred, [largest], strip_height, spacing, orientations, FEWEST,
-                           attempt_seed, run)
-            if alone is None or len(_valid(polygons_of(alone), room, spacing)) != 1:
+            reach = max(p.bounds[2] for p in polygons.values()) - (margin - spacing) + spacing
+            density = float(area.sum()) / (reach * strip_height)
+            (count, last), _ = best[0]
+            if float(area.sum()) / (((count - 1) * width + last) * height) >= CUT_KEEPS * density:
+                remaining = []  # best holds the layout
+    while remaining and not run.stopped and run.left() >= FEWEST:
+        if sum(area[i] for i in remaining) <= LAST_SHEET * usable:  # the last sheet: all the steps left
+            packing = strip(centred, remaining, strip_height, spacing, orientations, run.left(), next(seeds),
+                            run, better=lambda p: offer([p]))
+            if packing is None or (taken := cut_into_sheets(packing, sheet, placed)) is None:
                 break
-            chosen = alone
-        for i, (a, t) in chosen.items():
-            sheet_of[i], angle[i] = sheet, a
-            # placed = R(shape - centre) + t + lift = R(shape) + (t + lift - R(centre))
-            lift = np.add(t, (margin - spacing, margin - spacing))
-            shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
-        remaining = [i for i in remaining if sheet_of[i] < 0]
+            sheet += taken
+            remaining = []
+            break
+        chosen = _choose(remaining, area, SHEET_TARGET * sheet_length * strip_height)
+        others = [i for i in remaining if i not in chosen]
+        last = sum(area[i] for i in others) <= LAST_SHEET * usable
+        reserve = round(LAST_RESERVE * run.left()) if last else 0
+        # the set packed with SET_SEEDS seeds side by side: the first seed's packing is the sheet when
+        # it fits (the others then end), else the first that fits; each that fits is shown at once
+        tries = SET_SEEDS
+        seen: list[Packing | None] = [None] * (tries + 1)  # the latest packing of each; the last sheet's
+        fits = threading.Event()  # the first seed's packing fits the sheet
+
+        def saw(k: int, packing: Packing, seen: list[Packing | None] = seen, fits: threading.Event = fits,
+                last: bool = last) -> None:
+            seen[k] = packing
+            if k == 0 and max(p.bounds[2] for p in polygons_of(packing).values()) <= width - margin:
+                fits.set()
+            if last and seen[-1] is not None:
+                for one in ([seen[k]] if k < len(seen) - 1 else seen[:-1]):
+                    if one is not None:
+                        offer([one, seen[-1]])
+
+        steps = max(FEWEST, run.left() - reserve)
+        # the other seeds' steps are not counted: they end when the first seed's packing fits
+        jobs: list[dict] = [{"members": chosen, "steps": steps, "seed": next(seeds), "enough": sheet_length,
+                             "better": lambda p, k=k: saw(k, p), "halt": None if k == 0 else fits.is_set,
+                             "counted": k == 0} for k in range(tries)]
+        if last:  # packed beside this sheet's set
+            jobs.append({"members": others, "steps": max(FEWEST, reserve), "seed": next(seeds),
+                         "better": lambda p, k=tries: saw(k, p)})
+        if found is not None:  # every seed at once: the first that fits is shown
+            packings = strips(centred, jobs, strip_height, spacing, orientations, run)
+        else:  # nothing to show: another seed only when the first does not fit (the same layout)
+            packings = [None] * len(jobs)
+            first = [0, *range(tries, len(jobs))]
+            for k, packing in zip(first, strips(centred, [jobs[k] for k in first], strip_height, spacing,
+                                                orientations, run), strict=True):
+                packings[k] = packing
+        if packings[0] is None:
+            break
+        packing = packings[0]
+        for k in range(1, tries):
+            if fits.is_set() or run.stopped:
+                break
+            if found is None:
+                packings[k] = strip(centred, height=strip_height, spacing=spacing, orientations=orientations,
+                                    budget=run, **jobs[k])
+            if packings[k] is not None and max(
+                    p.bounds[2] for p in polygons_of(packings[k]).values()) <= width - margin:
+                packing = packings[k]
+                break
+        polygons = polygons_of(packing)
+        if max(p.bounds[2] for p in polygons.values()) > width - margin:
+            # not within the sheet: the stretch of the strip holding the most part area
+            start = _window(polygons, area, width, margin)
+            polygons = polygons_of(packing, start)
+        else:
+            start = 0.0
+        kept = valid({i: p for i, p in polygons.items() if p.bounds[2] <= width - margin}, room, spacing)
+        if not kept:  # sparrow spread even the first part past the sheet: place one alone
+            largest = max(remaining, key=lambda i: area[i])
+            alone = strip(centred, [largest], strip_height, spacing, orientations, FEWEST, next(seeds), run)
+            if alone is None or len(valid(polygons_of(alone), room, spacing)) != 1:
+                break
+            packing, kept, start = alone, [largest], 0.0
+        with lock:
+            for i in kept:
+                put(i, sheet, *packing[i], start, placed)
         sheet += 1
-    if cut_is_enough:
-        remaining = []
+        remaining = [i for i in remaining if i not in placed]
+        if last and len(kept) == len(chosen) and packings[-1] is not None:
+            with lock:
+                layout = dict(placed)
+                taken = cut_into_sheets(packings[-1], sheet, layout)
+                if taken is not None:
+                    placed.update(layout)
+                    sheet += taken
+                    remaining = []
     if remaining and not run.stopped:  # out of steps: one strip of the rest, cut into sheet lengths
-        packing = _strip(centred, remaining, strip_height, spacing, orientations, FEWEST,
-                         attempt_seed, run)
-        polygons = polygons_of(packing) if packing is not None else {}
-        if len(polygons) == len(remaining) and len(_valid(polygons, open_room, spacing)) == len(polygons):
-            left = sorted(polygons, key=lambda i: polygons[i].bounds[0])
-            while left:
-                start = polygons[left[0]].bounds[0] - margin  # this sheet's cut-off along the strip
-                here = [i for i in left if polygons[i].bounds[2] - start <= width - margin]
-                if not here:  # turned longer than the sheet: the shelf below takes the rest
-                    break
-                for i in here:
-                    a, t = packing[i]
-                    sheet_of[i], angle[i] = sheet, a
-                    lift = np.add(t, (margin - spacing - start, margin - spacing))
-                    shift[i] = lift - place(centres[i][None, :], a, (0, 0))[0]
-                left = [i for i in left if i not in here]
-                sheet += 1
-            remaining = [i for i in remaining if sheet_of[i] < 0]
+        packing = strip(centred, remaining, strip_height, spacing, orientations, FEWEST, next(seeds), run)
+        if packing is not None:
+            with lock:
+                layout = dict(placed)
+                taken = cut_into_sheets(packing, sheet, layout)
+                if taken is not None:
+                    placed.update(layout)
+                    sheet += taken
+                    remaining = []
     if remaining:  # stopped: the rest on further sheets by their bounding rectangles
         boxes = [np.ptp(centred[i], axis=0) for i in remaining]
         extra, corner = shelf_pack(np.array(boxes), (width, height), max(margin, spacing))
         for k, i in enumerate(remaining):
-            sheet_of[i] = sheet + int(extra[k])
-            shift[i] = corner[k] - np.asarray(shapes[i], dtype=float).min(axis=0)
-        sheet += int(extra.max()) + 1
+            low = np.asarray(shapes[i], dtype=float).min(axis=0)
+            placed[i] = (sheet + int(extra[k]), 0.0, corner[k] - low)
     if report is not None:
         report(1.0)
-    seconds = time.perf_counter() - run.start
-    if cut and (cut_is_enough or cut[0][0] <= _stock(shapes, sheet_of, angle, shift, sheet)):
-        return Nested(cut[0][1].sheet, cut[0][1].angle, cut[0][1].shift, cut[0][1].sheets, run.stopped,
-                      seconds, run.on_the_clock, run.used)
-    return Nested(sheet_of, angle, shift, sheet, run.stopped, seconds, run.on_the_clock, run.used)
+    if len(placed) == n:
+        final = nested(placed, run.stopped)
+        if not best or stock(final) <= best[0][0]:
+            return final
+    kept_layout = best[0][1]
+    return Nested(kept_layout.sheet, kept_layout.angle, kept_layout.shift, kept_layout.sheets, run.stopped,
+                  time.perf_counter() - run.start, run.on_the_clock, run.used)
 
 
 def _stock(shapes: Sequence[FloatArray], sheet_of: NDArray[np.intp], angle: FloatArray, shift: FloatArray,

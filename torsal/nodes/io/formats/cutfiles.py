@@ -32,6 +32,7 @@ itself bundles no TrueType font) — flattened to 1/400 of the cap height (0.025
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import time
@@ -271,8 +272,10 @@ def lay_out(
     :data:`SHELF`. ``grain``: parts turn only by 0° or 180°; ``rotate`` False: not at all.
     ``seams`` (:func:`~torsal.nodes.io.seams.find_seams`, between flat surfaces among the panels)
     are engraved on both parts with their ID and ticks every ``tick_spacing`` mm.
-    ``found`` is told each better true-shape layout the search finds on the way (engraved,
-    marked stopped: a layout before the search's end).
+    ``found`` is told each better true-shape layout the search finds on the way (engraved;
+    a stop abandons the one being engraved). Stopped, a search with ``found`` keeps the last
+    layout it told (at once: Esc does not wait for engraving), or raises
+    :class:`StoppedBeforeALayout` when it told none (what the caller shows stays).
     """
     edge = gap if margin is None else margin
     for name, value in (("SheetWidth", width), ("SheetHeight", height)):
@@ -371,8 +374,9 @@ def lay_out(
             def move(i: int, points: FloatArray) -> FloatArray:
                 return _turn(points, turns[i]) - lows[i] + corners[i]
         parts = []
-        # Esc stopped the search: its best layout is engraved to the end
-        check = None if stopped or on_the_way else watch_check()
+        # Esc stopped the search: its best layout is engraved to the end (one on the way is
+        # abandoned instead: see better)
+        check = None if stopped else watch_check()
         with watched(check, watch_progress()):
             marks, lengths = _seam_marks(curves, names, drawn, seams, scale, tick_spacing, text_height, move,
                                          notes)
@@ -396,10 +400,23 @@ def lay_out(
         return build(None, [], False)
     orientations = None if rotate and not grain else [0.0, 180.0] if rotate else [0.0]
 
+    shown: list[tuple[Nested, CutLayout]] = []  # the last layout on the way told to found
+
+    def abandon() -> None:
+        if stop is not None and stop():
+            raise _Abandoned
+
     def better(nested: Nested) -> None:
-        """A layout on the way, engraved, for ``found``."""
+        """A layout on the way, engraved, for ``found``; abandoned when a stop is asked for
+        (engraving 18 strips with their seams takes seconds: Esc would wait for it)."""
         if found is not None:
-            found(build(nested, [], False, on_the_way=True))
+            try:
+                with watched(abandon):
+                    layout = build(nested, [], False, on_the_way=True)
+            except _Abandoned:
+                return
+            shown[:] = [(nested, layout)]
+            found(layout)
 
     try:
         nested = nest(cuts, width, height, edge, gap, orientations, budget, seed, stop, report,
@@ -410,7 +427,18 @@ def lay_out(
     if nested.on_the_clock:
         notes.append("TrueShape nesting ran out of time before its steps (a very busy machine): this "
                      "layout may differ from run to run")
+    if shown:  # the layout found already engraved (a stop keeps the last one shown: at once)
+        before, layout = shown[0]
+        if nested.stopped or all(np.array_equal(getattr(before, k), getattr(nested, k))
+                                 for k in ("sheet", "angle", "shift")):
+            stopped = ["Nesting was stopped: this is the best layout found by then"] if nested.stopped else []
+            return dataclasses.replace(layout, notes=(*notes, *layout.notes, *stopped),
+                                       stopped=nested.stopped, seconds=time.perf_counter() - started)
     return build(nested, notes, nested.stopped)
+
+
+class _Abandoned(Exception):
+    """A layout on the way whose engraving was abandoned: a stop was asked for."""
 
 
 def _stock(sheet_of: NDArray[np.intp], cuts: Sequence[FloatArray]) -> tuple[int, float]:
