@@ -15,13 +15,16 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   face too and the face's normals there are the strip's. Where the strip's own pairing of
   the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
-  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT;
+  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
+  control points as that takes: where the fit still twists, its twisting intervals go out
+  as cones, below, which cost fewer control points than a fit 30 times closer);
 - where no developable pairing joins two rulings (the torsal condition has no root between
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does. A face that still twists
-  (more than :data:`TWISTED`) has its most twisted interval made cones, one at a time;
+  (more than :data:`TWISTED`) has its twisting intervals made cones, all at once, and is
+  fitted again;
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
   joined at the ruling they share by a triple knot (each keeps its shape; fewer faces, a
   smaller file). Where a rail turns a corner (a strip cut to a trim) the faces meet there;
@@ -63,9 +66,6 @@ DEVELOPABLE = 1e-7
 #: A face still twisting more than this (rad) after both pairings has its most twisted
 #: interval made cones instead, one at a time while it does.
 TWISTED = 5e-7
-
-#: How much closer than FIT a developable pairing is fitted where the samples allow it.
-TIGHTER = 0.03
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -146,7 +146,11 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         while end < n - 1 and not shared[end] and not corner[end] and not conical[end]:
             end += 1
         piece, twist = _ruled(strip, u, lines, k, end, size)
-        if twist > TWISTED:  # still twisted: its most twisted interval as cones, and again
+        if twist > TWISTED:  # still twisted: its twisted intervals as cones, and again
+            bad = _interval_twists(piece.rails, u[k:end + 1]) > TWISTED
+            if bad.any():
+                conical[k + np.flatnonzero(bad)] = True
+                continue
             own = [_own_twist(strip, u[i:i + 2], 17) for i in range(k, end)]
             if max(own) > TWISTED:
                 conical[k + int(np.argmax(own))] = True
@@ -325,8 +329,9 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
         def paired(at: np.ndarray) -> np.ndarray:
             return torsal_partners(strip.curve_a, strip.curve_b, span, at)[0]
 
-        # closer than FIT where the samples allow: the torsal condition is one of derivatives
-        developable = _fit(strip, span, lines[first:last + 1], tolerance * TIGHTER, paired, kinks)
+        # (fitted to FIT, as few control points as that takes: where the fit still twists,
+        # its twisting intervals go out as cones, which cost fewer than a fit 30x closer)
+        developable = _fit(strip, span, lines[first:last + 1], tolerance, paired, kinks)
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
             fit = developable
     brep, count = _brep(fit)
@@ -341,6 +346,26 @@ def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float
     far = np.cross(*strip.derivatives(u, np.full(count, 0.99))[1:3])
     angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
     return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
+
+
+def _interval_twists(spline: BSpline | None, span: np.ndarray, count: int = 17) -> np.ndarray:
+    """Per interval of ``span``: the largest angle between a fitted face's normals 1 % in
+    from either end of its lines across, at ``count`` of them in the interval."""
+    if spline is None:
+        return np.zeros(len(span) - 1)
+    steps = np.linspace(0.0, 1.0, count)
+    u = (span[:-1, None] + (span[1:] - span[:-1])[:, None] * steps).ravel()
+    return _normal_angles(spline(u), spline.derivative()(u)).reshape(len(span) - 1, count).max(axis=1)
+
+
+def _normal_angles(points: np.ndarray, slopes: np.ndarray) -> np.ndarray:
+    """The angle between a ruled face's normals 1 % in from either end of its lines across,
+    from its rails' points and slopes side by side (n, 6); 0 where undefined."""
+    ruling = points[:, 3:] - points[:, :3]
+    near = np.cross(0.99 * slopes[:, :3] + 0.01 * slopes[:, 3:], ruling)
+    far = np.cross(0.01 * slopes[:, :3] + 0.99 * slopes[:, 3:], ruling)
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
+    return np.nan_to_num(angle)
 
 
 def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
