@@ -55,7 +55,7 @@ from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
-from torsal.nodes.io.formats.threedm_native import rhino_surface
+from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
@@ -84,7 +84,7 @@ SAME_POINT = 1e-12
 class Piece:
     """One face of a strip: a rhino3dm brep, its kind and the rulings it spans."""
 
-    brep: rh.Brep
+    brep: rh.Brep | None  #: None until the face is final (:func:`strip_pieces` builds it once)
     kind: str  #: "torsal" (a ruled face), "fan" (a planar triangle) or "cone" (one rail at rest)
     first: int  #: index of its first ruling in the strip
     last: int  #: index of its last ruling
@@ -138,7 +138,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         if conical[k]:  # no developable pairing: two cones meeting on a diagonal
             cones = _cones(strip, u, lines, k, size)
             if tip[k] or tip[k + 1]:  # a face of its own: one of its lines is a point
-                cones = [replace(piece, rails=None) for piece in cones]
+                cones = [replace(piece, brep=_brep(piece.rails), rails=None) for piece in cones]
             pieces += cones
             k += 1
             continue
@@ -157,7 +157,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
                 continue
         pieces.append(piece)
         k = end
-    return _joined(pieces)
+    return [replace(p, brep=_brep(p.rails)) if p.brep is None else p for p in _joined(pieces)]
 
 
 def _joined(pieces: list[Piece]) -> list[Piece]:
@@ -175,9 +175,8 @@ def _joined(pieces: list[Piece]) -> list[Piece]:
         knots = np.concatenate([one.t[:-1], two.t[4:]])
         controls = np.concatenate([np.asarray(one.c)[:n1], np.asarray(two.c)[1:n2]])
         spline = BSpline(knots, controls, 3)
-        brep, count = _brep((0.0, knots, spline))
         worst = max(before.deviation, piece.deviation)
-        out[-1] = Piece(brep, "torsal", before.first, piece.last, worst, count, spline)
+        out[-1] = Piece(None, "torsal", before.first, piece.last, worst, len(knots) - 4, spline)
     return out
 
 
@@ -185,22 +184,47 @@ def _conical(strip: RuledSurface, u: np.ndarray, shared: np.ndarray) -> np.ndarr
     """Per interval between rulings: whether the strip's own pairing twists there (more than
     :data:`DEVELOPABLE`) and no developable pairing joins its two rulings (the torsal
     condition has no root for some point of rail A, or a rail is at rest at one of the two
-    rulings: next to a fan)."""
+    rulings: next to a fan). All intervals are judged in one evaluation of the strip and one
+    partner search."""
     flags = np.zeros(len(u) - 1, dtype=bool)
     speeds = [np.linalg.norm(rail.derivatives(u, 1)[1], axis=1) for rail in (strip.curve_a, strip.curve_b)]
     resting = np.zeros(len(u), dtype=bool)
     for speed in speeds:
         resting |= speed <= 1e-6 * max(float(speed.max()), 1e-300)
-    for i in np.flatnonzero(~shared):
-        span = u[i:i + 2]
-        if _own_twist(strip, span, 17) <= DEVELOPABLE:
-            continue
-        if resting[i] or resting[i + 1]:  # a partner moving like a square root: no fit follows it
-            flags[i] = True
-            continue
-        at = np.linspace(span[0], span[1], 9)[1:-1]
-        flags[i] = bool((torsal_partners(strip.curve_a, strip.curve_b, span, at)[1] == CONE).any())
+    todo = np.flatnonzero(~shared)
+    if not len(todo):
+        return flags
+    twisted = todo[_own_twists(strip, u[todo], u[todo + 1], 17) > DEVELOPABLE]
+    at_rest = resting[twisted] | resting[twisted + 1]  # a partner moving like a square root:
+    flags[twisted[at_rest]] = True  # no fit follows it
+    check = twisted[~at_rest]
+    if len(check):
+        lo, hi = u[check], u[check + 1]
+        at = _spaced(lo, hi, 9)[:, 1:-1]
+        steps = np.repeat(1e-5 * (hi - lo), at.shape[1])  # each span's own, as alone
+        kind = torsal_partners(strip.curve_a, strip.curve_b, u, at.ravel(), steps)[1]
+        flags[check] = (kind.reshape(at.shape) == CONE).any(axis=1)
     return flags
+
+
+def _spaced(lo: np.ndarray, hi: np.ndarray, count: int) -> np.ndarray:
+    """``count`` evenly spaced parameters from each ``lo`` to its ``hi`` (rows), computed as
+    ``np.linspace(lo, hi, count)`` computes them."""
+    steps = (hi - lo) / (count - 1)
+    out = np.arange(count)[None, :] * steps[:, None] + lo[:, None]
+    out[:, -1] = hi
+    return out
+
+
+def _own_twists(strip: RuledSurface, lo: np.ndarray, hi: np.ndarray, count: int) -> np.ndarray:
+    """:func:`_own_twist` of each interval ``lo`` … ``hi``, in one evaluation of the strip."""
+    u = _spaced(lo, hi, count).ravel()
+    near = np.cross(*strip.derivatives(u, np.full(len(u), 0.01))[1:3])
+    far = np.cross(*strip.derivatives(u, np.full(len(u), 0.99))[1:3])
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1),
+                       np.einsum("ij,ij->i", near, far)).reshape(len(lo), count)
+    worst = np.fmax.reduce(angle, axis=1)  # NaN (a line of no length) left out, as nanmax does
+    return np.where(np.isfinite(worst), worst, np.inf)
 
 
 @dataclass(frozen=True)
@@ -244,19 +268,20 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     (_, first, one), (_, second, two) = fits
     knots = np.concatenate([lo + (first[:-1] - lo) * 0.5, half + (second[4:] - lo) * 0.5])
     controls = np.concatenate([np.asarray(one.c)[:len(first) - 4], np.asarray(two.c)[1:len(second) - 4]])
-    brep, count = _brep((0.0, knots, BSpline(knots, controls, 3)))  # (its rails kept below)
     spline = BSpline(knots, controls, 3)
-    return [Piece(brep, "cone", k, k + 1, max(fits[0][0], fits[1][0]), count, spline)]
+    return [Piece(None, "cone", k, k + 1, max(fits[0][0], fits[1][0]), len(knots) - 4, spline)]
 
 
-def _brep(fit: tuple[float, np.ndarray, BSpline]) -> tuple[rh.Brep, int]:
-    """A fitted pair of rails as one ruled NURBS face (degree 3 along, 1 across)."""
-    _, knots, spline = fit
+def _brep(spline: BSpline) -> rh.Brep:
+    """A fitted pair of rails (x, y, z side by side) as one ruled NURBS face, degree 3 along
+    and 1 across (made once per final face: rhino3dm takes its control points one by one)."""
+    knots = np.asarray(spline.t, dtype=float)
     count = len(knots) - 4
+    knots = (knots - knots[3]) / (knots[count] - knots[3])  # on [0, 1], as the kernel's surfaces
     controls = np.asarray(spline.c)[:count]
     net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
-    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    return rh.Brep.CreateFromSurface(rhino_surface(surface)), count
+    across = np.array([0.0, 0.0, 1.0, 1.0])
+    return rh.Brep.CreateFromSurface(rhino_net(net, np.ones((count, 2)), knots, across, (3, 1), False))
 
 
 def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
@@ -330,12 +355,11 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
             return torsal_partners(strip.curve_a, strip.curve_b, span, at)[0]
 
         # (fitted to FIT, as few control points as that takes: where the fit still twists,
-        # its twisting intervals go out as cones, which cost fewer than a fit 30x closer)
+        # its twisted intervals go out as cones, which cost fewer than a fit 30x closer)
         developable = _fit(strip, span, lines[first:last + 1], tolerance, paired, kinks)
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
             fit = developable
-    brep, count = _brep(fit)
-    return Piece(brep, "torsal", first, last, fit[0], count, fit[2]), _twist(fit)
+    return Piece(None, "torsal", first, last, fit[0], len(fit[1]) - 4, fit[2]), _twist(fit)
 
 
 def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
