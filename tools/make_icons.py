@@ -177,6 +177,13 @@ GLYPHS: dict[str, str] = {
     + path("M9,12 C12,12 12,6 15,6 M9,12 C12,12 12,18 15,18", INK, 1)
     + line(16, 6, 21, 6, INK, 2)
     + line(16, 18, 21, 18, INK, 2),
+    "lists.ExplodeTree": line(3, 12, 7, 12, INK, 2)
+    + "".join(line(8, 12, 8 + 2.6 * dx, 12 + 2.6 * dy, ACCENT, 1.2)
+              for dx, dy in ((0.7, -0.7), (1, 0), (0.7, 0.7), (0, -1), (0, 1)))
+    + path("M11,12 C13,12 13,4 16,4 M11,12 L16,12 M11,12 C13,12 13,20 16,20", INK, 1)
+    + line(17, 4, 21, 4, ACCENT, 2.2)
+    + line(17, 12, 21, 12, ACCENT, 2.2)
+    + line(17, 20, 21, 20, ACCENT, 2.2),
     "lists.TreeBranch": line(3, 12, 7, 12, INK, 2)
     + path("M7,12 C11,12 11,5 14,5 M7,12 L14,12 M7,12 C11,12 11,19 14,19", INK, 1)
     + line(15, 5, 20, 5, INK, 2)
@@ -378,6 +385,16 @@ GLYPHS: dict[str, str] = {
     + line(6.5, 15.5, 11.5, 15.5, INK, 0.8)
     + path("M3,9 C8,3 15,12 21,6", ACCENT, 1.6)
     + path("M10,20 C14,15 17,18 21,14", INK, 1.4),
+    # -- mesh booleans: two overlapping boxes, A up left and B down right; the result in accent
+    "surfaces.MeshUnion": poly([(3, 4), (14, 4), (14, 9), (21, 9), (21, 20), (9, 20), (9, 15), (3, 15)],
+                               ACCENT, 1.8, SOFT, True)
+    + line(9, 9, 14, 9, INK, 0.8, "1.2,1.2")
+    + line(9, 9, 9, 15, INK, 0.8, "1.2,1.2"),
+    "surfaces.MeshDifference": rect(9, 9, 12, 11, INK, 1, "none")
+    + poly([(3, 4), (14, 4), (14, 9), (9, 9), (9, 15), (3, 15)], ACCENT, 1.8, SOFT, True),
+    "surfaces.MeshIntersection": rect(3, 4, 11, 11, INK, 1, "none")
+    + rect(9, 9, 12, 11, INK, 1, "none")
+    + rect(9, 9, 5, 6, ACCENT, 1.8, ACCENT),
     "surfaces.MeshSurface": poly([(4, 19), (12, 4), (20, 19)], INK, 1.4, SOFT, True)
     + line(8, 11.5, 16, 11.5, INK, 1)
     + line(8, 11.5, 12, 19, INK, 1)

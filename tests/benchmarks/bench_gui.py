@@ -36,7 +36,12 @@ Run alone with::
   nothing of the drag slows the solve), and the flagship with ten times its strips (280)
   at least 5. These are absolute: on the shared 2-core machine at load 8–14 they were not
   met (4.4/s, drag solve 0.79–2.43× headless in wall time, its CPU time 0.97–1.03× the
-  headless solve's; 280 strips 0.5/s).
+  headless solve's; 280 strips 0.5/s). Where the drag's extra wall goes is measured by
+  ``tools/profile_drag.py``: no GIL waits, the solve's CPU equal to headless, the rest the
+  processor share the last frame's composition and the mouse take beside it (see
+  docs/architecture.md). On 5 December 2026, nine rounds each at load 10-11.7, alternating
+  with the code before: drag solve / headless 0.53-1.80 (median 1.32) against 0.66-1.53
+  (median 1.38); 3.5-8.9 updates/s against 3.0-8.0.
 
 The functional side of each (the window appears, the loop ticks, Esc cancels, every
 solve of a drag reaches the viewport) is checked by ``make test`` in ``tests/app/gui``.

@@ -58,14 +58,13 @@ class Baked:
 
 def is_geometry(value: Any) -> bool:
     """Whether ``value`` is something a .3dm file holds: a curve, surface, mesh or point."""
-    import trimesh
-
     from torsal.engine.values import Point
     from torsal.nodes.geometry.curve_base import Curve
     from torsal.nodes.geometry.mesh_surface import MeshSurface
     from torsal.nodes.geometry.surface_base import Surface
+    from torsal.nodes.geometry.trimesh_type import TriangleMesh
 
-    return isinstance(value, Curve | Surface | MeshSurface | trimesh.Trimesh | Point)
+    return isinstance(value, Curve | Surface | MeshSurface | TriangleMesh | Point)
 
 
 def layer_name(text: str, fallback: str = DEFAULT_PARENT) -> str:

@@ -289,6 +289,13 @@ class Node:
     def after_solve(self) -> None:
         """Called once after all iterations (summarise per-solve messages here)."""
 
+    def match_outputs(self, trees: Sequence[Any]) -> dict[str, Any] | None:
+        """The settings that fit this node's outputs to the input trees it last received
+        (``trees``, one per input port): Grasshopper's *Match outputs*, which a front-end
+        offers on the node's menu when a node type overrides this (Explode Tree gives itself
+        one output per branch). None, the default: nothing to match."""
+        return None
+
     # -- messages -----------------------------------------------------------------------
     def remark(self, text: str) -> None:
         self._say(Level.REMARK, text)

@@ -26,7 +26,7 @@ from torsal.engine.casting import (  # noqa: F401 - also exported here, where ca
 )
 from torsal.engine.cluster import PORT, ClusterDefinition, ClusterInput, ClusterNode, clone_graph
 from torsal.engine.datatree import DataTree, apply_modifiers
-from torsal.engine.graph import Graph, NodeRecord, Wire, is_placeholder
+from torsal.engine.graph import Graph, GraphError, NodeRecord, Wire, is_placeholder
 from torsal.engine.matching import run_node as run_node  # where callers found it
 from torsal.engine.matching import store
 from torsal.engine.node import (
@@ -115,6 +115,15 @@ class Solver:
         (for showing an instance's values while its definition is edited)."""
         run = self._clusters.get(node_id)
         return {} if run is None else dict(run.fed)
+
+    def inputs_of(self, node_id: str) -> list[DataTree]:
+        """The trees the node ``node_id`` is given, one per input port (modified and cast as a
+        solve gives them), from the results at hand; [] when they cannot be made."""
+        try:
+            trees, _ = self._gather(self.graph.record(node_id))
+        except (NodeError, GraphError):
+            return []
+        return trees
 
     def solve(self, token: CancelToken | None = None, progress: Progress | None = None,
               node_progress: NodeProgress | None = None) -> SolveReport:

@@ -182,7 +182,9 @@ def type_of(value: Any) -> ValueType | None:
 
 def _depth(value_type: ValueType, value: Any) -> int:
     mro = type(value).__mro__
-    return min(mro.index(c) for c in value_type.classes if c in mro)
+    # a class that holds the value without being in its MRO (an abstract class's subclass
+    # hook) ranks after every base
+    return min((mro.index(c) for c in value_type.classes if c in mro), default=len(mro))
 
 
 def can_cast(source: ValueType, target: ValueType) -> bool:

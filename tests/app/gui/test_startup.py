@@ -44,7 +44,7 @@ def stages(command: list[str], env: dict[str, str], until: str, timeout: float,
             if len(parts) >= 3 and parts[0] == "torsal-startup":
                 stamps[parts[1]] = float(parts[2]) - began
                 if cpu is not None:
-                    cpu[parts[1]] = cpu_seconds(child.pid)
+                    cpu[parts[1]] = float(parts[3]) if len(parts) >= 4 else cpu_seconds(child.pid)
                 if parts[1] == until:
                     return
 

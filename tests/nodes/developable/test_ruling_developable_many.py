@@ -87,3 +87,19 @@ def test_an_error_at_a_row_comes_after_the_messages_of_the_rows_before_it(bad):
     batched = _solved(RulingDevelopable(), a, b, segments)
     assert batched == _solved(RowByRow(), a, b, segments)
     assert batched[1][-1][0] == "raised"
+
+
+def test_strips_far_from_the_origin_that_taper_get_what_solve_gives_them():
+    # at site coordinates (each row's frame and rounding its own) and meeting at a point
+    shift = np.array([1e6, 2e6, 50.0])
+    u = np.linspace(0.0, 1.0, 9)
+
+    def wavy(z: float, phase: float) -> NurbsCurve:
+        points = np.column_stack([4 * u, np.sin(3 * u + phase), z + 0.2 * np.cos(5 * u)])
+        return NurbsCurve(points + shift, degree=3)
+
+    a = [wavy(0.0, 0.0), Line(shift, shift + np.array([2.0, 0, 0])), wavy(0.0, 0.3)]
+    b = [wavy(1.0, 0.2), Line(shift, shift + np.array([2.0, 1.0, 0.5])), wavy(1.2, 1.5)]
+    batched = _solved(RulingDevelopable(), a, b, [8, 3, 6])
+    assert batched == _solved(RowByRow(), a, b, [8, 3, 6])
+    assert any("tapers to a point" in text for _, text in batched[1])

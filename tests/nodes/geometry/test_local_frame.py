@@ -19,7 +19,7 @@ from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
 from torsal.nodes.geometry.curves.line import Line, Polyline
 from torsal.nodes.geometry.curves.nurbs import NurbsCurve
 from torsal.nodes.geometry.developable.guided import SurfaceCurve
-from torsal.nodes.geometry.local_frame import NEAR, LocalFrame, frame_origin, translated
+from torsal.nodes.geometry.local_frame import NEAR, LocalFrame, frame_origin, frame_origins, translated
 from torsal.nodes.geometry.nurbs_surface import Loft, NurbsSurface
 from torsal.nodes.geometry.parametric_surface import ParametricSurface
 from torsal.nodes.geometry.ruled import RuledSurface, SplineRail
@@ -199,3 +199,18 @@ def test_a_strip_solved_in_the_frame_far_out_matches_the_strip_at_the_origin():
     assert np.abs(world.point_at(U, V) - FAR - near.point_at(U, V)).max() <= 0.5 * np.spacing(1e9) * 1.01
     assert np.abs(frame.points_to_world(local.ruling_lines) - FAR - near.ruling_lines).max() <= (
         0.5 * np.spacing(1e9) * 1.01)
+
+
+def test_frames_of_several_groups_are_found_at_once_as_each_alone():
+    site = np.array([[1e6, 2e6, 0.0], [1e6 + 3.0, 2e6 + 1.0, 2.0]])  # extent 3: steps of 4 m
+    groups = [site, np.array([[0.0, 0, 0], [1, 1, 1]]), np.empty((0, 3)),
+              np.array([[np.nan, 0, 0], [1e9, 0, 0]]), site + 5e8]
+    together = frame_origins(np.concatenate(groups), [len(g) for g in groups])
+    np.testing.assert_array_equal(together[0], [1e6, 2e6, 0.0])  # the centre rounded to 4 m
+    np.testing.assert_array_equal(together[1:4], np.zeros((3, 3)))  # near the origin, empty, not finite
+    for group, origin in zip(groups, together, strict=True):
+        np.testing.assert_array_equal(origin, frame_origin(group))
+    line = Line([1e6, 0, 0], [1e6 + 1, 0, 0])
+    frames = LocalFrame.around_each([(line,), (line, None), ()])
+    alone = LocalFrame.around(line).origin.tolist()
+    assert [f.origin.tolist() for f in frames] == [alone, alone, [0.0, 0, 0]]

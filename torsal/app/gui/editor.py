@@ -120,7 +120,8 @@ class Editor(QObject):
     def set_settings(
         self, node_id: str, values: dict[str, Any], text: str = "", merge_key: object = None
     ) -> None:
-        """Change settings; wires into inputs the new settings remove are disconnected first."""
+        """Change settings; wires into inputs or out of outputs the new settings remove are
+        disconnected first (one undo step with the change)."""
         record = self.graph.nodes[node_id]
         changed = {k: v for k, v in values.items() if record.node.settings.get(k) != v}
         if not changed:
@@ -141,10 +142,13 @@ class Editor(QObject):
         settings.update(changed)
         try:
             future = type(record.node)(settings)
-            names = {p.name for p in future.input_ports()}
+            inputs = {p.name for p in future.input_ports()}
+            outputs = {p.name for p in future.output_ports()}
         except Exception:
             return []
-        return [w for w in self.graph.wires_into(record.id) if w.target_port not in names]
+        return [w for w in self.graph.wires_into(record.id) if w.target_port not in inputs] + [
+            w for w in self.graph.wires_from(record.id) if w.source_port not in outputs
+        ]
 
     def new_drag(self) -> object:
         """A key that merges the setting changes of one slider drag into one undo step."""

@@ -14,7 +14,8 @@ def launch(path: str | Path | None = None) -> int:
 
     The window is shown first; the 3D viewport (pyvista takes a second or two to import),
     an autosave left by a crash and the file follow once it has been painted.
-    ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` of each
+    ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` and the
+    CPU seconds the process has used (``time.process_time()``, every thread) at each
     start-up stage (for the start-up benchmark): ``imported`` (Qt and the window's
     modules), ``window-shown`` (its first paint), ``plotter`` (pyvista and VTK set up),
     ``viewport-ready`` (the file opened, its solve started), ``solved`` (the first results)
@@ -24,7 +25,8 @@ def launch(path: str | Path | None = None) -> int:
 
     def stamp(stage: str) -> None:
         if report:
-            print(f"torsal-startup {stage} {time.time():.4f}", file=sys.stderr, flush=True)
+            line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f}"
+            print(line, file=sys.stderr, flush=True)
 
     from PySide6.QtCore import QEvent, QObject
     from PySide6.QtWidgets import QApplication

@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import trimesh
 
 from torsal.engine.node import NodeWarning
 from torsal.engine.types import describe
@@ -17,6 +16,7 @@ from torsal.nodes.common.checks import given
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.surface_base import Surface
+from torsal.nodes.geometry.trimesh_type import TriangleMesh
 
 #: Where a curve is sampled to see that it is not a single point.
 _SAMPLES = np.linspace(0.0, 1.0, 65)
@@ -82,7 +82,7 @@ def surface_or_mesh(name: str, value: Any, lacking: str) -> Surface | MeshSurfac
     g = given(name, value)
     if isinstance(g, Surface | MeshSurface):
         return g
-    if isinstance(g, trimesh.Trimesh):
+    if isinstance(g, TriangleMesh):
         if len(g.faces) == 0:
             raise NodeWarning(f"The mesh has no faces, so it has no {lacking}")
         return MeshSurface(g)

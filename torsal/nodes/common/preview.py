@@ -10,7 +10,10 @@ so a new kind of geometry draws by offering its arrays in one of two ways:
 - or an adapter is registered for the class with :func:`register_preview`, as done here
   for the kernel's curves, lines, polylines, surfaces and meshes and the engine's
   points, vectors and planes (so kernel files need not know about drawing). Adapters are
-  found through the class's bases: a new curve class draws as a sampled curve.
+  found through the class's bases: a new curve class draws as a sampled curve (an adapter
+  for an abstract class that recognises classes not derived from it, as
+  :class:`~torsal.nodes.geometry.trimesh_type.TriangleMesh` does trimesh's meshes, is
+  found by ``isinstance``).
 
 A class whose values come by the hundred (a strip's rulings) may also register an adapter
 for many values at once, :func:`register_preview_many`: :func:`preview_of_many` then
@@ -28,12 +31,12 @@ Example::
 
 from __future__ import annotations
 
+from abc import ABCMeta
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
-import trimesh
 
 from torsal.engine.values import Plane, Point, Triple, Vector
 from torsal.nodes.geometry.curve_base import Curve
@@ -42,6 +45,7 @@ from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.ruled_meshes import ruled_mesh_arrays
 from torsal.nodes.geometry.surface_base import Surface
+from torsal.nodes.geometry.trimesh_type import TriangleMesh
 
 #: Grid points per direction of a surface's preview mesh (two along a straight ruling).
 SURFACE_GRID = 33
@@ -135,13 +139,16 @@ def preview_of(value: Any) -> PreviewGeometry | None:
         adapter = _ADAPTERS.get(cls)
         if adapter is not None:
             return adapter(value)
+    for cls, adapter in _ADAPTERS.items():  # an abstract class recognising classes not derived
+        if isinstance(cls, ABCMeta) and isinstance(value, cls):  # from it (TriangleMesh)
+            return adapter(value)
     return None
 
 
 def costly(value: Any) -> bool:
     """Whether drawing ``value`` costs an evaluation (a curve, a surface): worth remembering
     when several nodes pass the same object on."""
-    return not isinstance(value, Triple | Plane | np.ndarray | trimesh.Trimesh) and value is not None
+    return not isinstance(value, Triple | Plane | np.ndarray | TriangleMesh) and value is not None
 
 
 # -- adapters for the engine's values ----------------------------------------------------------
@@ -194,8 +201,8 @@ def mesh_scalars(mesh: Any) -> tuple[str, np.ndarray, bool, tuple[float, float] 
     return None
 
 
-@register_preview(trimesh.Trimesh)
-def _trimesh(mesh: trimesh.Trimesh) -> PreviewGeometry:
+@register_preview(TriangleMesh)
+def _trimesh(mesh: Any) -> PreviewGeometry:
     vertices = np.asarray(mesh.vertices, dtype=float)
     faces = np.asarray(mesh.faces, dtype=np.int64)
     if len(vertices) == 0 or len(faces) == 0:

@@ -169,6 +169,7 @@ def curve_strip_outputs(
     claimed: ArrayLike | None = None,
     source: str = "CurveA and CurveB",
     warp: FloatArray | None = None,
+    valid: BoolArray | None = None,
 ) -> StripOutputs:
     """The outputs of a strip between two curves whose rulings run from ``A(s)`` to ``B(t)``:
     the Surface whose edges run on the two curves through those rulings
@@ -183,7 +184,8 @@ def curve_strip_outputs(
     recomputation rejects are counted in a message. ``source`` names the inputs the curves
     come from in the warnings of :func:`strip_outputs`. ``warp`` is that recomputed warp
     where the caller has it (:func:`~torsal.nodes.geometry.developable.warp.curve_warps` of
-    several strips at once).
+    several strips at once), and ``valid`` its :func:`within_tolerance` where the caller has
+    that too.
     """
     starts, ends = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
     w = curve_warp(curve_a, curve_b, s, t, starts, ends) if warp is None else warp
@@ -194,7 +196,8 @@ def curve_strip_outputs(
     with suppress(ValueError):
         on_curves = ruled_between(curve_a, s, curve_b, t, points=(starts, ends))
     outputs = strip_outputs(starts, ends, warp=w, surface=on_curves, source=source)
-    valid = within_tolerance(w, tolerance, starts, ends)
+    if valid is None:
+        valid = within_tolerance(w, tolerance, starts, ends)
     messages = outputs.messages
     if claimed is not None:
         refused = np.asarray(claimed, dtype=bool) & ~valid & ~outputs.undefined

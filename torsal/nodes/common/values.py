@@ -19,17 +19,20 @@ a type from here to declare a port of it.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import trimesh
 
 from torsal.engine.types import ValueType, register_cast
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.surface_base import Surface
+from torsal.nodes.geometry.trimesh_type import TriangleMesh
 from torsal.nodes.geometry.unroll import Development
+
+if TYPE_CHECKING:
+    import trimesh
 
 
 def _xyz(array: Any) -> list[float]:
@@ -104,7 +107,7 @@ LINE = ValueType(
     summarize=_line_summary,
 )
 SURFACE = ValueType("Surface", (Surface,), "A surface, parameterised on [0, 1]².", summarize=_surface_summary)
-MESH = ValueType("Mesh", (trimesh.Trimesh,), "A triangle mesh.", summarize=_mesh_summary)
+MESH = ValueType("Mesh", (TriangleMesh,), "A triangle mesh.", summarize=_mesh_summary)
 MESH_SURFACE = ValueType(
     "MeshSurface", (MeshSurface,),
     "A triangle mesh used as a surface: area, closest point and discrete curvature, no (u, v).",

@@ -134,6 +134,9 @@ class Interpolate(Node):
                 points[:, 1:] == points[:, :-1]).all(axis=2).any():
             return None
         token = self.token
+        token.check()
+        if all(k >= count - 1 for k in degrees):  # one polynomial span each: all solved at once
+            return kernel.InterpolatedCurve.beziers(points)
         curves = []
         try:
             for p, k in zip(points, degrees, strict=True):

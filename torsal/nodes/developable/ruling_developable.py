@@ -23,10 +23,12 @@ from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import align_b, better_pairing
 from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
+from torsal.nodes.geometry.developable.measure import within_tolerance
+from torsal.nodes.geometry.developable.stack import Stack
 from torsal.nodes.geometry.developable.warp import curve_warps
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.strip_crossings import Crossings
-from torsal.nodes.geometry.vec_ops import norm, rounding_of
+from torsal.nodes.geometry.vec_ops import norm, position_roundings, rounding_of
 from torsal.nodes.geometry.watch import watched
 from torsal.nodes.limits import MAX_SEGMENTS, MAX_STRIP_RULINGS, MAX_STRIP_SOLVES
 
@@ -46,9 +48,14 @@ class _Row(NamedTuple):
     reversed_b: bool = False  #: b is CurveB reversed (its torsal rulings ran backwards along it)
 
 
+#: One call's checked inputs, the curves where they are: CurveA, CurveB, Segments,
+#: WarpTolerance, FanLimit and CreaseAngle.
+_Checked = tuple[Curve, Curve, int, float, float, float]
+
+
 def _arguments(
     curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
-) -> _Row:
+) -> _Checked:
     """One call's checked inputs: the curves (never one curve twice), Segments,
     WarpTolerance, FanLimit and CreaseAngle."""
     a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
@@ -57,8 +64,13 @@ def _arguments(
     limit = fan_limit_input(fan_limit)
     sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
     _distinct(a, b)
-    frame = LocalFrame.around(a, b)
-    return _Row(frame.to_local(a), frame.to_local(b), n, tol, limit, sharp, frame)
+    return a, b, n, tol, limit, sharp
+
+
+def _placed(checked: _Checked, frame: LocalFrame) -> _Row:
+    """The row of one call's ``checked`` inputs, its curves moved into ``frame`` (anchored at them)."""
+    a, b, *rest = checked
+    return _Row(frame.to_local(a), frame.to_local(b), *rest, frame)
 
 
 def _flipped(row: _Row, reversed_b: Curve | None) -> _Row:
@@ -93,6 +105,37 @@ def _tips(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
     first_last = slice(None, None, max(len(starts) - 1, 1))
     tip[first_last] = norm(ends[first_last] - starts[first_last]) <= 1e-12 * size
     return tip
+
+
+def _valid_and_tips(
+    strips: list[tuple[_Row, RulingResult, np.ndarray]],
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """For each strip ``(row, result, warp)`` (finite rulings, two or more): whether each
+    ruling's recomputed ``warp`` is within WarpTolerance (:func:`within_tolerance`, allowing
+    for the rounding of the strip's world position, as :func:`rounding_of` its frame's origin
+    allows one strip at a time) and its tips (:func:`_tips`), of every strip at once."""
+    if not strips:
+        return []
+    rulings = Stack.of([result.starts for _, result, _ in strips])
+    starts = np.concatenate([result.starts for _, result, _ in strips])
+    ends = np.concatenate([result.ends for _, result, _ in strips])
+    # the rounding of the larger of each strip's position roundings: of its starts, its ends
+    # and (the least there is, in its frame) its origin
+    origins = np.array([row.frame.origin for row, _, _ in strips])
+    largest = np.maximum(rulings.reduce_max(np.maximum(np.abs(starts), np.abs(ends))).max(axis=1),
+                         np.abs(origins).max(axis=1))
+    rounding = rulings.repeat(position_roundings(largest))
+    tolerance = rulings.repeat(np.array([row.tolerance for row, _, _ in strips]))
+    warp = np.concatenate([warp for _, _, warp in strips])
+    valid = within_tolerance(warp, tolerance, starts, ends, rounding)
+    # the tips: first and last rulings of no length, to 1e-12 of the strip's size (1 if it has none)
+    low = np.minimum(rulings.reduce_min(starts), rulings.reduce_min(ends))
+    size = (np.maximum(rulings.reduce_max(starts), rulings.reduce_max(ends)) - low).max(axis=1)
+    ends_of = np.concatenate([rulings.starts, rulings.offsets[1:] - 1])
+    short = norm(ends[ends_of] - starts[ends_of]) <= 1e-12 * np.tile(np.where(size != 0.0, size, 1.0), 2)
+    tips = np.zeros(len(starts), dtype=bool)
+    tips[ends_of] = short
+    return list(zip(rulings.split(valid), rulings.split(tips), strict=True))
 
 
 def fan_limit_input(value: Any) -> float:
@@ -205,7 +248,8 @@ class RulingDevelopable(Node):
     def solve(
         self, curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
-        row = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
+        checked = _arguments(curve_a, curve_b, segments, tolerance, fan_limit, crease_angle)
+        row = _placed(checked, LocalFrame.around(checked[0], checked[1]))
         self.check_cancelled()
         # (the inputs were rounded at their world coordinates: the kernel's tests that allow
         # for the rounding of positions allow for that, as a solve there would)
@@ -223,16 +267,20 @@ class RulingDevelopable(Node):
         """Every strip of the solve at once (:func:`ruling_developables`: each step of the
         kernel runs once for all of them), with each row's outputs and messages as
         :meth:`solve` gives them."""
-        rows: list[_Row | NodeWarning] = []
+        checked: list[_Checked | NodeWarning] = []
         stop: Exception | None = None  # what ends the solve at a row, after the rows before it
         for row in zip(*columns, strict=True):
             try:
-                rows.append(_arguments(*row))
+                checked.append(_arguments(*row))
             except NodeWarning as exc:  # that row is refused, the others are made
-                rows.append(exc)
+                checked.append(exc)
             except Exception as exc:  # (solve raises it at that row, after the rows before)
                 stop = exc
                 break
+        # each row's frame, around its two curves (their boxes found at once)
+        curves = [row[:2] for row in checked if not isinstance(row, NodeWarning)]
+        frames = iter(LocalFrame.around_each(curves))
+        rows = [row if isinstance(row, NodeWarning) else _placed(row, next(frames)) for row in checked]
         jobs = [(r.a, r.b, r.segments, r.tolerance) for r in rows if not isinstance(r, NodeWarning)]
         self.check_cancelled()
         # (one rounding allowance for the batch: that of the strip farthest out, in practice
@@ -257,7 +305,11 @@ class RulingDevelopable(Node):
             ]))
             kinds = [next(judged) if ok else None for ok in whole]
         crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
-        warps_and_kinds = iter(zip(warps, kinds, strict=True))
+        # which rulings are within WarpTolerance, and the tips, of the strips whose rulings make one
+        checked = iter(_valid_and_tips(
+            [(row, r, warp) for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok]))
+        checks = [next(checked) if ok else None for ok in whole]
+        warps_and_kinds = iter(zip(warps, kinds, checks, strict=True))
         solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
@@ -283,11 +335,14 @@ class RulingDevelopable(Node):
         result: RulingResult,
         warp: np.ndarray | None = None,
         kinds: RulingKinds | None = None,
+        checks: tuple[np.ndarray, np.ndarray] | None = None,
         crossed: Crossings | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
         """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
-        rulings' ``kinds`` and its self-crossings, where they are at hand), and what the node
-        says of it."""
+        rulings' ``kinds``, which of them are within WarpTolerance and its tips
+        (:func:`_valid_and_tips`) and its self-crossings, where they are at hand), and what
+        the node says of it."""
+        valid, tip = checks if checks is not None else (None, None)
         a, b, n, tol, limit, sharp, frame, reversed_b = row
         if reversed_b:
             self.remark("CurveB runs against CurveA (its torsal rulings ran backwards along it): the strip "
@@ -295,7 +350,8 @@ class RulingDevelopable(Node):
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
             strip = curve_strip_outputs(
-                a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp
+                a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp,
+                valid=valid,
             )
             if kinds is None:
                 kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
@@ -308,7 +364,8 @@ class RulingDevelopable(Node):
                 self.warn(f"{text}; {hint}" if hint else text)
             else:
                 self.remark(result.message)
-        tip = _tips(result.starts, result.ends)
+        if tip is None:
+            tip = _tips(result.starts, result.ends)
         if tip.any():
             where = " and ".join(name for name, at in (("start", tip[0]), ("end", tip[-1])) if at)
             self.remark(f"the strip tapers to a point at its {where} (the curves meet there): the "

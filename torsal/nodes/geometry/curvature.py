@@ -24,14 +24,17 @@ principal directions) instead of taking sqrt(H² − K) as the textbook formula 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 from numpy.typing import ArrayLike
 from scipy import sparse
 
 from .array_types import FloatArray
 from .vec_ops import dot
+
+if TYPE_CHECKING:
+    import trimesh
 
 
 @dataclass(frozen=True)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from functools import singledispatch
 from typing import Any, TypeVar
 
@@ -220,11 +220,16 @@ def _(surface: RuledSurface, move: Mover) -> RuledSurface:
 def _samples(geometry: Any) -> FloatArray:
     """A few points of ``geometry`` (a curve, a surface or an array of points), for its box."""
     if isinstance(geometry, Curve):
-        return np.atleast_2d(geometry.point_at(np.linspace(0.0, 1.0, SAMPLES)))
+        return np.atleast_2d(geometry.point_at(_UNIT.copy()))
     if isinstance(geometry, Surface):
-        u, v = np.meshgrid(np.linspace(0.0, 1.0, SAMPLES), np.linspace(0.0, 1.0, SAMPLES), indexing="ij")
+        u, v = np.meshgrid(_UNIT, _UNIT, indexing="ij")
         return geometry.point_at(u.ravel(), v.ravel())
     return np.asarray(geometry, dtype=float).reshape(-1, 3)
+
+
+#: The parameters of a curve's :data:`SAMPLES` samples (read-only: each curve gets a copy).
+_UNIT = np.linspace(0.0, 1.0, SAMPLES)
+_UNIT.setflags(write=False)
 
 
 def frame_origin(points: ArrayLike) -> FloatArray:
@@ -233,16 +238,29 @@ def frame_origin(points: ArrayLike) -> FloatArray:
     a round offset keeps its local coordinates, bit for bit); the world origin when the
     centre is within :data:`NEAR` extents of it, or the points are not all finite."""
     p = np.asarray(points, dtype=float).reshape(-1, 3)
-    if len(p) == 0 or not np.isfinite(p).all():
-        return np.zeros(3)
-    low, high = p.min(axis=0), p.max(axis=0)
-    centre = 0.5 * (low + high)
-    size = float((high - low).max())
-    reach = float(np.abs(centre).max())
-    if reach <= NEAR * size or reach == 0.0:
-        return np.zeros(3)
-    step = 2.0 ** math.ceil(math.log2(size)) if size > 0.0 else float(np.spacing(reach))
-    return np.round(centre / step) * step
+    return frame_origins(p, [len(p)])[0]
+
+
+def frame_origins(points: FloatArray, counts: Sequence[int]) -> FloatArray:
+    """:func:`frame_origin` of each group of ``points`` (``(n, 3)``, group after group, of
+    ``counts`` points each), their boxes found at once: ``(len(counts), 3)``."""
+    counts = np.asarray(counts, dtype=np.int64)
+    origins = np.zeros((len(counts), 3))
+    has = np.flatnonzero(counts)
+    if len(has) == 0:
+        return origins
+    starts = (np.cumsum(counts) - counts)[has]
+    finite = np.logical_and.reduceat(np.isfinite(points).all(axis=1), starts).tolist()
+    low, high = np.minimum.reduceat(points, starts), np.maximum.reduceat(points, starts)
+    with np.errstate(invalid="ignore"):  # (not finite: the world origin)
+        centre = 0.5 * (low + high)
+        sizes, reaches = (high - low).max(axis=1).tolist(), np.abs(centre).max(axis=1).tolist()
+    for k, (group, ok, size, reach) in enumerate(zip(has.tolist(), finite, sizes, reaches, strict=True)):
+        if not ok or reach <= NEAR * size or reach == 0.0:
+            continue
+        step = 2.0 ** math.ceil(math.log2(size)) if size > 0.0 else float(np.spacing(reach))
+        origins[group] = np.round(centre[k] / step) * step
+    return origins
 
 
 class LocalFrame:
@@ -261,8 +279,15 @@ class LocalFrame:
     @classmethod
     def around(cls, *geometry: Any) -> LocalFrame:
         """The frame around curves, surfaces or point arrays (``None`` items are skipped)."""
-        parts = [_samples(g) for g in geometry if g is not None]
-        return cls(frame_origin(np.vstack(parts)) if parts else np.zeros(3))
+        return cls.around_each([geometry])[0]
+
+    @classmethod
+    def around_each(cls, groups: Sequence[Sequence[Any]]) -> list[LocalFrame]:
+        """:meth:`around` of each group of geometry, the groups' boxes found at once."""
+        parts = [[_samples(g) for g in group if g is not None] for group in groups]
+        counts = [sum(len(part) for part in group) for group in parts]
+        points = np.concatenate([part for group in parts for part in group] or [np.empty((0, 3))])
+        return [cls(origin) for origin in frame_origins(points, counts)]
 
     @property
     def is_world(self) -> bool:

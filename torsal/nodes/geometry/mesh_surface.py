@@ -12,15 +12,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 from numpy.typing import ArrayLike, NDArray
 
 from .array_types import FloatArray
 from .curvature import SurfaceCurvature, mesh_vertex_curvature
 from .triangle_search import TriangleIndex
+from .trimesh_type import TriangleMesh
 from .vec_ops import position_rounding
+
+if TYPE_CHECKING:
+    import trimesh
 
 #: Queries measured in one block by :meth:`MeshSurface.closest_point`.
 _QUERY_CHUNK = 4096
@@ -49,7 +53,7 @@ class MeshSurface:
     ruling_direction = None
 
     def __init__(self, mesh: trimesh.Trimesh) -> None:
-        if not isinstance(mesh, trimesh.Trimesh):
+        if not isinstance(mesh, TriangleMesh):
             raise TypeError("MeshSurface wraps a trimesh.Trimesh")
         if len(mesh.faces) == 0:
             raise ValueError("the mesh has no faces")
@@ -115,6 +119,8 @@ class MeshSurface:
 
     def _closest_block(self, query: FloatArray) -> MeshClosestPoint:
         """:meth:`closest_point` for one block of queries (memory stays bounded)."""
+        import trimesh  # imported already: the wrapped mesh is one of its meshes
+
         triangles = np.asarray(self.mesh.triangles, dtype=float)
         index = self._index
         guess = index.nearest_centre(query)

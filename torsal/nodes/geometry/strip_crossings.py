@@ -74,9 +74,14 @@ def _triangles(
     step = np.where(size * 1e-12 != 0, size * 1e-12, 1.0)  # (size·1e-12 or 1)
     strip_of_point = np.repeat(np.arange(len(strips)), rows)
     grid = np.round((points - low[strip_of_point]) / step[strip_of_point, None])
-    # one vertex number per distinct point of a strip (the strip first: numbers run strip by strip)
-    _, vertex = np.unique(np.column_stack([strip_of_point, grid]), axis=0, return_inverse=True)
-    vertex = vertex.reshape(-1)
+    # one vertex number per distinct point of a strip, numbered in the order of (strip, x, y,
+    # z) as np.unique(axis=0) numbers them (a sort by the columns: several times faster)
+    order = np.lexsort((grid[:, 2], grid[:, 1], grid[:, 0], strip_of_point))
+    ranked, owner = grid[order], strip_of_point[order]
+    new = np.ones(len(order), dtype=bool)
+    new[1:] = (owner[1:] != owner[:-1]) | (ranked[1:] != ranked[:-1]).any(axis=1)
+    vertex = np.empty(len(order), dtype=np.int64)
+    vertex[order] = np.cumsum(new) - 1
     start_of = np.cumsum(rows) - rows  # (each strip's first point)
     ruling = np.arange(len(a))
     strip_of_ruling = np.repeat(np.arange(len(strips)), n)
@@ -227,27 +232,40 @@ def _near_pairs(tree: cKDTree, reach: float, most: int) -> Iterator[tuple[IntArr
 def _pairs_cross(
     corners: FloatArray, ids: IntArray, i: IntArray, j: IntArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
-    """Whether each pair (triangle i, triangle j) crosses, and a point where it does."""
-    hit = np.zeros(len(i), dtype=bool)
-    point = np.full((len(i), 3), np.nan)
-    for one, other in ((i, j), (j, i)):
-        for k in range(3):
-            m = (k + 1) % 3
-            # an edge touching the other triangle at a shared corner is not tested
-            shared = (ids[one, k, None] == ids[other]) | (ids[one, m, None] == ids[other])
-            free = ~shared.any(axis=1)
-            h, x = _segment_through(corners[one, k], corners[one, m], corners[other], eps)
-            new = free & h & ~hit
-            point[new] = x[new]
-            hit |= free & h
-    return hit, point
+    """Whether each pair (triangle i, triangle j) crosses, and a point where it does: the
+    first of the edges of i, then of j, that passes through the other triangle. An edge
+    touching the other triangle at a shared corner is not tested: of two triangles sharing
+    an edge (neighbours along the strip, most of the pairs) none is, of two sharing a
+    corner one each way."""
+    n = len(i)
+    one, other = np.concatenate([i, j]), np.concatenate([j, i])  # (both ways, one after the other)
+    ids_one = ids[one]
+    shared = (ids_one[:, :, None] == ids[other][:, None, :]).any(axis=2)  # corner k of one is the other's
+    row, edge = np.nonzero(~(shared | shared[:, _NEXT]))  # edge k, from corner k to corner k + 1
+    margin = np.concatenate([eps, eps])[row] if np.ndim(eps) else eps
+    ends = corners[one[row]]
+    h, x = _segment_through(ends[np.arange(len(row)), edge], ends[np.arange(len(row)), _NEXT[edge]],
+                            corners[other[row]], margin)
+    # per pair: the edges of i (k = 0, 1, 2), then of j; the first that crosses gives the point
+    order, pair = 3 * (row // n) + edge, row % n
+    hits = np.zeros((6, n), dtype=bool)
+    hits[order[h], pair[h]] = True
+    points = np.full((6, n, 3), np.nan)
+    points[order[h], pair[h]] = x[h]
+    first = hits.argmax(axis=0)
+    return hits.any(axis=0), points[first, np.arange(n)]
+
+
+#: Each corner's next (the other end of the edge from it).
+_NEXT = np.array([1, 2, 0])
 
 
 def _segment_through(
     p: FloatArray, q: FloatArray, tri: FloatArray, eps: float | FloatArray
 ) -> tuple[np.ndarray, FloatArray]:
-    """Whether segments ``p → q`` pass through the inside of triangles ``tri`` (``(k, 3, 3)``)
-    more than ``eps`` from their edges and the segments' ends, and where."""
+    """Whether segments ``p → q`` pass through the inside of triangles ``tri`` (``(k, 3, 3)``;
+    the segments ``(k, 3)``, or ``(e, k, 3)`` for ``e`` segments against each triangle) more
+    than ``eps`` from their edges and the segments' ends, and where."""
     d = q - p
     e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
     h = cross(d, e2)
@@ -270,4 +288,4 @@ def _segment_through(
     mu = eps / np.maximum(height, 1e-300)
     mw = eps / np.maximum(length, 1e-300)
     inside = ok & (u > mu) & (v > mu) & (u + v < 1.0 - mu) & (w > mw) & (w < 1.0 - mw)
-    return inside, p + w[:, None] * d
+    return inside, p + w[..., None] * d

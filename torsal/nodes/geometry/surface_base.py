@@ -31,9 +31,9 @@ import functools
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 from numpy.typing import ArrayLike
 from scipy import optimize
 from scipy.spatial import cKDTree
@@ -54,6 +54,9 @@ from .curvature import (
 from .curve_base import Curve
 from .vec_ops import anchor, cross, derivative_noise, dot, extent, position_rounding
 from .watch import watch_check
+
+if TYPE_CHECKING:
+    import trimesh
 
 #: At a degenerate point (|Su × Sv| below ``DEGENERATE_RATIO``·(|Su|² + |Sv|²): a pole,
 #: an apex, a collapsed edge) normals and curvature are taken this step (in
@@ -503,6 +506,8 @@ class Surface(ABC):
         surfaces are not welded (the grid stays intact); triangles are oriented
         with the surface normal, which is stored as the vertex normals.
         """
+        import trimesh
+
         points, faces, normals = self.mesh_arrays(nu, nv)
         return trimesh.Trimesh(points, faces.copy(), vertex_normals=normals, process=False)
 

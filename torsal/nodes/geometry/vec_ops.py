@@ -137,6 +137,12 @@ def position_rounding(points: FloatArray) -> float:
     return max(own, _ROUNDING_FLOOR.get())
 
 
+def position_roundings(largest: FloatArray) -> FloatArray:
+    """:func:`position_rounding` of several objects at once, from the largest magnitude of
+    a coordinate of each (the same values)."""
+    return np.maximum(POSITION_ULPS * _EPS * largest, _ROUNDING_FLOOR.get())
+
+
 #: The least :func:`position_rounding` inside a :func:`rounding_of` block (0 outside).
 _ROUNDING_FLOOR: ContextVar[float] = ContextVar("rounding_floor", default=0.0)
 

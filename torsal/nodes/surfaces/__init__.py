@@ -2,4 +2,4 @@
 
 #: The modules holding this palette's node types (read by engine.registry; imported on demand).
 NODE_TYPES = ("freeform", "primitives", "analysis", "mesh", "bounds", "closest", "division", "sections",
-              "sweep")
+              "sweep", "mesh_booleans")

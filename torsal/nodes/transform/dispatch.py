@@ -8,10 +8,9 @@ are never changed in place. Anything else raises a warning naming what arrived.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import trimesh
 
 from torsal.engine.node import NodeWarning
 from torsal.engine.types import describe
@@ -21,6 +20,10 @@ from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.surface_base import Surface
 from torsal.nodes.geometry.transforms import apply_to_vectors, apply_transform, transform_plane
+from torsal.nodes.geometry.trimesh_type import TriangleMesh
+
+if TYPE_CHECKING:
+    import trimesh
 
 SUPPORTED = "points, vectors, planes, curves, surfaces and meshes"
 
@@ -50,7 +53,7 @@ def transform_value(value: Any, matrix: np.ndarray) -> Any:
             return engine_plane(transform_plane(matrix, kernel_plane("Geometry", value)))
         if isinstance(value, Curve | Surface):
             return value.transformed(matrix)
-        if isinstance(value, trimesh.Trimesh):
+        if isinstance(value, TriangleMesh):
             return _mesh(value, matrix)
         if isinstance(value, MeshSurface):
             return MeshSurface(_mesh(value.mesh, matrix))

@@ -296,3 +296,42 @@ def test_a_slider_drag_ends_when_a_menu_takes_the_mouse_before_the_release(qtbot
     assert not window.editor.dragging
     assert gc.get_threshold() == before
     assert window.doc.undo_stack.undoText().startswith("Set value of ")  # the drag's one step, closed
+
+
+def test_while_a_solve_runs_a_dragged_slider_is_drawn_at_most_every_40_ms_and_ends_drawn(qtbot, window):
+    """Every mouse move drew the slider again, beside the solve it waited for; now a move
+    made while a solve runs is drawn once 40 ms have passed since the last drawing (the
+    last move's value), and a move made with no solve running is drawn at once."""
+    from torsal.app.gui.canvas.node_item import BUSY_WIDGET_INTERVAL_MS
+
+    start, left, _right = kaohsiung_slider(qtbot, window)
+    item = window.scene.nodes["scale"]
+    around = item.layout.widget_rect.adjusted(-2, -2, 2, 2)
+    paints: list[tuple[float, bool]] = []  # (when, a solve in flight) of each drawing of the slider alone
+    paint = type(item).paint
+
+    def recording(painter, option, widget=None):
+        if around.contains(QRectF(option.exposedRect)):
+            paints.append((time.perf_counter(), window.doc.solves.in_flight()))
+        paint(item, painter, option, widget)
+
+    item.paint = recording
+    viewport = window.view.viewport()
+    QTest.mousePress(viewport, LEFT, NONE, start)
+    qtbot.wait(50)
+    moves = []
+    for x in range(start.x() - 3, left, -3):
+        QTest.mouseMove(viewport, QPoint(x, start.y()))
+        moves.append((time.perf_counter(), window.doc.solves.in_flight()))
+        qtbot.wait(5)
+    qtbot.wait(2 * BUSY_WIDGET_INTERVAL_MS)
+    QTest.mouseRelease(viewport, LEFT, NONE, QPoint(left, start.y()))
+    wait_solved(qtbot, window)
+    busy_moves = sum(1 for _, busy in moves if busy)
+    assert busy_moves >= 10  # most moves came while a solve ran
+    busy = [when for when, in_flight in paints if in_flight]
+    gaps = np.diff(busy)
+    assert len(busy) < busy_moves / 2
+    # (a timer's rounding: Qt's coarse timers fire within 5 % of their interval)
+    assert gaps.min() >= 0.9 * BUSY_WIDGET_INTERVAL_MS / 1000
+    assert paints[-1][0] > moves[-1][0]  # the last move's value was drawn

@@ -6,8 +6,10 @@ dataset."""
 from __future__ import annotations
 
 import numpy as np
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtTest import QTest
 
-from tests.support.fixtures_gui import EXAMPLES, wait_solved
+from tests.support.fixtures_gui import EXAMPLES, slider_handle, wait_solved
 from torsal.app.gui.viewport.datasets import Piece, dataset, reshape
 
 #: 'Inward scale' values of the Kaohsiung example: the file's own (no strip folds) and
@@ -63,3 +65,53 @@ def test_reshaping_a_dataset_gives_it_the_new_points_and_cells():
     assert poly.n_lines == 2 and poly.lines.tolist() == [2, 0, 1, 2, 2, 3]
     poly.points[:] = 0.0  # its arrays are its own: writing them leaves the piece alone
     assert more[1, 0] == 1.0
+
+
+def downstream_of(graph, node_id: str) -> set[str]:
+    """The nodes a change of ``node_id`` reaches through wires."""
+    seen, stack = set(), [node_id]
+    while stack:
+        for wire in graph.wires_from(stack.pop()):
+            if wire.target not in seen:
+                seen.add(wire.target)
+                stack.append(wire.target)
+    return seen
+
+
+def test_a_drag_rebuilds_no_actor_and_leaves_nodes_it_does_not_reach_untouched(qtbot, window, monkeypatch):
+    """Dragging 'Inward scale' (over its lower half, where no strip folds) makes no actor
+    and removes none: the strips, inner rim and edge curves have their points moved in the
+    datasets they had, and the base curve, upstream of the slider, is not touched at all."""
+    assert window.open_file(EXAMPLES / "kaohsiung-stadium.graph", ask=False)
+    wait_solved(qtbot, window)
+    preview, plotter = window.viewport.preview, window.viewport.plotter
+    reached = downstream_of(window.doc.graph, "scale")
+    assert {"inner", "edge_curves", "strip"} <= reached and "base" not in reached
+    before = {node: dict(entry.datasets) for node, entry in preview.nodes.items()}
+    actors = {node: dict(entry.actors) for node, entry in preview.nodes.items()}
+    mtimes = {node: {name: data.GetMTime() for name, data in sets.items()} for node, sets in before.items()}
+    made, removed = [], []
+    add_mesh, remove_actor = plotter.add_mesh, plotter.remove_actor
+    monkeypatch.setattr(plotter, "add_mesh", lambda *a, **k: made.append(k.get("name")) or add_mesh(*a, **k))
+    monkeypatch.setattr(
+        plotter, "remove_actor", lambda *a, **k: removed.append(a[0]) or remove_actor(*a, **k)
+    )
+    solves = []
+    window.doc.results_changed.connect(solves.append)
+    start, left, _right = slider_handle(window, "scale")
+    viewport = window.view.viewport()
+    QTest.mousePress(viewport, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, start)
+    for x in range(start.x(), left, -3):  # down from the file's 0.72 towards 0.4
+        QTest.mouseMove(viewport, QPoint(x, start.y()))
+        qtbot.wait(15)
+    end = QPoint(left, start.y())
+    QTest.mouseRelease(viewport, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, end)
+    wait_solved(qtbot, window)
+    assert len(solves) >= 2
+    assert made == [] and removed == []
+    for node, entry in preview.nodes.items():
+        assert entry.actors == actors[node] and entry.datasets == before[node]  # the same objects
+        for name, data in entry.datasets.items():
+            assert data is before[node][name]
+            moved = data.GetMTime() != mtimes[node][name]
+            assert moved == (node in reached), (node, name)

@@ -102,3 +102,17 @@ def test_too_few_points_are_a_plain_error():
         InterpolatedCurve([[0, 0, 0]])
     with pytest.raises(ValueError, match="needs 3 points"):
         InterpolatedCurve([[0, 0, 0], [1, 0, 0]], closed=True)
+
+
+def test_bezier_spans_made_together_are_the_curves_made_alone():
+    rng = np.random.default_rng(11)
+    for count in (2, 3, 4):
+        points = rng.normal(size=(5, count, 3)) * 10.0 ** rng.integers(-3, 7, size=(5, 1, 1))
+        for together, row in zip(InterpolatedCurve.beziers(points), points, strict=True):
+            alone = InterpolatedCurve(row, degree=count - 1)
+            for name in ("control_points", "knots", "parameters", "points"):
+                np.testing.assert_array_equal(getattr(together, name), getattr(alone, name))
+            assert together.degree == alone.degree and together.closed == alone.closed
+            # through its points at their chord-length parameters (to rounding)
+            np.testing.assert_allclose(together.point_at(together.parameters), row, rtol=0,
+                                       atol=1e-12 * np.abs(row).max())

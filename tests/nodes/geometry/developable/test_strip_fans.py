@@ -18,7 +18,7 @@ from tests.support.node_helpers import out, run, texts, tree
 from tests.support.warp_check import shared_both_sides
 from torsal.nodes.developable.ruling_developable import RulingDevelopable
 from torsal.nodes.geometry.developable import ruling_developable
-from torsal.nodes.geometry.developable.fans import fan_share, patch_areas, zigzag
+from torsal.nodes.geometry.developable.fans import fan_share, fan_shares, fan_shares_all, patch_areas, zigzag
 from torsal.nodes.geometry.unroll import unroll_rulings
 
 TOLERANCE = 0.01
@@ -173,3 +173,19 @@ def test_a_fold_of_b_that_no_torsal_ruling_reaches_is_closed_by_flat_triangles()
     in_fan = result.fan[:-1] | result.fan[1:]
     assert (np.all(p0 == p1, axis=1) | np.all(q0 == q1, axis=1))[in_fan].all()
     assert result.message.startswith("no torsal ruling in the strip's order reaches part of curve B")
+
+
+def test_fan_shares_of_several_strips_at_once_are_each_strips_own():
+    # a unit square, then a fan through B's point (1, 1): a triangle of area 1/2
+    square_fan = (np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]),
+                  np.array([[0.0, 1, 0], [1, 1, 0], [1, 1, 0]]), np.array([False, False, True]))
+    # three triangles whose apex changes curve at every ruling: one creased run
+    zigzag = (np.array([[0.0, 0, 0], [1, 0, 0], [1, 0, 0], [2, 0, 0]]),
+              np.array([[0.0, 1, 0], [0, 1, 0], [1, 1, 0], [1, 1, 0]]), np.ones(4, dtype=bool))
+    rng = np.random.default_rng(5)
+    wild = (rng.normal(size=(9, 3)), rng.normal(size=(9, 3)), rng.random(9) < 0.5)
+    strips = [square_fan, zigzag, wild]
+    together = fan_shares_all(strips)
+    assert together[0] == pytest.approx((1 / 3, 0.0), abs=1e-15)
+    assert together[1] == (1.0, 1.0)
+    assert together == [fan_shares(*strip) for strip in strips]

@@ -15,6 +15,7 @@ from torsal.app.gui.canvas.port_item import PortItem
 from torsal.app.gui.graph_order import group_by_id
 from torsal.engine.cluster import is_cluster
 from torsal.engine.graph import Wire
+from torsal.engine.node import Node
 from torsal.engine.types import CastError, decode_value
 from torsal.engine.widgets import Widget
 
@@ -121,6 +122,8 @@ def node_menu(scene: CanvasScene, node: NodeItem) -> QMenu:
     menu.addAction("Rename…", lambda: scene.rename_node(node.node_id))
     if record.node.widget is Widget.EXPRESSION:
         menu.addAction("Edit expression…", lambda: ask_expression(scene, node.node_id))
+    if type(record.node).match_outputs is not Node.match_outputs:
+        menu.addAction("Match outputs", lambda: match_outputs(scene, node.node_id))
     menu.addAction("Help", lambda: scene.help_requested.emit(node.node_id))
     menu.addAction("Bake…", lambda: scene.bake_requested.emit(list(selected)))
     outputs = [port.name for port in node.record.node.output_ports()]
@@ -152,6 +155,14 @@ def ask_expression(scene: CanvasScene, node_id: str) -> None:
     if ok:
         names = [v.strip() for v in variables.split(",") if v.strip()]
         scene.editor.set_settings(node_id, {"expression": text, "variables": names}, text="Edit expression")
+
+
+def match_outputs(scene: CanvasScene, node_id: str) -> None:
+    """Fit the node's outputs to the trees it last received (Explode Tree: one per branch)."""
+    node = scene.doc.graph.nodes[node_id].node
+    settings = node.match_outputs(scene.doc.solver.inputs_of(node_id))
+    if settings:
+        scene.editor.set_settings(node_id, settings, text="Match outputs")
 
 
 def group_menu(scene: CanvasScene, group_id: str) -> QMenu:

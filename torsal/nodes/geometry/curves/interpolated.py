@@ -128,6 +128,38 @@ class InterpolatedCurve(NurbsCurve):
         self._set_points(p, u)
         self._setup(np.asarray(spline.c, float) + origin, None, np.asarray(spline.t, float), k, closed)
 
+    @classmethod
+    def beziers(cls, points: np.ndarray) -> list[InterpolatedCurve]:
+        """The open curves with free ends through each ``points[i]`` (``(calls, count, 3)``,
+        finite, ``count`` ≥ 2) of degree ``count − 1``, one polynomial span each, as the
+        constructor makes each of them with a degree of ``count − 1`` or more: their chord
+        parameters, boxes and Bernstein systems solved at once (each curve's values, bit
+        for bit: LAPACK solves each system on its own). A curve through one point twice in
+        a row is left to the constructor (its message)."""
+        p = np.asarray(points, dtype=float)
+        k = p.shape[1] - 1
+        steps = p[:, 1:] - p[:, :-1]
+        lengths = np.linalg.norm(steps, axis=2)
+        if not (lengths > 0.0).all():
+            return [cls(row, degree=max(k, 1)) for row in p]
+        cumulative = np.empty((len(p), k + 1))
+        cumulative[:, 0] = 0.0
+        np.cumsum(lengths, axis=1, out=cumulative[:, 1:])
+        u = cumulative / cumulative[:, -1:]
+        # solved on the points relative to their box's centre (see vec_ops.anchor)
+        origin = 0.5 * (p.max(axis=1) + p.min(axis=1))
+        j, j_reversed, binomial = _bernstein_terms(k)
+        column = u[:, :, None]
+        basis = binomial * column**j * (1.0 - column) ** j_reversed
+        control = np.linalg.solve(basis, p - origin[:, None]) + origin[:, None]
+        curves = []
+        for row, parameters, vertices in zip(p, u, control, strict=True):
+            curve = cls.__new__(cls)
+            curve._set_points(row, parameters)
+            curve._setup(vertices, None, _bezier_knots(k), k, False)
+            curves.append(curve)
+        return curves
+
     def _set_points(self, points: np.ndarray, parameters: np.ndarray) -> None:
         self.points = points
         self.parameters = parameters

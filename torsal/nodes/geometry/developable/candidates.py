@@ -5,7 +5,7 @@ f_s(t) = det[B(t) − A(s), A'(s), B'(t)] (see :mod:`.ruling` for the geometry).
 module finds them all at once (steps 2–5 of the algorithm in :mod:`.ruling`):
 
 - :func:`find_all` — brackets from one thin matrix product of f over all
-  station–sample pairs (:func:`_brackets`), judged and split by the certified isolation
+  station–sample pairs (:mod:`.sift`), judged and split by the certified isolation
   (:mod:`.isolation`) until each holds provably no root, one simple root or a double
   root, refined to rounding (:mod:`.brackets`); plus the roots at corners of B and the
   ends of flat runs. Each candidate carries its branch slope dt/ds and whether its
@@ -27,16 +27,15 @@ import numpy as np
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
-from ..vec_ops import cross, dot, extent, flatnonzero, norm, position_rounding, unit
+from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
-from .isolation import IntervalBounds, Pieces, isolate
+from .isolation import Pieces, isolate
 from .selection import longest_chain, monotone_path
+from .sift import sift_all
 from .stack import Stack, evaluate_rows
-from .strip import Grid, Strip
+from .strip import Strip
 from .warp import _angles, _normals, in_plane_tangent, sizes
 
-#: A sample is zero (flat) where |det[R, Â', B̂']| <= FLAT·|R|: coplanar to 1e-10 rad.
-FLAT = 1e-10
 #: Most candidates kept per station for the selection.
 MAX_CANDIDATES = 8
 
@@ -44,102 +43,8 @@ MAX_CANDIDATES = 8
 ROOT, CORNER, FLAT_END = 0, 1, 2
 
 
-@dataclass
-class _Brackets:
-    """Sample intervals worth a closer look: where the determinant of station ``rows``
-    changes sign between samples ``cols`` and ``cols + 1`` or may come near zero (with
-    its values there, and the rulings B − A to both ends and their lengths), and the
-    samples where it is zero. The values at the two ends are the two rows of ``f``,
-    ``rulings`` and ``lengths``."""
-
-    rows: IntArray
-    cols: IntArray
-    f: FloatArray  #: (2, k) f at samples ``cols`` and ``cols + 1``
-    rulings: FloatArray  #: (2, k, 3) B − A there
-    lengths: FloatArray  #: (2, k) their lengths
-    zeros: IntArray  #: flat indices ``row * m + col`` of zero samples, increasing
-
-
 #: Offsets of an interval's two ends from its first sample, as a column.
 _ENDS = np.array([[0], [1]])
-
-
-def _brackets(
-    a0: FloatArray, a1: FloatArray, grid: Grid, bounds: IntervalBounds, size: float, positions: FloatArray
-) -> _Brackets:
-    """Intervals where f = det[B_j − A_i, Â', B'_j] (unit tangent of A) changes sign or
-    may reach zero — |f| at an end within the reach of :mod:`.isolation` — over all
-    station–sample pairs.
-
-    By the cyclic symmetry of the triple product,
-    ``det[B − A, Â', B'] = Â'·(B' × B) − (A × Â')·B'``, so the whole matrix is one
-    (n×6)(6×m) product. Coordinates are taken about a common centre to keep the terms
-    small. It is formed in blocks of rows: a block that small keeps OpenBLAS on one
-    thread (threads cost more than they save on a product this thin, and stall when the
-    machine is busy) and lets every block reuse the memory of the last.
-
-    An interval passes a first sift with the bounds' reach (from the diameter ``size`` of
-    both curves) and then a second with the reach from its own two rulings (the longer of
-    |B_j − A_i| and |B_j+1 − A_i| in place of the diameter); a sign change always passes.
-    The rulings and their lengths are what the kept intervals carry on. ``positions`` are
-    A's and B's points, ``a0`` and ``grid.points`` one after the other.
-    """
-    b0, b1 = grid.points, grid.tangents
-    n, m = len(a0), len(b0)
-    centre = 0.5 * (a0[n // 2] + b0[m // 2])  # about the middle of both curves
-    units = unit(a1)
-    left = np.concatenate([units, cross(units, a0 - centre)], axis=1)
-    right = np.concatenate([cross(b1, b0 - centre).T, b1.T])
-    speed_b = grid.speeds
-    # a flat run is coplanar to FLAT, or to the rounding of the positions themselves far
-    # from the origin (site coordinates: the input points carry ~1e-7 m at 1e9 m)
-    rounding = position_rounding(positions)
-    flat_scale = (FLAT * size + rounding) * speed_b
-    # blocks of at most 16,000 samples: each block's arrays (125 KiB at most) come from the
-    # heap, not fresh pages of their own, and stay in the cache; the buffers serve every block
-    block = max(1, 16_000 // m)
-    rows_in_block = min(block, n)
-    f_buffer, size_buffer = np.empty((rows_in_block, m)), np.empty((rows_in_block, m))
-    sign_buffer = np.empty((rows_in_block, m), dtype=bool)
-    low_buffer = np.empty((rows_in_block, m - 1))
-    found: list[tuple[FloatArray, ...]] = []
-    zeros: list[IntArray] = []
-    for first in range(0, n, block):  # blocks bound memory and threads; each is vectorised
-        here = min(block, n - first)
-        f = np.matmul(left[first : first + block], right, out=f_buffer[:here])
-        negative = np.signbit(f, out=sign_buffer[:here])
-        size_f = np.abs(f, out=size_buffer[:here])
-        lower = np.minimum(size_f[:, :-1], size_f[:, 1:], out=low_buffer[:here])
-        change = negative[:, :-1] != negative[:, 1:]
-        look = change | (lower <= bounds.reach)
-        maybe = flatnonzero(size_f <= flat_scale)
-        if len(maybe):  # rare: test the candidates against their own ruling length
-            r, c = np.divmod(maybe, m)
-            exact = maybe[size_f.flat[maybe] <= (FLAT * norm(b0[c] - a0[r + first]) + rounding) * speed_b[c]]
-            if len(exact):
-                zero = np.zeros(f.shape, dtype=bool)
-                zero.flat[exact] = True
-                look &= ~(zero[:, :-1] | zero[:, 1:])
-                zeros.append(exact + first * m)
-        index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
-        r, c = np.divmod(index, m - 1)
-        # sift again with the rulings' own lengths in place of the diameter; the rulings to
-        # both ends at once, (2, k, 3), as their lengths and f there (take gathers rows
-        # several times faster than indexing does)
-        rulings = b0.take(c + _ENDS, axis=0) - a0.take(r + first, axis=0)
-        lengths = norm(rulings)
-        reach = bounds.slope.take(c) * (np.maximum(lengths[0], lengths[1]) + bounds.chord.take(c))
-        keep = change.take(index) | (lower.take(index) <= reach)
-        r = r[keep]
-        at = index[keep] + r + _ENDS  # (r, c) and (r, c + 1) in f
-        kept = f.take(at), rulings.compress(keep, axis=1), lengths.compress(keep, axis=1)
-        found.append((r + first, c[keep], *kept))
-    if len(found) == 1:
-        joined = found[0]
-    else:  # (the ends' values along their second axis)
-        joined = [np.concatenate(x, axis=0 if x[0].ndim == 1 else 1) for x in zip(*found, strict=True)]
-    zero_flat = np.concatenate(zeros) if zeros else np.empty(0, dtype=np.int64)
-    return _Brackets(*joined, zero_flat)
 
 
 def cubic_start(
@@ -205,125 +110,34 @@ class Candidates:
 _FIELDS = tuple(Candidates.__dataclass_fields__)
 
 
-@dataclass
-class _Found:
-    """One strip's partner search up to its isolation: the sifted intervals (as the first
-    pieces to judge, their columns and the rulings to their ends), corner intervals and
-    runs of zero samples."""
-
-    strip: Strip
-    units: FloatArray  #: A's unit tangents at the stations
-    bounds: IntervalBounds
-    first: Pieces
-    curvature: FloatArray  #: the first pieces' bounds of f''
-    cols: IntArray
-    lengths: FloatArray  #: (2, k) the rulings' lengths at both ends of the intervals
-    corner_rows: IntArray
-    corner_cols: IntArray
-    run_rows: IntArray
-    run_first: IntArray
-    run_last: IntArray
-    flat: BoolArray  #: which runs are flat (of positive extent)
-
-
-def _search(strip: Strip) -> _Found:
-    """Brackets from the matrix of f (:func:`_brackets`), corners and zero runs: one strip's
-    search before its isolation."""
-    grid, a0 = strip.grid, strip.a0
-    m = len(grid.t)
-    units = unit(strip.a1)
-    positions = np.concatenate([a0, grid.points])
-    diameter = float(norm(extent(positions)))
-    bounds = grid.interval_bounds(diameter)
-    found = _brackets(a0, units, grid, bounds, diameter, positions)
-    rows, cols, f_ends, rulings, lengths = found.rows, found.cols, found.f, found.rulings, found.lengths
-    corner_rows = corner_cols = run_rows = run_first = run_last = np.empty(0, dtype=np.int64)
-    if grid.pair.any():
-        at_corner = grid.pair[cols]
-        corner_rows, corner_cols = rows[at_corner], cols[at_corner]
-        keep = ~at_corner
-        rows, cols = rows[keep], cols[keep]
-        f_ends, rulings, lengths = f_ends[:, keep], rulings[:, keep], lengths[:, keep]
-    if len(found.zeros):
-        # runs of zero samples along a row: a run of positive extent is flat (its two ends
-        # are candidates), a single zero sample is a root
-        z = found.zeros
-        run_start = np.ones(len(z), dtype=bool)
-        run_start[1:] = (np.diff(z) != 1) | (z[1:] % m == 0)
-        run_end = np.ones(len(z), dtype=bool)
-        run_end[:-1] = run_start[1:]
-        run_rows, run_first = np.divmod(z[run_start], m)
-        run_last = z[run_end] % m
-    flat = grid.t[run_last] > grid.t[run_first] if len(run_last) else np.empty(0, dtype=bool)
-    # judge what the sift left (it used the rulings' own lengths), subdividing where a
-    # root pair may hide; f' there is det[R, Â', B''] = B'' · (R × Â'), for these only
-    # (at both ends at once, B'' at the far end as seen from the left)
-    cols_next = cols + 1
-    seconds = np.array([grid.second.take(cols, axis=0), grid.left_second.take(cols_next, axis=0)])
-    d_ends = dot(cross(rulings, units.take(rows, axis=0)), seconds)
-    none = np.empty(0)
-    f_low, f_high = f_ends
-    first = Pieces(rows, grid.at.take(cols), grid.at.take(cols_next), f_low, f_high, *d_ends, *([none] * 7))
-    return _Found(strip, units, bounds, first, bounds.curvature.take(cols), cols, lengths, corner_rows,
-                  corner_cols, run_rows, run_first, run_last, flat)
-
-
-def _piece_ends(found: _Found, index: IntArray) -> dict[str, FloatArray]:
-    """The B-data of the first pieces ``index`` of one strip (see :func:`.isolation.isolate`)."""
-    grid, bounds = found.strip.grid, found.bounds
-    c = found.cols[index]
-    c_next = c + 1
-    # (a row's length is the same computed alone or among others)
-    return {
-        "speed0": grid.speeds[c],
-        "speed1": grid.speeds[c_next],
-        "second0": grid.second_lengths[c],
-        "second1": grid.left_second_lengths[c_next],
-        "bound3": bounds.third[c],
-        "r0": found.lengths[0, index],
-        "r1": found.lengths[1, index],
-    }
-
-
 def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     """All candidate partners of all stations of every strip: refined roots (every root of
     f, isolated with the guarantee of :mod:`.isolation`), corner roots, flat-run ends. Each
     strip's matrix of f is its own; the isolation and refinement of every strip's
     intervals run at once (the stations stacked, each strip's B evaluated on its rows)."""
-    searches = [_search(strip) for strip in strips]
+    sifted = sift_all(strips)
     stations = Stack([len(strip.s) for strip in strips])
     strip_of = stations.owner()
     shift = stations.starts
     a0 = np.concatenate([strip.a0 for strip in strips])
     a1 = np.concatenate([strip.a1 for strip in strips])
     a2 = np.concatenate([strip.a2 for strip in strips])
-    units = np.concatenate([found.units for found in searches])
-    first = Pieces(*(
-        np.concatenate([getattr(found.first, name) + (shift[i] if name == "row" else 0)
-                        for i, found in enumerate(searches)]) if name in _BRACKET_FIELDS else np.empty(0)
-        for name in _PIECE_NAMES
-    ))
-    pieces_of = Stack([len(found.first.row) for found in searches])
+    units = sifted.units
     curves = [strip.curve_b for strip in strips]
 
     def ends(pieces: Pieces, index: IntArray) -> Pieces:
-        bounds = np.searchsorted(index, pieces_of.offsets).tolist()
-        parts = [
-            _piece_ends(found, index[low:high] - pieces_of.starts[i])
-            for i, (found, low, high) in enumerate(zip(searches, bounds[:-1], bounds[1:], strict=True))
-            if high > low  # (a strip with nothing to judge again reads none of its B-data)
-        ]
-        joined = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
-        return replace(pieces.take(index), **joined)
+        return replace(pieces.take(index), **sifted.piece_ends(index))
 
     def evaluate_b(x: FloatArray, rows: IntArray) -> list[FloatArray]:
         return evaluate_rows(curves, x, strip_of[rows], 2)
 
-    curvature = np.concatenate([found.curvature for found in searches])
-    isolated = isolate(first, curvature, evaluate_b, a0, units, ends, strip_of)
+    isolated = isolate(sifted.first, sifted.curvature, evaluate_b, a0, units, ends, strip_of)
     rows = isolated.rows
-    run_rows = np.concatenate([found.run_rows[~found.flat] + shift[i] for i, found in enumerate(searches)])
-    run_t = np.concatenate([found.strip.grid.t[found.run_first[~found.flat]] for found in searches])
+    # single zero samples (runs of no extent) are roots
+    single = [(run_rows[~flat] + shift[i], strip.grid.t[first[~flat]])
+              for i, (strip, (run_rows, first, _, flat)) in enumerate(zip(strips, sifted.runs, strict=True))]
+    run_rows = np.concatenate([rows_i for rows_i, _ in single])
+    run_t = np.concatenate([t_i for _, t_i in single])
     if len(run_rows) or len(isolated.double_rows):  # single zero samples, double roots
         point_rows = np.concatenate([run_rows, isolated.double_rows])
         point_t = np.concatenate([run_t, isolated.double_t])
@@ -379,27 +193,25 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
     fields = (root_rows - shift[strip_of_root], root_t, kind, slope, b0, b1, oriented)
     split = [per_strip.split(values[by_strip]) for values in fields]
     results = []
-    for i, found in enumerate(searches):
+    for i, strip in enumerate(strips):
         rows_i, t_i, kind_i, slope_i, b0_i, b1_i, oriented_i = (part[i] for part in split)
         nan = np.full(len(rows_i), np.nan)
         candidates = Candidates(rows_i, t_i, kind_i, slope_i, nan, nan, b0_i, b1_i, oriented_i)
-        results.append(_with_extras(found, candidates))
+        results.append(_with_extras(strip, candidates, sifted.corners[i], sifted.runs[i]))
     return results
 
 
-#: The fields of :class:`.isolation.Pieces` and those a first piece has (the others are
-#: filled in by :func:`_piece_ends` where a piece is judged again).
-_PIECE_NAMES = tuple(Pieces.__dataclass_fields__)
-_BRACKET_FIELDS = ("row", "x0", "x1", "f0", "f1", "d0", "d1")
-
-
-def _with_extras(found: _Found, candidates: Candidates) -> Candidates:
-    """One strip's refined roots with its roots at corners of B and the ends of its flat runs."""
-    if len(found.corner_rows) == 0 and not found.flat.any():
+def _with_extras(
+    strip: Strip, candidates: Candidates, corners: tuple[IntArray, IntArray],
+    runs: tuple[IntArray, IntArray, IntArray, BoolArray],
+) -> Candidates:
+    """One strip's refined roots with its roots at corners of B (the intervals ``corners``
+    that straddle one: their stations and first samples) and the ends of its flat runs
+    (of its ``runs`` of zero samples: stations, first and last samples, flat or not)."""
+    (corner_rows, corner_cols), (run_rows, run_first, run_last, flat) = corners, runs
+    if len(corner_rows) == 0 and not flat.any():
         return _in_order(candidates)
-    grid, a0, a1 = found.strip.grid, found.strip.a0, found.strip.a1
-    corner_rows, corner_cols, flat = found.corner_rows, found.corner_cols, found.flat
-    run_rows, run_first, run_last = found.run_rows, found.run_first, found.run_last
+    grid, a0, a1 = strip.grid, strip.a0, strip.a1
     # roots at corners of B: the tangent plane turns about the corner (a cone through it)
     corner_points = grid.points[corner_cols + 1]
     corner_tangents = in_plane_tangent(
@@ -594,7 +406,7 @@ def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) 
     All of it comes from (i, j) matrix products: |R|², R·A', R·B' and A'·B' give
     N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's identity), and N1 × N2 = R·det[R, A', B']
     with det[R, A', B'] = A'·(B' × B) − (A × A')·B'. Coordinates are taken about a
-    common centre, as in :func:`_brackets`.
+    common centre, as in :mod:`.sift`.
     """
     centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
     a, b = a - centre, b - centre

@@ -39,7 +39,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
-from trimesh.triangles import closest_point as closest_on_triangles
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
@@ -197,6 +196,8 @@ NEAREST = 24
 
 
 def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
+    from trimesh.triangles import closest_point as closest_on_triangles  # on first use (trimesh_type)
+
     # along: at the strip's rulings too, where its edges may turn a corner (a strip cut at
     # the design's edge, :mod:`.outline_cut`): a mesh that cut the corner would over-report
     along = np.linspace(0.0, 1.0, ALONG)

@@ -36,7 +36,6 @@ from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
 from ..vec_ops import cross, det, flatnonzero, norm, unit
-from ..vec_ops import extent as box_extent
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .stack import Stack, evaluate_each, evaluate_rows
@@ -102,15 +101,25 @@ def creased_fans(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -
 
 def _creased(starts: FloatArray, ends: FloatArray, in_fan: BoolArray) -> BoolArray:
     """:func:`creased_fans` for the pieces ``in_fan`` next to a fan ruling."""
+    return _creased_all(starts, ends, in_fan, Stack([len(starts)]))
+
+
+def _creased_all(starts: FloatArray, ends: FloatArray, in_fan: BoolArray, rulings: Stack) -> BoolArray:
+    """:func:`_creased` of several strips whose rulings are stacked (``rulings``), the pieces
+    between consecutive rulings with ``in_fan`` False between two strips' rulings."""
     creased = np.zeros(len(in_fan), dtype=bool)
     if not in_fan.any():
         return creased
-    both = np.array([starts, ends])  # (its rows: those of np.concatenate([starts, ends]))
-    size = float(box_extent(both.reshape(-1, 3)).max()) or 1.0
-    same_start, same_end = norm(both[:, 1:] - both[:, :-1]) <= 1e-12 * size
+    # each strip's size: the largest extent of its rulings' ends (1 where they are one point)
+    low = np.minimum(np.minimum.reduceat(starts, rulings.starts), np.minimum.reduceat(ends, rulings.starts))
+    high = np.maximum(np.maximum.reduceat(starts, rulings.starts), np.maximum.reduceat(ends, rulings.starts))
+    size = (high - low).max(axis=1)
+    close = rulings.repeat(1e-12 * np.where(size != 0.0, size, 1.0))  # (size or 1)
+    same_start = norm(starts[1:] - starts[:-1]) <= close[:-1]
+    same_end = norm(ends[1:] - ends[:-1]) <= close[:-1]
     # a piece next to a "ruling" of no length (the point a strip trimmed by the design's
     # edge tapers to, :mod:`.outline_cut`) is one triangle: flat, it creases nothing
-    point = norm(ends - starts) <= 1e-12 * size
+    point = norm(ends - starts) <= close
     triangle = point[:-1] | point[1:]
     # the runs of fan pieces: where ``in_fan`` padded with False on both sides changes
     padded = np.zeros(len(in_fan) + 2, dtype=bool)
@@ -136,13 +145,30 @@ def area_share(starts: FloatArray, ends: FloatArray, pieces: NDArray[np.bool_]) 
 def fan_shares(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> tuple[float, float]:
     """:func:`fan_share` and the share of the creased fans (:func:`area_share` of
     :func:`creased_fans`), from one measurement of the pieces' areas."""
-    areas = patch_areas(starts, ends)
-    total = float(areas.sum())
+    return fan_shares_all([(starts, ends, fan)])[0]
+
+
+def fan_shares_all(strips: Sequence[tuple[FloatArray, FloatArray, BoolArray]]) -> list[tuple[float, float]]:
+    """:func:`fan_shares` of every strip ``(starts, ends, fan)`` (of one ruling or more), their
+    pieces measured at once; each strip's areas are summed on their own (a sum's rounding depends on what
+    else it adds), so each gets the shares it gets alone, bit for bit."""
+    rulings = Stack.of([starts for starts, _, _ in strips])
+    starts, ends, fan = (np.concatenate(parts) for parts in zip(*strips, strict=True))
+    areas = patch_areas(starts, ends)  # (and one across each pair of strips, never read)
     in_fan = fan[:-1] | fan[1:]
-    creased = _creased(starts, ends, in_fan)
-    if not total > 0:
-        return (0.0 if not fan.any() else 1.0), (0.0 if not creased.any() else 1.0)
-    return float(areas[in_fan].sum() / total), float(areas[creased].sum() / total)
+    in_fan[rulings.offsets[1:-1] - 1] = False
+    creased = _creased_all(starts, ends, in_fan, rulings)
+    shares = []
+    for low, high in zip(rulings.starts.tolist(), (rulings.offsets[1:] - 1).tolist(), strict=True):
+        own = areas[low:high]
+        total = float(own.sum())
+        pieces, folded = in_fan[low:high], creased[low:high]
+        if not total > 0:
+            none = 0.0 if not fan[low : high + 1].any() else 1.0
+            shares.append((none, 0.0 if not folded.any() else 1.0))
+        else:
+            shares.append((float(own[pieces].sum() / total), float(own[folded].sum() / total)))
+    return shares
 
 
 def fan_share(starts: FloatArray, ends: FloatArray, fan: NDArray[np.bool_]) -> float:

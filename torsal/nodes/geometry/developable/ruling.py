@@ -33,7 +33,7 @@ Algorithm (all stations at once)
    (:mod:`.stations`).
 2. Sampling: B is sampled on every smooth span, with both one-sided values at its
    corners, and the whole ``stations × samples`` matrix of f and of f_t is one thin
-   matrix product (see :func:`.candidates._brackets`).
+   matrix product (see :mod:`.sift`).
 3. Certified isolation (:mod:`.isolation`): every sample interval where f changes sign
    or comes within reach of zero is judged with a bound on f_tt from B's derivatives,
    and split until each piece provably holds no root, exactly one simple root (a
@@ -107,11 +107,11 @@ from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans_all, close_gaps, fan_shares, flat_fans, outside_gaps
+from .fans import a_fans_all, close_gaps, fan_shares_all, flat_fans, outside_gaps
 from .measure import check_rulings
 from .stack import Stack, evaluate_rows
 from .stations import Spacing
-from .strip import SIDE, Strip
+from .strip import SIDE, Strip, set_up
 from .warp import PARALLEL
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
@@ -244,16 +244,9 @@ def ruling_developables(
     is the one it gets alone, bit for bit; a job the solve refuses gets its ValueError in
     its place."""
     samples = max(int(samples), 8)
-    results: list[RulingResult | ValueError] = []
-    strips: list[Strip] = []
-    for curve_a, curve_b, segments, warp_tolerance in jobs:
-        try:
-            strips.append(_strip(curve_a, curve_b, segments, warp_tolerance, spacing, samples))
-            results.append(None)  # type: ignore[arg-type]  (filled in below)
-        except ValueError as exc:
-            results.append(exc)
-    solved = iter(_solve_all(strips))
-    results = [result if result is not None else next(solved) for result in results]
+    made = _strips(jobs, spacing, samples)
+    solved = iter(_solve_all([strip for strip in made if isinstance(strip, Strip)]))
+    results = [next(solved) if isinstance(strip, Strip) else strip for strip in made]
     # a closed B whose seam sits away from where the strip starts: restart B at A(0)'s
     # partner (or, when A is closed too, at the partner of its end, the same point)
     again: list[tuple[int, _Rotated]] = []
@@ -266,25 +259,46 @@ def ruling_developables(
         if shift is not None and 1e-9 < shift < 1.0 - 1e-9:
             again.append((index, _Rotated(curve_b, shift)))
     if again:
-        rotated_strips = []
-        for index, rotated in again:
-            curve_a, _, segments, warp_tolerance = jobs[index]
-            rotated_strips.append(_strip(curve_a, rotated, segments, warp_tolerance, spacing, samples))
+        rotated_jobs = [(jobs[index][0], rotated, *jobs[index][2:]) for index, rotated in again]
+        made = _strips(rotated_jobs, spacing, samples)
+        again = [pair for pair, strip in zip(again, made, strict=True) if isinstance(strip, Strip)]
+        rotated_strips = [strip for strip in made if isinstance(strip, Strip)]
         for (index, rotated), other in zip(again, _solve_all(rotated_strips), strict=True):
             if other.fan_share < results[index].fan_share:  # type: ignore[union-attr]
                 results[index] = replace(other, t=rotated.original(other.t))
     return results
 
 
-def _strip(
-    curve_a: Curve, curve_b: Curve, segments: int, warp_tolerance: float, spacing: Spacing, samples: int
-) -> Strip:
-    """The checked arguments of one strip, as the :class:`Strip` its solve starts from."""
-    segments = segment_count(segments)
-    tolerance = float(warp_tolerance)
-    if not (np.isfinite(tolerance) and tolerance >= 0):
-        raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
-    return Strip(curve_a, curve_b, int(segments), tolerance, spacing, samples)
+def _strips(
+    jobs: Sequence[tuple[Curve, Curve, int, float]], spacing: Spacing, samples: int
+) -> list[Strip | ValueError]:
+    """The checked arguments of every job, as the :class:`Strip` its solve starts from, or
+    the ValueError that refuses it (the strips set up together: :func:`.strip.set_up`)."""
+    checked: list[tuple[Curve, Curve, int, float]] = []
+    made: list[Strip | ValueError | None] = []
+    for curve_a, curve_b, segments, warp_tolerance in jobs:
+        try:
+            segments = segment_count(segments)
+            tolerance = float(warp_tolerance)
+            if not (np.isfinite(tolerance) and tolerance >= 0):
+                raise ValueError(f"The warp tolerance must be a number >= 0 (rad); got {warp_tolerance}.")
+            checked.append((curve_a, curve_b, int(segments), tolerance))
+            made.append(None)
+        except ValueError as exc:
+            made.append(exc)
+    try:
+        strips = iter(set_up(checked, spacing, samples))
+    except ValueError:  # a curve that refuses its evaluation: each strip alone, with its own error
+        strips = iter([_alone(job, spacing, samples) for job in checked])
+    return [next(strips) if strip is None else strip for strip in made]
+
+
+def _alone(job: tuple[Curve, Curve, int, float], spacing: Spacing, samples: int) -> Strip | ValueError:
+    """One job's strip set up alone, or the ValueError its curves raise."""
+    try:
+        return set_up([job], spacing, samples)[0]
+    except ValueError as exc:
+        return exc
 
 
 @dataclass
@@ -387,7 +401,11 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
             folded.append(solve)
     if folded:
         _check_all(folded)
-    return [_result(solve) for solve in solves]
+    # the share of each strip's area in fans (of the strips that have some), all measured at once
+    fanned = [solve for solve in solves if solve.rulings[3].any()]
+    measured = [(solve.checked[0], solve.checked[1], solve.rulings[3]) for solve in fanned]
+    shares = iter(fan_shares_all(measured) if fanned else [])
+    return [_result(solve, *(next(shares) if solve.rulings[3].any() else (0.0, 0.0))) for solve in solves]
 
 
 def _check_all(solves: list[_Solve]) -> None:
@@ -397,14 +415,11 @@ def _check_all(solves: list[_Solve]) -> None:
         solve.checked = checked
 
 
-def _result(solve: _Solve) -> RulingResult:
-    """The strip's result from its checked rulings: the share of its area in fans, and the message."""
+def _result(solve: _Solve, share: float, creased: float) -> RulingResult:
+    """The strip's result from its checked rulings and the ``share`` of its area in fans
+    (``creased`` in creased ones; 0 without fans: no piece counts), and the message."""
     s_out, t_out, source, fan = solve.rulings
     starts, ends, signed, warp, valid = solve.checked
-    if fan.any():
-        share, creased = fan_shares(starts, ends, fan)
-    else:  # (what both give without fans: no piece counts)
-        share = creased = 0.0
     station = source >= 0
     strip = solve.strip
     closed = source[station & fan]  # the stations closed by fans

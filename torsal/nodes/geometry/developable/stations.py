@@ -18,6 +18,7 @@ every solve.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import lru_cache
 from typing import TYPE_CHECKING, Literal
 
@@ -28,6 +29,7 @@ from scipy.special import roots_legendre
 from ..array_types import IntArray
 from ..curve_base import FloatArray
 from ..vec_ops import dot
+from .stack import Stack
 
 if TYPE_CHECKING:
     from ..curve_base import Curve
@@ -82,36 +84,37 @@ class LengthMap:
     """
 
     def __init__(self, curve: Curve, intervals: int = 128) -> None:
+        self._set(curve, *_tables([curve], intervals)[0])
+
+    @classmethod
+    def many(cls, curves: Sequence[Curve], intervals: int = 128) -> list[LengthMap]:
+        """The map of each of ``curves``, each the one it gets alone (bit for bit), their
+        tables made together (:func:`_tables`)."""
+        maps = []
+        for curve, tables in zip(curves, _tables(curves, intervals), strict=True):
+            length_map = cls.__new__(cls)
+            length_map._set(curve, *tables)
+            maps.append(length_map)
+        return maps
+
+    def _set(
+        self, curve: Curve, nodes: FloatArray, lengths: FloatArray, start_speeds: FloatArray,
+        end_speeds: FloatArray, width: FloatArray, rise: FloatArray, d0: FloatArray, c2: FloatArray,
+        c3: FloatArray, samples: FloatArray,
+    ) -> None:
         self.curve = curve
-        breaks = tuple(curve._breakpoints().tolist())
-        layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
-        nodes, gauss, half, last, at = layout(breaks, int(intervals))
-        d1 = curve.derivative_at(at, 1)
-        speeds = np.sqrt(dot(d1, d1))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
-        g, m = len(gauss), len(nodes)
-        pieces = half * (speeds[:g].reshape(-1, 4) @ _WEIGHTS)
-        end_speeds = speeds[g + 1 : g + m].copy()
-        end_speeds[last] = speeds[g + m :]
         self.nodes: FloatArray = nodes
-        self.lengths: FloatArray = np.empty(m)
-        self.lengths[0] = 0.0
-        np.cumsum(pieces, out=self.lengths[1:])
+        self.lengths: FloatArray = lengths
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
-        self.start_speeds: FloatArray = speeds[g : g + m - 1]
+        self.start_speeds: FloatArray = start_speeds
         self.end_speeds: FloatArray = end_speeds
         #: Total arc length of the curve.
-        self.total: float = float(self.lengths[-1])
-        h = 2.0 * half
-        self._width, self._rise = h, pieces
-        self._d0 = self.start_speeds * h
-        d1 = end_speeds * h
-        self._c2 = 3.0 * pieces - 2.0 * self._d0 - d1
-        self._c3 = self._d0 + d1 - 2.0 * pieces
+        self.total: float = float(lengths[-1])
+        self._width, self._rise = width, rise
+        self._d0, self._c2, self._c3 = d0, c2, c3
         # the speeds at each piece's ends and Gauss nodes (in its own coordinate u), for the
         # read-back of :meth:`_rises`
-        self._samples = np.empty((m - 1, 6))
-        self._samples[:, 0], self._samples[:, 5] = self._d0, d1
-        np.multiply(speeds[:g].reshape(-1, 4), h[:, None], out=self._samples[:, 1:5])
+        self._samples = samples
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
@@ -129,24 +132,104 @@ class LengthMap:
 
     def parameter_at(self, length: ArrayLike) -> FloatArray:
         """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
-        target = np.minimum(np.maximum(np.asarray(length, dtype=float), 0.0), self.total)
-        k = np.minimum(self.lengths.searchsorted(target, side="right") - 1, len(self._rise) - 1)
-        d0, c2, c3 = self._d0[k], self._c2[k], self._c3[k]
-        gap = target - self.lengths[k]
-        u = gap / np.maximum(self._rise[k], 1e-300)
-        # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
-        floor = 1e-12 * max(self.total, 1e-300)
-        c2_twice = 2.0 * c2
-        for _ in range(2):
-            slope = d0 + u * (c2_twice + 3.0 * u * c3)
-            step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
-            u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-        # then one on the quintic's integral (:meth:`_rises`; the cubic's slope is the speed
-        # to ~1e-9): the cubic's root is within ~1e-9 of the length of its, so one step
-        # reaches rounding
-        step = (self._rises(k, u) - gap) / np.maximum(slope, floor)
+        length = np.asarray(length, dtype=float)
+        return _parameters_at([self], length.reshape(-1), Stack([length.size]))[0].reshape(length.shape)
+
+
+def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, ...]]:
+    """The tables of a :class:`LengthMap` of each of ``curves`` (what :meth:`LengthMap._set`
+    takes after the curve), each the one the curve gets alone, bit for bit: each curve's
+    speed is evaluated on its own, and so are its pieces' Gauss sums and their running total
+    (a matrix product's and a cumulative sum's rounding depend on what else is in the
+    array); the rest runs once for all of them."""
+    layouts, speeds = [], []
+    for curve in curves:
+        breaks = tuple(curve._breakpoints().tolist())
+        layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
+        layouts.append(layout(breaks, int(intervals)))
+        speeds.append(curve.derivative_at(layouts[-1][4], 1))
+    stacked = np.concatenate(speeds)
+    stacked = np.sqrt(dot(stacked, stacked))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
+    # each curve's speeds: at its Gauss nodes, its piece ends, just before its breakpoints
+    pieces, lengths, starts, ends, gauss = [], [], [], [], []
+    offset = 0
+    for nodes, nodes_gauss, half, last, at in layouts:
+        g, m = len(nodes_gauss), len(nodes)
+        own = stacked[offset : offset + len(at)]
+        offset += len(at)
+        gauss.append(own[:g].reshape(-1, 4))
+        pieces.append(half * (gauss[-1] @ _WEIGHTS))
+        lengths.append(np.empty(m))
+        lengths[-1][0] = 0.0
+        np.cumsum(pieces[-1], out=lengths[-1][1:])
+        starts.append(own[g : g + m - 1])
+        ends.append(own[g + 1 : g + m].copy())
+        ends[-1][last] = own[g + m :]
+    rise = np.concatenate(pieces)
+    h = 2.0 * np.concatenate([layout[2] for layout in layouts])
+    d0, d1 = np.concatenate(starts) * h, np.concatenate(ends) * h
+    c2 = 3.0 * rise - 2.0 * d0 - d1
+    c3 = d0 + d1 - 2.0 * rise
+    samples = np.empty((len(rise), 6))
+    samples[:, 0], samples[:, 5] = d0, d1
+    np.multiply(np.concatenate(gauss), h[:, None], out=samples[:, 1:5])
+    tables = []
+    low = 0
+    for layout, length, start, end in zip(layouts, lengths, starts, ends, strict=True):
+        high = low + len(start)
+        own = (h, rise, d0, c2, c3, samples)
+        tables.append((layout[0], length, start, end, *(x[low:high] for x in own)))
+        low = high
+    return tables
+
+
+def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) -> list[FloatArray]:
+    """:meth:`LengthMap.parameter_at` of each map of ``maps`` at its rows of ``length`` (as
+    ``stack`` says), run once for all of them (each map's search and matrix product on its
+    own rows: each gets what it gets alone, bit for bit)."""
+    totals = np.array([m.total for m in maps])
+    target = np.minimum(np.maximum(length, 0.0), stack.repeat(totals))
+    pieces = Stack([len(m._rise) for m in maps])
+    bounds = stack.offsets.tolist()
+    k = np.concatenate([m.lengths.searchsorted(target[low:high], side="right") - 1
+                        for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
+    k = np.minimum(k, stack.repeat(pieces.counts - 1))
+    on_piece = k + stack.repeat(pieces.starts)  # (each map's pieces among all of them)
+    on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
+    d0, c2, c3, rise, width, nodes, lengths = (np.concatenate([getattr(m, name) for m in maps]) for name in (
+        "_d0", "_c2", "_c3", "_rise", "_width", "nodes", "lengths"))
+    d0, c2, c3 = d0[on_piece], c2[on_piece], c3[on_piece]
+    gap = target - lengths[on_node]
+    u = gap / np.maximum(rise[on_piece], 1e-300)
+    # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
+    floor = stack.repeat(1e-12 * np.maximum(totals, 1e-300))
+    c2_twice = 2.0 * c2
+    for _ in range(2):
+        slope = d0 + u * (c2_twice + 3.0 * u * c3)
+        step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
         u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-        return np.minimum(self.nodes[k] + u * self._width[k], 1.0)
+    # then one on the quintic's integral (:meth:`LengthMap._rises`; the cubic's slope is the
+    # speed to ~1e-9): the cubic's root is within ~1e-9 of the length of its, so one step
+    # reaches rounding
+    integrals = np.concatenate([m._samples[k[low:high]] @ _INTEGRAL
+                                for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
+    rises = np.einsum("...j,...j->...", u[..., None] ** _POWERS[1:], integrals)
+    step = (rises - gap) / np.maximum(slope, floor)
+    u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
+    return stack.split(np.minimum(nodes[on_node] + u * width[on_piece], 1.0))
+
+
+def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[FloatArray]:
+    """``counts[i]`` (at least 2) parameters from t = 0 to t = 1 evenly spaced in arc length
+    along the curve of ``maps[i]`` (of positive length), for every map at once; the ends
+    are exactly 0 and 1."""
+    stack = Stack(counts)
+    step = np.array([m.total for m in maps]) / (stack.counts - 1)
+    local = np.arange(stack.rows) - stack.repeat(stack.starts)
+    found = _parameters_at(maps, local * stack.repeat(step), stack)
+    for t in found:
+        t[0], t[-1] = 0.0, 1.0
+    return [np.maximum.accumulate(t) for t in found]
 
 
 def station_parameters(
@@ -166,6 +249,4 @@ def station_parameters(
     lengths = length_map or LengthMap(curve)
     if lengths.total <= 0.0:
         raise ValueError("The curve has zero length, so rulings cannot be spaced along it.")
-    t = lengths.parameter_at(np.arange(count) * (lengths.total / (count - 1)))
-    t[0], t[-1] = 0.0, 1.0
-    return np.maximum.accumulate(t)
+    return spaced_parameters([lengths], [count])[0]

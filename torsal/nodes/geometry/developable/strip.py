@@ -11,6 +11,7 @@ rulings and the plain loft's partners) and picks the parameters of a fan's rulin
 from __future__ import annotations
 
 import struct
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from math import ceil
@@ -24,8 +25,8 @@ from ..closest import sample_parameters
 from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
-from .isolation import IntervalBounds, interval_bounds, third_bound
-from .stations import LengthMap, Spacing, station_parameters
+from .stack import Stack, evaluate_each
+from .stations import LengthMap, Spacing, spaced_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
@@ -71,11 +72,19 @@ class Steady(Curve):
 def steady(curve: Curve) -> Curve:
     """``curve``, or :class:`Steady` of it where its parameter stands still at an end (its
     speed there under 1e-9 of its chord, while its second derivative is not)."""
+    return steady_all([curve])[0]
+
+
+def steady_all(curves: Sequence[Curve]) -> list[Curve]:
+    """:func:`steady` of every curve of ``curves``, each evaluated at its ends on its own."""
     ends = np.array([0.0, 1.0])
-    points, first, second = curve.derivatives(ends, 2)
-    scale = float(norm(points[1] - points[0])) or float(norm(second).max())
-    still = (norm(first) <= 1e-9 * scale) & (norm(second) > 1e-9 * scale)
-    return Steady(curve, ends[still]) if still.any() else curve
+    bounds = 2 * np.arange(len(curves) + 1)
+    points, first, second = evaluate_each(curves, np.tile(ends, len(curves)), bounds, 2)
+    chord = norm(points[1::2] - points[::2])
+    bend = norm(second)
+    scale = np.repeat(np.where(chord != 0.0, chord, bend.reshape(-1, 2).max(axis=1)), 2)  # (chord or bend)
+    still = ((norm(first) <= 1e-9 * scale) & (bend > 1e-9 * scale)).reshape(-1, 2)
+    return [Steady(curve, ends[at]) if at.any() else curve for curve, at in zip(curves, still, strict=True)]
 
 
 def _jumps(left: FloatArray, right: FloatArray) -> BoolArray:
@@ -104,37 +113,6 @@ class Grid:
     third: FloatArray  #: B''' there
     left_second: FloatArray  #: B'' and B''' as seen from the left (they differ at knots)
     left_third: FloatArray
-
-    @cached_property
-    def speeds(self) -> FloatArray:
-        """|B'| at every sample."""
-        return norm(self.tangents)
-
-    @cached_property
-    def second_lengths(self) -> FloatArray:
-        """|B''| at every sample."""
-        return norm(self.second)
-
-    @cached_property
-    def left_second_lengths(self) -> FloatArray:
-        """|B''| at every sample as seen from the left."""
-        return self.second_lengths if self.left_second is self.second else norm(self.left_second)
-
-    def interval_bounds(self, diameter: float) -> IntervalBounds:
-        """The bounds of f'' and of f's reach on every sample interval (:mod:`.isolation`);
-        the zero-width intervals between the two sides of a corner get reach −1 (never
-        looked at: a sign change there is a corner root)."""
-        width = self.at[1:] - self.at[:-1]
-        speed = self.speeds
-        second, left_second = self.second_lengths, self.left_second_lengths
-        third, left_third = self.third, self.left_third
-        if not third.any() and (left_third is third or not left_third.any()):
-            b3 = np.zeros(len(width))  # (no third derivative, as of a quadratic: nor its bound)
-        else:
-            b3 = third_bound(third[:-1], left_third[1:])
-        bounds = interval_bounds(width, (speed[:-1], speed[1:]), (second[:-1], left_second[1:]), b3, diameter)
-        bounds.reach[self.pair] = -1.0
-        return bounds
 
 
 def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
@@ -171,47 +149,32 @@ def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
 
 
 class Strip:
-    """One solve of :func:`.ruling.ruling_developable`: the state its steps share."""
+    """One solve of :func:`.ruling.ruling_developable`: the state its steps share (made by
+    :func:`set_up`)."""
 
     def __init__(
-        self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing, samples: int
+        self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing,
+        map_a: LengthMap, s: FloatArray, a: tuple[FloatArray, FloatArray, FloatArray], kinks_a: FloatArray,
+        grid: Grid, kinks_b: FloatArray, chords_b: FloatArray,
     ) -> None:
-        curve_b = steady(curve_b)
         self.curve_a, self.curve_b = curve_a, curve_b
         self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
-        self.map_a = LengthMap(curve_a)
-        if not self.map_a.total > 0:
-            raise ValueError("Curve A has zero length: there is nothing to place rulings along.")
-        self.s = station_parameters(curve_a, segments + 1, spacing, self.map_a)
-        n = len(self.s)
-        breaks = curve_a._breakpoints()[1:-1]
-        if len(breaks):
-            a0, a1, a2 = curve_a.derivatives(np.concatenate([self.s, breaks - SIDE, breaks + SIDE]), 2)
-            self.a0, self.a1, self.a2 = a0[:n], a1[:n], a2[:n]
-            self.kinks_a = breaks[_jumps(a1[n : n + len(breaks)], a1[n + len(breaks) :])]
-        else:  # one smooth span: no corners
-            self.a0, self.a1, self.a2 = curve_a.derivatives(self.s, 2)
-            self.kinks_a = breaks
-        # where A's parameter stands still (A'(s) = 0: a curve run as t²), its tangent is the
-        # limit of A'/|A'|, the direction of A'' there: the strip does not depend on the pace
-        still = norm(self.a1) <= 1e-9 * self.map_a.total
-        if still.any():
-            self.a1 = self.a1.copy()
-            self.a1[still] = self.a2[still]
-        self.grid, self.kinks_b = sample_grid(curve_b, samples)
+        self.map_a, self.s = map_a, s
+        self.a0, self.a1, self.a2 = a  #: A and its first two derivatives at the stations
+        self.kinks_a, self.grid, self.kinks_b = kinks_a, grid, kinks_b
+        #: Arc length along the polyline through B's samples to each sample.
+        self.chords_b = chords_b
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
         self.holes: list[int] = []
         #: per station, whether it has a torsal partner whose normals are flipped: one that
         #: runs backwards along B (set by the partner choice, :func:`.candidates.choose`)
-        self.flipped: BoolArray = np.zeros(n, dtype=bool)
+        self.flipped: BoolArray = np.zeros(len(s), dtype=bool)
         #: :meth:`gap_lengths` found so far, by the bits of their ends
         self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
         #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
         #: its stations and the bits of its ends on B
         self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
-        if not self.chords_b[-1] > 0:
-            raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
 
     def length_b(self, t: FloatArray) -> FloatArray:
         """Arc length along B to each ``t``, as the length of the polyline through B's samples
@@ -222,15 +185,6 @@ class Strip:
     def parameter_b(self, length: FloatArray) -> FloatArray:
         """The inverse of :meth:`length_b`."""
         return np.interp(length, self.chords_b, self.grid.t)
-
-    @cached_property
-    def chords_b(self) -> FloatArray:
-        """Arc length along the polyline through B's samples to each sample."""
-        points = self.grid.points
-        chords = np.empty(len(points))
-        chords[0] = 0.0
-        np.cumsum(norm(points[1:] - points[:-1]), out=chords[1:])
-        return chords
 
     @cached_property
     def station_lengths(self) -> FloatArray:
@@ -287,3 +241,72 @@ class Strip:
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t), None
 
+
+
+def set_up(
+    jobs: Sequence[tuple[Curve, Curve, int, float]], spacing: Spacing, samples: int
+) -> list[Strip | ValueError]:
+    """The :class:`Strip` of every ``(curve_a, curve_b, segments, tolerance)`` of ``jobs``
+    (checked: ``segments`` at least 1), set up together: each curve is evaluated on its own
+    and the arithmetic runs once for all of them, so each strip is the one it is alone, bit
+    for bit. A strip one of whose curves has zero length is a ValueError in its place.
+
+    Its stations on A (evenly spaced in arc length or in parameter, :mod:`.stations`), A
+    and its first two derivatives there and A's corners, and the samples of B
+    (:func:`sample_grid`) with the lengths along them."""
+    curves_a = [job[0] for job in jobs]
+    curves_b = steady_all([job[1] for job in jobs])
+    maps = LengthMap.many(curves_a)
+    made: list[Strip | ValueError | None] = [None] * len(jobs)
+    kept = []
+    for i, length_map in enumerate(maps):
+        if not length_map.total > 0:
+            made[i] = ValueError("Curve A has zero length: there is nothing to place rulings along.")
+        elif spacing not in ("length", "parameter"):
+            made[i] = ValueError(f"Station spacing must be 'length' or 'parameter'; got {spacing!r}.")
+        else:
+            kept.append(i)
+    if not kept:
+        return made  # type: ignore[return-value]  (every job has its error)
+    counts = [jobs[i][2] + 1 for i in kept]
+    if spacing == "length":
+        stations = spaced_parameters([maps[i] for i in kept], counts)
+    else:
+        stations = [np.linspace(0.0, 1.0, count) for count in counts]
+    # A at the stations and just beside its breakpoints (both sides), each curve on its own
+    breaks = [curves_a[i]._breakpoints()[1:-1] for i in kept]
+    x = [np.concatenate([s, b - SIDE, b + SIDE]) if len(b) else s
+         for s, b in zip(stations, breaks, strict=True)]
+    rows = Stack.of(x)
+    at = np.concatenate(x) if x else np.empty(0)
+    a0, a1, a2 = evaluate_each([curves_a[i] for i in kept], at, rows.offsets, 2)
+    # A's corners: where its unit tangent turns at a breakpoint
+    sides = [len(b) for b in breaks]
+    beside = [np.arange(start + count, start + count + side)  # (the rows just before each breakpoint)
+              for start, count, side in zip(rows.starts.tolist(), counts, sides, strict=True)]
+    left = np.concatenate(beside) if beside else np.empty(0, dtype=np.int64)
+    turns = Stack(sides).split(_jumps(a1[left], a1[left + np.repeat(sides, sides)]))
+    # where A's parameter stands still (A'(s) = 0: a curve run as t²), its tangent is the
+    # limit of A'/|A'|, the direction of A'' there: the strip does not depend on the pace
+    still = flatnonzero(norm(a1) <= 1e-9 * rows.repeat(np.array([maps[i].total for i in kept])))
+    a1[still] = a2[still]  # (beside a breakpoint too: those rows only find the corners)
+    # B's samples and the lengths along them
+    grids = [sample_grid(curves_b[i], samples) for i in kept]
+    points = np.concatenate([grid.points for grid, _ in grids]) if grids else np.empty((0, 3))
+    chords = norm(points[1:] - points[:-1])
+    first_sample = Stack([len(grid.t) for grid, _ in grids]).starts.tolist()
+    for i, first, (grid, kinks_b), s, corner, b, start in zip(
+        kept, first_sample, grids, stations, turns, breaks, rows.starts.tolist(), strict=True
+    ):
+        lengths = np.empty(len(grid.t))
+        lengths[0] = 0.0
+        np.cumsum(chords[first : first + len(grid.t) - 1], out=lengths[1:])
+        if not lengths[-1] > 0:
+            made[i] = ValueError("Curve B has zero length: there is nothing to place rulings along.")
+            continue
+        n = len(s)
+        a = a0[start : start + n], a1[start : start + n], a2[start : start + n]
+        curve_a, _, segments, tolerance = jobs[i]
+        made[i] = Strip(curve_a, curves_b[i], segments, tolerance, spacing, maps[i], s, a, b[corner], grid,
+                        kinks_b, lengths)
+    return made  # type: ignore[return-value]  (every job has its strip or its error)

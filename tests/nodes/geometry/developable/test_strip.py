@@ -1,0 +1,58 @@
+"""developable.strip: the strips of a solve set up together (stations on A, A there, the
+samples of B), each the strip it is alone; and stations evenly spaced along several
+curves at once."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Line, NurbsCurve, Polyline
+from torsal.nodes.geometry.developable.stations import LengthMap, spaced_parameters
+from torsal.nodes.geometry.developable.strip import Steady, set_up
+
+
+def _wavy(z: float, phase: float, points: int = 9) -> NurbsCurve:
+    u = np.linspace(0.0, 1.0, points)
+    return NurbsCurve(np.column_stack([4 * u, np.sin(3 * u + phase), z + 0.2 * np.cos(5 * u)]), degree=3)
+
+
+def _jobs() -> list[tuple]:
+    still_end = NurbsCurve([[0, 1, 1], [1, 1.2, 1], [2, 1, 1.4], [2, 1, 1.4]], degree=2)  # B' = 0 at its end
+    return [
+        (_wavy(0.0, 0.0), _wavy(1.0, 0.2, 14), 9, 0.01),
+        (Line([0, 0, 0], [0, 0, 0]), Line([0, 1, 0], [3, 2, 0]), 3, 0.01),  # A of zero length
+        (Polyline([[0, 0, 0], [1, 0, 0], [2, 0.5, 0]]), still_end, 5, 0.02),
+        (Line([0, 0, 0], [2, 0, 0]), Line([1, 1, 1], [1, 1, 1]), 2, 0.01),  # B of zero length
+        (InterpolatedCurve([[0, 0, 0], [1, 2, 0.5], [3, 1, -0.5], [4, 3, 0.2]]), _wavy(2.0, 1.0), 12, 0.01),
+    ]
+
+
+@pytest.mark.parametrize("spacing", ["length", "parameter"])
+def test_strips_set_up_together_are_the_ones_set_up_alone(spacing):
+    jobs = _jobs()
+    together = set_up(jobs, spacing, 24)
+    for job, strip in zip(jobs, together, strict=True):
+        (alone,) = set_up([job], spacing, 24)
+        if isinstance(alone, ValueError):
+            assert isinstance(strip, ValueError) and str(strip) == str(alone)
+            continue
+        for name in ("s", "a0", "a1", "a2", "kinks_a", "kinks_b", "chords_b"):
+            np.testing.assert_array_equal(getattr(strip, name), getattr(alone, name))
+        for name in ("t", "at", "points", "tangents", "second", "third"):
+            np.testing.assert_array_equal(getattr(strip.grid, name), getattr(alone.grid, name))
+        assert strip.map_a.total == alone.map_a.total
+        assert type(strip.curve_b) is type(alone.curve_b)
+    assert "Curve A has zero length" in str(together[1]) and "Curve B has zero length" in str(together[3])
+    assert isinstance(together[2].curve_b, Steady)  # (its tangent at the still end is B'')
+
+
+def test_stations_along_several_curves_at_once_fall_on_equal_lengths():
+    # an arc of radius 2 over 3 rad (length 6) and a polyline of legs 1 and 3 (length 4)
+    arc = Arc(radius=2.0, start_angle=0.0, end_angle=3.0)
+    polyline = Polyline([[0, 0, 0], [1, 0, 0], [1, 3, 0]])
+    on_arc, on_polyline = spaced_parameters(LengthMap.many([arc, polyline]), [7, 5])
+    angle = np.linspace(0.0, 3.0, 7)  # (equal lengths along the arc: equal angles)
+    expected = np.column_stack([2 * np.cos(angle), 2 * np.sin(angle), np.zeros(7)])
+    np.testing.assert_allclose(arc.point_at(on_arc), expected, atol=1e-12)
+    np.testing.assert_allclose(on_polyline, [0, 0.25, 0.5, 0.75, 1.0], atol=1e-15)
