@@ -86,6 +86,7 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
         )
         print(rows[-1], flush=True)
         checks = {"independent deviation within the tolerance": independent <= tol * 1.0001,
+                  "the certified deviation bounds the independent one": independent <= result.deviation,
                   "certified within and covered": result.within and result.covered,
                   "no more strips than the baseline": len(result.strips) <= baseline,
                   f"solve within {SOLVE_LIMIT:g} s": seconds <= SOLVE_LIMIT,

@@ -55,7 +55,10 @@ class Design:
 
     def nearest(self, points: np.ndarray, grid: int = 301) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Each point's closest point on the design, (x, y), and its distance (Newton from
-        the nearest grid sample)."""
+        the nearest grid sample). Where the closest point lies on the rectangle's edge the
+        coordinate held there is left out of the step (projected Newton: a step clamped to
+        the edge after a full two-dimensional step would move the free coordinate by the
+        held one's coupling and stop beside the edge's closest point, over-reporting)."""
         gx, gy = (a.ravel() for a in np.meshgrid(np.linspace(*self.x, grid), np.linspace(*self.y, grid)))
         _, index = cKDTree(self.points(gx, gy)).query(points)
         x, y = gx[index].copy(), gy[index].copy()
@@ -68,12 +71,17 @@ class Design:
             h12 = fx * fy + d[:, 2] * fxy
             h22 = 1 + fy * fy + d[:, 2] * fyy
             det = h11 * h22 - h12 * h12
-            bad = det <= 1e-12  # Gauss–Newton where the Hessian is not positive
+            bad = (det <= 1e-12) | (h11 <= 1e-12) | (h22 <= 1e-12)  # Gauss–Newton where not positive
             h11, h12, h22 = (np.where(bad, a, b) for a, b in ((1 + fx * fx, h11), (fx * fy, h12),
                                                                 (1 + fy * fy, h22)))
             det = h11 * h22 - h12 * h12
-            x = np.clip(x - (h22 * gradient_x - h12 * gradient_y) / det, *self.x)
-            y = np.clip(y - (h11 * gradient_y - h12 * gradient_x) / det, *self.y)
+            # held at an edge: on it, and the descent direction points out of the rectangle
+            hold_x = ((x <= self.x[0]) & (gradient_x > 0)) | ((x >= self.x[1]) & (gradient_x < 0))
+            hold_y = ((y <= self.y[0]) & (gradient_y > 0)) | ((y >= self.y[1]) & (gradient_y < 0))
+            step_x = np.where(hold_y, gradient_x / h11, (h22 * gradient_x - h12 * gradient_y) / det)
+            step_y = np.where(hold_x, gradient_y / h22, (h11 * gradient_y - h12 * gradient_x) / det)
+            x = np.clip(x - np.where(hold_x, 0.0, step_x), *self.x)
+            y = np.clip(y - np.where(hold_y, 0.0, step_y), *self.y)
         return x, y, np.linalg.norm(self.points(x, y) - points, axis=1)
 
     def edge(self, count: int = 400) -> np.ndarray:

@@ -27,35 +27,38 @@ from .curve_base import Curve, FloatArray
 SAME, ROOT, CONE = 0, 1, 2
 
 
-def torsal_partners(rail_a: Curve, rail_b: Curve, stations: FloatArray, at: FloatArray
-                    ) -> tuple[FloatArray, np.ndarray]:
+def torsal_partners(rail_a: Curve, rail_b: Curve, stations: FloatArray, at: FloatArray,
+                    steps: FloatArray | None = None) -> tuple[FloatArray, np.ndarray]:
     """For each rail-A parameter ``at`` (within ``stations``, increasing), the rail-B
     parameter of its developable partner and how it was found (:data:`SAME` at a station,
-    :data:`ROOT` or :data:`CONE`)."""
+    :data:`ROOT` or :data:`CONE`). Where rail B stands still its direction is its chord over
+    ± the step (``steps``, one per parameter; by default 1e-5 of the stations' range), so
+    many spans' parameters are found in one call as each span's would be alone."""
     at = np.asarray(at, dtype=float)
     i = np.clip(np.searchsorted(stations, at, side="right") - 1, 0, len(stations) - 2)
     lo, hi = stations[i], stations[i + 1]
     point_a, tangent_a = rail_a.derivatives(at, 1)
     tangent_a = _unit(tangent_a)
-    step = 1e-5 * float(stations[-1] - stations[0])
+    if steps is None:
+        steps = np.full(len(at), 1e-5 * float(stations[-1] - stations[0]))
 
-    def tangent_b(w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def tangent_b(w: FloatArray, step: FloatArray) -> tuple[FloatArray, FloatArray]:
         point, tangent = rail_b.derivatives(w, 1)
         speed = np.linalg.norm(tangent, axis=1)
         slow = speed < 1e-6 * max(float(speed.max()), 1e-300)
         if slow.any():  # where the rail stands still its direction is its chord's
-            tangent[slow] = rail_b.point_at(w[slow] + step) - rail_b.point_at(w[slow] - step)
+            tangent[slow] = rail_b.point_at(w[slow] + step[slow]) - rail_b.point_at(w[slow] - step[slow])
         return point, _unit(tangent)
 
     def warp(w: FloatArray, *columns: FloatArray) -> FloatArray:
         shape = np.shape(w)
-        point, tangent = tangent_b(np.ravel(w))
+        point, tangent = tangent_b(np.ravel(w), np.ravel(columns[6]))
         a = np.column_stack([np.ravel(c) for c in columns[:3]])
-        t = np.column_stack([np.ravel(c) for c in columns[3:]])
+        t = np.column_stack([np.ravel(c) for c in columns[3:6]])
         ruling = _unit(point - a)
         return np.einsum("ij,ij->i", np.cross(t, tangent), ruling).reshape(shape)
 
-    columns = (*point_a.T, *tangent_a.T)
+    columns = (*point_a.T, *tangent_a.T, np.asarray(steps, dtype=float))
     partner, kind = at.copy(), np.full(len(at), SAME)
     inner = (at > lo) & (at < hi)
     bracket = inner & (np.sign(warp(lo, *columns)) * np.sign(warp(hi, *columns)) < 0)

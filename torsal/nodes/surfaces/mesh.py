@@ -46,11 +46,16 @@ class SurfaceFromMesh(Node):
 
     The mesh must be one height field over its mean plane (every triangle facing the same
     side of it: a roof or a shell, not a wall or a closed shape) and cover most of its
-    footprint's bounding rectangle. The heights are fitted by least squares (FITPACK's
-    bivariate splines) on a grid of knots refined until every vertex, triangle centroid and
-    edge midpoint lies within Tolerance of the surface, measured along the plane's normal.
-    Deviation says how close it came: give Rationalise a tolerance smaller by that much, and
-    its strips stay within your tolerance of the mesh. See docs/rhino.md.
+    footprint's bounding rectangle. It is fitted over its plan: the plane onto which its
+    outline encloses the most area (a roof drawn over a plan gets that plan, however its
+    heights tilt), the rectangle's sides along the outline's smallest bounding rectangle. The
+    heights are fitted by least squares (FITPACK's bivariate splines) on a grid of knots
+    refined until every vertex, triangle centroid and edge midpoint lies within Tolerance of
+    the surface, measured along the plan's normal. Where the mesh's outline does not reach
+    the rectangle's edges to within Tolerance (a curved or slanted edge, a hole) the surface
+    is trimmed by the outline, so that Rationalise stays on the mesh and covers it to its
+    edges. Deviation says how close the fit came: give Rationalise a tolerance smaller by
+    that much, and its strips stay within your tolerance of the mesh. See docs/rhino.md.
     """
 
     type_id = "surfaces.SurfaceFromMesh"
@@ -61,9 +66,10 @@ class SurfaceFromMesh(Node):
            default=0.002),
     )
     outputs = (
-        Out("Surface", SURFACE, "S", "The fitted bicubic NURBS surface."),
+        Out("Surface", SURFACE, "S", "The fitted bicubic NURBS surface, trimmed by the mesh's outline "
+            "where that is not its rectangle."),
         Out("Deviation", NUMBER, "E", "Largest distance of the mesh's vertices, centroids and edge "
-            "midpoints from the surface, along its mean plane's normal."),
+            "midpoints from the surface, along its plan's normal."),
     )
 
     def solve(self, mesh: Any, tolerance: Any) -> tuple[Any, float]:
@@ -79,5 +85,5 @@ class SurfaceFromMesh(Node):
             raise NodeWarning(f"Mesh: {exc}") from None
         if fitted.deviation > tol:
             self.warn(f"The closest fit found is {fitted.deviation:.3g} from the mesh, more than Tolerance "
-                      f"{tol:g} ({fitted.knots} knots each way, the most tried)")
+                      f"{tol:g} (with {fitted.knots} knots each way, the closest of the grids tried)")
         return fitted.surface, fitted.deviation

@@ -6,15 +6,22 @@ lies between samples. Here the distance d(u, v) of the strip's point S(u, v) fro
 design is sampled on a grid, and between grid points it is bounded by Taylor's theorem:
 on a cell of steps (h_u, h_v) a smooth d exceeds the largest of its corners by at most
 (|d_uu| h_u² + |d_vv| h_v²)/8, the second derivatives estimated by the grid's second
-differences at the cell's corners. The grid is refined — the intervals along the strip
-whose bound may lie above the samples halved, the samples across doubled — until every
-cell's bound is within 1 % of the tolerance of the samples' maximum, so the
-reported deviation (samples' maximum plus remainder) and the samples agree to 1 % of it
-and neither under-reports (kinks where flat fans meet raise the second differences,
-and so the refinement, locally as everywhere). Refinement stops early as soon as a
-sample alone is beyond the tolerance (the strip is then too wide, whatever lies between
-samples), and at :data:`MOST_SAMPLES`, where the bound, still the samples' maximum plus
-the remainder, is larger than the samples by more than 1 % of the tolerance (and says so).
+differences at the cell's corners. d is smooth between the strip's rulings but not across
+them: a strip's rails change pace at every ruling, and where flat fans meet the strip folds
+(its parameterisation stands still there, S_u = 0), so d may peak on a ruling with a slope
+that turns within a hair of it. The rulings are therefore samples (with one sample between
+each two), and a cell's curvature is estimated only from a corner whose second difference
+lies on one smooth piece; a cell between two rulings with no such corner is split until it
+has one. (Sampled on a uniform grid, a monkey saddle's strip of fans peaked on a ruling at
+2.017 cm between samples and was certified at 1.999 cm.) The grid is refined — the
+intervals along the strip whose bound may lie above the samples halved, the samples across
+doubled — until every cell's bound is within 1 % of the tolerance of the samples' maximum,
+so the reported deviation (samples' maximum plus remainder) and the samples agree to 1 % of
+it. Refinement stops early as soon as a sample alone is beyond the tolerance (the strip is
+then too wide, whatever lies between samples), and at :data:`MOST_SAMPLES`, where the bound,
+still the samples' maximum plus the remainder, is larger than the samples by more than 1 %
+of the tolerance (and says so). The bound rests on second differences standing for the
+second derivatives within a cell, an estimate that refinement makes good, not a proof.
 
 Creases: :func:`crease_angle` measures how much two neighbouring strips fold against each
 other along the boundary they share (the kink angle of Eigensatz et al. 2010, what
@@ -38,7 +45,7 @@ from ..curve_base import Curve
 from ..surface_base import Surface
 from .ruling import RulingResult
 
-#: First grid of samples along × across a strip.
+#: First grid of samples along × across a strip (along: at least; with the rulings, see the module).
 FIRST_SAMPLES = (41, 9)
 #: The most samples of one strip (the refinement stops there).
 MOST_SAMPLES = 400_000
@@ -60,10 +67,18 @@ class Deviation:
         return self.bound - self.sampled <= AGREE * max(self.bound, 1e-300) or self.bound <= 0.0
 
 
-def _cell_bounds(u: FloatArray, d: FloatArray) -> FloatArray:
+def _cell_bounds(u: FloatArray, d: FloatArray, kinks: np.ndarray) -> tuple[FloatArray, np.ndarray]:
     """Per interval of ``u`` (rows of d, the columns uniform across the strip): the largest
     corner distance plus the Taylor remainders along (from non-uniform second differences
-    at the interval's ends) and across (from second differences of its two rows)."""
+    at the interval's ends) and across (from second differences of its two rows); and
+    whether the interval's remainder along is unresolved.
+
+    ``kinks`` marks the rows at the strip's rulings, where its rails' pace (and a fan's
+    fold) may turn d's slope: a second difference through a kink measures the turn, not a
+    curvature, so it is used for an interval only from an end that is not a kink. An
+    interval with both ends at kinks (no second difference of its own piece yet) is
+    unresolved: its bound, from the differences through the kinks, is a guess until it is
+    split."""
     h = np.diff(u)
     curve = np.zeros_like(d)
     left, right = h[:-1, None], h[1:, None]
@@ -71,30 +86,47 @@ def _cell_bounds(u: FloatArray, d: FloatArray) -> FloatArray:
                          + d[:-2] / (left * (left + right)))
     curve[0], curve[-1] = curve[min(1, len(u) - 1)], curve[max(len(u) - 2, 0)]
     along = np.abs(curve).max(axis=1)
+    own = ~kinks.copy()  # a row's second difference lies on one smooth piece of d
+    own[[0, -1]] = False
+    lower, upper = own[:-1], own[1:]
+    unresolved = ~(lower | upper)
+    both = np.maximum(along[:-1], along[1:])  # through a kink where unresolved: a guess
+    along_cells = np.where(lower & upper | unresolved, both, np.where(lower, along[:-1], along[1:]))
     across = np.zeros(len(u))
     if d.shape[1] > 2:
         across = np.abs(d[:, 2:] - 2.0 * d[:, 1:-1] + d[:, :-2]).max(axis=1)
     rows = d.max(axis=1)
-    return (np.maximum(rows[:-1], rows[1:]) + np.maximum(along[:-1], along[1:]) * h * h / 8.0
-            + np.maximum(across[:-1], across[1:]) / 8.0)
+    bound = (np.maximum(rows[:-1], rows[1:]) + along_cells * h * h / 8.0
+             + np.maximum(across[:-1], across[1:]) / 8.0)
+    return bound, unresolved
 
 
 def certified_deviation(design: Surface, strip: Surface, tolerance: float) -> Deviation:
     """The strip's deviation from the design (see the module), refined against ``tolerance``:
     the intervals along the strip whose bound may exceed the samples' maximum by more than
-    :data:`AGREE` of the tolerance are halved, the samples across doubled while their
-    remainder is what exceeds it."""
+    :data:`AGREE` of the tolerance (or whose bound is not resolved yet) are halved, the
+    samples across doubled while their remainder is what exceeds it."""
     nu, nv = FIRST_SAMPLES
-    u = np.linspace(0.0, 1.0, nu)
+    rulings = getattr(strip, "ruling_parameters", None)
+    kinks = np.zeros(0)
+    if rulings is not None:  # d's slope may turn at every ruling: they are samples too
+        kinks = np.asarray(rulings, dtype=float)
+        kinks = np.unique(np.clip(kinks[np.isfinite(kinks)], 0.0, 1.0))
+    if len(kinks) >= 2:  # a sample on every ruling and one between (each piece resolved at once)
+        u = np.union1d(np.union1d(kinks, 0.5 * (kinks[1:] + kinks[:-1])), [0.0, 1.0])
+        u = u if len(u) >= nu else np.union1d(u, np.linspace(0.0, 1.0, nu))
+    else:
+        u = np.linspace(0.0, 1.0, nu)
     v = np.linspace(0.0, 1.0, nv)
     rows = _distances(design, strip, u, v)
     while True:
         worst = np.unravel_index(int(np.argmax(rows)), rows.shape)
         sampled = float(rows[worst])
-        cells = _cell_bounds(u, rows)
+        cells, unresolved = _cell_bounds(u, rows, np.isin(u, kinks))
         bound = max(float(cells.max()), sampled)
         slack = AGREE * tolerance
-        if sampled > tolerance or bound - sampled <= slack or rows.size > MOST_SAMPLES:
+        if (sampled > tolerance or (bound - sampled <= slack and not unresolved.any())
+                or rows.size > MOST_SAMPLES):
             where = strip.point_at(u[worst[0]], v[worst[1]])
             return Deviation(bound, sampled, np.asarray(where, dtype=float), rows.shape)
         across = (np.abs(rows[:, 2:] - 2.0 * rows[:, 1:-1] + rows[:, :-2]).max(initial=0.0) / 8.0
@@ -103,7 +135,7 @@ def certified_deviation(design: Surface, strip: Surface, tolerance: float) -> De
             v = np.linspace(0.0, 1.0, 2 * len(v) - 1)
             rows = _distances(design, strip, u, v)
             continue
-        split = cells > sampled + slack
+        split = (cells > sampled + slack) | unresolved
         middles = 0.5 * (u[:-1] + u[1:])[split]
         new = _distances(design, strip, middles, v)
         u = np.concatenate([u, middles])

@@ -31,19 +31,23 @@ def rhino_curve(curve: NurbsCurve) -> rh.NurbsCurve:
 
 def rhino_surface(surface: NurbsSurface) -> rh.NurbsSurface:
     """The rhino3dm NURBS surface with ``surface``'s net, weights and (normalised) knots."""
-    points = surface.control_points
-    weights = surface.weights
+    return rhino_net(surface.control_points, surface.weights, surface.knots_u, surface.knots_v,
+                     (surface.degree_u, surface.degree_v), bool(surface.is_rational))
+
+
+def rhino_net(points: np.ndarray, weights: np.ndarray, knots_u: np.ndarray, knots_v: np.ndarray,
+              degrees: tuple[int, int], rational: bool) -> rh.NurbsSurface:
+    """The rhino3dm NURBS surface of a control net ``points`` (nu, nv, 3), its ``weights``
+    (nu, nv) and full knot vectors, straight from the arrays (no kernel surface made)."""
     nu, nv = points.shape[:2]
-    out = rh.NurbsSurface.Create(
-        3, bool(surface.is_rational), surface.degree_u + 1, surface.degree_v + 1, nu, nv
-    )
+    out = rh.NurbsSurface.Create(3, rational, degrees[0] + 1, degrees[1] + 1, nu, nv)
     homogeneous = np.concatenate([points * weights[..., None], weights[..., None]], axis=2)
     for i, row in enumerate(homogeneous.tolist()):
         for j, (x, y, z, w) in enumerate(row):
             out.Points[(i, j)] = rh.Point4d(x, y, z, w)
-    for i, knot in enumerate(np.asarray(surface.knots_u)[1:-1].tolist()):
+    for i, knot in enumerate(np.asarray(knots_u, dtype=float)[1:-1].tolist()):
         out.KnotsU[i] = knot
-    for i, knot in enumerate(np.asarray(surface.knots_v)[1:-1].tolist()):
+    for i, knot in enumerate(np.asarray(knots_v, dtype=float)[1:-1].tolist()):
         out.KnotsV[i] = knot
     return out
 

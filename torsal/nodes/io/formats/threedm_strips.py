@@ -15,13 +15,16 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   face too and the face's normals there are the strip's. Where the strip's own pairing of
   the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
-  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT;
+  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
+  control points as that takes: where the fit still twists, its twisting intervals go out
+  as cones, below, which cost fewer control points than a fit 30 times closer);
 - where no developable pairing joins two rulings (the torsal condition has no root between
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does. A face that still twists
-  (more than :data:`TWISTED`) has its most twisted interval made cones, one at a time;
+  (more than :data:`TWISTED`) has its twisting intervals made cones, all at once, and is
+  fitted again;
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
   joined at the ruling they share by a triple knot (each keeps its shape; fewer faces, a
   smaller file). Where a rail turns a corner (a strip cut to a trim) the faces meet there;
@@ -52,7 +55,7 @@ from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
-from torsal.nodes.io.formats.threedm_native import rhino_surface
+from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
@@ -63,9 +66,6 @@ DEVELOPABLE = 1e-7
 #: A face still twisting more than this (rad) after both pairings has its most twisted
 #: interval made cones instead, one at a time while it does.
 TWISTED = 5e-7
-
-#: How much closer than FIT a developable pairing is fitted where the samples allow it.
-TIGHTER = 0.03
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -84,7 +84,7 @@ SAME_POINT = 1e-12
 class Piece:
     """One face of a strip: a rhino3dm brep, its kind and the rulings it spans."""
 
-    brep: rh.Brep
+    brep: rh.Brep | None  #: None until the face is final (:func:`strip_pieces` builds it once)
     kind: str  #: "torsal" (a ruled face), "fan" (a planar triangle) or "cone" (one rail at rest)
     first: int  #: index of its first ruling in the strip
     last: int  #: index of its last ruling
@@ -138,7 +138,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         if conical[k]:  # no developable pairing: two cones meeting on a diagonal
             cones = _cones(strip, u, lines, k, size)
             if tip[k] or tip[k + 1]:  # a face of its own: one of its lines is a point
-                cones = [replace(piece, rails=None) for piece in cones]
+                cones = [replace(piece, brep=_brep(piece.rails), rails=None) for piece in cones]
             pieces += cones
             k += 1
             continue
@@ -146,14 +146,18 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
         while end < n - 1 and not shared[end] and not corner[end] and not conical[end]:
             end += 1
         piece, twist = _ruled(strip, u, lines, k, end, size)
-        if twist > TWISTED:  # still twisted: its most twisted interval as cones, and again
+        if twist > TWISTED:  # still twisted: its twisted intervals as cones, and again
+            bad = _interval_twists(piece.rails, u[k:end + 1]) > TWISTED
+            if bad.any():
+                conical[k + np.flatnonzero(bad)] = True
+                continue
             own = [_own_twist(strip, u[i:i + 2], 17) for i in range(k, end)]
             if max(own) > TWISTED:
                 conical[k + int(np.argmax(own))] = True
                 continue
         pieces.append(piece)
         k = end
-    return _joined(pieces)
+    return [replace(p, brep=_brep(p.rails)) if p.brep is None else p for p in _joined(pieces)]
 
 
 def _joined(pieces: list[Piece]) -> list[Piece]:
@@ -171,9 +175,8 @@ def _joined(pieces: list[Piece]) -> list[Piece]:
         knots = np.concatenate([one.t[:-1], two.t[4:]])
         controls = np.concatenate([np.asarray(one.c)[:n1], np.asarray(two.c)[1:n2]])
         spline = BSpline(knots, controls, 3)
-        brep, count = _brep((0.0, knots, spline))
         worst = max(before.deviation, piece.deviation)
-        out[-1] = Piece(brep, "torsal", before.first, piece.last, worst, count, spline)
+        out[-1] = Piece(None, "torsal", before.first, piece.last, worst, len(knots) - 4, spline)
     return out
 
 
@@ -181,22 +184,47 @@ def _conical(strip: RuledSurface, u: np.ndarray, shared: np.ndarray) -> np.ndarr
     """Per interval between rulings: whether the strip's own pairing twists there (more than
     :data:`DEVELOPABLE`) and no developable pairing joins its two rulings (the torsal
     condition has no root for some point of rail A, or a rail is at rest at one of the two
-    rulings: next to a fan)."""
+    rulings: next to a fan). All intervals are judged in one evaluation of the strip and one
+    partner search."""
     flags = np.zeros(len(u) - 1, dtype=bool)
     speeds = [np.linalg.norm(rail.derivatives(u, 1)[1], axis=1) for rail in (strip.curve_a, strip.curve_b)]
     resting = np.zeros(len(u), dtype=bool)
     for speed in speeds:
         resting |= speed <= 1e-6 * max(float(speed.max()), 1e-300)
-    for i in np.flatnonzero(~shared):
-        span = u[i:i + 2]
-        if _own_twist(strip, span, 17) <= DEVELOPABLE:
-            continue
-        if resting[i] or resting[i + 1]:  # a partner moving like a square root: no fit follows it
-            flags[i] = True
-            continue
-        at = np.linspace(span[0], span[1], 9)[1:-1]
-        flags[i] = bool((torsal_partners(strip.curve_a, strip.curve_b, span, at)[1] == CONE).any())
+    todo = np.flatnonzero(~shared)
+    if not len(todo):
+        return flags
+    twisted = todo[_own_twists(strip, u[todo], u[todo + 1], 17) > DEVELOPABLE]
+    at_rest = resting[twisted] | resting[twisted + 1]  # a partner moving like a square root:
+    flags[twisted[at_rest]] = True  # no fit follows it
+    check = twisted[~at_rest]
+    if len(check):
+        lo, hi = u[check], u[check + 1]
+        at = _spaced(lo, hi, 9)[:, 1:-1]
+        steps = np.repeat(1e-5 * (hi - lo), at.shape[1])  # each span's own, as alone
+        kind = torsal_partners(strip.curve_a, strip.curve_b, u, at.ravel(), steps)[1]
+        flags[check] = (kind.reshape(at.shape) == CONE).any(axis=1)
     return flags
+
+
+def _spaced(lo: np.ndarray, hi: np.ndarray, count: int) -> np.ndarray:
+    """``count`` evenly spaced parameters from each ``lo`` to its ``hi`` (rows), computed as
+    ``np.linspace(lo, hi, count)`` computes them."""
+    steps = (hi - lo) / (count - 1)
+    out = np.arange(count)[None, :] * steps[:, None] + lo[:, None]
+    out[:, -1] = hi
+    return out
+
+
+def _own_twists(strip: RuledSurface, lo: np.ndarray, hi: np.ndarray, count: int) -> np.ndarray:
+    """:func:`_own_twist` of each interval ``lo`` … ``hi``, in one evaluation of the strip."""
+    u = _spaced(lo, hi, count).ravel()
+    near = np.cross(*strip.derivatives(u, np.full(len(u), 0.01))[1:3])
+    far = np.cross(*strip.derivatives(u, np.full(len(u), 0.99))[1:3])
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1),
+                       np.einsum("ij,ij->i", near, far)).reshape(len(lo), count)
+    worst = np.fmax.reduce(angle, axis=1)  # NaN (a line of no length) left out, as nanmax does
+    return np.where(np.isfinite(worst), worst, np.inf)
 
 
 @dataclass(frozen=True)
@@ -240,19 +268,20 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     (_, first, one), (_, second, two) = fits
     knots = np.concatenate([lo + (first[:-1] - lo) * 0.5, half + (second[4:] - lo) * 0.5])
     controls = np.concatenate([np.asarray(one.c)[:len(first) - 4], np.asarray(two.c)[1:len(second) - 4]])
-    brep, count = _brep((0.0, knots, BSpline(knots, controls, 3)))  # (its rails kept below)
     spline = BSpline(knots, controls, 3)
-    return [Piece(brep, "cone", k, k + 1, max(fits[0][0], fits[1][0]), count, spline)]
+    return [Piece(None, "cone", k, k + 1, max(fits[0][0], fits[1][0]), len(knots) - 4, spline)]
 
 
-def _brep(fit: tuple[float, np.ndarray, BSpline]) -> tuple[rh.Brep, int]:
-    """A fitted pair of rails as one ruled NURBS face (degree 3 along, 1 across)."""
-    _, knots, spline = fit
+def _brep(spline: BSpline) -> rh.Brep:
+    """A fitted pair of rails (x, y, z side by side) as one ruled NURBS face, degree 3 along
+    and 1 across (made once per final face: rhino3dm takes its control points one by one)."""
+    knots = np.asarray(spline.t, dtype=float)
     count = len(knots) - 4
+    knots = (knots - knots[3]) / (knots[count] - knots[3])  # on [0, 1], as the kernel's surfaces
     controls = np.asarray(spline.c)[:count]
     net = np.stack([controls[:, :3], controls[:, 3:]], axis=1)
-    surface = NurbsSurface(net, 3, 1, knots, [0.0, 0.0, 1.0, 1.0])
-    return rh.Brep.CreateFromSurface(rhino_surface(surface)), count
+    across = np.array([0.0, 0.0, 1.0, 1.0])
+    return rh.Brep.CreateFromSurface(rhino_net(net, np.ones((count, 2)), knots, across, (3, 1), False))
 
 
 def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
@@ -325,12 +354,12 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
         def paired(at: np.ndarray) -> np.ndarray:
             return torsal_partners(strip.curve_a, strip.curve_b, span, at)[0]
 
-        # closer than FIT where the samples allow: the torsal condition is one of derivatives
-        developable = _fit(strip, span, lines[first:last + 1], tolerance * TIGHTER, paired, kinks)
+        # (fitted to FIT, as few control points as that takes: where the fit still twists,
+        # its twisted intervals go out as cones, which cost fewer than a fit 30x closer)
+        developable = _fit(strip, span, lines[first:last + 1], tolerance, paired, kinks)
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
             fit = developable
-    brep, count = _brep(fit)
-    return Piece(brep, "torsal", first, last, fit[0], count, fit[2]), _twist(fit)
+    return Piece(None, "torsal", first, last, fit[0], len(fit[1]) - 4, fit[2]), _twist(fit)
 
 
 def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
@@ -341,6 +370,26 @@ def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float
     far = np.cross(*strip.derivatives(u, np.full(count, 0.99))[1:3])
     angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
     return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
+
+
+def _interval_twists(spline: BSpline | None, span: np.ndarray, count: int = 17) -> np.ndarray:
+    """Per interval of ``span``: the largest angle between a fitted face's normals 1 % in
+    from either end of its lines across, at ``count`` of them in the interval."""
+    if spline is None:
+        return np.zeros(len(span) - 1)
+    steps = np.linspace(0.0, 1.0, count)
+    u = (span[:-1, None] + (span[1:] - span[:-1])[:, None] * steps).ravel()
+    return _normal_angles(spline(u), spline.derivative()(u)).reshape(len(span) - 1, count).max(axis=1)
+
+
+def _normal_angles(points: np.ndarray, slopes: np.ndarray) -> np.ndarray:
+    """The angle between a ruled face's normals 1 % in from either end of its lines across,
+    from its rails' points and slopes side by side (n, 6); 0 where undefined."""
+    ruling = points[:, 3:] - points[:, :3]
+    near = np.cross(0.99 * slopes[:, :3] + 0.01 * slopes[:, 3:], ruling)
+    far = np.cross(0.01 * slopes[:, :3] + 0.99 * slopes[:, 3:], ruling)
+    angle = np.arctan2(np.linalg.norm(np.cross(near, far), axis=1), np.einsum("ij,ij->i", near, far))
+    return np.nan_to_num(angle)
 
 
 def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
