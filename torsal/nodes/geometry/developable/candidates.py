@@ -505,7 +505,7 @@ def _along(
     each branch's slope dy/dx = (dt/ds)·|B'|/|A'| — so that which branch the strip follows
     does not depend on how either curve is parameterised, only on the curves."""
     x = strip.station_lengths[rows] / strip.map_a.total
-    total_b = strip.chords_b[-1]
+    total_b = strip.map_b.total
     y = strip.length_b(t) / total_b
     speed_b = norm(good.tangents[np.maximum(index, 0)])
     speed_a = norm(strip.a1[rows])
@@ -572,16 +572,17 @@ def _near(
 ) -> None:
     """One strip's partners where it had none: the loft's where its warp ``loft_warp`` is
     within the tolerance, else the least-warped sample of B between ``lo`` and ``hi``."""
-    # else the least angle between the end normals among B's samples in the window
-    grid = strip.grid
-    angle = normal_angles(a0, a1, grid.points, grid.tangents)
-    inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
+    # else the least angle between the end normals among B's samples in the window (evenly
+    # spaced along B: :attr:`.strip.Strip.even_b`)
+    tb, points, tangents = strip.even_b
+    angle = normal_angles(a0, a1, points, tangents)
+    inside = (tb[None, :] >= lo[:, None]) & (tb[None, :] <= hi[:, None])
     angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
     best = np.argmin(angle, axis=1)
     sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
     with np.errstate(invalid="ignore"):
         loft_ok = loft_warp <= strip.tolerance
-    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
+    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, tb.take(best), np.nan))
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])

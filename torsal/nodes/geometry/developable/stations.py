@@ -22,6 +22,7 @@ from functools import lru_cache
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from numpy.polynomial.legendre import legvander
 from numpy.typing import ArrayLike
 from scipy.special import roots_legendre
 
@@ -42,6 +43,25 @@ _FIT = np.linalg.inv(np.vander(np.concatenate([[0.0], 0.5 * (_NODES + 1.0), [1.0
 #: The same six speeds to the coefficients of u¹…u⁶ of the arc length from the piece's start.
 _INTEGRAL = _FIT.T / _POWERS[None, 1:]
 
+#: Where two neighbouring pieces (a *pair*, as [0, 1]) have their 11 speeds: its start, the
+#: first piece's Gauss nodes, its middle, the second's Gauss nodes and its end.
+_PAIR_AT = np.concatenate([[0.0], 0.25 * (_NODES + 1.0), [0.5], 0.25 * (_NODES + 3.0), [1.0]])
+#: Those 11 speeds to (the integral over the pair by the rule through all of them, exact to
+#: degree 11) − (the two pieces' Gauss rules, exact to degree 7 on each), per half width:
+#: the Gauss rules' error, for a speed smooth at the pair's scale. (The weights solved in the
+#: Legendre basis, where the system is well conditioned.)
+_PAIR_CHECK = np.linalg.solve(legvander(2.0 * _PAIR_AT - 1.0, 10).T, 2.0 * np.eye(11)[0]) - np.concatenate(
+    [[0.0], 0.5 * _WEIGHTS, [0.0], 0.5 * _WEIGHTS, [0.0]]
+)
+#: A pair of pieces is split in two pairs while its estimated error exceeds this share of the
+#: curve's length ...
+PAIR_TOLERANCE = 1e-13
+#: ... for at most this many rounds, and while the pairs are at most this many times as many
+#: as at the start (a speed that is noisy everywhere must not split without end).
+ROUNDS, GROWTH = 24, 8
+#: At most this many Newton steps polish :meth:`LengthMap.parameter_at` (3 at most, measured).
+_POLISH = 8
+
 
 @lru_cache(maxsize=64)
 def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]:
@@ -55,8 +75,10 @@ def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]
     """
     edges = np.array(breaks)
     widths = np.diff(edges)
-    # pieces in proportion to each span's share of the parameter, at least eight per span
+    # pieces in proportion to each span's share of the parameter, at least eight per span and
+    # an even number (they are checked in pairs: :func:`_refined`)
     counts = np.maximum(8, np.ceil(intervals * widths).astype(int))
+    counts += counts % 2
     span = np.repeat(np.arange(len(widths)), counts)
     local = np.arange(len(span)) - np.repeat(np.cumsum(counts) - counts, counts)
     low = edges[span] + widths[span] * local / counts[span]
@@ -75,8 +97,10 @@ class LengthMap:
 
     About ``intervals`` pieces are spread over the curve's smooth spans in proportion to
     their parameter width (at least eight per span);
-    each piece is integrated with the 4-point Gauss–Legendre rule (exact to rounding on
-    pieces this short: its error falls as the 8th power of their length). Between the
+    each piece is integrated with the 4-point Gauss–Legendre rule (its error falls as the 8th
+    power of the pieces' length: exact to rounding where the speed is smooth at their
+    scale), and neighbouring pieces whose rule is not (a knot the curve does not report,
+    a sharp bend; see :func:`_refined`) are split until it is. Between the
     piece ends ℓ(t) is the cubic with the right values and slopes (the speed), kept as
     ℓ = ℓ0 + u·(d0 + u·(c2 + u·c3)) in the piece's own coordinate u.
     """
@@ -89,15 +113,22 @@ class LengthMap:
         d1 = curve.derivative_at(at, 1)
         speeds = np.sqrt(dot(d1, d1))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
         g, m = len(gauss), len(nodes)
-        pieces = half * (speeds[:g].reshape(-1, 4) @ _WEIGHTS)
+        inner = speeds[:g].reshape(-1, 4)
         end_speeds = speeds[g + 1 : g + m].copy()
         end_speeds[last] = speeds[g + m :]
+        start_speeds = speeds[g : g + m - 1]
+        refined = _refined(curve, nodes, inner, start_speeds, end_speeds)
+        if refined is not None:  # (some pieces were split: their widths differ)
+            nodes, inner, start_speeds, end_speeds = refined
+            half = 0.5 * (nodes[1:] - nodes[:-1])
+        m = len(nodes)
+        pieces = half * (inner @ _WEIGHTS)
         self.nodes: FloatArray = nodes
         self.lengths: FloatArray = np.empty(m)
         self.lengths[0] = 0.0
         np.cumsum(pieces, out=self.lengths[1:])
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
-        self.start_speeds: FloatArray = speeds[g : g + m - 1]
+        self.start_speeds: FloatArray = start_speeds
         self.end_speeds: FloatArray = end_speeds
         #: Total arc length of the curve.
         self.total: float = float(self.lengths[-1])
@@ -111,7 +142,7 @@ class LengthMap:
         # read-back of :meth:`_rises`
         self._samples = np.empty((m - 1, 6))
         self._samples[:, 0], self._samples[:, 5] = self._d0, d1
-        np.multiply(speeds[:g].reshape(-1, 4), h[:, None], out=self._samples[:, 1:5])
+        np.multiply(inner, h[:, None], out=self._samples[:, 1:5])
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
@@ -141,12 +172,78 @@ class LengthMap:
             slope = d0 + u * (c2_twice + 3.0 * u * c3)
             step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
             u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-        # then one on the quintic's integral (:meth:`_rises`; the cubic's slope is the speed
-        # to ~1e-9): the cubic's root is within ~1e-9 of the length of its, so one step
-        # reaches rounding
-        step = (self._rises(k, u) - gap) / np.maximum(slope, floor)
-        u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-        return np.minimum(self.nodes[k] + u * self._width[k], 1.0)
+        # then Newton on the quintic's integral (:meth:`_rises`, the length :meth:`length_at`
+        # reads back) with its own slope, the quintic speed, until it stands still: from the
+        # cubic's root one step mostly reaches rounding, but not where the speed changes fast
+        # within a piece (a rational rail, a curve run as t²: 1e-6 of the length was left)
+        rise = self._samples[k] @ _INTEGRAL  # (coefficients of u¹…u⁶)
+        speed = rise * _POWERS[1:]  # (of u⁰…u⁵: the slope)
+        for _ in range(_POLISH):
+            value, slope = _horner(rise, u) * u - gap, _horner(speed, u)
+            moves = slope > floor
+            step = np.where(moves, value / np.where(moves, slope, 1.0), 0.0)
+            u = np.minimum(np.maximum(u - step, 0.0), 1.0)
+            if not np.abs(step).max(initial=0.0) > 4e-16:
+                break
+        # (the whole length is the curve's end exactly, not a rounding short of it)
+        return np.where(target < self.total, np.minimum(self.nodes[k] + u * self._width[k], 1.0), 1.0)
+
+
+def _horner(coefficients: FloatArray, u: FloatArray) -> FloatArray:
+    """Σ c_j·u^j for each row of ``coefficients`` (lowest power first) at its ``u``."""
+    value = coefficients[..., -1]
+    for j in range(coefficients.shape[-1] - 2, -1, -1):
+        value = value * u + coefficients[..., j]
+    return value
+
+
+def _refined(
+    curve: Curve, nodes: FloatArray, inner: FloatArray, start: FloatArray, end: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray] | None:
+    """The pieces of a :class:`LengthMap` split until each one's Gauss rule is exact to
+    :data:`PAIR_TOLERANCE` of the curve's length, or None where all of them are already.
+
+    The pieces (ends ``nodes``, speeds at their Gauss nodes ``inner``, at their ``start``
+    and ``end``) are checked in pairs of neighbours within a span: the rule through the
+    pair's 11 speeds is exact to degree 11 where the two Gauss rules are to degree 7, so
+    their difference (:data:`_PAIR_CHECK`) is the Gauss rules' error wherever the speed is
+    smooth at the pair's scale, and where it is not (a knot inside a piece: a NURBS run as
+    t², whose parameter no longer reports where its knots are) the difference is of the
+    error's size. Each piece of a pair that fails becomes a pair of its own (9 new speeds:
+    its middle and its halves' Gauss nodes), checked again; a piece's end at a breakpoint
+    keeps its speed from the left. Returns the new ``nodes, inner, start, end``.
+    """
+    low, width = nodes[:-2:2], nodes[2::2] - nodes[:-2:2]
+    samples = np.column_stack([start[::2], inner[::2], end[::2], inner[1::2], end[1::2]])
+    check = np.abs(0.5 * width * (samples @ _PAIR_CHECK))
+    total = float(0.25 * (width @ (inner.reshape(-1, 8) @ np.tile(_WEIGHTS, 2))))
+    tolerance = PAIR_TOLERANCE * total
+    bad = check > tolerance
+    if not bad.any():
+        return None
+    budget = GROWTH * len(low)
+    for _ in range(ROUNDS):
+        if not bad.any() or len(low) + np.count_nonzero(bad) > budget:
+            break
+        # the two halves of every failing pair, as pairs: their ends are known, the rest new
+        halves = np.repeat(0.5 * width[bad], 2)
+        starts = np.column_stack([low[bad], low[bad] + 0.5 * width[bad]]).ravel()
+        at = starts[:, None] + halves[:, None] * _PAIR_AT[None, 1:-1]
+        d1 = curve.derivative_at(at.reshape(-1), 1)
+        new = np.empty((len(starts), 11))
+        new[:, 1:-1] = np.sqrt(dot(d1, d1)).reshape(len(starts), 9)
+        new[:, [0, -1]] = samples[bad][:, [0, 5, 5, 10]].reshape(-1, 2)
+        low = np.concatenate([low[~bad], starts])
+        width = np.concatenate([width[~bad], halves])
+        samples = np.concatenate([samples[~bad], new])
+        bad = np.concatenate([np.zeros(len(bad) - np.count_nonzero(bad), dtype=bool),
+                              np.abs(0.5 * halves * (new @ _PAIR_CHECK)) > tolerance])
+    order = np.argsort(low, kind="stable")
+    low, width, samples = low[order], width[order], samples[order]
+    # back to pieces: each pair's two halves
+    nodes = np.append(np.column_stack([low, low + 0.5 * width]).ravel(), nodes[-1])
+    inner = samples[:, np.r_[1:5, 6:10]].reshape(-1, 4)
+    return nodes, inner, samples[:, [0, 5]].reshape(-1), samples[:, [5, 10]].reshape(-1)
 
 
 def station_parameters(

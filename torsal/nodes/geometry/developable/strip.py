@@ -36,7 +36,8 @@ SIDE = 1e-11
 class Steady(Curve):
     """A curve whose parameter stands still at an end (C'(t) = 0 there: a curve run as t²,
     a NURBS with a doubled end control point), with the tangent there replaced by the
-    direction it tends to, C''(t): the same points, the geometric tangent. Without it
+    direction it tends to: C'(t) ≈ (t − end)·C''(end), so C'' at the start and −C'' at
+    the end (the curve run forwards as ever). The same points, the geometric tangent. Without it
     det[B − A, A', B'] vanishes at that end for every station, whatever the ruling, and the
     strip took it for a partner of all of them (a fan through B's end)."""
 
@@ -45,11 +46,12 @@ class Steady(Curve):
         self.closed, self.domain = curve.closed, curve.domain
 
     def _steadied(self, t: FloatArray, values: list[FloatArray], order: int) -> list[FloatArray]:
-        at = np.isin(t, self.ends)
+        # (within 1e-12 of the end: there C' is rounding, its direction anything)
+        at = (np.abs(t[:, None] - self.ends[None, :]) <= 1e-12).any(axis=1)
         if order >= 1 and at.any():
             second = self.curve.derivatives(t[at], 2)[2]
             values[1] = values[1].copy()
-            values[1][at] = second
+            values[1][at] = np.where(t[at, None] > 0.5, -second, second)
         return values
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
@@ -195,9 +197,11 @@ class Strip:
         # where A's parameter stands still (A'(s) = 0: a curve run as t²), its tangent is the
         # limit of A'/|A'|, the direction of A'' there: the strip does not depend on the pace
         still = norm(self.a1) <= 1e-9 * self.map_a.total
-        if still.any():
+        #: per station, whether A's parameter stands still there (A' is then along ±A'')
+        self.still_a: BoolArray = still
+        if still.any():  # (A' ≈ (s − s0)·A'': −A'' where A stands still at its end)
             self.a1 = self.a1.copy()
-            self.a1[still] = self.a2[still]
+            self.a1[still] = np.where(self.s[still, None] > 0.5, -self.a2[still], self.a2[still])
         self.grid, self.kinks_b = sample_grid(curve_b, samples)
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
@@ -214,18 +218,35 @@ class Strip:
             raise ValueError("Curve B has zero length: there is nothing to place rulings along.")
 
     def length_b(self, t: FloatArray) -> FloatArray:
-        """Arc length along B to each ``t``, as the length of the polyline through B's samples
-        (exact on straight pieces, within ~1e-5 elsewhere: ample for placing the plain loft's
-        rulings at invalid stations and a fan's rulings at about the station spacing)."""
-        return np.interp(t, self.grid.t, self.chords_b)
+        """Arc length along B to each ``t`` (:attr:`map_b`): fans' rulings and the plain
+        loft's partners are placed by it, so they lie where they do whatever B's pace."""
+        return self.map_b.length_at(t)
 
     def parameter_b(self, length: FloatArray) -> FloatArray:
         """The inverse of :meth:`length_b`."""
-        return np.interp(length, self.chords_b, self.grid.t)
+        return self.map_b.parameter_at(length)
+
+    @cached_property
+    def map_b(self) -> LengthMap:
+        """Arc length along B (the curve itself: a :class:`Steady` B's tangent at its still
+        end is not its speed), made when a solve first needs it."""
+        return LengthMap(self.curve_b.curve if isinstance(self.curve_b, Steady) else self.curve_b)
+
+    @cached_property
+    def even_b(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """As many samples of B as :attr:`grid` has, evenly spaced along its length, and its
+        corners: their parameters, B and B' there (where a station without a torsal partner
+        looks for its least-warped one: the same points whatever B's pace)."""
+        t = self.parameter_b(np.linspace(0.0, self.map_b.total, len(self.grid.t)))
+        t[0], t[-1] = 0.0, 1.0
+        t = np.unique(np.concatenate([t, self.kinks_b]))
+        points, tangents = self.curve_b.derivatives(t, 1)
+        return t, points, tangents
 
     @cached_property
     def chords_b(self) -> FloatArray:
-        """Arc length along the polyline through B's samples to each sample."""
+        """Arc length along the polyline through B's samples to each sample (for the check
+        that B has a length, before anything is measured along it)."""
         points = self.grid.points
         chords = np.empty(len(points))
         chords[0] = 0.0
