@@ -133,9 +133,9 @@ def test_a_tie_is_cut_along_the_quads_shorter_diagonal_whichever_way_the_chains_
     length = np.array([0.0, 1.0, 2.0])
     points_a = np.column_stack([length, np.zeros(3), np.zeros(3)])
     points_b = points_a + np.array([-0.7, 1.0, 0.0])
-    i, j = zigzag(length, length, points_a, points_b)
+    i, j = zigzag(length, length, lambda: (points_a, points_b))
     assert _rulings(i, j) == {(0, 0), (0, 1), (1, 1), (1, 2), (2, 2)}
-    ri, rj = zigzag(length, length, points_a[::-1], points_b[::-1])
+    ri, rj = zigzag(length, length, lambda: (points_a[::-1], points_b[::-1]))
     assert _rulings(2 - ri, 2 - rj) == _rulings(i, j)
 
 

@@ -27,7 +27,8 @@ the strip read from its other end is the same.
 from __future__ import annotations
 
 import struct
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import partial
 from math import isnan
 
 import numpy as np
@@ -48,8 +49,8 @@ TIE = 1e-9
 
 
 def zigzag(
-    length_a: FloatArray, length_b: FloatArray, points_a: FloatArray | None = None,
-    points_b: FloatArray | None = None,
+    length_a: FloatArray, length_b: FloatArray,
+    points: Callable[[], tuple[FloatArray, FloatArray]] | None = None,
 ) -> tuple[IntArray, IntArray]:
     """Vertex indices ``(i, j)`` of the rulings of the triangle strip between a chain of
     points on A at arc lengths ``length_a`` (non-decreasing) and one on B at
@@ -61,8 +62,9 @@ def zigzag(
     strip is the same whichever way the curves run (stepping to the nearer next *vertex*
     joined each vertex of B to the vertex of A before it, and read backwards, to the one
     after it). An edge of A and one of B with the same middle (chains evenly spaced along
-    both curves) are a quad: given the chains' ``points_a`` and ``points_b`` it is split
-    along its shorter diagonal, else (and where the two are equal) A steps first.
+    both curves) are a quad: given the chains' ``points`` it is split
+    along its shorter diagonal (``points()`` gives the chains' points, asked for only then),
+    else (and where the two are equal) A steps first.
 
     >>> i, j = zigzag(np.array([0.0, 1.0, 2.0]), np.array([0.0, 3.0, 4.0]))
     >>> i.tolist(), j.tolist()
@@ -81,13 +83,14 @@ def zigzag(
     ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
     np.cumsum(~steps, dtype=np.int64, out=ij[0, 1:])
     np.cumsum(steps, dtype=np.int64, out=ij[1, 1:])
-    if points_a is None or points_b is None or len(keys) < 2:
+    if points is None or len(keys) < 2:
         return ij[0], ij[1]
     # a tie of an edge of A (taken first) and one of B: the quad A_i A_i+1 B_j+1 B_j, cut
     # along A_i+1 B_j so far; along A_i B_j+1 where that is shorter
     sorted_keys = keys[order]
     tie = flatnonzero((sorted_keys[1:] == sorted_keys[:-1]) & ~steps[:-1] & steps[1:])
     if len(tie):
+        points_a, points_b = points()
         i, j = ij[0, tie], ij[1, tie]
         taken = norm(points_a[i + 1] - points_b[j])
         other = norm(points_a[i] - points_b[j + 1])
@@ -350,18 +353,18 @@ def a_fans_all(
         mids = np.empty(0)
         if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
             pairs, mids = _jumps_along_b(strip, t, rate, pairs)
-        jumps.append((dt, pairs, mids))
+        jumps.append((pairs, mids))
     found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
-    with_pairs = [i for i, (_, pairs, _) in enumerate(jumps) if len(pairs)]
+    with_pairs = [i for i, (pairs, _) in enumerate(jumps) if len(pairs)]
     if not with_pairs:
         return found
-    stack = Stack([len(jumps[i][1]) for i in with_pairs])
+    stack = Stack([len(jumps[i][0]) for i in with_pairs])
     owner = stack.owner()
     stations = np.cumsum([0] + [len(strips[i][0].s) for i in with_pairs])[:-1]
-    pairs = np.concatenate([jumps[i][1] for i in with_pairs])
+    pairs = np.concatenate([jumps[i][0] for i in with_pairs])
     s_all = np.concatenate([strips[i][0].s for i in with_pairs])
     at = pairs + stations[owner]  # (the pairs' first stations among all strips' stations)
-    t_mid = np.concatenate([jumps[i][2] for i in with_pairs])
+    t_mid = np.concatenate([jumps[i][1] for i in with_pairs])
     bm0, bm1 = evaluate_each([strips[i][0].curve_b for i in with_pairs], t_mid, stack.offsets, 1)
     # f at both stations of every pair at once: rows (i, i + 1)
     a0 = np.concatenate([strips[i][0].a0 for i in with_pairs])
@@ -388,7 +391,7 @@ def a_fans_all(
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
     for k, index in enumerate(with_pairs):
         strip, t = strips[index][:2]
-        dt, pairs_k, _ = jumps[index]
+        pairs_k = jumps[index][0]
         apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
         if not np.isnan(apex_k).all():
             # a root that converged onto a corner of A (a jump of f) or onto a station is that point
@@ -396,7 +399,7 @@ def a_fans_all(
                 if len(exact):
                     nearest = exact[np.argmin(np.abs(apex_k[:, None] - exact[None, :]), axis=1)]
                     apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
-        found[index] = _a_fans_of(strip, t, dt, pairs_k, apex_k)
+        found[index] = _a_fans_of(strip, t, pairs_k, apex_k)
     return found
 
 
@@ -445,17 +448,17 @@ def _jumps_along_b(
 
 
 def _a_fans_of(
-    strip: Strip, t: FloatArray, dt: FloatArray, pairs: IntArray, apex: FloatArray
+    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray
 ) -> list[tuple[float, float, float]]:
     """One strip's fans through points of A at the jumps ``pairs`` with the apexes found
     (NaN where f had no root between the two stations)."""
     s = strip.s
     fans = []
-    if np.isnan(apex).any():  # (a hole is told by the steps along B's length, not its parameter)
-        known = ~np.isnan(t)
-        lengths = np.full(len(t), np.nan)
-        lengths[known] = strip.length_b(t[known])
-        dt = lengths[1:] - lengths[:-1]
+    # (a hole is told by the steps along B's length, not its parameter)
+    known = ~np.isnan(t)
+    lengths = np.full(len(t), np.nan)
+    lengths[known] = strip.length_b(t[known])
+    dt = lengths[1:] - lengths[:-1]
     for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
         if isnan(s_star):
             inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
@@ -545,7 +548,7 @@ def close_gaps(
         if gap[i] or gap[i + 1]:
             continue  # closed with the gap around it
         tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
-        a, b = zigzag(strip.station_lengths[i : i + 2], lb, strip.a0[i : i + 2], strip.curve_b.point_at(tb))
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
         inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
         added.append((strip.s[i + a[inner]], tb[b[inner]]))
     # the runs of gap stations: where ``gap`` padded with False on both sides changes
@@ -594,7 +597,7 @@ def _closing(
         lb = np.concatenate([lb_before, lb_after[1:] + strip.map_b.total])
     else:
         tb, lb = strip.gap_lengths(t_lo, t_hi)
-    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb, strip.a0[k0 : k1 + 1], strip.curve_b.point_at(tb))
+    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb, partial(_chains, strip, k0, k1 + 1, tb))
     # the first ruling from each gap station is its station ruling (i runs through every
     # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
     own = np.empty(len(i), dtype=bool)
@@ -613,6 +616,11 @@ def _closing(
         for array in added:
             array.setflags(write=False)
     return partners, added
+
+
+def _chains(strip: Strip, first: int, stop: int, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The points of a closing's two chains: stations ``first`` to ``stop`` − 1 on A, B at ``tb``."""
+    return strip.a0[first:stop], strip.curve_b.point_at(tb)
 
 
 def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:

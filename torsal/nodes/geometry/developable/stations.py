@@ -4,14 +4,15 @@ The developable nodes place their ``Segments + 1`` rulings at stations spaced ev
 arc length along the base curve, as Grasshopper's *Divide Curve* does (the thesis
 divides the curve that way); ``spacing="parameter"`` spaces them evenly in t instead.
 
-The arc length here is a light table: Gauss–Legendre on a fixed partition of every
-smooth span, read back by cubic Hermite interpolation (the speed |C'| is the exact slope
-of the length at each node), inverted by Newton steps from a linear guess, and the
-stations then polished by one Newton step on the integral of the quintic through each
-piece's six speeds (its ends and Gauss nodes). The cubic alone spaces stations evenly to
-about 1e-9 of the length on a wavy curve — not enough for a strip that must not depend
-on how its curve is parameterised (the same curve run as t² moved its stations by that);
-the quintic to about 1e-15. It is still several times cheaper than the curve's own
+The arc length here is a light table: Gauss–Legendre on a partition of every smooth span,
+its pieces checked in pairs against a rule of higher order and split where they disagree
+(a knot the curve does not report, as in a NURBS run as t²), read back by the integral
+of the quintic through each piece's six speeds (its ends and Gauss nodes), and inverted
+by Newton steps on that same quintic from the inverse of the piece's Hermite cubic, until
+they stand still: t → ℓ → t comes back to rounding, so two ways of reaching one point of
+a curve agree, and a strip does not depend on how its curves are parameterised (the same
+curve run as t² or backwards gives the same stations, fans and closing triangles to
+~1e-11 of its size). It is still several times cheaper than the curve's own
 :class:`~..arclength.LengthTable`, which matters when a slider rebuilds the curve on
 every solve.
 """
@@ -53,13 +54,15 @@ _PAIR_AT = np.concatenate([[0.0], 0.25 * (_NODES + 1.0), [0.5], 0.25 * (_NODES +
 _PAIR_CHECK = np.linalg.solve(legvander(2.0 * _PAIR_AT - 1.0, 10).T, 2.0 * np.eye(11)[0]) - np.concatenate(
     [[0.0], 0.5 * _WEIGHTS, [0.0], 0.5 * _WEIGHTS, [0.0]]
 )
+#: The weights of :data:`_PAIR_CHECK` for the pair's two pieces' Gauss nodes, as they lie.
+_PAIR_INNER = _PAIR_CHECK[np.r_[1:5, 6:10]]
 #: A pair of pieces is split in two pairs while its estimated error exceeds this share of the
 #: curve's length ...
 PAIR_TOLERANCE = 1e-13
 #: ... for at most this many rounds, and while the pairs are at most this many times as many
 #: as at the start (a speed that is noisy everywhere must not split without end).
 ROUNDS, GROWTH = 24, 8
-#: At most this many Newton steps polish :meth:`LengthMap.parameter_at` (3 at most, measured).
+#: At most this many Newton steps polish :meth:`LengthMap.parameter_at` (1 or 2, measured).
 _POLISH = 8
 
 
@@ -117,12 +120,13 @@ class LengthMap:
         end_speeds = speeds[g + 1 : g + m].copy()
         end_speeds[last] = speeds[g + m :]
         start_speeds = speeds[g : g + m - 1]
-        refined = _refined(curve, nodes, inner, start_speeds, end_speeds)
+        pieces = half * (inner @ _WEIGHTS)
+        refined = _refined(curve, nodes, inner, start_speeds, end_speeds, float(pieces.sum()))
         if refined is not None:  # (some pieces were split: their widths differ)
             nodes, inner, start_speeds, end_speeds = refined
             half = 0.5 * (nodes[1:] - nodes[:-1])
+            pieces = half * (inner @ _WEIGHTS)
         m = len(nodes)
-        pieces = half * (inner @ _WEIGHTS)
         self.nodes: FloatArray = nodes
         self.lengths: FloatArray = np.empty(m)
         self.lengths[0] = 0.0
@@ -136,13 +140,18 @@ class LengthMap:
         self._width, self._rise = h, pieces
         self._d0 = self.start_speeds * h
         d1 = end_speeds * h
-        self._c2 = 3.0 * pieces - 2.0 * self._d0 - d1
-        self._c3 = self._d0 + d1 - 2.0 * pieces
         # the speeds at each piece's ends and Gauss nodes (in its own coordinate u), for the
         # read-back of :meth:`_rises`
-        self._samples = np.empty((m - 1, 6))
-        self._samples[:, 0], self._samples[:, 5] = self._d0, d1
-        np.multiply(inner, h[:, None], out=self._samples[:, 1:5])
+        samples = np.empty((m - 1, 6))
+        samples[:, 0], samples[:, 5] = self._d0, d1
+        np.multiply(inner, h[:, None], out=samples[:, 1:5])
+        #: per piece, du/dv at its ends for v = (ℓ − ℓ0)/its length (inf where the speed is 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            self._inverse = np.column_stack([pieces / self._d0, pieces / d1])
+        #: per piece, the coefficients of u⁰…u⁶ of ℓ − ℓ0 (row 0) and of its slope (row 1)
+        self._poly = np.zeros((m - 1, 2, 7))
+        self._poly[:, 0, 1:] = samples @ _INTEGRAL
+        self._poly[:, 1, :6] = self._poly[:, 0, 1:] * _POWERS[1:]
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
@@ -156,52 +165,46 @@ class LengthMap:
         through the six speeds each piece has (its ends and Gauss nodes), exact to ~h⁷
         where the Hermite cubic alone is to ~h⁴ (1e-9 of the length on a wavy curve:
         enough for stations to move by that when the curve's parameter changes)."""
-        return np.einsum("...j,...j->...", u[..., None] ** _POWERS[1:], self._samples[k] @ _INTEGRAL)
+        return np.einsum("...j,...j->...", u[..., None] ** _POWERS, self._poly[k, 0])
 
-    def parameter_at(self, length: ArrayLike) -> FloatArray:
-        """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
+    def parameter_at(self, length: ArrayLike, polish: bool = True) -> FloatArray:
+        """The t at which the arc length from the start equals ``length`` (clipped to the
+        curve): to rounding, or without ``polish`` to the inverse Hermite cubic's 1e-5 to
+        1e-7 of the length (enough to place samples)."""
         target = np.minimum(np.maximum(np.asarray(length, dtype=float), 0.0), self.total)
         k = np.minimum(self.lengths.searchsorted(target, side="right") - 1, len(self._rise) - 1)
-        d0, c2, c3 = self._d0[k], self._c2[k], self._c3[k]
         gap = target - self.lengths[k]
-        u = gap / np.maximum(self._rise[k], 1e-300)
-        # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
-        floor = 1e-12 * max(self.total, 1e-300)
-        c2_twice = 2.0 * c2
-        for _ in range(2):
-            slope = d0 + u * (c2_twice + 3.0 * u * c3)
-            step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
-            u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
+        v = gap / np.maximum(self._rise[k], 1e-300)
+        # u(v) on the piece as the cubic with u' = ℓ_piece/ℓ'(u) at its ends (the inverse of
+        # ℓ's Hermite cubic, to the same order), or v itself where the speed is 0 there
+        w = 1.0 - v
+        with np.errstate(invalid="ignore"):  # (0·inf where the speed is 0: v is taken there)
+            u = v * (w * (w * self._inverse[k, 0] - v * self._inverse[k, 1]) + v * (3.0 - 2.0 * v))
+        u = np.minimum(np.maximum(np.where(np.isfinite(u), u, v), 0.0), 1.0)
         # then Newton on the quintic's integral (:meth:`_rises`, the length :meth:`length_at`
         # reads back) with its own slope, the quintic speed, until it stands still: from the
-        # cubic's root one step mostly reaches rounding, but not where the speed changes fast
-        # within a piece (a rational rail, a curve run as t²: 1e-6 of the length was left)
-        rise = self._samples[k] @ _INTEGRAL  # (coefficients of u¹…u⁶)
-        speed = rise * _POWERS[1:]  # (of u⁰…u⁵: the slope)
-        for _ in range(_POLISH):
-            value, slope = _horner(rise, u) * u - gap, _horner(speed, u)
-            moves = slope > floor
-            step = np.where(moves, value / np.where(moves, slope, 1.0), 0.0)
+        # cubic one step mostly reaches rounding, but not where the speed changes fast within
+        # a piece (a rational rail, a curve run as t²: 1e-6 of the length was left)
+        floor = 1e-12 * max(self.total, 1e-300)
+        poly = self._poly[k]
+        for _ in range(_POLISH if polish else 0):
+            powers = u[..., None] ** _POWERS
+            value = (poly[..., 0, :] * powers).sum(axis=-1) - gap
+            slope = (poly[..., 1, :] * powers).sum(axis=-1)
+            step = np.where(slope > floor, value / np.maximum(slope, floor), 0.0)
             u = np.minimum(np.maximum(u - step, 0.0), 1.0)
-            if not np.abs(step).max(initial=0.0) > 4e-16:
+            # (Newton's error squares at every step: after one under 1e-9 the next is rounding)
+            if not np.abs(step).max(initial=0.0) > 1e-9:
                 break
         # (the whole length is the curve's end exactly, not a rounding short of it)
         return np.where(target < self.total, np.minimum(self.nodes[k] + u * self._width[k], 1.0), 1.0)
 
-
-def _horner(coefficients: FloatArray, u: FloatArray) -> FloatArray:
-    """Σ c_j·u^j for each row of ``coefficients`` (lowest power first) at its ``u``."""
-    value = coefficients[..., -1]
-    for j in range(coefficients.shape[-1] - 2, -1, -1):
-        value = value * u + coefficients[..., j]
-    return value
-
-
 def _refined(
-    curve: Curve, nodes: FloatArray, inner: FloatArray, start: FloatArray, end: FloatArray
+    curve: Curve, nodes: FloatArray, inner: FloatArray, start: FloatArray, end: FloatArray, total: float
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray] | None:
     """The pieces of a :class:`LengthMap` split until each one's Gauss rule is exact to
-    :data:`PAIR_TOLERANCE` of the curve's length, or None where all of them are already.
+    :data:`PAIR_TOLERANCE` of the curve's length (``total``, as they measure it), or None
+    where all of them are already.
 
     The pieces (ends ``nodes``, speeds at their Gauss nodes ``inner``, at their ``start``
     and ``end``) are checked in pairs of neighbours within a span: the rule through the
@@ -214,13 +217,14 @@ def _refined(
     keeps its speed from the left. Returns the new ``nodes, inner, start, end``.
     """
     low, width = nodes[:-2:2], nodes[2::2] - nodes[:-2:2]
-    samples = np.column_stack([start[::2], inner[::2], end[::2], inner[1::2], end[1::2]])
-    check = np.abs(0.5 * width * (samples @ _PAIR_CHECK))
-    total = float(0.25 * (width @ (inner.reshape(-1, 8) @ np.tile(_WEIGHTS, 2))))
-    tolerance = PAIR_TOLERANCE * total
+    # (the check of every pair from the pieces' speeds as they lie, without gathering them)
+    rule = inner.reshape(-1, 8) @ _PAIR_INNER + start[::2] * _PAIR_CHECK[0] + end[::2] * _PAIR_CHECK[5]
+    check = np.abs(width * (rule + end[1::2] * _PAIR_CHECK[10]))
+    tolerance = 2.0 * PAIR_TOLERANCE * total
     bad = check > tolerance
     if not bad.any():
         return None
+    samples = np.column_stack([start[::2], inner[::2], end[::2], inner[1::2], end[1::2]])
     budget = GROWTH * len(low)
     for _ in range(ROUNDS):
         if not bad.any() or len(low) + np.count_nonzero(bad) > budget:
@@ -237,7 +241,7 @@ def _refined(
         width = np.concatenate([width[~bad], halves])
         samples = np.concatenate([samples[~bad], new])
         bad = np.concatenate([np.zeros(len(bad) - np.count_nonzero(bad), dtype=bool),
-                              np.abs(0.5 * halves * (new @ _PAIR_CHECK)) > tolerance])
+                              np.abs(halves * (new @ _PAIR_CHECK)) > tolerance])
     order = np.argsort(low, kind="stable")
     low, width, samples = low[order], width[order], samples[order]
     # back to pieces: each pair's two halves

@@ -232,13 +232,18 @@ class Strip:
         end is not its speed), made when a solve first needs it."""
         return LengthMap(self.curve_b.curve if isinstance(self.curve_b, Steady) else self.curve_b)
 
-    @cached_property
-    def even_b(self) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """As many samples of B as :attr:`grid` has, evenly spaced along its length, and its
-        corners: their parameters, B and B' there (where a station without a torsal partner
-        looks for its least-warped one: the same points whatever B's pace)."""
-        t = self.parameter_b(np.linspace(0.0, self.map_b.total, len(self.grid.t)))
-        t[0], t[-1] = 0.0, 1.0
+    def even_b(self, low: FloatArray, high: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """B's samples evenly spaced along its length (as many over all of B as :attr:`grid`
+        has) that lie within any of the stretches from ``low`` to ``high`` of its length,
+        and its corners: their parameters, B and B' there (where a station without a torsal
+        partner looks for its least-warped one: the same points whatever B's pace)."""
+        count = len(self.grid.t)
+        step = self.map_b.total / (count - 1)
+        first = np.maximum(np.ceil(low / step - 1e-9), 0).astype(np.int64)
+        last = np.minimum(np.floor(high / step + 1e-9), count - 1).astype(np.int64)
+        sizes = np.maximum(last - first + 1, 0)
+        k = np.repeat(first - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
+        t = self.parameter_b(np.unique(k) * step)
         t = np.unique(np.concatenate([t, self.kinks_b]))
         points, tangents = self.curve_b.derivatives(t, 1)
         return t, points, tangents
