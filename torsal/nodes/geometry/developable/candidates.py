@@ -512,7 +512,24 @@ def _along(
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = slope * speed_b * (strip.map_a.total / total_b) / speed_a[:, None]
     rate = np.where(np.isnan(slope), np.nan, np.minimum(np.maximum(np.nan_to_num(rate), -1e6), 1e6))
+    if strip.still_a[rows].any():
+        _still_rates(strip.still_a[rows], y, rate)
     return x, y, rate
+
+
+def _still_rates(still: BoolArray, y: FloatArray, rate: FloatArray) -> None:
+    """Where A stands still at a station (A' = 0 at its end: a curve run as t²) dt/ds and
+    |A'| are both 0 and their quotient is not at hand: each candidate there takes the
+    slope of the nearest candidate (along B) of the next station, in place."""
+    for row in flatnonzero(still).tolist():  # (a curve's two ends at most)
+        other = row + 1 if row + 1 < len(y) else row - 1
+        if other < 0 or still[other]:
+            continue
+        gaps = np.abs(y[row][:, None] - y[other][None, :])
+        gaps = np.where(np.isnan(gaps), np.inf, gaps)
+        nearest = np.argmin(gaps, axis=1)
+        known = np.isfinite(gaps.min(axis=1, initial=np.inf)) & ~np.isnan(rate[row])
+        rate[row] = np.where(known, rate[other][nearest], rate[row])
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
     """Give every station without a partner one whose warp is within the tolerance

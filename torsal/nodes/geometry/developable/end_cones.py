@@ -216,7 +216,7 @@ def _even_in_length(
     for lengths, first, stop in zip(maps, bounds[:-1], bounds[1:], strict=True):  # (strips with end runs)
         ends = lengths.length_at(np.concatenate([u0[first:stop], u1[first:stop]])).reshape(2, -1)
         at = ends[0][:, None] + (ends[1] - ends[0])[:, None] * (_STEPS / (SAMPLES - 1))
-        u = lengths.parameter_at(at, polish=False)  # (samples: their roots are refined)
+        u = lengths.parameter_near(at)  # (samples: their roots are refined)
         x[first:stop] = np.where(reverse[first:stop, None], 1.0 - u, u)
     x[:, 0] = low
 

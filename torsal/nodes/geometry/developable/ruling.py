@@ -364,7 +364,7 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     # the curve's end point, where that ruling exists (see .end_cones)
     given = [Rulings(*solve.rulings) for solve in solves]
     smoothed = []
-    curves = [(solve.strip.curve_a, solve.strip.curve_b) for solve in solves]
+    curves = [(solve.strip.steady_a, solve.strip.curve_b) for solve in solves]
     # (the pencils sampled along each curve's length, as the strip measures it)
     strips = [solve.strip for solve in solves]
     ends = smooth_all([(*pair, r) for pair, r in zip(curves, given, strict=True)], strips)

@@ -199,6 +199,10 @@ class Strip:
         still = norm(self.a1) <= 1e-9 * self.map_a.total
         #: per station, whether A's parameter stands still there (A' is then along ±A'')
         self.still_a: BoolArray = still
+        #: A, as a :class:`Steady` curve where it stands still at an end (for the end cones'
+        #: pencils through its end points)
+        ends = np.array([0.0, 1.0])[[bool(still[0]), bool(still[-1])]]
+        self.steady_a: Curve = Steady(curve_a, ends) if len(ends) else curve_a
         if still.any():  # (A' ≈ (s − s0)·A'': −A'' where A stands still at its end)
             self.a1 = self.a1.copy()
             self.a1[still] = np.where(self.s[still, None] > 0.5, -self.a2[still], self.a2[still])
