@@ -317,14 +317,31 @@ def _along(
     each branch's slope dy/dx = (dt/ds)·|B'|/|A'| — so that which branch the strip follows
     does not depend on how either curve is parameterised, only on the curves."""
     x = strip.station_lengths[rows] / strip.map_a.total
-    total_b = strip.chords_b[-1]
+    total_b = strip.map_b.total
     y = strip.length_b(t) / total_b
     speed_b = norm(good.tangents[np.maximum(index, 0)])
     speed_a = norm(strip.a1[rows])
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = slope * speed_b * (strip.map_a.total / total_b) / speed_a[:, None]
     rate = np.where(np.isnan(slope), np.nan, np.minimum(np.maximum(np.nan_to_num(rate), -1e6), 1e6))
+    if strip.still_a[rows].any():
+        _still_rates(strip.still_a[rows], y, rate)
     return x, y, rate
+
+
+def _still_rates(still: BoolArray, y: FloatArray, rate: FloatArray) -> None:
+    """Where A stands still at a station (A' = 0 at its end: a curve run as t²) dt/ds and
+    |A'| are both 0 and their quotient is not at hand: each candidate there takes the
+    slope of the nearest candidate (along B) of the next station, in place."""
+    for row in flatnonzero(still).tolist():  # (a curve's two ends at most)
+        other = row + 1 if row + 1 < len(y) else row - 1
+        if other < 0 or still[other]:
+            continue
+        gaps = np.abs(y[row][:, None] - y[other][None, :])
+        gaps = np.where(np.isnan(gaps), np.inf, gaps)
+        nearest = np.argmin(gaps, axis=1)
+        known = np.isfinite(gaps.min(axis=1, initial=np.inf)) & ~np.isnan(rate[row])
+        rate[row] = np.where(known, rate[other][nearest], rate[row])
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
     """Give every station without a partner one whose warp is within the tolerance
@@ -348,13 +365,14 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
     warps = stack.split(_angles(*_normals(a0, points, a1, tangents, None, None, stack.repeat(
         sizes(stack, a0, points))), False))
     for i, loft_warp in zip(at, warps, strict=True):
-        _near(strips[i], ts[i], *lofts[i][:6], loft_warp)
+        _near(strips[i], ts[i], *lofts[i][:6], loft_warp, lofts[i][8:])
 
 
 def _loft(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...] | None:
     """For one strip's stations without a partner: where they are, the plain loft's
-    partners (between their neighbours' partners ``lo`` and ``hi``), A there and B at the
-    loft's partners; None where every station has one."""
+    partners (between their neighbours' partners ``lo`` and ``hi``), A there, B at the
+    loft's partners, and the lengths along B at ``lo`` and ``hi``; None where every
+    station has one."""
     gap = np.isnan(t)
     missing = flatnonzero(gap)
     if len(missing) == 0:
@@ -375,25 +393,30 @@ def _loft(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...] | None:
     loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
     points, tangents = strip.curve_b.derivatives(loft, 1)
     a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
-    return missing, loft, lo, hi, a0, a1, points, tangents
+    return missing, loft, lo, hi, a0, a1, points, tangents, b_lo, b_hi
 
 
 def _near(
     strip: Strip, t: FloatArray, missing: IntArray, loft: FloatArray, lo: FloatArray, hi: FloatArray,
-    a0: FloatArray, a1: FloatArray, loft_warp: FloatArray,
+    a0: FloatArray, a1: FloatArray, loft_warp: FloatArray, windows: tuple[FloatArray, FloatArray],
 ) -> None:
     """One strip's partners where it had none: the loft's where its warp ``loft_warp`` is
-    within the tolerance, else the least-warped sample of B between ``lo`` and ``hi``."""
-    # else the least angle between the end normals among B's samples in the window
-    grid = strip.grid
-    angle = normal_angles(a0, a1, grid.points, grid.tangents)
-    inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
-    angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
-    best = np.argmin(angle, axis=1)
-    sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
+    within the tolerance, else the least-warped sample of B between ``lo`` and ``hi``
+    (from ``windows[0]`` to ``windows[1]`` along B's length)."""
+    # else the least angle between the end normals among B's samples in the window (evenly
+    # spaced along B: :meth:`.strip.Strip.even_b`)
     with np.errstate(invalid="ignore"):
         loft_ok = loft_warp <= strip.tolerance
-    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
+    near = loft
+    if not loft_ok.all():  # (the samples are made only where the loft's partner is not within it)
+        tb, points, tangents = strip.even_b(windows[0][~loft_ok], windows[1][~loft_ok])
+        angle = normal_angles(a0, a1, points, tangents) if len(tb) else np.full((len(a0), 0), np.nan)
+        inside = (tb[None, :] >= lo[:, None]) & (tb[None, :] <= hi[:, None])
+        angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
+        best = np.argmin(angle, axis=1) if len(tb) else np.zeros(len(a0), dtype=np.int64)
+        sample_ok = angle.min(axis=1, initial=np.inf) <= strip.tolerance  # (the angle at best)
+        near = np.where(loft_ok, loft, np.where(sample_ok, tb.take(best) if len(tb) else np.nan, np.nan))
+    t[missing] = near
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])
