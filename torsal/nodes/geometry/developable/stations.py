@@ -284,6 +284,16 @@ def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) 
     return stack.split(np.where(whole, np.minimum(nodes[on_node] + u * width[on_piece], 1.0), 1.0))
 
 
+def parameters_at(maps: Sequence[LengthMap], lengths: Sequence[FloatArray]) -> list[FloatArray]:
+    """:meth:`LengthMap.parameter_at` of each map of ``maps`` at its ``lengths`` (1-d), for
+    every map at once: each gets what it gets alone, bit for bit."""
+    if not len(maps):
+        return []
+    stack = Stack.of(lengths)
+    joined = np.concatenate(lengths) if len(lengths) else np.empty(0)
+    return _parameters_at(maps, joined.astype(float, copy=False), stack)
+
+
 def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[FloatArray]:
     """``counts[i]`` (at least 2) parameters from t = 0 to t = 1 evenly spaced in arc length
     along the curve of ``maps[i]`` (of positive length), for every map at once; the ends

@@ -26,7 +26,7 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .stack import Stack, evaluate_each
-from .stations import LengthMap, Spacing, spaced_parameters
+from .stations import LengthMap, Spacing, parameters_at, spaced_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
@@ -197,24 +197,31 @@ class Strip:
     @cached_property
     def map_b(self) -> LengthMap:
         """Arc length along B (the curve itself: a :class:`Steady` B's tangent at its still
-        end is not its speed), made when a solve first needs it."""
-        return LengthMap(self.curve_b.curve if isinstance(self.curve_b, Steady) else self.curve_b)
+        end is not its speed), made when a solve first needs it (:func:`with_maps_b` makes
+        those of many strips together)."""
+        return LengthMap(self.measured_b)
+
+    @property
+    def measured_b(self) -> Curve:
+        """The curve :attr:`map_b` measures: B itself (not its :class:`Steady` stand-in)."""
+        return self.curve_b.curve if isinstance(self.curve_b, Steady) else self.curve_b
 
     def even_b(self, low: FloatArray, high: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """B's samples evenly spaced along its length (as many over all of B as :attr:`grid`
         has) that lie within any of the stretches from ``low`` to ``high`` of its length,
         and its corners: their parameters, B and B' there (where a station without a torsal
         partner looks for its least-warped one: the same points whatever B's pace)."""
+        return even_all([self], [low], [high])[0]
+
+    def _even_lengths(self, low: FloatArray, high: FloatArray) -> FloatArray:
+        """The lengths along B of :meth:`even_b`'s samples (without its corners)."""
         count = len(self.grid.t)
         step = self.map_b.total / (count - 1)
         first = np.maximum(np.ceil(low / step - 1e-9), 0).astype(np.int64)
         last = np.minimum(np.floor(high / step + 1e-9), count - 1).astype(np.int64)
         sizes = np.maximum(last - first + 1, 0)
         k = np.repeat(first - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
-        t = self.parameter_b(np.unique(k) * step)
-        t = np.unique(np.concatenate([t, self.kinks_b]))
-        points, tangents = self.curve_b.derivatives(t, 1)
-        return t, points, tangents
+        return np.unique(k) * step
 
     @cached_property
     def station_lengths(self) -> FloatArray:
@@ -271,6 +278,31 @@ class Strip:
         t[0], t[-1] = t_low, t_high
         return np.maximum.accumulate(t), None
 
+
+
+def with_maps_b(strips: Sequence[Strip]) -> None:
+    """Makes :attr:`Strip.map_b` of every strip of ``strips`` that has none yet, all of them
+    together (:meth:`.stations.LengthMap.many`: each the map it gets alone, bit for bit)."""
+    missing = [strip for strip in strips if "map_b" not in vars(strip)]
+    if missing:
+        for strip, length_map in zip(missing, LengthMap.many([s.measured_b for s in missing]), strict=True):
+            vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
+
+
+def even_all(
+    strips: Sequence[Strip], lows: Sequence[FloatArray], highs: Sequence[FloatArray]
+) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
+    """:meth:`Strip.even_b` of every strip (``lows[i]`` to ``highs[i]`` along its B), their
+    lengths inverted together and each B evaluated once (:func:`.stack.evaluate_each`)."""
+    if not strips:
+        return []
+    with_maps_b(strips)
+    lengths = [strip._even_lengths(low, high) for strip, low, high in zip(strips, lows, highs, strict=True)]
+    found = parameters_at([strip.map_b for strip in strips], lengths)
+    ts = [np.unique(np.concatenate([t, strip.kinks_b])) for strip, t in zip(strips, found, strict=True)]
+    rows = Stack.of(ts)
+    points, tangents = evaluate_each([strip.curve_b for strip in strips], np.concatenate(ts), rows.offsets, 1)
+    return list(zip(ts, rows.split(points), rows.split(tangents), strict=True))
 
 
 def set_up(
