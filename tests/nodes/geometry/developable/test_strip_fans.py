@@ -106,9 +106,37 @@ def test_zigzag_advances_one_chain_at_a_time_in_step_with_both_lengths():
     i, j = zigzag(np.array([0.0, 1.0, 2.0, 3.0]), np.array([0.0, 10.0, 30.0]))
     assert (i[0], j[0], i[-1], j[-1]) == (0, 0, 3, 2)
     assert np.all((np.diff(i) + np.diff(j)) == 1)
-    # fractions of length: A at 1/3, 2/3, 1 and B at 1/3, 1; at a tie A steps first
-    np.testing.assert_array_equal(i, [0, 1, 1, 2, 3, 3])
-    np.testing.assert_array_equal(j, [0, 0, 1, 1, 1, 2])
+    # edges' middles as fractions of length: A's at 1/6, 1/2, 5/6 and B's at 1/6, 2/3, taken
+    # in that order; at the tie (1/6, no points to compare diagonals) A steps first
+    np.testing.assert_array_equal(i, [0, 1, 1, 2, 2, 3])
+    np.testing.assert_array_equal(j, [0, 0, 1, 1, 2, 2])
+
+
+def _rulings(i, j):
+    return set(zip(i.tolist(), j.tolist(), strict=True))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_zigzag_read_from_the_chains_other_ends_is_the_same_strip(seed):
+    rng = np.random.default_rng(seed)
+    length_a = np.cumsum(np.r_[0.0, rng.uniform(0.1, 1.0, rng.integers(1, 9))])
+    length_b = np.cumsum(np.r_[0.0, rng.uniform(0.1, 1.0, rng.integers(1, 9))])
+    i, j = zigzag(length_a, length_b)
+    ri, rj = zigzag(length_a[-1] - length_a[::-1], length_b[-1] - length_b[::-1])
+    na, nb = len(length_a) - 1, len(length_b) - 1
+    assert _rulings(i, j) == _rulings(na - ri, nb - rj)
+
+
+def test_a_tie_is_cut_along_the_quads_shorter_diagonal_whichever_way_the_chains_run():
+    # A and B evenly spaced, 3 vertices each: their edges' middles tie (1/4, 3/4); B is
+    # shifted along x so that A_0 B_1 and A_1 B_2 (B stepping first) are the short diagonals
+    length = np.array([0.0, 1.0, 2.0])
+    points_a = np.column_stack([length, np.zeros(3), np.zeros(3)])
+    points_b = points_a + np.array([-0.7, 1.0, 0.0])
+    i, j = zigzag(length, length, lambda: (points_a, points_b))
+    assert _rulings(i, j) == {(0, 0), (0, 1), (1, 1), (1, 2), (2, 2)}
+    ri, rj = zigzag(length, length, lambda: (points_a[::-1], points_b[::-1]))
+    assert _rulings(2 - ri, 2 - rj) == _rulings(i, j)
 
 
 def test_patch_areas_are_exact_for_flat_quads_and_triangles():

@@ -17,6 +17,9 @@ from .ruling import RulingResult, ruling_developable, ruling_developables
 
 #: An alternative is worth naming when it lowers the fan share by at least this much.
 GAIN = 0.01
+#: B is reversed when that lowers the fan share by more than this (rounding): the strip
+#: then does not depend on which way B was drawn.
+ALIGN = 1e-9
 
 
 @dataclass(frozen=True)
@@ -55,7 +58,8 @@ def align_b(
 ) -> list[Curve | None]:
     """Where a strip closed partly by fans has torsal rulings that run backwards along B
     (partners whose normals flip: B was drawn against A there), the strip solved
-    with B reversed, when that closes at least :data:`GAIN` less of its area with fans:
+    with B reversed, when that closes less of its area with fans (by more than
+    :data:`ALIGN`: B drawn either way gives the same strip, not the one it was drawn as):
     ``results`` are replaced in place and the reversed curve is returned at that place
     (None elsewhere). A designer expects the strip between the curves whichever way each
     was drawn, as Rhino's Loft aligns its curves; every strip is solved side by side
@@ -71,6 +75,6 @@ def align_b(
     flipped = {i: jobs[i][1].reversed() for i in redo}
     again = ruling_developables([(jobs[i][0], flipped[i], *jobs[i][2:]) for i in redo])
     for i, other in zip(redo, again, strict=True):
-        if not isinstance(other, ValueError) and other.fan_share < results[i].fan_share - GAIN:
+        if not isinstance(other, ValueError) and other.fan_share < results[i].fan_share - ALIGN:
             results[i], reversed_b[i] = other, flipped[i]
     return reversed_b

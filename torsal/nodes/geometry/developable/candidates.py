@@ -32,8 +32,9 @@ from .brackets import refine_roots
 from .isolation import Pieces, isolate
 from .selection import longest_chain, monotone_path
 from .sift import sift_all
-from .stack import Stack, evaluate_rows
-from .strip import Strip
+from .stack import Stack, evaluate_each, evaluate_rows
+from .stations import parameters_at
+from .strip import Strip, even_all, with_maps_b
 from .warp import _angles, _normals, in_plane_tangent, sizes
 
 #: Most candidates kept per station for the selection.
@@ -317,14 +318,31 @@ def _along(
     each branch's slope dy/dx = (dt/ds)·|B'|/|A'| — so that which branch the strip follows
     does not depend on how either curve is parameterised, only on the curves."""
     x = strip.station_lengths[rows] / strip.map_a.total
-    total_b = strip.chords_b[-1]
+    total_b = strip.map_b.total
     y = strip.length_b(t) / total_b
     speed_b = norm(good.tangents[np.maximum(index, 0)])
     speed_a = norm(strip.a1[rows])
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = slope * speed_b * (strip.map_a.total / total_b) / speed_a[:, None]
     rate = np.where(np.isnan(slope), np.nan, np.minimum(np.maximum(np.nan_to_num(rate), -1e6), 1e6))
+    if strip.still_a[rows].any():
+        _still_rates(strip.still_a[rows], y, rate)
     return x, y, rate
+
+
+def _still_rates(still: BoolArray, y: FloatArray, rate: FloatArray) -> None:
+    """Where A stands still at a station (A' = 0 at its end: a curve run as t²) dt/ds and
+    |A'| are both 0 and their quotient is not at hand: each candidate there takes the
+    slope of the nearest candidate (along B) of the next station, in place."""
+    for row in flatnonzero(still).tolist():  # (a curve's two ends at most)
+        other = row + 1 if row + 1 < len(y) else row - 1
+        if other < 0 or still[other]:
+            continue
+        gaps = np.abs(y[row][:, None] - y[other][None, :])
+        gaps = np.where(np.isnan(gaps), np.inf, gaps)
+        nearest = np.argmin(gaps, axis=1)
+        known = np.isfinite(gaps.min(axis=1, initial=np.inf)) & ~np.isnan(rate[row])
+        rate[row] = np.where(known, rate[other][nearest], rate[row])
 
 def near_partners(strip: Strip, t: FloatArray) -> None:
     """Give every station without a partner one whose warp is within the tolerance
@@ -337,28 +355,44 @@ def near_partners(strip: Strip, t: FloatArray) -> None:
 
 def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None:
     """:func:`near_partners` of every strip (its partners ``ts[i]``, filled in in place),
-    the plain lofts' warps of all of them measured at once."""
-    lofts = [_loft(strip, t) for strip, t in zip(strips, ts, strict=True)]
-    at = [i for i, loft in enumerate(lofts) if loft is not None]
+    the plain lofts' partners found and their warps measured for all of them at once, and
+    the samples of B where a loft's is not within the tolerance."""
+    at = [i for i, t in enumerate(ts) if np.isnan(t).any()]
     if not at:
         return
+    with_maps_b([strips[i] for i in at])
+    windows = [_window(strips[i], ts[i]) for i in at]
+    # the lofts' partners: along B's length as the stations are along A's, within the window
+    found = parameters_at([strips[i].map_b for i in at], [window[-1] for window in windows])
+    lofts = [np.minimum(np.maximum(t, lo), hi) for t, (_, lo, hi, *_) in zip(found, windows, strict=True)]
+    stack = Stack.of(lofts)
+    points, tangents = evaluate_each([strips[i].curve_b for i in at], np.concatenate(lofts), stack.offsets, 1)
+    missing = [window[0] for window in windows]
+    a0 = np.concatenate([strips[i].a0.take(rows, axis=0) for i, rows in zip(at, missing, strict=True)])
+    a1 = np.concatenate([strips[i].a1.take(rows, axis=0) for i, rows in zip(at, missing, strict=True)])
     # the lofts' warps, every strip's at once (each with its own size)
-    a0, a1, points, tangents = (np.concatenate([lofts[i][k] for i in at]) for k in range(4, 8))
-    stack = Stack.of([lofts[i][4] for i in at])
     warps = stack.split(_angles(*_normals(a0, points, a1, tangents, None, None, stack.repeat(
         sizes(stack, a0, points))), False))
-    for i, loft_warp in zip(at, warps, strict=True):
-        _near(strips[i], ts[i], *lofts[i][:6], loft_warp)
+    with np.errstate(invalid="ignore"):
+        loft_ok = [warp <= strips[i].tolerance for i, warp in zip(at, warps, strict=True)]
+    # else the least angle between the end normals among B's samples in the window (evenly
+    # spaced along B: :meth:`.strip.Strip.even_b`), made only where the loft's is not within it
+    worse = [k for k, ok in enumerate(loft_ok) if not ok.all()]
+    samples = dict(zip(worse, even_all(
+        [strips[at[k]] for k in worse], [windows[k][3][~loft_ok[k]] for k in worse],
+        [windows[k][4][~loft_ok[k]] for k in worse]), strict=True))
+    a0s, a1s = stack.split(a0), stack.split(a1)
+    for k, i in enumerate(at):
+        _near(strips[i], ts[i], missing[k], lofts[k], *windows[k][1:3], a0s[k], a1s[k], loft_ok[k],
+              samples.get(k))
 
 
-def _loft(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...] | None:
-    """For one strip's stations without a partner: where they are, the plain loft's
-    partners (between their neighbours' partners ``lo`` and ``hi``), A there and B at the
-    loft's partners; None where every station has one."""
+def _window(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...]:
+    """For one strip's stations without a partner (some): where they are, their neighbours'
+    partners ``lo`` and ``hi``, the lengths along B there and the plain loft's partners'
+    lengths along B (between them, as the stations lie between theirs along A)."""
     gap = np.isnan(t)
     missing = flatnonzero(gap)
-    if len(missing) == 0:
-        return None
     # where each station without a partner falls among those with one: the partners of its
     # two neighbours (padded with B's ends where there is none before or after it) and
     # their arc lengths along A (padded with A's ends), one row for each neighbour
@@ -372,28 +406,27 @@ def _loft(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...] | None:
     spans = span > 0
     fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
     b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
-    loft = np.minimum(np.maximum(strip.parameter_b(b_lo + fraction * (b_hi - b_lo)), lo), hi)
-    points, tangents = strip.curve_b.derivatives(loft, 1)
-    a0, a1 = strip.a0.take(missing, axis=0), strip.a1.take(missing, axis=0)
-    return missing, loft, lo, hi, a0, a1, points, tangents
+    return missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)
 
 
 def _near(
     strip: Strip, t: FloatArray, missing: IntArray, loft: FloatArray, lo: FloatArray, hi: FloatArray,
-    a0: FloatArray, a1: FloatArray, loft_warp: FloatArray,
+    a0: FloatArray, a1: FloatArray, loft_ok: BoolArray,
+    samples: tuple[FloatArray, FloatArray, FloatArray] | None,
 ) -> None:
-    """One strip's partners where it had none: the loft's where its warp ``loft_warp`` is
-    within the tolerance, else the least-warped sample of B between ``lo`` and ``hi``."""
-    # else the least angle between the end normals among B's samples in the window
-    grid = strip.grid
-    angle = normal_angles(a0, a1, grid.points, grid.tangents)
-    inside = (grid.t[None, :] >= lo[:, None]) & (grid.t[None, :] <= hi[:, None])
-    angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
-    best = np.argmin(angle, axis=1)
-    sample_ok = angle.min(axis=1) <= strip.tolerance  # (the angle at best: there is no NaN)
-    with np.errstate(invalid="ignore"):
-        loft_ok = loft_warp <= strip.tolerance
-    t[missing] = np.where(loft_ok, loft, np.where(sample_ok, grid.t.take(best), np.nan))
+    """One strip's partners where it had none: the loft's where it is within the tolerance
+    (``loft_ok``), else the least-warped of B's ``samples`` (parameters, points, tangents:
+    :meth:`.strip.Strip.even_b`, given where some loft's is not) between ``lo`` and ``hi``."""
+    near = loft
+    if samples is not None:
+        tb, points, tangents = samples
+        angle = normal_angles(a0, a1, points, tangents) if len(tb) else np.full((len(a0), 0), np.nan)
+        inside = (tb[None, :] >= lo[:, None]) & (tb[None, :] <= hi[:, None])
+        angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
+        best = np.argmin(angle, axis=1) if len(tb) else np.zeros(len(a0), dtype=np.int64)
+        sample_ok = angle.min(axis=1, initial=np.inf) <= strip.tolerance  # (the angle at best)
+        near = np.where(loft_ok, loft, np.where(sample_ok, tb.take(best) if len(tb) else np.nan, np.nan))
+    t[missing] = near
     # consecutive stations in one window may have picked samples out of order
     known = ~np.isnan(t)
     t[known] = np.maximum.accumulate(t[known])

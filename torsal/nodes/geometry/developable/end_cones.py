@@ -29,6 +29,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from itertools import pairwise
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -39,7 +40,11 @@ from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
 from .stack import Stack, evaluate_each
+from .stations import LengthMap
 from .warp import consistently_oriented, sizes
+
+if TYPE_CHECKING:
+    from .strip import Strip as Lengths  # (what it reads: a strip's map_a and map_b)
 
 #: Samples of the coplanarity function used to bracket the end ruling's root.
 SAMPLES = 33
@@ -84,9 +89,13 @@ def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
     return smooth_all([(curve_a, curve_b, rulings)])[0]
 
 
-def smooth_all(strips: Sequence[tuple[Curve, Curve, Rulings]]) -> list[Rulings]:
+def smooth_all(
+    strips: Sequence[tuple[Curve, Curve, Rulings]], lengths: Sequence[Lengths] | None = None
+) -> list[Rulings]:
     """:func:`smooth_ends` of every strip ``(curve_a, curve_b, rulings)``, the end rulings of
-    all of them solved at once."""
+    all of them solved at once. Given each strip's ``lengths`` (its curves' arc-length maps,
+    as a :class:`.strip.Strip` has them), the pencils are sampled evenly along the moving
+    curve's length, not its parameter: the roots found then do not depend on its pace."""
     done: list[Rulings] = [rulings for _, _, rulings in strips]
     # per strip its runs: those of the strips whose ends may become cones
     jobs: list[tuple[int, list[_Run]]] = []
@@ -99,7 +108,8 @@ def smooth_all(strips: Sequence[tuple[Curve, Curve, Rulings]]) -> list[Rulings]:
     if not jobs:
         return done
     # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); all ends at once
-    through_b = _roots([(strips[i][0], strips[i][1], runs) for i, runs in jobs], moving_a=True)
+    through_b = _roots([(strips[i][0], strips[i][1], runs) for i, runs in jobs], True,
+                       None if lengths is None else [lengths[i].map_a for i, _ in jobs])
     cones: list[dict[bool, tuple[bool, float]]] = []
     others: list[tuple[int, list[_Run]]] = []
     for (_, runs), roots in zip(jobs, through_b, strict=True):
@@ -115,7 +125,8 @@ def smooth_all(strips: Sequence[tuple[Curve, Curve, Rulings]]) -> list[Rulings]:
         if rest:
             others.append((len(cones) - 1, rest))
     if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
-        through_a = _roots([(*strips[jobs[j][0]][:2], rest) for j, rest in others], moving_a=False)
+        through_a = _roots([(*strips[jobs[j][0]][:2], rest) for j, rest in others], False,
+                           None if lengths is None else [lengths[jobs[j][0]].map_b for j, _ in others])
         for (j, rest), roots in zip(others, through_a, strict=True):
             for run, root in zip(rest, roots, strict=True):
                 if root is not None:
@@ -193,13 +204,33 @@ def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulin
     return Rulings(head[0], head[1], head_source, head_fan), source_k
 
 
-def _roots(strips: Sequence[tuple[Curve, Curve, list[_Run]]], moving_a: bool) -> list[list[float | None]]:
+def _even_in_length(
+    x: FloatArray, maps: Sequence[LengthMap], per_strip: Stack, reverse: BoolArray, low: FloatArray,
+    high: FloatArray,
+) -> None:
+    """Rewrites the samples ``x`` of every run (from ``low`` to ``high`` in its parameters,
+    1 − u for a run read backwards) to be evenly spaced in its strip's arc length
+    (``maps``, one per strip), in place."""
+    bounds = per_strip.offsets.tolist()
+    u0, u1 = np.where(reverse, 1.0 - low, low), np.where(reverse, 1.0 - high, high)
+    for lengths, first, stop in zip(maps, bounds[:-1], bounds[1:], strict=True):  # (strips with end runs)
+        ends = lengths.length_at(np.concatenate([u0[first:stop], u1[first:stop]])).reshape(2, -1)
+        at = ends[0][:, None] + (ends[1] - ends[0])[:, None] * (_STEPS / (SAMPLES - 1))
+        u = lengths.parameter_near(at)  # (samples: their roots are refined)
+        x[first:stop] = np.where(reverse[first:stop, None], 1.0 - u, u)
+    x[:, 0] = low
+
+
+def _roots(
+    strips: Sequence[tuple[Curve, Curve, list[_Run]]], moving_a: bool, maps: Sequence[LengthMap] | None = None
+) -> list[list[float | None]]:
     """For each run of each strip ``(curve_a, curve_b, runs)``, the parameter nearest the
     first torsal ruling of the moving end of a torsal ruling with consistently oriented
     normals (signed warp near 0, not near π) through the fixed end point — B(t0) when
     ``moving_a`` (the root in (s0, sk)), else A(s0) (the root in (t0, tk)) — or None.
 
-    Each run's pencil is bracketed on :data:`SAMPLES` samples; all runs' samples are one
+    Each run's pencil is bracketed on :data:`SAMPLES` samples (evenly spaced along the
+    moving curve's length given its ``maps``, else in its parameter); all runs' samples are one
     evaluation of each strip's moving curve, which also tells the orientation
     (:func:`.warp.consistently_oriented`, with each strip's own size). Every sign change
     of every strip is then refined at once, by Newton's method inside its bracket on
@@ -230,6 +261,8 @@ def _roots(strips: Sequence[tuple[Curve, Curve, list[_Run]]], moving_a: bool) ->
     )
     # (runs, SAMPLES), in each run's parameters, as np.linspace places them
     x = low[:, None] + ((high - low) / (SAMPLES - 1))[:, None] * _STEPS
+    if maps is not None:
+        _even_in_length(x, maps, per_strip, reverse, low, high)
     x[:, -1] = high
     flip = np.repeat(reverse, SAMPLES)
     u = x.reshape(-1)

@@ -18,15 +18,17 @@ Three kinds of fan arise in a strip between curves A and B (steps 6–7 of :mod:
   developable (it unrolls exactly); what it gives up is tangency to the curves, so its
   rulings are flagged, not counted as torsal.
 
-The closing triangles follow the two stretches in step (:func:`zigzag`): the next ruling
-advances along the curve whose next vertex is nearer in *fraction of its stretch's
-length*, so the triangles are about as wide on both curves and no ruling crosses another.
+The closing triangles follow the two stretches in step (:func:`zigzag`): the next triangle
+stands on the edge (of either curve) whose middle is nearer in *fraction of its stretch's
+length*, so the triangles are about as wide on both curves, no ruling crosses another, and
+the strip read from its other end is the same.
 """
 
 from __future__ import annotations
 
 import struct
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import partial
 from math import isnan
 
 import numpy as np
@@ -45,26 +47,56 @@ from .strip import SIDE, Steady, Strip
 TIE = 1e-9
 
 
-def zigzag(length_a: FloatArray, length_b: FloatArray) -> tuple[IntArray, IntArray]:
+def zigzag(
+    length_a: FloatArray, length_b: FloatArray,
+    points: Callable[[], tuple[FloatArray, FloatArray]] | None = None,
+) -> tuple[IntArray, IntArray]:
     """Vertex indices ``(i, j)`` of the rulings of the triangle strip between a chain of
     points on A at arc lengths ``length_a`` (non-decreasing) and one on B at
     ``length_b``: from (0, 0) to (last, last), each step advancing along one chain.
+
+    Each step is an edge of one chain (a triangle with its apex on the other); the steps
+    are taken in the order of their edges' middles, as fractions of each chain's length.
+    That order reversed is the order of the chains read from their other ends, so the
+    strip is the same whichever way the curves run (stepping to the nearer next *vertex*
+    joined each vertex of B to the vertex of A before it, and read backwards, to the one
+    after it). An edge of A and one of B with the same middle (chains evenly spaced along
+    both curves) are a quad: given the chains' ``points`` it is split
+    along its shorter diagonal (``points()`` gives the chains' points, asked for only then),
+    else (and where the two are equal) A steps first.
 
     >>> i, j = zigzag(np.array([0.0, 1.0, 2.0]), np.array([0.0, 3.0, 4.0]))
     >>> i.tolist(), j.tolist()
     ([0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
     """
     fa, fb = _fractions(length_a), _fractions(length_b)
-    # fractions equal to TIE count as a tie: chains evenly spaced along both curves meet at
-    # equal fractions (1/3 and 1/3) that rounding alone would otherwise order, so that the
-    # triangles of a model moved far from the origin flipped diagonals
-    keys = np.round(np.concatenate([fa[1:], fb[1:]]) / TIE)
+    middles = 0.5 * np.concatenate([fa[1:] + fa[:-1], fb[1:] + fb[:-1]])
+    # middles equal to TIE count as a tie: chains evenly spaced along both curves meet at
+    # equal fractions that rounding alone would otherwise order, so that the triangles of a
+    # model moved far from the origin flipped diagonals
+    keys = np.round(middles / TIE)
     along_b = np.arange(len(keys)) >= len(fa) - 1
-    # step to whichever next vertex comes first, A's before B's at a tie
-    steps = along_b[np.lexsort((along_b, keys))]
+    # step along whichever edge's middle comes first, A's before B's at a tie
+    order = np.lexsort((along_b, keys))
+    steps = along_b[order]
     ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
     np.cumsum(~steps, dtype=np.int64, out=ij[0, 1:])
     np.cumsum(steps, dtype=np.int64, out=ij[1, 1:])
+    if points is None or len(keys) < 2:
+        return ij[0], ij[1]
+    # a tie of an edge of A (taken first) and one of B: the quad A_i A_i+1 B_j+1 B_j, cut
+    # along A_i+1 B_j so far; along A_i B_j+1 where that is shorter
+    sorted_keys = keys[order]
+    tie = flatnonzero((sorted_keys[1:] == sorted_keys[:-1]) & ~steps[:-1] & steps[1:])
+    if len(tie):
+        points_a, points_b = points()
+        i, j = ij[0, tie], ij[1, tie]
+        taken = norm(points_a[i + 1] - points_b[j])
+        other = norm(points_a[i] - points_b[j + 1])
+        swap = tie[other < taken * (1.0 - 1e-9)]
+        if len(swap):  # B steps first: the ruling between the two steps is A_i B_j+1
+            ij[0, swap + 1] -= 1
+            ij[1, swap + 1] += 1
     return ij[0], ij[1]
 
 
@@ -316,41 +348,49 @@ def a_fans(
 ) -> list[tuple[float, float, float]]:
     """Fans through single points of A, found where t jumps between two stations.
 
-    Along one branch t steps by about Δs·(mean slope); a much larger step means the
-    strip's path in the (s, t) square runs vertically in between: a fan of rulings
+    Along one branch B's length steps by about Δs·(mean dL/ds); a much larger step means
+    the strip's path in the (s, t) square runs vertically in between: a fan of rulings
     from one point A(s*) to a stretch of B (a triangle on a straight piece of B, or a
-    cone at a corner of A). s* solves f(s, t_mid) = 0 for s, or is the corner of A.
+    cone at a corner of A). s* solves f(s, t_mid) = 0 for s (t_mid halfway along B's
+    length), or is the corner of A.
     """
-    return a_fans_all([(strip, t, slope, regular)])[0]
+    speed = np.full(len(t), np.nan)
+    speed[regular] = norm(strip.curve_b.derivatives(t[regular], 1)[1])
+    return a_fans_all([(strip, t, slope, regular, speed)])[0]
 
 
 def a_fans_all(
-    strips: Sequence[tuple[Strip, FloatArray, FloatArray, BoolArray]],
+    strips: Sequence[tuple[Strip, FloatArray, FloatArray, BoolArray, FloatArray]],
 ) -> list[list[tuple[float, float, float]]]:
-    """:func:`a_fans` of every strip ``(strip, t, slope, regular)``, the apexes of all
+    """:func:`a_fans` of every strip ``(strip, t, slope, regular, speed)`` (``speed``: |B'|
+    at the stations on a regular branch, as the partner search found it), the apexes of all
     their fans solved at once (each strip's curves evaluated on its own rows)."""
     jumps = []
-    for strip, t, slope, regular in strips:
-        s = strip.s
+    for strip, t, slope, regular, speed in strips:
         dt = t[1:] - t[:-1]
-        predicted = 0.5 * (s[1:] - s[:-1]) * (slope[:-1] + slope[1:])
-        jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(dt - predicted) > 0.25 * dt)
+        rate, speed = _rates(strip, t, slope, speed)
+        # the steps along B's length by the trapezoid rule, against those the slopes predict
+        # (a looser bar than :func:`_jumps_along_b`'s, which measures the steps themselves)
+        step = 0.5 * dt * (speed[:-1] + speed[1:])
+        predicted = 0.5 * np.diff(strip.station_lengths) * (rate[:-1] + rate[1:])
+        with np.errstate(invalid="ignore"):
+            jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(step - predicted) > 0.2 * step)
         pairs = flatnonzero(jump)
+        mids = np.empty(0)
         if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
-            pairs = pairs[_jumps_along_b(strip, t, slope, pairs)]
-        jumps.append((dt, pairs))
+            pairs, mids = _jumps_along_b(strip, t, rate, pairs)
+        jumps.append((pairs, mids))
     found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
-    with_pairs = [i for i, (_, pairs) in enumerate(jumps) if len(pairs)]
+    with_pairs = [i for i, (pairs, _) in enumerate(jumps) if len(pairs)]
     if not with_pairs:
         return found
-    stack = Stack([len(jumps[i][1]) for i in with_pairs])
+    stack = Stack([len(jumps[i][0]) for i in with_pairs])
     owner = stack.owner()
     stations = np.cumsum([0] + [len(strips[i][0].s) for i in with_pairs])[:-1]
-    pairs = np.concatenate([jumps[i][1] for i in with_pairs])
-    t_all = np.concatenate([strips[i][1] for i in with_pairs])
+    pairs = np.concatenate([jumps[i][0] for i in with_pairs])
     s_all = np.concatenate([strips[i][0].s for i in with_pairs])
     at = pairs + stations[owner]  # (the pairs' first stations among all strips' stations)
-    t_mid = 0.5 * (t_all[at] + t_all[at + 1])
+    t_mid = np.concatenate([jumps[i][1] for i in with_pairs])
     bm0, bm1 = evaluate_each([strips[i][0].curve_b for i in with_pairs], t_mid, stack.offsets, 1)
     # f at both stations of every pair at once: rows (i, i + 1)
     a0 = np.concatenate([strips[i][0].a0 for i in with_pairs])
@@ -376,8 +416,8 @@ def a_fans_all(
         low, high = s_all[at[which]], s_all[at[which] + 1]
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
     for k, index in enumerate(with_pairs):
-        strip, t, _, _ = strips[index]
-        dt, pairs_k = jumps[index]
+        strip, t = strips[index][:2]
+        pairs_k = jumps[index][0]
         apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
         if not np.isnan(apex_k).all():
             # a root that converged onto a corner of A (a jump of f) or onto a station is that point
@@ -385,40 +425,66 @@ def a_fans_all(
                 if len(exact):
                     nearest = exact[np.argmin(np.abs(apex_k[:, None] - exact[None, :]), axis=1)]
                     apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
-        found[index] = _a_fans_of(strip, t, dt, pairs_k, apex_k)
+        found[index] = _a_fans_of(strip, t, pairs_k, apex_k)
     return found
 
 
-def _jumps_along_b(strip: Strip, t: FloatArray, slope: FloatArray, pairs: IntArray) -> BoolArray:
-    """Which of the steps ``pairs`` (i, i + 1), each a jump of t, jump along B's length too.
+def _rates(
+    strip: Strip, t: FloatArray, slope: FloatArray, speed: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """dL/dℓ = (dt/ds)·|B'|/|A'| at every station, L and ℓ the lengths along B and A (what
+    either curve's pace does to t and s cancels), and |B'| itself.
 
-    The step is read again in arc length along B, predicted from dL/ds = (dt/ds)·|B'| at
-    both stations: what B's parameterisation does to t cancels. Where B's parameter stands
-    still (|B'| = 0 at an end, a curve run as t²) dt/ds is infinite and |B'| zero, so that
-    station takes the other's dL/ds: near B(0) a curve run as t² takes steps of t like
-    √s, a jump by their slope alone, not by their length.
+    Where B's parameter stands still (|B'| = 0 at an end, a curve run as t²: the partner
+    search sees the limit of its direction there, :class:`.strip.Steady`) dt/ds is
+    infinite and |B'| zero, and where A's does |A'| is zero: that station takes the next
+    one's dL/dℓ (the one before's at the curve's end): near B(0) a curve run as t² takes
+    steps of t like √s, a jump by their slope alone, not by their length.
     """
-    both = np.concatenate([pairs, pairs + 1])
-    curve = strip.curve_b.curve if isinstance(strip.curve_b, Steady) else strip.curve_b
-    speed = norm(curve.derivatives(t[both], 1)[1])
-    still = speed <= 1e-9 * strip.chords_b[-1]
-    with np.errstate(invalid="ignore"):
-        rate = np.where(still, 0.0, slope[both] * speed)
-    k = len(pairs)
-    rate = np.where(still, rate[np.r_[k:2 * k, 0:k]], rate)  # (a still end: the other's)
-    s = strip.s
-    step = strip.length_b(t[pairs + 1]) - strip.length_b(t[pairs])
-    predicted = 0.5 * (s[pairs + 1] - s[pairs]) * (rate[:k] + rate[k:])
-    return ~(np.abs(step - predicted) <= 0.25 * step)
+    still = strip.still_a.copy()
+    if isinstance(strip.curve_b, Steady):
+        at_end = (np.abs(t[:, None] - strip.curve_b.ends[None, :]) <= 1e-12).any(axis=1)
+        speed = np.where(at_end, 0.0, speed)
+        still |= at_end
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rate = np.where(still, np.nan, slope * speed / norm(strip.a1))
+    if still.any():
+        neighbour = np.where(t > 0.5, np.arange(len(t)) - 1, np.arange(len(t)) + 1)
+        neighbour = np.minimum(np.maximum(neighbour, 0), len(t) - 1)
+        rate = np.where(still, rate[neighbour], rate)
+    return rate, speed
+
+
+def _jumps_along_b(
+    strip: Strip, t: FloatArray, rate: FloatArray, pairs: IntArray
+) -> tuple[IntArray, FloatArray]:
+    """Of the steps ``pairs`` (i, i + 1), each a jump of t, those that jump along B's length
+    too, and B's parameter halfway along its length between their two ends.
+
+    The step is measured along B's length (:attr:`.strip.Strip.map_b`) and predicted from
+    the stations' ``rate``, dL/ds (:func:`_rates`): what B's parameterisation does to t
+    cancels.
+    """
+    lengths = strip.length_b(np.concatenate([t[pairs], t[pairs + 1]])).reshape(2, -1)
+    step = lengths[1] - lengths[0]
+    along_a = strip.station_lengths
+    predicted = 0.5 * (along_a[pairs + 1] - along_a[pairs]) * (rate[pairs] + rate[pairs + 1])
+    jump = ~(np.abs(step - predicted) <= 0.25 * step)
+    return pairs[jump], strip.parameter_b(0.5 * (lengths[0] + lengths[1])[jump])
 
 
 def _a_fans_of(
-    strip: Strip, t: FloatArray, dt: FloatArray, pairs: IntArray, apex: FloatArray
+    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray
 ) -> list[tuple[float, float, float]]:
     """One strip's fans through points of A at the jumps ``pairs`` with the apexes found
     (NaN where f had no root between the two stations)."""
     s = strip.s
     fans = []
+    # (a hole is told by the steps along B's length, not its parameter)
+    known = ~np.isnan(t)
+    lengths = np.full(len(t), np.nan)
+    lengths[known] = strip.length_b(t[known])
+    dt = lengths[1:] - lengths[:-1]
     for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
         if isnan(s_star):
             inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
@@ -440,8 +506,8 @@ _NEXT = np.array([[0], [1]])
 
 
 def _dwarfs(dt: FloatArray, i: int) -> bool:
-    """Whether the step ``dt[i]`` is over twice both its neighbours (the larger of them,
-    where there are two; never with none to compare): only then is a jump of t that no
+    """Whether the step ``dt[i]`` (along B's length) is over twice both its neighbours (the
+    larger of them, where there are two; never with none to compare): only then is a jump of t that no
     torsal fan covers a hole (the slope is a poor guide where f_t vanishes, as at an
     inflection). NaN neighbours (next to a station without a partner) do not count."""
     neighbours = [float(dt[k]) for k in (i - 1, i + 1) if 0 <= k < len(dt) and not isnan(dt[k])]
@@ -508,7 +574,7 @@ def close_gaps(
         if gap[i] or gap[i + 1]:
             continue  # closed with the gap around it
         tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
-        a, b = zigzag(strip.station_lengths[i : i + 2], lb)
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
         inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
         added.append((strip.s[i + a[inner]], tb[b[inner]]))
     # the runs of gap stations: where ``gap`` padded with False on both sides changes
@@ -554,10 +620,10 @@ def _closing(
     if t_hi < t_lo:  # through the seam of a closed B
         (before, lb_before), (after, lb_after) = strip.gap_lengths(t_lo, 1.0), strip.gap_lengths(0.0, t_hi)
         tb = np.concatenate([before, after[1:]])
-        lb = np.concatenate([lb_before, lb_after[1:] + strip.chords_b[-1]])
+        lb = np.concatenate([lb_before, lb_after[1:] + strip.map_b.total])
     else:
         tb, lb = strip.gap_lengths(t_lo, t_hi)
-    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb)
+    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb, partial(_chains, strip, k0, k1 + 1, tb))
     # the first ruling from each gap station is its station ruling (i runs through every
     # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
     own = np.empty(len(i), dtype=bool)
@@ -576,6 +642,11 @@ def _closing(
         for array in added:
             array.setflags(write=False)
     return partners, added
+
+
+def _chains(strip: Strip, first: int, stop: int, tb: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The points of a closing's two chains: stations ``first`` to ``stop`` − 1 on A, B at ``tb``."""
+    return strip.a0[first:stop], strip.curve_b.point_at(tb)
 
 
 def outside_gaps(fans: list, s: FloatArray, gap: BoolArray) -> list:

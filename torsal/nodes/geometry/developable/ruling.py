@@ -332,20 +332,20 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
         n = len(strip.s)
         has = chosen >= 0
         t = np.full(n, np.nan)
-        slope = np.zeros(n)
+        slope, speed = np.zeros(n), np.full(n, np.nan)
         partner = chosen[has]
-        t[has], slope[has] = good.t[partner], good.slope[partner]
-        partners.append((t, slope, has))
+        t[has], slope[has], speed[has] = good.t[partner], good.slope[partner], norm(good.tangents[partner])
+        partners.append((t, slope, has, speed))
     # stations without a partner get one first, so that a planar piece's fans end where
     # the next station's partner is (two curves in one plane: otherwise a fan over all of
     # B, then a partner running back)
-    near_partners_all(strips, [t for t, _, _ in partners])
+    near_partners_all(strips, [t for t, _, _, _ in partners])
     flat, jumps = [], []
-    for strip, (chosen, good), (t, slope, has) in zip(strips, choices, partners, strict=True):
+    for strip, (chosen, good), (t, slope, has, speed) in zip(strips, choices, partners, strict=True):
         fans, planar = flat_fans(strip, t, chosen, good)
         flat.append(fans)
-        jumps.append((strip, t, slope, has & ~planar))  # (the stations on a regular branch)
-    for strip, (chosen, good), (t, _, _), fans, more in zip(
+        jumps.append((strip, t, slope, has & ~planar, speed))  # (the stations on a regular branch)
+    for strip, (chosen, good), (t, _, _, _), fans, more in zip(
         strips, choices, partners, flat, a_fans_all(jumps), strict=True
     ):
         solves.append(_Solve(strip, chosen, good, t, fans + more))
@@ -378,8 +378,10 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     # the curve's end point, where that ruling exists (see .end_cones)
     given = [Rulings(*solve.rulings) for solve in solves]
     smoothed = []
-    curves = [(solve.strip.curve_a, solve.strip.curve_b) for solve in solves]
-    ends = smooth_all([(*pair, r) for pair, r in zip(curves, given, strict=True)])
+    curves = [(solve.strip.steady_a, solve.strip.curve_b) for solve in solves]
+    # (the pencils sampled along each curve's length, as the strip measures it)
+    strips = [solve.strip for solve in solves]
+    ends = smooth_all([(*pair, r) for pair, r in zip(curves, given, strict=True)], strips)
     for solve, rulings, smooth in zip(solves, given, ends, strict=True):
         s_out = rulings.s
         if smooth is not rulings and (len(smooth.s) != len(s_out) or not np.array_equal(smooth.s, s_out)):
@@ -458,14 +460,23 @@ def _merge(
         t_parts.append(t_add)
         gap_parts.append(np.ones(len(s_add), dtype=bool))
     s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
-    order = np.lexsort((np.arange(len(s_all)) >= n, t_all, s_all))
+    # of equal rulings keep the station, else a torsal fan's, else an added one (rank 0, 1, 2)
+    rank = np.where(np.arange(len(s_all)) < n, 0, np.where(gap_all, 2, 1))
+    order = np.lexsort((rank, t_all, s_all))
     repeat = np.zeros(len(order), dtype=bool)
     s_sorted, t_sorted = s_all[order], t_all[order]
-    repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (t_sorted[1:] - t_sorted[:-1] <= 1e-14)
-    # of two equal rulings keep the station (an added ruling sorts after its equal station)
-    later_station = flatnonzero(repeat & (order < n))
-    order[later_station - 1] = order[later_station]
-    order = order[~repeat]
+    # equal: the same point of A, and points of B within 1e-12 of its length (one point
+    # reached by two ways of counting along B: rounding, in t, depends on its pace)
+    lengths = strip.length_b(t_sorted)
+    repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (
+        (t_sorted[1:] - t_sorted[:-1] <= 1e-14) | (lengths[1:] - lengths[:-1] <= 1e-12 * strip.map_b.total)
+    )
+    if repeat.any():  # (equal to rounding: the better-ranked one may sort after the other)
+        group = np.cumsum(~repeat) - 1
+        best = np.lexsort((rank[order], group))
+        first = np.ones(len(best), dtype=bool)
+        first[1:] = group[best[1:]] != group[best[:-1]]
+        order = order[best[first]]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
 
 def _fan_folds_all(solves: list[_Solve]) -> list[tuple[IntArray, FloatArray, FloatArray]]:

@@ -32,6 +32,9 @@ from ..curve_base import FloatArray
 
 #: Cost per unit of t of stepping backwards (rulings crossing); large but finite.
 BACKWARD_PENALTY = 1e3
+#: The weight of a step's miss in :func:`longest_chain` where it skips stations that had
+#: candidates (only to tell apart chains that would otherwise cost the same).
+SKIP = 1e-6
 
 
 def _minplus(x: FloatArray, y: FloatArray) -> FloatArray:
@@ -144,8 +147,11 @@ def longest_chain(t: FloatArray, slope: FloatArray, s: FloatArray, end_weight: f
         longest = np.where(allowed, count[None, :low], 0).max(axis=1)
         ds = cand_s[here, None] - cand_s[None, :low]
         predicted = 0.5 * ds * (cand_slope[here, None] + cand_slope[None, :low])
-        # a step over a station that had candidates is a jump whatever the slopes say
-        miss = np.where(rows[None, :low] == previous, np.abs(step - predicted), 0.0)
+        # a step over a station that had candidates is a jump whatever the slopes say: its
+        # miss counts only to part chains that tie (SKIP of it: a cost the chain read from
+        # its other end gives alike, where the first of two equal ones was not)
+        miss = np.abs(step - predicted)
+        miss = np.where(rows[None, :low] == previous, miss, SKIP * np.nan_to_num(miss))
         through = np.where(allowed & (count[None, :low] == longest[:, None]), cost[None, :low] + miss, np.inf)
         best = np.argmin(through, axis=1)
         first = longest == 0

@@ -4,14 +4,15 @@ The developable nodes place their ``Segments + 1`` rulings at stations spaced ev
 arc length along the base curve, as Grasshopper's *Divide Curve* does (the thesis
 divides the curve that way); ``spacing="parameter"`` spaces them evenly in t instead.
 
-The arc length here is a light table: Gauss–Legendre on a fixed partition of every
-smooth span, read back by cubic Hermite interpolation (the speed |C'| is the exact slope
-of the length at each node), inverted by Newton steps from a linear guess, and the
-stations then polished by one Newton step on the integral of the quintic through each
-piece's six speeds (its ends and Gauss nodes). The cubic alone spaces stations evenly to
-about 1e-9 of the length on a wavy curve — not enough for a strip that must not depend
-on how its curve is parameterised (the same curve run as t² moved its stations by that);
-the quintic to about 1e-15. It is still several times cheaper than the curve's own
+The arc length here is a light table: Gauss–Legendre on a partition of every smooth span,
+its pieces checked in pairs against a rule of higher order and split where they disagree
+(a knot the curve does not report, as in a NURBS run as t²), read back by the integral
+of the quintic through each piece's six speeds (its ends and Gauss nodes), and inverted
+by Newton steps on that same quintic from the inverse of the piece's Hermite cubic, until
+they stand still: t → ℓ → t comes back to rounding, so two ways of reaching one point of
+a curve agree, and a strip does not depend on how its curves are parameterised (the same
+curve run as t² or backwards gives the same stations, fans and closing triangles to
+~1e-11 of its size). It is still several times cheaper than the curve's own
 :class:`~..arclength.LengthTable`, which matters when a slider rebuilds the curve on
 every solve.
 """
@@ -23,6 +24,7 @@ from functools import lru_cache
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from numpy.polynomial.legendre import legvander
 from numpy.typing import ArrayLike
 from scipy.special import roots_legendre
 
@@ -44,6 +46,27 @@ _FIT = np.linalg.inv(np.vander(np.concatenate([[0.0], 0.5 * (_NODES + 1.0), [1.0
 #: The same six speeds to the coefficients of u¹…u⁶ of the arc length from the piece's start.
 _INTEGRAL = _FIT.T / _POWERS[None, 1:]
 
+#: Where two neighbouring pieces (a *pair*, as [0, 1]) have their 11 speeds: its start, the
+#: first piece's Gauss nodes, its middle, the second's Gauss nodes and its end.
+_PAIR_AT = np.concatenate([[0.0], 0.25 * (_NODES + 1.0), [0.5], 0.25 * (_NODES + 3.0), [1.0]])
+#: Those 11 speeds to (the integral over the pair by the rule through all of them, exact to
+#: degree 11) − (the two pieces' Gauss rules, exact to degree 7 on each), per half width:
+#: the Gauss rules' error, for a speed smooth at the pair's scale. (The weights solved in the
+#: Legendre basis, where the system is well conditioned.)
+_PAIR_CHECK = np.linalg.solve(legvander(2.0 * _PAIR_AT - 1.0, 10).T, 2.0 * np.eye(11)[0]) - np.concatenate(
+    [[0.0], 0.5 * _WEIGHTS, [0.0], 0.5 * _WEIGHTS, [0.0]]
+)
+#: The weights of :data:`_PAIR_CHECK` for the pair's two pieces' Gauss nodes, as they lie.
+_PAIR_INNER = _PAIR_CHECK[np.r_[1:5, 6:10]]
+#: A pair of pieces is split in two pairs while its estimated error exceeds this share of the
+#: curve's length ...
+PAIR_TOLERANCE = 1e-13
+#: ... for at most this many rounds, and while the pairs are at most this many times as many
+#: as at the start (a speed that is noisy everywhere must not split without end).
+ROUNDS, GROWTH = 24, 8
+#: At most this many Newton steps polish :meth:`LengthMap.parameter_at` (1 or 2, measured).
+_POLISH = 8
+
 
 @lru_cache(maxsize=64)
 def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]:
@@ -57,8 +80,10 @@ def _layout(breaks: tuple[float, ...], intervals: int) -> tuple[FloatArray, ...]
     """
     edges = np.array(breaks)
     widths = np.diff(edges)
-    # pieces in proportion to each span's share of the parameter, at least eight per span
+    # pieces in proportion to each span's share of the parameter, at least eight per span and
+    # an even number (they are checked in pairs: :func:`_refined`)
     counts = np.maximum(8, np.ceil(intervals * widths).astype(int))
+    counts += counts % 2
     span = np.repeat(np.arange(len(widths)), counts)
     local = np.arange(len(span)) - np.repeat(np.cumsum(counts) - counts, counts)
     low = edges[span] + widths[span] * local / counts[span]
@@ -77,10 +102,12 @@ class LengthMap:
 
     About ``intervals`` pieces are spread over the curve's smooth spans in proportion to
     their parameter width (at least eight per span);
-    each piece is integrated with the 4-point Gauss–Legendre rule (exact to rounding on
-    pieces this short: its error falls as the 8th power of their length). Between the
-    piece ends ℓ(t) is the cubic with the right values and slopes (the speed), kept as
-    ℓ = ℓ0 + u·(d0 + u·(c2 + u·c3)) in the piece's own coordinate u.
+    each piece is integrated with the 4-point Gauss–Legendre rule (its error falls as the 8th
+    power of the pieces' length: exact to rounding where the speed is smooth at their
+    scale), and neighbouring pieces whose rule is not (a knot the curve does not report,
+    a sharp bend; see :func:`_refined`) are split until it is. Within a piece ℓ(t) is
+    the integral of the quintic through the piece's six speeds, kept as its coefficients
+    in the piece's own coordinate u.
     """
 
     def __init__(self, curve: Curve, intervals: int = 128) -> None:
@@ -99,8 +126,7 @@ class LengthMap:
 
     def _set(
         self, curve: Curve, nodes: FloatArray, lengths: FloatArray, start_speeds: FloatArray,
-        end_speeds: FloatArray, width: FloatArray, rise: FloatArray, d0: FloatArray, c2: FloatArray,
-        c3: FloatArray, samples: FloatArray,
+        end_speeds: FloatArray, width: FloatArray, rise: FloatArray, inverse: FloatArray, poly: FloatArray,
     ) -> None:
         self.curve = curve
         self.nodes: FloatArray = nodes
@@ -111,10 +137,10 @@ class LengthMap:
         #: Total arc length of the curve.
         self.total: float = float(lengths[-1])
         self._width, self._rise = width, rise
-        self._d0, self._c2, self._c3 = d0, c2, c3
-        # the speeds at each piece's ends and Gauss nodes (in its own coordinate u), for the
-        # read-back of :meth:`_rises`
-        self._samples = samples
+        #: per piece, du/dv at its ends for v = (ℓ − ℓ0)/its length (inf where the speed is 0)
+        self._inverse = inverse
+        #: per piece, the coefficients of u⁰…u⁶ of ℓ − ℓ0 (row 0) and of its slope (row 1)
+        self._poly = poly
 
     def length_at(self, t: ArrayLike) -> FloatArray:
         """Arc length from t = 0 to each ``t``."""
@@ -128,10 +154,16 @@ class LengthMap:
         through the six speeds each piece has (its ends and Gauss nodes), exact to ~h⁷
         where the Hermite cubic alone is to ~h⁴ (1e-9 of the length on a wavy curve:
         enough for stations to move by that when the curve's parameter changes)."""
-        return np.einsum("...j,...j->...", u[..., None] ** _POWERS[1:], self._samples[k] @ _INTEGRAL)
+        return np.einsum("...j,...j->...", u[..., None] ** _POWERS, self._poly[k, 0])
+
+    def parameter_near(self, length: ArrayLike) -> FloatArray:
+        """:meth:`parameter_at` read linearly between the pieces' ends (to ~1e-5 of the
+        length, for a tenth of the work: enough to place samples that are not rulings)."""
+        return np.interp(length, self.lengths, self.nodes)
 
     def parameter_at(self, length: ArrayLike) -> FloatArray:
-        """The t at which the arc length from the start equals ``length`` (clipped to the curve)."""
+        """The t at which the arc length from the start equals ``length`` (clipped to the
+        curve), to rounding."""
         length = np.asarray(length, dtype=float)
         return _parameters_at([self], length.reshape(-1), Stack([length.size]))[0].reshape(length.shape)
 
@@ -139,9 +171,10 @@ class LengthMap:
 def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, ...]]:
     """The tables of a :class:`LengthMap` of each of ``curves`` (what :meth:`LengthMap._set`
     takes after the curve), each the one the curve gets alone, bit for bit: each curve's
-    speed is evaluated on its own, and so are its pieces' Gauss sums and their running total
-    (a matrix product's and a cumulative sum's rounding depend on what else is in the
-    array); the rest runs once for all of them."""
+    speed is evaluated on its own, its pieces refined on their own (:func:`_refined`), and
+    so are its pieces' Gauss sums, their running total and the quintics' coefficients (a
+    matrix product's and a cumulative sum's rounding depend on what else is in the array);
+    the rest runs once for all of them."""
     layouts, speeds = [], []
     for curve in curves:
         breaks = tuple(curve._breakpoints().tolist())
@@ -151,42 +184,57 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
     stacked = np.concatenate(speeds)
     stacked = np.sqrt(dot(stacked, stacked))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
     # each curve's speeds: at its Gauss nodes, its piece ends, just before its breakpoints
-    pieces, lengths, starts, ends, gauss = [], [], [], [], []
+    all_nodes, halves, pieces, lengths, starts, ends, gauss = [], [], [], [], [], [], []
     offset = 0
-    for nodes, nodes_gauss, half, last, at in layouts:
+    for curve, (nodes, nodes_gauss, half, last, at) in zip(curves, layouts, strict=True):
         g, m = len(nodes_gauss), len(nodes)
         own = stacked[offset : offset + len(at)]
         offset += len(at)
-        gauss.append(own[:g].reshape(-1, 4))
-        pieces.append(half * (gauss[-1] @ _WEIGHTS))
-        lengths.append(np.empty(m))
+        inner = own[:g].reshape(-1, 4)
+        start = own[g : g + m - 1]
+        end = own[g + 1 : g + m].copy()
+        end[last] = own[g + m :]
+        piece = half * (inner @ _WEIGHTS)
+        refined = _refined(curve, nodes, inner, start, end, float(piece.sum()))
+        if refined is not None:  # (some pieces were split: their widths differ)
+            nodes, inner, start, end = refined
+            half = 0.5 * (nodes[1:] - nodes[:-1])
+            piece = half * (inner @ _WEIGHTS)
+        all_nodes.append(nodes)
+        halves.append(half)
+        gauss.append(inner)
+        pieces.append(piece)
+        lengths.append(np.empty(len(nodes)))
         lengths[-1][0] = 0.0
-        np.cumsum(pieces[-1], out=lengths[-1][1:])
-        starts.append(own[g : g + m - 1])
-        ends.append(own[g + 1 : g + m].copy())
-        ends[-1][last] = own[g + m :]
+        np.cumsum(piece, out=lengths[-1][1:])
+        starts.append(start)
+        ends.append(end)
     rise = np.concatenate(pieces)
-    h = 2.0 * np.concatenate([layout[2] for layout in layouts])
+    h = 2.0 * np.concatenate(halves)
     d0, d1 = np.concatenate(starts) * h, np.concatenate(ends) * h
-    c2 = 3.0 * rise - 2.0 * d0 - d1
-    c3 = d0 + d1 - 2.0 * rise
     samples = np.empty((len(rise), 6))
     samples[:, 0], samples[:, 5] = d0, d1
     np.multiply(np.concatenate(gauss), h[:, None], out=samples[:, 1:5])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inverse = np.column_stack([rise / d0, rise / d1])
+    poly = np.zeros((len(rise), 2, 7))
     tables = []
     low = 0
-    for layout, length, start, end in zip(layouts, lengths, starts, ends, strict=True):
+    for nodes, length, start, end in zip(all_nodes, lengths, starts, ends, strict=True):
         high = low + len(start)
-        own = (h, rise, d0, c2, c3, samples)
-        tables.append((layout[0], length, start, end, *(x[low:high] for x in own)))
+        poly[low:high, 0, 1:] = samples[low:high] @ _INTEGRAL
+        own = (h, rise, inverse, poly)
+        tables.append((nodes, length, start, end, *(x[low:high] for x in own)))
         low = high
+    poly[:, 1, :6] = poly[:, 0, 1:] * _POWERS[1:]
     return tables
 
 
 def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) -> list[FloatArray]:
     """:meth:`LengthMap.parameter_at` of each map of ``maps`` at its rows of ``length`` (as
-    ``stack`` says), run once for all of them (each map's search and matrix product on its
-    own rows: each gets what it gets alone, bit for bit)."""
+    ``stack`` says), run once for all of them, each map's rows getting what they get alone,
+    bit for bit (each map's search on its own rows, and its Newton steps stop when its own
+    rows stand still)."""
     totals = np.array([m.total for m in maps])
     target = np.minimum(np.maximum(length, 0.0), stack.repeat(totals))
     pieces = Stack([len(m._rise) for m in maps])
@@ -196,27 +244,54 @@ def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) 
     k = np.minimum(k, stack.repeat(pieces.counts - 1))
     on_piece = k + stack.repeat(pieces.starts)  # (each map's pieces among all of them)
     on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
-    d0, c2, c3, rise, width, nodes, lengths = (np.concatenate([getattr(m, name) for m in maps]) for name in (
-        "_d0", "_c2", "_c3", "_rise", "_width", "nodes", "lengths"))
-    d0, c2, c3 = d0[on_piece], c2[on_piece], c3[on_piece]
+    inverse, poly, rise, width, nodes, lengths = (
+        getattr(maps[0], name) if len(maps) == 1 else np.concatenate([getattr(m, name) for m in maps])
+        for name in ("_inverse", "_poly", "_rise", "_width", "nodes", "lengths"))
+    inverse, poly = inverse[on_piece], poly[on_piece]
     gap = target - lengths[on_node]
-    u = gap / np.maximum(rise[on_piece], 1e-300)
-    # two Newton steps on the piece's cubic ℓ(u) − target from the linear guess
+    v = gap / np.maximum(rise[on_piece], 1e-300)
+    # u(v) on the piece as the cubic with u' = ℓ_piece/ℓ'(u) at its ends (the inverse of
+    # ℓ's Hermite cubic, to the same order), or v itself where the speed is 0 there
+    w = 1.0 - v
+    with np.errstate(invalid="ignore"):  # (0·inf where the speed is 0: v is taken there)
+        u = v * (w * (w * inverse[:, 0] - v * inverse[:, 1]) + v * (3.0 - 2.0 * v))
+    u = np.minimum(np.maximum(np.where(np.isfinite(u), u, v), 0.0), 1.0)
+    # then Newton on the quintic's integral (:meth:`LengthMap._rises`, the length
+    # :meth:`LengthMap.length_at` reads back) with its own slope, the quintic speed, until it
+    # stands still: from the cubic one step mostly reaches rounding, but not where the speed
+    # changes fast within a piece (a rational rail, a curve run as t²: 1e-6 of the length was
+    # left). Each map stops when its own rows' steps are all within 1e-9 (Newton's error
+    # squares at every step: after one under 1e-9 the next is rounding).
     floor = stack.repeat(1e-12 * np.maximum(totals, 1e-300))
-    c2_twice = 2.0 * c2
-    for _ in range(2):
-        slope = d0 + u * (c2_twice + 3.0 * u * c3)
-        step = (u * (d0 + u * (c2 + u * c3)) - gap) / np.maximum(slope, floor)
-        u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-    # then one on the quintic's integral (:meth:`LengthMap._rises`; the cubic's slope is the
-    # speed to ~1e-9): the cubic's root is within ~1e-9 of the length of its, so one step
-    # reaches rounding
-    integrals = np.concatenate([m._samples[k[low:high]] @ _INTEGRAL
-                                for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
-    rises = np.einsum("...j,...j->...", u[..., None] ** _POWERS[1:], integrals)
-    step = (rises - gap) / np.maximum(slope, floor)
-    u = np.minimum(np.maximum(u - np.where(slope > floor, step, 0.0), 0.0), 1.0)
-    return stack.split(np.minimum(nodes[on_node] + u * width[on_piece], 1.0))
+    moving = stack.counts > 0  # (the maps still stepping)
+    rows = np.arange(stack.rows)
+    for _ in range(_POLISH):
+        if len(maps) > 1:
+            rows = np.flatnonzero(stack.repeat(moving))
+        at, step_poly, step_floor = u[rows], poly[rows], floor[rows]
+        powers = at[:, None] ** _POWERS
+        value = (step_poly[:, 0, :] * powers).sum(axis=-1) - gap[rows]
+        slope = (step_poly[:, 1, :] * powers).sum(axis=-1)
+        step = np.where(slope > step_floor, value / np.maximum(slope, step_floor), 0.0)
+        u[rows] = np.minimum(np.maximum(at - step, 0.0), 1.0)
+        largest = np.zeros(len(maps))
+        np.maximum.at(largest, np.searchsorted(stack.offsets, rows, side="right") - 1, np.abs(step))
+        moving &= largest > 1e-9
+        if not moving.any():
+            break
+    # (the whole length is the curve's end exactly, not a rounding short of it)
+    whole = target < stack.repeat(totals)
+    return stack.split(np.where(whole, np.minimum(nodes[on_node] + u * width[on_piece], 1.0), 1.0))
+
+
+def parameters_at(maps: Sequence[LengthMap], lengths: Sequence[FloatArray]) -> list[FloatArray]:
+    """:meth:`LengthMap.parameter_at` of each map of ``maps`` at its ``lengths`` (1-d), for
+    every map at once: each gets what it gets alone, bit for bit."""
+    if not len(maps):
+        return []
+    stack = Stack.of(lengths)
+    joined = np.concatenate(lengths) if len(lengths) else np.empty(0)
+    return _parameters_at(maps, joined.astype(float, copy=False), stack)
 
 
 def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[FloatArray]:
@@ -230,6 +305,56 @@ def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[
     for t in found:
         t[0], t[-1] = 0.0, 1.0
     return [np.maximum.accumulate(t) for t in found]
+
+def _refined(
+    curve: Curve, nodes: FloatArray, inner: FloatArray, start: FloatArray, end: FloatArray, total: float
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray] | None:
+    """The pieces of a :class:`LengthMap` split until each one's Gauss rule is exact to
+    :data:`PAIR_TOLERANCE` of the curve's length (``total``, as they measure it), or None
+    where all of them are already.
+
+    The pieces (ends ``nodes``, speeds at their Gauss nodes ``inner``, at their ``start``
+    and ``end``) are checked in pairs of neighbours within a span: the rule through the
+    pair's 11 speeds is exact to degree 11 where the two Gauss rules are to degree 7, so
+    their difference (:data:`_PAIR_CHECK`) is the Gauss rules' error wherever the speed is
+    smooth at the pair's scale, and where it is not (a knot inside a piece: a NURBS run as
+    t², whose parameter no longer reports where its knots are) the difference is of the
+    error's size. Each piece of a pair that fails becomes a pair of its own (9 new speeds:
+    its middle and its halves' Gauss nodes), checked again; a piece's end at a breakpoint
+    keeps its speed from the left. Returns the new ``nodes, inner, start, end``.
+    """
+    low, width = nodes[:-2:2], nodes[2::2] - nodes[:-2:2]
+    # (the check of every pair from the pieces' speeds as they lie, without gathering them)
+    rule = inner.reshape(-1, 8) @ _PAIR_INNER + start[::2] * _PAIR_CHECK[0] + end[::2] * _PAIR_CHECK[5]
+    check = np.abs(width * (rule + end[1::2] * _PAIR_CHECK[10]))
+    tolerance = 2.0 * PAIR_TOLERANCE * total
+    bad = check > tolerance
+    if not bad.any():
+        return None
+    samples = np.column_stack([start[::2], inner[::2], end[::2], inner[1::2], end[1::2]])
+    budget = GROWTH * len(low)
+    for _ in range(ROUNDS):
+        if not bad.any() or len(low) + np.count_nonzero(bad) > budget:
+            break
+        # the two halves of every failing pair, as pairs: their ends are known, the rest new
+        halves = np.repeat(0.5 * width[bad], 2)
+        starts = np.column_stack([low[bad], low[bad] + 0.5 * width[bad]]).ravel()
+        at = starts[:, None] + halves[:, None] * _PAIR_AT[None, 1:-1]
+        d1 = curve.derivative_at(at.reshape(-1), 1)
+        new = np.empty((len(starts), 11))
+        new[:, 1:-1] = np.sqrt(dot(d1, d1)).reshape(len(starts), 9)
+        new[:, [0, -1]] = samples[bad][:, [0, 5, 5, 10]].reshape(-1, 2)
+        low = np.concatenate([low[~bad], starts])
+        width = np.concatenate([width[~bad], halves])
+        samples = np.concatenate([samples[~bad], new])
+        bad = np.concatenate([np.zeros(len(bad) - np.count_nonzero(bad), dtype=bool),
+                              np.abs(halves * (new @ _PAIR_CHECK)) > tolerance])
+    order = np.argsort(low, kind="stable")
+    low, width, samples = low[order], width[order], samples[order]
+    # back to pieces: each pair's two halves
+    nodes = np.append(np.column_stack([low, low + 0.5 * width]).ravel(), nodes[-1])
+    inner = samples[:, np.r_[1:5, 6:10]].reshape(-1, 4)
+    return nodes, inner, samples[:, [0, 5]].reshape(-1), samples[:, [5, 10]].reshape(-1)
 
 
 def station_parameters(

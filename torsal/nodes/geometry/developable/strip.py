@@ -26,7 +26,7 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .stack import Stack, evaluate_each
-from .stations import LengthMap, Spacing, spaced_parameters
+from .stations import LengthMap, Spacing, parameters_at, spaced_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
@@ -37,7 +37,8 @@ SIDE = 1e-11
 class Steady(Curve):
     """A curve whose parameter stands still at an end (C'(t) = 0 there: a curve run as t²,
     a NURBS with a doubled end control point), with the tangent there replaced by the
-    direction it tends to, C''(t): the same points, the geometric tangent. Without it
+    direction it tends to: C'(t) ≈ (t − end)·C''(end), so C'' at the start and −C'' at
+    the end (the curve run forwards as ever). The same points, the geometric tangent. Without it
     det[B − A, A', B'] vanishes at that end for every station, whatever the ruling, and the
     strip took it for a partner of all of them (a fan through B's end)."""
 
@@ -46,11 +47,12 @@ class Steady(Curve):
         self.closed, self.domain = curve.closed, curve.domain
 
     def _steadied(self, t: FloatArray, values: list[FloatArray], order: int) -> list[FloatArray]:
-        at = np.isin(t, self.ends)
+        # (within 1e-12 of the end: there C' is rounding, its direction anything)
+        at = (np.abs(t[:, None] - self.ends[None, :]) <= 1e-12).any(axis=1)
         if order >= 1 and at.any():
             second = self.curve.derivatives(t[at], 2)[2]
             values[1] = values[1].copy()
-            values[1][at] = second
+            values[1][at] = np.where(t[at, None] > 0.5, -second, second)
         return values
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
@@ -154,15 +156,22 @@ class Strip:
 
     def __init__(
         self, curve_a: Curve, curve_b: Curve, segments: int, tolerance: float, spacing: Spacing,
-        map_a: LengthMap, s: FloatArray, a: tuple[FloatArray, FloatArray, FloatArray], kinks_a: FloatArray,
-        grid: Grid, kinks_b: FloatArray, chords_b: FloatArray,
+        map_a: LengthMap, s: FloatArray, a: tuple[FloatArray, FloatArray, FloatArray], still_a: BoolArray,
+        kinks_a: FloatArray, grid: Grid, kinks_b: FloatArray, chords_b: FloatArray,
     ) -> None:
         self.curve_a, self.curve_b = curve_a, curve_b
         self.segments, self.tolerance, self.spacing = segments, tolerance, spacing
         self.map_a, self.s = map_a, s
         self.a0, self.a1, self.a2 = a  #: A and its first two derivatives at the stations
+        #: per station, whether A's parameter stands still there (A' is then along ±A'')
+        self.still_a: BoolArray = still_a
+        #: A, as a :class:`Steady` curve where it stands still at an end (for the end cones'
+        #: pencils through its end points)
+        ends = np.array([0.0, 1.0])[[bool(still_a[0]), bool(still_a[-1])]]
+        self.steady_a: Curve = Steady(curve_a, ends) if len(ends) else curve_a
         self.kinks_a, self.grid, self.kinks_b = kinks_a, grid, kinks_b
-        #: Arc length along the polyline through B's samples to each sample.
+        #: Arc length along the polyline through B's samples to each sample (for the check
+        #: that B has a length, before anything is measured along it).
         self.chords_b = chords_b
         #: pairs of stations (i, i + 1) between which t jumps over a stretch of B that no
         #: torsal fan covers (set by :func:`.fans.a_fans`)
@@ -177,14 +186,42 @@ class Strip:
         self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
 
     def length_b(self, t: FloatArray) -> FloatArray:
-        """Arc length along B to each ``t``, as the length of the polyline through B's samples
-        (exact on straight pieces, within ~1e-5 elsewhere: ample for placing the plain loft's
-        rulings at invalid stations and a fan's rulings at about the station spacing)."""
-        return np.interp(t, self.grid.t, self.chords_b)
+        """Arc length along B to each ``t`` (:attr:`map_b`): fans' rulings and the plain
+        loft's partners are placed by it, so they lie where they do whatever B's pace."""
+        return self.map_b.length_at(t)
 
     def parameter_b(self, length: FloatArray) -> FloatArray:
         """The inverse of :meth:`length_b`."""
-        return np.interp(length, self.chords_b, self.grid.t)
+        return self.map_b.parameter_at(length)
+
+    @cached_property
+    def map_b(self) -> LengthMap:
+        """Arc length along B (the curve itself: a :class:`Steady` B's tangent at its still
+        end is not its speed), made when a solve first needs it (:func:`with_maps_b` makes
+        those of many strips together)."""
+        return LengthMap(self.measured_b)
+
+    @property
+    def measured_b(self) -> Curve:
+        """The curve :attr:`map_b` measures: B itself (not its :class:`Steady` stand-in)."""
+        return self.curve_b.curve if isinstance(self.curve_b, Steady) else self.curve_b
+
+    def even_b(self, low: FloatArray, high: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """B's samples evenly spaced along its length (as many over all of B as :attr:`grid`
+        has) that lie within any of the stretches from ``low`` to ``high`` of its length,
+        and its corners: their parameters, B and B' there (where a station without a torsal
+        partner looks for its least-warped one: the same points whatever B's pace)."""
+        return even_all([self], [low], [high])[0]
+
+    def _even_lengths(self, low: FloatArray, high: FloatArray) -> FloatArray:
+        """The lengths along B of :meth:`even_b`'s samples (without its corners)."""
+        count = len(self.grid.t)
+        step = self.map_b.total / (count - 1)
+        first = np.maximum(np.ceil(low / step - 1e-9), 0).astype(np.int64)
+        last = np.minimum(np.floor(high / step + 1e-9), count - 1).astype(np.int64)
+        sizes = np.maximum(last - first + 1, 0)
+        k = np.repeat(first - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
+        return np.unique(k) * step
 
     @cached_property
     def station_lengths(self) -> FloatArray:
@@ -243,6 +280,31 @@ class Strip:
 
 
 
+def with_maps_b(strips: Sequence[Strip]) -> None:
+    """Makes :attr:`Strip.map_b` of every strip of ``strips`` that has none yet, all of them
+    together (:meth:`.stations.LengthMap.many`: each the map it gets alone, bit for bit)."""
+    missing = [strip for strip in strips if "map_b" not in vars(strip)]
+    if missing:
+        for strip, length_map in zip(missing, LengthMap.many([s.measured_b for s in missing]), strict=True):
+            vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
+
+
+def even_all(
+    strips: Sequence[Strip], lows: Sequence[FloatArray], highs: Sequence[FloatArray]
+) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
+    """:meth:`Strip.even_b` of every strip (``lows[i]`` to ``highs[i]`` along its B), their
+    lengths inverted together and each B evaluated once (:func:`.stack.evaluate_each`)."""
+    if not strips:
+        return []
+    with_maps_b(strips)
+    lengths = [strip._even_lengths(low, high) for strip, low, high in zip(strips, lows, highs, strict=True)]
+    found = parameters_at([strip.map_b for strip in strips], lengths)
+    ts = [np.unique(np.concatenate([t, strip.kinks_b])) for strip, t in zip(strips, found, strict=True)]
+    rows = Stack.of(ts)
+    points, tangents = evaluate_each([strip.curve_b for strip in strips], np.concatenate(ts), rows.offsets, 1)
+    return list(zip(ts, rows.split(points), rows.split(tangents), strict=True))
+
+
 def set_up(
     jobs: Sequence[tuple[Curve, Curve, int, float]], spacing: Spacing, samples: int
 ) -> list[Strip | ValueError]:
@@ -288,8 +350,11 @@ def set_up(
     turns = Stack(sides).split(_jumps(a1[left], a1[left + np.repeat(sides, sides)]))
     # where A's parameter stands still (A'(s) = 0: a curve run as t²), its tangent is the
     # limit of A'/|A'|, the direction of A'' there: the strip does not depend on the pace
-    still = flatnonzero(norm(a1) <= 1e-9 * rows.repeat(np.array([maps[i].total for i in kept])))
-    a1[still] = a2[still]  # (beside a breakpoint too: those rows only find the corners)
+    still_rows = norm(a1) <= 1e-9 * rows.repeat(np.array([maps[i].total for i in kept]))
+    still = flatnonzero(still_rows)
+    # (A' ≈ (s − s0)·A'': −A'' where A stands still at its end; beside a breakpoint too:
+    # those rows only find the corners)
+    a1[still] = np.where(at[still, None] > 0.5, -a2[still], a2[still])
     # B's samples and the lengths along them
     grids = [sample_grid(curves_b[i], samples) for i in kept]
     points = np.concatenate([grid.points for grid, _ in grids]) if grids else np.empty((0, 3))
@@ -307,6 +372,6 @@ def set_up(
         n = len(s)
         a = a0[start : start + n], a1[start : start + n], a2[start : start + n]
         curve_a, _, segments, tolerance = jobs[i]
-        made[i] = Strip(curve_a, curves_b[i], segments, tolerance, spacing, maps[i], s, a, b[corner], grid,
-                        kinks_b, lengths)
+        made[i] = Strip(curve_a, curves_b[i], segments, tolerance, spacing, maps[i], s, a,
+                        still_rows[start : start + n], b[corner], grid, kinks_b, lengths)
     return made  # type: ignore[return-value]  (every job has its strip or its error)
