@@ -34,6 +34,9 @@ Method
    bending to a boundary's end point), so where strips as wide as their cones allow keep
    more than :data:`RECUT` of their area in cones after cutting, the family is marched
    again with every trial strip cut (:func:`_recut`): narrower strips, smooth to the edge.
+   In that march a strip that creases (its boundaries on either side of a line along an
+   asymptotic direction, all flat fans) is kept about as narrow as the crease needs
+   (:func:`_narrow_crease`) instead of as wide as the tolerance allows.
 4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
    guessed from the square law (a straight ruling's sag grows as the width²) and kept
