@@ -34,6 +34,9 @@ Method
    bending to a boundary's end point), so where strips as wide as their cones allow keep
    more than :data:`RECUT` of their area in cones after cutting, the family is marched
    again with every trial strip cut (:func:`_recut`): narrower strips, smooth to the edge.
+   In that march a strip that creases (its boundaries on either side of a line along an
+   asymptotic direction, all flat fans) is kept about as narrow as the crease needs
+   (:func:`_narrow_crease`) instead of as wide as the tolerance allows.
 4. Placement. Marching from one edge of the design, each next boundary is placed so
    that the strip is as wide as the tolerance allows: a few trial strips, the width
    guessed from the square law (a straight ruling's sag grows as the width²) and kept
@@ -300,12 +303,97 @@ def _march(
                 return None
             if settled.deviation > tolerance and narrow is not None:
                 narrow.append(first + len(strips))
+        elif trim and settled.result.creased_share > CREASING and settled.hi < end:
+            settled = _narrow_crease(design, boundaries, settled, end, tolerance, segments, warp_tolerance,
+                                     min_width)
         strips.append(settled)
         width = settled.hi - lo
         lo = settled.hi
         if progress is not None:
             progress(lo)
     return strips
+
+
+#: Halvings that place a boundary next to a creasing stretch (:func:`_narrow_crease`).
+CREASE_STEPS = 7
+
+
+def _creases(boundaries: Boundaries, lo: float, hi: float, segments: int, warp_tolerance: float) -> bool:
+    """Whether the strip between the levels ``lo`` and ``hi`` creases over more than
+    :data:`CREASING` of its area (its rulings only, uncut and uncertified: cheap)."""
+    try:
+        result = ruling_developable(boundaries.at(lo), boundaries.at(hi), segments, warp_tolerance)
+    except ValueError:
+        return True
+    return result.creased_share > CREASING
+
+
+def _narrow_crease(
+    design: Surface, boundaries: Boundaries, strip: Strip, end: float, tolerance: float, segments: int,
+    warp_tolerance: float, min_width: float,
+) -> Strip:
+    """A narrower strip from ``strip.lo`` in place of ``strip``, which creases (its two
+    boundaries lie on either side of a line along an asymptotic direction, a monkey
+    saddle's straight line x = 0, and no torsal strip joins them). Marched as wide as the
+    tolerance allows, the creasing strip kept all its width in flat fans wherever the march
+    happened to reach the crease; here it is kept about as narrow as the crease needs.
+    Near that line the rulings run nearly along the boundaries, so a strip ending close to
+    it is cut at the design's edge too far from it (or keeps cones): where the crease
+    begins past the middle of ``strip``, the widest strip from ``strip.lo`` found :func:`_clean`
+    (halvings, :data:`CREASE_STEPS`) if one as wide as half ``strip`` is; otherwise the strip to the
+    nearest start from which the next strip, as wide as the last clean one found or
+    ``strip``, is clean. ``strip`` itself when neither is found, within the tolerance and
+    MinWidth."""
+    lo, w = strip.lo, strip.hi - strip.lo
+
+    def clean(a: float, b: float) -> Strip | None:
+        return _clean(design, boundaries, a, b, tolerance, segments, warp_tolerance, min_width)
+
+    if not _creases(boundaries, lo, lo + 0.5 * w, segments, warp_tolerance):
+        ok, bad, best = 0.5 * w, w, clean(lo, lo + 0.5 * w)  # the widest clean strip before the crease
+        for _ in range(CREASE_STEPS if best is not None else 0):
+            middle = 0.5 * (ok + bad)
+            found = clean(lo, lo + middle)
+            ok, bad, best = (middle, bad, found) if found is not None else (ok, middle, best)
+        if best is not None:
+            return best
+    probe = w  # the crease begins near lo: its strip ends where the next one is clean
+    if lo + w + probe > end or clean(lo + w, lo + w + probe) is None:
+        return strip
+    bad, ok = 0.0, w  # the latest end found with the next strip not clean, the earliest found clean
+    for _ in range(CREASE_STEPS):
+        middle = 0.5 * (ok + bad)
+        if clean(lo + middle, lo + middle + probe) is None:
+            bad = middle
+        else:
+            ok = middle
+    ok = max(ok, _level_step(boundaries, lo, end, min_width))
+    if ok > 0.9 * w:
+        return strip
+    try:
+        narrower = strip_between(design, boundaries, lo, lo + ok, segments, warp_tolerance, tolerance,
+                                 trim=True)
+    except Unmade:
+        return strip
+    return narrower if narrower.deviation <= tolerance and narrower.width >= min_width else strip
+
+
+#: A strip is clean (:func:`_clean`) with at most this share of its area in fans.
+CLEAN = 0.02
+
+
+def _clean(
+    design: Surface, boundaries: Boundaries, lo: float, hi: float, tolerance: float, segments: int,
+    warp_tolerance: float, min_width: float,
+) -> Strip | None:
+    """The strip between ``lo`` and ``hi`` cut at the design's edge, when it is within the
+    tolerance, at least MinWidth and has at most :data:`CLEAN` of its rulings' area in fans."""
+    try:
+        strip = strip_between(design, boundaries, lo, hi, segments, warp_tolerance, tolerance, trim=True)
+    except Unmade:
+        return None
+    good = strip.deviation <= tolerance and strip.width >= min_width and fan_area([strip]) <= CLEAN
+    return strip if good else None
 
 
 def _level_step(boundaries: Boundaries, lo: float, end: float, width: float) -> float:
