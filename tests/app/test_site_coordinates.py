@@ -58,7 +58,10 @@ ROUNDING_ULPS = 32
 #: the ruled area's cubature stopping at the noise of derivatives made of differences
 #: where its rails' (the design's lifted parameter lines) are exact: now 4e-12 (see
 #: :func:`torsal.nodes.geometry.vec_ops.differenced`). An entry here fails once its case passes.
-KNOWN: dict[tuple[str, tuple[float, float, float]], str] = {}
+KNOWN: dict[tuple[str, tuple[float, float, float]], str] = {
+    ("kaohsiung-cut-sheets", FAR): "the unrolled strips at 1e9 m lie 3.3e-8 of the size from the origin's "
+    "(bound 2.7e-8) since fans are placed along B's length (issue 26 item 5); within it before",
+}
 
 #: Examples too slow to check at an offset (each would spend the test's whole time limit).
 SLOW: dict[tuple[str, tuple[float, float, float]], str] = {}
@@ -69,6 +72,16 @@ WARPS = {"textbook-ruled-surfaces": ("cylinder", "helicoid", "mobius")}
 
 #: Examples whose panel corners are compared by :func:`_check_panels`, not vertex by vertex.
 PANELS = {"development-and-panels"}
+
+#: Examples whose cut sheets are nested true-shape, by the cutting node's id. The nesting is
+#: a seeded search (sparrow): inputs that differ by their rounding far out (the parts'
+#: outlines by 3e-9 of the roof's size at 1e9 m) send it down another path to another
+#: layout as good, so the layout is held to what it promises (:func:`_check_layout`),
+#: not part by part. The seams and their lengths do not depend on the layout and are
+#: compared as every other output.
+LAYOUTS = {"kaohsiung-cut-sheets": "cut"}
+#: The cutting node's outputs that follow the layout.
+LAID_OUT = ("Layout", "Cuts", "Sheets", "Usage", "Preview")
 
 _ORIGIN: dict[Path, object] = {}
 
@@ -108,13 +121,38 @@ def test_example_moved_far_from_the_origin_gives_the_same_model_moved(path: Path
     size = model_size(origin)
     panels = {("patching", "PanelsFlat"), ("patching", "Panels3D")} if path.stem in PANELS else set()
     warps = {(node_id, "WarpAngles") for node_id in WARPS.get(path.stem, ())}
-    deviation = compare(origin, moved, offset, size, expected_moving(path), skip=frozenset(panels | warps))
+    cut = LAYOUTS.get(path.stem)
+    laid_out = {(cut, name) for name in LAID_OUT} if cut else set()
+    deviation = compare(origin, moved, offset, size, expected_moving(path),
+                        skip=frozenset(panels | warps | laid_out))
     assert deviation.missing == []
     assert deviation.worst() <= bound(offset, size), str(deviation)
     if panels:
         _check_panels(origin, moved, offset, bound(offset, size) * size, path)
     for node_id, _ in warps:
         _check_warps(origin, moved, node_id, offset)
+    if cut:
+        _check_layout(origin, moved, cut)
+
+
+def _check_layout(origin, moved, node_id: str) -> None:
+    """The moved model's parts nested on as many sheets, as tightly (usage within one
+    point) and without overlaps (cut contours, each sheet's parts by shapely)."""
+    import shapely
+
+    def laid(solved):
+        outputs = solved.outputs[node_id]
+        (usage,) = outputs["Usage"].branches[0]
+        sheets = outputs["Sheets"].branches[0]
+        cuts = [shapely.Polygon(np.asarray(c.points)[:, :2]) for c in outputs["Cuts"].branches[0]]
+        return float(usage), len(sheets), cuts
+
+    usage_o, sheets_o, _ = laid(origin)
+    usage_m, sheets_m, cuts = laid(moved)
+    assert sheets_m == sheets_o
+    assert abs(usage_m - usage_o) <= 0.01, (usage_o, usage_m)
+    overlap = max((a.intersection(b).area for i, a in enumerate(cuts) for b in cuts[i + 1:]), default=0.0)
+    assert overlap <= 1e-9 * max(c.area for c in cuts)
 
 
 def _ends(solved, node_id: str) -> tuple[np.ndarray, np.ndarray]:
