@@ -230,7 +230,7 @@ def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developab
     assert twists and max(twists) <= 1e-6  # measured 4.5e-11 (Rhino's own NormalAt)
 
 
-@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.167)])
+@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.197)])
 def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path, name, measured):
     strips = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
@@ -240,7 +240,8 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     assert naive.Write(str(tmp_path / "naive.3dm"), 7)
     size, naive_size = ((tmp_path / file).stat().st_size for file in ("faces.3dm", "naive.3dm"))
     # (the canopy's twisting strips were 28 % while their developable pairing was fitted 30x
-    # closer than 1e-6 of the size)
+    # closer than 1e-6 of the size; 20.4 % when its 4 strips went out as cone pairs fitted
+    # with end tangents set after the least squares and knots only by bisection)
     assert size <= 0.2 * naive_size, (size / naive_size, measured)
     objects = list(rh.File3dm.Read(str(tmp_path / "faces.3dm")).Objects)
     twists = [normal_twist(surface_of(o), 60) for o in objects

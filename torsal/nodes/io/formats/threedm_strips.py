@@ -5,14 +5,17 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
 
 - each run of torsal rulings (consecutive rulings that do not share an end) is one ruled
   NURBS face, degree 1 across: its two rails are the strip's own rails over that run,
-  fitted *together* (one knot vector, parameter u of the strip) by scipy's
-  ``make_lsq_spline``: double knots at the rulings (the rails' pace is piecewise cubic
-  between them, C1 at them), then knots inserted where the fit is worst until both rails
-  are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's u is
-  that ruling (to the fit), and the face has as few control points as that takes (not one
-  per sample). Its end control points are the end rulings' ends and the next ones give the
-  rails' own end tangents, so a rail that stands still next to a fan stands still in the
-  face too and the face's normals there are the strip's. Where the strip's own pairing of
+  fitted *together* (one knot vector, parameter u of the strip) by least squares on
+  scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise cubic
+  between them, C1 at them), a knot where a rail crosses a knot of the design it runs on
+  (or another break of its curve), then knots inserted where the fit is worst until both
+  rails are within :data:`FIT` of the strip's size, and each inserted knot the fit can do
+  without left out again — so the face's isocurve at a ruling's u is that ruling (to the
+  fit), and the face has as few control points as that takes (not one per sample). Its end
+  control points are the end rulings' ends and the next ones give the rails' own end
+  tangents (the least squares fit the others given those), so a rail that stands still
+  next to a fan stands still in the face too and the face's normals there are the
+  strip's. Where the strip's own pairing of
   the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
   (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
@@ -42,13 +45,15 @@ them one polysurface.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 import rhino3dm as rh
 from numpy.typing import ArrayLike
-from scipy.interpolate import BSpline, make_lsq_spline
+from scipy.interpolate import BSpline
+from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
@@ -66,6 +71,11 @@ DEVELOPABLE = 1e-7
 #: A face still twisting more than this (rad) after both pairings has its most twisted
 #: interval made cones instead, one at a time while it does.
 TWISTED = 5e-7
+
+#: A knot is left out of a fit only while the fit stays within this share of the tolerance
+#: at the check's samples (between them the error grows: Kaohsiung's rails, fitted to the
+#: tolerance itself, were 7 % beyond it between samples).
+KEEP = 0.8
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -287,7 +297,9 @@ def _brep(spline: BSpline) -> rh.Brep:
 def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
     """Per ruling: whether a rail turns a corner there (its tangents just before and just
     after it differ by more than :data:`CORNER`), as a strip cut to a trim does where its
-    edge leaves a boundary for the trim: the faces on either side meet at that ruling."""
+    edge leaves a boundary for the trim, or changes its speed there (by more than CORNER of
+    it: a rail joined from pieces each run at its own pace, as the canopy's, whose double
+    knot at the ruling cannot follow it): the faces on either side meet at that ruling."""
     corner = np.zeros(len(u), dtype=bool)
     if len(u) < 3:
         return corner
@@ -300,6 +312,10 @@ def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
             angle = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1),
                                np.einsum("ij,ij->i", before, after))
         corner[1:-1] |= np.nan_to_num(angle) > CORNER
+        speed = np.linalg.norm(before, axis=1), np.linalg.norm(after, axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            jump = np.abs(speed[1] - speed[0]) / np.maximum(speed[0], speed[1])
+        corner[1:-1] |= np.nan_to_num(jump) > CORNER
     return corner
 
 
@@ -411,14 +427,19 @@ def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
 def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: float,
          partner: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray) -> tuple[float, np.ndarray, BSpline]:
     """Both rails, rail B at ``partner`` of rail A's parameter, fitted on one knot vector
-    (double knots at the rulings, triple at ``kinks``, more inserted where the fit is worst
-    until within ``tolerance``): (largest distance, knots, spline)."""
+    (double knots at the rulings, triple at ``kinks``, one at each break of a rail, more
+    inserted where the fit is worst until within ``tolerance``, then those it can do without
+    left out): (largest distance, knots, spline)."""
     # the rails' pace is piecewise cubic between rulings (C1 at them), the developable
     # pairing has kinks where it changes kind: knots there from the start, else the fit
     # converges slowly round them
-    fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
-    interior: list[float] = []
     lo, hi = float(span[0]), float(span[-1])
+    fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
+    # the rails' own breaks between rulings (where a rail's pace crosses a breakpoint of its
+    # curve: a knot of the design it runs on, a joint) are where the fit's error is: a knot
+    # at each from the start (bisection converges on them only slowly), removed again below
+    # where the fit does not need it
+    start = [float(b) for b in _rail_breaks(strip, span, partner) if b not in kinks]
     # the rails' end tangents: A's own; B's as its partner point moves (a difference of
     # points: where B's pace stands still at a ruling the partner parameter moves like a
     # square root while the point moves smoothly)
@@ -444,6 +465,40 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1], b_slopes])
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
+    interior = list(start)
+
+    def attempt(inner: list[float]) -> tuple[float, np.ndarray, BSpline, np.ndarray] | None:
+        """The fit on knots ``fixed`` and ``inner``: (largest distance, knots, spline, the
+        distances at the check's samples), None when the samples cannot carry it."""
+        knots = np.concatenate([[lo] * 4, sorted(fixed + inner), [hi] * 4])
+        n = len(knots) - 4
+        if n < 4 or n > len(fine):
+            return None
+        # clamped: the end control points are the end rulings' ends, exactly (shared edges),
+        # and the next ones give the rails' own end tangents (a rail that stands still there,
+        # next to a fan, stands still in the face too: its normals stay the strip's); the
+        # others fitted by least squares given those four
+        controls = np.zeros((n, 6))
+        controls[0], controls[n - 1] = data[0], data[-1]
+        controls[1] = controls[0] + (knots[4] - lo) / 3.0 * slopes[0]
+        controls[n - 2] = controls[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
+        basis = BSpline.design_matrix(fine, knots, 3).tocsc()
+        free = basis[:, 2:n - 2]
+        rest = data - basis[:, [0, 1, n - 2, n - 1]] @ controls[[0, 1, n - 2, n - 1]]
+        if n > 4:
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("error", MatrixRankWarning)
+                    controls[2:n - 2] = spsolve((free.T @ free).tocsc(), free.T @ rest).reshape(n - 4, 6)
+            except (MatrixRankWarning, RuntimeError):  # a span without samples
+                return None
+        spline = BSpline(knots, controls, 3)
+        with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed fit: judged by the caller
+            fitted = spline(check)
+            error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
+                               np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
+        return float(error.max()), knots, spline, error
+
     while True:
         # the fit's samples are every other one of the check's: rail B's partners found once
         # (sampled between the kinks too: every span between two knots has samples)
@@ -452,30 +507,24 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         data[np.searchsorted(fine, span)] = lines.reshape(-1, 6)  # the node's rulings exactly
         breaks_fixed = np.unique(np.concatenate([span, kinks]))
         while True:
-            knots = np.concatenate([[lo] * 4, sorted(fixed + interior), [hi] * 4])
-            try:
-                spline = make_lsq_spline(fine, data, knots, k=3)
-            except (ValueError, np.linalg.LinAlgError):  # too many knots for these samples
+            result = attempt(interior)
+            if result is None:
                 break
-            # clamped: the end control points are the end rulings' ends, exactly (shared edges),
-            # and the next ones give the rails' own end tangents (a rail that stands still there,
-            # next to a fan, stands still in the face too: its normals stay the strip's)
-            ends = np.array(spline.c)
-            n = len(knots) - 4
-            ends[0], ends[n - 1] = data[0], data[-1]
-            ends[1] = ends[0] + (knots[4] - lo) / 3.0 * slopes[0]
-            ends[n - 2] = ends[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
-            spline = BSpline(knots, ends, 3)
-            with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed fit: judged below
-                fitted = spline(check)
-                error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
-                                   np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
-            worst = float(error.max())
+            worst, knots, spline, error = result
             if not np.isfinite(worst) or worst > 1e3 * best[0]:  # ill-posed (a span without
                 break  # enough samples): the previous fit stands
             if worst < best[0]:
                 best = (worst, knots, spline)
-            if worst <= tolerance or len(knots) - 4 >= len(fine) // 3:
+            if worst <= tolerance:
+                # as few knots as that takes: each inserted one left out where the fit
+                # stays within the tolerance without it (bisection places them in pairs)
+                for knot in list(interior):
+                    trial = attempt([k for k in interior if k != knot])
+                    if trial is not None and trial[0] <= KEEP * tolerance:
+                        interior.remove(knot)
+                        best = trial[:3]
+                break
+            if len(knots) - 4 >= len(fine) // 3:
                 break
             breaks = np.unique(np.concatenate([breaks_fixed, interior]))
             where = np.searchsorted(breaks, check[error > tolerance]) - 1
@@ -487,6 +536,59 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         if best[0] <= tolerance or per >= LARGEST_SAMPLING:
             return best
         per *= 2  # more knots are needed than these samples can carry
+
+
+def _rail_breaks(strip: RuledSurface, span: np.ndarray,
+                 partner: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """The parameters (of rail A) strictly between the rulings of ``span`` where either
+    rail has a break (:meth:`CurveRail._breakpoints`): rail A's own, and rail B's mapped
+    back through ``partner`` (monotone: interpolated on a grid, then two secant steps)."""
+    lo, hi = float(span[0]), float(span[-1])
+    near = 1e-6 * (hi - lo)
+    found = []
+    for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
+        if not isinstance(rail, CurveRail):
+            continue
+        marks = np.concatenate([rail._breakpoints(), rail._crossings(_curve_breaks(rail.curve))])
+        marks = marks[(marks > lo + near) & (marks < hi - near)]
+        if not len(marks):
+            continue
+        if not own:
+            grid = _between(span, 16)
+            paired = partner(grid)
+            if not np.array_equal(paired, grid):
+                marks = marks[(marks > paired[0]) & (marks < paired[-1])]
+                at = np.interp(marks, paired, grid)
+                for _ in range(2):
+                    slope = np.interp(at, grid[1:], np.diff(paired) / np.diff(grid))
+                    with np.errstate(divide="ignore", invalid="ignore"):
+                        step = (partner(at) - marks) / slope
+                    at = np.clip(at - np.where(np.isfinite(step), step, 0.0), lo, hi)
+                marks = at
+        found.append(marks)
+    if not found:
+        return np.empty(0)
+    marks = np.unique(np.concatenate(found))
+    # none next to a ruling (its double knot is there) or to another break
+    gap = np.abs(span[np.clip(np.searchsorted(span, marks), 1, len(span) - 1)[:, None]
+                      - np.array([[1, 0]])] - marks[:, None]).min(axis=1)
+    marks = marks[gap > near]
+    return marks[np.concatenate([[True], np.diff(marks) > near])] if len(marks) else marks
+
+
+def _curve_breaks(curve: Curve) -> np.ndarray:
+    """A curve's parameters where it may not be smooth: its own breakpoints, and for a
+    parameter line of a NURBS design (as Rationalise's rails run on) the design's knots
+    it crosses; through the pieces of a joined curve."""
+    pieces, at = getattr(curve, "pieces", None), getattr(curve, "at", None)
+    if pieces is not None and at is not None:
+        return np.unique(np.concatenate([curve._breakpoints(),
+                                         *(at(k, _curve_breaks(piece)) for k, piece in enumerate(pieces))]))
+    family, surface = getattr(curve, "family", None), getattr(curve, "surface", None)
+    name = {"u": "knots_u", "v": "knots_v"}.get(family)  # type: ignore[arg-type]
+    knots = getattr(surface, name, None) if name is not None else None
+    own = curve._breakpoints()
+    return own if knots is None else np.unique(np.concatenate([own, np.clip(knots, 0.0, 1.0)]))
 
 
 def _samples(strip: RuledSurface, span: np.ndarray, per: int,
