@@ -25,7 +25,10 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
-  of A to rail B): a cone is developable whatever its rail does. A face that still twists
+  of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
+  an even pace along the rail's curve between the two rulings (:class:`_Paced`; the
+  strip's own pace, a cubic of u, can change several-fold within an interval and cost a
+  cone three times the knots). A face that still twists
   (more than :data:`TWISTED`) has its twisting intervals made cones, all at once, and is
   fitted again;
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
@@ -256,6 +259,29 @@ class _AtRest(Curve):
         return [np.tile(self.point, (count, 1))] + [np.zeros((count, 3)) for _ in range(order)]
 
 
+class _Paced(Curve):
+    """A rail over one ruling interval run at an even pace along its curve (the strip's
+    pace is a cubic of u that may change several-fold within an interval): the same points
+    at the two rulings, the same curve between, a parameterisation a cubic fits in few
+    spans. A cone's face may take it: a cone is developable whatever its rail's pace."""
+
+    def __init__(self, rail: Curve, span: np.ndarray) -> None:
+        self.rail = rail
+        self.lo, self.hi = float(span[0]), float(span[-1])
+        if isinstance(rail, CurveRail):
+            self.ends = np.interp([self.lo, self.hi], rail.params, rail.curve_params)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        rail = self.rail
+        if not isinstance(rail, CurveRail):
+            return rail.derivatives(t, order)
+        slope = (self.ends[1] - self.ends[0]) / (self.hi - self.lo)
+        at = self.ends[0] + (t - self.lo) * slope
+        values = rail.curve.derivatives(rail._wrapped(at), order)
+        return [value * slope**j for j, value in enumerate(values)]
+
+
 def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float) -> list[Piece]:
     """The interval after ruling ``k`` as two cones meeting on its shorter diagonal, one
     face: rail A to the diagonal's end on B, then that end of A to rail B (or the other way
@@ -263,12 +289,13 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     the face's normals are constant along its lines; its edges still run on the rails."""
     (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
+    paced_a, paced_b = _Paced(strip.curve_a, span), _Paced(strip.curve_b, span)
     if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
         middle = np.array([a_hi, b_lo])
-        rails = [_Rails(strip.curve_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), strip.curve_b)]
+        rails = [_Rails(paced_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), paced_b)]
     else:
         middle = np.array([a_lo, b_hi])
-        rails = [_Rails(_AtRest(a_lo), strip.curve_b), _Rails(strip.curve_a, _AtRest(b_hi))]
+        rails = [_Rails(_AtRest(a_lo), paced_b), _Rails(paced_a, _AtRest(b_hi))]
     fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
             for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
     # one face: the first cone on the first half of the span, the second on the other half,
@@ -447,9 +474,9 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     ends = span[[0, -1]]
     b_ends = strip.curve_b.point_at(ends)
     b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
-    # (the last one just inside: at a corner of the rail, as on a strip cut to a trim, the
-    # face's own side of it)
-    inside = np.array([lo, hi - 1e-12 * (hi - lo)])
+    # (both just inside: at a corner of the rail, as on a strip cut to a trim, or where its
+    # speed jumps, as where the pieces of a joined rail meet, the face's own side of it)
+    inside = np.array([lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo)])
     probe = np.array([lo + step, hi - step])
     if np.array_equal(partner(probe), probe):  # the strip's own pairing: B's own tangents (a
         # difference over a short face's step would carry the points' rounding)
