@@ -9,14 +9,13 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise cubic
   between them, C1 at them), a knot where a rail crosses a knot of the design it runs on
   (or another break of its curve), then knots inserted where the fit is worst until both
-  rails are within :data:`FIT` of the strip's size, and each inserted knot the fit can do
-  without left out again — so the face's isocurve at a ruling's u is that ruling (to the
-  fit), and the face has as few control points as that takes (not one per sample). Its end
-  control points are the end rulings' ends and the next ones give the rails' own end
-  tangents (the least squares fit the others given those), so a rail that stands still
-  next to a fan stands still in the face too and the face's normals there are the
-  strip's. Where the strip's own pairing of
-  the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
+  rails are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's
+  u is that ruling (to the fit), and the face has as few control points as that takes
+  (not one per sample). Its end control points are the end rulings' ends and the next
+  ones give the rails' own end tangents (the least squares fit the others given those),
+  so a rail that stands still next to a fan stands still in the face too and the face's
+  normals there are the strip's. Where the strip's own pairing of the rails between
+  rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
   (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
   control points as that takes: where the fit still twists, its twisting intervals go out
@@ -74,11 +73,6 @@ DEVELOPABLE = 1e-7
 #: A face still twisting more than this (rad) after both pairings has its most twisted
 #: interval made cones instead, one at a time while it does.
 TWISTED = 5e-7
-
-#: A knot is left out of a fit only while the fit stays within this share of the tolerance
-#: at the check's samples (between them the error grows: Kaohsiung's rails, fitted to the
-#: tolerance itself, were 7 % beyond it between samples).
-KEEP = 0.8
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -455,8 +449,8 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
          partner: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray) -> tuple[float, np.ndarray, BSpline]:
     """Both rails, rail B at ``partner`` of rail A's parameter, fitted on one knot vector
     (double knots at the rulings, triple at ``kinks``, one at each break of a rail, more
-    inserted where the fit is worst until within ``tolerance``, then those it can do without
-    left out): (largest distance, knots, spline)."""
+    inserted where the fit is worst until within ``tolerance``): (largest distance, knots,
+    spline)."""
     # the rails' pace is piecewise cubic between rulings (C1 at them), the developable
     # pairing has kinks where it changes kind: knots there from the start, else the fit
     # converges slowly round them
@@ -464,8 +458,7 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
     # the rails' own breaks between rulings (where a rail's pace crosses a breakpoint of its
     # curve: a knot of the design it runs on, a joint) are where the fit's error is: a knot
-    # at each from the start (bisection converges on them only slowly), removed again below
-    # where the fit does not need it
+    # at each from the start (bisection converges on them only slowly)
     start = [float(b) for b in _rail_breaks(strip, span, partner) if b not in kinks]
     # the rails' end tangents: A's own; B's as its partner point moves (a difference of
     # points: where B's pace stands still at a ruling the partner parameter moves like a
@@ -542,16 +535,7 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
                 break  # enough samples): the previous fit stands
             if worst < best[0]:
                 best = (worst, knots, spline)
-            if worst <= tolerance:
-                # as few knots as that takes: each inserted one left out where the fit
-                # stays within the tolerance without it (bisection places them in pairs)
-                for knot in list(interior):
-                    trial = attempt([k for k in interior if k != knot])
-                    if trial is not None and trial[0] <= KEEP * tolerance:
-                        interior.remove(knot)
-                        best = trial[:3]
-                break
-            if len(knots) - 4 >= len(fine) // 3:
+            if worst <= tolerance or len(knots) - 4 >= len(fine) // 3:
                 break
             breaks = np.unique(np.concatenate([breaks_fixed, interior]))
             where = np.searchsorted(breaks, check[error > tolerance]) - 1
