@@ -230,7 +230,7 @@ def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developab
     assert twists and max(twists) <= 1e-6  # measured 2.3e-11 (Rhino's own NormalAt)
 
 
-@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.159)])
+@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.163)])
 def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path, name, measured):
     strips = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
