@@ -167,7 +167,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
         old_model.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
     assert old_model.Write(str(tmp_path / "old.3dm"), 7)
     new_size, old_size = (tmp_path / "new.3dm").stat().st_size, (tmp_path / "old.3dm").stat().st_size
-    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 10.9 %: more faces where the strips twist
+    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 8.2 %: more faces where the strips twist
     old_objects = list(rh.File3dm.Read(str(tmp_path / "old.3dm")).Objects)
     new_objects = list(rh.File3dm.Read(str(new.path)).Objects)
     dense = np.linspace(0.0, 1.0, 2001)  # chords of ~2.5 cm: their sag is below 1e-6 of the size
@@ -207,7 +207,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
         # fans) the faces go out as cones, so every face's normals agree along its lines
         for obj in own:
             if obj.Attributes.GetUserString("TorsalFace") == "torsal":
-                assert normal_twist(surface_of(obj), 60) <= 1e-6  # measured 4.8e-7 at most
+                assert normal_twist(surface_of(obj), 60) <= 1e-6  # measured 4.4e-7 at most
 
 
 @functools.cache
@@ -227,10 +227,10 @@ def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developab
     objects = export(tmp_path, example_strips("rationalise-canopy"))
     twists = [normal_twist(surface_of(o), 100) for o in objects
               if o.Attributes.GetUserString("TorsalFace") == "torsal"]
-    assert twists and max(twists) <= 1e-6  # measured 4.5e-11 (Rhino's own NormalAt)
+    assert twists and max(twists) <= 1e-6  # measured 2.3e-11 (Rhino's own NormalAt)
 
 
-@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.167)])
+@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.163)])
 def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path, name, measured):
     strips = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
@@ -240,9 +240,10 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     assert naive.Write(str(tmp_path / "naive.3dm"), 7)
     size, naive_size = ((tmp_path / file).stat().st_size for file in ("faces.3dm", "naive.3dm"))
     # (the canopy's twisting strips were 28 % while their developable pairing was fitted 30x
-    # closer than 1e-6 of the size)
+    # closer than 1e-6 of the size; 20.4 % when its 4 strips' cone pairs were fitted at the
+    # strip's own pace, which changes several-fold within an interval)
     assert size <= 0.2 * naive_size, (size / naive_size, measured)
     objects = list(rh.File3dm.Read(str(tmp_path / "faces.3dm")).Objects)
     twists = [normal_twist(surface_of(o), 60) for o in objects
               if o.Attributes.GetUserString("TorsalFace") == "torsal"]
-    assert max(twists) <= 1e-6  # measured 1.2e-13 (roof), 4.5e-11 (canopy)
+    assert max(twists) <= 1e-6  # measured 1.2e-13 (roof), 4.3e-11 (canopy)

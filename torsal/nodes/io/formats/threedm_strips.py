@@ -5,15 +5,17 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
 
 - each run of torsal rulings (consecutive rulings that do not share an end) is one ruled
   NURBS face, degree 1 across: its two rails are the strip's own rails over that run,
-  fitted *together* (one knot vector, parameter u of the strip) by scipy's
-  ``make_lsq_spline``: double knots at the rulings (the rails' pace is piecewise cubic
-  between them, C1 at them), then knots inserted where the fit is worst until both rails
-  are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's u is
-  that ruling (to the fit), and the face has as few control points as that takes (not one
-  per sample). Its end control points are the end rulings' ends and the next ones give the
-  rails' own end tangents, so a rail that stands still next to a fan stands still in the
-  face too and the face's normals there are the strip's. Where the strip's own pairing of
-  the rails between rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
+  fitted *together* (one knot vector, parameter u of the strip) by least squares on
+  scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise cubic
+  between them, C1 at them), a knot where a rail crosses a knot of the design it runs on
+  (or another break of its curve), then knots inserted where the fit is worst until both
+  rails are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's
+  u is that ruling (to the fit), and the face has as few control points as that takes
+  (not one per sample). Its end control points are the end rulings' ends and the next
+  ones give the rails' own end tangents (the least squares fit the others given those),
+  so a rail that stands still next to a fan stands still in the face too and the face's
+  normals there are the strip's. Where the strip's own pairing of the rails between
+  rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
   paired with their developable partners on rail B instead
   (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
   control points as that takes: where the fit still twists, its twisting intervals go out
@@ -22,7 +24,10 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
-  of A to rail B): a cone is developable whatever its rail does. A face that still twists
+  of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
+  an even pace along the rail's curve between the two rulings (:class:`_Paced`; the
+  strip's own pace, a cubic of u, can change several-fold within an interval and cost a
+  cone three times the knots). A face that still twists
   (more than :data:`TWISTED`) has its twisting intervals made cones, all at once, and is
   fitted again;
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
@@ -42,13 +47,15 @@ them one polysurface.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 import rhino3dm as rh
 from numpy.typing import ArrayLike
-from scipy.interpolate import BSpline, make_lsq_spline
+from scipy.interpolate import BSpline
+from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
@@ -246,6 +253,29 @@ class _AtRest(Curve):
         return [np.tile(self.point, (count, 1))] + [np.zeros((count, 3)) for _ in range(order)]
 
 
+class _Paced(Curve):
+    """A rail over one ruling interval run at an even pace along its curve (the strip's
+    pace is a cubic of u that may change several-fold within an interval): the same points
+    at the two rulings, the same curve between, a parameterisation a cubic fits in few
+    spans. A cone's face may take it: a cone is developable whatever its rail's pace."""
+
+    def __init__(self, rail: Curve, span: np.ndarray) -> None:
+        self.rail = rail
+        self.lo, self.hi = float(span[0]), float(span[-1])
+        if isinstance(rail, CurveRail):
+            self.ends = np.interp([self.lo, self.hi], rail.params, rail.curve_params)
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        rail = self.rail
+        if not isinstance(rail, CurveRail):
+            return rail.derivatives(t, order)
+        slope = (self.ends[1] - self.ends[0]) / (self.hi - self.lo)
+        at = self.ends[0] + (t - self.lo) * slope
+        values = rail.curve.derivatives(rail._wrapped(at), order)
+        return [value * slope**j for j, value in enumerate(values)]
+
+
 def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float) -> list[Piece]:
     """The interval after ruling ``k`` as two cones meeting on its shorter diagonal, one
     face: rail A to the diagonal's end on B, then that end of A to rail B (or the other way
@@ -253,12 +283,13 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     the face's normals are constant along its lines; its edges still run on the rails."""
     (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
+    paced_a, paced_b = _Paced(strip.curve_a, span), _Paced(strip.curve_b, span)
     if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
         middle = np.array([a_hi, b_lo])
-        rails = [_Rails(strip.curve_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), strip.curve_b)]
+        rails = [_Rails(paced_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), paced_b)]
     else:
         middle = np.array([a_lo, b_hi])
-        rails = [_Rails(_AtRest(a_lo), strip.curve_b), _Rails(strip.curve_a, _AtRest(b_hi))]
+        rails = [_Rails(_AtRest(a_lo), paced_b), _Rails(paced_a, _AtRest(b_hi))]
     fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
             for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
     # one face: the first cone on the first half of the span, the second on the other half,
@@ -287,7 +318,9 @@ def _brep(spline: BSpline) -> rh.Brep:
 def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
     """Per ruling: whether a rail turns a corner there (its tangents just before and just
     after it differ by more than :data:`CORNER`), as a strip cut to a trim does where its
-    edge leaves a boundary for the trim: the faces on either side meet at that ruling."""
+    edge leaves a boundary for the trim, or changes its speed there (by more than CORNER of
+    it: a rail joined from pieces each run at its own pace, as the canopy's, whose double
+    knot at the ruling cannot follow it): the faces on either side meet at that ruling."""
     corner = np.zeros(len(u), dtype=bool)
     if len(u) < 3:
         return corner
@@ -300,6 +333,10 @@ def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
             angle = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1),
                                np.einsum("ij,ij->i", before, after))
         corner[1:-1] |= np.nan_to_num(angle) > CORNER
+        speed = np.linalg.norm(before, axis=1), np.linalg.norm(after, axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            jump = np.abs(speed[1] - speed[0]) / np.maximum(speed[0], speed[1])
+        corner[1:-1] |= np.nan_to_num(jump) > CORNER
     return corner
 
 
@@ -411,14 +448,18 @@ def _twist(fit: tuple[float, np.ndarray, BSpline], count: int = 257) -> float:
 def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: float,
          partner: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray) -> tuple[float, np.ndarray, BSpline]:
     """Both rails, rail B at ``partner`` of rail A's parameter, fitted on one knot vector
-    (double knots at the rulings, triple at ``kinks``, more inserted where the fit is worst
-    until within ``tolerance``): (largest distance, knots, spline)."""
+    (double knots at the rulings, triple at ``kinks``, one at each break of a rail, more
+    inserted where the fit is worst until within ``tolerance``): (largest distance, knots,
+    spline)."""
     # the rails' pace is piecewise cubic between rulings (C1 at them), the developable
     # pairing has kinks where it changes kind: knots there from the start, else the fit
     # converges slowly round them
-    fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
-    interior: list[float] = []
     lo, hi = float(span[0]), float(span[-1])
+    fixed = [*np.repeat(span[1:-1], 2).tolist(), *np.repeat(kinks, 3).tolist()]
+    # the rails' own breaks between rulings (where a rail's pace crosses a breakpoint of its
+    # curve: a knot of the design it runs on, a joint) are where the fit's error is: a knot
+    # at each from the start (bisection converges on them only slowly)
+    start = [float(b) for b in _rail_breaks(strip, span, partner) if b not in kinks]
     # the rails' end tangents: A's own; B's as its partner point moves (a difference of
     # points: where B's pace stands still at a ruling the partner parameter moves like a
     # square root while the point moves smoothly)
@@ -426,9 +467,9 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     ends = span[[0, -1]]
     b_ends = strip.curve_b.point_at(ends)
     b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
-    # (the last one just inside: at a corner of the rail, as on a strip cut to a trim, the
-    # face's own side of it)
-    inside = np.array([lo, hi - 1e-12 * (hi - lo)])
+    # (both just inside: at a corner of the rail, as on a strip cut to a trim, or where its
+    # speed jumps, as where the pieces of a joined rail meet, the face's own side of it)
+    inside = np.array([lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo)])
     probe = np.array([lo + step, hi - step])
     if np.array_equal(partner(probe), probe):  # the strip's own pairing: B's own tangents (a
         # difference over a short face's step would carry the points' rounding)
@@ -444,6 +485,40 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1], b_slopes])
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
+    interior = list(start)
+
+    def attempt(inner: list[float]) -> tuple[float, np.ndarray, BSpline, np.ndarray] | None:
+        """The fit on knots ``fixed`` and ``inner``: (largest distance, knots, spline, the
+        distances at the check's samples), None when the samples cannot carry it."""
+        knots = np.concatenate([[lo] * 4, sorted(fixed + inner), [hi] * 4])
+        n = len(knots) - 4
+        if n < 4 or n > len(fine):
+            return None
+        # clamped: the end control points are the end rulings' ends, exactly (shared edges),
+        # and the next ones give the rails' own end tangents (a rail that stands still there,
+        # next to a fan, stands still in the face too: its normals stay the strip's); the
+        # others fitted by least squares given those four
+        controls = np.zeros((n, 6))
+        controls[0], controls[n - 1] = data[0], data[-1]
+        controls[1] = controls[0] + (knots[4] - lo) / 3.0 * slopes[0]
+        controls[n - 2] = controls[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
+        basis = BSpline.design_matrix(fine, knots, 3).tocsc()
+        free = basis[:, 2:n - 2]
+        rest = data - basis[:, [0, 1, n - 2, n - 1]] @ controls[[0, 1, n - 2, n - 1]]
+        if n > 4:
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("error", MatrixRankWarning)
+                    controls[2:n - 2] = spsolve((free.T @ free).tocsc(), free.T @ rest).reshape(n - 4, 6)
+            except (MatrixRankWarning, RuntimeError):  # a span without samples
+                return None
+        spline = BSpline(knots, controls, 3)
+        with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed fit: judged by the caller
+            fitted = spline(check)
+            error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
+                               np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
+        return float(error.max()), knots, spline, error
+
     while True:
         # the fit's samples are every other one of the check's: rail B's partners found once
         # (sampled between the kinks too: every span between two knots has samples)
@@ -452,25 +527,10 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         data[np.searchsorted(fine, span)] = lines.reshape(-1, 6)  # the node's rulings exactly
         breaks_fixed = np.unique(np.concatenate([span, kinks]))
         while True:
-            knots = np.concatenate([[lo] * 4, sorted(fixed + interior), [hi] * 4])
-            try:
-                spline = make_lsq_spline(fine, data, knots, k=3)
-            except (ValueError, np.linalg.LinAlgError):  # too many knots for these samples
+            result = attempt(interior)
+            if result is None:
                 break
-            # clamped: the end control points are the end rulings' ends, exactly (shared edges),
-            # and the next ones give the rails' own end tangents (a rail that stands still there,
-            # next to a fan, stands still in the face too: its normals stay the strip's)
-            ends = np.array(spline.c)
-            n = len(knots) - 4
-            ends[0], ends[n - 1] = data[0], data[-1]
-            ends[1] = ends[0] + (knots[4] - lo) / 3.0 * slopes[0]
-            ends[n - 2] = ends[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
-            spline = BSpline(knots, ends, 3)
-            with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed fit: judged below
-                fitted = spline(check)
-                error = np.maximum(np.linalg.norm(fitted[:, :3] - truth[:, :3], axis=1),
-                                   np.linalg.norm(fitted[:, 3:] - truth[:, 3:], axis=1))
-            worst = float(error.max())
+            worst, knots, spline, error = result
             if not np.isfinite(worst) or worst > 1e3 * best[0]:  # ill-posed (a span without
                 break  # enough samples): the previous fit stands
             if worst < best[0]:
@@ -487,6 +547,59 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         if best[0] <= tolerance or per >= LARGEST_SAMPLING:
             return best
         per *= 2  # more knots are needed than these samples can carry
+
+
+def _rail_breaks(strip: RuledSurface, span: np.ndarray,
+                 partner: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """The parameters (of rail A) strictly between the rulings of ``span`` where either
+    rail has a break (:meth:`CurveRail._breakpoints`): rail A's own, and rail B's mapped
+    back through ``partner`` (monotone: interpolated on a grid, then two secant steps)."""
+    lo, hi = float(span[0]), float(span[-1])
+    near = 1e-6 * (hi - lo)
+    found = []
+    for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
+        if not isinstance(rail, CurveRail):
+            continue
+        marks = np.concatenate([rail._breakpoints(), rail._crossings(_curve_breaks(rail.curve))])
+        marks = marks[(marks > lo + near) & (marks < hi - near)]
+        if not len(marks):
+            continue
+        if not own:
+            grid = _between(span, 16)
+            paired = partner(grid)
+            if not np.array_equal(paired, grid):
+                marks = marks[(marks > paired[0]) & (marks < paired[-1])]
+                at = np.interp(marks, paired, grid)
+                for _ in range(2):
+                    slope = np.interp(at, grid[1:], np.diff(paired) / np.diff(grid))
+                    with np.errstate(divide="ignore", invalid="ignore"):
+                        step = (partner(at) - marks) / slope
+                    at = np.clip(at - np.where(np.isfinite(step), step, 0.0), lo, hi)
+                marks = at
+        found.append(marks)
+    if not found:
+        return np.empty(0)
+    marks = np.unique(np.concatenate(found))
+    # none next to a ruling (its double knot is there) or to another break
+    gap = np.abs(span[np.clip(np.searchsorted(span, marks), 1, len(span) - 1)[:, None]
+                      - np.array([[1, 0]])] - marks[:, None]).min(axis=1)
+    marks = marks[gap > near]
+    return marks[np.concatenate([[True], np.diff(marks) > near])] if len(marks) else marks
+
+
+def _curve_breaks(curve: Curve) -> np.ndarray:
+    """A curve's parameters where it may not be smooth: its own breakpoints, and for a
+    parameter line of a NURBS design (as Rationalise's rails run on) the design's knots
+    it crosses; through the pieces of a joined curve."""
+    pieces, at = getattr(curve, "pieces", None), getattr(curve, "at", None)
+    if pieces is not None and at is not None:
+        return np.unique(np.concatenate([curve._breakpoints(),
+                                         *(at(k, _curve_breaks(piece)) for k, piece in enumerate(pieces))]))
+    family, surface = getattr(curve, "family", None), getattr(curve, "surface", None)
+    name = {"u": "knots_u", "v": "knots_v"}.get(family)  # type: ignore[arg-type]
+    knots = getattr(surface, name, None) if name is not None else None
+    own = curve._breakpoints()
+    return own if knots is None else np.unique(np.concatenate([own, np.clip(knots, 0.0, 1.0)]))
 
 
 def _samples(strip: RuledSurface, span: np.ndarray, per: int,
