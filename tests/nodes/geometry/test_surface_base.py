@@ -161,24 +161,3 @@ def test_isocurve_of_nurbs_surface_breaks_at_its_knots():
         np.sum(np.linalg.norm(np.diff(iso.point_at(np.linspace(0, 1, 20001)), axis=0), axis=1)),
         rel=1e-8,
     )
-
-
-@pytest.mark.parametrize(("offset", "bump"), [((1e6, 2e6, 300.0), 5e-5), ((1e9, 1e9, 1e9), 2e-3)])
-def test_bounding_box_far_from_the_origin_finds_a_shallow_extreme(offset, bump):
-    # x along u is the cubic Bézier with x-controls (0, 2b, -3b, 0): a shallow crest and
-    # trough between the box's samples; its extremes are where the derivative's
-    # quadratic vanishes (numpy's roots, independent of the kernel). Moved to site
-    # coordinates the box is the same, moved, to the rounding of the moved controls
-    # (at 1e6 m the search used to stop 8e-8 m short of the crest, at 1e9 m 3e-6 m).
-    c = np.array([0.0, 2.0 * bump, -3.0 * bump, 0.0])
-    ys = np.linspace(0.0, 12.0, 4)
-    grid = np.array([[[x, y, z] for z in (0.0, 8.0)] for x, y in zip(c, ys, strict=True)])
-    surface = NurbsSurface(grid + np.asarray(offset), degree_u=3, degree_v=1)
-    power = np.array([-c[0] + 3 * c[1] - 3 * c[2] + c[3], 3 * c[0] - 6 * c[1] + 3 * c[2],
-                      -3 * c[0] + 3 * c[1]])  # the Bézier's power coefficients
-    u = np.roots(power * [3.0, 2.0, 1.0]).real
-    x = (1 - u) ** 3 * c[0] + 3 * (1 - u) ** 2 * u * c[1] + 3 * (1 - u) * u**2 * c[2] + u**3 * c[3]
-    box = surface.bounding_box() - np.asarray(offset)
-    rounding = 2.0 * float(np.spacing(max(offset)))
-    np.testing.assert_allclose(box[:, 0], [x.min(), x.max()], rtol=0, atol=rounding)
-    np.testing.assert_allclose(box[:, 1:], [[0.0, 0.0], [12.0, 8.0]], rtol=0, atol=rounding)

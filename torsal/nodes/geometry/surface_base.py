@@ -408,18 +408,10 @@ class Surface(ABC):
 
         Each of the six extremes starts at the best sample of a grid and is then
         polished with a bounded quasi-Newton search (scipy's L-BFGS-B), so the box is
-        tight to ~1e-10, not just to the sampling. A surface far from the origin (at site
-        coordinates) is searched moved to a frame at its samples (:mod:`.local_frame`): there
-        its coordinates round as at the origin, where at 1e6 m their rounding (1e-10 m)
-        hid a shallow extreme's last 1e-7 m from the search.
+        tight to ~1e-10, not just to the sampling.
         """
         gu, gv = uv_grid(samples + 1, samples + 1)
         pts = self.derivatives(gu, gv, 0)[0]
-        from .local_frame import frame_origin, translated  # (it moves surfaces: imported here)
-
-        origin = frame_origin(pts)
-        if origin.any():
-            return translated(self, -origin).bounding_box(samples) + origin
         box = np.array([pts.min(axis=0), pts.max(axis=0)])
         for axis in range(3):
             for row, sign in ((0, 1.0), (1, -1.0)):
