@@ -205,10 +205,11 @@ def _(surface: NurbsSurface, move: Mover) -> NurbsSurface:
 def _(surface: RuledSurface, move: Mover) -> RuledSurface:
     moved = RuledSurface.__new__(RuledSurface)
     lines = surface.ruling_lines
-    if surface._both is not None and lines is not None:  # a loft of given rulings: its rails share one spline
-        degree = surface._both.degree
-        rails = SplineRail._pair(surface._both.params, move.points(lines[:, 0]), move.points(lines[:, 1]),
-                                 surface.closed_u, degree)
+    both = surface._both
+    if both is not None:  # a loft of given rulings: its rails share one spline, through both's points
+        # (not ruling_lines: those are the rulings drawn, which may be fewer than the rails')
+        a, b = move.points(both.points[:, :3]), move.points(both.points[:, 3:])
+        rails = SplineRail._pair(both.params, a, b, surface.closed_u, both.degree)
     else:
         rails = move(surface.curve_a), move(surface.curve_b)
     moved._setup(*rails, surface.closed_u)
