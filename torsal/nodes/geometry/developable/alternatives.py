@@ -12,8 +12,6 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-import numpy as np
-
 from ..curve_base import Curve
 from .ruling import RulingResult, ruling_developable, ruling_developables
 
@@ -66,11 +64,10 @@ def align_b(
     (None elsewhere). A designer expects the strip between the curves whichever way each
     was drawn, as Rhino's Loft aligns its curves; every strip is solved side by side
     (:func:`.ruling.ruling_developables`)."""
-    against = [_drawn_against(job[0], job[1]) for job in jobs]
     redo = [
         i for i, result in enumerate(results)
         if not isinstance(result, ValueError) and result.fan.any()
-        and (result.backward or result.any_backward or against[i])
+        and (result.backward or result.any_backward)
     ]
     reversed_b: list[Curve | None] = [None] * len(results)
     if not redo:
@@ -78,19 +75,6 @@ def align_b(
     flipped = {i: jobs[i][1].reversed() for i in redo}
     again = ruling_developables([(jobs[i][0], flipped[i], *jobs[i][2:]) for i in redo])
     for i, other in zip(redo, again, strict=True):
-        if isinstance(other, ValueError):
-            continue
-        gain = results[i].fan_share - other.fan_share
-        if gain > ALIGN or (gain >= -ALIGN and against[i]):  # a tie: B as Loft would align it
+        if not isinstance(other, ValueError) and other.fan_share < results[i].fan_share - ALIGN:
             results[i], reversed_b[i] = other, flipped[i]
     return reversed_b
-
-
-def _drawn_against(curve_a: Curve, curve_b: Curve) -> bool:
-    """Whether B runs against A by their ends, as Rhino's Loft reads two curves: A's ends
-    are nearer B's ends crossed than in order. It settles a strip that fans cover as much
-    whichever way B runs, so that B drawn either way still gives one strip."""
-    (a0, a1), (b0, b1) = curve_a.end_points, curve_b.end_points
-    in_order = np.linalg.norm(a0 - b0) + np.linalg.norm(a1 - b1)
-    crossed = np.linalg.norm(a0 - b1) + np.linalg.norm(a1 - b0)
-    return bool(crossed < in_order)
