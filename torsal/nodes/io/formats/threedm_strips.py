@@ -593,8 +593,16 @@ def _curve_breaks(curve: Curve) -> np.ndarray:
     it crosses; through the pieces of a joined curve."""
     pieces, at = getattr(curve, "pieces", None), getattr(curve, "at", None)
     if pieces is not None and at is not None:
-        return np.unique(np.concatenate([curve._breakpoints(),
-                                         *(at(k, _curve_breaks(piece)) for k, piece in enumerate(pieces))]))
+        # a piece is a curve, or (curve, p0, p1) where a chain runs it over p0 → p1 only
+        inner = []
+        for k, piece in enumerate(pieces):
+            if isinstance(piece, tuple):
+                own, p0, p1 = piece
+                breaks = _curve_breaks(own)
+                inner.append(at(k, breaks[(breaks > min(p0, p1)) & (breaks < max(p0, p1))]))
+            else:
+                inner.append(at(k, _curve_breaks(piece)))
+        return np.unique(np.clip(np.concatenate([curve._breakpoints(), *inner]), 0.0, 1.0))
     family, surface = getattr(curve, "family", None), getattr(curve, "surface", None)
     name = {"u": "knots_u", "v": "knots_v"}.get(family)  # type: ignore[arg-type]
     knots = getattr(surface, name, None) if name is not None else None
