@@ -108,6 +108,17 @@ def wait_solved(qtbot: Any, window: MainWindow, timeout: int = SOLVE_TIMEOUT_MS)
     QApplication.processEvents()
 
 
+def downstream_of(graph, node_id: str) -> set[str]:
+    """The nodes a change of ``node_id`` reaches through wires."""
+    seen, stack = set(), [node_id]
+    while stack:
+        for wire in graph.wires_from(stack.pop()):
+            if wire.target not in seen:
+                seen.add(wire.target)
+                stack.append(wire.target)
+    return seen
+
+
 def copy_fixture(source: Path, folder: Path) -> Path:
     target = folder / source.name
     shutil.copyfile(source, target)

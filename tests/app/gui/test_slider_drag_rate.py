@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from tests.support.fixtures_gui import EXAMPLES, FIXTURES, slider_handle, wait_solved
+from tests.support.fixtures_gui import EXAMPLES, FIXTURES, downstream_of, slider_handle, wait_solved
 
 DRAG_SECONDS = 2.0
 
@@ -30,13 +30,7 @@ def main_slider(graph) -> str:
             return sliders[quoted]
 
     def downstream(node_id: str) -> int:
-        seen, stack = set(), [node_id]
-        while stack:
-            for wire in graph.wires_from(stack.pop()):
-                if wire.target not in seen:
-                    seen.add(wire.target)
-                    stack.append(wire.target)
-        return len(seen)
+        return len(downstream_of(graph, node_id))
 
     return max(sliders.values(), key=lambda n: (downstream(n), n))
 

@@ -9,7 +9,7 @@ import numpy as np
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from tests.support.fixtures_gui import EXAMPLES, slider_handle, wait_solved
+from tests.support.fixtures_gui import EXAMPLES, downstream_of, slider_handle, wait_solved
 from torsal.app.gui.viewport.datasets import Piece, dataset, reshape
 
 #: 'Inward scale' values of the Kaohsiung example: the file's own (no strip folds) and
@@ -65,17 +65,6 @@ def test_reshaping_a_dataset_gives_it_the_new_points_and_cells():
     assert poly.n_lines == 2 and poly.lines.tolist() == [2, 0, 1, 2, 2, 3]
     poly.points[:] = 0.0  # its arrays are its own: writing them leaves the piece alone
     assert more[1, 0] == 1.0
-
-
-def downstream_of(graph, node_id: str) -> set[str]:
-    """The nodes a change of ``node_id`` reaches through wires."""
-    seen, stack = set(), [node_id]
-    while stack:
-        for wire in graph.wires_from(stack.pop()):
-            if wire.target not in seen:
-                seen.add(wire.target)
-                stack.append(wire.target)
-    return seen
 
 
 def test_a_drag_rebuilds_no_actor_and_leaves_nodes_it_does_not_reach_untouched(qtbot, window, monkeypatch):
