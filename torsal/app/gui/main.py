@@ -7,6 +7,10 @@ import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from torsal.app.gui.collections_policy import StartUpCollectionsHeld
 
 
 def launch(path: str | Path | None = None) -> int:
@@ -19,14 +23,37 @@ def launch(path: str | Path | None = None) -> int:
     start-up stage (for the start-up benchmark): ``imported`` (Qt and the window's
     modules), ``window-shown`` (its first paint), ``plotter`` (pyvista and VTK set up),
     ``viewport-ready`` (the file opened, its solve started), ``solved`` (the first results)
-    and ``first-frame`` (the viewport's first render after them).
+    and ``first-frame`` (the viewport's first render after them), each with
+    ``collections-held`` or ``collections-on``.
+
+    Automatic garbage collection is off from here until just after that first frame (at
+    most :data:`~torsal.app.gui.collections_policy.START_UP_LIMIT_S`; the stage
+    ``collecting`` says when it is back on): see
+    :class:`~torsal.app.gui.collections_policy.StartUpCollectionsHeld`.
     """
+    from torsal.app.gui.collections_policy import START_UP_LIMIT_S, StartUpCollectionsHeld
+
+    collections = StartUpCollectionsHeld()
+    collections.hold()
+    try:
+        return _run(path, collections, START_UP_LIMIT_S)
+    finally:
+        collections.release()
+
+
+def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: float) -> int:
     report = os.environ.get("TORSAL_REPORT_STARTUP") == "1"
 
     def stamp(stage: str) -> None:
         if report:
-            line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f}"
+            held = "held" if collections.held else "on"
+            line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f} collections-{held}"
             print(line, file=sys.stderr, flush=True)
+
+    def collect() -> None:
+        if collections.held:
+            collections.release()
+            stamp("collecting")
 
     from PySide6.QtCore import QEvent, QObject
     from PySide6.QtWidgets import QApplication
@@ -49,7 +76,7 @@ def launch(path: str | Path | None = None) -> int:
     def started() -> None:
         if report:
             window.viewport.plotter_created.connect(lambda: stamp("plotter"))
-            window.doc.results_changed.connect(first_results)
+        window.doc.results_changed.connect(first_results)
         window.start(Path(path) if path else None)
         stamp("viewport-ready")
 
@@ -61,6 +88,7 @@ def launch(path: str | Path | None = None) -> int:
     def first_frame() -> None:
         window.viewport.frame_rendered.disconnect(first_frame)
         stamp("first-frame")
+        defer(window, collect)  # after the event that drew the frame has been handled
 
     class FirstPaint(QObject):
         """Runs ``then`` once, after the window's first paint."""
@@ -78,5 +106,6 @@ def launch(path: str | Path | None = None) -> int:
             return False
 
     window.installEventFilter(FirstPaint(started))
+    defer(window, collect, int(limit_s * 1000))  # a first solve that takes long
     window.show()
     return app.exec()
