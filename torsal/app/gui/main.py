@@ -24,7 +24,8 @@ def launch(path: str | Path | None = None) -> int:
     modules), ``window-shown`` (its first paint), ``plotter`` (pyvista and VTK set up),
     ``viewport-ready`` (the file opened, its solve started), ``solved`` (the first results)
     and ``first-frame`` (the viewport's first render after them), each with
-    ``collections-held`` or ``collections-on``.
+    ``collections-held`` or ``collections-on`` and, on Linux, ``runqueue=S`` (the seconds
+    the main thread waited for a CPU: :func:`waited_for_a_cpu`).
 
     Automatic garbage collection is off from here until just after that first frame (at
     most :data:`~torsal.app.gui.collections_policy.START_UP_LIMIT_S`; the stage
@@ -41,6 +42,17 @@ def launch(path: str | Path | None = None) -> int:
         collections.release()
 
 
+def waited_for_a_cpu() -> str:
+    """`` runqueue=S``: the seconds this thread has spent ready to run but waiting for a
+    CPU (Linux's schedstat), or ``""`` where that is not known. A start-up's wall time less
+    this is close to what it takes on an idle machine (tests/benchmarks/bench_startup.py)."""
+    try:
+        with open("/proc/thread-self/schedstat", encoding="ascii") as stat:
+            return f" runqueue={int(stat.read().split()[1]) / 1e9:.4f}"
+    except (OSError, ValueError, IndexError):
+        return ""
+
+
 def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: float) -> int:
     report = os.environ.get("TORSAL_REPORT_STARTUP") == "1"
 
@@ -48,7 +60,7 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
         if report:
             held = "held" if collections.held else "on"
             line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f} collections-{held}"
-            print(line, file=sys.stderr, flush=True)
+            print(line + waited_for_a_cpu(), file=sys.stderr, flush=True)
 
     def collect() -> None:
         if collections.held:
