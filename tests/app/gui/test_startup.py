@@ -88,3 +88,20 @@ def test_torsal_gui_shows_its_window_and_the_example(tmp_path):
     for stage in ("imported", "window-shown", "viewport-ready", "solved", "first-frame"):
         assert notes[stage][0] == "collections-held", (stage, notes)
     assert notes["collecting"][0] == "collections-on"
+
+
+def test_garbage_collection_resumes_once_start_up_has_used_its_cpu_seconds(tmp_path):
+    """However long the first solve: here a limit of 0 CPU seconds is reached at once."""
+    script = (
+        "import sys\n"
+        "import torsal.app.gui.collections_policy as policy\n"
+        "policy.START_UP_LIMIT_S = 0.0\n"
+        "from torsal.app.cli import main\n"
+        "sys.exit(main(sys.argv[1:]))\n"
+    )
+    env = dict(os.environ, TORSAL_REPORT_STARTUP="1", TORSAL_CONFIG_DIR=str(tmp_path), PYTHONPATH=str(ROOT))
+    notes: dict[str, list[str]] = {}
+    command = [sys.executable, "-c", script, "gui", str(EXAMPLES / "first-steps.graph")]
+    stamps = stages(command, env, until="first-frame", timeout=60, notes=notes)
+    assert stamps["collecting"] < stamps["first-frame"], stamps
+    assert notes["first-frame"][0] == "collections-on"

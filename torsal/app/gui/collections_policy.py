@@ -13,7 +13,8 @@ CPU seconds of the ~2 before the first solved frame (four full collections ~0.2,
 young ones ~0.1; measured on the flagship, see ``tests/benchmarks/bench_startup.py``),
 none of which frees anything worth having. :class:`StartUpCollectionsHeld` switches
 automatic collection off from launch until the first solved frame has been drawn (or
-:data:`START_UP_LIMIT_S` has passed, whichever comes first), then on again.
+the process has used :data:`START_UP_LIMIT_S` CPU seconds, whichever comes first), then
+on again.
 """
 
 from __future__ import annotations
@@ -23,9 +24,10 @@ import gc
 #: Generation-1 collections before a full one while held (CPython's default is 10): a
 #: drag of minutes makes far fewer.
 HELD_THRESHOLD = 1_000_000
-#: Automatic collection stays off at most this long after launch (seconds), however long
-#: the first solve takes: what a long first solve leaves in reference cycles meanwhile is
-#: bounded by what it can allocate in that time.
+#: Automatic collection stays off at most until the process has used this many CPU seconds
+#: (every thread), however long the first solve takes: what a long first solve leaves in
+#: reference cycles meanwhile is bounded by what it can allocate in that much work. CPU
+#: seconds, not wall: a loaded machine stretches the wall time of the same start-up.
 START_UP_LIMIT_S = 10.0
 
 
@@ -59,7 +61,8 @@ class FullCollectionsHeld:
 
 class StartUpCollectionsHeld:
     """Automatic collection off from :meth:`hold` (at launch) to :meth:`release` (after
-    the first solved frame, or :data:`START_UP_LIMIT_S` later; the caller arranges both).
+    the first solved frame, or at :data:`START_UP_LIMIT_S` CPU seconds; the caller
+    arranges both).
 
     Nothing is collected by hand at the release: the first young collection after it
     (the app's next allocations) goes through what start-up left, as the collector would

@@ -27,9 +27,9 @@ def launch(path: str | Path | None = None) -> int:
     ``collections-held`` or ``collections-on`` and, on Linux, ``runqueue=S`` (the seconds
     the main thread waited for a CPU: :func:`waited_for_a_cpu`).
 
-    Automatic garbage collection is off from here until just after that first frame (at
-    most :data:`~torsal.app.gui.collections_policy.START_UP_LIMIT_S`; the stage
-    ``collecting`` says when it is back on): see
+    Automatic garbage collection is off from here until just after that first frame (or
+    until the process has used :data:`~torsal.app.gui.collections_policy.START_UP_LIMIT_S`
+    CPU seconds; the stage ``collecting`` says when it is back on): see
     :class:`~torsal.app.gui.collections_policy.StartUpCollectionsHeld`.
     """
     from torsal.app.gui.collections_policy import START_UP_LIMIT_S, StartUpCollectionsHeld
@@ -62,12 +62,7 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
             line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f} collections-{held}"
             print(line + waited_for_a_cpu(), file=sys.stderr, flush=True)
 
-    def collect() -> None:
-        if collections.held:
-            collections.release()
-            stamp("collecting")
-
-    from PySide6.QtCore import QEvent, QObject
+    from PySide6.QtCore import QEvent, QObject, QTimer
     from PySide6.QtWidgets import QApplication
 
     from torsal.app.gui.main_window import MainWindow
@@ -84,6 +79,19 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
         window.restoreGeometry(geometry)
     if state is not None:
         window.restoreState(state)
+
+    # Collection resumes after the first solved frame, or once start-up has used
+    # ``limit_s`` CPU seconds (every thread: what a long first solve may have allocated)
+    budget = QTimer(window)
+    budget.setInterval(250)
+
+    def collect() -> None:
+        budget.stop()
+        if collections.held:
+            collections.release()
+            stamp("collecting")
+
+    budget.timeout.connect(lambda: collect() if time.process_time() > limit_s else None)
 
     def started() -> None:
         if report:
@@ -118,6 +126,6 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
             return False
 
     window.installEventFilter(FirstPaint(started))
-    defer(window, collect, int(limit_s * 1000))  # a first solve that takes long
+    budget.start()
     window.show()
     return app.exec()
