@@ -74,7 +74,7 @@ def cpu_seconds(pid: int) -> float:
 
 def test_torsal_gui_shows_its_window_and_the_example(tmp_path):
     notes: dict[str, list[str]] = {}
-    stamps = start_app(tmp_path, until="collecting", notes=notes)
+    stamps = start_app(tmp_path, until="started-up", notes=notes)
     assert "window-shown" in stamps, "the app never reported its window"
     assert "viewport-ready" in stamps, "the 3D viewport never became ready"
     print(
@@ -82,16 +82,17 @@ def test_torsal_gui_shows_its_window_and_the_example(tmp_path):
         f"3D viewport and example ready after {stamps['viewport-ready']:.2f} s"
     )
     assert 0 < stamps["window-shown"] <= stamps["viewport-ready"]
-    # automatic garbage collection is off until the example's first solved frame is drawn,
-    # then on again (collections_policy.StartUpCollectionsHeld)
-    assert stamps["solved"] <= stamps["first-frame"] <= stamps["collecting"], stamps
+    # automatic garbage collection is off and the palette's buttons wait until the
+    # example's first solved frame is drawn (collections_policy.StartUpCollectionsHeld)
+    assert stamps["solved"] <= stamps["first-frame"] <= stamps["started-up"], stamps
     for stage in ("imported", "window-shown", "viewport-ready", "solved", "first-frame"):
-        assert notes[stage][0] == "collections-held", (stage, notes)
-    assert notes["collecting"][0] == "collections-on"
+        assert notes[stage][:2] == ["collections-held", "palette-waiting"], (stage, notes)
+    assert notes["started-up"][:2] == ["collections-on", "palette-filled"]
 
 
 def test_garbage_collection_resumes_once_start_up_has_used_its_cpu_seconds(tmp_path):
-    """However long the first solve: here a limit of 0 CPU seconds is reached at once."""
+    """However long the first solve: here a limit of 0 CPU seconds is reached at once (and
+    the palette is filled then too)."""
     script = (
         "import sys\n"
         "import torsal.app.gui.collections_policy as policy\n"
@@ -103,5 +104,5 @@ def test_garbage_collection_resumes_once_start_up_has_used_its_cpu_seconds(tmp_p
     notes: dict[str, list[str]] = {}
     command = [sys.executable, "-c", script, "gui", str(EXAMPLES / "first-steps.graph")]
     stamps = stages(command, env, until="first-frame", timeout=60, notes=notes)
-    assert stamps["collecting"] < stamps["first-frame"], stamps
-    assert notes["first-frame"][0] == "collections-on"
+    assert stamps["started-up"] < stamps["first-frame"], stamps
+    assert notes["first-frame"][:2] == ["collections-on", "palette-filled"]

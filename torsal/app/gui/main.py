@@ -17,19 +17,22 @@ def launch(path: str | Path | None = None) -> int:
     """Open the main window (on ``path`` if given) and run the event loop; returns the exit code.
 
     The window is shown first; the 3D viewport (pyvista takes a second or two to import),
-    an autosave left by a crash and the file follow once it has been painted.
+    an autosave left by a crash and the file follow once it has been painted, and the
+    palette's buttons (their icons, the modules of the palette shown) after the file's
+    first solved frame.
     ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` and the
     CPU seconds the process has used (``time.process_time()``, every thread) at each
     start-up stage (for the start-up benchmark): ``imported`` (Qt and the window's
     modules), ``window-shown`` (its first paint), ``plotter`` (pyvista and VTK set up),
     ``viewport-ready`` (the file opened, its solve started), ``solved`` (the first results)
-    and ``first-frame`` (the viewport's first render after them), each with
-    ``collections-held`` or ``collections-on`` and, on Linux, ``runqueue=S`` (the seconds
-    the main thread waited for a CPU: :func:`waited_for_a_cpu`).
+    ``first-frame`` (the viewport's first render after them) and ``started-up`` (the
+    palette filled, garbage collection back on), each with ``collections-held`` or
+    ``collections-on``, ``palette-waiting`` or ``palette-filled`` and, on Linux,
+    ``runqueue=S`` (the seconds the main thread waited for a CPU: :func:`waited_for_a_cpu`).
 
     Automatic garbage collection is off from here until just after that first frame (or
     until the process has used :data:`~torsal.app.gui.collections_policy.START_UP_LIMIT_S`
-    CPU seconds; the stage ``collecting`` says when it is back on): see
+    CPU seconds; the stage ``started-up`` says when it is back on): see
     :class:`~torsal.app.gui.collections_policy.StartUpCollectionsHeld`.
     """
     from torsal.app.gui.collections_policy import START_UP_LIMIT_S, StartUpCollectionsHeld
@@ -59,9 +62,12 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
     def stamp(stage: str) -> None:
         if report:
             held = "held" if collections.held else "on"
-            line = f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f} collections-{held}"
+            palette = "filled" if window is not None and window.palette.populated else "waiting"
+            line = (f"torsal-startup {stage} {time.time():.4f} {time.process_time():.4f}"
+                    f" collections-{held} palette-{palette}")
             print(line + waited_for_a_cpu(), file=sys.stderr, flush=True)
 
+    window = None
     from PySide6.QtCore import QEvent, QObject, QTimer
     from PySide6.QtWidgets import QApplication
 
@@ -85,19 +91,21 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
     budget = QTimer(window)
     budget.setInterval(250)
 
-    def collect() -> None:
-        budget.stop()
-        if collections.held:
+    def started_up() -> None:
+        """What the first frame did not need: the palette's buttons, garbage collection."""
+        if budget.isActive():
+            budget.stop()
+            window.palette.populate()
             collections.release()
-            stamp("collecting")
+            stamp("started-up")
 
-    budget.timeout.connect(lambda: collect() if time.process_time() > limit_s else None)
+    budget.timeout.connect(lambda: started_up() if time.process_time() > limit_s else None)
 
     def started() -> None:
         if report:
             window.viewport.plotter_created.connect(lambda: stamp("plotter"))
         window.doc.results_changed.connect(first_results)
-        window.start(Path(path) if path else None)
+        window.start(Path(path) if path else None, palette=False)
         stamp("viewport-ready")
 
     def first_results(_outcome: object) -> None:
@@ -108,7 +116,7 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
     def first_frame() -> None:
         window.viewport.frame_rendered.disconnect(first_frame)
         stamp("first-frame")
-        defer(window, collect)  # after the event that drew the frame has been handled
+        defer(window, started_up)  # after the event that drew the frame has been handled
 
     class FirstPaint(QObject):
         """Runs ``then`` once, after the window's first paint."""
