@@ -11,15 +11,19 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from torsal.app.gui.collections_policy import StartUpCollectionsHeld
+    from torsal.engine.registry import Registry
 
 
 def launch(path: str | Path | None = None) -> int:
     """Open the main window (on ``path`` if given) and run the event loop; returns the exit code.
 
-    The window is shown first; the 3D viewport (pyvista takes a second or two to import),
-    an autosave left by a crash and the file follow once it has been painted, and the
-    palette's buttons (their icons, the modules of the palette shown) after the file's
-    first solved frame.
+    First the libraries the first frame needs that do not need Qt are imported, with the
+    node modules of the file (:mod:`torsal.app.gui.before_qt` says why before Qt); then
+    Qt, checked by :func:`~torsal.app.gui.availability.missing` (raises
+    :class:`~torsal.app.gui.availability.Unavailable`). The window is shown next; the 3D
+    viewport, an autosave left by a crash and the file follow once it has been painted,
+    and the palette's buttons (their icons, the modules of the palette shown) after the
+    file's first solved frame.
     ``TORSAL_REPORT_STARTUP=1`` prints, on stderr, the wall-clock ``time.time()`` and the
     CPU seconds the process has used (``time.process_time()``, every thread) at each
     start-up stage (for the start-up benchmark): ``imported`` (Qt and the window's
@@ -35,12 +39,18 @@ def launch(path: str | Path | None = None) -> int:
     CPU seconds; the stage ``started-up`` says when it is back on): see
     :class:`~torsal.app.gui.collections_policy.StartUpCollectionsHeld`.
     """
+    from torsal.app.gui.availability import Unavailable, missing
+    from torsal.app.gui.before_qt import import_before_qt
     from torsal.app.gui.collections_policy import START_UP_LIMIT_S, StartUpCollectionsHeld
 
     collections = StartUpCollectionsHeld()
     collections.hold()
     try:
-        return _run(path, collections, START_UP_LIMIT_S)
+        registry = import_before_qt(Path(path) if path else None)
+        reason = missing()  # imports Qt
+        if reason is not None:
+            raise Unavailable(reason)
+        return _run(path, registry, collections, START_UP_LIMIT_S)
     finally:
         collections.release()
 
@@ -56,7 +66,8 @@ def waited_for_a_cpu() -> str:
         return ""
 
 
-def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: float) -> int:
+def _run(path: str | Path | None, registry: Registry, collections: StartUpCollectionsHeld,
+         limit_s: float) -> int:
     report = os.environ.get("TORSAL_REPORT_STARTUP") == "1"
 
     def stamp(stage: str) -> None:
@@ -79,7 +90,7 @@ def _run(path: str | Path | None, collections: StartUpCollectionsHeld, limit_s: 
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Torsal")
     app.setOrganizationName("Torsal")
-    window = MainWindow()
+    window = MainWindow(registry)
     geometry, state = window.settings.window_state()
     if geometry is not None:
         window.restoreGeometry(geometry)
