@@ -153,11 +153,13 @@ def test_sections_through_inflections_keep_their_rulings_when_re_parameterised(n
 #
 # Mostly not developable: fans and near partners (rulings whose warp is within the
 # tolerance but not zero, the least-warped among points evenly spaced along B) close most
-# of them, placed along B's length, never by its parameter. Measured on seeds 0-159, every
-# change below on A, on B and on both: 1.3e-10 of the size at most (before, the fans moved
-# with B's pace: 1.7e-2 under t², 3e-2 read from the other end) — but for seed 156 with
-# one curve reversed: its strip is all fans whichever way B runs (100 % either way), so
-# nothing tells the two apart and B stays as drawn.
+# of them, placed along B's length, never by its parameter. Measured on every one of seeds
+# 0-159 with every change below (1,120 pairs of strips, 33 s, run once): 1.3e-10 of the size
+# at most (seed 69, (t + t^3)/2 on A; before, the fans moved with B's pace: 1.7e-2 under t²,
+# 3e-2 read from the other end). Seed 156's strip is all fans whichever way B runs (100 %
+# either way): the tie is settled by the curves' ends, as Rhino's Loft aligns two curves
+# (1.4e-16 with B reversed, 1.6e-15 with A reversed; 0.27 before). Here 30 of those pairs
+# are drawn, besides the ones that once failed.
 
 CHANGES = {
     "t -> 1 - t on both": lambda a, b: (reversed_(a), reversed_(b)),
@@ -181,8 +183,8 @@ def node_rulings(a, b) -> tuple[np.ndarray, float]:
     return np.hstack([r.starts, r.ends]), size
 
 
-@SETTINGS
-@given(st.integers(0, 39), st.sampled_from(sorted(CHANGES)))
+@settings(SETTINGS, max_examples=30)
+@given(st.integers(0, 159), st.sampled_from(sorted(CHANGES)))
 @example(0, "t -> t^2 on B")  # (another partner at one station before the choice read lengths)
 @example(0, "t -> 1 - t on both")  # (the closing triangles leaned the other way: 3e-2)
 @example(18, "t -> 1 - t on B")  # (B reversed stood still at its end, its tangent taken backwards)
@@ -190,6 +192,8 @@ def node_rulings(a, b) -> tuple[np.ndarray, float]:
 @example(38, "t -> t^2 on A")  # (a jump predicted along A's parameter, not its length)
 @example(21, "t -> t^2 on A")  # (the end cone's pencil sampled in A's parameter missed its root)
 @example(156, "t -> t^2 on A")  # (A standing still at its start: its chain slope read as 0)
+@example(156, "t -> 1 - t on B")  # (all fans either way: B was kept as drawn, 0.27 away)
+@example(156, "t -> 1 - t on A")
 def test_random_rational_pairs_keep_every_ruling_when_re_parameterised(seed, change):
     rail_a, rail_b = rails(seed, near_planar=seed % 2 == 1)
     a, b = rail_a.as_torsal(), rail_b.as_torsal()
