@@ -30,17 +30,33 @@ the grid samples are candidates too.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .array_types import FloatArray
+from .curve_protocol import ParametricCurve
 from .roots import refine_roots
 from .vec_ops import anchor, extent
 
-if TYPE_CHECKING:
-    from .curve_base import Curve
-    from .surface_base import Surface
+
+class BoxedSurface(Protocol):
+    """What the box needs of a surface (:class:`~.surface_base.Surface` uses this module, so
+    it is named by its structure, not imported)."""
+
+    closed_u: bool
+    closed_v: bool
+
+    @property
+    def ruling_direction(self) -> str | None: ...
+
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]: ...
+
+    def edges(self) -> Sequence[ParametricCurve]: ...
+
+    def ruling_kinks(self) -> FloatArray: ...
 
 #: Newton iterations at most (a converging search takes a handful).
 NEWTON_STEPS = 40
@@ -61,7 +77,7 @@ _AXES = np.array([0, 0, 1, 1, 2, 2])
 _SIGNS = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 
-def surface_bounding_box(surface: Surface, samples: int = 32) -> FloatArray:
+def surface_bounding_box(surface: BoxedSurface, samples: int = 32) -> FloatArray:
     """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of ``surface`` over [0, 1]², tight to the
     rounding of its positions; starts from a ``(samples + 1)²`` grid (see the module)."""
     grid = np.linspace(0.0, 1.0, samples + 1)
@@ -82,7 +98,7 @@ def surface_bounding_box(surface: Surface, samples: int = 32) -> FloatArray:
     return np.stack([stacked.min(axis=0), stacked.max(axis=0)])
 
 
-def _edge_extremes(edge: Curve, intervals: int, corners: FloatArray) -> FloatArray:
+def _edge_extremes(edge: ParametricCurve, intervals: int, corners: FloatArray) -> FloatArray:
     """The points of an edge curve at its samples (``intervals`` even steps, its
     breakpoints and its ``corners``) and wherever a coordinate's derivative along it
     changes sign between two of them.
@@ -108,7 +124,7 @@ def _edge_extremes(edge: Curve, intervals: int, corners: FloatArray) -> FloatArr
     return edge.point_at(np.concatenate([t, roots]))
 
 
-def _inside_extremes(surface: Surface, gu: FloatArray, gv: FloatArray, points: FloatArray) -> FloatArray:
+def _inside_extremes(surface: BoxedSurface, gu: FloatArray, gv: FloatArray, points: FloatArray) -> FloatArray:
     """Every point the Newton searches for the six extremes reach (see the module)."""
     inner = (gu > 0.0) & (gu < 1.0) & (gv > 0.0) & (gv < 1.0)
     if not inner.any():  # a 2 × 2 grid
@@ -129,7 +145,7 @@ def _inside_extremes(surface: Surface, gu: FloatArray, gv: FloatArray, points: F
     return surface.derivatives(u, v, 0)[0]
 
 
-def _newton(surface: Surface, u: FloatArray, v: FloatArray, axes: np.ndarray, scales: FloatArray,
+def _newton(surface: BoxedSurface, u: FloatArray, v: FloatArray, axes: np.ndarray, scales: FloatArray,
             origin: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Minimise f = scale·(S(u, v)[axis] − origin[axis]) over the square from each (u, v)."""
     u, v = u.copy(), v.copy()
@@ -161,7 +177,7 @@ def _newton(surface: Surface, u: FloatArray, v: FloatArray, axes: np.ndarray, sc
         cut = np.minimum(1.0, LONGEST_STEP / np.where(longest > 0.0, longest, 1.0))
         du, dv = du * cut, dv * cut
         step = np.ones(len(active))
-        new_u, new_v = surface._project(ua + du, va + dv)
+        new_u, new_v = _project(surface, ua + du, va + dv)
         pending = pick
         for _ in range(BACKTRACKS):  # never let the coordinate worsen
             value = surface.derivatives(new_u[pending], new_v[pending], 0)[0]
@@ -170,8 +186,8 @@ def _newton(surface: Surface, u: FloatArray, v: FloatArray, axes: np.ndarray, sc
             if not len(pending):
                 break
             step[pending] *= 0.5
-            new_u[pending], new_v[pending] = surface._project(ua[pending] + step[pending] * du[pending],
-                                                              va[pending] + step[pending] * dv[pending])
+            new_u[pending], new_v[pending] = _project(surface, ua[pending] + step[pending] * du[pending],
+                                                      va[pending] + step[pending] * dv[pending])
         new_u[pending], new_v[pending] = ua[pending], va[pending]  # no descent: stay
         step_u, step_v = np.abs(new_u - ua), np.abs(new_v - va)
         if surface.closed_u:  # a step across the seam is short, not ~1
@@ -182,4 +198,11 @@ def _newton(surface: Surface, u: FloatArray, v: FloatArray, axes: np.ndarray, sc
         active = active[np.maximum(step_u, step_v) > NEWTON_STOP]
         if not len(active):
             break
+    return u, v
+
+
+def _project(surface: BoxedSurface, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(u, v) onto the square: clipped, or wrapped across the seam of a closed direction."""
+    u = np.mod(u, 1.0) if surface.closed_u else np.clip(u, 0.0, 1.0)
+    v = np.mod(v, 1.0) if surface.closed_v else np.clip(v, 0.0, 1.0)
     return u, v
