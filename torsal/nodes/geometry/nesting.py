@@ -293,6 +293,7 @@ def nest(
                 remaining = []  # best holds the layout
     while remaining and not run.stopped and run.left() >= FEWEST:
         if sum(area[i] for i in remaining) <= LAST_SHEET * usable:  # the last sheet: all the steps left
+            run.last_round = True
             packing = strip(centred, remaining, strip_height, spacing, orientations, run.left(), next(seeds),
                             run, better=lambda p: offer([p]))
             if packing is None or (taken := cut_into_sheets(packing, sheet, placed)) is None:
@@ -304,6 +305,7 @@ def nest(
         others = [i for i in remaining if i not in chosen]
         last = sum(area[i] for i in others) <= LAST_SHEET * usable
         reserve = round(LAST_RESERVE * run.left()) if last else 0
+        run.last_round = last  # progress: this round places every part left
         # the set packed with SET_SEEDS seeds side by side: the first seed's packing is the sheet when
         # it fits (the others then end), else the first that fits; each that fits is shown at once
         tries = SET_SEEDS
@@ -377,6 +379,7 @@ def nest(
                     sheet += taken
                     remaining = []
     if remaining and not run.stopped:  # out of steps: one strip of the rest, cut into sheet lengths
+        run.last_round = True
         packing = strip(centred, remaining, strip_height, spacing, orientations, FEWEST, next(seeds), run)
         if packing is not None:
             with lock:
