@@ -401,3 +401,38 @@ def test_the_parts_kept_are_those_a_pairwise_check_keeps():
             kept.append(i)
     assert 20 < len(kept) < 200
     assert _valid(polygons, room, 10.0) == kept
+
+
+def test_a_better_layout_too_close_to_the_last_told_is_told_once_the_search_settles(monkeypatch):
+    """A stand-in for sparrow finds three bars spread along a strip, then the same with the
+    last bar 1 mm nearer (0.1 % less stock: less than ``TELL`` better), then searches on for
+    3 s without bettering. The second layout is told about ``SETTLE`` s after it was found,
+    not only when the search ends."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
+
+    def spread(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
+               better=None, halt=None, counted=True):
+        first = {i: (0.0, (60.0 + 420.0 * k, height / 2)) for k, i in enumerate(members)}
+        last = {**first, members[-1]: (0.0, (60.0 + 420.0 * 2 - 1.0, height / 2))}
+        better(first)
+        time.sleep(0.2)
+        better(last)
+        time.sleep(3.0)
+        budget.spend(10)
+        return last
+
+    monkeypatch.setattr(sparrow_runs, "strip", spread)
+    monkeypatch.setattr(nesting, "strip", spread)
+    bars = [np.array([[0, 0], [100, 0], [100, 100], [0, 100]], dtype=float) + 500 * k for k in range(3)]
+    started = time.perf_counter()
+    told: list[tuple[float, float]] = []  # (seconds, the last bar's right end)
+
+    def found(layout):  # type: ignore[no-untyped-def]
+        end = place(bars[2], layout.angle[2], layout.shift[2])[:, 0].max()
+        told.append((time.perf_counter() - started, end))
+
+    nested = nest(bars, 2000.0, 102.0, margin=1.0, spacing=1.0, budget=10.0, found=found)
+    ended = time.perf_counter() - started
+    assert len(told) == 2 and told[0][1] - told[1][1] == pytest.approx(1.0)
+    assert told[1][0] - told[0][0] >= nesting.SETTLE and told[1][0] < ended - 1.5
+    assert place(bars[2], nested.angle[2], nested.shift[2])[:, 0].max() == pytest.approx(told[1][1])
