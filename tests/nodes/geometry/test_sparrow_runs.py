@@ -45,3 +45,22 @@ def test_the_fraction_stays_below_one_and_never_goes_back():
     run.tick(1, 500, 10)  # more steps than expected (a failed attempt counts 20)
     run.tick(1, 5, 10)
     assert heard == [0.99]
+
+
+def test_parts_handed_to_sparrow_turned_come_back_with_the_angles_of_the_parts_as_given():
+    """A bar 100 mm wide and 300 tall, handed to sparrow turned 90° (lying) for a strip 130 mm
+    tall, 10 mm from its edges: it can only lie in it. The angle returned, applied to the bar
+    as given (standing), lays it down inside the strip."""
+    import numpy as np
+    import shapely
+
+    from torsal.nodes.geometry.nesting import place
+    from torsal.nodes.geometry.sparrow_runs import FEWEST, strip
+
+    bar = np.array([[-50.0, -150.0], [50.0, -150.0], [50.0, 150.0], [-50.0, 150.0]])
+    packing = strip([bar], [0], 130.0, 10.0, None, FEWEST, 0, Budget(1.0, None, None), turn=90.0)
+    assert packing is not None
+    angle, shift = packing[0]
+    placed = shapely.Polygon(place(bar, angle, shift))
+    assert abs(angle % 180.0 - 90.0) < 1e-3  # turned a quarter from the bar as given
+    assert placed.bounds[1] >= 10.0 - 0.05 and placed.bounds[3] <= 120.0 + 0.05

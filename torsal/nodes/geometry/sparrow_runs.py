@@ -137,7 +137,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
            orientations: Sequence[float] | None, steps: int, seed: int,
            budget: Budget, enough: float = 0.0, failures: int = 1,
            better: Callable[[Packing], None] | None = None, halt: Callable[[], bool] | None = None,
-           counted: bool = True) -> Packing | None:
+           counted: bool = True, turn: float = 0.0) -> Packing | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -148,11 +148,21 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     packing it reported by then is kept. ``better`` is told each shorter packing as it
     arrives (not those of a cached job). ``halt`` (polled like ``stop``) ends this packing
     alone, keeping its best so far (another packing beside it made it of no use); the steps
-    of a packing not ``counted`` are left out of the budget's (they depend on when it ended)."""
+    of a packing not ``counted`` are left out of the budget's (they depend on when it ended).
+    ``turn``: sparrow is given each member turned by that many degrees (its search starts from
+    the parts as given; free rotation only), and the angles returned are of the shapes as given."""
+    c, s = math.cos(math.radians(turn)), math.sin(math.radians(turn))
+    turned = np.array([[c, s], [-s, c]])  # counter-clockwise, as the angles sparrow reports
+
+    def packed(rows: list) -> Packing:
+        return {int(i): ((float(a) + turn) % 360.0 if turn else float(a), (float(x), float(y)))
+                for i, a, x, y in rows}
+
     job = {
         # to a micrometre: below what sparrow's single precision holds on a sheet, and
         # rounding noise (a far site) then asks the same job
-        "shapes": [[i, np.round(shapes[i], 3).tolist()] for i in members], "height": float(height),
+        "shapes": [[i, np.round(np.asarray(shapes[i]) @ turned if turn else shapes[i], 3).tolist()]
+                   for i in members], "height": float(height),
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
@@ -209,7 +219,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                     else:
                         best = message
                         if better is not None:
-                            better({int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]})
+                            better(packed(best[1]))
                 try:
                     line = lines.get_nowait()
                 except queue.Empty:
@@ -235,7 +245,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     if ended and worker.returncode != 0 and best is None:
         last = (problem.strip().splitlines() or ["no message"])[-1]
         raise NestingFailed(f"the nesting engine (sparrow) stopped with {last}")
-    packing = None if best is None else {int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]}
+    packing = None if best is None else packed(best[1])
     if complete and not clocked:  # what any later run of this job would find
         while len(PACKED) >= CACHED:
             PACKED.pop(next(iter(PACKED)))
