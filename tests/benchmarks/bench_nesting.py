@@ -188,14 +188,7 @@ SHEET_BY_SHEET = pytest.mark.xfail(strict=True, reason="issue 31 item 1 not reac
                                    "beside the sheet: see nesting.py and docs/cut-sheets.md")
 
 
-#: The Kaohsiung strips: a sheet's set of 13 packed by sparrow costs about its strip of all 18 to
-#: the same density, with a seed-to-seed spread of two to three (three runs at load 5-12: ratio
-#: 1.07, 1.68, 1.51): the bar is met about one run in three, so not strictly expected either way.
-BORDERLINE = pytest.mark.xfail(strict=False, reason="issue 31 item 1 on the Kaohsiung strips: ratio 1.1-1.7 "
-                               "from run to run (sparrow's time to fit a sheet's set varies with the seed)")
-
-
-@pytest.mark.parametrize("name", [pytest.param("kaohsiung", marks=BORDERLINE), "panels",
+@pytest.mark.parametrize("name", ["kaohsiung", "panels",
                                   pytest.param("random strips", marks=SHEET_BY_SHEET)])
 def test_true_shape_nesting_takes_at_most_one_and_a_half_times_sparrows_own_strip_packing(name, tmp_path):
     """The issue's bar: time to the layout against spyrrow's time, in one call, to pack the same

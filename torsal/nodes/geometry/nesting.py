@@ -24,8 +24,12 @@ too, and a strip cut into sheet lengths loses at every cut the parts that cross 
 What a sheet's set costs is about what sparrow's own strip of every part costs to reach
 the same density: a sheet is a strip with the density of the layout, not more, and each
 part is packed once (issue 31; profiled on the Kaohsiung strips, 18 parts about a third
-of a sheet long: the set of 13 at 71-74 % of the sheet took 13-27 s at a load of 6, the
-last sheet's 5 beside it 2-5 s). Strips of every part cut into sheets were 10 points less
+of a sheet long, with CPU time per packing: the set of 13 fits the sheet in 8 CPU-s for
+seed 0, the last sheet's 5 beside it reach their 74 % in 2-5 CPU-s standing; sparrow's own
+strip of all 18 reaches the layout's 72.6 % in 5-12 CPU-s by seed when given the parts as
+the layout turned them, 8-32 as drawn. Where the time went before: the second seed packed
+beside the first, 8 CPU-s, and the last sheet lying, 19 CPU-s, its final layout shown only
+when its search ended). Strips of every part cut into sheets were 10 points less
 dense for such parts (every cut crosses four or five); parts small beside the sheet lose
 little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (many panels)
 the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:

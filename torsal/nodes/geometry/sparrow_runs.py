@@ -197,6 +197,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     reader.start()
     best, used, complete, clocked = None, 0, False, False
     me, expected = id(lines), steps  # this packing, and the steps it is expected to take
+    untold = False  # a packing came that better has not been told
     try:
         assert worker.stdin is not None
         worker.stdin.write(json.dumps(job))
@@ -217,9 +218,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                         if clocked:
                             budget.on_the_clock = True
                     else:
-                        best = message
-                        if better is not None:
-                            better(packed(best[1]))
+                        best, untold = message, True
                 try:
                     line = lines.get_nowait()
                 except queue.Empty:
@@ -228,6 +227,9 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                 finished = True
                 with contextlib.suppress(subprocess.TimeoutExpired):
                     worker.wait(timeout=5.0)
+            if untold and better is not None:  # the latest of those that came together
+                better(packed(best[1]))
+            untold = False
             if counted and best is not None and enough > 0:  # the steps to its end, as sparrow shortens
                 expected = min(steps, used + math.ceil(math.log(max(best[0] / enough, 1.0)) / SHRINK))
             if budget.tick(me if counted else None, used, expected) or (halt is not None and halt()):
