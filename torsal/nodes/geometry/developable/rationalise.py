@@ -48,8 +48,10 @@ Method
    split into ``max_strips`` evenly spaced strips, and the result reports the deviation
    reached.
 
-What this version does not do (yet): the boundaries are not traced along lines of
-curvature. A family that follows them leaves the design through its sides; the strips'
+Where both families of parameter lines cross asymptotic directions (:data:`RINGS`), strips
+between traced lines of curvature that ring each of the design's bumps are tried first
+(:mod:`.ring_layout`). Otherwise the boundaries are not traced along lines of curvature:
+a family that follows them leaves the design through its sides; the strips'
 ends are cut by the design's outline (:mod:`.outline_cut`, the D-strip models of Pottmann et
 al. 2008), but a boundary that itself runs out through a side is not made. A field fitted
 to the curvature directions but held to the design's edges (the level sets of one
