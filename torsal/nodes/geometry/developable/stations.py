@@ -30,6 +30,7 @@ from scipy.special import roots_legendre
 
 from ..array_types import IntArray
 from ..curve_base import FloatArray
+from ..curves.shared_knots import derivative_each
 from ..vec_ops import dot
 from .stack import Stack
 
@@ -175,13 +176,12 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
     so are its pieces' Gauss sums, their running total and the quintics' coefficients (a
     matrix product's and a cumulative sum's rounding depend on what else is in the array);
     the rest runs once for all of them."""
-    layouts, speeds = [], []
+    layouts = []
     for curve in curves:
         breaks = tuple(curve._breakpoints().tolist())
         layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
         layouts.append(layout(breaks, int(intervals)))
-        speeds.append(curve.derivative_at(layouts[-1][4], 1))
-    stacked = np.concatenate(speeds)
+    stacked = np.concatenate(derivative_each(curves, [layout[4] for layout in layouts], 1))
     stacked = np.sqrt(dot(stacked, stacked))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
     # each curve's speeds: at its Gauss nodes, its piece ends, just before its breakpoints
     all_nodes, halves, pieces, lengths, starts, ends, gauss = [], [], [], [], [], [], []
