@@ -76,3 +76,18 @@ def test_curves_of_other_knots_and_kinds_are_evaluated_each_on_its_own():
     together = derivatives_together(curves, x, bounds, 2)
     for own, lo, hi in zip(alone(curves, x, bounds, 2, False), bounds[:-1], bounds[1:], strict=True):
         assert np.array_equal(together[:, lo:hi], own)
+
+
+def test_curves_sharing_knots_need_one_basis_evaluation_per_derivative_order(monkeypatch):
+    curves = curves_sharing_knots(6, True, 8)
+    x, bounds = parameters(6, [5] * 8)
+    calls = []
+    evaluate = BSpline.__call__
+
+    def counted(self, *args, **kwargs):
+        calls.append(1)
+        return evaluate(self, *args, **kwargs)
+
+    monkeypatch.setattr(BSpline, "__call__", counted)
+    derivatives_together(curves, x, bounds, 2)
+    assert len(calls) == min(2, curves[0].degree) + 1

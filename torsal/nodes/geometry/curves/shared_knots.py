@@ -38,8 +38,9 @@ def derivatives_together(
     """Points and derivatives up to ``order``, ``(order + 1, len(x), 3)``, of curve ``i`` at
     its parameters ``x[bounds[i]:bounds[i + 1]]``: what ``curve.derivatives`` (or, with
     ``local``, ``curve.local_derivatives``) gives each curve alone, bit for bit. NURBS
-    curves that share a degree, knots and rationality are evaluated together; any other
-    curve on its own."""
+    curves that share a degree, knots and rationality are evaluated together (while they
+    have at most :data:`ROWS_PER_CURVE` parameters each on average); any other curve on its
+    own."""
     out = np.empty((order + 1, len(x), 3))
     groups: dict[tuple, list[int]] = {}
     lows, highs = bounds[:-1].tolist(), bounds[1:].tolist()
@@ -54,13 +55,13 @@ def derivatives_together(
             out[:, lows[i] : highs[i]] = evaluate(x[lows[i] : highs[i]], order)
     for members in groups.values():
         group = [curves[i] for i in members]
-        if len(members) == 1:  # (alone: its own call is as cheap)
-            i = members[0]
-            evaluate = group[0].local_derivatives if local else group[0].derivatives
-            out[:, lows[i] : highs[i]] = evaluate(x[lows[i] : highs[i]], order)
-            continue
         starts = bounds[:-1][members]
         counts = bounds[1:][members] - starts
+        if len(members) == 1 or counts.sum() > ROWS_PER_CURVE * len(members):
+            for i in members:
+                evaluate = curves[i].local_derivatives if local else curves[i].derivatives
+                out[:, lows[i] : highs[i]] = evaluate(x[lows[i] : highs[i]], order)
+            continue
         rows = np.arange(counts.sum()) + np.repeat(starts - (np.cumsum(counts) - counts), counts)
         out[:, rows] = _group_derivatives(group, np.repeat(np.arange(len(group)), counts), x[rows], order)
         if not local:
@@ -91,6 +92,12 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
             out[i] = values[order, low:high]
     return out  # type: ignore[return-value]  (every curve's is filled in)
 
+
+#: Curves are evaluated together while they have at most this many parameters each on
+#: average: together they pay scipy's fixed cost per call once, but each row costs more (the
+#: basis is combined with the coefficients by numpy); alone is cheaper from ~70 rows a curve
+#: (measured on 28 quadratics, first and second derivatives).
+ROWS_PER_CURVE = 48
 
 #: per class, whether its curves evaluate as :class:`.NurbsCurve` does (:func:`_groupable`)
 _NURBS_LIKE: dict[type, bool] = {}
