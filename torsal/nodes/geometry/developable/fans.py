@@ -27,7 +27,7 @@ the strip read from its other end is the same.
 from __future__ import annotations
 
 import struct
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from functools import partial
 from math import isnan
 
@@ -41,7 +41,7 @@ from ..vec_ops import cross, det, flatnonzero, norm, unit
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .stack import Stack, evaluate_each, evaluate_rows
-from .strip import SIDE, Steady, Strip
+from .strip import SIDE, Steady, Strip, gap_lengths_all
 
 #: Fractions of a chain's length this close are one in :func:`zigzag`.
 TIE = 1e-9
@@ -567,19 +567,56 @@ def close_gaps(
 
     Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
     """
+    return close_gaps_all([(strip, t, fans)])[0]
+
+
+def close_gaps_all(
+    jobs: Sequence[tuple[Strip, FloatArray, list | None]],
+) -> list[list[tuple[FloatArray, FloatArray]]]:
+    """:func:`close_gaps` of every ``(strip, t, fans)`` of ``jobs``: the stretches of B that
+    the strips' holes and gaps span measured together first, then those beyond the first and
+    last rulings (:func:`.strip.gap_lengths_all`); each strip gets what it gets alone."""
+    stretches = []
+    for strip, t, fans in jobs:
+        gap = np.isnan(t)
+        stretches += [(strip, float(t[i]), float(t[i + 1]))
+                      for i in strip.holes if not (gap[i] or gap[i + 1])]
+        # (a closed B's last gap may end at the first station, which the first gap's closing
+        # sets: that stretch is found when it is closed)
+        for _, _, t_lo, t_hi, key in _gap_runs(strip, t, fans):
+            if key not in strip.closings:
+                seam = t_hi < t_lo  # (through the seam of a closed B: two stretches)
+                stretches += [(strip, t_lo, 1.0), (strip, 0.0, t_hi)] if seam else [(strip, t_lo, t_hi)]
+    gap_lengths_all(stretches)
+    added = [_close_inner(strip, t, fans) for strip, t, fans in jobs]
+    ends = []
+    for strip, t, _ in jobs:
+        if not strip.curve_b.closed:
+            ends += [(strip, 0.0, float(t[0]))] if t[0] > 0.0 else []
+            ends += [(strip, float(t[-1]), 1.0)] if t[-1] < 1.0 else []
+    gap_lengths_all(ends)
+    for (strip, t, _), more in zip(jobs, added, strict=True):
+        if not strip.curve_b.closed:
+            if t[0] > 0.0:
+                tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
+                more.append((np.zeros(len(tb)), tb))
+            if t[-1] < 1.0:
+                tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
+                more.append((np.ones(len(tb)), tb))
+    return added
+
+
+def _gap_runs(
+    strip: Strip, t: FloatArray, fans: list | None
+) -> Iterator[tuple[int, int, float, float, tuple]]:
+    """Each run ``i0..i1`` of stations without a partner in ``t``, with the stretch of B
+    ``t_lo``, ``t_hi`` its closing spans (:func:`close_gaps`) and its key among the strip's
+    closings. (The runs are found at the first step; each stretch is read from ``t`` as it
+    is when its run is reached.)"""
     n = len(t)
-    gap = np.isnan(t)
-    added: list[tuple[FloatArray, FloatArray]] = []
-    for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
-        if gap[i] or gap[i + 1]:
-            continue  # closed with the gap around it
-        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
-        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
-        inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
-        added.append((strip.s[i + a[inner]], tb[b[inner]]))
-    # the runs of gap stations: where ``gap`` padded with False on both sides changes
+    # the runs of gap stations: where the gaps padded with False on both sides change
     padded = np.zeros(n + 2, dtype=bool)
-    padded[1:-1] = gap
+    padded[1:-1] = np.isnan(t)
     edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     closed = strip.curve_b.closed
     for i0, stop in zip(edges[::2], edges[1::2], strict=True):  # one pass per gap (few)
@@ -593,21 +630,29 @@ def close_gaps(
                 t_hi = fan[1]
         if t_hi < t_lo and not closed:
             t_hi = t_lo
-        key = (i0, i1, struct.pack("2d", t_lo, t_hi))
+        yield i0, i1, t_lo, t_hi, (i0, i1, struct.pack("2d", t_lo, t_hi))
+
+
+def _close_inner(strip: Strip, t: FloatArray, fans: list | None) -> list[tuple[FloatArray, FloatArray]]:
+    """:func:`close_gaps` within the rulings: the holes, then the gaps one by one (:func:`_gap_runs`)."""
+    gap = np.isnan(t)
+    added: list[tuple[FloatArray, FloatArray]] = []
+    for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
+        if gap[i] or gap[i + 1]:
+            continue  # closed with the gap around it
+        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
+        inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
+        added.append((strip.s[i + a[inner]], tb[b[inner]]))
+    for i0, i1, t_lo, t_hi, key in _gap_runs(strip, t, fans):
         closing = strip.closings.get(key)
         if closing is None:
             closing = strip.closings[key] = _closing(strip, i0, i1, t_lo, t_hi)
         t[i0 : i1 + 1], extra = closing
         if extra is not None:
             added.append(extra)
-    if not closed:
-        if t[0] > 0.0:
-            tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
-            added.append((np.zeros(len(tb)), tb))
-        if t[-1] < 1.0:
-            tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
-            added.append((np.ones(len(tb)), tb))
     return added
+
 
 def _closing(
     strip: Strip, i0: int, i1: int, t_lo: float, t_hi: float

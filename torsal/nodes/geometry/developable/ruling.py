@@ -107,7 +107,7 @@ from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans_all, close_gaps, fan_shares_all, flat_fans, outside_gaps
+from .fans import a_fans_all, close_gaps_all, fan_shares_all, flat_fans, outside_gaps
 from .measure import check_rulings
 from .stack import Stack, evaluate_rows
 from .stations import Spacing
@@ -354,13 +354,10 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     # the check (step 8), round by round for the strips some of whose stations failed it
     open_ = solves
     for _ in range(MAX_CHECKS):
-        for solve in open_:
-            strip, t = solve.strip, solve.t
-            gap = np.isnan(t)
-            closed_t = t.copy()
-            kept = outside_gaps(solve.fans, strip.s, gap)
-            added = close_gaps(strip, closed_t, kept)
-            solve.rulings = _merge(strip, closed_t, gap, kept, added)
+        jobs = [(solve.strip, solve.t.copy(), outside_gaps(solve.fans, solve.strip.s, np.isnan(solve.t)))
+                for solve in open_]
+        for solve, (strip, closed_t, kept), added in zip(open_, jobs, close_gaps_all(jobs), strict=True):
+            solve.rulings = _merge(strip, closed_t, np.isnan(solve.t), kept, added)
         _check_all(open_)
         check()
         still = []

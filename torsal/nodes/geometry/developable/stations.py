@@ -294,6 +294,27 @@ def parameters_at(maps: Sequence[LengthMap], lengths: Sequence[FloatArray]) -> l
     return _parameters_at(maps, joined.astype(float, copy=False), stack)
 
 
+def lengths_at(maps: Sequence[LengthMap], ts: Sequence[FloatArray]) -> list[FloatArray]:
+    """:meth:`LengthMap.length_at` of each map of ``maps`` at its ``ts`` (1-d), for every map
+    at once: each gets what it gets alone, bit for bit (each map's search on its own rows,
+    the rest row by row)."""
+    if not len(maps):
+        return []
+    stack = Stack.of(ts)
+    t = np.minimum(np.maximum(np.concatenate(ts).astype(float, copy=False), 0.0), 1.0)
+    bounds = stack.offsets.tolist()
+    k = np.concatenate([np.minimum(m.nodes.searchsorted(t[low:high], side="right") - 1, len(m._rise) - 1)
+                        for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
+    pieces = Stack([len(m._rise) for m in maps])
+    on_piece = k + stack.repeat(pieces.starts)
+    on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
+    width, poly, nodes, lengths = (
+        np.concatenate([getattr(m, name) for m in maps]) for name in ("_width", "_poly", "nodes", "lengths"))
+    u = (t - nodes[on_node]) / width[on_piece]
+    rises = np.einsum("...j,...j->...", u[..., None] ** _POWERS, poly[on_piece, 0])  # (LengthMap._rises)
+    return stack.split(lengths[on_node] + rises)
+
+
 def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[FloatArray]:
     """``counts[i]`` (at least 2) parameters from t = 0 to t = 1 evenly spaced in arc length
     along the curve of ``maps[i]`` (of positive length), for every map at once; the ends

@@ -26,7 +26,7 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .stack import Stack, evaluate_each
-from .stations import LengthMap, Spacing, parameters_at, spaced_parameters
+from .stations import LengthMap, Spacing, lengths_at, parameters_at, spaced_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
@@ -245,16 +245,13 @@ class Strip:
 
     def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
         """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
-        of B: each round of the solve's check closes the same gaps again."""
+        of B: each round of the solve's check closes the same gaps again (and
+        :func:`gap_lengths_all` finds many strips' stretches together)."""
         key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
         found = self._gaps.get(key)
         if found is None:
-            tb, lb = self._gap(t_low, t_high)
-            if lb is None:
-                lb = self.length_b(tb)
-            tb.setflags(write=False)
-            lb.setflags(write=False)
-            found = self._gaps[key] = (tb, lb)
+            gap_lengths_all([(self, t_low, t_high)])
+            found = self._gaps[key]
         return found
 
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
@@ -287,6 +284,58 @@ def with_maps_b(strips: Sequence[Strip]) -> None:
     if missing:
         for strip, length_map in zip(missing, LengthMap.many([s.measured_b for s in missing]), strict=True):
             vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
+
+
+def gap_lengths_all(stretches: Sequence[tuple[Strip, float, float]]) -> None:
+    """Finds :meth:`Strip.gap_lengths` of every ``(strip, t_low, t_high)`` of ``stretches``
+    not found yet, all together: B's lengths at their ends, the fans' inner parameters and
+    the lengths at B's corners each measured for all of them in one pass
+    (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`), each the one
+    :meth:`Strip._gap` finds alone, bit for bit."""
+    wanted: dict[tuple[int, bytes], tuple[Strip, float, float]] = {}
+    for strip, t_low, t_high in stretches:
+        key = struct.pack("2d", t_low, t_high)
+        if key not in strip._gaps:
+            wanted.setdefault((id(strip), key), (strip, t_low, t_high))
+    if not wanted:
+        return
+    jobs = list(wanted.values())
+    strips = [strip for strip, _, _ in jobs]
+    with_maps_b(strips)
+    ends = [np.array([t_low, t_high]) for _, t_low, t_high in jobs]
+    # Strip._fan: the fan's two bounding rulings, and at most one ruling per station between
+    found: list[tuple[FloatArray, FloatArray | None]] = []
+    inner: list[tuple[int, FloatArray]] = []
+    for index, ((strip, t_low, t_high), lb) in enumerate(
+        zip(jobs, lengths_at([strip.map_b for strip in strips], ends), strict=True)
+    ):
+        spacing = strip.map_a.total / strip.segments
+        wanted_count = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
+        count = max(2, ceil(min(wanted_count, strip.segments + 1) - 1e-9) + 1)
+        # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+        found.append((np.maximum.accumulate(ends[index]), lb if t_high >= t_low else None))
+        if count > 2:
+            inner.append((index, np.linspace(lb[0], lb[1], count)))
+    if inner:
+        ts = parameters_at([strips[index].map_b for index, _ in inner], [lengths for _, lengths in inner])
+        for (index, _), t in zip(inner, ts, strict=True):
+            t[0], t[-1] = jobs[index][1], jobs[index][2]
+            found[index] = (np.maximum.accumulate(t), None)
+    # Strip._gap: B's corners between the ends join the parameters
+    for index, (strip, t_low, t_high) in enumerate(jobs):
+        if len(strip.kinks_b):
+            corners = strip.kinks_b[(strip.kinks_b > t_low) & (strip.kinks_b < t_high)]
+            if len(corners):
+                found[index] = (np.unique(np.concatenate([found[index][0], corners])), None)
+    unmeasured = [index for index, (_, lb) in enumerate(found) if lb is None]
+    measured = lengths_at([strips[index].map_b for index in unmeasured],
+                          [found[index][0] for index in unmeasured])
+    for index, lb in zip(unmeasured, measured, strict=True):
+        found[index] = (found[index][0], lb)
+    for (strip, t_low, t_high), (tb, lb) in zip(jobs, found, strict=True):
+        tb.setflags(write=False)
+        lb.setflags(write=False)
+        strip._gaps[struct.pack("2d", t_low, t_high)] = (tb, lb)
 
 
 def even_all(
