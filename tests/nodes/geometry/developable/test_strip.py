@@ -83,6 +83,8 @@ def test_stretches_of_b_of_many_strips_found_at_once_are_the_ones_found_alone():
         (alone,) = set_up([job], "length", 24)
         for low, high in stretches:
             tb, lb = strip.gap_lengths(low, high)
-            tb_alone, lb_alone = alone._gap(low, high)
+            tb_alone, lb_alone = alone.gap_lengths(low, high)
             np.testing.assert_array_equal(tb, tb_alone)
-            np.testing.assert_array_equal(lb, alone.length_b(tb_alone) if lb_alone is None else lb_alone)
+            np.testing.assert_array_equal(lb, lb_alone)
+            np.testing.assert_array_equal(lb, alone.map_b.length_at(tb))
+            assert tb[0] == low and tb[-1] == max(low, high)  # (a stretch run backwards: its start)

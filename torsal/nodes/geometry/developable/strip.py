@@ -232,16 +232,8 @@ class Strip:
 
     def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
-        every corner of B between them."""
-        return self._gap(t_low, t_high)[0]
-
-    def _gap(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
-        """:meth:`gap_parameters`, and their :meth:`length_b` where :meth:`_fan` has them."""
-        t, lengths = self._fan(t_low, t_high)
-        if not len(self.kinks_b):
-            return t, lengths
-        corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
-        return (np.unique(np.concatenate([t, corners])), None) if len(corners) else (t, lengths)
+        every corner of B between them (read-only: :meth:`gap_lengths`)."""
+        return self.gap_lengths(t_low, t_high)[0]
 
     def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
         """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
@@ -255,26 +247,9 @@ class Strip:
         return found
 
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
-        """Parameters on B for a fan's rulings, at about the station spacing along A."""
-        return self._fan(t_low, t_high)[0]
-
-    def _fan(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
-        """:meth:`fan_parameters`, and their :meth:`length_b` when they are the two ends alone
-        (measured already to count the rulings; None otherwise)."""
-        spacing = self.map_a.total / self.segments
-        ends = np.array([t_low, t_high])
-        lb = self.length_b(ends)
-        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
-        # must not ask for billions); and at least the fan's two bounding rulings
-        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
-        count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
-        if count == 2:  # the bounding rulings alone (the ends set below are all there is)
-            # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
-            return np.maximum.accumulate(ends), (lb if t_high >= t_low else None)
-        t = self.parameter_b(np.linspace(lb[0], lb[1], count))
-        t[0], t[-1] = t_low, t_high
-        return np.maximum.accumulate(t), None
-
+        """Parameters on B for a fan's rulings, at about the station spacing along A
+        (:func:`fans_all` finds many fans' together)."""
+        return fans_all([(self, t_low, t_high)])[0][0]
 
 
 def with_maps_b(strips: Sequence[Strip]) -> None:
@@ -286,12 +261,43 @@ def with_maps_b(strips: Sequence[Strip]) -> None:
             vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
 
 
+def fans_all(stretches: Sequence[tuple[Strip, float, float]]) -> list[tuple[FloatArray, FloatArray | None]]:
+    """:meth:`Strip.fan_parameters` of every ``(strip, t_low, t_high)`` of ``stretches``, and
+    their lengths along B when they are the fan's two ends alone (measured already to count
+    the rulings; None otherwise), all together: B's lengths at the ends in one pass, the
+    inner parameters in another (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`),
+    each what it is alone, bit for bit."""
+    if not stretches:
+        return []
+    strips = [strip for strip, _, _ in stretches]
+    with_maps_b(strips)
+    ends = [np.array([t_low, t_high]) for _, t_low, t_high in stretches]
+    found: list[tuple[FloatArray, FloatArray | None]] = []
+    inner: list[tuple[int, FloatArray]] = []
+    for index, ((strip, t_low, t_high), lb) in enumerate(
+        zip(stretches, lengths_at([strip.map_b for strip in strips], ends), strict=True)
+    ):
+        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
+        # must not ask for billions); and at least the fan's two bounding rulings
+        spacing = strip.map_a.total / strip.segments
+        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
+        count = max(2, ceil(min(wanted, strip.segments + 1) - 1e-9) + 1)
+        # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+        found.append((np.maximum.accumulate(ends[index]), lb if t_high >= t_low else None))
+        if count > 2:
+            inner.append((index, np.linspace(lb[0], lb[1], count)))
+    if inner:
+        ts = parameters_at([strips[index].map_b for index, _ in inner], [lengths for _, lengths in inner])
+        for (index, _), t in zip(inner, ts, strict=True):
+            t[0], t[-1] = stretches[index][1], stretches[index][2]
+            found[index] = (np.maximum.accumulate(t), None)
+    return found
+
+
 def gap_lengths_all(stretches: Sequence[tuple[Strip, float, float]]) -> None:
     """Finds :meth:`Strip.gap_lengths` of every ``(strip, t_low, t_high)`` of ``stretches``
-    not found yet, all together: B's lengths at their ends, the fans' inner parameters and
-    the lengths at B's corners each measured for all of them in one pass
-    (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`), each the one
-    :meth:`Strip._gap` finds alone, bit for bit."""
+    not found yet, all together (:func:`fans_all`, with B's corners between the ends, then
+    the lengths of those that have none in one pass), each what it is alone, bit for bit."""
     wanted: dict[tuple[int, bytes], tuple[Strip, float, float]] = {}
     for strip, t_low, t_high in stretches:
         key = struct.pack("2d", t_low, t_high)
@@ -301,27 +307,8 @@ def gap_lengths_all(stretches: Sequence[tuple[Strip, float, float]]) -> None:
         return
     jobs = list(wanted.values())
     strips = [strip for strip, _, _ in jobs]
-    with_maps_b(strips)
-    ends = [np.array([t_low, t_high]) for _, t_low, t_high in jobs]
-    # Strip._fan: the fan's two bounding rulings, and at most one ruling per station between
-    found: list[tuple[FloatArray, FloatArray | None]] = []
-    inner: list[tuple[int, FloatArray]] = []
-    for index, ((strip, t_low, t_high), lb) in enumerate(
-        zip(jobs, lengths_at([strip.map_b for strip in strips], ends), strict=True)
-    ):
-        spacing = strip.map_a.total / strip.segments
-        wanted_count = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
-        count = max(2, ceil(min(wanted_count, strip.segments + 1) - 1e-9) + 1)
-        # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
-        found.append((np.maximum.accumulate(ends[index]), lb if t_high >= t_low else None))
-        if count > 2:
-            inner.append((index, np.linspace(lb[0], lb[1], count)))
-    if inner:
-        ts = parameters_at([strips[index].map_b for index, _ in inner], [lengths for _, lengths in inner])
-        for (index, _), t in zip(inner, ts, strict=True):
-            t[0], t[-1] = jobs[index][1], jobs[index][2]
-            found[index] = (np.maximum.accumulate(t), None)
-    # Strip._gap: B's corners between the ends join the parameters
+    found = fans_all(jobs)
+    # B's corners between the ends join the parameters
     for index, (strip, t_low, t_high) in enumerate(jobs):
         if len(strip.kinks_b):
             corners = strip.kinks_b[(strip.kinks_b > t_low) & (strip.kinks_b < t_high)]
