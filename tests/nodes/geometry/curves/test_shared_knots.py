@@ -7,7 +7,7 @@ import pytest
 from scipy.interpolate import BSpline
 
 from torsal.nodes.geometry.curves import Circle, InterpolatedCurve, Line, NurbsCurve
-from torsal.nodes.geometry.curves.shared_knots import derivatives_together
+from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together
 
 
 def curves_sharing_knots(seed: int, rational: bool, count: int) -> list[NurbsCurve]:
@@ -91,3 +91,13 @@ def test_curves_sharing_knots_need_one_basis_evaluation_per_derivative_order(mon
     monkeypatch.setattr(BSpline, "__call__", counted)
     derivatives_together(curves, x, bounds, 2)
     assert len(calls) == min(2, curves[0].degree) + 1
+
+
+@pytest.mark.parametrize("rational", [False, True])
+def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rational):
+    curves = [*curves_sharing_knots(8, rational, 4), Circle(), Line([0, 0, 0], [1, 2, 3])]
+    x, bounds = parameters(8, [6, 3, 9, 4, 5, 5])
+    ts = np.split(x, bounds[1:-1])
+    for order in range(4):
+        for curve, t, found in zip(curves, ts, derivative_each(curves, ts, order), strict=True):
+            assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)

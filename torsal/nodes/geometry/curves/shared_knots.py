@@ -42,55 +42,75 @@ def derivatives_together(
     have at most :data:`ROWS_PER_CURVE` parameters each on average); any other curve on its
     own."""
     out = np.empty((order + 1, len(x), 3))
-    groups: dict[tuple, list[int]] = {}
-    lows, highs = bounds[:-1].tolist(), bounds[1:].tolist()
-    for i, curve in enumerate(curves):
-        if highs[i] <= lows[i]:
-            continue
-        if _groupable(curve):
-            key = (curve.degree, curve.is_rational, curve.knots.tobytes())
-            groups.setdefault(key, []).append(i)
-        else:
-            evaluate = curve.local_derivatives if local else curve.derivatives
-            out[:, lows[i] : highs[i]] = evaluate(x[lows[i] : highs[i]], order)
-    for members in groups.values():
+    counts = np.diff(bounds)
+    together, alone = _groups(curves, counts)
+    for i in alone:
+        evaluate = curves[i].local_derivatives if local else curves[i].derivatives
+        out[:, bounds[i] : bounds[i + 1]] = evaluate(x[bounds[i] : bounds[i + 1]], order)
+    for members in together:
+        rows, which = _rows(bounds, members)
         group = [curves[i] for i in members]
-        starts = bounds[:-1][members]
-        counts = bounds[1:][members] - starts
-        if len(members) == 1 or counts.sum() > ROWS_PER_CURVE * len(members):
-            for i in members:
-                evaluate = curves[i].local_derivatives if local else curves[i].derivatives
-                out[:, lows[i] : highs[i]] = evaluate(x[lows[i] : highs[i]], order)
-            continue
-        rows = np.arange(counts.sum()) + np.repeat(starts - (np.cumsum(counts) - counts), counts)
-        out[:, rows] = _group_derivatives(group, np.repeat(np.arange(len(group)), counts), x[rows], order)
+        out[:, rows] = _group_derivatives(group, which, x[rows], order)
         if not local:
-            out[0, rows] += np.repeat(np.array([curve._anchor for curve in group]), counts, axis=0)
+            out[0, rows] += np.array([curve._anchor for curve in group])[which]
     return out
 
 
 def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: int = 1) -> list[FloatArray]:
     """``curve.derivative_at(t, order)`` of every curve of ``curves`` at its 1-D array ``t``
-    of ``ts``, bit for bit, the curves that share knots evaluated together
-    (:func:`derivatives_together`)."""
+    of ``ts``, bit for bit, the curves that share knots evaluated together as in
+    :func:`derivatives_together` (a polynomial curve's lower orders are not evaluated)."""
     out: list[FloatArray | None] = [None] * len(curves)
-    grouped = []
-    for i, (curve, t) in enumerate(zip(curves, ts, strict=True)):
-        if _groupable(curve):
-            grouped.append(i)
-        else:
-            out[i] = curve.derivative_at(t, order)
-    if grouped:
-        x = [np.asarray(ts[i], dtype=float) for i in grouped]
-        bounds = np.zeros(len(x) + 1, dtype=np.int64)
-        np.cumsum([len(t) for t in x], out=bounds[1:])
-        # (the points are relative to each curve's anchor: derivative_at adds it to order 0 alone)
-        values = derivatives_together(
-            [curves[i] for i in grouped], np.concatenate(x), bounds, order, local=order > 0
-        )
-        for i, low, high in zip(grouped, bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
-            out[i] = values[order, low:high]
+    bounds = np.zeros(len(ts) + 1, dtype=np.int64)
+    np.cumsum([len(t) for t in ts], out=bounds[1:])
+    together, alone = _groups(curves, np.diff(bounds))
+    for i in alone:
+        out[i] = curves[i].derivative_at(ts[i], order)
+    for members in together:
+        group = [curves[i] for i in members]
+        x = np.concatenate([np.asarray(ts[i], dtype=float) for i in members])
+        which = np.repeat(np.arange(len(members)), np.diff(bounds)[members])
+        values = _group_derivatives(group, which, x, order, lowest=order)[order]
+        if order == 0:  # (the points: derivative_at adds the anchor to them alone)
+            values += np.array([curve._anchor for curve in group])[which]
+        low = 0
+        for i in members:
+            high = low + len(ts[i])
+            out[i] = values[low:high]
+            low = high
     return out  # type: ignore[return-value]  (every curve's is filled in)
+
+
+def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[list[int]], list[int]]:
+    """The curves of ``curves`` evaluated together, as lists of their indices (NURBS curves
+    of one degree, knots and rationality, while they have at most :data:`ROWS_PER_CURVE`
+    of their ``counts`` rows each on average), and those evaluated alone (the curves
+    without rows in neither)."""
+    groups: dict[tuple, list[int]] = {}
+    alone = []
+    for i, curve in enumerate(curves):
+        if counts[i] <= 0:
+            continue
+        if _groupable(curve):
+            groups.setdefault((curve.degree, curve.is_rational, curve.knots.tobytes()), []).append(i)
+        else:
+            alone.append(i)
+    together = []
+    for members in groups.values():
+        if len(members) > 1 and counts[members].sum() <= ROWS_PER_CURVE * len(members):
+            together.append(members)
+        else:
+            alone += members
+    return together, alone
+
+
+def _rows(bounds: IntArray, members: list[int]) -> tuple[IntArray, IntArray]:
+    """The rows of curves ``members`` (curve ``i`` has rows ``bounds[i]:bounds[i + 1]``), and
+    for each of them which of ``members`` it is on."""
+    starts = bounds[:-1][members]
+    counts = bounds[1:][members] - starts
+    rows = np.arange(counts.sum()) + np.repeat(starts - (np.cumsum(counts) - counts), counts)
+    return rows, np.repeat(np.arange(len(members)), counts)
 
 
 #: Curves are evaluated together while they have at most this many parameters each on
@@ -114,13 +134,17 @@ def _groupable(curve: Curve) -> bool:
             issubclass(kind, NurbsCurve)
             and kind.local_derivatives is NurbsCurve.local_derivatives
             and kind.derivatives is NurbsCurve.derivatives
+            and kind.derivative_at is NurbsCurve.derivative_at
         )
     return nurbs_like and not curve.periodic
 
 
-def _group_derivatives(curves: list[NurbsCurve], which: IntArray, t: FloatArray, order: int) -> FloatArray:
+def _group_derivatives(
+    curves: list[NurbsCurve], which: IntArray, t: FloatArray, order: int, lowest: int = 0
+) -> FloatArray:
     """:meth:`.NurbsCurve.local_derivatives` of ``curves`` (same degree, knots and
-    rationality) at ``t``, row ``r`` on curve ``which[r]``: ``(order + 1, len(t), 3)``.
+    rationality) at ``t``, row ``r`` on curve ``which[r]``: ``(order + 1, len(t), 3)``
+    (of a polynomial curve the orders from ``lowest`` up alone: the others are left zero).
 
     The sums run on coordinate rows (``(3 or 4, len(t))``), along contiguous rows."""
     first = curves[0]
@@ -142,7 +166,7 @@ def _group_derivatives(curves: list[NurbsCurve], which: IntArray, t: FloatArray,
     if not single:
         place = (np.arange(n) * width)[:, None] + (span[:, None] - degree + np.arange(width)) % width
     sums = np.zeros((order + 1, len(stacked), n))
-    for k in range(min(order, degree) + 1):
+    for k in range(0 if first.is_rational else lowest, min(order, degree) + 1):
         weights = basis(u, nu=k)
         weights = (weights if single else weights.reshape(-1).take(place)).T.copy()  # (width, n)
         total = sums[k]
