@@ -88,8 +88,8 @@ def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[list[int]],
     without rows in neither)."""
     groups: dict[tuple, list[int]] = {}
     alone = []
-    for i, curve in enumerate(curves):
-        if counts[i] <= 0:
+    for curve, i, count in zip(curves, range(len(curves)), counts.tolist(), strict=True):
+        if count <= 0:
             continue
         if _groupable(curve):
             groups.setdefault((curve.degree, curve.is_rational, curve.knots.tobytes()), []).append(i)

@@ -117,17 +117,32 @@ class Grid:
     left_third: FloatArray
 
 
-def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
-    """Samples of B (a straight span needs only its ends: f is linear in t there) and its
-    corners, found and sampled on both sides in the same evaluation."""
-    t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
-    breaks = curve._breakpoints()[1:-1]
+def sample_grids(curves: Sequence[Curve], minimum: int) -> list[tuple[Grid, FloatArray]]:
+    """The samples of each curve B of ``curves`` (a straight span needs only its ends: f is
+    linear in t there) and its corners, found and sampled on both sides in the same
+    evaluation; the curves evaluated together (:func:`.stack.evaluate_each`: each gets what
+    it gets alone)."""
+    found = []
+    for curve in curves:
+        t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
+        breaks = curve._breakpoints()[1:-1]
+        found.append((t, breaks, np.concatenate([t, breaks - SIDE]) if len(breaks) else t))
+    at = [x for _, _, x in found]
+    rows = Stack.of(at)
+    values = [rows.split(v) for v in evaluate_each(curves, np.concatenate(at), rows.offsets, 3)]
+    return [_grid(t, breaks, *own) for (t, breaks, _), *own in zip(found, *values, strict=True)]
+
+
+def _grid(
+    t: FloatArray, breaks: FloatArray, points: FloatArray, tangents: FloatArray, second: FloatArray,
+    third: FloatArray,
+) -> tuple[Grid, FloatArray]:
+    """:func:`sample_grids` of one curve from B and its derivatives at its samples ``t``
+    and just before its inner breakpoints ``breaks``."""
     m = len(t)
     if not len(breaks):  # one smooth span
-        points, tangents, second, third = curve.derivatives(t, 3)
         smooth = Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, third, second, third)
         return smooth, breaks
-    points, tangents, second, third = curve.derivatives(np.concatenate([t, breaks - SIDE]), 3)
     # samples include every breakpoint; compare each with its left neighbour's tangent
     at_break = np.searchsorted(t, breaks)
     kink = _jumps(tangents[m:], tangents[at_break])
@@ -351,7 +366,7 @@ def set_up(
 
     Its stations on A (evenly spaced in arc length or in parameter, :mod:`.stations`), A
     and its first two derivatives there and A's corners, and the samples of B
-    (:func:`sample_grid`) with the lengths along them."""
+    (:func:`sample_grids`) with the lengths along them."""
     curves_a = [job[0] for job in jobs]
     curves_b = steady_all([job[1] for job in jobs])
     maps = LengthMap.many(curves_a)
@@ -392,7 +407,7 @@ def set_up(
     # those rows only find the corners)
     a1[still] = np.where(at[still, None] > 0.5, -a2[still], a2[still])
     # B's samples and the lengths along them
-    grids = [sample_grid(curves_b[i], samples) for i in kept]
+    grids = sample_grids([curves_b[i] for i in kept], samples)
     points = np.concatenate([grid.points for grid, _ in grids]) if grids else np.empty((0, 3))
     chords = norm(points[1:] - points[:-1])
     first_sample = Stack([len(grid.t) for grid, _ in grids]).starts.tolist()
