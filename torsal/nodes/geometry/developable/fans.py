@@ -41,6 +41,7 @@ from ..vec_ops import cross, det, flatnonzero, norm, unit
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .stack import Stack, evaluate_each, evaluate_rows
+from .stations import lengths_at, parameters_at
 from .strip import SIDE, Steady, Strip, gap_lengths_all
 
 #: Fractions of a chain's length this close are one in :func:`zigzag`.
@@ -365,21 +366,24 @@ def a_fans_all(
     """:func:`a_fans` of every strip ``(strip, t, slope, regular, speed)`` (``speed``: |B'|
     at the stations on a regular branch, as the partner search found it), the apexes of all
     their fans solved at once (each strip's curves evaluated on its own rows)."""
-    jumps = []
-    for strip, t, slope, regular, speed in strips:
+    jumps = [(np.empty(0, dtype=np.int64), np.empty(0))] * len(strips)
+    possible = []  # (strip's index, its stations' rates, the steps that may be jumps)
+    for index, (strip, t, slope, regular, speed) in enumerate(strips):
         dt = t[1:] - t[:-1]
         rate, speed = _rates(strip, t, slope, speed)
         # the steps along B's length by the trapezoid rule, against those the slopes predict
-        # (a looser bar than :func:`_jumps_along_b`'s, which measures the steps themselves)
+        # (a looser bar than :func:`_jumps_along_b_all`'s, which measures the steps themselves)
         step = 0.5 * dt * (speed[:-1] + speed[1:])
         predicted = 0.5 * np.diff(strip.station_lengths) * (rate[:-1] + rate[1:])
         with np.errstate(invalid="ignore"):
             jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(step - predicted) > 0.2 * step)
         pairs = flatnonzero(jump)
-        mids = np.empty(0)
         if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
-            pairs, mids = _jumps_along_b(strip, t, rate, pairs)
-        jumps.append((pairs, mids))
+            possible.append((index, rate, pairs))
+    found_jumps = _jumps_along_b_all([(strips[index][0], strips[index][1], rate, pairs)
+                                      for index, rate, pairs in possible])
+    for (index, _, _), found_k in zip(possible, found_jumps, strict=True):
+        jumps[index] = found_k
     found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
     with_pairs = [i for i, (pairs, _) in enumerate(jumps) if len(pairs)]
     if not with_pairs:
@@ -415,9 +419,16 @@ def a_fans_all(
 
         low, high = s_all[at[which]], s_all[at[which] + 1]
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
+    # (a hole is told by the steps along B's length, not its parameter: those of every strip
+    # with pairs measured at once)
+    known = [~np.isnan(strips[index][1]) for index in with_pairs]
+    measured = lengths_at([strips[index][0].map_b for index in with_pairs],
+                          [strips[index][1][at] for index, at in zip(with_pairs, known, strict=True)])
     for k, index in enumerate(with_pairs):
         strip, t = strips[index][:2]
         pairs_k = jumps[index][0]
+        lengths = np.full(len(t), np.nan)
+        lengths[known[k]] = measured[k]
         apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
         if not np.isnan(apex_k).all():
             # a root that converged onto a corner of A (a jump of f) or onto a station is that point
@@ -425,7 +436,7 @@ def a_fans_all(
                 if len(exact):
                     nearest = exact[np.argmin(np.abs(apex_k[:, None] - exact[None, :]), axis=1)]
                     apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
-        found[index] = _a_fans_of(strip, t, pairs_k, apex_k)
+        found[index] = _a_fans_of(strip, t, pairs_k, apex_k, lengths)
     return found
 
 
@@ -455,36 +466,40 @@ def _rates(
     return rate, speed
 
 
-def _jumps_along_b(
-    strip: Strip, t: FloatArray, rate: FloatArray, pairs: IntArray
-) -> tuple[IntArray, FloatArray]:
-    """Of the steps ``pairs`` (i, i + 1), each a jump of t, those that jump along B's length
-    too, and B's parameter halfway along its length between their two ends.
+def _jumps_along_b_all(
+    jobs: Sequence[tuple[Strip, FloatArray, FloatArray, IntArray]],
+) -> list[tuple[IntArray, FloatArray]]:
+    """For each ``(strip, t, rate, pairs)``: of the steps ``pairs`` (i, i + 1), each a jump
+    of t, those that jump along B's length too, and B's parameter halfway along its length
+    between their two ends; the lengths along B of all strips, then the halfway parameters,
+    each measured in one pass (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`).
 
     The step is measured along B's length (:attr:`.strip.Strip.map_b`) and predicted from
     the stations' ``rate``, dL/ds (:func:`_rates`): what B's parameterisation does to t
     cancels.
     """
-    lengths = strip.length_b(np.concatenate([t[pairs], t[pairs + 1]])).reshape(2, -1)
-    step = lengths[1] - lengths[0]
-    along_a = strip.station_lengths
-    predicted = 0.5 * (along_a[pairs + 1] - along_a[pairs]) * (rate[pairs] + rate[pairs + 1])
-    jump = ~(np.abs(step - predicted) <= 0.25 * step)
-    return pairs[jump], strip.parameter_b(0.5 * (lengths[0] + lengths[1])[jump])
+    maps = [strip.map_b for strip, _, _, _ in jobs]
+    ends = lengths_at(maps, [np.concatenate([t[pairs], t[pairs + 1]]) for _, t, _, pairs in jobs])
+    jumps, halfway = [], []
+    for (strip, _, rate, pairs), found in zip(jobs, ends, strict=True):
+        lengths = found.reshape(2, -1)
+        step = lengths[1] - lengths[0]
+        along_a = strip.station_lengths
+        predicted = 0.5 * (along_a[pairs + 1] - along_a[pairs]) * (rate[pairs] + rate[pairs + 1])
+        jump = ~(np.abs(step - predicted) <= 0.25 * step)
+        jumps.append(pairs[jump])
+        halfway.append(0.5 * (lengths[0] + lengths[1])[jump])
+    return list(zip(jumps, parameters_at(maps, halfway), strict=True))
 
 
 def _a_fans_of(
-    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray
+    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray, lengths: FloatArray
 ) -> list[tuple[float, float, float]]:
     """One strip's fans through points of A at the jumps ``pairs`` with the apexes found
-    (NaN where f had no root between the two stations)."""
+    (NaN where f had no root between the two stations); ``lengths`` along B at ``t``."""
     s = strip.s
     fans = []
-    # (a hole is told by the steps along B's length, not its parameter)
-    known = ~np.isnan(t)
-    lengths = np.full(len(t), np.nan)
-    lengths[known] = strip.length_b(t[known])
-    dt = lengths[1:] - lengths[:-1]
+    dt = lengths[1:] - lengths[:-1]  # (a hole is told by the steps along B's length, not its parameter)
     for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
         if isnan(s_star):
             inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
