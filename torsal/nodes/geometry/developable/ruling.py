@@ -47,7 +47,9 @@ Algorithm (all stations at once)
 4. Refinement: every bracket is refined to machine precision at once, by Newton's
    method kept inside the brackets (:mod:`.brackets`) with f_t = det[R, A', B''],
    starting from the root of the cubic that matches f and f_t at the bracket's ends —
-   usually two evaluations of B in all.
+   usually two evaluations of B in all. A root that rounding alone leaves loose (f
+   touches zero there: a double root, where two branches of roots cross) is solved
+   instead as the simple root of f_t, found the same way.
 5. Selection: the monotone dynamic programme of :mod:`.selection` follows one branch of
    roots, predicting each step from the branch slope dt/ds = −f_s/f_t, with
    f_s = det[R, A'', B'].
