@@ -33,7 +33,7 @@ from .isolation import Pieces, isolate
 from .selection import longest_chain, monotone_path
 from .sift import sift_all
 from .stack import Stack, evaluate_each, evaluate_rows
-from .stations import parameters_at
+from .stations import lengths_at, parameters_at
 from .strip import Strip, even_all, with_maps_b
 from .warp import _angles, _normals, in_plane_tangent, sizes
 
@@ -435,7 +435,7 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
     if not at:
         return
     with_maps_b([strips[i] for i in at])
-    windows = [_window(strips[i], ts[i]) for i in at]
+    windows = _windows([strips[i] for i in at], [ts[i] for i in at])
     # the lofts' partners: along B's length as the stations are along A's, within the window
     found = parameters_at([strips[i].map_b for i in at], [window[-1] for window in windows])
     lofts = [np.minimum(np.maximum(t, lo), hi) for t, (_, lo, hi, *_) in zip(found, windows, strict=True)]
@@ -461,26 +461,33 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
               samples.get(k))
 
 
-def _window(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...]:
-    """For one strip's stations without a partner (some): where they are, their neighbours'
+def _windows(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> list[tuple[FloatArray, ...]]:
+    """For each strip's stations without a partner (some): where they are, their neighbours'
     partners ``lo`` and ``hi``, the lengths along B there and the plain loft's partners'
-    lengths along B (between them, as the stations lie between theirs along A)."""
-    gap = np.isnan(t)
-    missing = flatnonzero(gap)
-    # where each station without a partner falls among those with one: the partners of its
-    # two neighbours (padded with B's ends where there is none before or after it) and
-    # their arc lengths along A (padded with A's ends), one row for each neighbour
-    partnered = flatnonzero(~gap)
-    neighbours = np.searchsorted(partnered, missing) + _ENDS
-    t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
-    lo, hi = t_window
-    length_a = strip.station_lengths
-    a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
-    span = a_hi - a_lo
-    spans = span > 0
-    fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
-    b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
-    return missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)
+    lengths along B (between them, as the stations lie between theirs along A); the lengths
+    along B of all strips measured at once (:func:`.stations.lengths_at`)."""
+    found = []
+    for strip, t in zip(strips, ts, strict=True):
+        gap = np.isnan(t)
+        missing = flatnonzero(gap)
+        # where each station without a partner falls among those with one: the partners of
+        # its two neighbours (padded with B's ends where there is none before or after it)
+        # and their arc lengths along A (padded with A's ends), one row for each neighbour
+        partnered = flatnonzero(~gap)
+        neighbours = np.searchsorted(partnered, missing) + _ENDS
+        t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
+        length_a = strip.station_lengths
+        a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
+        span = a_hi - a_lo
+        spans = span > 0
+        fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
+        found.append((missing, t_window, fraction))
+    lengths = lengths_at([strip.map_b for strip in strips], [t_window.ravel() for _, t_window, _ in found])
+    windows = []
+    for (missing, (lo, hi), fraction), length in zip(found, lengths, strict=True):
+        b_lo, b_hi = length.reshape(2, -1)
+        windows.append((missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)))
+    return windows
 
 
 def _near(
