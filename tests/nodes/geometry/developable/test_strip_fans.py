@@ -18,7 +18,8 @@ from tests.support.node_helpers import out, run, texts, tree
 from tests.support.warp_check import shared_both_sides
 from torsal.nodes.developable.ruling_developable import RulingDevelopable
 from torsal.nodes.geometry.developable import ruling_developable
-from torsal.nodes.geometry.developable.fans import fan_share, fan_shares, fan_shares_all, patch_areas, zigzag
+from torsal.nodes.geometry.developable.closings import zigzag
+from torsal.nodes.geometry.developable.fans import fan_share, fan_shares, fan_shares_all, patch_areas
 from torsal.nodes.geometry.unroll import unroll_rulings
 
 TOLERANCE = 0.01

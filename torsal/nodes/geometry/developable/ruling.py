@@ -108,8 +108,9 @@ from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
+from .closings import close_gaps_all, outside_gaps
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans_all, close_gaps_all, fan_shares_all, flat_fans, outside_gaps
+from .fans import a_fans_all, fan_shares_all, flat_fans
 from .measure import check_rulings
 from .stack import Stack, evaluate_rows
 from .stations import Spacing, lengths_at

@@ -196,7 +196,7 @@ class Strip:
         self.flipped: BoolArray = np.zeros(len(s), dtype=bool)
         #: :meth:`gap_lengths` found so far, by the bits of their ends
         self._gaps: dict[bytes, tuple[FloatArray, FloatArray]] = {}
-        #: the closing triangles of each gap found so far (:func:`.fans.close_gaps`), by
+        #: the closing triangles of each gap found so far (:func:`.closings.close_gaps`), by
         #: its stations and the bits of its ends on B
         self.closings: dict[tuple[int, int, bytes], tuple[FloatArray, tuple | None]] = {}
 
