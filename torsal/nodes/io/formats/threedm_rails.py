@@ -7,7 +7,6 @@
   fit fewer control points);
 - :func:`smooth_partners`: the developable pairing of two rails
   (:mod:`torsal.nodes.geometry.torsal_pairing`) as a smooth function;
-- :func:`curve_breaks`: where a curve may not be smooth.
 """
 
 from __future__ import annotations
@@ -88,11 +87,11 @@ class Paced(Curve):
 
     def breaks(self) -> np.ndarray:
         """The parameters strictly inside the span where the curve has a break (a knot of
-        the design it runs on, a joint of a joined curve: :func:`curve_breaks`)."""
+        the design it runs on, a joint of a joined curve: the curve's own breakpoints)."""
         rail = self.rail
         if not isinstance(rail, CurveRail):
             return np.empty(0)
-        inner = curve_breaks(rail.curve)
+        inner = rail.curve._breakpoints()
         at, span = (self.at, self.span) if self.at[-1] >= self.at[0] else (self.at[::-1], self.span[::-1])
         if rail.curve.closed:
             turns = np.arange(np.floor(at[0]), np.ceil(at[-1]) + 1.0)
@@ -134,26 +133,3 @@ def smooth_partners(strip: Rails, span: np.ndarray,
         return np.clip(spline(where) + np.interp(where, breaks, miss), span[0], span[-1])
 
     return paired
-
-
-def curve_breaks(curve: Curve) -> np.ndarray:
-    """A curve's parameters where it may not be smooth: its own breakpoints, and for a
-    parameter line of a NURBS design (as Rationalise's rails run on) the design's knots
-    it crosses; through the pieces of a joined curve."""
-    pieces, at = getattr(curve, "pieces", None), getattr(curve, "at", None)
-    if pieces is not None and at is not None:
-        # a piece is a curve, or (curve, p0, p1) where a chain runs it over p0 → p1 only
-        inner = []
-        for k, piece in enumerate(pieces):
-            if isinstance(piece, tuple):
-                own, p0, p1 = piece
-                breaks = curve_breaks(own)
-                inner.append(at(k, breaks[(breaks > min(p0, p1)) & (breaks < max(p0, p1))]))
-            else:
-                inner.append(at(k, curve_breaks(piece)))
-        return np.unique(np.clip(np.concatenate([curve._breakpoints(), *inner]), 0.0, 1.0))
-    family, surface = getattr(curve, "family", None), getattr(curve, "surface", None)
-    name = {"u": "knots_u", "v": "knots_v"}.get(family)  # type: ignore[arg-type]
-    knots = getattr(surface, name, None) if name is not None else None
-    own = curve._breakpoints()
-    return own if knots is None else np.unique(np.concatenate([own, np.clip(knots, 0.0, 1.0)]))

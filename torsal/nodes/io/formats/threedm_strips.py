@@ -64,7 +64,7 @@ from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
-from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, curve_breaks, smooth_partners
+from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
 from torsal.nodes.io.formats.threedm_untwist import untwisted
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
@@ -566,7 +566,7 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
         if isinstance(rail, Paced):
             marks = rail.breaks()
         elif isinstance(rail, CurveRail):
-            marks = np.concatenate([rail._breakpoints(), rail._crossings(curve_breaks(rail.curve))])
+            marks = rail._breakpoints()  # the rulings, and where it crosses its curve's breaks
         else:
             continue
         marks = marks[(marks > lo + near) & (marks < hi - near)]
