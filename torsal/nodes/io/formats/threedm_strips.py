@@ -196,9 +196,9 @@ def _costly(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, r
     inner = knots[4:-4]
     own = np.histogram(inner[inner > stations[0]], bins=stations)[0].astype(float)
     own[0] += 2.0  # the first interval's share of the face's ends
-    costs = np.empty(len(stations) - 1)
-    for i in range(len(costs)):
-        k = first + i
+    costs = np.ones(len(stations) - 1)
+    for i in np.flatnonzero(own > COSTLIER):  # (cheaper than COSTLIER can cost no more)
+        k = first + int(i)
         if k not in cone_costs:
             cone_costs[k] = _cones(strip, u, lines, k, size)[0].controls - 4
         costs[i] = cone_costs[k]
