@@ -1,8 +1,15 @@
 """Write the example graphs in ``torsal/resources/examples/`` through the engine's own API.
 
 Run ``.venv/bin/python tools/build_examples.py [NAME ...]`` after changing a node's
-ports; the files are data and are committed, this script only documents how they were
-made (positions in columns, left to right, groups around each stage).
+ports. The files are data and are committed; this script writes each one byte for byte
+as committed (``tests/resources/test_examples_built.py`` builds them all and compares), so
+an edit to an example is made here and the file rebuilt. Positions are in columns, left
+to right, with groups around each stage, laid out so that each example opens on something
+readable (the app frames the region around the last previewed node and what feeds it:
+``torsal/app/gui/canvas/opening_focus.py``): a slider that feeds only the result sits
+beside it, in its group, as a Grasshopper user places it. Previews never fight: a flat
+development lies beside the model (Placement 0) or has its preview off, and a check that
+would draw the same geometry again has its preview off.
 """
 
 from __future__ import annotations
@@ -93,16 +100,16 @@ def kaohsiung_cut_sheets() -> None:
         " in development-and-panels.graph).",
         count=16, shift=1,
     )
-    b.node("analysis.IsoMapping", "unroll", 10, 3, "Unrolled strips")
+    b.node("analysis.IsoMapping", "unroll", 9, 3, "Unrolled strips", Placement=1)  # at the origin
     b.wire("strip.Surface", "unroll.Surface")
     b.wire("segments.Value", "unroll.Segments")
-    b.slider("model_scale", 6.5, "Model scale (1:n)", 50.0, 10.0, 200.0, 0, column=10)
-    b.node("maths.Expression", "factor", 10, 5, "1 / n", {"expression": "1 / n", "variables": ["n"]})
+    b.slider("model_scale", 6.5, "Model scale (1:n)", 50.0, 10.0, 200.0, 0, column=9)
+    b.node("maths.Expression", "factor", 9, 5, "1 / n", {"expression": "1 / n", "variables": ["n"]})
     b.wire("model_scale.Value", "factor.n")
-    b.node("transform.Scale", "model", 11, 3, "Scaled to the model", Centre=point(0, 0, 0))
+    b.node("transform.Scale", "model", 10, 3, "Scaled to the model", Centre=point(0, 0, 0))
     b.wire("unroll.Development", "model.Geometry")
     b.wire("factor.Result", "model.Factor")
-    b.node("io.ExportCutSheet", "cut", 12, 3, "Cut sheets (mm)", Path="out/kaohsiung-roof.dxf",
+    b.node("io.ExportCutSheet", "cut", 11, 3, "Cut sheets (mm)", Path="out/kaohsiung-roof.dxf",
            SheetWidth=2500.0, SheetHeight=1250.0, Gap=10.0, Kerf=0.0, TextHeight=12.0, Units="m",
            Nesting="TrueShape", TimeBudget=20.0, Write=False)
     b.wire("model.Geometry", "cut.Surfaces", ["flatten"])
@@ -136,7 +143,8 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     b.slider("scale", 1, "Inward scale", 0.72, 0.4, 0.95, 2)
     b.integer("count", 2, "Edge points", count, 8, 60)
     b.integer("shift", 3, "Shift n", shift, 0, 6)
-    b.integer("segments", 4, "Segments per strip", 12, 2, 60)
+    # beside the strips it refines, in their group (a slider by the node it drives)
+    b.integer("segments", 5, "Segments per strip", 12, 2, 60, column=7)
     b.node("curves.Interpolate", "base", 1, 0, "Horseshoe base curve", Vertices=horseshoe, Degree=3)
     b.node("params.UnitZ", "up", 1, 1.5, "Up")
     b.node("transform.Move", "top", 2, 0, "Copied up")
@@ -169,26 +177,26 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
         b.wire("edge_index.Series", f"param{k}.j")
         b.wire("shift.Value", f"param{k}.n")
         b.wire("count.Value", f"param{k}.count")
-        b.node("curves.EvaluateCurve", f"pick{k}", 5, 3 + k, f"Points on curve {k}")
+        b.node("curves.EvaluateCurve", f"pick{k}", 4, 3 + k, f"Points on curve {k}")
         b.wire(source, f"pick{k}.Curve")
         b.wire(f"param{k}.Result", f"pick{k}.Parameter", ["graft"])  # one branch per edge curve
-    b.node("curves.Interpolate", "edge_curves", 6, 3, "Strip edge curves", Degree=2)
+    b.node("curves.Interpolate", "edge_curves", 5, 3, "Strip edge curves", Degree=2)
     for k in range(3):
         b.wire(f"pick{k}.Point", "edge_curves.Vertices")
-    b.node("maths.Expression", "strips", 7, 4.5, "Strip count",
+    b.node("maths.Expression", "strips", 6, 4.5, "Strip count",
            {"expression": "edges - 1", "variables": ["edges"]})
     b.wire("edges.Result", "strips.edges")
-    b.node("maths.Series", "left_index", 7, 5.7, "Left edges", Start=0)
-    b.node("maths.Series", "right_index", 7, 6.9, "Right edges", Start=1)
+    b.node("maths.Series", "left_index", 6, 5.7, "Left edges", Start=0)
+    b.node("maths.Series", "right_index", 6, 6.9, "Right edges", Start=1)
     b.wire("strips.Result", "left_index.Count")
     b.wire("strips.Result", "right_index.Count")
-    b.node("lists.ListItem", "left", 8, 3, "Left edge")
-    b.node("lists.ListItem", "right", 8, 4, "Right edge")
+    b.node("lists.ListItem", "left", 7, 3, "Left edge")
+    b.node("lists.ListItem", "right", 7, 4, "Right edge")
     b.wire("edge_curves.Curve", "left.List", ["flatten"])
     b.wire("edge_curves.Curve", "right.List", ["flatten"])
     b.wire("left_index.Series", "left.Index")
     b.wire("right_index.Series", "right.Index")
-    b.node("developable.RulingDevelopable", "strip", 9, 3, "Developable strips", WarpTolerance=0.01)
+    b.node("developable.RulingDevelopable", "strip", 8, 3, "Developable strips", WarpTolerance=0.01)
     b.wire("left.Item", "strip.CurveA")
     b.wire("right.Item", "strip.CurveB")
     b.wire("segments.Value", "strip.Segments")
@@ -197,12 +205,12 @@ def kaohsiung_roof(description: str | None = None, count: int = 24, shift: int =
     helpers = ("up", "centre", "top", "pick0", "pick1", "pick2", "left", "right")
     for helper in helpers:
         b.graph.set_preview(helper, False)
-    b.group("inputs", "Inputs", INPUTS, ["height", "scale", "count", "shift", "segments"])
+    b.group("inputs", "Inputs", INPUTS, ["height", "scale", "count", "shift"])
     b.group("roof", "Base curve, copied up and in", GEOMETRY, ["base", "up", "top", "centre", "inner"])
     b.group("edges", "Edge curves through shifted points", GEOMETRY,
             ["edges", "edge_index", "param0", "param1", "param2", "pick0", "pick1", "pick2", "edge_curves"])
     b.group("strips", "Developable strips", RESULT,
-            ["strips", "left_index", "right_index", "left", "right", "strip"])
+            ["strips", "left_index", "right_index", "left", "right", "strip", "segments"])
     return b
 
 
@@ -220,7 +228,8 @@ def guggenheim() -> None:
     b.slider("flare", 2, "Flare per ring (m)", 1.1, 0.2, 3.0, 2)
     b.slider("radius", 3, "Base radius (m)", 14.0, 6.0, 25.0, 1)
     b.slider("shaft_radius", 4, "Shaft radius (m)", 3.0, 1.0, 6.0, 1)
-    b.integer("segments", 5, "Segments", 48, 8, 128)
+    # beside the rings it refines, in their group (a slider by the node it drives)
+    b.integer("segments", 2, "Segments", 48, 8, 128, column=4)
     b.node("maths.Series", "index", 1, 0, "Ring index", Start=0, Step=1)
     b.wire("rings.Value", "index.Count")
     b.node("maths.Expression", "ring_z", 2, 0, "Ring base height",
@@ -269,10 +278,10 @@ def guggenheim() -> None:
     b.wire("shaft_height.Result", "shaft.Height")
     b.wire("segments.Value", "shaft.Segments")
     b.group("inputs", "Inputs", INPUTS,
-            ["rings", "ring_height", "flare", "radius", "shaft_radius", "segments"])
+            ["rings", "ring_height", "flare", "radius", "shaft_radius"])
     b.group("rings", "Conical rings", GEOMETRY,
             ["index", "ring_z", "ring_r", "apex_z", "slant", "ring_centre", "ring_circle", "apex",
-             "rings_surface"])
+             "rings_surface", "segments"])
     b.group("shaft", "Cylindrical shaft", RESULT,
             ["shaft_height", "shaft_x", "shaft_centre", "shaft_circle", "shaft"])
     b.save("guggenheim-ny")
@@ -290,7 +299,7 @@ def zve_roof_edge() -> None:
     )
     b.slider("inset", 0, "Top inset (m)", 3.0, 1.0, 6.0, 1)
     b.slider("rise", 1, "Top rise (m)", 2.0, 0.5, 4.0, 1)
-    b.integer("segments", 2, "Segments", 40, 4, 200)
+    b.integer("segments", 31 / 11, "Segments", 40, 4, 200, column=5)  # beside the strip it refines
     bottom = [point(0, 0, 6), point(4, 0, 7.2), point(9, 0, 8), point(21, 0, 8), point(26, 0, 7.2),
               point(30, 0, 6)]
     b.node("curves.Polyline", "bottom", 1, 0, "Façade edge (bottom)", Vertices=bottom)
@@ -318,9 +327,12 @@ def zve_roof_edge() -> None:
     b.node("surfaces.RuledSurface", "loft", 5, 2, "Plain loft, for comparison")
     b.wire("bottom.Polyline", "loft.CurveA")
     b.wire("top.Polyline", "loft.CurveB")
-    b.group("inputs", "Inputs", INPUTS, ["inset", "rise", "segments"])
+    # the developable roof edge and the plain loft share their rims and most of their middle:
+    # the loft's preview is off (turn it on to compare)
+    b.graph.set_preview("loft", False)
+    b.group("inputs", "Inputs", INPUTS, ["inset", "rise"])
     b.group("curves", "Edge curves", GEOMETRY, ["bottom", "lift_y", "lift_z", "lift", "top_points", "top"])
-    b.group("surface", "Developable roof edge", RESULT, ["edge", "loft"])
+    b.group("surface", "Developable roof edge", RESULT, ["edge", "loft", "segments"])
     b.save("zve-roof-edge")
 
 
@@ -434,13 +446,16 @@ def paper_strip() -> None:
     b.wire("bend.Value", "curvature.b")
     b.wire("index.Series", "curvature.k")
     b.wire("segments.Value", "curvature.n")
-    b.node("developable.PaperStrip", "strip", 3, 0, "Paper strip")
+    # its Development beside the bent strip (Placement 0), not under it
+    b.node("developable.PaperStrip", "strip", 3, 0, "Paper strip", Placement=0)
     b.wire("length.Value", "strip.Length")
     b.wire("width.Value", "strip.Width")
     b.wire("iso.Value", "strip.IsoAngle")
     b.wire("curvature.Result", "strip.Curvature")
     b.wire("segments.Value", "strip.Segments")
-    b.node("analysis.IsoMapping", "unroll", 4, 0, "Check: unroll it again")
+    # at the origin, preview off: it would lie exactly on the strip's own Development
+    b.node("analysis.IsoMapping", "unroll", 4, 0, "Check: unroll it again", Placement=1)
+    b.graph.set_preview("unroll", False)
     b.wire("strip.Surface", "unroll.Surface")
     b.wire("segments.Value", "unroll.Segments")
     b.group("inputs", "Inputs", INPUTS, ["length", "width", "iso", "bend", "segments"])
@@ -460,11 +475,11 @@ def spline_approximation() -> None:
         "RulingDevelopable then finishes the strip between the fixed edge and the new free edge."
     )
     b.slider("twist", 0, "Twist of the top edge (m)", 1.5, 0.0, 4.0, 2)
-    b.integer("segments", 1, "Segments", 20, 4, 100)
+    b.integer("segments", 20 / 11, "Segments", 20, 4, 100, column=6)  # beside the approximation
     b.node("params.Toggle", "optimise", 0, 2, "Optimise", {"value": True})
     lower = [point(0, 0, 0), point(3, 0.8, 0), point(6, 0, 0), point(9, -0.8, 0), point(12, 0, 0)]
     upper = [point(0, 0, 3), point(3, 0, 3), point(6, 0, 3), point(9, 0, 3), point(12, 0, 3)]
-    b.node("curves.Interpolate", "edge_a", 1, 0, "Fixed edge", Vertices=lower, Degree=3)
+    b.node("curves.Interpolate", "edge_a", 3, 0, "Fixed edge", Vertices=lower, Degree=3)
     b.node("params.Vector", "skew", 1, 2, "Twist", X=0.0, Z=0.0)
     b.wire("twist.Value", "skew.Y")
     b.node("maths.Expression", "skew_factor", 1, 3, "Twist grows along the edge",
@@ -491,10 +506,13 @@ def spline_approximation() -> None:
     b.wire("edge_a.Curve", "finish.CurveA")
     b.wire("approx.FreeEdge", "finish.CurveB")
     b.wire("segments.Value", "finish.Segments")
-    b.group("inputs", "Inputs", INPUTS, ["twist", "segments", "optimise"])
+    # the first approximation and the finished strip lie within millimetres of each other: the
+    # finished strip is shown
+    b.graph.set_preview("approx", False)
+    b.group("inputs", "Inputs", INPUTS, ["twist", "optimise"])
     b.group("edges", "Twisted ruled surface", GEOMETRY,
             ["edge_a", "skew", "skew_factor", "skew_each", "skew_y", "upper_points", "edge_b", "twisted"])
-    b.group("approx", "Approximation", RESULT, ["approx", "finish"])
+    b.group("approx", "Approximation", RESULT, ["approx", "finish", "segments"])
     b.save("spline-approximation")
 
 
@@ -505,7 +523,9 @@ def panels() -> None:
         "Development and panels: a conical façade strip is unrolled with IsoMapping (lengths and "
         "area kept), a staggered running-bond pattern (as on the Guggenheim Bilbao) is laid over "
         "the development and clipped to it, and the panels are mapped back onto the 3D surface. "
-        "The flat panels, with their IDs, are what goes to the cutter."
+        "The flat panels, with their IDs, are what goes to the cutter. The value list Development "
+        "placement lays the development and the flat panels beside the façade (Beside model); "
+        "choose Origin to see them where they were unrolled."
     )
     b.slider("panel_w", 0, "Panel width (m)", 1.2, 0.3, 3.0, 2)
     b.slider("panel_h", 1, "Panel height (m)", 0.6, 0.2, 2.0, 2)
@@ -524,13 +544,18 @@ def panels() -> None:
     b.wire("panel_w.Value", "pattern.Width")
     b.wire("panel_h.Value", "pattern.Height")
     b.wire("offset.Result", "pattern.Offset")
-    b.node("patching.SurfacePatching", "patching", 4, 2, "Panels on the façade", Scale=1.0)
+    b.node("patching.SurfacePatching", "patching", 3, 2, "Panels on the façade", Scale=1.0)
     b.wire("facade.Surface", "patching.Surface")
     b.wire("unroll.Map", "patching.Development")
     b.wire("pattern.Pattern", "patching.Pattern")
     b.wire("pattern.Tile", "patching.Tile")
     b.wire("rotation.Value", "patching.Rotation")
-    b.group("inputs", "Inputs", INPUTS, ["panel_w", "panel_h", "rotation"])
+    b.node("params.ValueList", "placement", 0, 3, "Development placement",
+           {"items": [{"name": "Beside model", "value": 0}, {"name": "Origin", "value": 1},
+                      {"name": "On plane", "value": 2}], "selected": 0})
+    b.wire("placement.Value", "unroll.Placement")
+    b.wire("placement.Value", "patching.Placement")
+    b.group("inputs", "Inputs", INPUTS, ["panel_w", "panel_h", "rotation", "placement"])
     b.group("surface", "Façade and its development", GEOMETRY, ["base", "facade", "unroll"])
     b.group("panels", "Panels", RESULT, ["offset", "pattern", "patching"])
     b.save("development-and-panels")
@@ -565,7 +590,8 @@ def rationalise_roof() -> None:
     b.node("analysis.BendingCheck", "bending", 3, 2, "Bending at 1:50", Material="Card 0.5 mm")
     b.wire("strips.Strips", "bending.Strips")
     b.wire("model_scale.Value", "bending.ModelScale")
-    b.node("analysis.IsoMapping", "unroll", 3, 0, "Unrolled strips", Segments=24)
+    # the developments at the origin (Placement 1), where they were unrolled
+    b.node("analysis.IsoMapping", "unroll", 3, 0, "Unrolled strips", Segments=24, Placement=1)
     b.wire("strips.Strips", "unroll.Surface")
     b.node("maths.Expression", "factor", 3, 4, "1 / n", {"expression": "1 / n", "variables": ["n"]})
     b.wire("model_scale.Value", "factor.n")

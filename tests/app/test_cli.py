@@ -135,6 +135,25 @@ def test_gui_without_a_display_says_so_and_solves_headless(monkeypatch, capsys):
     assert "solved 8 nodes" in out
 
 
+def test_gui_where_qt_cannot_load_says_how_to_install_it_and_leaves_the_collector_on(monkeypatch, capsys):
+    """The check runs after the Qt-free imports (torsal/app/gui/before_qt.py), here stubbed;
+    the collector, off for the start-up, is on again."""
+    import gc
+
+    import torsal.app.gui.availability as availability
+    import torsal.app.gui.before_qt as before_qt
+
+    monkeypatch.setenv("DISPLAY", ":99")
+    monkeypatch.setattr(before_qt, "import_before_qt", lambda path: None)
+    monkeypatch.setattr(availability, "missing", lambda: "Qt for Python (PySide6) is not installed")
+    assert gc.isenabled()
+    assert main(["gui", str(EXAMPLE)]) == 2
+    err = capsys.readouterr().err
+    assert "the desktop app cannot start: Qt for Python (PySide6) is not installed." in err
+    assert "Install it with:" in err and "torsal run" in err
+    assert gc.isenabled()
+
+
 def test_the_installed_command_runs_as_a_ci_user_would(tmp_path):
     torsal = shutil.which("torsal", path=str(Path(sys.executable).parent))
     command = [torsal] if torsal else TORSAL

@@ -176,6 +176,24 @@ def test_types_in_imports_only_that_palettes_modules(fake_modules):
     assert fake_modules == ["fake_maths_nodes"]
 
 
+def test_an_indexed_type_imports_only_its_module(fake_modules):
+    registry = lazy_registry()
+    registry.register_lazy("params", "fake_more_params_nodes")  # never imported: not in sys.modules
+    registry.add_index({"params.One": "fake_params_nodes"})
+    assert registry.get("params.One").type_id == "params.One"
+    assert fake_modules == ["fake_params_nodes"]
+    assert registry.palettes() == ["maths", "params"]
+
+
+def test_a_type_the_index_misplaces_or_omits_loads_its_whole_palette(fake_modules):
+    registry = lazy_registry()
+    registry.add_index({"maths.One": "fake_params_nodes"})  # stale: the module moved
+    assert registry.get("maths.One").type_id == "maths.One"
+    assert registry.get("params.One").type_id == "params.One"  # not in the index
+    assert fake_modules == ["fake_maths_nodes", "fake_params_nodes"]
+    assert registry.get("params.Missing") is None
+
+
 def plugin_package(monkeypatch, name: str, declarations: dict) -> types.ModuleType:
     """A fake palette package ``name`` with a node module ``name.nodes`` (holding Seven-like
     ``tiles.Eight`` with an ``Octagon`` output) and a value-type module ``name.values``."""

@@ -95,3 +95,40 @@ def hausdorff(first: tuple[Array, Array], second: tuple[Array, Array]) -> float:
         points = strip_points(*x, 1, max(1, isotropic_steps(*x, 1) // 2)).reshape(-1, 3)
         result = max(result, float(distance_to_strip(points, strip_triangles(*y)).max()))
     return result
+
+
+def crossing_pairs(starts: Array, ends: Array) -> int:
+    """How many pairs of the strip's flat triangles cross each other, counted here with none
+    of the toolbox's code: each piece between consecutive rulings A_i B_i and A_i+1 B_i+1 is
+    the triangles (A_i, A_i+1, B_i) and (A_i+1, B_i+1, B_i), those of no area dropped (one
+    of them in a fan); two triangles cross when an edge of one passes through the inside of
+    the other (Möller–Trumbore, 1e-9 inside every barycentric and edge bound). Pairs that
+    share a vertex only touch there and are not counted."""
+    size = float(np.linalg.norm(np.ptp(np.vstack([starts, ends]), axis=0))) or 1.0
+    a0, a1, b0, b1 = starts[:-1], starts[1:], ends[:-1], ends[1:]
+    corners = np.concatenate([np.stack([a0, a1, b0], axis=1), np.stack([a1, b1, b0], axis=1)])
+    area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+    tri = corners[area > 1e-12 * size * size]
+    n = len(tri)
+    # pairs sharing a vertex (within 1e-12 of the size) only touch
+    gap = np.linalg.norm(tri[:, None, :, None, :] - tri[None, :, None, :, :], axis=-1).min(axis=(2, 3))
+    far = gap > 1e-12 * size
+    origin, e1, e2 = tri[:, 0], tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    crossed = np.zeros((n, n), dtype=bool)
+    for u, v in ((0, 1), (1, 2), (2, 0)):  # every edge of triangle i against triangle j
+        o = tri[:, u][:, None, :]
+        d = (tri[:, v] - tri[:, u])[:, None, :]
+        h = np.cross(d, e2[None, :, :])
+        det = np.einsum("ijk,jk->ij", h, e1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv = 1.0 / det
+            sv = o - origin[None, :, :]
+            bu = inv * np.einsum("ijk,ijk->ij", sv, h)
+            q = np.cross(sv, e1[None, :, :])
+            bv = inv * np.einsum("ijk,ijk->ij", np.broadcast_to(d, q.shape), q)
+            along = inv * np.einsum("ijk,jk->ij", q, e2)
+        eps = 1e-9
+        crossed |= (np.abs(det) > 1e-15 * size**3) & (bu > eps) & (bv > eps) & (bu + bv < 1 - eps) & (
+            along > eps) & (along < 1 - eps)
+    crossed &= far
+    return int(np.count_nonzero(np.triu(crossed | crossed.T, 1)))

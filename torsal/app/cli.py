@@ -253,18 +253,17 @@ def _gui(args: argparse.Namespace) -> int:
         run = run_file(file)
         print(summary(run))
         return run.exit_code
-    from torsal.app.gui.availability import missing
+    from torsal.app.gui.availability import Unavailable
+    from torsal.app.gui.main import launch
     from torsal.app.install import install_command
 
-    reason = missing()
-    if reason is not None:
+    try:
+        return launch(file)
+    except Unavailable as reason:
         print(f"torsal: the desktop app cannot start: {reason}.\n"
               f"        Install it with: {install_command('gui')}\n"
               f"        (or solve the graph headless: torsal run {file or 'FILE.graph'})", file=sys.stderr)
         return 2
-    from torsal.app.gui.main import launch
-
-    return launch(file)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,16 @@ packages inside a library package (Torsal's ``nodes``) by walking its sub-packag
 reading only those declarations: a palette's node modules are imported the first time
 one of its types is asked for, so opening a graph imports only the palettes it uses.
 
+A library may also declare an index of where each of its node types lives::
+
+    NODE_INDEX = "node_index"   # a module whose MODULES maps "curves.Line" → "curves.primitives"
+
+Then asking for a type imports only the module the index names (opening a graph imports
+only the modules of the node types it holds); a type the index does not name, or that
+the named module does not define (a stale index), loads its whole palette as before, so
+an index can make loading slower when out of date, never wrong. Listing a palette
+(:meth:`Registry.types_in`) or the catalogue imports every module it promises.
+
 Plug-ins publish through the ``torsal.nodes`` entry-point group; an entry point may name
 a palette package (declared as above), a module (every :class:`Node` subclass with a
 ``type_id`` in it is registered), a single class, or a callable returning classes. A
@@ -71,6 +81,7 @@ class Registry:
         self._types: dict[str, type[Node]] = {}
         self._lazy: dict[str, list[str]] = {}  # palette → modules not imported yet
         self._palette_types: dict[str, list[str]] = {}  # palette → its value-type modules
+        self._where: dict[str, str] = {}  # type id → the module holding it (a library's index)
         self.value_types = TYPES if value_types is None else value_types
         self.problems: list[str] = []
 
@@ -81,6 +92,10 @@ class Registry:
         package = importlib.import_module(library)
         for module_name in _names(package, "VALUE_TYPES"):
             self.value_types.declare(module_name)
+        index = vars(package).get("NODE_INDEX")
+        if index is not None:
+            modules = vars(importlib.import_module(f"{library}.{index}")).get("MODULES", {})
+            self.add_index({type_id: f"{library}.{name}" for type_id, name in modules.items()})
         for info in pkgutil.iter_modules(package.__path__, prefix=f"{library}."):
             if info.ispkg:
                 sub = importlib.import_module(info.name)
@@ -97,6 +112,11 @@ class Registry:
             self.value_types.declare(module_name)
             self._palette_types.setdefault(palette, []).append(module_name)
         return palette
+
+    def add_index(self, modules: dict[str, str]) -> None:
+        """Say which module holds each of these type ids (absolute module names): asking
+        for one imports only that module, if it is one a palette promised."""
+        self._where.update(modules)
 
     def register_lazy(self, palette: str, module_name: str) -> None:
         """Promise that ``module_name`` holds node types of ``palette``; it is imported the
@@ -128,9 +148,25 @@ class Registry:
         for cls in classes_in(module):
             self.register(cls)
 
+    def _load_type(self, type_id: str) -> None:
+        """Import the module the index names for ``type_id`` (with its palette's value
+        types); if that does not define it, the whole palette."""
+        palette = type_id.partition(".")[0]
+        pending = self._lazy.get(palette, [])
+        module_name = self._where.get(type_id)
+        if module_name in pending:
+            for value_module in self._palette_types.pop(palette, []):
+                self.value_types.load(value_module)
+            pending.remove(module_name)
+            if not pending:
+                del self._lazy[palette]
+            self.register_module(importlib.import_module(module_name))
+        if type_id not in self._types:
+            self._load_palette(palette)
+
     def get(self, type_id: str) -> type[Node] | None:
         if type_id not in self._types and isinstance(type_id, str):
-            self._load_palette(type_id.partition(".")[0])
+            self._load_type(type_id)
         return self._types.get(type_id)
 
     def create(self, type_id: str, settings: dict[str, Any] | None = None) -> Node:

@@ -15,7 +15,9 @@ import numpy as np
 import pytest
 from scipy import integrate
 
+from torsal.nodes.geometry.curves import NurbsCurve
 from torsal.nodes.geometry.parametric_surface import ParametricSurface, cone, cylinder, sphere
+from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.unroll import bilinear_quad_areas, unroll_rulings, unroll_surface
 
 R_CYL, H_CYL = 1.5, 2.0
@@ -227,3 +229,28 @@ def test_ten_thousand_rulings_unroll_keeping_every_edge_length():
     dev = unroll_rulings(starts, ends)
     assert len(dev.starts2d) == 10_000
     assert dev.max_edge_length_error < 1e-12
+
+
+def test_a_strip_far_from_the_origin_unrolls_to_the_shape_it_has_at_the_origin():
+    """Rails on control points exact at 1e9 m (multiples of 2⁻²⁰ m), so the moved strip is
+    the strip, moved, to the bit. Sampled at world coordinates its ruling ends rounded to
+    1.2e-7 m and the 2,245 quads, laid one after another, turned by that: the flat shape
+    moved by 1e-9 of its size. Sampled about the strip's anchor it is the origin's."""
+    rng = np.random.default_rng(3)
+    a = np.cumsum(rng.uniform(5.0, 15.0, (7, 3)) * [1.0, 0.3, 0.3], axis=0)
+    b = a + np.array([0.0, 20.0, 5.0]) + rng.normal(0.0, 3.0, (7, 3))
+    a, b = (np.round(p * 2**20) / 2**20 for p in (a, b))
+    wa, wb = rng.uniform(0.5, 2.0, 7), rng.uniform(0.5, 2.0, 7)
+
+    def unrolled(offset):
+        return unroll_surface(RuledSurface(NurbsCurve(a + offset, 3, weights=wa),
+                                           NurbsCurve(b + offset, 3, weights=wb)), 12, 8, 1e-7)
+
+    origin, far = unrolled(np.zeros(3)), unrolled(np.full(3, 1e9))
+    assert len(far.starts2d) == len(origin.starts2d) > 2000
+    size = float(np.linalg.norm(np.ptp(np.vstack([origin.starts2d, origin.ends2d]), axis=0)))
+    for flat_far, flat in ((far.starts2d, origin.starts2d), (far.ends2d, origin.ends2d)):
+        assert np.abs(flat_far - flat).max() <= 1e-13 * size
+    ulp = float(np.spacing(1e9))  # the 3D side is in world coordinates, rounded there
+    np.testing.assert_allclose(far.starts3d - 1e9, origin.starts3d, rtol=0, atol=ulp)
+    np.testing.assert_allclose(far.map.vertices3d - 1e9, origin.map.vertices3d, rtol=0, atol=ulp)

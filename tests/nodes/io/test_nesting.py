@@ -351,7 +351,7 @@ def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_th
     from torsal.nodes.geometry import nesting, sparrow_runs
 
     def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            better=None, halt=None, counted=True):
+            better=None, halt=None, counted=True, turn=0.0):
         budget.spend(10 if counted else 0)
         placed, x = {}, spacing
         for i in (members if seed % 2 == 0 else list(members)[::-1]):
@@ -401,3 +401,68 @@ def test_the_parts_kept_are_those_a_pairwise_check_keeps():
             kept.append(i)
     assert 20 < len(kept) < 200
     assert _valid(polygons, room, 10.0) == kept
+
+
+def test_a_better_layout_too_close_to_the_last_told_is_told_once_the_search_settles(monkeypatch):
+    """A stand-in for sparrow finds three bars spread along a strip, then the same with the
+    last bar 1 mm nearer (0.1 % less stock: less than ``TELL`` better), then searches on for
+    3 s without bettering. The second layout is told about ``SETTLE`` s after it was found,
+    not only when the search ends."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
+
+    def spread(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
+               better=None, halt=None, counted=True, turn=0.0):
+        first = {i: (0.0, (60.0 + 420.0 * k, height / 2)) for k, i in enumerate(members)}
+        last = {**first, members[-1]: (0.0, (60.0 + 420.0 * 2 - 1.0, height / 2))}
+        better(first)
+        time.sleep(0.2)
+        better(last)
+        time.sleep(3.0)
+        budget.spend(10)
+        return last
+
+    monkeypatch.setattr(sparrow_runs, "strip", spread)
+    monkeypatch.setattr(nesting, "strip", spread)
+    bars = [np.array([[0, 0], [100, 0], [100, 100], [0, 100]], dtype=float) + 500 * k for k in range(3)]
+    started = time.perf_counter()
+    told: list[tuple[float, float]] = []  # (seconds, the last bar's right end)
+
+    def found(layout):  # type: ignore[no-untyped-def]
+        end = place(bars[2], layout.angle[2], layout.shift[2])[:, 0].max()
+        told.append((time.perf_counter() - started, end))
+
+    nested = nest(bars, 2000.0, 102.0, margin=1.0, spacing=1.0, budget=10.0, found=found)
+    ended = time.perf_counter() - started
+    assert len(told) == 2 and told[0][1] - told[1][1] == pytest.approx(1.0)
+    assert told[1][0] - told[0][0] >= nesting.SETTLE and told[1][0] < ended - 1.5
+    assert place(bars[2], nested.angle[2], nested.shift[2])[:, 0].max() == pytest.approx(told[1][1])
+
+
+def test_a_set_that_does_not_fit_sets_the_next_seeds_target_at_the_density_its_strip_reached(monkeypatch):
+    """The stand-in for sparrow of the test above, but the first seed spreads its row: from x = 40,
+    160 mm between parts. Bars 200, 150, 120, 100 and 60 mm wide, 100 tall, on a 502 × 102 sheet
+    (margin and gap 1): the first set, towards 0.72 of the sheet, is the 200 and 150 (35,000 mm²);
+    spread, no sheet holds both, and its strip reaches x = 550 (551 mm long with the far gap:
+    density 35,000 / (551 × 102) = 0.6228).
+    The second seed's set is chosen at 0.98 of that (31,251 mm²): the 200 and the 100 (30,000);
+    it fits, and the 150, 120 and 60 make the last sheet."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
+
+    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
+            better=None, halt=None, counted=True, turn=0.0):
+        budget.spend(10 if counted else 0)
+        gap = 160.0 if seed == 0 else spacing
+        placed, x = {}, 40.0 if seed == 0 else spacing
+        for i in (members if seed % 2 == 0 else list(members)[::-1]):
+            w = float(np.ptp(shapes[i][:, 0]))
+            placed[i] = (0.0, (x + w / 2, height / 2))
+            x += w + gap
+        if better is not None:
+            better(placed)
+        return placed
+
+    monkeypatch.setattr(sparrow_runs, "strip", row)
+    monkeypatch.setattr(nesting, "strip", row)
+    bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 150, 120, 100, 60)]
+    nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0)
+    assert nested.sheet.tolist() == [0, 1, 1, 0, 1]

@@ -6,6 +6,10 @@ from __future__ import annotations
 import importlib.util
 
 
+class Unavailable(Exception):
+    """The desktop app cannot start here; ``str()`` says why (see :func:`missing`)."""
+
+
 def missing() -> str | None:
     """Why the app cannot start here (Qt, pyvista or pyvistaqt missing), or None.
 

@@ -192,11 +192,14 @@ class MainWindow(QMainWindow):
         return dock
 
     # -- start-up --------------------------------------------------------------------
-    def start(self, path: Path | None = None, offer_recovery: bool = True) -> None:
+    def start(self, path: Path | None = None, offer_recovery: bool = True, palette: bool = True) -> None:
         """After the window is shown: the palette, recovery of a crashed session, the file,
         then the 3D viewport. The file's solve starts at once on the worker thread, so it
-        runs while pyvista is imported and VTK set up (a second or more), not after."""
-        self.palette.populate()
+        runs while pyvista is imported and VTK set up (a second or more), not after.
+        ``palette=False`` leaves the palette's buttons to the caller (``torsal gui`` fills
+        them after the first solved frame: :func:`torsal.app.gui.main.launch`)."""
+        if palette:
+            self.palette.populate()
         for problem in self.registry.problems:  # a broken or refused plug-in (docs/plugins.md)
             self.report(problem[:1].upper() + problem[1:], "warning")
         try:

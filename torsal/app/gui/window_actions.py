@@ -10,7 +10,6 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QMenu, QMessageBox
 
 from torsal.app.gui.hosts import MenuWindow
-from torsal.app.gui.optimise_window import open_optimise_window
 from torsal.app.gui.write_consent import toggle_writes
 from torsal.engine import __version__
 
@@ -140,7 +139,7 @@ def build_menus(window: MenuWindow) -> dict[str, QAction]:
     solve.addAction(auto)
     actions["auto_solve"] = auto
     solve.addSeparator()
-    add(solve, "optimise", "&Optimise…", lambda: open_optimise_window(window),
+    add(solve, "optimise", "&Optimise…", lambda: _open_optimise_window(window),
         tip="Search sliders for the best value of an output (runs beside the canvas)")
 
     help_menu = bar.addMenu("&Help")
@@ -170,3 +169,11 @@ def _fill_recent(window: MenuWindow, menu: QMenu) -> None:
         menu.addAction(str(path), lambda p=Path(path): window.open_file(p))
     if not files:
         menu.addAction("(none)").setEnabled(False)
+
+
+def _open_optimise_window(window: MenuWindow) -> None:
+    """Solve ▸ Optimise…: its window and the search it runs are imported on first use,
+    not before the app's first frame."""
+    from torsal.app.gui.optimise_window import open_optimise_window
+
+    open_optimise_window(window)

@@ -117,11 +117,19 @@ class Rationalise(Node):
     the design's asymptotic directions (where the normal curvature along them changes
     sign while the surface twists) much less than the other's — on a monkey saddle the
     lines along its straight asymptotic line, not across it — and where only the other
-    family crosses them, it does not try that one. The boundaries themselves are parameter lines,
-    not traced lines of curvature: a family along them leaves the design through its
-    sides (a field fitted to them and held to the edges creased more and was 5–10×
-    slower). Where the design's parameter lines are far from its curvature lines and the
-    strips crease, give Guides (or a Direction) along the lines of curvature.
+    family crosses them, it does not try that one. Where both families cross them (a
+    double bump with a valley between: every line from edge to edge crosses the bumps'
+    inflection), the node first rings each bump with strips between traced lines of
+    curvature, which no strip creases along (the D-strips of Pottmann et al. 2008): each
+    bump's part of the design (the points nearer its top than any other's) is split in two
+    halves and a cap round its top; the halves are marched with rings of curvature as
+    boundaries and their strips cut where the halves meet (overlapping by twice the
+    tolerance there), the cap with parameter lines. It keeps them when they are within the
+    tolerance, cover the design's edge and keep at most 10 % of their area in fans, and
+    falls back to parameter lines otherwise; Boundaries is then empty (each part has its
+    own) and the family reads "rings". Elsewhere the boundaries are parameter lines:
+    where they are far from the design's curvature lines and the strips crease, give
+    Guides (or a Direction) along the lines of curvature.
 
     With Direction, the boundaries are the parameter lines running most nearly along it,
     on the design (not lifted).

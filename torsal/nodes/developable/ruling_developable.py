@@ -45,7 +45,8 @@ class _Row(NamedTuple):
     fan_limit: float
     crease_angle: float
     frame: LocalFrame
-    reversed_b: bool = False  #: b is CurveB reversed (its torsal rulings ran backwards along it)
+    #: why b is CurveB reversed, completing "CurveB runs against CurveA" (:func:`align_b`); "" if it is not
+    reversed_b: str = ""
 
 
 #: One call's checked inputs, the curves where they are: CurveA, CurveB, Segments,
@@ -73,9 +74,9 @@ def _placed(checked: _Checked, frame: LocalFrame) -> _Row:
     return _Row(frame.to_local(a), frame.to_local(b), *rest, frame)
 
 
-def _flipped(row: _Row, reversed_b: Curve | None) -> _Row:
-    """``row`` with CurveB reversed where :func:`align_b` reversed it."""
-    return row if reversed_b is None else row._replace(b=reversed_b, reversed_b=True)
+def _flipped(row: _Row, reversed_b: tuple[Curve, str] | None) -> _Row:
+    """``row`` with CurveB reversed where :func:`align_b` reversed it, and why."""
+    return row if reversed_b is None else row._replace(b=reversed_b[0], reversed_b=reversed_b[1])
 
 
 def _distinct(curve_a: Curve, curve_b: Curve) -> None:
@@ -175,9 +176,12 @@ class RulingDevelopable(Node):
     fold the sheet at every change of apex: the node warns when those take more than
     FanLimit of the area, and names swapping the curves or reversing CurveB only when
     it has solved that alternative and found it needs fewer of them. A CurveB drawn
-    against CurveA (its torsal rulings run backwards along it) is reversed for the solve,
-    as a loft aligns its curves, when that closes less of the strip with fans; a remark
-    says so.
+    against CurveA (its torsal rulings run backwards along it, or its ends lie nearer
+    CurveA's crossed than in order) is reversed for the solve, as a loft aligns its
+    curves, when that closes less of the strip with fans — and, when fans close as much
+    of the strip either way (nothing in the strip tells the two ways apart), when its ends
+    say it runs against CurveA, as Rhino's Loft reads them: so CurveB drawn either way
+    gives one strip. A remark says so.
 
     Kind tells each ruling what it is, recomputed from the output alone (its end points,
     the curves' exact tangents there and which ends it shares with its neighbours):
@@ -345,8 +349,8 @@ class RulingDevelopable(Node):
         valid, tip = checks if checks is not None else (None, None)
         a, b, n, tol, limit, sharp, frame, reversed_b = row
         if reversed_b:
-            self.remark("CurveB runs against CurveA (its torsal rulings ran backwards along it): the strip "
-                        "is solved with CurveB reversed, as a loft aligns its curves")
+            self.remark(f"CurveB runs against CurveA{reversed_b}: the strip is solved with CurveB reversed, "
+                        "as a loft aligns its curves")
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
             strip = curve_strip_outputs(

@@ -126,6 +126,11 @@ class DevelopmentMap:
         if self.proper.size == 0:
             raise ValueError("the strip has no area: every triangle is degenerate")
 
+    def moved(self, offset: ArrayLike) -> DevelopmentMap:
+        """The same map with the 3D side moved by ``offset``."""
+        return DevelopmentMap(self.vertices2d, self.vertices3d + np.asarray(offset, dtype=float).reshape(3),
+                              self.first_diagonal)
+
     def rotated(self, angle: float, pivot: ArrayLike) -> DevelopmentMap:
         """The same map with the plane side turned by ``angle`` (rad) about ``pivot``."""
         turned = rotate_about(self.vertices2d, angle, np.asarray(pivot, dtype=float))

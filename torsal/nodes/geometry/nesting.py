@@ -9,29 +9,37 @@ too, and a strip cut into sheet lengths loses at every cut the parts that cross 
 1. a sheet's parts are chosen by area alone (:func:`_choose`: largest first, each that keeps
    the set within :data:`SHEET_TARGET` of the sheet's area), and sparrow packs them into a
    strip as tall as the sheet's usable height, ending as soon as it is no longer than the
-   sheet; the set is packed with :data:`SET_SEEDS` seeds side by side;
+   sheet; when it does not fit, another seed packs a set chosen at :data:`FOLLOW` of the
+   density that strip reached (a target that follows the parts; later sheets keep it), up
+   to :data:`SET_SEEDS` seeds;
 2. when the parts left then cover no more than :data:`LAST_SHEET` of a sheet, they are
    packed as the last sheet *beside* it (two packings at once, one on each core): its
-   length is what the offcut saves;
+   length is what the offcut saves. Its parts reach sparrow standing across the strip when
+   that strip will be shorter than it is tall (``across``): sparrow's search starts from the
+   parts as given, and the Kaohsiung strips' last five reached 74 % density in 1.8 / 4.5 /
+   14.9 CPU-s by seed standing against 4.2 / 11.0 / 18.2 lying (load 12);
 3. a set sparrow could not get within the sheet's length gives the sheet the stretch of its
    strip holding the most part area (:func:`_window`), and the rest goes back to the pool.
 
 What a sheet's set costs is about what sparrow's own strip of every part costs to reach
 the same density: a sheet is a strip with the density of the layout, not more, and each
 part is packed once (issue 31; profiled on the Kaohsiung strips, 18 parts about a third
-of a sheet long: the set of 13 at 71-74 % of the sheet took 13-27 s at a load of 6, the
-last sheet's 5 beside it 2-5 s). Strips of every part cut into sheets were 10 points less
+of a sheet long, with CPU time per packing: the set of 13 fits the sheet in 8 CPU-s for
+seed 0, the last sheet's 5 beside it reach their 74 % in 2-5 CPU-s standing; sparrow's own
+strip of all 18 reaches the layout's 72.6 % in 5-12 CPU-s by seed when given the parts as
+the layout turned them, 8-32 as drawn. Where the time went before: the second seed packed
+beside the first, 8 CPU-s, and the last sheet lying, 19 CPU-s, its final layout shown only
+when its search ended). Strips of every part cut into sheets were 10 points less
 dense for such parts (every cut crosses four or five); parts small beside the sheet lose
 little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (many panels)
 the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:
 each sheet starts a margin before the first part not yet placed and takes those that end
 within it), and it is the layout when it keeps :data:`CUT_KEEPS` of the strip's density;
-otherwise the sheets are filled one at a time as above. Not reached: a set that does not fit
-at :data:`SHEET_TARGET` costs both its seeds' packings and still loses its strip's end (50
-random strips, annular sectors sparrow packs to only about 66 % in a strip: sheet 1's set of
-13 failed with both seeds, 28 s; sheet 2's set of 22 took 69 s beside its last sheet of 16,
-89 s, at a load of 10; sparrow's strip of all 50 reaches their 65.5 % in 10.5 s). A target
-that follows the parts (the density a short strip of them reaches) is what is left to try.
+otherwise the sheets are filled one at a time as above. Not reached: parts sparrow packs
+well below :data:`SHEET_TARGET` pay for the first set's failed packing before the target
+follows them (50 random strips, annular sectors sparrow packs to only about 66 % in a strip:
+sheet 1's set of 13 failed with both seeds at 72 %, 28 s, before the target followed the
+parts; sparrow's strip of all 50 reaches their 65.5 % in 10.5 s at a load of 10).
 
 The budget is counted in sparrow's steps (:data:`~torsal.nodes.geometry.sparrow_runs.STEPS_PER_SECOND`
 per second of ``budget``), never the clock, and every packing is seeded (the seeds follow
@@ -84,12 +92,14 @@ __all__ = ["PACKED", "Nested", "NestingFailed", "nest", "place"]
 #: Kaohsiung strips' sets of 71-74 % into a sheet in about the time its strip of every part
 #: takes to reach that density; denser sets often do not fit at all.
 SHEET_TARGET = 0.72
-#: Seeds a sheet's set is packed with side by side (one worker process each): sparrow's time
-#: to fit a set varies two- to threefold from seed to seed (the Kaohsiung strips' set of 13:
-#: 8.5, 18.4, 10.7 and 20.8 s of CPU for seeds 0-3), so the first that fits is shown at once;
-#: the layout kept is the first seed's when it fits too, so the same seed gives the same layout.
-#: With nothing to show on the way (``found`` None: a headless run) the next seed is packed
-#: only when the first does not fit: the same layout, half the work.
+#: A set that did not fit its sheet tells how dense sparrow packs these parts: the next seed's
+#: set, and every later sheet's, is chosen at this share of the density its strip reached.
+FOLLOW = 0.98
+#: Seeds a sheet's set is packed with, one after the other: the next only when the last did
+#: not fit (the first seed's packing is kept whenever it fits, so the same seed gives the same
+#: layout). Side by side, as before, each took half the cores while the first seed's packing
+#: and the last sheet's beside it ran (Kaohsiung: 36 CPU-s of sparrow, the set fitted at 59 s
+#: and the layout ended at 93 s, load 14; one after the other 24 CPU-s, 40 s, 66 s, load 13-16).
 SET_SEEDS = 2
 #: Parts covering at most this share of a usable sheet are packed as the last sheet.
 LAST_SHEET = 0.8
@@ -107,6 +117,11 @@ CUT_KEEPS = 0.9
 #: engraved and redrawn). The layout told last is, when it is the final one, not engraved
 #: again: the panels' final (0.4 % above the first told) came at the end with 0.005.
 TELL = 0.002
+#: A better layout less than :data:`TELL` ahead is told when no other has come for this many
+#: seconds (sparrow's last shortenings come in bursts, then it searches on without bettering:
+#: the Kaohsiung strips' final layout, 0.18 % above the one told before it, was otherwise shown
+#: only when the search ended, 15 s later).
+SETTLE = 1.0
 
 
 @dataclass(frozen=True)
@@ -194,7 +209,8 @@ def nest(
     ``orientations`` lists the allowed turns in degrees (``None``: free rotation).
     Every shape must fit the usable sheet in some allowed turn (the caller checks).
     ``found`` is told each complete layout on the way that uses :data:`TELL` more of the
-    stock than the last it was told, before the end.
+    stock than the last it was told, and a better one that uses less more when no other has
+    come for :data:`SETTLE` seconds, before the end (from this call's threads).
     """
     run = Budget(budget, stop, report)
     n = len(shapes)
@@ -252,6 +268,13 @@ def nest(
 
     best: list[tuple[tuple[int, float], Nested]] = []  # the layout on the way taking least stock
     told = [-math.inf]  # the stock usage of the last layout told to found
+    settling: list[threading.Timer] = []  # tells the best layout when no better has come for SETTLE s
+
+    def settled(candidate: Nested, usage: float) -> None:
+        with lock:
+            if found is not None and best and best[0][1] is candidate and usage > told[0]:
+                told[0] = usage
+                found(candidate)
 
     def offer(packings: Sequence[Packing]) -> None:
         """The sheets filled so far, then each of ``packings`` (together every part left)
@@ -271,14 +294,36 @@ def nest(
                 return
             best[:] = [(used, candidate)]
             usage = float(area.sum()) / (((used[0] - 1) * width + used[1]) * height)
+            for waiting in settling:
+                waiting.cancel()
             if found is not None and usage >= told[0] + TELL:
                 told[0] = usage
                 found(candidate)
+            elif found is not None:
+                settling[:] = [threading.Timer(SETTLE, settled, (candidate, usage))]
+                settling[0].daemon = True
+                settling[0].start()
 
     def sheets_left() -> float:
         return max(1.0, math.ceil(sum(area[i] for i in remaining) / usable))
 
+    def across(members: Sequence[int]) -> float:
+        """90 (degrees) when the last sheet's ``members`` should reach sparrow standing across its
+        strip: free rotation, their strip expected shorter than it is tall, and the parts lying
+        along it, each short enough to stand in it; else 0."""
+        if orientations is not None:
+            return 0.0
+        reach = np.array([np.ptp(centred[i], axis=0) for i in members])
+        short = float(area[list(members)].sum()) / (SHEET_TARGET * strip_height) < strip_height
+        along = reach[:, 0].sum() > reach[:, 1].sum() and (reach[:, 0] <= strip_height - 2 * spacing).all()
+        return 90.0 if short and along else 0.0
+
+    def length(packing: Packing) -> float:
+        """How long sparrow's strip of ``packing`` is (to the far separation)."""
+        return max(p.bounds[2] for p in polygons_of(packing).values()) - margin + 2 * spacing
+
     sheet = 0  # the next sheet to fill
+    target = SHEET_TARGET  # a sheet's set, as a share of its area (follows the parts: FOLLOW)
     if area.sum() > FILL_SHEETS * usable:
         # many sheets: the strip of every part cut into sheets, kept when it keeps the strip's density
         steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
@@ -293,19 +338,21 @@ def nest(
                 remaining = []  # best holds the layout
     while remaining and not run.stopped and run.left() >= FEWEST:
         if sum(area[i] for i in remaining) <= LAST_SHEET * usable:  # the last sheet: all the steps left
+            run.last_round = True
             packing = strip(centred, remaining, strip_height, spacing, orientations, run.left(), next(seeds),
-                            run, better=lambda p: offer([p]))
+                            run, better=lambda p: offer([p]), turn=across(remaining))
             if packing is None or (taken := cut_into_sheets(packing, sheet, placed)) is None:
                 break
             sheet += taken
             remaining = []
             break
-        chosen = _choose(remaining, area, SHEET_TARGET * sheet_length * strip_height)
+        chosen = _choose(remaining, area, target * sheet_length * strip_height)
         others = [i for i in remaining if i not in chosen]
         last = sum(area[i] for i in others) <= LAST_SHEET * usable
         reserve = round(LAST_RESERVE * run.left()) if last else 0
-        # the set packed with SET_SEEDS seeds side by side: the first seed's packing is the sheet when
-        # it fits (the others then end), else the first that fits; each that fits is shown at once
+        run.last_round = last  # progress: this round places every part left
+        # the set packed with up to SET_SEEDS seeds, one after the other: the first seed's packing is the
+        # sheet when it fits, else the first that fits
         tries = SET_SEEDS
         seen: list[Packing | None] = [None] * (tries + 1)  # the latest packing of each; the last sheet's
         fits = threading.Event()  # the first seed's packing fits the sheet
@@ -321,33 +368,37 @@ def nest(
                         offer([one, seen[-1]])
 
         steps = max(FEWEST, run.left() - reserve)
-        # the other seeds' steps are not counted: they end when the first seed's packing fits
+        # the other seeds' steps are not counted (as when they were packed side by side with the first)
         jobs: list[dict] = [{"members": chosen, "steps": steps, "seed": next(seeds), "enough": sheet_length,
                              "better": lambda p, k=k: saw(k, p), "halt": None if k == 0 else fits.is_set,
                              "counted": k == 0} for k in range(tries)]
         if last:  # packed beside this sheet's set
             jobs.append({"members": others, "steps": max(FEWEST, reserve), "seed": next(seeds),
-                         "better": lambda p, k=tries: saw(k, p)})
-        if found is not None:  # every seed at once: the first that fits is shown
-            packings = strips(centred, jobs, strip_height, spacing, orientations, run)
-        else:  # nothing to show: another seed only when the first does not fit (the same layout)
-            packings = [None] * len(jobs)
-            first = [0, *range(tries, len(jobs))]
-            for k, packing in zip(first, strips(centred, [jobs[k] for k in first], strip_height, spacing,
-                                                orientations, run), strict=True):
-                packings[k] = packing
+                         "better": lambda p, k=tries: saw(k, p), "turn": across(others)})
+        # another seed only when the first does not fit (side by side, each would have half the cores:
+        # the first seed's fit, the layout kept, came later, and the last sheet's beside it)
+        packings: list[Packing | None] = [None] * len(jobs)
+        first = [0, *range(tries, len(jobs))]
+        for k, packing in zip(first, strips(centred, [jobs[k] for k in first], strip_height, spacing,
+                                            orientations, run), strict=True):
+            packings[k] = packing
         if packings[0] is None:
             break
         packing = packings[0]
         for k in range(1, tries):
-            if fits.is_set() or run.stopped:
+            if fits.is_set() or run.stopped or packings[k - 1] is None:
                 break
-            if found is None:
-                packings[k] = strip(centred, height=strip_height, spacing=spacing, orientations=orientations,
-                                    budget=run, **jobs[k])
+            # a target that follows the parts: the density the last set's strip reached
+            members = jobs[k - 1]["members"]
+            reached = float(area[members].sum()) / (length(packings[k - 1]) * strip_height)
+            if reached < target:
+                target = FOLLOW * reached
+                jobs[k]["members"] = _choose(remaining, area, target * sheet_length * strip_height)
+            packings[k] = strip(centred, height=strip_height, spacing=spacing, orientations=orientations,
+                                budget=run, **jobs[k])
             if packings[k] is not None and max(
                     p.bounds[2] for p in polygons_of(packings[k]).values()) <= width - margin:
-                packing = packings[k]
+                packing, chosen = packings[k], jobs[k]["members"]
                 break
         polygons = polygons_of(packing)
         if max(p.bounds[2] for p in polygons.values()) > width - margin:
@@ -368,7 +419,7 @@ def nest(
                 put(i, sheet, *packing[i], start, placed)
         sheet += 1
         remaining = [i for i in remaining if i not in placed]
-        if last and len(kept) == len(chosen) and packings[-1] is not None:
+        if last and packings[-1] is not None and set(packings[-1]) == set(remaining):  # the set's complement
             with lock:
                 layout = dict(placed)
                 taken = cut_into_sheets(packings[-1], sheet, layout)
@@ -377,6 +428,7 @@ def nest(
                     sheet += taken
                     remaining = []
     if remaining and not run.stopped:  # out of steps: one strip of the rest, cut into sheet lengths
+        run.last_round = True
         packing = strip(centred, remaining, strip_height, spacing, orientations, FEWEST, next(seeds), run)
         if packing is not None:
             with lock:
@@ -392,11 +444,17 @@ def nest(
         for k, i in enumerate(remaining):
             low = np.asarray(shapes[i], dtype=float).min(axis=0)
             placed[i] = (sheet + int(extra[k]), 0.0, corner[k] - low)
+    for waiting in settling:  # nothing is told after the end
+        waiting.cancel()
+        waiting.join()
     if report is not None:
         report(1.0)
     if len(placed) == n:
         final = nested(placed, run.stopped)
-        if not best or stock(final) <= best[0][0]:
+        # the best layout on the way when the final one takes no less stock: it was told already
+        # (engraved and shown), and the two are then the same packings, cut alike but for where the
+        # first sheet starts (its usage differed in the last digit: never the same layout again)
+        if not best or stock(final) < (best[0][0][0], best[0][0][1] - 1e-9 * width):
             return final
     kept_layout = best[0][1]
     return Nested(kept_layout.sheet, kept_layout.angle, kept_layout.shift, kept_layout.sheets, run.stopped,

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
 import os
 import queue
 import subprocess
@@ -48,6 +49,10 @@ FEWEST = 20
 #: budget (plus :data:`GRACE` s), and the layout says it was stopped on the clock.
 NET = 10.0
 GRACE = 60.0
+#: How much shorter each step of sparrow's search makes a feasible strip (its reports: 0.1 %):
+#: a packing that ends at a length (``enough``) is expected to take the steps from its
+#: latest length to that one.
+SHRINK = 0.001
 #: Threads sparrow searches on, whatever the machine: with a fixed count its reports come in
 #: the same order for the same seed (they differ from one thread count to another).
 WORKERS = 2
@@ -67,7 +72,13 @@ class NestingFailed(RuntimeError):
 
 
 class Budget:
-    """The shared steps, stop requests and progress of one :func:`nest` call."""
+    """The shared steps, stop requests and progress of one :func:`nest` call.
+
+    Progress is the steps taken over the steps the nesting is expected to take: every step of
+    the budget while parts will be left after the packings under way; in the last round (set by
+    the caller: :attr:`last_round`), only those already taken and those the packings under way
+    are expected to take (:meth:`tick`), so a nesting whose sheets fit early is not shown at a
+    fraction of its budget until it ends. Packings side by side count together."""
 
     def __init__(self, budget: float, stop: Callable[[], bool] | None,
                  report: Callable[[float], None] | None) -> None:
@@ -80,6 +91,8 @@ class Budget:
         self.stopped = False
         self.on_the_clock = False
         self.reported = 0.0
+        self.last_round = False  #: the packings under way place every part left
+        self.running: dict[int, tuple[int, int]] = {}  # packing -> (steps taken, steps expected)
         self.lock = threading.Lock()  # packings side by side (strips) share it
 
     def left(self) -> int:
@@ -92,11 +105,20 @@ class Budget:
     def seconds(self) -> float:
         return max(1.0, self.net - (time.perf_counter() - self.start))
 
-    def tick(self, running: int = 0) -> bool:
-        """Report progress (``running``: steps of the packing under way); True when a stop
-        was asked for."""
+    def fraction(self) -> float:
+        """How far the nesting is, below 1 (1 is told at its end)."""
+        taken = self.used + sum(steps for steps, _ in self.running.values())
+        expected = self.used + sum(max(steps, more) for steps, more in self.running.values()) \
+            if self.last_round else self.steps
+        return min(0.99, taken / max(expected, 1))
+
+    def tick(self, packing: int | None = None, steps: int = 0, expected: int = 0) -> bool:
+        """Report progress (``packing``: a counted packing under way, ``steps`` of it taken,
+        ``expected`` in all); True when a stop was asked for."""
         with self.lock:
-            fraction = min(0.99, (self.used + running) / self.steps)  # 1 when done
+            if packing is not None:
+                self.running[packing] = (steps, expected)
+            fraction = self.fraction()
             if self.report is not None and fraction > self.reported:
                 self.reported = fraction
                 self.report(fraction)
@@ -104,17 +126,18 @@ class Budget:
                 self.stopped = True
             return self.stopped
 
-    def spend(self, steps: int) -> None:
-        """Count ``steps`` of a packing as used."""
+    def spend(self, steps: int, packing: int | None = None) -> None:
+        """Count ``steps`` of a packing as used (``packing``: it has ended)."""
         with self.lock:
             self.used += steps
+            self.running.pop(packing, None)
 
 
 def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, spacing: float,
            orientations: Sequence[float] | None, steps: int, seed: int,
            budget: Budget, enough: float = 0.0, failures: int = 1,
            better: Callable[[Packing], None] | None = None, halt: Callable[[], bool] | None = None,
-           counted: bool = True) -> Packing | None:
+           counted: bool = True, turn: float = 0.0) -> Packing | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -125,11 +148,21 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     packing it reported by then is kept. ``better`` is told each shorter packing as it
     arrives (not those of a cached job). ``halt`` (polled like ``stop``) ends this packing
     alone, keeping its best so far (another packing beside it made it of no use); the steps
-    of a packing not ``counted`` are left out of the budget's (they depend on when it ended)."""
+    of a packing not ``counted`` are left out of the budget's (they depend on when it ended).
+    ``turn``: sparrow is given each member turned by that many degrees (its search starts from
+    the parts as given; free rotation only), and the angles returned are of the shapes as given."""
+    c, s = math.cos(math.radians(turn)), math.sin(math.radians(turn))
+    turned = np.array([[c, s], [-s, c]])  # counter-clockwise, as the angles sparrow reports
+
+    def packed(rows: list) -> Packing:
+        return {int(i): ((float(a) + turn) % 360.0 if turn else float(a), (float(x), float(y)))
+                for i, a, x, y in rows}
+
     job = {
         # to a micrometre: below what sparrow's single precision holds on a sheet, and
         # rounding noise (a far site) then asks the same job
-        "shapes": [[i, np.round(shapes[i], 3).tolist()] for i in members], "height": float(height),
+        "shapes": [[i, np.round(np.asarray(shapes[i]) @ turned if turn else shapes[i], 3).tolist()]
+                   for i in members], "height": float(height),
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
@@ -163,6 +196,8 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     reader = threading.Thread(target=read, daemon=True)
     reader.start()
     best, used, complete, clocked = None, 0, False, False
+    me, expected = id(lines), steps  # this packing, and the steps it is expected to take
+    untold = False  # a packing came that better has not been told
     try:
         assert worker.stdin is not None
         worker.stdin.write(json.dumps(job))
@@ -183,9 +218,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                         if clocked:
                             budget.on_the_clock = True
                     else:
-                        best = message
-                        if better is not None:
-                            better({int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]})
+                        best, untold = message, True
                 try:
                     line = lines.get_nowait()
                 except queue.Empty:
@@ -194,7 +227,12 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                 finished = True
                 with contextlib.suppress(subprocess.TimeoutExpired):
                     worker.wait(timeout=5.0)
-            if budget.tick(used) or (halt is not None and halt()):
+            if untold and better is not None:  # the latest of those that came together
+                better(packed(best[1]))
+            untold = False
+            if counted and best is not None and enough > 0:  # the steps to its end, as sparrow shortens
+                expected = min(steps, used + math.ceil(math.log(max(best[0] / enough, 1.0)) / SHRINK))
+            if budget.tick(me if counted else None, used, expected) or (halt is not None and halt()):
                 finished = True
     finally:
         ended = worker.poll() is not None
@@ -205,11 +243,11 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
         problem = worker.stderr.read() if worker.stderr is not None and ended else ""
         if worker.stderr is not None:
             worker.stderr.close()
-    budget.spend(used if counted else 0)
+    budget.spend(used if counted else 0, me)
     if ended and worker.returncode != 0 and best is None:
         last = (problem.strip().splitlines() or ["no message"])[-1]
         raise NestingFailed(f"the nesting engine (sparrow) stopped with {last}")
-    packing = None if best is None else {int(i): (float(a), (float(x), float(y))) for i, a, x, y in best[1]}
+    packing = None if best is None else packed(best[1])
     if complete and not clocked:  # what any later run of this job would find
         while len(PACKED) >= CACHED:
             PACKED.pop(next(iter(PACKED)))

@@ -35,7 +35,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import optimize
 from scipy.spatial import cKDTree
 
 from .area import integrate_unit_square
@@ -52,6 +51,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
+from .surface_box import surface_bounding_box
 from .vec_ops import anchor, cross, derivative_noise, dot, extent, position_rounding
 from .watch import watch_check
 
@@ -404,34 +404,15 @@ class Surface(ABC):
         return u, v
 
     def bounding_box(self, samples: int = 32) -> FloatArray:
-        """Axis-aligned bounding box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``.
+        """Axis-aligned bounding box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``, tight.
 
-        Each of the six extremes starts at the best sample of a grid and is then
-        polished with a bounded quasi-Newton search (scipy's L-BFGS-B), so the box is
-        tight to ~1e-10, not just to the sampling.
+        Each extreme is at a corner, on an edge where the coordinate's derivative along
+        it is zero, or inside where both its partial derivatives are: the edges' own
+        boxes and a Newton search on the gradient from the best of a
+        ``(samples + 1)²`` grid find them, to the rounding of the surface's positions
+        wherever it is (see :mod:`.surface_box`).
         """
-        gu, gv = uv_grid(samples + 1, samples + 1)
-        pts = self.derivatives(gu, gv, 0)[0]
-        box = np.array([pts.min(axis=0), pts.max(axis=0)])
-        for axis in range(3):
-            for row, sign in ((0, 1.0), (1, -1.0)):
-                start = int(np.argmin(sign * pts[:, axis]))
-
-                def objective(x: FloatArray, axis: int = axis, sign: float = sign):
-                    s, su, sv = self.derivatives(x[0], x[1], 1)
-                    return sign * s[0, axis], sign * np.array([su[0, axis], sv[0, axis]])
-
-                res = optimize.minimize(
-                    objective,
-                    np.array([gu[start], gv[start]]),
-                    jac=True,
-                    method="L-BFGS-B",
-                    bounds=[(0.0, 1.0), (0.0, 1.0)],
-                    options={"ftol": 1e-15, "gtol": 1e-12},
-                )
-                value = sign * float(res.fun)
-                box[row, axis] = min(box[row, axis], value) if row == 0 else max(box[row, axis], value)
-        return box
+        return surface_bounding_box(self, samples)
 
     # ------------------------------------------------------------------ rulings
 

@@ -47,6 +47,7 @@ from .area import gauss_legendre_01
 from .counts import segment_count
 from .development_map import DevelopmentMap, is_simple, merge_repeats, rotate_about
 from .edge_sampling import Samples, edge_parameters, edge_subdivisions
+from .local_frame import LocalFrame
 from .watch import watch_check
 
 if TYPE_CHECKING:
@@ -183,6 +184,13 @@ class Development:
         tri = self.map.vertices2d[self.map.triangles]
         areas = 0.5 * self.map._area2
         return (tri.mean(axis=1) * areas[:, None]).sum(axis=0) / areas.sum()
+
+    def moved(self, offset: ArrayLike) -> Development:
+        """The development of the same strip moved by ``offset`` in 3D: the flat side and
+        every figure stay the same."""
+        shift = np.asarray(offset, dtype=float).reshape(3)
+        return replace(self, starts3d=self.starts3d + shift, ends3d=self.ends3d + shift,
+                       map=self.map.moved(shift))
 
     def rotated(self, angle_deg: float, pivot: ArrayLike | None = None) -> Development:
         """The development turned counter-clockwise by ``angle_deg`` about ``pivot``
@@ -381,9 +389,19 @@ def unroll_surface(
     costs what it did at ``subdivisions``, and its flat corners sit on the accurate
     development.
 
+    At site coordinates the rulings are sampled on the surface moved to its own anchor
+    (:mod:`.local_frame`) and the development's 3D side is moved back: the flat shape is
+    the one the surface unrolls to at the origin, not one whose quads turn by the
+    rounding of their corners' world coordinates.
+
     Raises ValueError("surface has no straight rulings") for a non-ruled surface.
     """
     segments, subdivisions = segment_count(segments), segment_count(subdivisions, "Subdivisions")
+    # sampled at site coordinates, each ruling's ends round to the coordinates' ulp (1.2e-7 m
+    # at 1e9 m) and the quads, laid one after another, turn by that over their short rails:
+    # sampled about the surface's own anchor they are as exact as at the origin
+    frame = LocalFrame.around(surface)
+    world, surface = surface, frame.to_local(surface)
     requested = u = panelled = None
     error, capped = float("nan"), False
     if edge_tolerance is None:
@@ -400,7 +418,9 @@ def unroll_surface(
         rulings = sampling.rulings
         if requested is not None:
             u = sampling.u
-    area_3d = surface.area()
+    # (the world surface's: a surface given by a function of world coordinates knows the
+    # noise of its differenced derivatives only there, and its cubature stops at it)
+    area_3d = world.area()
     _look()
     development = unroll_rulings(rulings[:, 0], rulings[:, 1], area_3d=area_3d)
     _look()
@@ -408,6 +428,8 @@ def unroll_surface(
     _look()
     if panelled is not None:
         upright = replace(upright, map=_map_through(upright, panelled))
+    if not frame.is_world:
+        upright = upright.moved(frame.origin)
     return replace(upright, stride=subdivisions, requested=requested, edge_shortfall=error,
                    edge_capped=capped)
 

@@ -184,6 +184,16 @@ def test_an_interval_far_from_zero_is_certified_empty_and_a_dip_to_zero_is_not()
     assert not empty(0.24, 0.24, -1.0, 1.0, 2.0)
 
 
+def test_an_interval_within_the_rounding_of_zero_is_not_certified_empty():
+    # f = 1e-17 + 1e-18·u(1 − u) > 0 throughout, but within a rounding of 1e-15 of zero: a
+    # touching point of f is not ruled out (a cylinder's generator at an inflection)
+    f0 = f1 = np.array([1e-17])
+    e0, e1, m = np.array([1e-18]), np.array([-1e-18]), np.array([2e-18])
+    assert certified_empty(f0, f1, e0, e1, m).all()
+    assert not certified_empty(f0, f1, e0, e1, m, np.array([1e-15])).any()
+    assert certified_empty(f0 + 1e-14, f1 + 1e-14, e0, e1, m, np.array([1e-15])).all()
+
+
 def test_a_sign_change_is_certified_single_only_when_the_slope_cannot_turn():
     f0, f1 = np.array([-1.0]), np.array([1.0])
     assert certified_single(f0, f1, np.array([2.0]), np.array([2.0]), np.array([1.0])).all()

@@ -1,6 +1,7 @@
 """developable.strip: the strips of a solve set up together (stations on A, A there, the
-samples of B), each the strip it is alone; and stations evenly spaced along several
-curves at once."""
+samples of B), each the strip it is alone; stations evenly spaced along several
+curves at once; lengths along several curves and the stretches of B that gaps span, found
+for many strips at once, each what it is alone."""
 
 from __future__ import annotations
 
@@ -8,8 +9,8 @@ import numpy as np
 import pytest
 
 from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Line, NurbsCurve, Polyline
-from torsal.nodes.geometry.developable.stations import LengthMap, spaced_parameters
-from torsal.nodes.geometry.developable.strip import Steady, set_up
+from torsal.nodes.geometry.developable.stations import LengthMap, lengths_at, spaced_parameters
+from torsal.nodes.geometry.developable.strip import Steady, gap_lengths_all, set_up
 
 
 def _wavy(z: float, phase: float, points: int = 9) -> NurbsCurve:
@@ -56,3 +57,34 @@ def test_stations_along_several_curves_at_once_fall_on_equal_lengths():
     expected = np.column_stack([2 * np.cos(angle), 2 * np.sin(angle), np.zeros(7)])
     np.testing.assert_allclose(arc.point_at(on_arc), expected, atol=1e-12)
     np.testing.assert_allclose(on_polyline, [0, 0.25, 0.5, 0.75, 1.0], atol=1e-15)
+
+
+def test_lengths_along_several_curves_at_once_are_each_curves_own():
+    arc = Arc(radius=2.0, start_angle=0.0, end_angle=3.0)  # (length 2·angle)
+    curves = [arc, _wavy(0.0, 0.3), Polyline([[0, 0, 0], [1, 0, 0], [1, 3, 0]])]
+    ts = [np.array([0.0, 0.25, 0.5, 1.0, -0.2, 1.3]), np.linspace(0.0, 1.0, 17),
+          np.array([0.25, 0.5, np.nan])]
+    maps = LengthMap.many(curves)
+    together = lengths_at(maps, ts)
+    for length_map, t, found in zip(maps, ts, together, strict=True):
+        np.testing.assert_array_equal(found, length_map.length_at(t))
+    np.testing.assert_allclose(together[0], [0.0, 1.5, 3.0, 6.0, 0.0, 6.0], rtol=1e-13, atol=1e-15)
+    np.testing.assert_allclose(together[2][:2], [1.0, 2.0], rtol=1e-13)
+
+
+def test_stretches_of_b_of_many_strips_found_at_once_are_the_ones_found_alone():
+    jobs = [job for job in _jobs() if job[1].length > 0 and job[0].length > 0]
+    jobs.append((Line([0, 0, 0], [3, 0, 0]), Polyline([[0, 1, 0], [1, 1.5, 0], [3, 1, 0.5]]), 8, 0.01))
+    # a fan's two ends alone, many rulings between, a stretch run backwards, one over B's corner
+    stretches = [(0.1, 0.15), (0.0, 0.9), (0.6, 0.4), (0.3, 1.0)]
+    together = [strip for strip in set_up(jobs, "length", 24) if not isinstance(strip, ValueError)]
+    gap_lengths_all([(strip, low, high) for strip in together for low, high in stretches])
+    for job, strip in zip(jobs, together, strict=True):
+        (alone,) = set_up([job], "length", 24)
+        for low, high in stretches:
+            tb, lb = strip.gap_lengths(low, high)
+            tb_alone, lb_alone = alone.gap_lengths(low, high)
+            np.testing.assert_array_equal(tb, tb_alone)
+            np.testing.assert_array_equal(lb, lb_alone)
+            np.testing.assert_array_equal(lb, alone.map_b.length_at(tb))
+            assert tb[0] == low and tb[-1] == max(low, high)  # (a stretch run backwards: its start)

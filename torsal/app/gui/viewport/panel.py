@@ -198,7 +198,8 @@ class ViewportPanel(QWidget):
         has_geometry = bool(self.preview.actor_names())
         if has_geometry:
             changed = self._frame_or_follow() or changed
-        self._update_hint(has_geometry)
+        if has_geometry or self.doc.solves.idle():  # not "nothing to preview" while results are due
+            changed = self._update_hint(has_geometry) or changed
         if changed or not self.frames:
             self.schedule_render()
 
@@ -297,9 +298,11 @@ class ViewportPanel(QWidget):
         self.frames += 1
         self.frame_rendered.emit()
 
-    def _update_hint(self, has_geometry: bool) -> None:
+    def _update_hint(self, has_geometry: bool) -> bool:
+        """Show or hide the "nothing to preview" note; True if that changed the picture
+        (the caller renders)."""
         if has_geometry == (not self._hint_shown):
-            return
+            return False
         if has_geometry:
             self.plotter.remove_actor("decor:hint", render=False)
         else:
@@ -309,8 +312,10 @@ class ViewportPanel(QWidget):
                 font_size=8,
                 color="#777777",
                 name="decor:hint",
+                render=False,
             )
         self._hint_shown = not has_geometry
+        return True
 
     def _update_grid(self) -> None:
         """A ground grid around what is shown (rebuilt only when the extent changes much)."""

@@ -11,13 +11,15 @@ nesting arrives), the part keeps its highlight by its ID.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from torsal.app.gui import theme
 from torsal.engine.solver import NodeResult
-from torsal.nodes.io.sheet_preview import SheetPreview
+
+if TYPE_CHECKING:
+    from torsal.nodes.io.sheet_preview import SheetPreview
 
 #: A left press and release at most this many pixels apart are a click, not a drag.
 CLICK_PIXELS = 4
@@ -29,7 +31,10 @@ PART_ACTOR, STRIP_ACTOR = "picked-part", "picked-strip"
 
 
 def sheet_previews(results: dict[str, NodeResult], shown: set[str]) -> list[tuple[str, SheetPreview]]:
-    """(node id, preview) of every cut-sheet preview drawn in the viewport."""
+    """(node id, preview) of every cut-sheet preview drawn in the viewport (asked on a
+    click: the cut-sheet module, with its shapely, is not imported to start the viewport)."""
+    from torsal.nodes.io.sheet_preview import SheetPreview
+
     found = []
     for node_id in sorted(shown):
         result = results.get(node_id)

@@ -133,6 +133,9 @@ class NurbsCurve(Curve):
         # knots and coefficients are checked already (construct_fast skips scipy's checks)
         knots = np.ascontiguousarray(knots, dtype=float)
         coefficients = np.ascontiguousarray(coefficients, dtype=float)
+        #: what the spline combines: the local control points (times the weights, and the
+        #: weights, for a rational curve), read by :mod:`.shared_knots`
+        self._coefficients: FloatArray = coefficients
         self._spline = BSpline.construct_fast(
             knots, coefficients, degree, extrapolate="periodic" if periodic else True
         )

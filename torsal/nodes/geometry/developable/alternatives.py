@@ -12,6 +12,8 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..curve_base import Curve
 from .ruling import RulingResult, ruling_developable, ruling_developables
 
@@ -55,26 +57,55 @@ def better_pairing(
 
 def align_b(
     jobs: Sequence[tuple[Curve, Curve, int, float]], results: list[RulingResult | ValueError]
-) -> list[Curve | None]:
+) -> list[tuple[Curve, str] | None]:
     """Where a strip closed partly by fans has torsal rulings that run backwards along B
-    (partners whose normals flip: B was drawn against A there), the strip solved
-    with B reversed, when that closes less of its area with fans (by more than
-    :data:`ALIGN`: B drawn either way gives the same strip, not the one it was drawn as):
-    ``results`` are replaced in place and the reversed curve is returned at that place
-    (None elsewhere). A designer expects the strip between the curves whichever way each
-    was drawn, as Rhino's Loft aligns its curves; every strip is solved side by side
-    (:func:`.ruling.ruling_developables`)."""
+    (partners whose normals flip: B was drawn against A there) or B runs against A by
+    their ends (:func:`drawn_against`), the strip solved with B reversed, taken when that
+    closes less of its area with fans (by more than :data:`ALIGN`) or, when it closes as
+    much (a tie: nothing in the fans tells the two ways apart), when B runs against A by
+    their ends. So B drawn either way gives one strip, not the one it was drawn as.
+    ``results`` are replaced in place and, at each such place, the reversed curve and why
+    it was reversed are returned (None elsewhere). A designer expects the strip between
+    the curves whichever way each was drawn, as Rhino's Loft aligns its curves; every
+    strip is solved side by side (:func:`.ruling.ruling_developables`)."""
+    against = [drawn_against(job[0], job[1]) for job in jobs]
     redo = [
         i for i, result in enumerate(results)
         if not isinstance(result, ValueError) and result.fan.any()
-        and (result.backward or result.any_backward)
+        and (result.backward or result.any_backward or against[i])
     ]
-    reversed_b: list[Curve | None] = [None] * len(results)
+    reversed_b: list[tuple[Curve, str] | None] = [None] * len(results)
     if not redo:
         return reversed_b
     flipped = {i: jobs[i][1].reversed() for i in redo}
     again = ruling_developables([(jobs[i][0], flipped[i], *jobs[i][2:]) for i in redo])
     for i, other in zip(redo, again, strict=True):
-        if not isinstance(other, ValueError) and other.fan_share < results[i].fan_share - ALIGN:
-            results[i], reversed_b[i] = other, flipped[i]
+        before = results[i]
+        if isinstance(other, ValueError) or isinstance(before, ValueError):  # (only solved ones are redone)
+            continue
+        gain = before.fan_share - other.fan_share
+        if gain > ALIGN:
+            why = (FEWER_FANS.format(before=100 * before.fan_share, after=100 * other.fan_share)
+                   if not (before.backward or before.any_backward) else BACKWARDS)
+            results[i], reversed_b[i] = other, (flipped[i], why)
+        elif gain >= -ALIGN and against[i]:  # a tie: B as Loft would align it
+            results[i], reversed_b[i] = other, (flipped[i], BY_ENDS)
     return reversed_b
+
+
+#: Why :func:`align_b` reversed B, as the node's remark completes "CurveB runs against CurveA…".
+BACKWARDS = " (its torsal rulings ran backwards along it)"
+FEWER_FANS = (
+    " (reversed, flat triangles close less of the strip: {after:.3g} % of its area, not {before:.3g} %)"
+)
+BY_ENDS = " by their ends (flat triangles close as much of the strip whichever way it runs)"
+
+
+def drawn_against(curve_a: Curve, curve_b: Curve) -> bool:
+    """Whether B runs against A by their ends, as Rhino's Loft reads two curves: A's ends
+    are nearer B's ends crossed than in order. It settles a strip that fans cover as much
+    whichever way B runs, so that B drawn either way still gives one strip."""
+    (a0, a1), (b0, b1) = curve_a.end_points, curve_b.end_points
+    in_order = np.linalg.norm(a0 - b0) + np.linalg.norm(a1 - b1)
+    crossed = np.linalg.norm(a0 - b1) + np.linalg.norm(a1 - b0)
+    return bool(crossed < in_order)

@@ -26,19 +26,23 @@ import numpy as np
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
-from ..curve_base import FloatArray
+from ..curve_base import Curve, FloatArray
 from ..vec_ops import cross, dot, flatnonzero, norm
-from .brackets import refine_roots
+from .brackets import ZERO, refine_roots
 from .isolation import Pieces, isolate
 from .selection import longest_chain, monotone_path
 from .sift import sift_all
 from .stack import Stack, evaluate_each, evaluate_rows
-from .stations import parameters_at
+from .stations import lengths_at, parameters_at
 from .strip import Strip, even_all, with_maps_b
 from .warp import _angles, _normals, in_plane_tangent, sizes
 
 #: Most candidates kept per station for the selection.
 MAX_CANDIDATES = 8
+
+#: A root is a double root to rounding (:func:`_double_roots`) where rounding alone could
+#: move it along B by more than this share of its ruling's length.
+LOOSE = 1e-12
 
 #: What a candidate is: a refined root of f, a root at a corner of B, an end of a flat run.
 ROOT, CORNER, FLAT_END = 0, 1, 2
@@ -174,15 +178,19 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
         refine_roots(coplanarity, i.low, i.high, i.f_low, start)
     if len(point_rows):
         evaluate(root_t[k:], slice(k, None))
+    a2_root = a2.take(root_rows, axis=0)
+    double, mean_slope = _double_roots(
+        curves, strip_of_root, (a0_root, a1_root, a2_root, size_a, speed_a), (root_t, b0, b1, f, f_t))
 
     # the slope dt/ds = −f_s/f_t of each smooth root's branch, f_s = det[R, A'', B'] =
     # R · (A'' × B') with R = B − A
     r = b0 - a0_root
     rr, bb, ra, rb, ab = dot(r, r), dot(b1, b1), dot(r, a1_root), dot(r, b1), dot(a1_root, b1)
-    f_s = dot(r, cross(a2.take(root_rows, axis=0), b1))
+    f_s = dot(r, cross(a2_root, b1))
     aa = speed_a**2
     with np.errstate(over="ignore"):  # (a still end of B: f_t ~ 0 there, the slope is clipped)
         slope = np.minimum(np.maximum(-f_s / np.where(f_t == 0, 1e-300, f_t), -1e6), 1e6)
+    slope[double] = mean_slope
     # converged onto a jump of B' that is not a flagged corner: f is far from zero there
     jumped = np.abs(f) > 1e-7 * np.sqrt(rr * aa * bb)
     kind = np.where(jumped, CORNER, ROOT)
@@ -200,6 +208,72 @@ def find_all(strips: Sequence[Strip]) -> list[Candidates]:
         candidates = Candidates(rows_i, t_i, kind_i, slope_i, nan, nan, b0_i, b1_i, oriented_i)
         results.append(_with_extras(strip, candidates, sifted.corners[i], sifted.runs[i]))
     return results
+
+
+def _double_roots(
+    curves: Sequence[Curve], strip_of: IntArray, stations: tuple[FloatArray, ...],
+    roots: tuple[FloatArray, ...],
+) -> tuple[IntArray, FloatArray]:
+    """Roots of f that are double roots to rounding, moved onto the double root itself:
+    in place in ``roots`` = (t, B, B', f, f_t), with ``stations`` = (A, A', A'', |A|, |A'|)
+    at every root. Returns which roots moved and their branches' mean slope dt/ds.
+
+    Where f touches zero (a cylinder's generator at an inflection of its section, where
+    two branches of roots cross), f is zero to rounding over a stretch of B as wide as the
+    square root of its rounding, and a root found inside it is only that good (1.4e-9 of
+    the length on that cylinder). Such a root is told by its conditioning: rounding alone
+    could move it by ZERO·scale/|f_t|, more than :data:`LOOSE` of its ruling's length
+    along B. There the double root is the simple root of f_t = det[R, A', B''] (whose
+    derivative is f_tt = det[B', A', B''] + det[R, A', B''']), refined in a bracket twice
+    as wide as that stretch, and taken where f is zero to rounding too (else the root
+    stays: two roots that rounding tells apart). Its branch slope −f_s/f_t is 0/0 there
+    (both branches pass through it): it takes their mean, −f_st/f_tt with f_st =
+    det[R, A'', B''], which favours neither."""
+    t, b0, b1, f, f_t = roots
+    a0, a1, a2, size_a, speed_a = stations
+    noise = ZERO * rounding_scale(size_a, b0, speed_a, b1)
+    with np.errstate(invalid="ignore"):
+        loose = (noise * norm(b1) > LOOSE * np.abs(f_t) * norm(b0 - a0)) & (np.abs(f) <= 4.0 * noise)
+    index = flatnonzero(loose)
+    if len(index) == 0:  # (the usual case: every root is simple)
+        return index, np.empty(0)
+    rows, a0_i, a1_i, noise_i = strip_of[index], a0[index], a1[index], noise[index]
+    size_i, speed_i = size_a[index], speed_a[index]
+
+    def f_t_of(x: FloatArray, at: IntArray | slice) -> tuple[FloatArray, ...]:
+        """f_t, f_tt and f_t's rounding scale at ``x`` for the roots ``at``, and B, B', B''."""
+        c0, c1, c2, c3 = evaluate_rows(curves, x, rows[at], 3)
+        plane = cross(c0 - a0_i[at], a1_i[at])
+        slope_t = dot(cross(c1, a1_i[at]), c2) + dot(plane, c3)
+        return dot(plane, c2), slope_t, rounding_scale(size_i[at], c0, speed_i[at], c2), c0, c1, c2
+
+    x = t[index]
+    g, dg = f_t_of(x, slice(None))[:2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        step = g / dg
+        width = 2.0 * np.maximum(np.abs(step), np.sqrt(2.0 * noise_i / np.abs(dg)))
+    width = np.where(np.isfinite(width), width, 0.0)
+    low, high = np.maximum(x - width, 0.0), np.minimum(x + width, 1.0)
+    n = len(x)
+    both = f_t_of(np.concatenate([low, high]), np.concatenate([np.arange(n), np.arange(n)]))[0]
+    g_low, g_high = both[:n], both[n:]
+    keep = flatnonzero((width > 0) & (np.signbit(g_low) != np.signbit(g_high)))
+    if len(keep) == 0:
+        return keep, np.empty(0)
+    index, rows, a0_i, a1_i = index[keep], rows[keep], a0_i[keep], a1_i[keep]
+    size_i, speed_i, x, low, high = size_i[keep], speed_i[keep], x[keep], low[keep], high[keep]
+    start = np.minimum(np.maximum(x - step[keep], low), high)
+    found = refine_roots(lambda y, at: f_t_of(y, at)[:3], low, high, g_low[keep], start)
+    g, dg, _, c0, c1, c2 = f_t_of(found, slice(None))
+    value = dot(cross(c0 - a0_i, a1_i), c1)
+    zero = flatnonzero(np.abs(value) <= 2.0 * ZERO * rounding_scale(size_i, c0, speed_i, c1))
+    index = index[zero]
+    t[index], b0[index], b1[index] = found[zero], c0[zero], c1[zero]
+    f[index], f_t[index] = value[zero], g[zero]
+    f_st = dot(c0[zero] - a0_i[zero], cross(a2[index], c2[zero]))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean = -f_st / dg[zero]
+    return index, np.where(np.isfinite(mean), np.minimum(np.maximum(mean, -1e6), 1e6), 0.0)
 
 
 def _with_extras(
@@ -361,7 +435,7 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
     if not at:
         return
     with_maps_b([strips[i] for i in at])
-    windows = [_window(strips[i], ts[i]) for i in at]
+    windows = _windows([strips[i] for i in at], [ts[i] for i in at])
     # the lofts' partners: along B's length as the stations are along A's, within the window
     found = parameters_at([strips[i].map_b for i in at], [window[-1] for window in windows])
     lofts = [np.minimum(np.maximum(t, lo), hi) for t, (_, lo, hi, *_) in zip(found, windows, strict=True)]
@@ -387,26 +461,33 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
               samples.get(k))
 
 
-def _window(strip: Strip, t: FloatArray) -> tuple[FloatArray, ...]:
-    """For one strip's stations without a partner (some): where they are, their neighbours'
+def _windows(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> list[tuple[FloatArray, ...]]:
+    """For each strip's stations without a partner (some): where they are, their neighbours'
     partners ``lo`` and ``hi``, the lengths along B there and the plain loft's partners'
-    lengths along B (between them, as the stations lie between theirs along A)."""
-    gap = np.isnan(t)
-    missing = flatnonzero(gap)
-    # where each station without a partner falls among those with one: the partners of its
-    # two neighbours (padded with B's ends where there is none before or after it) and
-    # their arc lengths along A (padded with A's ends), one row for each neighbour
-    partnered = flatnonzero(~gap)
-    neighbours = np.searchsorted(partnered, missing) + _ENDS
-    t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
-    lo, hi = t_window
-    length_a = strip.station_lengths
-    a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
-    span = a_hi - a_lo
-    spans = span > 0
-    fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
-    b_lo, b_hi = strip.length_b(t_window.ravel()).reshape(2, -1)
-    return missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)
+    lengths along B (between them, as the stations lie between theirs along A); the lengths
+    along B of all strips measured at once (:func:`.stations.lengths_at`)."""
+    found = []
+    for strip, t in zip(strips, ts, strict=True):
+        gap = np.isnan(t)
+        missing = flatnonzero(gap)
+        # where each station without a partner falls among those with one: the partners of
+        # its two neighbours (padded with B's ends where there is none before or after it)
+        # and their arc lengths along A (padded with A's ends), one row for each neighbour
+        partnered = flatnonzero(~gap)
+        neighbours = np.searchsorted(partnered, missing) + _ENDS
+        t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
+        length_a = strip.station_lengths
+        a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
+        span = a_hi - a_lo
+        spans = span > 0
+        fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
+        found.append((missing, t_window, fraction))
+    lengths = lengths_at([strip.map_b for strip in strips], [t_window.ravel() for _, t_window, _ in found])
+    windows = []
+    for (missing, (lo, hi), fraction), length in zip(found, lengths, strict=True):
+        b_lo, b_hi = length.reshape(2, -1)
+        windows.append((missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)))
+    return windows
 
 
 def _near(

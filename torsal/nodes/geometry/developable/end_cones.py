@@ -40,7 +40,7 @@ from ..vec_ops import cross, dot, flatnonzero, norm
 from .brackets import refine_roots
 from .candidates import cubic_start, rounding_scale
 from .stack import Stack, evaluate_each
-from .stations import LengthMap
+from .stations import LengthMap, lengths_at
 from .warp import consistently_oriented, sizes
 
 if TYPE_CHECKING:
@@ -213,8 +213,11 @@ def _even_in_length(
     (``maps``, one per strip), in place."""
     bounds = per_strip.offsets.tolist()
     u0, u1 = np.where(reverse, 1.0 - low, low), np.where(reverse, 1.0 - high, high)
-    for lengths, first, stop in zip(maps, bounds[:-1], bounds[1:], strict=True):  # (strips with end runs)
-        ends = lengths.length_at(np.concatenate([u0[first:stop], u1[first:stop]])).reshape(2, -1)
+    # (the runs' ends measured along every strip's curve at once)
+    measured = lengths_at(maps, [np.concatenate([u0[first:stop], u1[first:stop]])
+                                 for first, stop in pairwise(bounds)])
+    for lengths, first, stop, found in zip(maps, bounds[:-1], bounds[1:], measured, strict=True):
+        ends = found.reshape(2, -1)
         at = ends[0][:, None] + (ends[1] - ends[0])[:, None] * (_STEPS / (SAMPLES - 1))
         u = lengths.parameter_near(at)  # (samples: their roots are refined)
         x[first:stop] = np.where(reverse[first:stop, None], 1.0 - u, u)

@@ -27,7 +27,7 @@ the strip read from its other end is the same.
 from __future__ import annotations
 
 import struct
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from functools import partial
 from math import isnan
 
@@ -41,7 +41,8 @@ from ..vec_ops import cross, det, flatnonzero, norm, unit
 from .brackets import refine_roots
 from .candidates import FLAT_END, Candidates, rounding_scale
 from .stack import Stack, evaluate_each, evaluate_rows
-from .strip import SIDE, Steady, Strip
+from .stations import lengths_at, parameters_at
+from .strip import SIDE, Steady, Strip, gap_lengths_all
 
 #: Fractions of a chain's length this close are one in :func:`zigzag`.
 TIE = 1e-9
@@ -365,21 +366,24 @@ def a_fans_all(
     """:func:`a_fans` of every strip ``(strip, t, slope, regular, speed)`` (``speed``: |B'|
     at the stations on a regular branch, as the partner search found it), the apexes of all
     their fans solved at once (each strip's curves evaluated on its own rows)."""
-    jumps = []
-    for strip, t, slope, regular, speed in strips:
+    jumps = [(np.empty(0, dtype=np.int64), np.empty(0))] * len(strips)
+    possible = []  # (strip's index, its stations' rates, the steps that may be jumps)
+    for index, (strip, t, slope, regular, speed) in enumerate(strips):
         dt = t[1:] - t[:-1]
         rate, speed = _rates(strip, t, slope, speed)
         # the steps along B's length by the trapezoid rule, against those the slopes predict
-        # (a looser bar than :func:`_jumps_along_b`'s, which measures the steps themselves)
+        # (a looser bar than :func:`_jumps_along_b_all`'s, which measures the steps themselves)
         step = 0.5 * dt * (speed[:-1] + speed[1:])
         predicted = 0.5 * np.diff(strip.station_lengths) * (rate[:-1] + rate[1:])
         with np.errstate(invalid="ignore"):
             jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(step - predicted) > 0.2 * step)
         pairs = flatnonzero(jump)
-        mids = np.empty(0)
         if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
-            pairs, mids = _jumps_along_b(strip, t, rate, pairs)
-        jumps.append((pairs, mids))
+            possible.append((index, rate, pairs))
+    found_jumps = _jumps_along_b_all([(strips[index][0], strips[index][1], rate, pairs)
+                                      for index, rate, pairs in possible])
+    for (index, _, _), found_k in zip(possible, found_jumps, strict=True):
+        jumps[index] = found_k
     found: list[list[tuple[float, float, float]]] = [[] for _ in strips]
     with_pairs = [i for i, (pairs, _) in enumerate(jumps) if len(pairs)]
     if not with_pairs:
@@ -415,9 +419,16 @@ def a_fans_all(
 
         low, high = s_all[at[which]], s_all[at[which] + 1]
         apex[which] = refine_roots(coplanarity, low, high, f_left[which])
+    # (a hole is told by the steps along B's length, not its parameter: those of every strip
+    # with pairs measured at once)
+    known = [~np.isnan(strips[index][1]) for index in with_pairs]
+    measured = lengths_at([strips[index][0].map_b for index in with_pairs],
+                          [strips[index][1][at] for index, at in zip(with_pairs, known, strict=True)])
     for k, index in enumerate(with_pairs):
         strip, t = strips[index][:2]
         pairs_k = jumps[index][0]
+        lengths = np.full(len(t), np.nan)
+        lengths[known[k]] = measured[k]
         apex_k = apex[stack.offsets[k]:stack.offsets[k + 1]]
         if not np.isnan(apex_k).all():
             # a root that converged onto a corner of A (a jump of f) or onto a station is that point
@@ -425,7 +436,7 @@ def a_fans_all(
                 if len(exact):
                     nearest = exact[np.argmin(np.abs(apex_k[:, None] - exact[None, :]), axis=1)]
                     apex_k = np.where(np.abs(apex_k - nearest) <= 1e-12, nearest, apex_k)
-        found[index] = _a_fans_of(strip, t, pairs_k, apex_k)
+        found[index] = _a_fans_of(strip, t, pairs_k, apex_k, lengths)
     return found
 
 
@@ -455,36 +466,40 @@ def _rates(
     return rate, speed
 
 
-def _jumps_along_b(
-    strip: Strip, t: FloatArray, rate: FloatArray, pairs: IntArray
-) -> tuple[IntArray, FloatArray]:
-    """Of the steps ``pairs`` (i, i + 1), each a jump of t, those that jump along B's length
-    too, and B's parameter halfway along its length between their two ends.
+def _jumps_along_b_all(
+    jobs: Sequence[tuple[Strip, FloatArray, FloatArray, IntArray]],
+) -> list[tuple[IntArray, FloatArray]]:
+    """For each ``(strip, t, rate, pairs)``: of the steps ``pairs`` (i, i + 1), each a jump
+    of t, those that jump along B's length too, and B's parameter halfway along its length
+    between their two ends; the lengths along B of all strips, then the halfway parameters,
+    each measured in one pass (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`).
 
     The step is measured along B's length (:attr:`.strip.Strip.map_b`) and predicted from
     the stations' ``rate``, dL/ds (:func:`_rates`): what B's parameterisation does to t
     cancels.
     """
-    lengths = strip.length_b(np.concatenate([t[pairs], t[pairs + 1]])).reshape(2, -1)
-    step = lengths[1] - lengths[0]
-    along_a = strip.station_lengths
-    predicted = 0.5 * (along_a[pairs + 1] - along_a[pairs]) * (rate[pairs] + rate[pairs + 1])
-    jump = ~(np.abs(step - predicted) <= 0.25 * step)
-    return pairs[jump], strip.parameter_b(0.5 * (lengths[0] + lengths[1])[jump])
+    maps = [strip.map_b for strip, _, _, _ in jobs]
+    ends = lengths_at(maps, [np.concatenate([t[pairs], t[pairs + 1]]) for _, t, _, pairs in jobs])
+    jumps, halfway = [], []
+    for (strip, _, rate, pairs), found in zip(jobs, ends, strict=True):
+        lengths = found.reshape(2, -1)
+        step = lengths[1] - lengths[0]
+        along_a = strip.station_lengths
+        predicted = 0.5 * (along_a[pairs + 1] - along_a[pairs]) * (rate[pairs] + rate[pairs + 1])
+        jump = ~(np.abs(step - predicted) <= 0.25 * step)
+        jumps.append(pairs[jump])
+        halfway.append(0.5 * (lengths[0] + lengths[1])[jump])
+    return list(zip(jumps, parameters_at(maps, halfway), strict=True))
 
 
 def _a_fans_of(
-    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray
+    strip: Strip, t: FloatArray, pairs: IntArray, apex: FloatArray, lengths: FloatArray
 ) -> list[tuple[float, float, float]]:
     """One strip's fans through points of A at the jumps ``pairs`` with the apexes found
-    (NaN where f had no root between the two stations)."""
+    (NaN where f had no root between the two stations); ``lengths`` along B at ``t``."""
     s = strip.s
     fans = []
-    # (a hole is told by the steps along B's length, not its parameter)
-    known = ~np.isnan(t)
-    lengths = np.full(len(t), np.nan)
-    lengths[known] = strip.length_b(t[known])
-    dt = lengths[1:] - lengths[:-1]
+    dt = lengths[1:] - lengths[:-1]  # (a hole is told by the steps along B's length, not its parameter)
     for i, s_star in zip(pairs.tolist(), apex.tolist(), strict=True):  # one pass per possible fan (rare)
         if isnan(s_star):
             inside = strip.kinks_a[(strip.kinks_a >= s[i]) & (strip.kinks_a <= s[i + 1])]
@@ -567,19 +582,56 @@ def close_gaps(
 
     Sets ``t`` at the gap stations and returns the added rulings as ``(s, t)`` arrays.
     """
+    return close_gaps_all([(strip, t, fans)])[0]
+
+
+def close_gaps_all(
+    jobs: Sequence[tuple[Strip, FloatArray, list | None]],
+) -> list[list[tuple[FloatArray, FloatArray]]]:
+    """:func:`close_gaps` of every ``(strip, t, fans)`` of ``jobs``: the stretches of B that
+    the strips' holes and gaps span measured together first, then those beyond the first and
+    last rulings (:func:`.strip.gap_lengths_all`); each strip gets what it gets alone."""
+    stretches = []
+    for strip, t, fans in jobs:
+        gap = np.isnan(t)
+        stretches += [(strip, float(t[i]), float(t[i + 1]))
+                      for i in strip.holes if not (gap[i] or gap[i + 1])]
+        # (a closed B's last gap may end at the first station, which the first gap's closing
+        # sets: that stretch is found when it is closed)
+        for _, _, t_lo, t_hi, key in _gap_runs(strip, t, fans):
+            if key not in strip.closings:
+                seam = t_hi < t_lo  # (through the seam of a closed B: two stretches)
+                stretches += [(strip, t_lo, 1.0), (strip, 0.0, t_hi)] if seam else [(strip, t_lo, t_hi)]
+    gap_lengths_all(stretches)
+    added = [_close_inner(strip, t, fans) for strip, t, fans in jobs]
+    ends = []
+    for strip, t, _ in jobs:
+        if not strip.curve_b.closed:
+            ends += [(strip, 0.0, float(t[0]))] if t[0] > 0.0 else []
+            ends += [(strip, float(t[-1]), 1.0)] if t[-1] < 1.0 else []
+    gap_lengths_all(ends)
+    for (strip, t, _), more in zip(jobs, added, strict=True):
+        if not strip.curve_b.closed:
+            if t[0] > 0.0:
+                tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
+                more.append((np.zeros(len(tb)), tb))
+            if t[-1] < 1.0:
+                tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
+                more.append((np.ones(len(tb)), tb))
+    return added
+
+
+def _gap_runs(
+    strip: Strip, t: FloatArray, fans: list | None
+) -> Iterator[tuple[int, int, float, float, tuple]]:
+    """Each run ``i0..i1`` of stations without a partner in ``t``, with the stretch of B
+    ``t_lo``, ``t_hi`` its closing spans (:func:`close_gaps`) and its key among the strip's
+    closings. (The runs are found at the first step; each stretch is read from ``t`` as it
+    is when its run is reached.)"""
     n = len(t)
-    gap = np.isnan(t)
-    added: list[tuple[FloatArray, FloatArray]] = []
-    for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
-        if gap[i] or gap[i + 1]:
-            continue  # closed with the gap around it
-        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
-        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
-        inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
-        added.append((strip.s[i + a[inner]], tb[b[inner]]))
-    # the runs of gap stations: where ``gap`` padded with False on both sides changes
+    # the runs of gap stations: where the gaps padded with False on both sides change
     padded = np.zeros(n + 2, dtype=bool)
-    padded[1:-1] = gap
+    padded[1:-1] = np.isnan(t)
     edges = flatnonzero(padded[1:] != padded[:-1]).tolist()
     closed = strip.curve_b.closed
     for i0, stop in zip(edges[::2], edges[1::2], strict=True):  # one pass per gap (few)
@@ -593,21 +645,29 @@ def close_gaps(
                 t_hi = fan[1]
         if t_hi < t_lo and not closed:
             t_hi = t_lo
-        key = (i0, i1, struct.pack("2d", t_lo, t_hi))
+        yield i0, i1, t_lo, t_hi, (i0, i1, struct.pack("2d", t_lo, t_hi))
+
+
+def _close_inner(strip: Strip, t: FloatArray, fans: list | None) -> list[tuple[FloatArray, FloatArray]]:
+    """:func:`close_gaps` within the rulings: the holes, then the gaps one by one (:func:`_gap_runs`)."""
+    gap = np.isnan(t)
+    added: list[tuple[FloatArray, FloatArray]] = []
+    for i in strip.holes:  # one pass per stretch of B that t jumps over (rare)
+        if gap[i] or gap[i + 1]:
+            continue  # closed with the gap around it
+        tb, lb = strip.gap_lengths(float(t[i]), float(t[i + 1]))
+        a, b = zigzag(strip.station_lengths[i : i + 2], lb, partial(_chains, strip, i, i + 2, tb))
+        inner = slice(1, len(a) - 1)  # the two stations' own rulings are there already
+        added.append((strip.s[i + a[inner]], tb[b[inner]]))
+    for i0, i1, t_lo, t_hi, key in _gap_runs(strip, t, fans):
         closing = strip.closings.get(key)
         if closing is None:
             closing = strip.closings[key] = _closing(strip, i0, i1, t_lo, t_hi)
         t[i0 : i1 + 1], extra = closing
         if extra is not None:
             added.append(extra)
-    if not closed:
-        if t[0] > 0.0:
-            tb = strip.gap_lengths(0.0, float(t[0]))[0][:-1]
-            added.append((np.zeros(len(tb)), tb))
-        if t[-1] < 1.0:
-            tb = strip.gap_lengths(float(t[-1]), 1.0)[0][1:]
-            added.append((np.ones(len(tb)), tb))
     return added
+
 
 def _closing(
     strip: Strip, i0: int, i1: int, t_lo: float, t_hi: float

@@ -44,7 +44,10 @@ holds when σ'e0 > 0, σ'e1 > 0 and σ'(e0 + e1) > M — **certified single**. E
 interval is split (at the extremum of the cubic through f0, f1, e0, e1, or in half) and
 its halves judged again, until each is certified or narrower than :data:`NARROWEST`:
 what is left then is a double root to rounding (a touching point of f), returned as a
-root at the least |f| found. So, under the bound above, *every root of f on B is found*:
+root at the least |f| found. So is a piece whose f is within its rounding of zero at both
+ends (f is zero to rounding all along it), and a piece is certified empty only when f
+stays farther than its rounding from zero (a touching point whose f rounds to the wrong
+side is not lost). So, under the bound above, *every root of f on B is found*:
 every root lies in a single bracket or is a double root, and no interval certified
 empty holds one.
 
@@ -65,6 +68,7 @@ import numpy as np
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
+from ..roots import ZERO
 from ..vec_ops import cross, dot, flatnonzero, norm
 
 #: An uncertain interval narrower than this (in t) is a double root to rounding.
@@ -121,9 +125,12 @@ def interval_bounds(
 
 
 def certified_empty(
-    f0: FloatArray, f1: FloatArray, e0: FloatArray, e1: FloatArray, m: FloatArray
+    f0: FloatArray, f1: FloatArray, e0: FloatArray, e1: FloatArray, m: FloatArray,
+    margin: FloatArray | float = 0.0,
 ) -> BoolArray:
-    """Whether f (same sign at both ends) provably keeps its sign on the interval."""
+    """Whether f (same sign at both ends) provably keeps its sign on the interval, by
+    more than ``margin`` (the rounding of f: a bound within it does not tell a touching
+    point of f from none)."""
     sign = np.where(f0 < 0, -1.0, 1.0)
     g0, g1, e0, e1 = sign * f0, sign * f1, sign * e0, sign * e1
     denominator = m + e1 - e0
@@ -132,7 +139,7 @@ def certified_empty(
         u = (g0 - g1 + e1 + half_m) / denominator
     inside = (u >= 0.0) & (u <= 1.0) & (denominator != 0)
     low = g0 + u * (e0 - half_m * u)
-    return (g0 > 0) & (g1 > 0) & (~inside | (low > 0))
+    return (g0 > margin) & (g1 > margin) & (~inside | (low > margin))
 
 
 def certified_single(
@@ -223,17 +230,36 @@ def _split_points(p: Pieces) -> FloatArray:
     return p.x0 + u * h
 
 
-def _judge(p: Pieces, curvature: FloatArray) -> tuple[BoolArray, BoolArray, BoolArray]:
+def _judge(
+    p: Pieces, curvature: FloatArray, noise: FloatArray | float = 0.0
+) -> tuple[BoolArray, BoolArray, BoolArray]:
     """Masks of the pieces that are brackets (one root, or too narrow to split), touching
-    points (a double root to rounding) and still uncertain; the rest are empty."""
+    points (a double root to rounding) and still uncertain; the rest are empty.
+
+    ``noise`` is the rounding of f on each piece (:func:`_noise`): a piece is empty only
+    when f provably stays farther than that from zero, and one whose f is within it at
+    both ends and that is not a certified bracket is a touching point already (f is zero
+    to rounding all along it: splitting it further would only follow the rounding)."""
     h = p.x1 - p.x0
     e0, e1 = p.d0 * h, p.d1 * h
     change = np.signbit(p.f0) != np.signbit(p.f1)
     narrow = h <= NARROWEST
     bracket = change & (narrow | certified_single(p.f0, p.f1, e0, e1, curvature))
-    open_ = ~(change | certified_empty(p.f0, p.f1, e0, e1, curvature))
-    touching = open_ & narrow
+    open_ = ~(change | certified_empty(p.f0, p.f1, e0, e1, curvature, noise))
+    quiet = (np.abs(p.f0) <= noise) & (np.abs(p.f1) <= noise)
+    touching = (open_ | (change & ~bracket)) & (narrow | quiet)
     return bracket, touching, (change | open_) & ~(bracket | touching)
+
+
+def _noise(p: Pieces, a0: FloatArray) -> FloatArray | float:
+    """The rounding of f = det[B − A, Â', B'] on each piece, from the size of its terms
+    (|A| + |B| <= 2|A| + |B − A|, times |B'|; Â' is a unit vector), or 0 where the
+    pieces do not carry B's speeds yet (the first sift's pieces: far wider than a
+    touching point's rounding)."""
+    if len(p.speed0) == 0:
+        return 0.0
+    size = 2.0 * norm(a0[p.row]) + np.maximum(p.r0, p.r1)
+    return ZERO * size * np.maximum(p.speed0, p.speed1)
 
 
 def isolate(
@@ -274,7 +300,7 @@ def isolate(
             if out.all():
                 break
             curvature, pieces = curvature[~out], pieces.take(~out)
-        bracket, touching, uncertain = _judge(pieces, curvature)
+        bracket, touching, uncertain = _judge(pieces, curvature, _noise(pieces, a0))
         if bracket.any():
             found.append(pieces.brackets(bracket))
         if touching.any():

@@ -47,7 +47,9 @@ Algorithm (all stations at once)
 4. Refinement: every bracket is refined to machine precision at once, by Newton's
    method kept inside the brackets (:mod:`.brackets`) with f_t = det[R, A', B''],
    starting from the root of the cubic that matches f and f_t at the bracket's ends —
-   usually two evaluations of B in all.
+   usually two evaluations of B in all. A root that rounding alone leaves loose (f
+   touches zero there: a double root, where two branches of roots cross) is solved
+   instead as the simple root of f_t, found the same way.
 5. Selection: the monotone dynamic programme of :mod:`.selection` follows one branch of
    roots, predicting each step from the branch slope dt/ds = −f_s/f_t, with
    f_s = det[R, A'', B'].
@@ -107,11 +109,11 @@ from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
 from .end_cones import Rulings, smooth_all
-from .fans import a_fans_all, close_gaps, fan_shares_all, flat_fans, outside_gaps
+from .fans import a_fans_all, close_gaps_all, fan_shares_all, flat_fans, outside_gaps
 from .measure import check_rulings
 from .stack import Stack, evaluate_rows
-from .stations import Spacing
-from .strip import SIDE, Strip, set_up
+from .stations import Spacing, lengths_at
+from .strip import SIDE, Strip, fans_all, set_up
 from .warp import PARALLEL
 
 #: Most rounds of checking the torsal rulings and closing the stations that fail.
@@ -310,7 +312,7 @@ class _Solve:
     good: Candidates  #: the consistently oriented candidates
     t: FloatArray  #: the partner per station (NaN where none)
     fans: list  #: the torsal fans ``(s*, t_low, t_high)``
-    #: the rulings s, t, source, fan (:func:`_merge`) and their check (:func:`_checked`)
+    #: the rulings s, t, source, fan (:func:`_merge_all`) and their check (:func:`_checked`)
     rulings: tuple[FloatArray, FloatArray, IntArray, BoolArray] | None = None
     checked: tuple[FloatArray, FloatArray, FloatArray, FloatArray, BoolArray] | None = None
 
@@ -354,13 +356,13 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     # the check (step 8), round by round for the strips some of whose stations failed it
     open_ = solves
     for _ in range(MAX_CHECKS):
-        for solve in open_:
-            strip, t = solve.strip, solve.t
-            gap = np.isnan(t)
-            closed_t = t.copy()
-            kept = outside_gaps(solve.fans, strip.s, gap)
-            added = close_gaps(strip, closed_t, kept)
-            solve.rulings = _merge(strip, closed_t, gap, kept, added)
+        jobs = [(solve.strip, solve.t.copy(), outside_gaps(solve.fans, solve.strip.s, np.isnan(solve.t)))
+                for solve in open_]
+        closed = zip(open_, jobs, close_gaps_all(jobs), strict=True)
+        merged = _merge_all([(strip, t, np.isnan(solve.t), kept, added)
+                             for solve, (strip, t, kept), added in closed])
+        for solve, rulings in zip(open_, merged, strict=True):
+            solve.rulings = rulings
         _check_all(open_)
         check()
         still = []
@@ -437,37 +439,59 @@ def _unwatched() -> None:
     """The check outside a :func:`~..watch.watched` block: nothing to look at."""
 
 
-def _merge(
-    strip: Strip, t: FloatArray, gap: BoolArray, fans: list, added: list[tuple[FloatArray, FloatArray]]
-) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
-    """All rulings ordered along the strip: the stations, every torsal fan's rulings
-    ``(s*, t_low, t_high)`` and the rulings ``added`` to close gaps.
+def _merge_all(
+    jobs: list[tuple[Strip, FloatArray, BoolArray, list, list[tuple[FloatArray, FloatArray]]]],
+) -> list[tuple[FloatArray, FloatArray, IntArray, BoolArray]]:
+    """All rulings of each strip ordered along it, for every ``(strip, t, gap, fans, added)``
+    of ``jobs``: the stations, every torsal fan's rulings ``(s*, t_low, t_high)`` and the
+    rulings ``added`` to close gaps. The fans' parameters of all strips are found together,
+    and so are the lengths along B that tell equal rulings apart.
 
-    Returns s, t, per ruling the station it is (−1 for an added ruling) and whether
-    it closes a gap (the gap stations ``gap`` and the ``added`` rulings).
+    Returns per strip s, t, per ruling the station it is (−1 for an added ruling) and
+    whether it closes a gap (the gap stations ``gap`` and the ``added`` rulings).
     """
+    fan_ts = iter(fans_all([(strip, t_low, t_high) for strip, _, _, fans, _ in jobs
+                            for _, t_low, t_high in fans]))
+    merged: list = []
+    measured = []  # (index in merged, strip, parameters on B to measure)
+    for strip, t, gap, fans, added in jobs:
+        n = len(strip.s)
+        if not fans and not added:
+            merged.append((strip.s, t, np.arange(n), gap.copy()))
+            continue
+        s_parts, t_parts, gap_parts = [strip.s], [t], [gap]
+        for s_star, _, _ in fans:
+            ts = next(fan_ts)[0]
+            s_parts.append(np.full(len(ts), s_star))
+            t_parts.append(ts)
+            gap_parts.append(np.zeros(len(ts), dtype=bool))
+        for s_add, t_add in added:
+            s_parts.append(s_add)
+            t_parts.append(t_add)
+            gap_parts.append(np.ones(len(s_add), dtype=bool))
+        s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
+        # of equal rulings keep the station, else a torsal fan's, else an added one (rank 0, 1, 2)
+        rank = np.where(np.arange(len(s_all)) < n, 0, np.where(gap_all, 2, 1))
+        order = np.lexsort((rank, t_all, s_all))
+        measured.append((len(merged), strip, t_all[order]))
+        merged.append((s_all, t_all, gap_all, rank, order))
+    lengths = lengths_at([strip.map_b for _, strip, _ in measured], [t for _, _, t in measured])
+    for (index, strip, t_sorted), length in zip(measured, lengths, strict=True):
+        merged[index] = _unrepeated(strip, *merged[index], t_sorted, length)
+    return merged
+
+
+def _unrepeated(
+    strip: Strip, s_all: FloatArray, t_all: FloatArray, gap_all: BoolArray, rank: IntArray,
+    order: IntArray, t_sorted: FloatArray, lengths: FloatArray,
+) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
+    """:func:`_merge_all` of one strip from its rulings sorted by ``order`` (``t_sorted``
+    on B, at ``lengths`` along it): of equal rulings the best-ranked one."""
     n = len(strip.s)
-    if not fans and not added:
-        return strip.s, t, np.arange(n), gap.copy()
-    s_parts, t_parts, gap_parts = [strip.s], [t], [gap]
-    for s_star, t_low, t_high in fans:
-        ts = strip.fan_parameters(t_low, t_high)
-        s_parts.append(np.full(len(ts), s_star))
-        t_parts.append(ts)
-        gap_parts.append(np.zeros(len(ts), dtype=bool))
-    for s_add, t_add in added:
-        s_parts.append(s_add)
-        t_parts.append(t_add)
-        gap_parts.append(np.ones(len(s_add), dtype=bool))
-    s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
-    # of equal rulings keep the station, else a torsal fan's, else an added one (rank 0, 1, 2)
-    rank = np.where(np.arange(len(s_all)) < n, 0, np.where(gap_all, 2, 1))
-    order = np.lexsort((rank, t_all, s_all))
     repeat = np.zeros(len(order), dtype=bool)
-    s_sorted, t_sorted = s_all[order], t_all[order]
+    s_sorted = s_all[order]
     # equal: the same point of A, and points of B within 1e-12 of its length (one point
     # reached by two ways of counting along B: rounding, in t, depends on its pace)
-    lengths = strip.length_b(t_sorted)
     repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (
         (t_sorted[1:] - t_sorted[:-1] <= 1e-14) | (lengths[1:] - lengths[:-1] <= 1e-12 * strip.map_b.total)
     )
@@ -478,6 +502,7 @@ def _merge(
         first[1:] = group[best[1:]] != group[best[:-1]]
         order = order[best[first]]
     return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
+
 
 def _fan_folds_all(solves: list[_Solve]) -> list[tuple[IntArray, FloatArray, FloatArray]]:
     """Where a fan folds back on itself between two of its rulings, in every strip of

@@ -5,9 +5,8 @@ a step stacks every strip's rows (stations, candidates, rulings) one strip after
 in the same arrays, as :func:`numpy.add.reduceat` takes ragged groups, and keeps beside
 them where each strip's rows start (:class:`Stack`). Row-wise arithmetic then runs once
 for all strips, with the same values a strip's rows get alone; a per-strip scalar (a size,
-a tolerance) is repeated onto its rows; a per-strip reduction is a ``reduceat``. Only the
-curves are evaluated strip by strip (each strip has its own two curves):
-:func:`evaluate_each`.
+a tolerance) is repeated onto its rows; a per-strip reduction is a ``reduceat``. The curves
+are evaluated together where they share their knots (:func:`evaluate_each`).
 """
 
 from __future__ import annotations
@@ -19,6 +18,7 @@ import numpy as np
 
 from ..array_types import FloatArray, IntArray
 from ..curve_base import Curve
+from ..curves.shared_knots import derivatives_together
 
 
 class Stack:
@@ -78,14 +78,9 @@ def evaluate_each(
 ) -> list[FloatArray]:
     """Points and derivatives up to ``order`` of curve ``i`` at its parameters
     ``x[bounds[i]:bounds[i + 1]]`` (relative to the curve's anchor where ``local``: its
-    ``local_derivatives``): each curve is evaluated once, at its own parameters (the
-    values it gives them alone), and the results are stacked as ``x`` is."""
-    out = np.empty((order + 1, len(x), 3))
-    for curve, low, high in zip(curves, bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
-        if high > low:
-            evaluate = curve.local_derivatives if local else curve.derivatives
-            out[:, low:high] = evaluate(x[low:high], order)
-    return list(out)
+    ``local_derivatives``), the values each curve gives them alone, stacked as ``x`` is:
+    curves that share their knots are evaluated together (:mod:`..curves.shared_knots`)."""
+    return list(derivatives_together(curves, x, bounds, order, local))
 
 
 def evaluate_rows(curves: Sequence[Curve], x: FloatArray, strip_of: IntArray, order: int) -> list[FloatArray]:

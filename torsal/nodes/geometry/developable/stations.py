@@ -30,6 +30,7 @@ from scipy.special import roots_legendre
 
 from ..array_types import IntArray
 from ..curve_base import FloatArray
+from ..curves.shared_knots import derivative_each
 from ..vec_ops import dot
 from .stack import Stack
 
@@ -175,13 +176,12 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
     so are its pieces' Gauss sums, their running total and the quintics' coefficients (a
     matrix product's and a cumulative sum's rounding depend on what else is in the array);
     the rest runs once for all of them."""
-    layouts, speeds = [], []
+    layouts = []
     for curve in curves:
         breaks = tuple(curve._breakpoints().tolist())
         layout = _layout if len(breaks) <= 64 else _layout.__wrapped__  # long keys cost more than they save
         layouts.append(layout(breaks, int(intervals)))
-        speeds.append(curve.derivative_at(layouts[-1][4], 1))
-    stacked = np.concatenate(speeds)
+    stacked = np.concatenate(derivative_each(curves, [layout[4] for layout in layouts], 1))
     stacked = np.sqrt(dot(stacked, stacked))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
     # each curve's speeds: at its Gauss nodes, its piece ends, just before its breakpoints
     all_nodes, halves, pieces, lengths, starts, ends, gauss = [], [], [], [], [], [], []
@@ -292,6 +292,27 @@ def parameters_at(maps: Sequence[LengthMap], lengths: Sequence[FloatArray]) -> l
     stack = Stack.of(lengths)
     joined = np.concatenate(lengths) if len(lengths) else np.empty(0)
     return _parameters_at(maps, joined.astype(float, copy=False), stack)
+
+
+def lengths_at(maps: Sequence[LengthMap], ts: Sequence[FloatArray]) -> list[FloatArray]:
+    """:meth:`LengthMap.length_at` of each map of ``maps`` at its ``ts`` (1-d), for every map
+    at once: each gets what it gets alone, bit for bit (each map's search on its own rows,
+    the rest row by row)."""
+    if not len(maps):
+        return []
+    stack = Stack.of(ts)
+    t = np.minimum(np.maximum(np.concatenate(ts).astype(float, copy=False), 0.0), 1.0)
+    bounds = stack.offsets.tolist()
+    k = np.concatenate([np.minimum(m.nodes.searchsorted(t[low:high], side="right") - 1, len(m._rise) - 1)
+                        for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
+    pieces = Stack([len(m._rise) for m in maps])
+    on_piece = k + stack.repeat(pieces.starts)
+    on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
+    width, poly, nodes, lengths = (
+        np.concatenate([getattr(m, name) for m in maps]) for name in ("_width", "_poly", "nodes", "lengths"))
+    u = (t - nodes[on_node]) / width[on_piece]
+    rises = np.einsum("...j,...j->...", u[..., None] ** _POWERS, poly[on_piece, 0])  # (LengthMap._rises)
+    return stack.split(lengths[on_node] + rises)
 
 
 def spaced_parameters(maps: Sequence[LengthMap], counts: Sequence[int]) -> list[FloatArray]:

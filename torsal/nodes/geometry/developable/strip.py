@@ -26,7 +26,7 @@ from ..curve_base import Curve, FloatArray
 from ..curves import Line, NurbsCurve, Polyline
 from ..vec_ops import cross, dot, flatnonzero, norm, unit
 from .stack import Stack, evaluate_each
-from .stations import LengthMap, Spacing, parameters_at, spaced_parameters
+from .stations import LengthMap, Spacing, lengths_at, parameters_at, spaced_parameters
 
 #: A jump of the unit tangent larger than this (rad) at a breakpoint is a corner.
 CORNER_ANGLE = 1e-7
@@ -117,17 +117,32 @@ class Grid:
     left_third: FloatArray
 
 
-def sample_grid(curve: Curve, minimum: int) -> tuple[Grid, FloatArray]:
-    """Samples of B (a straight span needs only its ends: f is linear in t there) and its
-    corners, found and sampled on both sides in the same evaluation."""
-    t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
-    breaks = curve._breakpoints()[1:-1]
+def sample_grids(curves: Sequence[Curve], minimum: int) -> list[tuple[Grid, FloatArray]]:
+    """The samples of each curve B of ``curves`` (a straight span needs only its ends: f is
+    linear in t there) and its corners, found and sampled on both sides in the same
+    evaluation; the curves evaluated together (:func:`.stack.evaluate_each`: each gets what
+    it gets alone)."""
+    found = []
+    for curve in curves:
+        t = sample_parameters(curve, per_span=1 if _is_linear(curve) else 2, minimum=minimum)
+        breaks = curve._breakpoints()[1:-1]
+        found.append((t, breaks, np.concatenate([t, breaks - SIDE]) if len(breaks) else t))
+    at = [x for _, _, x in found]
+    rows = Stack.of(at)
+    values = [rows.split(v) for v in evaluate_each(curves, np.concatenate(at), rows.offsets, 3)]
+    return [_grid(t, breaks, *own) for (t, breaks, _), *own in zip(found, *values, strict=True)]
+
+
+def _grid(
+    t: FloatArray, breaks: FloatArray, points: FloatArray, tangents: FloatArray, second: FloatArray,
+    third: FloatArray,
+) -> tuple[Grid, FloatArray]:
+    """:func:`sample_grids` of one curve from B and its derivatives at its samples ``t``
+    and just before its inner breakpoints ``breaks``."""
     m = len(t)
     if not len(breaks):  # one smooth span
-        points, tangents, second, third = curve.derivatives(t, 3)
         smooth = Grid(t, t, np.zeros(m - 1, dtype=bool), points, tangents, second, third, second, third)
         return smooth, breaks
-    points, tangents, second, third = curve.derivatives(np.concatenate([t, breaks - SIDE]), 3)
     # samples include every breakpoint; compare each with its left neighbour's tangent
     at_break = np.searchsorted(t, breaks)
     kink = _jumps(tangents[m:], tangents[at_break])
@@ -232,52 +247,24 @@ class Strip:
 
     def gap_parameters(self, t_low: float, t_high: float) -> FloatArray:
         """Parameters on B from ``t_low`` to ``t_high`` at about the station spacing, with
-        every corner of B between them."""
-        return self._gap(t_low, t_high)[0]
-
-    def _gap(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
-        """:meth:`gap_parameters`, and their :meth:`length_b` where :meth:`_fan` has them."""
-        t, lengths = self._fan(t_low, t_high)
-        if not len(self.kinks_b):
-            return t, lengths
-        corners = self.kinks_b[(self.kinks_b > t_low) & (self.kinks_b < t_high)]
-        return (np.unique(np.concatenate([t, corners])), None) if len(corners) else (t, lengths)
+        every corner of B between them (read-only: :meth:`gap_lengths`)."""
+        return self.gap_lengths(t_low, t_high)[0]
 
     def gap_lengths(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray]:
         """:meth:`gap_parameters` and their :meth:`length_b`, read-only, found once per stretch
-        of B: each round of the solve's check closes the same gaps again."""
+        of B: each round of the solve's check closes the same gaps again (and
+        :func:`gap_lengths_all` finds many strips' stretches together)."""
         key = struct.pack("2d", t_low, t_high)  # (the bits: 0.0 and -0.0 give different rulings)
         found = self._gaps.get(key)
         if found is None:
-            tb, lb = self._gap(t_low, t_high)
-            if lb is None:
-                lb = self.length_b(tb)
-            tb.setflags(write=False)
-            lb.setflags(write=False)
-            found = self._gaps[key] = (tb, lb)
+            gap_lengths_all([(self, t_low, t_high)])
+            found = self._gaps[key]
         return found
 
     def fan_parameters(self, t_low: float, t_high: float) -> FloatArray:
-        """Parameters on B for a fan's rulings, at about the station spacing along A."""
-        return self._fan(t_low, t_high)[0]
-
-    def _fan(self, t_low: float, t_high: float) -> tuple[FloatArray, FloatArray | None]:
-        """:meth:`fan_parameters`, and their :meth:`length_b` when they are the two ends alone
-        (measured already to count the rulings; None otherwise)."""
-        spacing = self.map_a.total / self.segments
-        ends = np.array([t_low, t_high])
-        lb = self.length_b(ends)
-        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
-        # must not ask for billions); and at least the fan's two bounding rulings
-        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
-        count = max(2, ceil(min(wanted, self.segments + 1) - 1e-9) + 1)
-        if count == 2:  # the bounding rulings alone (the ends set below are all there is)
-            # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
-            return np.maximum.accumulate(ends), (lb if t_high >= t_low else None)
-        t = self.parameter_b(np.linspace(lb[0], lb[1], count))
-        t[0], t[-1] = t_low, t_high
-        return np.maximum.accumulate(t), None
-
+        """Parameters on B for a fan's rulings, at about the station spacing along A
+        (:func:`fans_all` finds many fans' together)."""
+        return fans_all([(self, t_low, t_high)])[0][0]
 
 
 def with_maps_b(strips: Sequence[Strip]) -> None:
@@ -287,6 +274,70 @@ def with_maps_b(strips: Sequence[Strip]) -> None:
     if missing:
         for strip, length_map in zip(missing, LengthMap.many([s.measured_b for s in missing]), strict=True):
             vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
+
+
+def fans_all(stretches: Sequence[tuple[Strip, float, float]]) -> list[tuple[FloatArray, FloatArray | None]]:
+    """:meth:`Strip.fan_parameters` of every ``(strip, t_low, t_high)`` of ``stretches``, and
+    their lengths along B when they are the fan's two ends alone (measured already to count
+    the rulings; None otherwise), all together: B's lengths at the ends in one pass, the
+    inner parameters in another (:func:`.stations.lengths_at`, :func:`.stations.parameters_at`),
+    each what it is alone, bit for bit."""
+    if not stretches:
+        return []
+    strips = [strip for strip, _, _ in stretches]
+    with_maps_b(strips)
+    ends = [np.array([t_low, t_high]) for _, t_low, t_high in stretches]
+    found: list[tuple[FloatArray, FloatArray | None]] = []
+    inner: list[tuple[int, FloatArray]] = []
+    for index, ((strip, t_low, t_high), lb) in enumerate(
+        zip(stretches, lengths_at([strip.map_b for strip in strips], ends), strict=True)
+    ):
+        # at most one fan ruling per station (B far longer than A — a stray vertex at 1e12 —
+        # must not ask for billions); and at least the fan's two bounding rulings
+        spacing = strip.map_a.total / strip.segments
+        wanted = (lb[1] - lb[0]) / spacing if spacing > 0 else 1.0
+        count = max(2, ceil(min(wanted, strip.segments + 1) - 1e-9) + 1)
+        # (where t_high < t_low, or is NaN, the second is t_low: its length is not lb[1])
+        found.append((np.maximum.accumulate(ends[index]), lb if t_high >= t_low else None))
+        if count > 2:
+            inner.append((index, np.linspace(lb[0], lb[1], count)))
+    if inner:
+        ts = parameters_at([strips[index].map_b for index, _ in inner], [lengths for _, lengths in inner])
+        for (index, _), t in zip(inner, ts, strict=True):
+            t[0], t[-1] = stretches[index][1], stretches[index][2]
+            found[index] = (np.maximum.accumulate(t), None)
+    return found
+
+
+def gap_lengths_all(stretches: Sequence[tuple[Strip, float, float]]) -> None:
+    """Finds :meth:`Strip.gap_lengths` of every ``(strip, t_low, t_high)`` of ``stretches``
+    not found yet, all together (:func:`fans_all`, with B's corners between the ends, then
+    the lengths of those that have none in one pass), each what it is alone, bit for bit."""
+    wanted: dict[tuple[int, bytes], tuple[Strip, float, float]] = {}
+    for strip, t_low, t_high in stretches:
+        key = struct.pack("2d", t_low, t_high)
+        if key not in strip._gaps:
+            wanted.setdefault((id(strip), key), (strip, t_low, t_high))
+    if not wanted:
+        return
+    jobs = list(wanted.values())
+    strips = [strip for strip, _, _ in jobs]
+    found = fans_all(jobs)
+    # B's corners between the ends join the parameters
+    for index, (strip, t_low, t_high) in enumerate(jobs):
+        if len(strip.kinks_b):
+            corners = strip.kinks_b[(strip.kinks_b > t_low) & (strip.kinks_b < t_high)]
+            if len(corners):
+                found[index] = (np.unique(np.concatenate([found[index][0], corners])), None)
+    unmeasured = [index for index, (_, lb) in enumerate(found) if lb is None]
+    measured = lengths_at([strips[index].map_b for index in unmeasured],
+                          [found[index][0] for index in unmeasured])
+    for index, lb in zip(unmeasured, measured, strict=True):
+        found[index] = (found[index][0], lb)
+    for (strip, t_low, t_high), (tb, lb) in zip(jobs, found, strict=True):
+        tb.setflags(write=False)
+        lb.setflags(write=False)
+        strip._gaps[struct.pack("2d", t_low, t_high)] = (tb, lb)
 
 
 def even_all(
@@ -315,7 +366,7 @@ def set_up(
 
     Its stations on A (evenly spaced in arc length or in parameter, :mod:`.stations`), A
     and its first two derivatives there and A's corners, and the samples of B
-    (:func:`sample_grid`) with the lengths along them."""
+    (:func:`sample_grids`) with the lengths along them."""
     curves_a = [job[0] for job in jobs]
     curves_b = steady_all([job[1] for job in jobs])
     maps = LengthMap.many(curves_a)
@@ -356,7 +407,7 @@ def set_up(
     # those rows only find the corners)
     a1[still] = np.where(at[still, None] > 0.5, -a2[still], a2[still])
     # B's samples and the lengths along them
-    grids = [sample_grid(curves_b[i], samples) for i in kept]
+    grids = sample_grids([curves_b[i] for i in kept], samples)
     points = np.concatenate([grid.points for grid, _ in grids]) if grids else np.empty((0, 3))
     chords = norm(points[1:] - points[:-1])
     first_sample = Stack([len(grid.t) for grid, _ in grids]).starts.tolist()

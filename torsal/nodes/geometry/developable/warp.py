@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike
 from torsal.nodes.geometry.array_types import BoolArray
 
 from ..curve_base import Curve, FloatArray
+from ..curves.shared_knots import derivative_each
 from ..vec_ops import cross, dot, extent, flatnonzero, norm, unit
 from .stack import Stack
 
@@ -467,7 +468,8 @@ def curve_warps(
     ``fans``): the rulings of the strips between smooth curves measured at once (each
     strip's size and fans its own), the others strip by strip."""
     warps: list[FloatArray | None] = [None] * len(strips)
-    smooth: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
+    smooth: list[tuple[int, FloatArray, FloatArray]] = []
+    tangents_at: list[tuple[Curve, FloatArray]] = []  # (A at s, B at t for each smooth strip)
     for index, (curve_a, curve_b, s, t, starts, ends) in enumerate(strips):
         s = np.asarray(s, dtype=float).reshape(-1)
         t = np.asarray(t, dtype=float).reshape(-1)
@@ -476,10 +478,15 @@ def curve_warps(
         corners = _corner_sides(curve_a, s) is not None or _corner_sides(curve_b, t) is not None
         if corners or a.shape != b.shape:
             warps[index] = curve_warp(curve_a, curve_b, s, t, a, b, fans=fans)
-        else:  # (the tangents alone: a polynomial curve skips the points)
-            smooth.append((index, a, b, curve_a.derivative_at(s, 1), curve_b.derivative_at(t, 1)))
+        else:
+            smooth.append((index, a, b))
+            tangents_at += [(curve_a, s), (curve_b, t)]
     if smooth:
-        a, b, ta, tb = (np.concatenate([row[i] for row in smooth]) for i in range(1, 5))
+        # the tangents alone (a polynomial curve skips the points), the curves that share
+        # knots evaluated together
+        tangents = derivative_each([curve for curve, _ in tangents_at], [x for _, x in tangents_at], 1)
+        ta, tb = np.concatenate(tangents[::2]), np.concatenate(tangents[1::2])
+        a, b = (np.concatenate([row[i] for row in smooth]) for i in (1, 2))
         stack = Stack.of([row[1] for row in smooth])
         size = stack.repeat(sizes(stack, a, b))
         if fans:

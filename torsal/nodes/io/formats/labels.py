@@ -138,8 +138,10 @@ def place_label(text: str, panel: FloatArray, height: float,
     panel's long axis, as large as ``height`` (cap height, mm) allows while staying inside
     the panel with a margin of a tenth of the height and clear of ``avoid`` (the seam labels
     and ticks already engraved on it); (), 0 when even :data:`SMALLEST_TEXT_MM` does not fit."""
+    if height <= 0:  # nothing engraved: the font is not even loaded (its first load takes a second)
+        return (), 0.0
     glyphs = text_outlines(text)
-    if not glyphs or height <= 0:
+    if not glyphs:
         return (), 0.0
     every = np.vstack(glyphs)
     low, high = every.min(axis=0), every.max(axis=0)

@@ -1,0 +1,103 @@
+"""Curves that share a knot vector, evaluated together: each gets what it gets alone, bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.interpolate import BSpline
+
+from torsal.nodes.geometry.curves import Circle, InterpolatedCurve, Line, NurbsCurve
+from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together
+
+
+def curves_sharing_knots(seed: int, rational: bool, count: int) -> list[NurbsCurve]:
+    """``count`` random curves of one random degree and knot vector (a doubled inner knot
+    on some seeds, a domain other than [0, 1] on odd seeds), far from the origin on some."""
+    rng = np.random.default_rng(seed)
+    degree = int(rng.integers(1, 5))
+    points = int(rng.integers(degree + 1, degree + 7))
+    inner = np.sort(rng.random(points - degree - 1))
+    if seed % 3 == 0 and len(inner) > 1:
+        inner[1] = inner[0]
+    a, b = (0.0, 1.0) if seed % 2 == 0 else (-2.5, 4.0)
+    knots = np.concatenate([[a] * (degree + 1), a + (b - a) * inner, [b] * (degree + 1)])
+    return [
+        NurbsCurve(
+            rng.normal(size=(points, 3)) * 10.0 ** rng.integers(-2, 4) + 10.0 ** rng.integers(0, 7),
+            degree, knots, rng.uniform(0.3, 3.0, points) if rational else None,
+        )
+        for _ in range(count)
+    ]
+
+
+def parameters(seed: int, counts: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    """Random parameters for curves getting ``counts`` of them, with the domain's ends and
+    a few outside it (extrapolated), and the bounds of each curve's share."""
+    rng = np.random.default_rng(seed + 1000)
+    x = rng.uniform(-0.05, 1.05, sum(counts))
+    x[::5], x[1::7] = 0.0, 1.0
+    return x, np.concatenate([[0], np.cumsum(counts)])
+
+
+def alone(curves, x, bounds, order, local):
+    return [np.array((c.local_derivatives if local else c.derivatives)(x[lo:hi], order))
+            for c, lo, hi in zip(curves, bounds[:-1], bounds[1:], strict=True)]
+
+
+@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("rational", [False, True])
+def test_curves_sharing_knots_get_what_they_get_alone_bit_for_bit(seed, rational):
+    curves = curves_sharing_knots(seed, rational, 5)
+    x, bounds = parameters(seed, [7, 0, 12, 1, 9])
+    for order in range(4):
+        for local in (False, True):
+            together = derivatives_together(curves, x, bounds, order, local)
+            owns = alone(curves, x, bounds, order, local)
+            for mine, own, lo, hi in zip(curves, owns, bounds[:-1], bounds[1:], strict=True):
+                assert np.array_equal(together[:, lo:hi], own), (mine, order, local)
+
+
+def test_a_polynomial_curve_together_is_scipys_bspline_of_its_control_points():
+    curves = curves_sharing_knots(4, False, 3)
+    x, bounds = parameters(4, [10, 10, 10])
+    together = derivatives_together(curves, x, bounds, 2, local=True)
+    for i, curve in enumerate(curves):
+        spline = BSpline(curve.knots, curve.control_points - curve.anchor, curve.degree)
+        rows = slice(bounds[i], bounds[i + 1])
+        for k in range(3):
+            assert np.array_equal(together[k, rows], spline(x[rows], nu=k))
+
+
+def test_curves_of_other_knots_and_kinds_are_evaluated_each_on_its_own():
+    shared = curves_sharing_knots(2, True, 2)
+    others = [Circle(), Line([0, 0, 0], [1, 2, 3]), InterpolatedCurve([[0, 0], [1, 2], [3, 1], [4, 4]])]
+    curves = [shared[0], others[0], others[1], shared[1], others[2]]
+    x, bounds = parameters(7, [6, 5, 4, 6, 8])
+    together = derivatives_together(curves, x, bounds, 2)
+    for own, lo, hi in zip(alone(curves, x, bounds, 2, False), bounds[:-1], bounds[1:], strict=True):
+        assert np.array_equal(together[:, lo:hi], own)
+
+
+def test_curves_sharing_knots_need_one_basis_evaluation_per_derivative_order(monkeypatch):
+    curves = curves_sharing_knots(6, True, 8)
+    x, bounds = parameters(6, [5] * 8)
+    calls = []
+    evaluate = BSpline.__call__
+
+    def counted(self, *args, **kwargs):
+        calls.append(1)
+        return evaluate(self, *args, **kwargs)
+
+    monkeypatch.setattr(BSpline, "__call__", counted)
+    derivatives_together(curves, x, bounds, 2)
+    assert len(calls) == min(2, curves[0].degree) + 1
+
+
+@pytest.mark.parametrize("rational", [False, True])
+def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rational):
+    curves = [*curves_sharing_knots(8, rational, 4), Circle(), Line([0, 0, 0], [1, 2, 3])]
+    x, bounds = parameters(8, [6, 3, 9, 4, 5, 5])
+    ts = np.split(x, bounds[1:-1])
+    for order in range(4):
+        for curve, t, found in zip(curves, ts, derivative_each(curves, ts, order), strict=True):
+            assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)

@@ -1,0 +1,73 @@
+"""Ring patches and regions (torsal/nodes/geometry/developable/rings.py): a ring patch lies
+on its design with the derivatives its differences show, its parameter lines round a
+Gaussian bump are circles (the bump's parallels, its lines of curvature), and a region's
+signed distance is the plan distance to it, none past the design's own edge."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from tests.support.freeform_designs import Design
+from torsal.nodes.geometry.developable.rings import RingPatch, region_inside
+
+
+def _bump(x, y):
+    e = 2 * np.exp(-(x * x + y * y) / 18)
+    gx, gy = -x / 9, -y / 9
+    return e, e * gx, e * gy, e * (gx * gx - 1 / 9), e * gx * gy, e * (gy * gy - 1 / 9)
+
+
+def _flat(x, y):
+    zero = 0 * x
+    return zero, zero, zero, zero, zero, zero
+
+
+DESIGN = Design("bump", _bump, (-6.0, 6.0), (-6.0, 6.0))
+SCALE = np.array([12.0, 12.0])  # the plan is (x + 6, y + 6)
+CENTRE = np.array([6.0, 6.0])
+
+
+def _patch():
+    return RingPatch(DESIGN.surface(), CENTRE, SCALE, np.linspace(1.0, 5.0, 9), (-0.2, np.pi + 0.2), 1,
+                     0.5 * np.pi)
+
+
+def test_a_ring_patch_lies_on_the_design_and_its_rings_are_the_bumps_parallels():
+    patch = _patch()
+    s, t = np.meshgrid(np.linspace(0, 1, 13), np.linspace(0, 1, 7), indexing="ij")
+    points = patch.point_at(s.ravel(), t.ravel())
+    assert np.allclose(points[:, 2], DESIGN.height(points[:, 0], points[:, 1]), atol=1e-12)
+    radius = np.hypot(points[:, 0], points[:, 1]).reshape(s.shape)
+    assert np.allclose(radius, 1.0 + 4.0 * t, atol=1e-7)  # circles, the seeds' radii
+    theta = np.unwrap(np.arctan2(points[:, 1], points[:, 0]).reshape(s.shape), axis=0)
+    assert np.allclose(theta, -0.2 + s * (np.pi + 0.4), atol=1e-12)
+
+
+def test_a_ring_patch_derivatives_match_differences():
+    patch = _patch()
+    rng = np.random.default_rng(2)
+    s, t = rng.uniform(0.1, 0.9, 20), rng.uniform(0.1, 0.9, 20)
+    _, ps, pt, pss, pst, ptt = patch.derivatives(s, t, 2)
+    h = 1e-5
+
+    def at(a, b, k=0):
+        return patch.derivatives(a, b, 1)[k]
+
+    assert np.allclose(ps, (at(s + h, t) - at(s - h, t)) / (2 * h), atol=1e-7)
+    assert np.allclose(pt, (at(s, t + h) - at(s, t - h)) / (2 * h), atol=1e-7)
+    assert np.allclose(pss, (at(s + h, t, 1) - at(s - h, t, 1)) / (2 * h), atol=1e-5)
+    assert np.allclose(pst, (at(s, t + h, 1) - at(s, t - h, 1)) / (2 * h), atol=1e-5)
+    assert np.allclose(ptt, (at(s, t + h, 2) - at(s, t - h, 2)) / (2 * h), atol=1e-5)
+
+
+def test_region_signed_distance_is_the_plan_distance_with_a_margin_inside_the_design_only():
+    flat = Design("flat", _flat, (0.0, 10.0), (0.0, 4.0)).surface()
+    region = shapely.box(0.0, 0.0, 5.0, 4.0)  # the left half: its edge x = 5 lies inside the design
+    inside = region_inside(flat, region, [10.0, 4.0], margin=0.1)
+    points = np.array([[2.0, 2.0, 0.3], [5.05, 2.0, 0.0], [5.3, 2.0, 0.0], [-0.02, 2.0, 0.0],
+                       [2.0, 4.5, 0.0]])
+    found = inside(points)
+    # (2, 2): 2 from the design's edge (no margin there), 2.1 from the region's with it; x = 5.05 and
+    # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's
+    assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5], atol=1e-9)

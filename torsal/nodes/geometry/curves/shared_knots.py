@@ -1,0 +1,190 @@
+"""Many NURBS curves evaluated together: one B-spline basis for the curves that share a knot
+vector.
+
+A strip solve evaluates the two curves of each of its strips at their own parameters; the
+edge curves of a roof all have the same knots (the flagship's 56 are single-span
+quadratics). A curve's value at ``u`` is ``Σₐ c[i − k + a]·Nₐ(u)`` over the ``k + 1``
+basis functions ``Nₐ`` that are non-zero on the knot span ``i`` holding ``u``; the basis
+depends on the knots alone. :func:`derivatives_together` therefore asks scipy for the basis
+of every parameter of a group of curves sharing knots in one call per derivative order,
+and combines each row with its own curve's coefficients — the sum scipy forms, term by
+term in the same order, so each curve gets what :meth:`.NurbsCurve.derivatives` gives it
+alone, bit for bit (checked against scipy in
+``tests/nodes/geometry/curves/test_shared_knots.py``). The rational quotient rule, the
+domain's chain rule and the anchor then run row-wise, as they do per curve.
+
+The basis comes from scipy's public :class:`~scipy.interpolate.BSpline` with ``k + 1``
+columns of coefficients, coefficient ``j`` being the unit vector of column ``j mod (k + 1)``:
+on span ``i`` the basis functions ``i − k … i`` fall in distinct columns, so each column
+holds exactly one of them (added to zeros, which changes no bit).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from math import comb
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from ..array_types import FloatArray, IntArray
+from ..curve_base import Curve
+from .nurbs import NurbsCurve
+
+
+def derivatives_together(
+    curves: Sequence[Curve], x: FloatArray, bounds: IntArray, order: int, local: bool = False
+) -> FloatArray:
+    """Points and derivatives up to ``order``, ``(order + 1, len(x), 3)``, of curve ``i`` at
+    its parameters ``x[bounds[i]:bounds[i + 1]]``: what ``curve.derivatives`` (or, with
+    ``local``, ``curve.local_derivatives``) gives each curve alone, bit for bit. NURBS
+    curves that share a degree, knots and rationality are evaluated together (while they
+    have at most :data:`ROWS_PER_CURVE` parameters each on average); any other curve on its
+    own."""
+    out = np.empty((order + 1, len(x), 3))
+    counts = np.diff(bounds)
+    together, alone = _groups(curves, counts)
+    for i in alone:
+        evaluate = curves[i].local_derivatives if local else curves[i].derivatives
+        out[:, bounds[i] : bounds[i + 1]] = evaluate(x[bounds[i] : bounds[i + 1]], order)
+    for members in together:
+        rows, which = _rows(bounds, members)
+        group = [curves[i] for i in members]
+        out[:, rows] = _group_derivatives(group, which, x[rows], order)
+        if not local:
+            out[0, rows] += np.array([curve._anchor for curve in group])[which]
+    return out
+
+
+def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: int = 1) -> list[FloatArray]:
+    """``curve.derivative_at(t, order)`` of every curve of ``curves`` at its 1-D array ``t``
+    of ``ts``, bit for bit, the curves that share knots evaluated together as in
+    :func:`derivatives_together` (a polynomial curve's lower orders are not evaluated)."""
+    out: list[FloatArray | None] = [None] * len(curves)
+    bounds = np.zeros(len(ts) + 1, dtype=np.int64)
+    np.cumsum([len(t) for t in ts], out=bounds[1:])
+    together, alone = _groups(curves, np.diff(bounds))
+    for i in alone:
+        out[i] = curves[i].derivative_at(ts[i], order)
+    for members in together:
+        group = [curves[i] for i in members]
+        x = np.concatenate([np.asarray(ts[i], dtype=float) for i in members])
+        which = np.repeat(np.arange(len(members)), np.diff(bounds)[members])
+        values = _group_derivatives(group, which, x, order, lowest=order)[order]
+        if order == 0:  # (the points: derivative_at adds the anchor to them alone)
+            values += np.array([curve._anchor for curve in group])[which]
+        low = 0
+        for i in members:
+            high = low + len(ts[i])
+            out[i] = values[low:high]
+            low = high
+    return out  # type: ignore[return-value]  (every curve's is filled in)
+
+
+def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[list[int]], list[int]]:
+    """The curves of ``curves`` evaluated together, as lists of their indices (NURBS curves
+    of one degree, knots and rationality, while they have at most :data:`ROWS_PER_CURVE`
+    of their ``counts`` rows each on average), and those evaluated alone (the curves
+    without rows in neither)."""
+    groups: dict[tuple, list[int]] = {}
+    alone = []
+    for curve, i, count in zip(curves, range(len(curves)), counts.tolist(), strict=True):
+        if count <= 0:
+            continue
+        if _groupable(curve):
+            groups.setdefault((curve.degree, curve.is_rational, curve.knots.tobytes()), []).append(i)
+        else:
+            alone.append(i)
+    together = []
+    for members in groups.values():
+        if len(members) > 1 and counts[members].sum() <= ROWS_PER_CURVE * len(members):
+            together.append(members)
+        else:
+            alone += members
+    return together, alone
+
+
+def _rows(bounds: IntArray, members: list[int]) -> tuple[IntArray, IntArray]:
+    """The rows of curves ``members`` (curve ``i`` has rows ``bounds[i]:bounds[i + 1]``), and
+    for each of them which of ``members`` it is on."""
+    starts = bounds[:-1][members]
+    counts = bounds[1:][members] - starts
+    rows = np.arange(counts.sum()) + np.repeat(starts - (np.cumsum(counts) - counts), counts)
+    return rows, np.repeat(np.arange(len(members)), counts)
+
+
+#: Curves are evaluated together while they have at most this many parameters each on
+#: average: together they pay scipy's fixed cost per call once, but each row costs more (the
+#: basis is combined with the coefficients by numpy); alone is cheaper from ~70 rows a curve
+#: (measured on 28 quadratics, first and second derivatives).
+ROWS_PER_CURVE = 48
+
+#: per class, whether its curves evaluate as :class:`.NurbsCurve` does (:func:`_groupable`)
+_NURBS_LIKE: dict[type, bool] = {}
+
+
+def _groupable(curve: Curve) -> bool:
+    """Whether ``curve`` evaluates as :class:`.NurbsCurve` does (a subclass that keeps its
+    evaluation: :class:`.InterpolatedCurve`, the conics), on an open knot vector (a
+    periodic curve wraps its parameters first: it is evaluated on its own)."""
+    kind = type(curve)
+    nurbs_like = _NURBS_LIKE.get(kind)
+    if nurbs_like is None:
+        nurbs_like = _NURBS_LIKE[kind] = (
+            issubclass(kind, NurbsCurve)
+            and kind.local_derivatives is NurbsCurve.local_derivatives
+            and kind.derivatives is NurbsCurve.derivatives
+            and kind.derivative_at is NurbsCurve.derivative_at
+        )
+    return nurbs_like and not curve.periodic
+
+
+def _group_derivatives(
+    curves: list[NurbsCurve], which: IntArray, t: FloatArray, order: int, lowest: int = 0
+) -> FloatArray:
+    """:meth:`.NurbsCurve.local_derivatives` of ``curves`` (same degree, knots and
+    rationality) at ``t``, row ``r`` on curve ``which[r]``: ``(order + 1, len(t), 3)``
+    (of a polynomial curve the orders from ``lowest`` up alone: the others are left zero).
+
+    The sums run on coordinate rows (``(3 or 4, len(t))``), along contiguous rows."""
+    first = curves[0]
+    degree, knots = first.degree, first.knots
+    u, scale = first._knot_parameters(t)  # (the same for all: the domain is the knots')
+    count, width, n = len(first.control_points), first.degree + 1, len(u)
+    # each row's knot span, as scipy finds it (the last span holds the domain's end, and
+    # parameters outside the domain extrapolate the end spans)
+    span = np.minimum(np.maximum(np.searchsorted(knots, u, side="right") - 1, degree), count - 1)
+    basis = BSpline.construct_fast(knots, np.eye(width)[np.arange(count) % width], degree)
+    # the coefficients each row combines: c[span − degree + a] of its own curve, for every a
+    stacked = np.concatenate([curve._coefficients for curve in curves]).T  # (3 or 4, curves × count)
+    first_row = which * count + span - degree
+    terms = [stacked.take(first_row + a, axis=1) for a in range(width)]
+    # where each row's N_{span − degree + a} lies among the basis's columns (in order where
+    # every span is the first: a single-span curve)
+    single = count == width
+    place = None
+    if not single:
+        place = (np.arange(n) * width)[:, None] + (span[:, None] - degree + np.arange(width)) % width
+    sums = np.zeros((order + 1, len(stacked), n))
+    for k in range(0 if first.is_rational else lowest, min(order, degree) + 1):
+        weights = basis(u, nu=k)
+        weights = (weights if single else weights.reshape(-1).take(place)).T.copy()  # (width, n)
+        total = sums[k]
+        for a in range(width):  # (scipy's sum, term by term from 0)
+            total = total + terms[a] * weights[a]
+        sums[k] = total
+    if first.is_rational:  # the quotient rule, as NurbsCurve.local_derivatives runs it
+        w = sums[:, 3]
+        w0 = w[0]
+        result = [sums[0, :3] / w0]
+        for k in range(1, order + 1):
+            numerator = sums[k, :3] - (w[1] if k == 1 else k * w[1]) * result[k - 1]
+            for i in range(2, k + 1):
+                factor = comb(k, i)
+                numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
+            result.append(numerator / w0)
+        sums = np.stack(result)
+    if scale != 1.0:  # (the chain rule; a factor of 1 changes no bit)
+        for k in range(1, order + 1):
+            sums[k] *= scale**k
+    return sums.transpose(0, 2, 1)

@@ -1,0 +1,206 @@
+"""A region of a design whose strips ring a centre along lines of curvature (D-strips).
+
+Round a bump the lines of curvature of one family ring its top (on a surface of
+revolution: the parallels), and the rulings of a strip between two of them run along the
+other family (the meridians). Such a strip never creases (:mod:`.curvature_lines`),
+where strips between parameter lines from edge to edge do wherever those lines cross an
+asymptotic direction (the double bump's y = ±3, docs/geometry.md).
+
+:class:`RingPatch` is the design reparameterised so that its parameter lines along u are
+those rings: at (s, t) the plan point c + R(t, θ)·(cos θ, sin θ), θ = θ0 + s·(θ1 − θ0),
+R(t, ·) the ring traced from the seed radius r0 + t·(r1 − r0) on one ray (a bicubic
+spline through the traced radii, scipy's ``RectBivariateSpline``), mapped to the
+design's (u, v) by the plan's scale (:func:`~.curvature_lines.plan_scale`) and evaluated
+on the design continued past its edges (:class:`~.outline_cut.ExtendedSurface`). Its
+derivatives come from the spline's and the design's by the chain rule, so every
+developable tool that marches parameter lines (:func:`~.rationalise._cover`) marches
+rings on it; the strips are then cut to the region (:func:`region_inside`,
+:func:`~.trimmed.cut_strip`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import shapely
+from numpy.typing import ArrayLike
+from scipy.interpolate import RectBivariateSpline
+
+from ..array_types import FloatArray
+from ..curve_rail import ruled_between
+from ..surface_base import Surface, broadcast_uv
+from ..watch import watch_check
+from .curvature_lines import trace_rings
+from .guided import IsoBoundaries
+from .outline_cut import ExtendedSurface
+from .rationalise import AIM, CLOSE, TRIALS, Strip
+from .ruling import ruling_developable
+from .trimmed import cut_strip
+
+
+class RingPatch(Surface):
+    """The design on rings of curvature round ``centre`` (a plan point): u runs round
+    them over the angles ``span`` (θ0, θ1), v across them from the ring through the seed
+    radius ``seeds[0]`` to the one through ``seeds[-1]`` on the ray at angle ``start``."""
+
+    def __init__(self, design: Surface, centre: ArrayLike, scale: ArrayLike, seeds: ArrayLike,
+                 span: tuple[float, float], family: int, start: float, samples: int = 161) -> None:
+        self.design = design
+        self.extended = ExtendedSurface(design)
+        self.centre = np.asarray(centre, dtype=float)
+        self.scale = np.asarray(scale, dtype=float)
+        self.span = (float(span[0]), float(span[1]))
+        seeds = np.asarray(seeds, dtype=float)
+        theta = np.linspace(*self.span, samples)
+        radii = trace_rings(design, self.centre, seeds, theta, family, self.scale, start)
+        levels = (seeds - seeds[0]) / (seeds[-1] - seeds[0])
+        self.radius = RectBivariateSpline(levels, theta, radii, kx=3, ky=3)
+
+    def __repr__(self) -> str:
+        return f"RingPatch({self.design!r}, centre={self.centre.tolist()})"
+
+    def plan(self, s: ArrayLike, t: ArrayLike, order: int = 0) -> list[FloatArray]:
+        """Plan points at (s, t) and their derivatives to ``order`` (as :meth:`derivatives`)."""
+        s, t = broadcast_uv(s, t)
+        span = self.span[1] - self.span[0]
+        theta = self.span[0] + s * span
+        c, n = np.cos(theta)[:, None], np.sin(theta)[:, None]
+        radial, angular = np.hstack([c, n]), np.hstack([-n, c])
+
+        def r(dt: int, dth: int) -> FloatArray:
+            return self.radius.ev(t, theta, dx=dt, dy=dth)[:, None]
+
+        r0 = r(0, 0)
+        out = [self.centre + r0 * radial]
+        if order >= 1:
+            r_th, r_t = r(0, 1), r(1, 0)
+            out += [span * (r_th * radial + r0 * angular), r_t * radial]
+        if order >= 2:
+            out += [span * span * ((r(0, 2) - r0) * radial + 2.0 * r_th * angular),
+                    span * (r(1, 1) * radial + r_t * angular), r(2, 0) * radial]
+        return out
+
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
+        self._check_order(order)
+        p = [q / self.scale for q in self.plan(u, v, order)]  # the design's (u, v) and its derivatives
+        d = self.extended.derivatives(p[0][:, 0], p[0][:, 1], order)
+        out = [d[0]]
+        if order == 0:
+            return out
+
+        def first(q: FloatArray) -> FloatArray:
+            return q[:, :1] * d[1] + q[:, 1:] * d[2]
+
+        out += [first(p[1]), first(p[2])]
+        if order == 1:
+            return out
+
+        def second(a: FloatArray, b: FloatArray, ab: FloatArray) -> FloatArray:
+            return (a[:, :1] * b[:, :1] * d[3] + (a[:, :1] * b[:, 1:] + a[:, 1:] * b[:, :1]) * d[4]
+                    + a[:, 1:] * b[:, 1:] * d[5] + first(ab))
+
+        return [*out, second(p[1], p[1], p[3]), second(p[1], p[2], p[4]), second(p[2], p[2], p[5])]
+
+
+def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, margin: float = 0.0
+                  ) -> Callable[[FloatArray], FloatArray]:
+    """Points' signed distance from ``region`` (a polygon in the design's plan), positive
+    inside: ``margin`` beyond it where it lies inside the design (so neighbouring regions'
+    strips overlap rather than leave a gap), none beyond the design's own edges. Each point
+    is projected onto the design itself (not a patch of it, so a ring patch's overlaps do
+    not matter); a point beyond the design's edge projects onto the edge, and the part of
+    its offset along the design there is added (the first fundamental form solved)."""
+    scale = np.asarray(scale, dtype=float)
+    outline = shapely.box(0.0, 0.0, *scale)
+
+    def signed(polygon: shapely.Polygon, plan: FloatArray) -> FloatArray:
+        distance = shapely.distance(polygon.boundary, shapely.points(plan))
+        return np.where(shapely.contains_xy(polygon, plan[:, 0], plan[:, 1]), distance, -distance)
+
+    def inside(points: FloatArray) -> FloatArray:
+        found = design.closest_point(points, candidates=1, tolerance=1e-9).parameters
+        p, su, sv = design.derivatives(found[:, 0], found[:, 1], 1)
+        off = points - p
+        e, f, g = (np.einsum("ij,ij->i", a, b) for a, b in ((su, su), (su, sv), (sv, sv)))
+        a, b = np.einsum("ij,ij->i", su, off), np.einsum("ij,ij->i", sv, off)
+        det = e * g - f * f
+        plan = (found + np.column_stack([(g * a - f * b) / det, (e * b - f * a) / det])) * scale
+        return np.minimum(signed(region, plan) + margin, signed(outline, plan))
+
+    return inside
+
+
+def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
+            inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
+            warp_tolerance: float) -> list[Strip] | None:
+    """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
+    pieces certified against the design itself; None when it cannot be made."""
+    check = watch_check()
+    if check:
+        check()
+    a, b = boundaries.at(lo), boundaries.at(hi)
+    try:
+        result = ruling_developable(a, b, segments, warp_tolerance)
+        surface = ruled_between(a, result.s, b, result.t)
+    except ValueError:
+        return None
+    whole = Strip(lo, hi, result, surface, np.zeros(len(result.s)), 0.0, np.zeros(3))
+    return cut_strip(whole, inside, design, tolerance)
+
+
+def march_rings(
+    design: Surface, patch: RingPatch, inside: Callable[[FloatArray], FloatArray], tolerance: float,
+    segments: int = 24, warp_tolerance: float = 1e-7, max_strips: int = 64, first_width: float = 0.05,
+) -> tuple[list[Strip], float]:
+    """Strips between rings of ``patch`` from its level 0 to 1, each as wide as the
+    tolerance allows once cut to the region (``inside``): a few trials per strip, the width
+    by the square law (deviation ∝ width²) inside the bracket of widths found too wide and
+    within, as :func:`~.rationalise._march`, but each trial's deviation is its cut pieces'
+    (the rings run on outside the region, where they are no lines of curvature of it).
+    Returns the pieces and the largest deviation of a strip that had to be kept beyond the
+    tolerance (0 when none)."""
+    boundaries = IsoBoundaries(patch, "u")
+    out: list[Strip] = []
+    lo, width, worst = 0.0, first_width, 0.0
+    for _ in range(max_strips):
+        if lo >= 1.0:
+            break
+        good: tuple[float, list[Strip]] | None = None
+        bad = 2.0
+        w = min(width, 1.0 - lo)
+        tried: tuple[float, list[Strip], float] | None = None
+        for _trial in range(TRIALS * 2):
+            hi = min(1.0, lo + w)
+            pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance)
+            if pieces is None:
+                bad = min(bad, w)
+                w = 0.5 * ((good[0] - lo if good else 0.0) + bad)
+                continue
+            deviation = max((p.deviation for p in pieces), default=0.0)
+            tried = (hi, pieces, deviation) if tried is None or w < tried[0] - lo else tried
+            if deviation <= tolerance:
+                good = (hi, pieces) if good is None or hi > good[0] else good
+                if hi >= 1.0 or deviation >= CLOSE * tolerance:
+                    break
+            else:
+                bad = min(bad, w)
+            ratio = np.sqrt(AIM * tolerance / deviation) if deviation > 0.0 else 2.0
+            w_new = w * float(np.clip(ratio, 0.25, 2.0))
+            floor = (good[0] - lo) if good is not None else 0.0
+            if not floor < w_new < bad:
+                w_new = 0.5 * (floor + min(bad, 1.0 - lo))
+            w = min(w_new, 1.0 - lo)
+            if w <= 1e-6:
+                break
+        if good is None:  # the narrowest tried, beyond the tolerance (said by its deviation)
+            if tried is None:
+                raise ValueError("no strip between the rings could be made")
+            good = (tried[0], tried[1])
+            worst = max(worst, tried[2])
+        out += good[1]
+        width = good[0] - lo
+        lo = good[0]
+    if lo < 1.0:
+        raise ValueError(f"the rings need more than {max_strips} strips")
+    return out, worst
