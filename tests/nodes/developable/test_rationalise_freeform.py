@@ -272,3 +272,23 @@ def test_a_bump_narrower_than_minwidth_gives_one_warning_with_where_and_how_far(
     assert f"{far:.4g}" in warnings[0]
     independent = max(design.distance(grid(s, 241, 25).reshape(-1, 3)).max() for s in items(result, "Strips"))
     assert 0.002 < independent <= far
+
+
+def test_no_strip_of_the_wave_at_5_cm_is_narrower_than_minwidth_across():
+    """Marching the wave at 5 cm left a last strip 8.5 cm wide (MinWidth 20 cm); it now
+    takes MinWidth from the strip before it. Widths are measured across each strip: from
+    200 points along each edge to the nearest of 20001 points along the other (the median,
+    as the node measures a strip that tapers), not along its rulings."""
+    design = DESIGNS["wave"]
+    result = run(Rationalise(), Surface=tree({(0,): [design.surface()]}), Tolerance=0.05 * design.unit,
+                 MaxStrips=64, MinWidth=0.2 * design.unit)
+    assert result.state == "ok", texts(result)
+    widths = []
+    for strip in items(result, "Strips"):
+        edges = grid(strip, 20001, 2)
+        coarse = grid(strip, 200, 2)
+        across = [cKDTree(edges[:, 1 - side]).query(coarse[:, side])[0] for side in (0, 1)]
+        widths.append(float(np.median(np.concatenate(across))))
+    assert min(widths) >= 0.2 * design.unit - 1e-6, widths  # measured 0.2000 (was 0.085)
+    design_far = max(design.distance(grid(s, 241, 25).reshape(-1, 3)).max() for s in items(result, "Strips"))
+    assert design_far <= 0.05 * design.unit

@@ -167,7 +167,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
         old_model.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
     assert old_model.Write(str(tmp_path / "old.3dm"), 7)
     new_size, old_size = (tmp_path / "new.3dm").stat().st_size, (tmp_path / "old.3dm").stat().st_size
-    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 8.2 %: more faces where the strips twist
+    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 8.6 % (most intervals torsal faces)
     old_objects = list(rh.File3dm.Read(str(tmp_path / "old.3dm")).Objects)
     new_objects = list(rh.File3dm.Read(str(new.path)).Objects)
     dense = np.linspace(0.0, 1.0, 2001)  # chords of ~2.5 cm: their sag is below 1e-6 of the size
@@ -220,17 +220,18 @@ def example_strips(name: str) -> list:
 
 
 def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developable(tmp_path):
-    """The canopy's strips turn up to ~6e-4 rad along a ruling between their stations; the
-    exported faces pair each point of one rail with its torsal partner on the other, and
-    where there is none (next to a fan), or that pairing's fit still twists, go out as two
-    cones on the interval's diagonal."""
+    """The canopy's strips turn up to ~3e-3 rad along a ruling between their stations; the
+    exported faces pair each point of one rail with its torsal partner on the other (moved
+    until developable), and where there is none (next to a fan or a corner), that pairing's
+    face still twists, or costs 3.5 times its cones' control points, go out as two cones on
+    the interval's diagonal."""
     objects = export(tmp_path, example_strips("rationalise-canopy"))
     twists = [normal_twist(surface_of(o), 100) for o in objects
               if o.Attributes.GetUserString("TorsalFace") == "torsal"]
-    assert twists and max(twists) <= 1e-6  # measured 2.3e-11 (Rhino's own NormalAt)
+    assert twists and max(twists) <= 1e-6  # measured 3.8e-7 (Rhino's own NormalAt)
 
 
-@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.163)])
+@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.174)])
 def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path, name, measured):
     strips = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
@@ -241,7 +242,9 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     size, naive_size = ((tmp_path / file).stat().st_size for file in ("faces.3dm", "naive.3dm"))
     # (the canopy's twisting strips were 28 % while their developable pairing was fitted 30x
     # closer than 1e-6 of the size; 20.4 % when its 4 strips' cone pairs were fitted at the
-    # strip's own pace, which changes several-fold within an interval)
+    # strip's own pace, which changes several-fold within an interval; 16.3 % with every
+    # twisting interval a cone pair, 23.5 % with every one that has a developable pairing a
+    # torsal face; 17.4 % now, its costliest intervals cones)
     assert size <= 0.2 * naive_size, (size / naive_size, measured)
     objects = list(rh.File3dm.Read(str(tmp_path / "faces.3dm")).Objects)
     twists = [normal_twist(surface_of(o), 60) for o in objects

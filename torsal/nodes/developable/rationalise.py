@@ -180,9 +180,11 @@ class Rationalise(Node):
            max=SEGMENT_LIMIT),
         In("WarpTolerance", NUMBER, "W", "Largest warp angle (rad) a ruling may keep and count as valid "
            "(torsal rulings are solved to ~1e-14 rad).", default=1e-7),
-        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (the median length of its rulings), model "
-           "units: where the tolerance would need narrower strips they are made this wide and the node warns "
-           "where and how far off they are. 0.2 is 20 cm in metres (give 200 for a design in millimetres).",
+        In("MinWidth", NUMBER, "MW", "Narrowest strip to make (its width across, between its two edges: "
+           "the median distance from each edge to the other), model units: where the tolerance would need "
+           "narrower strips they are made this wide and the node warns where and how far off they are; what "
+           "is left at the end is merged into the strip before it or made this wide. 0.2 is 20 cm in metres "
+           "(give 200 for a design in millimetres).",
            default=0.2),
     )
     outputs = (

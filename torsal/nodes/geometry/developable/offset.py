@@ -120,6 +120,14 @@ class LiftedIsoCurve(CurveOnSurface):
         tangent = ders[1] * du + ders[2] * dv + dd * n + d * (nu * du + nv * dv)
         return point, tangent, ders
 
+    def _breakpoints(self) -> FloatArray:
+        """The design's knots along the line (a NURBS design: the line is only as smooth
+        as the design there), so that sampling-based operations put samples on every span."""
+        knots = getattr(self.surface, "knots_u" if self.family == "u" else "knots_v", None)
+        if knots is None:
+            return super()._breakpoints()
+        return np.unique(np.clip(np.asarray(knots, dtype=float), 0.0, 1.0))
+
     def _eval(self, t: FloatArray, order: int) -> list[FloatArray]:
         t = np.asarray(t, dtype=float)
         point, tangent, _ = self._first(t)

@@ -76,9 +76,11 @@ from torsal.nodes.geometry.developable.asymptotic import asymptotic_crossings
 from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
 from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
+from torsal.nodes.geometry.developable.last_strip import last_two
 from torsal.nodes.geometry.developable.offset import LiftedBoundaries, lift_for
 from torsal.nodes.geometry.developable.outline_cut import trim_ends
 from torsal.nodes.geometry.developable.ruling import RulingResult, ruling_developable
+from torsal.nodes.geometry.developable.strip_width import width_across
 from torsal.nodes.geometry.developable.warp import curve_warp
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.surface_base import Surface, uv_grid
@@ -111,8 +113,9 @@ class Strip:
 
     @property
     def width(self) -> float:
-        """The strip's width: the median length of its rulings."""
-        return float(np.median(np.linalg.norm(self.result.ends - self.result.starts, axis=1)))
+        """The strip's width across, between its two edges (:mod:`.strip_width`; its
+        rulings may run nearly along them)."""
+        return width_across(self.surface.curve_a, self.surface.curve_b)
 
 
 @dataclass
@@ -238,13 +241,17 @@ def _march(
     design: Surface, boundaries: Boundaries, start: float, end: float, tolerance: float, max_strips: int,
     segments: int, warp_tolerance: float, progress: Callable[[float], None] | None = None,
     min_width: float = 0.0, narrow: list[int] | None = None, first: int = 0, trim: bool = False,
+    settle_last: bool = True,
 ) -> list[Strip] | None:
     """Strips from the boundary at level ``start`` to the one at ``end``, each as wide as
     the tolerance allows: each next boundary is placed by a few trials (a secant on the
     square law deviation ∝ width², kept inside the bracket of widths found too wide and
-    within). Where the tolerance would need a strip narrower than ``min_width`` (its rulings'
-    median length), the strip is made ``min_width`` wide instead and its index (counted from
-    ``first``) added to ``narrow``. None when more than ``max_strips`` would be needed.
+    within). Where the tolerance would need a strip narrower than ``min_width`` (its width
+    across, :mod:`.strip_width`), the strip is made ``min_width`` wide instead and its index
+    (counted from ``first``) added to ``narrow``; a last strip narrower than that (what was
+    left) is merged into the one before it or given MinWidth from it (:func:`.last_strip.last_two`;
+    not with ``settle_last`` False: a trimmed design's box, whose strips the trim cuts later).
+    None when more than ``max_strips`` would be needed.
     With ``trim`` every trial strip is cut at the design's edge where that is smoother
     (:mod:`.outline_cut`), so its width is the cut strip's."""
     strips: list[Strip] = []
@@ -313,7 +320,17 @@ def _march(
         lo = settled.hi
         if progress is not None:
             progress(lo)
+    if settle_last and min_width > 0.0 and len(strips) >= 2 and strips[-1].width < min_width:
+
+        def make(a: float, b: float) -> Strip | None:
+            try:
+                return strip_between(design, boundaries, a, b, segments, warp_tolerance, tolerance, trim=trim)
+            except Unmade:
+                return None
+
+        strips[-2:] = last_two(make, strips[-2], strips[-1], end, tolerance, min_width)
     return strips
+
 
 
 #: Halvings that place a boundary next to a creasing stretch (:func:`_narrow_crease`).
@@ -482,6 +499,7 @@ def _score(strips: Sequence[Strip], tolerance: float) -> tuple[float, ...]:
 def _cover(
     design: Surface, family_of: Boundaries, tolerance: float, max_strips: int, segments: int,
     warp_tolerance: float, progress: Callable[[float], None] | None, min_width: float, trim: bool = False,
+    settle_last: bool = True,
 ) -> tuple[list[Strip], list[int]]:
     """The strips of one family of boundaries: each band between guides marched, or
     ``max_strips`` evenly spaced when the tolerance needs more; and the narrow ones. With
@@ -491,7 +509,7 @@ def _cover(
     for start, end in itertools.pairwise(family_of.levels):  # a boundary on every guide
         assert strips is not None
         band = _march(design, family_of, float(start), float(end), tolerance, max_strips - len(strips),
-                      segments, warp_tolerance, progress, min_width, narrow, len(strips), trim)
+                      segments, warp_tolerance, progress, min_width, narrow, len(strips), trim, settle_last)
         if band is None:
             strips = None
             break
@@ -652,7 +670,7 @@ def rationalise(
     best: tuple[tuple[float, ...], Boundaries, list[Strip], list[int]] | None = None
     for k, family_of in enumerate(candidates):
         strips, narrow = _cover(design, family_of, tolerance, int(max_strips), segments, warp_tolerance,
-                                progress if k == 0 else None, min_width)
+                                progress if k == 0 else None, min_width, settle_last=cut_at_edge)
         score = _score(strips, tolerance)
         if best is None or score < best[0]:
             best = (score, family_of, strips, narrow)

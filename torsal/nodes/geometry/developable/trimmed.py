@@ -147,7 +147,12 @@ class Chain(Curve):
         return out
 
     def _breakpoints(self) -> FloatArray:
-        return self.knots.copy()
+        """The joins, and each piece's own breakpoints strictly inside its ``p0 → p1``."""
+        inner = []
+        for k, (curve, p0, p1) in enumerate(self.pieces):
+            own = curve._breakpoints()
+            inner.append(self.at(k, own[(own > min(p0, p1)) & (own < max(p0, p1))]))
+        return np.unique(np.clip(np.concatenate([self.knots, *inner]), 0.0, 1.0))
 
 
 class _OnSheet(Curve):

@@ -15,21 +15,24 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   ones give the rails' own end tangents (the least squares fit the others given those),
   so a rail that stands still next to a fan stands still in the face too and the face's
   normals there are the strip's. Where the strip's own pairing of the rails between
-  rulings twists (more than :data:`DEVELOPABLE`), rail A's points are
-  paired with their developable partners on rail B instead
-  (:mod:`torsal.nodes.geometry.torsal_pairing`), when that fits within FIT (as few
-  control points as that takes: where the fit still twists, its twisting intervals go out
-  as cones, below, which cost fewer control points than a fit 30 times closer);
+  rulings twists (more than :data:`DEVELOPABLE`), the face pairs the rails developably
+  instead: both rails at an even pace along their curves between the rulings
+  (:class:`~.threedm_rails.Paced`), each point of rail A with its developable partner on
+  rail B (:mod:`torsal.nodes.geometry.torsal_pairing`, smoothed:
+  :func:`~.threedm_rails.smooth_partners`), fitted within FIT, then its control points
+  moved until its normals agree along its lines across (:mod:`.threedm_untwist`: the
+  fit's tangents are not exact, and a fit 30 times closer would cost several times the
+  control points). So the face follows the node's rulings and is developable between
+  them. An interval where that face still twists (more than :data:`TWISTED`) is fitted as
+  a face of its own, and if it still twists goes out as cones (below); so does one whose
+  face would cost more than :data:`COSTLIER` times the control points of its cones (the
+  file stays within a fifth of the one-surface form);
 - where no developable pairing joins two rulings (the torsal condition has no root between
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
-  an even pace along the rail's curve between the two rulings (:class:`_Paced`; the
-  strip's own pace, a cubic of u, can change several-fold within an interval and cost a
-  cone three times the knots). A face that still twists
-  (more than :data:`TWISTED`) has its twisting intervals made cones, all at once, and is
-  fitted again;
+  an even pace along the rail's curve between the two rulings;
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
   joined at the ruling they share by a triple knot (each keeps its shape; fewer faces, a
   smaller file). Where a rail turns a corner (a strip cut to a trim) the faces meet there;
@@ -53,16 +56,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import rhino3dm as rh
-from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
-from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
+from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
+from torsal.nodes.io.formats.threedm_untwist import untwisted
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
 FIT = 1e-6
@@ -70,9 +73,14 @@ FIT = 1e-6
 #: A face whose normals turn less than this along every ruling counts as developable (rad).
 DEVELOPABLE = 1e-7
 
-#: A face still twisting more than this (rad) after both pairings has its most twisted
-#: interval made cones instead, one at a time while it does.
+#: A face still twisting more than this (rad) after both pairings has its twisting
+#: intervals fitted alone, and one that still twists alone made cones.
 TWISTED = 5e-7
+
+#: An interval whose torsal face costs more than this times the control points of its
+#: cones goes out as cones (:func:`_costly`).
+COSTLIER = 3.5
+
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -127,6 +135,8 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
     pieces: list[Piece] = []
     k = 0
     n = len(lines)
+    alone = np.zeros(n, dtype=bool)  # rulings a run of torsal rulings stops at (a twisting interval's)
+    cone_costs: dict[int, int] = {}
     while k < n - 1:
         if shared[k]:
             end = k + 1
@@ -150,21 +160,49 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             k += 1
             continue
         end = k + 1
-        while end < n - 1 and not shared[end] and not corner[end] and not conical[end]:
+        while end < n - 1 and not shared[end] and not corner[end] and not conical[end] and not alone[end]:
             end += 1
-        piece, twist = _ruled(strip, u, lines, k, end, size)
-        if twist > TWISTED:  # still twisted: its twisted intervals as cones, and again
-            bad = _interval_twists(piece.rails, u[k:end + 1]) > TWISTED
+        piece, twist, paired = _ruled(strip, u, lines, k, end, size)
+        if twist > TWISTED:  # still twisted: its twisted intervals each a face of its own, and
+            bad = _interval_twists(piece.rails, u[k:end + 1]) > TWISTED  # again; one that
+            if not bad.any():  # twists alone goes out as cones
+                own = [_own_twist(strip, u[i:i + 2], 17) for i in range(k, end)]
+                bad[int(np.argmax(own))] = max(own) > TWISTED
             if bad.any():
-                conical[k + np.flatnonzero(bad)] = True
+                if end - k == 1:
+                    conical[k] = True
+                else:
+                    alone[k + np.flatnonzero(bad)] = alone[k + 1 + np.flatnonzero(bad)] = True
                 continue
-            own = [_own_twist(strip, u[i:i + 2], 17) for i in range(k, end)]
-            if max(own) > TWISTED:
-                conical[k + int(np.argmax(own))] = True
+        if paired:  # where a torsal face costs much more than cones would, cones
+            costly = _costly(strip, u, lines, k, piece.rails, size, cone_costs)
+            if costly.any():
+                conical[k + np.flatnonzero(costly)] = True
                 continue
         pieces.append(piece)
         k = end
     return [replace(p, brep=_brep(p.rails)) if p.brep is None else p for p in _joined(pieces)]
+
+
+def _costly(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, rails: BSpline, size: float,
+            cone_costs: dict[int, int]) -> np.ndarray:
+    """Per interval of a face fitted to the developable pairing from ruling ``first``:
+    whether its control points there (its knots inside the interval, and the double knot at
+    the ruling that begins it) are more than :data:`COSTLIER` times those of the interval's
+    two cones (their knots but the four at either end; ``cone_costs`` keeps them per
+    interval). Those intervals go out as cones: the file stays small."""
+    knots = np.asarray(rails.t)
+    stations = u[first:first + int(np.searchsorted(u[first:], knots[-1]) + 1)]
+    inner = knots[4:-4]
+    own = np.histogram(inner[inner > stations[0]], bins=stations)[0].astype(float)
+    own[0] += 2.0  # the first interval's share of the face's ends
+    costs = np.ones(len(stations) - 1)
+    for i in np.flatnonzero(own > COSTLIER):  # (cheaper than COSTLIER can cost no more)
+        k = first + int(i)
+        if k not in cone_costs:
+            cone_costs[k] = _cones(strip, u, lines, k, size)[0].controls - 4
+        costs[i] = cone_costs[k]
+    return own > COSTLIER * np.maximum(costs, 1.0)
 
 
 def _joined(pieces: list[Piece]) -> list[Piece]:
@@ -234,48 +272,6 @@ def _own_twists(strip: RuledSurface, lo: np.ndarray, hi: np.ndarray, count: int)
     return np.where(np.isfinite(worst), worst, np.inf)
 
 
-@dataclass(frozen=True)
-class _Rails:
-    """Two rails to fit a face between (the strip's own, or one of them at rest)."""
-
-    curve_a: Curve
-    curve_b: Curve
-
-
-class _AtRest(Curve):
-    """A rail at rest: one point (a cone's apex)."""
-
-    def __init__(self, point: np.ndarray) -> None:
-        self.point = np.asarray(point, dtype=float)
-
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
-        count = len(np.atleast_1d(np.asarray(t, dtype=float)))
-        return [np.tile(self.point, (count, 1))] + [np.zeros((count, 3)) for _ in range(order)]
-
-
-class _Paced(Curve):
-    """A rail over one ruling interval run at an even pace along its curve (the strip's
-    pace is a cubic of u that may change several-fold within an interval): the same points
-    at the two rulings, the same curve between, a parameterisation a cubic fits in few
-    spans. A cone's face may take it: a cone is developable whatever its rail's pace."""
-
-    def __init__(self, rail: Curve, span: np.ndarray) -> None:
-        self.rail = rail
-        self.lo, self.hi = float(span[0]), float(span[-1])
-        if isinstance(rail, CurveRail):
-            self.ends = np.interp([self.lo, self.hi], rail.params, rail.curve_params)
-
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
-        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        rail = self.rail
-        if not isinstance(rail, CurveRail):
-            return rail.derivatives(t, order)
-        slope = (self.ends[1] - self.ends[0]) / (self.hi - self.lo)
-        at = self.ends[0] + (t - self.lo) * slope
-        values = rail.curve.derivatives(rail._wrapped(at), order)
-        return [value * slope**j for j, value in enumerate(values)]
-
-
 def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float) -> list[Piece]:
     """The interval after ruling ``k`` as two cones meeting on its shorter diagonal, one
     face: rail A to the diagonal's end on B, then that end of A to rail B (or the other way
@@ -283,13 +279,13 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     the face's normals are constant along its lines; its edges still run on the rails."""
     (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
-    paced_a, paced_b = _Paced(strip.curve_a, span), _Paced(strip.curve_b, span)
+    paced_a, paced_b = Paced(strip.curve_a, span), Paced(strip.curve_b, span)
     if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
         middle = np.array([a_hi, b_lo])
-        rails = [_Rails(paced_a, _AtRest(b_lo)), _Rails(_AtRest(a_hi), paced_b)]
+        rails = [Rails(paced_a, AtRest(b_lo)), Rails(AtRest(a_hi), paced_b)]
     else:
         middle = np.array([a_lo, b_hi])
-        rails = [_Rails(_AtRest(a_lo), paced_b), _Rails(paced_a, _AtRest(b_hi))]
+        rails = [Rails(AtRest(a_lo), paced_b), Rails(paced_a, AtRest(b_hi))]
     fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
             for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
     # one face: the first cone on the first half of the span, the second on the other half,
@@ -368,15 +364,17 @@ def _fan(first: np.ndarray, second: np.ndarray, size: float) -> rh.Brep | None:
 
 
 def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, last: int,
-           size: float) -> tuple[Piece, float]:
+           size: float) -> tuple[Piece, float, bool]:
     """The ruled face over rulings ``first`` … ``last``: between the rulings, each point of
     rail A paired with its developable partner on rail B (:mod:`~torsal.nodes.geometry.
     torsal_pairing`) where that fits within :data:`FIT`, else with the strip's own pairing;
-    the rails fitted with inserted knots; and how much it still twists (:func:`_twist`)."""
+    the rails fitted with inserted knots; how much it still twists (:func:`_twist`); and
+    whether it is the developable pairing's."""
     span = u[first:last + 1]
     tolerance = FIT * size
     own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
     fit = own
+    paired_fit = False
     if _twist(own) > DEVELOPABLE and _own_twist(strip, span) <= DEVELOPABLE:
         # the strip's own pairing is developable (as a strip cut to a trim is) but its short
         # rulings magnify the fit's error into a twist: closer fits, as close as that takes
@@ -386,17 +384,24 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
             if _twist(fit) <= DEVELOPABLE:
                 break
     elif _twist(own) > DEVELOPABLE:  # the strip twists between its rulings: pair them developably
-        kinks = switches(strip.curve_a, strip.curve_b, span)
-
-        def paired(at: np.ndarray) -> np.ndarray:
-            return torsal_partners(strip.curve_a, strip.curve_b, span, at)[0]
-
-        # (fitted to FIT, as few control points as that takes: where the fit still twists,
-        # its twisted intervals go out as cones, which cost fewer than a fit 30x closer)
-        developable = _fit(strip, span, lines[first:last + 1], tolerance, paired, kinks)
+        # both rails at an even pace along their curves between the rulings (a third fewer
+        # control points than at the strip's own pace), B paired with A developably
+        rails = Rails(Paced(strip.curve_a, span), Paced(strip.curve_b, span))
+        kinks = switches(rails.curve_a, rails.curve_b, span)
+        paired = smooth_partners(rails, span, kinks)
+        developable = _fit(rails, span, lines[first:last + 1], tolerance, paired, kinks)  # type: ignore[arg-type]
+        if developable[0] <= tolerance and _twist(developable) > DEVELOPABLE:
+            # its tangents are not exact: its control points moved until it is developable
+            # (:mod:`.threedm_untwist`), on samples of the pairing as dense as its knots
+            per = max(8 * SAMPLES, 16 * -(-(len(developable[1]) - 4) // max(len(span) - 1, 1)))
+            at, data = _samples(rails, np.unique(np.concatenate([span, kinks])), per, paired)  # type: ignore[arg-type]
+            moved, distance, _ = untwisted(developable[2], at, data, tolerance, 0.8 * TWISTED)
+            if distance <= tolerance:
+                developable = (distance, np.asarray(moved.t), moved)
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
-            fit = developable
-    return Piece(None, "torsal", first, last, fit[0], len(fit[1]) - 4, fit[2]), _twist(fit)
+            fit, paired_fit = developable, True
+    piece = Piece(None, "torsal", first, last, fit[0], len(fit[1]) - 4, fit[2])
+    return piece, _twist(fit), paired_fit
 
 
 def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
@@ -558,14 +563,17 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
     near = 1e-6 * (hi - lo)
     found = []
     for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
-        if not isinstance(rail, CurveRail):
+        if isinstance(rail, Paced):
+            marks = rail.breaks()
+        elif isinstance(rail, CurveRail):
+            marks = rail._breakpoints()  # the rulings, and where it crosses its curve's breaks
+        else:
             continue
-        marks = np.concatenate([rail._breakpoints(), rail._crossings(_curve_breaks(rail.curve))])
         marks = marks[(marks > lo + near) & (marks < hi - near)]
         if not len(marks):
             continue
         if not own:
-            grid = _between(span, 16)
+            grid = between(span, 16)
             paired = partner(grid)
             if not np.array_equal(paired, grid):
                 marks = marks[(marks > paired[0]) & (marks < paired[-1])]
@@ -587,44 +595,14 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
     return marks[np.concatenate([[True], np.diff(marks) > near])] if len(marks) else marks
 
 
-def _curve_breaks(curve: Curve) -> np.ndarray:
-    """A curve's parameters where it may not be smooth: its own breakpoints, and for a
-    parameter line of a NURBS design (as Rationalise's rails run on) the design's knots
-    it crosses; through the pieces of a joined curve."""
-    pieces, at = getattr(curve, "pieces", None), getattr(curve, "at", None)
-    if pieces is not None and at is not None:
-        # a piece is a curve, or (curve, p0, p1) where a chain runs it over p0 → p1 only
-        inner = []
-        for k, piece in enumerate(pieces):
-            if isinstance(piece, tuple):
-                own, p0, p1 = piece
-                breaks = _curve_breaks(own)
-                inner.append(at(k, breaks[(breaks > min(p0, p1)) & (breaks < max(p0, p1))]))
-            else:
-                inner.append(at(k, _curve_breaks(piece)))
-        return np.unique(np.clip(np.concatenate([curve._breakpoints(), *inner]), 0.0, 1.0))
-    family, surface = getattr(curve, "family", None), getattr(curve, "surface", None)
-    name = {"u": "knots_u", "v": "knots_v"}.get(family)  # type: ignore[arg-type]
-    knots = getattr(surface, name, None) if name is not None else None
-    own = curve._breakpoints()
-    return own if knots is None else np.unique(np.concatenate([own, np.clip(knots, 0.0, 1.0)]))
-
-
 def _samples(strip: RuledSurface, span: np.ndarray, per: int,
              partner: Callable[[np.ndarray], np.ndarray], lines: np.ndarray | None = None
              ) -> tuple[np.ndarray, np.ndarray]:
     """Parameters ``per`` to a ruling interval, and both rails there side by side (n, 6),
     rail B at the partner parameters; with ``lines``, the rulings' own ends stand at their
     parameters (the node's lines exactly)."""
-    at = _between(span, per)
+    at = between(span, per)
     data = np.hstack([strip.curve_a.point_at(at), strip.curve_b.point_at(partner(at))])
     if lines is not None:
         data[np.searchsorted(at, span)] = lines.reshape(-1, 6)
     return at, data
-
-
-def _between(parameters: np.ndarray, per: int) -> np.ndarray:
-    """``per`` evenly spaced parameters in each interval of ``parameters``, ends included."""
-    steps = np.linspace(0.0, 1.0, per + 1)[:-1]
-    inner = parameters[:-1, None] + (parameters[1:] - parameters[:-1])[:, None] * steps
-    return np.concatenate([inner.ravel(), parameters[-1:]])
