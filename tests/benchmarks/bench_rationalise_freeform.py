@@ -33,7 +33,8 @@ import pytest
 from tests.benchmarks.bench_rationalise import even_strips
 from tests.nodes.developable.test_rationalise import distance_to_surface, kaohsiung_roof
 from tests.support.freeform_designs import DESIGNS
-from torsal.nodes.geometry.developable.rationalise import creased_area, fan_area, rationalise
+from torsal.nodes.geometry.developable.freeform import rationalise_freeform
+from torsal.nodes.geometry.developable.rationalise import creased_area, fan_area
 
 TOLERANCES = (0.01, 0.02, 0.05)
 #: The issue's bar for one solve on this machine, s.
@@ -64,7 +65,7 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
     for tolerance in TOLERANCES:
         tol = tolerance * unit
         start = time.perf_counter()
-        result = rationalise(surface, tol, 64, min_width=0.2 * unit)
+        result = rationalise_freeform(surface, tol, 64, min_width=0.2 * unit)
         seconds = time.perf_counter() - start
         baseline = even_strips(surface, tol, limit=128)
         fans = sum(int(s.result.fan.sum()) for s in result.strips)

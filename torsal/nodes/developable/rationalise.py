@@ -15,8 +15,8 @@ from torsal.nodes.common.geometry_checks import parametric_surface as surface_in
 from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.developable.freeform import rationalise_freeform
 from torsal.nodes.geometry.developable.measure import within_tolerance
-from torsal.nodes.geometry.developable.rationalise import rationalise
 from torsal.nodes.geometry.developable.trimmed import rationalise_trimmed
 from torsal.nodes.geometry.local_frame import LocalFrame
 from torsal.nodes.geometry.surface_base import uv_grid
@@ -243,7 +243,7 @@ class Rationalise(Node):
         try:
             with watched(self.check_cancelled, self.progress):
                 local = frame.to_local(design)
-                solve = rationalise_trimmed if isinstance(local, TrimmedSurface) else rationalise
+                solve = rationalise_trimmed if isinstance(local, TrimmedSurface) else rationalise_freeform
                 result = solve(local, tol, count, None if curves else guide, segments=n,
                                warp_tolerance=warp_limit, progress=self.progress,
                                guides=[frame.to_local(g) for g in curves], min_width=narrowest)

@@ -48,9 +48,9 @@ Method
    split into ``max_strips`` evenly spaced strips, and the result reports the deviation
    reached.
 
-Where both families of parameter lines cross asymptotic directions (:data:`RINGS`), strips
-between traced lines of curvature that ring each of the design's bumps are tried first
-(:mod:`.ring_layout`). Otherwise the boundaries are not traced along lines of curvature:
+Where both families of parameter lines cross asymptotic directions, strips between traced
+lines of curvature that ring each of the design's bumps are tried first, by the caller
+(:mod:`.freeform`). Here the boundaries are not traced along lines of curvature:
 a family that follows them leaves the design through its sides; the strips'
 ends are cut by the design's outline (:mod:`.outline_cut`, the D-strip models of Pottmann et
 al. 2008), but a boundary that itself runs out through a side is not made. A field fitted
@@ -457,14 +457,6 @@ ALONG, ALONE = 4.0, 0.05
 #: trying the next family of boundaries (lifted, then on the design; each way).
 SMOOTH = 0.02
 
-#: Where both families of parameter lines cross asymptotic directions more than this
-#: (:mod:`.asymptotic`: the double bump's 0.76 and 0.38; every other test design has a
-#: family at 0), strips ringing the design's bumps along lines of curvature are tried
-#: first (:mod:`.ring_layout`) ...
-RINGS = 0.1
-#: ... and kept when within the tolerance, covering the design's edge, with at most this
-#: share of their area in fans (the issue's bar); the parameter lines otherwise.
-RING_FANS = 0.1
 
 
 def fan_area(strips: Sequence[Strip]) -> float:
@@ -601,19 +593,6 @@ def _on_boundary(strip: Strip, side: str) -> RulingResult:
     return replace(r, s=s[keep], t=t[keep], starts=r.starts[keep], ends=r.ends[keep])
 
 
-def _rings(design: Surface, tolerance: float, max_strips: int, segments: int, warp_tolerance: float,
-           min_width: float) -> Rationalisation | None:
-    """The strips round the design's bumps (:mod:`.ring_layout`) when they are within the
-    tolerance, cover the design's edge and keep at most :data:`RING_FANS` in fans."""
-    from .ring_layout import ring_layout  # it builds on this module
-
-    try:
-        found = ring_layout(design, tolerance, max_strips, segments, warp_tolerance, min_width)
-    except ValueError:
-        return None
-    return found if found.within and found.covered and fan_area(found.strips) <= RING_FANS else None
-
-
 def rationalise(
     design: Surface,
     tolerance: float,
@@ -655,10 +634,6 @@ def rationalise(
         crossings = {f: asymptotic_crossings(design, f) for f in (first, other)}
         if crossings[other] < CROSSINGS * crossings[first]:
             first, other = other, first  # the square law's family runs along asymptotic directions
-        if cut_at_edge and min(crossings.values()) > RINGS:
-            rings = _rings(design, tolerance, int(max_strips), segments, warp_tolerance, min_width)
-            if rings is not None:
-                return rings
         families = (first, other)
         if crossings[other] > ALONG * crossings[first] + ALONE:
             families = (first,)  # the other runs along them where the first does not: not tried
