@@ -341,6 +341,28 @@ def test_a_sheets_parts_are_chosen_largest_first_each_that_keeps_within_its_targ
     assert _choose([2, 3, 4], area, 1.0) == [2]  # at least the largest
 
 
+def _in_a_row(first_seed_from: float | None = None, first_seed_gap: float | None = None):  # type: ignore[no-untyped-def]
+    """A stand-in for sparrow's strip packing: the parts in a row along the strip's middle,
+    ``spacing`` apart from x = ``spacing`` (seed 0's from ``first_seed_from``, ``first_seed_gap``
+    apart, when given), odd seeds' in reverse order."""
+
+    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
+            better=None, halt=None, counted=True, turn=0.0):
+        budget.spend(10 if counted else 0)
+        spread = seed == 0 and first_seed_gap is not None
+        gap = first_seed_gap if spread else spacing
+        placed, x = {}, first_seed_from if spread else spacing
+        for i in (members if seed % 2 == 0 else list(members)[::-1]):
+            w = float(np.ptp(shapes[i][:, 0]))
+            placed[i] = (0.0, (x + w / 2, height / 2))
+            x += w + gap
+        if better is not None:
+            better(placed)
+        return placed
+
+    return row
+
+
 def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_the_last(monkeypatch):
     """With a stand-in for sparrow that lays the parts in a row, 1 mm apart, in the order
     asked (reversed for odd seeds): full-height bars 200, 150, 120, 100 and 60 mm wide,
@@ -350,18 +372,7 @@ def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_th
     within 0.8 of the 500 × 100 usable sheet) are the last sheet, packed beside it."""
     from torsal.nodes.geometry import nesting, sparrow_runs
 
-    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            better=None, halt=None, counted=True, turn=0.0):
-        budget.spend(10 if counted else 0)
-        placed, x = {}, spacing
-        for i in (members if seed % 2 == 0 else list(members)[::-1]):
-            w = float(np.ptp(shapes[i][:, 0]))
-            placed[i] = (0.0, (x + w / 2, height / 2))
-            x += w + spacing
-        if better is not None:
-            better(placed)
-        return placed
-
+    row = _in_a_row()
     monkeypatch.setattr(sparrow_runs, "strip", row)
     monkeypatch.setattr(nesting, "strip", row)
     bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 150, 120, 100, 60)]
@@ -448,19 +459,7 @@ def test_a_set_that_does_not_fit_sets_the_next_seeds_target_at_the_density_its_s
     it fits, and the 150, 120 and 60 make the last sheet."""
     from torsal.nodes.geometry import nesting, sparrow_runs
 
-    def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            better=None, halt=None, counted=True, turn=0.0):
-        budget.spend(10 if counted else 0)
-        gap = 160.0 if seed == 0 else spacing
-        placed, x = {}, 40.0 if seed == 0 else spacing
-        for i in (members if seed % 2 == 0 else list(members)[::-1]):
-            w = float(np.ptp(shapes[i][:, 0]))
-            placed[i] = (0.0, (x + w / 2, height / 2))
-            x += w + gap
-        if better is not None:
-            better(placed)
-        return placed
-
+    row = _in_a_row(first_seed_from=40.0, first_seed_gap=160.0)
     monkeypatch.setattr(sparrow_runs, "strip", row)
     monkeypatch.setattr(nesting, "strip", row)
     bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 150, 120, 100, 60)]
