@@ -208,16 +208,7 @@ class NurbsCurve(Curve):
         rows = np.empty((order + 1, 4, n))
         values.rows(u, min(order, degree) + 1, rows)
         rows[degree + 1 :] = 0.0  # (the derivatives above the degree)
-        w = rows[:, 3]
-        w0 = w[0]
-        result: list[FloatArray] = [rows[0, :3] / w0]
-        for k in range(1, order + 1):
-            # (a binomial coefficient of 1 multiplies exactly: it is left out)
-            numerator = rows[k, :3] - (w[1] if k == 1 else k * w[1]) * result[k - 1]
-            for i in range(2, k + 1):
-                factor = comb(k, i)
-                numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
-            result.append(numerator / w0)
+        result = quotient_rule(rows, order)
         if scale != 1.0:  # (a factor of 1 changes no bit)
             result = [c * scale**k for k, c in enumerate(result)]
         points = np.empty((order + 1, n, 3))
@@ -326,3 +317,20 @@ class NurbsCurve(Curve):
         return (
             f"{type(self).__name__}(degree={self.degree}, control_points={len(self.control_points)}, {kind})"
         )
+
+
+def quotient_rule(rows: FloatArray, order: int) -> list[FloatArray]:
+    """The derivatives of orders 0 to ``order`` of a rational curve, each as coordinate
+    rows ``(3, n)``, from those of its homogeneous form ``rows`` ``(order + 1, 4, n)``
+    (x·w, y·w, z·w, w): Leibniz's rule for C = A / w solved order by order."""
+    w = rows[:, 3]
+    w0 = w[0]
+    result: list[FloatArray] = [rows[0, :3] / w0]
+    for k in range(1, order + 1):
+        # (a binomial coefficient of 1 multiplies exactly: it is left out)
+        numerator = rows[k, :3] - (w[1] if k == 1 else k * w[1]) * result[k - 1]
+        for i in range(2, k + 1):
+            factor = comb(k, i)
+            numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
+        result.append(numerator / w0)
+    return result

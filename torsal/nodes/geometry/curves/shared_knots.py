@@ -22,14 +22,13 @@ holds exactly one of them (added to zeros, which changes no bit).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from math import comb
 
 import numpy as np
 from scipy.interpolate import BSpline
 
 from ..array_types import FloatArray, IntArray
 from ..curve_base import Curve
-from .nurbs import NurbsCurve
+from .nurbs import NurbsCurve, quotient_rule
 
 
 def derivatives_together(
@@ -173,17 +172,8 @@ def _group_derivatives(
         for a in range(width):  # (scipy's sum, term by term from 0)
             total = total + terms[a] * weights[a]
         sums[k] = total
-    if first.is_rational:  # the quotient rule, as NurbsCurve.local_derivatives runs it
-        w = sums[:, 3]
-        w0 = w[0]
-        result = [sums[0, :3] / w0]
-        for k in range(1, order + 1):
-            numerator = sums[k, :3] - (w[1] if k == 1 else k * w[1]) * result[k - 1]
-            for i in range(2, k + 1):
-                factor = comb(k, i)
-                numerator -= (w[i] if factor == 1 else factor * w[i]) * result[k - i]
-            result.append(numerator / w0)
-        sums = np.stack(result)
+    if first.is_rational:  # as NurbsCurve.local_derivatives runs it
+        sums = np.stack(quotient_rule(sums, order))
     if scale != 1.0:  # (the chain rule; a factor of 1 changes no bit)
         for k in range(1, order + 1):
             sums[k] *= scale**k
