@@ -67,21 +67,28 @@ class Pace:
     Monotone data give a monotone interpolant; a run of equal values stays flat.
     """
 
+    #: the coefficients (c3, c2, c1, c0) of the interpolants fitted with this one, joined
+    #: (:meth:`_many`), and where this one's start among them
+    joined: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    first: int = 0
+
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
         self.u = u
-        self.c3, self.c2, self.c1, self.c0 = _pchip(_Pieces([_Steps(u)]), p, p[1:] - p[:-1])
+        self.c3, self.c2, self.c1, self.c0 = self.joined = _pchip(_Pieces([_Steps(u)]), p, p[1:] - p[:-1])
 
     @classmethod
     def _many(cls, pieces: _Pieces, p: FloatArray, dp: FloatArray) -> list[Pace]:
         """One interpolant per run of ``pieces`` (points ``p``, chords ``dp``, run after
         run), fitted in one pass: each run's coefficients are the ones it gets alone
         (every step is elementwise). Their arrays are views of the joined ones."""
-        c3, c2, c1, c0 = _pchip(pieces, p, dp)
+        c3, c2, c1, c0 = joined = _pchip(pieces, p, dp)
         paces = []
-        for steps, low, high in zip(pieces.steps, pieces.offsets[:-1], pieces.offsets[1:], strict=True):
+        for steps, low, high in zip(pieces.steps, pieces.offsets[:-1].tolist(), pieces.offsets[1:].tolist(),
+                                    strict=True):
             pace = cls.__new__(cls)
             pace.u = steps.u
             pace.c3, pace.c2, pace.c1, pace.c0 = c3[low:high], c2[low:high], c1[low:high], c0[low:high]
+            pace.joined, pace.first = joined, low
             paces.append(pace)
         return paces
 
