@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from torsal.nodes.geometry.curve_rail import CurveRail, ruled_between, unwrap_cyclic
+from torsal.nodes.geometry.curve_rail import CurveRail, ruled_between, ruled_between_all, unwrap_cyclic
 from torsal.nodes.geometry.curves.conics import Arc, Circle
+from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.vectors import Plane
 
 
@@ -88,3 +89,33 @@ def test_parameters_running_through_a_closed_curves_seam_are_unwrapped():
     angles = np.unwrap(np.arctan2(points[:, 1], points[:, 0]))
     assert np.all(np.diff(angles) > 0), "the rail runs once forward through the seam"
     assert np.abs(rail.point_at(1.0) - circle.point_at(0.2)).max() <= 1e-15
+
+
+def test_strips_made_together_are_each_the_strip_made_alone_bit_for_bit():
+    a, b = frustum_arcs()
+    circle = Circle(Plane.from_normal([0, 0, 2], [0, 0, 1]), 2.0)
+    line_a, line_b = Line([0, 0, 0], [2, 0, 0]), Line([0, 1, 0], [3, 2, 1])
+    s5 = np.array([0.0, 0.0, 0.3, 0.7, 1.0])  # (a fan through A(0): a flat run of the pace)
+    t5 = np.array([0.0, 0.2, 0.5, 0.5, 1.0])
+    jobs = [
+        (a, [0.0, 1.0], b, [0.0, 1.0], None),  # two rulings: both slopes the chord's
+        (a, [0.0, 0.4, 1.0], b, [0.0, 0.9, 1.0], None),  # three: an overshooting end slope is cut
+        (line_a, s5, line_b, t5, (line_a.point_at(s5), line_b.point_at(t5))),  # the ends given
+        (a, [0.0, 0.5, 0.4, 1.0], b, [0.0, 0.2, 0.6, 1.0], None),  # running back: refused
+        (a, [0.0, 0.3, 0.6, 1.0], circle, [0.8, 0.95, 0.1, 0.2], None),  # through B's seam
+        (a, [0.0, 0.1, 0.35, 0.5, 0.9, 1.0], b, [0.0, 0.2, 0.3, 0.6, 0.8, 1.0], None),
+    ]
+    together = ruled_between_all(jobs)
+    u = np.linspace(-0.1, 1.1, 23)
+    for job, made in zip(jobs, together, strict=True):
+        try:
+            alone = ruled_between(*job)
+        except ValueError as exc:
+            assert isinstance(made, ValueError) and str(made) == str(exc)
+            continue
+        assert made.ruling_lines.tobytes() == alone.ruling_lines.tobytes()
+        assert made.closed_u == alone.closed_u
+        for v in (0.0, 0.3, 1.0):  # the rails' paces and their derivatives
+            mine, its = (surface.derivatives(u, np.full_like(u, v), 2) for surface in (made, alone))
+            assert [x.tobytes() for x in mine] == [x.tobytes() for x in its]
+    assert isinstance(together[3], ValueError)

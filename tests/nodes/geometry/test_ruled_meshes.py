@@ -10,11 +10,14 @@ import pytest
 
 from torsal.app.headless import run_file
 from torsal.nodes.geometry import ruled_meshes
+from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.curves import Line
+from torsal.nodes.geometry.curves.conics import Circle
 from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.ruled_meshes import ruled_mesh_arrays
 from torsal.nodes.geometry.surface_base import DEGENERATE_RATIO, grid_triangles, uv_grid
+from torsal.nodes.geometry.vectors import Plane
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "torsal" / "resources" / "examples"
 
@@ -59,3 +62,14 @@ def test_other_surfaces_among_them_are_meshed_their_own_way_in_their_place(strip
 
 def test_a_single_surface_between_rails_is_meshed_alone(strips):
     assert_drawn_as_evaluated(strips[:1], ruled_mesh_arrays(strips[:1], 33, 2), 33, 2)
+
+
+def test_strips_on_closed_curves_through_their_seams_are_drawn_as_each_evaluates_itself(strips):
+    low = Circle(Plane.from_normal([0, 0, 0], [0, 0, 1]), 2.0)
+    high = Circle(Plane.from_normal([0, 0, 1], [0, 0, 1]), 1.5)
+    # B's parameters run on through its seam (0.95 → 0.1), A's do not
+    rings = [ruled_between(low, [0.0, 0.2, 0.4, 0.6], high, [0.8, 0.95, 0.1, 0.3]),
+             ruled_between(low, [0.5, 0.7, 0.9], high, [0.5, 0.6, 0.8])]
+    assert all(ruled_meshes._together(s) for s in rings)
+    mixed = [*rings, *strips[:3]]
+    assert_drawn_as_evaluated(mixed, ruled_mesh_arrays(mixed, 33, 2), 33, 2)

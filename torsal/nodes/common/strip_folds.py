@@ -68,6 +68,25 @@ def fold_report(
     return FoldReport(message, points, len(sharp_rows), len(crossed))
 
 
+def fold_reports(
+    strips: list[tuple[np.ndarray, np.ndarray, np.ndarray, float, np.ndarray | None, Crossings]],
+) -> list[FoldReport]:
+    """:func:`fold_report` of every strip ``(starts, ends, crease_angle, sharp, origin,
+    crossed)``: the strips that neither crease by more than their ``sharp`` nor cross
+    themselves told at once (their report says nothing), the others reported one by one."""
+    if not strips:
+        return []
+    counts = [len(strip[2]) for strip in strips]
+    angle = np.concatenate([np.asarray(strip[2], dtype=float).reshape(-1) for strip in strips])
+    sharp = np.repeat([strip[3] for strip in strips], counts)
+    creased = (angle > sharp).tolist()
+    bounds = np.cumsum([0, *counts]).tolist()
+    return [
+        fold_report(*strip) if len(strip[5]) or any(creased[low:high]) else FoldReport(None, [], 0, 0)
+        for strip, low, high in zip(strips, bounds[:-1], bounds[1:], strict=True)
+    ]
+
+
 def strips_crossings(strips: list[tuple[np.ndarray, np.ndarray]]) -> list[Crossings | None]:
     """The :func:`crossings` of every strip ``(starts, ends)`` whose ends are all finite (at
     once, :func:`crossings_all`); None for the others (they make no strip)."""

@@ -15,6 +15,7 @@ recomputed from the output rulings and found within the tolerance.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from contextlib import suppress
 from dataclasses import dataclass, field, replace
 
@@ -24,7 +25,7 @@ from numpy.typing import ArrayLike
 from torsal.engine.node import Node, NodeWarning
 from torsal.nodes.geometry.array_types import BoolArray, FloatArray
 from torsal.nodes.geometry.curve_base import Curve
-from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.curve_rail import ruled_between, ruled_between_all
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.warp import curve_warp, warp_angles, warp_of_rulings
@@ -201,10 +202,73 @@ def curve_strip_outputs(
     messages = outputs.messages
     if claimed is not None:
         refused = np.asarray(claimed, dtype=bool) & ~valid & ~outputs.undefined
-        if refused.any():
-            messages += (
-                f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
-                f"{tolerance:g} rad (largest {float(w[refused].max()):.3g} rad, first: ruling "
-                f"{int(np.argmax(refused))}): they are marked Valid = false",
-            )
+        messages += _refused_message(refused, w, tolerance)
     return replace(outputs, valid=valid.tolist(), messages=messages)
+
+
+#: One strip of :func:`curve_strips_outputs`: CurveA, CurveB, s, t, starts, ends, the
+#: tolerance, what the solver claimed valid (or None), the recomputed warp and its Valid.
+CurveStrip = tuple[Curve, Curve, FloatArray, FloatArray, FloatArray, FloatArray, float, BoolArray | None,
+                   FloatArray, BoolArray]
+
+
+def curve_strips_outputs(
+    strips: Sequence[CurveStrip], source: str = "CurveA and CurveB"
+) -> list[StripOutputs | NodeWarning]:
+    """:func:`curve_strip_outputs` of every strip of ``strips``, each with its recomputed
+    warp and Valid, whose rulings are finite and two or more (the caller has checked what
+    :func:`strip_outputs` checks): their Surfaces' rails fitted together
+    (:func:`~torsal.nodes.geometry.curve_rail.ruled_between_all`), their lines made from
+    one copy of all their ends, the NaN warps and the refused rulings found at once. Each
+    strip's outputs are the ones it gets alone; a strip refused (no surface through its
+    rulings) gets the NodeWarning in its place."""
+    if not strips:
+        return []
+    on_curves = ruled_between_all([(a, s, b, t, (starts, ends)) for a, b, s, t, starts, ends, *_ in strips])
+    counts = [len(strip[4]) for strip in strips]
+    bounds = np.zeros(len(strips) + 1, dtype=np.int64)
+    np.cumsum(counts, out=bounds[1:])
+    starts = np.concatenate([strip[4] for strip in strips])
+    ends = np.concatenate([strip[5] for strip in strips])
+    warp = np.concatenate([strip[8] for strip in strips])
+    valid = np.concatenate([strip[9] for strip in strips])
+    undefined = np.isnan(warp)
+    lines = _lines(starts, ends)  # (one copy of all ends; each line keeps a view of its rows)
+    claimed = [strip[7] for strip in strips]
+    # the rulings the solver accepted that the recomputation rejects, of the strips that say
+    refused = np.zeros(len(warp), dtype=bool)
+    for claim, low, high in zip(claimed, bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
+        if claim is not None:
+            refused[low:high] = claim
+    refused &= ~valid & ~undefined
+    news = np.logical_or.reduceat(refused | undefined, bounds[:-1]).tolist()  # (no strip is empty)
+    made: list[StripOutputs | NodeWarning] = []
+    for k, (strip, surface) in enumerate(zip(strips, on_curves, strict=True)):
+        low, high = int(bounds[k]), int(bounds[k + 1])
+        if isinstance(surface, ValueError):  # the loft through the rulings
+            try:
+                surface = _loft(strip[4], strip[5], source)
+            except NodeWarning as exc:
+                made.append(exc)
+                continue
+        w = warp[low:high]
+        messages: tuple[str, ...] = ()
+        if news[k]:
+            message = _undefined(w)[1]
+            messages = (message,) if message else ()
+            messages += _refused_message(refused[low:high], w, strip[6])
+        made.append(StripOutputs(surface, lines[low:high], w.tolist(), valid[low:high].tolist(), messages,
+                                 undefined[low:high]))
+    return made
+
+
+def _refused_message(refused: BoolArray, warp: FloatArray, tolerance: float) -> tuple[str, ...]:
+    """The message counting the rulings the solver accepted that the recomputation
+    rejects (``refused``), if there are any."""
+    if not refused.any():
+        return ()
+    return (
+        f"{int(refused.sum())} rulings the solver accepted have a recomputed warp above "
+        f"{tolerance:g} rad (largest {float(warp[refused].max()):.3g} rad, first: ruling "
+        f"{int(np.argmax(refused))}): they are marked Valid = false",
+    )

@@ -14,8 +14,13 @@ from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
-from torsal.nodes.common.strip_folds import fold_report, strips_crossings
-from torsal.nodes.common.strip_outputs import WARP_HELP, curve_strip_outputs
+from torsal.nodes.common.strip_folds import FoldReport, fold_report, fold_reports, strips_crossings
+from torsal.nodes.common.strip_outputs import (
+    WARP_HELP,
+    StripOutputs,
+    curve_strip_outputs,
+    curve_strips_outputs,
+)
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
@@ -308,12 +313,24 @@ class RulingDevelopable(Node):
                 for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok
             ]))
             kinds = [next(judged) if ok else None for ok in whole]
-        crossed = iter(strips_crossings([(r.starts, r.ends) for _, r in made]))
         # which rulings are within WarpTolerance, and the tips, of the strips whose rulings make one
         checked = iter(_valid_and_tips(
             [(row, r, warp) for (row, r), warp, ok in zip(made, warps, whole, strict=True) if ok]))
         checks = [next(checked) if ok else None for ok in whole]
-        warps_and_kinds = iter(zip(warps, kinds, checks, strict=True))
+        # the Surface, Rulings and WarpAngles of those strips, made together
+        outs = iter(curve_strips_outputs([
+            (row.a, row.b, r.s, r.t, r.starts, r.ends, row.tolerance, r.valid, warp, check[0])
+            for (row, r), warp, ok, check in zip(made, warps, whole, checks, strict=True) if ok
+        ]))
+        strips = [next(outs) if ok else None for ok in whole]
+        crossed = strips_crossings([(r.starts, r.ends) for _, r in made])
+        # where those strips fold (each strip's report alone where it has one)
+        reports = iter(fold_reports([
+            (r.starts, r.ends, kind.crease_angle, row.crease_angle, row.frame.origin, crossing)
+            for (row, r), kind, crossing in zip(made, kinds, crossed, strict=True) if kind is not None
+        ]))
+        folds = [None if kind is None else next(reports) for kind in kinds]
+        per_strip = iter(zip(warps, kinds, checks, strips, crossed, folds, strict=True))
         solved = iter(results)
         outputs: list[Any] = []
         for row in rows:
@@ -324,8 +341,11 @@ class RulingDevelopable(Node):
             result = next(solved)
             if isinstance(result, ValueError):
                 raise NodeError(sentence(result))
+            warp, kind, check, strip, crossing, fold = next(per_strip)
             try:
-                outputs.append(self._outputs(row, result, *next(warps_and_kinds), next(crossed)))
+                if isinstance(strip, NodeWarning):
+                    raise strip
+                outputs.append(self._outputs(row, result, warp, kind, check, crossing, strip, fold))
             except NodeWarning as exc:
                 self.refuse_row(exc)
                 outputs.append(None)
@@ -341,11 +361,14 @@ class RulingDevelopable(Node):
         kinds: RulingKinds | None = None,
         checks: tuple[np.ndarray, np.ndarray] | None = None,
         crossed: Crossings | None = None,
+        strip: StripOutputs | None = None,
+        folds: FoldReport | None = None,
     ) -> tuple[Any, list[Any], list[float], list[bool], list[str], float, list[Any]]:
         """The outputs of one strip from the kernel's result (and its recomputed ``warp``, its
         rulings' ``kinds``, which of them are within WarpTolerance and its tips
-        (:func:`_valid_and_tips`) and its self-crossings, where they are at hand), and what
-        the node says of it."""
+        (:func:`_valid_and_tips`), its self-crossings, its Surface, Rulings and WarpAngles
+        (:func:`curve_strips_outputs`) and its folds (:func:`fold_reports`), where they are
+        at hand), and what the node says of it."""
         valid, tip = checks if checks is not None else (None, None)
         a, b, n, tol, limit, sharp, frame, reversed_b = row
         if reversed_b:
@@ -353,10 +376,11 @@ class RulingDevelopable(Node):
                         "as a loft aligns its curves")
         # Valid from the warp recomputed from the output rulings and the curves' tangents
         with rounding_of(frame.origin):
-            strip = curve_strip_outputs(
-                a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp,
-                valid=valid,
-            )
+            if strip is None:
+                strip = curve_strip_outputs(
+                    a, b, result.s, result.t, result.starts, result.ends, tol, result.valid, warp=warp,
+                    valid=valid,
+                )
             if kinds is None:
                 kinds = ruling_kinds(a, b, result.s, result.t, result.starts, result.ends, tol, strip.warp)
         self.check_cancelled()
@@ -382,7 +406,8 @@ class RulingDevelopable(Node):
                 f"{len(result.s)} rulings: {n + 1} from the stations and {torsal_fans} in fans through "
                 "single points (the flat triangles of the strip)"
             )
-        folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
+        if folds is None:
+            folds = fold_report(result.starts, result.ends, kinds.crease_angle, sharp, frame.origin, crossed)
         if folds.message:
             self.warn(folds.message)
         surface, rulings = strip.surface, strip.rulings

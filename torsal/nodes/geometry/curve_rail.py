@@ -31,7 +31,7 @@ parameters whose steps are made once per ruling count.
 
 from __future__ import annotations
 
-import math
+from collections.abc import Sequence
 from functools import lru_cache
 
 import numpy as np
@@ -40,7 +40,6 @@ from numpy.typing import ArrayLike
 from .curve_base import Curve, FloatArray
 from .curves import Line, NurbsCurve, Polyline
 from .ruled import RuledSurface, _uniform
-from .vec_ops import extent
 
 #: Curves whose points do not depend on which other parameters, or which derivatives, are
 #: evaluated with them (each point is computed alone, the same way at every order), so a
@@ -68,20 +67,28 @@ class Pace:
     Monotone data give a monotone interpolant; a run of equal values stays flat.
     """
 
+    #: the coefficients (c3, c2, c1, c0) of the interpolants fitted with this one, joined
+    #: (:meth:`_many`), and where this one's start among them
+    joined: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    first: int = 0
+
     def __init__(self, u: FloatArray, p: FloatArray) -> None:
-        c3, c2, c1, c0 = _pchip(_Steps(u), p[None], (p[1:] - p[:-1])[None])
-        self.u, self.c3, self.c2, self.c1, self.c0 = u, c3[0], c2[0], c1[0], c0[0]
+        self.u = u
+        self.c3, self.c2, self.c1, self.c0 = self.joined = _pchip(_Pieces([_Steps(u)]), p, p[1:] - p[:-1])
 
     @classmethod
-    def _rows(cls, steps: _Steps, p: FloatArray, dp: FloatArray) -> list[Pace]:
-        """One interpolant per row of ``p`` ``(k, n)``, all at the same parameters
-        (``steps``; chords ``dp``), fitted in one pass: the rows' coefficients are the ones
-        each would get alone (every step is elementwise)."""
-        c3, c2, c1, c0 = _pchip(steps, p, dp)
+    def _many(cls, pieces: _Pieces, p: FloatArray, dp: FloatArray) -> list[Pace]:
+        """One interpolant per run of ``pieces`` (points ``p``, chords ``dp``, run after
+        run), fitted in one pass: each run's coefficients are the ones it gets alone
+        (every step is elementwise). Their arrays are views of the joined ones."""
+        c3, c2, c1, c0 = joined = _pchip(pieces, p, dp)
         paces = []
-        for row in range(len(p)):
+        for steps, low, high in zip(pieces.steps, pieces.offsets[:-1].tolist(), pieces.offsets[1:].tolist(),
+                                    strict=True):
             pace = cls.__new__(cls)
-            pace.u, pace.c3, pace.c2, pace.c1, pace.c0 = steps.u, c3[row], c2[row], c1[row], c0[row]
+            pace.u = steps.u
+            pace.c3, pace.c2, pace.c1, pace.c0 = c3[low:high], c2[low:high], c1[low:high], c0[low:high]
+            pace.joined, pace.first = joined, low
             paces.append(pace)
         return paces
 
@@ -108,7 +115,7 @@ class Pace:
 class _Steps:
     """What PCHIP takes of the parameters ``u`` alone, the same for every interpolant at
     them: the steps ``h`` and, for three or more points, the weights of the inner slopes'
-    harmonic mean and the end steps."""
+    harmonic mean."""
 
     def __init__(self, u: FloatArray) -> None:
         h = u[1:] - u[:-1]
@@ -117,7 +124,6 @@ class _Steps:
         if len(u) > 2:
             self.w1, self.w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
             self.w_sum = self.w1 + self.w2
-            self.first, self.last = h[:2].tolist(), h[-1:-3:-1].tolist()  # (h0, h1), (h_last, h_next)
 
     @staticmethod
     @lru_cache(maxsize=64)
@@ -133,47 +139,70 @@ class _Steps:
         return steps
 
 
+class _Pieces:
+    """Several runs of points one after another in flat arrays, run ``r`` at the
+    parameters of ``steps[r]`` (two or more points): where each run's pieces (the spans
+    between consecutive points) and inner points lie, for :func:`_pchip`."""
+
+    def __init__(self, steps: Sequence[_Steps]) -> None:
+        self.steps = steps
+        sizes = np.array([len(s.h) for s in steps], dtype=np.int64)  # pieces per run
+        self.offsets = np.zeros(len(steps) + 1, dtype=np.int64)  # run r's: offsets[r]:offsets[r + 1]
+        np.cumsum(sizes, out=self.offsets[1:])
+        run = np.repeat(np.arange(len(steps)), sizes)
+        # each piece's first point among the points (run r's points start at offsets[r] + r)
+        self.left = np.arange(self.offsets[-1]) + run
+        self.h = np.concatenate([s.h for s in steps] or [np.empty(0)])
+        # the pieces followed by one of the same run: an inner point lies between them
+        self.before = np.flatnonzero(run[1:] == run[:-1])
+        self.inner = self.left[self.before] + 1
+        longer = [s for s in steps if len(s.h) > 1]  # (three points or more: inner points)
+        self.w1 = np.concatenate([s.w1 for s in longer] or [np.empty(0)])
+        self.w2 = np.concatenate([s.w2 for s in longer] or [np.empty(0)])
+        self.w_sum = np.concatenate([s.w_sum for s in longer] or [np.empty(0)])
+        first, stop = self.offsets[:-1], self.offsets[1:]
+        self.short = first[sizes == 1]  # the one piece of each two-point run
+        self.first, self.last = first[sizes > 1], stop[sizes > 1] - 1  # the longer runs' end pieces
+
+
 def _pchip(
-    steps: _Steps, p: FloatArray, dp: FloatArray
+    pieces: _Pieces, p: FloatArray, dp: FloatArray
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """The PCHIP cubics' coefficients (c3, c2, c1, c0) on the pieces between the points of
-    each row of ``p`` ``(k, n)`` (one interpolant per row, all at the parameters of
-    ``steps``), whose chords are ``dp = p[:, 1:] − p[:, :-1]``: see :class:`Pace`."""
-    h = steps.h
+    """The PCHIP cubics' coefficients (c3, c2, c1, c0) on ``pieces``, the flat points ``p``
+    (run after run), whose chords (point after point within each run) are ``dp``: see
+    :class:`Pace`."""
+    h = pieces.h
     m = dp / h
-    slopes = np.empty(p.shape)
-    if p.shape[1] == 2:
-        slopes[:] = m
-    else:
+    slopes = np.empty(len(p))
+    # a run of two points: both slopes are its chord's
+    short = pieces.short
+    slopes[pieces.left[short]] = m[short]
+    slopes[pieces.left[short] + 1] = m[short]
+    if len(pieces.first):
+        before = pieces.before  # the piece before each inner point (the one after is next)
+        m0, m1 = m[before], m[before + 1]
         with np.errstate(divide="ignore", invalid="ignore"):
-            harmonic = steps.w_sum / (steps.w1 / m[:, :-1] + steps.w2 / m[:, 1:])
-        sign = np.sign(m)
+            harmonic = pieces.w_sum / (pieces.w1 / m0 + pieces.w2 / m1)
         # 0 where the neighbouring chords' slopes differ in sign or one is 0 (or NaN)
-        slopes[:, 1:-1] = np.where(sign[:, 1:] * sign[:, :-1] > 0, harmonic, 0.0)
-        (h0, h1), (h_last, h_next) = steps.first, steps.last
-        for row, chords in zip(slopes, m.tolist(), strict=True):
-            row[0] = _end_slope(h0, h1, chords[0], chords[1])
-            row[-1] = _end_slope(h_last, h_next, chords[-1], chords[-2])
+        slopes[pieces.inner] = np.where(np.sign(m1) * np.sign(m0) > 0, harmonic, 0.0)
+        first, last = pieces.first, pieces.last
+        slopes[pieces.left[first]] = _end_slopes(h[first], h[first + 1], m[first], m[first + 1])
+        slopes[pieces.left[last] + 1] = _end_slopes(h[last], h[last - 1], m[last], m[last - 1])
     # the cubic on [u_i, u_i+1] in z = u − u_i: ((c3·z + c2)·z + c1)·z + c0
-    starts = slopes[:, :-1]
-    bend = (starts + slopes[:, 1:] - 2.0 * m) / h
-    return bend / h, (m - starts) / h - bend, starts, p[:, :-1]
+    starts = slopes[pieces.left]
+    bend = (starts + slopes[pieces.left + 1] - 2.0 * m) / h
+    return bend / h, (m - starts) / h - bend, starts, p[pieces.left]
 
 
-def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
-    """PCHIP's slope at an end, from the end step and chord slope (``h0``, ``m0``) and the
-    next ones (``h1``, ``m1``): the one-sided three-point estimate, kept monotone."""
+def _end_slopes(h0: FloatArray, h1: FloatArray, m0: FloatArray, m1: FloatArray) -> FloatArray:
+    """PCHIP's slope at the end of each run, from the end step and chord slope (``h0``,
+    ``m0``) and the next ones (``h1``, ``m1``): the one-sided three-point estimate, kept
+    monotone (0 where its sign is not the end chord's, NaN included; 3× the end chord's
+    slope where it would overshoot)."""
     d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-    if _sign(d) != _sign(m0):
-        return 0.0
-    if _sign(m0) != _sign(m1) and abs(d) > 3.0 * abs(m0):
-        return 3.0 * m0
-    return d
-
-
-def _sign(x: float) -> float:
-    """``np.sign`` of a float: −1, 0 or 1, and NaN (unequal to every sign) for NaN."""
-    return math.nan if x != x else (x > 0) - (x < 0)
+    sign0 = np.sign(m0)
+    over = (sign0 != np.sign(m1)) & (np.abs(d) > 3.0 * np.abs(m0))
+    return np.where(np.sign(d) != sign0, 0.0, np.where(over, 3.0 * m0, d))
 
 
 _UNPACED = "a curve rail needs increasing u and non-decreasing curve parameters"
@@ -205,25 +234,49 @@ class CurveRail(Curve):
         self.closed = False  # the rail covers the stretch of the curve between its rulings
 
     @classmethod
-    def _pair(
-        cls, curve_a: Curve, s: FloatArray, curve_b: Curve, t: FloatArray, steps: _Steps
-    ) -> tuple[tuple[CurveRail, CurveRail], bool]:
-        """``CurveRail(curve_a, u, s)`` and ``CurveRail(curve_b, u, t)`` (``s``, ``t`` and
-        ``u = steps.u`` ``(n,)`` arrays, ``n`` ≥ 2), their checks and paces made in one pass
-        for both; and whether both rails' parameters are non-decreasing numbers (no NaN),
-        which the checks alone do not say."""
-        rows = [unwrap_cyclic(q) if curve.closed else q for curve, q in ((curve_a, s), (curve_b, t))]
-        p = np.concatenate(rows).reshape(2, -1)
-        dp = p[:, 1:] - p[:, :-1]
-        rising = bool(dp.min() >= 0.0)  # (false where a NaN is)
-        if not steps.increasing or (not rising and (dp < 0.0).any()):  # (steps: _Steps.uniform)
-            raise ValueError(_UNPACED)
-        rails = []
-        for curve, row, pace in zip((curve_a, curve_b), p, Pace._rows(steps, p, dp), strict=True):
-            rail = cls.__new__(cls)
-            rail._set(curve, steps.u, row, pace)
-            rails.append(rail)
-        return (rails[0], rails[1]), rising
+    def _pairs(
+        cls, jobs: Sequence[tuple[Curve, FloatArray, Curve, FloatArray]]
+    ) -> list[tuple[tuple[CurveRail, CurveRail], bool] | ValueError]:
+        """``CurveRail(curve_a, u, s)`` and ``CurveRail(curve_b, u, t)`` of every ``(curve_a,
+        s, curve_b, t)`` of ``jobs`` (``s`` and ``t`` ``(n,)`` arrays, ``n`` ≥ 2, at the
+        evenly spaced ``u = _Steps.uniform(n).u``), their checks and paces made in one pass
+        for all; and whether both rails' parameters are non-decreasing numbers (no NaN),
+        which the checks alone do not say. A job whose parameters run back gets the
+        ValueError :class:`CurveRail` raises."""
+        if not jobs:
+            return []
+        rows = [unwrap_cyclic(q) if curve.closed else q
+                for a, s, b, t in jobs for curve, q in ((a, s), (b, t))]
+        pieces = _Pieces([_Steps.uniform(len(q)) for q in rows])
+        p = np.concatenate(rows)
+        dp = p[pieces.left + 1] - p[pieces.left]
+        pairs = pieces.offsets[:-1:2]  # (each job's two rows' pieces, one after the other)
+        rising = (np.minimum.reduceat(dp, pairs) >= 0.0).tolist()  # (false where a NaN is)
+        backward = np.logical_or.reduceat(dp < 0.0, pairs).tolist()
+        increasing = [steps.increasing for steps in pieces.steps[::2]]  # (steps: _Steps.uniform)
+        ok = [up and not back for up, back in zip(increasing, backward, strict=True)]
+        if not all(ok):  # (the paces of those alone)
+            kept = [q for job, good in enumerate(ok) if good for q in rows[2 * job : 2 * job + 2]]
+            pieces = _Pieces([_Steps.uniform(len(q)) for q in kept])
+            p = np.concatenate(kept or [np.empty(0)])
+            dp = p[pieces.left + 1] - p[pieces.left]
+        paces = iter(Pace._many(pieces, p, dp))
+        rows_of = iter(pieces.steps)
+        low = 0
+        made: list[tuple[tuple[CurveRail, CurveRail], bool] | ValueError] = []
+        for (curve_a, _, curve_b, _), good, up in zip(jobs, ok, rising, strict=True):
+            if not good:
+                made.append(ValueError(_UNPACED))
+                continue
+            rails = []
+            for curve in (curve_a, curve_b):
+                u = next(rows_of).u
+                rail = cls.__new__(cls)
+                rail._set(curve, u, p[low : low + len(u)], next(paces))
+                low += len(u)
+                rails.append(rail)
+            made.append(((rails[0], rails[1]), up))
+        return made
 
     def _pace_derivatives(self, u: FloatArray, order: int) -> list[FloatArray]:
         return self._pace.derivatives(u, order)
@@ -322,39 +375,89 @@ def ruled_between(
     >>> round(strip.area(), 12), strip.point_at(0.25, 0.0).round(12).tolist()
     (2.0, [0.5, 0.0, 0.0])
     """
-    s = np.asarray(s, dtype=float)
-    t = np.asarray(t, dtype=float)
-    n = len(s)
-    if n < 2 or len(t) != n:
-        raise ValueError("a strip needs at least two rulings, one s and one t each")
-    if s.shape != (n,) or t.shape != (n,):
-        raise ValueError(_UNPACED)
-    steps = _Steps.uniform(n)  # at u = np.linspace(0, 1, n), bit for bit (read-only, shared)
-    u = steps.u
-    (rail_a, rail_b), rising = CurveRail._pair(curve_a, s, curve_b, t, steps)
-    lines = np.empty((n, 2, 3))
-    for side, (curve, rail, given) in enumerate(((curve_a, rail_a, s), (curve_b, rail_b, t))):
-        if points is None or not isinstance(curve, POINTWISE):
-            lines[:, side] = curve.point_at(rail._wrapped(rail.curve_params))
+    surface = ruled_between_all([(curve_a, s, curve_b, t, points)])[0]
+    if isinstance(surface, ValueError):
+        raise surface
+    return surface
+
+
+def ruled_between_all(
+    jobs: Sequence[tuple[Curve, ArrayLike, Curve, ArrayLike, tuple[FloatArray, FloatArray] | None]],
+) -> list[RuledSurface | ValueError]:
+    """:func:`ruled_between` of every ``(curve_a, s, curve_b, t, points)`` of ``jobs``,
+    the rails' paces of all fitted in one pass (:meth:`CurveRail._pairs`) and their ends
+    compared at once: each surface is the one it gets alone, bit for bit; a job
+    :func:`ruled_between` refuses gets its ValueError in its place."""
+    out: list[RuledSurface | ValueError | None] = []
+    fit = []  # (where in out, the job with s and t as arrays)
+    for curve_a, s, curve_b, t, points in jobs:
+        s = np.asarray(s, dtype=float)
+        t = np.asarray(t, dtype=float)
+        n = len(s)
+        if n < 2 or len(t) != n:
+            out.append(ValueError("a strip needs at least two rulings, one s and one t each"))
             continue
-        p = rail.curve_params
-        # the rail runs through the given points where its parameters are the given ones:
-        # rising numbers in [0, 1] on an open curve are (nothing to unwrap or clip)
-        if not (rising and not curve.closed and p[0] >= 0.0 and p[-1] <= 1.0):
-            at = rail._wrapped(p)
-            if not np.array_equal(at, given):
-                lines[:, side] = curve.point_at(at)
+        if s.shape != (n,) or t.shape != (n,):
+            out.append(ValueError(_UNPACED))
+            continue
+        fit.append((len(out), (curve_a, s, curve_b, t, points)))
+        out.append(None)
+    placed = []  # (where in out, the job, its rails)
+    for (index, job), pair in zip(fit, CurveRail._pairs([job[:4] for _, job in fit]), strict=True):
+        if isinstance(pair, ValueError):
+            out[index] = pair
+        else:
+            placed.append((index, job, pair))
+    made = _on_rails([(job, pair) for _, job, pair in placed])
+    for (index, _, _), surface in zip(placed, made, strict=True):
+        out[index] = surface
+    return out  # type: ignore[return-value]  (every job's is filled in)
+
+
+def _on_rails(
+    fit: list[tuple[tuple[Curve, FloatArray, Curve, FloatArray, tuple[FloatArray, FloatArray] | None],
+                    tuple[tuple[CurveRail, CurveRail], bool]]],
+) -> list[RuledSurface]:
+    """The surfaces of :func:`ruled_between_all` on their ``(rails, rising)``: their ruling
+    lines (one array for all, each surface a view of its rows) and whether they are closed."""
+    if not fit:
+        return []
+    offsets = np.zeros(len(fit) + 1, dtype=np.int64)
+    np.cumsum([len(job[1]) for job, _ in fit], out=offsets[1:])
+    lines = np.empty((int(offsets[-1]), 2, 3))
+    bounds = offsets.tolist()
+    for ((curve_a, s, curve_b, t, points), ((rail_a, rail_b), rising)), low, high in zip(
+        fit, bounds[:-1], bounds[1:], strict=True
+    ):
+        for side, (curve, rail, given) in enumerate(((curve_a, rail_a, s), (curve_b, rail_b, t))):
+            if points is None or not isinstance(curve, POINTWISE):
+                lines[low:high, side] = curve.point_at(rail._wrapped(rail.curve_params))
                 continue
-        lines[:, side] = points[side]
+            p = rail.curve_params
+            # the rail runs through the given points where its parameters are the given ones:
+            # rising numbers in [0, 1] on an open curve are (nothing to unwrap or clip)
+            if not (rising and not curve.closed and p[0] >= 0.0 and p[-1] <= 1.0):
+                at = rail._wrapped(p)
+                if not np.array_equal(at, given):
+                    lines[low:high, side] = curve.point_at(at)
+                    continue
+            lines[low:high, side] = points[side]
     # the rails' ends are the first and last rulings' (to rounding): closed round u when
     # both rails return to their start, as RuledSurface judges it from its rails' ends,
     # without evaluating the rails again (a strip's rails are built on every re-solve)
-    ends = lines[:: n - 1].reshape(4, 3)  # A(s0), B(t0), A(s_last), B(t_last)
-    size = float(extent(ends).max()) or 1.0
-    gap_a, gap_b = np.abs(ends[:2] - ends[2:]).max(axis=1).tolist()
-    closed_u = gap_a <= 1e-12 * size and gap_b <= 1e-12 * size
-    surface = RuledSurface.__new__(RuledSurface)
-    surface._setup(rail_a, rail_b, closed_u)
-    surface.ruling_parameters = u
-    surface.ruling_lines = lines
-    return surface
+    # A(s0), B(t0), A(s_last), B(t_last) of each surface
+    ends = np.concatenate([lines[offsets[:-1]], lines[offsets[1:] - 1]], axis=1)
+    size = (ends.max(axis=1) - ends.min(axis=1)).max(axis=1)
+    size = np.where(size == 0.0, 1.0, size)
+    gaps = np.abs(ends[:, :2] - ends[:, 2:]).max(axis=2)
+    closed = (gaps <= (1e-12 * size)[:, None]).all(axis=1).tolist()
+    surfaces = []
+    for (_, ((rail_a, rail_b), _)), closed_u, low, high in zip(
+        fit, closed, bounds[:-1], bounds[1:], strict=True
+    ):
+        surface = RuledSurface.__new__(RuledSurface)
+        surface._setup(rail_a, rail_b, closed_u)
+        surface.ruling_parameters = rail_a.params
+        surface.ruling_lines = lines[low:high]
+        surfaces.append(surface)
+    return surfaces

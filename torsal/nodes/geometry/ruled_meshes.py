@@ -20,6 +20,7 @@ import numpy as np
 
 from .curve_base import FloatArray
 from .curve_rail import POINTWISE, CurveRail
+from .curves.shared_knots import derivatives_together
 from .ruled import RuledSurface
 from .surface_base import DEGENERATE_RATIO, Surface, _grid_triangles, _uv_grid, broadcast_uv
 from .vec_ops import cross, dot
@@ -65,9 +66,13 @@ def _joint(surfaces: list[RuledSurface], nu: int, nv: int) -> list[Mesh]:
     normal = cross(su, sv)
     length = np.sqrt(dot(normal, normal))
     bad = ~(length > DEGENERATE_RATIO * (dot(su, su) + dot(sv, sv)))
-    if bad.any():
-        _, su_in, sv_in = _derivatives(rails, origins, offsets, *broadcast_uv(grid[2], grid[3]))
-        retaken = cross(su_in[bad], sv_in[bad])
+    if bad.any():  # (the surfaces that have such points, at the grid points some of them have)
+        some, where = np.flatnonzero(bad.any(axis=1)), np.flatnonzero(bad.any(axis=0))
+        inwards = [rails[k] for k in some] + [rails[len(surfaces) + k] for k in some]
+        s, t = broadcast_uv(grid[2], grid[3])
+        _, su_in, sv_in = _derivatives(inwards, origins[some], offsets[some], s[where], t[where])
+        bad_in = bad[some][:, where]
+        retaken = cross(su_in[bad_in], sv_in[bad_in])
         normal[bad] = retaken
         length[bad] = np.sqrt(dot(retaken, retaken))
     found = length > 0.0
@@ -83,19 +88,31 @@ def _derivatives(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """:meth:`RuledSurface.derivatives` (order 1) of every surface at ``(s, t)``, stacked
     ``(surfaces, len(s), 3)``: ``rails`` are the surfaces' rails A, then their rails B."""
-    at, speed = _paces(rails, s)
+    # the rails at each distinct u of the grid (every step is pointwise), then on the grid
+    u, grid = np.unique(s, return_inverse=True)
+    at, speed = _paces(rails, u)
     # each curve evaluated once, at the parameters of every rail on it
-    values = np.empty((len(rails), len(s), 3))
-    tangents = np.empty((len(rails), len(s), 3))
+    values = np.empty((len(rails), len(u), 3))
+    tangents = np.empty((len(rails), len(u), 3))
     on: dict[int, list[int]] = {}
     for row, rail in enumerate(rails):
         on.setdefault(id(rail.curve), []).append(row)
-    for rows in on.values():
-        rail = rails[rows[0]]
-        ders = rail.curve.local_derivatives(rail._wrapped(at[rows]).reshape(-1), 1)
-        values[rows] = ders[0].reshape(len(rows), len(s), 3)
-        tangents[rows] = ders[1].reshape(len(rows), len(s), 3)
+    groups = list(on.values())
+    curves = [rails[rows[0]].curve for rows in groups]
+    order = np.concatenate(groups)
+    # (CurveRail._wrapped: a closed curve's parameters taken round, an open one's clipped)
+    closed = np.array([rail.curve.closed for rail in rails])
+    wrapped = np.clip(at, 0.0, 1.0)
+    if closed.any():
+        wrapped[closed] = np.mod(at[closed], 1.0)
+    x = wrapped[order].reshape(-1)
+    bounds = np.zeros(len(groups) + 1, dtype=np.int64)
+    np.cumsum([len(rows) * len(u) for rows in groups], out=bounds[1:])
+    ders = derivatives_together(curves, x, bounds, 1, local=True)
+    values[order] = ders[0].reshape(-1, len(u), 3)
+    tangents[order] = ders[1].reshape(-1, len(u), 3)
     tangents *= speed[:, :, None]  # (CurveRail._compose at order 1)
+    values, tangents = values[:, grid], tangents[:, grid]
     count = len(origins)
     da0, da1 = values[:count], tangents[:count]
     db0, db1 = values[count:] + offsets[:, None, :], tangents[count:]
@@ -117,10 +134,13 @@ def _paces(rails: list[CurveRail], u: FloatArray) -> tuple[FloatArray, FloatArra
         knots = paces[0].u
         i = np.minimum(np.maximum(np.searchsorted(knots, u, side="right") - 1, 0), len(knots) - 2)
         z = u - knots[i]
-        c3 = np.array([pace.c3 for pace in paces])[:, i]
-        c2 = np.array([pace.c2 for pace in paces])[:, i]
-        c1 = np.array([pace.c1 for pace in paces])[:, i]
-        c0 = np.array([pace.c0 for pace in paces])[:, i]
+        joined = paces[0].joined
+        if all(pace.joined is joined for pace in paces):  # (fitted together: one gather each)
+            at_i = np.array([pace.first for pace in paces])[:, None] + i
+            c3, c2, c1, c0 = (c[at_i] for c in joined)
+        else:
+            c3, c2, c1, c0 = (np.array([getattr(pace, c) for pace in paces])[:, i]
+                              for c in ("c3", "c2", "c1", "c0"))
         at[rows] = ((c3 * z + c2) * z + c1) * z + c0
         speed[rows] = (3.0 * c3 * z + 2.0 * c2) * z + c1
     return at, speed

@@ -277,3 +277,11 @@ def test_perspective_transform_of_nurbs_is_exact():
     m[3, 3] += -min(0, (curve.control_points @ m[3, :3]).min()) + 0.5  # keep w positive
     t = np.linspace(0, 1, 33)
     assert np.allclose(curve.transformed(m).point_at(t), apply_transform(m, curve.point_at(t)), atol=1e-11)
+
+
+def test_curves_share_a_basis_key_when_their_basis_is_the_same():
+    points = np.array([[0.0, 0, 0], [1, 2, 0], [3, 1, 1], [4, 0, 0]])
+    cubic = NurbsCurve(points, degree=3)
+    assert cubic.basis_key == NurbsCurve(points * 2.0 + 5.0, degree=3).basis_key  # other points
+    assert cubic.basis_key != NurbsCurve(points, degree=2).basis_key  # other degree and knots
+    assert cubic.basis_key != NurbsCurve(points, degree=3, weights=[1, 2, 1, 1]).basis_key  # rational

@@ -10,7 +10,7 @@ import pytest
 
 from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Line, NurbsCurve, Polyline
 from torsal.nodes.geometry.developable.stations import LengthMap, lengths_at, spaced_parameters
-from torsal.nodes.geometry.developable.strip import Steady, gap_lengths_all, set_up
+from torsal.nodes.geometry.developable.strip import Steady, gap_lengths_all, set_up, with_maps_b
 
 
 def _wavy(z: float, phase: float, points: int = 9) -> NurbsCurve:
@@ -88,3 +88,16 @@ def test_stretches_of_b_of_many_strips_found_at_once_are_the_ones_found_alone():
             np.testing.assert_array_equal(lb, lb_alone)
             np.testing.assert_array_equal(lb, alone.map_b.length_at(tb))
             assert tb[0] == low and tb[-1] == max(low, high)  # (a stretch run backwards: its start)
+
+
+def test_an_edge_between_two_strips_is_measured_once_as_its_own_map_would_measure_it():
+    low = NurbsCurve(np.array([[0.0, 0, 0], [1, 0.4, 0], [2, 0, 0.3], [3, 0.2, 0]]), degree=3)
+    middle = NurbsCurve(np.array([[0.0, 1, 0], [1, 1.5, 0.2], [2, 1, 0], [3, 1.3, 0.1]]), degree=3)
+    high = Line([0, 2, 0], [3, 2.5, 0.5])
+    strips = set_up([(low, middle, 8, 0.01), (middle, high, 8, 0.01)], "length", 24)
+    with_maps_b(strips)
+    assert strips[0].map_b is strips[1].map_a  # the middle edge: the second strip's A
+    alone = LengthMap(middle)
+    for name in ("nodes", "lengths", "start_speeds", "end_speeds", "_rise", "_inverse", "_poly"):
+        assert getattr(strips[0].map_b, name).tobytes() == getattr(alone, name).tobytes()
+    assert strips[1].map_b.curve is high

@@ -18,7 +18,7 @@ from tests.support.node_helpers import out, run, texts, tree
 from tests.support.warp_check import shared_both_sides
 from torsal.nodes.developable.ruling_developable import RulingDevelopable
 from torsal.nodes.geometry.developable import ruling_developable
-from torsal.nodes.geometry.developable.closings import zigzag
+from torsal.nodes.geometry.developable.closings import zigzag, zigzag_all
 from torsal.nodes.geometry.developable.fans import fan_share, fan_shares, fan_shares_all, patch_areas
 from torsal.nodes.geometry.unroll import unroll_rulings
 
@@ -126,6 +126,36 @@ def test_zigzag_read_from_the_chains_other_ends_is_the_same_strip(seed):
     ri, rj = zigzag(length_a[-1] - length_a[::-1], length_b[-1] - length_b[::-1])
     na, nb = len(length_a) - 1, len(length_b) - 1
     assert _rulings(i, j) == _rulings(na - ri, nb - rj)
+
+
+def test_pairs_of_chains_stepped_together_get_what_each_gets_alone():
+    rng = np.random.default_rng(7)
+    lengths, points = [], []
+    for k in range(40):  # uneven chains, evenly spaced ones (ties), single points, no length
+        na, nb = int(rng.integers(1, 7)), int(rng.integers(1, 7))
+        if k % 4 == 0:
+            lengths.append((np.cumsum(rng.random(na)), np.cumsum(rng.random(nb))))
+        elif k % 4 == 1:
+            lengths.append((np.arange(na) * 0.3, np.arange(nb) * 0.7))
+        elif k % 4 == 2:
+            lengths.append((np.arange(2) * 1.0, np.arange(3) * 1.0))
+        else:
+            lengths.append((np.zeros(na), np.arange(nb) * 1.0))
+        points.append((rng.random((len(lengths[-1][0]), 3)), rng.random((len(lengths[-1][1]), 3))))
+    asked = []
+
+    def chains(pairs):
+        asked.append(pairs)
+        return [points[k] for k in pairs]
+
+    together = zigzag_all(lengths, chains)
+    assert len(asked) == 1  # the points of the pairs with a tie, asked for once
+    for k, (length, (i, j)) in enumerate(zip(lengths, together, strict=True)):
+        alone_i, alone_j = zigzag(*length, lambda k=k: points[k])
+        assert i.tolist() == alone_i.tolist() and j.tolist() == alone_j.tolist()
+    swapped = [k for k, (i, j) in enumerate(together)
+               if not np.array_equal(np.stack([i, j]), np.stack(zigzag(*lengths[k])))]
+    assert swapped and set(swapped) <= set(asked[0])  # some ties were cut the other way
 
 
 def test_a_tie_is_cut_along_the_quads_shorter_diagonal_whichever_way_the_chains_run():

@@ -116,6 +116,7 @@ class NurbsCurve(Curve):
         self.weights: FloatArray = _unit_weights(len(points)) if weights is None else weights
         self.is_rational: bool = weights is not None
         self.periodic: bool = periodic
+        self._basis_key: tuple[int, bool, bytes] | None = None  # (basis_key, made when asked for)
         count = len(points)
         a, b = self.domain = (float(knots[degree]), float(knots[count]))
         # u = a + (b − a)·t, spared on most curves (u is t: a unit domain changes no bit)
@@ -169,6 +170,15 @@ class NurbsCurve(Curve):
         w = None if weights is None else np.asarray(weights, dtype=float).reshape(-1)
         NurbsCurve._setup(curve, points, w, full, int(degree), periodic)
         return curve
+
+    @property
+    def basis_key(self) -> tuple[int, bool, bytes]:
+        """What the curve's B-spline basis depends on: its degree, whether it is rational
+        and its knots' bits (curves with one key are evaluated together, :mod:`.shared_knots`)."""
+        key = self._basis_key
+        if key is None:
+            key = self._basis_key = (self.degree, self.is_rational, self.knots.tobytes())
+        return key
 
     # -- evaluation -------------------------------------------------------------------
 

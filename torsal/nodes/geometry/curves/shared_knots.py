@@ -91,7 +91,7 @@ def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[list[int]],
         if count <= 0:
             continue
         if _groupable(curve):
-            groups.setdefault((curve.degree, curve.is_rational, curve.knots.tobytes()), []).append(i)
+            groups.setdefault(curve.basis_key, []).append(i)
         else:
             alone.append(i)
     together = []

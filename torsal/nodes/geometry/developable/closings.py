@@ -20,12 +20,14 @@ from __future__ import annotations
 import struct
 from collections.abc import Callable, Iterator, Sequence
 from functools import partial
+from itertools import pairwise
 
 import numpy as np
 
 from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..curve_base import FloatArray
+from ..curves.shared_knots import derivative_each
 from ..vec_ops import flatnonzero, norm
 from .strip import Strip, gap_lengths_all
 
@@ -56,43 +58,109 @@ def zigzag(
     >>> i.tolist(), j.tolist()
     ([0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
     """
-    fa, fb = _fractions(length_a), _fractions(length_b)
-    middles = 0.5 * np.concatenate([fa[1:] + fa[:-1], fb[1:] + fb[:-1]])
+    chains = None if points is None else lambda _: [points()]
+    return zigzag_all([(length_a, length_b)], chains)[0]
+
+
+def zigzag_all(
+    lengths: Sequence[tuple[FloatArray, FloatArray]],
+    points: Callable[[list[int]], list[tuple[FloatArray, FloatArray]]] | None = None,
+) -> list[tuple[IntArray, IntArray]]:
+    """:func:`zigzag` of every pair of chains ``(length_a, length_b)`` (one point or more
+    each) of ``lengths``, all steps of all pairs ordered in one sort: each pair gets what it
+    gets alone. ``points(pairs)`` gives the chains' points ``(points_a, points_b)`` of the
+    pairs ``pairs`` (those with a tie to cut along a diagonal), asked for once."""
+    ij, bounds = _zigzag_rows(lengths, points)
+    return [(ij[0, low:high], ij[1, low:high]) for low, high in pairwise(bounds.tolist())]
+
+
+def _zigzag_rows(
+    lengths: Sequence[tuple[FloatArray, FloatArray]],
+    points: Callable[[list[int]], list[tuple[FloatArray, FloatArray]]] | None,
+) -> tuple[IntArray, IntArray]:
+    """:func:`zigzag_all` as one ``(2, rows)`` array of every pair's ``(i, j)``, pair after
+    pair, and where each pair's rows start (and the last one ends)."""
+    count = len(lengths)
+    fa, bounds_a = _fractions_all([a for a, _ in lengths])
+    fb, bounds_b = _fractions_all([b for _, b in lengths])
+    # the edges' middles, all of A's (pair after pair) then all of B's
+    left_a, left_b = _lefts(bounds_a), _lefts(bounds_b)
+    middles = 0.5 * np.concatenate([fa[left_a + 1] + fa[left_a], fb[left_b + 1] + fb[left_b]])
     # middles equal to TIE count as a tie: chains evenly spaced along both curves meet at
     # equal fractions that rounding alone would otherwise order, so that the triangles of a
     # model moved far from the origin flipped diagonals
     keys = np.round(middles / TIE)
-    along_b = np.arange(len(keys)) >= len(fa) - 1
-    # step along whichever edge's middle comes first, A's before B's at a tie
-    order = np.lexsort((along_b, keys))
+    edges_a, edges_b = np.diff(bounds_a) - 1, np.diff(bounds_b) - 1
+    pair = np.concatenate([np.repeat(np.arange(count), edges_a), np.repeat(np.arange(count), edges_b)])
+    along_b = np.arange(len(keys)) >= len(left_a)
+    # step along whichever edge's middle comes first, A's before B's at a tie (then in
+    # their order along the chain: the sort is stable), pair after pair
+    order = np.lexsort((along_b, keys, pair))
     steps = along_b[order]
-    ij = np.zeros((2, len(keys) + 1), dtype=np.int64)  # both start at 0
-    np.cumsum(~steps, dtype=np.int64, out=ij[0, 1:])
-    np.cumsum(steps, dtype=np.int64, out=ij[1, 1:])
-    if points is None or len(keys) < 2:
-        return ij[0], ij[1]
-    # a tie of an edge of A (taken first) and one of B: the quad A_i A_i+1 B_j+1 B_j, cut
-    # along A_i+1 B_j so far; along A_i B_j+1 where that is shorter
-    sorted_keys = keys[order]
-    tie = flatnonzero((sorted_keys[1:] == sorted_keys[:-1]) & ~steps[:-1] & steps[1:])
-    if len(tie):
-        points_a, points_b = points()
-        i, j = ij[0, tie], ij[1, tie]
-        taken = norm(points_a[i + 1] - points_b[j])
-        other = norm(points_a[i] - points_b[j + 1])
-        swap = tie[other < taken * (1.0 - 1e-9)]
-        if len(swap):  # B steps first: the ruling between the two steps is A_i B_j+1
-            ij[0, swap + 1] -= 1
-            ij[1, swap + 1] += 1
-    return ij[0], ij[1]
+    # each pair's steps, then its (i, j) with one more row: both start at 0
+    sizes = edges_a + edges_b
+    first = np.zeros(count + 1, dtype=np.int64)
+    np.cumsum(sizes, out=first[1:])
+    row = np.arange(len(steps)) + np.repeat(np.arange(count), sizes) + 1  # (each step's row after it)
+    ij = np.zeros((2, len(steps) + count), dtype=np.int64)
+    for k, moves in enumerate((~steps, steps)):
+        total = np.zeros(len(moves) + 1, dtype=np.int64)
+        np.cumsum(moves, out=total[1:])
+        ij[k, row] = total[1:] - np.repeat(total[first[:-1]], sizes)
+    if points is not None:
+        # a tie of an edge of A (taken first) and one of B of the same pair: the quad A_i
+        # A_i+1 B_j+1 B_j, cut along A_i+1 B_j so far; along A_i B_j+1 where that is shorter
+        sorted_keys, owner = keys[order], pair[order]
+        tie = flatnonzero((sorted_keys[1:] == sorted_keys[:-1]) & ~steps[:-1] & steps[1:]
+                          & (owner[1:] == owner[:-1]))
+        if len(tie):
+            _cut_ties(ij, row[tie] - 1, owner[tie], points)
+    return ij, first + np.arange(count + 1)
 
 
-def _fractions(length: FloatArray) -> FloatArray:
-    """Arc lengths as fractions of the chain's length (even steps if it has none)."""
-    span = float(length[-1] - length[0])
-    if len(length) < 2 or not span > 0:
-        return np.linspace(0.0, 1.0, len(length))
-    return (length - length[0]) / span
+def _cut_ties(
+    ij: IntArray, at: IntArray, owner: IntArray,
+    points: Callable[[list[int]], list[tuple[FloatArray, FloatArray]]],
+) -> None:
+    """Cuts the quads of the ties at rows ``at`` of ``ij`` (of pairs ``owner``, in
+    increasing order) along their shorter diagonal, as :func:`zigzag_all` tells."""
+    pairs, which = np.unique(owner, return_inverse=True)
+    chains = points(pairs.tolist())
+    offsets_a = np.cumsum([0] + [len(a) for a, _ in chains])[which]
+    offsets_b = np.cumsum([0] + [len(b) for _, b in chains])[which]
+    points_a = np.concatenate([a for a, _ in chains])
+    points_b = np.concatenate([b for _, b in chains])
+    i, j = ij[0, at] + offsets_a, ij[1, at] + offsets_b
+    taken = norm(points_a[i + 1] - points_b[j])
+    other = norm(points_a[i] - points_b[j + 1])
+    swap = at[other < taken * (1.0 - 1e-9)]
+    if len(swap):  # B steps first: the ruling between the two steps is A_i B_j+1
+        ij[0, swap + 1] -= 1
+        ij[1, swap + 1] += 1
+
+
+def _lefts(bounds: IntArray) -> IntArray:
+    """The first point of every edge of chains ``bounds[k]:bounds[k + 1]`` (one point or
+    more each) of a flat array, chain after chain."""
+    sizes = np.diff(bounds) - 1
+    return np.arange(sizes.sum()) + np.repeat(np.arange(len(sizes)), sizes)
+
+
+def _fractions_all(lengths: Sequence[FloatArray]) -> tuple[FloatArray, IntArray]:
+    """Each chain's arc lengths ``lengths`` (one or more) as fractions of its length (even
+    steps if it has none), chain after chain in one array, and where each chain's lie."""
+    counts = np.array([len(length) for length in lengths], dtype=np.int64)
+    bounds = np.zeros(len(counts) + 1, dtype=np.int64)
+    np.cumsum(counts, out=bounds[1:])
+    flat = np.concatenate([np.asarray(length, dtype=float) for length in lengths])
+    start = flat[bounds[:-1]]
+    span = flat[bounds[1:] - 1] - start
+    even = (counts < 2) | ~(span > 0)
+    with np.errstate(invalid="ignore", divide="ignore"):  # (the even ones are replaced)
+        fractions = (flat - np.repeat(start, counts)) / np.repeat(span, counts)
+    for k in flatnonzero(even).tolist():
+        fractions[bounds[k] : bounds[k + 1]] = np.linspace(0.0, 1.0, int(counts[k]))
+    return fractions, bounds
 
 
 # -- closing the stretches without a torsal ruling ------------------------------------------------
@@ -122,18 +190,23 @@ def close_gaps_all(
     the strips' holes and gaps span measured together first, then those beyond the first and
     last rulings (:func:`.strip.gap_lengths_all`); each strip gets what it gets alone."""
     stretches = []
+    pending = []  # the gaps to close, as the strips' t say before any is closed
     for strip, t, fans in jobs:
         gap = np.isnan(t)
         stretches += [
             (strip, float(t[i]), float(t[i + 1])) for i in strip.holes if not (gap[i] or gap[i + 1])
         ]
         # (a closed B's last gap may end at the first station, which the first gap's closing
-        # sets: that stretch is found when it is closed)
-        for _, _, t_lo, t_hi, key in _gap_runs(strip, t, fans):
+        # sets: that stretch is found, and that gap closed, when it is reached)
+        for i0, i1, t_lo, t_hi, key in _gap_runs(strip, t, fans):
             if key not in strip.closings:
                 seam = t_hi < t_lo  # (through the seam of a closed B: two stretches)
                 stretches += [(strip, t_lo, 1.0), (strip, 0.0, t_hi)] if seam else [(strip, t_lo, t_hi)]
+                if t_lo == t_lo and t_hi == t_hi:  # (not NaN)
+                    pending.append((strip, i0, i1, t_lo, t_hi, key))
     gap_lengths_all(stretches)
+    for (strip, *_, key), closing in zip(pending, _closings_all([gap[:5] for gap in pending]), strict=True):
+        strip.closings[key] = closing
     added = [_close_inner(strip, t, fans) for strip, t, fans in jobs]
     ends = []
     for strip, t, _ in jobs:
@@ -206,33 +279,71 @@ def _closing(
     """The flat triangles closing the gap stations ``i0..i1`` between B(t_lo) and B(t_hi)
     (:func:`close_gaps`): the gap stations' partners, and the added rulings ``(s, t)``
     (None if there are none), read-only."""
-    n = len(strip.s)
-    k0, k1 = max(i0 - 1, 0), min(i1 + 1, n - 1)
-    if t_hi < t_lo:  # through the seam of a closed B
-        (before, lb_before), (after, lb_after) = strip.gap_lengths(t_lo, 1.0), strip.gap_lengths(0.0, t_hi)
-        tb = np.concatenate([before, after[1:]])
-        lb = np.concatenate([lb_before, lb_after[1:] + strip.map_b.total])
-    else:
-        tb, lb = strip.gap_lengths(t_lo, t_hi)
-    i, j = zigzag(strip.station_lengths[k0 : k1 + 1], lb, partial(_chains, strip, k0, k1 + 1, tb))
+    return _closings_all([(strip, i0, i1, t_lo, t_hi)])[0]
+
+
+def _closings_all(
+    gaps: Sequence[tuple[Strip, int, int, float, float]],
+) -> list[tuple[FloatArray, tuple[FloatArray, FloatArray] | None]]:
+    """:func:`_closing` of every gap ``(strip, i0, i1, t_lo, t_hi)`` of ``gaps``: their
+    triangles stepped in one pass (:func:`zigzag_all`, B's points at the ties evaluated
+    together) and sorted out at once; each gap's are the ones it gets alone."""
+    if not gaps:
+        return []
+    chains = []  # per gap: the first and last station k0, k1 of its chain on A, B's parameters tb
+    lengths = []
+    for strip, i0, i1, t_lo, t_hi in gaps:
+        k0, k1 = max(i0 - 1, 0), min(i1 + 1, len(strip.s) - 1)
+        if t_hi < t_lo:  # through the seam of a closed B
+            before, lb_before = strip.gap_lengths(t_lo, 1.0)
+            after, lb_after = strip.gap_lengths(0.0, t_hi)
+            tb = np.concatenate([before, after[1:]])
+            lb = np.concatenate([lb_before, lb_after[1:] + strip.map_b.total])
+        else:
+            tb, lb = strip.gap_lengths(t_lo, t_hi)
+        chains.append((k0, k1, tb))
+        lengths.append((strip.station_lengths[k0 : k1 + 1], lb))
+
+    def points(which: list[int]) -> list[tuple[FloatArray, FloatArray]]:
+        on_b = derivative_each([gaps[g][0].curve_b for g in which], [chains[g][2] for g in which], 0)
+        return [(gaps[g][0].a0[chains[g][0] : chains[g][1] + 1], b) for g, b in zip(which, on_b, strict=True)]
+
+    ij, bounds = _zigzag_rows(lengths, points)
+    i, j = ij
+    sizes = np.diff(bounds)
+    firsts, lasts = bounds[:-1], bounds[1:] - 1
+    # each gap's rows against its own chains: station k0 + i of its strip, B at tb[j]
+    k0 = np.array([k for k, _, _ in chains])
+    i0 = np.array([gap[1] for gap in gaps])
+    i1 = np.array([gap[2] for gap in gaps])
+    n = np.array([len(gap[0].s) for gap in gaps])
+    s_chains = np.concatenate([gap[0].s[k : k1 + 1] for gap, (k, k1, _) in zip(gaps, chains, strict=True)])
+    s_first = np.cumsum([0, *(k1 - k + 1 for k, k1, _ in chains)])[:-1]
+    tbs = np.concatenate([tb for _, _, tb in chains])
+    tb_first = np.cumsum([0, *(len(tb) for _, _, tb in chains)])[:-1]
+    at_s = s_chains[i + np.repeat(s_first, sizes)]
+    at_t = tbs[j + np.repeat(tb_first, sizes)]
     # the first ruling from each gap station is its station ruling (i runs through every
     # station from k0 to k1 in order, so those are stations i0..i1 in order); the rest are added
     own = np.empty(len(i), dtype=bool)
-    own[0] = True
     own[1:] = i[1:] != i[:-1]
-    own &= (i >= i0 - k0) & (i <= i1 - k0)
-    partners = tb[j[own]]
+    own[firsts] = True
+    own &= (i >= np.repeat(i0 - k0, sizes)) & (i <= np.repeat(i1 - k0, sizes))
     extra = ~own
-    if i0 > 0:
-        extra[0] = False  # the torsal ruling before the gap
-    if i1 < n - 1:
-        extra[-1] = False  # and after it
-    added = None
-    if extra.any():
-        added = (strip.s[k0 + i[extra]], tb[j[extra]])
-        for array in added:
-            array.setflags(write=False)
-    return partners, added
+    extra[firsts[i0 > 0]] = False  # the torsal ruling before the gap
+    extra[lasts[i1 < n - 1]] = False  # and after it
+    partners = np.split(at_t[own], np.cumsum(np.add.reduceat(own, firsts))[:-1])
+    cuts = np.cumsum(np.add.reduceat(extra, firsts))[:-1]
+    added_s, added_t = np.split(at_s[extra], cuts), np.split(at_t[extra], cuts)
+    closings: list[tuple[FloatArray, tuple[FloatArray, FloatArray] | None]] = []
+    for partner, s_add, t_add in zip(partners, added_s, added_t, strict=True):
+        added = None
+        if len(s_add):
+            added = (s_add, t_add)
+            for array in added:
+                array.setflags(write=False)
+        closings.append((partner, added))
+    return closings
 
 
 def _chains(strip: Strip, first: int, stop: int, tb: FloatArray) -> tuple[FloatArray, FloatArray]:

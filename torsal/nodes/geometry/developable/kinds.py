@@ -33,7 +33,7 @@ plane at all: a fan when beside a cone, else torsal, and never valid.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -65,6 +65,8 @@ class RulingKinds:
     #: a crease (π where the sheet turns back along a curve's tangent), 0 elsewhere
     crease_angle: FloatArray
     tip: BoolArray  #: rulings of zero length
+    #: how many rulings are torsal and valid, where the maker counted them
+    torsal_valid: int | None = field(default=None, repr=False, compare=False)
 
     @property
     def torsal_share(self) -> float:
@@ -72,8 +74,10 @@ class RulingKinds:
         n = len(self.kind)
         if n == 0:
             return float("nan")
-        torsal = np.array([k == TORSAL for k in self.kind]) & self.valid
-        return float(np.count_nonzero(torsal)) / n
+        count = self.torsal_valid
+        if count is None:
+            count = int(np.count_nonzero(np.array([k == TORSAL for k in self.kind]) & self.valid))
+        return float(count) / n
 
 
 def piece_sorts(starts: FloatArray, ends: FloatArray, size: float | FloatArray) -> IntArray:
@@ -175,5 +179,7 @@ def _judged(rows: list[tuple[Any, ...]]) -> list[RulingKinds]:
     kind = np.where(fan, FAN, np.where(crease, CREASE, TORSAL))
     valid = ~tip & np.where(fan, sheet_ok, torsal & ~crease)
     angle = np.where(crease, np.where(undefined, np.pi, tangent), 0.0)
+    counts = np.add.reduceat(valid & ~fan & ~crease, stack.starts).tolist()  # (torsal and valid)
     columns = (stack.split(x) for x in (kind, valid, tangent, angle, tip))
-    return [RulingKinds(k.tolist(), v, w, c, p) for k, v, w, c, p in zip(*columns, strict=True)]
+    return [RulingKinds(k.tolist(), v, w, c, p, count)
+            for k, v, w, c, p, count in zip(*columns, counts, strict=True)]

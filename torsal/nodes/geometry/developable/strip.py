@@ -269,11 +269,22 @@ class Strip:
 
 def with_maps_b(strips: Sequence[Strip]) -> None:
     """Makes :attr:`Strip.map_b` of every strip of ``strips`` that has none yet, all of them
-    together (:meth:`.stations.LengthMap.many`: each the map it gets alone, bit for bit)."""
+    together (:meth:`.stations.LengthMap.many`: each the map it gets alone, bit for bit).
+    A B that is another of the strips' A (the edge between two strips of a roof) takes
+    that strip's :attr:`Strip.map_a`: the same curve's map (a map is not changed once made)."""
     missing = [strip for strip in strips if "map_b" not in vars(strip)]
-    if missing:
-        for strip, length_map in zip(missing, LengthMap.many([s.measured_b for s in missing]), strict=True):
-            vars(strip)["map_b"] = length_map  # (where the cached property keeps it)
+    if not missing:
+        return
+    known = {id(strip.curve_a): strip.map_a for strip in strips}
+    made = []
+    for strip in missing:
+        same = known.get(id(strip.measured_b))
+        if same is not None and same.curve is strip.measured_b:
+            vars(strip)["map_b"] = same  # (where the cached property keeps it)
+        else:
+            made.append(strip)
+    for strip, length_map in zip(made, LengthMap.many([s.measured_b for s in made]), strict=True):
+        vars(strip)["map_b"] = length_map
 
 
 def fans_all(stretches: Sequence[tuple[Strip, float, float]]) -> list[tuple[FloatArray, FloatArray | None]]:
