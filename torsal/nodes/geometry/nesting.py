@@ -105,6 +105,10 @@ SET_SEEDS = 2
 LAST_SHEET = 0.8
 #: Share of the steps left that the last sheet, packed beside a sheet's set, is given.
 LAST_RESERVE = 0.3
+#: Threads sparrow searches on for the last sheet packed beside a sheet's set (the set keeps
+#: :data:`~torsal.nodes.geometry.sparrow_runs.WORKERS`): its few parts gain little from a second
+#: thread, and the set, which the layout waits for, gets the core it would have taken.
+BESIDE_WORKERS = 1
 #: Above this many sheets' worth of parts, the strip of every part cut into sheets comes first.
 FILL_SHEETS = 3.0
 #: Share of a sheet's steps the strip of every part gets in that case.
@@ -374,7 +378,8 @@ def nest(
                              "counted": k == 0} for k in range(tries)]
         if last:  # packed beside this sheet's set
             jobs.append({"members": others, "steps": max(FEWEST, reserve), "seed": next(seeds),
-                         "better": lambda p, k=tries: saw(k, p), "turn": across(others)})
+                         "better": lambda p, k=tries: saw(k, p), "turn": across(others),
+                         "workers": BESIDE_WORKERS})
         # another seed only when the first does not fit (side by side, each would have half the cores:
         # the first seed's fit, the layout kept, came later, and the last sheet's beside it)
         packings: list[Packing | None] = [None] * len(jobs)

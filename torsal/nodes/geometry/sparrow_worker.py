@@ -4,7 +4,7 @@ Reads one JSON job on stdin (``shapes`` as ``[id, [[x, y], ...]]``, ``height``,
 ``spacing`` or null, ``orientations`` or null, ``steps``, ``failures``, ``enough``,
 ``seconds``, ``seed``) and writes one JSON line ``[width, [[id, angle, x, y], ...]]``
 for each shorter feasible packing sparrow reports, ``["step", steps]`` after each step
-and finally ``["end", steps, on_the_clock]``, then exits.
+and finally ``["end", steps, on_the_clock, cpu]`` (``cpu``: the worker's CPU seconds), then exits.
 
 The search is measured in *steps*, not seconds, so that a job gives the same packing
 on any machine, however busy: a step is one attempt of sparrow's exploration to pack
@@ -65,7 +65,7 @@ def main() -> None:
     enough, limit, failures = float(job["enough"]), int(job["steps"]), int(job["failures"])
 
     def finish(on_the_clock: bool) -> None:
-        print(json.dumps(["end", steps, on_the_clock]), flush=True)
+        print(json.dumps(["end", steps, on_the_clock, time.process_time()]), flush=True)
         os._exit(0)  # sparrow cannot be interrupted: leave it running into the exit
 
     while True:
