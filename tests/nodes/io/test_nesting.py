@@ -389,6 +389,34 @@ def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_th
     assert first == pytest.approx([1.0, 202.0])  # the first seed's order (the odd one's is reversed)
 
 
+@pytest.mark.parametrize("gap", [None, 150.0])
+def test_many_sheets_take_sparrows_first_packing_cut_into_sheets_when_it_fills_them_to_the_target(
+        monkeypatch, gap):
+    """Twenty bars 100 × 100 mm (four sheets' worth of the 500 × 100 mm of room on a 502 × 102
+    sheet, margin and gap 1) from a stand-in for sparrow that lays them in a row. 1 mm apart, the
+    first packing cut into sheets holds four bars a sheet, the last sheet to its bars' reach
+    (404 mm): 200,000 mm² over 4 × 502 × 102 + 405 × 102 mm², 81 % of the stock, above
+    ``SHEET_TARGET``: that is the layout, asked with no step of sparrow's search. 150 mm apart,
+    two bars a sheet (39 %): the same strip (the same seed) is searched on."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
+
+    row, asked = _in_a_row(first_seed_from=1.0, first_seed_gap=gap), []
+
+    def recorded(shapes, members, height, spacing, orientations, steps, seed, *args, **kwargs):  # type: ignore[no-untyped-def]
+        asked.append((steps, seed))
+        return row(shapes, members, height, spacing, orientations, steps, seed, *args, **kwargs)
+
+    monkeypatch.setattr(sparrow_runs, "strip", recorded)
+    monkeypatch.setattr(nesting, "strip", recorded)
+    bars = [np.array([[0, 0], [100, 0], [100, 100], [0, 100]], dtype=float) for _ in range(20)]
+    nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0, seed=0)
+    if gap is None:
+        assert asked == [(0, 0)]
+        assert nested.sheets == 5 and np.bincount(nested.sheet).tolist() == [4, 4, 4, 4, 4]
+    else:
+        assert asked[0] == (0, 0) and asked[1][0] >= sparrow_runs.FEWEST and asked[1][1] == 0
+
+
 def test_a_strip_is_cut_into_sheets_where_no_part_crosses_a_sheet_end():
     """Squares 100 mm wide in a strip at x = 10, 120, 230, 340 and 450 cut into sheets of 300
     with a 10 mm margin: the first sheet starts at 0 and holds the parts ending by 290 (two);

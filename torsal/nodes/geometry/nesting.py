@@ -329,11 +329,21 @@ def nest(
     sheet = 0  # the next sheet to fill
     target = SHEET_TARGET  # a sheet's set, as a share of its area (follows the parts: FOLLOW)
     if area.sum() > FILL_SHEETS * usable:
-        # many sheets: the strip of every part cut into sheets, kept when it keeps the strip's density
-        steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
-        packing = strip(centred, remaining, strip_height, spacing, orientations, steps, next(seeds), run,
+        # many sheets: the strip of every part cut into sheets. sparrow's first packing alone first (no
+        # step of its search): cut into sheets, it is the layout when it fills the stock to SHEET_TARGET
+        first_seed = next(seeds)
+        packing = strip(centred, remaining, strip_height, spacing, orientations, 0, first_seed, run,
                         better=lambda p: offer([p]))
-        if packing is not None and best:
+        (count, last), _ = best[0] if best else ((0, 0.0), None)
+        if packing is not None and best and float(area.sum()) / (((count - 1) * width + last) * height) \
+                >= SHEET_TARGET:
+            remaining = []  # best holds the layout
+        else:  # the same strip searched on (the same seed: the same first packing), kept when its cut
+            # keeps the strip's density
+            steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
+            packing = strip(centred, remaining, strip_height, spacing, orientations, steps, first_seed, run,
+                            better=lambda p: offer([p]))
+        if remaining and packing is not None and best:
             polygons = polygons_of(packing)
             reach = max(p.bounds[2] for p in polygons.values()) - (margin - spacing) + spacing
             density = float(area.sum()) / (reach * strip_height)
