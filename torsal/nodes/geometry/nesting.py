@@ -29,13 +29,22 @@ seed 0, the last sheet's 5 beside it reach their 74 % in 2-5 CPU-s standing; spa
 strip of all 18 reaches the layout's 72.6 % in 5-12 CPU-s by seed when given the parts as
 the layout turned them, 8-32 as drawn. Where the time went before: the second seed packed
 beside the first, 8 CPU-s, and the last sheet lying, 19 CPU-s, its final layout shown only
-when its search ended). Strips of every part cut into sheets were 10 points less
+when its search ended. Profiled again per packing, budget 45, seed 0, load 5-8: the set of
+13, 7.1-7.3 CPU-s on two threads; the last sheet's 5 beside it, 14.6 CPU-s on two threads,
+5.4 on one (243 steps: 74.7 and 73.9 % dense), so it runs on one, :data:`BESIDE_WORKERS`;
+over four seeds a 5-part last sheet took 4.0-17.3 CPU-s on two threads, 3.6-8.1 on one, at
+about the same density: sparrow's second thread is worth little on few parts, and under
+load its threads wait for each other). Strips of every part cut into sheets were 10 points less
 dense for such parts (every cut crosses four or five); parts small beside the sheet lose
 little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (many panels)
 the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:
 each sheet starts a margin before the first part not yet placed and takes those that end
 within it), and it is the layout when it keeps :data:`CUT_KEEPS` of the strip's density;
-otherwise the sheets are filled one at a time as above. Not reached: parts sparrow packs
+otherwise the sheets are filled one at a time as above. sparrow's first packing (before any
+step of its search) is asked alone first: cut into sheets, it is the layout when it fills the
+stock to :data:`SHEET_TARGET` (the development-and-panels panels: 84.5 % from its first
+packing, in 1.2 CPU-s; its 20 steps more had given 84.7 % for 0.5-0.7 CPU-s more).
+Not reached: parts sparrow packs
 well below :data:`SHEET_TARGET` pay for the first set's failed packing before the target
 follows them (50 random strips, annular sectors sparrow packs to only about 66 % in a strip:
 sheet 1's set of 13 failed with both seeds at 72 %, 28 s, before the target followed the
