@@ -347,8 +347,8 @@ def nest(
         if packing is not None and best and float(area.sum()) / (((count - 1) * width + last) * height) \
                 >= SHEET_TARGET:
             remaining = []  # best holds the layout
-        else:  # the same strip searched on (the same seed: the same first packing), kept when its cut
-            # keeps the strip's density
+        elif not run.stopped:  # the same strip searched on (the same seed: the same first packing),
+            # kept when its cut keeps the strip's density
             steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
             packing = strip(centred, remaining, strip_height, spacing, orientations, steps, first_seed, run,
                             better=lambda p: offer([p]))
