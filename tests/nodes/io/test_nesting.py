@@ -347,7 +347,7 @@ def _in_a_row(first_seed_from: float | None = None, first_seed_gap: float | None
     apart, when given), odd seeds' in reverse order."""
 
     def row(shapes, members, height, spacing, orientations, steps, seed, budget, enough=0.0, failures=1,
-            better=None, halt=None, counted=True, turn=0.0):
+            better=None, halt=None, counted=True, turn=0.0, workers=None):
         budget.spend(10 if counted else 0)
         spread = seed == 0 and first_seed_gap is not None
         gap = first_seed_gap if spread else spacing
@@ -369,17 +369,52 @@ def test_a_sheet_takes_the_first_seeds_packing_when_it_fits_and_the_rest_fill_th
     a sheet with 500 mm of room (502 × 102, margin and gap 1). The sheet's set towards
     ``SHEET_TARGET`` of its area (0.72 × 502 × 102 = 36,867 mm², each bar 100 mm tall):
     200 + 150 (35,000); the 120, 100 and 60 would each pass it. Those three (28,000 mm²,
-    within 0.8 of the 500 × 100 usable sheet) are the last sheet, packed beside it."""
+    within 0.8 of the 500 × 100 usable sheet) are the last sheet, packed beside it, on one
+    thread (the set on sparrow's usual two)."""
     from torsal.nodes.geometry import nesting, sparrow_runs
 
-    row = _in_a_row()
-    monkeypatch.setattr(sparrow_runs, "strip", row)
-    monkeypatch.setattr(nesting, "strip", row)
+    row, threads = _in_a_row(), {}
+
+    def counted_row(shapes, members, *args, workers=None, **kwargs):  # type: ignore[no-untyped-def]
+        threads[tuple(members)] = workers
+        return row(shapes, members, *args, **kwargs)
+
+    monkeypatch.setattr(sparrow_runs, "strip", counted_row)
+    monkeypatch.setattr(nesting, "strip", counted_row)
     bars = [np.array([[0, 0], [w, 0], [w, 100], [0, 100]], dtype=float) for w in (200, 150, 120, 100, 60)]
     nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0)
     assert nested.sheet.tolist() == [0, 0, 1, 1, 1]
+    assert threads == {(0, 1): None, (2, 3, 4): 1}  # None: sparrow_runs.WORKERS
     first = [place(bars[i], nested.angle[i], nested.shift[i])[:, 0].min() for i in (0, 1)]
     assert first == pytest.approx([1.0, 202.0])  # the first seed's order (the odd one's is reversed)
+
+
+@pytest.mark.parametrize("gap", [None, 150.0])
+def test_many_sheets_take_sparrows_first_packing_cut_into_sheets_when_it_fills_them_to_the_target(
+        monkeypatch, gap):
+    """Twenty bars 100 × 100 mm (four sheets' worth of the 500 × 100 mm of room on a 502 × 102
+    sheet, margin and gap 1) from a stand-in for sparrow that lays them in a row. 1 mm apart, the
+    first packing cut into sheets holds four bars a sheet, the last sheet to its bars' reach
+    (404 mm): 200,000 mm² over 4 × 502 × 102 + 405 × 102 mm², 81 % of the stock, above
+    ``SHEET_TARGET``: that is the layout, asked with no step of sparrow's search. 150 mm apart,
+    two bars a sheet (39 %): the same strip (the same seed) is searched on."""
+    from torsal.nodes.geometry import nesting, sparrow_runs
+
+    row, asked = _in_a_row(first_seed_from=1.0, first_seed_gap=gap), []
+
+    def recorded(shapes, members, height, spacing, orientations, steps, seed, *args, **kwargs):  # type: ignore[no-untyped-def]
+        asked.append((steps, seed))
+        return row(shapes, members, height, spacing, orientations, steps, seed, *args, **kwargs)
+
+    monkeypatch.setattr(sparrow_runs, "strip", recorded)
+    monkeypatch.setattr(nesting, "strip", recorded)
+    bars = [np.array([[0, 0], [100, 0], [100, 100], [0, 100]], dtype=float) for _ in range(20)]
+    nested = nest(bars, 502.0, 102.0, margin=1.0, spacing=1.0, budget=10.0, seed=0)
+    if gap is None:
+        assert asked == [(0, 0)]
+        assert nested.sheets == 5 and np.bincount(nested.sheet).tolist() == [4, 4, 4, 4, 4]
+    else:
+        assert asked[0] == (0, 0) and asked[1][0] >= sparrow_runs.FEWEST and asked[1][1] == 0
 
 
 def test_a_strip_is_cut_into_sheets_where_no_part_crosses_a_sheet_end():

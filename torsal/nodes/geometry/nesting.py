@@ -29,13 +29,22 @@ seed 0, the last sheet's 5 beside it reach their 74 % in 2-5 CPU-s standing; spa
 strip of all 18 reaches the layout's 72.6 % in 5-12 CPU-s by seed when given the parts as
 the layout turned them, 8-32 as drawn. Where the time went before: the second seed packed
 beside the first, 8 CPU-s, and the last sheet lying, 19 CPU-s, its final layout shown only
-when its search ended). Strips of every part cut into sheets were 10 points less
+when its search ended. Profiled again per packing, budget 45, seed 0, load 5-8: the set of
+13, 7.1-7.3 CPU-s on two threads; the last sheet's 5 beside it, 14.6 CPU-s on two threads,
+5.4 on one (243 steps: 74.7 and 73.9 % dense), so it runs on one, :data:`BESIDE_WORKERS`;
+over four seeds a 5-part last sheet took 4.0-17.3 CPU-s on two threads, 3.6-8.1 on one, at
+about the same density: sparrow's second thread is worth little on few parts, and under
+load its threads wait for each other). Strips of every part cut into sheets were 10 points less
 dense for such parts (every cut crosses four or five); parts small beside the sheet lose
 little at a cut. So when the parts need more than :data:`FILL_SHEETS` sheets (many panels)
 the strip of every part comes first, cut into sheet lengths as sparrow shortens it (:func:`_cut`:
 each sheet starts a margin before the first part not yet placed and takes those that end
 within it), and it is the layout when it keeps :data:`CUT_KEEPS` of the strip's density;
-otherwise the sheets are filled one at a time as above. Not reached: parts sparrow packs
+otherwise the sheets are filled one at a time as above. sparrow's first packing (before any
+step of its search) is asked alone first: cut into sheets, it is the layout when it fills the
+stock to :data:`SHEET_TARGET` (the development-and-panels panels: 84.5 % from its first
+packing, in 1.2 CPU-s; its 20 steps more had given 84.7 % for 0.5-0.7 CPU-s more).
+Not reached: parts sparrow packs
 well below :data:`SHEET_TARGET` pay for the first set's failed packing before the target
 follows them (50 random strips, annular sectors sparrow packs to only about 66 % in a strip:
 sheet 1's set of 13 failed with both seeds at 72 %, 28 s, before the target followed the
@@ -105,6 +114,10 @@ SET_SEEDS = 2
 LAST_SHEET = 0.8
 #: Share of the steps left that the last sheet, packed beside a sheet's set, is given.
 LAST_RESERVE = 0.3
+#: Threads sparrow searches on for the last sheet packed beside a sheet's set (the set keeps
+#: :data:`~torsal.nodes.geometry.sparrow_runs.WORKERS`): its few parts gain little from a second
+#: thread, and the set, which the layout waits for, gets the core it would have taken.
+BESIDE_WORKERS = 1
 #: Above this many sheets' worth of parts, the strip of every part cut into sheets comes first.
 FILL_SHEETS = 3.0
 #: Share of a sheet's steps the strip of every part gets in that case.
@@ -325,11 +338,21 @@ def nest(
     sheet = 0  # the next sheet to fill
     target = SHEET_TARGET  # a sheet's set, as a share of its area (follows the parts: FOLLOW)
     if area.sum() > FILL_SHEETS * usable:
-        # many sheets: the strip of every part cut into sheets, kept when it keeps the strip's density
-        steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
-        packing = strip(centred, remaining, strip_height, spacing, orientations, steps, next(seeds), run,
+        # many sheets: the strip of every part cut into sheets. sparrow's first packing alone first (no
+        # step of its search): cut into sheets, it is the layout when it fills the stock to SHEET_TARGET
+        first_seed = next(seeds)
+        packing = strip(centred, remaining, strip_height, spacing, orientations, 0, first_seed, run,
                         better=lambda p: offer([p]))
-        if packing is not None and best:
+        (count, last), _ = best[0] if best else ((0, 0.0), None)
+        if packing is not None and best and float(area.sum()) / (((count - 1) * width + last) * height) \
+                >= SHEET_TARGET:
+            remaining = []  # best holds the layout
+        elif not run.stopped:  # the same strip searched on (the same seed: the same first packing),
+            # kept when its cut keeps the strip's density
+            steps = max(FEWEST, round(run.left() / sheets_left() * FIRST_SHARE))
+            packing = strip(centred, remaining, strip_height, spacing, orientations, steps, first_seed, run,
+                            better=lambda p: offer([p]))
+        if remaining and packing is not None and best:
             polygons = polygons_of(packing)
             reach = max(p.bounds[2] for p in polygons.values()) - (margin - spacing) + spacing
             density = float(area.sum()) / (reach * strip_height)
@@ -374,7 +397,8 @@ def nest(
                              "counted": k == 0} for k in range(tries)]
         if last:  # packed beside this sheet's set
             jobs.append({"members": others, "steps": max(FEWEST, reserve), "seed": next(seeds),
-                         "better": lambda p, k=tries: saw(k, p), "turn": across(others)})
+                         "better": lambda p, k=tries: saw(k, p), "turn": across(others),
+                         "workers": BESIDE_WORKERS})
         # another seed only when the first does not fit (side by side, each would have half the cores:
         # the first seed's fit, the layout kept, came later, and the last sheet's beside it)
         packings: list[Packing | None] = [None] * len(jobs)

@@ -4,9 +4,9 @@ steps they share, one packing in a worker process (:func:`strip`, or several at 
 
 Repeatability: the budget is counted in sparrow's *steps*, not seconds (see
 :mod:`torsal.nodes.geometry.sparrow_worker`): :data:`STEPS_PER_SECOND` per second of
-``budget``. sparrow is seeded and searches on :data:`WORKERS` threads, always that many
-whatever the machine's cores (with another thread count its reports differ; with the same
-one they come in the same order), so a job gives the same packing on any machine, however
+``budget``. sparrow is seeded and searches on a fixed number of threads (:data:`WORKERS`, or
+what the job says), whatever the machine's cores (with another thread count its reports differ;
+with the same one they come in the same order), so a job gives the same packing on any machine, however
 busy — a busy one only takes longer. Packings run side by side (:func:`strips`) are separate
 jobs, each as repeatable. The clock is a safety net (:data:`NET` times the budget): a
 packing it stops sets ``Budget.on_the_clock``, and that layout may differ from run to run.
@@ -93,6 +93,9 @@ class Budget:
         self.reported = 0.0
         self.last_round = False  #: the packings under way place every part left
         self.running: dict[int, tuple[int, int]] = {}  # packing -> (steps taken, steps expected)
+        #: each packing run (not cached): (seed, parts, steps taken, worker CPU-s or None when it was
+        #: ended early, seconds from this budget's start to its start and to its end)
+        self.runs: list[tuple[int, int, int, float | None, float, float]] = []
         self.lock = threading.Lock()  # packings side by side (strips) share it
 
     def left(self) -> int:
@@ -137,7 +140,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
            orientations: Sequence[float] | None, steps: int, seed: int,
            budget: Budget, enough: float = 0.0, failures: int = 1,
            better: Callable[[Packing], None] | None = None, halt: Callable[[], bool] | None = None,
-           counted: bool = True, turn: float = 0.0) -> Packing | None:
+           counted: bool = True, turn: float = 0.0, workers: int | None = None) -> Packing | None:
     """Pack ``members`` into a strip of ``height`` in at most ``steps`` steps and
     ``failures`` failed attempts: {part: (angle, shift)}, or None when stopped before
     sparrow found a feasible packing. A packing no longer than ``enough`` ends the search
@@ -150,7 +153,9 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
     alone, keeping its best so far (another packing beside it made it of no use); the steps
     of a packing not ``counted`` are left out of the budget's (they depend on when it ended).
     ``turn``: sparrow is given each member turned by that many degrees (its search starts from
-    the parts as given; free rotation only), and the angles returned are of the shapes as given."""
+    the parts as given; free rotation only), and the angles returned are of the shapes as given.
+    ``workers``: the threads sparrow searches on (:data:`WORKERS` when None; part of the job: the
+    same job gives the same packing)."""
     c, s = math.cos(math.radians(turn)), math.sin(math.radians(turn))
     turned = np.array([[c, s], [-s, c]])  # counter-clockwise, as the angles sparrow reports
 
@@ -166,7 +171,8 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
         "spacing": float(spacing) + SLACK if spacing > 0 else None,
         "orientations": None if orientations is None else [float(a) for a in orientations],
         "steps": int(steps), "failures": int(failures), "enough": float(enough),
-        "seconds": budget.seconds(), "seed": int(seed), "workers": WORKERS,
+        "seconds": budget.seconds(), "seed": int(seed),
+        "workers": WORKERS if workers is None else int(workers),
     }
     key = json.dumps({k: v for k, v in job.items() if k != "seconds"})
     if key in PACKED:
@@ -195,7 +201,8 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
 
     reader = threading.Thread(target=read, daemon=True)
     reader.start()
-    best, used, complete, clocked = None, 0, False, False
+    best, used, complete, clocked, cpu = None, 0, False, False, None
+    began = time.perf_counter() - budget.start
     me, expected = id(lines), steps  # this packing, and the steps it is expected to take
     untold = False  # a packing came that better has not been told
     try:
@@ -215,6 +222,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
                         used = int(message[1])
                     elif message[0] == "end":
                         used, complete, clocked = int(message[1]), True, bool(message[2])
+                        cpu = float(message[3]) if len(message) > 3 else None
                         if clocked:
                             budget.on_the_clock = True
                     else:
@@ -244,6 +252,7 @@ def strip(shapes: Sequence[FloatArray], members: Sequence[int], height: float, s
         if worker.stderr is not None:
             worker.stderr.close()
     budget.spend(used if counted else 0, me)
+    budget.runs.append((int(seed), len(members), used, cpu, began, time.perf_counter() - budget.start))
     if ended and worker.returncode != 0 and best is None:
         last = (problem.strip().splitlines() or ["no message"])[-1]
         raise NestingFailed(f"the nesting engine (sparrow) stopped with {last}")

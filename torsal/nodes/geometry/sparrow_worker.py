@@ -4,20 +4,20 @@ Reads one JSON job on stdin (``shapes`` as ``[id, [[x, y], ...]]``, ``height``,
 ``spacing`` or null, ``orientations`` or null, ``steps``, ``failures``, ``enough``,
 ``seconds``, ``seed``) and writes one JSON line ``[width, [[id, angle, x, y], ...]]``
 for each shorter feasible packing sparrow reports, ``["step", steps]`` after each step
-and finally ``["end", steps, on_the_clock]``, then exits.
+and finally ``["end", steps, on_the_clock, cpu]`` (``cpu``: the worker's CPU seconds), then exits.
 
 The search is measured in *steps*, not seconds, so that a job gives the same packing
 on any machine, however busy: a step is one attempt of sparrow's exploration to pack
 the strip shorter (its reports ``ExplFeas`` and ``ExplInfeas``; sparrow's search is
 seeded and runs on one thread, so these come in the same order every time). A failed
 attempt counts :data:`FAILED` steps: it searches much longer than one that succeeds.
-The worker stops when ``steps`` are spent, after ``failures`` failed attempts, at the
-first packing no longer than ``enough``, or when sparrow ends its exploration itself (ten
-failed attempts in a row); only ``seconds``, a safety net, stops it on the clock (then
-``on_the_clock`` is true and the packing may differ from run to run). sparrow's
-compression phase, which shrinks the strip over time, is given no time: its end would
-depend on the clock. Run with ``python -m``; the parent ends it early when the user
-stops.
+The worker stops when ``steps`` are spent (``steps`` 0: at sparrow's first packing,
+before its search), after ``failures`` failed attempts, at the first packing no longer
+than ``enough``, or when sparrow ends its exploration itself (ten failed attempts in a
+row); only ``seconds``, a safety net, stops it on the clock (then ``on_the_clock`` is
+true and the packing may differ from run to run). sparrow's compression phase, which
+shrinks the strip over time, is given no time: its end would depend on the clock. Run
+with ``python -m``; the parent ends it early when the user stops.
 """
 
 from __future__ import annotations
@@ -65,7 +65,7 @@ def main() -> None:
     enough, limit, failures = float(job["enough"]), int(job["steps"]), int(job["failures"])
 
     def finish(on_the_clock: bool) -> None:
-        print(json.dumps(["end", steps, on_the_clock]), flush=True)
+        print(json.dumps(["end", steps, on_the_clock, time.process_time()]), flush=True)
         os._exit(0)  # sparrow cannot be interrupted: leave it running into the exit
 
     while True:
@@ -82,7 +82,7 @@ def main() -> None:
                 print(json.dumps([solution.width, placed]), flush=True)
             if first:  # the first report is sparrow's starting packing, not an attempt
                 first = False
-                if best <= enough:
+                if best <= enough or limit <= 0:
                     finish(False)
                 continue
             failed += kind == spyrrow.ReportType.ExplInfeas
