@@ -22,7 +22,8 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   :func:`~.threedm_rails.smooth_partners`), fitted within FIT, then its control points
   moved until its normals agree along its lines across (:mod:`.threedm_untwist`: the
   fit's tangents are not exact, and a fit 30 times closer would cost several times the
-  control points). So the face follows the node's rulings and is developable between
+  control points), judged on samples in every span of its knots (between sparser ones a
+  face waves where the fit clustered its knots). So the face follows the node's rulings and is developable between
   them. An interval where that face still twists (more than :data:`TWISTED`) is fitted as
   a face of its own, and if it still twists goes out as cones (below); so does one whose
   face would cost more than :data:`COSTLIER` times the control points of its cones (the
