@@ -23,11 +23,11 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   moved until its normals agree along its lines across (:mod:`.threedm_untwist`: the
   fit's tangents are not exact, and a fit 30 times closer would cost several times the
   control points), judged on samples in every span of its knots (between sparser ones a
-  face waves where the fit clustered its knots). So the face follows the node's rulings and is developable between
-  them. An interval where that face still twists (more than :data:`TWISTED`) is fitted as
-  a face of its own, and if it still twists goes out as cones (below); so does one whose
-  face would cost more than :data:`COSTLIER` times the control points of its cones (the
-  file stays within a fifth of the one-surface form);
+  face waves where the fit clustered its knots). So the face follows the node's rulings
+  and is developable between them. An interval where that face still twists (more than
+  :data:`TWISTED`) is fitted as a face of its own, and if it still twists goes out as
+  cones (below); so does one whose face would cost more than :data:`COSTLIER` times the
+  control points of its cones (the file stays within a fifth of the one-surface form);
 - where no developable pairing joins two rulings (the torsal condition has no root between
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
