@@ -201,8 +201,10 @@ def _costly(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, r
     inner = knots[4:-4]
     own = np.histogram(inner[inner > stations[0]], bins=stations)[0].astype(float)
     own[0] += 2.0  # the first interval's share of the face's ends
-    costs = np.ones(len(stations) - 1)
-    for i in np.flatnonzero(own > COSTLIER):  # (cheaper than COSTLIER can cost no more)
+    costs = np.full(len(stations) - 1, 3.0)
+    # a cone pair has 7 control points at least (two cubics of 4 sharing one), so costs 3:
+    # an interval cheaper than COSTLIER times that can cost no more than its cones
+    for i in np.flatnonzero(own > 3.0 * COSTLIER):
         k = first + int(i)
         if k not in made_cones:
             made_cones[k] = _cones(strip, u, lines, k, size)
