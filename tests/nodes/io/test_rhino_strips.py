@@ -167,7 +167,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
         old_model.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
     assert old_model.Write(str(tmp_path / "old.3dm"), 7)
     new_size, old_size = (tmp_path / "new.3dm").stat().st_size, (tmp_path / "old.3dm").stat().st_size
-    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 8.6 % (most intervals torsal faces)
+    assert new_size <= 0.2 * old_size, (new_size, old_size)  # 8.7 % (234 of 294 intervals torsal faces)
     old_objects = list(rh.File3dm.Read(str(tmp_path / "old.3dm")).Objects)
     new_objects = list(rh.File3dm.Read(str(new.path)).Objects)
     dense = np.linspace(0.0, 1.0, 2001)  # chords of ~2.5 cm: their sag is below 1e-6 of the size
@@ -207,7 +207,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
         # fans) the faces go out as cones, so every face's normals agree along its lines
         for obj in own:
             if obj.Attributes.GetUserString("TorsalFace") == "torsal":
-                assert normal_twist(surface_of(obj), 60) <= 1e-6  # measured 4.4e-7 at most
+                assert normal_twist(surface_of(obj), 60) <= 1e-6  # 7.3e-7 at most at 2000 isolines
 
 
 @functools.cache
@@ -219,20 +219,15 @@ def example_strips(name: str) -> list:
     return solved.solver.result("strips").outputs["Strips"].all_items()
 
 
-def test_a_rationalised_strip_that_twists_between_its_rulings_goes_out_developable(tmp_path):
-    """The canopy's strips turn up to ~3e-3 rad along a ruling between their stations; the
-    exported faces pair each point of one rail with its torsal partner on the other (moved
-    until developable), and where there is none (next to a fan or a corner), that pairing's
-    face still twists, or costs 3.5 times its cones' control points, go out as two cones on
-    the interval's diagonal."""
-    objects = export(tmp_path, example_strips("rationalise-canopy"))
-    twists = [normal_twist(surface_of(o), 100) for o in objects
-              if o.Attributes.GetUserString("TorsalFace") == "torsal"]
-    assert twists and max(twists) <= 1e-6  # measured 3.8e-7 (Rhino's own NormalAt)
-
-
-@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.174)])
+@pytest.mark.parametrize(("name", "measured"), [("rationalise-roof", 0.094), ("rationalise-canopy", 0.194)])
 def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp_path, name, measured):
+    """The file is at most a fifth of the one-surface form, and its torsal faces are
+    developable as Rhino reads them. The canopy's strips turn up to ~3e-3 rad along a ruling
+    between their stations; the exported faces pair each point of one rail with its torsal
+    partner on the other (moved until developable), and where there is none (next to a fan
+    or a corner), that pairing's face still twists, or costs 4.5 times its cones' control
+    points, go out as two cones on the interval's diagonal. (One export serves both checks:
+    the twist was a test of its own, which exported the canopy a second time.)"""
     strips = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
     naive = rh.File3dm()
@@ -244,9 +239,10 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     # closer than 1e-6 of the size; 20.4 % when its 4 strips' cone pairs were fitted at the
     # strip's own pace, which changes several-fold within an interval; 16.3 % with every
     # twisting interval a cone pair, 23.5 % with every one that has a developable pairing a
-    # torsal face; 17.4 % now, its costliest intervals cones)
+    # torsal face; 17.4 % with those costing 3.5x their cones made cones, 19.4 % now at 4.5x:
+    # 98 of its 126 intervals torsal faces)
     assert size <= 0.2 * naive_size, (size / naive_size, measured)
     objects = list(rh.File3dm.Read(str(tmp_path / "faces.3dm")).Objects)
-    twists = [normal_twist(surface_of(o), 60) for o in objects
+    twists = [normal_twist(surface_of(o), 100) for o in objects
               if o.Attributes.GetUserString("TorsalFace") == "torsal"]
-    assert max(twists) <= 1e-6  # measured 1.2e-13 (roof), 4.3e-11 (canopy)
+    assert twists and max(twists) <= 1e-6  # roof 2.4e-13; canopy 6.2e-7 at most at 2000 isolines

@@ -22,11 +22,12 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   :func:`~.threedm_rails.smooth_partners`), fitted within FIT, then its control points
   moved until its normals agree along its lines across (:mod:`.threedm_untwist`: the
   fit's tangents are not exact, and a fit 30 times closer would cost several times the
-  control points). So the face follows the node's rulings and is developable between
-  them. An interval where that face still twists (more than :data:`TWISTED`) is fitted as
-  a face of its own, and if it still twists goes out as cones (below); so does one whose
-  face would cost more than :data:`COSTLIER` times the control points of its cones (the
-  file stays within a fifth of the one-surface form);
+  control points), judged on samples in every span of its knots (between sparser ones a
+  face waves where the fit clustered its knots). So the face follows the node's rulings
+  and is developable between them. An interval where that face still twists (more than
+  :data:`TWISTED`) is fitted as a face of its own, and if it still twists goes out as
+  cones (below); so does one whose face would cost more than :data:`COSTLIER` times the
+  control points of its cones (the file stays within a fifth of the one-surface form);
 - where no developable pairing joins two rulings (the torsal condition has no root between
   them, or a rail comes to rest at one of them, next to a fan: the partner would move like
   a square root) and the strip's own pairing twists there, the interval goes out as two
@@ -74,16 +75,20 @@ FIT = 1e-6
 DEVELOPABLE = 1e-7
 
 #: A face still twisting more than this (rad) after both pairings has its twisting
-#: intervals fitted alone, and one that still twists alone made cones.
-TWISTED = 5e-7
+#: intervals fitted alone, and one that still twists alone made cones (the bar, read back
+#: by Rhino, is 1e-6; the untwist aims at 0.8 of this).
+TWISTED = 8e-7
 
 #: An interval whose torsal face costs more than this times the control points of its
 #: cones goes out as cones (:func:`_costly`).
-COSTLIER = 3.5
+COSTLIER = 4.5
 
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
+
+#: Samples per span between a fitted face's knots that its untwist is judged on.
+SPAN_SAMPLES = 8
 
 #: The densest sampling tried (per ruling interval) before a fit settles for what it reached.
 LARGEST_SAMPLING = 192
@@ -136,7 +141,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
     k = 0
     n = len(lines)
     alone = np.zeros(n, dtype=bool)  # rulings a run of torsal rulings stops at (a twisting interval's)
-    cone_costs: dict[int, int] = {}
+    made_cones: dict[int, list[Piece]] = {}  # the cone pairs fitted so far, per interval
     while k < n - 1:
         if shared[k]:
             end = k + 1
@@ -153,7 +158,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             k += 1
             continue
         if conical[k]:  # no developable pairing: two cones meeting on a diagonal
-            cones = _cones(strip, u, lines, k, size)
+            cones = made_cones[k] if k in made_cones else _cones(strip, u, lines, k, size)
             if tip[k] or tip[k + 1]:  # a face of its own: one of its lines is a point
                 cones = [replace(piece, brep=_brep(piece.rails), rails=None) for piece in cones]
             pieces += cones
@@ -175,7 +180,7 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
                     alone[k + np.flatnonzero(bad)] = alone[k + 1 + np.flatnonzero(bad)] = True
                 continue
         if paired:  # where a torsal face costs much more than cones would, cones
-            costly = _costly(strip, u, lines, k, piece.rails, size, cone_costs)
+            costly = _costly(strip, u, lines, k, piece.rails, size, made_cones)
             if costly.any():
                 conical[k + np.flatnonzero(costly)] = True
                 continue
@@ -185,23 +190,25 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
 
 
 def _costly(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, rails: BSpline, size: float,
-            cone_costs: dict[int, int]) -> np.ndarray:
+            made_cones: dict[int, list[Piece]]) -> np.ndarray:
     """Per interval of a face fitted to the developable pairing from ruling ``first``:
     whether its control points there (its knots inside the interval, and the double knot at
     the ruling that begins it) are more than :data:`COSTLIER` times those of the interval's
-    two cones (their knots but the four at either end; ``cone_costs`` keeps them per
+    two cones (their knots but the four at either end; ``made_cones`` keeps the cones per
     interval). Those intervals go out as cones: the file stays small."""
     knots = np.asarray(rails.t)
     stations = u[first:first + int(np.searchsorted(u[first:], knots[-1]) + 1)]
     inner = knots[4:-4]
     own = np.histogram(inner[inner > stations[0]], bins=stations)[0].astype(float)
     own[0] += 2.0  # the first interval's share of the face's ends
-    costs = np.ones(len(stations) - 1)
-    for i in np.flatnonzero(own > COSTLIER):  # (cheaper than COSTLIER can cost no more)
+    costs = np.full(len(stations) - 1, 3.0)
+    # a cone pair has 7 control points at least (two cubics of 4 sharing one), so costs 3:
+    # an interval cheaper than COSTLIER times that can cost no more than its cones
+    for i in np.flatnonzero(own > 3.0 * COSTLIER):
         k = first + int(i)
-        if k not in cone_costs:
-            cone_costs[k] = _cones(strip, u, lines, k, size)[0].controls - 4
-        costs[i] = cone_costs[k]
+        if k not in made_cones:
+            made_cones[k] = _cones(strip, u, lines, k, size)
+        costs[i] = made_cones[k][0].controls - 4
     return own > COSTLIER * np.maximum(costs, 1.0)
 
 
@@ -372,6 +379,7 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     whether it is the developable pairing's."""
     span = u[first:last + 1]
     tolerance = FIT * size
+    sampled = 0.0  # the untwisted face's largest twist on the untwist's samples
     own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
     fit = own
     paired_fit = False
@@ -392,16 +400,21 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
         developable = _fit(rails, span, lines[first:last + 1], tolerance, paired, kinks)  # type: ignore[arg-type]
         if developable[0] <= tolerance and _twist(developable) > DEVELOPABLE:
             # its tangents are not exact: its control points moved until it is developable
-            # (:mod:`.threedm_untwist`), on samples of the pairing as dense as its knots
+            # (:mod:`.threedm_untwist`), on samples of the pairing as dense as its knots, and
+            # in every span of its knots (where the fit clustered them too: between sparser
+            # samples it would wave)
             per = max(8 * SAMPLES, 16 * -(-(len(developable[1]) - 4) // max(len(span) - 1, 1)))
-            at, data = _samples(rails, np.unique(np.concatenate([span, kinks])), per, paired)  # type: ignore[arg-type]
-            moved, distance, _ = untwisted(developable[2], at, data, tolerance, 0.8 * TWISTED)
+            at = np.unique(np.concatenate([between(np.unique(np.concatenate([span, kinks])), per),
+                                           between(np.unique(developable[1]), SPAN_SAMPLES)]))
+            data = np.hstack([rails.curve_a.point_at(at), rails.curve_b.point_at(paired(at))])
+            moved, distance, angle = untwisted(developable[2], at, data, tolerance, 0.8 * TWISTED)
             if distance <= tolerance:
                 developable = (distance, np.asarray(moved.t), moved)
+                sampled = angle  # on its own samples, denser than _twist's
         if developable[0] <= tolerance and _twist(developable) < _twist(own):
             fit, paired_fit = developable, True
     piece = Piece(None, "torsal", first, last, fit[0], len(fit[1]) - 4, fit[2])
-    return piece, _twist(fit), paired_fit
+    return piece, max(_twist(fit), sampled if paired_fit else 0.0), paired_fit
 
 
 def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float:
@@ -414,7 +427,7 @@ def _own_twist(strip: RuledSurface, span: np.ndarray, count: int = 257) -> float
     return float(np.nanmax(angle)) if np.isfinite(angle).any() else float("inf")
 
 
-def _interval_twists(spline: BSpline | None, span: np.ndarray, count: int = 17) -> np.ndarray:
+def _interval_twists(spline: BSpline | None, span: np.ndarray, count: int = 129) -> np.ndarray:
     """Per interval of ``span``: the largest angle between a fitted face's normals 1 % in
     from either end of its lines across, at ``count`` of them in the interval."""
     if spline is None:
