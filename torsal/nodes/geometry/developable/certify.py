@@ -200,7 +200,7 @@ def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
 
     # along: at the strip's rulings too, where its edges may turn a corner (a strip cut at
     # the design's edge, :mod:`.outline_cut`): a mesh that cut the corner would over-report
-    along = np.linspace(0.0, 1.0, ALONG)
+    along = np.union1d(np.linspace(0.0, 1.0, ALONG), _even_along(strip))
     rulings = getattr(strip, "ruling_parameters", None)
     if rulings is not None:
         rulings = np.asarray(rulings, dtype=float)
@@ -221,6 +221,19 @@ def _mesh_distance(strip: Surface, points: FloatArray) -> FloatArray:
     # a degenerate triangle (two rulings a hair apart) has no closest point of its own; its
     # neighbours' edges hold it, so the nearest of the others is the distance
     return np.fmin.reduce(np.linalg.norm(found - query, axis=1).reshape(len(points), -1), axis=1)
+
+
+def _even_along(strip: Surface) -> FloatArray:
+    """:data:`ALONG` parameters evenly spaced by the length of the strip's two edges
+    together: where a cut strip's edge runs fast in its parameter (its lines sweep along
+    a trim), an even grid of parameters would chord off its edge there."""
+    t = np.linspace(0.0, 1.0, 16 * ALONG)
+    edges = [strip.point_at(t, np.full(len(t), v)) for v in (0.0, 1.0)]
+    steps = sum(np.linalg.norm(np.diff(edge, axis=0), axis=1) for edge in edges)
+    length = np.concatenate([[0.0], np.cumsum(steps)])
+    if not length[-1] > 0.0:
+        return np.empty(0)
+    return np.interp(np.linspace(0.0, length[-1], ALONG), length, t)
 
 
 def crease_angle(lower: RulingResult, lower_edge: Curve, upper: RulingResult, upper_edge: Curve) -> float:

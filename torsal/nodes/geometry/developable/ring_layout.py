@@ -44,7 +44,7 @@ from ..trimmed_surface import TrimmedSurface
 from .certify import uncovered
 from .curvature_lines import plan_scale, ring_family, trace_rings
 from .rationalise import Rationalisation, Strip
-from .rings import RingPatch, march_rings, region_inside
+from .rings import RingPatch, march_rings, region_corners, region_inside
 from .trimmed import rationalise_trimmed
 
 #: Samples of the design per direction when looking for bumps.
@@ -64,6 +64,9 @@ OVERRUN = 0.15
 #: of the design crosses the seeds' ray farther out or nearer in).
 SEEDS = 24
 FARTHEST = 1.05
+#: The outermost ring passes this share of a corner's distance beyond the half's farthest
+#: corner, trying the seeds farther out up to this many times (:func:`_reaching`).
+BEYOND, REACHING = 0.01, 3
 #: A half's strips are cut this share of the tolerance past its edges inside the design.
 OVERLAP = 2.0
 #: Samples along x across each strip where its distance from the design is checked besides
@@ -182,10 +185,11 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
         narrow += [len(strips) + k for k in found.narrow]
         strips += found.strips
     for half in layout.halves:
-        patch = RingPatch(design, half.centre, scale, half.seeds, half.span, half.family, half.start)
+        patch = _reaching(design, half, scale)
         inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
+        corners = region_corners(design, half.region, scale, OVERLAP * tolerance)
         pieces, _ = march_rings(design, patch, inside, tolerance, segments, warp_tolerance,
-                                max(1, max_strips - len(strips)))
+                                max(1, max_strips - len(strips)), corners=corners)
         for strip in pieces:
             _checked(design, strip)
         _covers(design, half, pieces, scale, tolerance)
@@ -195,6 +199,27 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
     points, gaps = uncovered(design, [s.surface for s in strips])
     return Rationalisation("rings", strips, [], float(tolerance), narrow, points, gaps, [])
 
+
+
+def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
+    """The half's ring patch, its outermost ring beyond every corner of the half (by
+    :data:`BEYOND` of the farthest's distance): the seeds are spread farther out (by the
+    ratio of a corner's distance to the ring's on its ray) until it is, at most
+    :data:`REACHING` times. A ring is no circle: the one through the seed as far out as
+    the farthest corner may pass inside another corner, and leave it uncovered."""
+    seeds = np.asarray(half.seeds, dtype=float)
+    corners = np.asarray(half.region.exterior.coords) - half.centre
+    rho = np.hypot(corners[:, 0], corners[:, 1])
+    theta = half.span[0] + np.mod(np.arctan2(corners[:, 1], corners[:, 0]) - half.span[0], 2.0 * np.pi)
+    for _ in range(REACHING):
+        patch = RingPatch(design, half.centre, scale, seeds, half.span, half.family, half.start)
+        inside = (theta >= half.span[0]) & (theta <= half.span[1])
+        outer = patch.radius.ev(np.ones(int(inside.sum())), theta[inside])
+        short = float(np.max(rho[inside] * (1.0 + BEYOND) / outer, initial=0.0))
+        if short <= 1.0:
+            break
+        seeds = np.linspace(seeds[0], seeds[-1] * short, len(seeds))
+    return patch
 
 
 def _checked(design: Surface, strip: Strip) -> None:

@@ -46,6 +46,7 @@ import numpy as np
 import shapely
 from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline, PchipInterpolator, make_interp_spline, make_lsq_spline
+from scipy.optimize import minimize_scalar
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
@@ -73,6 +74,16 @@ REACH = 0.5
 TIP = 2e-3
 #: Samples per trim loop span, for the coverage.
 LOOP_SAMPLES = 8
+#: A trim's corner: where its outline turns by more than this (rad). The sheet gets a line
+#: through each corner the strip covers, whose cut ends at the corner exactly.
+CORNER = 0.3
+#: Where the cut point of one sampled line to the next moves more than this many times the
+#: median step (the sheet's lines sweep along the trim, a fan) or the tolerance, whichever
+#: is larger, :data:`SPLIT` lines are put between them, up to :data:`REFINE` times.
+JUMP, SPLIT, REFINE = 3.0, 4, 4
+#: A cut edge along the trim is a least-squares cubic when it stays this share of the
+#: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
+FIT = 0.05
 
 
 class Patch(Surface):
@@ -228,6 +239,75 @@ class _Sheet:
         points = start[:, None] + self.w[None, :, None] * (end - start)[:, None]
         return self.inside(points.reshape(-1, 3)).reshape(len(x), len(self.w))
 
+    def sample(self, corners: FloatArray, tolerance: float) -> None:
+        """The lines the cut is made from: :func:`_columns`' lines, a line through each of
+        the trim's ``corners`` (3D points on the design) that lies on the sheet within the
+        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), and
+        more lines where the cut point jumps from one line to the next (see :data:`JUMP`).
+        Sets ``x``, ``ruling``, ``corner`` and the signed distances ``g`` along them."""
+        self.corner = np.full(len(self.x), np.nan)
+        at, w = self._corner_lines(np.asarray(corners, dtype=float).reshape(-1, 3), tolerance)
+        self._insert(at, w)
+        for _ in range(REFINE):
+            cut = self._cut_points()
+            step = np.linalg.norm(np.diff(cut, axis=0), axis=2).max(axis=1)
+            known = np.isfinite(step)
+            if not known.any():
+                break
+            limit = max(JUMP * float(np.median(step[known])), tolerance)
+            wide = np.flatnonzero(known & (step > limit))
+            if len(wide) == 0:
+                break
+            share = np.arange(1, SPLIT)[None, :] / SPLIT
+            more = (self.x[wide, None] + share * (self.x[wide + 1] - self.x[wide])[:, None]).ravel()
+            self._insert(more, np.full(len(more), np.nan))
+
+    def _insert(self, x: FloatArray, corner: FloatArray) -> None:
+        """Lines at ``x`` added to the sampled ones (in order, none twice), with their
+        corners' w (NaN: none); sets ``g`` for all."""
+        old = getattr(self, "g", None)
+        new = np.setdiff1d(x, self.x)
+        if old is None or len(new):
+            order = np.argsort(np.concatenate([self.x, new]), kind="stable")
+            g_new = self.distances(new) if len(new) else np.empty((0, len(self.w)))
+            self.g = np.concatenate([self.distances(self.x) if old is None else old, g_new])[order]
+            self.ruling = np.concatenate([self.ruling, np.full(len(new), -1)])[order]
+            self.corner = np.concatenate([self.corner, np.full(len(new), np.nan)])[order]
+            self.x = np.concatenate([self.x, new])[order]
+        where = np.searchsorted(self.x, x)
+        self.corner[where[np.isfinite(corner)]] = corner[np.isfinite(corner)]
+
+    def _corner_lines(self, corners: FloatArray, tolerance: float) -> tuple[FloatArray, FloatArray]:
+        """The u and w of the line of the sheet nearest each corner, for the corners within
+        ``tolerance`` of a line strictly between the rails (the nearest sampled line, then
+        scipy's bounded scalar search between its neighbours)."""
+        if len(corners) == 0:
+            return np.empty(0), np.empty(0)
+        start, end = self.ends(self.x)
+        near = np.array([np.argmin(_to_lines(c, start, end)[0]) for c in corners])
+        at, w = [], []
+        for c, k in zip(corners, near, strict=True):
+            lo, hi = self.x[max(k - 1, 0)], self.x[min(k + 1, len(self.x) - 1)]
+            found = minimize_scalar(lambda x, c=c: _to_lines(c, *self.ends(np.array([x])))[0][0],
+                                    bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+            d, t = _to_lines(c, *self.ends(np.array([found.x])))
+            if d[0] <= tolerance and 0.0 < t[0] < 1.0:
+                at.append(float(found.x))
+                w.append(float(t[0]))
+        return np.array(at), np.array(w)
+
+    def _cut_points(self) -> FloatArray:
+        """The two ends of each line's kept part (its outermost runs), (n, 2, 3); NaN where
+        nothing of a line is kept."""
+        out = np.full((len(self.x), 2, 3), np.nan)
+        start, end = self.ends(self.x)
+        for k, row in enumerate(self.g):
+            kept = _runs(row, self.w)
+            if kept:
+                w = np.array([kept[0][0], kept[-1][1]])[:, None]
+                out[k] = start[k] + w * (end[k] - start[k])
+        return out
+
 
 class _Pace:
     """The partner parameter τ(x) between the strip's rulings: on each ruling interval the
@@ -256,13 +336,33 @@ class _Pace:
         return out.reshape(x.shape) if x.ndim else out[0]
 
 
-def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
+def _to_lines(point: FloatArray, start: FloatArray, end: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The distance from ``point`` to each segment ``start → end``, and the share along it of
+    the segment's point nearest it."""
+    along = end - start
+    t = np.einsum("ij,ij->i", point - start, along) / np.maximum(np.einsum("ij,ij->i", along, along), 1e-300)
+    t = np.clip(t, 0.0, 1.0)
+    return np.linalg.norm(start + t[:, None] * along - point, axis=1), t
+
+
+def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray, lengths: FloatArray, limit: float
+            ) -> BSpline | PchipInterpolator:
     """A cubic in x fitted to ``w`` by least squares with knots at the strip's rulings
     (``knots``) inside ``x``'s range, through the two end values exactly: where the trim's
     line of cut lies across the sheet (no need to pass through the samples: every point of
-    the sheet lies on a torsal line)."""
+    the sheet lies on a torsal line). Where that cubic strays more than ``limit`` from a cut
+    point (``lengths``: the lines' lengths; a corner of the trim, or lines that sweep along
+    it), the monotone cubic through the cut points instead (scipy's PCHIP: no overshoot)."""
     if len(x) < 6:
         return make_interp_spline(x, w, k=min(3, len(x) - 1))
+    spline = _least_squares(x, w, knots)
+    if float(np.max(np.abs(spline(x) - w) * lengths)) <= limit:
+        return spline
+    return PchipInterpolator(x, w)
+
+
+def _least_squares(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
+    """The least-squares cubic of :func:`_smooth`."""
     inner = knots[(knots > x[0]) & (knots < x[-1])]
     inner = inner[(inner - x[0] > 1e-9) & (x[-1] - inner > 1e-9)]
     full = np.concatenate([[x[0]] * 4, inner, [x[-1]] * 4])
@@ -326,9 +426,8 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     """The runs of lines whose kept interval is one piece, each ended where its lines leave
     the trim (by interpolating the largest signed distance along the lines) when the
     neighbouring line is wholly outside."""
-    x, ruling = sheet.x, sheet.ruling
-    g = sheet.distances(x)
-    found = [_runs(row, sheet.w) for row in g]
+    x, ruling, g = sheet.x, sheet.ruling, sheet.g
+    found = [_at_corner(_runs(row, sheet.w), w) for row, w in zip(g, sheet.corner, strict=True)]
     most = g.max(axis=1)
     runs: list[list[_Line]] = []
     open_: list[list[_Line]] = []
@@ -337,8 +436,8 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     for k, kept in enumerate(found):
         same = len(kept) == len(previous) and all(a[0] < b[1] and b[0] < a[1]
                                                    for a, b in zip(kept, previous, strict=True))
-        lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]), ruling[k] >= 0)
-                 for lo, hi in kept]
+        lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]),
+                       bool(ruling[k] >= 0 or np.isfinite(sheet.corner[k]))) for lo, hi in kept]
         if same:
             for run, line in zip(open_, lines, strict=True):
                 run.append(line)
@@ -384,6 +483,16 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     return [run for run in runs if len(run) >= 2]
 
 
+def _at_corner(kept: list[tuple[float, float]], w: float) -> list[tuple[float, float]]:
+    """``kept`` with the end nearest ``w`` (a corner of the trim on this line) moved to it."""
+    if not kept or not np.isfinite(w):
+        return kept
+    ends = np.array(kept, dtype=float)
+    i, j = np.unravel_index(np.argmin(np.abs(ends - w)), ends.shape)
+    ends[i, j] = w
+    return [(float(a), float(b)) for a, b in ends if b > a]
+
+
 def _kept(line: _Line) -> float:
     return line.hi - line.lo
 
@@ -418,13 +527,16 @@ def _on_rail(line: _Line, upper: bool) -> bool:
     return line.hi >= 1.0 - 1e-12 if upper else line.lo <= 1e-12
 
 
-def _chain(sheet: _Sheet, run: list[_Line], upper: bool) -> tuple[Chain, FloatArray]:
+def _chain(sheet: _Sheet, run: list[_Line], upper: bool, limit: float) -> tuple[Chain, FloatArray]:
     """One edge of a cut strip (``upper``: the B side) as a :class:`Chain` run at the pace of
     the sheet's u: stretches of the strip's own rail (w = 0 or 1 exactly, so neighbours
     still share their boundary) and of the trim (w a cubic in u through the cut); and each
     line's parameter on it. Both edges run at the same pace, so at any parameter the strip
-    joins two points of one line of the sheet: torsal between the rulings too."""
+    joins two points of one line of the sheet: torsal between the rulings too. ``limit``:
+    how far a stretch along the trim may stray from the cut points (:func:`_smooth`)."""
     x = np.array([line.x for line in run])
+    start, end = sheet.ends(x)
+    lengths = np.linalg.norm(end - start, axis=1)
     w = np.array([line.hi if upper else line.lo for line in run])
     rail = np.array([_on_rail(line, upper) for line in run])
     along = rail[:-1] & rail[1:]  # each interval between lines: along the rail, else the trim
@@ -434,8 +546,9 @@ def _chain(sheet: _Sheet, run: list[_Line], upper: bool) -> tuple[Chain, FloatAr
         last = first + 1
         while last < len(run) - 1 and along[last] == along[first]:
             last += 1
-        across = _Constant(1.0 if upper else 0.0) if along[first] else _smooth(x[first:last + 1],
-                                                                                w[first:last + 1], sheet.u)
+        span = slice(first, last + 1)
+        across = (_Constant(1.0 if upper else 0.0) if along[first]
+                  else _smooth(x[span], w[span], sheet.u, lengths[span], limit))
         pieces.append((_OnSheet(sheet.a, sheet.b, sheet.tau, across), float(x[first]), float(x[last])))
         first = last
     chain = Chain(pieces)
@@ -453,16 +566,19 @@ class _Constant:
 
 
 def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: Surface,
-              tolerance: float) -> list[Strip]:
-    """``strip`` cut to where ``inside`` ≥ 0 (see the module): none, one or several strips."""
+              tolerance: float, corners: FloatArray | None = None) -> list[Strip]:
+    """``strip`` cut to where ``inside`` ≥ 0 (see the module): none, one or several strips.
+    ``corners``: the trim's corners, points on the design (:func:`sharp_corners`), where
+    the cut keeps a corner of the trim rather than rounding it."""
     sheet = _Sheet(strip, inside)
+    sheet.sample(np.empty((0, 3)) if corners is None else corners, tolerance)
     pieces = []
     for run in _runs_of_lines(sheet):
         run = _corners(sheet, run)
         keep = np.array([line.kept for line in run])
         try:
-            lower, s = _chain(sheet, run, upper=False)
-            upper, t = _chain(sheet, run, upper=True)
+            lower, s = _chain(sheet, run, False, FIT * tolerance)
+            upper, t = _chain(sheet, run, True, FIT * tolerance)
             surface = _ruled(lower, upper, s[keep])
         except ValueError:  # a run too short to make a strip of
             continue
@@ -511,9 +627,7 @@ def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
     """Points' signed distance from the trim loops, positive inside, plus ``margin``: each
     point projected onto the patch, its (u, v) scaled by the surface's mean speeds along u
     and v (so the distance is about one along the surface, in model units)."""
-    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
-    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
-    speed = np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
+    speed = _speeds(design)
     region = shapely.transform(design.region, lambda xy: xy * speed)
     boundary = region.boundary
 
@@ -524,6 +638,45 @@ def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
         return np.where(shapely.contains_xy(region, uv[:, 0], uv[:, 1]), distance, -distance) + margin
 
     return inside
+
+
+def sharp_corners(region: shapely.Geometry, angle: float = CORNER) -> FloatArray:
+    """The vertices of a polygon (or several) where its outline turns by more than
+    ``angle`` (rad), (k, 2): the corners a cut must keep (:func:`cut_strip`)."""
+    out = [np.empty((0, 2))]
+    for polygon in getattr(region, "geoms", [region]):
+        if polygon.is_empty or polygon.geom_type != "Polygon":
+            continue
+        for ring in (polygon.exterior, *polygon.interiors):
+            xy = np.asarray(ring.coords)[:-1]
+            step = np.diff(np.vstack([xy, xy[:1]]), axis=0)
+            keep = np.linalg.norm(step, axis=1) > 1e-12 * max(float(np.ptp(xy, axis=0).max()), 1e-300)
+            xy, step = xy[keep], step[keep]  # repeated vertices left out
+            if len(xy) < 3:
+                continue
+            before = np.roll(step, 1, axis=0)  # the edge into each vertex
+            cross = before[:, 0] * step[:, 1] - before[:, 1] * step[:, 0]
+            turn = np.arctan2(np.abs(cross), np.einsum("ij,ij->i", before, step))
+            out.append(xy[turn > angle])
+    return np.concatenate(out)
+
+
+def trim_corners(design: TrimmedSurface, margin: float = 0.0) -> FloatArray:
+    """The corners (3D points on the design) of the region :func:`signed_inside` keeps with
+    the same ``margin``."""
+    speed = _speeds(design)
+    region = shapely.transform(design.region, lambda xy: xy * speed)
+    if margin > 0.0:
+        region = region.buffer(margin, quad_segs=32)
+    uv = sharp_corners(region) / speed
+    return design.surface.point_at(uv[:, 0], uv[:, 1]) if len(uv) else np.empty((0, 3))
+
+
+def _speeds(design: TrimmedSurface) -> FloatArray:
+    """The surface's mean speeds along u and v (the scale of :func:`signed_inside`'s plan)."""
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
+    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
+    return np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
 
 
 def trim_points(design: TrimmedSurface) -> FloatArray:
@@ -544,10 +697,11 @@ def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **
     # the box's edges lie outside the trim: the strips are cut by the trim, not by them
     base = rationalise(patch, tolerance, *args, cut_at_edge=False, **options)
     inside = signed_inside(design, patch, REACH * tolerance)
+    corners = trim_corners(design, REACH * tolerance)
     strips: list[Strip] = []
     narrow: list[int] = []
     for k, strip in enumerate(base.strips):
-        cut = cut_strip(strip, inside, patch, tolerance)
+        cut = cut_strip(strip, inside, patch, tolerance, corners)
         if k in base.narrow:
             narrow += list(range(len(strips), len(strips) + len(cut)))
         strips += cut
