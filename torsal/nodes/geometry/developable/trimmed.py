@@ -81,6 +81,8 @@ CORNER = 0.3
 #: median step (the sheet's lines sweep along the trim, a fan) or the tolerance, whichever
 #: is larger, :data:`SPLIT` lines are put between them, up to :data:`REFINE` times.
 JUMP, SPLIT, REFINE = 3.0, 4, 4
+#: Steps of false position to each point where a line leaves the trim, from its samples.
+ROOT_STEPS = 3
 #: A cut edge along the trim is a least-squares cubic when it stays this share of the
 #: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
 FIT = 0.05
@@ -200,6 +202,7 @@ class _Line:
     g0: float = 0.0
     g1: float = 0.0
     kept: bool = False  #: a ruling of the cut strip (the strip's own, a corner or an end)
+    corner: bool = False  #: through a corner of the trim (an edge along the trim turns here)
 
 
 class _Sheet:
@@ -239,12 +242,39 @@ class _Sheet:
         points = start[:, None] + self.w[None, :, None] * (end - start)[:, None]
         return self.inside(points.reshape(-1, 3)).reshape(len(x), len(self.w))
 
+    def kept(self, x: FloatArray) -> tuple[FloatArray, list[list[tuple[float, float]]]]:
+        """The signed distances along the lines at ``x`` (:meth:`distances`) and each line's
+        kept intervals: where the samples change sign, the crossing found by
+        :data:`ROOT_STEPS` steps of false position between them (the distance is not linear
+        along a line near a corner of the trim, where it is the nearer of two edges')."""
+        x = np.asarray(x, dtype=float)
+        g = self.distances(x)
+        keep = g >= 0.0
+        k, j = np.nonzero(keep[:, 1:] != keep[:, :-1])
+        lo, hi, g_lo, g_hi = self.w[j], self.w[j + 1], g[k, j], g[k, j + 1]
+        if len(k):
+            start, end = self.ends(x[k])
+            for _ in range(ROOT_STEPS):
+                w = lo + (hi - lo) * g_lo / (g_lo - g_hi)
+                found = self.inside(start + w[:, None] * (end - start))
+                same = (found >= 0.0) == (g_lo >= 0.0)
+                lo, g_lo = np.where(same, w, lo), np.where(same, found, g_lo)
+                hi, g_hi = np.where(same, hi, w), np.where(same, g_hi, found)
+        cut = lo + (hi - lo) * g_lo / (g_lo - g_hi)
+        runs = []
+        for row in range(len(x)):
+            bounds = ([self.w[0]] if keep[row, 0] else []) + cut[k == row].tolist()
+            bounds += [self.w[-1]] if keep[row, -1] else []
+            runs.append([(float(bounds[i]), float(bounds[i + 1])) for i in range(0, len(bounds) - 1, 2)])
+        return g, runs
+
     def sample(self, corners: FloatArray, tolerance: float) -> None:
         """The lines the cut is made from: :func:`_columns`' lines, a line through each of
         the trim's ``corners`` (3D points on the design) that lies on the sheet within the
         tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), and
         more lines where the cut point jumps from one line to the next (see :data:`JUMP`).
-        Sets ``x``, ``ruling``, ``corner`` and the signed distances ``g`` along them."""
+        Sets ``x``, ``ruling``, ``corner``, the signed distances ``g`` along them and their
+        kept intervals ``runs``."""
         self.corner = np.full(len(self.x), np.nan)
         at, w = self._corner_lines(np.asarray(corners, dtype=float).reshape(-1, 3), tolerance)
         self._insert(at, w)
@@ -269,8 +299,12 @@ class _Sheet:
         new = np.setdiff1d(x, self.x)
         if old is None or len(new):
             order = np.argsort(np.concatenate([self.x, new]), kind="stable")
-            g_new = self.distances(new) if len(new) else np.empty((0, len(self.w)))
-            self.g = np.concatenate([self.distances(self.x) if old is None else old, g_new])[order]
+            g_new, runs_new = self.kept(new) if len(new) else (np.empty((0, len(self.w))), [])
+            if old is None:
+                old, self.runs = self.kept(self.x)
+            self.g = np.concatenate([old, g_new])[order]
+            runs = self.runs + runs_new
+            self.runs = [runs[i] for i in order]
             self.ruling = np.concatenate([self.ruling, np.full(len(new), -1)])[order]
             self.corner = np.concatenate([self.corner, np.full(len(new), np.nan)])[order]
             self.x = np.concatenate([self.x, new])[order]
@@ -301,8 +335,7 @@ class _Sheet:
         nothing of a line is kept."""
         out = np.full((len(self.x), 2, 3), np.nan)
         start, end = self.ends(self.x)
-        for k, row in enumerate(self.g):
-            kept = _runs(row, self.w)
+        for k, kept in enumerate(self.runs):
             if kept:
                 w = np.array([kept[0][0], kept[-1][1]])[:, None]
                 out[k] = start[k] + w * (end[k] - start[k])
@@ -410,10 +443,9 @@ def _lines_at(sheet: _Sheet, x: FloatArray, near: list[tuple[float, float]]) -> 
     inside (an interval of no length)."""
     if len(x) == 0:
         return []
-    g = sheet.distances(np.asarray(x, dtype=float))
+    g, runs = sheet.kept(np.asarray(x, dtype=float))
     out = []
-    for xi, row, (lo, hi) in zip(x, g, near, strict=True):
-        kept = _runs(row, sheet.w)
+    for xi, row, kept, (lo, hi) in zip(x, g, runs, near, strict=True):
         if kept:
             a, b = min(kept, key=lambda iv: abs(0.5 * (iv[0] + iv[1]) - 0.5 * (lo + hi)))
         else:
@@ -427,7 +459,7 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     the trim (by interpolating the largest signed distance along the lines) when the
     neighbouring line is wholly outside."""
     x, ruling, g = sheet.x, sheet.ruling, sheet.g
-    found = [_at_corner(_runs(row, sheet.w), w) for row, w in zip(g, sheet.corner, strict=True)]
+    found = [_at_corner(kept, w) for kept, w in zip(sheet.runs, sheet.corner, strict=True)]
     most = g.max(axis=1)
     runs: list[list[_Line]] = []
     open_: list[list[_Line]] = []
@@ -436,8 +468,9 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     for k, kept in enumerate(found):
         same = len(kept) == len(previous) and all(a[0] < b[1] and b[0] < a[1]
                                                    for a, b in zip(kept, previous, strict=True))
+        corner = bool(np.isfinite(sheet.corner[k]))
         lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]),
-                       bool(ruling[k] >= 0 or np.isfinite(sheet.corner[k]))) for lo, hi in kept]
+                       bool(ruling[k] >= 0 or corner), corner) for lo, hi in kept]
         if same:
             for run, line in zip(open_, lines, strict=True):
                 run.append(line)
@@ -530,7 +563,8 @@ def _on_rail(line: _Line, upper: bool) -> bool:
 def _chain(sheet: _Sheet, run: list[_Line], upper: bool, limit: float) -> tuple[Chain, FloatArray]:
     """One edge of a cut strip (``upper``: the B side) as a :class:`Chain` run at the pace of
     the sheet's u: stretches of the strip's own rail (w = 0 or 1 exactly, so neighbours
-    still share their boundary) and of the trim (w a cubic in u through the cut); and each
+    still share their boundary) and of the trim (w a cubic in u through the cut, one from
+    each corner of the trim to the next); and each
     line's parameter on it. Both edges run at the same pace, so at any parameter the strip
     joins two points of one line of the sheet: torsal between the rulings too. ``limit``:
     how far a stretch along the trim may stray from the cut points (:func:`_smooth`)."""
@@ -544,7 +578,7 @@ def _chain(sheet: _Sheet, run: list[_Line], upper: bool, limit: float) -> tuple[
     first = 0
     while first < len(run) - 1:
         last = first + 1
-        while last < len(run) - 1 and along[last] == along[first]:
+        while last < len(run) - 1 and along[last] == along[first] and not run[last].corner:
             last += 1
         span = slice(first, last + 1)
         across = (_Constant(1.0 if upper else 0.0) if along[first]
