@@ -21,7 +21,8 @@ from torsal.nodes.geometry.developable.guided import IsoBoundaries
 from torsal.nodes.geometry.developable.rationalise import Strip
 from torsal.nodes.geometry.developable.rings import region_corners, region_inside
 from torsal.nodes.geometry.developable.ruling import ruling_developable
-from torsal.nodes.geometry.developable.trimmed import cut_strip, sharp_corners
+from torsal.nodes.geometry.developable.trim_region import sharp_corners
+from torsal.nodes.geometry.developable.trimmed import cut_strip
 
 
 def _cylinder(x, y):

@@ -25,8 +25,9 @@ whichever family bounds them. Boundaries along lines of curvature never do
 :func:`ring_layout` returns the strips as a :class:`~.rationalise.Rationalisation` with
 ``family`` "rings" and no boundary curves (each region has its own), or raises
 ``ValueError`` where the rings cannot be traced (a line of curvature that turns along a
-ray), or as soon as a half's strips are beyond the tolerance (checked on dense samples
-too, :func:`_checked`) or leave the design's edge in it uncovered (:func:`_covers`) —
+ray), or as soon as the halves' fans alone cover more of the design than asked (the
+halves are marched before the caps), or a half's strips are beyond the tolerance (checked on dense samples
+too, :func:`~.trimmed.checked_densely`) or leave the design's edge in it uncovered (:func:`_covers`) —
 Rationalise then keeps the parameter lines.
 """
 
@@ -43,8 +44,10 @@ from ..surface_base import Surface
 from ..trimmed_surface import TrimmedSurface
 from .certify import uncovered
 from .curvature_lines import plan_scale, ring_family, trace_rings
+from .fans import patch_areas
 from .rationalise import Rationalisation, Strip
 from .rings import RingPatch, march_rings, region_corners, region_inside
+from .trim_region import checked_densely
 from .trimmed import rationalise_trimmed
 
 #: Samples of the design per direction when looking for bumps.
@@ -69,9 +72,9 @@ FARTHEST = 1.05
 BEYOND, REACHING = 0.01, 3
 #: A half's strips are cut this share of the tolerance past its edges inside the design.
 OVERLAP = 2.0
-#: Samples along x across each strip where its distance from the design is checked besides
-#: its certificate (:func:`_checked`).
-CHECK = (161, 9)
+#: The halves' fans refuse the layout early when they cover more than the share asked of
+#: the design's area times this (the strips' area exceeds the design's by their overlaps).
+SPARE = 1.1
 
 
 def bump_centres(design: Surface, scale: FloatArray) -> list[FloatArray]:
@@ -167,38 +170,53 @@ def layout_regions(design: Surface, centres: list[FloatArray], scale: FloatArray
 
 
 def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segments: int = 24,
-                warp_tolerance: float = 1e-7, min_width: float = 0.0) -> Rationalisation:
-    """Strips round the design's bumps along rings of curvature (see the module)."""
+                warp_tolerance: float = 1e-7, min_width: float = 0.0, max_fans: float = 1.0
+                ) -> Rationalisation:
+    """Strips round the design's bumps along rings of curvature (see the module); refused
+    as soon as the halves' fans alone cover more than ``max_fans`` of the design's area."""
     scale = plan_scale(design)
     centres = bump_centres(design, scale)
     if not centres:
         raise ValueError("the design has no bump to ring")
     layout = layout_regions(design, centres, scale)
-    strips: list[Strip] = []
-    narrow: list[int] = []
-    for cap in layout.caps:
-        if cap.is_empty or cap.geom_type != "Polygon":
-            raise ValueError("a bump's cap is not one region")
-        loop = np.asarray(cap.exterior.coords) / scale
-        found = rationalise_trimmed(TrimmedSurface(design, loop), tolerance, max_strips, segments=segments,
-                                    warp_tolerance=warp_tolerance, min_width=min_width)
-        narrow += [len(strips) + k for k in found.narrow]
-        strips += found.strips
+    if any(cap.is_empty or cap.geom_type != "Polygon" for cap in layout.caps):
+        raise ValueError("a bump's cap is not one region")
+    # the halves first: a layout refused there costs no cap
+    area = design.area(rtol=1e-4) if max_fans < 1.0 else 0.0
+    rings: list[Strip] = []
     for half in layout.halves:
         patch = _reaching(design, half, scale)
         inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
         corners = region_corners(design, half.region, scale, OVERLAP * tolerance)
         pieces, _ = march_rings(design, patch, inside, tolerance, segments, warp_tolerance,
-                                max(1, max_strips - len(strips)), corners=corners)
+                                max(1, max_strips - len(rings)), corners=corners)
         for strip in pieces:
-            _checked(design, strip)
+            checked_densely(design, strip)
         _covers(design, half, pieces, scale, tolerance)
-        strips += pieces
+        rings += pieces
+        fans = _fan_area(rings)
+        if fans > max_fans * SPARE * area:
+            raise ValueError(f"the rings' fans already cover {fans / area:.3g} of the design")
+    strips: list[Strip] = []
+    narrow: list[int] = []
+    for cap in layout.caps:
+        loop = np.asarray(cap.exterior.coords) / scale
+        found = rationalise_trimmed(TrimmedSurface(design, loop), tolerance, max_strips, segments=segments,
+                                    warp_tolerance=warp_tolerance, min_width=min_width)
+        narrow += [len(strips) + k for k in found.narrow]
+        strips += found.strips
+    strips += rings
     if len(strips) > max_strips:
         raise ValueError(f"the rings need {len(strips)} strips, more than {max_strips}")
     points, gaps = uncovered(design, [s.surface for s in strips])
     return Rationalisation("rings", strips, [], float(tolerance), narrow, points, gaps, [])
 
+
+
+def _fan_area(strips: list[Strip]) -> float:
+    """The strips' area between rulings of which one or both are a fan's."""
+    return sum(float(patch_areas(s.result.starts, s.result.ends)[s.result.fan[:-1] | s.result.fan[1:]].sum())
+               for s in strips)
 
 
 def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
@@ -220,23 +238,6 @@ def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
             break
         seeds = np.linspace(seeds[0], seeds[-1] * short, len(seeds))
     return patch
-
-
-def _checked(design: Surface, strip: Strip) -> None:
-    """``strip``'s deviation raised to the largest distance of :data:`CHECK` samples of it
-    from the design, where that is larger. A cut strip's edge along the cut is a cubic
-    through the cut points; where the rulings run nearly along the design's edge (rings
-    near a corner) it can bulge past the edge between the certificate's samples (5.1 cm
-    where 1.88 cm was certified, the double bump at 2 cm), so the layout is kept only when
-    dense samples agree too."""
-    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0.0, 1.0, CHECK[0]), np.linspace(0.0, 1.0, CHECK[1]),
-                                           indexing="ij"))
-    points = strip.surface.point_at(u, v)
-    found = design.closest_point(points, candidates=2, tolerance=1e-12)
-    distance = found.distances
-    k = int(np.argmax(distance))
-    if distance[k] > strip.deviation:
-        strip.deviation, strip.where = float(distance[k]), points[k]
 
 
 def _covers(design: Surface, half: Half, pieces: list[Strip], scale: FloatArray, tolerance: float) -> None:

@@ -36,7 +36,8 @@ from .guided import IsoBoundaries
 from .outline_cut import ExtendedSurface
 from .rationalise import AIM, CLOSE, TRIALS, Strip
 from .ruling import ruling_developable
-from .trimmed import cut_strip, sharp_corners
+from .trim_region import sharp_corners
+from .trimmed import cut_strip
 
 
 class RingPatch(Surface):

@@ -26,7 +26,8 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    ruling is added there, so the exported faces meet at the corner.
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
-   only, and the trim loops' distance to the strips is the coverage.
+   only, checked on dense samples too (:func:`checked_densely`), and the trim loops'
+   distance to the strips is the coverage.
 
 A run of lines that splits in two (a strip crossing a notch of the trim, or a hole)
 becomes separate strips from the first line past the split; between the last line
@@ -43,7 +44,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import shapely
 from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline, PchipInterpolator, make_interp_spline, make_lsq_spline
 from scipy.optimize import minimize_scalar
@@ -59,10 +59,9 @@ from .certify import certified_deviation, distances_to_strips
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
+from .trim_region import checked_densely, patch_of, signed_inside, trim_corners, trim_points
 from .warp import curve_warp
 
-#: Share of the trim's (u, v) box added on each side for the patch that is rationalised.
-MARGIN = 0.02
 #: Lines of a strip's sheet sampled per ruling interval, and points along each line.
 PER_RULING, ACROSS = 12, 41
 #: Bisections of a cut strip's end (where its lines leave the trim).
@@ -72,11 +71,6 @@ HALVINGS = 24
 REACH = 0.5
 #: A cut strip's end line is this share of its neighbour's length at least (not a point).
 TIP = 2e-3
-#: Samples per trim loop span, for the coverage.
-LOOP_SAMPLES = 8
-#: A trim's corner: where its outline turns by more than this (rad). The sheet gets a line
-#: through each corner the strip covers, whose cut ends at the corner exactly.
-CORNER = 0.3
 #: Where the cut point of one sampled line to the next moves more than this many times the
 #: median step (the sheet's lines sweep along the trim, a fan) or the tolerance, whichever
 #: is larger, :data:`SPLIT` lines are put between them, up to :data:`REFINE` times.
@@ -86,46 +80,6 @@ ROOT_STEPS = 3
 #: A cut edge along the trim is a least-squares cubic when it stays this share of the
 #: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
 FIT = 0.05
-
-
-class Patch(Surface):
-    """``surface`` on the (u, v) box ``(u0, u1, v0, v1)``, reparameterised to [0, 1]²."""
-
-    def __init__(self, surface: Surface, box: tuple[float, float, float, float]) -> None:
-        self.surface = surface
-        self.box = tuple(float(b) for b in box)
-        self.closed_u = self.closed_v = False
-
-    def __repr__(self) -> str:
-        return f"Patch({self.surface!r}, {self.box})"
-
-    def to_surface(self, u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        """The underlying surface's (u, v) of the patch's."""
-        u0, u1, v0, v1 = self.box
-        return u0 + (u1 - u0) * np.asarray(u, dtype=float), v0 + (v1 - v0) * np.asarray(v, dtype=float)
-
-    def from_surface(self, uv: ArrayLike) -> FloatArray:
-        """The patch's (u, v) of the underlying surface's ``(n, 2)``."""
-        u0, u1, v0, v1 = self.box
-        uv = np.asarray(uv, dtype=float)
-        return np.column_stack([(uv[:, 0] - u0) / (u1 - u0), (uv[:, 1] - v0) / (v1 - v0)])
-
-    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
-        self._check_order(order)
-        u0, u1, v0, v1 = self.box
-        found = self.surface.derivatives(*self.to_surface(u, v), order)
-        du, dv = u1 - u0, v1 - v0
-        scale = [1.0, du, dv, du * du, du * dv, dv * dv][:len(found)]
-        return [d * k for d, k in zip(found, scale, strict=True)]
-
-
-def patch_of(design: TrimmedSurface) -> Patch:
-    """The underlying surface on the trim's (u, v) box, :data:`MARGIN` larger each way
-    (within the surface's own square)."""
-    u0, v0, u1, v1 = design.region.bounds
-    pad_u, pad_v = MARGIN * (u1 - u0), MARGIN * (v1 - v0)
-    return Patch(design.surface, (max(0.0, u0 - pad_u), min(1.0, u1 + pad_u),
-                                  max(0.0, v0 - pad_v), min(1.0, v1 + pad_v)))
 
 
 class Chain(Curve):
@@ -656,73 +610,6 @@ def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: C
     return Strip(float(run[0].x), float(run[-1].x), result, surface, warp, deviation.bound, deviation.where)
 
 
-def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
-                  ) -> Callable[[FloatArray], FloatArray]:
-    """Points' signed distance from the trim loops, positive inside, plus ``margin``: each
-    point projected onto the patch, its (u, v) scaled by the surface's mean speeds along u
-    and v (so the distance is about one along the surface, in model units)."""
-    speed = _speeds(design)
-    region = shapely.transform(design.region, lambda xy: xy * speed)
-    boundary = region.boundary
-
-    def inside(points: FloatArray) -> FloatArray:
-        found = patch.closest_point(points, candidates=1, tolerance=1e-9).parameters
-        uv = np.column_stack(patch.to_surface(found[:, 0], found[:, 1])) * speed
-        distance = shapely.distance(boundary, shapely.points(uv))
-        return np.where(shapely.contains_xy(region, uv[:, 0], uv[:, 1]), distance, -distance) + margin
-
-    return inside
-
-
-def sharp_corners(region: shapely.Geometry, angle: float = CORNER) -> FloatArray:
-    """The vertices of a polygon (or several) where its outline turns by more than
-    ``angle`` (rad), (k, 2): the corners a cut must keep (:func:`cut_strip`)."""
-    out = [np.empty((0, 2))]
-    for polygon in getattr(region, "geoms", [region]):
-        if polygon.is_empty or polygon.geom_type != "Polygon":
-            continue
-        for ring in (polygon.exterior, *polygon.interiors):
-            xy = np.asarray(ring.coords)[:-1]
-            step = np.diff(np.vstack([xy, xy[:1]]), axis=0)
-            keep = np.linalg.norm(step, axis=1) > 1e-12 * max(float(np.ptp(xy, axis=0).max()), 1e-300)
-            xy, step = xy[keep], step[keep]  # repeated vertices left out
-            if len(xy) < 3:
-                continue
-            before = np.roll(step, 1, axis=0)  # the edge into each vertex
-            cross = before[:, 0] * step[:, 1] - before[:, 1] * step[:, 0]
-            turn = np.arctan2(np.abs(cross), np.einsum("ij,ij->i", before, step))
-            out.append(xy[turn > angle])
-    return np.concatenate(out)
-
-
-def trim_corners(design: TrimmedSurface, margin: float = 0.0) -> FloatArray:
-    """The corners (3D points on the design) of the region :func:`signed_inside` keeps with
-    the same ``margin``."""
-    speed = _speeds(design)
-    region = shapely.transform(design.region, lambda xy: xy * speed)
-    if margin > 0.0:
-        region = region.buffer(margin, quad_segs=32)
-    uv = sharp_corners(region) / speed
-    return design.surface.point_at(uv[:, 0], uv[:, 1]) if len(uv) else np.empty((0, 3))
-
-
-def _speeds(design: TrimmedSurface) -> FloatArray:
-    """The surface's mean speeds along u and v (the scale of :func:`signed_inside`'s plan)."""
-    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
-    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
-    return np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
-
-
-def trim_points(design: TrimmedSurface) -> FloatArray:
-    """Points along every trim loop, :data:`LOOP_SAMPLES` per span, on the design."""
-    out = []
-    for loop in design.loops:
-        w = np.linspace(0.0, 1.0, LOOP_SAMPLES + 1)[:-1]
-        dense = (loop[:-1, None] + w[None, :, None] * (loop[1:] - loop[:-1])[:, None]).reshape(-1, 2)
-        out.append(design.surface.point_at(dense[:, 0], dense[:, 1]))
-    return np.concatenate(out)
-
-
 def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **options: Any
                         ) -> Rationalisation:
     """Strips within ``tolerance`` of a trimmed design, inside its trim (see the module);
@@ -736,6 +623,8 @@ def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **
     narrow: list[int] = []
     for k, strip in enumerate(base.strips):
         cut = cut_strip(strip, inside, patch, tolerance, corners)
+        for piece in cut:
+            checked_densely(patch, piece)
         if k in base.narrow:
             narrow += list(range(len(strips), len(strips) + len(cut)))
         strips += cut
