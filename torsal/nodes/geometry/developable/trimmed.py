@@ -16,17 +16,23 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
 3. Cut. The sheet's lines are sampled (:data:`PER_RULING` per ruling interval,
    :data:`ACROSS` points along each), each point projected onto the design and judged
    inside or outside the trim in (u, v) by its signed distance to the trim loops
-   (shapely); along each line the kept interval is where that distance is ≥ 0 (linear
-   interpolation between samples). The lines whose interval is not empty, in runs, make
-   the cut strips; a run's ends are found by bisection to where the lines leave the trim.
+   (shapely, :mod:`.trim_region`); along each line the kept interval is where that
+   distance is ≥ 0 (each crossing found by false position from the samples either side).
+   A line is added through each corner of the trim that the sheet covers (its cut ends at
+   the corner exactly), and more lines wherever the cut point jumps from one line to the
+   next (lines that sweep along the trim, as in a fan). The lines whose interval is not
+   empty, in runs, make the cut strips; a run's ends are found by bisection to where the
+   lines leave the trim.
 4. Rails. A cut strip's two edges are chains of pieces: stretches of the strip's own
    rails (kept exactly, so neighbours still share their boundary) and stretches along
-   the trim, an interpolating cubic through the lines' cut points (so each line's end lies
-   on that line exactly). Where a chain turns from a rail onto the trim (a corner) a
-   ruling is added there, so the exported faces meet at the corner.
+   the trim from corner to corner, a cubic in u through the lines' cut points (least
+   squares with knots at the rulings where that stays within :data:`FIT` of the
+   tolerance, else scipy's monotone PCHIP through them). Where a chain turns from a rail
+   onto the trim, or at a corner of the trim, a ruling is added there, so the exported
+   faces meet at the corner.
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
-   only, checked on dense samples too (:func:`checked_densely`), and the trim loops'
+   only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the trim loops'
    distance to the strips is the coverage.
 
 A run of lines that splits in two (a strip crossing a notch of the trim, or a hole)
