@@ -32,8 +32,8 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    faces meet at the corner.
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
-   only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the trim loops'
-   distance to the strips is the coverage.
+   only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the
+   trim loops' distance to the strips is the coverage.
 
 A run of lines that splits in two (a strip crossing a notch of the trim, or a hole)
 becomes separate strips from the first line past the split; between the last line
@@ -477,11 +477,14 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
 
 
 def _at_corner(kept: list[tuple[float, float]], w: float) -> list[tuple[float, float]]:
-    """``kept`` with the end nearest ``w`` (a corner of the trim on this line) moved to it."""
+    """``kept`` with the end nearest ``w`` (a corner of the trim on this line) moved to it,
+    when that end is within two samples of it (otherwise the corner is not this line's)."""
     if not kept or not np.isfinite(w):
         return kept
     ends = np.array(kept, dtype=float)
     i, j = np.unravel_index(np.argmin(np.abs(ends - w)), ends.shape)
+    if abs(ends[i, j] - w) > 2.0 / (ACROSS - 1):
+        return kept
     ends[i, j] = w
     return [(float(a), float(b)) for a, b in ends if b > a]
 
