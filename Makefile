@@ -24,15 +24,21 @@ SYSTEM_PACKAGES := python3-venv xvfb xauth libgl1 libegl1 libglib2.0-0 libfontco
 run: system $(RUN_STAMP)
 	$(BIN)/torsal gui $(EXAMPLE)
 
-# The GUI tests run in a process of their own: Qt shares it with no thread or child
-# process the other tests leave behind (a dask cluster's, say).
+# The GUI tests run in processes of their own: Qt shares them with no thread or child
+# process the other tests leave behind (a dask cluster's, say). Both halves spread their
+# test files over every core (pytest-xdist; TEST_WORKERS=0 for one process): a file's tests
+# stay on one worker, so a module's shared solve is made once, and each GUI worker has an
+# Xvfb display of its own (tests/app/gui/conftest.py).
+TEST_WORKERS ?= auto
+PYTEST := $(BIN)/python -m pytest
+SPREAD := -n $(TEST_WORKERS) --dist loadfile
 test: system $(TEST_STAMP)
 	$(BIN)/ruff check .
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
-		$(BIN)/python -m pytest --ignore=tests/app/gui && $(BIN)/python -m pytest tests/app/gui; \
+		$(PYTEST) $(SPREAD) --ignore=tests/app/gui && $(PYTEST) $(SPREAD) tests/app/gui; \
 	else \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest --ignore=tests/app/gui && \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/app/gui; \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTEST) $(SPREAD) --ignore=tests/app/gui && \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTEST) $(SPREAD) tests/app/gui; \
 	fi
 
 bench: system $(TEST_STAMP)

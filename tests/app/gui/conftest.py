@@ -8,12 +8,19 @@ Without a display (``DISPLAY`` unset and ``QT_QPA_PLATFORM`` not ``offscreen``) 
 without PySide6/pyvista/pyvistaqt/pytest-qt, the GUI test modules are not collected and
 ``test_availability.py`` reports one skip saying why. Dialogs are patched in every test
 so none can block.
+
+Under pytest-xdist (``make test`` spreads the GUI test files over two processes) each
+worker starts an Xvfb display of its own, on loopback only, and stops it at the end: two
+windows on one display would take each other's keyboard focus, and a shortcut goes to the
+active window only.
 """
 
 from __future__ import annotations
 
 import importlib.util
 import os
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -30,6 +37,36 @@ def unavailable_reason() -> str:
     if not has_display and os.environ.get("QT_QPA_PLATFORM") != "offscreen":
         return "no display: run the GUI tests under xvfb-run (see tests/app/gui/conftest.py)"
     return ""
+
+
+def own_display() -> subprocess.Popen | None:
+    """An Xvfb display for this xdist worker (None when not a worker or Xvfb is missing);
+    ``DISPLAY`` names it from here on."""
+    xvfb = shutil.which("Xvfb")
+    if not os.environ.get("PYTEST_XDIST_WORKER") or xvfb is None or not os.environ.get("DISPLAY"):
+        return None
+    read, write = os.pipe()
+    server = subprocess.Popen(  # -displayfd: Xvfb picks a free display and writes its number
+        [xvfb, "-displayfd", str(write), "-screen", "0", "1600x1000x24", "-nolisten", "tcp"],
+        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )
+    os.close(write)
+    with os.fdopen(read) as answer:
+        number = answer.readline().strip()
+    if not number:
+        server.kill()
+        return None
+    os.environ["DISPLAY"] = f":{number}"
+    return server
+
+
+DISPLAY_SERVER = own_display()
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    if DISPLAY_SERVER is not None:
+        DISPLAY_SERVER.terminate()
+        DISPLAY_SERVER.wait(10)
 
 
 REASON = unavailable_reason()
