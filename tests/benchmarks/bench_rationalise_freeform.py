@@ -12,15 +12,14 @@ dense samples of every strip), torsal and fan rulings, the fan and creased share
 the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly
 spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
 on every design: within the tolerance by the independent measure, never more strips than
-the baseline, a solve of at most 60 s on this 2-core machine and at most 10 % of the
-strips' area in fans (not yet met on the double bump at 1 and 2 cm: every line x = const
-crosses an asymptotic direction at y = ±3, where f_yy changes sign and f_xy does not
-vanish, and so does every line y = const near the bumps' inflection circles — no family
-of parameter lines avoids it; the strips that ring the bumps along lines of curvature,
-tried first there, are kept at 5 cm — 8.3 % in fans, but 20 strips against the
-baseline's 14 — and at 1 and 2 cm leave the design's edge uncovered by up to 1.6 and
-5.7 cm where a cut strip's end falls short of a corner, and the parameter lines are
-kept; see docs/geometry.md).
+the baseline, a solve of at most 60 CPU-s on this 2-core machine and at most 10 % of the
+strips' area in fans. The double bump (every line x = const crosses an asymptotic
+direction at y = ±3, where f_yy changes sign and f_xy does not vanish, and so does every
+line y = const near the bumps' inflection circles: no family of parameter lines avoids
+it) is rationalised with strips that ring its bumps along lines of curvature at 1, 2 and
+5 cm, within the tolerance, covering the edge and ≤ 10 % in fans; it does not yet meet the
+strip count at 2 and 5 cm (38 and 16 against the baseline's 26 and 14) nor the 60 CPU-s at
+1 and 2 cm (117 and 120 CPU-s, 59 at 5 cm, load 7–12; see docs/geometry.md).
 """
 
 from __future__ import annotations
