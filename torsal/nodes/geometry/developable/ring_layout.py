@@ -25,10 +25,12 @@ whichever family bounds them. Boundaries along lines of curvature never do
 :func:`ring_layout` returns the strips as a :class:`~.rationalise.Rationalisation` with
 ``family`` "rings" and no boundary curves (each region has its own), or raises
 ``ValueError`` where the rings cannot be traced (a line of curvature that turns along a
-ray), or as soon as the halves' fans alone cover more of the design than asked (the
-halves are marched before the caps), or a half's strips are beyond the tolerance (checked on dense samples
-too, :func:`~.trimmed.checked_densely`) or leave the design's edge in it uncovered (:func:`_covers`) —
-Rationalise then keeps the parameter lines.
+ray), or as soon as a half's strips are beyond the tolerance (checked on dense samples
+too, :func:`~.trim_region.checked_densely`), leave the design's edge in it uncovered
+(:func:`_covers`) or the halves' fans alone cover more of the design than asked (the
+halves are marched before the caps) — Rationalise then keeps the parameter lines. Each
+half's outermost ring is pushed beyond the half's corners (:func:`_reaching`), and its
+strips' cut keeps the half's corners (:func:`~.rings.region_corners`).
 """
 
 from __future__ import annotations
@@ -67,8 +69,8 @@ OVERRUN = 0.15
 #: of the design crosses the seeds' ray farther out or nearer in).
 SEEDS = 24
 FARTHEST = 1.05
-#: The outermost ring passes this share of a corner's distance beyond the half's farthest
-#: corner, trying the seeds farther out up to this many times (:func:`_reaching`).
+#: The outermost ring passes this share of each vertex's distance beyond the half's
+#: vertices, the seeds tried farther out up to this many times (:func:`_reaching`).
 BEYOND, REACHING = 0.01, 3
 #: A half's strips are cut this share of the tolerance past its edges inside the design.
 OVERLAP = 2.0
@@ -220,20 +222,21 @@ def _fan_area(strips: list[Strip]) -> float:
 
 
 def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
-    """The half's ring patch, its outermost ring beyond every corner of the half (by
-    :data:`BEYOND` of the farthest's distance): the seeds are spread farther out (by the
-    ratio of a corner's distance to the ring's on its ray) until it is, at most
-    :data:`REACHING` times. A ring is no circle: the one through the seed as far out as
-    the farthest corner may pass inside another corner, and leave it uncovered."""
+    """The half's ring patch, its outermost ring beyond every vertex of the half (by
+    :data:`BEYOND` of the vertex's distance from the centre): the seeds are spread farther
+    out (by the largest ratio of a vertex's distance to the ring's on its ray) until it
+    is, at most :data:`REACHING` times. A ring is no circle: the one through the seed as
+    far out as the farthest vertex may pass inside another vertex (the double bump's
+    corner at 2 cm, by 4.6 cm), and leave it uncovered."""
     seeds = np.asarray(half.seeds, dtype=float)
     corners = np.asarray(half.region.exterior.coords) - half.centre
     rho = np.hypot(corners[:, 0], corners[:, 1])
     theta = half.span[0] + np.mod(np.arctan2(corners[:, 1], corners[:, 0]) - half.span[0], 2.0 * np.pi)
+    swept = (theta >= half.span[0]) & (theta <= half.span[1])
     for _ in range(REACHING):
         patch = RingPatch(design, half.centre, scale, seeds, half.span, half.family, half.start)
-        inside = (theta >= half.span[0]) & (theta <= half.span[1])
-        outer = patch.radius.ev(np.ones(int(inside.sum())), theta[inside])
-        short = float(np.max(rho[inside] * (1.0 + BEYOND) / outer, initial=0.0))
+        outer = patch.radius.ev(np.ones(int(swept.sum())), theta[swept])
+        short = float(np.max(rho[swept] * (1.0 + BEYOND) / outer, initial=0.0))
         if short <= 1.0:
             break
         seeds = np.linspace(seeds[0], seeds[-1] * short, len(seeds))
