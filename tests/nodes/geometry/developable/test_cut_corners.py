@@ -98,3 +98,14 @@ def test_without_its_corners_the_cut_rounds_the_corner_off():
     surface = DESIGN.surface()
     pieces = cut_strip(_strip(), region_inside(surface, region, SCALE), surface, TOLERANCE)
     assert _outline(pieces).boundary.distance(shapely.Point(corner)) > 1e-3
+
+
+def test_a_regions_corners_with_a_margin_are_where_it_meets_the_designs_edge():
+    surface = DESIGN.surface()
+    # grown by 0.5 inside the design, its own corners are rounded off: none are left
+    assert len(region_corners(surface, shapely.box(2.0, 1.0, 6.0, 3.0), SCALE, margin=0.5)) == 0
+    # the left half, grown by 0.5 past x = 5 and cut at the design's edge: its corners there
+    found = region_corners(surface, shapely.box(0.0, 0.0, 5.0, 4.0), SCALE, margin=0.5)
+    expected = [(0.0, 0.0), (0.0, 4.0), (5.5, 0.0), (5.5, 4.0)]
+    assert sorted(map(tuple, np.round(found[:, :2], 9).tolist())) == expected
+    assert np.allclose(found[:, 2], DESIGN.height(found[:, 0], found[:, 1]), atol=1e-12)  # on the design
