@@ -12,15 +12,14 @@ dense samples of every strip), torsal and fan rulings, the fan and creased share
 the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly
 spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
 on every design: within the tolerance by the independent measure, never more strips than
-the baseline, a solve of at most 60 s on this 2-core machine and at most 10 % of the
-strips' area in fans (not yet met on the double bump at 1 and 2 cm: every line x = const
-crosses an asymptotic direction at y = ±3, where f_yy changes sign and f_xy does not
-vanish, and so does every line y = const near the bumps' inflection circles — no family
-of parameter lines avoids it; the strips that ring the bumps along lines of curvature,
-tried first there, are kept at 5 cm — 8.3 % in fans, but 20 strips against the
-baseline's 14 — and at 1 and 2 cm leave the design's edge uncovered by up to 1.6 and
-5.7 cm where a cut strip's end falls short of a corner, and the parameter lines are
-kept; see docs/geometry.md).
+the baseline, a solve of at most 60 CPU-s on this 2-core machine and at most 10 % of the
+strips' area in fans. The double bump (every line x = const crosses an asymptotic
+direction at y = ±3, where f_yy changes sign and f_xy does not vanish, and so does every
+line y = const near the bumps' inflection circles: no family of parameter lines avoids
+it) is rationalised with strips that ring its bumps along lines of curvature at 1, 2 and
+5 cm, within the tolerance, covering the edge and ≤ 10 % in fans; it does not yet meet the
+strip count at 2 and 5 cm (38 and 16 against the baseline's 26 and 14) nor the 60 CPU-s at
+1 and 2 cm (117 and 120 CPU-s, 59 at 5 cm, load 7–12; see docs/geometry.md).
 """
 
 from __future__ import annotations
@@ -56,6 +55,7 @@ def _independent(name: str, surface, strips) -> float:
 CASES = [*DESIGNS, "kaohsiung"]
 
 
+@pytest.mark.timeout(2400)  # the double bump: three ring layouts and their baselines, ~10 min at load 9
 @pytest.mark.parametrize("name", CASES)
 def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(name):
     surface = DESIGNS[name].surface() if name in DESIGNS else kaohsiung_roof()
@@ -64,9 +64,9 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
     failed: list[str] = []
     for tolerance in TOLERANCES:
         tol = tolerance * unit
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         result = rationalise_freeform(surface, tol, 64, min_width=0.2 * unit)
-        seconds = time.perf_counter() - start
+        seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
         baseline = even_strips(surface, tol, limit=128)
         fans = sum(int(s.result.fan.sum()) for s in result.strips)
         rulings = sum(len(s.result.fan) for s in result.strips)
@@ -75,15 +75,15 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
             f"| {name} | {100 * tolerance:g} cm | {len(result.strips)} ({result.family}) | "
             f"{result.deviation / unit * 100:.3f} cm | {independent / unit * 100:.3f} cm | "
             f"{result.coverage / unit * 100:.3f} cm | {rulings - fans} / {fans} | "
-            f"{fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | {seconds:.1f} s | "
-            f"{baseline} |"
+            f"{fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | "
+            f"{seconds:.1f} s ({cpu:.1f} CPU-s) | {baseline} |"
         )
         print(rows[-1], flush=True)
         checks = {"independent deviation within the tolerance": independent <= tol * 1.0001,
                   "the certified deviation bounds the independent one": independent <= result.deviation,
                   "certified within and covered": result.within and result.covered,
                   "no more strips than the baseline": len(result.strips) <= baseline,
-                  f"solve within {SOLVE_LIMIT:g} s": seconds <= SOLVE_LIMIT,
+                  f"solve within {SOLVE_LIMIT:g} CPU-s": cpu <= SOLVE_LIMIT,
                   f"fan area within {FAN_LIMIT:g} of the strips'": fan_area(result.strips) <= FAN_LIMIT}
         failed += [f"{100 * tolerance:g} cm: {what}" for what, ok in checks.items() if not ok]
     # every tolerance is solved and printed before the checks fail, so the table is whole

@@ -75,7 +75,7 @@ def _rings(design: Surface, tolerance: float, max_strips: int, segments: int, wa
     """The strips round the design's bumps (:mod:`.ring_layout`) when they are within the
     tolerance, cover the design's edge and keep at most :data:`RING_FANS` in fans."""
     try:
-        found = ring_layout(design, tolerance, max_strips, segments, warp_tolerance, min_width)
+        found = ring_layout(design, tolerance, max_strips, segments, warp_tolerance, min_width, RING_FANS)
     except ValueError:
         return None
     return found if found.within and found.covered and fan_area(found.strips) <= RING_FANS else None

@@ -26,8 +26,11 @@ whichever family bounds them. Boundaries along lines of curvature never do
 ``family`` "rings" and no boundary curves (each region has its own), or raises
 ``ValueError`` where the rings cannot be traced (a line of curvature that turns along a
 ray), or as soon as a half's strips are beyond the tolerance (checked on dense samples
-too, :func:`_checked`) or leave the design's edge in it uncovered (:func:`_covers`) —
-Rationalise then keeps the parameter lines.
+too, :func:`~.trim_region.checked_densely`), leave the design's edge in it uncovered
+(:func:`_covers`) or the halves' fans alone cover more of the design than asked (the
+halves are marched before the caps) — Rationalise then keeps the parameter lines. Each
+half's outermost ring is pushed beyond the half's corners (:func:`_reaching`), and its
+strips' cut keeps the half's corners (:func:`~.rings.region_corners`).
 """
 
 from __future__ import annotations
@@ -43,8 +46,10 @@ from ..surface_base import Surface
 from ..trimmed_surface import TrimmedSurface
 from .certify import uncovered
 from .curvature_lines import plan_scale, ring_family, trace_rings
+from .fans import patch_areas
 from .rationalise import Rationalisation, Strip
-from .rings import RingPatch, march_rings, region_inside
+from .rings import RingPatch, march_rings, region_corners, region_inside
+from .trim_region import checked_densely
 from .trimmed import rationalise_trimmed
 
 #: Samples of the design per direction when looking for bumps.
@@ -64,11 +69,14 @@ OVERRUN = 0.15
 #: of the design crosses the seeds' ray farther out or nearer in).
 SEEDS = 24
 FARTHEST = 1.05
+#: The outermost ring passes this share of each vertex's distance beyond the half's
+#: vertices, the seeds tried farther out up to this many times (:func:`_reaching`).
+BEYOND, REACHING = 0.01, 3
 #: A half's strips are cut this share of the tolerance past its edges inside the design.
 OVERLAP = 2.0
-#: Samples along x across each strip where its distance from the design is checked besides
-#: its certificate (:func:`_checked`).
-CHECK = (161, 9)
+#: The halves' fans refuse the layout early when they cover more than the share asked of
+#: the design's area times this (the strips' area exceeds the design's by their overlaps).
+SPARE = 1.1
 
 
 def bump_centres(design: Surface, scale: FloatArray) -> list[FloatArray]:
@@ -164,32 +172,42 @@ def layout_regions(design: Surface, centres: list[FloatArray], scale: FloatArray
 
 
 def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segments: int = 24,
-                warp_tolerance: float = 1e-7, min_width: float = 0.0) -> Rationalisation:
-    """Strips round the design's bumps along rings of curvature (see the module)."""
+                warp_tolerance: float = 1e-7, min_width: float = 0.0, max_fans: float = 1.0
+                ) -> Rationalisation:
+    """Strips round the design's bumps along rings of curvature (see the module); refused
+    as soon as the halves' fans alone cover more than ``max_fans`` of the design's area."""
     scale = plan_scale(design)
     centres = bump_centres(design, scale)
     if not centres:
         raise ValueError("the design has no bump to ring")
     layout = layout_regions(design, centres, scale)
+    if any(cap.is_empty or cap.geom_type != "Polygon" for cap in layout.caps):
+        raise ValueError("a bump's cap is not one region")
+    # the halves first: a layout refused there costs no cap
+    area = design.area(rtol=1e-4) if max_fans < 1.0 else np.inf  # (no test asked for)
+    rings: list[Strip] = []
+    for half in layout.halves:
+        patch = _reaching(design, half, scale)
+        inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
+        corners = region_corners(design, half.region, scale, OVERLAP * tolerance)
+        pieces, _ = march_rings(design, patch, inside, tolerance, segments, warp_tolerance,
+                                max(1, max_strips - len(rings)), corners=corners)
+        for strip in pieces:
+            checked_densely(design, strip)
+        _covers(design, half, pieces, scale, tolerance)
+        rings += pieces
+        fans = _fan_area(rings)
+        if np.isfinite(area) and fans > max_fans * SPARE * area:
+            raise ValueError(f"the rings' fans already cover {fans / area:.3g} of the design")
     strips: list[Strip] = []
     narrow: list[int] = []
     for cap in layout.caps:
-        if cap.is_empty or cap.geom_type != "Polygon":
-            raise ValueError("a bump's cap is not one region")
         loop = np.asarray(cap.exterior.coords) / scale
         found = rationalise_trimmed(TrimmedSurface(design, loop), tolerance, max_strips, segments=segments,
                                     warp_tolerance=warp_tolerance, min_width=min_width)
         narrow += [len(strips) + k for k in found.narrow]
         strips += found.strips
-    for half in layout.halves:
-        patch = RingPatch(design, half.centre, scale, half.seeds, half.span, half.family, half.start)
-        inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
-        pieces, _ = march_rings(design, patch, inside, tolerance, segments, warp_tolerance,
-                                max(1, max_strips - len(strips)))
-        for strip in pieces:
-            _checked(design, strip)
-        _covers(design, half, pieces, scale, tolerance)
-        strips += pieces
+    strips += rings
     if len(strips) > max_strips:
         raise ValueError(f"the rings need {len(strips)} strips, more than {max_strips}")
     points, gaps = uncovered(design, [s.surface for s in strips])
@@ -197,21 +215,32 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
 
 
 
-def _checked(design: Surface, strip: Strip) -> None:
-    """``strip``'s deviation raised to the largest distance of :data:`CHECK` samples of it
-    from the design, where that is larger. A cut strip's edge along the cut is a cubic
-    through the cut points; where the rulings run nearly along the design's edge (rings
-    near a corner) it can bulge past the edge between the certificate's samples (5.1 cm
-    where 1.88 cm was certified, the double bump at 2 cm), so the layout is kept only when
-    dense samples agree too."""
-    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0.0, 1.0, CHECK[0]), np.linspace(0.0, 1.0, CHECK[1]),
-                                           indexing="ij"))
-    points = strip.surface.point_at(u, v)
-    found = design.closest_point(points, candidates=2, tolerance=1e-12)
-    distance = found.distances
-    k = int(np.argmax(distance))
-    if distance[k] > strip.deviation:
-        strip.deviation, strip.where = float(distance[k]), points[k]
+def _fan_area(strips: list[Strip]) -> float:
+    """The strips' area between rulings of which one or both are a fan's."""
+    return sum(float(patch_areas(s.result.starts, s.result.ends)[s.result.fan[:-1] | s.result.fan[1:]].sum())
+               for s in strips)
+
+
+def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
+    """The half's ring patch, its outermost ring beyond every vertex of the half (by
+    :data:`BEYOND` of the vertex's distance from the centre): the seeds are spread farther
+    out (by the largest ratio of a vertex's distance to the ring's on its ray) until it
+    is, at most :data:`REACHING` times. A ring is no circle: the one through the seed as
+    far out as the farthest vertex may pass inside another vertex (the double bump's
+    corner at 2 cm, by 4.6 cm), and leave it uncovered."""
+    seeds = np.asarray(half.seeds, dtype=float)
+    corners = np.asarray(half.region.exterior.coords) - half.centre
+    rho = np.hypot(corners[:, 0], corners[:, 1])
+    theta = half.span[0] + np.mod(np.arctan2(corners[:, 1], corners[:, 0]) - half.span[0], 2.0 * np.pi)
+    swept = (theta >= half.span[0]) & (theta <= half.span[1])
+    for _ in range(REACHING):
+        patch = RingPatch(design, half.centre, scale, seeds, half.span, half.family, half.start)
+        outer = patch.radius.ev(np.ones(int(swept.sum())), theta[swept])
+        short = float(np.max(rho[swept] * (1.0 + BEYOND) / outer, initial=0.0))
+        if short <= 1.0:
+            break
+        seeds = np.linspace(seeds[0], seeds[-1] * short, len(seeds))
+    return patch
 
 
 def _covers(design: Surface, half: Half, pieces: list[Strip], scale: FloatArray, tolerance: float) -> None:

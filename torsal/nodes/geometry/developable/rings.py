@@ -36,6 +36,7 @@ from .guided import IsoBoundaries
 from .outline_cut import ExtendedSurface
 from .rationalise import AIM, CLOSE, TRIALS, Strip
 from .ruling import ruling_developable
+from .trim_region import sharp_corners
 from .trimmed import cut_strip
 
 
@@ -131,9 +132,22 @@ def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, ma
     return inside
 
 
+def region_corners(design: Surface, region: shapely.Polygon, scale: ArrayLike, margin: float = 0.0
+                   ) -> FloatArray:
+    """The corners (3D points on the design) of what :func:`region_inside` keeps with the
+    same ``margin``: ``region`` grown by it (its convex corners rounded), within the design."""
+    scale = np.asarray(scale, dtype=float)
+    kept = region.buffer(margin, quad_segs=32) if margin > 0.0 else region
+    plan = sharp_corners(kept.intersection(shapely.box(0.0, 0.0, *scale)))
+    if len(plan) == 0:
+        return np.empty((0, 3))
+    uv = np.clip(plan / scale, 0.0, 1.0)
+    return design.point_at(uv[:, 0], uv[:, 1])
+
+
 def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
             inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
-            warp_tolerance: float) -> list[Strip] | None:
+            warp_tolerance: float, corners: FloatArray | None = None) -> list[Strip] | None:
     """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
     pieces certified against the design itself; None when it cannot be made."""
     check = watch_check()
@@ -146,18 +160,20 @@ def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
     except ValueError:
         return None
     whole = Strip(lo, hi, result, surface, np.zeros(len(result.s)), 0.0, np.zeros(3))
-    return cut_strip(whole, inside, design, tolerance)
+    return cut_strip(whole, inside, design, tolerance, corners)
 
 
 def march_rings(
     design: Surface, patch: RingPatch, inside: Callable[[FloatArray], FloatArray], tolerance: float,
     segments: int = 24, warp_tolerance: float = 1e-7, max_strips: int = 64, first_width: float = 0.05,
+    corners: FloatArray | None = None,
 ) -> tuple[list[Strip], float]:
     """Strips between rings of ``patch`` from its level 0 to 1, each as wide as the
     tolerance allows once cut to the region (``inside``): a few trials per strip, the width
     by the square law (deviation ∝ width²) inside the bracket of widths found too wide and
     within, as :func:`~.rationalise._march`, but each trial's deviation is its cut pieces'
     (the rings run on outside the region, where they are no lines of curvature of it).
+    ``corners``: the region's corners (:func:`region_corners`), which the cut keeps.
     Returns the pieces and the largest deviation of a strip that had to be kept beyond the
     tolerance (0 when none)."""
     boundaries = IsoBoundaries(patch, "u")
@@ -172,7 +188,7 @@ def march_rings(
         tried: tuple[float, list[Strip], float] | None = None
         for _trial in range(TRIALS * 2):
             hi = min(1.0, lo + w)
-            pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance)
+            pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance, corners)
             if pieces is None:
                 bad = min(bad, w)
                 w = 0.5 * ((good[0] - lo if good else 0.0) + bad)

@@ -16,17 +16,24 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
 3. Cut. The sheet's lines are sampled (:data:`PER_RULING` per ruling interval,
    :data:`ACROSS` points along each), each point projected onto the design and judged
    inside or outside the trim in (u, v) by its signed distance to the trim loops
-   (shapely); along each line the kept interval is where that distance is ≥ 0 (linear
-   interpolation between samples). The lines whose interval is not empty, in runs, make
-   the cut strips; a run's ends are found by bisection to where the lines leave the trim.
+   (shapely, :mod:`.trim_region`); along each line the kept interval is where that
+   distance is ≥ 0 (each crossing found by false position from the samples either side).
+   A line is added through each corner of the trim that the sheet covers (its cut ends at
+   the corner exactly), and more lines wherever the cut point jumps from one line to the
+   next (lines that sweep along the trim, as in a fan). The lines whose interval is not
+   empty, in runs, make the cut strips; a run's ends are found by bisection to where the
+   lines leave the trim.
 4. Rails. A cut strip's two edges are chains of pieces: stretches of the strip's own
    rails (kept exactly, so neighbours still share their boundary) and stretches along
-   the trim, an interpolating cubic through the lines' cut points (so each line's end lies
-   on that line exactly). Where a chain turns from a rail onto the trim (a corner) a
-   ruling is added there, so the exported faces meet at the corner.
+   the trim from corner to corner, a cubic in u through the lines' cut points (least
+   squares with knots at the rulings where that stays within :data:`FIT` of the
+   tolerance, else scipy's monotone PCHIP through them). Where a chain turns from a rail
+   onto the trim, or at a corner of the trim, a ruling is added there, so the exported
+   faces meet at the corner.
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
-   only, and the trim loops' distance to the strips is the coverage.
+   only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the
+   trim loops' distance to the strips is the coverage.
 
 A run of lines that splits in two (a strip crossing a notch of the trim, or a hole)
 becomes separate strips from the first line past the split; between the last line
@@ -43,9 +50,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import shapely
 from numpy.typing import ArrayLike
 from scipy.interpolate import BSpline, PchipInterpolator, make_interp_spline, make_lsq_spline
+from scipy.optimize import minimize_scalar
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
@@ -58,10 +65,9 @@ from .certify import certified_deviation, distances_to_strips
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
+from .trim_region import checked_densely, patch_of, signed_inside, trim_corners, trim_points
 from .warp import curve_warp
 
-#: Share of the trim's (u, v) box added on each side for the patch that is rationalised.
-MARGIN = 0.02
 #: Lines of a strip's sheet sampled per ruling interval, and points along each line.
 PER_RULING, ACROSS = 12, 41
 #: Bisections of a cut strip's end (where its lines leave the trim).
@@ -71,48 +77,15 @@ HALVINGS = 24
 REACH = 0.5
 #: A cut strip's end line is this share of its neighbour's length at least (not a point).
 TIP = 2e-3
-#: Samples per trim loop span, for the coverage.
-LOOP_SAMPLES = 8
-
-
-class Patch(Surface):
-    """``surface`` on the (u, v) box ``(u0, u1, v0, v1)``, reparameterised to [0, 1]²."""
-
-    def __init__(self, surface: Surface, box: tuple[float, float, float, float]) -> None:
-        self.surface = surface
-        self.box = tuple(float(b) for b in box)
-        self.closed_u = self.closed_v = False
-
-    def __repr__(self) -> str:
-        return f"Patch({self.surface!r}, {self.box})"
-
-    def to_surface(self, u: ArrayLike, v: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        """The underlying surface's (u, v) of the patch's."""
-        u0, u1, v0, v1 = self.box
-        return u0 + (u1 - u0) * np.asarray(u, dtype=float), v0 + (v1 - v0) * np.asarray(v, dtype=float)
-
-    def from_surface(self, uv: ArrayLike) -> FloatArray:
-        """The patch's (u, v) of the underlying surface's ``(n, 2)``."""
-        u0, u1, v0, v1 = self.box
-        uv = np.asarray(uv, dtype=float)
-        return np.column_stack([(uv[:, 0] - u0) / (u1 - u0), (uv[:, 1] - v0) / (v1 - v0)])
-
-    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> list[FloatArray]:
-        self._check_order(order)
-        u0, u1, v0, v1 = self.box
-        found = self.surface.derivatives(*self.to_surface(u, v), order)
-        du, dv = u1 - u0, v1 - v0
-        scale = [1.0, du, dv, du * du, du * dv, dv * dv][:len(found)]
-        return [d * k for d, k in zip(found, scale, strict=True)]
-
-
-def patch_of(design: TrimmedSurface) -> Patch:
-    """The underlying surface on the trim's (u, v) box, :data:`MARGIN` larger each way
-    (within the surface's own square)."""
-    u0, v0, u1, v1 = design.region.bounds
-    pad_u, pad_v = MARGIN * (u1 - u0), MARGIN * (v1 - v0)
-    return Patch(design.surface, (max(0.0, u0 - pad_u), min(1.0, u1 + pad_u),
-                                  max(0.0, v0 - pad_v), min(1.0, v1 + pad_v)))
+#: Where the cut point of one sampled line to the next moves more than this many times the
+#: median step (the sheet's lines sweep along the trim, a fan) or the tolerance, whichever
+#: is larger, :data:`SPLIT` lines are put between them, up to :data:`REFINE` times.
+JUMP, SPLIT, REFINE = 3.0, 4, 4
+#: Steps of false position to each point where a line leaves the trim, from its samples.
+ROOT_STEPS = 3
+#: A cut edge along the trim is a least-squares cubic when it stays this share of the
+#: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
+FIT = 0.05
 
 
 class Chain(Curve):
@@ -189,6 +162,7 @@ class _Line:
     g0: float = 0.0
     g1: float = 0.0
     kept: bool = False  #: a ruling of the cut strip (the strip's own, a corner or an end)
+    corner: bool = False  #: through a corner of the trim (an edge along the trim turns here)
 
 
 class _Sheet:
@@ -228,6 +202,105 @@ class _Sheet:
         points = start[:, None] + self.w[None, :, None] * (end - start)[:, None]
         return self.inside(points.reshape(-1, 3)).reshape(len(x), len(self.w))
 
+    def kept(self, x: FloatArray) -> tuple[FloatArray, list[list[tuple[float, float]]]]:
+        """The signed distances along the lines at ``x`` (:meth:`distances`) and each line's
+        kept intervals: where the samples change sign, the crossing found by
+        :data:`ROOT_STEPS` steps of false position between them (the distance is not linear
+        along a line near a corner of the trim, where it is the nearer of two edges')."""
+        x = np.asarray(x, dtype=float)
+        g = self.distances(x)
+        keep = g >= 0.0
+        k, j = np.nonzero(keep[:, 1:] != keep[:, :-1])
+        lo, hi, g_lo, g_hi = self.w[j], self.w[j + 1], g[k, j], g[k, j + 1]
+        if len(k):
+            start, end = self.ends(x[k])
+            for _ in range(ROOT_STEPS):
+                w = lo + (hi - lo) * g_lo / (g_lo - g_hi)
+                found = self.inside(start + w[:, None] * (end - start))
+                same = (found >= 0.0) == (g_lo >= 0.0)
+                lo, g_lo = np.where(same, w, lo), np.where(same, found, g_lo)
+                hi, g_hi = np.where(same, hi, w), np.where(same, g_hi, found)
+        cut = lo + (hi - lo) * g_lo / (g_lo - g_hi)
+        runs = []
+        for row in range(len(x)):
+            bounds = ([self.w[0]] if keep[row, 0] else []) + cut[k == row].tolist()
+            bounds += [self.w[-1]] if keep[row, -1] else []
+            runs.append([(float(bounds[i]), float(bounds[i + 1])) for i in range(0, len(bounds) - 1, 2)])
+        return g, runs
+
+    def sample(self, corners: FloatArray, tolerance: float) -> None:
+        """The lines the cut is made from: :func:`_columns`' lines, a line through each of
+        the trim's ``corners`` (3D points on the design) that lies on the sheet within the
+        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), and
+        more lines where the cut point jumps from one line to the next (see :data:`JUMP`).
+        Sets ``x``, ``ruling``, ``corner``, the signed distances ``g`` along them and their
+        kept intervals ``runs``."""
+        self.corner = np.full(len(self.x), np.nan)
+        at, w = self._corner_lines(np.asarray(corners, dtype=float).reshape(-1, 3), tolerance)
+        self._insert(at, w)
+        for _ in range(REFINE):
+            cut = self._cut_points()
+            step = np.linalg.norm(np.diff(cut, axis=0), axis=2).max(axis=1)
+            known = np.isfinite(step)
+            if not known.any():
+                break
+            limit = max(JUMP * float(np.median(step[known])), tolerance)
+            wide = np.flatnonzero(known & (step > limit))
+            if len(wide) == 0:
+                break
+            share = np.arange(1, SPLIT)[None, :] / SPLIT
+            more = (self.x[wide, None] + share * (self.x[wide + 1] - self.x[wide])[:, None]).ravel()
+            self._insert(more, np.full(len(more), np.nan))
+
+    def _insert(self, x: FloatArray, corner: FloatArray) -> None:
+        """Lines at ``x`` added to the sampled ones (in order, none twice), with their
+        corners' w (NaN: none); sets ``g`` for all."""
+        old = getattr(self, "g", None)
+        new = np.setdiff1d(x, self.x)
+        if old is None or len(new):
+            order = np.argsort(np.concatenate([self.x, new]), kind="stable")
+            g_new, runs_new = self.kept(new) if len(new) else (np.empty((0, len(self.w))), [])
+            if old is None:
+                old, self.runs = self.kept(self.x)
+            self.g = np.concatenate([old, g_new])[order]
+            runs = self.runs + runs_new
+            self.runs = [runs[i] for i in order]
+            self.ruling = np.concatenate([self.ruling, np.full(len(new), -1)])[order]
+            self.corner = np.concatenate([self.corner, np.full(len(new), np.nan)])[order]
+            self.x = np.concatenate([self.x, new])[order]
+        where = np.searchsorted(self.x, x)
+        self.corner[where[np.isfinite(corner)]] = corner[np.isfinite(corner)]
+
+    def _corner_lines(self, corners: FloatArray, tolerance: float) -> tuple[FloatArray, FloatArray]:
+        """The u and w of the line of the sheet nearest each corner, for the corners within
+        ``tolerance`` of a line strictly between the rails (the nearest sampled line, then
+        scipy's bounded scalar search between its neighbours)."""
+        if len(corners) == 0:
+            return np.empty(0), np.empty(0)
+        start, end = self.ends(self.x)
+        near = np.array([np.argmin(_to_lines(c, start, end)[0]) for c in corners])
+        at, w = [], []
+        for c, k in zip(corners, near, strict=True):
+            lo, hi = self.x[max(k - 1, 0)], self.x[min(k + 1, len(self.x) - 1)]
+            found = minimize_scalar(lambda x, c=c: _to_lines(c, *self.ends(np.array([x])))[0][0],
+                                    bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+            d, t = _to_lines(c, *self.ends(np.array([found.x])))
+            if d[0] <= tolerance and 0.0 < t[0] < 1.0:
+                at.append(float(found.x))
+                w.append(float(t[0]))
+        return np.array(at), np.array(w)
+
+    def _cut_points(self) -> FloatArray:
+        """The two ends of each line's kept part (its outermost runs), (n, 2, 3); NaN where
+        nothing of a line is kept."""
+        out = np.full((len(self.x), 2, 3), np.nan)
+        start, end = self.ends(self.x)
+        for k, kept in enumerate(self.runs):
+            if kept:
+                w = np.array([kept[0][0], kept[-1][1]])[:, None]
+                out[k] = start[k] + w * (end[k] - start[k])
+        return out
+
 
 class _Pace:
     """The partner parameter τ(x) between the strip's rulings: on each ruling interval the
@@ -256,13 +329,33 @@ class _Pace:
         return out.reshape(x.shape) if x.ndim else out[0]
 
 
-def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
+def _to_lines(point: FloatArray, start: FloatArray, end: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The distance from ``point`` to each segment ``start → end``, and the share along it of
+    the segment's point nearest it."""
+    along = end - start
+    t = np.einsum("ij,ij->i", point - start, along) / np.maximum(np.einsum("ij,ij->i", along, along), 1e-300)
+    t = np.clip(t, 0.0, 1.0)
+    return np.linalg.norm(start + t[:, None] * along - point, axis=1), t
+
+
+def _smooth(x: FloatArray, w: FloatArray, knots: FloatArray, lengths: FloatArray, limit: float
+            ) -> BSpline | PchipInterpolator:
     """A cubic in x fitted to ``w`` by least squares with knots at the strip's rulings
     (``knots``) inside ``x``'s range, through the two end values exactly: where the trim's
     line of cut lies across the sheet (no need to pass through the samples: every point of
-    the sheet lies on a torsal line)."""
+    the sheet lies on a torsal line). Where that cubic strays more than ``limit`` from a cut
+    point (``lengths``: the lines' lengths; a corner of the trim, or lines that sweep along
+    it), the monotone cubic through the cut points instead (scipy's PCHIP: no overshoot)."""
     if len(x) < 6:
         return make_interp_spline(x, w, k=min(3, len(x) - 1))
+    spline = _least_squares(x, w, knots)
+    if float(np.max(np.abs(spline(x) - w) * lengths)) <= limit:
+        return spline
+    return PchipInterpolator(x, w)
+
+
+def _least_squares(x: FloatArray, w: FloatArray, knots: FloatArray) -> BSpline:
+    """The least-squares cubic of :func:`_smooth`."""
     inner = knots[(knots > x[0]) & (knots < x[-1])]
     inner = inner[(inner - x[0] > 1e-9) & (x[-1] - inner > 1e-9)]
     full = np.concatenate([[x[0]] * 4, inner, [x[-1]] * 4])
@@ -310,10 +403,9 @@ def _lines_at(sheet: _Sheet, x: FloatArray, near: list[tuple[float, float]]) -> 
     inside (an interval of no length)."""
     if len(x) == 0:
         return []
-    g = sheet.distances(np.asarray(x, dtype=float))
+    g, runs = sheet.kept(np.asarray(x, dtype=float))
     out = []
-    for xi, row, (lo, hi) in zip(x, g, near, strict=True):
-        kept = _runs(row, sheet.w)
+    for xi, row, kept, (lo, hi) in zip(x, g, runs, near, strict=True):
         if kept:
             a, b = min(kept, key=lambda iv: abs(0.5 * (iv[0] + iv[1]) - 0.5 * (lo + hi)))
         else:
@@ -326,9 +418,8 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     """The runs of lines whose kept interval is one piece, each ended where its lines leave
     the trim (by interpolating the largest signed distance along the lines) when the
     neighbouring line is wholly outside."""
-    x, ruling = sheet.x, sheet.ruling
-    g = sheet.distances(x)
-    found = [_runs(row, sheet.w) for row in g]
+    x, ruling, g = sheet.x, sheet.ruling, sheet.g
+    found = [_at_corner(kept, w) for kept, w in zip(sheet.runs, sheet.corner, strict=True)]
     most = g.max(axis=1)
     runs: list[list[_Line]] = []
     open_: list[list[_Line]] = []
@@ -337,8 +428,9 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     for k, kept in enumerate(found):
         same = len(kept) == len(previous) and all(a[0] < b[1] and b[0] < a[1]
                                                    for a, b in zip(kept, previous, strict=True))
-        lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]), ruling[k] >= 0)
-                 for lo, hi in kept]
+        corner = bool(np.isfinite(sheet.corner[k]))
+        lines = [_Line(float(x[k]), lo, hi, int(ruling[k]), float(g[k, 0]), float(g[k, -1]),
+                       bool(ruling[k] >= 0 or corner), corner) for lo, hi in kept]
         if same:
             for run, line in zip(open_, lines, strict=True):
                 run.append(line)
@@ -384,6 +476,19 @@ def _runs_of_lines(sheet: _Sheet) -> list[list[_Line]]:
     return [run for run in runs if len(run) >= 2]
 
 
+def _at_corner(kept: list[tuple[float, float]], w: float) -> list[tuple[float, float]]:
+    """``kept`` with the end nearest ``w`` (a corner of the trim on this line) moved to it,
+    when that end is within two samples of it (otherwise the corner is not this line's)."""
+    if not kept or not np.isfinite(w):
+        return kept
+    ends = np.array(kept, dtype=float)
+    i, j = np.unravel_index(np.argmin(np.abs(ends - w)), ends.shape)
+    if abs(ends[i, j] - w) > 2.0 / (ACROSS - 1):
+        return kept
+    ends[i, j] = w
+    return [(float(a), float(b)) for a, b in ends if b > a]
+
+
 def _kept(line: _Line) -> float:
     return line.hi - line.lo
 
@@ -418,13 +523,17 @@ def _on_rail(line: _Line, upper: bool) -> bool:
     return line.hi >= 1.0 - 1e-12 if upper else line.lo <= 1e-12
 
 
-def _chain(sheet: _Sheet, run: list[_Line], upper: bool) -> tuple[Chain, FloatArray]:
+def _chain(sheet: _Sheet, run: list[_Line], upper: bool, limit: float) -> tuple[Chain, FloatArray]:
     """One edge of a cut strip (``upper``: the B side) as a :class:`Chain` run at the pace of
     the sheet's u: stretches of the strip's own rail (w = 0 or 1 exactly, so neighbours
-    still share their boundary) and of the trim (w a cubic in u through the cut); and each
+    still share their boundary) and of the trim (w a cubic in u through the cut, one from
+    each corner of the trim to the next); and each
     line's parameter on it. Both edges run at the same pace, so at any parameter the strip
-    joins two points of one line of the sheet: torsal between the rulings too."""
+    joins two points of one line of the sheet: torsal between the rulings too. ``limit``:
+    how far a stretch along the trim may stray from the cut points (:func:`_smooth`)."""
     x = np.array([line.x for line in run])
+    start, end = sheet.ends(x)
+    lengths = np.linalg.norm(end - start, axis=1)
     w = np.array([line.hi if upper else line.lo for line in run])
     rail = np.array([_on_rail(line, upper) for line in run])
     along = rail[:-1] & rail[1:]  # each interval between lines: along the rail, else the trim
@@ -432,10 +541,11 @@ def _chain(sheet: _Sheet, run: list[_Line], upper: bool) -> tuple[Chain, FloatAr
     first = 0
     while first < len(run) - 1:
         last = first + 1
-        while last < len(run) - 1 and along[last] == along[first]:
+        while last < len(run) - 1 and along[last] == along[first] and not run[last].corner:
             last += 1
-        across = _Constant(1.0 if upper else 0.0) if along[first] else _smooth(x[first:last + 1],
-                                                                                w[first:last + 1], sheet.u)
+        span = slice(first, last + 1)
+        across = (_Constant(1.0 if upper else 0.0) if along[first]
+                  else _smooth(x[span], w[span], sheet.u, lengths[span], limit))
         pieces.append((_OnSheet(sheet.a, sheet.b, sheet.tau, across), float(x[first]), float(x[last])))
         first = last
     chain = Chain(pieces)
@@ -453,16 +563,19 @@ class _Constant:
 
 
 def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: Surface,
-              tolerance: float) -> list[Strip]:
-    """``strip`` cut to where ``inside`` ≥ 0 (see the module): none, one or several strips."""
+              tolerance: float, corners: FloatArray | None = None) -> list[Strip]:
+    """``strip`` cut to where ``inside`` ≥ 0 (see the module): none, one or several strips.
+    ``corners``: the trim's corners, points on the design (:func:`sharp_corners`), where
+    the cut keeps a corner of the trim rather than rounding it."""
     sheet = _Sheet(strip, inside)
+    sheet.sample(np.empty((0, 3)) if corners is None else corners, tolerance)
     pieces = []
     for run in _runs_of_lines(sheet):
         run = _corners(sheet, run)
         keep = np.array([line.kept for line in run])
         try:
-            lower, s = _chain(sheet, run, upper=False)
-            upper, t = _chain(sheet, run, upper=True)
+            lower, s = _chain(sheet, run, False, FIT * tolerance)
+            upper, t = _chain(sheet, run, True, FIT * tolerance)
             surface = _ruled(lower, upper, s[keep])
         except ValueError:  # a run too short to make a strip of
             continue
@@ -506,36 +619,6 @@ def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: C
     return Strip(float(run[0].x), float(run[-1].x), result, surface, warp, deviation.bound, deviation.where)
 
 
-def signed_inside(design: TrimmedSurface, patch: Patch, margin: float = 0.0
-                  ) -> Callable[[FloatArray], FloatArray]:
-    """Points' signed distance from the trim loops, positive inside, plus ``margin``: each
-    point projected onto the patch, its (u, v) scaled by the surface's mean speeds along u
-    and v (so the distance is about one along the surface, in model units)."""
-    u, v = np.meshgrid(np.linspace(0.0, 1.0, 17), np.linspace(0.0, 1.0, 17), indexing="ij")
-    _, su, sv = design.surface.derivatives(u.ravel(), v.ravel(), 1)
-    speed = np.array([np.linalg.norm(su, axis=1).mean(), np.linalg.norm(sv, axis=1).mean()])
-    region = shapely.transform(design.region, lambda xy: xy * speed)
-    boundary = region.boundary
-
-    def inside(points: FloatArray) -> FloatArray:
-        found = patch.closest_point(points, candidates=1, tolerance=1e-9).parameters
-        uv = np.column_stack(patch.to_surface(found[:, 0], found[:, 1])) * speed
-        distance = shapely.distance(boundary, shapely.points(uv))
-        return np.where(shapely.contains_xy(region, uv[:, 0], uv[:, 1]), distance, -distance) + margin
-
-    return inside
-
-
-def trim_points(design: TrimmedSurface) -> FloatArray:
-    """Points along every trim loop, :data:`LOOP_SAMPLES` per span, on the design."""
-    out = []
-    for loop in design.loops:
-        w = np.linspace(0.0, 1.0, LOOP_SAMPLES + 1)[:-1]
-        dense = (loop[:-1, None] + w[None, :, None] * (loop[1:] - loop[:-1])[:, None]).reshape(-1, 2)
-        out.append(design.surface.point_at(dense[:, 0], dense[:, 1]))
-    return np.concatenate(out)
-
-
 def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **options: Any
                         ) -> Rationalisation:
     """Strips within ``tolerance`` of a trimmed design, inside its trim (see the module);
@@ -544,10 +627,13 @@ def rationalise_trimmed(design: TrimmedSurface, tolerance: float, *args: Any, **
     # the box's edges lie outside the trim: the strips are cut by the trim, not by them
     base = rationalise(patch, tolerance, *args, cut_at_edge=False, **options)
     inside = signed_inside(design, patch, REACH * tolerance)
+    corners = trim_corners(design, REACH * tolerance)
     strips: list[Strip] = []
     narrow: list[int] = []
     for k, strip in enumerate(base.strips):
-        cut = cut_strip(strip, inside, patch, tolerance)
+        cut = cut_strip(strip, inside, patch, tolerance, corners)
+        for piece in cut:
+            checked_densely(patch, piece)
         if k in base.narrow:
             narrow += list(range(len(strips), len(strips) + len(cut)))
         strips += cut
