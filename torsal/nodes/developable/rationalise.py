@@ -126,8 +126,14 @@ class Rationalise(Node):
     boundaries and their strips cut where the halves meet (overlapping by twice the
     tolerance there), the cap with parameter lines. It keeps them when they are within the
     tolerance, cover the design's edge and keep at most 10 % of their area in fans, and
-    falls back to parameter lines otherwise; Boundaries is then empty (each part has its
-    own) and the family reads "rings". Elsewhere the boundaries are parameter lines:
+    falls back to parameter lines otherwise; the family then reads "rings", and Boundaries
+    and Creases go part by part, in the order of the strips: each cap's as a trimmed
+    design reports them (below), then each half's rings (each cut to the half; the first,
+    inside the cap, to the design), a half of n strips between its n + 1 rings (a strip
+    the half's edge cuts in two becomes two between the same rings) with one crease per
+    inner ring — the largest angle between the normals of the strips on either side, at
+    points along it. Where two parts meet their strips overlap instead of sharing a
+    boundary, so no crease is reported there. Elsewhere the boundaries are parameter lines:
     where they are far from the design's curvature lines and the strips crease, give
     Guides (or a Direction) along the lines of curvature.
 
@@ -191,7 +197,8 @@ class Rationalise(Node):
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
         Out("Boundaries", CURVE, "B", "The boundary curves over the design (lifted off it by up to 0.8 × "
             "Tolerance; on it with Guides or Direction): strip i lies between boundaries i and i + 1, "
-            "which it shares exactly with its neighbours.", access=LIST),
+            "which it shares exactly with its neighbours. With rings round bumps: part by part (see the "
+            "help), each part's n strips between its n + 1 boundaries.", access=LIST),
         Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
         Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
             "rulings and the boundary curves' tangents.", access=LIST),
@@ -201,7 +208,8 @@ class Rationalise(Node):
         Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
             "triangles that close a strip where no torsal ruling exists.", access=LIST),
         Out("Creases", NUMBER, "C", "Per inner boundary (boundary i + 1, between strips i and i + 1): the "
-            "largest fold angle (rad) between the two strips along it — how much the sheets kink there.",
+            "largest fold angle (rad) between the two strips along it — how much the sheets kink there. "
+            "With rings round bumps: part by part, as Boundaries, one per inner boundary of each part.",
             access=LIST),
         Out("Where", POINT, "P", "Where the tolerance is not met: each strip's farthest point when it is "
             "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it "

@@ -23,7 +23,9 @@ whichever family bounds them. Boundaries along lines of curvature never do
    little; they are not joined there).
 
 :func:`ring_layout` returns the strips as a :class:`~.rationalise.Rationalisation` with
-``family`` "rings" and no boundary curves (each region has its own), or raises
+``family`` "rings", its boundaries and creases region by region (each cap's boundaries as
+a trimmed face's, each half's rings; the creases measured on the cut strips,
+:mod:`.ring_boundaries`), or raises
 ``ValueError`` where the rings cannot be traced (a line of curvature that turns along a
 ray), or as soon as a half's strips are beyond the tolerance (checked on dense samples
 too, :func:`_checked`) or leave the design's edge in it uncovered (:func:`_covers`) —
@@ -39,11 +41,13 @@ import shapely
 from scipy.ndimage import maximum_filter, minimum_filter
 
 from ..array_types import FloatArray
+from ..curve_base import Curve
 from ..surface_base import Surface
 from ..trimmed_surface import TrimmedSurface
 from .certify import uncovered
 from .curvature_lines import plan_scale, ring_family, trace_rings
 from .rationalise import Rationalisation, Strip
+from .ring_boundaries import cut_creases, half_boundaries
 from .rings import RingPatch, march_rings, region_inside
 from .trimmed import rationalise_trimmed
 
@@ -171,8 +175,12 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
     if not centres:
         raise ValueError("the design has no bump to ring")
     layout = layout_regions(design, centres, scale)
+    on_design = region_inside(design, shapely.box(0.0, 0.0, *scale), scale)
+    size = float(np.hypot(*scale))
     strips: list[Strip] = []
     narrow: list[int] = []
+    boundaries: list[Curve] = []
+    creases: list[float] = []
     for cap in layout.caps:
         if cap.is_empty or cap.geom_type != "Polygon":
             raise ValueError("a bump's cap is not one region")
@@ -181,6 +189,8 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
                                     warp_tolerance=warp_tolerance, min_width=min_width)
         narrow += [len(strips) + k for k in found.narrow]
         strips += found.strips
+        boundaries += found.boundaries
+        creases += cut_creases(found.boundaries, found.strips, size)
     for half in layout.halves:
         patch = RingPatch(design, half.centre, scale, half.seeds, half.span, half.family, half.start)
         inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
@@ -190,10 +200,13 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
             _checked(design, strip)
         _covers(design, half, pieces, scale, tolerance)
         strips += pieces
+        rings, folds = half_boundaries(patch, pieces, inside, on_design, size)
+        boundaries += rings
+        creases += folds
     if len(strips) > max_strips:
         raise ValueError(f"the rings need {len(strips)} strips, more than {max_strips}")
     points, gaps = uncovered(design, [s.surface for s in strips])
-    return Rationalisation("rings", strips, [], float(tolerance), narrow, points, gaps, [])
+    return Rationalisation("rings", strips, boundaries, float(tolerance), narrow, points, gaps, creases)
 
 
 
