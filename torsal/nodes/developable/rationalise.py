@@ -27,6 +27,9 @@ from torsal.nodes.limits import MAX_RATIONALISE_CALLS
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
 
+#: How the node says that strips ringing the design's bumps were tried and not kept.
+RINGS_TRIED = "strips ringing the design's bumps along lines of curvature were tried first and not kept"
+
 #: The most rulings (MaxStrips × (Segments + 1)) one solve may make.
 RULING_BUDGET = 6_000
 
@@ -126,7 +129,9 @@ class Rationalise(Node):
     boundaries and their strips cut where the halves meet (overlapping by twice the
     tolerance there), the cap with parameter lines. It keeps them when they are within the
     tolerance, cover the design's edge and keep at most 10 % of their area in fans, and
-    falls back to parameter lines otherwise; the family then reads "rings", and Boundaries
+    falls back to parameter lines otherwise (the remark, or the warning when the
+    parameter lines fall short too, says why the rings were not kept and where: the last
+    Where point). Kept, the family reads "rings", and Boundaries
     and Creases go part by part, in the order of the strips: each cap's as a trimmed
     design reports them (below), then each half's rings (each cut to the half; the first,
     inside the cap, to the design), a half of n strips between its n + 1 rings (a strip
@@ -212,8 +217,9 @@ class Rationalise(Node):
             "With rings round bumps: part by part, as Boundaries, one per inner boundary of each part.",
             access=LIST),
         Out("Where", POINT, "P", "Where the tolerance is not met: each strip's farthest point when it is "
-            "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it "
-            "(empty when all is within).", access=LIST),
+            "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it; "
+            "last, when the warning says so, where the strips ringing the design's bumps (tried first) fell "
+            "short (empty when all is within).", access=LIST),
     )
 
     def solve(
@@ -284,6 +290,8 @@ class Rationalise(Node):
             text += f"; creases up to {np.nanmax(creases):.3g} rad"
         where = self._limits(result, frame, tol, count, narrowest, text)
         if where is None:
+            if result.rings_refused:  # and the parameter lines are good: said, no warning
+                text += f"; {RINGS_TRIED}: {result.rings_refused}"
             self.remark(text)
             where = []
         # fan rulings are flat triangles' edges, not torsal: Valid is false there by
@@ -328,6 +336,13 @@ class Rationalise(Node):
             help_.append("a Direction or Guides along the design's lines of curvature")
         if not problems:
             return None
+        if result.rings_refused:  # the better layout was tried: why it was not kept, and where
+            shown = ""
+            if result.rings_where is not None:
+                points.append(frame.points_to_world(result.rings_where[None])[0])
+                shown = " (the last Where point)"
+            problems.append(f"{RINGS_TRIED}: {result.rings_refused}{shown}")
+            help_.append("a larger Tolerance, at which the strips round the bumps may meet it")
         head = (f"Tolerance {tol:g} is not met everywhere" if far or not result.covered
                 else "The strips are within the tolerance, but")
         self.warn(f"{head}: {'; '.join(problems)}. What would help: {'; '.join(help_)}. ({text})")

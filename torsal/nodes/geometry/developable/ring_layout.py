@@ -100,6 +100,14 @@ def bump_centres(design: Surface, scale: FloatArray) -> list[FloatArray]:
     return [p for _, p in found]
 
 
+class RingsRefused(ValueError):
+    """The rings do not meet the tolerance: ``where`` (a point) and how far off (``off``)."""
+
+    def __init__(self, message: str, where: FloatArray, off: float) -> None:
+        super().__init__(message)
+        self.where, self.off = np.asarray(where, dtype=float), float(off)
+
+
 @dataclass
 class Half:
     """One half of a centre's cell: the region (plan polygon) its rings sweep over the
@@ -228,14 +236,18 @@ def _checked(design: Surface, strip: Strip) -> None:
 
 
 def _covers(design: Surface, half: Half, pieces: list[Strip], scale: FloatArray, tolerance: float) -> None:
-    """Raises ``ValueError`` when a half's strips are beyond the tolerance or leave the
+    """Raises :class:`RingsRefused` when a half's strips are beyond the tolerance or leave the
     design's edge within the half uncovered by more than it (its strips' cut ends short of
     a corner of the design: the rest of the layout is then not made, the parameter lines
     are kept)."""
-    if max((s.deviation for s in pieces), default=0.0) > tolerance:
-        raise ValueError("a strip between rings is beyond the tolerance")
+    far = max(pieces, key=lambda s: s.deviation, default=None)
+    if far is not None and far.deviation > tolerance:
+        raise RingsRefused(f"a strip between them is {far.deviation:.4g} from the design", far.where,
+                           far.deviation)
     points, gaps = uncovered(design, [s.surface for s in pieces])
     found = design.closest_point(points, candidates=1, tolerance=1e-9).parameters * scale
     mine = shapely.contains_xy(half.region.buffer(1e-9 * float(np.hypot(*scale))), found[:, 0], found[:, 1])
     if np.any(gaps[mine] > tolerance):
-        raise ValueError(f"the rings leave the design's edge uncovered by {gaps[mine].max():.3g}")
+        k = int(np.flatnonzero(mine)[np.argmax(gaps[mine])])
+        raise RingsRefused(f"they leave the design's edge uncovered by {gaps[k]:.4g}", points[k],
+                           float(gaps[k]))
