@@ -1,0 +1,129 @@
+"""developable.Rationalise on the double bump with a valley at 5 cm, where it rings the bumps
+(``make bench``; each solve takes about a minute of CPU, too long for the normal suite).
+
+Run alone with::
+
+    .venv/bin/python -m pytest tests/benchmarks/bench_ring_layout.py \\
+        -o python_files='bench_*.py' -o norecursedirs='.*' -s
+
+1. The ring layout's Boundaries and Creases: each crease recomputed here from the two
+   strips' normals (central differences of their points) at points along its boundary
+   where both strips' edges run (found by distances to dense samples of the edges),
+   nothing of the node's own search.
+2. The same design drawn in millimetres in Rhino (``tests/fixtures/double-bump-mm.3dm``,
+   within 2.6e-5 m of the closed form) read by Import3dm and rationalised in millimetres
+   (Tolerance 50, MinWidth 200): the same strips as the closed form's in metres, × 1000,
+   and its solve costs about the same CPU (the ratio asserted).
+"""
+
+from __future__ import annotations
+
+import time
+from functools import cache
+
+import numpy as np
+
+from tests.support.double_bump_3dm import FIXTURE
+from tests.support.freeform_designs import DESIGNS, MM
+from tests.support.node_helpers import run, texts, tree
+from tests.support.strip_grids import items
+from torsal.nodes.developable.rationalise import Rationalise
+from torsal.nodes.io.rhino import Import3dm
+
+DESIGN = DESIGNS["bumps"]
+TOL = 0.05
+#: Regions of the ring layout on two bumps: a cap and two halves round each.
+REGIONS = 6
+#: The millimetre solve's CPU against the metre one's, at most.
+CPU_RATIO = 1.5
+
+
+@cache
+def solved(units: str):
+    """The node's result and its solve's CPU seconds: the closed form in metres ("m"), or
+    the Rhino file read in millimetres ("mm")."""
+    if units == "m":
+        surface, unit = DESIGN.surface(), 1.0
+    else:
+        (surface,) = run(Import3dm(), Path=str(FIXTURE), Units="mm").outputs["Surfaces"].all_items()
+        unit = MM
+    start = time.process_time()
+    result = run(Rationalise(), Surface=tree({(0,): [surface]}), Tolerance=TOL * unit, MaxStrips=64,
+                 MinWidth=0.2 * unit)
+    return result, time.process_time() - start
+
+
+def _on_edge(strip, points: np.ndarray, v: float, size: float, count: int = 4001):
+    """Each point's distance to the strip's edge at ``v`` (a polyline of ``count`` samples,
+    its segments projected onto) and the edge parameter there."""
+    u = np.linspace(0.0, 1.0, count)
+    edge = strip.point_at(u, np.full(count, v))
+    a, b = edge[:-1], edge[1:]
+    ab = b - a
+    w = np.clip(np.einsum("pij,ij->pi", points[:, None] - a[None], ab) / np.einsum("ij,ij->i", ab, ab), 0, 1)
+    foot = a[None] + w[..., None] * ab[None]
+    d = np.linalg.norm(foot - points[:, None], axis=2)
+    k = np.argmin(d, axis=1)
+    rows = np.arange(len(points))
+    return d[rows, k], u[k] + w[rows, k] * (u[1] - u[0])
+
+
+def _normals(strip, u, v, h=1e-6):
+    su = (strip.point_at(u + h, v) - strip.point_at(u - h, v)) / (2 * h)
+    sv = (strip.point_at(u, v + h) - strip.point_at(u, v - h)) / (2 * h)
+    n = np.cross(su, sv)
+    return n / np.linalg.norm(n, axis=1, keepdims=True)
+
+
+def _recomputed_crease(curve, strips, size: float) -> float | None:
+    """The largest angle between the normals of two strips meeting along ``curve`` (one's
+    upper edge and the other's lower edge through the same points), None where no two do."""
+    points = curve.point_at(np.linspace(0.0, 1.0, 201))
+    near = 1e-7 * size
+    uppers = [_on_edge(s, points, 1.0, size) for s in strips]
+    lowers = [_on_edge(s, points, 0.0, size) for s in strips]
+    found = []
+    for i, (d_up, u_up) in enumerate(uppers):
+        for j, (d_low, u_low) in enumerate(lowers):
+            both = (d_up <= near) & (d_low <= near)
+            if i == j or both.sum() < 2:
+                continue
+            inside = np.clip(u_up[both], 1e-5, 1 - 1e-5), np.clip(u_low[both], 1e-5, 1 - 1e-5)
+            n_low = _normals(strips[i], inside[0], np.full(len(inside[0]), 1 - 1e-5))
+            n_up = _normals(strips[j], inside[1], np.full(len(inside[1]), 1e-5))
+            angle = np.arccos(np.clip(np.einsum("ij,ij->i", n_low, n_up), -1, 1))
+            found += angle[np.isfinite(angle)].tolist()
+    return max(found) if found else None
+
+
+def test_the_rings_creases_are_the_strips_normals_recomputed_along_their_boundaries():
+    result, seconds = solved("m")
+    print(f"closed form in m: {seconds:.1f} CPU-s; {texts(result)}", flush=True)
+    assert any("boundaries along rings" in t for t in texts(result))
+    strips, boundaries, creases = (items(result, p) for p in ("Strips", "Boundaries", "Creases"))
+    # region by region: each region's n strips between n + 1 boundaries, n − 1 inner ones
+    assert len(boundaries) - len(creases) == 2 * REGIONS
+    recomputed = [_recomputed_crease(b, strips, DESIGN.size) for b in boundaries]
+    inner = [c for c in recomputed if c is not None]
+    print("creases", np.round(creases, 4).tolist(), "recomputed", np.round(inner, 4).tolist(), flush=True)
+    assert len(inner) == len(creases)  # every crease is along a boundary two strips share, in order
+    np.testing.assert_allclose(inner, creases, rtol=1e-2, atol=1e-4)
+
+
+def test_the_3dm_in_millimetres_gives_the_closed_forms_strips_times_1000():
+    metres, m_seconds = solved("m")
+    millimetres, mm_seconds = solved("mm")
+    print(f"m {m_seconds:.1f} CPU-s, mm {mm_seconds:.1f} CPU-s; {texts(millimetres)}", flush=True)
+    assert any("boundaries along rings" in t for t in texts(millimetres))
+    ours, theirs = items(millimetres, "Strips"), items(metres, "Strips")
+    assert len(ours) == len(theirs)
+    u, v = (a.ravel() for a in np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 5), indexing="ij"))
+    apart = max(float(np.linalg.norm(a.point_at(u, v) / MM - b.point_at(u, v), axis=1).max())
+                for a, b in zip(ours, theirs, strict=True))
+    print(f"strips apart by at most {apart:.3g} m", flush=True)
+    assert apart <= 0.1 * TOL
+    np.testing.assert_allclose(np.array(items(millimetres, "Deviation")) / MM, items(metres, "Deviation"),
+                               atol=0.01 * TOL)
+    assert len(items(millimetres, "Boundaries")) == len(items(metres, "Boundaries"))
+    np.testing.assert_allclose(items(millimetres, "Creases"), items(metres, "Creases"), atol=1e-3)
+    assert mm_seconds <= CPU_RATIO * m_seconds
