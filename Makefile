@@ -25,14 +25,20 @@ run: system $(RUN_STAMP)
 	$(BIN)/torsal gui $(EXAMPLE)
 
 # The GUI tests run in a process of their own: Qt shares it with no thread or child
-# process the other tests leave behind (a dask cluster's, say).
+# process the other tests leave behind (a dask cluster's, say), and no other window on
+# the display takes its keyboard focus. The other tests spread their files over every
+# core (pytest-xdist; TEST_WORKERS=0 for one process): a file's tests stay on one worker,
+# so a module's shared solve is made once.
+TEST_WORKERS ?= auto
+PYTEST := $(BIN)/python -m pytest
+SPREAD := -n $(TEST_WORKERS) --dist loadfile
 test: system $(TEST_STAMP)
 	$(BIN)/ruff check .
 	@if [ -n "$$DISPLAY" ] || ! command -v xvfb-run >/dev/null; then \
-		$(BIN)/python -m pytest --ignore=tests/app/gui && $(BIN)/python -m pytest tests/app/gui; \
+		$(PYTEST) $(SPREAD) --ignore=tests/app/gui && $(PYTEST) tests/app/gui; \
 	else \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest --ignore=tests/app/gui && \
-		xvfb-run -a -s "-screen 0 1600x1000x24" $(BIN)/python -m pytest tests/app/gui; \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTEST) $(SPREAD) --ignore=tests/app/gui && \
+		xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTEST) tests/app/gui; \
 	fi
 
 bench: system $(TEST_STAMP)

@@ -1,6 +1,6 @@
 """CPU time of the flagship's re-solve after its main slider moves, in alternating processes.
 
-``python tools/time_resolve.py [TREE ...] [--rounds 3] [--repeats 25] [--count N]``
+``python -m tools.time_resolve [TREE ...] [--rounds 3] [--repeats 25] [--count N]``
 
 Each round runs one process per tree (a checkout holding a ``torsal`` package: this one
 when none is given; e.g. a second worktree at main, ``git worktree add --detach DIR main``)
@@ -16,44 +16,18 @@ from __future__ import annotations
 
 import argparse
 import os
-import subprocess
-import sys
 from pathlib import Path
 
-EXAMPLE = Path("torsal") / "resources" / "examples" / "kaohsiung-stadium.graph"
+from tools.resolve_loop import run_loop
 
-_RESOLVE = """
-import gc, statistics, sys, time
-from torsal.app.headless import run_file
-run = run_file(sys.argv[1])
-repeats, count = int(sys.argv[2]), int(sys.argv[3])
-if count:
-    run.graph.set_setting("count", "max", max(count, 60))
-    run.graph.set_setting("count", "value", count)
-cpu = []
-for index in range(repeats + 2):
-    run.graph.set_setting("scale", "value", 0.70 + 0.02 * (index % 2))
-    gc.disable()
-    start = time.process_time()
-    run.solver.solve()
-    took = time.process_time() - start
-    gc.enable()
-    if index >= 2:
-        cpu.append(took)
-strips = sum(len(branch) for branch in run.solver.results["strip"].outputs["Surface"].branches)
-print(f"{statistics.median(cpu) * 1e3:.2f} {min(cpu) * 1e3:.2f} {strips}")
-"""
+EXAMPLE = Path("torsal") / "resources" / "examples" / "kaohsiung-stadium.graph"
 
 
 def resolve_cpu(tree: Path, repeats: int, count: int) -> tuple[float, float, int]:
     """Median and least CPU milliseconds of a re-solve, and the strips made, by ``tree``'s
-    package (run from ``tree``: its ``torsal`` is the one imported)."""
-    done = subprocess.run(
-        [sys.executable, "-c", _RESOLVE, str(tree / EXAMPLE), str(repeats), str(count)],
-        capture_output=True, text=True, check=True, timeout=1800, cwd=tree,
-    )
-    median, least, strips = done.stdout.split()[-3:]
-    return float(median), float(least), int(strips)
+    package (:func:`tools.resolve_loop.run_loop`)."""
+    done = run_loop(tree, tree / EXAMPLE, repeats, count)
+    return done.median_cpu * 1e3, done.least_cpu * 1e3, done.strips
 
 
 def main() -> None:

@@ -21,11 +21,10 @@ load; each side is the median of :data:`REPEATS` re-solves.
 from __future__ import annotations
 
 import statistics
-import subprocess
-import sys
 from pathlib import Path
 
 from tests.benchmarks.from_history import ROOT, extract_tree
+from tools.resolve_loop import run_loop
 
 GRAPH = ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph"
 #: The last version that solved the strips one by one.
@@ -37,40 +36,12 @@ SPEED_UP = 46.0 / 15.0
 #: 280 strips against 28: linear growth, with 10 % for the rest of the graph.
 GROWTH_LIMIT = 11.0
 
-_RESOLVE = """
-import gc, statistics, sys, time
-sys.path.insert(0, sys.argv[1])
-from torsal.app.headless import run_file
-run = run_file(sys.argv[2])
-count = int(sys.argv[4])
-if count:
-    run.graph.set_setting("count", "max", max(count, 60))
-    run.graph.set_setting("count", "value", count)
-times = []
-for index in range(int(sys.argv[3]) + 2):
-    run.graph.set_setting("scale", "value", 0.70 + 0.02 * (index % 2))
-    gc.disable()
-    start = time.perf_counter()
-    run.solver.solve()
-    took = time.perf_counter() - start
-    gc.enable()
-    if index >= 2:  # (the first re-solves warm caches up)
-        times.append(took)
-strips = run.solver.results["strip"].outputs["Surface"]
-print(sum(len(branch) for branch in strips.branches), statistics.median(times))
-"""
-
-
 def resolve_seconds(tree: Path, count: int = 0, repeats: int = REPEATS) -> tuple[int, float]:
     """The strips made and the median re-solve of the Kaohsiung example after 'Inward
     scale' moves, by the ``torsal`` package in ``tree``, in a subprocess (``count``: the
     'Edge points' slider's value, 0 for the file's)."""
-    done = subprocess.run(
-        [sys.executable, "-c", _RESOLVE, str(tree), str(GRAPH), str(repeats), str(count)],
-        capture_output=True, text=True, check=True, timeout=600, cwd=tree,
-    )
-    strips, seconds = done.stdout.split()[-2:]
-    return int(strips), float(seconds)
+    done = run_loop(tree, GRAPH, repeats, count, timeout=600)
+    return done.strips, done.median
 
 
 def test_the_flagship_resolves_3x_faster_than_when_its_strips_were_solved_one_by_one():

@@ -51,6 +51,7 @@ from .curvature import (
     unit_normal,
 )
 from .curve_base import Curve
+from .square_descent import backtrack, pinned_step, step_length
 from .surface_box import surface_bounding_box
 from .vec_ops import anchor, cross, derivative_noise, dot, extent, position_rounding
 from .watch import watch_check
@@ -331,17 +332,18 @@ class Surface(ABC):
             distances=dist[np.arange(len(query)), best],
         )
 
-    def _project(self, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        u = np.mod(u, 1.0) if self.closed_u else np.clip(u, 0.0, 1.0)
-        v = np.mod(v, 1.0) if self.closed_v else np.clip(v, 0.0, 1.0)
-        return u, v
-
     def _newton_closest(
         self, query: FloatArray, u: FloatArray, v: FloatArray, tolerance: float, max_iter: int
     ) -> tuple[FloatArray, FloatArray]:
         u, v = u.copy(), v.copy()
         active = np.arange(len(u))
         check = watch_check()
+
+        def distance(pending: np.ndarray, pu: FloatArray, pv: FloatArray) -> FloatArray:
+            """Half the squared distance to the queries of the active starts ``pending``."""
+            dd = self.derivatives(pu, pv, 0)[0] - query[active[pending]]
+            return 0.5 * dot(dd, dd)
+
         for _ in range(max_iter):
             if check:
                 check()
@@ -360,45 +362,11 @@ class Surface(ABC):
             h_uu = np.where(indefinite, e + damp, h_uu)
             h_vv = np.where(indefinite, g + damp, h_vv)
             h_uv = np.where(indefinite, f, h_uv)
-            det = h_uu * h_vv - h_uv * h_uv
-            with np.errstate(divide="ignore", invalid="ignore"):
-                du = -(h_vv * g_u - h_uv * g_v) / det
-                dv = -(h_uu * g_v - h_uv * g_u) / det
-                # Active set: a coordinate on its bound whose descent leaves the square.
-                pin_u = ((ua <= 0) & (g_u > 0)) | ((ua >= 1) & (g_u < 0))
-                pin_v = ((va <= 0) & (g_v > 0)) | ((va >= 1) & (g_v < 0))
-                pin_u &= not self.closed_u
-                pin_v &= not self.closed_v
-                only_u = pin_u & ~pin_v
-                only_v = pin_v & ~pin_u
-                du = np.where(pin_u, 0.0, np.where(only_v, -g_u / h_uu, du))
-                dv = np.where(pin_v, 0.0, np.where(only_u, -g_v / h_vv, dv))
-            du = np.nan_to_num(du)
-            dv = np.nan_to_num(dv)
-            f0 = 0.5 * dot(d, d)
-            step = np.ones_like(ua)
-            new_u, new_v = self._project(ua + du, va + dv)
-            pending = np.arange(len(ua))
-            for _ in range(40):  # backtracking: never let the distance grow
-                pts = self.derivatives(new_u[pending], new_v[pending], 0)[0]
-                dd = pts - pa[pending]
-                fn = 0.5 * dot(dd, dd)
-                worse = fn > f0[pending] * (1.0 + 1e-14) + 1e-300
-                pending = pending[worse]
-                if pending.size == 0:
-                    break
-                step[pending] *= 0.5
-                new_u[pending], new_v[pending] = self._project(
-                    ua[pending] + step[pending] * du[pending],
-                    va[pending] + step[pending] * dv[pending],
-                )
-            new_u[pending], new_v[pending] = ua[pending], va[pending]  # no descent: stay
-            step_u, step_v = np.abs(new_u - ua), np.abs(new_v - va)
-            if self.closed_u:  # a step across the seam is short, not ~1
-                step_u = np.minimum(step_u, 1.0 - step_u)
-            if self.closed_v:
-                step_v = np.minimum(step_v, 1.0 - step_v)
-            moved = np.maximum(step_u, step_v)
+            du, dv = pinned_step(ua, va, g_u, g_v, h_uu, h_uv, h_vv, self.closed_u, self.closed_v)
+            # backtracking: never let the distance grow
+            new_u, new_v = backtrack(distance, 0.5 * dot(d, d), ua, va, du, dv, self.closed_u,
+                                     self.closed_v, halvings=40, slack=1e-14, floor=1e-300)
+            moved = step_length(ua, va, new_u, new_v, self.closed_u, self.closed_v)
             u[active], v[active] = new_u, new_v
             active = active[moved > tolerance]
         return u, v

@@ -39,6 +39,7 @@ from numpy.typing import ArrayLike
 from .array_types import FloatArray
 from .curve_protocol import ParametricCurve
 from .roots import refine_roots
+from .square_descent import backtrack, pinned_step, step_length
 from .vec_ops import anchor, extent
 
 
@@ -151,6 +152,13 @@ def _newton(surface: BoxedSurface, u: FloatArray, v: FloatArray, axes: np.ndarra
     u, v = u.copy(), v.copy()
     active = np.arange(len(u))
     lifted = origin[axes]
+
+    def coordinate(pending: np.ndarray, pu: FloatArray, pv: FloatArray) -> FloatArray:
+        """The scaled coordinate each active start ``pending`` minimises, at (pu, pv)."""
+        value = surface.derivatives(pu, pv, 0)[0]
+        rows = active[pending]
+        return scales[rows] * (value[np.arange(len(pending)), axes[rows]] - lifted[rows])
+
     for _ in range(NEWTON_STEPS):
         ua, va, ax, sc = u[active], v[active], axes[active], scales[active]
         pick = np.arange(len(active))
@@ -165,44 +173,16 @@ def _newton(surface: BoxedSurface, u: FloatArray, v: FloatArray, axes: np.ndarra
         floor = 1e-6 * np.maximum(largest, np.hypot(g_u, g_v)) + 1e-300
         shift = np.maximum(floor - least, 0.0)
         h_uu, h_vv = h_uu + shift, h_vv + shift
-        # active set: a coordinate on its bound whose descent leaves the square stays there
-        pin_u = (((ua <= 0.0) & (g_u > 0.0)) | ((ua >= 1.0) & (g_u < 0.0))) & (not surface.closed_u)
-        pin_v = (((va <= 0.0) & (g_v > 0.0)) | ((va >= 1.0) & (g_v < 0.0))) & (not surface.closed_v)
-        det = h_uu * h_vv - h_uv * h_uv
-        with np.errstate(divide="ignore", invalid="ignore"):  # (a flat stretch: no step)
-            du = np.where(pin_v, -g_u / h_uu, -(h_vv * g_u - h_uv * g_v) / det)
-            dv = np.where(pin_u, -g_v / h_vv, -(h_uu * g_v - h_uv * g_u) / det)
-        du, dv = np.nan_to_num(np.where(pin_u, 0.0, du)), np.nan_to_num(np.where(pin_v, 0.0, dv))
+        du, dv = pinned_step(ua, va, g_u, g_v, h_uu, h_uv, h_vv, surface.closed_u, surface.closed_v)
         longest = np.maximum(np.abs(du), np.abs(dv))
         cut = np.minimum(1.0, LONGEST_STEP / np.where(longest > 0.0, longest, 1.0))
-        du, dv = du * cut, dv * cut
-        step = np.ones(len(active))
-        new_u, new_v = _project(surface, ua + du, va + dv)
-        pending = pick
-        for _ in range(BACKTRACKS):  # never let the coordinate worsen
-            value = surface.derivatives(new_u[pending], new_v[pending], 0)[0]
-            fn = sc[pending] * (value[np.arange(len(pending)), ax[pending]] - lifted[active[pending]])
-            pending = pending[fn > f0[pending]]
-            if not len(pending):
-                break
-            step[pending] *= 0.5
-            new_u[pending], new_v[pending] = _project(surface, ua[pending] + step[pending] * du[pending],
-                                                      va[pending] + step[pending] * dv[pending])
-        new_u[pending], new_v[pending] = ua[pending], va[pending]  # no descent: stay
-        step_u, step_v = np.abs(new_u - ua), np.abs(new_v - va)
-        if surface.closed_u:  # a step across the seam is short, not ~1
-            step_u = np.minimum(step_u, 1.0 - step_u)
-        if surface.closed_v:
-            step_v = np.minimum(step_v, 1.0 - step_v)
+        # never let the coordinate worsen
+        new_u, new_v = backtrack(coordinate, f0, ua, va, du * cut, dv * cut, surface.closed_u,
+                                 surface.closed_v, halvings=BACKTRACKS)
+        moved = step_length(ua, va, new_u, new_v, surface.closed_u, surface.closed_v)
         u[active], v[active] = new_u, new_v
-        active = active[np.maximum(step_u, step_v) > NEWTON_STOP]
+        active = active[moved > NEWTON_STOP]
         if not len(active):
             break
     return u, v
 
-
-def _project(surface: BoxedSurface, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """(u, v) onto the square: clipped, or wrapped across the seam of a closed direction."""
-    u = np.mod(u, 1.0) if surface.closed_u else np.clip(u, 0.0, 1.0)
-    v = np.mod(v, 1.0) if surface.closed_v else np.clip(v, 0.0, 1.0)
-    return u, v
