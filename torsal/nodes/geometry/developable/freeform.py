@@ -7,8 +7,9 @@ line from edge to edge passes where no smooth torsal strip can follow it, and th
 crease there. Such a design is first laid out with strips between traced lines of
 curvature that ring each of its bumps (:mod:`.ring_layout`); that layout is kept when it
 is within the tolerance, covers the design's edge and has little of its area in fans,
-and the parameter lines are used otherwise — and always with guides or a direction,
-which say which way the strips must run.
+and the parameter lines are used otherwise (their result then says why the rings were
+not kept and, where one place says it, where: ``rings_refused``, ``rings_where``) — and
+always with guides or a direction, which say which way the strips must run.
 
 This choice sits above both layouts: a ring layout rationalises the caps round its bumps
 between parameter lines (:mod:`.trimmed`), so it cannot live in :mod:`.rationalise`.
