@@ -46,22 +46,29 @@ def build(folder: Path = OUT) -> Path:
         values = [0.0, 0.0, *np.linspace(0.0, 1.0, inner + 1).tolist(), 1.0, 1.0]
         for k in range(len(knots)):
             knots[k] = float(values[k])
+    return write_design(surface, folder / NAME, "Canopy")
+
+
+def write_design(surface: rh.NurbsSurface, path: Path, name: str) -> Path:
+    """Write ``surface`` alone to ``path`` as a design drawn in millimetres: on a layer
+    "Design", named ``name``, with fixed object and layer ids (two runs differ only in
+    openNURBS's time stamp)."""
     model = rh.File3dm()
     model.Settings.ModelUnitSystem = rh.UnitSystem.Millimeters
     layer = rh.Layer()
     layer.Name, layer.Id, layer.Color = "Design", uuid.UUID(int=1), (90, 140, 200, 255)
     index = model.Layers.Add(layer)
     attributes = rh.ObjectAttributes()
-    attributes.Id, attributes.LayerIndex, attributes.Name = uuid.UUID(int=2), index, "Canopy"
+    attributes.Id, attributes.LayerIndex, attributes.Name = uuid.UUID(int=2), index, name
     model.Objects.AddSurface(surface, attributes)
     here = os.getcwd()
-    os.chdir(folder)  # rhino3dm stores the path it is given
+    os.chdir(path.parent)  # rhino3dm stores the path it is given
     try:
-        if not model.Write(NAME, 7):
-            raise RuntimeError(f"rhino3dm could not write {folder / NAME}")
+        if not model.Write(path.name, 7):
+            raise RuntimeError(f"rhino3dm could not write {path}")
     finally:
         os.chdir(here)
-    return folder / NAME
+    return path
 
 
 if __name__ == "__main__":

@@ -27,6 +27,9 @@ from torsal.nodes.limits import MAX_RATIONALISE_CALLS
 #: Share of a strip's area in creased fans above which the node warns.
 CREASED = 0.1
 
+#: How the node says that strips ringing the design's bumps were tried and not kept.
+RINGS_TRIED = "strips ringing the design's bumps along lines of curvature were tried first and not kept"
+
 #: The most rulings (MaxStrips × (Segments + 1)) one solve may make.
 RULING_BUDGET = 6_000
 
@@ -126,8 +129,16 @@ class Rationalise(Node):
     boundaries and their strips cut where the halves meet (overlapping by twice the
     tolerance there), the cap with parameter lines. It keeps them when they are within the
     tolerance, cover the design's edge and keep at most 10 % of their area in fans, and
-    falls back to parameter lines otherwise; Boundaries is then empty (each part has its
-    own) and the family reads "rings". Elsewhere the boundaries are parameter lines:
+    falls back to parameter lines otherwise (the remark, or the warning when the
+    parameter lines fall short too, says why the rings were not kept and where: the last
+    Where point). Kept, the family reads "rings", and Boundaries
+    and Creases go part by part, in the order of the strips: each cap's as a trimmed
+    design reports them (below), then each half's rings (each cut to the half; the first,
+    inside the cap, to the design), a half of n strips between its n + 1 rings (a strip
+    the half's edge cuts in two becomes two between the same rings) with one crease per
+    inner ring — the largest angle between the normals of the strips on either side, at
+    points along it. Where two parts meet their strips overlap instead of sharing a
+    boundary, so no crease is reported there. Elsewhere the boundaries are parameter lines:
     where they are far from the design's curvature lines and the strips crease, give
     Guides (or a Direction) along the lines of curvature.
 
@@ -191,7 +202,8 @@ class Rationalise(Node):
         Out("Strips", SURFACE, "S", "The developable strips, in order across the design.", access=LIST),
         Out("Boundaries", CURVE, "B", "The boundary curves over the design (lifted off it by up to 0.8 × "
             "Tolerance; on it with Guides or Direction): strip i lies between boundaries i and i + 1, "
-            "which it shares exactly with its neighbours.", access=LIST),
+            "which it shares exactly with its neighbours. With rings round bumps: part by part (see the "
+            "help), each part's n strips between its n + 1 boundaries.", access=LIST),
         Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
         Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
             "rulings and the boundary curves' tangents.", access=LIST),
@@ -201,11 +213,13 @@ class Rationalise(Node):
         Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
             "triangles that close a strip where no torsal ruling exists.", access=LIST),
         Out("Creases", NUMBER, "C", "Per inner boundary (boundary i + 1, between strips i and i + 1): the "
-            "largest fold angle (rad) between the two strips along it — how much the sheets kink there.",
+            "largest fold angle (rad) between the two strips along it — how much the sheets kink there. "
+            "With rings round bumps: part by part, as Boundaries, one per inner boundary of each part.",
             access=LIST),
         Out("Where", POINT, "P", "Where the tolerance is not met: each strip's farthest point when it is "
-            "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it "
-            "(empty when all is within).", access=LIST),
+            "beyond Tolerance, and the design's edge point farthest from every strip when that is beyond it; "
+            "last, when the warning says so, where the strips ringing the design's bumps (tried first) fell "
+            "short (empty when all is within).", access=LIST),
     )
 
     def solve(
@@ -276,6 +290,8 @@ class Rationalise(Node):
             text += f"; creases up to {np.nanmax(creases):.3g} rad"
         where = self._limits(result, frame, tol, count, narrowest, text)
         if where is None:
+            if result.rings_refused:  # and the parameter lines are good: said, no warning
+                text += f"; {RINGS_TRIED}: {result.rings_refused}"
             self.remark(text)
             where = []
         # fan rulings are flat triangles' edges, not torsal: Valid is false there by
@@ -320,6 +336,13 @@ class Rationalise(Node):
             help_.append("a Direction or Guides along the design's lines of curvature")
         if not problems:
             return None
+        if result.rings_refused:  # the better layout was tried: why it was not kept, and where
+            shown = ""
+            if result.rings_where is not None:
+                points.append(frame.points_to_world(result.rings_where[None])[0])
+                shown = " (the last Where point)"
+            problems.append(f"{RINGS_TRIED}: {result.rings_refused}{shown}")
+            help_.append("a larger Tolerance, at which the strips round the bumps may meet it")
         head = (f"Tolerance {tol:g} is not met everywhere" if far or not result.covered
                 else "The strips are within the tolerance, but")
         self.warn(f"{head}: {'; '.join(problems)}. What would help: {'; '.join(help_)}. ({text})")

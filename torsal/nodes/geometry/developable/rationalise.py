@@ -131,6 +131,10 @@ class Rationalisation:
     edge_points: FloatArray | None = None  #: samples along the design's edges
     edge_gaps: FloatArray | None = None  #: each one's distance to the nearest strip
     creases: list[float] = field(default_factory=list)  #: fold angle (rad) per inner boundary
+    #: why the strips ringing the design's bumps, tried first (:mod:`.freeform`), were not
+    #: kept ("" when kept or not tried), and where that is (a point), when one place says it
+    rings_refused: str = ""
+    rings_where: FloatArray | None = None
 
     @property
     def coverage(self) -> float:

@@ -23,7 +23,9 @@ whichever family bounds them. Boundaries along lines of curvature never do
    little; they are not joined there).
 
 :func:`ring_layout` returns the strips as a :class:`~.rationalise.Rationalisation` with
-``family`` "rings" and no boundary curves (each region has its own), or raises
+``family`` "rings", its boundaries and creases region by region (each cap's boundaries as
+a trimmed face's, each half's rings; the creases measured on the cut strips,
+:mod:`.ring_boundaries`), or raises
 ``ValueError`` where the rings cannot be traced (a line of curvature that turns along a
 ray), or as soon as a half's strips are beyond the tolerance (checked on dense samples
 too, :func:`~.trim_region.checked_densely`), leave the design's edge in it uncovered
@@ -42,12 +44,14 @@ import shapely
 from scipy.ndimage import maximum_filter, minimum_filter
 
 from ..array_types import FloatArray
+from ..curve_base import Curve
 from ..surface_base import Surface
 from ..trimmed_surface import TrimmedSurface
 from .certify import uncovered
 from .curvature_lines import plan_scale, ring_family, trace_rings
 from .fans import patch_areas
 from .rationalise import Rationalisation, Strip
+from .ring_boundaries import cut_creases, half_boundaries
 from .rings import RingPatch, march_rings, region_corners, region_inside
 from .trim_region import checked_densely
 from .trimmed import rationalise_trimmed
@@ -102,6 +106,14 @@ def bump_centres(design: Surface, scale: FloatArray) -> list[FloatArray]:
                 found.append((float(f[i, j]), np.array([g[i], g[j]]) * scale))
     found.sort(key=lambda item: -item[0])
     return [p for _, p in found]
+
+
+class RingsRefused(ValueError):
+    """The rings do not meet the tolerance: ``where`` (a point) and how far off (``off``)."""
+
+    def __init__(self, message: str, where: FloatArray, off: float) -> None:
+        super().__init__(message)
+        self.where, self.off = np.asarray(where, dtype=float), float(off)
 
 
 @dataclass
@@ -183,9 +195,13 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
     layout = layout_regions(design, centres, scale)
     if any(cap.is_empty or cap.geom_type != "Polygon" for cap in layout.caps):
         raise ValueError("a bump's cap is not one region")
+    on_design = region_inside(design, shapely.box(0.0, 0.0, *scale), scale)
+    size = float(np.hypot(*scale))
     # the halves first: a layout refused there costs no cap
     area = design.area(rtol=1e-4) if max_fans < 1.0 else np.inf  # (no test asked for)
     rings: list[Strip] = []
+    ring_bounds: list[Curve] = []
+    ring_creases: list[float] = []
     for half in layout.halves:
         patch = _reaching(design, half, scale)
         inside = region_inside(design, half.region, scale, OVERLAP * tolerance)
@@ -199,20 +215,28 @@ def ring_layout(design: Surface, tolerance: float, max_strips: int = 64, segment
         fans = _fan_area(rings)
         if np.isfinite(area) and fans > max_fans * SPARE * area:
             raise ValueError(f"the rings' fans already cover {fans / area:.3g} of the design")
+        bounds, folds = half_boundaries(patch, pieces, inside, on_design, size)
+        ring_bounds += bounds
+        ring_creases += folds
     strips: list[Strip] = []
     narrow: list[int] = []
+    boundaries: list[Curve] = []
+    creases: list[float] = []
     for cap in layout.caps:
         loop = np.asarray(cap.exterior.coords) / scale
         found = rationalise_trimmed(TrimmedSurface(design, loop), tolerance, max_strips, segments=segments,
                                     warp_tolerance=warp_tolerance, min_width=min_width)
         narrow += [len(strips) + k for k in found.narrow]
         strips += found.strips
-    strips += rings
+        boundaries += found.boundaries
+        creases += cut_creases(found.boundaries, found.strips, size)
+    strips += rings  # in strip order: the caps' regions, then the halves'
+    boundaries += ring_bounds
+    creases += ring_creases
     if len(strips) > max_strips:
         raise ValueError(f"the rings need {len(strips)} strips, more than {max_strips}")
     points, gaps = uncovered(design, [s.surface for s in strips])
-    return Rationalisation("rings", strips, [], float(tolerance), narrow, points, gaps, [])
-
+    return Rationalisation("rings", strips, boundaries, float(tolerance), narrow, points, gaps, creases)
 
 
 def _fan_area(strips: list[Strip]) -> float:
@@ -244,14 +268,18 @@ def _reaching(design: Surface, half: Half, scale: FloatArray) -> RingPatch:
 
 
 def _covers(design: Surface, half: Half, pieces: list[Strip], scale: FloatArray, tolerance: float) -> None:
-    """Raises ``ValueError`` when a half's strips are beyond the tolerance or leave the
+    """Raises :class:`RingsRefused` when a half's strips are beyond the tolerance or leave the
     design's edge within the half uncovered by more than it (its strips' cut ends short of
     a corner of the design: the rest of the layout is then not made, the parameter lines
     are kept)."""
-    if max((s.deviation for s in pieces), default=0.0) > tolerance:
-        raise ValueError("a strip between rings is beyond the tolerance")
+    far = max(pieces, key=lambda s: s.deviation, default=None)
+    if far is not None and far.deviation > tolerance:
+        raise RingsRefused(f"a strip between them is {far.deviation:.4g} from the design", far.where,
+                           far.deviation)
     points, gaps = uncovered(design, [s.surface for s in pieces])
     found = design.closest_point(points, candidates=1, tolerance=1e-9).parameters * scale
     mine = shapely.contains_xy(half.region.buffer(1e-9 * float(np.hypot(*scale))), found[:, 0], found[:, 1])
     if np.any(gaps[mine] > tolerance):
-        raise ValueError(f"the rings leave the design's edge uncovered by {gaps[mine].max():.3g}")
+        k = int(np.flatnonzero(mine)[np.argmax(gaps[mine])])
+        raise RingsRefused(f"they leave the design's edge uncovered by {gaps[k]:.4g}", points[k],
+                           float(gaps[k]))

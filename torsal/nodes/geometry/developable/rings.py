@@ -160,7 +160,10 @@ def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
     except ValueError:
         return None
     whole = Strip(lo, hi, result, surface, np.zeros(len(result.s)), 0.0, np.zeros(3))
-    return cut_strip(whole, inside, design, tolerance, corners)
+    pieces = cut_strip(whole, inside, design, tolerance, corners)
+    for piece in pieces:  # each between the rings at lo and hi (:mod:`.ring_boundaries`)
+        piece.lo, piece.hi = lo, hi
+    return pieces
 
 
 def march_rings(
