@@ -101,3 +101,17 @@ def test_an_edge_between_two_strips_is_measured_once_as_its_own_map_would_measur
     for name in ("nodes", "lengths", "start_speeds", "end_speeds", "_rise", "_inverse", "_poly"):
         assert getattr(strips[0].map_b, name).tobytes() == getattr(alone, name).tobytes()
     assert strips[1].map_b.curve is high
+
+
+def test_no_curves_have_no_length_maps():
+    assert LengthMap.many([]) == []
+
+
+def test_strips_whose_every_b_is_another_strips_a_measure_no_curve_again():
+    # the edges of a closed ring of two strips: each B is the other's A (a fuzzed file
+    # found that nothing was left to measure, and measuring nothing failed)
+    first, second = Line([0, 0, 0], [3, 0, 0]), Polyline([[0, 1, 0], [1, 1.5, 0], [3, 1, 0.5]])
+    strips = set_up([(first, second, 8, 0.01), (second, first, 8, 0.01)], "length", 24)
+    with_maps_b(strips)
+    assert strips[0].map_b is strips[1].map_a
+    assert strips[1].map_b is strips[0].map_a

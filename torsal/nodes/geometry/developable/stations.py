@@ -117,7 +117,9 @@ class LengthMap:
     @classmethod
     def many(cls, curves: Sequence[Curve], intervals: int = 128) -> list[LengthMap]:
         """The map of each of ``curves``, each the one it gets alone (bit for bit), their
-        tables made together (:func:`_tables`)."""
+        tables made together (:func:`_tables`); none for no curves."""
+        if not curves:
+            return []
         maps = []
         for curve, tables in zip(curves, _tables(curves, intervals), strict=True):
             length_map = cls.__new__(cls)
