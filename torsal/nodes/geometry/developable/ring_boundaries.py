@@ -25,6 +25,7 @@ import numpy as np
 from ..array_types import FloatArray
 from ..curve_base import Curve
 from ..surface_base import IsoCurve
+from ..vectors import angle_between
 from .rationalise import Strip
 from .rings import RingPatch
 from .trimmed import Chain
@@ -89,8 +90,7 @@ def fold_along(curve: Curve, below: Sequence[Strip], above: Sequence[Strip], siz
             ones = np.ones(int(both.sum()))
             n_low = low.surface.normal_at(on_low.parameters[both], ones)
             n_up = up.surface.normal_at(on_up.parameters[both], 0.0 * ones)
-            angle = np.arctan2(np.linalg.norm(np.cross(n_low, n_up), axis=1),
-                               np.einsum("ij,ij->i", n_low, n_up))
+            angle = angle_between(n_low, n_up)
             found += angle[np.isfinite(angle)].tolist()
     return max(found) if found else float("nan")
 
