@@ -222,8 +222,9 @@ class _Sheet:
                 hi, g_hi = np.where(same, hi, w), np.where(same, g_hi, found)
         cut = lo + (hi - lo) * g_lo / (g_lo - g_hi)
         runs = []
-        for row in range(len(x)):
-            bounds = ([self.w[0]] if keep[row, 0] else []) + cut[k == row].tolist()
+        per_row = np.split(cut, np.searchsorted(k, np.arange(1, len(x))))  # (k is in row order)
+        for row, crossings in enumerate(per_row):
+            bounds = ([self.w[0]] if keep[row, 0] else []) + crossings.tolist()
             bounds += [self.w[-1]] if keep[row, -1] else []
             runs.append([(float(bounds[i]), float(bounds[i + 1])) for i in range(0, len(bounds) - 1, 2)])
         return g, runs
