@@ -234,6 +234,8 @@ def test_true_shape_nesting_takes_at_most_one_and_a_half_times_sparrows_own_stri
                 f"{found[1] / baseline_cpu:.2f} | load {os.getloadavg()[0]:.1f}")
     print("\n" + "\n".join(ROWS))
     assert ratio <= TIME_RATIO
+    if name == "kaohsiung":  # the bar holds at the usage a shop expects
+        assert usage >= 0.72
 
 
 def test_kaohsiung_cut_sheets_nested_true_shape_use_at_least_72_percent_with_seams_on_both_parts(tmp_path,
