@@ -110,10 +110,13 @@ def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken(monkey
     line = Line([0, 0, 0], [1, 2, 3])
     curves = [*curves_sharing_knots(4, False, 3), line, *curves_sharing_knots(5, True, 2)]
     grouped, others = shared_knots._partition(curves)
-    assert sorted(members.tolist() for members in grouped) == [[0, 1, 2], [4, 5]] and others == [3]
+    assert sorted(group.members.tolist() for group in grouped) == [[0, 1, 2], [4, 5]] and others == [3]
     assert shared_knots._partition(list(curves))[0] is grouped  # (the same curves: the one kept)
     # a kept partition under these ids, but of other curves (theirs since collected, their ids reused)
     ids = tuple(map(id, curves))
-    shared_knots._PARTITIONS[ids] = (tuple(curves_sharing_knots(6, False, 6)), ([np.arange(6)], []))
+    others_kept = curves_sharing_knots(6, False, 6)
+    kept = ([shared_knots._Group(np.arange(6), others_kept)], [])
+    shared_knots._PARTITIONS[ids] = (tuple(others_kept), kept)
     again, others = shared_knots._partition(curves)
-    assert sorted(members.tolist() for members in again) == [[0, 1, 2], [4, 5]] and others == [3]
+    assert sorted(group.members.tolist() for group in again) == [[0, 1, 2], [4, 5]] and others == [3]
+    assert all(group.curves == [curves[i] for i in group.members] for group in again)

@@ -24,6 +24,7 @@ from __future__ import annotations
 import operator
 import threading
 from collections.abc import Sequence
+from functools import cached_property
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -48,12 +49,11 @@ def derivatives_together(
     for i in alone:
         evaluate = curves[i].local_derivatives if local else curves[i].derivatives
         out[:, bounds[i] : bounds[i + 1]] = evaluate(x[bounds[i] : bounds[i + 1]], order)
-    for members in together:
-        rows, which = _rows(bounds, members)
-        group = [curves[i] for i in members.tolist()]
+    for group in together:
+        rows, which = _rows(bounds, group.members)
         out[:, rows] = _group_derivatives(group, which, x[rows], order)
         if not local:
-            out[0, rows] += np.array([curve._anchor for curve in group])[which]
+            out[0, rows] += group.anchors[which]
     return out
 
 
@@ -67,14 +67,13 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
     together, alone = _groups(curves, np.diff(bounds))
     for i in alone:
         out[i] = curves[i].derivative_at(ts[i], order)
-    for members in together:
-        listed = members.tolist()
-        group = [curves[i] for i in listed]
+    for group in together:
+        listed = group.members.tolist()
         x = np.concatenate([np.asarray(ts[i], dtype=float) for i in listed])
-        which = np.repeat(np.arange(len(members)), np.diff(bounds)[members])
+        which = np.repeat(np.arange(len(listed)), np.diff(bounds)[group.members])
         values = _group_derivatives(group, which, x, order, lowest=order)[order]
         if order == 0:  # (the points: derivative_at adds the anchor to them alone)
-            values += np.array([curve._anchor for curve in group])[which]
+            values += group.anchors[which]
         low = 0
         for i in listed:
             high = low + len(ts[i])
@@ -83,23 +82,56 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
     return out  # type: ignore[return-value]  (every curve's is filled in)
 
 
-def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[IntArray], list[int]]:
-    """The curves of ``curves`` evaluated together, as arrays of their indices (NURBS curves
-    of one degree, knots and rationality, while they have at most :data:`ROWS_PER_CURVE`
-    of their ``counts`` rows each on average), and those evaluated alone (the curves
+def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[_Group], list[int]]:
+    """The curves of ``curves`` evaluated together, as :class:`_Group` (NURBS curves of one
+    degree, knots and rationality, while they have at most :data:`ROWS_PER_CURVE` of their
+    ``counts`` rows each on average), and the indices of those evaluated alone (the curves
     without rows in neither)."""
     grouped, others = _partition(curves)
     together, alone = [], [i for i in others if counts[i] > 0]
-    for members in grouped:
-        members = members[counts[members] > 0]
+    for group in grouped:
+        has_rows = counts[group.members] > 0
+        if not has_rows.all():
+            kept = np.flatnonzero(has_rows).tolist()
+            group = _Group(group.members[kept], [group.curves[k] for k in kept])
+        members = group.members
         if len(members) > 1 and counts[members].sum() <= ROWS_PER_CURVE * len(members):
-            together.append(members)
+            together.append(group)
         else:
             alone += members.tolist()
     return together, alone
 
 
-def _partition(curves: Sequence[Curve]) -> tuple[list[IntArray], list[int]]:
+class _Group:
+    """Curves of one basis evaluated together: their indices among the curves asked for, the
+    curves, and what evaluating them takes that depends on them alone (made when first
+    needed, and kept with their partition: :func:`_partition`)."""
+
+    def __init__(self, members: IntArray, curves: list[NurbsCurve]) -> None:
+        self.members, self.curves = members, curves
+
+    @cached_property
+    def basis(self) -> BSpline:
+        """scipy's basis of the curves' knots, with ``k + 1`` columns of coefficients:
+        coefficient ``j`` is the unit vector of column ``j mod (k + 1)`` (the module's
+        docstring)."""
+        first = self.curves[0]
+        count, width = len(first.control_points), first.degree + 1
+        return BSpline.construct_fast(first.knots, np.eye(width)[np.arange(count) % width], first.degree)
+
+    @cached_property
+    def coefficients(self) -> FloatArray:
+        """Every curve's coefficients one curve after another, as coordinate rows: ``(3 or
+        4, curves × count)``."""
+        return np.concatenate([curve._coefficients for curve in self.curves]).T
+
+    @cached_property
+    def anchors(self) -> FloatArray:
+        """Every curve's anchor, ``(curves, 3)``."""
+        return np.array([curve._anchor for curve in self.curves])
+
+
+def _partition(curves: Sequence[Curve]) -> tuple[list[_Group], list[int]]:
     """The indices of ``curves`` that can be evaluated together, by basis (NURBS curves of
     one degree, knots and rationality: :func:`_groupable`), and the others. A solve's steps
     evaluate the same curves again and again (every Newton step of a search): the last
@@ -116,7 +148,8 @@ def _partition(curves: Sequence[Curve]) -> tuple[list[IntArray], list[int]]:
             groups.setdefault(curve.basis_key, []).append(i)
         else:
             others.append(i)
-    partition = [np.array(members) for members in groups.values()], others
+    made = [_Group(np.array(members), [curves[i] for i in members]) for members in groups.values()]
+    partition = made, others
     with _PARTITIONS_LOCK:  # (a solve in a worker beside one in the caller's thread)
         while len(_PARTITIONS) >= _PARTITIONS_KEPT:
             del _PARTITIONS[next(iter(_PARTITIONS))]  # (the oldest)
@@ -126,7 +159,7 @@ def _partition(curves: Sequence[Curve]) -> tuple[list[IntArray], list[int]]:
 
 #: :func:`_partition`'s last partitions, by the ids of their curves, with the curves (which
 #: keeps their ids from being reused while they are kept)
-_PARTITIONS: dict[tuple[int, ...], tuple[tuple[Curve, ...], tuple[list[IntArray], list[int]]]] = {}
+_PARTITIONS: dict[tuple[int, ...], tuple[tuple[Curve, ...], tuple[list[_Group], list[int]]]] = {}
 _PARTITIONS_KEPT = 16
 _PARTITIONS_LOCK = threading.Lock()
 
@@ -167,23 +200,23 @@ def _groupable(curve: Curve) -> bool:
 
 
 def _group_derivatives(
-    curves: list[NurbsCurve], which: IntArray, t: FloatArray, order: int, lowest: int = 0
+    group: _Group, which: IntArray, t: FloatArray, order: int, lowest: int = 0
 ) -> FloatArray:
-    """:meth:`.NurbsCurve.local_derivatives` of ``curves`` (same degree, knots and
-    rationality) at ``t``, row ``r`` on curve ``which[r]``: ``(order + 1, len(t), 3)``
-    (of a polynomial curve the orders from ``lowest`` up alone: the others are left zero).
+    """:meth:`.NurbsCurve.local_derivatives` of the ``group``'s curves (same degree, knots and
+    rationality) at ``t``, row ``r`` on curve ``which[r]``: ``(order + 1, len(t), 3)`` (of a
+    polynomial curve the orders from ``lowest`` up alone: the others are left zero).
 
     The sums run on coordinate rows (``(3 or 4, len(t))``), along contiguous rows."""
-    first = curves[0]
+    first = group.curves[0]
     degree, knots = first.degree, first.knots
     u, scale = first._knot_parameters(t)  # (the same for all: the domain is the knots')
     count, width, n = len(first.control_points), first.degree + 1, len(u)
     # each row's knot span, as scipy finds it (the last span holds the domain's end, and
     # parameters outside the domain extrapolate the end spans)
     span = np.minimum(np.maximum(np.searchsorted(knots, u, side="right") - 1, degree), count - 1)
-    basis = BSpline.construct_fast(knots, np.eye(width)[np.arange(count) % width], degree)
+    basis = group.basis
     # the coefficients each row combines: c[span − degree + a] of its own curve, for every a
-    stacked = np.concatenate([curve._coefficients for curve in curves]).T  # (3 or 4, curves × count)
+    stacked = group.coefficients  # (3 or 4, curves × count)
     first_row = which * count + span - degree
     terms = [stacked.take(first_row + a, axis=1) for a in range(width)]
     # where each row's N_{span − degree + a} lies among the basis's columns (in order where
