@@ -136,3 +136,18 @@ def test_strips_whose_every_b_is_another_strips_a_measure_no_curve_again():
     with_maps_b(strips)
     assert strips[0].map_b is strips[1].map_a
     assert strips[1].map_b is strips[0].map_a
+
+
+def test_evenly_spaced_samples_in_the_stretches_of_several_strips_are_each_strips_own():
+    from types import SimpleNamespace
+
+    from torsal.nodes.geometry.developable.strip import _even_lengths
+
+    # B 10 long with 11 samples (every 1.0), B 3 long with 7 (every 0.5), B 1 long with 2
+    strips = [SimpleNamespace(grid=SimpleNamespace(t=np.zeros(n)), map_b=SimpleNamespace(total=total))
+              for n, total in ((11, 10.0), (7, 3.0), (2, 1.0))]
+    lows = [np.array([0.5, 2.0, 9.5]), np.array([1.2]), np.array([0.3, 0.0])]
+    highs = [np.array([3.0, 2.5, 12.0]), np.array([0.9]), np.array([0.4, 0.0])]
+    found = _even_lengths(strips, lows, highs)
+    # the multiples of each strip's spacing inside any of its stretches (on B), once each
+    assert [lengths.tolist() for lengths in found] == [[1.0, 2.0, 3.0, 10.0], [], [0.0]]

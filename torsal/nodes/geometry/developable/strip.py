@@ -228,16 +228,6 @@ class Strip:
         partner looks for its least-warped one: the same points whatever B's pace)."""
         return even_all([self], [low], [high])[0]
 
-    def _even_lengths(self, low: FloatArray, high: FloatArray) -> FloatArray:
-        """The lengths along B of :meth:`even_b`'s samples (without its corners)."""
-        count = len(self.grid.t)
-        step = self.map_b.total / (count - 1)
-        first = np.maximum(np.ceil(low / step - 1e-9), 0).astype(np.int64)
-        last = np.minimum(np.floor(high / step + 1e-9), count - 1).astype(np.int64)
-        sizes = np.maximum(last - first + 1, 0)
-        k = np.repeat(first - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
-        return np.unique(k) * step
-
     @cached_property
     def station_lengths(self) -> FloatArray:
         """Arc length along A to each station."""
@@ -359,12 +349,34 @@ def even_all(
     if not strips:
         return []
     with_maps_b(strips)
-    lengths = [strip._even_lengths(low, high) for strip, low, high in zip(strips, lows, highs, strict=True)]
-    found = parameters_at([strip.map_b for strip in strips], lengths)
+    found = parameters_at([strip.map_b for strip in strips], _even_lengths(strips, lows, highs))
     ts = [np.unique(np.concatenate([t, strip.kinks_b])) for strip, t in zip(strips, found, strict=True)]
     rows = Stack.of(ts)
     points, tangents = evaluate_each([strip.curve_b for strip in strips], np.concatenate(ts), rows.offsets, 1)
     return list(zip(ts, rows.split(points), rows.split(tangents), strict=True))
+
+
+def _even_lengths(
+    strips: Sequence[Strip], lows: Sequence[FloatArray], highs: Sequence[FloatArray]
+) -> list[FloatArray]:
+    """The lengths along B of :meth:`Strip.even_b`'s samples (without its corners) of every
+    strip: B's samples evenly spaced along its length, as many as :attr:`Strip.grid` has,
+    within any of the stretches ``lows[i]`` to ``highs[i]``; those of all strips numbered
+    one strip after another, so that one ``np.unique`` sorts them all."""
+    stretches = Stack.of(lows)
+    count = np.array([len(strip.grid.t) for strip in strips])
+    step = np.array([strip.map_b.total for strip in strips]) / (count - 1)
+    low, high = np.concatenate(lows), np.concatenate(highs)
+    each_step = stretches.repeat(step)
+    first = np.maximum(np.ceil(low / each_step - 1e-9), 0).astype(np.int64)
+    last = np.minimum(np.floor(high / each_step + 1e-9), stretches.repeat(count) - 1).astype(np.int64)
+    sizes = np.maximum(last - first + 1, 0)
+    k = np.repeat(first - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
+    before = np.cumsum(count) - count  # (each strip's samples after those of the strips before it)
+    numbered = np.unique(k + np.repeat(stretches.repeat(before), sizes))
+    strip_of = np.searchsorted(before, numbered, side="right") - 1
+    lengths = (numbered - before[strip_of]) * step[strip_of]
+    return Stack(np.bincount(strip_of, minlength=len(strips))).split(lengths)
 
 
 def set_up(
