@@ -45,3 +45,33 @@ def test_each_station_gets_its_least_warped_sample_in_its_window_or_nan():
                 assert value == t[int(np.argmin(angles))]
             else:
                 assert np.isnan(value)
+
+
+def test_each_station_without_a_partner_gets_the_window_between_its_own_strips_neighbours():
+    from types import SimpleNamespace
+
+    from torsal.nodes.geometry.curves import Line
+    from torsal.nodes.geometry.developable.candidates import _windows
+    from torsal.nodes.geometry.developable.stations import LengthMap
+
+    def strip(count: int, total: float, length_b: float) -> SimpleNamespace:
+        return SimpleNamespace(station_lengths=np.linspace(0.0, total, count),
+                               map_a=SimpleNamespace(total=total), map_b=LengthMap(Line([0, 0, 0], [length_b, 0, 0])))
+
+    nan = np.nan
+    strips = [strip(6, 5.0, 2.0), strip(2, 1.0, 4.0), strip(3, 2.0, 1.0)]
+    ts = [np.array([nan, 0.2, nan, nan, 0.8, nan]), np.array([nan, nan]), np.array([0.1, nan, 0.5])]
+    # (station, lo, hi, loft's share of the way from lo to hi) by hand: A's stations 1.0 apart
+    # in the first strip (ends 0 and 5), 1.0 in the second, 1.0 in the third
+    expected = [[(0, 0.0, 0.2, 0.0), (2, 0.2, 0.8, 1 / 3), (3, 0.2, 0.8, 2 / 3), (5, 0.8, 1.0, 1.0)],
+                [(0, 0.0, 1.0, 0.0), (1, 0.0, 1.0, 1.0)], [(1, 0.1, 0.5, 0.5)]]
+    for (missing, lo, hi, b_lo, b_hi, loft), own, along_b in zip(
+        _windows(strips, ts), expected, (2.0, 4.0, 1.0), strict=True
+    ):
+        assert missing.tolist() == [row for row, *_ in own]
+        np.testing.assert_allclose(lo, [w[1] for w in own], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(hi, [w[2] for w in own], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(b_lo, along_b * lo, rtol=1e-13, atol=1e-15)
+        np.testing.assert_allclose(b_hi, along_b * hi, rtol=1e-13, atol=1e-15)
+        share = np.array([w[3] for w in own])
+        np.testing.assert_allclose(loft, along_b * (lo + share * (hi - lo)), rtol=1e-13, atol=1e-15)

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from itertools import pairwise
 
 import numpy as np
 
@@ -46,10 +47,6 @@ LOOSE = 1e-12
 
 #: What a candidate is: a refined root of f, a root at a corner of B, an end of a flat run.
 ROOT, CORNER, FLAT_END = 0, 1, 2
-
-
-#: Offsets of an interval's two ends from its first sample, as a column.
-_ENDS = np.array([[0], [1]])
 
 
 def cubic_start(
@@ -475,29 +472,39 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
 def _windows(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> list[tuple[FloatArray, ...]]:
     """For each strip's stations without a partner (some): where they are, their neighbours'
     partners ``lo`` and ``hi``, the lengths along B there and the plain loft's partners'
-    lengths along B (between them, as the stations lie between theirs along A); the lengths
-    along B of all strips measured at once (:func:`.stations.lengths_at`)."""
-    found = []
-    for strip, t in zip(strips, ts, strict=True):
-        gap = np.isnan(t)
-        missing = flatnonzero(gap)
-        # where each station without a partner falls among those with one: the partners of
-        # its two neighbours (padded with B's ends where there is none before or after it)
-        # and their arc lengths along A (padded with A's ends), one row for each neighbour
-        partnered = flatnonzero(~gap)
-        neighbours = np.searchsorted(partnered, missing) + _ENDS
-        t_window = np.concatenate([[0.0], t.take(partnered), [1.0]]).take(neighbours)
-        length_a = strip.station_lengths
-        a_lo, a_hi = np.concatenate([[0.0], length_a.take(partnered), [strip.map_a.total]]).take(neighbours)
-        span = a_hi - a_lo
-        spans = span > 0
-        fraction = np.where(spans, (length_a.take(missing) - a_lo) / np.where(spans, span, 1.0), 0.0)
-        found.append((missing, t_window, fraction))
-    lengths = lengths_at([strip.map_b for strip in strips], [t_window.ravel() for _, t_window, _ in found])
+    lengths along B (between them, as the stations lie between theirs along A); every
+    strip's stations one strip after another, and the lengths along B of all strips
+    measured at once (:func:`.stations.lengths_at`)."""
+    stations = Stack.of(ts)
+    owner = stations.owner()
+    t = np.concatenate(ts)
+    length_a = np.concatenate([strip.station_lengths for strip in strips])
+    gap = np.isnan(t)
+    missing, partnered = flatnonzero(gap), flatnonzero(~gap)
+    # where each station without a partner falls among those with one: the partners of its
+    # two neighbours in its strip (B's ends where there is none before or after it there)
+    # and their arc lengths along A (A's ends there)
+    strip_of = owner[missing]
+    after = np.searchsorted(partnered, missing)
+    before = after - 1
+    padded = np.append(partnered, 0)  # (a row for the neighbour there is not: never taken)
+    low, high = padded[before], padded[after]
+    has_low = (before >= 0) & (owner[low] == strip_of)
+    has_high = (after < len(partnered)) & (owner[high] == strip_of)
+    lo, hi = np.where(has_low, t[low], 0.0), np.where(has_high, t[high], 1.0)
+    a_lo = np.where(has_low, length_a[low], 0.0)
+    a_hi = np.where(has_high, length_a[high], np.array([strip.map_a.total for strip in strips])[strip_of])
+    span = a_hi - a_lo
+    spans = span > 0
+    fraction = np.where(spans, (length_a[missing] - a_lo) / np.where(spans, span, 1.0), 0.0)
+    bounds = list(pairwise(stations.groups(missing).tolist()))
+    lengths = lengths_at([strip.map_b for strip in strips],
+                         [np.concatenate([lo[first:stop], hi[first:stop]]) for first, stop in bounds])
     windows = []
-    for (missing, (lo, hi), fraction), length in zip(found, lengths, strict=True):
+    for (first, stop), length, shift in zip(bounds, lengths, stations.starts.tolist(), strict=True):
         b_lo, b_hi = length.reshape(2, -1)
-        windows.append((missing, lo, hi, b_lo, b_hi, b_lo + fraction * (b_hi - b_lo)))
+        windows.append((missing[first:stop] - shift, lo[first:stop], hi[first:stop], b_lo, b_hi,
+                        b_lo + fraction[first:stop] * (b_hi - b_lo)))
     return windows
 
 
