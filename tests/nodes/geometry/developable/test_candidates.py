@@ -55,8 +55,9 @@ def test_each_station_without_a_partner_gets_the_window_between_its_own_strips_n
     from torsal.nodes.geometry.developable.stations import LengthMap
 
     def strip(count: int, total: float, length_b: float) -> SimpleNamespace:
+        along_b = LengthMap(Line([0, 0, 0], [length_b, 0, 0]))
         return SimpleNamespace(station_lengths=np.linspace(0.0, total, count),
-                               map_a=SimpleNamespace(total=total), map_b=LengthMap(Line([0, 0, 0], [length_b, 0, 0])))
+                               map_a=SimpleNamespace(total=total), map_b=along_b)
 
     nan = np.nan
     strips = [strip(6, 5.0, 2.0), strip(2, 1.0, 4.0), strip(3, 2.0, 1.0)]
