@@ -330,15 +330,7 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     solves = []
     choices = choose_all(strips)
     check()
-    partners = []
-    for strip, (chosen, good) in zip(strips, choices, strict=True):
-        n = len(strip.s)
-        has = chosen >= 0
-        t = np.full(n, np.nan)
-        slope, speed = np.zeros(n), np.full(n, np.nan)
-        partner = chosen[has]
-        t[has], slope[has], speed[has] = good.t[partner], good.slope[partner], norm(good.tangents[partner])
-        partners.append((t, slope, has, speed))
+    partners = _partners(choices)
     # stations without a partner get one first, so that a planar piece's fans end where
     # the next station's partner is (two curves in one plane: otherwise a fan over all of
     # B, then a partner running back)
@@ -411,6 +403,24 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     measured = [(solve.checked[0], solve.checked[1], solve.rulings[3]) for solve in fanned]
     shares = iter(fan_shares_all(measured) if fanned else [])
     return _results(solves, [next(shares) if solve.rulings[3].any() else (0.0, 0.0) for solve in solves])
+
+
+def _partners(choices: list[tuple[IntArray, Candidates]]) -> list[tuple[FloatArray, ...]]:
+    """Each strip's chosen partners ``(t, slope, has, speed)`` from its ``choices`` (the
+    chosen candidate per station, −1 where none, among its consistently oriented ones):
+    t, the branch slope dt/ds and |B'| per station (NaN, 0 and NaN where none), and which
+    stations have one; every strip's stations at once."""
+    stations = Stack.of([chosen for chosen, _ in choices])
+    found = Stack.of([good.t for _, good in choices])
+    chosen = np.concatenate([chosen for chosen, _ in choices])
+    has = chosen >= 0
+    # (each strip's candidates after those of the strips before it)
+    partner = (chosen + stations.repeat(found.starts))[has]
+    t, slope, speed = np.full(len(chosen), np.nan), np.zeros(len(chosen)), np.full(len(chosen), np.nan)
+    t[has] = np.concatenate([good.t for _, good in choices])[partner]
+    slope[has] = np.concatenate([good.slope for _, good in choices])[partner]
+    speed[has] = norm(np.concatenate([good.tangents for _, good in choices])[partner])
+    return list(zip(*(stations.split(x) for x in (t, slope, has, speed)), strict=True))
 
 
 def _check_all(solves: list[_Solve]) -> None:
