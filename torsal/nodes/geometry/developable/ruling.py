@@ -478,12 +478,11 @@ def _merge_all(
     """
     fan_ts = iter(fans_all([(strip, t_low, t_high) for strip, _, _, fans, _ in jobs
                             for _, t_low, t_high in fans]))
-    merged: list = []
-    measured = []  # (index in merged, strip, parameters on B to measure)
-    for strip, t, gap, fans, added in jobs:
-        n = len(strip.s)
+    merged: list = [None] * len(jobs)
+    more = []  # (index in merged, strip, its rulings s, t and gap, stations first)
+    for index, (strip, t, gap, fans, added) in enumerate(jobs):
         if not fans and not added:
-            merged.append((strip.s, t, np.arange(n), gap.copy()))
+            merged[index] = (strip.s, t, np.arange(len(strip.s)), gap.copy())
             continue
         s_parts, t_parts, gap_parts = [strip.s], [t], [gap]
         for s_star, _, _ in fans:
@@ -495,39 +494,49 @@ def _merge_all(
             s_parts.append(s_add)
             t_parts.append(t_add)
             gap_parts.append(np.ones(len(s_add), dtype=bool))
-        s_all, t_all, gap_all = np.concatenate(s_parts), np.concatenate(t_parts), np.concatenate(gap_parts)
-        # of equal rulings keep the station, else a torsal fan's, else an added one (rank 0, 1, 2)
-        rank = np.where(np.arange(len(s_all)) < n, 0, np.where(gap_all, 2, 1))
-        order = np.lexsort((rank, t_all, s_all))
-        measured.append((len(merged), strip, t_all[order]))
-        merged.append((s_all, t_all, gap_all, rank, order))
-    lengths = lengths_at([strip.map_b for _, strip, _ in measured], [t for _, _, t in measured])
-    for (index, strip, t_sorted), length in zip(measured, lengths, strict=True):
-        merged[index] = _unrepeated(strip, *merged[index], t_sorted, length)
+        more.append((index, strip, *(np.concatenate(x) for x in (s_parts, t_parts, gap_parts))))
+    if more:
+        for (index, *_), rulings in zip(more, _unrepeated([job[1:] for job in more]), strict=True):
+            merged[index] = rulings
     return merged
 
 
 def _unrepeated(
-    strip: Strip, s_all: FloatArray, t_all: FloatArray, gap_all: BoolArray, rank: IntArray,
-    order: IntArray, t_sorted: FloatArray, lengths: FloatArray,
-) -> tuple[FloatArray, FloatArray, IntArray, BoolArray]:
-    """:func:`_merge_all` of one strip from its rulings sorted by ``order`` (``t_sorted``
-    on B, at ``lengths`` along it): of equal rulings the best-ranked one."""
-    n = len(strip.s)
-    repeat = np.zeros(len(order), dtype=bool)
-    s_sorted = s_all[order]
+    strips: list[tuple[Strip, FloatArray, FloatArray, BoolArray]],
+) -> list[tuple[FloatArray, FloatArray, IntArray, BoolArray]]:
+    """:func:`_merge_all` of the strips ``(strip, s, t, gap)`` whose rulings (its stations
+    first) need ordering: each strip's ordered by s, then t, and of equal rulings the
+    best-ranked one; every strip's rulings one strip after another, ordered and told apart
+    at once (the strip is the first key: each strip's rulings in the order they have alone)."""
+    rulings = Stack.of([s for _, s, _, _ in strips])
+    owner = rulings.owner()
+    s_all, t_all, gap_all = (np.concatenate([strip[k] for strip in strips]) for k in (1, 2, 3))
+    stations = np.array([len(strip.s) for strip, *_ in strips])
+    local = np.arange(rulings.rows) - rulings.repeat(rulings.starts)
+    # of equal rulings keep the station, else a torsal fan's, else an added one (rank 0, 1, 2)
+    rank = np.where(local < rulings.repeat(stations), 0, np.where(gap_all, 2, 1))
+    order = np.lexsort((rank, t_all, s_all, owner))
+    s_sorted, t_sorted = s_all[order], t_all[order]
+    lengths = np.concatenate(lengths_at([strip.map_b for strip, *_ in strips], rulings.split(t_sorted)))
     # equal: the same point of A, and points of B within 1e-12 of its length (one point
     # reached by two ways of counting along B: rounding, in t, depends on its pace)
+    near = rulings.repeat(np.array([1e-12 * strip.map_b.total for strip, *_ in strips]))
+    repeat = np.zeros(len(order), dtype=bool)
     repeat[1:] = (s_sorted[1:] - s_sorted[:-1] <= 1e-14) & (
-        (t_sorted[1:] - t_sorted[:-1] <= 1e-14) | (lengths[1:] - lengths[:-1] <= 1e-12 * strip.map_b.total)
+        (t_sorted[1:] - t_sorted[:-1] <= 1e-14) | (lengths[1:] - lengths[:-1] <= near[1:])
     )
+    repeat[rulings.starts] = False  # (a strip's first ruling repeats none of the strip before)
     if repeat.any():  # (equal to rounding: the better-ranked one may sort after the other)
         group = np.cumsum(~repeat) - 1
         best = np.lexsort((rank[order], group))
         first = np.ones(len(best), dtype=bool)
         first[1:] = group[best[1:]] != group[best[:-1]]
         order = order[best[first]]
-    return s_all[order], t_all[order], np.where(order < n, order, -1), gap_all[order]
+    whose = owner[order]
+    at = order - rulings.starts[whose]
+    kept = Stack(np.bincount(whose, minlength=len(strips)))
+    columns = s_all[order], t_all[order], np.where(at < stations[whose], at, -1), gap_all[order]
+    return list(zip(*(kept.split(x) for x in columns), strict=True))
 
 
 def _fan_folds_all(solves: list[_Solve]) -> list[tuple[IntArray, FloatArray, FloatArray]]:
