@@ -46,6 +46,7 @@ from .curves.conics import Arc, Circle
 from .curves.interpolated import InterpolatedCurve
 from .curves.line import Line, Polyline
 from .curves.nurbs import NurbsCurve
+from .curves.shared_knots import derivative_each
 from .nurbs_surface import Loft, NurbsSurface
 from .ruled import RuledSurface, SplineRail
 from .surface_base import IsoCurve, Surface, TransformedSurface
@@ -228,6 +229,16 @@ def _samples(geometry: Any) -> FloatArray:
     return np.asarray(geometry, dtype=float).reshape(-1, 3)
 
 
+def _curve_samples(curves: Sequence[Curve]) -> list[FloatArray]:
+    """:func:`_samples` of every curve of ``curves``, bit for bit: each distinct curve once
+    (a roof's edge is two strips' curve), those that share knots evaluated together
+    (:func:`.curves.shared_knots.derivative_each`: ``point_at`` is the derivative of order 0)."""
+    distinct = list({id(curve): curve for curve in curves}.values())
+    found = derivative_each(distinct, [_UNIT.copy() for _ in distinct], 0)
+    by_id = {id(curve): points for curve, points in zip(distinct, found, strict=True)}
+    return [by_id[id(curve)] for curve in curves]
+
+
 #: The parameters of a curve's :data:`SAMPLES` samples (read-only: each curve gets a copy).
 _UNIT = np.linspace(0.0, 1.0, SAMPLES)
 _UNIT.setflags(write=False)
@@ -284,8 +295,11 @@ class LocalFrame:
 
     @classmethod
     def around_each(cls, groups: Sequence[Sequence[Any]]) -> list[LocalFrame]:
-        """:meth:`around` of each group of geometry, the groups' boxes found at once."""
-        parts = [[_samples(g) for g in group if g is not None] for group in groups]
+        """:meth:`around` of each group of geometry, the groups' boxes found at once (the
+        curves' samples too: :func:`_curve_samples`)."""
+        kept = [[g for g in group if g is not None] for group in groups]
+        curves = iter(_curve_samples([g for group in kept for g in group if isinstance(g, Curve)]))
+        parts = [[next(curves) if isinstance(g, Curve) else _samples(g) for g in group] for group in kept]
         counts = [sum(len(part) for part in group) for group in parts]
         points = np.concatenate([part for group in parts for part in group] or [np.empty((0, 3))])
         return [cls(origin) for origin in frame_origins(points, counts)]

@@ -101,3 +101,19 @@ def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rat
     for order in range(4):
         for curve, t, found in zip(curves, ts, derivative_each(curves, ts, order), strict=True):
             assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)
+
+
+def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken(monkeypatch):
+    from torsal.nodes.geometry.curves import shared_knots
+
+    monkeypatch.setattr(shared_knots, "_PARTITIONS", {})
+    line = Line([0, 0, 0], [1, 2, 3])
+    curves = [*curves_sharing_knots(4, False, 3), line, *curves_sharing_knots(5, True, 2)]
+    grouped, others = shared_knots._partition(curves)
+    assert sorted(members.tolist() for members in grouped) == [[0, 1, 2], [4, 5]] and others == [3]
+    assert shared_knots._partition(list(curves))[0] is grouped  # (the same curves: the one kept)
+    # a kept partition under these ids, but of other curves (theirs since collected, their ids reused)
+    ids = tuple(map(id, curves))
+    shared_knots._PARTITIONS[ids] = (tuple(curves_sharing_knots(6, False, 6)), ([np.arange(6)], []))
+    again, others = shared_knots._partition(curves)
+    assert sorted(members.tolist() for members in again) == [[0, 1, 2], [4, 5]] and others == [3]

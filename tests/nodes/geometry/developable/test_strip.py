@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.integrate import quad
 
 from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Line, NurbsCurve, Polyline
 from torsal.nodes.geometry.developable.stations import LengthMap, lengths_at, spaced_parameters
@@ -101,6 +102,26 @@ def test_an_edge_between_two_strips_is_measured_once_as_its_own_map_would_measur
     for name in ("nodes", "lengths", "start_speeds", "end_speeds", "_rise", "_inverse", "_poly"):
         assert getattr(strips[0].map_b, name).tobytes() == getattr(alone, name).tobytes()
     assert strips[1].map_b.curve is high
+
+
+def test_length_maps_of_curves_on_one_layout_made_together_are_each_curves_own():
+    # Béziers share one layout of pieces (their tables made as rows of one stack); the sharp
+    # rational one among them has pieces split where its speed changes fast
+    rng = np.random.default_rng(5)
+    curves = [NurbsCurve(rng.normal(size=(3, 3)), degree=2) for _ in range(4)]
+    sharp = NurbsCurve(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1e-3, 0]]), degree=2, weights=[1, 400, 1])
+    curves.insert(2, sharp)
+    maps = LengthMap.many(curves)
+    assert len(maps[2].nodes) > len(maps[0].nodes) == len(maps[1].nodes)  # (split, and not)
+    for curve, together in zip(curves, maps, strict=True):
+        alone = LengthMap(curve)
+        for name in ("nodes", "lengths", "start_speeds", "end_speeds", "_rise", "_inverse", "_poly"):
+            assert getattr(together, name).tobytes() == getattr(alone, name).tobytes()
+    # the length of a Bézier by scipy's adaptive quadrature of its speed
+    def speed(t: float) -> float:
+        return float(np.linalg.norm(curves[0].derivatives(np.array([t]), 1)[1]))
+
+    assert maps[0].total == pytest.approx(quad(speed, 0.0, 1.0, epsabs=0, epsrel=1e-13)[0], rel=1e-12)
 
 
 def test_no_curves_have_no_length_maps():

@@ -21,6 +21,8 @@ holds exactly one of them (added to zeros, which changes no bit).
 
 from __future__ import annotations
 
+import operator
+import threading
 from collections.abc import Sequence
 
 import numpy as np
@@ -48,7 +50,7 @@ def derivatives_together(
         out[:, bounds[i] : bounds[i + 1]] = evaluate(x[bounds[i] : bounds[i + 1]], order)
     for members in together:
         rows, which = _rows(bounds, members)
-        group = [curves[i] for i in members]
+        group = [curves[i] for i in members.tolist()]
         out[:, rows] = _group_derivatives(group, which, x[rows], order)
         if not local:
             out[0, rows] += np.array([curve._anchor for curve in group])[which]
@@ -66,44 +68,70 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
     for i in alone:
         out[i] = curves[i].derivative_at(ts[i], order)
     for members in together:
-        group = [curves[i] for i in members]
-        x = np.concatenate([np.asarray(ts[i], dtype=float) for i in members])
+        listed = members.tolist()
+        group = [curves[i] for i in listed]
+        x = np.concatenate([np.asarray(ts[i], dtype=float) for i in listed])
         which = np.repeat(np.arange(len(members)), np.diff(bounds)[members])
         values = _group_derivatives(group, which, x, order, lowest=order)[order]
         if order == 0:  # (the points: derivative_at adds the anchor to them alone)
             values += np.array([curve._anchor for curve in group])[which]
         low = 0
-        for i in members:
+        for i in listed:
             high = low + len(ts[i])
             out[i] = values[low:high]
             low = high
     return out  # type: ignore[return-value]  (every curve's is filled in)
 
 
-def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[list[int]], list[int]]:
-    """The curves of ``curves`` evaluated together, as lists of their indices (NURBS curves
+def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[IntArray], list[int]]:
+    """The curves of ``curves`` evaluated together, as arrays of their indices (NURBS curves
     of one degree, knots and rationality, while they have at most :data:`ROWS_PER_CURVE`
     of their ``counts`` rows each on average), and those evaluated alone (the curves
     without rows in neither)."""
-    groups: dict[tuple, list[int]] = {}
-    alone = []
-    for curve, i, count in zip(curves, range(len(curves)), counts.tolist(), strict=True):
-        if count <= 0:
-            continue
-        if _groupable(curve):
-            groups.setdefault(curve.basis_key, []).append(i)
-        else:
-            alone.append(i)
-    together = []
-    for members in groups.values():
+    grouped, others = _partition(curves)
+    together, alone = [], [i for i in others if counts[i] > 0]
+    for members in grouped:
+        members = members[counts[members] > 0]
         if len(members) > 1 and counts[members].sum() <= ROWS_PER_CURVE * len(members):
             together.append(members)
         else:
-            alone += members
+            alone += members.tolist()
     return together, alone
 
 
-def _rows(bounds: IntArray, members: list[int]) -> tuple[IntArray, IntArray]:
+def _partition(curves: Sequence[Curve]) -> tuple[list[IntArray], list[int]]:
+    """The indices of ``curves`` that can be evaluated together, by basis (NURBS curves of
+    one degree, knots and rationality: :func:`_groupable`), and the others. A solve's steps
+    evaluate the same curves again and again (every Newton step of a search): the last
+    few lists' partitions are kept, by the curves themselves (a list of other curves with
+    the same ids, those of curves since collected, is not taken for one of them)."""
+    ids = tuple(map(id, curves))
+    known = _PARTITIONS.get(ids)
+    if known is not None and all(map(operator.is_, known[0], curves)):
+        return known[1]
+    groups: dict[tuple, list[int]] = {}
+    others = []
+    for i, curve in enumerate(curves):
+        if _groupable(curve):
+            groups.setdefault(curve.basis_key, []).append(i)
+        else:
+            others.append(i)
+    partition = [np.array(members) for members in groups.values()], others
+    with _PARTITIONS_LOCK:  # (a solve in a worker beside one in the caller's thread)
+        while len(_PARTITIONS) >= _PARTITIONS_KEPT:
+            del _PARTITIONS[next(iter(_PARTITIONS))]  # (the oldest)
+        _PARTITIONS[ids] = (tuple(curves), partition)
+    return partition
+
+
+#: :func:`_partition`'s last partitions, by the ids of their curves, with the curves (which
+#: keeps their ids from being reused while they are kept)
+_PARTITIONS: dict[tuple[int, ...], tuple[tuple[Curve, ...], tuple[list[IntArray], list[int]]]] = {}
+_PARTITIONS_KEPT = 16
+_PARTITIONS_LOCK = threading.Lock()
+
+
+def _rows(bounds: IntArray, members: IntArray) -> tuple[IntArray, IntArray]:
     """The rows of curves ``members`` (curve ``i`` has rows ``bounds[i]:bounds[i + 1]``), and
     for each of them which of ``members`` it is on."""
     starts = bounds[:-1][members]

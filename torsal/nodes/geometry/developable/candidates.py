@@ -456,9 +456,20 @@ def near_partners_all(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> None
         [strips[at[k]] for k in worse], [windows[k][3][~loft_ok[k]] for k in worse],
         [windows[k][4][~loft_ok[k]] for k in worse]), strict=True))
     a0s, a1s = stack.split(a0), stack.split(a1)
+    near = list(lofts)
+    if worse:
+        picked, rows = _least_warped(
+            [strips[at[k]].tolerance for k in worse], [a0s[k] for k in worse], [a1s[k] for k in worse],
+            [~loft_ok[k] for k in worse], [windows[k][1:3] for k in worse], [samples[k] for k in worse])
+        for k, own_rows, own in zip(worse, rows, picked, strict=True):
+            near[k] = lofts[k].copy()
+            near[k][own_rows] = own
     for k, i in enumerate(at):
-        _near(strips[i], ts[i], missing[k], lofts[k], *windows[k][1:3], a0s[k], a1s[k], loft_ok[k],
-              samples.get(k))
+        t = ts[i]
+        t[missing[k]] = near[k]
+        # consecutive stations in one window may have picked samples out of order
+        known = ~np.isnan(t)
+        t[known] = np.maximum.accumulate(t[known])
 
 
 def _windows(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> list[tuple[FloatArray, ...]]:
@@ -490,44 +501,53 @@ def _windows(strips: Sequence[Strip], ts: Sequence[FloatArray]) -> list[tuple[Fl
     return windows
 
 
-def _near(
-    strip: Strip, t: FloatArray, missing: IntArray, loft: FloatArray, lo: FloatArray, hi: FloatArray,
-    a0: FloatArray, a1: FloatArray, loft_ok: BoolArray,
-    samples: tuple[FloatArray, FloatArray, FloatArray] | None,
-) -> None:
-    """One strip's partners where it had none: the loft's where it is within the tolerance
-    (``loft_ok``), else the least-warped of B's ``samples`` (parameters, points, tangents:
-    :meth:`.strip.Strip.even_b`, given where some loft's is not) between ``lo`` and ``hi``."""
-    near = loft
-    if samples is not None:
-        tb, points, tangents = samples
-        angle = normal_angles(a0, a1, points, tangents) if len(tb) else np.full((len(a0), 0), np.nan)
-        inside = (tb[None, :] >= lo[:, None]) & (tb[None, :] <= hi[:, None])
-        angle = np.where(inside & ~np.isnan(angle), angle, np.inf)
-        best = np.argmin(angle, axis=1) if len(tb) else np.zeros(len(a0), dtype=np.int64)
-        sample_ok = angle.min(axis=1, initial=np.inf) <= strip.tolerance  # (the angle at best)
-        near = np.where(loft_ok, loft, np.where(sample_ok, tb.take(best) if len(tb) else np.nan, np.nan))
-    t[missing] = near
-    # consecutive stations in one window may have picked samples out of order
-    known = ~np.isnan(t)
-    t[known] = np.maximum.accumulate(t[known])
+def _least_warped(
+    tolerances: Sequence[float], a0s: Sequence[FloatArray], a1s: Sequence[FloatArray],
+    wanted: Sequence[BoolArray], windows: Sequence[tuple[FloatArray, FloatArray]],
+    samples: Sequence[tuple[FloatArray, FloatArray, FloatArray]],
+) -> tuple[list[FloatArray], list[IntArray]]:
+    """For the stations ``wanted`` of each strip (of its stations without a partner, at
+    ``a0s`` with tangents ``a1s``): the least-warped of B's ``samples`` (parameters,
+    points, tangents: :meth:`.strip.Strip.even_b`) between the window's ``lo`` and ``hi``
+    (``windows``), where that warp is within the strip's tolerance, else NaN; and those
+    stations' indices. Every strip's stations and samples at once, each station's row of
+    angles padded with +inf beyond its strip's samples.
 
-
-def normal_angles(a: FloatArray, ta: FloatArray, b: FloatArray, tb: FloatArray) -> FloatArray:
-    """The angle (0 to π) between N1 = R × A'_i and N2 = R × B'_j with R = B_j − A_i, for
-    every i and j: ``(len(a), len(b))``.
-
-    All of it comes from (i, j) matrix products: |R|², R·A', R·B' and A'·B' give
-    N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's identity), and N1 × N2 = R·det[R, A', B']
-    with det[R, A', B'] = A'·(B' × B) − (A × A')·B'. Coordinates are taken about a
-    common centre, as in :mod:`.sift`.
+    The angle between N1 = R × A'_i and N2 = R × B'_j (R = B_j − A_i) is read from the dot
+    products |R|², R·A', R·B' and A'·B': N1·N2 = |R|²(A'·B') − (R·A')(R·B') (Lagrange's
+    identity), and |N1 × N2| = |R|·|det[R, A', B']| with det[R, A', B'] = A'·(B' × B) −
+    (A × A')·B'. Coordinates are taken about each strip's centre (its middle station
+    without a partner and its middle sample, as in :mod:`.sift`).
     """
-    centre = 0.5 * (a[len(a) // 2] + b[len(b) // 2])
-    a, b = a - centre, b - centre
-    aa, bb = np.einsum("ij,ij->i", a, a), np.einsum("ij,ij->i", b, b)
-    rr = np.maximum(bb[None, :] - 2.0 * (a @ b.T) + aa[:, None], 0.0)
-    ra = ta @ b.T - np.einsum("ij,ij->i", a, ta)[:, None]
-    rb = np.einsum("ij,ij->i", b, tb)[None, :] - a @ tb.T
-    triple = ta @ cross(tb, b).T - cross(a, ta) @ tb.T
-    return np.arctan2(np.sqrt(rr) * np.abs(triple), rr * (ta @ tb.T) - ra * rb)
-
+    rows = [flatnonzero(own) for own in wanted]
+    stations, per_sample = Stack.of(rows), Stack.of([tb for tb, _, _ in samples])
+    width = int(per_sample.counts.max(initial=0))
+    if width == 0:
+        return [np.full(len(own), np.nan) for own in rows], rows
+    owner = stations.owner()
+    centre = np.array([0.5 * (a0[len(a0) // 2] + points[len(points) // 2]) if len(points) else np.zeros(3)
+                       for a0, (_, points, _) in zip(a0s, samples, strict=True)])
+    a = np.concatenate([a0[own] for a0, own in zip(a0s, rows, strict=True)]) - stations.repeat(centre)
+    ta = np.concatenate([a1[own] for a1, own in zip(a1s, rows, strict=True)])
+    t_b, b, tb = (np.concatenate(parts) for parts in zip(*samples, strict=True))
+    b = b - per_sample.repeat(centre)
+    # each station's row of samples (its strip's, then any sample as padding, never chosen)
+    column = np.arange(width)
+    real = column < per_sample.counts[owner][:, None]
+    index = np.minimum(per_sample.starts[owner][:, None] + column, len(t_b) - 1)
+    b_at, tb_at = b[index], tb[index]
+    a_row, ta_row = a[:, None], ta[:, None]
+    rr = np.maximum(np.einsum("ij,ij->i", b, b)[index] - 2.0 * dot(a_row, b_at)
+                    + np.einsum("ij,ij->i", a, a)[:, None], 0.0)
+    ra = dot(ta_row, b_at) - np.einsum("ij,ij->i", a, ta)[:, None]
+    rb = np.einsum("ij,ij->i", b, tb)[index] - dot(a_row, tb_at)
+    triple = dot(ta_row, cross(tb, b)[index]) - dot(cross(a, ta)[:, None], tb_at)
+    angle = np.arctan2(np.sqrt(rr) * np.abs(triple), rr * dot(ta_row, tb_at) - ra * rb)
+    t_at = t_b[index]
+    lo = np.concatenate([window[0][own] for window, own in zip(windows, rows, strict=True)])
+    hi = np.concatenate([window[1][own] for window, own in zip(windows, rows, strict=True)])
+    inside = real & (t_at >= lo[:, None]) & (t_at <= hi[:, None]) & ~np.isnan(angle)
+    angle = np.where(inside, angle, np.inf)
+    best = np.argmin(angle, axis=1)
+    ok = angle.min(axis=1, initial=np.inf) <= stations.repeat(np.array(tolerances))  # (the angle at best)
+    return stations.split(np.where(ok, t_at[np.arange(len(best)), best], np.nan)), rows

@@ -17,6 +17,7 @@ Three kinds of fan arise in a strip between curves A and B (steps 6–7 of :mod:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from itertools import pairwise
 from math import isnan
 
 import numpy as np
@@ -290,20 +291,30 @@ def a_fans_all(
     """:func:`a_fans` of every strip ``(strip, t, slope, regular, speed)`` (``speed``: |B'|
     at the stations on a regular branch, as the partner search found it), the apexes of all
     their fans solved at once (each strip's curves evaluated on its own rows)."""
+    if not strips:
+        return []
     jumps = [(np.empty(0, dtype=np.int64), np.empty(0))] * len(strips)
-    possible = []  # (strip's index, its stations' rates, the steps that may be jumps)
-    for index, (strip, t, slope, regular, speed) in enumerate(strips):
-        dt = t[1:] - t[:-1]
-        rate, speed = _rates(strip, t, slope, speed)
-        # the steps along B's length by the trapezoid rule, against those the slopes predict
-        # (a looser bar than :func:`_jumps_along_b_all`'s, which measures the steps themselves)
-        step = 0.5 * dt * (speed[:-1] + speed[1:])
-        predicted = 0.5 * np.diff(strip.station_lengths) * (rate[:-1] + rate[1:])
-        with np.errstate(invalid="ignore"):
-            jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(step - predicted) > 0.2 * step)
-        pairs = flatnonzero(jump)
-        if len(pairs):  # (rare: a fan, a corner, or a pace of B that misleads the slope)
-            possible.append((index, rate, pairs))
+    # every strip's stations one strip after another (the steps from one strip's last to
+    # the next one's first are no steps)
+    stations = Stack([len(job[1]) for job in strips])
+    t, slope, regular, speed = (np.concatenate([job[k] for job in strips]) for k in (1, 2, 3, 4))
+    rate, speed = _rates([job[0] for job in strips], stations, t, slope, speed)
+    along_a = np.concatenate([job[0].station_lengths for job in strips])
+    dt = t[1:] - t[:-1]
+    # the steps along B's length by the trapezoid rule, against those the slopes predict
+    # (a looser bar than :func:`_jumps_along_b_all`'s, which measures the steps themselves)
+    step = 0.5 * dt * (speed[:-1] + speed[1:])
+    predicted = 0.5 * (along_a[1:] - along_a[:-1]) * (rate[:-1] + rate[1:])
+    with np.errstate(invalid="ignore"):
+        jump = regular[:-1] & regular[1:] & (dt > 1e-10) & (np.abs(step - predicted) > 0.2 * step)
+    jump[stations.offsets[1:-1] - 1] = False
+    steps = flatnonzero(jump)
+    bounds = stations.groups(steps).tolist()
+    rates = stations.split(rate)
+    possible = [  # (strip's index, its stations' rates, the steps that may be jumps: rare)
+        (index, rates[index], steps[low:high] - stations.offsets[index])
+        for index, (low, high) in enumerate(pairwise(bounds)) if high > low
+    ]
     found_jumps = _jumps_along_b_all([(strips[index][0], strips[index][1], rate, pairs)
                                       for index, rate, pairs in possible])
     for (index, _, _), found_k in zip(possible, found_jumps, strict=True):
@@ -365,9 +376,10 @@ def a_fans_all(
 
 
 def _rates(
-    strip: Strip, t: FloatArray, slope: FloatArray, speed: FloatArray
+    strips: Sequence[Strip], stations: Stack, t: FloatArray, slope: FloatArray, speed: FloatArray
 ) -> tuple[FloatArray, FloatArray]:
-    """dL/dℓ = (dt/ds)·|B'|/|A'| at every station, L and ℓ the lengths along B and A (what
+    """dL/dℓ = (dt/ds)·|B'|/|A'| at every station of every strip (``stations`` says whose
+    rows ``t``, ``slope`` and ``speed`` are), L and ℓ the lengths along B and A (what
     either curve's pace does to t and s cancels), and |B'| itself.
 
     Where B's parameter stands still (|B'| = 0 at an end, a curve run as t²: the partner
@@ -376,16 +388,19 @@ def _rates(
     one's dL/dℓ (the one before's at the curve's end): near B(0) a curve run as t² takes
     steps of t like √s, a jump by their slope alone, not by their length.
     """
-    still = strip.still_a.copy()
-    if isinstance(strip.curve_b, Steady):
-        at_end = (np.abs(t[:, None] - strip.curve_b.ends[None, :]) <= 1e-12).any(axis=1)
-        speed = np.where(at_end, 0.0, speed)
-        still |= at_end
+    still = np.concatenate([strip.still_a for strip in strips])
+    speed = speed.copy()
+    for strip, low, high in zip(strips, stations.starts.tolist(), stations.offsets[1:].tolist(), strict=True):
+        if isinstance(strip.curve_b, Steady):  # (rare)
+            at_end = (np.abs(t[low:high, None] - strip.curve_b.ends[None, :]) <= 1e-12).any(axis=1)
+            speed[low:high][at_end] = 0.0
+            still[low:high] |= at_end
     with np.errstate(invalid="ignore", divide="ignore"):
-        rate = np.where(still, np.nan, slope * speed / norm(strip.a1))
+        rate = np.where(still, np.nan, slope * speed / norm(np.concatenate([strip.a1 for strip in strips])))
     if still.any():
-        neighbour = np.where(t > 0.5, np.arange(len(t)) - 1, np.arange(len(t)) + 1)
-        neighbour = np.minimum(np.maximum(neighbour, 0), len(t) - 1)
+        row = np.arange(len(t))
+        first, last = stations.repeat(stations.starts), stations.repeat(stations.offsets[1:] - 1)
+        neighbour = np.minimum(np.maximum(np.where(t > 0.5, row - 1, row + 1), first), last)
         rate = np.where(still, rate[neighbour], rate)
     return rate, speed
 

@@ -410,7 +410,7 @@ def _solve_all(strips: list[Strip]) -> list[RulingResult]:
     fanned = [solve for solve in solves if solve.rulings[3].any()]
     measured = [(solve.checked[0], solve.checked[1], solve.rulings[3]) for solve in fanned]
     shares = iter(fan_shares_all(measured) if fanned else [])
-    return [_result(solve, *(next(shares) if solve.rulings[3].any() else (0.0, 0.0))) for solve in solves]
+    return _results(solves, [next(shares) if solve.rulings[3].any() else (0.0, 0.0) for solve in solves])
 
 
 def _check_all(solves: list[_Solve]) -> None:
@@ -420,21 +420,36 @@ def _check_all(solves: list[_Solve]) -> None:
         solve.checked = checked
 
 
-def _result(solve: _Solve, share: float, creased: float) -> RulingResult:
-    """The strip's result from its checked rulings and the ``share`` of its area in fans
-    (``creased`` in creased ones; 0 without fans: no piece counts), and the message."""
-    s_out, t_out, source, fan = solve.rulings
-    starts, ends, signed, warp, valid = solve.checked
-    station = source >= 0
-    strip = solve.strip
-    closed = source[station & fan]  # the stations closed by fans
-    out_of_order = np.isin(closed, solve.good.row) if len(closed) else np.zeros(0, dtype=bool)
-    backward = strip.flipped[closed]
-    counts = (int(np.count_nonzero(out_of_order)), int(np.count_nonzero(backward)), bool(strip.flipped.any()))
-    message = _message(len(closed), len(strip.s), strip.tolerance, share, creased, *counts)
-    return RulingResult(
-        s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased, *counts
-    )
+def _results(solves: list[_Solve], shares: list[tuple[float, float]]) -> list[RulingResult]:
+    """Each strip's result from its checked rulings and the ``shares`` of its area in fans
+    and in creased ones (0 without fans: no piece counts), and the message; the stations
+    closed by fans of every strip judged at once (whether a torsal ruling exists there
+    out of the strip's order: a consistently oriented candidate of that station; whether
+    its torsal partner runs backwards along B)."""
+    stations = Stack([len(solve.strip.s) for solve in solves])
+    closed = [solve.rulings[2][(solve.rulings[2] >= 0) & solve.rulings[3]] for solve in solves]
+    per_strip = Stack.of(closed)
+    owner = per_strip.owner()
+    # (each strip's stations numbered after the strips' before it: one search for all of them)
+    at = np.concatenate(closed) + per_strip.repeat(stations.starts)
+    good = np.concatenate([s.good.row + first for s, first in zip(solves, stations.starts, strict=True)])
+    out_of_order = np.bincount(owner[np.isin(at, good)], minlength=len(solves)).tolist()
+    flipped = np.concatenate([solve.strip.flipped for solve in solves])
+    backward = np.bincount(owner[flipped[at]], minlength=len(solves)).tolist()
+    any_backward = np.logical_or.reduceat(flipped, stations.starts).tolist() if len(flipped) else []
+    results = []
+    for k, (solve, (share, creased)) in enumerate(zip(solves, shares, strict=True)):
+        s_out, t_out, source, fan = solve.rulings
+        starts, ends, signed, warp, valid = solve.checked
+        strip = solve.strip
+        counts = (out_of_order[k], backward[k], any_backward[k])
+        message = _message(len(closed[k]), len(strip.s), strip.tolerance, share, creased, *counts)
+        station = source >= 0
+        results.append(RulingResult(
+            s_out, t_out, starts, ends, warp, signed, valid, message, station, fan, share, creased, *counts
+        ))
+    return results
+
 
 def _unwatched() -> None:
     """The check outside a :func:`~..watch.watched` block: nothing to look at."""

@@ -176,8 +176,9 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
     takes after the curve), each the one the curve gets alone, bit for bit: each curve's
     speed is evaluated on its own, its pieces refined on their own (:func:`_refined`), and
     so are its pieces' Gauss sums, their running total and the quintics' coefficients (a
-    matrix product's and a cumulative sum's rounding depend on what else is in the array);
-    the rest runs once for all of them."""
+    matrix product's and a cumulative sum's rounding depend on what else is in the array:
+    the curves with one layout are stacked along a new first axis, each its own row of
+    every product and sum, as :func:`_layout_rows` does); the rest runs once for all of them."""
     layouts = []
     for curve in curves:
         breaks = tuple(curve._breakpoints().tolist())
@@ -185,32 +186,31 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
         layouts.append(layout(breaks, int(intervals)))
     stacked = np.concatenate(derivative_each(curves, [layout[4] for layout in layouts], 1))
     stacked = np.sqrt(dot(stacked, stacked))  # ((x² + y²) + z², as np.add.reduce along the rows sums)
-    # each curve's speeds: at its Gauss nodes, its piece ends, just before its breakpoints
-    all_nodes, halves, pieces, lengths, starts, ends, gauss = [], [], [], [], [], [], []
-    offset = 0
-    for curve, (nodes, nodes_gauss, half, last, at) in zip(curves, layouts, strict=True):
-        g, m = len(nodes_gauss), len(nodes)
-        own = stacked[offset : offset + len(at)]
-        offset += len(at)
-        inner = own[:g].reshape(-1, 4)
-        start = own[g : g + m - 1]
-        end = own[g + 1 : g + m].copy()
-        end[last] = own[g + m :]
-        piece = half * (inner @ _WEIGHTS)
-        refined = _refined(curve, nodes, inner, start, end, float(piece.sum()))
-        if refined is not None:  # (some pieces were split: their widths differ)
-            nodes, inner, start, end = refined
-            half = 0.5 * (nodes[1:] - nodes[:-1])
-            piece = half * (inner @ _WEIGHTS)
-        all_nodes.append(nodes)
-        halves.append(half)
-        gauss.append(inner)
-        pieces.append(piece)
-        lengths.append(np.empty(len(nodes)))
+    first = np.cumsum([0] + [len(layout[4]) for layout in layouts])
+    # each curve's pieces: their ends, half widths, speeds at their Gauss nodes, starts and ends
+    own: list[tuple[FloatArray, ...]] = [()] * len(curves)
+    by_layout: dict[int, list[int]] = {}
+    for index, layout in enumerate(layouts):  # (a cached layout is one object for every curve)
+        by_layout.setdefault(id(layout), []).append(index)
+    for members in by_layout.values():
+        layout = layouts[members[0]]
+        rows = stacked[first[members][:, None] + np.arange(len(layout[4]))]
+        for index, (pieces, total, bad) in zip(members, _layout_rows(layout, rows), strict=True):
+            nodes, _, inner, start, end, _ = pieces
+            refined = _refined(curves[index], nodes, inner, start, end, total) if bad else None
+            if refined is None:
+                own[index] = pieces
+            else:  # (some pieces were split: their widths differ)
+                nodes, inner, start, end = refined
+                half = 0.5 * (nodes[1:] - nodes[:-1])
+                own[index] = (nodes, half, inner, start, end, half * (inner @ _WEIGHTS))
+    all_nodes, halves, gauss, starts, ends, pieces = zip(*own, strict=True)
+    lengths = []
+    for piece in pieces:
+        lengths.append(np.empty(len(piece) + 1))
         lengths[-1][0] = 0.0
         np.cumsum(piece, out=lengths[-1][1:])
-        starts.append(start)
-        ends.append(end)
+    counts = [len(piece) for piece in pieces]
     rise = np.concatenate(pieces)
     h = 2.0 * np.concatenate(halves)
     d0, d1 = np.concatenate(starts) * h, np.concatenate(ends) * h
@@ -220,16 +220,49 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
     with np.errstate(divide="ignore", invalid="ignore"):
         inverse = np.column_stack([rise / d0, rise / d1])
     poly = np.zeros((len(rise), 2, 7))
-    tables = []
-    low = 0
-    for nodes, length, start, end in zip(all_nodes, lengths, starts, ends, strict=True):
-        high = low + len(start)
-        poly[low:high, 0, 1:] = samples[low:high] @ _INTEGRAL
-        own = (h, rise, inverse, poly)
-        tables.append((nodes, length, start, end, *(x[low:high] for x in own)))
-        low = high
+    bounds = np.cumsum([0, *counts])
+    by_count: dict[int, list[int]] = {}
+    for index, count in enumerate(counts):
+        by_count.setdefault(count, []).append(index)
+    for count, members in by_count.items():  # (each curve's rows one matrix of the stack)
+        rows = bounds[members][:, None] + np.arange(count)
+        poly[rows, 0, 1:] = samples[rows] @ _INTEGRAL
     poly[:, 1, :6] = poly[:, 0, 1:] * _POWERS[1:]
-    return tables
+    return [(nodes, length, start, end, *(x[low:high] for x in (h, rise, inverse, poly)))
+            for nodes, length, start, end, low, high in zip(
+                all_nodes, lengths, starts, ends, bounds[:-1], bounds[1:], strict=True)]
+
+
+def _layout_rows(
+    layout: tuple[FloatArray, ...], speeds: FloatArray
+) -> list[tuple[tuple[FloatArray, ...], float, bool]]:
+    """The pieces of each curve of one ``layout`` (:func:`_layout`) from its ``speeds``
+    there (one row a curve): its pieces' ends ``nodes`` and half widths, the speeds at their
+    Gauss nodes, starts and ends (one-sided at a breakpoint) and their lengths by their
+    Gauss rule; the curve's length by them; and whether any pair of its pieces fails the
+    check of :func:`_refined`. Each curve's row gets what it gets alone: a matrix product of
+    stacked rows runs row by row, as a sum and a cumulative sum do along the last axis."""
+    nodes, nodes_gauss, half, last, _ = layout
+    g, m = len(nodes_gauss), len(nodes)
+    inner = speeds[:, :g].reshape(len(speeds), -1, 4)
+    start = speeds[:, g : g + m - 1]
+    end = speeds[:, g + 1 : g + m].copy()
+    end[:, last] = speeds[:, g + m :]
+    pieces = half * (inner @ _WEIGHTS)
+    totals = pieces.sum(axis=1)
+    bad = (_pair_errors(nodes, inner, start, end) > (2.0 * PAIR_TOLERANCE * totals)[:, None]).any(axis=1)
+    return [((nodes, half, inner[k], start[k], end[k], pieces[k]), float(totals[k]), bool(bad[k]))
+            for k in range(len(speeds))]
+
+
+def _pair_errors(nodes: FloatArray, inner: FloatArray, start: FloatArray, end: FloatArray) -> FloatArray:
+    """The Gauss rules' error estimate of every pair of neighbouring pieces (see
+    :func:`_refined`), of the speeds ``inner`` (``(..., pieces, 4)``), ``start`` and ``end``
+    (``(..., pieces)``) of pieces ending at ``nodes``."""
+    width = nodes[2::2] - nodes[:-2:2]
+    pairs = inner.reshape(*inner.shape[:-2], -1, 8)  # (every pair's speeds as they lie, not gathered)
+    rule = pairs @ _PAIR_INNER + start[..., ::2] * _PAIR_CHECK[0] + end[..., ::2] * _PAIR_CHECK[5]
+    return np.abs(width * (rule + end[..., 1::2] * _PAIR_CHECK[10]))
 
 
 def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) -> list[FloatArray]:
@@ -347,11 +380,8 @@ def _refined(
     keeps its speed from the left. Returns the new ``nodes, inner, start, end``.
     """
     low, width = nodes[:-2:2], nodes[2::2] - nodes[:-2:2]
-    # (the check of every pair from the pieces' speeds as they lie, without gathering them)
-    rule = inner.reshape(-1, 8) @ _PAIR_INNER + start[::2] * _PAIR_CHECK[0] + end[::2] * _PAIR_CHECK[5]
-    check = np.abs(width * (rule + end[1::2] * _PAIR_CHECK[10]))
     tolerance = 2.0 * PAIR_TOLERANCE * total
-    bad = check > tolerance
+    bad = _pair_errors(nodes, inner, start, end) > tolerance
     if not bad.any():
         return None
     samples = np.column_stack([start[::2], inner[::2], end[::2], inner[1::2], end[1::2]])
