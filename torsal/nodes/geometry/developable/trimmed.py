@@ -12,9 +12,8 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    interpolated pace, which twists a little; every point of rail A is paired instead
    with its developable partner on rail B (:func:`~torsal.nodes.geometry.torsal_pairing.
    torsal_partners`, as the ``.3dm`` export does), so every line across the sheet is
-   torsal, not only the solved rulings: the partners found at sampled lines and a cubic
-   between them, through the exact partner of every line the cut keeps as a ruling
-   (:meth:`_Sheet.pin`; the cubic alone is off by a warp of up to ~2e-6 rad).
+   torsal, not only the solved rulings (a cubic through the partners of sampled lines and
+   of every line the cut keeps, :meth:`_Sheet.pin`).
 3. Cut. The sheet's lines are sampled (:data:`PER_RULING` per ruling interval,
    :data:`ACROSS` points along each), each point projected onto the design and judged
    inside or outside the trim in (u, v) by its signed distance to the trim loops
@@ -173,8 +172,7 @@ class _Line:
 
 class _Sheet:
     """A strip's sheet: the line at u from rail A's point to its developable partner on B
-    (the partners found at the sampled lines and every line measured since, a monotone
-    cubic in u between them)."""
+    (found at the lines measured, a monotone cubic in u between them)."""
 
     def __init__(self, strip: Strip, inside: Callable[[FloatArray], FloatArray]) -> None:
         surface = strip.surface
@@ -198,12 +196,9 @@ class _Sheet:
         return np.where(self.apex[between], x, torsal_partners(self.a, self.b, self.u, x)[0])
 
     def pin(self, x: FloatArray) -> None:
-        """The pace through the exact developable partners at ``x`` too (the cubic between
-        the sampled lines is off them by ~1e-6 of u, a warp of ~1e-6 rad: every line the cut
-        keeps as a ruling is pinned before it is measured, so it is torsal to rounding). An
-        x within :data:`PIN_GAP` of its ruling interval from a node is not pinned (two nodes
-        that close would make the cubic through them swing: the pace there is already the
-        node's partner to that gap times the cubic's error in slope)."""
+        """The pace through the exact partners at ``x`` too (the cubic between sampled lines
+        misses them by a warp of up to ~2e-6 rad; every line is pinned before it is measured),
+        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)."""
         nodes = np.unique(self.tau.nodes())
         new = np.unique(np.asarray(x, dtype=float))
         k = np.clip(np.searchsorted(self.u, new, side="right") - 1, 0, len(self.u) - 2)
@@ -361,14 +356,12 @@ class _Pace:
             xs, ys = self.known[k]
             add = which == k
             order = np.argsort(np.concatenate([xs, x[add]]), kind="stable")
-            merged_x = np.concatenate([xs, x[add]])[order]
-            merged = np.concatenate([ys, tau[add]])[order]
-            old = np.concatenate([np.ones(len(xs), dtype=bool), np.zeros(int(add.sum()), dtype=bool)])[order]
+            merged_x, merged = np.concatenate([xs, x[add]])[order], np.concatenate([ys, tau[add]])[order]
+            old = (np.arange(len(order)) < len(xs))[order]
             low = np.maximum.accumulate(np.where(old, merged, -np.inf))
             high = np.minimum.accumulate(np.where(old, merged, np.inf)[::-1])[::-1]
-            merged = np.clip(merged, low, high)
-            out.known[k] = (merged_x, merged)
-            out.pieces[k] = _monotone(merged_x, merged)
+            out.known[k] = (merged_x, np.clip(merged, low, high))
+            out.pieces[k] = _monotone(*out.known[k])
         return out
 
     def __call__(self, x: ArrayLike, nu: int = 0) -> FloatArray:
