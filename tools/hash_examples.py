@@ -85,6 +85,8 @@ def compare(before: Path, after: Path) -> int:
 
 
 if __name__ == "__main__":
+    if len(sys.argv) < 2 or (sys.argv[1].startswith("-") and sys.argv[1] != "--compare"):
+        sys.exit(__doc__)  # -h, --help or an unknown option: a folder named so is a slip
     if sys.argv[1] == "--compare":
         sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3])))
     solve_all(Path(sys.argv[1]), sys.argv[2:])

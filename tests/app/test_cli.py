@@ -144,7 +144,7 @@ def test_gui_where_qt_cannot_load_says_how_to_install_it_and_leaves_the_collecto
     import torsal.app.gui.before_qt as before_qt
 
     monkeypatch.setenv("DISPLAY", ":99")
-    monkeypatch.setattr(before_qt, "import_before_qt", lambda path: None)
+    monkeypatch.setattr(before_qt, "import_before_qt", lambda path, registry=None: None)
     monkeypatch.setattr(availability, "missing", lambda: "Qt for Python (PySide6) is not installed")
     assert gc.isenabled()
     assert main(["gui", str(EXAMPLE)]) == 2

@@ -40,6 +40,19 @@ Torsal's ~190 modules up to the first frame ~0.1, the window, canvas and docks ~
 the PySide6 source reading and the collections the baseline pays (~0.1 and ~0.17). The
 issue's bar, 2 s absolute on a quiet machine, is taken by the lead on a quiet machine; on
 this loaded one the figure less the waits for a CPU is ~1.5-1.6 s.
+
+Later the same day (load 7.7-8.8), with shapely no longer imported on the way and the plug-in
+entry points scanned once: 1.90-2.57 CPU s against 1.52-1.74 (ratio 1.25), less the waits
+1.77-2.52 s against 1.50-1.72. What is still where, each measured alone at load 4-9:
+scipy.interpolate and the subpackages it imports 0.51 CPU s (scipy.special ~0.30 of it:
+its array-API docstring notes and array_api_compat's copy of numpy's namespace, which
+imports numpy.f2py and numpy.testing); the star imports of qtpy under pyvistaqt ~0.20
+(every class of QtCore, QtGui and QtWidgets made, ~640 enums; the baseline pays them too,
+VTK's own QVTKRenderWindowInteractor imports in 0.035); the viewport's first paint
+0.09-0.15 (OpenGL set-up, the gradient background, axes and grid), the solved frame's
+0.025-0.04; PySide6 with Torsal's 50 window modules 0.16-0.18, Torsal's node and engine
+modules ~0.12; the window, canvas and docks ~0.1; the solve ~0.08. scipy.interpolate is
+needed by the solve (the NURBS curves are scipy BSplines).
 """
 
 from __future__ import annotations

@@ -39,7 +39,9 @@ def main(argv: list[str] | None = None) -> int:
         if args.command in _LOADING_NODES:
             from torsal.app.plugins import report_problems
 
-            report_problems()  # a broken plug-in, or one refused, is said by every command, once
+            # a broken plug-in, or one refused, is said by every command, once; torsal gui
+            # opens its window with the registry they were found in
+            args.registry = report_problems()
         return args.handler(args)
     except UsageError as exc:
         print(f"torsal: {exc}", file=sys.stderr)
@@ -258,7 +260,7 @@ def _gui(args: argparse.Namespace) -> int:
     from torsal.app.install import install_command
 
     try:
-        return launch(file)
+        return launch(file, args.registry)
     except Unavailable as reason:
         print(f"torsal: the desktop app cannot start: {reason}.\n"
               f"        Install it with: {install_command('gui')}\n"

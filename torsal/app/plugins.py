@@ -12,10 +12,13 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 from torsal.engine.cluster import reachable_definitions
 from torsal.engine.graph import Graph, is_placeholder
+
+if TYPE_CHECKING:
+    from torsal.engine.registry import Registry
 
 
 @dataclass(frozen=True)
@@ -60,7 +63,13 @@ def problems() -> list[str]:
     return default_registry().problems
 
 
-def report_problems(stream: TextIO | None = None) -> None:
-    """Print each plug-in problem on stderr (the ``torsal`` command does it once a command)."""
-    for problem in problems():
+def report_problems(stream: TextIO | None = None) -> Registry:
+    """Print each plug-in problem on stderr (the ``torsal`` command does it once a command);
+    returns the registry they were found in, for the command to use (``torsal gui`` does:
+    the plug-ins are looked up once)."""
+    from torsal.nodes.catalogue import default_registry
+
+    registry = default_registry()
+    for problem in registry.problems:
         print(f"torsal: {problem}", file=stream or sys.stderr)
+    return registry

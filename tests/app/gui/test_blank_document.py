@@ -11,7 +11,8 @@ from torsal.app.cli import main
 
 def test_torsal_gui_with_no_file_launches_on_no_file(monkeypatch):
     launched = []
-    monkeypatch.setattr(torsal.app.gui.main, "launch", lambda path=None: launched.append(path) or 0)
+    monkeypatch.setattr(torsal.app.gui.main, "launch",
+                        lambda path=None, registry=None: launched.append(path) or 0)
     monkeypatch.setenv("DISPLAY", ":99")
     assert main(["gui"]) == 0
     assert launched == [None]

@@ -44,6 +44,8 @@ def test_rows_at_once_then_the_true_shape_sheets_while_the_canvas_answers(qtbot,
     with qtbot.waitSignal(improvements.improved, timeout=600000):
         pass
     wait_solved(qtbot, window, timeout=60000)
+    # the status bar says what happened, not "Solved 1 node in 0.0 ms"
+    assert window.status.currentMessage().startswith("Took in the background search's better result")
     better = _layout(window)
     assert better.nesting == cutfiles.TRUE_SHAPE and better.stock_usage > first.stock_usage
     texts = [m.text for m in window.doc.results["cut"].messages]

@@ -24,13 +24,15 @@ from torsal.engine.registry import Registry
 from torsal.nodes.catalogue import default_registry
 
 
-def import_before_qt(path: Path | None) -> Registry:
-    """The node registry with the node types of ``path`` (if given) loaded, and pyvista's
+def import_before_qt(path: Path | None, registry: Registry | None = None) -> Registry:
+    """The node registry (``registry``, or Torsal's default one with the installed
+    plug-ins) with the node types of ``path`` (if given) loaded, and pyvista's
     plotting imported. Nothing else happens: the file is read again when the window opens
     it (under a millisecond), and a file that cannot be read, or a pyvista that cannot be
     imported, is left for the window to report as before (its dialog, the viewport's
     message)."""
-    registry = default_registry()
+    if registry is None:
+        registry = default_registry()
     if path is not None:
         with contextlib.suppress(GraphFileError, OSError):
             read_graph(path, registry)

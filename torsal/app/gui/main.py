@@ -14,8 +14,10 @@ if TYPE_CHECKING:
     from torsal.engine.registry import Registry
 
 
-def launch(path: str | Path | None = None) -> int:
+def launch(path: str | Path | None = None, registry: Registry | None = None) -> int:
     """Open the main window (on ``path`` if given) and run the event loop; returns the exit code.
+    ``registry``: the node registry to open it with (``torsal gui`` passes the one whose
+    plug-in problems it reported); Torsal's default one if not given.
 
     First the libraries the first frame needs that do not need Qt are imported, with the
     node modules of the file (:mod:`torsal.app.gui.before_qt` says why before Qt); then
@@ -46,7 +48,7 @@ def launch(path: str | Path | None = None) -> int:
     collections = StartUpCollectionsHeld()
     collections.hold()
     try:
-        registry = import_before_qt(Path(path) if path else None)
+        registry = import_before_qt(Path(path) if path else None, registry)
         reason = missing()  # imports Qt
         if reason is not None:
             raise Unavailable(reason)

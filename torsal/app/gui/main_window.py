@@ -130,6 +130,7 @@ class MainWindow(QMainWindow):
         solves.started.connect(self.status.solve_started)
         solves.progress.connect(self.status.solve_progress)
         self.doc.improvements.progress.connect(self.status.search_progress)
+        self.doc.improvements.improved.connect(self._result_taken_in)
         self.doc.results_changed.connect(self._solved)
         self.doc.dirty_changed.connect(lambda _dirty: self._update_title())
         self.doc.path_changed.connect(lambda _path: self._update_title())
@@ -392,6 +393,10 @@ class MainWindow(QMainWindow):
             if not shown.contains(item.sceneBoundingRect()):
                 self.view.centerOn(item)
             return
+
+    def _result_taken_in(self, node_id: str) -> None:
+        record = self.doc.graph.nodes.get(node_id)
+        self.status.result_taken_in(record.title if record else node_id)
 
     def _solved(self, outcome: SolveOutcome) -> None:
         self.status.solve_finished(outcome)

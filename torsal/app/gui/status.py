@@ -11,6 +11,8 @@ from torsal.app.gui.solve_controller import PROGRESS_AFTER, SolveOutcome
 
 PROGRESS_AFTER_MS = round(1000 * PROGRESS_AFTER)
 QWIDGETSIZE_MAX = (1 << 24) - 1  # Qt's largest widget size (no maximum)
+#: How long the message that a background result was taken in stays.
+TAKEN_IN_MS = 8000
 
 
 class SolveStatus(QStatusBar):
@@ -34,6 +36,7 @@ class SolveStatus(QStatusBar):
         self.addPermanentWidget(self.solve_label)
         self.addPermanentWidget(self.counts_label)
         self._started = 0.0
+        self._taken_in = ""  # the node whose background result the coming solve takes in
         self._reveal = QTimer(self)
         self._reveal.setSingleShot(True)
         self._reveal.setInterval(PROGRESS_AFTER_MS)
@@ -63,6 +66,12 @@ class SolveStatus(QStatusBar):
         self.progress.setRange(0, max(1, total))
         self.progress.setValue(index)
 
+    def result_taken_in(self, title: str) -> None:
+        """A background search's better result of node ``title`` was taken in: the solve it
+        starts (of what lies downstream, often nothing) is reported as that, in a message,
+        while the label keeps the last real solve's time."""
+        self._taken_in = title
+
     def solve_finished(self, outcome: SolveOutcome) -> None:
         self._reveal.stop()
         self.progress.hide()
@@ -77,8 +86,13 @@ class SolveStatus(QStatusBar):
                 self.solve_label.setText(
                     f"Solve cancelled after {ms:.0f} ms ({nodes(len(report.solved))} solved)"
                 )
+        elif self._taken_in:
+            self.showMessage(f"Took in the background search's better result of {self._taken_in}",
+                             TAKEN_IN_MS)
         else:
             self.solve_label.setText(f"Solved {nodes(len(report.solved))} in {ms:.1f} ms")
+        self._taken_in = ""
+        if not (outcome.error or report.cancelled):
             # the label keeps a fixed size, the largest it has needed since: a new time does
             # not lay the status bar (and with it the window) out again, as a label that may
             # change size does on every new text

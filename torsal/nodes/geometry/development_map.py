@@ -6,15 +6,19 @@ along one diagonal); within a triangle a point keeps its barycentric coordinates
 :mod:`.unroll` lays the triangles flat and builds the map; here it is used: plane →
 surface (point location), surface → plane (closest point on the 3D triangles), strip
 coordinates, and polylines split where they cross a ruling or a diagonal.
+
+shapely is imported where an STR-tree or a ring test is first needed: a strip that does
+not overlap itself is located by its walk alone, and ``torsal gui`` on such a graph (the
+flagship) reaches its first frame without importing shapely (~36 modules).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
@@ -24,6 +28,9 @@ from torsal.nodes.geometry.vec_ops import dot as _dot
 
 from .strip_walk import StripWalk, strip_triangles
 from .watch import watch_check, watch_progress
+
+if TYPE_CHECKING:
+    import shapely
 
 #: Distances within this share of the strip's size count as equal when points are
 #: located on the 3D triangles (a point on a shared edge is on both triangles).
@@ -140,6 +147,8 @@ class DevelopmentMap:
 
     @cached_property
     def _tree2d(self) -> shapely.STRtree:
+        import shapely
+
         polys = shapely.polygons(self.vertices2d[self.triangles[self.proper]])
         return shapely.STRtree(polys)
 
@@ -167,6 +176,8 @@ class DevelopmentMap:
             tri[~self._holds(tri, pts)] = -1
         lost = np.flatnonzero(tri < 0)
         if lost.size:
+            import shapely
+
             geoms = shapely.points(pts[lost])
             big = np.iinfo(np.int64).max
             found = np.full(lost.size, big, dtype=np.int64)
@@ -393,6 +404,8 @@ class DevelopmentMap:
 
     @cached_property
     def _edge_tree(self) -> tuple[shapely.STRtree, FloatArray, FloatArray]:
+        import shapely
+
         n = self.n
         i = np.arange(n - 1)
         starts = np.concatenate([np.arange(n), np.where(self.first_diagonal, i + 1, i)])
@@ -405,6 +418,8 @@ class DevelopmentMap:
     @cached_property
     def _outline_tree(self) -> shapely.STRtree:
         """The development's outline, edge by edge (short edges: a tight tree)."""
+        import shapely
+
         ring = merge_repeats(np.vstack([self.vertices2d[: self.n], self.vertices2d[self.n :][::-1]]))
         return shapely.STRtree(shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1)))
 
@@ -434,6 +449,8 @@ class DevelopmentMap:
         other segments (an overlapping development, a segment that leaves the outline) are
         tested against every edge through a shapely STR-tree.
         """
+        import shapely
+
         walk = self._walk
         rest = np.arange(len(p0))
         seg_parts: list[IntArray] = []
@@ -575,4 +592,6 @@ def merge_repeats(ring: FloatArray) -> FloatArray:
 def is_simple(outline: FloatArray) -> bool:
     """Whether the closed polygon does not cross or touch itself. A point repeated in a
     row, to rounding (a cone's apex, the end of every ruling of its fan), is one vertex."""
+    import shapely
+
     return bool(shapely.LinearRing(merge_repeats(outline)).is_simple)

@@ -7,6 +7,9 @@ NURBS kernel does), and says which parameters lie in the kept part (:meth:`insid
 a node that works on a design (Rationalise) can work inside the trim. Loops are closed
 polylines in (u, v) in [0, 1]², counter-clockwise for the outer loop and clockwise for
 holes, made by pulling the face's 3D edges back onto the surface.
+
+The trim region is a shapely polygon, so shapely is imported when a trimmed surface is
+made: a graph without one (the flagship) does not import it on the way to its first frame.
 """
 
 from __future__ import annotations
@@ -15,7 +18,6 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
-from shapely import Polygon, constrained_delaunay_triangles, contains_xy, get_coordinates
 
 from .curve_base import FloatArray
 from .surface_base import Surface, uv_grid
@@ -40,6 +42,8 @@ class TrimmedSurface(Surface):
         self.surface = surface
         self.outer = _ring(outer, counter_clockwise=True)
         self.holes = [_ring(hole, counter_clockwise=False) for hole in holes]
+        from shapely import Polygon
+
         self.region = Polygon(self.outer, self.holes)
         if not self.region.is_valid or self.region.area <= 0.0:
             raise ValueError("the trim loops do not bound a region of the surface")
@@ -63,6 +67,8 @@ class TrimmedSurface(Surface):
 
     def inside(self, u: ArrayLike, v: ArrayLike) -> np.ndarray:
         """Whether each (u, v) lies in the kept part (on a loop counts as inside)."""
+        from shapely import contains_xy
+
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         return contains_xy(self.region, u, v) | contains_xy(self.region.boundary.buffer(1e-12), u, v)
 
@@ -78,6 +84,8 @@ class TrimmedSurface(Surface):
         """Area and centroid of the kept part: the trimmed (u, v) region cut into triangles
         (shapely's constrained Delaunay), each split 64 ways, Dunavant's degree-5 rule on
         each; exact to the trim loops' polygons and the rule (``rtol`` is not used)."""
+        from shapely import constrained_delaunay_triangles, get_coordinates
+
         del rtol
         corners = get_coordinates(constrained_delaunay_triangles(self.region)).reshape(-1, 4, 2)[:, :3]
         for _ in range(3):  # each triangle into 4, three times

@@ -43,6 +43,7 @@ from scipy.spatial import cKDTree
 from ..array_types import FloatArray
 from ..curve_base import Curve
 from ..surface_base import Surface
+from ..vectors import angle_between
 from .ruling import RulingResult
 
 #: First grid of samples along × across a strip (along: at least; with the rulings, see the module).
@@ -259,7 +260,7 @@ def crease_angle(lower: RulingResult, lower_edge: Curve, upper: RulingResult, up
     at = np.column_stack([np.interp(lower.t, s[ok], normals[ok, k]) for k in range(3)])
     with np.errstate(invalid="ignore", divide="ignore"):
         at /= np.linalg.norm(at, axis=1, keepdims=True)
-    angle = np.arctan2(np.linalg.norm(np.cross(n_low, at), axis=1), np.einsum("ij,ij->i", n_low, at))
+    angle = angle_between(n_low, at)
     angle = angle[np.isfinite(angle)]
     return float(angle.max()) if len(angle) else float("nan")
 

@@ -12,7 +12,8 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    interpolated pace, which twists a little; every point of rail A is paired instead
    with its developable partner on rail B (:func:`~torsal.nodes.geometry.torsal_pairing.
    torsal_partners`, as the ``.3dm`` export does), so every line across the sheet is
-   torsal, not only the solved rulings.
+   torsal, not only the solved rulings (a cubic through the partners of sampled lines and
+   of every line the cut keeps, :meth:`_Sheet.pin`).
 3. Cut. The sheet's lines are sampled (:data:`PER_RULING` per ruling interval,
    :data:`ACROSS` points along each), each point projected onto the design and judged
    inside or outside the trim in (u, v) by its signed distance to the trim loops
@@ -43,6 +44,7 @@ left out, and the coverage measured says so where it matters.
 
 from __future__ import annotations
 
+import copy
 import itertools
 import math
 from collections.abc import Callable
@@ -81,6 +83,9 @@ TIP = 2e-3
 #: median step (the sheet's lines sweep along the trim, a fan) or the tolerance, whichever
 #: is larger, :data:`SPLIT` lines are put between them, up to :data:`REFINE` times.
 JUMP, SPLIT, REFINE = 3.0, 4, 4
+#: A line the cut keeps is pinned to its exact developable partner unless it lies within
+#: this share of its ruling interval from a line that is (:meth:`_Sheet.pin`).
+PIN_GAP = 1e-6
 #: Steps of false position to each point where a line leaves the trim, from its samples.
 ROOT_STEPS = 3
 #: A cut edge along the trim is a least-squares cubic when it stays this share of the
@@ -167,7 +172,7 @@ class _Line:
 
 class _Sheet:
     """A strip's sheet: the line at u from rail A's point to its developable partner on B
-    (the partners found at the sampled lines, a monotone cubic in u between them)."""
+    (found at the lines measured, a monotone cubic in u between them)."""
 
     def __init__(self, strip: Strip, inside: Callable[[FloatArray], FloatArray]) -> None:
         surface = strip.surface
@@ -177,15 +182,31 @@ class _Sheet:
         self.inside = inside  # signed distance of 3D points from the trim (≥ 0 inside)
         self.w = np.linspace(0.0, 1.0, ACROSS)
         self.x, self.ruling = _columns(self.u)
-        tau = torsal_partners(self.a, self.b, self.u, self.x)[0]
-        tau[self.ruling >= 0] = self.u
         # in a fan (two rulings through one point) the sheet is the cone of lines from that
         # point to the other rail, at the strip's own pace: no partner to look for
         size = float(np.ptp(self.lines.reshape(-1, 3), axis=0).max()) or 1.0
-        apex = (np.abs(np.diff(self.lines, axis=0)).max(axis=2) <= 1e-12 * size).any(axis=1)
-        between = np.minimum(np.searchsorted(self.u, self.x, side="right") - 1, len(apex) - 1)
-        tau = np.where(apex[between], self.x, tau)
+        self.apex = (np.abs(np.diff(self.lines, axis=0)).max(axis=2) <= 1e-12 * size).any(axis=1)
+        tau = self._partners(self.x)
+        tau[self.ruling >= 0] = self.u
         self.tau = _Pace(self.x, np.maximum.accumulate(tau), self.u)
+
+    def _partners(self, x: FloatArray) -> FloatArray:
+        """Rail B's parameter of the developable partner of A(x) (x itself in a fan)."""
+        between = np.minimum(np.searchsorted(self.u, x, side="right") - 1, len(self.apex) - 1)
+        return np.where(self.apex[between], x, torsal_partners(self.a, self.b, self.u, x)[0])
+
+    def pin(self, x: FloatArray) -> None:
+        """The pace through the exact partners at ``x`` too (the cubic between sampled lines
+        misses them by a warp of up to ~2e-6 rad; every line is pinned before it is measured),
+        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)."""
+        nodes = np.unique(self.tau.nodes())
+        new = np.unique(np.asarray(x, dtype=float))
+        k = np.clip(np.searchsorted(self.u, new, side="right") - 1, 0, len(self.u) - 2)
+        at = np.clip(np.searchsorted(nodes, new), 1, len(nodes) - 1)
+        gap = np.minimum(np.abs(new - nodes[at - 1]), np.abs(nodes[at] - new))
+        new = new[gap > PIN_GAP * (self.u[k + 1] - self.u[k])]
+        if len(new):
+            self.tau = self.tau.pinned(new, self._partners(new))
 
     def ends(self, x: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Both ends of the lines at ``x``: the strip's rulings exactly at their u."""
@@ -208,6 +229,7 @@ class _Sheet:
         :data:`ROOT_STEPS` steps of false position between them (the distance is not linear
         along a line near a corner of the trim, where it is the nearer of two edges')."""
         x = np.asarray(x, dtype=float)
+        self.pin(x)
         g = self.distances(x)
         keep = g >= 0.0
         k, j = np.nonzero(keep[:, 1:] != keep[:, :-1])
@@ -283,8 +305,10 @@ class _Sheet:
         at, w = [], []
         for c, k in zip(corners, near, strict=True):
             lo, hi = self.x[max(k - 1, 0)], self.x[min(k + 1, len(self.x) - 1)]
-            found = minimize_scalar(lambda x, c=c: _to_lines(c, *self.ends(np.array([x])))[0][0],
-                                    bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+            for _ in range(2):  # again once the pace passes through the exact partner there
+                found = minimize_scalar(lambda x, c=c: _to_lines(c, *self.ends(np.array([x])))[0][0],
+                                        bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+                self.pin(np.array([found.x]))
             d, t = _to_lines(c, *self.ends(np.array([found.x])))
             if d[0] <= tolerance and 0.0 < t[0] < 1.0:
                 at.append(float(found.x))
@@ -310,14 +334,35 @@ class _Pace:
 
     def __init__(self, x: FloatArray, tau: FloatArray, rulings: FloatArray) -> None:
         self.rulings = rulings
-        self.pieces = []
+        self.known: list[tuple[FloatArray, FloatArray]] = []  # per ruling interval: its x, τ
+        self.pieces: list[Any] = []
         for lo, hi in itertools.pairwise(rulings):
             mine = (x >= lo) & (x <= hi)
-            xs, ys = x[mine], tau[mine]
-            spline = make_interp_spline(xs, ys, k=min(3, len(xs) - 1))
-            check = np.linspace(lo, hi, 8 * len(xs))
-            monotone = (np.diff(spline(check)) >= 0.0).all()
-            self.pieces.append(spline if monotone else PchipInterpolator(xs, ys))
+            self.known.append((x[mine], tau[mine]))
+            self.pieces.append(_monotone(x[mine], tau[mine]))
+
+    def nodes(self) -> FloatArray:
+        """Every x the pace passes through its τ at."""
+        return np.concatenate([x for x, _ in self.known])
+
+    def pinned(self, x: FloatArray, tau: FloatArray) -> _Pace:
+        """This pace through (``x``, ``tau``) too (x between the rulings, none a node yet;
+        each τ kept between its neighbours' so the pace stays monotone): a new pace, the
+        intervals without a new node shared with this one."""
+        out = copy.copy(self)
+        out.known, out.pieces = list(self.known), list(self.pieces)
+        which = np.clip(np.searchsorted(self.rulings, x, side="right") - 1, 0, len(self.pieces) - 1)
+        for k in np.unique(which):
+            xs, ys = self.known[k]
+            add = which == k
+            order = np.argsort(np.concatenate([xs, x[add]]), kind="stable")
+            merged_x, merged = np.concatenate([xs, x[add]])[order], np.concatenate([ys, tau[add]])[order]
+            old = (np.arange(len(order)) < len(xs))[order]
+            low = np.maximum.accumulate(np.where(old, merged, -np.inf))
+            high = np.minimum.accumulate(np.where(old, merged, np.inf)[::-1])[::-1]
+            out.known[k] = (merged_x, np.clip(merged, low, high))
+            out.pieces[k] = _monotone(*out.known[k])
+        return out
 
     def __call__(self, x: ArrayLike, nu: int = 0) -> FloatArray:
         x = np.asarray(x, dtype=float)
@@ -328,6 +373,13 @@ class _Pace:
             mine = which == k
             out[mine] = self.pieces[k](flat[mine], nu)
         return out.reshape(x.shape) if x.ndim else out[0]
+
+
+def _monotone(x: FloatArray, tau: FloatArray) -> BSpline | PchipInterpolator:
+    """The cubic spline through (x, τ) where it stays monotone, else the monotone PCHIP."""
+    spline = make_interp_spline(x, tau, k=min(3, len(x) - 1))
+    check = np.linspace(x[0], x[-1], 8 * len(x))
+    return spline if (np.diff(spline(check)) >= 0.0).all() else PchipInterpolator(x, tau)
 
 
 def _to_lines(point: FloatArray, start: FloatArray, end: FloatArray) -> tuple[FloatArray, FloatArray]:

@@ -33,7 +33,9 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
-  an even pace along the rail's curve between the two rulings;
+  an even pace along the rail's curve between the two rulings; where one of the two
+  rulings is a point and a rail runs from it straight (within FIT), one cone from that
+  rail's other end over the other rail instead, a face of its own (:func:`_tip_cone`);
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
   joined at the ruling they share by a triple knot (each keeps its shape; fewer faces, a
   smaller file). Where a rail turns a corner (a strip cut to a trim) the faces meet there;
@@ -158,6 +160,11 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             k += 1
             continue
         if conical[k]:  # no developable pairing: two cones meeting on a diagonal
+            cone = _tip_cone(strip, u, lines, k, size, bool(tip[k])) if tip[k] != tip[k + 1] else None
+            if cone is not None:  # one cone from the end of a rail straight to the fit
+                pieces.append(cone)
+                k += 1
+                continue
             cones = made_cones[k] if k in made_cones else _cones(strip, u, lines, k, size)
             if tip[k] or tip[k + 1]:  # a face of its own: one of its lines is a point
                 cones = [replace(piece, brep=_brep(piece.rails), rails=None) for piece in cones]
@@ -304,6 +311,50 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     controls = np.concatenate([np.asarray(one.c)[:len(first) - 4], np.asarray(two.c)[1:len(second) - 4]])
     spline = BSpline(knots, controls, 3)
     return [Piece(None, "cone", k, k + 1, max(fits[0][0], fits[1][0]), len(knots) - 4, spline)]
+
+
+def _tip_cone(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float,
+              first: bool) -> Piece | None:
+    """The interval after ruling ``k`` where one of its rulings is a point P (ruling k when
+    ``first``, else ruling k + 1: the strip cut to a point at the design's edge) as one
+    cone, a face of its own, when one of its rails runs from P straight to its other end
+    (within :data:`FIT` of the size, as along a straight edge of the design): the cone
+    from that end (its apex, exactly) over the other rail, its line at P the straight
+    rail's chord. Every line across it has a length and passes through the apex, so its
+    normals agree along them. Two cones on the interval's diagonal made the one from P
+    over the straight rail a sliver as wide as the rail's sag, its lines along the rail
+    (Rhino, finding its tangents parallel there, turned its normals by up to π). None
+    when both rails bend more than that."""
+    span = u[k:k + 2]
+    at = np.linspace(span[0], span[1], 4 * SAMPLES + 1)
+    sags = []
+    for rail in (strip.curve_a, strip.curve_b):
+        points = rail.point_at(at)
+        chord = points[-1] - points[0]
+        length = float(np.linalg.norm(chord))
+        if length <= SAME_POINT * size:
+            return None
+        offset = points - points[0]
+        sags.append(float(np.linalg.norm(np.cross(offset, chord / length), axis=1).max()))
+    straight = int(np.argmin(sags))
+    if sags[straight] > FIT * size:
+        return None
+    apex = lines[k + 1 if first else k, straight]
+    ends = lines[k:k + 2].copy()
+    ends[:, straight] = apex
+    moving = Paced(strip.curve_b if straight == 0 else strip.curve_a, span)
+    rails = Rails(AtRest(apex), moving) if straight == 0 else Rails(moving, AtRest(apex))
+    deviation, knots, spline = _fit(rails, span, ends, FIT * size, lambda x: x, np.empty(0))  # type: ignore[arg-type]
+    spline = _apex_exactly(spline, straight, apex)
+    return Piece(_brep(spline), "cone", k, k + 1, max(deviation, sags[straight]), len(knots) - 4)
+
+
+def _apex_exactly(spline: BSpline, side: int, apex: np.ndarray) -> BSpline:
+    """A fitted cone's rails with the rail at rest (``side`` 0: A, 1: B) the apex exactly
+    (the least squares leave its control points a rounding apart)."""
+    controls = np.array(spline.c, dtype=float)
+    controls[:, 3 * side:3 * side + 3] = apex
+    return BSpline(spline.t, controls, 3)
 
 
 def _brep(spline: BSpline) -> rh.Brep:
