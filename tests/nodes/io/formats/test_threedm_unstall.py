@@ -7,7 +7,9 @@ Rulings 6-7 are not the cone's generators and rail A is at rest at ruling 6: no
 developable pairing joins them, so that interval goes out as two cones on its diagonal
 (a_6, b_7). The cone over rail A from there had a line across where both its rails stood
 still (the diagonal): Rhino found its Jacobian degenerate there and turned its normals by
-0.041 rad between the line's two ends (the double bump's strips: up to 2.75 rad). The
+0.041 rad between the line's two ends (the double bump's strips: up to 2.75 rad); with
+rail B brought down to 8 mm of rail A at ruling 7 (a short ruling beside the fan, as on the
+double bump), 2.5e-3 rad. The
 normals are read with rhino3dm at 1 % in from each end of every isoparametric line across
 the face, 1,001 lines and every knot of the face (the joints of its pieces).
 """
@@ -17,6 +19,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+import pytest
 import rhino3dm as rh
 
 from tests.support.node_helpers import tree
@@ -77,10 +80,32 @@ def test_a_rail_that_stands_still_is_run_from_its_stall_at_a_pace_it_moves_at():
     assert np.linalg.norm(slope - quotient) <= 1e-6 * np.linalg.norm(slope)
 
 
-def test_a_cone_pair_over_a_rail_that_stands_still_has_normals_that_agree_in_rhino(tmp_path):
+def descending_rail() -> ParametricCurve:
+    """A curve over rail A's arc (radius 4) that comes down to 4 mm above it at t = 0.536
+    (the angle of rail A at s = 0.7): a short ruling there."""
+
+    def point(t):
+        t = np.asarray(t, dtype=float)
+        angle = 1.5 * (0.1 + 0.8 * t)
+        return np.column_stack([4.0 * np.cos(angle), 4.0 * np.sin(angle), 0.004 + 1.5 * (t - 0.536) ** 2])
+
+    def first(t):
+        t = np.asarray(t, dtype=float)
+        angle = 1.5 * (0.1 + 0.8 * t)
+        return np.column_stack([-4.8 * np.sin(angle), 4.8 * np.cos(angle), 3.0 * (t - 0.536)])
+
+    return ParametricCurve(point, (0.0, 1.0), [first])
+
+
+@pytest.mark.parametrize(("rail_b", "t"), [
+    # 1.2e-12 rad (0.041 rad before, at the diagonal of the cones after the fan)
+    (HIGH, [0.0, 0.1, 0.2, 0.22, 0.3, 0.38, 0.42, 0.6, 0.7, 0.8, 1.0]),
+    # ruling 7 is 8 mm long, beside the fan: 1.4e-11 rad (2.5e-3 before)
+    (descending_rail(), [0.0, 0.05, 0.1, 0.12, 0.15, 0.18, 0.536, 0.6, 0.7, 0.8, 1.0]),
+])
+def test_a_cone_pair_over_a_rail_that_stands_still_has_normals_that_agree_in_rhino(tmp_path, rail_b, t):
     s = [0.0, 0.1, 0.2, 0.3, 0.3, 0.3, 0.7, 0.8, 0.9, 0.95, 1.0]
-    t = [0.0, 0.1, 0.2, 0.22, 0.3, 0.38, 0.42, 0.6, 0.7, 0.8, 1.0]
-    strip = ruled_between(stalling_rail(), np.array(s), HIGH, np.array(t))
+    strip = ruled_between(stalling_rail(), np.array(s), rail_b, np.array(t))
     threedm.write_3dm(tmp_path / "s.3dm", threedm.tree_entries(tree({(0,): [strip]}), "S", "Strip"))
     objects = list(rh.File3dm.Read(str(tmp_path / "s.3dm")).Objects)
     kinds = [(o.Attributes.GetUserString("TorsalFace"), o.Attributes.GetUserString("TorsalRulings"))
@@ -88,7 +113,6 @@ def test_a_cone_pair_over_a_rail_that_stands_still_has_normals_that_agree_in_rhi
     assert kinds == [("torsal", "1-4"), ("fan", "4-6"), ("torsal", "6-11")]
     for obj in objects:
         if obj.Attributes.GetUserString("TorsalFace") == "torsal":
-            # 1.2e-12 rad (0.041 rad at the diagonal of the cones after the fan before)
             assert normal_turns(obj.Geometry.Faces[0].UnderlyingSurface()) <= 1e-6
     # the faces still share their rulings' ends (Rhino's Join makes them one)
     size = float(np.ptp(strip.ruling_lines.reshape(-1, 3), axis=0).max())
