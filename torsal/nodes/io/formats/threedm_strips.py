@@ -33,7 +33,8 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   a square root) and the strip's own pairing twists there, the interval goes out as two
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
-  an even pace along the rail's curve between the two rulings; where one of the two
+  an even pace along the rail's curve between the two rulings (from an end where that
+  curve stands still, at a square root's pace: :mod:`.threedm_unstall`); where one of the two
   rulings is a point and a rail runs from it straight (within FIT), one cone from that
   rail's other end over the other rail instead, a face of its own (:func:`_tip_cone`);
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
@@ -68,6 +69,7 @@ from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
 from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
+from torsal.nodes.io.formats.threedm_unstall import Unstalled, unstalled
 from torsal.nodes.io.formats.threedm_untwist import untwisted
 
 #: How close the fitted rails stay to the strip's own, relative to its size.
@@ -293,7 +295,7 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     the face's normals are constant along its lines; its edges still run on the rails."""
     (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
-    paced_a, paced_b = Paced(strip.curve_a, span), Paced(strip.curve_b, span)
+    paced_a, paced_b = (unstalled(Paced(rail, span), span) for rail in (strip.curve_a, strip.curve_b))
     if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
         middle = np.array([a_hi, b_lo])
         rails = [Rails(paced_a, AtRest(b_lo)), Rails(AtRest(a_hi), paced_b)]
@@ -302,6 +304,10 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
         rails = [Rails(AtRest(a_lo), paced_b), Rails(paced_a, AtRest(b_hi))]
     fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
             for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
+    # each apex exactly (the least squares leave its control points a rounding apart)
+    fits = [(d, t, _apex_exactly(c, int(isinstance(pair.curve_b, AtRest)), rest.point))
+            for (d, t, c), pair in zip(fits, rails, strict=True)
+            for rest in [pair.curve_b if isinstance(pair.curve_b, AtRest) else pair.curve_a]]
     # one face: the first cone on the first half of the span, the second on the other half,
     # joined at the diagonal (a triple knot: the face folds there)
     lo, hi = float(span[0]), float(span[1])
@@ -342,7 +348,7 @@ def _tip_cone(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, siz
     apex = lines[k + 1 if first else k, straight]
     ends = lines[k:k + 2].copy()
     ends[:, straight] = apex
-    moving = Paced(strip.curve_b if straight == 0 else strip.curve_a, span)
+    moving = unstalled(Paced(strip.curve_b if straight == 0 else strip.curve_a, span), span)
     rails = Rails(AtRest(apex), moving) if straight == 0 else Rails(moving, AtRest(apex))
     deviation, knots, spline = _fit(rails, span, ends, FIT * size, lambda x: x, np.empty(0))  # type: ignore[arg-type]
     spline = _apex_exactly(spline, straight, apex)
@@ -627,7 +633,7 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
     near = 1e-6 * (hi - lo)
     found = []
     for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
-        if isinstance(rail, Paced):
+        if isinstance(rail, (Paced, Unstalled)):
             marks = rail.breaks()
         elif isinstance(rail, CurveRail):
             marks = rail._breakpoints()  # the rulings, and where it crosses its curve's breaks
