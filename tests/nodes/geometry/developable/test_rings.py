@@ -107,3 +107,19 @@ def test_a_deviation_growing_slower_than_the_square_law_is_followed_by_its_secan
     found = _next_width(0.1, root(0.1) ** 2, tol, 0.1, root(0.1) ** 2, 2.0, np.nan, 1.0, before)
     assert found == pytest.approx((np.sqrt(AIM * tol) - 0.1) / 0.25, rel=1e-12)
     assert found > 0.1 * np.sqrt(AIM * tol) / root(0.1)
+
+
+def test_a_ring_is_the_patchs_parameter_line_as_one_smooth_curve_made_once_per_level():
+    patch = _patch()
+    ring = patch.ring(0.5)
+    assert patch.ring(0.5) is ring  # strips on both sides share the one curve
+    s = np.linspace(0.0, 1.0, 997)  # between the ring's samples
+    theta = -0.2 + s * (np.pi + 0.4)
+    circle = 3.0 * np.column_stack([np.cos(theta), np.sin(theta)])  # the bump's parallel, radius 3
+    points, tangent = ring.derivatives(s, 1)
+    assert np.abs(points[:, :2] - circle).max() <= 1e-7  # (the traced rings' own accuracy)
+    assert np.abs(points[:, 2] - DESIGN.height(points[:, 0], points[:, 1])).max() <= 1e-9
+    along = (np.pi + 0.4) * np.column_stack([-circle[:, 1], circle[:, 0]])
+    assert np.abs(tangent[:, :2] - along).max() <= 1e-6 * 3.0 * (np.pi + 0.4)
+    assert np.abs(points - patch.point_at(s, np.full(len(s), 0.5))).max() <= 1e-9 * 12.0
+    assert ring._breakpoints().tolist() == [0.0, 1.0]

@@ -25,9 +25,10 @@ from collections.abc import Callable
 import numpy as np
 import shapely
 from numpy.typing import ArrayLike
-from scipy.interpolate import RectBivariateSpline
+from scipy.interpolate import BSpline, RectBivariateSpline, make_interp_spline
 
 from ..array_types import FloatArray
+from ..curve_base import Curve
 from ..curve_rail import ruled_between
 from ..surface_base import Surface, broadcast_uv
 from ..watch import watch_check
@@ -44,6 +45,39 @@ from .trimmed import cut_strip
 SETTLE = 0.03
 #: ... and with both known, a trial lies at least this share of the gap from either.
 INSIDE = 0.2
+
+
+#: Points of a ring (about four per traced angle of :class:`RingPatch`) that its quintic
+#: passes through (:class:`Ring`).
+RING_SAMPLES = 641
+
+
+class Ring(Curve):
+    """A ring of a :class:`RingPatch` as the quintic B-spline through :data:`RING_SAMPLES`
+    of its points (scipy's ``make_interp_spline``): within 1e-9 of the patch's line where
+    it runs over the design (3e-6 of a 20 m design where it runs over the design's
+    continuation, whose derivatives turn at the design's edge), C⁴, so one smooth span to
+    the tools that sample spans. The march (:func:`march_rings`) evaluates its rings
+    thousands of times, a few points at a time; through the patch each call costs the
+    spline of radii's six derivatives, the design's and the chain rule."""
+
+    def __init__(self, spline: BSpline) -> None:
+        self.spline = spline
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        return [self.spline(t, nu=k) for k in range(order + 1)]
+
+
+class _Rings:
+    """A patch's rings as boundaries (as :class:`~.guided.IsoBoundaries` of the patch along
+    u), each level's :meth:`RingPatch.ring`."""
+
+    def __init__(self, patch: RingPatch) -> None:
+        self.patch = patch
+
+    def at(self, level: float) -> Curve:
+        return self.patch.ring(level)
 
 
 class RingPatch(Surface):
@@ -63,6 +97,18 @@ class RingPatch(Surface):
         radii = trace_rings(design, self.centre, seeds, theta, family, self.scale, start)
         levels = (seeds - seeds[0]) / (seeds[-1] - seeds[0])
         self.radius = RectBivariateSpline(levels, theta, radii, kx=3, ky=3)
+        self._rings: dict[float, Ring] = {}
+
+    def ring(self, level: float) -> Ring:
+        """The ring at ``level`` (the parameter line along u) as a :class:`Ring`, made once
+        per level: strips on both sides of it share the one curve."""
+        level = float(level)
+        found = self._rings.get(level)
+        if found is None:
+            t = np.linspace(0.0, 1.0, RING_SAMPLES)
+            points = self.point_at(t, np.full(len(t), level))
+            found = self._rings[level] = Ring(make_interp_spline(t, points, k=5))
+        return found
 
     def __repr__(self) -> str:
         return f"RingPatch({self.design!r}, centre={self.centre.tolist()})"
@@ -151,7 +197,7 @@ def region_corners(design: Surface, region: shapely.Polygon, scale: ArrayLike, m
     return design.point_at(uv[:, 0], uv[:, 1])
 
 
-def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
+def _pieces(design: Surface, boundaries: _Rings | IsoBoundaries, lo: float, hi: float,
             inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
             warp_tolerance: float, corners: FloatArray | None = None) -> list[Strip] | None:
     """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
@@ -222,7 +268,7 @@ def march_rings(
     ``corners``: the region's corners (:func:`region_corners`), which the cut keeps.
     Returns the pieces and the largest deviation of a strip that had to be kept beyond the
     tolerance (0 when none)."""
-    boundaries = IsoBoundaries(patch, "u")
+    boundaries = _Rings(patch)
     out: list[Strip] = []
     lo, width, worst = 0.0, first_width, 0.0
     for _ in range(max_strips):
