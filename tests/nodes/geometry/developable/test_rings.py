@@ -68,11 +68,12 @@ def test_region_signed_distance_is_the_plan_distance_with_a_margin_inside_the_de
     region = shapely.box(0.0, 0.0, 5.0, 4.0)  # the left half: its edge x = 5 lies inside the design
     inside = region_inside(flat, region, [10.0, 4.0], margin=0.1)
     points = np.array([[2.0, 2.0, 0.3], [5.05, 2.0, 0.0], [5.3, 2.0, 0.0], [-0.02, 2.0, 0.0],
-                       [2.0, 4.5, 0.0]])
+                       [2.0, 4.5, 0.0], [-0.3, -0.4, 0.0]])
     found = inside(points)
     # (2, 2): 2 from the design's edge (no margin there), 2.1 from the region's with it; x = 5.05 and
-    # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's
-    assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5], atol=1e-9)
+    # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's;
+    # (-0.3, -0.4): past its corner, 0.5 from it
+    assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5, -0.5], atol=1e-9)
 
 
 def test_the_march_closes_in_on_the_square_law_width_from_both_sides_of_the_bracket():

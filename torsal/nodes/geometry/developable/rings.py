@@ -165,7 +165,11 @@ def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, ma
     not matter); a point beyond the design's edge projects onto the edge, and the part of
     its offset along the design there is added (the first fundamental form solved)."""
     scale = np.asarray(scale, dtype=float)
-    outline = shapely.box(0.0, 0.0, *scale)
+
+    def signed_box(plan: FloatArray) -> FloatArray:  # the design's plan, a rectangle: closed form
+        out = np.maximum(-plan, plan - scale)  # how far past the nearer edge, per axis
+        most = out.max(axis=1)
+        return np.where(most <= 0.0, -most, -np.hypot(*np.maximum(out, 0.0).T))
 
     def signed(polygon: shapely.Polygon, plan: FloatArray) -> FloatArray:
         distance = shapely.distance(polygon.boundary, shapely.points(plan))
@@ -179,7 +183,7 @@ def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, ma
         a, b = np.einsum("ij,ij->i", su, off), np.einsum("ij,ij->i", sv, off)
         det = e * g - f * f
         plan = (found + np.column_stack([(g * a - f * b) / det, (e * b - f * a) / det])) * scale
-        return np.minimum(signed(region, plan) + margin, signed(outline, plan))
+        return np.minimum(signed(region, plan) + margin, signed_box(plan))
 
     return inside
 
