@@ -79,7 +79,7 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
         baseline = even_strips(surface, tol, limit=128)
         base_cpu = time.process_time() - base_cpu
         if result.family == "rings":
-            rings_cpu += (cpu, base_cpu)
+            rings_cpu.append((cpu, base_cpu))
         fans = sum(int(s.result.fan.sum()) for s in result.strips)
         rulings = sum(len(s.result.fan) for s in result.strips)
         independent = _independent(name, surface, result.strips)
