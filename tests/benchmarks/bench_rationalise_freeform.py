@@ -18,8 +18,10 @@ direction at y = ±3, where f_yy changes sign and f_xy does not vanish, and so d
 line y = const near the bumps' inflection circles: no family of parameter lines avoids
 it) is rationalised with strips that ring its bumps along lines of curvature at 1, 2 and
 5 cm, within the tolerance, covering the edge and ≤ 10 % in fans; it does not yet meet the
-strip count at 2 and 5 cm (38 and 16 against the baseline's 26 and 14) nor the 60 CPU-s at
-1 and 2 cm (117 and 120 CPU-s, 59 at 5 cm, load 7–12; see docs/geometry.md).
+strip count at 2 and 5 cm (34 and 16 against the baseline's 26 and 14) nor the 60 CPU-s at
+1 cm (70 CPU-s at load 9–12; 55 at 2 cm, 41 at 5 cm; see docs/geometry.md). Where the
+rings are kept, their solves' CPU is also asserted against the isocurve baseline's
+searches in the same run (:data:`RINGS_RATIO`).
 """
 
 from __future__ import annotations
@@ -38,6 +40,11 @@ from torsal.nodes.geometry.developable.rationalise import creased_area, fan_area
 TOLERANCES = (0.01, 0.02, 0.05)
 #: The issue's bar for one solve on this machine, s.
 SOLVE_LIMIT = 60.0
+#: Where the ring layout is kept (the double bump), its three solves' CPU against the
+#: isocurve baseline's three searches (``even_strips``, run beside them), at most: measured
+#: 3.4 (166 against 49.5 CPU-s at load 6-12; before the march's search and rings were made
+#: faster it was about 6).
+RINGS_RATIO = 4.0
 #: The issue's bar for the strips' area in fans (flat triangles and end cones), a share.
 FAN_LIMIT = 0.10
 
@@ -62,12 +69,17 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
     unit = DESIGNS[name].unit if name in DESIGNS else 1.0
     rows: list[str] = []
     failed: list[str] = []
+    rings_cpu: list[tuple[float, float]] = []  # the ring layout's solves and the baseline's searches
     for tolerance in TOLERANCES:
         tol = tolerance * unit
         start, cpu = time.perf_counter(), time.process_time()
         result = rationalise_freeform(surface, tol, 64, min_width=0.2 * unit)
         seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
+        base_cpu = time.process_time()
         baseline = even_strips(surface, tol, limit=128)
+        base_cpu = time.process_time() - base_cpu
+        if result.family == "rings":
+            rings_cpu.append((cpu, base_cpu))
         fans = sum(int(s.result.fan.sum()) for s in result.strips)
         rulings = sum(len(s.result.fan) for s in result.strips)
         independent = _independent(name, surface, result.strips)
@@ -76,7 +88,7 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
             f"{result.deviation / unit * 100:.3f} cm | {independent / unit * 100:.3f} cm | "
             f"{result.coverage / unit * 100:.3f} cm | {rulings - fans} / {fans} | "
             f"{fan_area(result.strips):.3f} | {creased_area(result.strips):.3f} | "
-            f"{seconds:.1f} s ({cpu:.1f} CPU-s) | {baseline} |"
+            f"{seconds:.1f} s ({cpu:.1f} CPU-s) | {baseline} ({base_cpu:.1f} CPU-s to find) |"
         )
         print(rows[-1], flush=True)
         checks = {"independent deviation within the tolerance": independent <= tol * 1.0001,
@@ -86,5 +98,10 @@ def test_freeform_designs_within_tolerance_and_no_more_strips_than_isocurves(nam
                   f"solve within {SOLVE_LIMIT:g} CPU-s": cpu <= SOLVE_LIMIT,
                   f"fan area within {FAN_LIMIT:g} of the strips'": fan_area(result.strips) <= FAN_LIMIT}
         failed += [f"{100 * tolerance:g} cm: {what}" for what, ok in checks.items() if not ok]
+    if rings_cpu:  # the rings' solves against the isocurve baseline's searches, same run
+        ratio = sum(c for c, _ in rings_cpu) / max(sum(b for _, b in rings_cpu), 1e-9)
+        print(f"  ring layout: {ratio:.2f} times the baseline's CPU", flush=True)
+        if ratio > RINGS_RATIO:
+            failed.append(f"ring layout {ratio:.2f} times the baseline's CPU (at most {RINGS_RATIO:g})")
     # every tolerance is solved and printed before the checks fail, so the table is whole
     assert not failed, failed

@@ -6,10 +6,12 @@ signed distance is the plan distance to it, none past the design's own edge."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import shapely
 
 from tests.support.freeform_designs import Design
-from torsal.nodes.geometry.developable.rings import RingPatch, region_inside
+from torsal.nodes.geometry.developable.rationalise import AIM
+from torsal.nodes.geometry.developable.rings import INSIDE, SETTLE, RingPatch, _next_width, region_inside
 
 
 def _bump(x, y):
@@ -66,8 +68,59 @@ def test_region_signed_distance_is_the_plan_distance_with_a_margin_inside_the_de
     region = shapely.box(0.0, 0.0, 5.0, 4.0)  # the left half: its edge x = 5 lies inside the design
     inside = region_inside(flat, region, [10.0, 4.0], margin=0.1)
     points = np.array([[2.0, 2.0, 0.3], [5.05, 2.0, 0.0], [5.3, 2.0, 0.0], [-0.02, 2.0, 0.0],
-                       [2.0, 4.5, 0.0]])
+                       [2.0, 4.5, 0.0], [-0.3, -0.4, 0.0]])
     found = inside(points)
     # (2, 2): 2 from the design's edge (no margin there), 2.1 from the region's with it; x = 5.05 and
-    # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's
-    assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5], atol=1e-9)
+    # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's;
+    # (-0.3, -0.4): past its corner, 0.5 from it
+    assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5, -0.5], atol=1e-9)
+
+
+def test_the_march_closes_in_on_the_square_law_width_from_both_sides_of_the_bracket():
+    # deviation k·w² (the square law): the secant of √deviation through a width within and
+    # one too wide lands on the width at AIM of the tolerance exactly
+    k, tol = 2.0, 0.02
+    w_in, w_out = 0.08, 0.11
+    best = np.sqrt(AIM * tol / k)
+    found = _next_width(w_out, k * w_out**2, tol, w_in, k * w_in**2, w_out, k * w_out**2, 1.0)
+    assert found == pytest.approx(best, rel=1e-12)
+
+
+def test_the_march_stops_where_the_deviation_jumps_rather_than_creep_up_to_it():
+    # within at 0.25 (half the tolerance), beyond a hair wider: the deviation jumps between
+    # them (a cut that gains a piece); no width between is worth a trial once the gap is SETTLE
+    tol = 0.02
+    assert _next_width(0.25, 0.01, tol, 0.25, 0.01, 0.25 * (1 + 0.5 * SETTLE), 0.03, 1.0) is None
+    # a wider gap: the next trial keeps INSIDE of it from either end
+    found = _next_width(0.30, 0.03, tol, 0.25, 0.0199, 0.30, 0.03, 1.0)
+    assert 0.25 + INSIDE * 0.05 - 1e-12 <= found <= 0.30 - INSIDE * 0.05 + 1e-12
+
+
+def test_a_deviation_growing_slower_than_the_square_law_is_followed_by_its_secant():
+    # √deviation linear in w with an offset (a cut edge's share): from 0.09 and 0.1 the
+    # secant reaches √(AIM·tol) where the line does, farther than the square law from 0.1
+    tol = 0.02
+
+    def root(w):
+        return 0.1 + 0.25 * w
+
+    before = (0.09, root(0.09) ** 2)
+    found = _next_width(0.1, root(0.1) ** 2, tol, 0.1, root(0.1) ** 2, 2.0, np.nan, 1.0, before)
+    assert found == pytest.approx((np.sqrt(AIM * tol) - 0.1) / 0.25, rel=1e-12)
+    assert found > 0.1 * np.sqrt(AIM * tol) / root(0.1)
+
+
+def test_a_ring_is_the_patchs_parameter_line_as_one_smooth_curve_made_once_per_level():
+    patch = _patch()
+    ring = patch.ring(0.5)
+    assert patch.ring(0.5) is ring  # strips on both sides share the one curve
+    s = np.linspace(0.0, 1.0, 997)  # between the ring's samples
+    theta = -0.2 + s * (np.pi + 0.4)
+    circle = 3.0 * np.column_stack([np.cos(theta), np.sin(theta)])  # the bump's parallel, radius 3
+    points, tangent = ring.derivatives(s, 1)
+    assert np.abs(points[:, :2] - circle).max() <= 1e-7  # (the traced rings' own accuracy)
+    assert np.abs(points[:, 2] - DESIGN.height(points[:, 0], points[:, 1])).max() <= 1e-9
+    along = (np.pi + 0.4) * np.column_stack([-circle[:, 1], circle[:, 0]])
+    assert np.abs(tangent[:, :2] - along).max() <= 1e-6 * 3.0 * (np.pi + 0.4)
+    assert np.abs(points - patch.point_at(s, np.full(len(s), 0.5))).max() <= 1e-9 * 12.0
+    assert ring._breakpoints().tolist() == [0.0, 1.0]

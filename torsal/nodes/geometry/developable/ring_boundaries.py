@@ -24,7 +24,6 @@ import numpy as np
 
 from ..array_types import FloatArray
 from ..curve_base import Curve
-from ..surface_base import IsoCurve
 from ..vectors import angle_between
 from .rationalise import Strip
 from .rings import RingPatch
@@ -51,7 +50,7 @@ def ring_inside(patch: RingPatch, level: float, *insides: Inside) -> Curve:
     distances of points, ≥ 0 inside) that holds part of it is ≥ 0: its longest stretch
     inside, the ends placed where the distance sampled at :data:`SAMPLES` points crosses 0
     (linearly between samples); the whole ring where none holds any of it."""
-    ring = IsoCurve(patch, "u", level)
+    ring = patch.ring(level)
     t = np.linspace(0.0, 1.0, SAMPLES)
     points = ring.point_at(t)
     for inside in insides:

@@ -25,9 +25,10 @@ from collections.abc import Callable
 import numpy as np
 import shapely
 from numpy.typing import ArrayLike
-from scipy.interpolate import RectBivariateSpline
+from scipy.interpolate import BSpline, RectBivariateSpline, make_interp_spline
 
 from ..array_types import FloatArray
+from ..curve_base import Curve
 from ..curve_rail import ruled_between
 from ..surface_base import Surface, broadcast_uv
 from ..watch import watch_check
@@ -38,6 +39,45 @@ from .rationalise import AIM, CLOSE, TRIALS, Strip
 from .ruling import ruling_developable
 from .trim_region import sharp_corners
 from .trimmed import cut_strip
+
+#: A strip's trials stop once the widest width within the tolerance and the narrowest too
+#: wide are this share of the former apart ...
+SETTLE = 0.03
+#: ... and with both known, a trial lies at least this share of the gap from either.
+INSIDE = 0.2
+
+
+#: Points of a ring (about four per traced angle of :class:`RingPatch`) that its quintic
+#: passes through (:class:`Ring`).
+RING_SAMPLES = 641
+
+
+class Ring(Curve):
+    """A ring of a :class:`RingPatch` as the quintic B-spline through :data:`RING_SAMPLES`
+    of its points (scipy's ``make_interp_spline``): within 1e-9 of the patch's line where
+    it runs over the design (3e-6 of a 20 m design where it runs over the design's
+    continuation, whose derivatives turn at the design's edge), C⁴, so one smooth span to
+    the tools that sample spans. The march (:func:`march_rings`) evaluates its rings
+    thousands of times, a few points at a time; through the patch each call costs the
+    spline of radii's six derivatives, the design's and the chain rule."""
+
+    def __init__(self, spline: BSpline) -> None:
+        self.spline = spline
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        return [self.spline(t, nu=k) for k in range(order + 1)]
+
+
+class _Rings:
+    """A patch's rings as boundaries (as :class:`~.guided.IsoBoundaries` of the patch along
+    u), each level's :meth:`RingPatch.ring`."""
+
+    def __init__(self, patch: RingPatch) -> None:
+        self.patch = patch
+
+    def at(self, level: float) -> Curve:
+        return self.patch.ring(level)
 
 
 class RingPatch(Surface):
@@ -57,6 +97,18 @@ class RingPatch(Surface):
         radii = trace_rings(design, self.centre, seeds, theta, family, self.scale, start)
         levels = (seeds - seeds[0]) / (seeds[-1] - seeds[0])
         self.radius = RectBivariateSpline(levels, theta, radii, kx=3, ky=3)
+        self._rings: dict[float, Ring] = {}
+
+    def ring(self, level: float) -> Ring:
+        """The ring at ``level`` (the parameter line along u) as a :class:`Ring`, made once
+        per level: strips on both sides of it share the one curve."""
+        level = float(level)
+        found = self._rings.get(level)
+        if found is None:
+            t = np.linspace(0.0, 1.0, RING_SAMPLES)
+            points = self.point_at(t, np.full(len(t), level))
+            found = self._rings[level] = Ring(make_interp_spline(t, points, k=5))
+        return found
 
     def __repr__(self) -> str:
         return f"RingPatch({self.design!r}, centre={self.centre.tolist()})"
@@ -113,7 +165,11 @@ def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, ma
     not matter); a point beyond the design's edge projects onto the edge, and the part of
     its offset along the design there is added (the first fundamental form solved)."""
     scale = np.asarray(scale, dtype=float)
-    outline = shapely.box(0.0, 0.0, *scale)
+
+    def signed_box(plan: FloatArray) -> FloatArray:  # the design's plan, a rectangle: closed form
+        out = np.maximum(-plan, plan - scale)  # how far past the nearer edge, per axis
+        most = out.max(axis=1)
+        return np.where(most <= 0.0, -most, -np.hypot(*np.maximum(out, 0.0).T))
 
     def signed(polygon: shapely.Polygon, plan: FloatArray) -> FloatArray:
         distance = shapely.distance(polygon.boundary, shapely.points(plan))
@@ -127,7 +183,7 @@ def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, ma
         a, b = np.einsum("ij,ij->i", su, off), np.einsum("ij,ij->i", sv, off)
         det = e * g - f * f
         plan = (found + np.column_stack([(g * a - f * b) / det, (e * b - f * a) / det])) * scale
-        return np.minimum(signed(region, plan) + margin, signed(outline, plan))
+        return np.minimum(signed(region, plan) + margin, signed_box(plan))
 
     return inside
 
@@ -145,7 +201,7 @@ def region_corners(design: Surface, region: shapely.Polygon, scale: ArrayLike, m
     return design.point_at(uv[:, 0], uv[:, 1])
 
 
-def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
+def _pieces(design: Surface, boundaries: _Rings | IsoBoundaries, lo: float, hi: float,
             inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
             warp_tolerance: float, corners: FloatArray | None = None) -> list[Strip] | None:
     """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
@@ -166,6 +222,43 @@ def _pieces(design: Surface, boundaries: IsoBoundaries, lo: float, hi: float,
     return pieces
 
 
+def _next_width(w: float, deviation: float, tolerance: float, floor: float | None, floor_dev: float,
+                bad: float, bad_dev: float, room: float, before: tuple[float, float] | None = None
+                ) -> float | None:
+    """The next trial width of :func:`march_rings` after width ``w`` gave ``deviation`` (NaN:
+    no strip), or None when the trials are done: between the widest width within the
+    tolerance (``floor``, its ``floor_dev``; None: none yet) and the narrowest too wide
+    (``bad``, its ``bad_dev``; 2: none yet), ``room`` the most there is. With both known,
+    the square law through both (a secant of √deviation), kept :data:`INSIDE` of the gap
+    from either end, and done when the gap is within :data:`SETTLE` of the floor (a
+    deviation that jumps with the width, a cut that gains or loses a piece, has no width at
+    :data:`AIM` of the tolerance to close in on). With one side known, the square law from
+    the last trial, or where the trial ``before`` it (its width and deviation) shows the
+    deviation growing more slowly than that (a cut strip's deviation set by its cut edge,
+    not its width), the secant of √deviation through the two, at most twice ``w``."""
+    low = floor if floor is not None else 0.0
+    top = min(bad, room)
+    target = np.sqrt(AIM * tolerance)
+    if floor is not None and bad <= room:
+        gap = bad - low
+        if gap <= SETTLE * low:
+            return None
+        a, b = np.sqrt(floor_dev), np.sqrt(bad_dev)
+        share = (target - a) / (b - a) if np.isfinite(b) and b > a else 0.5
+        return low + gap * float(np.clip(share, INSIDE, 1.0 - INSIDE))
+    if not np.isfinite(deviation):
+        return 0.5 * (low + top)
+    ratio = np.sqrt(AIM * tolerance / deviation) if deviation > 0.0 else 2.0
+    w_new = w * float(np.clip(ratio, 0.25, 2.0))
+    if before is not None and np.isfinite(before[1]) and deviation < AIM * tolerance and w > before[0]:
+        slope = (np.sqrt(deviation) - np.sqrt(before[1])) / (w - before[0])
+        if slope > 0.0:
+            w_new = max(w_new, min(w + (target - np.sqrt(deviation)) / slope, 2.0 * w))
+    if not low < w_new < bad:
+        w_new = 0.5 * (low + top)
+    return min(w_new, room)
+
+
 def march_rings(
     design: Surface, patch: RingPatch, inside: Callable[[FloatArray], FloatArray], tolerance: float,
     segments: int = 24, warp_tolerance: float = 1e-7, max_strips: int = 64, first_width: float = 0.05,
@@ -174,44 +267,40 @@ def march_rings(
     """Strips between rings of ``patch`` from its level 0 to 1, each as wide as the
     tolerance allows once cut to the region (``inside``): a few trials per strip, the width
     by the square law (deviation ∝ width²) inside the bracket of widths found too wide and
-    within, as :func:`~.rationalise._march`, but each trial's deviation is its cut pieces'
+    within (:func:`_next_width`), but each trial's deviation is its cut pieces'
     (the rings run on outside the region, where they are no lines of curvature of it).
     ``corners``: the region's corners (:func:`region_corners`), which the cut keeps.
     Returns the pieces and the largest deviation of a strip that had to be kept beyond the
     tolerance (0 when none)."""
-    boundaries = IsoBoundaries(patch, "u")
+    boundaries = _Rings(patch)
     out: list[Strip] = []
     lo, width, worst = 0.0, first_width, 0.0
     for _ in range(max_strips):
         if lo >= 1.0:
             break
         good: tuple[float, list[Strip]] | None = None
-        bad = 2.0
+        good_dev, bad, bad_dev = 0.0, 2.0, np.nan
         w = min(width, 1.0 - lo)
         tried: tuple[float, list[Strip], float] | None = None
+        before: tuple[float, float] | None = None
         for _trial in range(TRIALS * 2):
             hi = min(1.0, lo + w)
             pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance, corners)
-            if pieces is None:
-                bad = min(bad, w)
-                w = 0.5 * ((good[0] - lo if good else 0.0) + bad)
-                continue
-            deviation = max((p.deviation for p in pieces), default=0.0)
-            tried = (hi, pieces, deviation) if tried is None or w < tried[0] - lo else tried
-            if deviation <= tolerance:
-                good = (hi, pieces) if good is None or hi > good[0] else good
+            deviation = np.nan if pieces is None else max((p.deviation for p in pieces), default=0.0)
+            if pieces is not None:
+                tried = (hi, pieces, deviation) if tried is None or w < tried[0] - lo else tried
+            if pieces is not None and deviation <= tolerance:
+                if good is None or hi > good[0]:
+                    good, good_dev = (hi, pieces), deviation
                 if hi >= 1.0 or deviation >= CLOSE * tolerance:
                     break
-            else:
-                bad = min(bad, w)
-            ratio = np.sqrt(AIM * tolerance / deviation) if deviation > 0.0 else 2.0
-            w_new = w * float(np.clip(ratio, 0.25, 2.0))
-            floor = (good[0] - lo) if good is not None else 0.0
-            if not floor < w_new < bad:
-                w_new = 0.5 * (floor + min(bad, 1.0 - lo))
-            w = min(w_new, 1.0 - lo)
-            if w <= 1e-6:
+            elif w < bad:
+                bad, bad_dev = w, deviation
+            following = _next_width(w, deviation, tolerance, (good[0] - lo) if good else None, good_dev, bad,
+                                    bad_dev, 1.0 - lo, before)
+            if following is None or following <= 1e-6:
                 break
+            before, w = (w, deviation), following
         if good is None:  # the narrowest tried, beyond the tolerance (said by its deviation)
             if tried is None:
                 raise ValueError("no strip between the rings could be made")
