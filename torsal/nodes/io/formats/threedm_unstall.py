@@ -74,9 +74,7 @@ class Unstalled(Curve):
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
         t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        at = self._map(t)[0]
-        values = self.rail.derivatives(at, 1)
-        out = [values[0]]
+        out = [self.rail.point_at(self._map(t)[0])]
         if order >= 1:
             # at a stalled end itself (0 · ∞): the limit, the rail's second derivative
             # times h·h' (½ for a square root), taken just inside instead
@@ -85,7 +83,7 @@ class Unstalled(Curve):
             slopes = self.rail.derivatives(at_in, 1)[1] * dh_in[:, None]
             out.append(slopes)
         for _ in range(2, order + 1):
-            out.append(np.full_like(values[0], np.nan))
+            out.append(np.full_like(out[0], np.nan))
         return out
 
 
