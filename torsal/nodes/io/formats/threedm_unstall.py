@@ -73,6 +73,8 @@ class Unstalled(Curve):
         return self.lo + (self.hi - self.lo) * x
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        if order > 1:  # (a √ pace has no bounded second derivative at a stalled end)
+            raise ValueError("an unstalled rail gives its points and first derivatives only")
         t = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
         out = [self.rail.point_at(self._map(t)[0])]
         if order >= 1:
@@ -82,8 +84,6 @@ class Unstalled(Curve):
             at_in, dh_in = self._map(inside)
             slopes = self.rail.derivatives(at_in, 1)[1] * dh_in[:, None]
             out.append(slopes)
-        for _ in range(2, order + 1):
-            out.append(np.full_like(out[0], np.nan))
         return out
 
 
