@@ -6,19 +6,21 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
 - each run of torsal rulings (consecutive rulings that do not share an end) is one ruled
   NURBS face, degree 1 across: its two rails are the strip's own rails over that run,
   fitted *together* (one knot vector, parameter u of the strip) by least squares on
-  scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise cubic
-  between them, C1 at them), a knot where a rail crosses a knot of the design it runs on
-  (or another break of its curve), then knots inserted where the fit is worst until both
-  rails are within :data:`FIT` of the strip's size — so the face's isocurve at a ruling's
-  u is that ruling (to the fit), and the face has as few control points as that takes
-  (not one per sample). Its end control points are the end rulings' ends and the next
-  ones give the rails' own end tangents (the least squares fit the others given those),
-  so a rail that stands still next to a fan stands still in the face too and the face's
-  normals there are the strip's. Where the strip's own pairing of the rails between
-  rulings twists (more than :data:`DEVELOPABLE`), the face pairs the rails developably
-  instead: both rails at an even pace along their curves between the rulings
-  (:class:`~.threedm_rails.Paced`), each point of rail A with its developable partner on
-  rail B (:mod:`torsal.nodes.geometry.torsal_pairing`, smoothed:
+  scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise
+  cubic between them, C1 at them), a knot where a rail crosses a knot of the design it
+  runs on (or another break of its curve), then knots inserted where the fit is worst
+  until both rails are within :data:`FIT` of the strip's size, and as few control points
+  as that takes (not one per sample). The face's isocurve at each ruling's u is that
+  ruling and its rails' tangents there are the strip's own, exactly
+  (:mod:`.threedm_held`: the two control points at each double knot, the two at each
+  end; the least squares fit the others given those), so the face's normals at the
+  node's torsal rulings are the strip's; a rail that stands still next to a fan stands
+  still in the face too, its second derivative there held as well (the face's normal at
+  that corner). Where the strip's own pairing of the rails between rulings twists (more
+  than :data:`DEVELOPABLE`), the face pairs the rails developably instead: both rails at
+  an even pace along their curves between the rulings (:class:`~.threedm_rails.Paced`),
+  each point of rail A with its developable partner on rail B
+  (:mod:`torsal.nodes.geometry.torsal_pairing`, smoothed:
   :func:`~.threedm_rails.smooth_partners`), fitted within FIT, then its control points
   moved until its normals agree along its lines across (:mod:`.threedm_untwist`: the
   fit's tangents are not exact, and a fit 30 times closer would cost several times the
@@ -67,6 +69,7 @@ from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
+from torsal.nodes.io.formats.threedm_held import end_bends, pinned, slopes_at
 from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
 from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
 from torsal.nodes.io.formats.threedm_unstall import Unstalled, unstalled
@@ -464,7 +467,9 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
             at = np.unique(np.concatenate([between(np.unique(np.concatenate([span, kinks])), per),
                                            between(np.unique(developable[1]), SPAN_SAMPLES)]))
             data = np.hstack([rails.curve_a.point_at(at), rails.curve_b.point_at(paired(at))])
-            moved, distance, angle = untwisted(developable[2], at, data, tolerance, 0.8 * TWISTED)
+            bent = np.isfinite(end_bends(rails, span, paired, slopes_at(rails, span, paired))).all(axis=2)
+            moved, distance, angle = untwisted(developable[2], at, data, tolerance, 0.8 * TWISTED,
+                                               span[1:-1], bent)
             if distance <= tolerance:
                 developable = (distance, np.asarray(moved.t), moved)
                 sampled = angle  # on its own samples, denser than _twist's
@@ -535,29 +540,15 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     # curve: a knot of the design it runs on, a joint) are where the fit's error is: a knot
     # at each from the start (bisection converges on them only slowly)
     start = [float(b) for b in _rail_breaks(strip, span, partner) if b not in kinks]
-    # the rails' end tangents: A's own; B's as its partner point moves (a difference of
-    # points: where B's pace stands still at a ruling the partner parameter moves like a
-    # square root while the point moves smoothly)
-    step = 1e-7 * (hi - lo)
-    ends = span[[0, -1]]
-    b_ends = strip.curve_b.point_at(ends)
-    b_near = strip.curve_b.point_at(partner(np.array([lo + step, hi - step])))
-    # (both just inside: at a corner of the rail, as on a strip cut to a trim, or where its
-    # speed jumps, as where the pieces of a joined rail meet, the face's own side of it)
-    inside = np.array([lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo)])
-    probe = np.array([lo + step, hi - step])
-    if np.array_equal(partner(probe), probe):  # the strip's own pairing: B's own tangents (a
-        # difference over a short face's step would carry the points' rounding)
-        b_slopes = strip.curve_b.derivatives(inside, 1)[1]
-    else:  # the pace from the difference, the direction from B's own tangent where it has one
-        # (a difference of a partner moving like a square root turns by ~√step)
-        b_slopes = np.vstack([b_near[0] - b_ends[0], b_ends[1] - b_near[1]]) / step
-        own = strip.curve_b.derivatives(inside, 1)[1]
-        length = np.linalg.norm(own, axis=1, keepdims=True)
-        along = np.einsum("ij,ij->i", b_slopes, own)[:, None]
-        b_slopes = np.where((length > 0) & (along > 0), own / np.maximum(length, 1e-300)
-                            * np.linalg.norm(b_slopes, axis=1, keepdims=True), b_slopes)
-    slopes = np.hstack([strip.curve_a.derivatives(inside, 1)[1], b_slopes])
+    slopes = slopes_at(strip, span, partner)
+    rulings = lines.reshape(-1, 6)
+    # where a rail stands still at an end (next to a fan) the face's normal at that corner is
+    # its edge's direction, the rail's second derivative, × the ruling: that held too (one
+    # more control point, a knot in the end interval keeping it apart from the ruling's)
+    bends = end_bends(strip, span, partner, slopes)  # (end, rail, xyz)
+    still = np.isfinite(bends).all(axis=2)
+    fixed += [0.5 * float(span[0] + span[1])] * bool(still[0].any()) + \
+        [0.5 * float(span[-2] + span[-1])] * bool(still[1].any())
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
     interior = list(start)
@@ -576,15 +567,34 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         controls = np.zeros((n, 6))
         controls[0], controls[n - 1] = data[0], data[-1]
         controls[1] = controls[0] + (knots[4] - lo) / 3.0 * slopes[0]
-        controls[n - 2] = controls[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[1]
+        controls[n - 2] = controls[n - 1] - (hi - knots[n - 1]) / 3.0 * slopes[-1]
+        ends = np.array([2, n - 3])
+        scale = ((knots[4] - lo) * (knots[5] - lo) / 6.0, (hi - knots[n - 1]) * (hi - knots[n - 2]) / 6.0)
+        for end, rail in zip(*np.nonzero(still), strict=True):
+            part = slice(3 * rail, 3 * rail + 3)
+            controls[ends[end], part] = controls[(1, n - 2)[end], part] + scale[end] * bends[end, rail]
+        # at a ruling inside the face (a double knot) the two control points there make the
+        # ruling and the rails' own tangents, exactly: the face's normals there are the
+        # strip's, torsal (a least-squares fit missed them by up to 5e-7 rad)
+        held = pinned(knots, span[1:-1], rulings[1:-1], slopes[1:-1])
+        if held is None or (still.any() and (n < 7 or np.isin(held[0], ends[still.any(axis=1)]).any())):
+            return None
+        columns, values = held
+        controls[columns] = values
         basis = BSpline.design_matrix(fine, knots, 3).tocsc()
-        free = basis[:, 2:n - 2]
-        rest = data - basis[:, [0, 1, n - 2, n - 1]] @ controls[[0, 1, n - 2, n - 1]]
-        if n > 4:
+        for rails in ((0, 1),) if not still.any() else ((0,), (1,)):  # (rails that share the fixed)
+            part = np.concatenate([np.arange(3 * rail, 3 * rail + 3) for rail in rails])
+            kept = np.unique(np.concatenate([[0, 1, n - 2, n - 1], columns, ends[still[:, rails[0]]]]))
+            others = np.setdiff1d(np.arange(n), kept)
+            if not len(others):
+                continue
+            free = basis[:, others]
+            rest = data[:, part] - basis[:, kept] @ controls[np.ix_(kept, part)]
             try:
                 with warnings.catch_warnings():
                     warnings.simplefilter("error", MatrixRankWarning)
-                    controls[2:n - 2] = spsolve((free.T @ free).tocsc(), free.T @ rest).reshape(n - 4, 6)
+                    solved = spsolve((free.T @ free).tocsc(), free.T @ rest)
+                controls[np.ix_(others, part)] = np.asarray(solved).reshape(len(others), len(part))
             except (MatrixRankWarning, RuntimeError):  # a span without samples
                 return None
         spline = BSpline(knots, controls, 3)

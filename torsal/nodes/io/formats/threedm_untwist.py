@@ -76,11 +76,15 @@ def twist_sines(points: np.ndarray, slopes: np.ndarray) -> np.ndarray:
 
 
 def untwisted(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: float,
-              twist: float) -> tuple[BSpline, float, float]:
+              twist: float, held: np.ndarray | None = None,
+              bent: np.ndarray | None = None) -> tuple[BSpline, float, float]:
     """``spline`` (both rails side by side, (x, y, z) of A then of B) with its control points
     but the two at either end (the end rulings and the rails' end tangents) moved so that
     it stays within ``tolerance`` of ``data`` at ``at`` and its normals turn by less than
-    ``twist`` (rad) along the lines across at ``at``: (spline, largest distance, largest
+    ``twist`` (rad) along the lines across at ``at``, its points and slopes at ``held`` (the
+    rulings inside the face) kept as they are, and where ``bent`` (end, rail) the rail's
+    third control point from that end (its second derivative there: a rail that stands
+    still at an end has its direction there from it): (spline, largest distance, largest
     angle at ``at``). Where the steps do not get there, a knot is inserted in the middle of
     each span that still twists (the same rails, more freedom; a span keeps at least
     :data:`PER_SPAN` samples) and the steps go on, :data:`ROUNDS` times at most; the best
@@ -88,7 +92,7 @@ def untwisted(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: floa
     best = (spline, *_measure(spline, at, data))
     current = spline
     for _ in range(ROUNDS):
-        current, distance, angle = _steps(current, at, data, tolerance, twist)
+        current, distance, angle = _steps(current, at, data, tolerance, twist, held, bent)
         if _miss((distance, angle), tolerance, twist) < _miss(best[1:], tolerance, twist):
             best = (current, distance, angle)
         if distance <= tolerance and angle <= twist:
@@ -112,9 +116,11 @@ def untwisted(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: floa
 
 
 def _steps(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: float,
-           twist: float) -> tuple[BSpline, float, float]:
-    """Gauss–Newton steps on ``spline``'s free control points (:func:`untwisted`), on its
-    knots: the best spline found, its largest distance and angle."""
+           twist: float, held: np.ndarray | None = None,
+           bent: np.ndarray | None = None) -> tuple[BSpline, float, float]:
+    """Gauss–Newton steps on ``spline``'s free control points (:func:`untwisted`: but the
+    two at either end, those not zero at ``held`` and the rails' ``bent`` ends' third), on
+    its knots: the best spline found, its largest distance and angle."""
     knots = np.asarray(spline.t, dtype=float)
     count = len(knots) - 4
     controls = np.array(spline.c, dtype=float)[:count]
@@ -124,6 +130,16 @@ def _steps(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: float,
     basis = BSpline.design_matrix(at, knots, 3).tocsr()
     slope_basis = derivative_basis(at, knots)
     free = np.arange(2, count - 2)
+    if held is not None and len(held):
+        touched = (BSpline.design_matrix(held, knots, 3) + abs(derivative_basis(held, knots))).tocsc()
+        free = free[np.diff(touched.indptr)[free] == 0]
+    frozen = np.zeros((count, 6), dtype=bool)  # coordinates of free control points held
+    for end, rail in zip(*np.nonzero(bent if bent is not None else np.zeros((2, 2))), strict=True):
+        frozen[(2, count - 3)[end], 3 * rail:3 * rail + 3] = True
+    free = free[~frozen[free].all(axis=1)]
+    if not len(free):
+        return best
+    moving = np.flatnonzero(~frozen[free].T.ravel())  # the variables (by coordinate) the steps move
     width = len(free)
     base_free, slope_free = basis[:, free].tocoo(), slope_basis[:, free].tocoo()
     # the distances' rows: one block per coordinate (constant), and their normal equations
@@ -154,6 +170,8 @@ def _steps(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: float,
         distance_residual = ((points - data) / (AIM * tolerance)).T.ravel()
         gradient = position.T @ distance_residual + twist_rows.T @ (weight * det)
         normal = (position_normal + twist_rows.T @ twist_rows).tocsc()
+        if len(moving) < 6 * len(free):
+            normal, gradient = normal[np.ix_(moving, moving)].tocsc(), gradient[moving]
         # damped (Levenberg–Marquardt): a control point no sample pins stays put
         diagonal = normal.diagonal()
         damping = sp.diags(DAMPING * diagonal + 1e-12 * max(float(diagonal.max()), 1.0))
@@ -165,7 +183,9 @@ def _steps(spline: BSpline, at: np.ndarray, data: np.ndarray, tolerance: float,
             break
         if not np.all(np.isfinite(step)):
             break
-        controls[free] += step.reshape(6, len(free)).T
+        full = np.zeros(6 * width)
+        full[moving] = step
+        controls[free] += full.reshape(6, width).T
         trial = BSpline(knots, controls.copy(), 3)
         distance, angle = _measure(trial, at, data)
         before = _miss(best[1:], tolerance, twist)
