@@ -120,3 +120,21 @@ def test_a_cone_pair_over_a_rail_that_stands_still_has_normals_that_agree_in_rhi
         a = np.array([[v.Location.X, v.Location.Y, v.Location.Z] for v in before.Geometry.Vertices])
         b = np.array([[v.Location.X, v.Location.Y, v.Location.Z] for v in after.Geometry.Vertices])
         assert np.sort(np.linalg.norm(a[:, None] - b[None], axis=2).min(axis=1))[1] <= 1e-9 * size
+
+
+class _WithBreaks(ParametricCurve):
+    """The stalling rail with breaks of its own (as a Paced rail reports its curve's)."""
+
+    def breaks(self) -> np.ndarray:
+        return np.array([0.32, 0.45, 0.61, 0.69])
+
+
+@pytest.mark.parametrize("ends", list(itertools.product((False, True), repeat=2)))
+def test_an_unstalled_rails_breaks_are_where_its_own_parameter_reaches_the_rails(ends):
+    rail = _WithBreaks(lambda s: LOW.point_at(_phi(s)[0]), (0.0, 1.0))
+    moving = Unstalled(rail, 0.3, 0.7, *ends)
+    found = moving.breaks()
+    assert np.all(np.diff(found) > 0) and found[0] > 0.3 and found[-1] < 0.7
+    # there the unstalled rail's points are the rail's at its breaks (its map, √x, 1 − √(1 − x)
+    # or arccos(1 − 2x)/π, undone by the table's inverse)
+    np.testing.assert_allclose(moving.point_at(found), rail.point_at(rail.breaks()), atol=1e-12)

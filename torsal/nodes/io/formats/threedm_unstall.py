@@ -14,6 +14,9 @@ normals agree along it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -32,45 +35,52 @@ def stalled_ends(rail: Curve, lo: float, hi: float) -> tuple[bool, bool]:
     return bool(speed[0] <= STALLED * mean), bool(speed[1] <= STALLED * mean)
 
 
+class _Pace(NamedTuple):
+    """A monotone map of [0, 1] onto itself: the rail's own x at x, its slope, and its inverse."""
+
+    at: Callable[[np.ndarray], np.ndarray]
+    slope: Callable[[np.ndarray], np.ndarray]
+    inverse: Callable[[np.ndarray], np.ndarray]
+
+
+#: The pace by which ends stand still (start, end): √x from a stalled start, 1 − √(1 − x) to
+#: a stalled end, arccos(1 − 2x)/π at both, x at neither; each with its inverse (the square,
+#: 1 − (1 − h)², ½(1 − cos πh)), one table so the two cannot disagree.
+PACES = {
+    (True, True): _Pace(lambda x: np.arccos(1.0 - 2.0 * x) / np.pi,
+                        lambda x: 1.0 / (np.pi * np.sqrt(x * (1.0 - x))),
+                        lambda h: 0.5 * (1.0 - np.cos(np.pi * h))),
+    (True, False): _Pace(np.sqrt, lambda x: 0.5 / np.sqrt(x), np.square),
+    (False, True): _Pace(lambda x: 1.0 - np.sqrt(1.0 - x), lambda x: 0.5 / np.sqrt(1.0 - x),
+                         lambda h: 1.0 - (1.0 - h) ** 2),
+    (False, False): _Pace(lambda x: x, np.ones_like, lambda h: h),
+}
+
+
 class Unstalled(Curve):
     """``rail`` over ``lo`` … ``hi`` with its parameter mapped so it does not stand still
     at a stalled end: with x = (u − lo)/(hi − lo), the rail's own x is √x from a stalled
     start, 1 − √(1 − x) to a stalled end, arccos(1 − 2x)/π at both (√-like at each end,
-    smooth and monotone between). The same points of the same curve, the same ends."""
+    smooth and monotone between: :data:`PACES`). The same points of the same curve, the
+    same ends."""
 
     def __init__(self, rail: Curve, lo: float, hi: float, start: bool, end: bool) -> None:
         self.rail, self.lo, self.hi = rail, float(lo), float(hi)
         self.stalled = (start, end)
+        self.pace = PACES[bool(start), bool(end)]
 
     def _map(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The rail's parameter at ``t`` and its derivative."""
         width = self.hi - self.lo
         x = np.clip((t - self.lo) / width, 0.0, 1.0)
         with np.errstate(divide="ignore"):
-            if self.stalled[0] and self.stalled[1]:
-                h = np.arccos(1.0 - 2.0 * x) / np.pi
-                dh = 1.0 / (np.pi * np.sqrt(x * (1.0 - x)))
-            elif self.stalled[0]:
-                h, dh = np.sqrt(x), 0.5 / np.sqrt(x)
-            elif self.stalled[1]:
-                h, dh = 1.0 - np.sqrt(1.0 - x), 0.5 / np.sqrt(1.0 - x)
-            else:
-                h, dh = x, np.ones_like(x)
-        return self.lo + width * h, dh
+            return self.lo + width * self.pace.at(x), self.pace.slope(x)
 
     def breaks(self) -> np.ndarray:
         """The wrapped rail's breaks (:meth:`.threedm_rails.Paced.breaks`) at this one's u."""
         inner = self.rail.breaks() if hasattr(self.rail, "breaks") else np.empty(0)
         h = np.clip((np.asarray(inner, dtype=float) - self.lo) / (self.hi - self.lo), 0.0, 1.0)
-        if self.stalled[0] and self.stalled[1]:
-            x = 0.5 * (1.0 - np.cos(np.pi * h))
-        elif self.stalled[0]:
-            x = h * h
-        elif self.stalled[1]:
-            x = 1.0 - (1.0 - h) ** 2
-        else:
-            x = h
-        return self.lo + (self.hi - self.lo) * x
+        return self.lo + (self.hi - self.lo) * self.pace.inverse(h)
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
         if order > 1:  # (a √ pace has no bounded second derivative at a stalled end)
