@@ -65,13 +65,14 @@ import rhino3dm as rh
 from scipy.interpolate import BSpline
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
+from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_held import end_bends, pinned, slopes_at
 from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
-from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
+from torsal.nodes.io.formats.threedm_rails import AtRest, Lengthwise, Paced, Rails, between, smooth_partners
 from torsal.nodes.io.formats.threedm_unstall import Unstalled, unstalled
 from torsal.nodes.io.formats.threedm_untwist import untwisted
 
@@ -90,6 +91,10 @@ TWISTED = 8e-7
 #: cones goes out as cones (:func:`_costly`).
 COSTLIER = 4.5
 
+
+#: A cone pair whose fit misses its rails by more than this times :data:`FIT` is fitted again
+#: with its rails at an even pace along their length (:class:`~.threedm_rails.Lengthwise`).
+SWEPT = 10.0
 
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
@@ -296,9 +301,22 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     face: rail A to the diagonal's end on B, then that end of A to rail B (or the other way
     round). A cone is developable whatever its rail does (every line through its apex), so
     the face's normals are constant along its lines; its edges still run on the rails."""
-    (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
     paced_a, paced_b = (unstalled(Paced(rail, span), span) for rail in (strip.curve_a, strip.curve_b))
+    pieces = _cone_pair(strip, u, lines, k, size, paced_a, paced_b)
+    if pieces[0].deviation > SWEPT * FIT * size:  # a rail that sweeps across a sliver of the interval
+        # (a cut strip's edge round a fan): along its length, where that fits closer
+        along = (Lengthwise(rail, *span) for rail in (paced_a, paced_b))
+        lengthwise = _cone_pair(strip, u, lines, k, size, *along)
+        pieces = lengthwise if lengthwise[0].deviation < pieces[0].deviation else pieces
+    return pieces
+
+
+def _cone_pair(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float, paced_a: Curve,
+               paced_b: Curve) -> list[Piece]:
+    """:func:`_cones` with its rails at the given paces."""
+    (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
+    span = u[k:k + 2]
     if np.linalg.norm(a_hi - b_lo) <= np.linalg.norm(a_lo - b_hi):
         middle = np.array([a_hi, b_lo])
         rails = [Rails(paced_a, AtRest(b_lo)), Rails(AtRest(a_hi), paced_b)]
@@ -643,7 +661,7 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
     near = 1e-6 * (hi - lo)
     found = []
     for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
-        if isinstance(rail, (Paced, Unstalled)):
+        if isinstance(rail, (Paced, Unstalled, Lengthwise)):
             marks = rail.breaks()
         elif isinstance(rail, CurveRail):
             marks = rail._breakpoints()  # the rulings, and where it crosses its curve's breaks
