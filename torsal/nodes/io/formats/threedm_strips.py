@@ -36,7 +36,10 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
   an even pace along the rail's curve between the two rulings (from an end where that
-  curve stands still, at a square root's pace: :mod:`.threedm_unstall`); where one of the two
+  curve stands still, at a square root's pace: :mod:`.threedm_unstall`; where that fit
+  misses by over :data:`SWEPT` times FIT, as where a cut strip's edge sweeps round a fan
+  in a sliver of the interval, at an even pace along its length:
+  :class:`~.threedm_rails.Lengthwise`); where one of the two
   rulings is a point and a rail runs from it straight (within FIT), one cone from that
   rail's other end over the other rail instead, a face of its own (:func:`_tip_cone`);
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
@@ -67,12 +70,12 @@ from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import CurveRail
-from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_held import end_bends, pinned, slopes_at
-from torsal.nodes.io.formats.threedm_native import rhino_net, rhino_surface
+from torsal.nodes.io.formats.threedm_native import rhino_net
 from torsal.nodes.io.formats.threedm_rails import AtRest, Lengthwise, Paced, Rails, between, smooth_partners
+from torsal.nodes.io.formats.threedm_triangles import SAME_POINT, fan_run, fan_triangle
 from torsal.nodes.io.formats.threedm_unstall import Unstalled, unstalled
 from torsal.nodes.io.formats.threedm_untwist import untwisted
 
@@ -108,8 +111,6 @@ LARGEST_SAMPLING = 192
 #: A rail whose tangent turns more than this (rad) at a ruling has a corner there.
 CORNER = 1e-3
 
-#: Two ruling ends closer than this (relative to the size) are one point: a fan.
-SAME_POINT = 1e-12
 
 
 @dataclass(frozen=True)
@@ -159,12 +160,12 @@ def strip_pieces(strip: RuledSurface) -> list[Piece]:
             end = k + 1
             while end < n - 1 and shared[end]:
                 end += 1
-            run = _fan_run(lines[k:end + 1]) if end - k > 1 else None
+            run = fan_run(lines[k:end + 1]) if end - k > 1 else None
             if run is not None:  # one face of flat triangles, degree 1 both ways
                 pieces.append(Piece(run, "fan", k, end, 0.0, end - k + 1))
                 k = end
                 continue
-            triangle = _fan(lines[k], lines[k + 1], size)
+            triangle = fan_triangle(lines[k], lines[k + 1], size)
             if triangle is not None:
                 pieces.append(Piece(triangle, "fan", k, k + 1, 0.0, 3))
             k += 1
@@ -419,33 +420,6 @@ def _corners(strip: RuledSurface, u: np.ndarray) -> np.ndarray:
             jump = np.abs(speed[1] - speed[0]) / np.maximum(speed[0], speed[1])
         corner[1:-1] |= np.nan_to_num(jump) > CORNER
     return corner
-
-
-def _fan_run(lines: np.ndarray) -> rh.Brep | None:
-    """Consecutive fan triangles (each pair of rulings sharing an end) as one face of degree 1
-    both ways through the rulings: each span between two rulings is one flat triangle (the
-    rail that shares the end stands still there). None when rhino3dm will not make it a face
-    (every triangle through one point: an edge collapsed to it)."""
-    count = len(lines)
-    knots = np.concatenate([[0.0], np.linspace(0.0, 1.0, count), [1.0]])
-
-    try:
-        surface = NurbsSurface(np.asarray(lines, dtype=float), 1, 1, knots, [0.0, 0.0, 1.0, 1.0])
-        brep = rh.Brep.CreateFromSurface(rhino_surface(surface))
-    except ValueError:
-        return None
-    return brep if brep is not None and brep.IsValid else None
-
-
-def _fan(first: np.ndarray, second: np.ndarray, size: float) -> rh.Brep | None:
-    corners = [first[0], first[1], second[1] if np.abs(first[0] - second[0]).max() <= SAME_POINT * size
-               else second[0]]
-    a, b, c = (np.asarray(p, dtype=float) for p in corners)
-    if np.linalg.norm(np.cross(b - a, c - a)) <= 1e-12 * size * size:
-        return None
-    points = [rh.Point3d(*map(float, p)) for p in (a, b, c, a)]
-    plane = rh.Plane(points[0], points[1], points[2])
-    return rh.Brep.CreateTrimmedPlane(plane, rh.PolylineCurve(points))
 
 
 def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, last: int,
