@@ -11,7 +11,7 @@ from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication
 from vtkmodules.qt.QVTKRenderWindowInteractor import QVTKRenderWindowInteractor
 
-from tests.support.fixtures_gui import EXAMPLES, wait_solved
+from tests.support.fixtures_gui import EXAMPLES, close_window, make_window, wait_solved
 from torsal.app.gui.viewport.interactor import NATIVE_WINDOW_PLATFORMS, ViewportPlotter
 
 
@@ -71,3 +71,24 @@ def test_closing_the_plotter_releases_it_and_deletes_its_widget(qtbot, window):
     qtbot.waitUntil(lambda: bool(destroyed), timeout=5000)
     QApplication.processEvents()
     viewport.close_plotter()  # a second close does nothing
+
+
+def test_where_qt_gives_no_native_windows_pyvistaqts_interactor_draws_the_viewport(
+        qtbot, registry, config_folder, monkeypatch):
+    """The fallback (Wayland): pyvistaqt's QtInteractor is both plotter and widget, and the
+    viewport draws an example through it as through VTK's widget."""
+    from pyvistaqt import QtInteractor
+
+    import torsal.app.gui.viewport.interactor as interactor_module
+
+    monkeypatch.setattr(interactor_module, "NATIVE_WINDOW_PLATFORMS", frozenset())
+    window = make_window(qtbot, registry, config_folder)
+    try:
+        viewport = window.viewport
+        assert isinstance(viewport.plotter, QtInteractor) and viewport.interactor is viewport.plotter
+        assert window.open_file(EXAMPLES / "paper-strip.graph", ask=False)
+        wait_solved(qtbot, window)
+        qtbot.waitUntil(lambda: viewport.frames > 0, timeout=10000)
+        assert viewport.preview_actor_count() > 0
+    finally:
+        close_window(window)
