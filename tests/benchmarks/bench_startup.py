@@ -53,6 +53,18 @@ VTK's own QVTKRenderWindowInteractor imports in 0.035); the viewport's first pai
 0.025-0.04; PySide6 with Torsal's 50 window modules 0.16-0.18, Torsal's node and engine
 modules ~0.12; the window, canvas and docks ~0.1; the solve ~0.08. scipy.interpolate is
 needed by the solve (the NURBS curves are scipy BSplines).
+
+On 6 December 2026 Torsal's viewport became VTK's own Qt widget with a pyvista plotter of
+Torsal's drawing in it (``torsal/app/gui/viewport/interactor.py``), so pyvistaqt and qtpy
+are no longer imported on the way (pyvistaqt stays the fallback where Qt gives widgets no
+native window: Wayland). The baseline keeps pyvistaqt's QtInteractor: it is what a
+pyvista-in-Qt app is usually written with. Window shown → viewport ready 0.36-0.37 CPU s
+against 0.50-0.57 before (alternating launches, load ~6); this benchmark at load 9.1-9.4:
+Torsal 2.04-2.91 CPU s to its first solved frame against the baseline's 1.83-2.49 (ratio
+1.12), less the waits for a CPU 1.95-2.88 s against 1.80-2.48 (medians 2.17 and 2.00).
+What is left beyond the baseline is Torsal's own work: scipy.interpolate (~0.45 CPU s, its
+imports hold the GIL, so no thread can overlap them), Torsal's ~190 modules, the window,
+the solve and the first drawing of the strips.
 """
 
 from __future__ import annotations

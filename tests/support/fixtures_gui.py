@@ -95,7 +95,7 @@ def close_window(window: MainWindow) -> None:
 
 @pytest.fixture
 def window(qtbot: Any, registry: Registry, config_folder: Path) -> Iterator[MainWindow]:
-    """A shown main window with its real QtInteractor, on an empty document."""
+    """A shown main window with its real 3D viewport, on an empty document."""
     win = make_window(qtbot, registry, config_folder)
     wait_solved(qtbot, win)
     yield win

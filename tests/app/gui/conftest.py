@@ -1,4 +1,4 @@
-"""GUI tests: pytest-qt under a display (Xvfb), with the real pyvistaqt QtInteractor.
+"""GUI tests: pytest-qt under a display (Xvfb), with the real 3D viewport (VTK's Qt widget).
 
 Run them with::
 

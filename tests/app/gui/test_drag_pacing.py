@@ -50,7 +50,7 @@ def test_a_drags_next_solve_starts_once_the_viewport_has_drawn_the_last_result(q
 
 def test_with_the_viewport_hidden_a_drag_still_solves_again_and_again(qtbot, window):
     window.viewport_dock.hide()
-    qtbot.waitUntil(lambda: not window.viewport.plotter.isVisible())
+    qtbot.waitUntil(lambda: not window.viewport.interactor.isVisible())
     drag, starts = record_drag(qtbot, window, FIXTURES / "showcase.graph")
     assert len(starts) >= 4
     assert len(drag.solves) >= 5

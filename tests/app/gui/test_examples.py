@@ -93,11 +93,11 @@ def test_example_opens_renders_its_actors_is_photographed_and_its_boxes_do_not_o
     image = QImage(str(shot))
     assert image.width() >= 1200 and image.height() >= 800
     if expected:  # the viewport shows something besides its background
-        plotter = window.viewport.plotter
-        corner = plotter.mapTo(window, plotter.rect().topLeft())
+        interactor = window.viewport.interactor
+        corner = interactor.mapTo(window, interactor.rect().topLeft())
         colours = {
             image.pixel(corner.x() + x, corner.y() + y)
-            for x in range(20, plotter.width() - 20, 17)
-            for y in range(20, plotter.height() - 20, 17)
+            for x in range(20, interactor.width() - 20, 17)
+            for y in range(20, interactor.height() - 20, 17)
         }
         assert len(colours) > 50

@@ -99,7 +99,7 @@ def _display(viewport, point):  # type: ignore[no-untyped-def]
     renderer.SetWorldPoint(float(point[0]), float(point[1]), float(point[2]), 1.0)
     renderer.WorldToDisplay()
     x, y, _ = renderer.GetDisplayPoint()
-    ratio = viewport.plotter.devicePixelRatioF()
+    ratio = viewport.interactor.devicePixelRatioF()
     # VTK counts pixels from the lower left, Qt from the upper left
     return QPoint(round(x / ratio), round((renderer.GetSize()[1] - 1 - y) / ratio))
 
@@ -127,7 +127,7 @@ def test_clicking_a_part_on_the_sheets_highlights_it_and_its_strip_on_the_roof(q
     index = len(preview.layout.parts) // 2
     contour = preview.part_polylines()[index][0]
     inside = shapely.Polygon(contour[:, :2]).representative_point()
-    QTest.mouseClick(viewport.plotter, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
+    QTest.mouseClick(viewport.interactor, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
                      _display(viewport, (inside.x, inside.y, contour[0, 2])))
     qtbot.waitUntil(lambda: viewport.picker.picked is not None, timeout=5000)
     assert viewport.picker.picked == ("cut", preview.layout.parts[index].id)
@@ -138,7 +138,7 @@ def test_clicking_a_part_on_the_sheets_highlights_it_and_its_strip_on_the_roof(q
     assert np.allclose(bounds, box, atol=1e-3 * size)
     assert bounds[1, 0] < preview.bounds()[0, 0]  # on the roof, left of the sheets
     corner = preview.sheet_borders()[0][0] + np.array([2.0, 2.0, 0.0]) * preview.scale  # 2 mm into the margin
-    QTest.mouseClick(viewport.plotter, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
+    QTest.mouseClick(viewport.interactor, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
                      _display(viewport, corner))
     qtbot.waitUntil(lambda: viewport.picker.picked is None, timeout=5000)
     assert STRIP_ACTOR not in viewport.plotter.renderer.actors
@@ -156,7 +156,7 @@ def test_clicking_a_part_on_the_sheets_highlights_it_and_its_strip_on_the_roof(q
             break
     else:
         raise AssertionError("the eye sees no strip's middle first")
-    QTest.mouseClick(viewport.plotter, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
+    QTest.mouseClick(viewport.interactor, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
                      _display(viewport, target))
     qtbot.waitUntil(lambda: viewport.picker.picked is not None, timeout=5000)
     assert viewport.picker.picked == ("cut", preview.layout.parts[index].id)

@@ -583,16 +583,16 @@ class MainWindow(QMainWindow):
         """Save the whole window as a PNG, with the 3D viewport's picture put in its place."""
         path = Path(path)
         pixmap: QPixmap = self.grab()
-        plotter = self.viewport.plotter
-        if plotter is not None and plotter.isVisible():
+        plotter, interactor = self.viewport.plotter, self.viewport.interactor
+        if plotter is not None and interactor is not None and interactor.isVisible():
             self.viewport.render()
             image = plotter.screenshot(return_img=True)
             height, width = image.shape[:2]
             qimage = QImage(image.tobytes(), width, height, width * 3, QImage.Format.Format_RGB888)
-            top_left = plotter.mapTo(self, QPoint(0, 0))
+            top_left = interactor.mapTo(self, QPoint(0, 0))
             painter = QPainter(pixmap)
             ratio = pixmap.devicePixelRatio()
-            target = qimage.scaled(int(plotter.width() * ratio), int(plotter.height() * ratio))
+            target = qimage.scaled(int(interactor.width() * ratio), int(interactor.height() * ratio))
             painter.drawImage(top_left, target)
             painter.end()
         data = QByteArray()

@@ -1,4 +1,5 @@
-"""The viewport panel: a pyvistaqt ``QtInteractor`` with view buttons, fed by solve results.
+"""The viewport panel: a pyvista plotter in a Qt widget (:mod:`torsal.app.gui.viewport.interactor`)
+with view buttons, fed by solve results.
 
 pyvista and VTK take a second or two to import, so the interactor is created after the
 main window is first shown (:meth:`ViewportPanel.create_plotter`); until then a
@@ -38,7 +39,8 @@ class ViewportPanel(QWidget):
     def __init__(self, doc: Document, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.doc = doc
-        self.plotter: Any = None
+        self.plotter: Any = None  #: pyvista's plotter (viewport/interactor.py: make_plotter)
+        self.interactor: QWidget | None = None  #: the Qt widget it draws in (mouse events go there)
         self.preview: Any = None
         self.picker: Any = None  #: highlights a cut-sheet part clicked and its strip (viewport/picking.py)
         self.frames = 0
@@ -90,20 +92,22 @@ class ViewportPanel(QWidget):
 
     # -- creation --------------------------------------------------------------------
     def create_plotter(self) -> None:
-        """Import pyvista/pyvistaqt and make the interactor (once)."""
+        """Import pyvista and make the plotter and its widget (once)."""
         if self.plotter is not None:
             return
         import pyvista as pv
-        from pyvistaqt import QtInteractor
 
+        from torsal.app.gui.viewport.interactor import make_plotter
         from torsal.app.gui.viewport.picking import PartPicker
         from torsal.app.gui.viewport.preview import Preview
 
         pv.global_theme.allow_empty_mesh = True
-        # The interactor is a QOpenGLWidget: Qt then composes its whole native window
-        # through OpenGL on every repaint of anything in it (~35 ms a time with software
-        # GL). In a native child window of its own, the rest of the main window repaints
-        # as plain raster (~1 ms) and only the viewport pays for GL.
+        # The interactor draws in a native window (VTK's widget) or is a QOpenGLWidget
+        # (pyvistaqt's, on Wayland): in the second case Qt would compose its whole native
+        # window through OpenGL on every repaint of anything in it (~35 ms a time with
+        # software GL). In a native child window of its own, the rest of the main window
+        # repaints as plain raster (~1 ms) and only the viewport pays for GL; VTK's widget
+        # makes its own native window there without making its ancestors native.
         holder = QWidget(self)
         holder.setAttribute(Qt.WidgetAttribute.WA_DontCreateNativeAncestors)
         holder.setAttribute(Qt.WidgetAttribute.WA_NativeWindow)
@@ -111,16 +115,15 @@ class ViewportPanel(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         # No multisampling and no FXAA: with software OpenGL (Mesa llvmpipe, Xvfb) they cost
         # 25-50 ms a frame, more than everything else together.
-        plotter = QtInteractor(holder, auto_update=False, multi_samples=0)
-        layout.addWidget(plotter)
-        plotter.setAcceptDrops(False)  # a dropped .graph goes to the main window
-        if plotter.iren is not None:
-            plotter.iren.clear_key_event_callbacks()  # no 'q' closing the viewport
+        plotter, interactor = make_plotter(holder)
+        layout.addWidget(interactor)
+        interactor.setAcceptDrops(False)  # a dropped .graph goes to the main window
         plotter.set_background(theme.VIEWPORT_BACKGROUND, top=theme.VIEWPORT_BACKGROUND_TOP)
         plotter.add_axes(interactive=False)
         plotter.ren_win.AddObserver("StartEvent", self._render_started)
         plotter.ren_win.AddObserver("EndEvent", self._render_ended)
         self.plotter = plotter
+        self.interactor = interactor
         self.preview = Preview(plotter)
         self.picker = PartPicker(plotter, self._sheet_previews, self.schedule_render)
         self.doc.solves.prepare = self._prepare
@@ -142,6 +145,7 @@ class ViewportPanel(QWidget):
             if forget is not None:
                 forget()
             self.plotter = None
+            self.interactor = None
             self.picker = None
 
     # -- updates ---------------------------------------------------------------------
@@ -268,14 +272,14 @@ class ViewportPanel(QWidget):
     def schedule_render(self) -> None:
         """Repaint once on the next event-loop turn, however many updates come before it.
 
-        The interactor (a QOpenGLWidget) renders VTK in its paint; asking Qt to repaint
+        The interactor renders VTK in its paint; asking Qt to repaint
         renders once, where calling ``plotter.render()`` would render, then paint (and
         render) again.
         """
-        if self.plotter is not None:
-            if self._render_asked is None and self.plotter.isVisible():
+        if self.interactor is not None:
+            if self._render_asked is None and self.interactor.isVisible():
                 self._render_asked = time.perf_counter()
-            self.plotter.update()
+            self.interactor.update()
 
     def frame_due(self) -> bool:
         """Whether a render has been asked for and not yet done (for at most
