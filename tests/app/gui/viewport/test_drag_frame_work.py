@@ -5,6 +5,7 @@ slider (the frame-rate bar itself is in tests/benchmarks/bench_gui.py)."""
 from __future__ import annotations
 
 import gc
+import itertools
 import time
 
 import numpy as np
@@ -14,6 +15,7 @@ from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMenu
 
 from tests.support.fixtures_gui import EXAMPLES, slider_handle, wait_solved
+from torsal.app.gui.canvas.node_item import BUSY_WIDGET_INTERVAL_MS
 from torsal.app.gui.viewport.datasets import Piece, dataset, move_points
 
 NONE = Qt.KeyboardModifier.NoModifier
@@ -154,6 +156,9 @@ def test_dragging_a_slider_repaints_only_the_slider_and_draws_the_node_as_a_full
     for step in range(1, 6):
         QTest.mouseMove(viewport, QPoint(max(left, start.x() - 6 * step), start.y()))
         qtbot.wait(20)
+    # a move made while a solve runs is drawn once BUSY_WIDGET_INTERVAL_MS has passed since
+    # the last drawing: wait for it, so that the picture below shows the last move
+    qtbot.wait(2 * BUSY_WIDGET_INTERVAL_MS)
     moved = node_image(window, "scale")
     around = item.layout.widget_rect.adjusted(-2, -2, 2, 2)
     partial = [rect for rect in exposed if around.contains(rect)]
@@ -302,8 +307,6 @@ def test_while_a_solve_runs_a_dragged_slider_is_drawn_at_most_every_40_ms_and_en
     """Every mouse move drew the slider again, beside the solve it waited for; now a move
     made while a solve runs is drawn once 40 ms have passed since the last drawing (the
     last move's value), and a move made with no solve running is drawn at once."""
-    from torsal.app.gui.canvas.node_item import BUSY_WIDGET_INTERVAL_MS
-
     start, left, _right = kaohsiung_slider(qtbot, window)
     item = window.scene.nodes["scale"]
     around = item.layout.widget_rect.adjusted(-2, -2, 2, 2)
@@ -326,6 +329,8 @@ def test_while_a_solve_runs_a_dragged_slider_is_drawn_at_most_every_40_ms_and_en
         drag_setting(node_id, name, value, drag_key)
 
     window.editor.drag_setting = asking
+    solved: list[float] = []  # when each solve's results arrived
+    window.doc.results_changed.connect(lambda _outcome: solved.append(time.perf_counter()))
     viewport = window.view.viewport()
     QTest.mousePress(viewport, LEFT, NONE, start)
     qtbot.wait(50)
@@ -340,10 +345,13 @@ def test_while_a_solve_runs_a_dragged_slider_is_drawn_at_most_every_40_ms_and_en
     busy_moves = sum(1 for _, busy in moves if busy)
     assert busy_moves >= 10  # most moves came while a solve ran
     busy = [when for when, in_flight in paints if in_flight]
-    gaps = np.diff(busy)
     assert len(busy) < busy_moves / 2
+    # Two drawings during one solve are 40 ms apart. One during the next solve may come at
+    # once: the move after a solve's end is drawn at once, and the solve it starts may be
+    # under way by the time the drawing is painted.
+    gaps = [b - a for a, b in itertools.pairwise(busy) if not any(a < end < b for end in solved)]
     # (a timer's rounding: Qt's coarse timers fire within 5 % of their interval)
-    assert np.all(gaps >= 0.9 * BUSY_WIDGET_INTERVAL_MS / 1000)  # (none when solves were quick)
+    assert np.all(np.array(gaps) >= 0.9 * BUSY_WIDGET_INTERVAL_MS / 1000)  # (none when solves were quick)
     # the last new value was drawn (alone or with the whole node): moves past the track's
     # end ask for no new value
     pairs = zip(values[1:], values[:-1], strict=True)

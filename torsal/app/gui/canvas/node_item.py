@@ -289,7 +289,10 @@ class NodeItem(QGraphicsRectItem):
         if self.widget is not None and around is not None and around.contains(option.exposedRect):
             # only the inline widget is to be drawn again (a slider's handle moved, see
             # update_widget): in and just around its rectangle the node is its body colour
-            # (the port labels and the title bar are further away) and the widget
+            # (the port labels and the title bar are further away) and the widget. The next
+            # busy drawing waits from now, not from when this one was asked for: a paint
+            # that came late would otherwise be followed early
+            self._widget_drawn = time.perf_counter()
             painter.fillRect(around, body)
             self.widget.paint(painter, layout.widget_rect)
             return
