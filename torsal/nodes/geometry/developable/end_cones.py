@@ -21,7 +21,9 @@ Both ends are solved together: the pencils of rulings through the curves' end po
 are sampled in one evaluation of the moving curve, every sign change of the coplanarity
 function is refined at once by Newton's method inside its bracket (:mod:`..roots`), and
 the tail is solved on the curves' own parameters run backwards (1 − x) rather than on
-reversed copies of the curves.
+reversed copies of the curves. So are the strips of one solve: every end's run of fans
+is read from the strips' stacked rulings at once (:class:`_Runs`, as :mod:`.stack`
+stacks rows), judged, and rewritten into its cone in one pass for all of them.
 """
 
 from __future__ import annotations
