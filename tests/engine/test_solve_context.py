@@ -7,7 +7,8 @@ import threading
 
 from tests.engine.test_solver import Constant
 from torsal.engine.graph import Graph
-from torsal.engine.node import In, Node, Out
+from torsal.engine.node import In, Level, Message, Node, Out
+from torsal.engine.solve_context import SolveContext
 from torsal.engine.solver import WARNING, Solver
 from torsal.engine.types import NUMBER
 
@@ -90,3 +91,22 @@ def test_a_node_used_on_its_own_hears_its_own_progress_listener():
     from_solver: list[tuple[str, float]] = []
     Solver(graph).solve(node_progress=lambda node_id, f: from_solver.append((node_id, f)))
     assert heard == [0.5] and from_solver == [("h", 0.5)]
+
+
+def test_a_message_said_again_in_one_solve_is_kept_once_in_the_order_first_said():
+    context = SolveContext(object())
+    a, b, warned_b = Message(Level.WARNING, "a"), Message(Level.REMARK, "b"), Message(Level.WARNING, "b")
+    for message in (a, b, Message(Level.WARNING, "a"), warned_b):
+        context.say(message)
+    assert context.messages == [a, b, warned_b]
+
+
+def test_messages_forgotten_or_appended_directly_are_seen_by_the_next_say():
+    context = SolveContext(object())
+    context.say(Message(Level.WARNING, "a"))
+    context.say(Message(Level.WARNING, "b"))
+    context.forget_since(1)
+    context.say(Message(Level.WARNING, "b"))  # forgotten: said anew
+    context.messages.append(Message(Level.ERROR, "c"))
+    context.say(Message(Level.ERROR, "c"))  # appended directly: not repeated
+    assert [m.text for m in context.messages] == ["a", "b", "c"]

@@ -290,7 +290,7 @@ def run_batched(node: Node, matching: Plan, outputs: dict[str, DataTree]) -> boo
     rows = chain.from_iterable(group.rows for group in matching.groups)
     results = node.solve_many(*zip(*rows, strict=True))
     if results is None:  # declined: what it said is forgotten, solve says it row by row
-        del node.messages[said:]
+        node.context().forget_since(said)
         return False
     # each group's rows' results, in order (with the rows' messages said in order)
     groups, start = [], 0

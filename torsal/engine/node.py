@@ -304,9 +304,7 @@ class Node:
         self._say(Level.WARNING, text)
 
     def _say(self, level: Level, text: str) -> None:
-        message, messages = Message(level, text), self.messages
-        if message not in messages:
-            messages.append(message)
+        self.context().say(Message(level, text))
 
     @property
     def anytime(self) -> bool:

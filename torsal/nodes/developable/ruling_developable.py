@@ -25,6 +25,7 @@ from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.coincidence import coincident
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
+from torsal.nodes.geometry.curves.shared_knots import partitions_kept
 from torsal.nodes.geometry.developable import RulingResult, ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import align_b, better_pairing
 from torsal.nodes.geometry.developable.kinds import RulingKinds, ruling_kinds, ruling_kinds_all
@@ -276,6 +277,11 @@ class RulingDevelopable(Node):
         """Every strip of the solve at once (:func:`ruling_developables`: each step of the
         kernel runs once for all of them), with each row's outputs and messages as
         :meth:`solve` gives them."""
+        with partitions_kept():  # (each list of curves sorted by knots once in the solve's steps)
+            return self._solve_rows(columns)
+
+    def _solve_rows(self, columns: Sequence[Sequence[Any]]) -> list[Any]:
+        """:meth:`solve_many`'s work."""
         checked: list[_Checked | NodeWarning] = []
         stop: Exception | None = None  # what ends the solve at a row, after the rows before it
         for row in zip(*columns, strict=True):

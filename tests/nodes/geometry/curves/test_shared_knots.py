@@ -103,20 +103,32 @@ def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rat
             assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)
 
 
-def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken(monkeypatch):
+def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken():
     from torsal.nodes.geometry.curves import shared_knots
 
-    monkeypatch.setattr(shared_knots, "_PARTITIONS", {})
     line = Line([0, 0, 0], [1, 2, 3])
     curves = [*curves_sharing_knots(4, False, 3), line, *curves_sharing_knots(5, True, 2)]
-    grouped, others = shared_knots._partition(curves)
-    assert sorted(group.members.tolist() for group in grouped) == [[0, 1, 2], [4, 5]] and others == [3]
-    assert shared_knots._partition(list(curves))[0] is grouped  # (the same curves: the one kept)
-    # a kept partition under these ids, but of other curves (theirs since collected, their ids reused)
-    ids = tuple(map(id, curves))
-    others_kept = curves_sharing_knots(6, False, 6)
-    kept = ([shared_knots._Group(np.arange(6), others_kept)], [])
-    shared_knots._PARTITIONS[ids] = (tuple(others_kept), kept)
-    again, others = shared_knots._partition(curves)
-    assert sorted(group.members.tolist() for group in again) == [[0, 1, 2], [4, 5]] and others == [3]
-    assert all(group.curves == [curves[i] for i in group.members] for group in again)
+    with shared_knots.partitions_kept():
+        grouped, others = shared_knots._partition(curves)
+        assert sorted(group.members.tolist() for group in grouped) == [[0, 1, 2], [4, 5]] and others == [3]
+        assert shared_knots._partition(list(curves))[0] is grouped  # (the same curves: the one kept)
+        # a kept partition under these ids, but of other curves (theirs since collected, their ids reused)
+        ids = tuple(map(id, curves))
+        others_kept = curves_sharing_knots(6, False, 6)
+        kept = ([shared_knots._Group(np.arange(6), others_kept)], [])
+        shared_knots._KEPT.get()[ids] = (tuple(others_kept), kept)
+        again, others = shared_knots._partition(curves)
+        assert sorted(group.members.tolist() for group in again) == [[0, 1, 2], [4, 5]] and others == [3]
+        assert all(group.curves == [curves[i] for i in group.members] for group in again)
+
+
+def test_partitions_are_kept_only_inside_a_block_and_dropped_with_it():
+    from torsal.nodes.geometry.curves import shared_knots
+
+    curves = curves_sharing_knots(4, False, 3)
+    assert shared_knots._partition(curves)[0] is not shared_knots._partition(curves)[0]  # (none kept)
+    with shared_knots.partitions_kept():
+        kept = shared_knots._partition(curves)[0]
+        with shared_knots.partitions_kept():  # (nested: the outer block's)
+            assert shared_knots._partition(curves)[0] is kept
+    assert shared_knots._KEPT.get() is None

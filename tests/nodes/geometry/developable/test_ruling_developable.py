@@ -17,7 +17,7 @@ import pytest
 from tests.support import curve_pairs
 from tests.support.strip_triangles import hausdorff, strip_triangles
 from torsal.nodes.geometry.curves import Arc, Circle, Line, Polyline
-from torsal.nodes.geometry.developable import ruling_developable
+from torsal.nodes.geometry.developable import ruling_developable, ruling_developables
 from torsal.nodes.geometry.developable.alternatives import better_pairing
 from torsal.nodes.geometry.vectors import Plane
 
@@ -385,6 +385,28 @@ def test_a_strip_end_with_no_torsal_partner_is_one_cone_joined_at_the_true_gener
     apex = np.repeat(b.point_at(0.0)[None], first_torsal, 0)
     np.testing.assert_array_equal(result.ends[:first_torsal], apex)
     assert result.warp[first_torsal] <= 1e-9
+
+
+def test_strips_solved_together_close_head_and_tail_with_the_generators_through_bs_ends():
+    """Four strips in one solve: the overhang at A's start, at its end (both curves run
+    backwards), the pairing swapped (B overhangs: no cone) and a cone pair without fans.
+    The head's and the tail's cones each join the torsal rulings at the cone's generator
+    through B's end point, which meets A at angle 0 (the construction's closed form)."""
+    a, b = overhanging_cone_pair()
+    jobs = [(a, b, 40, 0.01), (a.reversed(), b.reversed(), 40, 0.01), (b, a, 40, 0.01)]
+    pair = curve_pairs.PAIRS["cone"]()
+    head, tail, swapped, plain = ruling_developables([*jobs, (pair.a, pair.b, 20, 0.01)])
+    for result, end in ((head, 0.0), (tail, 1.0)):
+        torsal = np.flatnonzero(~result.fan)
+        joint = torsal[0] if end == 0.0 else torsal[-1]
+        assert not result.stations[joint]
+        assert abs(np.arctan2(result.starts[joint, 1], result.starts[joint, 0])) <= 1e-10
+        assert np.abs(result.ends[joint] - b.point_at(0.0)).max() <= 1e-12
+        assert result.warp[joint] <= 1e-9
+    # the tail's fans all run to B's last point, A's first stations to B's first
+    last = np.flatnonzero(~tail.fan)[-1]
+    np.testing.assert_array_equal(tail.ends[last:], np.repeat(b.point_at(0.0)[None], len(tail.s) - last, 0))
+    assert not swapped.fan[swapped.stations].any() and not plain.fan.any()
 
 
 def test_either_pairing_of_an_overhanging_cone_closes_the_same_smooth_cone_so_no_hint_is_given():

@@ -22,8 +22,9 @@ holds exactly one of them (added to zeros, which changes no bit).
 from __future__ import annotations
 
 import operator
-import threading
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import cached_property
 
 import numpy as np
@@ -134,13 +135,16 @@ class _Group:
 def _partition(curves: Sequence[Curve]) -> tuple[list[_Group], list[int]]:
     """The indices of ``curves`` that can be evaluated together, by basis (NURBS curves of
     one degree, knots and rationality: :func:`_groupable`), and the others. A solve's steps
-    evaluate the same curves again and again (every Newton step of a search): the last
-    few lists' partitions are kept, by the curves themselves (a list of other curves with
-    the same ids, those of curves since collected, is not taken for one of them)."""
-    ids = tuple(map(id, curves))
-    known = _PARTITIONS.get(ids)
-    if known is not None and all(map(operator.is_, known[0], curves)):
-        return known[1]
+    evaluate the same curves again and again (every Newton step of a search): inside a
+    :func:`partitions_kept` block each list's partition is made once, kept by the curves
+    themselves (a list of other curves with the same ids, those of curves since
+    collected, is not taken for one of them)."""
+    kept = _KEPT.get()
+    ids = tuple(map(id, curves)) if kept is not None else ()
+    if kept is not None:
+        known = kept.get(ids)
+        if known is not None and all(map(operator.is_, known[0], curves)):
+            return known[1]
     groups: dict[tuple, list[int]] = {}
     others = []
     for i, curve in enumerate(curves):
@@ -150,18 +154,31 @@ def _partition(curves: Sequence[Curve]) -> tuple[list[_Group], list[int]]:
             others.append(i)
     made = [_Group(np.array(members), [curves[i] for i in members]) for members in groups.values()]
     partition = made, others
-    with _PARTITIONS_LOCK:  # (a solve in a worker beside one in the caller's thread)
-        while len(_PARTITIONS) >= _PARTITIONS_KEPT:
-            del _PARTITIONS[next(iter(_PARTITIONS))]  # (the oldest)
-        _PARTITIONS[ids] = (tuple(curves), partition)
+    if kept is not None:
+        kept[ids] = (tuple(curves), partition)
     return partition
 
 
-#: :func:`_partition`'s last partitions, by the ids of their curves, with the curves (which
-#: keeps their ids from being reused while they are kept)
-_PARTITIONS: dict[tuple[int, ...], tuple[tuple[Curve, ...], tuple[list[_Group], list[int]]]] = {}
-_PARTITIONS_KEPT = 16
-_PARTITIONS_LOCK = threading.Lock()
+@contextmanager
+def partitions_kept() -> Iterator[None]:
+    """Within the block (a solve, in this thread), the partition of each list of curves
+    evaluated (:func:`_partition`) is made once and kept, with the curves; it is dropped
+    with the block. Blocks nest: an inner one keeps its partitions in the outer one's."""
+    if _KEPT.get() is not None:
+        yield
+        return
+    token = _KEPT.set({})
+    try:
+        yield
+    finally:
+        _KEPT.reset(token)
+
+
+#: the partitions kept by the :func:`partitions_kept` block under way in this thread (None
+#: outside one), by the ids of their curves, with the curves (which keeps their ids from
+#: being reused while they are kept)
+_KEPT: ContextVar[dict[tuple[int, ...], tuple[tuple[Curve, ...], tuple[list[_Group], list[int]]]] | None] = (
+    ContextVar("torsal_curve_partitions", default=None))
 
 
 def _rows(bounds: IntArray, members: IntArray) -> tuple[IntArray, IntArray]:

@@ -21,7 +21,9 @@ Both ends are solved together: the pencils of rulings through the curves' end po
 are sampled in one evaluation of the moving curve, every sign change of the coplanarity
 function is refined at once by Newton's method inside its bracket (:mod:`..roots`), and
 the tail is solved on the curves' own parameters run backwards (1 − x) rather than on
-reversed copies of the curves.
+reversed copies of the curves. So are the strips of one solve: every end's run of fans
+is read from the strips' stacked rulings at once (:class:`_Runs`, as :mod:`.stack`
+stacks rows), judged, and rewritten into its cone in one pass for all of them.
 """
 
 from __future__ import annotations
@@ -61,24 +63,43 @@ class Rulings:
     source: IntArray
     fan: BoolArray
 
-    def reversed(self) -> Rulings:
-        return Rulings(1.0 - self.s[::-1], 1.0 - self.t[::-1], self.source[::-1], self.fan[::-1])
-
 
 @dataclass(frozen=True)
-class _Run:
-    """The run of fan rulings before the first torsal ruling ``k`` of the rulings (or of
-    the reversed rulings, for the tail: ``reverse``), in those rulings' parameters."""
+class _Runs:
+    """The runs of fan rulings before each strip end's first torsal ruling ``k`` (counted
+    from the end: for the tail, in the reversed rulings' parameters 1 − s and 1 − t), of
+    many strips, stacked: per run its strip (among the strips given), whether it is the
+    tail (``reverse``), ``k`` and the ends s0, t0 (the end's ruling) and sk, tk (the first
+    torsal one); per run its ``k`` fan rulings (``members``): s, t (the run's parameters),
+    source. A strip's head comes before its tail."""
 
-    k: int
-    reverse: bool
-    s0: float
-    t0: float
-    sk: float
-    tk: float
+    strip: IntArray
+    reverse: BoolArray
+    k: IntArray
+    s0: FloatArray
+    t0: FloatArray
+    sk: FloatArray
+    tk: FloatArray
+    members: Stack
     s: FloatArray
     t: FloatArray
     source: IntArray
+
+    def __len__(self) -> int:
+        return len(self.strip)
+
+    def any_of(self, flags: BoolArray) -> BoolArray:
+        """Per run, whether any of its members' ``flags`` is set (every run has members)."""
+        return np.logical_or.reduceat(flags, self.members.starts)
+
+    def taken(self, chosen: BoolArray) -> _Runs:
+        """The runs ``chosen``, with their members."""
+        rows = self.members.repeat(chosen)
+        return _Runs(
+            self.strip[chosen], self.reverse[chosen], self.k[chosen], self.s0[chosen], self.t0[chosen],
+            self.sk[chosen], self.tk[chosen], Stack(self.members.counts[chosen]), self.s[rows], self.t[rows],
+            self.source[rows],
+        )
 
 
 def smooth_ends(curve_a: Curve, curve_b: Curve, rulings: Rulings) -> Rulings:
@@ -93,115 +114,176 @@ def smooth_all(
     strips: Sequence[tuple[Curve, Curve, Rulings]], lengths: Sequence[Lengths] | None = None
 ) -> list[Rulings]:
     """:func:`smooth_ends` of every strip ``(curve_a, curve_b, rulings)``, the end rulings of
-    all of them solved at once. Given each strip's ``lengths`` (its curves' arc-length maps,
-    as a :class:`.strip.Strip` has them), the pencils are sampled evenly along the moving
+    all of them solved at once, and every end's run read and rewritten in one pass for all
+    strips. Given each strip's ``lengths`` (its curves' arc-length maps, as a
+    :class:`.strip.Strip` has them), the pencils are sampled evenly along the moving
     curve's length, not its parameter: the roots found then do not depend on its pace."""
     done: list[Rulings] = [rulings for _, _, rulings in strips]
-    # per strip its runs: those of the strips whose ends may become cones
-    jobs: list[tuple[int, list[_Run]]] = []
-    for index, (_, curve_b, rulings) in enumerate(strips):
-        if curve_b.closed or rulings.fan.all() or not rulings.fan.any():
-            continue
-        runs = [run for run in (_run(rulings, False), _run(rulings, True)) if run is not None]
-        if runs:
-            jobs.append((index, runs))
-    if not jobs:
+    # the strips whose ends may become cones: B open, with fans and torsal rulings
+    mixed = [i for i, (_, curve_b, r) in enumerate(strips)
+             if not curve_b.closed and not r.fan.all() and r.fan.any()]
+    if not mixed:
         return done
+    given = [strips[i][2] for i in mixed]
+    stack = Stack.of([r.s for r in given])
+    s, t = np.concatenate([r.s for r in given]), np.concatenate([r.t for r in given])
+    source, fan = np.concatenate([r.source for r in given]), np.concatenate([r.fan for r in given])
+    runs = _runs(stack, s, t, source, fan)
+    if not len(runs):
+        return done
+    pairs = [strips[i][:2] for i in mixed]
+    maps_a = maps_b = None
+    if lengths is not None:
+        maps_a, maps_b = [lengths[i].map_a for i in mixed], [lengths[i].map_b for i in mixed]
     # the torsal ruling through B's end point: A(s*) → B(t0), s* in (s0, sk); all ends at once
-    through_b = _roots([(strips[i][0], strips[i][1], runs) for i, runs in jobs], True,
-                       None if lengths is None else [lengths[i].map_a for i, _ in jobs])
-    cones: list[dict[bool, tuple[bool, float]]] = []
-    others: list[tuple[int, list[_Run]]] = []
-    for (_, runs), roots in zip(jobs, through_b, strict=True):
-        found: dict[bool, tuple[bool, float]] = {}
-        rest = []
-        for run, root in zip(runs, roots, strict=True):
-            stations = run.source >= 0
-            if root is not None and not (stations & (run.s > root) & (run.s < run.sk)).any():
-                found[run.reverse] = (False, root)
-            elif not (stations & (run.s > run.s0)).any():
-                rest.append(run)  # else the cone through A(s0) could not cover the run's stations
-        cones.append(found)
-        if rest:
-            others.append((len(cones) - 1, rest))
-    if others:  # the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk)
-        through_a = _roots([(*strips[jobs[j][0]][:2], rest) for j, rest in others], False,
-                           None if lengths is None else [lengths[jobs[j][0]].map_b for j, _ in others])
-        for (j, rest), roots in zip(others, through_a, strict=True):
-            for run, root in zip(rest, roots, strict=True):
-                if root is not None:
-                    cones[j][run.reverse] = (True, root)
-    for (index, runs), found in zip(jobs, cones, strict=True):
-        if found:
-            done[index] = _with_cones(strips[index][2], runs, found)
+    root, has = _roots_of(pairs, runs, True, maps_a)
+    stations = runs.source >= 0
+    on_b = has & ~runs.any_of(stations & (runs.s > runs.members.repeat(root))
+                              & (runs.s < runs.members.repeat(runs.sk)))
+    # else the torsal ruling through A's end point: A(s0) → B(t*), t* in (t0, tk), where the
+    # cone through A(s0) covers the run's stations
+    rest = ~on_b & ~runs.any_of(stations & (runs.s > runs.members.repeat(runs.s0)))
+    on_a = np.zeros(len(runs), dtype=bool)
+    if rest.any():
+        others = runs.taken(rest)
+        root_a, on_a[rest] = _roots_of(pairs, others, False, maps_b)
+        root[rest] = np.where(on_a[rest], root_a, root[rest])
+    coned = on_b | on_a
+    if coned.any():
+        rewritten = _with_cones(stack, s, t, source, fan, runs.taken(coned), on_a[coned], root[coned])
+        for j, rulings in rewritten.items():
+            done[mixed[j]] = rulings
     return done
 
 
-def _with_cones(rulings: Rulings, runs: list[_Run], cones: dict[bool, tuple[bool, float]]) -> Rulings:
-    """The rulings with the end runs that have a cone (``cones``, by ``reverse``: whether
-    it is through A and the end ruling's root) made that cone."""
-    # the rulings between the ends' runs stay; the first (last) of them is the torsal
-    # ruling the head's (tail's) cone joins, and may become that cone's station
-    n = len(rulings.s)
-    head = next((run for run in runs if not run.reverse and False in cones), None)
-    tail = next((run for run in runs if run.reverse and True in cones), None)
-    first, stop = (head.k if head else 0), (n - tail.k if tail else n)
-    source = rulings.source[first:stop].copy()
-    pieces = [Rulings(rulings.s[first:stop], rulings.t[first:stop], source, rulings.fan[first:stop])]
-    if head is not None:
-        cone, source[0] = _cone(head, *cones[False], int(source[0]))
-        pieces.insert(0, cone)
-    if tail is not None:
-        # (the head's cone leaves the tail's run as it was, but may have given the first
-        # torsal ruling, if it is also the last, a station)
-        cone, source[-1] = _cone(tail, *cones[True], int(source[-1]))
-        pieces.append(cone.reversed())
-    columns = zip(*((piece.s, piece.t, piece.source, piece.fan) for piece in pieces), strict=True)
-    return Rulings(*(np.concatenate(column) for column in columns))
+def _runs(stack: Stack, s: FloatArray, t: FloatArray, source: IntArray, fan: BoolArray) -> _Runs:
+    """The runs of fans at both ends of the stacked rulings of strips that have fans and
+    torsal rulings (``stack`` says where each strip's are), but for an end with no run
+    (its ruling is torsal) or whose run is one cone already."""
+    n, starts = stack.counts, stack.starts
+    local = np.arange(stack.rows) - stack.repeat(starts)
+    # per strip (head, tail): the first torsal ruling from that end
+    k = np.empty((len(stack), 2), dtype=np.int64)
+    k[:, 0] = np.minimum.reduceat(np.where(fan, stack.rows, local), starts)
+    k[:, 1] = n - 1 - np.maximum.reduceat(np.where(fan, -1, local), starts)
+    candidate = k.reshape(-1) > 0
+    strip = np.repeat(np.arange(len(stack)), 2)[candidate]
+    reverse = np.tile([False, True], len(stack))[candidate]
+    k = k.reshape(-1)[candidate]
+    # each run's k + 1 rulings from its end, in its parameters (1 − u on the tail)
+    ends = Stack(k + 1)
+    run = ends.owner()
+    step = np.arange(ends.rows) - ends.repeat(ends.starts)
+    backwards = reverse[run]
+    rows = starts[strip][run] + np.where(backwards, n[strip][run] - 1 - step, step)
+    run_s = np.where(backwards, 1.0 - s[rows], s[rows])
+    run_t = np.where(backwards, 1.0 - t[rows], t[rows])
+    first, last = ends.starts, ends.offsets[1:] - 1
+    one_cone = (np.logical_and.reduceat(run_s == ends.repeat(run_s[first]), first)
+                | np.logical_and.reduceat(run_t == ends.repeat(run_t[first]), first))
+    member = step < ends.repeat(k)  # (the k fan rulings, not the torsal one)
+    runs = _Runs(strip, reverse, k, run_s[first], run_t[first], run_s[last], run_t[last], Stack(k),
+                 run_s[member], run_t[member], source[rows[member]])
+    return runs.taken(~one_cone)
 
 
-def _run(r: Rulings, reverse: bool) -> _Run | None:
-    """The run of fans before the first torsal ruling (from the strip's end, in the reversed
-    rulings' parameters 1 − s and 1 − t, when ``reverse``), or None where there is none or
-    it is one cone already."""
-    k = int(r.fan[::-1].argmin() if reverse else r.fan.argmin())  # the first torsal ruling
-    if k == 0:
-        return None
-    if reverse:  # the first k + 1 of the reversed rulings
-        s, t, source = 1.0 - r.s[-1 - k :][::-1], 1.0 - r.t[-1 - k :][::-1], r.source[-k:][::-1]
-    else:
-        s, t, source = r.s[: k + 1], r.t[: k + 1], r.source[:k]
-    s0, t0 = s[0], t[0]
-    if (s == s0).all() or (t == t0).all():
-        return None  # already one cone
-    return _Run(k, reverse, float(s0), float(t0), float(s[k]), float(t[k]), s[:k], t[:k], source)
+def _roots_of(
+    pairs: Sequence[tuple[Curve, Curve]], runs: _Runs, moving_a: bool, maps: Sequence[LengthMap] | None
+) -> tuple[FloatArray, BoolArray]:
+    """:func:`_roots` of ``runs`` (of the strips whose curves are ``pairs``): per run the root
+    and whether there is one."""
+    strips, per_strip = np.unique(runs.strip, return_counts=True)
+    fixed, low, high = (runs.t0, runs.s0, runs.sk) if moving_a else (runs.s0, runs.t0, runs.tk)
+    listed = strips.tolist()
+    return _roots([pairs[j] for j in listed], Stack(per_strip), runs.reverse, fixed, low, high, moving_a,
+                  None if maps is None else [maps[j] for j in listed])
 
 
-def _cone(run: _Run, through_a: bool, root: float, source_k: int) -> tuple[Rulings, int]:
-    """The rulings that replace the run (a cone's rulings and the torsal ruling through the
-    curve's end point ``root``), and the station index the first torsal ruling carries
-    from then on (``source_k`` now)."""
-    stations = run.source >= 0
-    if not through_a:  # the stations the cone through B(t0) covers, then A(root) → B(t0)
-        keep = flatnonzero((run.s < root) & stations)
-        torsal = root, run.t0
-    else:  # the cone through A(s0) over B[t0, t*], then A(s0) → B(root)
-        keep = flatnonzero((run.t < root) & (run.s == run.s0))
-        torsal = run.s0, root
-    m = len(keep)
-    head = np.empty((2, m + 1))
-    head[0, :m] = run.s[keep]
-    head[1, :m] = run.t[keep] if through_a else run.t0
-    head[:, m] = torsal
-    head_source = np.empty(m + 1, dtype=np.int64)
-    head_source[:m] = kept = run.source[keep]
-    head_source[m] = -1
-    dropped = set(run.source[stations].tolist()) - set(kept.tolist())
-    if dropped and source_k < 0:  # a fan ruling of the station at the first torsal ruling's s
-        source_k = min(dropped)
-    head_fan = np.ones(m + 1, dtype=bool)
-    head_fan[m] = False
-    return Rulings(head[0], head[1], head_source, head_fan), source_k
+def _with_cones(
+    stack: Stack, s: FloatArray, t: FloatArray, source: IntArray, fan: BoolArray, runs: _Runs,
+    through_a: BoolArray, root: FloatArray,
+) -> dict[int, Rulings]:
+    """The rulings of each strip with a cone at one end or both (by its place in ``stack``),
+    the ``runs`` that have one made that cone (:func:`_cones`); the rulings between the
+    ends' runs stay, and the first (last) of them, the torsal ruling the head's (tail's)
+    cone joins, may become that cone's station."""
+    cone_s, cone_t, cone_source, cone_fan, blocks, first_station = _cones(runs, through_a, root)
+    strips = np.unique(runs.strip)
+    # per strip the head's and the tail's run (−1: none), and the rulings kept between them
+    head, tail = np.full(len(stack), -1), np.full(len(stack), -1)
+    head[runs.strip[~runs.reverse]] = np.flatnonzero(~runs.reverse)
+    tail[runs.strip[runs.reverse]] = np.flatnonzero(runs.reverse)
+    head, tail = head[strips], tail[strips]
+    low = stack.starts[strips] + np.where(head >= 0, runs.k[head], 0)
+    high = stack.offsets[1:][strips] - np.where(tail >= 0, runs.k[tail], 0)
+    # the new rulings: per strip its head's cone, its rulings low:high, its tail's cone,
+    # gathered from the rulings followed by the cones
+    rows = stack.rows
+    begin = np.column_stack([rows + blocks.starts[head], low, rows + blocks.starts[tail]])
+    count = np.column_stack([np.where(head >= 0, blocks.counts[head], 0), high - low,
+                             np.where(tail >= 0, blocks.counts[tail], 0)])
+    pieces = Stack(count.reshape(-1))
+    at = np.arange(pieces.rows) - pieces.repeat(pieces.starts) + pieces.repeat(begin.reshape(-1))
+    out_s = np.concatenate([s, cone_s])[at]
+    out_t = np.concatenate([t, cone_t])[at]
+    out_source = np.concatenate([source, cone_source])[at]
+    out_fan = np.concatenate([fan, cone_fan])[at]
+    # the first torsal ruling may take the station of a fan ruling its cone dropped (the
+    # head's first, then the tail's, on what the head left where it is also the last one)
+    kept = pieces.starts[1::3]
+    for runs_at, place in ((head, kept), (tail, kept + count[:, 1] - 1)):
+        given = runs_at >= 0
+        station = first_station[runs_at]
+        takes = given & (station >= 0) & (out_source[place] < 0)
+        out_source[place[takes]] = station[takes]
+    per_strip = Stack(count.sum(axis=1))
+    columns = [per_strip.split(a) for a in (out_s, out_t, out_source, out_fan)]
+    return {int(j): Rulings(*row) for j, *row in zip(strips.tolist(), *columns, strict=True)}
+
+
+def _cones(
+    runs: _Runs, through_a: BoolArray, root: FloatArray
+) -> tuple[FloatArray, FloatArray, IntArray, BoolArray, Stack, IntArray]:
+    """The rulings that replace each run (a cone's rulings and the torsal ruling through the
+    curve's end point ``root``: through A(s0) where ``through_a``, else through B(t0)), in
+    the strip's parameters and order (a tail's read back), one block per run (the
+    returned stack); and per run the station a dropped fan ruling leaves for the first
+    torsal ruling to carry (the least, −1 for none)."""
+    m = runs.members
+    owner = m.owner()
+    stations = runs.source >= 0
+    by_a = m.repeat(through_a)
+    bound = m.repeat(root)
+    # through B(t0): the stations the cone covers; through A(s0): its fans over B up to t*
+    keep = np.where(by_a, (runs.t < bound) & (runs.s == m.repeat(runs.s0)), (runs.s < bound) & stations)
+    kept = np.add.reduceat(keep.astype(np.int64), m.starts)
+    blocks = Stack(kept + 1)
+    # each kept ruling's place in its block, then the torsal ruling's (the last; the first
+    # of a tail's block, read backwards)
+    rank = np.cumsum(keep) - keep - m.repeat(np.cumsum(kept) - kept)
+    rank = rank[keep]
+    back = runs.reverse[owner[keep]]
+    place = blocks.starts[owner[keep]] + np.where(back, kept[owner[keep]] - rank, rank)
+    torsal = blocks.starts + np.where(runs.reverse, 0, kept)
+    cone_s, cone_t = np.empty(blocks.rows), np.empty(blocks.rows)
+    cone_s[place] = runs.s[keep]
+    cone_t[place] = np.where(by_a[keep], runs.t[keep], runs.t0[owner[keep]])
+    cone_s[torsal] = np.where(through_a, runs.s0, root)
+    cone_t[torsal] = np.where(through_a, root, runs.t0)
+    back_rows = blocks.repeat(runs.reverse)
+    cone_s = np.where(back_rows, 1.0 - cone_s, cone_s)
+    cone_t = np.where(back_rows, 1.0 - cone_t, cone_t)
+    cone_source = np.full(blocks.rows, -1, dtype=np.int64)
+    cone_source[place] = runs.source[keep]
+    cone_fan = np.ones(blocks.rows, dtype=bool)
+    cone_fan[torsal] = False
+    # the stations of fan rulings no kept ruling carries any more (by run: run · span + source)
+    span = int(runs.source.max()) + 2
+    key = owner * span + runs.source + 1
+    dropped = stations & ~np.isin(key, key[keep])
+    least = np.minimum.reduceat(np.where(dropped, runs.source, np.iinfo(np.int64).max), m.starts)
+    first_station = np.where(runs.any_of(dropped), least, -1)
+    return cone_s, cone_t, cone_source, cone_fan, blocks, first_station
 
 
 def _even_in_length(
@@ -225,12 +307,15 @@ def _even_in_length(
 
 
 def _roots(
-    strips: Sequence[tuple[Curve, Curve, list[_Run]]], moving_a: bool, maps: Sequence[LengthMap] | None = None
-) -> list[list[float | None]]:
-    """For each run of each strip ``(curve_a, curve_b, runs)``, the parameter nearest the
-    first torsal ruling of the moving end of a torsal ruling with consistently oriented
-    normals (signed warp near 0, not near π) through the fixed end point — B(t0) when
-    ``moving_a`` (the root in (s0, sk)), else A(s0) (the root in (t0, tk)) — or None.
+    pairs: Sequence[tuple[Curve, Curve]], per_strip: Stack, reverse: BoolArray, fixed: FloatArray,
+    low: FloatArray, high: FloatArray, moving_a: bool, maps: Sequence[LengthMap] | None = None,
+) -> tuple[FloatArray, BoolArray]:
+    """For each run (``per_strip`` of them on each strip of curves ``pairs``, read backwards
+    where ``reverse``), the parameter nearest the first torsal ruling of the moving end of
+    a torsal ruling with consistently oriented normals (signed warp near 0, not near π)
+    through the fixed end point — B(``fixed``) when ``moving_a`` (the root in (s0, sk):
+    ``low``, ``high``), else A(``fixed``) (the root in (t0, tk)) — and whether there is one
+    (the root is NaN where not).
 
     Each run's pencil is bracketed on :data:`SAMPLES` samples (evenly spaced along the
     moving curve's length given its ``maps``, else in its parameter); all runs' samples are one
@@ -240,25 +325,13 @@ def _roots(
     g = det[B − A, A', B'] (the coplanarity with the curves' own tangents: the same
     roots), with g' = det[R, A'', B'] (or det[R, A', B''] when B moves).
     """
-    moving = [(a, b) if moving_a else (b, a) for a, b, _ in strips]
-    runs = [run for _, _, of_strip in strips for run in of_strip]
-    per_strip = Stack([len(of_strip) for _, _, of_strip in strips])
+    moving = [(a, b) if moving_a else (b, a) for a, b in pairs]
     strip_of = per_strip.owner()  # (of every run)
-    found: list[float | None] = [None] * len(runs)
-
-    def by_strip(flat: list[float | None]) -> list[list[float | None]]:
-        bounds = per_strip.offsets.tolist()
-        return [flat[low:high] for low, high in pairwise(bounds)]
-
-    reverse = np.array([run.reverse for run in runs])
-    # per run, the fixed end's parameter and the moving end's interval
-    fixed, low, high = np.array(
-        [(run.t0, run.s0, run.sk) if moving_a else (run.s0, run.t0, run.tk) for run in runs]
-    ).T
+    found, has = np.full(len(reverse), np.nan), np.zeros(len(reverse), dtype=bool)
     wide = high > low
     if not wide.any():
-        return by_strip(found)
-    offset = per_strip.repeat(np.array([b.anchor - a.anchor for a, b, _ in strips]))
+        return found, has
+    offset = per_strip.repeat(np.array([b.anchor - a.anchor for a, b in pairs]))
     q, dq = evaluate_each(
         [m[1] for m in moving], np.where(reverse, 1.0 - fixed, fixed), per_strip.offsets, 1, local=True
     )
@@ -272,7 +345,7 @@ def _roots(
     p, dp, ddp = evaluate_each(
         [m[0] for m in moving], np.where(flip, 1.0 - u, u), per_strip.offsets * SAMPLES, 2, local=True
     )
-    rows = np.repeat(np.arange(len(runs)), SAMPLES)
+    rows = np.repeat(np.arange(len(reverse)), SAMPLES)
 
     def pencil(rows: IntArray, p: FloatArray, dp: FloatArray) -> tuple[FloatArray, ...]:
         """The rulings of the pencils ``rows`` to the moving points ``p`` (tangents ``dp``)
@@ -309,7 +382,7 @@ def _roots(
     change &= usable[:, None]
     run_of, j = np.nonzero(change)
     if len(run_of) == 0:
-        return by_strip(found)
+        return found, has
     # the samples before and after each sign change, as flat indices of the (runs, SAMPLES) arrays
     before = run_of * SAMPLES + j
     after = before + 1
@@ -324,7 +397,7 @@ def _roots(
 
     def refined(xs: FloatArray, index: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         back = reverse[run_of[index]]
-        bounds = np.searchsorted(strip_of_root[index], np.arange(len(strips) + 1))
+        bounds = np.searchsorted(strip_of_root[index], np.arange(len(pairs) + 1))
         c = evaluate_each(curves, np.where(back, 1.0 - xs, xs), bounds, 2, local=True)
         value, value_slope, scale, ends = coplanarity(run_of[index], *c, back)
         roots[index] = xs  # the last evaluated point of each bracket, and its ruling
@@ -334,9 +407,12 @@ def _roots(
     refine_roots(refined, x0, x1, g0, start)
     with np.errstate(invalid="ignore", over="ignore"):
         a, da, b, db = at_root
-        strip_roots = Stack(np.bincount(strip_of_root, minlength=len(strips)))
+        strip_roots = Stack(np.bincount(strip_of_root, minlength=len(pairs)))
         good = consistently_oriented(a, b, da, db, strip_roots.repeat(sizes(strip_roots, a, b)))
-    # per run, the root of the last (nearest the torsal ruling) sign change whose root is oriented
-    for i in set(run_of[good].tolist()):
-        found[int(i)] = float(roots[good & (run_of == i)][-1])
-    return by_strip(found)
+    # per run, the root of the last (nearest the torsal ruling) sign change whose root is
+    # oriented (the sign changes come run by run, in order along each)
+    oriented_at = flatnonzero(good)
+    of_run = run_of[oriented_at]
+    last = oriented_at[np.append(of_run[1:] != of_run[:-1], True)]
+    found[run_of[last]], has[run_of[last]] = roots[last], True
+    return found, has

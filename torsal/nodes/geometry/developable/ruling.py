@@ -105,6 +105,7 @@ from torsal.nodes.geometry.array_types import BoolArray, IntArray
 
 from ..counts import segment_count
 from ..curve_base import Curve, FloatArray
+from ..curves.shared_knots import partitions_kept
 from ..vec_ops import cross, flatnonzero, norm, unit
 from ..watch import watch_check
 from .candidates import Candidates, choose_all, near_partners_all
@@ -246,6 +247,13 @@ def ruling_developables(
     strips pays each step's fixed cost once rather than once per strip. Each strip's result
     is the one it gets alone, bit for bit; a job the solve refuses gets its ValueError in
     its place."""
+    with partitions_kept():  # (the curves' partitions by basis made once a solve)
+        return _ruling_developables(jobs, spacing, samples)
+
+
+def _ruling_developables(
+    jobs: Sequence[tuple[Curve, Curve, int, float]], spacing: Spacing, samples: int
+) -> list[RulingResult | ValueError]:
     samples = max(int(samples), 8)
     made = _strips(jobs, spacing, samples)
     solved = iter(_solve_all([strip for strip in made if isinstance(strip, Strip)]))
