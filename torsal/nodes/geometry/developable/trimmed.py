@@ -64,6 +64,7 @@ from ..surface_base import Surface
 from ..torsal_pairing import torsal_partners
 from ..trimmed_surface import TrimmedSurface
 from .certify import certified_deviation, distances_to_strips
+from .chain import Chain
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
@@ -91,46 +92,6 @@ ROOT_STEPS = 3
 #: A cut edge along the trim is a least-squares cubic when it stays this share of the
 #: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
 FIT = 0.05
-
-
-class Chain(Curve):
-    """Pieces of curves end to end: piece k is ``curve`` over its own parameters ``p0 → p1``,
-    run on t in ``[knots[k], knots[k + 1]]`` (the pieces' shares by their parameter spans:
-    pieces that follow on in one parameter make a chain linear in it).
-    Smooth on each piece; the joins are its breakpoints (corners, in general)."""
-
-    def __init__(self, pieces: list[tuple[Curve, float, float]]) -> None:
-        self.pieces = pieces
-        lengths = np.array([p1 - p0 for _, p0, p1 in pieces])
-        self.knots = np.concatenate([[0.0], np.cumsum(lengths) / lengths.sum()])
-        self.knots[-1] = 1.0
-
-    def at(self, piece: int, p: FloatArray) -> FloatArray:
-        """The chain's t where piece ``piece`` is at its own parameters ``p``."""
-        _, p0, p1 = self.pieces[piece]
-        share = (np.asarray(p, dtype=float) - p0) / (p1 - p0) if p1 != p0 else np.zeros(np.shape(p))
-        return self.knots[piece] + share * (self.knots[piece + 1] - self.knots[piece])
-
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
-        t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, 1.0)
-        which = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.pieces) - 1)
-        out = [np.empty((len(t), 3)) for _ in range(order + 1)]
-        for k in np.unique(which):
-            curve, p0, p1 = self.pieces[k]
-            mine = which == k
-            rate = (p1 - p0) / (self.knots[k + 1] - self.knots[k])
-            p = p0 + (t[mine] - self.knots[k]) * rate
-            for d, value in enumerate(curve.derivatives(p, order)):
-                out[d][mine] = value * rate**d
-        return out
-
-    def _breakpoints(self) -> FloatArray:
-        """The joins, and each piece's own breakpoints strictly inside its ``p0 → p1``."""
-        inner = []
-        for k, (curve, p0, p1) in enumerate(self.pieces):
-            own = curve._breakpoints()
-            inner.append(self.at(k, own[(own > min(p0, p1)) & (own < max(p0, p1))]))
-        return np.unique(np.clip(np.concatenate([self.knots, *inner]), 0.0, 1.0))
 
 
 class _OnSheet(Curve):
