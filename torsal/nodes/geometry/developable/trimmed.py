@@ -65,6 +65,7 @@ from ..torsal_pairing import torsal_partners
 from ..trimmed_surface import TrimmedSurface
 from .certify import certified_deviation, distances_to_strips
 from .chain import Chain
+from .cut_pace import BISECTIONS, by_length, jumps
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
@@ -150,6 +151,12 @@ class _Sheet:
         tau = self._partners(self.x)
         tau[self.ruling >= 0] = self.u
         self.tau = _Pace(self.x, np.maximum.accumulate(tau), self.u)
+        # the pace crosses each jump of the pairing on a ramp placed by the pairing alone
+        self.ramps = jumps(self._partners, self.x, tau, self.u, self.apex)
+        ends = np.unique(self.ramps)
+        ends = ends[~np.isin(ends, self.x)]
+        if len(ends):
+            self.tau = self.tau.pinned(ends, self._partners(ends))
 
     def _partners(self, x: FloatArray) -> FloatArray:
         """Rail B's parameter of the developable partner of A(x) (x itself in a fan)."""
@@ -159,15 +166,32 @@ class _Sheet:
     def pin(self, x: FloatArray) -> None:
         """The pace through the exact partners at ``x`` too (the cubic between sampled lines
         misses them by a warp of up to ~2e-6 rad; every line is pinned before it is measured),
-        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)."""
+        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)
+        or on a ramp across a jump of the pairing (:mod:`.cut_pace`: a cone's lines there)."""
         nodes = np.unique(self.tau.nodes())
         new = np.unique(np.asarray(x, dtype=float))
+        lo, hi = self.ramps[None, :, 0], self.ramps[None, :, 1]
+        new = new[~((new[:, None] > lo) & (new[:, None] < hi)).any(axis=1)]
         k = np.clip(np.searchsorted(self.u, new, side="right") - 1, 0, len(self.u) - 2)
         at = np.clip(np.searchsorted(nodes, new), 1, len(nodes) - 1)
         gap = np.minimum(np.abs(new - nodes[at - 1]), np.abs(nodes[at] - new))
         new = new[gap > PIN_GAP * (self.u[k + 1] - self.u[k])]
         if len(new):
             self.tau = self.tau.pinned(new, self._partners(new))
+
+    def turn(self, x0: float, x1: float, g0: float, g1: float, upper: bool) -> float:
+        """Where the signed distance at one rail's end of the lines (``upper``: B's) crosses
+        0 between the lines at ``x0`` and ``x1`` (``g0``, ``g1`` there): interpolated, but
+        across a ramp of the pace (a cone that sweeps the rail along the trim, where the
+        distance is far from linear in x) by :data:`~.cut_pace.BISECTIONS` bisections on
+        the lines themselves."""
+        if not ((self.ramps[:, 0] < x1) & (self.ramps[:, 1] > x0)).any():
+            return _crossing(x0, x1, g0, g1)
+        for _ in range(BISECTIONS):
+            middle = 0.5 * (x0 + x1)
+            g = float(self.inside(self.ends(np.array([middle]))[int(upper)])[0])
+            x0, x1 = (middle, x1) if (g >= 0.0) == (g0 >= 0.0) else (x0, middle)
+        return 0.5 * (x0 + x1)
 
     def ends(self, x: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Both ends of the lines at ``x``: the strip's rulings exactly at their u."""
@@ -509,7 +533,7 @@ def _kept(line: _Line) -> float:
 
 def _corners(sheet: _Sheet, run: list[_Line]) -> list[_Line]:
     """``run`` with a line added wherever one of its edges turns from a rail onto the trim
-    or back (where the signed distance at the rail crosses 0, interpolated)."""
+    or back (where the signed distance at the rail crosses 0, :meth:`_Sheet.turn`)."""
     where: list[float] = []
     near: list[tuple[float, float]] = []
     sides: list[bool] = []
@@ -520,7 +544,7 @@ def _corners(sheet: _Sheet, run: list[_Line]) -> list[_Line]:
             g0, g1 = (before.g1, after.g1) if upper else (before.g0, after.g0)
             if g0 * g1 > 0.0:
                 continue
-            where.append(_crossing(before.x, after.x, g0, g1))
+            where.append(sheet.turn(before.x, after.x, g0, g1, upper))
             near.append((before.lo, before.hi) if _on_rail(before, upper) else (after.lo, after.hi))
             sides.append(upper)
     added = _lines_at(sheet, np.array(where), near)
@@ -589,14 +613,16 @@ def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: 
         keep = np.array([line.kept for line in run])
         try:
             lower, s = _chain(sheet, run, False, FIT * tolerance)
-            upper, t = _chain(sheet, run, True, FIT * tolerance)
+            upper, _ = _chain(sheet, run, True, FIT * tolerance)
+            lower, upper, s = by_length(lower, upper, s, keep, sheet.ramps, run[0].x, run[-1].x)
+            t = s
             surface = _ruled(lower, upper, s[keep])
         except ValueError:  # a run too short to make a strip of
             continue
         starts, ends = surface.ruling_lines[:, 0], surface.ruling_lines[:, 1]
         run = [line for line in run if line.kept]
         pieces.append(_strip(strip, run, surface, lower, upper, s[keep], t[keep], starts, ends, design,
-                             tolerance))
+                             tolerance, sheet.ramps))
     return pieces
 
 
@@ -614,12 +640,17 @@ def _ruled(lower: Chain, upper: Chain, at: FloatArray) -> RuledSurface:
 
 
 def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: Curve, s: FloatArray,
-           t: FloatArray, starts: FloatArray, ends: FloatArray, design: Surface, tolerance: float) -> Strip:
+           t: FloatArray, starts: FloatArray, ends: FloatArray, design: Surface, tolerance: float,
+           ramps: FloatArray) -> Strip:
     own = strip.result
     index = np.array([line.ruling for line in run])
     station = index >= 0
     fan = np.zeros(len(run), dtype=bool)
     fan[station] = own.fan[index[station]]
+    # a line on a ramp of the pace (a corner where an edge turns onto the trim as the cone
+    # there sweeps the rail, :mod:`.cut_pace`) runs through the cone's apex: a fan's ruling
+    x = np.array([line.x for line in run])[:, None]
+    fan |= ((x > ramps[None, :, 0]) & (x < ramps[None, :, 1])).any(axis=1)
     stations = np.zeros(len(run), dtype=bool)
     stations[station] = own.stations[index[station]]
     warp = np.asarray(curve_warp(a, b, s, t, starts, ends), dtype=float)
