@@ -94,18 +94,17 @@ class Paced(Curve):
         return np.unique(np.clip(np.concatenate([self.knots, inner]), 0.0, 1.0))
 
 
-def by_length(lower: Curve, upper: Curve, s: FloatArray, keep: np.ndarray, ramps: FloatArray,
+def by_length(lower: Curve, upper: Curve, s: FloatArray, breaks: FloatArray, ramps: FloatArray,
               x0: float, x1: float) -> tuple[Paced, Paced, FloatArray]:
-    """Both edges of a cut strip (chains linear in the sheet's u from ``x0`` to ``x1``, each
-    line at ``s``, the kept ones ``keep``, their joins at their ``knots``) run
-    at one pace by their length instead: between the kept lines, the chains' joins and the
-    ends of the pace's ramps (:mod:`.pace_jumps`), each stretch takes its share of the
-    parameter by the two edges' summed length (:data:`BY_LENGTH` samples a stretch). A
-    cone that sweeps 1.4 m of rail B across a jump of the pairing in 1e-5 of u so gets its
-    share, and an even grid of the strip's parameters sees it (a preview, a coverage
-    check). Returns the two edges and the lines' new parameters."""
+    """Both edges of a cut strip (curves linear in the sheet's u from ``x0`` to ``x1``, its
+    lines at ``s``) run at one pace by their length instead: between the ``breaks`` (the
+    kept lines, the chains' joins) and the ends of the pace's ``ramps``, each stretch takes
+    its share of the parameter by the two edges' summed length (:data:`BY_LENGTH` samples a
+    stretch). A cone that sweeps 1.4 m of rail B across a jump of the pairing in 1e-5 of u
+    so gets its share, and an even grid of the strip's parameters sees it (a preview, a
+    coverage check). Returns the two edges and the lines' new parameters."""
     inside = (ramps[(ramps > x0) & (ramps < x1)] - x0) / (x1 - x0)
-    at = np.unique(np.concatenate([s[keep], lower.knots, upper.knots, inside, [0.0, 1.0]]))
+    at = np.unique(np.clip(np.concatenate([breaks, inside, [0.0, 1.0]]), 0.0, 1.0))
     share = np.linspace(0.0, 1.0, BY_LENGTH + 1)
     c = (at[:-1, None] + np.diff(at)[:, None] * share).ravel()
     steps = sum(np.linalg.norm(np.diff(edge.point_at(c).reshape(len(at) - 1, -1, 3), axis=1), axis=2)

@@ -239,13 +239,16 @@ class _Sheet:
     def sample(self, corners: FloatArray, tolerance: float) -> None:
         """The lines the cut is made from: :func:`_columns`' lines, a line through each of
         the trim's ``corners`` (3D points on the design) that lies on the sheet within the
-        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), and
-        more lines where the cut point jumps from one line to the next (see :data:`JUMP`).
-        Sets ``x``, ``ruling``, ``corner``, the signed distances ``g`` along them and their
-        kept intervals ``runs``."""
+        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), a
+        line at each end of the pace's ramps (:mod:`.cut_pace`), and more lines where the
+        cut point jumps from one line to the next (see :data:`JUMP`). Sets ``x``,
+        ``ruling``, ``corner``, the signed distances ``g`` along them and their kept
+        intervals ``runs``."""
         self.corner = np.full(len(self.x), np.nan)
         at, w = self._corner_lines(np.asarray(corners, dtype=float).reshape(-1, 3), tolerance)
-        self._insert(at, w)
+        # lines at the ramps' ends too: a cut edge along the trim turns there, not before
+        ramps = np.unique(self.ramps)
+        self._insert(np.concatenate([at, ramps]), np.concatenate([w, np.full(len(ramps), np.nan)]))
         for _ in range(REFINE):
             cut = self._cut_points()
             step = np.linalg.norm(np.diff(cut, axis=0), axis=2).max(axis=1)
@@ -614,7 +617,8 @@ def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: 
         try:
             lower, s = _chain(sheet, run, False, FIT * tolerance)
             upper, _ = _chain(sheet, run, True, FIT * tolerance)
-            lower, upper, s = by_length(lower, upper, s, keep, sheet.ramps, run[0].x, run[-1].x)
+            breaks = np.concatenate([s[keep], lower.knots, upper.knots])
+            lower, upper, s = by_length(lower, upper, s, breaks, sheet.ramps, run[0].x, run[-1].x)
             t = s
             surface = _ruled(lower, upper, s[keep])
         except ValueError:  # a run too short to make a strip of
