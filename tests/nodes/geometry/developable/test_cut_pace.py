@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
-from torsal.nodes.geometry.developable.cut_pace import RAMP, by_length, jumps
+from torsal.nodes.geometry.developable.cut_pace import BISECTIONS, RAMP, by_length, jumps
 
 STEP_AT, STEP = 0.4123456789, 0.3
 
@@ -29,7 +29,8 @@ def test_a_step_of_the_pairing_is_crossed_on_a_ramp_around_it_wherever_the_sampl
         ramps = jumps(_stepped, x, _stepped(x), rulings, np.zeros(1, dtype=bool))
         assert ramps.shape == (1, 2)
         a, b = ramps[0]
-        assert a < STEP_AT < b and b - a <= 2 * RAMP + 1e-12
+        # the jump's bracket: the samples' gap halved BISECTIONS times
+        assert a < STEP_AT < b and b - a <= 2 * RAMP + 2.0**-BISECTIONS / (count - 1) + 1e-15
 
 
 def test_a_steep_smooth_pairing_has_no_jump_and_a_fan_is_skipped():
@@ -51,7 +52,7 @@ def test_a_jump_at_a_ruling_starts_its_ramp_there():
     tau = partners(x)
     ramps = jumps(partners, x, tau, rulings, np.zeros(2, dtype=bool))
     assert ramps.shape == (1, 2)
-    assert ramps[0, 0] == 0.5 and 0.5 < ramps[0, 1] <= 0.5 + RAMP * 0.5 + 1e-12
+    assert ramps[0, 0] == 0.5 and 0.5 < ramps[0, 1] <= 0.5 + RAMP * 0.5 + 2.0**-BISECTIONS / 24 + 1e-15
 
 
 class _Arc(Curve):

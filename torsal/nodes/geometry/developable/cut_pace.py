@@ -29,14 +29,21 @@ from numpy.typing import ArrayLike
 from ..array_types import FloatArray
 from ..curve_base import Curve
 
-#: Halvings of the gap between two sampled lines to a jump of the pairing.
-BISECTIONS = 48
+#: Halvings of the gap between two sampled lines to a jump of the pairing (to ~5e-9 of the
+#: ruling interval, well inside the ramp; each is a call of the partner search).
+BISECTIONS = 24
+#: Halvings of the gap between two lines to where an edge turns onto the trim across a
+#: ramp (to rounding: the cone sweeps metres of the rail in 1e-5 of the interval).
+TURN_BISECTIONS = 60
 #: A step of τ larger than this share of its ruling interval between two lines that
 #: close (after :data:`BISECTIONS`) is a jump.
 STEP = 1e-3
 #: The pace crosses a jump between two lines this share of the ruling interval either side
 #: of it (the cone's apex moves by that much of rail A).
 RAMP = 1e-5
+#: After this many bisections only the pairs whose step of τ is still more than this share
+#: of their first are followed on (a continuous τ's step shrinks with the gap, ~2^-8).
+EARLY, SHRUNK = 8, 0.1
 #: Pairs of sampled lines whose τ rises faster than this many times their ruling
 #: interval's mean slope are looked into.
 STEEP = 2.0
@@ -63,7 +70,13 @@ def jumps(partners: Callable[[FloatArray], FloatArray], x: FloatArray, tau: Floa
     k = np.flatnonzero(look)
     lo, hi = x[k].copy(), x[k + 1].copy()
     t_lo, t_hi = tau[k].copy(), tau[k + 1].copy()
-    for _ in range(BISECTIONS):
+    first = np.abs(t_hi - t_lo)
+    for step in range(BISECTIONS):
+        if step == EARLY:  # a continuous τ's step has shrunk with the gap by now, a jump's not
+            going = np.abs(t_hi - t_lo) > SHRUNK * first
+            k, lo, hi, t_lo, t_hi = k[going], lo[going], hi[going], t_lo[going], t_hi[going]
+            if not len(k):
+                return np.empty((0, 2))
         mid = 0.5 * (lo + hi)
         t_mid = np.asarray(partners(mid), dtype=float)
         left = np.abs(t_mid - t_lo) >= np.abs(t_hi - t_mid)

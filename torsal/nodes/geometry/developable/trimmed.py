@@ -30,7 +30,9 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    squares with knots at the rulings where that stays within :data:`FIT` of the
    tolerance, else scipy's monotone PCHIP through them). Where a chain turns from a rail
    onto the trim, or at a corner of the trim, a ruling is added there, so the exported
-   faces meet at the corner.
+   faces meet at the corner. Both edges then run at one pace by their summed length
+   (:func:`~.cut_pace.by_length`), not by the sheet's u, which stands almost still where
+   the pace crosses a jump of the pairing (:mod:`.cut_pace`).
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
    only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the
@@ -65,7 +67,7 @@ from ..torsal_pairing import torsal_partners
 from ..trimmed_surface import TrimmedSurface
 from .certify import certified_deviation, distances_to_strips
 from .chain import Chain
-from .cut_pace import BISECTIONS, by_length, jumps
+from .cut_pace import TURN_BISECTIONS, by_length, jumps
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
@@ -183,11 +185,11 @@ class _Sheet:
         """Where the signed distance at one rail's end of the lines (``upper``: B's) crosses
         0 between the lines at ``x0`` and ``x1`` (``g0``, ``g1`` there): interpolated, but
         across a ramp of the pace (a cone that sweeps the rail along the trim, where the
-        distance is far from linear in x) by :data:`~.cut_pace.BISECTIONS` bisections on
+        distance is far from linear in x) by :data:`~.cut_pace.TURN_BISECTIONS` bisections on
         the lines themselves."""
         if not ((self.ramps[:, 0] < x1) & (self.ramps[:, 1] > x0)).any():
             return _crossing(x0, x1, g0, g1)
-        for _ in range(BISECTIONS):
+        for _ in range(TURN_BISECTIONS):
             middle = 0.5 * (x0 + x1)
             g = float(self.inside(self.ends(np.array([middle]))[int(upper)])[0])
             x0, x1 = (middle, x1) if (g >= 0.0) == (g0 >= 0.0) else (x0, middle)
@@ -630,8 +632,8 @@ def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: 
     return pieces
 
 
-def _ruled(lower: Chain, upper: Chain, at: FloatArray) -> RuledSurface:
-    """The strip between two chains run at one pace (the sheet's u), its rulings at ``at``:
+def _ruled(lower: Curve, upper: Curve, at: FloatArray) -> RuledSurface:
+    """The strip between two edges run at one pace (:func:`~.cut_pace.by_length`), its rulings at ``at``:
     the rails are the chains themselves at their own parameters (a ruling's parameter is
     its chain parameter), so between rulings the strip joins the two points of one line of
     the sheet, as it does at them."""
