@@ -74,8 +74,9 @@ def _apart(ours, theirs, scale: float) -> float:
 def _edge(strip, v: float, count: int = 4001):
     """The strip's edge at ``v`` as samples (their parameters, the points, a cKDTree of them
     and the longest segment): ``count`` evenly in u, then every step 4 times longer than the
-    median cut in 64, twice (a cut strip's edge may cross a fan in 1e-4 of u: 1.4 m of the
-    ring between two even samples)."""
+    median cut in 64, twice (a guard: before a cut strip's edges ran by length,
+    ``cut_pace.by_length``, a cone crossed 1.4 m of the ring in 1e-4 of u, between two even
+    samples)."""
     u = np.linspace(0.0, 1.0, count)
     for _ in range(2):
         edge = strip.point_at(u, np.full(len(u), v))

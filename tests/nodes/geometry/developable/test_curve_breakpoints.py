@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from torsal.nodes.geometry.curves.nurbs import NurbsCurve
+from torsal.nodes.geometry.developable.chain import Chain
 from torsal.nodes.geometry.developable.offset import Lift, LiftedIsoCurve
-from torsal.nodes.geometry.developable.trimmed import Chain
 from torsal.nodes.geometry.nurbs_surface import NurbsSurface
 
 

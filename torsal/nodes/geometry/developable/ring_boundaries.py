@@ -25,9 +25,9 @@ import numpy as np
 from ..array_types import FloatArray
 from ..curve_base import Curve
 from ..vectors import angle_between
+from .chain import Chain
 from .rationalise import Strip
 from .rings import RingPatch
-from .trimmed import Chain
 
 #: Samples along a ring where it is judged inside the half, and where the fold is measured.
 SAMPLES = 241

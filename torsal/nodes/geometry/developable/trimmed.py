@@ -30,7 +30,9 @@ trimmed_surface.TrimmedSurface`). Its strips must cover the kept part only, to t
    squares with knots at the rulings where that stays within :data:`FIT` of the
    tolerance, else scipy's monotone PCHIP through them). Where a chain turns from a rail
    onto the trim, or at a corner of the trim, a ruling is added there, so the exported
-   faces meet at the corner.
+   faces meet at the corner. Both edges then run at one pace by their summed length
+   (:func:`~.cut_pace.by_length`), not by the sheet's u, which stands almost still where
+   the pace crosses a jump of the pairing (:mod:`.cut_pace`).
 5. Rulings: the strip's own rulings, cut to the trim, with the corner rulings and the two
    ends. The cut strip's deviation is certified again (:mod:`.certify`), on the kept part
    only, checked on dense samples too (:func:`~.trim_region.checked_densely`), and the
@@ -64,6 +66,8 @@ from ..surface_base import Surface
 from ..torsal_pairing import torsal_partners
 from ..trimmed_surface import TrimmedSurface
 from .certify import certified_deviation, distances_to_strips
+from .chain import Chain
+from .cut_pace import TURN_BISECTIONS, by_length, jumps
 from .fans import creased_fans, patch_areas
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
@@ -91,46 +95,6 @@ ROOT_STEPS = 3
 #: A cut edge along the trim is a least-squares cubic when it stays this share of the
 #: tolerance from the cut points; otherwise the monotone cubic through them (PCHIP).
 FIT = 0.05
-
-
-class Chain(Curve):
-    """Pieces of curves end to end: piece k is ``curve`` over its own parameters ``p0 → p1``,
-    run on t in ``[knots[k], knots[k + 1]]`` (the pieces' shares by their parameter spans:
-    pieces that follow on in one parameter make a chain linear in it).
-    Smooth on each piece; the joins are its breakpoints (corners, in general)."""
-
-    def __init__(self, pieces: list[tuple[Curve, float, float]]) -> None:
-        self.pieces = pieces
-        lengths = np.array([p1 - p0 for _, p0, p1 in pieces])
-        self.knots = np.concatenate([[0.0], np.cumsum(lengths) / lengths.sum()])
-        self.knots[-1] = 1.0
-
-    def at(self, piece: int, p: FloatArray) -> FloatArray:
-        """The chain's t where piece ``piece`` is at its own parameters ``p``."""
-        _, p0, p1 = self.pieces[piece]
-        share = (np.asarray(p, dtype=float) - p0) / (p1 - p0) if p1 != p0 else np.zeros(np.shape(p))
-        return self.knots[piece] + share * (self.knots[piece + 1] - self.knots[piece])
-
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
-        t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, 1.0)
-        which = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.pieces) - 1)
-        out = [np.empty((len(t), 3)) for _ in range(order + 1)]
-        for k in np.unique(which):
-            curve, p0, p1 = self.pieces[k]
-            mine = which == k
-            rate = (p1 - p0) / (self.knots[k + 1] - self.knots[k])
-            p = p0 + (t[mine] - self.knots[k]) * rate
-            for d, value in enumerate(curve.derivatives(p, order)):
-                out[d][mine] = value * rate**d
-        return out
-
-    def _breakpoints(self) -> FloatArray:
-        """The joins, and each piece's own breakpoints strictly inside its ``p0 → p1``."""
-        inner = []
-        for k, (curve, p0, p1) in enumerate(self.pieces):
-            own = curve._breakpoints()
-            inner.append(self.at(k, own[(own > min(p0, p1)) & (own < max(p0, p1))]))
-        return np.unique(np.clip(np.concatenate([self.knots, *inner]), 0.0, 1.0))
 
 
 class _OnSheet(Curve):
@@ -189,6 +153,12 @@ class _Sheet:
         tau = self._partners(self.x)
         tau[self.ruling >= 0] = self.u
         self.tau = _Pace(self.x, np.maximum.accumulate(tau), self.u)
+        # the pace crosses each jump of the pairing on a ramp placed by the pairing alone
+        self.ramps = jumps(self._partners, self.x, tau, self.u, self.apex)
+        ends = np.unique(self.ramps)
+        ends = ends[~np.isin(ends, self.x)]
+        if len(ends):
+            self.tau = self.tau.pinned(ends, self._partners(ends))
 
     def _partners(self, x: FloatArray) -> FloatArray:
         """Rail B's parameter of the developable partner of A(x) (x itself in a fan)."""
@@ -198,15 +168,32 @@ class _Sheet:
     def pin(self, x: FloatArray) -> None:
         """The pace through the exact partners at ``x`` too (the cubic between sampled lines
         misses them by a warp of up to ~2e-6 rad; every line is pinned before it is measured),
-        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)."""
+        but for an x within :data:`PIN_GAP` of its interval from a node (the cubic would swing)
+        or on a ramp across a jump of the pairing (:mod:`.cut_pace`: a cone's lines there)."""
         nodes = np.unique(self.tau.nodes())
         new = np.unique(np.asarray(x, dtype=float))
+        lo, hi = self.ramps[None, :, 0], self.ramps[None, :, 1]
+        new = new[~((new[:, None] > lo) & (new[:, None] < hi)).any(axis=1)]
         k = np.clip(np.searchsorted(self.u, new, side="right") - 1, 0, len(self.u) - 2)
         at = np.clip(np.searchsorted(nodes, new), 1, len(nodes) - 1)
         gap = np.minimum(np.abs(new - nodes[at - 1]), np.abs(nodes[at] - new))
         new = new[gap > PIN_GAP * (self.u[k + 1] - self.u[k])]
         if len(new):
             self.tau = self.tau.pinned(new, self._partners(new))
+
+    def turn(self, x0: float, x1: float, g0: float, g1: float, upper: bool) -> float:
+        """Where the signed distance at one rail's end of the lines (``upper``: B's) crosses
+        0 between the lines at ``x0`` and ``x1`` (``g0``, ``g1`` there): interpolated, but
+        across a ramp of the pace (a cone that sweeps the rail along the trim, where the
+        distance is far from linear in x) by :data:`~.cut_pace.TURN_BISECTIONS` bisections on
+        the lines themselves."""
+        if not ((self.ramps[:, 0] < x1) & (self.ramps[:, 1] > x0)).any():
+            return _crossing(x0, x1, g0, g1)
+        for _ in range(TURN_BISECTIONS):
+            middle = 0.5 * (x0 + x1)
+            g = float(self.inside(self.ends(np.array([middle]))[int(upper)])[0])
+            x0, x1 = (middle, x1) if (g >= 0.0) == (g0 >= 0.0) else (x0, middle)
+        return 0.5 * (x0 + x1)
 
     def ends(self, x: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Both ends of the lines at ``x``: the strip's rulings exactly at their u."""
@@ -254,13 +241,16 @@ class _Sheet:
     def sample(self, corners: FloatArray, tolerance: float) -> None:
         """The lines the cut is made from: :func:`_columns`' lines, a line through each of
         the trim's ``corners`` (3D points on the design) that lies on the sheet within the
-        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), and
-        more lines where the cut point jumps from one line to the next (see :data:`JUMP`).
-        Sets ``x``, ``ruling``, ``corner``, the signed distances ``g`` along them and their
-        kept intervals ``runs``."""
+        tolerance (its cut there ends at the corner: ``self.corner``, NaN elsewhere), a
+        line at each end of the pace's ramps (:mod:`.cut_pace`), and more lines where the
+        cut point jumps from one line to the next (see :data:`JUMP`). Sets ``x``,
+        ``ruling``, ``corner``, the signed distances ``g`` along them and their kept
+        intervals ``runs``."""
         self.corner = np.full(len(self.x), np.nan)
         at, w = self._corner_lines(np.asarray(corners, dtype=float).reshape(-1, 3), tolerance)
-        self._insert(at, w)
+        # lines at the ramps' ends too: a cut edge along the trim turns there, not before
+        ramps = np.unique(self.ramps)
+        self._insert(np.concatenate([at, ramps]), np.concatenate([w, np.full(len(ramps), np.nan)]))
         for _ in range(REFINE):
             cut = self._cut_points()
             step = np.linalg.norm(np.diff(cut, axis=0), axis=2).max(axis=1)
@@ -548,7 +538,7 @@ def _kept(line: _Line) -> float:
 
 def _corners(sheet: _Sheet, run: list[_Line]) -> list[_Line]:
     """``run`` with a line added wherever one of its edges turns from a rail onto the trim
-    or back (where the signed distance at the rail crosses 0, interpolated)."""
+    or back (where the signed distance at the rail crosses 0, :meth:`_Sheet.turn`)."""
     where: list[float] = []
     near: list[tuple[float, float]] = []
     sides: list[bool] = []
@@ -559,7 +549,7 @@ def _corners(sheet: _Sheet, run: list[_Line]) -> list[_Line]:
             g0, g1 = (before.g1, after.g1) if upper else (before.g0, after.g0)
             if g0 * g1 > 0.0:
                 continue
-            where.append(_crossing(before.x, after.x, g0, g1))
+            where.append(sheet.turn(before.x, after.x, g0, g1, upper))
             near.append((before.lo, before.hi) if _on_rail(before, upper) else (after.lo, after.hi))
             sides.append(upper)
     added = _lines_at(sheet, np.array(where), near)
@@ -628,19 +618,22 @@ def cut_strip(strip: Strip, inside: Callable[[FloatArray], FloatArray], design: 
         keep = np.array([line.kept for line in run])
         try:
             lower, s = _chain(sheet, run, False, FIT * tolerance)
-            upper, t = _chain(sheet, run, True, FIT * tolerance)
+            upper, _ = _chain(sheet, run, True, FIT * tolerance)
+            breaks = np.concatenate([s[keep], lower.knots, upper.knots])
+            lower, upper, s = by_length(lower, upper, s, breaks, sheet.ramps, run[0].x, run[-1].x)
+            t = s
             surface = _ruled(lower, upper, s[keep])
         except ValueError:  # a run too short to make a strip of
             continue
         starts, ends = surface.ruling_lines[:, 0], surface.ruling_lines[:, 1]
         run = [line for line in run if line.kept]
         pieces.append(_strip(strip, run, surface, lower, upper, s[keep], t[keep], starts, ends, design,
-                             tolerance))
+                             tolerance, sheet.ramps))
     return pieces
 
 
-def _ruled(lower: Chain, upper: Chain, at: FloatArray) -> RuledSurface:
-    """The strip between two chains run at one pace (the sheet's u), its rulings at ``at``:
+def _ruled(lower: Curve, upper: Curve, at: FloatArray) -> RuledSurface:
+    """The strip between two edges run at one pace (:func:`~.cut_pace.by_length`), its rulings at ``at``:
     the rails are the chains themselves at their own parameters (a ruling's parameter is
     its chain parameter), so between rulings the strip joins the two points of one line of
     the sheet, as it does at them."""
@@ -653,12 +646,17 @@ def _ruled(lower: Chain, upper: Chain, at: FloatArray) -> RuledSurface:
 
 
 def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: Curve, s: FloatArray,
-           t: FloatArray, starts: FloatArray, ends: FloatArray, design: Surface, tolerance: float) -> Strip:
+           t: FloatArray, starts: FloatArray, ends: FloatArray, design: Surface, tolerance: float,
+           ramps: FloatArray) -> Strip:
     own = strip.result
     index = np.array([line.ruling for line in run])
     station = index >= 0
     fan = np.zeros(len(run), dtype=bool)
     fan[station] = own.fan[index[station]]
+    # a line on a ramp of the pace (a corner where an edge turns onto the trim as the cone
+    # there sweeps the rail, :mod:`.cut_pace`) runs through the cone's apex: a fan's ruling
+    x = np.array([line.x for line in run])[:, None]
+    fan |= ((x > ramps[None, :, 0]) & (x < ramps[None, :, 1])).any(axis=1)
     stations = np.zeros(len(run), dtype=bool)
     stations[station] = own.stations[index[station]]
     warp = np.asarray(curve_warp(a, b, s, t, starts, ends), dtype=float)
