@@ -412,6 +412,8 @@ def _roots(
     # per run, the root of the last (nearest the torsal ruling) sign change whose root is
     # oriented (the sign changes come run by run, in order along each)
     oriented_at = flatnonzero(good)
+    if oriented_at.size == 0:  # no run has an oriented root
+        return found, has
     of_run = run_of[oriented_at]
     last = oriented_at[np.append(of_run[1:] != of_run[:-1], True)]
     found[run_of[last]], has[run_of[last]] = roots[last], True
