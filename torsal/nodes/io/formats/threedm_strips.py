@@ -544,6 +544,9 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
     per = SAMPLES
     best: tuple[float, np.ndarray, BSpline] = (np.inf, np.empty(0), None)  # type: ignore[assignment]
     interior = list(start)
+    if still.any():  # a held bend takes a control point of its own beside an end's two and
+        # the held rulings' (seven at least): a face over one interval gets the knots for it
+        interior += np.linspace(lo, hi, max(3 - len(fixed) - len(interior), 0) + 2)[1:-1].tolist()
 
     def attempt(inner: list[float]) -> tuple[float, np.ndarray, BSpline, np.ndarray] | None:
         """The fit on knots ``fixed`` and ``inner``: (largest distance, knots, spline, the
