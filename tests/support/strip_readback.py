@@ -24,6 +24,18 @@ def _angle(x: np.ndarray, y: np.ndarray) -> float:
     return float(np.arctan2(np.linalg.norm(np.cross(x, y)), x @ y))
 
 
+def one_surface_size(strips: list, path) -> int:
+    """The size in bytes of ``strips`` written to ``path`` as one NURBS surface each (the
+    form Export3dm wrote before it wrote strips face by face: the file-size bar's base)."""
+    from torsal.nodes.io.formats import threedm
+
+    naive = rh.File3dm()
+    for strip in strips:
+        naive.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
+    assert naive.Write(str(path), 7)
+    return path.stat().st_size
+
+
 def read(path) -> list:
     """The objects of a ``.3dm`` file."""
     return list(rh.File3dm.Read(str(path)).Objects)
@@ -105,7 +117,7 @@ def torsal_rulings(strips: list, kinds: list[str]) -> set[tuple[int, int]]:
     return out
 
 
-def _polyline_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
+def polyline_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
     """Each point's distance to a dense polyline (the two segments at its nearest vertex)."""
     from scipy.spatial import cKDTree
 
@@ -127,7 +139,7 @@ def _rail_distance(points: np.ndarray, rail, at: np.ndarray) -> np.ndarray:
     end the segment the point is nearest)."""
     from scipy.spatial import cKDTree
 
-    best = _polyline_distance(points, rail.point_at(at))
+    best = polyline_distance(points, rail.point_at(at))
     _, nearest = cKDTree(rail.point_at(at)).query(points)
     t = at[nearest]
     for _ in range(12):

@@ -180,21 +180,6 @@ def test_zero_length_curves_are_left_out_and_said(tmp_path):
     assert len(list(rh.File3dm.Read(str(tmp_path / "r.3dm")).Objects)) == 1
 
 
-def distance_to_polyline(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
-    """Each point's distance to a dense polyline (its nearest vertex's two segments)."""
-    from scipy.spatial import cKDTree
-
-    _, nearest = cKDTree(polyline).query(points)
-    best = np.full(len(points), np.inf)
-    for shift in (-1, 0):
-        i = np.clip(nearest + shift, 0, len(polyline) - 2)
-        a, b = polyline[i], polyline[i + 1]
-        length = np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300)  # (a rail may stand still)
-        t = np.clip(np.einsum("ij,ij->i", points - a, b - a) / length, 0, 1)
-        best = np.minimum(best, np.linalg.norm(a + t[:, None] * (b - a) - points, axis=1))
-    return best
-
-
 def face_points(obj, a: np.ndarray, b: float) -> np.ndarray:
     face = surface_of(obj)
     fu, fv = face.Domain(0), face.Domain(1)
@@ -244,7 +229,7 @@ def test_flagship_strips_file_is_at_most_a_tenth_of_the_one_surface_form_with_th
                     <= 1e-6 * size
                 # and its edges run on the old file's edges (the strip's two curves)
                 along = face_points(obj, np.linspace(0.0, 1.0, 101), float(side))
-                assert distance_to_polyline(along, edges[side]).max() <= 1e-6 * size
+                assert strip_readback.polyline_distance(along, edges[side]).max() <= 1e-6 * size
         assert covered[0][0] == 0 and covered[-1][1] == len(u) - 1
         assert all(b[0] == a[1] for a, b in itertools.pairwise(covered)), "the faces follow on"
         own = [o for o in new_objects if o.Attributes.GetUserString("TorsalIndex") == str(index)]
@@ -282,11 +267,8 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     the twist was a test of its own, which exported the canopy a second time.)"""
     strips, kinds = example_strips(name)
     threedm.write_3dm(tmp_path / "faces.3dm", threedm.tree_entries(tree({(0,): strips}), "S", "Strip"))
-    naive = rh.File3dm()
-    for strip in strips:
-        naive.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
-    assert naive.Write(str(tmp_path / "naive.3dm"), 7)
-    size, naive_size = ((tmp_path / file).stat().st_size for file in ("faces.3dm", "naive.3dm"))
+    size = (tmp_path / "faces.3dm").stat().st_size
+    naive_size = strip_readback.one_surface_size(strips, tmp_path / "naive.3dm")
     # (the canopy's twisting strips were 28 % while their developable pairing was fitted 30x
     # closer than 1e-6 of the size; 20.4 % when its 4 strips' cone pairs were fitted at the
     # strip's own pace, which changes several-fold within an interval; 16.3 % with every
