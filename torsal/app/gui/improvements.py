@@ -105,7 +105,10 @@ class Improvements(QObject):
             except Exception:  # a failing search leaves the quick result standing
                 pass
             finally:
-                self._progressed.emit(node_id, 1.0)
+                try:
+                    self._progressed.emit(node_id, 1.0)
+                except RuntimeError:  # the window closed during the search: no one is left to tell
+                    pass
 
         thread = threading.Thread(target=search, name=f"torsal-improve-{node_id}", daemon=True)
         self._started[id(improver)] = (improver, flag, thread)
