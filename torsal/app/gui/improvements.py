@@ -13,6 +13,7 @@ search's progress through :attr:`Improvements.progress`.
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 from collections.abc import Callable
@@ -105,10 +106,9 @@ class Improvements(QObject):
             except Exception:  # a failing search leaves the quick result standing
                 pass
             finally:
-                try:
+                # (a window closed during the search has no one left to tell)
+                with contextlib.suppress(RuntimeError):
                     self._progressed.emit(node_id, 1.0)
-                except RuntimeError:  # the window closed during the search: no one is left to tell
-                    pass
 
         thread = threading.Thread(target=search, name=f"torsal-improve-{node_id}", daemon=True)
         self._started[id(improver)] = (improver, flag, thread)
