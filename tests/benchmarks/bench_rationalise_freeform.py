@@ -35,10 +35,8 @@ from tests.benchmarks.bench_rationalise import even_strips
 from tests.nodes.developable.test_rationalise import distance_to_surface, kaohsiung_roof
 from tests.support import strip_readback
 from tests.support.freeform_designs import DESIGNS
-from tests.support.node_helpers import tree
 from torsal.nodes.geometry.developable.freeform import rationalise_freeform
 from torsal.nodes.geometry.developable.rationalise import creased_area, fan_area
-from torsal.nodes.io.formats import threedm
 
 TOLERANCES = (0.01, 0.02, 0.05)
 #: The issue's bar for one solve on this machine, s.
@@ -81,13 +79,8 @@ def _exported(strips, folder) -> dict[str, bool]:
     bump (44.5 %)."""
     surfaces = [s.surface for s in strips]
     kinds = [kind for s in strips for kind in np.where(s.result.fan, "fan", "torsal").tolist()]
-    path = folder / "strips.3dm"
-    threedm.write_3dm(path, threedm.tree_entries(tree({(0,): surfaces}), "S", "Strip"))
-    share = path.stat().st_size / strip_readback.one_surface_size(surfaces, folder / "naive.3dm")
-    objects = strip_readback.read(path)
-    warps, _ = strip_readback.ruling_warps(objects, surfaces, kinds)
-    rows = strip_readback.item_3(objects, surfaces)
-    worst = {key: max(row[key] for row in rows) for key in rows[0]}
+    back = strip_readback.exported(surfaces, kinds, folder)
+    share, warps, rows, worst = back.share, back.warps, back.rows, back.worst
     print(f"  exported: {100 * share:.1f} % of the one-surface form; warp at {len(warps)} torsal rulings "
           f"{max(warps.values(), default=0.0):.2g} rad ({sum(w >= 1e-7 for w in warps.values())} over 1e-7); "
           f"item 3: {worst}", flush=True)

@@ -35,7 +35,6 @@ from tests.support.freeform_designs import DESIGNS, MM
 from tests.support.node_helpers import run, texts, tree
 from tests.support.strip_grids import items
 from torsal.nodes.developable.rationalise import Rationalise
-from torsal.nodes.io.formats import threedm
 from torsal.nodes.io.rhino import Import3dm
 
 DESIGN = DESIGNS["bumps"]
@@ -216,14 +215,9 @@ def test_the_rings_strips_go_to_rhino_torsal_at_every_ruling(tmp_path):
     (the canopy's: ~7). Printed, not asserted against :data:`FILE_SHARE`."""
     result, _ = solved("closed")
     strips, kinds = items(result, "Strips"), items(result, "Kind")
-    entries = threedm.tree_entries(tree({(0,): strips}), "S", "Strip")
-    written = threedm.write_3dm(tmp_path / "rings.3dm", entries)
-    share = written.path.stat().st_size / strip_readback.one_surface_size(strips, tmp_path / "naive.3dm")
-    objects = strip_readback.read(written.path)
-    warps, off = strip_readback.ruling_warps(objects, strips, kinds)
-    rows = strip_readback.item_3(objects, strips)
-    worst = {key: max(row[key] for row in rows) for key in rows[0]}
-    print(f"file {written.path.stat().st_size:,} B, {100 * share:.1f} % of the one-surface form "
+    back = strip_readback.exported(strips, kinds, tmp_path)
+    share, warps, off, rows, worst = back.share, back.warps, back.off, back.rows, back.worst
+    print(f"file {back.size:,} B, {100 * share:.1f} % of the one-surface form "
           f"(bar {100 * FILE_SHARE:g} %); warp at {len(warps)} torsal rulings {max(warps.values()):.2g} rad; "
           f"item 3: {worst}", flush=True)
     assert set(warps) == strip_readback.torsal_rulings(strips, kinds)

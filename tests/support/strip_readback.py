@@ -11,6 +11,7 @@ here against the node's line before its normals are read).
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 import rhino3dm as rh
@@ -34,6 +35,34 @@ def one_surface_size(strips: list, path) -> int:
         naive.Objects.AddSurface(threedm.rhino_surface(threedm.surface_form(strip).nurbs))
     assert naive.Write(str(path), 7)
     return path.stat().st_size
+
+
+@dataclass
+class Readback:
+    """Strips written by Export3dm's writer and read back with rhino3dm (:func:`exported`)."""
+
+    size: int  #: the file's size in bytes
+    share: float  #: that size over the one-surface form's (:func:`one_surface_size`)
+    warps: dict[tuple[int, int], float]  #: per torsal (strip, ruling): :func:`ruling_warps`
+    off: float  #: the rulings' largest distance from the faces, relative to the size
+    rows: list[dict[str, float]]  #: per strip: :func:`item_3`
+    worst: dict[str, float]  #: each figure of :func:`item_3`, its largest over the strips
+
+
+def exported(strips: list, kinds: list[str], folder) -> Readback:
+    """``strips`` written to ``folder``/strips.3dm as Export3dm writes them, read back with
+    rhino3dm and measured (the one-surface form beside it in naive.3dm)."""
+    from tests.support.node_helpers import tree
+    from torsal.nodes.io.formats import threedm
+
+    entries = threedm.tree_entries(tree({(0,): strips}), "S", "Strip")
+    written = threedm.write_3dm(folder / "strips.3dm", entries)
+    size = written.path.stat().st_size
+    objects = read(written.path)
+    warps, off = ruling_warps(objects, strips, kinds)
+    rows = item_3(objects, strips)
+    worst = {key: max(row[key] for row in rows) for key in rows[0]}
+    return Readback(size, size / one_surface_size(strips, folder / "naive.3dm"), warps, off, rows, worst)
 
 
 def read(path) -> list:
