@@ -6,6 +6,7 @@ from __future__ import annotations
 import threading
 
 from tests.engine.test_solver import Constant
+from torsal.engine.errors import NodeWarning
 from torsal.engine.graph import Graph
 from torsal.engine.node import In, Level, Message, Node, Out
 from torsal.engine.solve_context import SolveContext
@@ -101,12 +102,28 @@ def test_a_message_said_again_in_one_solve_is_kept_once_in_the_order_first_said(
     assert context.messages == [a, b, warned_b]
 
 
-def test_messages_forgotten_or_appended_directly_are_seen_by_the_next_say():
+def test_messages_forgotten_are_said_anew():
     context = SolveContext(object())
     context.say(Message(Level.WARNING, "a"))
     context.say(Message(Level.WARNING, "b"))
     context.forget_since(1)
     context.say(Message(Level.WARNING, "b"))  # forgotten: said anew
-    context.messages.append(Message(Level.ERROR, "c"))
-    context.say(Message(Level.ERROR, "c"))  # appended directly: not repeated
-    assert [m.text for m in context.messages] == ["a", "b", "c"]
+    context.say(Message(Level.WARNING, "a"))  # kept: not repeated
+    assert [m.text for m in context.messages] == ["a", "b"]
+
+
+def test_a_node_that_raises_after_saying_the_same_warning_shows_it_once():
+    class Twice(Node):
+        type_id = "test.Twice"
+        outputs = (Out("Value", NUMBER, "V", "The value."),)
+
+        def solve(self) -> float:
+            self.warn("too narrow")
+            raise NodeWarning("too narrow")
+
+    graph = Graph()
+    graph.add_node(Twice(), "t")
+    solver = Solver(graph)
+    solver.solve()
+    result = solver.result("t")
+    assert [(m.level, m.text) for m in result.messages] == [(Level.WARNING, "too narrow")]

@@ -50,32 +50,23 @@ class SolveContext:
     #: the host improves results after the solve (the app): see torsal/engine/improve.py
     anytime: bool = False
     improver: Any = None  #: what the node asked to run after its solve (an Improver)
-    #: the distinct messages of ``messages[:_indexed]``, so that :meth:`say` finds a repeat
-    #: in one lookup (a solve of 280 strips says hundreds of messages, most of them repeats)
+    #: the distinct messages of ``messages``, so that :meth:`say` finds a repeat in one
+    #: lookup (a solve of 280 strips says hundreds of messages, most of them repeats)
     _said: set[Message] = field(default_factory=set, repr=False)
-    _indexed: int = field(default=0, repr=False)
     _reset: contextvars.Token[SolveContext | None] | None = field(default=None, repr=False)
 
     def say(self, message: Message) -> None:
-        """Add ``message`` to :attr:`messages` unless this solve has said it already. (Messages
-        are only ever added at the end, or cut by :meth:`forget_since`; one added by appending
-        to the list directly is indexed here when next a message is said.)"""
-        messages, said = self.messages, self._said
-        if self._indexed != len(messages):  # (changed behind its back: indexed again)
-            if len(messages) < self._indexed:
-                said = self._said = set(messages)
-            else:
-                said.update(messages[self._indexed:])
-        if message not in said:
-            said.add(message)
-            messages.append(message)
-        self._indexed = len(messages)
+        """Add ``message`` to :attr:`messages` unless this solve has said it already.
+        ``say`` and :meth:`forget_since` are the only ways messages change, so the set of
+        those said is always the list's."""
+        if message not in self._said:
+            self._said.add(message)
+            self.messages.append(message)
 
     def forget_since(self, count: int) -> None:
         """Drop every message said after the first ``count``."""
         del self.messages[count:]
         self._said = set(self.messages)
-        self._indexed = len(self.messages)
 
     def __enter__(self) -> SolveContext:
         self._reset = _ACTIVE.set(self)

@@ -228,7 +228,6 @@ class Solver:
             return self._solve_cluster(record, node, token, on_progress)
         context = SolveContext(node, token, self.files.for_node(record.id, token), on_progress,
                                budget=self.budget, dry=self.dry, anytime=self.anytime)
-        messages = context.messages
         outputs: dict[str, DataTree] = {}
         with solving(context):
             try:
@@ -239,13 +238,14 @@ class Solver:
             except Cancelled:
                 raise
             except NodeError as exc:
-                messages.append(Message(Level.ERROR, str(exc)))
+                context.say(Message(Level.ERROR, str(exc)))
                 if isinstance(exc, BudgetExceeded):
                     self.refused.append((record.id, str(exc)))
             except NodeWarning as exc:
-                messages.append(Message(Level.WARNING, str(exc)))
+                context.say(Message(Level.WARNING, str(exc)))
             except Exception as exc:  # a bug in a node must not stop the rest of the graph
-                messages.append(Message(Level.ERROR, _describe_exception(exc)))
+                context.say(Message(Level.ERROR, _describe_exception(exc)))
+        messages = context.messages
         seconds = time.perf_counter() - started
         state = OK
         if messages:
