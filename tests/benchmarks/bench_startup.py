@@ -79,8 +79,15 @@ the window and its first paint 0.06; the file opened and the viewport made 0.19-
 widget, pyvista's plotter, the OpenGL context); the empty viewport's paints 0.03-0.04 (they
 compile the background's and axes' shaders while the solve runs on its thread, the GIL let
 go inside VTK); the solve's results shown and the first frame 0.05. The solve itself takes
-0.08-0.09 CPU s on its thread, overlapped. The same day's run of this benchmark at load
-~5: 2.02-2.54 s (median 2.18) against the baseline's 1.69-1.99 (1.93); CPU ratio 1.23.
+0.08-0.09 CPU s on its thread, overlapped. This benchmark that day, less the waits: at load
+~5, 2.02-2.54 s (median 2.18) against the baseline's 1.69-1.99 (1.93); at load ~11,
+2.26-2.37 (2.27) against 1.79-2.00 (1.92); ratios 1.24 (wall) and 1.23 (CPU) both times.
+Tried and of no use: a lazy ``matplotlib.pyplot`` (``importlib.util.LazyLoader``; on
+Python 3.11 pyvista's own ``import matplotlib.pyplot`` loads it at once, reading
+``__spec__``), ``sys.setdlopenflags(RTLD_LAZY)`` (no change), importing scipy on a thread
+beside pyvista (both hold the GIL: wall equals CPU). The empty viewport's paints stay: they
+run while the solve does and take the background's and axes' shader compiling off the
+solved frame.
 Everything on the way is a library's import but ~0.45 s of Torsal's own work (its
 modules, window, solve, drawing), so the bar cannot hold by trimming Torsal's imports:
 the margin has to come from the second core (the scipy imports and the solve in another
