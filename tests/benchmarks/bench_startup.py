@@ -65,6 +65,33 @@ Torsal 2.04-2.91 CPU s to its first solved frame against the baseline's 1.83-2.4
 What is left beyond the baseline is Torsal's own work: scipy.interpolate (~0.45 CPU s, its
 imports hold the GIL, so no thread can overlap them), Torsal's ~190 modules, the window,
 the solve and the first drawing of the strips.
+
+Issue 28's bar is asserted as such since 6 December 2026 (:data:`QUIET_BAR_S`): the median
+over :data:`ROUNDS` rounds of launch -> first solved frame less the main thread's waits for
+a CPU, next to the ratios. Where the main thread's CPU seconds went that day (three traced
+launches at load ~6.7, ``time.thread_time()`` at each step): Python, the CLI and Torsal's
+engine 0.21-0.23; the flagship's node modules with scipy.interpolate (which imports
+optimize, special, linalg, sparse, spatial) 0.41-0.42, of which Torsal's own modules
+~0.04; ``pyvista.plotting`` 0.75-0.84 (pyvista 0.49's ``plotting/colors.py`` and
+``plotting/charts.py`` import ``matplotlib.pyplot`` and the Agg backend at module level:
+pyvista's, not Torsal's; the baseline pays it too); PySide6 and the window's modules 0.20;
+the window and its first paint 0.06; the file opened and the viewport made 0.19-0.22 (VTK's
+widget, pyvista's plotter, the OpenGL context); the empty viewport's paints 0.03-0.04 (they
+compile the background's and axes' shaders while the solve runs on its thread, the GIL let
+go inside VTK); the solve's results shown and the first frame 0.05. The solve itself takes
+0.08-0.09 CPU s on its thread, overlapped. This benchmark that day, less the waits: at load
+~5, 2.02-2.54 s (median 2.18) against the baseline's 1.69-1.99 (1.93); at load ~11,
+2.26-2.37 (2.27) against 1.79-2.00 (1.92); ratios 1.24 (wall) and 1.23 (CPU) both times.
+Tried and of no use: a lazy ``matplotlib.pyplot`` (``importlib.util.LazyLoader``; on
+Python 3.11 pyvista's own ``import matplotlib.pyplot`` loads it at once, reading
+``__spec__``), ``sys.setdlopenflags(RTLD_LAZY)`` (no change), importing scipy on a thread
+beside pyvista (both hold the GIL: wall equals CPU). The empty viewport's paints stay: they
+run while the solve does and take the background's and axes' shader compiling off the
+solved frame.
+Everything on the way is a library's import but ~0.45 s of Torsal's own work (its
+modules, window, solve, drawing), so the bar cannot hold by trimming Torsal's imports:
+the margin has to come from the second core (the scipy imports and the solve in another
+process while this one imports pyvista and Qt).
 """
 
 from __future__ import annotations
@@ -88,8 +115,14 @@ if REASON:
 ROOT = Path(__file__).resolve().parents[2]
 FLAGSHIP = ROOT / "torsal" / "resources" / "examples" / "kaohsiung-stadium.graph"
 RATIO_LIMIT = 2.0  # 1.11 measured at load ~15
-CPU_RATIO_LIMIT = 1.55  # 1.29 measured; ~1.6 with the collector on or Qt imported first again
-ROUNDS = 3
+#: 1.13-1.23 measured on 6 December 2026; ~1.6 with the collector on or Qt imported first again
+CPU_RATIO_LIMIT = 1.35
+#: issue 28's bar: launch -> the flagship's first solved frame within 2 s on a quiet machine.
+#: Asserted on the median of each round's launch -> first frame less the seconds its main
+#: thread waited for a CPU (what a quiet machine would take, but for the loaded one's slower
+#: CPU seconds; equal to the wall time on an idle machine)
+QUIET_BAR_S = 2.0
+ROUNDS = 5
 
 #: the baseline: an empty main window with a QtInteractor, timed to its first render
 _BASELINE = """
@@ -178,8 +211,11 @@ def test_launch_to_the_flagships_first_solved_frame_against_an_empty_qtinteracto
     print(f"launch → first solved frame of the flagship {min(ours):.2f} s, empty QtInteractor window "
           f"{min(baselines):.2f} s: ratio {ratio:.2f} (limit {RATIO_LIMIT}); in CPU seconds "
           f"{cpu_ratio:.2f} (limit {CPU_RATIO_LIMIT})")
-    if idle_ours:
-        print(f"less the waits for a CPU (near an idle machine's time): {statistics.median(idle_ours):.2f} s,"
-              f" baseline {statistics.median(idle_baselines):.2f} s (medians)")
+    assert len(idle_ours) == ROUNDS, "no /proc/thread-self/schedstat: the quiet-machine figure is unknown"
+    quiet, quiet_baseline = statistics.median(idle_ours), statistics.median(idle_baselines)
+    print(f"less the waits for a CPU (near an idle machine's time): {quiet:.2f} s, baseline "
+          f"{quiet_baseline:.2f} s (medians; rounds {', '.join(f'{s:.2f}' for s in idle_ours)}; "
+          f"bar {QUIET_BAR_S} s)")
     assert ratio <= RATIO_LIMIT
     assert cpu_ratio <= CPU_RATIO_LIMIT
+    assert quiet <= QUIET_BAR_S, f"first solved frame after {quiet:.2f} s on a quiet machine"
