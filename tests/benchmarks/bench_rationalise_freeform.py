@@ -6,24 +6,24 @@ Run alone with::
     .venv/bin/python -m pytest tests/benchmarks/bench_rationalise_freeform.py \\
         -o python_files='bench_*.py' -o norecursedirs='.*' -s
 
-For every design and tolerance it prints the row of the table in the issue's note:
-strips, the certified deviation and an independent one (the designs' own Newton on
-dense samples of every strip), torsal, fan and crease rulings (Kind: the fan rulings across
-which the sheet folds by more than 1e-7 rad are creases), the fan and creased shares of
-the area, the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly
-spaced parameter lines, as many as it takes). It asserts what the issue asks that holds
-on every design: within the tolerance by the independent measure, never more strips than
-the baseline, a solve of at most 60 CPU-s on this 2-core machine, at most 10 % of the
-strips' area in fans and every fan flat (no crease). The double bump (every line x = const crosses an asymptotic
-direction at y = ±3, where f_yy changes sign and f_xy does not vanish, and so does every
-line y = const near the bumps' inflection circles: no family of parameter lines avoids
-it) is rationalised with strips that ring its bumps along lines of curvature at 1, 2 and
-5 cm, within the tolerance, covering the edge and ≤ 10 % in fans; it does not yet meet the
-strip count at 2 and 5 cm (34 and 16 against the baseline's 26 and 14) nor the 60 CPU-s at
-1 cm (70 CPU-s at load 9–12; 55 at 2 cm, 41 at 5 cm; see docs/geometry.md), and its halves'
-triangles crease (at 5 cm 36 of its 430 rulings, 6e-4–0.12 rad). Where the
-rings are kept, their solves' CPU is also asserted against the isocurve baseline's
-searches in the same run (:data:`RINGS_RATIO`).
+For every design and tolerance it prints the row of the table in the issue's note: strips,
+the certified deviation and an independent one (the designs' own Newton on dense samples
+of every strip), torsal, fan and crease rulings (Kind: the fan rulings across which the
+sheet folds by more than 1e-7 rad are creases), the fan and creased shares of the area,
+the solve's time and the isocurve baseline of ``bench_rationalise`` (evenly spaced
+parameter lines, as many as it takes). It asserts what the issue asks that holds on every
+design: within the tolerance by the independent measure, never more strips than the
+baseline, a solve of at most 60 CPU-s on this 2-core machine, at most 10 % of the strips'
+area in fans and every fan flat (no crease). The double bump (every line x = const crosses
+an asymptotic direction at y = ±3, where f_yy changes sign and f_xy does not vanish, and
+so does every line y = const near the bumps' inflection circles: no family of parameter
+lines avoids it) is rationalised with strips that ring its bumps along lines of curvature
+at 1, 2 and 5 cm, within the tolerance, covering the edge and ≤ 10 % in fans; it does not
+yet meet the strip count at 2 and 5 cm (34 and 16 against the baseline's 26 and 14) nor
+the 60 CPU-s at 1 cm (70 CPU-s at load 9–12; 55 at 2 cm, 41 at 5 cm; see
+docs/geometry.md), and its halves' triangles crease (at 5 cm 36 of its 430 rulings,
+6e-4–0.12 rad). Where the rings are kept, their solves' CPU is also asserted against the
+isocurve baseline's searches in the same run (:data:`RINGS_RATIO`).
 """
 
 from __future__ import annotations
