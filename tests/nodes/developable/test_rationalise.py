@@ -320,7 +320,7 @@ def test_a_hyperbolic_paraboloid_between_its_straight_lines_gives_flat_triangles
     result = hypar_solved()
     assert any("crease the sheet" in t for t in texts(result))
     rulings = items(result, "Rulings")
-    assert set(items(result, "Kind")) == {"fan"}
+    assert set(items(result, "Kind")) <= {"fan", "crease"}
     pairs = 0
     for first, second in itertools.pairwise(rulings):
         p = np.array([first.start, first.end, second.start, second.end], dtype=float)
@@ -334,6 +334,37 @@ def test_a_hyperbolic_paraboloid_between_its_straight_lines_gives_flat_triangles
                         _zero, lambda x, y: np.full_like(x, 0.1), _zero)
     worst = max(distance_to(field, grid(s).reshape(-1, 3)).max() for s in items(result, "Strips"))
     assert worst <= TOL * 1.001
+
+
+def test_the_hyperbolic_paraboloids_triangles_fold_where_their_apex_changes_side():
+    """Between the lines y = c0 and y = c1 of z = x·y/10 (tangents (1, 0, c/10)), a triangle
+    through a point of one line beside one through a point of the other meet at an angle:
+    the planes of the ruling R and each line's tangent, R × (1, 0, c0/10) and R × (1, 0, c1/10).
+    Those rulings are creases with that angle as WarpAngles, never Valid; a ruling whose
+    neighbours share its end on one line is inside a fan (a flat cone): a fan, Valid."""
+    result = hypar_solved()
+    rulings, kinds = items(result, "Rulings"), items(result, "Kind")
+    warps, valid = items(result, "WarpAngles"), items(result, "Valid")
+    ends = np.array([[r.start, r.end] for r in rulings], dtype=float)
+    creases = 0
+    for i in range(1, len(rulings) - 1):
+        before, here, after = ends[i - 1], ends[i], ends[i + 1]
+        if abs(before[0, 1] - here[0, 1]) > 1e-12 or abs(after[0, 1] - here[0, 1]) > 1e-12:
+            continue  # a strip's end ruling (one side only)
+        shares = [np.abs(other - here).max(axis=1) <= 1e-12 * SIZE for other in (before, after)]
+        if (shares[0][0] and shares[1][1]) or (shares[0][1] and shares[1][0]):  # the apex changes side
+            r = here[1] - here[0]
+            n0 = np.cross(r, [1.0, 0.0, here[0, 1] / 10])
+            n1 = np.cross(r, [1.0, 0.0, here[1, 1] / 10])
+            fold = np.arctan2(np.linalg.norm(np.cross(n0, n1)), n0 @ n1)
+            assert fold > 1e-3
+            assert kinds[i] == "crease" and not valid[i]
+            assert warps[i] == pytest.approx(fold, rel=1e-6)
+            creases += 1
+        elif (shares[0][0] and shares[1][0]) or (shares[0][1] and shares[1][1]):  # inside one fan
+            assert kinds[i] == "fan" and valid[i]
+    assert creases > 10
+    assert any(f"{creases} rulings of flat triangles are creases" in t for t in texts(result))
 
 
 def test_direction_makes_the_boundaries_run_along_it():

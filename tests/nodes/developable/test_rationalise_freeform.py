@@ -140,7 +140,7 @@ def _fan_runs(result):
     start = 0
     for size in sizes:
         ends = np.array([[r.start, r.end] for r in rulings[start:start + size]], dtype=float)
-        fan = np.array([k == "fan" for k in kinds[start:start + size]])
+        fan = np.array([k in ("fan", "crease") for k in kinds[start:start + size]])
         piece = fan[:-1] | fan[1:]
         at = np.flatnonzero(piece)
         for piece_run in np.split(at, np.flatnonzero(np.diff(at) > 1) + 1):
@@ -171,6 +171,7 @@ def test_the_saddles_fans_are_flat_or_cones_never_creases():
     runs = list(_fan_runs(solved("saddle")))
     assert runs
     assert max(_creasing(run, design.size) for run in runs) < 1e-7
+    assert "crease" not in items(solved("saddle"), "Kind")
 
 
 def test_the_waves_creasing_fans_are_few_and_no_warning_names_them():
@@ -188,6 +189,7 @@ def test_the_waves_creasing_fans_are_few_and_no_warning_names_them():
                 for s in items(result, "Strips"))
     assert area == 0.0 <= total  # (4.8 % before)
     assert not any("crease the sheet" in t for t in texts(result))
+    assert "crease" not in items(result, "Kind")
 
 
 @pytest.mark.parametrize("name", FAST)

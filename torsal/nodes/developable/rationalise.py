@@ -16,6 +16,7 @@ from torsal.nodes.common.strip_outputs import WARP_HELP, strip_outputs
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.developable.freeform import rationalise_freeform
+from torsal.nodes.geometry.developable.kinds import fan_kinds
 from torsal.nodes.geometry.developable.measure import within_tolerance
 from torsal.nodes.geometry.developable.trimmed import rationalise_trimmed
 from torsal.nodes.geometry.local_frame import LocalFrame
@@ -156,6 +157,18 @@ class Rationalise(Node):
     1 % of the tolerance of the samples; it includes how far the design's edge at the
     strip's two ends is from it, so the strips cover the design to its edges.
 
+    Kind tells each ruling what it is, recomputed from the strip's own rulings and edges
+    (their one-sided tangents at the ruling): "torsal" (the solve's torsal rulings), "fan"
+    where the strip is closed by flat triangles or cones through one point and the sheet's
+    plane goes on across the ruling within WarpTolerance (the two triangles beside it lie
+    in one plane, or it is inside a cone: several rulings through one point of a boundary
+    are a smooth cone, not a fold), and "crease" where the triangles on its two sides are
+    in different planes (a triangle through a point of one boundary beside one through a
+    point of the other): the sheet folds there, by the angle given as its WarpAngles, and it
+    is never Valid. A fan ruling is Valid when the sheet keeps one plane along it too. The
+    remark counts the creases and gives the largest fold (docs/geometry.md, "Rationalise:
+    fans and creases").
+
     Honest limits. When more than MaxStrips would be needed, or where the tolerance asks
     for strips narrower than MinWidth (a sharp bump), the node makes MaxStrips evenly
     spaced strips (or MinWidth-wide ones there) and gives one warning: where (the Where
@@ -206,12 +219,16 @@ class Rationalise(Node):
             "help), each part's n strips between its n + 1 boundaries.", access=LIST),
         Out("Rulings", LINE, "R", "Every strip's rulings, strip after strip.", access=LIST),
         Out("WarpAngles", NUMBER, "W", f"{WARP_HELP} Per ruling, as Rulings; recomputed from the "
-            "rulings and the boundary curves' tangents.", access=LIST),
+            "rulings and the boundary curves' tangents. At a crease (Kind): the angle the sheet folds "
+            "through across the ruling.", access=LIST),
         Out("Deviation", NUMBER, "E", "Largest distance of each strip from the design.", access=LIST),
-        Out("Valid", BOOLEAN, "V", "Per ruling, as Rulings: the recomputed warp is a number within "
-            "WarpTolerance.", access=LIST),
-        Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal", or "fan" for a ruling of the flat '
-            "triangles that close a strip where no torsal ruling exists.", access=LIST),
+        Out("Valid", BOOLEAN, "V", "Per ruling, as Rulings: a torsal ruling's recomputed warp is a number "
+            "within WarpTolerance; a fan's sheet keeps one plane along and across it within WarpTolerance; "
+            "a crease is never Valid.", access=LIST),
+        Out("Kind", TEXT, "K", 'Per ruling, as Rulings: "torsal"; "fan" for a ruling of the flat triangles '
+            "(or cones through one point) that close a strip where no torsal ruling exists, the sheet's "
+            'plane going on across it within WarpTolerance; "crease" for such a ruling across which the '
+            "sheet folds by more (its fold angle is its WarpAngles).", access=LIST),
         Out("Creases", NUMBER, "C", "Per inner boundary (boundary i + 1, between strips i and i + 1): the "
             "largest fold angle (rad) between the two strips along it — how much the sheets kink there. "
             "With rings round bumps: part by part, as Boundaries, one per inner boundary of each part.",
@@ -268,17 +285,23 @@ class Rationalise(Node):
         warp: list[float] = []
         valid: list[bool] = []
         kinds: list[str] = []
-        fans = 0
+        fans = creased = 0
+        worst_fold = 0.0
         for strip in result.strips:
             starts, ends = (frame.points_to_world(p) for p in (strip.result.starts, strip.result.ends))
-            lines = strip_outputs(starts, ends, warp=strip.warp)
+            sheet = strip.surface
+            judged = fan_kinds(sheet.curve_a, sheet.curve_b, sheet.ruling_parameters, strip.result.starts,
+                               strip.result.ends, strip.result.fan, warp_limit, (starts, ends))
+            w = np.where(judged.crease, judged.fold, strip.warp)  # (a crease's: its fold)
+            lines = strip_outputs(starts, ends, warp=w)
             rulings.extend(lines.rulings)
-            w = strip.warp
             warp.extend(w.tolist())
-            ok = within_tolerance(w, warp_limit, starts, ends)
+            ok = np.where(strip.result.fan, judged.flat, within_tolerance(w, warp_limit, starts, ends))
             valid.extend(ok.tolist())
-            fans += int(np.count_nonzero(strip.result.fan))
-            kinds.extend(np.where(strip.result.fan, "fan", "torsal").tolist())
+            fans += int(np.count_nonzero(strip.result.fan & ~judged.crease))
+            creased += int(np.count_nonzero(judged.crease))
+            worst_fold = float(np.fmax.reduce(judged.fold[judged.crease], initial=worst_fold))
+            kinds.extend(judged.kind)
         deviation = [s.deviation for s in result.strips]
         worst = max(deviation)
         creases = [float(c) for c in result.creases]
@@ -286,6 +309,9 @@ class Rationalise(Node):
                 f"boundaries along {result.family}")
         if fans:
             text += f"; {fans} rulings in flat fans"
+        if creased:
+            text += (f"; {creased} rulings of flat triangles are creases (Kind \"crease\", not Valid): the "
+                     f"sheet folds across them by up to {worst_fold:.3g} rad")
         if np.isfinite(creases).any():
             text += f"; creases up to {np.nanmax(creases):.3g} rad"
         where = self._limits(result, frame, tol, count, narrowest, text)
@@ -294,8 +320,8 @@ class Rationalise(Node):
                 text += f"; {RINGS_TRIED}: {result.rings_refused}"
             self.remark(text)
             where = []
-        # fan rulings are flat triangles' edges, not torsal: Valid is false there by
-        # definition and the remark counts them; a torsal ruling that fails is a warning
+        # the remark counts the fans and the creases (never Valid); a torsal ruling that fails
+        # is a warning
         torsal = np.asarray(kinds) == "torsal"
         bad = int(np.count_nonzero(~np.asarray(valid) & torsal))
         if bad:

@@ -91,6 +91,24 @@ def _creased_all(starts: FloatArray, ends: FloatArray, in_fan: BoolArray, ruling
     return creased
 
 
+def creased_runs(in_fan: BoolArray, folded: BoolArray) -> BoolArray:
+    """Which pieces between consecutive rulings belong to a run of pieces next to a fan
+    ruling (``in_fan``, one per piece) with a ruling across which the sheet folds
+    (``folded``, one per ruling: :meth:`.kinds.SheetFolds.creases`) among the run's rulings.
+    A run with no fold is smooth (cones through one point, or a fan ruling inside a smooth
+    stretch of the sheet, as on a cut strip's ramp, :mod:`.cut_pace`), however many apexes
+    its rulings have."""
+    first = in_fan & ~np.concatenate([[False], in_fan[:-1]])
+    run = np.cumsum(first) * in_fan  # 0 outside the runs, 1, 2, … in them
+    hit = np.zeros(int(run.max(initial=0)) + 1, dtype=bool)
+    at = flatnonzero(folded)
+    for pieces in (at - 1, at):  # ruling i is the end of piece i − 1 and the start of piece i
+        pieces = pieces[(pieces >= 0) & (pieces < len(in_fan))]
+        hit[run[pieces]] = True
+    hit[0] = False
+    return hit[run]
+
+
 def area_share(starts: FloatArray, ends: FloatArray, pieces: NDArray[np.bool_]) -> float:
     """The share of the strip's area in the flagged ``pieces`` (0 to 1)."""
     areas = patch_areas(starts, ends)

@@ -44,7 +44,7 @@ from ..curve_base import Curve
 from ..vec_ops import cross, norm
 from .measure import rounding_of, within_tolerance
 from .stack import Stack
-from .warp import ZERO, curve_warps
+from .warp import PARALLEL, ZERO, curve_warps
 
 TORSAL, FAN, CREASE = "torsal", "fan", "crease"
 #: The sorts of piece beside a ruling: none (a strip's end), a cone through a point of A,
@@ -183,3 +183,163 @@ def _judged(rows: list[tuple[Any, ...]]) -> list[RulingKinds]:
     columns = (stack.split(x) for x in (kind, valid, tangent, angle, tip))
     return [RulingKinds(k.tolist(), v, w, c, p, count)
             for k, v, w, c, p, count in zip(*columns, counts, strict=True)]
+
+
+#: A rail's one-sided tangent at a ruling is taken this share of the ruling interval inside
+#: the piece (its exact derivative there): at the ruling itself a rail whose pace stands still
+#: on one side (a fan's apex next to it) has a derivative of 0 whatever the geometry.
+INSIDE = 1e-9
+
+
+@dataclass(frozen=True)
+class SheetFolds:
+    """Per ruling of a strip: how the sheet's tangent plane turns across and along it."""
+
+    #: the angle (rad, [0, π]) between the planes of the pieces on the ruling's two sides
+    #: (the dihedral angle of two flat triangles meeting at it): 0 where the sheet goes on
+    #: smoothly (inside a cone, between torsal pieces), 0 at a strip's end ruling, NaN where
+    #: a plane is undefined (a ruling of no length, one along a rail's tangent)
+    across: FloatArray
+    #: the largest turn of the tangent plane along the ruling on either side (rad): 0 beside
+    #: cones and torsal pieces, a warped piece's warp
+    along: FloatArray
+    tip: BoolArray  #: rulings of no length (the rails meet: no plane, NaN above)
+
+    def creases(self, fan: BoolArray, tolerance: float, starts: FloatArray, ends: FloatArray) -> BoolArray:
+        """The ``fan`` rulings across which the sheet folds: their fold is not a number within
+        ``tolerance`` (:func:`~.measure.within_tolerance`: NaN is never flat), tips aside."""
+        return fan & ~self.tip & ~within_tolerance(self.across, tolerance, starts, ends)
+
+    def flat(self, tolerance: float, starts: FloatArray, ends: FloatArray) -> BoolArray:
+        """The rulings along and across which the sheet keeps one tangent plane within
+        ``tolerance`` (both angles within it; never a tip)."""
+        return ~self.tip & within_tolerance(np.maximum(self.across, self.along), tolerance, starts, ends)
+
+
+def sheet_folds(rail_a: Curve, rail_b: Curve, u: ArrayLike, starts: ArrayLike, ends: ArrayLike) -> SheetFolds:
+    """How the sheet of a strip turns across and along each ruling ``starts[i] → ends[i]``,
+    its rails ``rail_a`` and ``rail_b`` run at one parameter with the rulings at ``u`` (a
+    ruled strip's two edges, as :class:`~torsal.nodes.geometry.ruled.RuledSurface` holds
+    them).
+
+    Read from the geometry alone: each piece between consecutive rulings is a cone through
+    a point of A (the two rulings share their start), of B, or a ruled quad
+    (:func:`piece_sorts`; a piece of no width is skipped, the one beyond it counts). The
+    piece's tangent plane along the ruling is the plane of the ruling and the moving
+    rail's tangent: R × B' in a cone through A, R × A' in one through B, and R × A' at A
+    and R × B' at B in a quad. The tangents are each rail's own one-sided ones, taken
+    :data:`INSIDE` of the interval into the piece (direction only: the pace plays no
+    part). ``across`` is the larger angle between the two sides' planes at the ruling's
+    two ends: the fold of the sheet there; ``along`` the larger turn along it within
+    either side (a quad's warp; 0 in a cone).
+
+    Two flat triangles A0 A1 B0 and A1 B0 B1 between the segments A from (0, 0, 0) to
+    (1, 0, 0) and B from (0, 1, 0) to (1, 1, h) fold along A1 B0 by atan(√2·h):
+
+    >>> from torsal.nodes.geometry.curve_rail import CurveRail
+    >>> from torsal.nodes.geometry.curves import Line
+    >>> a, b = Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 0.1])
+    >>> u, s, t = [0.0, 0.5, 1.0], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]
+    >>> folds = sheet_folds(CurveRail(a, u, s), CurveRail(b, u, t), u, a.point_at(s), b.point_at(t))
+    >>> float(folds.across[1].round(12)) == float(np.arctan(np.sqrt(2) * 0.1).round(12))
+    True
+    """
+    a = np.asarray(starts, dtype=float).reshape(-1, 3)
+    b = np.asarray(ends, dtype=float).reshape(-1, 3)
+    u = np.asarray(u, dtype=float).reshape(-1)
+    n = len(a)
+    across, along = np.zeros(n), np.zeros(n)
+    size = float(norm(np.ptp(np.concatenate([a, b]), axis=0))) if n else 0.0
+    tip = norm(b - a) <= ZERO * size
+    if n < 3:
+        across[tip], along[tip] = np.nan, np.nan
+        return SheetFolds(across, along, tip)
+    sorts = piece_sorts(a, b, size)
+    pieces = np.arange(n - 1)
+    full = sorts != _EMPTY
+    # the piece on each side of each inner ruling: the nearest one that is not empty
+    left = np.maximum.accumulate(np.where(full, pieces, -1))[:-1]  # for rulings 1 … n − 2
+    right = np.minimum.accumulate(np.where(full, pieces, n - 1)[::-1])[::-1][1:]
+    inner = np.arange(1, n - 1)
+    has = (left >= 0) & (right <= n - 2)
+    inner, left, right = inner[has], left[has], right[has]
+    # each rail's tangent inside each side's piece, next to the ruling (its far end on the
+    # left, its near end on the right)
+    def inside(k: IntArray, at: IntArray, sign: float) -> FloatArray:
+        step = u[k + 1] - u[k]
+        return u[at] + sign * np.minimum(np.maximum(INSIDE * step, 8.0 * np.spacing(np.abs(u[at]) + 1.0)),
+                                         0.5 * step)
+
+    x = np.concatenate([inside(left, left + 1, -1.0), inside(right, right, 1.0)])
+    ta, tb = rail_a.derivative_at(x, 1), rail_b.derivative_at(x, 1)
+    m = len(inner)
+    r = (b - a)[inner]
+    planes = []
+    for side, piece in ((slice(0, m), left), (slice(m, 2 * m), right)):
+        na, nb = _plane(r, ta[side]), _plane(r, tb[side])
+        sort = sorts[piece][:, None]
+        at_a = np.where(sort == _CONE_A, nb, na)  # (a cone through A has B's plane at both ends)
+        at_b = np.where(sort == _CONE_B, na, nb)
+        planes.append((at_a, at_b))
+    (left_a, left_b), (right_a, right_b) = planes
+    across[inner] = np.maximum(_angle(left_a, right_a), _angle(left_b, right_b))  # (NaN if either is)
+    along[inner] = np.maximum(_angle(left_a, left_b), _angle(right_a, right_b))
+    across[tip], along[tip] = np.nan, np.nan
+    return SheetFolds(across, along, tip)
+
+
+def _plane(r: FloatArray, tangent: FloatArray) -> FloatArray:
+    """The unit normal R × T of the plane of each ruling and a tangent (NaN where they are
+    parallel within :data:`~.warp.PARALLEL` or either is zero)."""
+    n = cross(r, tangent)
+    length = norm(n)
+    defined = length > PARALLEL * norm(r) * norm(tangent)
+    return np.where(defined[:, None], n / np.where(defined, length, 1.0)[:, None], np.nan)
+
+
+def _angle(n1: FloatArray, n2: FloatArray) -> FloatArray:
+    """The angle between unit normals, rad, [0, π] (NaN where either is)."""
+    return np.arctan2(norm(cross(n1, n2)), np.einsum("ij,ij->i", n1, n2))
+
+
+@dataclass(frozen=True)
+class FanKinds:
+    """Per ruling of a strip whose solve marked its fans: "torsal", "fan" or "crease"."""
+
+    kind: list[str]  #: "torsal" (not a fan), "fan" (the sheet does not fold across it), "crease"
+    crease: BoolArray  #: the fan rulings across which the sheet folds beyond the tolerance
+    flat: BoolArray  #: the sheet keeps one plane along and across the ruling (within the tolerance)
+    fold: FloatArray  #: the angle the sheet folds through across the ruling, rad (:class:`SheetFolds`)
+
+
+def fan_kinds(
+    rail_a: Curve, rail_b: Curve, u: ArrayLike, starts: ArrayLike, ends: ArrayLike, fan: BoolArray,
+    tolerance: float, placed: tuple[FloatArray, FloatArray] | None = None,
+) -> FanKinds:
+    """Which of a strip's ``fan`` rulings (the flat triangles and cones its solve closed it
+    with) are fans and which creases, from the strip's rails and rulings (as
+    :func:`sheet_folds` takes them): a fan ruling across which the sheet's plane turns by more
+    than ``tolerance`` is a crease; one inside a cone through one point, or between two
+    triangles in one plane, is a fan. Other rulings are torsal. ``placed``: the rulings'
+    ends where they are put in the world (the rounding of their coordinates widens the
+    tolerance, :func:`~.measure.within_tolerance`); the angles are the same there.
+
+    A zigzag of triangles between two skew segments is all creases but its end rulings:
+
+    >>> from torsal.nodes.geometry.curve_rail import CurveRail
+    >>> from torsal.nodes.geometry.curves import Line
+    >>> a, b = Line([0, 0, 0], [1, 0, 0]), Line([0, 1, 0], [1, 1, 0.1])
+    >>> u, s, t = [0.0, 1 / 3, 2 / 3, 1.0], [0.0, 0.5, 0.5, 1.0], [0.0, 0.0, 1.0, 1.0]
+    >>> fan = np.ones(4, dtype=bool)
+    >>> fan_kinds(CurveRail(a, u, s), CurveRail(b, u, t), u, a.point_at(s), b.point_at(t), fan, 1e-7).kind
+    ['fan', 'crease', 'crease', 'fan']
+    """
+    a = np.asarray(starts, dtype=float).reshape(-1, 3)
+    b = np.asarray(ends, dtype=float).reshape(-1, 3)
+    fan = np.asarray(fan, dtype=bool)
+    folds = sheet_folds(rail_a, rail_b, u, a, b)
+    world_a, world_b = placed if placed is not None else (a, b)
+    crease = folds.creases(fan, tolerance, world_a, world_b)
+    flat = folds.flat(tolerance, world_a, world_b)
+    kind = np.where(crease, CREASE, np.where(fan, FAN, TORSAL)).tolist()
+    return FanKinds(kind, crease, flat, folds.across)

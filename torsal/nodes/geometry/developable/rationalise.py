@@ -74,7 +74,7 @@ from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curve_rail import ruled_between
 from torsal.nodes.geometry.developable.asymptotic import asymptotic_crossings
 from torsal.nodes.geometry.developable.certify import certified_deviation, crease_angle, end_gaps, uncovered
-from torsal.nodes.geometry.developable.fans import creased_fans, patch_areas
+from torsal.nodes.geometry.developable.fans import patch_areas
 from torsal.nodes.geometry.developable.guided import GuidedBoundaries, IsoBoundaries, guided_boundaries
 from torsal.nodes.geometry.developable.last_strip import last_two
 from torsal.nodes.geometry.developable.offset import LiftedBoundaries, lift_for
@@ -476,13 +476,14 @@ def fan_area(strips: Sequence[Strip]) -> float:
 
 
 def creased_area(strips: Sequence[Strip]) -> float:
-    """The share of the strips' summed area in fans that crease the sheet."""
+    """The share of the strips' summed area in fans that crease the sheet: each strip's own
+    creased share (:attr:`~.ruling.RulingResult.creased_share`, as its solve or its cut
+    measured it) of its area."""
     creased = total = 0.0
     for strip in strips:
-        areas = patch_areas(strip.result.starts, strip.result.ends)
-        fan = strip.result.fan
-        total += float(areas.sum())
-        creased += float(areas[creased_fans(strip.result.starts, strip.result.ends, fan)].sum())
+        area = float(patch_areas(strip.result.starts, strip.result.ends).sum())
+        total += area
+        creased += strip.result.creased_share * area
     return creased / total if total > 0 else 0.0
 
 

@@ -68,7 +68,8 @@ from ..trimmed_surface import TrimmedSurface
 from .certify import certified_deviation, distances_to_strips
 from .chain import Chain
 from .cut_pace import TURN_BISECTIONS, by_length, jumps
-from .fans import creased_fans, patch_areas
+from .fans import creased_runs, patch_areas
+from .kinds import sheet_folds
 from .rationalise import Rationalisation, Strip, rationalise
 from .ruling import RulingResult
 from .trim_region import checked_densely, patch_of, signed_inside, trim_corners, trim_points
@@ -662,7 +663,9 @@ def _strip(strip: Strip, run: list[_Line], surface: RuledSurface, a: Curve, b: C
     warp = np.asarray(curve_warp(a, b, s, t, starts, ends), dtype=float)
     areas = patch_areas(starts, ends)
     total = float(areas.sum()) or 1.0
-    creased = float(areas[creased_fans(starts, ends, fan)].sum()) / total
+    # creasing where the sheet folds, not by shared apexes (a ramp's line shares none: cut_pace)
+    folded = sheet_folds(surface.curve_a, surface.curve_b, s, starts, ends).creases(fan, 1e-7, starts, ends)
+    creased = float(areas[creased_runs(fan[:-1] | fan[1:], folded)].sum()) / total
     shared = fan[:-1] & fan[1:]
     result = RulingResult(s, t, starts, ends, warp, warp.copy(), np.isfinite(warp) & (warp <= 1e-7), None,
                           stations, fan, float(areas[shared].sum()) / total, creased)
