@@ -7,7 +7,7 @@ import pytest
 from scipy.interpolate import BSpline
 
 from torsal.nodes.geometry.curves import Circle, InterpolatedCurve, Line, NurbsCurve
-from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together
+from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together, polynomial_curves
 
 
 def curves_sharing_knots(seed: int, rational: bool, count: int) -> list[NurbsCurve]:
@@ -132,3 +132,28 @@ def test_partitions_are_kept_only_inside_a_block_and_dropped_with_it():
         with shared_knots.partitions_kept():  # (nested: the outer block's)
             assert shared_knots._partition(curves)[0] is kept
     assert shared_knots._KEPT.get() is None
+
+
+@pytest.mark.parametrize("degree", [1, 2, 3, 5])
+def test_polynomial_curves_made_together_are_the_curves_set_up_alone_bit_for_bit(degree):
+    # far from the origin, flat on z = 0 or z = -0.0 (the sign of a zero box survives), and
+    # some closed (their first and last control points one point)
+    rng = np.random.default_rng(degree)
+    points = rng.normal(size=(12, degree + 1, 3)) * 10.0 + 1e6 * rng.normal(size=(12, 1, 3))
+    points[:3, :, 2], points[3:5, :, 2] = 0.0, -0.0
+    if degree > 1:
+        points[5:7, -1] = points[5:7, 0]
+    knots = np.repeat([0.0, 1.0], degree + 1)
+    for together, row in zip(polynomial_curves(NurbsCurve, points, knots, degree), points, strict=True):
+        alone = NurbsCurve(row, degree, knots)
+        for name in ("control_points", "knots", "weights", "_anchor", "_coefficients", "end_points"):
+            mine, theirs = getattr(together, name), getattr(alone, name)
+            assert mine.tobytes() == theirs.tobytes() and mine.shape == theirs.shape, name
+            assert mine.flags.writeable == theirs.flags.writeable, name
+        for name in ("degree", "domain", "closed", "is_rational", "periodic"):
+            assert getattr(together, name) == getattr(alone, name), name
+        t = np.linspace(-0.1, 1.1, 9)
+        for mine, theirs in zip(together.derivatives(t, 3), alone.derivatives(t, 3), strict=True):
+            assert mine.tobytes() == theirs.tobytes()
+    assert sum(curve.closed for curve in polynomial_curves(NurbsCurve, points, knots, degree)) == (
+        2 if degree > 1 else 0)

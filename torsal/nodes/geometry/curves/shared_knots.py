@@ -17,6 +17,9 @@ The basis comes from scipy's public :class:`~scipy.interpolate.BSpline` with ``k
 columns of coefficients, coefficient ``j`` being the unit vector of column ``j mod (k + 1)``:
 on span ``i`` the basis functions ``i − k … i`` fall in distinct columns, so each column
 holds exactly one of them (added to zeros, which changes no bit).
+
+Curves that share their knots are also made together (:func:`polynomial_curves`: a node that
+makes dozens of edge curves on every solve pays each step of their set-up once).
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from functools import cached_property
+from typing import TypeVar
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -56,6 +60,39 @@ def derivatives_together(
         if not local:
             out[0, rows] += group.anchors[which]
     return out
+
+
+N = TypeVar("N", bound=NurbsCurve)
+
+
+def polynomial_curves(kind: type[N], points: FloatArray, knots: FloatArray, degree: int) -> list[N]:
+    """Open polynomial (non-rational) curves of class ``kind`` (one that evaluates as
+    :class:`.NurbsCurve` does, :func:`_groupable`) through the control points ``points[i]``
+    (``(curves, count, 3)``, finite) on the shared full ``knots`` (checked) of ``degree``:
+    each what :meth:`.NurbsCurve._setup` makes of it alone, bit for bit, their boxes,
+    anchors and local coefficients found at once and their end points (which say whether
+    each is closed) evaluated together (:func:`derivative_each`)."""
+    # each curve's box reduced along its coordinate rows, as vec_ops.bounds reduces one curve's
+    columns = np.ascontiguousarray(points.transpose(0, 2, 1))
+    low, high = columns.min(axis=2), columns.max(axis=2)
+    anchors = 0.5 * (high + low)
+    local = points - anchors[:, None]
+    curves = []
+    for row, anchor, coefficients in zip(points, anchors, local, strict=True):
+        curve = kind.__new__(kind)
+        curve._set_spline(row, None, knots, degree, False, anchor, coefficients)
+        curves.append(curve)
+    ends = derivative_each(curves, [_ENDS] * len(curves), 0)
+    for curve, end_points, span in zip(curves, ends, (high - low).max(axis=1).tolist(), strict=True):
+        end_points.setflags(write=False)
+        vars(curve)["end_points"] = end_points  # (where the cached property keeps them)
+        curve._set_closed(span)
+    return curves
+
+
+#: The parameters of a curve's end points.
+_ENDS = np.array([0.0, 1.0])
+_ENDS.setflags(write=False)
 
 
 def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: int = 1) -> list[FloatArray]:
