@@ -103,6 +103,20 @@ def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rat
             assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)
 
 
+
+@pytest.mark.parametrize("seed", range(6))
+def test_curves_sharing_knots_and_parameters_are_each_curves_derivative_at_bit_for_bit(seed):
+    # one spline of every curve's coefficients side by side; many parameters each (more
+    # than curves evaluated together take), the same array or equal copies of it
+    curves = [*curves_sharing_knots(seed, False, 5), Circle(), Line([0, 0, 0], [1, 2, 3]),
+              *curves_sharing_knots(seed + 10, True, 2)]
+    x, _ = parameters(seed, [300])
+    ts = [x if k % 2 else x.copy() for k in range(len(curves))]
+    for order in range(6):
+        for curve, t, found in zip(curves, ts, derivative_each(curves, ts, order), strict=True):
+            assert found.tobytes() == np.asarray(curve.derivative_at(t, order)).tobytes(), (curve, order)
+            assert found.shape == (len(t), 3) and found.flags.c_contiguous
+
 def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken():
     from torsal.nodes.geometry.curves import shared_knots
 

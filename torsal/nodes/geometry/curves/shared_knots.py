@@ -100,9 +100,19 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
     of ``ts``, bit for bit, the curves that share knots evaluated together as in
     :func:`derivatives_together` (a polynomial curve's lower orders are not evaluated)."""
     out: list[FloatArray | None] = [None] * len(curves)
+    counts = np.array([len(t) for t in ts], dtype=np.int64)
+    # polynomial curves that share knots and parameters: one evaluation of all of them
+    for group in _partition(curves)[0]:
+        listed = group.members.tolist()
+        first = ts[listed[0]]
+        if len(listed) > 1 and not group.curves[0].is_rational and all(
+                ts[i] is first or np.array_equal(ts[i], first) for i in listed[1:]):
+            for i, values in zip(listed, _at_shared_parameters(group, first, order), strict=True):
+                out[i] = values
+            counts[group.members] = 0  # (done: no rows left for what follows)
     bounds = np.zeros(len(ts) + 1, dtype=np.int64)
-    np.cumsum([len(t) for t in ts], out=bounds[1:])
-    together, alone = _groups(curves, np.diff(bounds))
+    np.cumsum(counts, out=bounds[1:])
+    together, alone = _groups(curves, counts)
     for i in alone:
         out[i] = curves[i].derivative_at(ts[i], order)
     for group in together:
@@ -118,6 +128,27 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
             out[i] = values[low:high]
             low = high
     return out  # type: ignore[return-value]  (every curve's is filled in)
+
+
+def _at_shared_parameters(group: _Group, t: FloatArray, order: int) -> FloatArray:
+    """``curve.derivative_at(t, order)`` of every curve of ``group`` (polynomial curves of one
+    degree and knots) at the same parameters ``t``, ``(curves, len(t), 3)``, bit for bit: one
+    scipy spline whose coefficients are every curve's side by side (``3 × curves`` columns)
+    evaluates each column as it evaluates a curve's own three (the basis at each ``t``
+    once, then each column's sum on its own)."""
+    first = group.curves[0]
+    u, scale = first._knot_parameters(t)
+    curves, n = len(group.curves), len(u)
+    if order > first.degree:
+        return np.zeros((curves, n, 3))
+    side_by_side = np.concatenate([curve._coefficients for curve in group.curves], axis=1)
+    spline = BSpline.construct_fast(first.knots, side_by_side, first.degree)
+    values = np.ascontiguousarray(spline(u, nu=order).reshape(n, curves, 3).transpose(1, 0, 2))
+    if order and scale != 1.0:  # (as NurbsCurve._polynomial_derivative)
+        values *= scale**order
+    if order == 0:
+        values += group.anchors[:, None, :]
+    return values
 
 
 def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[_Group], list[int]]:
