@@ -117,6 +117,22 @@ def test_curves_sharing_knots_and_parameters_are_each_curves_derivative_at_bit_f
             assert found.tobytes() == np.asarray(curve.derivative_at(t, order)).tobytes(), (curve, order)
             assert found.shape == (len(t), 3) and found.flags.c_contiguous
 
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("local", [False, True])
+def test_all_orders_of_curves_sharing_knots_and_parameters_are_each_curves_own(seed, local):
+    curves = [*curves_sharing_knots(seed, False, 4), Circle(), *curves_sharing_knots(seed + 10, True, 2)]
+    t, _ = parameters(seed, [200])
+    t[3] = -0.0  # (a parameter of another sign bit is another parameter)
+    x = np.concatenate([t] * len(curves))
+    x[len(t) + 3] = 0.0
+    bounds = np.arange(len(curves) + 1) * len(t)
+    found = derivatives_together(curves, x, bounds, 4, local)
+    for k, curve in enumerate(curves):
+        own = (curve.local_derivatives if local else curve.derivatives)(x[bounds[k] : bounds[k + 1]], 4)
+        for order in range(5):
+            assert found[order, bounds[k] : bounds[k + 1]].tobytes() == own[order].tobytes(), (k, order)
+
 def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken():
     from torsal.nodes.geometry.curves import shared_knots
 

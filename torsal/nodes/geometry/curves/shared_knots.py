@@ -50,6 +50,11 @@ def derivatives_together(
     own."""
     out = np.empty((order + 1, len(x), 3))
     counts = np.diff(bounds)
+    # polynomial curves that share knots and parameters: one evaluation of all of them
+    for group, rows, t in _sharing_parameters(curves, x, bounds):
+        values = _at_shared_parameters(group, t, range(order + 1), local)
+        out[:, rows] = values.reshape(order + 1, len(rows), 3)
+        counts[group.members] = 0  # (done: no rows left for what follows)
     together, alone = _groups(curves, counts)
     for i in alone:
         evaluate = curves[i].local_derivatives if local else curves[i].derivatives
@@ -106,8 +111,8 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
         listed = group.members.tolist()
         first = ts[listed[0]]
         if len(listed) > 1 and not group.curves[0].is_rational and all(
-                ts[i] is first or np.array_equal(ts[i], first) for i in listed[1:]):
-            for i, values in zip(listed, _at_shared_parameters(group, first, order), strict=True):
+                ts[i] is first or _same_bits(ts[i], first) for i in listed[1:]):
+            for i, values in zip(listed, _at_shared_parameters(group, first, [order])[0], strict=True):
                 out[i] = values
             counts[group.members] = 0  # (done: no rows left for what follows)
     bounds = np.zeros(len(ts) + 1, dtype=np.int64)
@@ -130,25 +135,56 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
     return out  # type: ignore[return-value]  (every curve's is filled in)
 
 
-def _at_shared_parameters(group: _Group, t: FloatArray, order: int) -> FloatArray:
-    """``curve.derivative_at(t, order)`` of every curve of ``group`` (polynomial curves of one
-    degree and knots) at the same parameters ``t``, ``(curves, len(t), 3)``, bit for bit: one
-    scipy spline whose coefficients are every curve's side by side (``3 × curves`` columns)
-    evaluates each column as it evaluates a curve's own three (the basis at each ``t``
-    once, then each column's sum on its own)."""
+def _sharing_parameters(
+    curves: Sequence[Curve], x: FloatArray, bounds: IntArray
+) -> Iterator[tuple[_Group, IntArray, FloatArray]]:
+    """The groups of polynomial curves sharing knots (two or more) whose rows of ``x`` (curve
+    ``i`` has ``x[bounds[i]:bounds[i + 1]]``) are the same parameters, with those rows and
+    the parameters."""
+    counts = np.diff(bounds)
+    for group in _partition(curves)[0]:
+        members = group.members
+        own = counts[members]
+        if len(members) < 2 or group.curves[0].is_rational or not own[0] or (own != own[0]).any():
+            continue
+        rows, _ = _rows(bounds, members)
+        each = x[rows].reshape(len(members), -1)
+        if (each.view(np.int64) == each[0].view(np.int64)).all():  # (bit for bit: a −0.0 is not 0.0)
+            yield group, rows, each[0]
+
+
+def _same_bits(a: FloatArray, b: FloatArray) -> bool:
+    """Whether two arrays of parameters are the same numbers, bit for bit."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def _at_shared_parameters(
+    group: _Group, t: FloatArray, orders: Sequence[int], local: bool = False
+) -> FloatArray:
+    """The derivatives of ``orders`` of every curve of ``group`` (polynomial curves of one
+    degree and knots) at the same parameters ``t``, ``(orders, curves, len(t), 3)``: what
+    ``curve.derivative_at(t, k)`` gives each (or, with ``local``, ``local_derivatives``:
+    its points relative to its anchor), bit for bit. One scipy spline whose coefficients
+    are every curve's side by side (``3 × curves`` columns) evaluates each column as it
+    evaluates a curve's own three (the basis at each ``t`` once, then each column's sum on
+    its own)."""
     first = group.curves[0]
     u, scale = first._knot_parameters(t)
     curves, n = len(group.curves), len(u)
-    if order > first.degree:
-        return np.zeros((curves, n, 3))
+    out = np.zeros((len(orders), curves, n, 3))  # (zero above the degree)
     side_by_side = np.concatenate([curve._coefficients for curve in group.curves], axis=1)
     spline = BSpline.construct_fast(first.knots, side_by_side, first.degree)
-    values = np.ascontiguousarray(spline(u, nu=order).reshape(n, curves, 3).transpose(1, 0, 2))
-    if order and scale != 1.0:  # (as NurbsCurve._polynomial_derivative)
-        values *= scale**order
-    if order == 0:
-        values += group.anchors[:, None, :]
-    return values
+    for row, order in enumerate(orders):
+        if order > first.degree:
+            continue
+        values = out[row]
+        values[...] = spline(u, nu=order).reshape(n, curves, 3).transpose(1, 0, 2)
+        if order and scale != 1.0:  # (as NurbsCurve._polynomial_derivative)
+            values *= scale**order
+        if order == 0 and not local:
+            values += group.anchors[:, None, :]
+    return out
 
 
 def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[_Group], list[int]]:
