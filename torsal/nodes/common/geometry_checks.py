@@ -6,6 +6,7 @@ is skipped and the node's other items still solve.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
@@ -47,6 +48,18 @@ def has_no_length(curve: Curve) -> bool:
     scale = float(np.abs(points).max())
     # a point has no size to be relative to: rounding is relative to its coordinates
     return not (np.abs(end - start).max() > _ROUNDING * scale or spread > _ROUNDING * scale)
+
+
+def curves_with_length(values: Iterable[Any]) -> set[int]:
+    """The ids of the curves among ``values`` whose ends lie apart (to rounding), found for
+    all of them at once: :func:`has_no_length` is False for each without looking further
+    (the others, and what is not a curve, are left to it)."""
+    curves = list({id(value): value for value in values if isinstance(value, Curve)}.values())
+    if not curves:
+        return set()
+    ends = np.array([curve.end_points for curve in curves])  # (curves, 2, 3)
+    apart = np.abs(ends[:, 1] - ends[:, 0]).max(axis=1) > _ROUNDING * np.abs(ends).max(axis=(1, 2))
+    return {id(curve) for curve, ok in zip(curves, apart.tolist(), strict=True) if ok}
 
 
 def curve(name: str, value: Any) -> Curve:

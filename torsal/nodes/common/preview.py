@@ -40,7 +40,10 @@ import numpy as np
 
 from torsal.engine.values import Plane, Point, Triple, Vector
 from torsal.nodes.geometry.curve_base import Curve
+from torsal.nodes.geometry.curves.interpolated import InterpolatedCurve
 from torsal.nodes.geometry.curves.line import Line, Polyline
+from torsal.nodes.geometry.curves.nurbs import NurbsCurve
+from torsal.nodes.geometry.curves.shared_knots import derivative_each
 from torsal.nodes.geometry.mesh_surface import MeshSurface
 from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.ruled_meshes import ruled_mesh_arrays
@@ -320,3 +323,18 @@ _CURVE_PARAMETERS = np.linspace(0.0, 1.0, CURVE_SAMPLES)  # (copied for each cur
 @register_preview(Curve)
 def _curve(curve: Curve) -> PreviewGeometry:
     return PreviewGeometry(polylines=[curve_points(curve)])
+
+
+@register_preview_many(NurbsCurve)
+@register_preview_many(InterpolatedCurve)
+def _nurbs_curves(curves: Sequence[NurbsCurve]) -> PreviewGeometry:
+    """A run of NURBS curves (a roof's edges) as one ``(k, n, 3)`` array of chains: what
+    :func:`_curve` draws for each, those that share their knots evaluated together
+    (:func:`~torsal.nodes.geometry.curves.shared_knots.derivative_each`, bit for bit)."""
+    points = derivative_each(curves, [_RUN_PARAMETERS] * len(curves), 0)
+    return PreviewGeometry(polylines=np.array(points).reshape(len(curves), -1, 3))
+
+
+#: :data:`_CURVE_PARAMETERS` for a run of curves (one array for all: read-only).
+_RUN_PARAMETERS = _CURVE_PARAMETERS.copy()
+_RUN_PARAMETERS.setflags(write=False)

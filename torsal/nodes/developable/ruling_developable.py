@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -14,6 +14,7 @@ from torsal.nodes.common.checks import segments as segments_input
 from torsal.nodes.common.checks import tolerance as tolerance_input
 from torsal.nodes.common.convert import sentence
 from torsal.nodes.common.geometry_checks import curve as curve_input
+from torsal.nodes.common.geometry_checks import curves_with_length
 from torsal.nodes.common.strip_folds import FoldReport, fold_report, fold_reports, strips_crossings
 from torsal.nodes.common.strip_outputs import (
     WARP_HELP,
@@ -22,7 +23,7 @@ from torsal.nodes.common.strip_outputs import (
     curve_strips_outputs,
 )
 from torsal.nodes.common.values import CURVE, LINE, SURFACE
-from torsal.nodes.geometry.coincidence import coincident
+from torsal.nodes.geometry.coincidence import coincident, ends_differ_each
 from torsal.nodes.geometry.curve_base import Curve
 from torsal.nodes.geometry.curves.line import Line
 from torsal.nodes.geometry.curves.shared_knots import partitions_kept
@@ -61,16 +62,21 @@ _Checked = tuple[Curve, Curve, int, float, float, float]
 
 
 def _arguments(
-    curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any
+    curve_a: Any, curve_b: Any, segments: Any, tolerance: Any, fan_limit: Any, crease_angle: Any,
+    with_length: Collection[int] = (), apart: bool = False,
 ) -> _Checked:
     """One call's checked inputs: the curves (never one curve twice), Segments,
-    WarpTolerance, FanLimit and CreaseAngle."""
-    a, b = curve_input("CurveA", curve_a), curve_input("CurveB", curve_b)
+    WarpTolerance, FanLimit and CreaseAngle. The curves whose ids are in ``with_length``
+    are known to have a length, and with ``apart`` their ends lie apart, so they are not
+    one curve (found for every row at once: :meth:`RulingDevelopable.solve_many`)."""
+    a = curve_a if id(curve_a) in with_length else curve_input("CurveA", curve_a)
+    b = curve_b if id(curve_b) in with_length else curve_input("CurveB", curve_b)
     n = segments_input(segments)
     tol = tolerance_input("WarpTolerance", tolerance)
     limit = fan_limit_input(fan_limit)
     sharp = angle_input("CreaseAngle", crease_angle, "0.5", largest=np.pi)
-    _distinct(a, b)
+    if not apart:
+        _distinct(a, b)
     return a, b, n, tol, limit, sharp
 
 
@@ -284,9 +290,16 @@ class RulingDevelopable(Node):
         """:meth:`solve_many`'s work."""
         checked: list[_Checked | NodeWarning] = []
         stop: Exception | None = None  # what ends the solve at a row, after the rows before it
-        for row in zip(*columns, strict=True):
+        # the curves' lengths, and whether each row's two curves are one, looked at once for
+        # all rows (each curve once: a roof's edge is two strips' curve)
+        with_length = curves_with_length([*columns[0], *columns[1]])
+        pairs = list(zip(columns[0], columns[1], strict=True))
+        both = [id(a) in with_length and id(b) in with_length for a, b in pairs]
+        differ = iter(ends_differ_each([pair for pair, ok in zip(pairs, both, strict=True) if ok]))
+        apart = [ok and next(differ) for ok in both]
+        for row, ends_apart in zip(zip(*columns, strict=True), apart, strict=True):
             try:
-                checked.append(_arguments(*row))
+                checked.append(_arguments(*row, with_length=with_length, apart=ends_apart))
             except NodeWarning as exc:  # that row is refused, the others are made
                 checked.append(exc)
             except Exception as exc:  # (solve raises it at that row, after the rows before)

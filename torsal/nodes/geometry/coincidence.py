@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from torsal.nodes.geometry.curve_base import Curve
-from torsal.nodes.geometry.vec_ops import extent
 
 #: Two curves closer than this (relative to their size) everywhere count as one.
 COINCIDENT = 1e-9
@@ -31,14 +32,22 @@ def _ends_differ(curve_a: Curve, curve_b: Curve) -> bool:
     """The cheapest rejection: a curve given twice has the same ends (either way round),
     unless both are loops, whose seams may lie anywhere. Ends count as the same within
     1e-6 of their spread (or when all four coincide)."""
-    ends = np.concatenate([curve_a.end_points, curve_b.end_points])  # a0, a1, b0, b1
-    size = float(extent(ends).max())
-    # the largest coordinate gap of each pair, all six at once
+    return ends_differ_each([(curve_a, curve_b)])[0]
+
+
+def ends_differ_each(pairs: Sequence[tuple[Curve, Curve]]) -> list[bool]:
+    """:func:`_ends_differ` of every pair of curves of ``pairs``, all at once: those pairs
+    are not :func:`coincident`."""
+    if not pairs:
+        return []
+    ends = np.array([np.concatenate([a.end_points, b.end_points]) for a, b in pairs])  # a0, a1, b0, b1
+    size = (ends.max(axis=1) - ends.min(axis=1)).max(axis=1)  # (vec_ops.extent of each pair's)
+    # the largest coordinate gap of each pair of ends, all six at once
     a0b0, a1b1, a0b1, a1b0, a0a1, b0b1 = (
-        np.abs(ends[_FIRST] - ends[_SECOND]).max(axis=1) <= 1e-6 * size
-    ).tolist()
-    same = (a0b0 and a1b1) or (a0b1 and a1b0)
-    return not (same or (a0a1 and b0b1))
+        np.abs(ends[:, _FIRST] - ends[:, _SECOND]).max(axis=2) <= 1e-6 * size[:, None]
+    ).T
+    same = (a0b0 & a1b1) | (a0b1 & a1b0)
+    return (~(same | (a0a1 & b0b1))).tolist()
 
 
 #: The pairs of end points :func:`_ends_differ` compares (rows of a0, a1, b0, b1):

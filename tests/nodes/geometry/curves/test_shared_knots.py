@@ -7,7 +7,7 @@ import pytest
 from scipy.interpolate import BSpline
 
 from torsal.nodes.geometry.curves import Circle, InterpolatedCurve, Line, NurbsCurve
-from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together
+from torsal.nodes.geometry.curves.shared_knots import derivative_each, derivatives_together, polynomial_curves
 
 
 def curves_sharing_knots(seed: int, rational: bool, count: int) -> list[NurbsCurve]:
@@ -103,6 +103,36 @@ def test_one_derivative_of_curves_sharing_knots_is_each_curves_derivative_at(rat
             assert np.array_equal(found, curve.derivative_at(t, order)), (curve, order)
 
 
+
+@pytest.mark.parametrize("seed", range(6))
+def test_curves_sharing_knots_and_parameters_are_each_curves_derivative_at_bit_for_bit(seed):
+    # one spline of every curve's coefficients side by side; many parameters each (more
+    # than curves evaluated together take), the same array or equal copies of it
+    curves = [*curves_sharing_knots(seed, False, 5), Circle(), Line([0, 0, 0], [1, 2, 3]),
+              *curves_sharing_knots(seed + 10, True, 2)]
+    x, _ = parameters(seed, [300])
+    ts = [x if k % 2 else x.copy() for k in range(len(curves))]
+    for order in range(6):
+        for curve, t, found in zip(curves, ts, derivative_each(curves, ts, order), strict=True):
+            assert found.tobytes() == np.asarray(curve.derivative_at(t, order)).tobytes(), (curve, order)
+            assert found.shape == (len(t), 3) and found.flags.c_contiguous
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("local", [False, True])
+def test_all_orders_of_curves_sharing_knots_and_parameters_are_each_curves_own(seed, local):
+    curves = [*curves_sharing_knots(seed, False, 4), Circle(), *curves_sharing_knots(seed + 10, True, 2)]
+    t, _ = parameters(seed, [200])
+    t[3] = -0.0  # (a parameter of another sign bit is another parameter)
+    x = np.concatenate([t] * len(curves))
+    x[len(t) + 3] = 0.0
+    bounds = np.arange(len(curves) + 1) * len(t)
+    found = derivatives_together(curves, x, bounds, 4, local)
+    for k, curve in enumerate(curves):
+        own = (curve.local_derivatives if local else curve.derivatives)(x[bounds[k] : bounds[k + 1]], 4)
+        for order in range(5):
+            assert found[order, bounds[k] : bounds[k + 1]].tobytes() == own[order].tobytes(), (k, order)
+
 def test_a_partition_kept_for_other_curves_with_the_same_ids_is_not_taken():
     from torsal.nodes.geometry.curves import shared_knots
 
@@ -132,3 +162,28 @@ def test_partitions_are_kept_only_inside_a_block_and_dropped_with_it():
         with shared_knots.partitions_kept():  # (nested: the outer block's)
             assert shared_knots._partition(curves)[0] is kept
     assert shared_knots._KEPT.get() is None
+
+
+@pytest.mark.parametrize("degree", [1, 2, 3, 5])
+def test_polynomial_curves_made_together_are_the_curves_set_up_alone_bit_for_bit(degree):
+    # far from the origin, flat on z = 0 or z = -0.0 (the sign of a zero box survives), and
+    # some closed (their first and last control points one point)
+    rng = np.random.default_rng(degree)
+    points = rng.normal(size=(12, degree + 1, 3)) * 10.0 + 1e6 * rng.normal(size=(12, 1, 3))
+    points[:3, :, 2], points[3:5, :, 2] = 0.0, -0.0
+    if degree > 1:
+        points[5:7, -1] = points[5:7, 0]
+    knots = np.repeat([0.0, 1.0], degree + 1)
+    for together, row in zip(polynomial_curves(NurbsCurve, points, knots, degree), points, strict=True):
+        alone = NurbsCurve(row, degree, knots)
+        for name in ("control_points", "knots", "weights", "_anchor", "_coefficients", "end_points"):
+            mine, theirs = getattr(together, name), getattr(alone, name)
+            assert mine.tobytes() == theirs.tobytes() and mine.shape == theirs.shape, name
+            assert mine.flags.writeable == theirs.flags.writeable, name
+        for name in ("degree", "domain", "closed", "is_rational", "periodic"):
+            assert getattr(together, name) == getattr(alone, name), name
+        t = np.linspace(-0.1, 1.1, 9)
+        for mine, theirs in zip(together.derivatives(t, 3), alone.derivatives(t, 3), strict=True):
+            assert mine.tobytes() == theirs.tobytes()
+    assert sum(curve.closed for curve in polynomial_curves(NurbsCurve, points, knots, degree)) == (
+        2 if degree > 1 else 0)

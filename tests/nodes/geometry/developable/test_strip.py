@@ -10,7 +10,7 @@ import pytest
 from scipy.integrate import quad
 
 from torsal.nodes.geometry.curves import Arc, InterpolatedCurve, Line, NurbsCurve, Polyline
-from torsal.nodes.geometry.developable.stations import LengthMap, lengths_at, spaced_parameters
+from torsal.nodes.geometry.developable.stations import LengthMap, lengths_at, parameters_at, spaced_parameters
 from torsal.nodes.geometry.developable.strip import Steady, gap_lengths_all, set_up, with_maps_b
 
 
@@ -151,3 +151,19 @@ def test_evenly_spaced_samples_in_the_stretches_of_several_strips_are_each_strip
     found = _even_lengths(strips, lows, highs)
     # the multiples of each strip's spacing inside any of its stretches (on B), once each
     assert [lengths.tolist() for lengths in found] == [[1.0, 2.0, 3.0, 10.0], [], [0.0]]
+
+
+def test_maps_searched_from_the_tables_they_were_made_in_or_joined_are_each_maps_own():
+    curves = [Arc(radius=2.0, start_angle=0.0, end_angle=3.0), _wavy(0.0, 0.3), _wavy(0.1, 0.2),
+              Polyline([[0, 0, 0], [1, 0, 0], [1, 3, 0]])]
+    made, other = LengthMap.many(curves[:3]), LengthMap.many(curves[3:])
+    alone = [LengthMap(curve) for curve in curves]
+    # a subset out of order; one map; maps of two makings; a map made alone among others
+    for picked in ([2, 0], [1], [0, 3, 2], [3, 1]):
+        maps = [other[0] if k == 3 else made[k] for k in picked]
+        ts = [np.linspace(-0.1, 1.1, 9 + k) for k in range(len(maps))]
+        lengths = [alone[k].total * np.linspace(0.0, 1.0, 5 + k) for k in picked]
+        for k, t, found in zip(picked, ts, lengths_at(maps, ts), strict=True):
+            assert found.tobytes() == alone[k].length_at(t).tobytes()
+        for k, length, found in zip(picked, lengths, parameters_at(maps, lengths), strict=True):
+            assert found.tobytes() == alone[k].parameter_at(length).tobytes()

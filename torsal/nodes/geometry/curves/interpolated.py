@@ -12,6 +12,7 @@ from scipy.interpolate import make_interp_spline
 from ..vec_ops import anchor
 from ..vectors import as_points, normalise
 from .nurbs import NurbsCurve
+from .shared_knots import polynomial_curves
 
 
 def chord_length_parameters(points: ArrayLike) -> np.ndarray:
@@ -152,12 +153,9 @@ class InterpolatedCurve(NurbsCurve):
         column = u[:, :, None]
         basis = binomial * column**j * (1.0 - column) ** j_reversed
         control = np.linalg.solve(basis, p - origin[:, None]) + origin[:, None]
-        curves = []
-        for row, parameters, vertices in zip(p, u, control, strict=True):
-            curve = cls.__new__(cls)
+        curves = polynomial_curves(cls, control, _bezier_knots(k), k)  # (their set-up at once)
+        for curve, row, parameters in zip(curves, p, u, strict=True):
             curve._set_points(row, parameters)
-            curve._setup(vertices, None, _bezier_knots(k), k, False)
-            curves.append(curve)
         return curves
 
     def _set_points(self, points: np.ndarray, parameters: np.ndarray) -> None:

@@ -110,6 +110,31 @@ class NurbsCurve(Curve):
         """Store full (already wrapped) arrays and build the homogeneous spline."""
         if weights is not None and np.ptp(weights) == 0:
             weights = None  # equal weights cancel: a polynomial curve
+        # the spline runs on control points relative to their box's centre (kept in
+        # _anchor): derivatives, lengths and areas then round relative to the curve's
+        # size, wherever it sits; only positions add the anchor back
+        low, high = bounds(points)
+        anchor = 0.5 * (high + low)  # (vec_ops.anchor, from the same bounds)
+        local = points - anchor
+        coefficients = local if weights is None else np.column_stack([local * weights[:, None], weights])
+        self._set_spline(points, weights, knots, degree, periodic, anchor, coefficients)
+        if periodic:
+            self.closed = True
+        else:
+            self._set_closed((high - low).max())  # (vec_ops.extent)
+
+    def _set_spline(
+        self,
+        points: FloatArray,
+        weights: FloatArray | None,
+        knots: FloatArray,
+        degree: int,
+        periodic: bool,
+        anchor: FloatArray,
+        coefficients: FloatArray,
+    ) -> None:
+        """:meth:`_setup` once the ``anchor`` (the centre of the control points' box) and
+        the spline's ``coefficients`` are known, all but whether the curve is closed."""
         self.degree: int = degree
         self.knots: FloatArray = knots
         self.control_points: FloatArray = points
@@ -122,14 +147,8 @@ class NurbsCurve(Curve):
         # u = a + (b − a)·t, spared on most curves (u is t: a unit domain changes no bit)
         self._unit_domain = a == 0.0 and b == 1.0
         self._offset, self._scale = a, b - a
-        # the spline runs on control points relative to their box's centre (kept in
-        # _anchor): derivatives, lengths and areas then round relative to the curve's
-        # size, wherever it sits; only positions add the anchor back
-        low, high = bounds(points)
-        self._anchor: FloatArray = 0.5 * (high + low)  # (vec_ops.anchor, from the same bounds)
+        self._anchor: FloatArray = anchor
         self._anchor.setflags(write=False)
-        local = points - self._anchor
-        coefficients = local if weights is None else np.column_stack([local * weights[:, None], weights])
         # 'periodic' extrapolation wraps t outside [0, 1] around a periodic curve; the
         # knots and coefficients are checked already (construct_fast skips scipy's checks)
         knots = np.ascontiguousarray(knots, dtype=float)
@@ -143,12 +162,12 @@ class NurbsCurve(Curve):
         self._values = SplineValues(self._spline)
         for array in (self.knots, self.control_points, self.weights):
             array.setflags(write=False)
-        if periodic:
-            self.closed = True
-        else:
-            span = (high - low).max()  # (vec_ops.extent)
-            gap = self.end_points[0] - self.end_points[1]
-            self.closed = bool(sqrt(gap.dot(gap)) <= 1e-12 * max(span, 1.0))  # as np.linalg.norm(gap)
+
+    def _set_closed(self, span: float) -> None:
+        """Whether an open curve's ends meet, within 1e-12 of its control points' extent
+        ``span`` (from its :attr:`end_points`)."""
+        gap = self.end_points[0] - self.end_points[1]
+        self.closed = bool(sqrt(gap.dot(gap)) <= 1e-12 * max(span, 1.0))  # as np.linalg.norm(gap)
 
     @classmethod
     def from_arrays(

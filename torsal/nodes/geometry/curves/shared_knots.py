@@ -17,6 +17,9 @@ The basis comes from scipy's public :class:`~scipy.interpolate.BSpline` with ``k
 columns of coefficients, coefficient ``j`` being the unit vector of column ``j mod (k + 1)``:
 on span ``i`` the basis functions ``i − k … i`` fall in distinct columns, so each column
 holds exactly one of them (added to zeros, which changes no bit).
+
+Curves that share their knots are also made together (:func:`polynomial_curves`: a node that
+makes dozens of edge curves on every solve pays each step of their set-up once).
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from functools import cached_property
+from typing import TypeVar
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -46,6 +50,11 @@ def derivatives_together(
     own."""
     out = np.empty((order + 1, len(x), 3))
     counts = np.diff(bounds)
+    # polynomial curves that share knots and parameters: one evaluation of all of them
+    for group, rows, t in _sharing_parameters(curves, x, bounds):
+        values = _at_shared_parameters(group, t, range(order + 1), local)
+        out[:, rows] = values.reshape(order + 1, len(rows), 3)
+        counts[group.members] = 0  # (done: no rows left for what follows)
     together, alone = _groups(curves, counts)
     for i in alone:
         evaluate = curves[i].local_derivatives if local else curves[i].derivatives
@@ -58,14 +67,57 @@ def derivatives_together(
     return out
 
 
+N = TypeVar("N", bound=NurbsCurve)
+
+
+def polynomial_curves(kind: type[N], points: FloatArray, knots: FloatArray, degree: int) -> list[N]:
+    """Open polynomial (non-rational) curves of class ``kind`` (one that evaluates as
+    :class:`.NurbsCurve` does, :func:`_groupable`) through the control points ``points[i]``
+    (``(curves, count, 3)``, finite) on the shared full ``knots`` (checked) of ``degree``:
+    each what :meth:`.NurbsCurve._setup` makes of it alone, bit for bit, their boxes,
+    anchors and local coefficients found at once and their end points (which say whether
+    each is closed) evaluated together (:func:`derivative_each`)."""
+    # each curve's box reduced along its coordinate rows, as vec_ops.bounds reduces one curve's
+    columns = np.ascontiguousarray(points.transpose(0, 2, 1))
+    low, high = columns.min(axis=2), columns.max(axis=2)
+    anchors = 0.5 * (high + low)
+    local = points - anchors[:, None]
+    curves = []
+    for row, anchor, coefficients in zip(points, anchors, local, strict=True):
+        curve = kind.__new__(kind)
+        curve._set_spline(row, None, knots, degree, False, anchor, coefficients)
+        curves.append(curve)
+    ends = derivative_each(curves, [_ENDS] * len(curves), 0)
+    for curve, end_points, span in zip(curves, ends, (high - low).max(axis=1).tolist(), strict=True):
+        end_points.setflags(write=False)
+        vars(curve)["end_points"] = end_points  # (where the cached property keeps them)
+        curve._set_closed(span)
+    return curves
+
+
+#: The parameters of a curve's end points.
+_ENDS = np.array([0.0, 1.0])
+_ENDS.setflags(write=False)
+
+
 def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: int = 1) -> list[FloatArray]:
     """``curve.derivative_at(t, order)`` of every curve of ``curves`` at its 1-D array ``t``
     of ``ts``, bit for bit, the curves that share knots evaluated together as in
     :func:`derivatives_together` (a polynomial curve's lower orders are not evaluated)."""
     out: list[FloatArray | None] = [None] * len(curves)
+    counts = np.array([len(t) for t in ts], dtype=np.int64)
+    # polynomial curves that share knots and parameters: one evaluation of all of them
+    for group in _partition(curves)[0]:
+        listed = group.members.tolist()
+        first = ts[listed[0]]
+        if len(listed) > 1 and not group.curves[0].is_rational and all(
+                ts[i] is first or _same_bits(ts[i], first) for i in listed[1:]):
+            for i, values in zip(listed, _at_shared_parameters(group, first, [order])[0], strict=True):
+                out[i] = values
+            counts[group.members] = 0  # (done: no rows left for what follows)
     bounds = np.zeros(len(ts) + 1, dtype=np.int64)
-    np.cumsum([len(t) for t in ts], out=bounds[1:])
-    together, alone = _groups(curves, np.diff(bounds))
+    np.cumsum(counts, out=bounds[1:])
+    together, alone = _groups(curves, counts)
     for i in alone:
         out[i] = curves[i].derivative_at(ts[i], order)
     for group in together:
@@ -81,6 +133,58 @@ def derivative_each(curves: Sequence[Curve], ts: Sequence[FloatArray], order: in
             out[i] = values[low:high]
             low = high
     return out  # type: ignore[return-value]  (every curve's is filled in)
+
+
+def _sharing_parameters(
+    curves: Sequence[Curve], x: FloatArray, bounds: IntArray
+) -> Iterator[tuple[_Group, IntArray, FloatArray]]:
+    """The groups of polynomial curves sharing knots (two or more) whose rows of ``x`` (curve
+    ``i`` has ``x[bounds[i]:bounds[i + 1]]``) are the same parameters, with those rows and
+    the parameters."""
+    counts = np.diff(bounds)
+    for group in _partition(curves)[0]:
+        members = group.members
+        own = counts[members]
+        if len(members) < 2 or group.curves[0].is_rational or not own[0] or (own != own[0]).any():
+            continue
+        rows, _ = _rows(bounds, members)
+        each = x[rows].reshape(len(members), -1)
+        if (each.view(np.int64) == each[0].view(np.int64)).all():  # (bit for bit: a −0.0 is not 0.0)
+            yield group, rows, each[0]
+
+
+def _same_bits(a: FloatArray, b: FloatArray) -> bool:
+    """Whether two arrays of parameters are the same numbers, bit for bit."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def _at_shared_parameters(
+    group: _Group, t: FloatArray, orders: Sequence[int], local: bool = False
+) -> FloatArray:
+    """The derivatives of ``orders`` of every curve of ``group`` (polynomial curves of one
+    degree and knots) at the same parameters ``t``, ``(orders, curves, len(t), 3)``: what
+    ``curve.derivative_at(t, k)`` gives each (or, with ``local``, ``local_derivatives``:
+    its points relative to its anchor), bit for bit. One scipy spline whose coefficients
+    are every curve's side by side (``3 × curves`` columns) evaluates each column as it
+    evaluates a curve's own three (the basis at each ``t`` once, then each column's sum on
+    its own)."""
+    first = group.curves[0]
+    u, scale = first._knot_parameters(t)
+    curves, n = len(group.curves), len(u)
+    out = np.zeros((len(orders), curves, n, 3))  # (zero above the degree)
+    side_by_side = np.concatenate([curve._coefficients for curve in group.curves], axis=1)
+    spline = BSpline.construct_fast(first.knots, side_by_side, first.degree)
+    for row, order in enumerate(orders):
+        if order > first.degree:
+            continue
+        values = out[row]
+        values[...] = spline(u, nu=order).reshape(n, curves, 3).transpose(1, 0, 2)
+        if order and scale != 1.0:  # (as NurbsCurve._polynomial_derivative)
+            values *= scale**order
+        if order == 0 and not local:
+            values += group.anchors[:, None, :]
+    return out
 
 
 def _groups(curves: Sequence[Curve], counts: IntArray) -> tuple[list[_Group], list[int]]:

@@ -171,18 +171,26 @@ def sift_all(strips: Sequence[Strip]) -> Sifted:
             np.matmul(left[low_row:high_row], right[:, column : column + m],
                       out=f[low_row - rows[0] : high_row - rows[0], :m])
         owner = row_strip[rows]
-        sample = np.minimum(first_sample[owner][:, None] + np.arange(width), len(samples.t) - 1)
+        # each strip's samples along a row (padded with its last), their reach and flat
+        # scale gathered once per strip and repeated onto its stations' rows
+        first_strip = int(owner[0])
+        own = owner - first_strip  # (the strip of each row among the batch's)
+        sample = np.minimum(first_sample[first_strip : int(owner[-1]) + 1, None] + np.arange(width),
+                            len(samples.t) - 1)
+        repeats = np.bincount(own)
+        interval = np.minimum(sample[:, :-1], len(samples.reach) - 1)  # (padding: any interval)
+        reach_rows = np.repeat(samples.reach.take(interval), repeats, axis=0)
         negative = np.signbit(f)
         size_f = np.abs(f)
         lower = np.minimum(size_f[:, :-1], size_f[:, 1:])
         change = negative[:, :-1] != negative[:, 1:]
         inside = np.arange(width - 1) < (samples.stack.counts[owner] - 1)[:, None]
-        interval = np.minimum(sample[:, :-1], len(samples.reach) - 1)  # (padding: any interval)
-        look = (change | (lower <= samples.reach.take(interval))) & inside
-        maybe = flatnonzero(size_f <= flat_scale.take(sample))  # (NaN padding never)
+        look = (change | (lower <= reach_rows)) & inside
+        flat_rows = np.repeat(flat_scale.take(sample), repeats, axis=0)
+        maybe = flatnonzero(size_f <= flat_rows)  # (NaN padding never)
         if len(maybe):  # rare: test the candidates against their own ruling length
             r, c = np.divmod(maybe, width)
-            j, at_row = sample[r, c], rows[r]
+            j, at_row = sample[own[r], c], rows[r]
             exact = (FLAT * norm(b0[j] - a0[at_row]) + rounding[row_strip[at_row]]) * samples.speeds[j]
             exact = size_f.flat[maybe] <= exact
             if exact.any():
@@ -192,7 +200,7 @@ def sift_all(strips: Sequence[Strip]) -> Sifted:
                 zeros.append((at_row[exact], c[exact]))
         index = flatnonzero(look)  # (flat indices gather faster than pairs of indices)
         r, c = np.divmod(index, width - 1)
-        j, at_row = sample[r, c], rows[r]
+        j, at_row = sample[own[r], c], rows[r]
         # sift again with the rulings' own lengths in place of the diameter; the rulings to
         # both ends at once, (2, k, 3), as their lengths and f there (take gathers rows
         # several times faster than indexing does)

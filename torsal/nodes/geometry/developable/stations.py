@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from functools import lru_cache
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, NamedTuple
 
 import numpy as np
 from numpy.polynomial.legendre import legvander
@@ -130,8 +130,13 @@ class LengthMap:
     def _set(
         self, curve: Curve, nodes: FloatArray, lengths: FloatArray, start_speeds: FloatArray,
         end_speeds: FloatArray, width: FloatArray, rise: FloatArray, inverse: FloatArray, poly: FloatArray,
+        stacked: _Stacked, first_piece: int, first_node: int,
     ) -> None:
         self.curve = curve
+        #: the tables of the maps made together, one map after another (this map's arrays
+        #: are views of them), and where its pieces and nodes start there: read by the
+        #: searches of many maps at once without joining their tables again
+        self._stacked, self._first_piece, self._first_node = stacked, first_piece, first_node
         self.nodes: FloatArray = nodes
         self.lengths: FloatArray = lengths
         #: |C'| at the start and at the end of each piece: the slopes of ℓ(t) there
@@ -205,12 +210,14 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
                 half = 0.5 * (nodes[1:] - nodes[:-1])
                 own[index] = (nodes, half, inner, start, end, half * (inner @ _WEIGHTS))
     all_nodes, halves, gauss, starts, ends, pieces = zip(*own, strict=True)
-    lengths = []
-    for piece in pieces:
-        lengths.append(np.empty(len(piece) + 1))
-        lengths[-1][0] = 0.0
-        np.cumsum(piece, out=lengths[-1][1:])
     counts = [len(piece) for piece in pieces]
+    # each curve's nodes and running lengths (a node more than pieces each), curve after curve
+    at_node = np.cumsum([0, *counts]) + np.arange(len(counts) + 1)
+    all_lengths = np.empty(at_node[-1])
+    for piece, low in zip(pieces, at_node[:-1].tolist(), strict=True):
+        all_lengths[low] = 0.0
+        np.cumsum(piece, out=all_lengths[low + 1 : low + 1 + len(piece)])
+    nodes_stack = np.concatenate(all_nodes)
     rise = np.concatenate(pieces)
     h = 2.0 * np.concatenate(halves)
     d0, d1 = np.concatenate(starts) * h, np.concatenate(ends) * h
@@ -228,9 +235,39 @@ def _tables(curves: Sequence[Curve], intervals: int) -> list[tuple[FloatArray, .
         rows = bounds[members][:, None] + np.arange(count)
         poly[rows, 0, 1:] = samples[rows] @ _INTEGRAL
     poly[:, 1, :6] = poly[:, 0, 1:] * _POWERS[1:]
-    return [(nodes, length, start, end, *(x[low:high] for x in (h, rise, inverse, poly)))
-            for nodes, length, start, end, low, high in zip(
-                all_nodes, lengths, starts, ends, bounds[:-1], bounds[1:], strict=True)]
+    stacked = _Stacked(h, rise, inverse, poly, nodes_stack, all_lengths)
+    nodes_at = at_node[:-1].tolist()
+    return [(nodes_stack[node : node + count + 1], all_lengths[node : node + count + 1], start, end,
+             *(x[low:high] for x in (h, rise, inverse, poly)), stacked, low, node)
+            for start, end, low, high, node, count in zip(
+                starts, ends, bounds[:-1].tolist(), bounds[1:].tolist(), nodes_at, counts, strict=True)]
+
+
+class _Stacked(NamedTuple):
+    """The tables of maps made together (:func:`_tables`), one map after another: per piece
+    its width, rise, inverse slopes and polynomials; per node (a node more than pieces
+    each map) where it lies and the length to it."""
+
+    width: FloatArray
+    rise: FloatArray
+    inverse: FloatArray
+    poly: FloatArray
+    nodes: FloatArray
+    lengths: FloatArray
+
+
+def _tables_of(maps: Sequence[LengthMap]) -> tuple[_Stacked, IntArray, IntArray]:
+    """The tables of ``maps`` one map after another and where each map's first piece and
+    first node lie in them: the stack they were made in together when they share one (no
+    copy), else their own tables joined."""
+    stacked = maps[0]._stacked
+    if all(m._stacked is stacked for m in maps):
+        return (stacked, np.array([m._first_piece for m in maps], dtype=np.int64),
+                np.array([m._first_node for m in maps], dtype=np.int64))
+    joined = _Stacked(*(np.concatenate([getattr(m, name) for m in maps])
+                        for name in ("_width", "_rise", "_inverse", "_poly", "nodes", "lengths")))
+    pieces = Stack([len(m._rise) for m in maps])
+    return joined, pieces.starts, pieces.starts + np.arange(len(maps))
 
 
 def _layout_rows(
@@ -272,17 +309,15 @@ def _parameters_at(maps: Sequence[LengthMap], length: FloatArray, stack: Stack) 
     rows stand still)."""
     totals = np.array([m.total for m in maps])
     target = np.minimum(np.maximum(length, 0.0), stack.repeat(totals))
-    pieces = Stack([len(m._rise) for m in maps])
     bounds = stack.offsets.tolist()
     k = np.concatenate([m.lengths.searchsorted(target[low:high], side="right") - 1
                         for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
-    k = np.minimum(k, stack.repeat(pieces.counts - 1))
-    on_piece = k + stack.repeat(pieces.starts)  # (each map's pieces among all of them)
-    on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
-    inverse, poly, rise, width, nodes, lengths = (
-        getattr(maps[0], name) if len(maps) == 1 else np.concatenate([getattr(m, name) for m in maps])
-        for name in ("_inverse", "_poly", "_rise", "_width", "nodes", "lengths"))
-    inverse, poly = inverse[on_piece], poly[on_piece]
+    k = np.minimum(k, stack.repeat(np.array([len(m._rise) for m in maps]) - 1))
+    tables, first_piece, first_node = _tables_of(maps)
+    on_piece = k + stack.repeat(first_piece)  # (each map's pieces among all of them)
+    on_node = k + stack.repeat(first_node)
+    rise, width, nodes, lengths = tables.rise, tables.width, tables.nodes, tables.lengths
+    inverse, poly = tables.inverse[on_piece], tables.poly[on_piece]
     gap = target - lengths[on_node]
     v = gap / np.maximum(rise[on_piece], 1e-300)
     # u(v) on the piece as the cubic with u' = ℓ_piece/ℓ'(u) at its ends (the inverse of
@@ -340,11 +375,10 @@ def lengths_at(maps: Sequence[LengthMap], ts: Sequence[FloatArray]) -> list[Floa
     bounds = stack.offsets.tolist()
     k = np.concatenate([np.minimum(m.nodes.searchsorted(t[low:high], side="right") - 1, len(m._rise) - 1)
                         for m, low, high in zip(maps, bounds[:-1], bounds[1:], strict=True)])
-    pieces = Stack([len(m._rise) for m in maps])
-    on_piece = k + stack.repeat(pieces.starts)
-    on_node = k + stack.repeat(pieces.starts + np.arange(len(maps)))  # (a node more than pieces each)
-    width, poly, nodes, lengths = (
-        np.concatenate([getattr(m, name) for m in maps]) for name in ("_width", "_poly", "nodes", "lengths"))
+    tables, first_piece, first_node = _tables_of(maps)
+    on_piece = k + stack.repeat(first_piece)
+    on_node = k + stack.repeat(first_node)
+    width, poly, nodes, lengths = tables.width, tables.poly, tables.nodes, tables.lengths
     u = (t - nodes[on_node]) / width[on_piece]
     rises = np.einsum("...j,...j->...", u[..., None] ** _POWERS, poly[on_piece, 0])  # (LengthMap._rises)
     return stack.split(lengths[on_node] + rises)
