@@ -1,7 +1,9 @@
 """A cut strip's pace: jumps of the pairing found where they are, and edges run by length.
 
-Expected values are closed forms: a pairing with a step at a chosen x, and two edges of
-known length (a segment and a circular arc that turns a quarter in 2e-5 of its parameter).
+Expected values are closed forms: a pairing with a step at a chosen x, two edges of
+known length (a segment and a circular arc that turns a quarter in 2e-5 of its parameter),
+segments run at known uneven speeds (their length a power of their parameter) and an arc
+turned by the square of its parameter.
 """
 
 from __future__ import annotations
@@ -87,8 +89,8 @@ def test_edges_run_by_length_give_a_sweep_its_share_of_the_parameter():
     # the sweep's share of the parameter is its share of the two edges' length (closed form)
     lengths = 4.0 + _Arc.R * (0.2 + 0.5 * np.pi)
     sweep = 4.0 * (_Arc.B - _Arc.A) + _Arc.R * (0.5 * np.pi + 0.2 * (_Arc.B - _Arc.A))
-    i, j = np.searchsorted(a.at, [_Arc.A, _Arc.B])
-    assert a.knots[j] - a.knots[i] == pytest.approx(sweep / lengths, rel=2e-3)
+    i, j = np.searchsorted(a.curve_params, [_Arc.A, _Arc.B])
+    assert a.params[j] - a.params[i] == pytest.approx(sweep / lengths, rel=2e-3)
     # an even grid of the new parameter sees the arc in even steps (an even grid of the old
     # one stepped over the quarter turn in one step)
     t = np.linspace(0.0, 1.0, 401)
@@ -97,7 +99,110 @@ def test_edges_run_by_length_give_a_sweep_its_share_of_the_parameter():
     old = np.linalg.norm(np.diff(upper.point_at(t), axis=0), axis=1)
     assert old.max() > 20 * steps.max()
     # derivatives: the chain rule through the new pace, against central differences
-    u, h = np.array([0.1, 0.45, 0.7, 0.93]), 1e-7
+    # (h: inside the sweep the arc turns 7.9e4 rad per unit of its parameter, whose rounding
+    # a step of 1e-7 magnifies to 1e-5)
+    u, h = np.array([0.1, 0.45, 0.7, 0.93]), 1e-6
     for edge in (a, b):
         numeric = (edge.point_at(u + h) - edge.point_at(u - h)) / (2 * h)
         np.testing.assert_allclose(edge.derivatives(u, 1)[1], numeric, rtol=1e-6, atol=1e-6)
+
+
+class _Uneven(Curve):
+    """The segment from ``start`` along ``direction`` (a unit vector) run at an uneven
+    pace: at parameter c it has gone ``length`` · c**``power`` (so that far along it)."""
+
+    def __init__(self, start: ArrayLike, direction: ArrayLike, length: float, power: float) -> None:
+        self.origin, self.direction = np.asarray(start, float), np.asarray(direction, float)
+        self.reach, self.power = length, power
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        n, L = self.power, self.reach
+        along = [L * t**n, L * n * t ** (n - 1), L * n * (n - 1) * t ** max(n - 2, 0)]
+        out = [self.origin + along[0][:, None] * self.direction]
+        out += [a[:, None] * self.direction for a in along[1: order + 1]]
+        return out[: order + 1]
+
+
+class _Turning(Curve):
+    """A circle of radius ``R`` in z = 1 turned by ``TURN`` · c² rad at parameter c: its
+    length from 0 is R · TURN · c²."""
+
+    R, TURN = 2.0, 0.5
+
+    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        theta, rate = self.TURN * t**2, 2.0 * self.TURN * t
+        ring = np.column_stack([np.cos(theta), np.sin(theta), np.zeros_like(t)])
+        along = np.column_stack([-np.sin(theta), np.cos(theta), np.zeros_like(t)])
+        out = [self.R * ring + np.array([0.0, 0.0, 1.0])]
+        if order >= 1:
+            out.append(self.R * rate[:, None] * along)
+        if order >= 2:
+            out.append(self.R * (2.0 * self.TURN * along - rate[:, None] ** 2 * ring))
+        return out[: order + 1]
+
+
+#: Lines of the sheet the pace is made through (uneven: the stretches differ in length).
+LINES = np.array([0.0, 0.07, 0.2, 0.26, 0.5, 0.61, 0.9, 1.0])
+
+
+def _segments() -> tuple[_Uneven, _Uneven]:
+    """Two parallel segments, one at an even speed (length 4), one at a cubic one (length 9)."""
+    return (_Uneven([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 4.0, 1.0),
+            _Uneven([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], 9.0, 3.0))
+
+
+def test_each_stretch_takes_its_share_of_the_parameter_by_the_edges_summed_length():
+    lower, upper = _segments()
+    _, _, lines = by_length(lower, upper, LINES, LINES, np.empty((0, 2)), 0.0, 1.0)
+    # closed form: along a segment the chords are its length, 4·c on one edge and 9·c³ on
+    # the other, so the line at c is at (4·c + 9·c³) / 13
+    np.testing.assert_allclose(lines, (4.0 * LINES + 9.0 * LINES**3) / 13.0, rtol=0, atol=1e-15)
+    assert lines[0] == 0.0 and lines[-1] == 1.0
+    # the same for an arc turned by the square of its parameter, its chords a share
+    # φ²/24 short of its arcs of φ (each chord of 1/8 of a stretch turns φ ≤ 0.3 · 2 · 0.5 / 8)
+    arc = _Turning()
+    _, _, lines = by_length(lower, arc, LINES, LINES, np.empty((0, 2)), 0.0, 1.0)
+    total = 4.0 + arc.R * arc.TURN
+    expected = (4.0 * LINES + arc.R * arc.TURN * LINES**2) / total
+    np.testing.assert_allclose(lines, expected, rtol=0, atol=(0.3 * 2 * arc.TURN / 8) ** 2 / 24)
+
+
+def test_both_edges_run_on_one_parameter_through_the_sheets_lines():
+    lower, upper = _segments()
+    a, b, lines = by_length(lower, upper, LINES, LINES, np.empty((0, 2)), 0.0, 1.0)
+    # the lines of the sheet are the strip's lines, at their new parameters
+    np.testing.assert_allclose(a.point_at(lines), lower.point_at(LINES), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(b.point_at(lines), upper.point_at(LINES), rtol=0, atol=1e-14)
+    # between them too: both edges at the same parameter of their curves (lower's c is x / 4,
+    # upper's the cube root of x / 9)
+    t = np.linspace(0.0, 1.0, 2001)
+    c_lower = a.point_at(t)[:, 0] / 4.0
+    c_upper = np.cbrt(b.point_at(t)[:, 0] / 9.0)
+    np.testing.assert_allclose(c_upper, c_lower, rtol=0, atol=1e-13)
+    # a line between the stretches' ends found at its own parameter (the pace's inverse)
+    c = np.array([0.01, 0.13, 0.333, 0.55, 0.95])
+    np.testing.assert_allclose(a.point_at(a.params_at(c)), lower.point_at(c), rtol=0, atol=1e-14)
+
+
+def test_the_pace_is_monotone_and_its_edges_speed_continuous_at_the_stretches_ends():
+    lower, upper = _segments()
+    a, b, lines = by_length(lower, upper, LINES, LINES, np.empty((0, 2)), 0.0, 1.0)
+    t = np.linspace(0.0, 1.0, 20001)
+    for edge in (a, b):
+        assert (np.diff(edge.point_at(t)[:, 0]) >= 0.0).all()  # never back along its segment
+    # one-sided differences either side of each inner end of a stretch agree to O(h) (the
+    # speed has no step: C1), where the stretches' mean speeds differ by far more (a pace
+    # linear between the ends would step from one to the next)
+    inner, h = lines[1:-1], 1e-7
+    mean = np.diff(4.0 * LINES) / np.diff(lines)  # lower edge's mean speed on each stretch
+    assert (np.abs(np.diff(mean)) > 0.1 * mean[:-1]).all()
+    for edge in (a, b):
+        ahead = (edge.point_at(inner + h) - edge.point_at(inner)) / h
+        behind = (edge.point_at(inner) - edge.point_at(inner - h)) / h
+        speed = np.linalg.norm(edge.derivatives(inner, 1)[1], axis=1)
+        assert (np.linalg.norm(ahead - behind, axis=1) <= 1e-5 * speed).all()
+        # and the derivatives given are those differences' (the chain rule through the pace)
+        given = edge.derivatives(inner, 1)[1]
+        np.testing.assert_allclose(given, 0.5 * (ahead + behind), rtol=1e-6, atol=1e-9)
