@@ -119,18 +119,3 @@ def test_strips_made_together_are_each_the_strip_made_alone_bit_for_bit():
             mine, its = (surface.derivatives(u, np.full_like(u, v), 2) for surface in (made, alone))
             assert [x.tobytes() for x in mine] == [x.tobytes() for x in its]
     assert isinstance(together[3], ValueError)
-
-
-def test_params_at_inverts_the_pace_as_scipys_pchip_roots_do():
-    from scipy.interpolate import PchipInterpolator
-
-    a, _ = frustum_arcs()
-    u = np.array([0.0, 0.1, 0.13, 0.5, 0.52, 0.9, 1.0])
-    p = np.array([0.0, 0.3, 0.3 + 1e-6, 0.4, 0.95, 0.96, 1.0])  # steep and nearly still stretches
-    rail = CurveRail(a, u, p)
-    targets = np.concatenate([np.linspace(0.0, 1.0, 37), p])
-    found = rail.params_at(targets)
-    reference = PchipInterpolator(u, p)
-    expected = np.array([min(r for r in reference.solve(y, extrapolate=False)) for y in targets])
-    np.testing.assert_allclose(found, expected, rtol=0, atol=1e-12)
-    assert (rail.params_at(p) == u).all()  # a ruling's own parameter, exactly

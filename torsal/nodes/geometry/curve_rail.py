@@ -211,9 +211,6 @@ _UNPACED = "a curve rail needs increasing u and non-decreasing curve parameters"
 #: Most Newton steps :meth:`CurveRail._crossings` takes on the pace (quadratic from the
 #: interpolated start: two or three reach rounding).
 CROSSING_STEPS = 6
-#: Most steps :meth:`CurveRail.params_at` takes (each a Newton step or a halving of its
-#: bracket: 64 halvings reach rounding from any bracket).
-INVERSE_STEPS = 100
 
 
 class CurveRail(Curve):
@@ -353,34 +350,6 @@ class CurveRail(Curve):
             if not np.any(np.abs(step) > 1e-15):
                 break
         return crossing
-
-    def params_at(self, curve_params: ArrayLike) -> FloatArray:
-        """The u where the pace reaches each of ``curve_params`` (the pace's inverse, within
-        the first and last ruling's, clipped to them): a ruling's own parameter exactly at its
-        curve parameter, elsewhere Newton steps on the pace kept inside a bracket that each
-        step narrows (a bisection where a step would leave it), to rounding. Where the pace
-        stands still (a fan's apex) the last u of the still stretch."""
-        u, p = self.params, self.curve_params
-        target = np.clip(np.atleast_1d(np.asarray(curve_params, dtype=float)), p[0], p[-1])
-        span = np.clip(np.searchsorted(p, target, side="right") - 1, 0, len(u) - 2)
-        low, high = u[span].copy(), u[span + 1].copy()
-        found = np.interp(target, p, u)
-        done = target == p[span]
-        found[done] = u[span][done]
-        for _ in range(INVERSE_STEPS):
-            if done.all():
-                break
-            value, slope = self._pace.derivatives(found, 1)
-            done |= value == target
-            below = value < target
-            low, high = np.where(below & ~done, found, low), np.where(~below & ~done, found, high)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                newton = found - (value - target) / slope
-            inside = np.isfinite(newton) & (newton > low) & (newton < high)
-            step = np.where(inside, newton, 0.5 * (low + high))
-            done |= step == found
-            found = np.where(done, found, step)
-        return found
 
     def __repr__(self) -> str:
         return f"CurveRail({self.curve!r}, {len(self.params)} rulings)"
