@@ -201,17 +201,16 @@ def test_the_rings_strips_go_to_rhino_torsal_at_every_ruling(tmp_path):
     strip_readback`, none of the exporter's code): item 3 holds on every strip (ruled faces
     degree 1 across, their edges within 1e-6 of the size of the strip's rails, normals 1 %
     in from each end of 400 isocurves across every face within 1e-6 rad, fans flat,
-    consecutive faces sharing their ruling's ends within 1e-9 of the size) and at the
-    node's torsal rulings the faces' normals at the ruling's two ends agree to 1e-7 rad (the
-    issue's Valid bar) but at 3 of 374. Measured at 5 cm (16 strips, 56 faces): rails
-    9.2e-7 (9.2e-3, 17 cm, on 4 strips whose edge sweeps 0.5 m in 1e-5 of u just past a
-    ruling, before those cone pairs were fitted along their rails' length), normals 5.6e-7
-    rad, fans 9.7e-13 rad, joins 0; warp at the rulings 9.9e-8 rad but at the 3 where those
-    sweeps begin (2.3e-5, 1.3e-6, 1.8e-7: read at the joint of the swept cone pair and the
-    next face, on the cone's side) (2.9e-7 at 29 rulings when the faces' fit missed the
-    rulings). The file is 44.5 % of the one-surface form (1.64 MB): the cut strips' rails
-    run on their sheets at paces interpolated through ~14 samples per ruling interval (C1
-    pieces), which a fit to 1e-6 of the size follows with ~31 control points per interval
+    consecutive faces sharing their ruling's ends within 1e-9 of the size) and at every one
+    of the node's torsal rulings the faces' normals at the ruling's two ends agree to 1e-7
+    rad (the issue's Valid bar). Measured at 5 cm (16 strips, 370 torsal rulings): rails
+    8.5e-7, normals 6.3e-7 rad, fans 8.3e-15 rad, joins 0, warp at the rulings 6.3e-8 rad
+    at most (before the cut strips' pace marked its ramps' ends, where the export now puts a
+    triple knot, the rails missed by 2.0e-5 on the four strips whose edge sweeps round a fan
+    in a sliver of an interval, and 3 rulings there warped up to 2.3e-5 rad). The file is
+    47.4 % of the one-surface form (1.75 MB): the cut strips' rails run on their sheets at
+    paces interpolated through ~14 samples per ruling interval (C1 pieces), which a fit to
+    1e-6 of the size follows with ~32 control points per interval in its torsal faces
     (the canopy's: ~7). Printed, not asserted against :data:`FILE_SHARE`."""
     result, _ = solved("closed")
     strips, kinds = items(result, "Strips"), items(result, "Kind")
@@ -222,7 +221,7 @@ def test_the_rings_strips_go_to_rhino_torsal_at_every_ruling(tmp_path):
           f"item 3: {worst}", flush=True)
     assert set(warps) == strip_readback.torsal_rulings(strips, kinds)
     over = sorted(w for w in warps.values() if w >= 1e-7)
-    assert len(over) <= 3 and (not over or over[-1] <= 3e-5) and off <= 1e-9, over
+    assert not over and off <= 1e-9, over
     assert all(row["ruled"] == 1.0 for row in rows)
     assert worst["rails"] <= 1e-6 and worst["twist"] <= 1e-6
     assert worst["fans"] <= 1e-7 and worst["joins"] <= 1e-9

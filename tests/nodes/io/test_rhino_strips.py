@@ -291,3 +291,36 @@ def test_rationalised_strips_file_is_at_most_a_fifth_of_the_one_surface_form(tmp
     worst = np.array(list(warps.values()))
     assert worst.max() < 1e-7, (int((worst >= 1e-7).sum()), worst.max())
     assert off <= 1e-9  # the faces' isocurves at the rulings are the node's rulings (6.7e-16)
+
+
+def _swept_cone(jumps: bool):
+    """``cone_strip``'s cone with both rails run at one pace that crosses 40 % of the arcs in
+    1 % of the parameter (a cut strip's pace across a ramp: cut_pace.Paced), its rulings
+    either side of that sweep; with ``jumps``, the pace says where its speed jumps."""
+    from torsal.nodes.geometry.curve_rail import CurveRail
+    from torsal.nodes.geometry.developable.cut_pace import Paced
+    from torsal.nodes.geometry.ruled import RuledSurface
+
+    plain = cone_strip()
+    at, knots = np.array([0.0, 0.3, 0.7, 1.0]), np.array([0.0, 0.3, 0.31, 1.0])
+    ends = knots[1:3] if jumps else None
+    rails = [Paced(rail.curve, at, knots, ends) for rail in (plain.curve_a, plain.curve_b)]
+    u = np.array([0.0, 0.15, 0.5, 0.75, 1.0])
+    strip = RuledSurface(CurveRail(rails[0], u, u), CurveRail(rails[1], u, u))
+    strip.ruling_parameters = u
+    strip.ruling_lines = np.stack([rails[0].point_at(u), rails[1].point_at(u)], axis=1)
+    return strip
+
+
+def test_rails_whose_pace_jumps_between_rulings_are_fitted_within_1e_6_with_a_triple_knot_there(tmp_path):
+    # the cone's rails (arcs of radius 4 and 2, 1.5 rad) at a pace whose speed changes 40-fold
+    # at 0.3 and again at 0.31 (C0 there): a cubic with single or double knots cannot follow
+    # such a step (its fit stops at its densest sampling, far off); one with a triple knot at
+    # each does
+    for jumps in (True, False):
+        strip = _swept_cone(jumps)
+        rows = strip_readback.item_3(export(tmp_path, [strip]), [strip])
+        if jumps:
+            assert rows[0]["rails"] <= 1e-6 and rows[0]["twist"] <= 1e-6
+        else:
+            assert rows[0]["rails"] > 1e-6  # (what the triple knots are for)

@@ -50,6 +50,8 @@ STEEP = 2.0
 #: Samples of each stretch of a cut strip's edges whose length sets its share of the
 #: strip's parameter (:func:`by_length`).
 BY_LENGTH = 8
+#: Ends of stretches of the pace closer than this (of the strip's parameter) are one.
+SAME = 1e-12
 
 
 def jumps(partners: Callable[[FloatArray], FloatArray], x: FloatArray, tau: FloatArray,
@@ -90,10 +92,16 @@ def jumps(partners: Callable[[FloatArray], FloatArray], x: FloatArray, tau: Floa
 
 class Paced(Curve):
     """``curve`` run at another pace: its parameters ``at`` reached at ``knots`` (both
-    increasing, from 0 to 1), linearly between them."""
+    increasing, from 0 to 1), linearly between them. ``jumps``: the knots at a ramp's ends
+    (:func:`jumps`), where the speeds of a cut strip's two edges change a millionfold
+    within a sliver of the parameter (a cone's apex stands still on A while B sweeps): no
+    single pace of the two makes both edges' speeds continuous there, and a fitted rail
+    wants a triple knot at each (:mod:`torsal.nodes.io.formats.threedm_strips`)."""
 
-    def __init__(self, curve: Curve, at: FloatArray, knots: FloatArray) -> None:
+    def __init__(self, curve: Curve, at: FloatArray, knots: FloatArray,
+                 jumps: FloatArray | None = None) -> None:
         self.curve, self.at, self.knots = curve, at, knots
+        self.jumps = np.empty(0) if jumps is None else np.asarray(jumps, dtype=float)
 
     def derivatives(self, t: ArrayLike, order: int = 1) -> list[FloatArray]:
         t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, 1.0)
@@ -113,11 +121,21 @@ def by_length(lower: Curve, upper: Curve, s: FloatArray, breaks: FloatArray, ram
     lines at ``s``) run at one pace by their length instead: between the ``breaks`` (the
     kept lines, the chains' joins) and the ends of the pace's ``ramps``, each stretch takes
     its share of the parameter by the two edges' summed length (:data:`BY_LENGTH` samples a
-    stretch). A cone that sweeps 1.4 m of rail B across a jump of the pairing in 1e-5 of u
-    so gets its share, and an even grid of the strip's parameters sees it (a preview, a
-    coverage check). Returns the two edges and the lines' new parameters."""
+    stretch), linearly within it. A cone that sweeps 1.4 m of rail B across a jump of the
+    pairing in 1e-5 of u so gets its share, and an even grid of the strip's parameters sees
+    it (a preview, a coverage check). Returns the two edges and the lines' new parameters.
+
+    Linear within each stretch, not a C1 cubic through the stretches' ends: a stretch
+    keeps the smoothness its edges have in the sheet's u, and a fitted rail follows a step
+    of speed at a ruling (a face's end, or a double knot) or at a ramp's end (a triple
+    knot) exactly. A C1 cubic (scipy's PCHIP) bends the pace inside a stretch next to a much
+    steeper one (a short fan) and made the double bump's exported rails miss by 5.3e-5 of
+    the size where they now keep within 1.1e-6 (docs/geometry.md)."""
     inside = (ramps[(ramps > x0) & (ramps < x1)] - x0) / (x1 - x0)
     at = np.unique(np.clip(np.concatenate([breaks, inside, [0.0, 1.0]]), 0.0, 1.0))
+    # (a chain's join at a kept line may differ from it by a rounding: one end, not a
+    # stretch of no length whose pace would stand both edges still)
+    at = at[np.concatenate([[True], np.diff(at) > SAME])]
     share = np.linspace(0.0, 1.0, BY_LENGTH + 1)
     c = (at[:-1, None] + np.diff(at)[:, None] * share).ravel()
     steps = sum(np.linalg.norm(np.diff(edge.point_at(c).reshape(len(at) - 1, -1, 3), axis=1), axis=2)
@@ -125,4 +143,5 @@ def by_length(lower: Curve, upper: Curve, s: FloatArray, breaks: FloatArray, ram
     steps = np.maximum(steps, 1e-9 * max(float(steps.sum()), 1e-300))  # (no stretch of no length)
     knots = np.concatenate([[0.0], np.cumsum(steps)]) / float(steps.sum())
     knots[-1] = 1.0
-    return Paced(lower, at, knots), Paced(upper, at, knots), np.interp(s, at, knots)
+    ramp_ends = np.interp(inside, at, knots)
+    return Paced(lower, at, knots, ramp_ends), Paced(upper, at, knots, ramp_ends), np.interp(s, at, knots)

@@ -5,8 +5,6 @@
 - :class:`Paced`: a strip's rail run at an even pace along its curve between the rulings
   (the strip's own pace can change several-fold within an interval: an even one costs a
   fit fewer control points);
-- :class:`Lengthwise`: a rail run at an even pace along its length (a cone's rail that
-  sweeps metres in a sliver of its interval, as a cut strip's edge across a fan);
 - :func:`smooth_partners`: the developable pairing of two rails
   (:mod:`torsal.nodes.geometry.torsal_pairing`) as a smooth function;
 """
@@ -105,53 +103,6 @@ class Paced(Curve):
                 step = (self.pace(found) - inner) / self.pace(found, 1)
             found = np.clip(found - np.where(np.isfinite(step), step, 0.0), self.lo, self.hi)
         return np.sort(found)
-
-
-class Lengthwise(Curve):
-    """``rail`` over ``lo`` … ``hi`` run at an even pace along its length: the same points
-    of the same curve, the same ends, its parameter the rail's own at the share of its
-    length (chords of ``count`` even samples, then 64 in every step over 4 times the
-    median, twice), a monotone cubic (PCHIP) of u. A cone may take it (a cone is
-    developable whatever its rail's pace): where a rail sweeps metres in a sliver of the
-    interval (a cut strip's edge across a fan between two rulings) an even pace in its
-    curve's parameter is all but a jump, which no fit follows."""
-
-    def __init__(self, rail: Curve, lo: float, hi: float, count: int = 2049) -> None:
-        self.rail, self.lo, self.hi = rail, float(lo), float(hi)
-        at = np.linspace(self.lo, self.hi, count)
-        for _ in range(2):
-            steps = np.linalg.norm(np.diff(rail.point_at(at), axis=0), axis=1)
-            long = np.flatnonzero(steps > 4.0 * np.median(steps))
-            if not len(long):
-                break
-            extra = at[long, None] + np.linspace(0.0, 1.0, 65)[None, 1:-1] * np.diff(at)[long, None]
-            at = np.union1d(at, extra.ravel())
-        chords = np.linalg.norm(np.diff(rail.point_at(at), axis=0), axis=1)
-        length = np.concatenate([[0.0], np.cumsum(chords)])
-        along = self.lo + (self.hi - self.lo) * length / max(float(length[-1]), 1e-300)
-        keep = np.concatenate([[True], np.diff(along) > 0])  # (where the rail stands still: one)
-        self.along, self.at = along[keep], at[keep]
-        self.along[-1] = self.at[-1] = self.hi  # (a stretch at rest at the end: the end)
-        self.pace = PchipInterpolator(self.along, self.at)
-
-    def derivatives(self, t: ArrayLike, order: int = 1) -> list[np.ndarray]:
-        if order > 1:  # (its pace has no second derivative worth fitting to)
-            raise ValueError("a lengthwise rail gives its points and first derivatives only")
-        t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)).ravel(), self.lo, self.hi)
-        inner = self.pace(t)
-        out = [self.rail.point_at(inner)]
-        if order >= 1:
-            out.append(self.rail.derivatives(inner, 1)[1] * self.pace(t, 1)[:, None])
-        return out
-
-    def breaks(self) -> np.ndarray:
-        """The wrapped rail's breaks at this one's u."""
-        rail = self.rail
-        inner = rail.breaks() if hasattr(rail, "breaks") else \
-            rail._breakpoints() if isinstance(rail, CurveRail) else np.empty(0)
-        inner = np.asarray(inner, dtype=float)
-        inner = inner[(inner > self.lo) & (inner < self.hi)]
-        return np.interp(inner, self.at, self.along)
 
 
 def smooth_partners(strip: Rails, span: np.ndarray,

@@ -8,7 +8,10 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   fitted *together* (one knot vector, parameter u of the strip) by least squares on
   scipy's B-spline basis: double knots at the rulings (the rails' pace is piecewise
   cubic between them, C1 at them), a knot where a rail crosses a knot of the design it
-  runs on (or another break of its curve), then knots inserted where the fit is worst
+  runs on (or another break of its curve), a triple knot where the rails' speed jumps
+  between rulings (a cut strip's edges at a ramp's end, where a cone's apex comes to rest
+  on A as it sweeps B: :class:`~torsal.nodes.geometry.developable.cut_pace.Paced`, the
+  fit's samples split there), then knots inserted where the fit is worst
   until both rails are within :data:`FIT` of the strip's size, and as few control points
   as that takes (not one per sample). The face's isocurve at each ruling's u is that
   ruling and its rails' tangents there are the strip's own, exactly
@@ -36,10 +39,7 @@ A strip made of rulings (a :class:`~torsal.nodes.geometry.ruled.RuledSurface` wi
   cones meeting on its shorter diagonal (rail A to the diagonal's end on B, then that end
   of A to rail B): a cone is developable whatever its rail does, so its rail is fitted at
   an even pace along the rail's curve between the two rulings (from an end where that
-  curve stands still, at a square root's pace: :mod:`.threedm_unstall`; where that fit
-  misses by over :data:`SWEPT` times FIT, as where a cut strip's edge sweeps round a fan
-  in a sliver of the interval, at an even pace along its length:
-  :class:`~.threedm_rails.Lengthwise`); where one of the two
+  curve stands still, at a square root's pace: :mod:`.threedm_unstall`); where one of the two
   rulings is a point and a rail runs from it straight (within FIT), one cone from that
   rail's other end over the other rail instead, a face of its own (:func:`_tip_cone`);
 - consecutive ruled faces and cone pairs are one face: their rails' splines end to end,
@@ -74,7 +74,7 @@ from torsal.nodes.geometry.ruled import RuledSurface
 from torsal.nodes.geometry.torsal_pairing import CONE, switches, torsal_partners
 from torsal.nodes.io.formats.threedm_held import end_bends, pinned, slopes_at
 from torsal.nodes.io.formats.threedm_native import rhino_net
-from torsal.nodes.io.formats.threedm_rails import AtRest, Lengthwise, Paced, Rails, between, smooth_partners
+from torsal.nodes.io.formats.threedm_rails import AtRest, Paced, Rails, between, smooth_partners
 from torsal.nodes.io.formats.threedm_triangles import SAME_POINT, fan_run, fan_triangle
 from torsal.nodes.io.formats.threedm_unstall import Unstalled, unstalled
 from torsal.nodes.io.formats.threedm_untwist import untwisted
@@ -95,18 +95,15 @@ TWISTED = 8e-7
 COSTLIER = 4.5
 
 
-#: A cone pair whose fit misses its rails by more than this times :data:`FIT` is fitted again
-#: with its rails at an even pace along their length (:class:`~.threedm_rails.Lengthwise`).
-SWEPT = 10.0
-
 #: Samples of the rails per ruling interval, to fit on (and twice as many to check).
 SAMPLES = 12
 
 #: Samples per span between a fitted face's knots that its untwist is judged on.
 SPAN_SAMPLES = 8
 
-#: The densest sampling tried (per ruling interval) before a fit settles for what it reached.
-LARGEST_SAMPLING = 192
+#: The densest sampling tried (per ruling interval) before a fit settles for what it reached
+#: (192 left the double bump's cone pairs beside its fans at 1.1e-6 of the size).
+LARGEST_SAMPLING = 384
 
 #: A rail whose tangent turns more than this (rad) at a ruling has a corner there.
 CORNER = 1e-3
@@ -304,17 +301,16 @@ def _cones(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: 
     the face's normals are constant along its lines; its edges still run on the rails."""
     span = u[k:k + 2]
     paced_a, paced_b = (unstalled(Paced(rail, span), span) for rail in (strip.curve_a, strip.curve_b))
-    pieces = _cone_pair(strip, u, lines, k, size, paced_a, paced_b)
-    if pieces[0].deviation > SWEPT * FIT * size:  # a rail that sweeps across a sliver of the interval
-        # (a cut strip's edge round a fan): along its length, where that fits closer
-        along = (Lengthwise(rail, *span) for rail in (paced_a, paced_b))
-        lengthwise = _cone_pair(strip, u, lines, k, size, *along)
-        pieces = lengthwise if lengthwise[0].deviation < pieces[0].deviation else pieces
-    return pieces
+    # where a cut strip's edges sweep round a fan in a sliver of the interval (a ramp of
+    # its pace, where their speeds jump) a triple knot at each jump, at the strip's own u
+    jumps = _pace_jumps(strip, span)
+    if len(jumps):
+        paced_a, paced_b = (Paced(rail, span) for rail in (strip.curve_a, strip.curve_b))
+    return _cone_pair(strip, u, lines, k, size, paced_a, paced_b, jumps)
 
 
 def _cone_pair(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, size: float, paced_a: Curve,
-               paced_b: Curve) -> list[Piece]:
+               paced_b: Curve, jumps: np.ndarray | None = None) -> list[Piece]:
     """:func:`_cones` with its rails at the given paces."""
     (a_lo, b_lo), (a_hi, b_hi) = lines[k], lines[k + 1]
     span = u[k:k + 2]
@@ -324,7 +320,8 @@ def _cone_pair(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, k: int, si
     else:
         middle = np.array([a_lo, b_hi])
         rails = [Rails(AtRest(a_lo), paced_b), Rails(paced_a, AtRest(b_hi))]
-    fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at, np.empty(0))  # type: ignore[arg-type]
+    fits = [_fit(pair, span, np.array(ends), FIT * size, lambda at: at,
+                 np.empty(0) if jumps is None else jumps)  # type: ignore[arg-type]
             for pair, ends in zip(rails, ([lines[k], middle], [middle, lines[k + 1]]), strict=True)]
     # each apex exactly (the least squares leave its control points a rounding apart)
     fits = [(d, t, _apex_exactly(c, int(isinstance(pair.curve_b, AtRest)), rest.point))
@@ -432,14 +429,15 @@ def _ruled(strip: RuledSurface, u: np.ndarray, lines: np.ndarray, first: int, la
     span = u[first:last + 1]
     tolerance = FIT * size
     sampled = 0.0  # the untwisted face's largest twist on the untwist's samples
-    own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, np.empty(0))
+    jumps = _pace_jumps(strip, span)
+    own = _fit(strip, span, lines[first:last + 1], tolerance, lambda at: at, jumps)
     fit = own
     paired_fit = False
     if _twist(own) > DEVELOPABLE and _own_twist(strip, span) <= DEVELOPABLE:
         # the strip's own pairing is developable (as a strip cut to a trim is) but its short
         # rulings magnify the fit's error into a twist: closer fits, as close as that takes
         for _ in range(3):
-            tighter = _fit(strip, span, lines[first:last + 1], 0.1 * fit[0], lambda at: at, np.empty(0))
+            tighter = _fit(strip, span, lines[first:last + 1], 0.1 * fit[0], lambda at: at, jumps)
             fit = tighter if _twist(tighter) < _twist(fit) else fit
             if _twist(fit) <= DEVELOPABLE:
                 break
@@ -629,6 +627,19 @@ def _fit(strip: RuledSurface, span: np.ndarray, lines: np.ndarray, tolerance: fl
         per *= 2  # more knots are needed than these samples can carry
 
 
+def _pace_jumps(strip: RuledSurface, span: np.ndarray) -> np.ndarray:
+    """Where a rail's pace is only C0 strictly between the rulings of ``span`` (a cut strip's
+    edges at a ramp's ends, :class:`~torsal.nodes.geometry.developable.cut_pace.Paced`): a
+    triple knot each, the fit's samples split there."""
+    found = [rail._crossings(np.asarray(rail.curve.jumps, dtype=float))
+             for rail in (strip.curve_a, strip.curve_b)
+             if isinstance(rail, CurveRail) and len(getattr(rail.curve, "jumps", ()))]
+    marks = np.unique(np.concatenate(found)) if found else np.empty(0)
+    near = 1e-6 * (span[-1] - span[0])  # (a ramp that starts at a ruling: at the ruling)
+    return marks[(np.abs(marks[:, None] - span[None, :]).min(axis=1) > near) & (marks > span[0])
+                 & (marks < span[-1])] if len(marks) else marks
+
+
 def _rail_breaks(strip: RuledSurface, span: np.ndarray,
                  partner: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
     """The parameters (of rail A) strictly between the rulings of ``span`` where either
@@ -638,7 +649,7 @@ def _rail_breaks(strip: RuledSurface, span: np.ndarray,
     near = 1e-6 * (hi - lo)
     found = []
     for rail, own in ((strip.curve_a, True), (strip.curve_b, False)):
-        if isinstance(rail, (Paced, Unstalled, Lengthwise)):
+        if isinstance(rail, (Paced, Unstalled)):
             marks = rail.breaks()
         elif isinstance(rail, CurveRail):
             marks = rail._breakpoints()  # the rulings, and where it crosses its curve's breaks
