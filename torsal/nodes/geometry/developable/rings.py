@@ -51,6 +51,8 @@ INSIDE = 0.2
 #: Samples per ruling interval, and across, of an uncut trial strip whose distance from the
 #: design where the region keeps it judges the trial first (:func:`_estimate`).
 ESTIMATE = (4, 9)
+#: Cuts of widths the estimates settle on, per strip, before the trials are judged by cuts.
+ATTEMPTS = 3
 
 #: Points of a ring (about four per traced angle of :class:`RingPatch`) that its quintic
 #: passes through (:class:`Ring`).
@@ -320,9 +322,12 @@ def march_rings(
     by the square law (deviation ∝ width²) inside the bracket of widths found too wide and
     within (:func:`_next_width`). The trials are judged first by the uncut strip's
     distance at samples the region keeps (:func:`_estimate`, a tenth of a cut's cost); the
-    width they settle on is then cut and certified, and only where its pieces are beyond
-    the tolerance do the trials go on, judged by their cut pieces' certified deviation
-    (the rings run on outside the region, where they are no lines of curvature of it).
+    width they settle on is then cut and certified. Where its pieces are beyond the
+    tolerance (a cut adds a cone where its pairing jumps, which the uncut strip has not)
+    the estimates are held to the share of the tolerance they fell short by and the
+    trials go on, up to :data:`ATTEMPTS` cuts; then judged by their cut pieces' certified
+    deviation (the rings run on outside the region, where they are no lines of curvature
+    of it).
     ``corners``: the region's corners (:func:`region_corners`), which the cut keeps.
     Returns the pieces and the largest deviation of a strip that had to be kept beyond the
     tolerance (0 when none)."""
@@ -341,19 +346,24 @@ def march_rings(
     for _ in range(max_strips):
         if lo >= 1.0:
             break
-        chosen, _, _ = _search(lo, width, estimated, tolerance)
         found: tuple[float, list[Strip]] | None = None
-        bad, bad_dev, start = 2.0, np.nan, width
-        if chosen is not None:
+        bad, bad_dev, start, budget = 2.0, np.nan, width, tolerance
+        for _attempt in range(ATTEMPTS):
+            chosen, estimate, _ = _search(lo, start, estimated, budget, bad)
+            if chosen is None:
+                break
             pieces = _cut(chosen[1], design, inside, tolerance, corners)
             deviation = max((p.deviation for p in pieces), default=0.0)
             if deviation <= tolerance:
                 found = (chosen[0], pieces)
-            else:  # the estimate fell short: on from there, judged by the cut pieces
-                w = chosen[0] - lo
-                bad, bad_dev = w, deviation
-                start = _next_width(w, deviation, tolerance, None, 0.0, bad, bad_dev, 1.0 - lo) or 0.5 * w
-        if found is None:
+                break
+            # the estimate fell short: narrower, the estimates held to what this cut says
+            # they fall short by
+            w = chosen[0] - lo
+            bad, bad_dev = w, deviation
+            start = _next_width(w, deviation, tolerance, None, 0.0, bad, bad_dev, 1.0 - lo) or 0.5 * w
+            budget = budget * min(estimate / deviation, 0.99) if estimate > 0.0 else 0.5 * budget
+        if found is None:  # judged by the cut pieces from there
             good, _, tried = _search(lo, start, certified, tolerance, bad, bad_dev)
             if good is None:  # the narrowest tried, beyond the tolerance (said by its deviation)
                 if tried is None:
