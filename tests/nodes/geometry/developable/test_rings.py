@@ -10,8 +10,18 @@ import pytest
 import shapely
 
 from tests.support.freeform_designs import Design
-from torsal.nodes.geometry.developable.rationalise import AIM
-from torsal.nodes.geometry.developable.rings import INSIDE, SETTLE, RingPatch, _next_width, region_inside
+from torsal.nodes.geometry.curve_rail import ruled_between
+from torsal.nodes.geometry.curves import Line
+from torsal.nodes.geometry.developable.rationalise import AIM, Strip
+from torsal.nodes.geometry.developable.rings import (
+    ESTIMATE,
+    INSIDE,
+    SETTLE,
+    RingPatch,
+    _estimate,
+    _next_width,
+    region_inside,
+)
 
 
 def _bump(x, y):
@@ -74,6 +84,31 @@ def test_region_signed_distance_is_the_plan_distance_with_a_margin_inside_the_de
     # 5.3: past the region's edge inside the design (margin 0.1); x = -0.02, y = 4.5: past the design's;
     # (-0.3, -0.4): past its corner, 0.5 from it
     assert np.allclose(found, [2.0, 0.05, -0.2, -0.02, -0.5, -0.5], atol=1e-9)
+
+
+def test_a_region_measures_points_distance_from_the_design_from_the_same_projection():
+    flat = Design("flat", _flat, (0.0, 10.0), (0.0, 4.0)).surface()
+    inside = region_inside(flat, shapely.box(0.0, 0.0, 5.0, 4.0), [10.0, 4.0], margin=0.1)
+    points = np.array([[2.0, 2.0, 0.3], [4.0, 1.0, -0.25], [5.3, 2.0, 0.04]])
+    signed, distance = inside.measured(points)
+    assert np.allclose(signed, inside(points), atol=0.0)
+    assert np.allclose(distance, [0.3, 0.25, 0.04], atol=1e-12)  # straight above or below the plane
+
+
+def test_a_trial_strip_is_estimated_by_its_farthest_sample_that_the_region_keeps():
+    # over the plane z = 0, a strip from the line z = x/10 (y = 1) to z = 0 (y = 3), rulings at
+    # x = 0, 2.5, ..., 10: its samples lie ESTIMATE[0] per ruling interval along, so the farthest
+    # one the region x <= 5 (+ 0.3) keeps is x = 5 on rail A, 0.5 above the plane
+    flat = Design("flat", _flat, (0.0, 10.0), (0.0, 4.0)).surface()
+    a, b = Line([0.0, 1.0, 0.0], [10.0, 1.0, 1.0]), Line([0.0, 3.0, 0.0], [10.0, 3.0, 0.0])
+    at = np.linspace(0.0, 1.0, 5)
+    surface = ruled_between(a, at, b, at)
+    strip = Strip(0.0, 1.0, None, surface, np.zeros(5), 0.0, np.zeros(3))
+    inside = region_inside(flat, shapely.box(0.0, 0.0, 5.0, 4.0), [10.0, 4.0], margin=0.3)
+    assert 2.5 / ESTIMATE[0] > 0.3  # no sample past x = 5 within the margin
+    assert _estimate(strip, inside) == pytest.approx(0.5, abs=1e-12)
+    outside = region_inside(flat, shapely.box(0.0, 3.5, 10.0, 4.0), [10.0, 4.0])
+    assert _estimate(strip, outside) == 0.0  # the region keeps none of it
 
 
 def test_the_march_closes_in_on_the_square_law_width_from_both_sides_of_the_bracket():

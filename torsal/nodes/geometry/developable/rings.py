@@ -21,6 +21,7 @@ rings on it; the strips are then cut to the region (:func:`region_inside`,
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import shapely
@@ -46,6 +47,12 @@ SETTLE = 0.03
 #: ... and with both known, a trial lies at least this share of the gap from either.
 INSIDE = 0.2
 
+
+#: Samples per ruling interval, and across, of an uncut trial strip whose distance from the
+#: design where the region keeps it judges the trial first (:func:`_estimate`).
+ESTIMATE = (4, 9)
+#: Cuts of widths the estimates settle on, per strip, before the trials are judged by cuts.
+ATTEMPTS = 3
 
 #: Points of a ring (about four per traced angle of :class:`RingPatch`) that its quintic
 #: passes through (:class:`Ring`).
@@ -156,36 +163,54 @@ class RingPatch(Surface):
         return [*out, second(p[1], p[1], p[3]), second(p[1], p[2], p[4]), second(p[2], p[2], p[5])]
 
 
+class RegionInside:
+    """Points' signed distance from a region of a design's plan (see :func:`region_inside`),
+    called as a function; :meth:`measured` gives their distance from the design too, from
+    the same projection."""
+
+    def __init__(self, design: Surface, region: shapely.Polygon, scale: ArrayLike, margin: float) -> None:
+        self.design, self.region, self.margin = design, region, float(margin)
+        self.scale = np.asarray(scale, dtype=float)
+
+    def __call__(self, points: FloatArray) -> FloatArray:
+        return self.measured(points)[0]
+
+    def measured(self, points: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """The points' signed distance from the region and their distance from the design
+        (the latter meaningful where the former is ≥ 0: a point beyond the design's edge
+        is measured to the edge)."""
+        found = self.design.closest_point(points, candidates=1, tolerance=1e-9).parameters
+        p, su, sv = self.design.derivatives(found[:, 0], found[:, 1], 1)
+        off = points - p
+        e, f, g = (np.einsum("ij,ij->i", a, b) for a, b in ((su, su), (su, sv), (sv, sv)))
+        a, b = np.einsum("ij,ij->i", su, off), np.einsum("ij,ij->i", sv, off)
+        det = e * g - f * f
+        plan = (found + np.column_stack([(g * a - f * b) / det, (e * b - f * a) / det])) * self.scale
+        signed = np.minimum(_signed(self.region, plan) + self.margin, _signed_box(plan, self.scale))
+        return signed, np.linalg.norm(off, axis=1)
+
+
+def _signed_box(plan: FloatArray, scale: FloatArray) -> FloatArray:
+    """Signed distance from the design's plan, a rectangle (closed form), positive inside."""
+    out = np.maximum(-plan, plan - scale)  # how far past the nearer edge, per axis
+    most = out.max(axis=1)
+    return np.where(most <= 0.0, -most, -np.hypot(*np.maximum(out, 0.0).T))
+
+
+def _signed(polygon: shapely.Polygon, plan: FloatArray) -> FloatArray:
+    distance = shapely.distance(polygon.boundary, shapely.points(plan))
+    return np.where(shapely.contains_xy(polygon, plan[:, 0], plan[:, 1]), distance, -distance)
+
+
 def region_inside(design: Surface, region: shapely.Polygon, scale: ArrayLike, margin: float = 0.0
-                  ) -> Callable[[FloatArray], FloatArray]:
+                  ) -> RegionInside:
     """Points' signed distance from ``region`` (a polygon in the design's plan), positive
     inside: ``margin`` beyond it where it lies inside the design (so neighbouring regions'
     strips overlap rather than leave a gap), none beyond the design's own edges. Each point
     is projected onto the design itself (not a patch of it, so a ring patch's overlaps do
     not matter); a point beyond the design's edge projects onto the edge, and the part of
     its offset along the design there is added (the first fundamental form solved)."""
-    scale = np.asarray(scale, dtype=float)
-
-    def signed_box(plan: FloatArray) -> FloatArray:  # the design's plan, a rectangle: closed form
-        out = np.maximum(-plan, plan - scale)  # how far past the nearer edge, per axis
-        most = out.max(axis=1)
-        return np.where(most <= 0.0, -most, -np.hypot(*np.maximum(out, 0.0).T))
-
-    def signed(polygon: shapely.Polygon, plan: FloatArray) -> FloatArray:
-        distance = shapely.distance(polygon.boundary, shapely.points(plan))
-        return np.where(shapely.contains_xy(polygon, plan[:, 0], plan[:, 1]), distance, -distance)
-
-    def inside(points: FloatArray) -> FloatArray:
-        found = design.closest_point(points, candidates=1, tolerance=1e-9).parameters
-        p, su, sv = design.derivatives(found[:, 0], found[:, 1], 1)
-        off = points - p
-        e, f, g = (np.einsum("ij,ij->i", a, b) for a, b in ((su, su), (su, sv), (sv, sv)))
-        a, b = np.einsum("ij,ij->i", su, off), np.einsum("ij,ij->i", sv, off)
-        det = e * g - f * f
-        plan = (found + np.column_stack([(g * a - f * b) / det, (e * b - f * a) / det])) * scale
-        return np.minimum(signed(region, plan) + margin, signed_box(plan))
-
-    return inside
+    return RegionInside(design, region, scale, margin)
 
 
 def region_corners(design: Surface, region: shapely.Polygon, scale: ArrayLike, margin: float = 0.0
@@ -201,11 +226,10 @@ def region_corners(design: Surface, region: shapely.Polygon, scale: ArrayLike, m
     return design.point_at(uv[:, 0], uv[:, 1])
 
 
-def _pieces(design: Surface, boundaries: _Rings | IsoBoundaries, lo: float, hi: float,
-            inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
-            warp_tolerance: float, corners: FloatArray | None = None) -> list[Strip] | None:
-    """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
-    pieces certified against the design itself; None when it cannot be made."""
+def _whole(boundaries: _Rings | IsoBoundaries, lo: float, hi: float, segments: int, warp_tolerance: float
+           ) -> Strip | None:
+    """The strip between the rings at levels ``lo`` and ``hi``, uncut; None when it cannot
+    be made."""
     check = watch_check()
     if check:
         check()
@@ -215,11 +239,40 @@ def _pieces(design: Surface, boundaries: _Rings | IsoBoundaries, lo: float, hi: 
         surface = ruled_between(a, result.s, b, result.t)
     except ValueError:
         return None
-    whole = Strip(lo, hi, result, surface, np.zeros(len(result.s)), 0.0, np.zeros(3))
+    return Strip(lo, hi, result, surface, np.zeros(len(result.s)), 0.0, np.zeros(3))
+
+
+def _cut(whole: Strip, design: Surface, inside: Callable[[FloatArray], FloatArray], tolerance: float,
+         corners: FloatArray | None = None) -> list[Strip]:
+    """``whole`` cut to the region, its pieces certified against the design itself."""
     pieces = cut_strip(whole, inside, design, tolerance, corners)
     for piece in pieces:  # each between the rings at lo and hi (:mod:`.ring_boundaries`)
-        piece.lo, piece.hi = lo, hi
+        piece.lo, piece.hi = whole.lo, whole.hi
     return pieces
+
+
+def _pieces(design: Surface, boundaries: _Rings | IsoBoundaries, lo: float, hi: float,
+            inside: Callable[[FloatArray], FloatArray], tolerance: float, segments: int,
+            warp_tolerance: float, corners: FloatArray | None = None) -> list[Strip] | None:
+    """The strip between the rings at levels ``lo`` and ``hi``, cut to the region, its
+    pieces certified against the design itself; None when it cannot be made."""
+    whole = _whole(boundaries, lo, hi, segments, warp_tolerance)
+    return None if whole is None else _cut(whole, design, inside, tolerance, corners)
+
+
+def _estimate(whole: Strip, inside: RegionInside) -> float:
+    """The largest distance from the design of the uncut strip ``whole`` at samples the
+    region keeps (:data:`ESTIMATE` per ruling interval and across; 0 where it keeps none):
+    what its cut pieces' certified deviation comes to, to within the samples' spacing,
+    from one projection of a few thousand points instead of a cut."""
+    surface = whole.surface
+    u = np.asarray(surface.ruling_parameters, dtype=float)
+    steps = np.linspace(0.0, 1.0, ESTIMATE[0] + 1)[:-1]
+    along = np.concatenate([(u[:-1, None] + np.diff(u)[:, None] * steps).ravel(), u[-1:]])
+    s, t = np.meshgrid(along, np.linspace(0.0, 1.0, ESTIMATE[1]), indexing="ij")
+    signed, distance = inside.measured(surface.point_at(s.ravel(), t.ravel()))
+    kept = signed >= 0.0
+    return float(distance[kept].max()) if kept.any() else 0.0
 
 
 def _next_width(w: float, deviation: float, tolerance: float, floor: float | None, floor_dev: float,
@@ -260,55 +313,100 @@ def _next_width(w: float, deviation: float, tolerance: float, floor: float | Non
 
 
 def march_rings(
-    design: Surface, patch: RingPatch, inside: Callable[[FloatArray], FloatArray], tolerance: float,
+    design: Surface, patch: RingPatch, inside: RegionInside, tolerance: float,
     segments: int = 24, warp_tolerance: float = 1e-7, max_strips: int = 64, first_width: float = 0.05,
     corners: FloatArray | None = None,
 ) -> tuple[list[Strip], float]:
     """Strips between rings of ``patch`` from its level 0 to 1, each as wide as the
     tolerance allows once cut to the region (``inside``): a few trials per strip, the width
     by the square law (deviation ∝ width²) inside the bracket of widths found too wide and
-    within (:func:`_next_width`), but each trial's deviation is its cut pieces'
-    (the rings run on outside the region, where they are no lines of curvature of it).
+    within (:func:`_next_width`). The trials are judged first by the uncut strip's
+    distance at samples the region keeps (:func:`_estimate`, a tenth of a cut's cost); the
+    width they settle on is then cut and certified. Where its pieces are beyond the
+    tolerance (a cut adds a cone where its pairing jumps, which the uncut strip has not)
+    the estimates are held to the share of the tolerance they fell short by and the
+    trials go on, up to :data:`ATTEMPTS` cuts; then judged by their cut pieces' certified
+    deviation (the rings run on outside the region, where they are no lines of curvature
+    of it).
     ``corners``: the region's corners (:func:`region_corners`), which the cut keeps.
     Returns the pieces and the largest deviation of a strip that had to be kept beyond the
     tolerance (0 when none)."""
     boundaries = _Rings(patch)
     out: list[Strip] = []
     lo, width, worst = 0.0, first_width, 0.0
+
+    def estimated(hi: float) -> tuple[float, Strip | None]:
+        whole = _whole(boundaries, lo, hi, segments, warp_tolerance)
+        return (np.nan, None) if whole is None else (_estimate(whole, inside), whole)
+
+    def certified(hi: float) -> tuple[float, list[Strip] | None]:
+        pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance, corners)
+        return (np.nan, None) if pieces is None else (max((p.deviation for p in pieces), default=0.0), pieces)
+
     for _ in range(max_strips):
         if lo >= 1.0:
             break
-        good: tuple[float, list[Strip]] | None = None
-        good_dev, bad, bad_dev = 0.0, 2.0, np.nan
-        w = min(width, 1.0 - lo)
-        tried: tuple[float, list[Strip], float] | None = None
-        before: tuple[float, float] | None = None
-        for _trial in range(TRIALS * 2):
-            hi = min(1.0, lo + w)
-            pieces = _pieces(design, boundaries, lo, hi, inside, tolerance, segments, warp_tolerance, corners)
-            deviation = np.nan if pieces is None else max((p.deviation for p in pieces), default=0.0)
-            if pieces is not None:
-                tried = (hi, pieces, deviation) if tried is None or w < tried[0] - lo else tried
-            if pieces is not None and deviation <= tolerance:
-                if good is None or hi > good[0]:
-                    good, good_dev = (hi, pieces), deviation
-                if hi >= 1.0 or deviation >= CLOSE * tolerance:
-                    break
-            elif w < bad:
-                bad, bad_dev = w, deviation
-            following = _next_width(w, deviation, tolerance, (good[0] - lo) if good else None, good_dev, bad,
-                                    bad_dev, 1.0 - lo, before)
-            if following is None or following <= 1e-6:
+        found: tuple[float, list[Strip]] | None = None
+        bad, bad_dev, start, budget = 2.0, np.nan, width, tolerance
+        for _attempt in range(ATTEMPTS):
+            chosen, estimate, _ = _search(lo, start, estimated, budget, bad)
+            if chosen is None:
                 break
-            before, w = (w, deviation), following
-        if good is None:  # the narrowest tried, beyond the tolerance (said by its deviation)
-            if tried is None:
-                raise ValueError("no strip between the rings could be made")
-            good = (tried[0], tried[1])
-            worst = max(worst, tried[2])
-        out += good[1]
-        width = good[0] - lo
-        lo = good[0]
+            pieces = _cut(chosen[1], design, inside, tolerance, corners)
+            deviation = max((p.deviation for p in pieces), default=0.0)
+            if deviation <= tolerance:
+                found = (chosen[0], pieces)
+                break
+            # the estimate fell short: narrower, the estimates held to what this cut says
+            # they fall short by
+            w = chosen[0] - lo
+            bad, bad_dev = w, deviation
+            start = _next_width(w, deviation, tolerance, None, 0.0, bad, bad_dev, 1.0 - lo) or 0.5 * w
+            budget = budget * min(estimate / deviation, 0.99) if estimate > 0.0 else 0.5 * budget
+        if found is None:  # judged by the cut pieces from there
+            good, _, tried = _search(lo, start, certified, tolerance, bad, bad_dev)
+            if good is None:  # the narrowest tried, beyond the tolerance (said by its deviation)
+                if tried is None:
+                    raise ValueError("no strip between the rings could be made")
+                good = (tried[0], tried[1])
+                worst = max(worst, tried[2])
+            found = good
+        out += found[1]
+        width = found[0] - lo
+        lo = found[0]
     if lo < 1.0:
         raise ValueError(f"the rings need more than {max_strips} strips")
     return out, worst
+
+
+def _search(lo: float, width: float, measure: Callable[[float], tuple[float, Any]], tolerance: float,
+            bad: float = 2.0, bad_dev: float = np.nan
+            ) -> tuple[tuple[float, Any] | None, float, tuple[float, Any, float] | None]:
+    """The trials of one strip of :func:`march_rings` from level ``lo``, the first ``width``
+    wide (below ``bad``, a width known too wide by ``bad_dev``; 2: none), each judged by
+    ``measure(hi)`` (its deviation, NaN when no strip, and what it made): the widest within
+    the tolerance (its level and what it made; None when none) and its deviation, and the
+    narrowest tried (level, what it made, deviation; None when none)."""
+    good: tuple[float, Any] | None = None
+    good_dev = 0.0
+    w = min(width, 1.0 - lo)
+    tried: tuple[float, Any, float] | None = None
+    before: tuple[float, float] | None = None
+    for _trial in range(TRIALS * 2):
+        hi = min(1.0, lo + w)
+        deviation, made = measure(hi)
+        if made is not None:
+            tried = (hi, made, deviation) if tried is None or w < tried[0] - lo else tried
+        if made is not None and deviation <= tolerance:
+            if good is None or hi > good[0]:
+                good, good_dev = (hi, made), deviation
+            if hi >= 1.0 or deviation >= CLOSE * tolerance:
+                break
+        elif w < bad:
+            bad, bad_dev = w, deviation
+        following = _next_width(w, deviation, tolerance, (good[0] - lo) if good else None, good_dev, bad,
+                                bad_dev, 1.0 - lo, before)
+        if following is None or following <= 1e-6:
+            break
+        before, w = (w, deviation), following
+    return good, good_dev, tried
