@@ -208,7 +208,7 @@ def _end_slopes(h0: FloatArray, h1: FloatArray, m0: FloatArray, m1: FloatArray) 
 _UNPACED = "a curve rail needs increasing u and non-decreasing curve parameters"
 
 
-#: Most Newton steps :meth:`CurveRail._crossings` takes on the pace (quadratic from the
+#: Most Newton steps :meth:`CurveRail.crossings` takes on the pace (quadratic from the
 #: interpolated start: two or three reach rounding).
 CROSSING_STEPS = 6
 
@@ -320,16 +320,16 @@ class CurveRail(Curve):
     def _breakpoints(self) -> FloatArray:
         """The ruling parameters, and where the pace crosses one of the curve's own
         breakpoints (or its seam) — between them the rail is smooth."""
-        crossing = self._crossings(self.curve._breakpoints())
+        crossing = self.crossings(self.curve._breakpoints())
         return np.unique(np.clip(np.concatenate([self.params, crossing, [0.0, 1.0]]), 0.0, 1.0))
 
     def _find_kinks(self) -> FloatArray:
         """Where the pace crosses one of the curve's kinks (a closed curve's seam when it
         is a corner): the rail turns there as the curve does, and nowhere else (σ is C¹
         and a stretch where it stands still keeps the rail on one point)."""
-        return np.unique(np.clip(self._crossings(self.curve.kinks()), 0.0, 1.0))
+        return np.unique(np.clip(self.crossings(self.curve.kinks()), 0.0, 1.0))
 
-    def _crossings(self, inner: FloatArray) -> FloatArray:
+    def crossings(self, inner: FloatArray) -> FloatArray:
         """The u where the pace crosses the curve parameters ``inner`` (each turn of them
         on a closed curve), strictly between the first and last ruling's."""
         u, p = self.params, self.curve_params

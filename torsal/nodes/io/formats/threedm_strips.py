@@ -631,7 +631,7 @@ def _pace_jumps(strip: RuledSurface, span: np.ndarray) -> np.ndarray:
     """Where a rail's pace is only C0 strictly between the rulings of ``span`` (a cut strip's
     edges at a ramp's ends, :class:`~torsal.nodes.geometry.developable.cut_pace.Paced`): a
     triple knot each, the fit's samples split there."""
-    found = [rail._crossings(np.asarray(rail.curve.jumps, dtype=float))
+    found = [rail.crossings(np.asarray(rail.curve.jumps, dtype=float))
              for rail in (strip.curve_a, strip.curve_b)
              if isinstance(rail, CurveRail) and len(getattr(rail.curve, "jumps", ()))]
     marks = np.unique(np.concatenate(found)) if found else np.empty(0)
