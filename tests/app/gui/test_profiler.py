@@ -21,14 +21,16 @@ def test_the_profiler_lists_every_node_slowest_first_once_it_is_shown(qtbot, win
     qtbot.waitUntil(lambda: profiler.rowCount() == len(window.doc.graph.nodes), timeout=2000)
     milliseconds = [float(profiler.item(row, 3).text()) for row in range(profiler.rowCount())]
     assert milliseconds == sorted(milliseconds, reverse=True)
-    top = profiler.item(0, 0).text()
-    assert top.endswith("[strip]")  # the 20 developable strips take most of the solve
+    # the slowest node first (the developable strips, mostly; which one is a matter of timing)
     results = window.doc.results
-    assert milliseconds[0] == round(results["strip"].seconds * 1000, 2)
+    slowest = max(results, key=lambda node_id: results[node_id].seconds)
+    assert profiler.item(0, 0).text().endswith(f"[{slowest}]")
+    assert milliseconds[0] == round(results[slowest].seconds * 1000, 2)
 
     window.editor.set_setting("scale", "value", 0.6)  # a new solve refills the shown profiler
     wait_solved(qtbot, window)
     qtbot.waitUntil(
-        lambda: float(profiler.item(0, 3).text()) == round(window.doc.results["strip"].seconds * 1000, 2),
+        lambda: float(profiler.item(0, 3).text())
+        == round(max(r.seconds for r in window.doc.results.values()) * 1000, 2),
         timeout=2000,
     )
