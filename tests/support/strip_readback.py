@@ -97,7 +97,7 @@ def across_twist(surface: rh.Surface, count: int, inset: float = 0.01) -> float:
 def ruling_warps(objects: list, strips: list, kinds: list[str]) -> tuple[dict[tuple[int, int], float], float]:
     """The warp of every one of the node's torsal rulings (``kinds``: Rationalise's Kind,
     strip after strip) as the exported faces have it, by (strip, ruling): the largest angle
-    between a face's normals at the two ends of its isocurve at the ruling's u, over the
+    between a face's normals 1 % in from the two ends of its isocurve at the ruling's u, over the
     faces the ruling bounds or crosses (a fan face, whose parameter runs evenly over its
     rulings: on either side of it; a trimmed triangle: its plane's); and the largest
     distance of those isocurves' ends from the node's ruling ends, relative to the strip's
@@ -126,10 +126,13 @@ def ruling_warps(objects: list, strips: list, kinds: list[str]) -> tuple[dict[tu
                 at = du.T0 + (du.T1 - du.T0) * share
                 ends = np.array([_vector(surface.PointAt(at, v)) for v in (dv.T0, dv.T1)])
                 off = max(off, float(np.linalg.norm(ends - lines[j], axis=1).max()) / size)
-                # (a fan's flat triangles meet at its rulings: on either side, 1 % in from the
-                # ends, one of which is a triangle's apex, where its edge has no direction)
+                # 1 % in from the line's ends, as item 3 of the issue measures: an end may be
+                # a cone's apex, with no normal (a fan triangle's; or a torsal face's next to
+                # a fan, where a rail stands still: there Rhino's normal at the rail itself
+                # read up to 1.39 rad while 1e-6 in it read 1.3e-7 and 1e-4 in 1.5e-9). A
+                # fan's flat triangles meet at its rulings: measured on either side.
                 sides = [at] if face != "fan" else [min(at + 1e-9, du.T1), max(at - 1e-9, du.T0)]
-                inset = 0.01 * (dv.T1 - dv.T0) if face == "fan" else 0.0
+                inset = 0.01 * (dv.T1 - dv.T0)
                 for side in sides:
                     normals = [_vector(surface.NormalAt(side, v)) for v in (dv.T0 + inset, dv.T1 - inset)]
                     warps[index, j] = max(warps.get((index, j), 0.0), _angle(*normals))
