@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from tests.nodes.geometry.developable.test_kinds import cylinder_circle
 from torsal.nodes.geometry.curve_rail import CurveRail
-from torsal.nodes.geometry.curves import ParametricCurve
 from torsal.nodes.geometry.developable.fans import creased_fans, creased_runs
 from torsal.nodes.geometry.developable.kinds import sheet_folds
 
@@ -23,20 +23,6 @@ def test_a_run_creases_where_one_of_its_rulings_folds():
     assert not creased_runs(in_fan, np.zeros(9, dtype=bool)).any()
 
 
-def _circle(y):
-    """(sin φ, y, cos φ), φ the parameter: a circle of the cylinder x² + z² = 1."""
-
-    def point(p):
-        p = np.asarray(p, dtype=float)
-        return np.column_stack([np.sin(p), np.full_like(p, y), np.cos(p)])
-
-    def tangent(p):
-        p = np.asarray(p, dtype=float)
-        return np.column_stack([np.cos(p), np.zeros_like(p), -np.sin(p)])
-
-    return ParametricCurve(point, (0.0, 1.0), derivatives=(tangent,))
-
-
 def test_a_fan_ruling_inside_a_smooth_sheet_creases_nothing():
     """A cut strip marks the line it keeps on a ramp of its pace a fan's (cut_pace): inside
     the smooth sheet, sharing no apex with its neighbours. On a cylinder strip (every ruling
@@ -44,7 +30,7 @@ def test_a_fan_ruling_inside_a_smooth_sheet_creases_nothing():
     alone (creased_fans) both pieces beside it did."""
     phi = np.array([0.0, 0.2, 0.4, 0.4 + 1e-5, 0.6, 0.8])
     u = np.linspace(0.0, 1.0, len(phi))
-    a, b = _circle(0.0), _circle(1.0)
+    a, b = cylinder_circle(0.0), cylinder_circle(1.0)
     starts, ends = a.point_at(phi), b.point_at(phi)
     fan = np.zeros(len(phi), dtype=bool)
     fan[3] = True

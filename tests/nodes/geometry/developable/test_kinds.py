@@ -93,7 +93,7 @@ def test_a_cone_through_one_point_of_a_is_smooth_not_a_crease():
     assert min(chords) > 0.1
 
 
-def _circle(y):
+def cylinder_circle(y):
     """A(φ) = (sin φ, y, cos φ), φ = the parameter: a circle of the cylinder x² + z² = 1."""
 
     def point(p):
@@ -115,7 +115,7 @@ def test_a_cone_joins_the_generators_smoothly_and_folds_against_a_warped_piece()
     and the quad's, at A, R × A'(0.5): the sheet folds by their angle there."""
     s = [0.0, 0.25, 0.5, 0.5, 0.5, 0.75, 1.0]
     t = [0.0, 0.25, 0.5, 0.6, 0.7, 0.95, 1.0]
-    rail_a, rail_b, u, starts, ends = _strip(_circle(0.0), _circle(1.0), s, t)
+    rail_a, rail_b, u, starts, ends = _strip(cylinder_circle(0.0), cylinder_circle(1.0), s, t)
     r = ends[4] - starts[4]
     n1, n2 = np.cross(r, [np.cos(0.5), 0, -np.sin(0.5)]), np.cross(r, [np.cos(0.7), 0, -np.sin(0.7)])
     expected = np.arccos(n1 @ n2 / np.linalg.norm(n1) / np.linalg.norm(n2))
